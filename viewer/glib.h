@@ -1,0 +1,160 @@
+/* glib: the parser of glman-style .glib scene files.
+ *
+ * A .glib file is a list of commands that glman executes in order every
+ * frame. The parser turns the text into that list (glib_cmd), resolving our
+ * `Include` extension inline, and collects diagnostics (file:line: message)
+ * instead of stopping: unknown commands and bad lines are skipped with a
+ * message, so a half-written file still shows what it can.
+ *
+ * Nothing here touches OpenGL or the file system beyond reading the glib
+ * and its includes; paths are resolved relative to the file that names them.
+ */
+#ifndef TARN_GLIB_H
+#define TARN_GLIB_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#define GLIB_NAME_MAX 64
+#define GLIB_PATH_MAX 1024
+#define GLIB_MAX_NUMS 16        /* numbers one command or uniform may carry */
+#define GLIB_MAX_UNITS 8        /* RenderToTexture units at once */
+
+typedef enum glib_cmd_kind {
+    GLIB_CMD_NONE = 0,
+    /* viewing */
+    GLIB_CMD_WINDOW_SIZE,       /* num: w h */
+    GLIB_CMD_PERSPECTIVE,       /* num: fov_degrees [near far] */
+    GLIB_CMD_ORTHO,             /* num: l r b t [near far] */
+    GLIB_CMD_LOOKAT,            /* num: ex ey ez cx cy cz ux uy uz */
+    /* transforms */
+    GLIB_CMD_TRANSLATE,         /* num: x y z */
+    GLIB_CMD_ROTATE,            /* num: deg ax ay az */
+    GLIB_CMD_SCALE,             /* num: s, or sx sy sz (nnum 1 or 3) */
+    GLIB_CMD_PUSH_MATRIX,
+    GLIB_CMD_POP_MATRIX,
+    /* geometry; `wire` set for the Wire* variants */
+    GLIB_CMD_QUAD_XY,           /* num: z size nx ny */
+    GLIB_CMD_QUAD_XZ,           /* num: y size nx nz */
+    GLIB_CMD_QUAD_YZ,           /* num: x size ny nz */
+    GLIB_CMD_SPHERE,            /* num: r [slices stacks] */
+    GLIB_CMD_TORUS,             /* num: r_major r_minor [sides rings] */
+    GLIB_CMD_BOX,               /* num: dx [dy dz] (full edge lengths) */
+    GLIB_CMD_CYLINDER,          /* num: r h [slices stacks] */
+    GLIB_CMD_CONE,              /* num: r h [slices stacks] */
+    GLIB_CMD_TEAPOT,            /* num: [size] */
+    GLIB_CMD_OBJ,               /* path */
+    GLIB_CMD_COLOR,             /* num: r g b [a] -> gl_Color for what follows */
+    /* textures; num[0] is the texture unit */
+    GLIB_CMD_TEXTURE2D_FILE,    /* num: unit; path */
+    GLIB_CMD_TEXTURE2D_EMPTY,   /* num: unit w h; format */
+    GLIB_CMD_TEXTURE3D,         /* num: unit; path (a 3D image, or w h d empty: nnum 4) */
+    GLIB_CMD_CUBEMAP,           /* num: unit; paths[6] in +x -x +y -y +z -z order */
+    GLIB_CMD_NOISE2D,           /* num: res (unit 2, sampler Noise2) */
+    GLIB_CMD_NOISE3D,           /* num: res (unit 3, sampler Noise3) */
+    /* passes */
+    GLIB_CMD_RENDER_TO_TEXTURE, /* num: units... (nnum 0 = back to the screen) */
+    GLIB_CMD_CLEAR,
+    GLIB_CMD_BACKGROUND,        /* num: r g b [a] */
+    /* shaders */
+    GLIB_CMD_VERTEX,            /* path, or empty to unset the stage */
+    GLIB_CMD_TESS_CONTROL,
+    GLIB_CMD_TESS_EVALUATION,
+    GLIB_CMD_GEOMETRY,
+    GLIB_CMD_FRAGMENT,
+    GLIB_CMD_PROGRAM,           /* name; uniforms[]; defines[] pending at that point */
+    /* time and compatibility */
+    GLIB_CMD_TIMER,             /* num: period seconds */
+    GLIB_CMD_GSTAP,             /* prepend the GSTAP defines to following stages */
+    /* our extensions (docs/glib.md) */
+    GLIB_CMD_DEFINE,            /* name; a #define toggle: uniform kind BOOL, or a value */
+    GLIB_CMD_CULL,              /* name: "back" | "front" | "none" */
+    GLIB_CMD_DEPTH_TEST,        /* num: 0 | 1 */
+    GLIB_CMD_BLEND,             /* name: "off" | "alpha" | "add" */
+    GLIB_CMD_KIND_COUNT
+} glib_cmd_kind;
+
+typedef enum glib_uniform_kind {
+    GLIB_UNIFORM_SCALAR = 1,    /* name 5       -> v[0]; also a sampler's unit */
+    GLIB_UNIFORM_ARRAY,         /* name [a b c] -> v[0..n-1] */
+    GLIB_UNIFORM_SLIDER,        /* name <min default max> -> v = {min, def, max} */
+    GLIB_UNIFORM_BOOL,          /* name <true>  -> v[0] = 1 or 0 */
+    GLIB_UNIFORM_COLOR          /* name {r g b [a]} -> v[0..3], n = 3 or 4 */
+} glib_uniform_kind;
+
+typedef struct glib_uniform {
+    char name[GLIB_NAME_MAX];
+    glib_uniform_kind kind;
+    double v[GLIB_MAX_NUMS];
+    int n;                      /* count of numbers in v */
+    int line;                   /* where it was written */
+    const char *file;           /* points into glib_scene.files */
+} glib_uniform;
+
+typedef enum glib_target_format {
+    GLIB_TARGET_RGBA8 = 0,      /* default for `Texture2D unit w h` */
+    GLIB_TARGET_RGBA16F,        /* extension: `Texture2D unit w h float16` */
+    GLIB_TARGET_RGBA32F,        /* extension: `Texture2D unit w h float` */
+    GLIB_TARGET_DEPTH           /* extension: `Texture2D unit w h depth` */
+} glib_target_format;
+
+typedef struct glib_cmd {
+    glib_cmd_kind kind;
+    const char *file;           /* the file it came from (points into glib_scene.files) */
+    int line;                   /* 1-based line in that file */
+    bool wire;                  /* Wire* geometry variant */
+    double num[GLIB_MAX_NUMS];
+    int nnum;
+    char name[GLIB_NAME_MAX];   /* Program name, Define name, Cull/Blend mode */
+    char path[GLIB_PATH_MAX];   /* resolved file path (absolute or relative to cwd) */
+    char (*cube_paths)[GLIB_PATH_MAX]; /* CubeMap: 6 resolved paths (heap) */
+    glib_target_format format;  /* Texture2D empty */
+    glib_uniform *uniforms;     /* Program: its uniforms (heap); Define: uniforms[0] */
+    int nuniforms;
+    /* Program: the `Define` toggles written since the previous Program
+     * (heap copies; kind BOOL for `Define NAME <true>`, SCALAR/SLIDER for
+     * `Define NAME 3` / `Define NAME <1 4 8>`) */
+    glib_uniform *defines;
+    int ndefines;
+} glib_cmd;
+
+typedef enum glib_severity { GLIB_WARNING = 1, GLIB_ERROR = 2 } glib_severity;
+
+typedef struct glib_diag {
+    glib_severity severity;
+    const char *file;
+    int line;
+    char message[256];
+} glib_diag;
+
+typedef struct glib_scene {
+    glib_cmd *cmds;
+    int ncmds;
+    glib_diag *diags;
+    int ndiags;
+    int nerrors;                /* diags with GLIB_ERROR */
+    /* every file read (the glib and its includes), each a heap string;
+     * cmds and diags point into these */
+    char **files;
+    int nfiles;
+} glib_scene;
+
+/* Parses a .glib file from disk. Always returns a scene (never NULL); the
+ * caller checks scene->nerrors and prints scene->diags. A missing or empty
+ * file is an error diagnostic at line 1 (or 0 when it cannot be opened). */
+glib_scene *glib_load(const char *path);
+
+/* Parses text in memory, as if it were the file `virtual_path` (used for
+ * tests and the fuzzer). Includes are resolved relative to virtual_path. */
+glib_scene *glib_parse(const char *text, size_t len, const char *virtual_path);
+
+void glib_free(glib_scene *scene);
+
+/* Writes every diagnostic as `file:line: warning|error: message` to stream
+ * (a FILE*; void* keeps stdio out of this header). */
+void glib_print_diags(const glib_scene *scene, void *stream);
+
+/* The command's name as written in docs ("QuadXZ"), for messages. */
+const char *glib_cmd_name(glib_cmd_kind kind);
+
+#endif
