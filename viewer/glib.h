@@ -69,7 +69,7 @@ typedef enum glib_cmd_kind {
     /* our extensions (docs/glib.md) */
     GLIB_CMD_DEFINE,            /* name; a #define toggle: uniform kind BOOL, or a value */
     GLIB_CMD_CULL,              /* name: "back" | "front" | "none" */
-    GLIB_CMD_DEPTH_TEST,        /* num: 0 | 1 */
+    GLIB_CMD_DEPTH_TEST,        /* num: 0 | 1 (name "off" | "on") */
     GLIB_CMD_BLEND,             /* name: "off" | "alpha" | "add" */
     GLIB_CMD_KIND_COUNT
 } glib_cmd_kind;
@@ -104,7 +104,9 @@ typedef struct glib_cmd {
     int line;                   /* 1-based line in that file */
     bool wire;                  /* Wire* geometry variant */
     double num[GLIB_MAX_NUMS];
-    int nnum;
+    int nnum;                   /* optional arguments are filled with their
+                                 * defaults and counted (`Sphere 1` -> 1 32 16,
+                                 * nnum 3); Scale keeps the 1 or 3 written */
     char name[GLIB_NAME_MAX];   /* Program name, Define name, Cull/Blend mode */
     char path[GLIB_PATH_MAX];   /* resolved file path (absolute or relative to cwd) */
     char (*cube_paths)[GLIB_PATH_MAX]; /* CubeMap: 6 resolved paths (heap) */
@@ -141,7 +143,15 @@ typedef struct glib_scene {
 
 /* Parses a .glib file from disk. Always returns a scene (never NULL); the
  * caller checks scene->nerrors and prints scene->diags. A missing or empty
- * file is an error diagnostic at line 1 (or 0 when it cannot be opened). */
+ * file is an error diagnostic at line 1 (or 0 when it cannot be opened).
+ *
+ * Bounds (bad input costs bounded memory): a file of at most 1 MiB, logical
+ * lines of 16384 characters, 16384 commands, 256 uniforms on a Program,
+ * Includes 32 levels deep and 256 in all, 200 diagnostics (the last one
+ * then says how many more there were). A command whose required arguments
+ * are missing or malformed is skipped; a Program keeps its good uniforms.
+ * A file named by a command but missing now is an error that keeps the
+ * command (it may appear before the renderer needs it). */
 glib_scene *glib_load(const char *path);
 
 /* Parses text in memory, as if it were the file `virtual_path` (used for

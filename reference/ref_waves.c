@@ -1,0 +1,500 @@
+/* ref_waves: sum of sines, Gerstner and noise waves in double precision
+ * (see ref_waves.h; the float twin is packs/common/waves.glsl). */
+#include "ref_waves.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#define TWO_PI 6.283185307179586476925286766559
+
+/* The bound |grad n| <= 7.4 of one octave of the gradient noise below (unit
+ * gradients, quintic fade): each partial is a convex blend of
+ * (1-s) g.x + s g'.x + fade'(f) (v' - v), |.| <= 1 + 1.875 * 2 sqrt(1.25)
+ * < 5.2, so the norm is below 5.2 sqrt 2 < 7.4. Its value is below
+ * sqrt(2)/2 (the classic bound for 2D gradient noise); 0.75 leaves room. */
+#define NOISE_GRAD_BOUND 7.4
+#define NOISE_VALUE_BOUND 0.75
+
+/* ------------------------------------------------------------------ */
+/* defaults, in one place                                              */
+
+ref_waves_desc ref_waves_default(void) {
+    ref_waves_desc d;
+    memset(&d, 0, sizeof d);
+    d.level = 0.0;
+    d.steepness = 0.6;
+    d.gerstner_count = 4;
+    d.gerstner[0] = (ref_wave_desc){ .angle_deg = 20.0,  .wavelength = 9.0, .amplitude = 0.10 };
+    d.gerstner[1] = (ref_wave_desc){ .angle_deg = -15.0, .wavelength = 5.3, .amplitude = 0.06, .phase = 1.0 };
+    d.gerstner[2] = (ref_wave_desc){ .angle_deg = 50.0,  .wavelength = 3.1, .amplitude = 0.035, .phase = 2.0 };
+    d.gerstner[3] = (ref_wave_desc){ .angle_deg = 95.0,  .wavelength = 1.7, .amplitude = 0.018, .phase = 4.0 };
+    d.sine_count = 2;
+    d.sine[0] = (ref_wave_desc){ .angle_deg = 160.0, .wavelength = 2.3, .amplitude = 0.012 };
+    d.sine[1] = (ref_wave_desc){ .angle_deg = 70.0,  .wavelength = 1.1, .amplitude = 0.006, .phase = 0.5 };
+    d.noise = (ref_noise_desc){ .amplitude = 0.01, .cell = 2.0, .octaves = 3, .period = 32,
+                                .gain = 0.5, .angle_deg = 30.0, .seed = 1 };
+    return d;
+}
+
+static double deep_water_speed(double wavelength) {
+    return sqrt(REF_GRAVITY * wavelength / TWO_PI);
+}
+
+static void set_err(char *err, size_t errlen, const char *fmt, ...) {
+    if (!err || errlen == 0) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+}
+
+static int wave_finite(const ref_wave_desc *w) {
+    return isfinite(w->angle_deg) && isfinite(w->wavelength) && isfinite(w->amplitude) &&
+           isfinite(w->speed) && isfinite(w->phase);
+}
+
+static int wave_active(const ref_wave_desc *w) {
+    return w->wavelength > 0.0 && w->amplitude != 0.0;
+}
+
+static ref_wave_comp make_comp(const ref_wave_desc *wd) {
+    ref_wave_comp c;
+    double a = wd->angle_deg * (TWO_PI / 360.0);
+    c.dir[0] = cos(a);
+    c.dir[1] = sin(a);
+    c.k = TWO_PI / wd->wavelength;
+    c.amp = wd->amplitude;
+    c.omega = wd->speed * c.k;
+    c.phase = wd->phase;
+    c.qa = 0.0;
+    return c;
+}
+
+static uint32_t hash32(uint32_t x) {   /* "lowbias32"; the GLSL has the same */
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
+}
+
+int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t errlen) {
+    ref_waves_desc d;
+    if (desc) d = *desc;
+    else memset(&d, 0, sizeof d);
+    memset(w, 0, sizeof *w);
+    if (err && errlen) err[0] = '\0';
+
+    if (d.sine_count < 0 || d.sine_count > REF_WAVES_MAX) {
+        set_err(err, errlen, "sine_count %d out of range 0..%d", d.sine_count, REF_WAVES_MAX);
+        return -1;
+    }
+    if (d.gerstner_count < 0 || d.gerstner_count > REF_WAVES_MAX) {
+        set_err(err, errlen, "gerstner_count %d out of range 0..%d", d.gerstner_count, REF_WAVES_MAX);
+        return -1;
+    }
+    if (!isfinite(d.steepness) || d.steepness < 0.0) {
+        set_err(err, errlen, "steepness Q must be finite and >= 0 (got %g)", d.steepness);
+        return -1;
+    }
+    if (!isfinite(d.level)) {
+        set_err(err, errlen, "level must be finite");
+        return -1;
+    }
+    for (int i = 0; i < d.sine_count; i++)
+        if (!wave_finite(&d.sine[i])) { set_err(err, errlen, "sine wave %d has a non-finite value", i); return -1; }
+    for (int i = 0; i < d.gerstner_count; i++)
+        if (!wave_finite(&d.gerstner[i])) { set_err(err, errlen, "Gerstner wave %d has a non-finite value", i); return -1; }
+
+    ref_noise_desc *nd = &d.noise;
+    if (nd->cell == 0.0) nd->cell = REF_NOISE_DEFAULT_CELL;
+    if (nd->octaves == 0) nd->octaves = REF_NOISE_DEFAULT_OCTAVES;
+    if (nd->period == 0) nd->period = REF_NOISE_DEFAULT_PERIOD;
+    if (nd->gain == 0.0) nd->gain = REF_NOISE_DEFAULT_GAIN;
+    if (nd->speed == 0.0) nd->speed = deep_water_speed(2.0 * nd->cell);
+    if (!isfinite(nd->amplitude) || !isfinite(nd->cell) || !isfinite(nd->gain) ||
+        !isfinite(nd->angle_deg) || !isfinite(nd->speed) || nd->cell < 0.0) {
+        set_err(err, errlen, "noise parameters must be finite, cell > 0");
+        return -1;
+    }
+    if (nd->octaves < 0 || nd->octaves > REF_NOISE_OCTAVES_MAX) {
+        set_err(err, errlen, "noise octaves %d out of range 1..%d", nd->octaves, REF_NOISE_OCTAVES_MAX);
+        return -1;
+    }
+    if (nd->period < 0 || nd->period > (1 << 16)) {
+        set_err(err, errlen, "noise period %d out of range 1..65536", nd->period);
+        return -1;
+    }
+
+    double slope = 0.0, hb = 0.0, lmin = INFINITY;
+    for (int i = 0; i < d.sine_count; i++) {
+        ref_wave_desc *wd = &d.sine[i];
+        if (!wave_active(wd)) continue;
+        if (wd->speed == 0.0) wd->speed = deep_water_speed(wd->wavelength);
+        ref_wave_comp c = make_comp(wd);
+        w->sine[w->nsine++] = c;
+        hb += fabs(c.amp);
+        slope += c.k * fabs(c.amp);
+        if (wd->wavelength < lmin) lmin = wd->wavelength;
+    }
+    int ng = 0;
+    for (int i = 0; i < d.gerstner_count; i++) ng += wave_active(&d.gerstner[i]);
+    for (int i = 0; i < d.gerstner_count; i++) {
+        ref_wave_desc *wd = &d.gerstner[i];
+        if (!wave_active(wd)) continue;
+        if (wd->speed == 0.0) wd->speed = deep_water_speed(wd->wavelength);
+        ref_wave_comp c = make_comp(wd);
+        /* Q_i = Q / (k_i A_i N): the horizontal amplitude Q_i A_i = Q / (k_i N). */
+        c.qa = d.steepness / (c.k * ng);
+        if (c.amp < 0.0) c.qa = -c.qa;      /* keeps Q_i >= 0 for a negative A */
+        w->gerstner[w->ngerstner++] = c;
+        w->q_sum += fabs(c.qa) * c.k;       /* Q_i k_i |A_i| = Q / N */
+        hb += fabs(c.amp);
+        slope += c.k * fabs(c.amp);
+        if (wd->wavelength < lmin) lmin = wd->wavelength;
+    }
+    if (nd->amplitude != 0.0) {
+        w->noctaves = nd->octaves;
+        double amp = nd->amplitude, scale = 1.0;
+        for (int o = 0; o < nd->octaves; o++) {
+            ref_noise_octave *oc = &w->octave[o];
+            double ang = nd->angle_deg * (TWO_PI / 360.0) + o * REF_NOISE_TURN;
+            double spd = nd->speed / sqrt(scale);
+            oc->freq = scale / nd->cell;
+            oc->amp = amp;
+            oc->drift[0] = spd * cos(ang);
+            oc->drift[1] = spd * sin(ang);
+            oc->period = nd->period * scale;
+            oc->seed = hash32(nd->seed + (uint32_t)o * 0x9E3779B9U);
+            hb += fabs(amp) * NOISE_VALUE_BOUND;
+            slope += fabs(amp) * oc->freq * NOISE_GRAD_BOUND;
+            amp *= nd->gain;
+            scale *= 2.0;
+        }
+        double finest = nd->cell / (scale * 0.5);
+        if (finest < lmin) lmin = finest;
+    }
+    w->desc = d;
+    w->height_bound = hb;
+    w->slope_bound = slope;
+    w->world_slope_bound = w->q_sum < 1.0 ? slope / (1.0 - w->q_sum) : INFINITY;
+    w->min_wavelength = isfinite(lmin) ? lmin : 1.0;
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* evaluation                                                          */
+
+static double fade(double x) { return x * x * x * (x * (x * 6.0 - 15.0) + 10.0); }
+static double dfade(double x) { double m = x * (x - 1.0); return 30.0 * m * m; }
+
+static double wrap_cell(double i, double period) { return i - period * floor(i / period); }
+
+static void lattice_grad(uint32_t seed, double i, double j, double g[2]) {
+    uint32_t h = hash32((uint32_t)i + hash32((uint32_t)j + seed));
+    double a = (double)(h >> 8) * (TWO_PI / 16777216.0);
+    g[0] = cos(a);
+    g[1] = sin(a);
+}
+
+/* One octave of tileable gradient noise at lattice coordinates (px, pz):
+ * value, and its gradient in lattice units. */
+static double noise_octave(const ref_noise_octave *oc, double px, double pz, double dn[2]) {
+    double fx = floor(px), fz = floor(pz);
+    double x = px - fx, z = pz - fz;
+    double i0 = wrap_cell(fx, oc->period), i1 = wrap_cell(fx + 1.0, oc->period);
+    double j0 = wrap_cell(fz, oc->period), j1 = wrap_cell(fz + 1.0, oc->period);
+    double ga[2], gb[2], gc[2], gd[2];
+    lattice_grad(oc->seed, i0, j0, ga);
+    lattice_grad(oc->seed, i1, j0, gb);
+    lattice_grad(oc->seed, i0, j1, gc);
+    lattice_grad(oc->seed, i1, j1, gd);
+    double va = ga[0] * x + ga[1] * z;
+    double vb = gb[0] * (x - 1.0) + gb[1] * z;
+    double vc = gc[0] * x + gc[1] * (z - 1.0);
+    double vd = gd[0] * (x - 1.0) + gd[1] * (z - 1.0);
+    double ux = fade(x), uz = fade(z), dux = dfade(x), duz = dfade(z);
+    double e = va - vb - vc + vd;
+    double n = va + ux * (vb - va) + uz * (vc - va) + ux * uz * e;
+    dn[0] = ga[0] + ux * (gb[0] - ga[0]) + uz * (gc[0] - ga[0]) +
+            ux * uz * (ga[0] - gb[0] - gc[0] + gd[0]) + dux * (vb - va + uz * e);
+    dn[1] = ga[1] + ux * (gb[1] - ga[1]) + uz * (gc[1] - ga[1]) +
+            ux * uz * (ga[1] - gb[1] - gc[1] + gd[1]) + duz * (vc - va + ux * e);
+    return n;
+}
+
+double ref_waves_noise(const ref_waves *w, double u, double v, double t, double grad[2]) {
+    double h = 0.0, gx = 0.0, gz = 0.0;
+    for (int o = 0; o < w->noctaves; o++) {
+        const ref_noise_octave *oc = &w->octave[o];
+        double dn[2];
+        double px = (u - oc->drift[0] * t) * oc->freq;
+        double pz = (v - oc->drift[1] * t) * oc->freq;
+        h += oc->amp * noise_octave(oc, px, pz, dn);
+        gx += oc->amp * oc->freq * dn[0];
+        gz += oc->amp * oc->freq * dn[1];
+    }
+    if (grad) { grad[0] = gx; grad[1] = gz; }
+    return h;
+}
+
+/* Everything at (u, v): height h and its partials, the Gerstner horizontal
+ * displacement D and its Jacobian entries (a = dDx/du, b = dDx/dv = dDz/du,
+ * d = dDz/dv). */
+typedef struct wave_sums {
+    double h, hu, hv;
+    double dx, dz;
+    double a, b, d;
+} wave_sums;
+
+static void sum_waves(const ref_waves *w, double u, double v, double t, int derivs, wave_sums *s) {
+    memset(s, 0, sizeof *s);
+    for (int i = 0; i < w->nsine; i++) {
+        const ref_wave_comp *c = &w->sine[i];
+        double th = c->k * (c->dir[0] * u + c->dir[1] * v) + c->omega * t + c->phase;
+        double sn = sin(th);
+        s->h += c->amp * sn;
+        if (derivs) {
+            double kc = c->k * c->amp * cos(th);
+            s->hu += kc * c->dir[0];
+            s->hv += kc * c->dir[1];
+        }
+    }
+    for (int i = 0; i < w->ngerstner; i++) {
+        const ref_wave_comp *c = &w->gerstner[i];
+        double th = c->k * (c->dir[0] * u + c->dir[1] * v) + c->omega * t + c->phase;
+        double sn = sin(th), cs = cos(th);
+        s->h += c->amp * sn;
+        s->dx += c->qa * c->dir[0] * cs;
+        s->dz += c->qa * c->dir[1] * cs;
+        if (derivs) {
+            double kc = c->k * c->amp * cs;
+            double qs = c->qa * c->k * sn;
+            s->hu += kc * c->dir[0];
+            s->hv += kc * c->dir[1];
+            s->a -= qs * c->dir[0] * c->dir[0];
+            s->b -= qs * c->dir[0] * c->dir[1];
+            s->d -= qs * c->dir[1] * c->dir[1];
+        }
+    }
+    if (w->noctaves) {
+        double g[2];
+        s->h += ref_waves_noise(w, u, v, t, derivs ? g : NULL);
+        if (derivs) { s->hu += g[0]; s->hv += g[1]; }
+    }
+}
+
+void ref_waves_displace(const ref_waves *w, double u, double v, double t, double pos[3]) {
+    wave_sums s;
+    sum_waves(w, u, v, t, 0, &s);
+    pos[0] = u + s.dx;
+    pos[1] = w->desc.level + s.h;
+    pos[2] = v + s.dz;
+}
+
+static void normalize3(double v[3]) {
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0.0) { v[0] /= l; v[1] /= l; v[2] /= l; }
+}
+
+static void fill_point(const ref_waves *w, double u, double v, const wave_sums *s, ref_waves_point *p) {
+    p->param[0] = u;
+    p->param[1] = v;
+    p->pos[0] = u + s->dx;
+    p->pos[1] = w->desc.level + s->h;
+    p->pos[2] = v + s->dz;
+    /* B = dP/du, T = dP/dv */
+    double B[3] = { 1.0 + s->a, s->hu, s->b };
+    double T[3] = { s->b, s->hv, 1.0 + s->d };
+    memcpy(p->dpdu, B, sizeof B);
+    memcpy(p->dpdv, T, sizeof T);
+    /* N = T x B (y up) */
+    p->normal[0] = T[1] * B[2] - T[2] * B[1];
+    p->normal[1] = T[2] * B[0] - T[0] * B[2];
+    p->normal[2] = T[0] * B[1] - T[1] * B[0];
+    normalize3(p->normal);
+    /* chapter eq. 12: (-sum D.x WA C, 1 - sum Q_i WA S, -sum D.z WA C);
+     * 1 + a + d = 1 - sum Q_i k A sin since |D| = 1 */
+    p->normal_approx[0] = -s->hu;
+    p->normal_approx[1] = 1.0 + s->a + s->d;
+    p->normal_approx[2] = -s->hv;
+    normalize3(p->normal_approx);
+    p->jacobian = (1.0 + s->a) * (1.0 + s->d) - s->b * s->b;
+}
+
+void ref_waves_eval(const ref_waves *w, double u, double v, double t, ref_waves_point *out) {
+    wave_sums s;
+    sum_waves(w, u, v, t, 1, &s);
+    fill_point(w, u, v, &s, out);
+    out->residual = 0.0;
+    out->iterations = 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* inversion: the undisplaced point under a world (x, z)               */
+
+/* Horizontal residual F = (u + Dx - x, v + Dz - z) and its Jacobian. Only the
+ * Gerstner waves move points sideways, so only they are summed. */
+static double horiz_residual(const ref_waves *w, double u, double v, double t, double x, double z,
+                             double F[2], double J[3]) {
+    double dx = 0.0, dz = 0.0, a = 0.0, b = 0.0, d = 0.0;
+    for (int i = 0; i < w->ngerstner; i++) {
+        const ref_wave_comp *c = &w->gerstner[i];
+        double th = c->k * (c->dir[0] * u + c->dir[1] * v) + c->omega * t + c->phase;
+        double cs = cos(th);
+        dx += c->qa * c->dir[0] * cs;
+        dz += c->qa * c->dir[1] * cs;
+        if (J) {
+            double qs = c->qa * c->k * sin(th);
+            a -= qs * c->dir[0] * c->dir[0];
+            b -= qs * c->dir[0] * c->dir[1];
+            d -= qs * c->dir[1] * c->dir[1];
+        }
+    }
+    F[0] = u + dx - x;
+    F[1] = v + dz - z;
+    if (J) { J[0] = 1.0 + a; J[1] = b; J[2] = 1.0 + d; }
+    return hypot(F[0], F[1]);
+}
+
+#define NEWTON_MAX_IT 50
+#define NEWTON_MAX_HALVINGS 40
+#define FIXED_POINT_MAX_IT 2000
+
+int ref_waves_at(const ref_waves *w, double x, double z, double t,
+                 const double guess[2], ref_waves_point *out) {
+    double tol = 1e-12 * fmax(1.0, fmax(fabs(x), fabs(z)));
+    double u = guess ? guess[0] : x, v = guess ? guess[1] : z;
+    double F[2], J[3];
+    int it = 0, ok = 0;
+    double r = horiz_residual(w, u, v, t, x, z, F, J);
+    if (!isfinite(r)) { u = x; v = z; r = horiz_residual(w, u, v, t, x, z, F, J); }
+
+    /* damped Newton: backtrack until |F| decreases */
+    while (r > tol && it < NEWTON_MAX_IT) {
+        it++;
+        double det = J[0] * J[2] - J[1] * J[1];
+        double du, dv;
+        if (fabs(det) > 1e-14) {
+            du = -( J[2] * F[0] - J[1] * F[1]) / det;
+            dv = -(-J[1] * F[0] + J[0] * F[1]) / det;
+        } else {
+            du = -F[0]; dv = -F[1];   /* singular: a fixed-point step */
+        }
+        double lam = 1.0, Fn[2], Jn[3], rn = r;
+        int accepted = 0;
+        for (int k = 0; k < NEWTON_MAX_HALVINGS; k++, lam *= 0.5) {
+            rn = horiz_residual(w, u + lam * du, v + lam * dv, t, x, z, Fn, Jn);
+            if (rn < r) { accepted = 1; break; }
+        }
+        if (!accepted) break;
+        u += lam * du; v += lam * dv;
+        r = rn; F[0] = Fn[0]; F[1] = Fn[1];
+        memcpy(J, Jn, sizeof J);
+    }
+    ok = r <= tol;
+    /* polish: Newton converges quadratically, so one more step from a
+     * residual at the tolerance lands at rounding level */
+    if (ok && r > 0.0) {
+        double det = J[0] * J[2] - J[1] * J[1];
+        if (fabs(det) > 1e-14) {
+            double un = u - ( J[2] * F[0] - J[1] * F[1]) / det;
+            double vn = v - (-J[1] * F[0] + J[0] * F[1]) / det;
+            double Fn[2], rn = horiz_residual(w, un, vn, t, x, z, Fn, NULL);
+            if (rn < r) { u = un; v = vn; r = rn; }
+        }
+    }
+
+    /* fallback: relaxed fixed point (u, v) <- (u, v) - alpha F; alpha = 1 is
+     * the contraction (x, z) - D(u, v) when Q < 1, smaller alphas help when
+     * it is not */
+    if (!ok) {
+        double alpha = 1.0;
+        for (int k = 0; k < FIXED_POINT_MAX_IT && r > tol; k++) {
+            it++;
+            double un = u - alpha * F[0], vn = v - alpha * F[1], Fn[2];
+            double rn = horiz_residual(w, un, vn, t, x, z, Fn, NULL);
+            if (rn < r) {
+                u = un; v = vn; r = rn; F[0] = Fn[0]; F[1] = Fn[1];
+            } else {
+                alpha *= 0.5;
+                if (alpha < 1e-6) break;
+            }
+        }
+        ok = r <= tol;
+    }
+
+    wave_sums s;
+    sum_waves(w, u, v, t, 1, &s);
+    fill_point(w, u, v, &s, out);
+    out->residual = r;
+    out->iterations = it;
+    return ok ? 0 : -1;
+}
+
+double ref_waves_height(const ref_waves *w, double x, double z, double t) {
+    ref_waves_point p;
+    if (ref_waves_at(w, x, z, t, NULL, &p) != 0) return NAN;
+    return p.pos[1];
+}
+
+/* ------------------------------------------------------------------ */
+/* the GLSL uniforms                                                   */
+
+static void put_scalar(ref_waves_uniform *u, const char *name, int is_int, double v) {
+    memset(u, 0, sizeof *u);
+    u->name = name;
+    u->is_int = is_int;
+    u->count = 1;
+    if (is_int) u->i = (int)v;
+    else u->v[0] = (float)v;
+}
+
+static void put_array(ref_waves_uniform *u, const char *name, const ref_wave_desc *w, int n, int field) {
+    memset(u, 0, sizeof *u);
+    u->name = name;
+    u->count = REF_WAVES_MAX;
+    for (int i = 0; i < n; i++) {
+        double x = field == 0 ? w[i].angle_deg : field == 1 ? w[i].wavelength :
+                   field == 2 ? w[i].amplitude : field == 3 ? w[i].speed : w[i].phase;
+        u->v[i] = (float)x;
+    }
+}
+
+int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max) {
+    ref_waves_uniform all[REF_WAVES_UNIFORMS_MAX];
+    const ref_waves_desc *d = &w->desc;
+    int n = 0;
+    put_scalar(&all[n++], "uWaterLevel", 0, d->level);
+    put_scalar(&all[n++], "uSteepness", 0, d->steepness);
+    put_scalar(&all[n++], "uSineCount", 1, d->sine_count);
+    put_array(&all[n++], "uSineAngle", d->sine, d->sine_count, 0);
+    put_array(&all[n++], "uSineLength", d->sine, d->sine_count, 1);
+    put_array(&all[n++], "uSineAmp", d->sine, d->sine_count, 2);
+    put_array(&all[n++], "uSineSpeed", d->sine, d->sine_count, 3);
+    put_array(&all[n++], "uSinePhase", d->sine, d->sine_count, 4);
+    put_scalar(&all[n++], "uGerstnerCount", 1, d->gerstner_count);
+    put_array(&all[n++], "uGerstnerAngle", d->gerstner, d->gerstner_count, 0);
+    put_array(&all[n++], "uGerstnerLength", d->gerstner, d->gerstner_count, 1);
+    put_array(&all[n++], "uGerstnerAmp", d->gerstner, d->gerstner_count, 2);
+    put_array(&all[n++], "uGerstnerSpeed", d->gerstner, d->gerstner_count, 3);
+    put_array(&all[n++], "uGerstnerPhase", d->gerstner, d->gerstner_count, 4);
+    put_scalar(&all[n++], "uNoiseAmp", 0, d->noise.amplitude);
+    put_scalar(&all[n++], "uNoiseCell", 0, d->noise.cell);
+    put_scalar(&all[n++], "uNoiseOctaves", 1, d->noise.octaves);
+    put_scalar(&all[n++], "uNoisePeriod", 1, d->noise.period);
+    put_scalar(&all[n++], "uNoiseGain", 0, d->noise.gain);
+    put_scalar(&all[n++], "uNoiseAngle", 0, d->noise.angle_deg);
+    put_scalar(&all[n++], "uNoiseSpeed", 0, d->noise.speed);
+    /* the seed's 32 bits travel as an int; the GLSL reads uint(uNoiseSeed) */
+    put_scalar(&all[n++], "uNoiseSeed", 1, 0.0);
+    int32_t seed_bits;
+    memcpy(&seed_bits, &d->noise.seed, sizeof seed_bits);
+    all[n - 1].i = seed_bits;
+    int k = n < max ? n : max;
+    memcpy(out, all, (size_t)k * sizeof *out);
+    return k;
+}

@@ -1,0 +1,166 @@
+/* ref_waves: the water surface of the reference, in double precision.
+ *
+ * The wave set is the one packs/common/waves.glsl evaluates in float, with
+ * the same parameters and the same formulas (one definition each side):
+ *
+ *   - sum of sines (height only):   h += A sin(k D.(u,v) + omega t + phase)
+ *   - Gerstner waves (GPU Gems 1 ch. 1, eq. 9), parametric:
+ *         x += Q_i A D.x cos(theta), z += Q_i A D.z cos(theta), h += A sin(theta)
+ *     with Q_i = Q / (k_i A_i N), N the number of active Gerstner waves, so
+ *     that sum Q_i k_i A_i = Q (the surface is loop-free while Q <= 1);
+ *   - noise waves (height only): octaves of tileable 2D gradient noise
+ *     (quintic fade, so C2), each drifting with its own velocity.
+ *
+ * Coordinates: y is up, the mean water plane is y = level; (u, v) are the
+ * undisplaced (rest) coordinates (x0, z0) of a surface point and P(u, v, t)
+ * its displaced position. k = 2 pi / L is the chapter's frequency w; the
+ * phase speed S gives omega = S k (the chapter's phi = S w).
+ *
+ * ref_waves_desc is a desc where zero means default (ref_waves_init fills
+ * the defaults, in one place); the all-zero desc is calm flat water at y = 0.
+ * ref_waves_default() is the lake's wave set. ref_waves is the resolved,
+ * read-only form every query takes: all queries are pure and thread-safe.
+ */
+#ifndef TARN_REF_WAVES_H
+#define TARN_REF_WAVES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define REF_WAVES_MAX 8            /* sines, and Gerstner waves, each */
+#define REF_NOISE_OCTAVES_MAX 8
+#define REF_GRAVITY 9.81           /* for the deep-water phase speed */
+#define REF_NOISE_TURN 0.5         /* radians the drift turns per noise octave */
+
+/* Defaults for zero fields (the GLSL applies the same ones). */
+#define REF_NOISE_DEFAULT_CELL 4.0
+#define REF_NOISE_DEFAULT_OCTAVES 4
+#define REF_NOISE_DEFAULT_PERIOD 16
+#define REF_NOISE_DEFAULT_GAIN 0.5
+
+typedef struct ref_wave_desc {
+    double angle_deg;   /* direction of travel, degrees from +x towards +z */
+    double wavelength;  /* L, world units; a wave with L <= 0 or A == 0 is inactive */
+    double amplitude;   /* A */
+    double speed;       /* phase speed S; 0 = deep water, sqrt(g L / 2 pi) */
+    double phase;       /* phase offset, radians */
+} ref_wave_desc;
+
+typedef struct ref_noise_desc {
+    double amplitude;   /* of octave 0; 0 = no noise */
+    double cell;        /* world size of a lattice cell at octave 0 (0 = 4) */
+    int octaves;        /* 0 = 4; octave o has frequency 2^o / cell */
+    int period;         /* lattice cells per tile at octave 0 (0 = 16); the
+                           noise repeats every period * cell in x and z */
+    double gain;        /* amplitude ratio between octaves (0 = 0.5) */
+    double angle_deg;   /* drift direction of octave 0; octave o turns by o * REF_NOISE_TURN */
+    double speed;       /* drift speed of octave 0 (0 = deep-water speed for
+                           wavelength 2 * cell); octave o drifts at speed / sqrt(2^o) */
+    uint32_t seed;
+} ref_noise_desc;
+
+typedef struct ref_waves_desc {
+    int sine_count;
+    ref_wave_desc sine[REF_WAVES_MAX];
+    int gerstner_count;
+    ref_wave_desc gerstner[REF_WAVES_MAX];
+    double steepness;   /* Q = sum Q_i k_i A_i; 0 = the Gerstner waves are plain sines */
+    double level;       /* mean water height */
+    ref_noise_desc noise;
+} ref_waves_desc;
+
+typedef struct ref_wave_comp {   /* one active wave, resolved */
+    double dir[2];      /* unit (D.x, D.z) */
+    double k;           /* 2 pi / L */
+    double amp;         /* A */
+    double omega;       /* S k */
+    double phase;
+    double qa;          /* Q_i A_i (Gerstner only; 0 for sines) */
+} ref_wave_comp;
+
+typedef struct ref_noise_octave {
+    double freq;        /* lattice cells per world unit */
+    double amp;
+    double drift[2];    /* world velocity of the pattern */
+    double period;      /* lattice cells per tile */
+    uint32_t seed;      /* hashed per octave */
+} ref_noise_octave;
+
+typedef struct ref_waves {
+    ref_waves_desc desc;       /* with the defaults filled in */
+    int nsine, ngerstner, noctaves;
+    ref_wave_comp sine[REF_WAVES_MAX];
+    ref_wave_comp gerstner[REF_WAVES_MAX];
+    ref_noise_octave octave[REF_NOISE_OCTAVES_MAX];
+    double q_sum;              /* sum Q_i k_i A_i over active Gerstner waves */
+    double height_bound;       /* |y - level| <= height_bound everywhere */
+    double slope_bound;        /* |grad h(u, v)| <= slope_bound (parameter domain) */
+    double world_slope_bound;  /* |grad H(x, z)| bound in world space: slope_bound
+                                  / (1 - q_sum); INFINITY when q_sum >= 1 */
+    double min_wavelength;     /* smallest feature: min L, noise cell / 2^(octaves-1) */
+} ref_waves;
+
+/* A point of the surface with its frame. */
+typedef struct ref_waves_point {
+    double param[2];         /* (u, v): the undisplaced point */
+    double pos[3];           /* P(u, v, t) */
+    double dpdu[3];          /* B = dP/du (the chapter's binormal) */
+    double dpdv[3];          /* T = dP/dv (the chapter's tangent) */
+    double normal[3];        /* exact unit normal, y > 0: normalize(T x B) in
+                                this y-up frame = the chapter's cross(B, T) in
+                                its z-up one */
+    double normal_approx[3]; /* the chapter's eq. 12 (drops the cross terms),
+                                normalised */
+    double jacobian;         /* det d(x, z)/d(u, v) of the horizontal map;
+                                > 0 where the surface has no loops */
+    double residual;         /* ref_waves_at: |(x, z) - P_xz(u, v)| reached */
+    int iterations;          /* ref_waves_at: iterations used */
+} ref_waves_point;
+
+/* The lake's wave set (Gerstner waves at Q = 0.6, sines and noise). */
+ref_waves_desc ref_waves_default(void);
+
+/* Resolves a desc (NULL = all zero = flat water). Returns 0, or -1 with a
+ * message in err (when err is not NULL) for bad input: counts out of range,
+ * non-finite numbers, negative steepness. */
+int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t errlen);
+
+/* Displaced position P(u, v, t). */
+void ref_waves_displace(const ref_waves *w, double u, double v, double t, double pos[3]);
+
+/* The full frame at parameter (u, v): position, B, T, both normals, Jacobian. */
+void ref_waves_eval(const ref_waves *w, double u, double v, double t, ref_waves_point *out);
+
+/* The noise component alone: height (relative, without level) and its
+ * gradient in (u, v) (grad may be NULL). */
+double ref_waves_noise(const ref_waves *w, double u, double v, double t, double grad[2]);
+
+/* The surface over the world point (x, z): solves P_xz(u, v, t) = (x, z) for
+ * the undisplaced point by damped Newton (backtracking on |residual|, at
+ * most 50 iterations), falling back to the relaxed fixed point
+ * (u, v) <- (x, z) - D(u, v) (a contraction with constant Q when Q < 1).
+ * Converges to |residual| <= 1e-12 * max(1, |x|, |z|). guess (may be NULL)
+ * is a starting (u, v), e.g. the previous sample of a march. Fills out (at
+ * the best point reached) and returns 0, or -1 when it did not converge
+ * (possible only when Q >= 1, where the surface folds and the height over
+ * a point is not unique). */
+int ref_waves_at(const ref_waves *w, double x, double z, double t,
+                 const double guess[2], ref_waves_point *out);
+
+/* Height over the world point (x, z) (NaN if ref_waves_at failed). */
+double ref_waves_height(const ref_waves *w, double x, double z, double t);
+
+/* The GLSL uniforms of packs/common/waves.glsl for a resolved wave set:
+ * name, type and float values, in a fixed order. Returns how many were
+ * written (at most max; REF_WAVES_UNIFORMS_MAX fits all). */
+#define REF_WAVES_UNIFORMS_MAX 24
+typedef struct ref_waves_uniform {
+    const char *name;        /* e.g. "uGerstnerLength" */
+    int is_int;              /* an int uniform: its value is in i */
+    int count;               /* 1, or the array length REF_WAVES_MAX */
+    int i;                   /* value of an int uniform (uNoiseSeed: the seed's bits) */
+    float v[REF_WAVES_MAX];  /* values of a float uniform or array */
+} ref_waves_uniform;
+int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max);
+
+#endif

@@ -1,0 +1,2 @@
+// cycle_a.glsl includes cycle_b.glsl, which includes this file again
+#include "cycle_b.glsl"

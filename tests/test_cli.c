@@ -1,0 +1,150 @@
+/* The tarn program as a user runs it: help texts, exit codes, and headless
+ * rendering with DISPLAY unset, checked against what the scene says. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "image_io.h"
+
+static const char *bin, *src;
+static char dir[256];
+
+/* Runs a shell command line; returns the exit status, output in *out. */
+static int run(const char *cmdline, char *out, size_t outlen) {
+    FILE *p = popen(cmdline, "r");
+    if (!p) return -1;
+    size_t n = fread(out, 1, outlen - 1, p);
+    out[n] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void test_help_lists_every_command(void) {
+    char cmd[1024], out[8192];
+    snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin);
+    CHECK(run(cmd, out, sizeof out) == 0);
+    CHECK_STR_CONTAINS(out, "view FILE.glib");
+    CHECK_STR_CONTAINS(out, "render FILE.glib");
+    CHECK_STR_CONTAINS(out, "validate");
+    const char *cmds[] = { "view", "render", "validate" };
+    for (int i = 0; i < 3; i++) {
+        snprintf(cmd, sizeof cmd, "%s %s --help 2>&1", bin, cmds[i]);
+        CHECK(run(cmd, out, sizeof out) == 0);
+        CHECK_STR_CONTAINS(out, "usage: tarn");
+    }
+    snprintf(cmd, sizeof cmd, "%s render --help 2>&1", bin);
+    run(cmd, out, sizeof out);
+    CHECK_STR_CONTAINS(out, "--size WxH");
+    CHECK_STR_CONTAINS(out, "--frames N");
+    CHECK_STR_CONTAINS(out, "--time SECONDS");
+}
+
+static void test_bad_usage_exits_2(void) {
+    char cmd[1024], out[8192];
+    snprintf(cmd, sizeof cmd, "%s frobnicate 2>&1", bin);
+    CHECK(run(cmd, out, sizeof out) == 2);
+    CHECK_STR_CONTAINS(out, "unknown command 'frobnicate'");
+    snprintf(cmd, sizeof cmd, "%s render %s/scenes/pond.glib 2>&1", bin, src);
+    CHECK(run(cmd, out, sizeof out) == 2);
+    CHECK_STR_CONTAINS(out, "-o OUT");
+    snprintf(cmd, sizeof cmd, "%s render x.glib -o x.png --size 12by3 2>&1", bin);
+    CHECK(run(cmd, out, sizeof out) == 2);
+}
+
+static void test_missing_scene_names_the_file(void) {
+    char cmd[1024], out[8192];
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/nope.glib -o %s/nope.png 2>&1", bin, dir, dir);
+    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK_STR_CONTAINS(out, "nope.glib");
+}
+
+/* The default scene, headless: the top rows see the sky above the far
+ * shore, so they are the glib's Background (0.55 0.72 0.90); the middle is
+ * water, which is not. Two renders at the same time are identical. */
+static void test_render_headless_is_deterministic_and_follows_scene(void) {
+    char cmd[2048], out[8192], a[512], b[512];
+    snprintf(a, sizeof a, "%s/pond-a.png", dir);
+    snprintf(b, sizeof b, "%s/pond-b.png", dir);
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY %s render %s/scenes/pond.glib -o %s "
+             "--size 160x90 --time 3.5 2>&1", bin, src, a);
+    int rc = run(cmd, out, sizeof out);
+    if (rc == 3) SKIP("no OpenGL: %s", out);
+    CHECK_MSG(rc == 0, "%s", out);
+    CHECK_STR_CONTAINS(out, "wrote");
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 160x90 --time 3.5 --quiet 2>&1",
+             bin, src, b);
+    CHECK(run(cmd, out, sizeof out) == 0);
+    img ia, ib;
+    char err[512];
+    memset(&ia, 0, sizeof ia);
+    memset(&ib, 0, sizeof ib);
+    CHECK_MSG(img_read(a, &ia, err, sizeof err), "%s", err);
+    CHECK_MSG(img_read(b, &ib, err, sizeof err), "%s", err);
+    if (!ia.px || !ib.px) return;
+    CHECK(ia.w == 160 && ia.h == 90);
+    CHECK(memcmp(ia.px, ib.px, sizeof(float) * ia.w * ia.h * ia.channels) == 0);
+    const float *top = ia.px;   /* row 0 = top */
+    CHECK_NEAR(top[0], 0.55, 1.0 / 255);
+    CHECK_NEAR(top[1], 0.72, 1.0 / 255);
+    CHECK_NEAR(top[2], 0.90, 1.0 / 255);
+    const float *mid = ia.px + ((size_t)60 * ia.w + 80) * ia.channels;
+    CHECK(fabsf(mid[0] - 0.55f) + fabsf(mid[1] - 0.72f) + fabsf(mid[2] - 0.90f) > 0.05f);
+    img_free(&ia);
+    img_free(&ib);
+}
+
+/* --frames N with %d writes every frame; time moves the waves. */
+static void test_frames_write_every_frame(void) {
+    char cmd[2048], out[8192], p0[512], p2[512];
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s/f%%d.exr --size 64x36 --frames 3 2>&1",
+             bin, src, dir);
+    int rc = run(cmd, out, sizeof out);
+    if (rc == 3) SKIP("no OpenGL");
+    CHECK_MSG(rc == 0, "%s", out);
+    CHECK_STR_CONTAINS(out, "median GPU time");
+    snprintf(p0, sizeof p0, "%s/f0000.exr", dir);
+    snprintf(p2, sizeof p2, "%s/f0002.exr", dir);
+    CHECK(access(p0, R_OK) == 0);
+    CHECK(access(p2, R_OK) == 0);
+    img i0, i2;
+    char err[256];
+    memset(&i0, 0, sizeof i0);
+    memset(&i2, 0, sizeof i2);
+    if (img_read(p0, &i0, err, sizeof err) && img_read(p2, &i2, err, sizeof err))
+        CHECK(memcmp(i0.px, i2.px, sizeof(float) * i0.w * i0.h * i0.channels) != 0);
+    img_free(&i0);
+    img_free(&i2);
+}
+
+/* No arguments and no display: the default scene goes to out/default.png. */
+static void test_no_arguments_renders_default_scene(void) {
+    char cmd[2048], out[8192], png[512];
+    snprintf(cmd, sizeof cmd, "cd %s && env -u DISPLAY -u WAYLAND_DISPLAY %s 2>&1", dir, bin);
+    int rc = run(cmd, out, sizeof out);
+    if (rc == 3) SKIP("no OpenGL");
+    CHECK_MSG(rc == 0, "%s", out);
+    CHECK_STR_CONTAINS(out, "out/default.png");
+    snprintf(png, sizeof png, "%s/out/default.png", dir);
+    CHECK(access(png, R_OK) == 0);
+}
+
+int main(void) {
+    bin = getenv("TARN_BIN");
+    src = getenv("TARN_SOURCE_DIR");
+    if (!bin || !src) { fprintf(stderr, "run through ctest (TARN_BIN, TARN_SOURCE_DIR)\n"); return 1; }
+    snprintf(dir, sizeof dir, "/tmp/tarn-test-cli-XXXXXX");
+    if (!mkdtemp(dir)) return 1;
+    RUN(test_help_lists_every_command);
+    RUN(test_bad_usage_exits_2);
+    RUN(test_missing_scene_names_the_file);
+    RUN(test_render_headless_is_deterministic_and_follows_scene);
+    RUN(test_frames_write_every_frame);
+    RUN(test_no_arguments_renders_default_scene);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    return check_summary();
+}

@@ -1,0 +1,494 @@
+/* test_ref_waves: the reference's wave set (sum of sines, Gerstner, noise)
+ * against independent formulas written out here, finite differences, the
+ * loop-free bound of GPU Gems 1 ch. 1 and the Newton inversion. */
+#include "check.h"
+#include "ref_waves.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#define TWO_PI (2.0 * M_PI)
+
+static int init(ref_waves *w, const ref_waves_desc *d) {
+    char err[256];
+    int rc = ref_waves_init(w, d, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    return rc;
+}
+
+static double dist3(const double a[3], const double b[3]) {
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* deterministic sample points */
+static double lcg01(uint64_t *s) {
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*s >> 11) * 0x1.0p-53;
+}
+
+static void test_defaults_and_errors(void) {
+    ref_waves w;
+    if (init(&w, NULL)) return;                          /* all zero: flat calm water at 0 */
+    double p[3];
+    ref_waves_displace(&w, 3.0, -7.0, 12.0, p);
+    CHECK(p[0] == 3.0 && p[1] == 0.0 && p[2] == -7.0);
+    CHECK(ref_waves_height(&w, 1.0, 2.0, 3.0) == 0.0);
+    ref_waves_point pt;
+    ref_waves_eval(&w, 1.0, 2.0, 0.0, &pt);
+    CHECK(pt.normal[0] == 0.0 && pt.normal[1] == 1.0 && pt.normal[2] == 0.0);
+    CHECK(w.height_bound == 0.0);
+
+    ref_waves_desc d = ref_waves_default();
+    if (init(&w, &d)) return;
+    CHECK_NEAR(w.q_sum, d.steepness, 1e-15);            /* sum Q_i w_i A_i = Q */
+    CHECK(w.ngerstner == d.gerstner_count && w.nsine == d.sine_count);
+    CHECK(w.noctaves == d.noise.octaves);
+    /* zero speed became the deep-water phase speed */
+    CHECK_NEAR(w.desc.gerstner[0].speed, sqrt(REF_GRAVITY * d.gerstner[0].wavelength / TWO_PI), 1e-15);
+    CHECK(w.world_slope_bound > w.slope_bound);
+
+    /* zero noise fields take the defaults */
+    ref_waves_desc dn;
+    memset(&dn, 0, sizeof dn);
+    dn.noise.amplitude = 0.1;
+    if (init(&w, &dn)) return;
+    CHECK(w.desc.noise.cell == REF_NOISE_DEFAULT_CELL && w.desc.noise.octaves == REF_NOISE_DEFAULT_OCTAVES);
+    CHECK(w.desc.noise.period == REF_NOISE_DEFAULT_PERIOD && w.desc.noise.gain == REF_NOISE_DEFAULT_GAIN);
+
+    /* bad input is an error value with a message */
+    char err[256];
+    ref_waves_desc bad = d;
+    bad.sine_count = REF_WAVES_MAX + 1;
+    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "sine_count");
+    bad = d;
+    bad.steepness = -0.1;
+    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "steepness");
+    bad = d;
+    bad.gerstner[1].amplitude = NAN;
+    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "Gerstner wave 1");
+    bad = d;
+    bad.noise.octaves = 99;
+    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "octaves");
+
+    /* an inactive wave (A = 0) is skipped and not counted in N */
+    ref_waves_desc dz;
+    memset(&dz, 0, sizeof dz);
+    dz.steepness = 0.5;
+    dz.gerstner_count = 2;
+    dz.gerstner[0] = (ref_wave_desc){ .angle_deg = 10, .wavelength = 4, .amplitude = 0.1 };
+    dz.gerstner[1] = (ref_wave_desc){ .angle_deg = 80, .wavelength = 3, .amplitude = 0.0 };
+    if (init(&w, &dz)) return;
+    CHECK(w.ngerstner == 1);
+    CHECK_NEAR(w.q_sum, 0.5, 1e-15);
+}
+
+/* The wave set of a test: Gerstner and sine waves in several directions. */
+static ref_waves_desc four_waves(double q, int gerstner) {
+    ref_waves_desc d;
+    memset(&d, 0, sizeof d);
+    ref_wave_desc ws[4] = {
+        { .angle_deg = 20.0, .wavelength = 9.0, .amplitude = 0.10 },
+        { .angle_deg = -35.0, .wavelength = 5.3, .amplitude = 0.06, .phase = 1.0 },
+        { .angle_deg = 75.0, .wavelength = 3.1, .amplitude = 0.035, .phase = 2.0, .speed = 1.7 },
+        { .angle_deg = 140.0, .wavelength = 1.7, .amplitude = 0.018, .phase = 4.0 },
+    };
+    if (gerstner) {
+        d.gerstner_count = 4;
+        memcpy(d.gerstner, ws, sizeof ws);
+    } else {
+        d.sine_count = 4;
+        memcpy(d.sine, ws, sizeof ws);
+    }
+    d.steepness = q;
+    d.level = 0.25;
+    return d;
+}
+
+/* GPU Gems 1 eq. 9 written out independently (y up; the chapter's y is our z):
+ * P = (x + sum Q_i A_i D.x cos(w_i D.(x,z) + phi_i t),
+ *      level + sum A_i sin(...),
+ *      z + sum Q_i A_i D.z cos(...)),
+ * w_i = 2 pi / L_i, phi_i = S_i w_i (S_i = sqrt(g L / 2 pi) when 0),
+ * Q_i = Q / (w_i A_i N). */
+static void gems_eq9(const ref_waves_desc *d, int gerstner, double x, double z, double t, double P[3]) {
+    const ref_wave_desc *ws = gerstner ? d->gerstner : d->sine;
+    int n = gerstner ? d->gerstner_count : d->sine_count;
+    P[0] = x; P[1] = d->level; P[2] = z;
+    for (int i = 0; i < n; i++) {
+        double a = ws[i].angle_deg * M_PI / 180.0, Dx = cos(a), Dz = sin(a);
+        double w = TWO_PI / ws[i].wavelength, A = ws[i].amplitude;
+        double S = ws[i].speed != 0.0 ? ws[i].speed : sqrt(REF_GRAVITY * ws[i].wavelength / TWO_PI);
+        double th = w * (Dx * x + Dz * z) + S * w * t + ws[i].phase;
+        double Qi = gerstner ? d->steepness / (w * A * n) : 0.0;
+        P[0] += Qi * A * Dx * cos(th);
+        P[1] += A * sin(th);
+        P[2] += Qi * A * Dz * cos(th);
+    }
+}
+
+static void test_gerstner_matches_gems_eq9(void) {
+    ref_waves_desc d = four_waves(0.8, 1);
+    ref_waves w;
+    if (init(&w, &d)) return;
+    uint64_t s = 1;
+    double worst = 0.0;
+    for (int i = 0; i < 2000; i++) {
+        double u = 200.0 * lcg01(&s) - 100.0, v = 200.0 * lcg01(&s) - 100.0, t = 30.0 * lcg01(&s);
+        double P[3], Q[3];
+        ref_waves_displace(&w, u, v, t, P);
+        gems_eq9(&d, 1, u, v, t, Q);
+        worst = fmax(worst, dist3(P, Q));
+    }
+    CHECK_MSG(worst <= 1e-12, "max |P - eq9| = %g", worst);
+}
+
+/* Q = 0 turns Gerstner waves into the sum of sines: same positions and
+ * normals (to 1e-12), and both equal the sum of sines written out. */
+static void test_gerstner_q0_is_sum_of_sines(void) {
+    ref_waves_desc dg = four_waves(0.0, 1), ds = four_waves(0.0, 0);
+    ref_waves wg, ws;
+    if (init(&wg, &dg) || init(&ws, &ds)) return;
+    uint64_t s = 2;
+    double worst_p = 0.0, worst_n = 0.0, worst_ind = 0.0;
+    for (int i = 0; i < 2000; i++) {
+        double u = 200.0 * lcg01(&s) - 100.0, v = 200.0 * lcg01(&s) - 100.0, t = 30.0 * lcg01(&s);
+        ref_waves_point a, b;
+        ref_waves_eval(&wg, u, v, t, &a);
+        ref_waves_eval(&ws, u, v, t, &b);
+        worst_p = fmax(worst_p, dist3(a.pos, b.pos));
+        worst_n = fmax(worst_n, dist3(a.normal, b.normal));
+        double P[3];
+        gems_eq9(&ds, 0, u, v, t, P);
+        worst_ind = fmax(worst_ind, dist3(b.pos, P));
+        /* the sum of sines moves nothing sideways */
+        CHECK(a.pos[0] == u && a.pos[2] == v);
+    }
+    CHECK_MSG(worst_p <= 1e-12, "max |P_gerstner - P_sines| = %g", worst_p);
+    CHECK_MSG(worst_n <= 1e-12, "max |N_gerstner - N_sines| = %g", worst_n);
+    CHECK_MSG(worst_ind <= 1e-12, "max |P_sines - written out| = %g", worst_ind);
+}
+
+/* Central differences of P(u, v) against the analytic dP/du, dP/dv and the
+ * exact normal, on the full default set (Gerstner + sines + noise).
+ * Central differences err by h^2/6 |P'''| plus rounding eps |P| / h: with
+ * h = 1e-4, |P'''| < ~10 here (largest k^3 A is ~1.1 for the sines, the
+ * finest noise octave a few) and |P| <= ~150, both are below 1e-8; we assert
+ * 1e-7. The order is checked too: halving h divides the error by ~4. */
+static void test_normals_vs_finite_differences(void) {
+    ref_waves_desc d = ref_waves_default();
+    ref_waves w;
+    if (init(&w, &d)) return;
+    const double h = 1e-4;
+    uint64_t s = 3;
+    double worst_b = 0.0, worst_t = 0.0, worst_n = 0.0, e_h = 0.0, e_h2 = 0.0;
+    for (int i = 0; i < 3000; i++) {
+        double u = 200.0 * lcg01(&s) - 100.0, v = 200.0 * lcg01(&s) - 100.0, t = 20.0 * lcg01(&s);
+        ref_waves_point p;
+        ref_waves_eval(&w, u, v, t, &p);
+        double pu1[3], pu0[3], pv1[3], pv0[3], B[3], T[3];
+        ref_waves_displace(&w, u + h, v, t, pu1);
+        ref_waves_displace(&w, u - h, v, t, pu0);
+        ref_waves_displace(&w, u, v + h, t, pv1);
+        ref_waves_displace(&w, u, v - h, t, pv0);
+        for (int k = 0; k < 3; k++) {
+            B[k] = (pu1[k] - pu0[k]) / (2 * h);
+            T[k] = (pv1[k] - pv0[k]) / (2 * h);
+        }
+        worst_b = fmax(worst_b, dist3(B, p.dpdu));
+        worst_t = fmax(worst_t, dist3(T, p.dpdv));
+        double n[3] = { T[1] * B[2] - T[2] * B[1], T[2] * B[0] - T[0] * B[2], T[0] * B[1] - T[1] * B[0] };
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; k++) n[k] /= l;
+        worst_n = fmax(worst_n, dist3(n, p.normal));
+        CHECK(p.normal[1] > 0.0);
+        /* Jacobian = the horizontal cross product of the differences */
+        CHECK_NEAR(p.jacobian, B[0] * T[2] - B[2] * T[0], 1e-7);
+        if (i < 300) {   /* convergence order with larger steps (truncation dominates) */
+            double H = 2e-2;
+            for (int pass = 0; pass < 2; pass++, H *= 0.5) {
+                double a[3], b[3];
+                ref_waves_displace(&w, u + H, v, t, a);
+                ref_waves_displace(&w, u - H, v, t, b);
+                double e = 0.0;
+                for (int k = 0; k < 3; k++) e += fabs((a[k] - b[k]) / (2 * H) - p.dpdu[k]);
+                if (pass == 0) e_h += e; else e_h2 += e;
+            }
+        }
+    }
+    CHECK_MSG(worst_b <= 1e-7, "max |dP/du - FD| = %g", worst_b);
+    CHECK_MSG(worst_t <= 1e-7, "max |dP/dv - FD| = %g", worst_t);
+    CHECK_MSG(worst_n <= 1e-7, "max |N - N_FD| = %g", worst_n);
+    double order = log2(e_h / e_h2);
+    CHECK_MSG(order > 1.8 && order < 2.2, "observed order %g", order);
+}
+
+/* The chapter's normal (eq. 12) drops the cross terms of cross(B, T): it is
+ * exact for a single Gerstner wave (the cross terms cancel) and not for a
+ * sum; it equals eq. 12 written out. */
+static void test_approx_normal(void) {
+    ref_waves_desc d1;
+    memset(&d1, 0, sizeof d1);
+    d1.gerstner_count = 1;
+    d1.gerstner[0] = (ref_wave_desc){ .angle_deg = 33.0, .wavelength = 4.0, .amplitude = 0.2 };
+    d1.steepness = 0.9;
+    ref_waves w1, w4;
+    ref_waves_desc d4 = four_waves(0.9, 1);
+    if (init(&w1, &d1) || init(&w4, &d4)) return;
+    uint64_t s = 4;
+    double worst1 = 0.0, max_angle4 = 0.0, worst_eq12 = 0.0;
+    for (int i = 0; i < 2000; i++) {
+        double u = 100.0 * lcg01(&s) - 50.0, v = 100.0 * lcg01(&s) - 50.0, t = 10.0 * lcg01(&s);
+        ref_waves_point p;
+        ref_waves_eval(&w1, u, v, t, &p);
+        worst1 = fmax(worst1, dist3(p.normal, p.normal_approx));
+        ref_waves_eval(&w4, u, v, t, &p);
+        double c = p.normal[0] * p.normal_approx[0] + p.normal[1] * p.normal_approx[1] +
+                   p.normal[2] * p.normal_approx[2];
+        max_angle4 = fmax(max_angle4, acos(fmin(1.0, c)));
+        /* eq. 12: N = (-sum D.x WA C, 1 - sum Q_i WA S, -sum D.z WA C) */
+        double n[3] = { 0.0, 1.0, 0.0 };
+        for (int k = 0; k < 4; k++) {
+            const ref_wave_desc *wd = &d4.gerstner[k];
+            double a = wd->angle_deg * M_PI / 180.0, Dx = cos(a), Dz = sin(a);
+            double W = TWO_PI / wd->wavelength, A = wd->amplitude;
+            double S = wd->speed != 0.0 ? wd->speed : sqrt(REF_GRAVITY * wd->wavelength / TWO_PI);
+            double th = W * (Dx * u + Dz * v) + S * W * t + wd->phase;
+            double Qi = d4.steepness / (W * A * 4);
+            n[0] -= Dx * W * A * cos(th);
+            n[1] -= Qi * W * A * sin(th);
+            n[2] -= Dz * W * A * cos(th);
+        }
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; k++) n[k] /= l;
+        worst_eq12 = fmax(worst_eq12, dist3(n, p.normal_approx));
+    }
+    CHECK_MSG(worst1 <= 1e-12, "single wave: |N - N_approx| = %g", worst1);
+    CHECK_MSG(worst_eq12 <= 1e-12, "|N_approx - eq. 12| = %g", worst_eq12);
+    CHECK_MSG(max_angle4 > 1e-3, "four waves: approx normal error only %g rad", max_angle4);
+}
+
+/* Minimum of the horizontal map's Jacobian over a dense grid (spacing
+ * L_min / 24 over a 40 x 40 area) at a few times. */
+static double min_jacobian(const ref_waves *w) {
+    double m = INFINITY;
+    double step = w->min_wavelength / 24.0;
+    int n = (int)(40.0 / step);
+    for (int ti = 0; ti < 3; ti++)
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                ref_waves_point p;
+                ref_waves_eval(w, -20.0 + i * step, -20.0 + j * step, 1.3 * ti, &p);
+                if (p.jacobian < m) m = p.jacobian;
+            }
+    return m;
+}
+
+/* Loop-free while sum Q_i w_i A_i = Q <= 1: the Jacobian of (u,v) -> (x,z)
+ * is I - sum c_i D_i D_i^T with |c_i| <= Q_i w_i A_i, so its eigenvalues are
+ * >= 1 - Q and det >= (1 - Q)^2 > 0; asserted on the grid (to 1e-12). At
+ * Q = 1 the bound is 0 and is reached where all crests meet (parallel waves
+ * at one crest). Above 1 the surface folds (det < 0 somewhere). */
+static void test_loop_free_up_to_q1(void) {
+    double qs[] = { 0.3, 0.7, 0.95, 1.0 };
+    for (int k = 0; k < 4; k++) {
+        ref_waves_desc d = four_waves(qs[k], 1);
+        ref_waves w;
+        if (init(&w, &d)) return;
+        CHECK_NEAR(w.q_sum, qs[k], 1e-15);
+        double m = min_jacobian(&w);
+        double bound = (1.0 - qs[k]) * (1.0 - qs[k]);
+        CHECK_MSG(m >= bound - 1e-12, "Q = %g: min det %g < (1-Q)^2 = %g", qs[k], m, bound);
+        if (qs[k] < 1.0) CHECK(m > 0.0);
+    }
+    /* parallel waves at Q = 1 touch 0 at the common crest, fold above */
+    ref_waves_desc dp;
+    memset(&dp, 0, sizeof dp);
+    dp.gerstner_count = 2;
+    dp.gerstner[0] = (ref_wave_desc){ .angle_deg = 0.0, .wavelength = 4.0, .amplitude = 0.2 };
+    dp.gerstner[1] = (ref_wave_desc){ .angle_deg = 0.0, .wavelength = 2.0, .amplitude = 0.05, .phase = -M_PI / 2 };
+    dp.steepness = 1.0;
+    ref_waves w;
+    if (init(&w, &dp)) return;
+    /* both crests at k u = pi/2 (mod 2 pi) at t = 0: u = 1 */
+    ref_waves_point p;
+    ref_waves_eval(&w, 1.0, 0.0, 0.0, &p);
+    CHECK_NEAR(p.jacobian, 0.0, 1e-12);
+    CHECK(min_jacobian(&w) >= -1e-12);
+    /* x(u) along the wave is monotone (no loop) at Q = 1 ... */
+    double prev = -INFINITY;
+    int monotone = 1;
+    for (int i = 0; i <= 4000; i++) {
+        double P[3];
+        ref_waves_displace(&w, -2.0 + i * 1e-3, 0.0, 0.0, P);
+        if (P[0] < prev) monotone = 0;
+        prev = P[0];
+    }
+    CHECK(monotone);
+    /* ... and loops above it */
+    dp.steepness = 1.2;
+    if (init(&w, &dp)) return;
+    ref_waves_eval(&w, 1.0, 0.0, 0.0, &p);
+    CHECK_NEAR(p.jacobian, 1.0 - 1.2, 1e-12);
+    prev = -INFINITY;
+    monotone = 1;
+    for (int i = 0; i <= 4000; i++) {
+        double P[3];
+        ref_waves_displace(&w, -2.0 + i * 1e-3, 0.0, 0.0, P);
+        if (P[0] < prev) monotone = 0;
+        prev = P[0];
+    }
+    CHECK(!monotone);
+    /* the four-direction set folds too once Q is well above 1 */
+    ref_waves_desc d = four_waves(1.8, 1);
+    if (init(&w, &d)) return;
+    CHECK(min_jacobian(&w) < 0.0);
+}
+
+/* Newton at a world point recovers the parametric point: take (u, v), map
+ * it to P, ask for the surface over (P.x, P.z): same (u, v) to 1e-10, same
+ * height to 1e-12, residual within the 1e-12 * max(1, |x|, |z|) target. */
+static void test_newton_inversion(void) {
+    double qs[] = { 0.6, 0.95, 0.999 };
+    for (int k = 0; k < 3; k++) {
+        ref_waves_desc d = ref_waves_default();
+        d.steepness = qs[k];
+        ref_waves w;
+        if (init(&w, &d)) return;
+        uint64_t s = 5 + k;
+        double worst_uv = 0.0, worst_h = 0.0;
+        int max_it = 0, fails = 0;
+        for (int i = 0; i < 5000; i++) {
+            double u = 400.0 * lcg01(&s) - 200.0, v = 400.0 * lcg01(&s) - 200.0, t = 50.0 * lcg01(&s);
+            double P[3];
+            ref_waves_displace(&w, u, v, t, P);
+            ref_waves_point q;
+            if (ref_waves_at(&w, P[0], P[2], t, NULL, &q) != 0) fails++;
+            worst_uv = fmax(worst_uv, fmax(fabs(q.param[0] - u), fabs(q.param[1] - v)));
+            worst_h = fmax(worst_h, fabs(q.pos[1] - P[1]));
+            CHECK(q.residual <= 1e-12 * fmax(1.0, fmax(fabs(P[0]), fabs(P[2]))));
+            if (q.iterations > max_it) max_it = q.iterations;
+        }
+        CHECK_MSG(fails == 0, "Q = %g: %d failures", qs[k], fails);
+        /* the residual target is 1e-12 * max(1, |x|, |z|) (<= 2e-10 here,
+         * |x|, |z| <= ~200), and the map's smallest singular value 1 - Q
+         * bounds how far that moves (u, v): 2e-10 / (1 - Q); the height
+         * moves by at most slope_bound times that. The polishing Newton
+         * step after convergence takes the residual to rounding level, so
+         * for Q <= 0.95 we also assert 1e-12 absolute (actual: ~1e-13). */
+        CHECK_MSG(worst_uv <= 200e-12 / (1.0 - qs[k]), "Q = %g: |uv error| = %g", qs[k], worst_uv);
+        CHECK_MSG(worst_h <= 200e-12 / (1.0 - qs[k]) * w.slope_bound, "Q = %g: |h error| = %g", qs[k], worst_h);
+        if (qs[k] <= 0.95) {
+            CHECK_MSG(worst_uv <= 1e-12, "Q = %g: |uv error| = %g", qs[k], worst_uv);
+            CHECK_MSG(worst_h <= 1e-12, "Q = %g: |h error| = %g", qs[k], worst_h);
+        }
+        if (qs[k] <= 0.95) CHECK_MSG(max_it <= 12, "Q = %g: %d iterations", qs[k], max_it);
+        fprintf(stderr, "  Q = %g: max |uv err| %.3g, |h err| %.3g, max iterations %d\n",
+                qs[k], worst_uv, worst_h, max_it);
+    }
+    /* a warm start near the answer converges at once */
+    ref_waves_desc d = ref_waves_default();
+    ref_waves w;
+    if (init(&w, &d)) return;
+    double P[3];
+    ref_waves_displace(&w, 3.0, 4.0, 1.0, P);
+    double guess[2] = { 3.0 + 1e-6, 4.0 - 1e-6 };
+    ref_waves_point q;
+    CHECK(ref_waves_at(&w, P[0], P[2], 1.0, guess, &q) == 0);
+    CHECK(q.iterations <= 2);
+    CHECK_NEAR(ref_waves_height(&w, P[0], P[2], 1.0), P[1], 1e-12);
+}
+
+/* The noise tiles with period * cell, is C1 across lattice lines, and its
+ * gradient matches central differences (h = 1e-5, tolerance 1e-7). */
+static void test_noise(void) {
+    ref_waves_desc d;
+    memset(&d, 0, sizeof d);
+    d.noise = (ref_noise_desc){ .amplitude = 0.3, .cell = 2.0, .octaves = 4, .period = 8,
+                                .angle_deg = 30.0, .seed = 77 };
+    ref_waves w;
+    if (init(&w, &d)) return;
+    double tile = 8 * 2.0;
+    uint64_t s = 9;
+    double worst_tile = 0.0, worst_grad = 0.0, maxabs = 0.0, maxgrad = 0.0;
+    for (int i = 0; i < 3000; i++) {
+        double u = 100.0 * lcg01(&s) - 50.0, v = 100.0 * lcg01(&s) - 50.0, t = 7.0 * lcg01(&s);
+        double g[2], g1[2];
+        double n = ref_waves_noise(&w, u, v, t, g);
+        worst_tile = fmax(worst_tile, fabs(ref_waves_noise(&w, u + tile, v, t, NULL) - n));
+        worst_tile = fmax(worst_tile, fabs(ref_waves_noise(&w, u, v - 3 * tile, t, NULL) - n));
+        const double h = 1e-5;
+        double fx = (ref_waves_noise(&w, u + h, v, t, NULL) - ref_waves_noise(&w, u - h, v, t, NULL)) / (2 * h);
+        double fz = (ref_waves_noise(&w, u, v + h, t, NULL) - ref_waves_noise(&w, u, v - h, t, NULL)) / (2 * h);
+        worst_grad = fmax(worst_grad, fmax(fabs(fx - g[0]), fabs(fz - g[1])));
+        maxabs = fmax(maxabs, fabs(n));
+        maxgrad = fmax(maxgrad, hypot(g[0], g[1]));
+        (void)g1;
+    }
+    CHECK_MSG(worst_tile <= 1e-9, "tile mismatch %g", worst_tile);
+    CHECK_MSG(worst_grad <= 1e-7, "noise gradient vs FD %g", worst_grad);
+    CHECK(maxabs <= w.height_bound);
+    CHECK(maxgrad <= w.slope_bound);
+    CHECK(maxabs > 0.05);                         /* it is not flat */
+    /* across a lattice line of octave 0 (u = 4.0 is a multiple of cell at
+     * t = 0 since the drift moves the lattice with time) */
+    double ga[2], gb[2];
+    double na = ref_waves_noise(&w, 4.0 - 1e-9, 1.3, 0.0, ga);
+    double nb = ref_waves_noise(&w, 4.0 + 1e-9, 1.3, 0.0, gb);
+    CHECK_NEAR(na, nb, 1e-8);
+    CHECK_NEAR(ga[0], gb[0], 1e-6);
+    CHECK_NEAR(ga[1], gb[1], 1e-6);
+    /* deterministic, and the seed matters */
+    double n1 = ref_waves_noise(&w, 1.234, 5.678, 0.5, NULL);
+    d.noise.seed = 78;
+    ref_waves w2;
+    if (init(&w2, &d)) return;
+    CHECK(ref_waves_noise(&w, 1.234, 5.678, 0.5, NULL) == n1);
+    CHECK(fabs(ref_waves_noise(&w2, 1.234, 5.678, 0.5, NULL) - n1) > 1e-6);
+}
+
+static void test_uniforms(void) {
+    ref_waves_desc d = ref_waves_default();
+    d.noise.seed = 0xdeadbeefU;
+    ref_waves w;
+    if (init(&w, &d)) return;
+    ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
+    int n = ref_waves_uniforms(&w, u, REF_WAVES_UNIFORMS_MAX);
+    CHECK(n == 22);
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++) CHECK(strcmp(u[i].name, u[j].name) != 0);
+    int seen = 0;
+    for (int i = 0; i < n; i++) {
+        if (!strcmp(u[i].name, "uGerstnerLength")) {
+            seen++;
+            CHECK(u[i].count == REF_WAVES_MAX && !u[i].is_int);
+            CHECK(u[i].v[1] == (float)d.gerstner[1].wavelength);
+        }
+        if (!strcmp(u[i].name, "uGerstnerSpeed")) {
+            seen++;
+            CHECK(u[i].v[0] == (float)sqrt(REF_GRAVITY * d.gerstner[0].wavelength / TWO_PI));
+        }
+        if (!strcmp(u[i].name, "uSineCount")) { seen++; CHECK(u[i].is_int && u[i].i == d.sine_count); }
+        if (!strcmp(u[i].name, "uNoiseSeed")) { seen++; CHECK(u[i].is_int && (uint32_t)u[i].i == 0xdeadbeefU); }
+        if (!strcmp(u[i].name, "uSteepness")) { seen++; CHECK(u[i].v[0] == (float)d.steepness); }
+    }
+    CHECK(seen == 5);
+    CHECK(ref_waves_uniforms(&w, u, 3) == 3);
+}
+
+int main(void) {
+    RUN(test_defaults_and_errors);
+    RUN(test_gerstner_matches_gems_eq9);
+    RUN(test_gerstner_q0_is_sum_of_sines);
+    RUN(test_normals_vs_finite_differences);
+    RUN(test_approx_normal);
+    RUN(test_loop_free_up_to_q1);
+    RUN(test_newton_inversion);
+    RUN(test_noise);
+    RUN(test_uniforms);
+    return check_summary();
+}

@@ -1,0 +1,364 @@
+/* GL tests on the headless context (Mesa llvmpipe through EGL): small
+ * scenes whose pixel values follow from the scene itself (a uniform colour,
+ * a transform, a texture, Timer), and the reload rules: a shader error keeps
+ * the previous image, a fixed shader applies, slider values survive. */
+#include <GL/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "gl_ctx.h"
+#include "render.h"
+
+#define W 64
+#define H 64
+#define TOL (1.5 / 255.0)   /* RGBA8 target: half a step of rounding, plus slack */
+
+static gl_ctx *ctx;
+static char dir[256];
+static float px[W * H * 4];
+
+static void write_file(const char *name, const char *text) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) { perror(path); exit(1); }
+    fputs(text, f);
+    fclose(f);
+}
+
+static const char *path_of(const char *name) {
+    static char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return path;
+}
+
+/* Renders r at time t into a fresh W x H target and reads it back. */
+static void draw(render *r, double t) {
+    render_target tg;
+    if (!render_target_create(&tg, W, H, false)) { fprintf(stderr, "no target\n"); exit(1); }
+    render_frame(r, t, tg.fbo, W, H, NULL);
+    render_target_read(&tg, px);
+    render_target_destroy(&tg);
+}
+
+/* pixel (x, y), y = 0 the top row */
+static const float *at(int x, int y) { return px + ((size_t)y * W + x) * 4; }
+
+#define CHECK_RGB(p, r_, g_, b_) do { const float *q_ = (p); \
+    CHECK_NEAR(q_[0], r_, TOL); CHECK_NEAR(q_[1], g_, TOL); CHECK_NEAR(q_[2], b_, TOL); } while (0)
+
+static const char *flat_vert =
+    "#version 330 compatibility\n"
+    "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n";
+
+static const char *flat_frag =
+    "#version 330 compatibility\n"
+    "uniform vec4 uColor;\n"
+    "out vec4 fragColor;\n"
+    "void main() { fragColor = uColor; }\n";
+
+static void test_uniform_colour_fills_the_screen(void) {
+    write_file("flat.vert", flat_vert);
+    write_file("flat.frag", flat_frag);
+    write_file("flat.glib",
+               "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\n"
+               "Vertex flat.vert\nFragment flat.frag\n"
+               "Program Flat uColor {0.2 0.4 0.6 1.}\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("flat.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(0, 0), 0.2, 0.4, 0.6);
+    CHECK_RGB(at(W / 2, H / 2), 0.2, 0.4, 0.6);
+    CHECK_RGB(at(W - 1, H - 1), 0.2, 0.4, 0.6);
+    render_destroy(r);
+}
+
+/* Translate 0.5 0 0, Scale 0.25: the quad covers x in [0.25, 0.75] of NDC,
+ * i.e. pixels 40..55 of 64, and y in [-0.25, 0.25], rows 24..39. */
+static void test_transforms_place_geometry(void) {
+    write_file("xf.glib",
+               "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 1\n"
+               "Vertex flat.vert\nFragment flat.frag\n"
+               "Program Flat uColor {1 0 0 1}\n"
+               "PushMatrix\nTranslate 0.5 0 0\nScale 0.25\nQuadXY 0 1 1 1\nPopMatrix\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("xf.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(48, 32), 1, 0, 0);        /* inside */
+    CHECK_RGB(at(41, 25), 1, 0, 0);
+    CHECK_RGB(at(54, 38), 1, 0, 0);
+    CHECK_RGB(at(38, 32), 0, 0, 1);        /* left of it: background */
+    CHECK_RGB(at(57, 32), 0, 0, 1);        /* right of it */
+    CHECK_RGB(at(48, 21), 0, 0, 1);        /* above it */
+    CHECK_RGB(at(16, 32), 0, 0, 1);
+    render_destroy(r);
+}
+
+/* Timer: a 0..1 sawtooth of period `Timer secs`: at t = 12.5 with a 10 s
+ * period it is 0.25. */
+static void test_timer_is_a_sawtooth(void) {
+    write_file("timer.frag",
+               "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
+               "void main() { c = vec4(Timer, 0., 0., 1.); }\n");
+    write_file("timer.glib",
+               "##OpenGL GLIB\nOrtho -1 1 -1 1\nTimer 10\nVertex flat.vert\nFragment timer.frag\n"
+               "Program T\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("timer.glib")), "%s", render_messages(r));
+    draw(r, 12.5);
+    CHECK_NEAR(at(10, 10)[0], 0.25, TOL);
+    draw(r, 7.0);
+    CHECK_NEAR(at(10, 10)[0], 0.70, TOL);
+    render_destroy(r);
+}
+
+/* GSTAP maps aVertex and uModelViewProjectionMatrix to the built-ins. */
+static void test_gstap_names_work(void) {
+    write_file("gstap.vert",
+               "#version 330 compatibility\n"
+               "void main() { gl_Position = uModelViewProjectionMatrix * aVertex; }\n");
+    write_file("gstap.glib",
+               "##OpenGL GLIB\nGSTAP\nOrtho -1 1 -1 1\nVertex gstap.vert\nFragment flat.frag\n"
+               "Program G uColor {0 1 0 1}\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("gstap.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 0, 1, 0);
+    render_destroy(r);
+}
+
+/* A 2x2 BMP (24-bit, bottom-up rows as BMP stores them) mapped on the
+ * screen: the image's top-left texel shows at the screen's top left. */
+static void write_bmp_2x2(const char *name) {
+    /* top row: red, green; bottom row: blue, white (as the image is seen) */
+    unsigned char file[70] = { 'B', 'M', 70, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0,
+        40, 0, 0, 0, 2, 0, 0, 0, 2, 0, 0, 0, 1, 0, 24, 0, 0, 0, 0, 0, 16, 0, 0, 0,
+        0x13, 0x0b, 0, 0, 0x13, 0x0b, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    const unsigned char rows[16] = {
+        255, 0, 0, 255, 255, 255, 0, 0,      /* bottom row (BGR): blue, white, pad */
+        0, 0, 255, 0, 255, 0, 0, 0 };        /* top row: red, green, pad */
+    memcpy(file + 54, rows, 16);
+    FILE *f = fopen(path_of(name), "wb");
+    if (!f) exit(1);
+    fwrite(file, 1, sizeof file, f);
+    fclose(f);
+}
+
+static void test_texture_from_bmp(void) {
+    write_bmp_2x2("quad.bmp");
+    write_file("tex.vert",
+               "#version 330 compatibility\nout vec2 st;\n"
+               "void main() { st = gl_MultiTexCoord0.st; gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
+    write_file("tex.frag",
+               "#version 330 compatibility\nuniform sampler2D uTex;\nin vec2 st;\nout vec4 c;\n"
+               "void main() { c = texelFetch(uTex, ivec2(st * 2.0), 0); }\n");
+    write_file("tex.glib",
+               "##OpenGL GLIB\nOrtho -1 1 -1 1\nTexture2D 5 quad.bmp\nVertex tex.vert\nFragment tex.frag\n"
+               "Program Tex uTex 5\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("tex.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(8, 8), 1, 0, 0);            /* top left: red */
+    CHECK_RGB(at(56, 8), 0, 1, 0);           /* top right: green */
+    CHECK_RGB(at(8, 56), 0, 0, 1);           /* bottom left: blue */
+    CHECK_RGB(at(56, 56), 1, 1, 1);          /* bottom right: white */
+    render_destroy(r);
+}
+
+/* Pass 1 draws a colour into texture unit 6; pass 2 shows that texture. */
+static void test_render_to_texture(void) {
+    write_file("show.frag",
+               "#version 330 compatibility\nuniform sampler2D uTarget;\nin vec2 st;\nout vec4 c;\n"
+               "void main() { c = texture(uTarget, st) * vec4(0.5, 0.5, 0.5, 1.); }\n");
+    write_file("rtt.glib",
+               "##OpenGL GLIB\nOrtho -1 1 -1 1\nTexture2D 6 32 32\n"
+               "RenderToTexture 6\nBackground 0 0 0\nClear\n"
+               "Vertex flat.vert\nFragment flat.frag\nProgram Fill uColor {0.8 0.6 0.4 1}\nQuadXY 0 1 1 1\n"
+               "RenderToTexture\n"
+               "Vertex tex.vert\nFragment show.frag\nProgram Show uTarget 6\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("rtt.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 0.4, 0.3, 0.2);
+    render_destroy(r);
+}
+
+/* A shader error keeps the last good program (and so the image) and names
+ * the file and line; fixing it applies the change. */
+static void test_shader_error_keeps_last_good_then_fix_applies(void) {
+    write_file("edit.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 0., 1.); }\n");
+    write_file("edit.glib",
+               "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment edit.frag\nProgram E\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("edit.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 0, 1, 0);
+
+    write_file("edit.frag", "#version 330 compatibility\nout vec4 c;\n\nvoid main() { c = vec4(1., 0., 0., 1.) + nope; }\n");
+    CHECK(!render_load(r, NULL));
+    CHECK(render_has_errors(r));
+    char want[600];
+    snprintf(want, sizeof want, "%s:4:", path_of("edit.frag"));
+    CHECK_STR_CONTAINS(render_messages(r), want);
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 0, 1, 0);           /* still the last good green */
+
+    write_file("edit.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 0., 1., 1.); }\n");
+    CHECK_MSG(render_load(r, NULL), "%s", render_messages(r));
+    CHECK(!render_has_errors(r));
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 0, 0, 1);           /* the fix applied */
+    render_destroy(r);
+}
+
+/* A glib with an error keeps the whole last good scene. */
+static void test_glib_error_keeps_last_good_scene(void) {
+    write_file("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
+                         "Program F uColor {1 1 0 1}\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("g.glib")), "%s", render_messages(r));
+    write_file("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
+                         "Program F uColor {1 1 0 1\nQuadXY 0 1 1 1\n");
+    CHECK(!render_load(r, NULL));
+    CHECK_STR_CONTAINS(render_messages(r), "g.glib:5:");
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 1, 1, 0);
+    render_destroy(r);
+}
+
+static unif_entry *entry(render *r, const char *program, const char *name) {
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    for (int i = 0; i < n; i++)
+        if (strcmp(sets[i].program, program) == 0) return unif_find(&sets[i], name);
+    return NULL;
+}
+
+/* Slider values survive a reload; a changed default resets that uniform. */
+static void test_slider_values_survive_reload(void) {
+    write_file("s.frag", "#version 330 compatibility\nuniform float uGrey;\nuniform float uBlue;\nout vec4 c;\n"
+                         "void main() { c = vec4(uGrey, uGrey, uBlue, 1.); }\n");
+    write_file("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
+                         "Program S uGrey <0. 0.2 1.> uBlue <0. 0.1 1.>\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("s.glib")), "%s", render_messages(r));
+    unif_entry *grey = entry(r, "S", "uGrey"), *blue = entry(r, "S", "uBlue");
+    CHECK(grey && blue);
+    if (!grey || !blue) { render_destroy(r); return; }
+    grey->value[0] = 0.6f;     /* what dragging the slider does */
+    blue->value[0] = 0.8f;
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 0.6, 0.6, 0.8);
+    /* the glib changes uBlue's default only */
+    write_file("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
+                         "Program S uGrey <0. 0.2 1.> uBlue <0. 0.3 1.>\nQuadXY 0 1 1 1\n");
+    CHECK_MSG(render_load(r, NULL), "%s", render_messages(r));
+    grey = entry(r, "S", "uGrey");
+    blue = entry(r, "S", "uBlue");
+    CHECK(grey && fabsf(grey->value[0] - 0.6f) < 1e-6f);
+    CHECK(blue && fabsf(blue->value[0] - 0.3f) < 1e-6f);
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 0.6, 0.6, 0.3);
+    float got[1];
+    CHECK(render_read_uniform(r, "S", "uGrey", got, 1) && fabsf(got[0] - 0.6f) < 1e-6f);
+    render_destroy(r);
+}
+
+/* A Define toggle compiles the shader with or without the #define. */
+static void test_define_toggle_recompiles(void) {
+    write_file("d.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() {\n#ifdef RED\n"
+                         "c = vec4(1., 0., 0., 1.);\n#else\nc = vec4(0., 0., 1., 1.);\n#endif\n}\n");
+    write_file("d.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment d.frag\n"
+                         "Define RED <true>\nProgram D\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("d.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(32, 32), 1, 0, 0);
+    unif_entry *red = entry(r, "D", "RED");
+    CHECK(red && red->is_define);
+    if (red) {
+        red->value[0] = 0;    /* unticking the checkbox */
+        CHECK(render_rebuild_programs(r));
+        draw(r, 0);
+        CHECK_RGB(at(32, 32), 0, 0, 1);
+    }
+    render_destroy(r);
+}
+
+/* The built-in noise: each channel an octave centred on 0.5. */
+static void test_noise_texture_is_centred(void) {
+    write_file("n.frag", "#version 330 compatibility\nuniform sampler2D Noise2;\nin vec2 st;\nout vec4 c;\n"
+                         "void main() { c = texture(Noise2, st); }\n");
+    write_file("n.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nNoise2D 64\nVertex tex.vert\nFragment n.frag\n"
+                         "Program N Noise2 2\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("n.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    double mean[4] = {0};
+    for (int i = 0; i < W * H; i++)
+        for (int k = 0; k < 4; k++) mean[k] += px[i * 4 + k] / (W * H);
+    for (int k = 0; k < 4; k++) CHECK_NEAR(mean[k], 0.5, 0.05);
+    render_destroy(r);
+}
+
+/* Every file the scene reads is a dependency the watcher must watch. */
+static void test_deps_list_every_file(void) {
+    write_file("inc.glsl", "vec4 tint() { return vec4(0.5); }\n");
+    write_file("inc.frag", "#version 330 compatibility\n#include \"inc.glsl\"\nout vec4 c;\nvoid main() { c = tint(); }\n");
+    write_file("sub.glib", "Vertex flat.vert\nFragment inc.frag\n");
+    write_file("deps.glib", "##OpenGL GLIB\nInclude sub.glib\nTexture2D 5 quad.bmp\nProgram I\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("deps.glib")), "%s", render_messages(r));
+    const char *const *deps;
+    int n = render_deps(r, &deps);
+    const char *want[] = { "deps.glib", "sub.glib", "flat.vert", "inc.frag", "inc.glsl", "quad.bmp" };
+    for (size_t w = 0; w < sizeof want / sizeof *want; w++) {
+        bool found = false;
+        for (int i = 0; i < n; i++)
+            if (strstr(deps[i], want[w]) && strcmp(deps[i] + strlen(deps[i]) - strlen(want[w]), want[w]) == 0) found = true;
+        CHECK_MSG(found, "%s is not among the %d dependencies", want[w], n);
+    }
+    render_destroy(r);
+}
+
+static void test_no_gl_errors(void) {
+    render *r = render_create(NULL);
+    CHECK(render_load(r, path_of("rtt.glib")));
+    draw(r, 0);
+    GLenum e = glGetError();
+    CHECK_MSG(e == GL_NO_ERROR, "GL error 0x%x", e);
+    render_destroy(r);
+}
+
+int main(void) {
+    char err[512];
+    ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) {
+        fprintf(stderr, "skip: %s\n", err);
+        return 77;
+    }
+    fprintf(stderr, "context: %s\n", gl_ctx_describe(ctx));
+    snprintf(dir, sizeof dir, "/tmp/tarn-test-render-XXXXXX");
+    if (!mkdtemp(dir)) return 1;
+    RUN(test_uniform_colour_fills_the_screen);
+    RUN(test_transforms_place_geometry);
+    RUN(test_timer_is_a_sawtooth);
+    RUN(test_gstap_names_work);
+    RUN(test_texture_from_bmp);
+    RUN(test_render_to_texture);
+    RUN(test_shader_error_keeps_last_good_then_fix_applies);
+    RUN(test_glib_error_keeps_last_good_scene);
+    RUN(test_slider_values_survive_reload);
+    RUN(test_define_toggle_recompiles);
+    RUN(test_noise_texture_is_centred);
+    RUN(test_deps_list_every_file);
+    RUN(test_no_gl_errors);
+    gl_ctx_destroy(ctx);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    return check_summary();
+}

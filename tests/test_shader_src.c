@@ -1,0 +1,519 @@
+/* Tests of shader_src: include resolution, #version/#define/GSTAP placement,
+ * line mapping of compiler logs, errors with file:line, the hash.
+ *
+ * The line mapping is checked against a small model of a GLSL compiler's
+ * line counting (`#line` semantics per version, and Mesa's habit of
+ * reporting source string 0), writing logs in the Mesa, NVIDIA and glslang
+ * formats; test_validate checks the same with glslang itself. */
+#include "check.h"
+#include "shader_src.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char g_data[1024];   /* tests/data/shaders */
+
+static bool mem_has(const char *p, size_t n, const char *needle) {
+    size_t k = strlen(needle);
+    for (size_t i = 0; i + k <= n; i++)
+        if (memcmp(p + i, needle, k) == 0) return true;
+    return false;
+}
+
+static void find_data(void) {
+    const char *root = getenv("TARN_SOURCE_DIR");
+#ifdef TARN_SOURCE_DIR
+    if (!root || !root[0]) root = TARN_SOURCE_DIR;
+#endif
+    if (root && root[0]) {
+        snprintf(g_data, sizeof g_data, "%s/tests/data/shaders", root);
+        return;
+    }
+    /* next to this source file */
+    snprintf(g_data, sizeof g_data, "%s", __FILE__);
+    char *slash = strrchr(g_data, '/');
+    if (slash) *slash = '\0';
+    else snprintf(g_data, sizeof g_data, ".");
+    strncat(g_data, "/data/shaders", sizeof g_data - strlen(g_data) - 1);
+}
+
+static const char *data(const char *name) {
+    static char buf[4][1200];
+    static int i;
+    i = (i + 1) % 4;
+    snprintf(buf[i], sizeof buf[i], "%s/%s", g_data, name);
+    return buf[i];
+}
+
+static bool load(shader_src *s, const char *name, shader_stage st, const shader_define *defs, int ndefs,
+                 bool gstap) {
+    const char *dirs[] = { data("repo/packs/common") };
+    shader_src_desc d = { .path = data(name), .stage = st, .gstap = gstap, .defines = defs,
+                          .ndefines = ndefs, .include_dirs = dirs, .ninclude_dirs = 1 };
+    return shader_src_load(&d, s);
+}
+
+/* A model compiler: walks the text as a GLSL front end counts lines and
+ * reports every line holding "undefined_" as an error, in `format`
+ * ('m' Mesa, 'n' NVIDIA, 'g' glslang). mesa_drops_string reports source
+ * string 0 whatever `#line` said, as Mesa 22 does for semantic errors. */
+static char *fake_compile(const char *text, char format, bool mesa_drops_string) {
+    int version = 0;
+    bool es = false;
+    sscanf(text, "#version %d", &version);
+    if (strstr(text, "#version") == text) {
+        const char *nl = strchr(text, '\n');
+        es = nl && mem_has(text, (size_t)(nl - text), " es");
+    }
+    bool old_rule = !es && version < 330;
+    char *log = calloc(1, 1);
+    size_t loglen = 0;
+    long line = 1, str = 0;
+    const char *p = text;
+    while (*p) {
+        const char *e = strchr(p, '\n');
+        size_t n = e ? (size_t)(e - p) : strlen(p);
+        long nline, nstr;
+        char tmp[256];
+        if (n < sizeof tmp) { memcpy(tmp, p, n); tmp[n] = '\0'; } else tmp[0] = '\0';
+        if (sscanf(tmp, "#line %ld %ld", &nline, &nstr) == 2) {
+            line = old_rule ? nline + 1 : nline;
+            str = nstr;
+        } else {
+            if (strstr(tmp, "undefined_")) {
+                char msg[512];
+                const char *id = strstr(tmp, "undefined_");
+                char name[64];
+                sscanf(id, "%63[A-Za-z0-9_]", name);
+                if (format == 'm')
+                    snprintf(msg, sizeof msg, "%ld:%ld(9): error: `%s' undeclared\n",
+                             mesa_drops_string ? 0 : str, line, name);
+                else if (format == 'n')
+                    snprintf(msg, sizeof msg, "%ld(%ld) : error C1008: undefined variable \"%s\"\n",
+                             str, line, name);
+                else
+                    snprintf(msg, sizeof msg, "ERROR: %ld:%ld: '%s' : undeclared identifier \n", str, line, name);
+                size_t ml = strlen(msg);
+                log = realloc(log, loglen + ml + 1);
+                memcpy(log + loglen, msg, ml + 1);
+                loglen += ml;
+            }
+            line++;
+        }
+        if (!e) break;
+        p = e + 1;
+    }
+    return log;
+}
+
+/* The mapped log names `file_suffix:line: ` for identifier `name`. */
+static bool mapped_has(const char *mapped, const char *file_suffix, int line, const char *name) {
+    char want[256];
+    snprintf(want, sizeof want, "%s:%d: ", file_suffix, line);
+    for (const char *p = mapped; (p = strstr(p, want)) != NULL; p++) {
+        const char *eol = strchr(p, '\n');
+        const char *n = strstr(p, name);
+        if (n && (!eol || n < eol)) return true;
+    }
+    return false;
+}
+
+static void test_includes_and_line_map(void) {
+    shader_src s;
+    bool ok = load(&s, "map_main.frag", SHADER_FRAGMENT, NULL, 0, false);
+    CHECK_MSG(ok, "%s", s.error);
+    if (!ok) { shader_src_free(&s); return; }
+    CHECK(s.nfiles == 3);
+    CHECK_STR_CONTAINS(s.files[0], "map_main.frag");
+    CHECK_STR_CONTAINS(s.files[1], "inc/map_waves.glsl");
+    CHECK_STR_CONTAINS(s.files[2], "inc/map_fresnel.glsl");
+    CHECK(strncmp(s.text, "#version 330 compatibility\n", 27) == 0);
+    CHECK(strstr(s.text, "#include") == NULL);
+    for (int drop = 0; drop <= 1; drop++) {
+        const char formats[] = { 'm', 'n', 'g' };
+        for (int f = 0; f < 3; f++) {
+            if (drop && formats[f] != 'm') continue;
+            char *log = fake_compile(s.text, formats[f], drop);
+            char *mapped = shader_src_map_log(&s, log);
+            CHECK_MSG(mapped_has(mapped, "map_main.frag", 7, "undefined_in_main"), "%c: %s", formats[f], mapped);
+            CHECK_MSG(mapped_has(mapped, "inc/map_waves.glsl", 4, "undefined_in_waves"), "%c: %s", formats[f], mapped);
+            CHECK_MSG(mapped_has(mapped, "inc/map_fresnel.glsl", 4, "undefined_in_fresnel"), "%c: %s", formats[f], mapped);
+            if (formats[f] == 'g') CHECK_STR_CONTAINS(mapped, "map_main.frag:7: error: 'undefined_in_main' : undeclared identifier\n");
+            if (formats[f] == 'm') CHECK_STR_CONTAINS(mapped, "map_main.frag:7: error: `undefined_in_main' undeclared\n");
+            if (formats[f] == 'n') CHECK_STR_CONTAINS(mapped, "map_main.frag:7: error C1008: undefined variable");
+            free(mapped);
+            free(log);
+        }
+    }
+    shader_src_free(&s);
+}
+
+static void test_old_version_line_rule(void) {
+    shader_src s;
+    bool ok = load(&s, "old120.vert", SHADER_VERTEX, NULL, 0, false);
+    CHECK_MSG(ok, "%s", s.error);
+    if (!ok) { shader_src_free(&s); return; }
+    CHECK(strncmp(s.text, "#version 120\n", 13) == 0);
+    char *log = fake_compile(s.text, 'm', false);
+    char *mapped = shader_src_map_log(&s, log);
+    CHECK_MSG(mapped_has(mapped, "old120.vert", 5, "undefined_in_old"), "%s", mapped);
+    free(mapped);
+    free(log);
+    shader_src_free(&s);
+}
+
+static void test_no_version_gets_glman_default(void) {
+    shader_src s;
+    bool ok = load(&s, "noversion.frag", SHADER_FRAGMENT, NULL, 0, false);
+    CHECK_MSG(ok, "%s", s.error);
+    if (!ok) { shader_src_free(&s); return; }
+    CHECK(strncmp(s.text, "#version 330 compatibility", 26) == 0);
+    const char *nl = strchr(s.text, '\n');
+    CHECK(nl && mem_has(s.text, (size_t)(nl - s.text), "//"));     /* says why, in a comment */
+    CHECK_STR_CONTAINS(s.text, "#line 1 0\n");
+    char *log = fake_compile(s.text, 'g', false);
+    char *mapped = shader_src_map_log(&s, log);
+    CHECK_MSG(mapped_has(mapped, "noversion.frag", 4, "undefined_in_noversion"), "%s", mapped);
+    free(mapped);
+    free(log);
+    shader_src_free(&s);
+}
+
+static void test_defines_and_gstap_follow_version(void) {
+    shader_define defs[2] = { { "FOO", "1" }, { "EMPTY", "" } };
+    shader_src s;
+    bool ok = load(&s, "gstap.vert", SHADER_VERTEX, defs, 2, true);
+    CHECK_MSG(ok, "%s", s.error);
+    if (!ok) { shader_src_free(&s); return; }
+    CHECK(strncmp(s.text, "#version 330 compatibility\n", 27) == 0);
+    const char *foo = strstr(s.text, "#define FOO 1\n");
+    const char *empty = strstr(s.text, "#define EMPTY\n");
+    const char *avertex = strstr(s.text, "#define aVertex gl_Vertex\n");
+    const char *line = strstr(s.text, "#line 2 0\n");
+    CHECK(foo && empty && avertex && line);
+    CHECK(foo < empty && empty < avertex && avertex < line);
+    CHECK_STR_CONTAINS(s.text, "#define aTexCoord7 gl_MultiTexCoord7\n");
+    CHECK_STR_CONTAINS(s.text, "#define aNormal gl_Normal\n");
+    CHECK_STR_CONTAINS(s.text, "#define aColor gl_Color\n");
+    CHECK_STR_CONTAINS(s.text, "#define uModelViewProjectionMatrix gl_ModelViewProjectionMatrix\n");
+    CHECK_STR_CONTAINS(s.text, "#define uModelViewMatrixInverse gl_ModelViewMatrixInverse\n");
+    /* no #version-breaking text before the prologue ends */
+    CHECK(strstr(s.text, "gstap.vert: glman's GSTAP") > line);
+    shader_src_free(&s);
+
+    /* fragment: matrices only, no attributes */
+    ok = load(&s, "gstap.frag", SHADER_FRAGMENT, NULL, 0, true);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) {
+        CHECK_STR_CONTAINS(s.text, "#define uNormalMatrix gl_NormalMatrix\n");
+        CHECK(strstr(s.text, "aVertex") == NULL);
+        CHECK(strstr(s.text, "aTexCoord0") == NULL);
+    }
+    shader_src_free(&s);
+
+    /* without gstap: nothing */
+    ok = load(&s, "gstap.vert", SHADER_VERTEX, NULL, 0, false);
+    CHECK(ok);
+    if (ok) CHECK(strstr(s.text, "#define") == NULL);
+    shader_src_free(&s);
+}
+
+static void test_missing_include_is_file_line_error(void) {
+    shader_src s;
+    CHECK(!load(&s, "missing_inc.frag", SHADER_FRAGMENT, NULL, 0, false));
+    CHECK_STR_CONTAINS(s.error, "missing_inc.frag:3: error: ");
+    CHECK_STR_CONTAINS(s.error, "no_such_file.glsl");
+    CHECK(s.text == NULL);
+    CHECK(s.nfiles >= 1);          /* the watcher still watches the stage file */
+    shader_src_free(&s);
+}
+
+static void test_include_cycle_is_file_line_error(void) {
+    shader_src s;
+    CHECK(!load(&s, "cycle_main.frag", SHADER_FRAGMENT, NULL, 0, false));
+    CHECK_STR_CONTAINS(s.error, "inc/cycle_b.glsl:3: error: include cycle");
+    CHECK_STR_CONTAINS(s.error, "cycle_a.glsl -> ");
+    CHECK(s.nfiles == 3);
+    shader_src_free(&s);
+}
+
+static void test_missing_stage_file(void) {
+    shader_src s;
+    CHECK(!load(&s, "no_such_stage.frag", SHADER_FRAGMENT, NULL, 0, false));
+    CHECK_STR_CONTAINS(s.error, "no_such_stage.frag:0: error: cannot read shader");
+    shader_src_free(&s);
+    /* a directory is unreadable too */
+    CHECK(!load(&s, "inc", SHADER_FRAGMENT, NULL, 0, false));
+    CHECK_STR_CONTAINS(s.error, ":0: error: cannot read shader");
+    shader_src_free(&s);
+}
+
+static void test_bad_define_name(void) {
+    shader_define defs[1] = { { "2BAD", "1" } };
+    shader_src s;
+    CHECK(!load(&s, "good_compat.frag", SHADER_FRAGMENT, defs, 1, false));
+    CHECK_STR_CONTAINS(s.error, "2BAD");
+    shader_src_free(&s);
+}
+
+/* A scratch directory, for files the test writes. */
+static char g_tmp[256];
+
+static void write_file(const char *name, const char *text) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", g_tmp, name);
+    FILE *f = fopen(path, "wb");
+    if (!f) { perror(path); return; }
+    fputs(text, f);
+    fclose(f);
+}
+
+static const char *tmp(const char *name) {
+    static char buf[4][512];
+    static int i;
+    i = (i + 1) % 4;
+    snprintf(buf[i], sizeof buf[i], "%s/%s", g_tmp, name);
+    return buf[i];
+}
+
+static void test_include_depth_limit(void) {
+    /* d0 includes d1 ... includes d40: 40 levels */
+    for (int i = 0; i <= 40; i++) {
+        char name[32], text[128];
+        snprintf(name, sizeof name, "d%d.glsl", i);
+        if (i < 40) snprintf(text, sizeof text, "// level %d\n#include \"d%d.glsl\"\n", i, i + 1);
+        else snprintf(text, sizeof text, "float deepest() { return 1.0; }\n");
+        write_file(name, text);
+    }
+    write_file("deep.frag", "#version 330 compatibility\n#include \"d0.glsl\"\nvoid main() {}\n");
+    shader_src s;
+    shader_src_desc d = { .path = tmp("deep.frag"), .stage = SHADER_FRAGMENT };
+    CHECK(!shader_src_load(&d, &s));
+    CHECK_STR_CONTAINS(s.error, "d31.glsl:2: error: #include nested too deeply");
+    shader_src_free(&s);
+
+    /* 32 levels are fine */
+    write_file("d32.glsl", "float deepest() { return 1.0; }\n");
+    write_file("deep32.frag", "#version 330 compatibility\n#include \"d1.glsl\"\nvoid main() {}\n");
+    d.path = tmp("deep32.frag");
+    bool ok = shader_src_load(&d, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    CHECK(s.nfiles == 33);
+    shader_src_free(&s);
+}
+
+static void test_hash_changes_iff_text_changes(void) {
+    write_file("h.frag", "#version 330 compatibility\nvoid main() { gl_FragColor = vec4(1.0); }\n");
+    shader_src_desc d = { .path = tmp("h.frag"), .stage = SHADER_FRAGMENT };
+    shader_src a, b;
+    CHECK(shader_src_load(&d, &a));
+    CHECK(shader_src_load(&d, &b));
+    CHECK(a.hash == b.hash && strcmp(a.text, b.text) == 0);
+    shader_src_free(&b);
+
+    shader_define on[1] = { { "FOO", "1" } };
+    d.defines = on;
+    d.ndefines = 1;
+    CHECK(shader_src_load(&d, &b));
+    CHECK(a.hash != b.hash && strcmp(a.text, b.text) != 0);
+    shader_src_free(&b);
+    d.defines = NULL;
+    d.ndefines = 0;
+
+    write_file("h.frag", "#version 330 compatibility\nvoid main() { gl_FragColor = vec4(0.5); }\n");
+    CHECK(shader_src_load(&d, &b));
+    CHECK(a.hash != b.hash);
+    shader_src_free(&b);
+
+    /* the same text again: the same hash (CRLF is read as LF) */
+    write_file("h.frag", "#version 330 compatibility\r\nvoid main() { gl_FragColor = vec4(1.0); }\r\n");
+    CHECK(shader_src_load(&d, &b));
+    CHECK(a.hash == b.hash);
+    shader_src_free(&b);
+
+    /* an included file's change shows too */
+    write_file("hi.glsl", "float k() { return 1.0; }\n");
+    write_file("h2.frag", "#version 330 compatibility\n#include \"hi.glsl\"\nvoid main() {}\n");
+    d.path = tmp("h2.frag");
+    shader_src c1, c2;
+    CHECK(shader_src_load(&d, &c1));
+    write_file("hi.glsl", "float k() { return 2.0; }\n");
+    CHECK(shader_src_load(&d, &c2));
+    CHECK(c1.hash != c2.hash);
+    shader_src_free(&c1);
+    shader_src_free(&c2);
+    shader_src_free(&a);
+}
+
+static void test_include_search_order_and_once(void) {
+    /* next to the includer first, then the include dirs; <> alike */
+    char sub[300];
+    snprintf(sub, sizeof sub, "%s/sub", g_tmp);
+    mkdir(sub, 0755);
+    write_file("sub/common.glsl", "float from_dir() { return 1.0; }\n");
+    write_file("local.glsl", "#pragma once\nfloat from_local() { return 1.0; }\n");
+    write_file("o.frag", "#version 330 compatibility\n#include \"local.glsl\"\n#include <common.glsl>\n"
+                         "#include \"local.glsl\"\nvoid main() {}\n");
+    const char *dirs[] = { sub };
+    shader_src_desc d = { .path = tmp("o.frag"), .stage = SHADER_FRAGMENT, .include_dirs = dirs,
+                          .ninclude_dirs = 1 };
+    shader_src s;
+    bool ok = shader_src_load(&d, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) {
+        CHECK(s.nfiles == 3);
+        CHECK_STR_CONTAINS(s.files[2], "sub/common.glsl");
+        const char *first = strstr(s.text, "from_local");
+        CHECK(first && strstr(first + 1, "from_local") == NULL);   /* #pragma once */
+        CHECK(strstr(s.text, "#pragma once") == NULL);
+        /* numbering survives the skipped include: main() is line 5 */
+        char *log = NULL;
+        const char *m = strstr(s.text, "void main");
+        /* count the line the model compiler gives main() */
+        size_t off = (size_t)(m - s.text);
+        char *cut = strndup(s.text, off);
+        char *full = malloc(off + 64);
+        snprintf(full, off + 64, "%sundefined_main_here\n", cut);
+        log = fake_compile(full, 'g', false);
+        char *mapped = shader_src_map_log(&s, log);
+        CHECK_MSG(mapped_has(mapped, "o.frag", 5, "undefined_main_here"), "%s", mapped);
+        free(mapped);
+        free(log);
+        free(full);
+        free(cut);
+    }
+    shader_src_free(&s);
+}
+
+static void test_version_line_with_comment_tail(void) {
+    /* a block comment opened on the #version line, code after it */
+    write_file("t.frag", "// header comment\n#version 330 core /* a comment\n  that goes on */\n"
+                         "out vec4 c;\nvoid main() { c = undefined_tail; }\n");
+    shader_src_desc d = { .path = tmp("t.frag"), .stage = SHADER_FRAGMENT };
+    shader_define defs[1] = { { "X", "2" } };
+    d.defines = defs;
+    d.ndefines = 1;
+    shader_src s;
+    bool ok = shader_src_load(&d, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) {
+        CHECK(strncmp(s.text, "#version 330 core\n#define X 2\n", 30) == 0);
+        char *log = fake_compile(s.text, 'g', false);
+        char *mapped = shader_src_map_log(&s, log);
+        CHECK_MSG(mapped_has(mapped, "t.frag", 5, "undefined_tail"), "%s\n---\n%s", mapped, s.text);
+        free(mapped);
+        free(log);
+    }
+    shader_src_free(&s);
+}
+
+static void test_include_quirks(void) {
+    /* an include's own #version is dropped; an #include in a comment is not one */
+    write_file("inc_v.glsl", "#version 330 compatibility\nfloat a() { return 1.0; }\n");
+    write_file("q.frag", "#version 330 compatibility\n/*\n#include \"nope.glsl\"\n*/\n"
+                         "#include \"inc_v.glsl\" // the real one\nvoid main() { float x = undefined_q; }\n");
+    shader_src_desc d = { .path = tmp("q.frag"), .stage = SHADER_FRAGMENT };
+    shader_src s;
+    bool ok = shader_src_load(&d, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) {
+        const char *v = strstr(s.text, "#version");
+        CHECK(v == s.text && strstr(v + 1, "#version") == NULL);
+        CHECK(s.nfiles == 2);
+        char *log = fake_compile(s.text, 'm', true);
+        char *mapped = shader_src_map_log(&s, log);
+        CHECK_MSG(mapped_has(mapped, "q.frag", 6, "undefined_q"), "%s", mapped);
+        free(mapped);
+        free(log);
+    }
+    shader_src_free(&s);
+
+    /* a UTF-8 byte order mark before #version */
+    write_file("bom.frag", "\xEF\xBB\xBF#version 120\nvoid main() {}\n");
+    d.path = tmp("bom.frag");
+    ok = shader_src_load(&d, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) CHECK(strncmp(s.text, "#version 120\n", 13) == 0);
+    shader_src_free(&s);
+
+    write_file("bad.frag", "#version 330 compatibility\n#include waves.glsl\nvoid main() {}\n");
+    d.path = tmp("bad.frag");
+    CHECK(!shader_src_load(&d, &s));
+    CHECK_STR_CONTAINS(s.error, "bad.frag:2: error: malformed #include");
+    shader_src_free(&s);
+}
+
+static void test_map_log_passthrough(void) {
+    shader_src s;
+    bool ok = load(&s, "map_main.frag", SHADER_FRAGMENT, NULL, 0, false);
+    CHECK(ok);
+    if (!ok) { shader_src_free(&s); return; }
+    const char *log = "ERROR: 1 compilation errors.  No code generated.\n"
+                      "error: linking failed\n"
+                      "7:3(1): error: bad index\n"
+                      "WARNING: 0:2: 'x' : something \n"
+                      "0(4) : warning C7050: \"c\" might be used before being initialized\n"
+                      "ERROR: 0:200001: 'y' : in an include";
+    char *m = shader_src_map_log(&s, log);
+    CHECK_STR_CONTAINS(m, "ERROR: 1 compilation errors.  No code generated.\n");
+    CHECK_STR_CONTAINS(m, "error: linking failed\n");
+    CHECK_STR_CONTAINS(m, "7:3(1): error: bad index\n");          /* file 7 does not exist */
+    CHECK_STR_CONTAINS(m, "map_main.frag:2: warning: 'x' : something\n");
+    CHECK_STR_CONTAINS(m, "map_main.frag:4: warning C7050:");
+    CHECK_STR_CONTAINS(m, "inc/map_fresnel.glsl:1: error: 'y' : in an include");
+    CHECK(m[strlen(m) - 1] != '\n');
+    free(m);
+    m = shader_src_map_log(&s, "");
+    CHECK(m && m[0] == '\0');
+    free(m);
+    shader_src_free(&s);
+}
+
+static void test_stage_names_and_paths(void) {
+    CHECK(strcmp(shader_stage_name(SHADER_VERTEX), "vertex") == 0);
+    CHECK(strcmp(shader_stage_name(SHADER_FRAGMENT), "fragment") == 0);
+    CHECK(strcmp(shader_stage_name(SHADER_TESS_CONTROL), "tess control") == 0);
+    CHECK(shader_stage_from_path("a/b/water.vert") == SHADER_VERTEX);
+    CHECK(shader_stage_from_path("water.vs") == SHADER_VERTEX);
+    CHECK(shader_stage_from_path("water.tesc") == SHADER_TESS_CONTROL);
+    CHECK(shader_stage_from_path("water.tese") == SHADER_TESS_EVALUATION);
+    CHECK(shader_stage_from_path("water.geom") == SHADER_GEOMETRY);
+    CHECK(shader_stage_from_path("water.gs") == SHADER_GEOMETRY);
+    CHECK(shader_stage_from_path("water.FRAG") == SHADER_FRAGMENT);
+    CHECK(shader_stage_from_path("water.fs") == SHADER_FRAGMENT);
+    CHECK(shader_stage_from_path("water.frag.glsl") == SHADER_FRAGMENT);
+    CHECK(shader_stage_from_path("water_vert.glsl") == SHADER_VERTEX);
+    CHECK(shader_stage_from_path("water-gs.glsl") == SHADER_GEOMETRY);
+    CHECK(shader_stage_from_path("waves.glsl") == SHADER_STAGE_COUNT);
+    CHECK(shader_stage_from_path("scene.glib") == SHADER_STAGE_COUNT);
+    CHECK(shader_stage_from_path("Makefile") == SHADER_STAGE_COUNT);
+}
+
+int main(void) {
+    find_data();
+    snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_shader_src_XXXXXX");
+    if (!mkdtemp(g_tmp)) { perror("mkdtemp"); return 1; }
+    RUN(test_includes_and_line_map);
+    RUN(test_old_version_line_rule);
+    RUN(test_no_version_gets_glman_default);
+    RUN(test_defines_and_gstap_follow_version);
+    RUN(test_missing_include_is_file_line_error);
+    RUN(test_include_cycle_is_file_line_error);
+    RUN(test_missing_stage_file);
+    RUN(test_bad_define_name);
+    RUN(test_include_depth_limit);
+    RUN(test_hash_changes_iff_text_changes);
+    RUN(test_include_search_order_and_once);
+    RUN(test_version_line_with_comment_tail);
+    RUN(test_include_quirks);
+    RUN(test_map_log_passthrough);
+    RUN(test_stage_names_and_paths);
+    char cmd[320];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmp);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_tmp);
+    return check_summary();
+}

@@ -1,0 +1,304 @@
+/* Tests of validate: glslang checks of assembled stages (errors mapped to
+ * file:line), and `tarn validate` over .glib files, directories and stage
+ * files, with every combination of a Program's Define toggles. No GPU. */
+#include "check.h"
+#include "shader_src.h"
+#include "validate.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static char g_data[1024];   /* tests/data/shaders */
+static char g_tmp[256];     /* scratch */
+
+static void find_data(void) {
+    const char *root = getenv("TARN_SOURCE_DIR");
+#ifdef TARN_SOURCE_DIR
+    if (!root || !root[0]) root = TARN_SOURCE_DIR;
+#endif
+    if (root && root[0]) {
+        snprintf(g_data, sizeof g_data, "%s/tests/data/shaders", root);
+        return;
+    }
+    snprintf(g_data, sizeof g_data, "%s", __FILE__);
+    char *slash = strrchr(g_data, '/');
+    if (slash) *slash = '\0';
+    else snprintf(g_data, sizeof g_data, ".");
+    strncat(g_data, "/data/shaders", sizeof g_data - strlen(g_data) - 1);
+}
+
+static const char *data(const char *name) {
+    static char buf[8][1200];
+    static int i;
+    i = (i + 1) % 8;
+    snprintf(buf[i], sizeof buf[i], "%s/%s", g_data, name);
+    return buf[i];
+}
+
+/* Assembles and compiles a fixture; returns whether it compiled, *log the messages. */
+static bool check_stage(const char *name, shader_stage st, bool gstap, char **log) {
+    const char *dirs[] = { data("repo/packs/common") };
+    shader_src_desc d = { .path = data(name), .stage = st, .gstap = gstap, .include_dirs = dirs,
+                          .ninclude_dirs = 1 };
+    shader_src s;
+    *log = NULL;
+    if (!shader_src_load(&d, &s)) {
+        fprintf(stderr, "  load %s: %s\n", name, s.error);
+        shader_src_free(&s);
+        return false;
+    }
+    bool ok = validate_stage(&s, st, log);
+    shader_src_free(&s);
+    return ok;
+}
+
+/* Runs validate over paths, returning what it printed (heap). */
+static char *run_validate(const char *const *paths, int n, const char *root, int *rc, validate_result *res) {
+    FILE *f = tmpfile();
+    if (!f) return NULL;
+    *rc = validate_run_ex(paths, n, root, f, res);
+    long len = ftell(f);
+    rewind(f);
+    char *s = calloc(1, (size_t)(len > 0 ? len : 0) + 1);
+    if (s && len > 0 && fread(s, 1, (size_t)len, f) != (size_t)len) s[0] = '\0';
+    fclose(f);
+    fprintf(stderr, "%s", s ? s : "");
+    return s;
+}
+
+static int count_lines_with(const char *text, const char *needle) {
+    int n = 0;
+    for (const char *p = text; p && (p = strstr(p, needle)) != NULL; p += strlen(needle)) n++;
+    return n;
+}
+
+static void test_good_compat_shader_validates(void) {
+    char *log = NULL;
+    CHECK_MSG(check_stage("good_compat.vert", SHADER_VERTEX, false, &log), "%s", log ? log : "");
+    CHECK(log == NULL || log[0] == '\0');
+    free(log);
+    CHECK_MSG(check_stage("good_compat.frag", SHADER_FRAGMENT, false, &log), "%s", log ? log : "");
+    CHECK(log == NULL || log[0] == '\0');
+    free(log);
+    /* a bare glman shader with no #version is compatibility 3.30 */
+    CHECK(!check_stage("noversion.frag", SHADER_FRAGMENT, false, &log));
+    CHECK_STR_CONTAINS(log, "noversion.frag:4: error: 'undefined_in_noversion'");
+    CHECK(strstr(log, "gl_FragColor") == NULL);
+    free(log);
+}
+
+static void test_error_in_included_file_reports_that_file_and_line(void) {
+    char *log = NULL;
+    CHECK(!check_stage("inc_error.frag", SHADER_FRAGMENT, false, &log));
+    CHECK_STR_CONTAINS(log, "inc/bad_line4.glsl:4: error: ");
+    CHECK(count_lines_with(log, "error:") == 1);
+    free(log);
+
+    /* two levels down, through inc/map_waves.glsl */
+    CHECK(!check_stage("map_main.frag", SHADER_FRAGMENT, false, &log));
+    CHECK_STR_CONTAINS(log, "inc/map_fresnel.glsl:4: error: 'undefined_in_fresnel' : undeclared identifier");
+    CHECK(strstr(log, "compilation terminated") == NULL);     /* glslang's noise is dropped */
+    CHECK(strstr(log, "No code generated") == NULL);
+    free(log);
+}
+
+static void test_error_after_include_reports_main_file_line(void) {
+    char *log = NULL;
+    CHECK(!check_stage("after_inc_error.frag", SHADER_FRAGMENT, false, &log));
+    CHECK_STR_CONTAINS(log, "after_inc_error.frag:6: error: 'no_such_variable'");
+    free(log);
+}
+
+static void test_old_glsl_line_numbers(void) {
+    /* GLSL 1.20: `#line N` numbers the next line N + 1 in glslang */
+    char *log = NULL;
+    CHECK(!check_stage("old120.vert", SHADER_VERTEX, false, &log));
+    CHECK_STR_CONTAINS(log, "old120.vert:5: error: 'undefined_in_old'");
+    free(log);
+}
+
+static void test_gstap_names_compile(void) {
+    char *log = NULL;
+    CHECK_MSG(check_stage("gstap.vert", SHADER_VERTEX, true, &log), "%s", log ? log : "");
+    free(log);
+    CHECK_MSG(check_stage("gstap.frag", SHADER_FRAGMENT, true, &log), "%s", log ? log : "");
+    free(log);
+    /* and without GSTAP they are unknown */
+    CHECK(!check_stage("gstap.vert", SHADER_VERTEX, false, &log));
+    CHECK_STR_CONTAINS(log, "gstap.vert:7: error: 'uNormalMatrix'");
+    free(log);
+
+    int rc = -1;
+    validate_result res;
+    const char *p1[] = { data("gstap.glib") };
+    char *out = run_validate(p1, 1, data("repo"), &rc, &res);
+    CHECK(rc == 0);
+    CHECK(res.nerrors == 0 && res.nprograms == 1 && res.nstages == 2);
+    free(out);
+    const char *p2[] = { data("nogstap.glib") };
+    out = run_validate(p2, 1, data("repo"), &rc, &res);
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(out, "gstap.vert:7: error: ");
+    free(out);
+}
+
+static void test_toggle_combination_that_breaks_is_found(void) {
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { data("toggle.glib") };
+    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    CHECK(rc == 1);
+    CHECK(res.nprograms == 1);
+    CHECK(res.ncombinations == 4);
+    CHECK(res.nerrors == 1);
+    CHECK_STR_CONTAINS(out, "toggle.frag:8: error: ");
+    CHECK_STR_CONTAINS(out, "[with FOO=1 BAR=0] (2 of 4 combinations)\n");
+    CHECK(strstr(out, "FOO=0") == NULL);
+    CHECK_STR_CONTAINS(out, "validate: 1 programs, 2 stages, 4 combinations: 1 errors\n");
+    free(out);
+}
+
+static void test_good_glib_passes(void) {
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { data("good.glib") };
+    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    CHECK(rc == 0);
+    CHECK(res.nerrors == 0 && res.nwarnings == 0);
+    CHECK_STR_CONTAINS(out, "validate: 1 programs, 2 stages, 1 combinations: 0 errors\n");
+    free(out);
+}
+
+static void test_link_checks(void) {
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { data("link.glib") };
+    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    CHECK(rc == 1);
+    CHECK(res.nprograms == 3);
+    /* vec3 out, vec4 in: glslang's link finds it; it is placed at the Program line */
+    CHECK_STR_CONTAINS(out, "link.glib:5: error: program Mismatch: ");
+    CHECK_STR_CONTAINS(out, "vN");
+    /* an input the vertex shader never writes (glslang's link does not look) */
+    CHECK_STR_CONTAINS(out, "unwritten.frag:4: warning: fragment shader input 'vNormal' is not written by the vertex shader");
+    CHECK(strstr(out, "vUnused") == NULL);             /* declared, never read: fine */
+    /* gl_TexCoord/gl_Color between compatibility stages are not an error */
+    CHECK(strstr(out, "TexCoord") == NULL);
+    CHECK(strstr(out, "Anonymous") == NULL);
+    CHECK(res.nerrors == 1);
+    CHECK(res.nwarnings == 1);
+    free(out);
+}
+
+static void test_missing_stage_file_is_reported_at_glib_line(void) {
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { data("missing_stage.glib") };
+    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(out, "missing_stage.glib:4: error: ");
+    CHECK(count_lines_with(out, "missing_stage.glib:4: error: ") == 1);    /* once */
+    free(out);
+}
+
+static void test_no_paths_means_packs_and_scenes(void) {
+    int rc = -1;
+    validate_result res;
+    char *out = run_validate(NULL, 0, data("repo"), &rc, &res);
+    /* packs/testpack/pack.glib (its shader includes packs/common) and
+     * scenes/sub/scene.glib, whose GLSL 1.20 fragment shader reads a varying
+     * the vertex shader does not write: an error before GLSL 1.30 */
+    CHECK(res.nprograms == 2);
+    CHECK(rc == 1);
+    CHECK(res.nerrors == 1);
+    CHECK_STR_CONTAINS(out, "scenes/sub/scene120.frag:3: error: fragment shader input 'vColour' is not written");
+    CHECK_STR_CONTAINS(out, "validate: 2 programs, 4 stages, 2 combinations: 1 errors\n");
+    free(out);
+}
+
+static void test_stage_files_and_directories(void) {
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { data("good_compat.vert"), data("inc_error.frag"), data("inc/map_waves.glsl"),
+                            data("no_such_file.frag"), data("inc") };
+    char *out = run_validate(paths, 5, data("repo"), &rc, &res);
+    CHECK(rc == 1);
+    CHECK(res.nprograms == 0);
+    CHECK(res.nstages == 2);
+    CHECK_STR_CONTAINS(out, "inc/bad_line4.glsl:4: error: ");
+    CHECK_STR_CONTAINS(out, "map_waves.glsl:0: warning: cannot tell the stage");   /* named: said */
+    CHECK_STR_CONTAINS(out, "no_such_file.frag:0: error: No such file or directory");
+    /* inc/ holds only includes (no main): nothing to check, nothing said of them */
+    CHECK(strstr(out, "cycle_a.glsl") == NULL);
+    CHECK(res.nerrors == 2);
+    free(out);
+}
+
+static void test_too_many_toggles_are_capped(void) {
+    /* 12 toggles: 2^10 combinations, the last two at their defaults */
+    char path[512], frag[512];
+    snprintf(frag, sizeof frag, "%s/t12.frag", g_tmp);
+    FILE *f = fopen(frag, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("#version 330 core\nout vec4 c;\nvoid main() {\n    c = vec4(0.0);\n"
+          "#if defined(T10) && !defined(T11)\n    c = 1;\n#endif\n}\n", f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/t12.glib", g_tmp);
+    f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("##OpenGL GLIB\nFragment t12.frag\n", f);
+    for (int i = 0; i < 12; i++) fprintf(f, "Define T%d <%s>\n", i, i == 10 ? "true" : "false");
+    fputs("Program Many\n", f);
+    fclose(f);
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { path };
+    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    CHECK(res.ncombinations == 1024);
+    CHECK(res.nwarnings == 1);
+    CHECK_STR_CONTAINS(out, "t12.glib:15: warning: Program Many has 12 Define toggles");
+    /* T10 stays on, T11 off: the error shows in every combination */
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(out, "t12.frag:6: error: ");
+    CHECK_STR_CONTAINS(out, "T10=1 T11=0] (all 1024 combinations)");
+    free(out);
+}
+
+static void test_validate_stage_without_text(void) {
+    shader_src s;
+    shader_src_desc d = { .path = data("missing_inc.frag"), .stage = SHADER_FRAGMENT };
+    CHECK(!shader_src_load(&d, &s));
+    char *log = NULL;
+    CHECK(!validate_stage(&s, SHADER_FRAGMENT, &log));
+    CHECK_STR_CONTAINS(log, "missing_inc.frag:3: error: ");
+    free(log);
+    shader_src_free(&s);
+}
+
+int main(void) {
+    find_data();
+    snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_validate_XXXXXX");
+    if (!mkdtemp(g_tmp)) { perror("mkdtemp"); return 1; }
+    RUN(test_good_compat_shader_validates);
+    RUN(test_error_in_included_file_reports_that_file_and_line);
+    RUN(test_error_after_include_reports_main_file_line);
+    RUN(test_old_glsl_line_numbers);
+    RUN(test_gstap_names_compile);
+    RUN(test_toggle_combination_that_breaks_is_found);
+    RUN(test_good_glib_passes);
+    RUN(test_link_checks);
+    RUN(test_missing_stage_file_is_reported_at_glib_line);
+    RUN(test_no_paths_means_packs_and_scenes);
+    RUN(test_stage_files_and_directories);
+    RUN(test_too_many_toggles_are_capped);
+    RUN(test_validate_stage_without_text);
+    char cmd[320];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmp);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_tmp);
+    return check_summary();
+}

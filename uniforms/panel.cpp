@@ -1,0 +1,300 @@
+// panel: the slider panel over Dear ImGui 1.86 (see panel.h). Widgets and
+// layout only; every value change goes through unif.c.
+#include "panel.h"
+
+#include <cfloat>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+#include "imgui.h"
+#include "imgui_impl_glfw.h"
+#include "imgui_impl_opengl3.h"
+
+struct panel {
+    ImGuiContext *ctx;
+    GLFWwindow *window;
+    bool glfw_up, gl_up, in_frame;
+};
+
+namespace {
+
+const ImVec4 kRed(1.0f, 0.35f, 0.3f, 1.0f);
+const ImVec4 kGrey(0.55f, 0.55f, 0.55f, 1.0f);
+
+// ImGui's sliders assert on ranges wider than half the type's range.
+float slider_limit(float v) {
+    return v < -FLT_MAX / 2 ? -FLT_MAX / 2 : v > FLT_MAX / 2 ? FLT_MAX / 2 : v;
+}
+int int_limit(float v) {
+    if (v < (float)(INT_MIN / 2)) return INT_MIN / 2;
+    if (v > (float)(INT_MAX / 2)) return INT_MAX / 2;
+    return (int)v;
+}
+
+// Hands every component the widget edited to unif.c; true when one changed.
+bool apply(unif_entry *e, const float *edited, int n) {
+    bool changed = false;
+    for (int k = 0; k < n; k++)
+        if (edited[k] != e->value[k]) changed |= unif_set_component(e, k, edited[k]);
+    return changed;
+}
+
+void tooltip(const unif_entry *e) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGui::BeginTooltip();
+    if (e->from_glib) ImGui::Text("%s:%d", e->glib_file ? e->glib_file : "(glib)", e->glib_line);
+    else ImGui::TextUnformatted("from the shader (not in the glib)");
+    ImGui::Text("%s%s%s", e->is_define ? "#define, " : "", unif_type_name(e->type),
+                e->array_len > 1 ? " array" : "");
+    if (e->widget == UNIF_WIDGET_SLIDER) ImGui::Text("range %g .. %g, default %g", e->min, e->max, e->def[0]);
+    if (!e->is_define && !e->in_shader) ImGui::TextColored(kGrey, "not in the linked program");
+    ImGui::EndTooltip();
+}
+
+void fixed_value_text(const unif_entry *e) {
+    char text[160];
+    int len = std::snprintf(text, sizeof text, "%s =", e->name);
+    int shown = e->ncomp < 4 ? e->ncomp : 4;
+    for (int k = 0; k < shown && len > 0 && len < (int)sizeof text; k++)
+        len += std::snprintf(text + len, sizeof text - (size_t)len, " %g", e->value[k]);
+    if (e->ncomp > shown && len > 0 && len < (int)sizeof text)
+        std::snprintf(text + len, sizeof text - (size_t)len, " ... (%d)", e->ncomp);
+    ImGui::TextColored(kGrey, "%s", text);
+}
+
+// One entry: [reset] widget. Returns true when its value changed.
+bool entry_widget(unif_entry *e) {
+    bool changed = false;
+    if (e->widget != UNIF_WIDGET_NONE) {
+        bool at_default = unif_is_default(e);
+        ImGui::BeginDisabled(at_default);
+        if (ImGui::SmallButton("R")) { unif_reset(e); changed = !at_default; }
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("reset to the default");
+        ImGui::SameLine();
+    } else {
+        ImGui::Dummy(ImVec2(ImGui::GetFrameHeight() * 0.75f, 0.0f));
+        ImGui::SameLine();
+    }
+    bool absent = !e->is_define && !e->in_shader;
+    if (absent) ImGui::PushStyleColor(ImGuiCol_Text, kGrey);
+
+    float edit[UNIF_MAX_COMPONENTS];
+    std::memcpy(edit, e->value, sizeof edit);
+    int n = e->ncomp < 1 ? 1 : e->ncomp > UNIF_MAX_COMPONENTS ? UNIF_MAX_COMPONENTS : e->ncomp;
+    const ImGuiSliderFlags clamp = ImGuiSliderFlags_AlwaysClamp;
+
+    switch (e->widget) {
+    case UNIF_WIDGET_SLIDER:
+        if (unif_is_int(e)) {
+            int v = int_limit(e->value[0]);
+            if (ImGui::SliderInt(e->name, &v, int_limit(e->min), int_limit(e->max), "%d", clamp)) {
+                edit[0] = (float)v;
+                changed |= apply(e, edit, 1);
+            }
+        } else if (ImGui::SliderFloat(e->name, &edit[0], slider_limit(e->min), slider_limit(e->max),
+                                      "%.4g", clamp)) {
+            changed |= apply(e, edit, 1);
+        }
+        break;
+    case UNIF_WIDGET_CHECKBOX: {
+        bool b = e->value[0] != 0.0f;
+        if (ImGui::Checkbox(e->name, &b)) {
+            edit[0] = b ? 1.0f : 0.0f;
+            changed |= apply(e, edit, 1);
+        }
+        break;
+    }
+    case UNIF_WIDGET_COLOR: {
+        ImGuiColorEditFlags flags = ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR;
+        bool edited = n >= 4 ? ImGui::ColorEdit4(e->name, edit, flags | ImGuiColorEditFlags_AlphaBar)
+                             : ImGui::ColorEdit3(e->name, edit, flags);
+        if (edited) changed |= apply(e, edit, n >= 4 ? 4 : 3);
+        break;
+    }
+    case UNIF_WIDGET_DRAG: {
+        bool bounded = e->min < e->max;
+        float lo = bounded ? slider_limit(e->min) : 0.0f, hi = bounded ? slider_limit(e->max) : 0.0f;
+        if (ImGui::DragScalarN(e->name, ImGuiDataType_Float, edit, n, 0.01f, &lo, &hi, "%.3f",
+                               bounded ? clamp : 0))
+            changed |= apply(e, edit, n);
+        break;
+    }
+    case UNIF_WIDGET_NONE:
+    default:
+        fixed_value_text(e);
+        break;
+    }
+    if (absent) ImGui::PopStyleColor();
+    tooltip(e);
+    if (unif_type_mismatch(e)) {
+        char msg[384];
+        unif_describe_mismatch(e, msg, sizeof msg);
+        ImGui::PushStyleColor(ImGuiCol_Text, kRed);
+        ImGui::TextWrapped("%s", msg);
+        ImGui::PopStyleColor();
+    }
+    return changed;
+}
+
+void error_overlay(const char *text) {
+    ImGuiIO &io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y - 10.0f), ImGuiCond_Always,
+                            ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(io.DisplaySize.x - 20.0f, io.DisplaySize.y * 0.6f));
+    ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.25f, 0.02f, 0.02f, 0.92f));
+    ImGui::PushStyleColor(ImGuiCol_TitleBg, ImVec4(0.55f, 0.05f, 0.05f, 1.0f));
+    ImGui::PushStyleColor(ImGuiCol_TitleBgActive, ImVec4(0.65f, 0.08f, 0.08f, 1.0f));
+    ImGui::PushStyleColor(ImGuiCol_Border, ImVec4(0.9f, 0.2f, 0.2f, 1.0f));
+    ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
+                             ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
+    if (ImGui::Begin("Errors", nullptr, flags)) {
+        ImGui::PushTextWrapPos(io.DisplaySize.x * 0.8f);
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.55f, 1.0f));
+        ImGui::TextUnformatted(text);
+        ImGui::PopStyleColor();
+        ImGui::PopTextWrapPos();
+    }
+    ImGui::End();
+    ImGui::PopStyleColor(4);
+}
+
+}  // namespace
+
+extern "C" {
+
+panel *panel_create(void *glfw_window, const char *glsl_version) {
+    if (!glfw_window) return nullptr;
+    panel *p = new (std::nothrow) panel();
+    if (!p) return nullptr;
+    IMGUI_CHECKVERSION();
+    p->window = static_cast<GLFWwindow *>(glfw_window);
+    p->ctx = ImGui::CreateContext();
+    ImGui::SetCurrentContext(p->ctx);
+    ImGuiIO &io = ImGui::GetIO();
+    io.IniFilename = nullptr;               // no imgui.ini next to the user's files
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 4.0f;
+    p->glfw_up = ImGui_ImplGlfw_InitForOpenGL(p->window, true);
+    p->gl_up = p->glfw_up && ImGui_ImplOpenGL3_Init(glsl_version ? glsl_version : "#version 130");
+    if (!p->gl_up) {
+        panel_destroy(p);
+        return nullptr;
+    }
+    return p;
+}
+
+void panel_destroy(panel *p) {
+    if (!p) return;
+    ImGui::SetCurrentContext(p->ctx);
+    if (p->gl_up) ImGui_ImplOpenGL3_Shutdown();
+    if (p->glfw_up) ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext(p->ctx);
+    delete p;
+}
+
+void panel_begin_frame(panel *p) {
+    if (!p) return;
+    ImGui::SetCurrentContext(p->ctx);
+    if (p->in_frame) ImGui::EndFrame();     // a frame begun and never rendered
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    p->in_frame = true;
+}
+
+void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, panel_actions *out) {
+    panel_actions none;
+    if (!out) out = &none;
+    std::memset(out, 0, sizeof *out);
+    if (!p || !p->in_frame) return;
+    ImGui::SetCurrentContext(p->ctx);
+
+    ImGuiIO &io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(420, io.DisplaySize.y > 40 ? io.DisplaySize.y - 20 : 400),
+                             ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("tarn")) {
+        if (info) {
+            if (info->scene_path) ImGui::TextUnformatted(info->scene_path);
+            if (info->gpu_ms >= 0) ImGui::Text("%.2f ms GPU   %.0f fps", info->gpu_ms, info->fps);
+            else ImGui::Text("%.0f fps", info->fps);
+            ImGui::SameLine();
+            ImGui::Text("  t = %.2f s%s", info->time_s, info->paused ? " (paused)" : "");
+        }
+        if (ImGui::Button("Reset all")) {
+            for (int s = 0; s < nsets; s++)
+                if (unif_reset_all_ex(&sets[s])) out->recompile = true;
+            out->reset_all = out->changed = true;
+        }
+        ImGui::SameLine();
+        out->save_preset = ImGui::Button("Save preset");
+        ImGui::SameLine();
+        out->load_preset = ImGui::Button("Load preset");
+        ImGui::SameLine();
+        out->reload = ImGui::Button("Reload");
+        out->toggle_pause = ImGui::Button(info && info->paused ? "Play" : "Pause");
+        ImGui::SameLine();
+        out->screenshot = ImGui::Button("Screenshot");
+        ImGui::Separator();
+
+        ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
+        for (int s = 0; sets && s < nsets; s++) {
+            unif_set *set = &sets[s];
+            ImGui::PushID(s);
+            char header[UNIF_NAME_MAX + 32];
+            std::snprintf(header, sizeof header, "%s (%d)###set", set->program[0] ? set->program : "(unnamed)",
+                          set->n);
+            if (ImGui::CollapsingHeader(header, ImGuiTreeNodeFlags_DefaultOpen)) {
+                bool defines_open = false;
+                for (int i = 0; i < set->n; i++) {
+                    unif_entry *e = &set->entries[i];
+                    if (e->is_define && !defines_open) {
+                        ImGui::TextColored(kGrey, "defines (changing one recompiles)");
+                        defines_open = true;
+                    } else if (!e->is_define && defines_open) {
+                        ImGui::Separator();
+                        defines_open = false;
+                    }
+                    ImGui::PushID(i);
+                    if (entry_widget(e)) {
+                        out->changed = true;
+                        if (e->is_define) out->recompile = true;
+                    }
+                    ImGui::PopID();
+                }
+                if (set->n == 0) ImGui::TextColored(kGrey, "no uniforms");
+            }
+            ImGui::PopID();
+        }
+        ImGui::PopItemWidth();
+    }
+    ImGui::End();
+
+    if (info && info->error_text && info->error_text[0]) error_overlay(info->error_text);
+}
+
+void panel_render(panel *p) {
+    if (!p) return;
+    ImGui::SetCurrentContext(p->ctx);
+    if (!p->in_frame) return;
+    ImGui::Render();
+    p->in_frame = false;
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+bool panel_wants_mouse(const panel *p) {
+    if (!p) return false;
+    ImGui::SetCurrentContext(p->ctx);
+    return ImGui::GetIO().WantCaptureMouse;
+}
+
+bool panel_wants_keyboard(const panel *p) {
+    if (!p) return false;
+    ImGui::SetCurrentContext(p->ctx);
+    return ImGui::GetIO().WantCaptureKeyboard;
+}
+
+}  // extern "C"

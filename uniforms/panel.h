@@ -1,0 +1,76 @@
+/* panel: the generated slider panel (glman's rollouts), a thin C API over
+ * Dear ImGui 1.86 and its GLFW + OpenGL3 backends (panel.cpp).
+ *
+ * Widgets and layout only: values are changed through unif.c
+ * (unif_set_component clamps to ranges and rounds ints, unif_reset and
+ * unif_reset_all_ex reset), so the rules live in one place.
+ *
+ * Per frame, with the window's GL context current:
+ *     panel_begin_frame(p);
+ *     panel_draw(p, sets, nsets, &info, &actions);
+ *     ... render the scene to the default framebuffer ...
+ *     panel_render(p);
+ *     glfwSwapBuffers(window);
+ * then act on `actions` (upload when changed, recompile, save/load ...).
+ */
+#ifndef TARN_PANEL_H
+#define TARN_PANEL_H
+
+#include <stdbool.h>
+#include "unif.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct panel panel;
+
+/* Creates the ImGui context and backends for a GLFWwindow* (void* keeps GLFW
+ * out of this header). glsl_version is the backend's shader header, e.g.
+ * "#version 130"; NULL picks that. Install the program's own GLFW callbacks
+ * before this call: ImGui chains to them. No imgui.ini is written.
+ * NULL when the backends cannot start. */
+panel *panel_create(void *glfw_window, const char *glsl_version);
+void panel_destroy(panel *p);
+
+void panel_begin_frame(panel *p);
+
+typedef struct panel_info {
+    const char *scene_path;
+    double gpu_ms;               /* GPU time of the frame; < 0 when not measured */
+    double fps;
+    bool paused;
+    double time_s;               /* simulated time */
+    const char *error_text;      /* shown in a red overlay window; NULL if none */
+} panel_info;
+
+typedef struct panel_actions {
+    bool changed;                /* a uniform value changed: upload */
+    bool recompile;              /* a define changed (also by a reset): recompile */
+    bool reset_all;              /* "Reset all" pressed (already applied to the sets) */
+    bool save_preset;            /* the app calls unif_preset_save */
+    bool load_preset;            /* the app calls unif_preset_load_ex */
+    bool reload;                 /* reload the scene now */
+    bool toggle_pause;
+    bool screenshot;
+} panel_actions;
+
+/* One collapsing header per unif_set with a widget per entry by its widget
+ * kind (slider, int slider, checkbox, colour, drag, or the fixed value as
+ * text), a small reset button per changeable entry, a row of Reset all /
+ * Save preset / Load preset / Reload, Pause and Screenshot buttons, and the
+ * frame time, fps and time. A type mismatch shows in red under its entry; a
+ * uniform the linked program lacks is greyed. out is cleared first. */
+void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, panel_actions *out);
+
+void panel_render(panel *p);     /* ImGui::Render + the OpenGL3 backend's draw */
+
+/* true while ImGui uses the mouse / keyboard: the camera should not. */
+bool panel_wants_mouse(const panel *p);
+bool panel_wants_keyboard(const panel *p);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,33 @@
+/* cli: the tarn commands. main.c parses the command line into these desc
+ * structs (zero means default) and calls one; each returns the exit code:
+ * 0 ok, 1 the input had errors, 2 bad usage, 3 no OpenGL context. */
+#ifndef TARN_CLI_H
+#define TARN_CLI_H
+
+#include <stdbool.h>
+
+enum { CLI_OK = 0, CLI_INPUT_ERROR = 1, CLI_USAGE = 2, CLI_NO_GL = 3 };
+
+typedef struct cli_render_desc {
+    const char *glib;
+    const char *out;            /* .png, .exr, ... ; "%d" in it writes every frame */
+    int width, height;          /* 0: the glib's WindowSize */
+    double time_s;              /* simulated time of the (first) frame */
+    int frames;                 /* 0: 1 */
+    bool quiet;
+} cli_render_desc;
+
+typedef struct cli_view_desc {
+    const char *glib;
+    int width, height;          /* 0: the glib's WindowSize */
+    const char *script;         /* a file of scripted actions (tests, demos) */
+    double time_s;
+} cli_view_desc;
+
+int cli_render(const cli_render_desc *d);
+int cli_view(const cli_view_desc *d);
+
+/* The scene tarn opens with no arguments. */
+const char *cli_default_scene(void);
+
+#endif

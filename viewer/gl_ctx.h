@@ -1,0 +1,30 @@
+/* gl_ctx: OpenGL contexts. Headless through EGL (no X server: the Mesa
+ * surfaceless platform, or the EGL device platform on a GPU), or a GLFW
+ * window. Both are OpenGL 4.5 compatibility contexts so glman shaders that
+ * read gl_Vertex and gl_ModelViewMatrix work. */
+#ifndef TARN_GL_CTX_H
+#define TARN_GL_CTX_H
+
+#include <stdbool.h>
+
+typedef struct gl_ctx gl_ctx;
+
+/* Creates a headless context and makes it current. NULL with a message that
+ * says what is missing and how to install it. */
+gl_ctx *gl_ctx_create_headless(char *err, int errlen);
+
+/* Creates a window of w x h and makes its context current. */
+gl_ctx *gl_ctx_create_window(int w, int h, const char *title, char *err, int errlen);
+
+void gl_ctx_destroy(gl_ctx *c);
+
+/* The GLFWwindow* of a window context, NULL when headless. */
+void *gl_ctx_window(gl_ctx *c);
+
+/* "4.5 (Compatibility Profile) Mesa ... | llvmpipe ..." */
+const char *gl_ctx_describe(gl_ctx *c);
+
+/* true when a display can be opened (DISPLAY or WAYLAND_DISPLAY set). */
+bool gl_ctx_have_display(void);
+
+#endif

@@ -1,0 +1,1674 @@
+/* glib.c: the parser of .glib scene files (glib.h; the format is in
+ * docs/glib.md).
+ *
+ * The text is read one logical line at a time (physical lines joined at a
+ * trailing backslash, comments cut off); the first word picks a row of the
+ * command table at the bottom of this file and that row's handler turns the
+ * rest of the line into a glib_cmd. A bad line becomes a diagnostic and is
+ * skipped, so one typo never hides the rest of the scene.
+ *
+ * Every limit below exists so that corrupt or hostile input (a binary file,
+ * an include loop, a megabyte-long line) costs bounded memory and time.
+ */
+#ifndef _DEFAULT_SOURCE
+#define _DEFAULT_SOURCE         /* realpath(), which is XSI, not plain POSIX */
+#endif
+#include "glib.h"
+
+#include <ctype.h>
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+enum {
+    LIM_LINE_CHARS = 16384,     /* one logical line, continuations included */
+    LIM_FILE_BYTES = 1 << 20,   /* a .glib is a short text file */
+    LIM_DIAGS = 200,            /* the last slot is kept for "N more" */
+    LIM_CMDS = 16384,           /* a glib_cmd is ~1.3 KB */
+    LIM_PROGRAM_UNIFORMS = 256,
+    LIM_SCENE_UNIFORMS = 16384,
+    LIM_INCLUDE_DEPTH = 32,     /* nesting levels below the top file */
+    LIM_INCLUDE_READS = 256,    /* diamonds of includes could otherwise explode */
+    LIM_BINARY_LINES = 5,       /* then the file is not text: stop reading it */
+    LIM_WORDS = 24,             /* words kept per command (CubeMap needs 7) */
+    LIM_UNIT = 31,              /* highest texture unit */
+    LIM_USAGE = 200
+};
+
+/* ------------------------------------------------------------------ */
+/* memory                                                              */
+
+/* Allocations here are bounded by the limits above, so running out of
+ * memory is not bad input but a broken machine: stop loudly. */
+static void *xrealloc(void *ptr, size_t n)
+{
+    void *q = ptr ? realloc(ptr, n ? n : 1) : malloc(n ? n : 1);
+    if (!q) {
+        fputs("tarn: out of memory in the .glib parser\n", stderr);
+        abort();
+    }
+    return q;
+}
+
+static char *xstrdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    return memcpy(xrealloc(NULL, n), s, n);
+}
+
+/* Makes room for need elements in *arr (capacity *cap). */
+static void *grow(void *arr, int *cap, int need, size_t elem)
+{
+    if (need <= *cap)
+        return arr;
+    int c = *cap ? *cap : 8;
+    while (c < need)
+        c *= 2;
+    *cap = c;
+    return xrealloc(arr, (size_t)c * elem);
+}
+
+/* ------------------------------------------------------------------ */
+/* the parser's state and its diagnostics                              */
+
+typedef struct parser {
+    glib_scene *sc;
+    int cmd_cap, diag_cap, file_cap;
+    /* the files being read, outermost first, for include cycle checks */
+    const char *stack_name[LIM_INCLUDE_DEPTH + 1];
+    char *stack_canon[LIM_INCLUDE_DEPTH + 1];
+    int depth;
+    int nreads;
+    /* Define toggles waiting for the next Program */
+    glib_uniform *pending;
+    int npending, pending_cap;
+    int scene_uniforms;
+    int dropped, dropped_errors;    /* diagnostics beyond LIM_DIAGS */
+    bool stop;                      /* a scene-wide limit was hit */
+} parser;
+
+static void add_diag(parser *p, glib_severity sev, const char *file, int line,
+                     const char *msg)
+{
+    glib_scene *sc = p->sc;
+    sc->diags = grow(sc->diags, &p->diag_cap, sc->ndiags + 1, sizeof *sc->diags);
+    glib_diag *d = &sc->diags[sc->ndiags++];
+    d->severity = sev;
+    d->file = file;
+    d->line = line;
+    snprintf(d->message, sizeof d->message, "%s", msg);
+    if (sev == GLIB_ERROR)
+        sc->nerrors++;
+}
+
+__attribute__((format(printf, 5, 0)))
+static void vdiag(parser *p, glib_severity sev, const char *file, int line,
+                  const char *fmt, va_list ap)
+{
+    if (p->sc->ndiags >= LIM_DIAGS - 1) {
+        p->dropped++;
+        p->dropped_errors += sev == GLIB_ERROR;
+        return;
+    }
+    char msg[sizeof p->sc->diags[0].message];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    add_diag(p, sev, file, line, msg);
+}
+
+__attribute__((format(printf, 5, 6)))
+static void diag(parser *p, glib_severity sev, const char *file, int line,
+                 const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vdiag(p, sev, file, line, fmt, ap);
+    va_end(ap);
+}
+
+/* Records a file name in scene->files (once) and returns the stored copy,
+ * which commands and diagnostics point at. */
+static const char *add_file(parser *p, const char *name)
+{
+    glib_scene *sc = p->sc;
+    for (int i = 0; i < sc->nfiles; i++)
+        if (strcmp(sc->files[i], name) == 0)
+            return sc->files[i];
+    sc->files = grow(sc->files, &p->file_cap, sc->nfiles + 1, sizeof *sc->files);
+    sc->files[sc->nfiles] = xstrdup(name);
+    return sc->files[sc->nfiles++];
+}
+
+/* ------------------------------------------------------------------ */
+/* one command being parsed                                            */
+
+typedef struct cmd_spec cmd_spec;
+
+typedef struct cmdctx {
+    parser *p;
+    const char *file;
+    int line;
+    const cmd_spec *spec;
+    char *rest;                 /* the text after the command name */
+    char *words[LIM_WORDS];     /* rest split at whitespace (not for raw rows) */
+    int nwords;                 /* all words, even beyond LIM_WORDS */
+    char usage[LIM_USAGE];
+} cmdctx;
+
+__attribute__((format(printf, 2, 3)))
+static void cerr(cmdctx *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vdiag(c->p, GLIB_ERROR, c->file, c->line, fmt, ap);
+    va_end(ap);
+}
+
+__attribute__((format(printf, 2, 3)))
+static void cwarn(cmdctx *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vdiag(c->p, GLIB_WARNING, c->file, c->line, fmt, ap);
+    va_end(ap);
+}
+
+/* A numeric argument: its name in the usage line, what a message calls it
+ * when it is missing, and the values it may take. */
+typedef struct arg_rule {
+    const char *sym;
+    const char *what;
+    char type;                  /* 'r' any, 'p' > 0, 'a' angle in (0, 180), 'i' whole in [lo, hi] */
+    double lo, hi;
+    double def;                 /* for optional arguments */
+} arg_rule;
+
+typedef bool (*cmd_fn)(cmdctx *c, glib_cmd *cmd);
+
+struct cmd_spec {
+    const char *name;
+    glib_cmd_kind kind;
+    bool wire;
+    cmd_fn fn;
+    bool raw;                   /* the handler reads c->rest itself (brackets) */
+    int nreq, nmax;             /* numbers, for h_nums */
+    arg_rule args[10];
+    const char *usage;          /* NULL: built from args */
+};
+
+static const arg_rule unit_rule = { "unit", "a texture unit", 'i', 0, LIM_UNIT, 0 };
+
+/* ------------------------------------------------------------------ */
+/* characters and words                                                */
+
+static bool is_space(int c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+static char *skip_space(char *s)
+{
+    while (is_space((unsigned char)*s))
+        s++;
+    return s;
+}
+
+static bool is_opener(int c) { return c == '<' || c == '{' || c == '['; }
+static bool is_closer(int c) { return c == '>' || c == '}' || c == ']'; }
+
+static char closer_of(char open)
+{
+    return open == '<' ? '>' : open == '{' ? '}' : ']';
+}
+
+static bool is_ident(const char *s)
+{
+    if (!isalpha((unsigned char)*s) && *s != '_')
+        return false;
+    for (s++; *s; s++)
+        if (!isalnum((unsigned char)*s) && *s != '_')
+            return false;
+    return true;
+}
+
+/* Splits s in place at whitespace; a "quoted word" keeps its spaces.
+ * Stores at most max words and returns how many there are in all, or -1
+ * for an unclosed quote. */
+static int split_words(char *s, char **w, int max)
+{
+    int n = 0;
+    for (;;) {
+        s = skip_space(s);
+        if (!*s)
+            return n;
+        char *start = s;
+        if (*s == '"') {
+            start = ++s;
+            s = strchr(s, '"');
+            if (!s)
+                return -1;
+        } else {
+            while (*s && !is_space((unsigned char)*s))
+                s++;
+        }
+        if (n < max)
+            w[n] = start;
+        n++;
+        if (*s)
+            *s++ = '\0';
+    }
+}
+
+/* Splits bracket contents in place at whitespace and commas, since real
+ * files write both: {0.40, 1.0, 0.95, 1.}. Returns the count of items. */
+static int split_items(char *s, char **w, int max)
+{
+    int n = 0;
+    for (;;) {
+        while (is_space((unsigned char)*s) || *s == ',')
+            s++;
+        if (!*s)
+            return n;
+        char *start = s;
+        while (*s && !is_space((unsigned char)*s) && *s != ',')
+            s++;
+        if (n < max)
+            w[n] = start;
+        n++;
+        if (*s)
+            *s++ = '\0';
+    }
+}
+
+/* The decimal forms people write: 1  -2.  .5  1e-3  +3.25E+2. strtod alone
+ * would also take hex, "nan" and "inf", which are typos in a scene file. */
+static bool is_decimal(const char *s)
+{
+    int digits = 0;
+    if (*s == '+' || *s == '-')
+        s++;
+    for (; isdigit((unsigned char)*s); s++)
+        digits++;
+    if (*s == '.')
+        for (s++; isdigit((unsigned char)*s); s++)
+            digits++;
+    if (!digits)
+        return false;
+    if (*s == 'e' || *s == 'E') {
+        s++;
+        if (*s == '+' || *s == '-')
+            s++;
+        if (!isdigit((unsigned char)*s))
+            return false;
+        while (isdigit((unsigned char)*s))
+            s++;
+    }
+    return *s == '\0';
+}
+
+static bool parse_number(const char *s, double *out)
+{
+    if (!is_decimal(s))
+        return false;
+    char *end;
+    double v = strtod(s, &end);
+    if (*end || !isfinite(v))       /* 1e999 overflows to inf */
+        return false;
+    *out = v;
+    return true;
+}
+
+static bool is_bool_word(const char *s, double *v)
+{
+    if (strcasecmp(s, "true") == 0)
+        return *v = 1, true;
+    if (strcasecmp(s, "false") == 0)
+        return *v = 0, true;
+    return false;
+}
+
+/* ------------------------------------------------------------------ */
+/* numeric arguments                                                   */
+
+static void build_usage(const cmd_spec *s, char *out, size_t size)
+{
+    if (s->usage) {
+        snprintf(out, size, "%s", s->usage);
+        return;
+    }
+    size_t n = (size_t)snprintf(out, size, "%s", s->name);
+    for (int i = 0; i < s->nmax && n < size; i++) {
+        const char *pre = i == s->nreq ? " [" : " ";
+        n += (size_t)snprintf(out + n, size - n, "%s%s%s", pre, s->args[i].sym,
+                              i == s->nmax - 1 && i >= s->nreq ? "]" : "");
+    }
+}
+
+static bool parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out)
+{
+    const char *cmd = c->spec->name;
+    double v;
+    if (!parse_number(tok, &v)) {
+        cerr(c, "%s: bad number '%.60s' for %s (write e.g. 2, -0.5, .25 or 1e-3): %s",
+             cmd, tok, a->sym, c->usage);
+        return false;
+    }
+    if (a->type == 'p' && !(v > 0)) {
+        cerr(c, "%s: %s must be greater than 0, not '%.60s'", cmd, a->sym, tok);
+        return false;
+    }
+    if (a->type == 'a' && !(v > 0 && v < 180)) {
+        cerr(c, "%s: %s must be an angle between 0 and 180 degrees, not '%.60s'",
+             cmd, a->sym, tok);
+        return false;
+    }
+    if (a->type == 'i' && (v != floor(v) || v < a->lo || v > a->hi)) {
+        cerr(c, "%s: %s must be a whole number from %g to %g, not '%.60s'",
+             cmd, a->sym, a->lo, a->hi, tok);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+static void missing_args(cmdctx *c, int have)
+{
+    const cmd_spec *s = c->spec;
+    const arg_rule *a = &s->args[have];
+    if (s->nreq - have == 1 && a->what)
+        cerr(c, "%s needs %s: %s", s->name, a->what, c->usage);
+    else
+        cerr(c, "%s needs %s%d numbers, got %d: %s", s->name,
+             s->nreq < s->nmax ? "at least " : "", s->nreq, have, c->usage);
+}
+
+/* Extra words are ignored with a warning: the command still does what the
+ * first words say, which is what glman did. */
+static void warn_extra(cmdctx *c, int max, const char *hint)
+{
+    if (c->nwords <= max)
+        return;
+    const char *more = c->nwords > max + 1 ? " and what follows" : "";
+    if (max == 0)
+        cwarn(c, "%s takes no arguments; ignoring '%.40s'%s", c->spec->name,
+              c->words[0], more);
+    else
+        cwarn(c, "%s takes at most %d argument%s; ignoring '%.40s'%s%s: %s",
+              c->spec->name, max, max == 1 ? "" : "s", c->words[max], more,
+              hint, c->usage);
+}
+
+static bool same3(const double *a, const double *b)
+{
+    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
+/* Arguments that are each fine but together make a singular matrix: these
+ * would draw nothing (NaN) with no hint why. */
+static bool check_degenerate(cmdctx *c, glib_cmd *cmd)
+{
+    const double *n = cmd->num;
+    switch (cmd->kind) {
+    case GLIB_CMD_PERSPECTIVE:
+        if (n[1] >= n[2]) {
+            cerr(c, "Perspective: near (%g) must be less than far (%g)", n[1], n[2]);
+            return false;
+        }
+        return true;
+    case GLIB_CMD_ORTHO:
+        if (n[0] == n[1] || n[2] == n[3] || n[4] == n[5]) {
+            cerr(c, "Ortho: left/right, bottom/top and near/far must differ: %s", c->usage);
+            return false;
+        }
+        return true;
+    case GLIB_CMD_LOOKAT: {
+        double d[3] = { n[3] - n[0], n[4] - n[1], n[5] - n[2] };
+        double x[3] = { d[1] * n[8] - d[2] * n[7], d[2] * n[6] - d[0] * n[8],
+                        d[0] * n[7] - d[1] * n[6] };
+        if (same3(n, n + 3)) {
+            cerr(c, "LookAt: the eye and the point looked at are the same");
+            return false;
+        }
+        if (x[0] == 0 && x[1] == 0 && x[2] == 0) {
+            cerr(c, "LookAt: the up vector is zero or along the line of sight; use e.g. 0 1 0");
+            return false;
+        }
+        return true;
+    }
+    case GLIB_CMD_ROTATE:
+        if (n[1] == 0 && n[2] == 0 && n[3] == 0) {
+            cerr(c, "Rotate: the axis is zero: Rotate deg ax ay az, e.g. Rotate 90 0 1 0");
+            return false;
+        }
+        return true;
+    default:
+        return true;
+    }
+}
+
+/* Scale and Box take one number for all three axes or all three. */
+static bool one_or_three(cmdctx *c, glib_cmd *cmd, int given)
+{
+    if (given == 2) {
+        cerr(c, "%s takes 1 number or 3, not 2: %s", c->spec->name, c->usage);
+        return false;
+    }
+    if (given == 1)
+        cmd->num[1] = cmd->num[2] = cmd->num[0];
+    if (cmd->kind == GLIB_CMD_SCALE)
+        cmd->nnum = given;      /* glib.h: nnum 1 or 3 */
+    return true;
+}
+
+/* Commands whose arguments are numbers only. Optional ones get their
+ * defaults, so nnum is always the full count (but Scale, see above). */
+static bool h_nums(cmdctx *c, glib_cmd *cmd)
+{
+    const cmd_spec *s = c->spec;
+    if (c->nwords < s->nreq) {
+        missing_args(c, c->nwords);
+        return false;
+    }
+    warn_extra(c, s->nmax, "");
+    int given = c->nwords < s->nmax ? c->nwords : s->nmax;
+    for (int i = 0; i < given; i++)
+        if (!parse_arg(c, &s->args[i], c->words[i], &cmd->num[i]))
+            return false;
+    for (int i = given; i < s->nmax; i++)
+        cmd->num[i] = s->args[i].def;
+    cmd->nnum = s->nmax;
+    if (cmd->kind == GLIB_CMD_SCALE || cmd->kind == GLIB_CMD_BOX)
+        return one_or_three(c, cmd, given);
+    return check_degenerate(c, cmd);
+}
+
+/* ------------------------------------------------------------------ */
+/* paths                                                               */
+
+/* Paths are relative to the file that names them, so a scene and its
+ * shaders move together. Backslashes become slashes: glman ran on Windows
+ * and student files say textures\water.bmp. */
+static bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
+{
+    size_t dirlen = 0;
+    if (word[0] != '/' && word[0] != '\\') {
+        const char *slash = strrchr(c->file, '/');
+        dirlen = slash ? (size_t)(slash - c->file) + 1 : 0;
+    }
+    size_t wl = strlen(word);
+    if (dirlen + wl >= GLIB_PATH_MAX) {
+        cerr(c, "%s: path too long (%zu characters, at most %d): '%.40s...'",
+             c->spec->name, dirlen + wl, GLIB_PATH_MAX - 1, word);
+        return false;
+    }
+    memcpy(out, c->file, dirlen);
+    memcpy(out + dirlen, word, wl + 1);
+    for (char *q = out + dirlen; *q; q++)
+        if (*q == '\\')
+            *q = '/';
+    return true;
+}
+
+/* Looks in path's directory for a name that differs only in case: files
+ * made on Windows often say Water.BMP for water.bmp. */
+static bool case_match(const char *path, char alt[GLIB_PATH_MAX])
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
+    char dir[GLIB_PATH_MAX];
+    snprintf(dir, sizeof dir, "%.*s", (int)dirlen, dirlen ? path : "./");
+    DIR *d = opendir(dir);
+    if (!d)
+        return false;
+    bool found = false;
+    struct dirent *e;
+    while (!found && (e = readdir(d)) != NULL) {
+        size_t n = strlen(e->d_name);
+        found = strcasecmp(e->d_name, base) == 0 && strcmp(e->d_name, base) != 0 &&
+                dirlen + n < GLIB_PATH_MAX;
+        if (found) {
+            memcpy(alt, path, dirlen);
+            memcpy(alt + dirlen, e->d_name, n + 1);
+        }
+    }
+    closedir(d);
+    return found;
+}
+
+/* The renderer reports a missing file too, but only when it gets there;
+ * saying it here puts the message next to the line that named it. */
+static void check_readable(cmdctx *c, const char *path)
+{
+    char why[128];
+    struct stat st;
+    if (access(path, R_OK) != 0)
+        snprintf(why, sizeof why, "%s", strerror(errno));
+    else if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        snprintf(why, sizeof why, "it is a directory");
+    else
+        return;
+    char alt[GLIB_PATH_MAX];
+    if (case_match(path, alt))
+        cerr(c, "cannot open '%s' (from command %s): %s; did you mean '%s'? (file names are case-sensitive)",
+             path, c->spec->name, why, alt);
+    else
+        cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+}
+
+/* Resolves and checks a path; false only when it cannot be stored. A file
+ * that is missing now keeps its command: it may appear before the render. */
+static bool take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
+{
+    if (!resolve_path(c, word, out))
+        return false;
+    check_readable(c, out);
+    return true;
+}
+
+/* ------------------------------------------------------------------ */
+/* files, shaders, textures, passes                                    */
+
+static const char path_hint[] = " (quote a path that has spaces: \"my file.png\")";
+
+static bool h_stage(cmdctx *c, glib_cmd *cmd)
+{
+    warn_extra(c, 1, path_hint);
+    if (c->nwords == 0)
+        return true;            /* no file: unset the stage */
+    return take_path(c, c->words[0], cmd->path);
+}
+
+static bool h_obj(cmdctx *c, glib_cmd *cmd)
+{
+    if (c->nwords < 1) {
+        cerr(c, "Obj needs a file: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, 1, path_hint);
+    return take_path(c, c->words[0], cmd->path);
+}
+
+static bool parse_format(cmdctx *c, const char *w, glib_target_format *f)
+{
+    static const struct { const char *word; glib_target_format f; } formats[] = {
+        { "float", GLIB_TARGET_RGBA32F }, { "float32", GLIB_TARGET_RGBA32F },
+        { "float16", GLIB_TARGET_RGBA16F }, { "half", GLIB_TARGET_RGBA16F },
+        { "depth", GLIB_TARGET_DEPTH }, { "rgba8", GLIB_TARGET_RGBA8 },
+    };
+    for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
+        if (strcasecmp(w, formats[i].word) == 0)
+            return *f = formats[i].f, true;
+    cerr(c, "Texture2D: unknown format '%.40s': write float, float16 or depth, or nothing for 8-bit RGBA",
+         w);
+    return false;
+}
+
+static bool parse_sizes(cmdctx *c, glib_cmd *cmd, int count, double max)
+{
+    static const char *const syms[] = { "w", "h", "d" };
+    for (int i = 0; i < count; i++) {
+        arg_rule r = { syms[i], NULL, 'i', 1, max, 0 };
+        if (!parse_arg(c, &r, c->words[1 + i], &cmd->num[1 + i]))
+            return false;
+    }
+    cmd->nnum = 1 + count;
+    return true;
+}
+
+/* Texture2D unit file | Texture2D unit w h [format]: a number after the
+ * unit means an empty render target. */
+static bool h_tex2d(cmdctx *c, glib_cmd *cmd)
+{
+    if (c->nwords < 2) {
+        cerr(c, "Texture2D needs a unit and a file, or a unit and a size: %s", c->usage);
+        return false;
+    }
+    if (!parse_arg(c, &unit_rule, c->words[0], &cmd->num[0]))
+        return false;
+    cmd->nnum = 1;
+    if (!is_decimal(c->words[1])) {
+        warn_extra(c, 2, path_hint);
+        return take_path(c, c->words[1], cmd->path);
+    }
+    if (c->nwords < 3) {
+        cerr(c, "Texture2D: an empty texture needs a width and a height: %s", c->usage);
+        return false;
+    }
+    cmd->kind = GLIB_CMD_TEXTURE2D_EMPTY;
+    warn_extra(c, 4, "");
+    if (!parse_sizes(c, cmd, 2, 16384))
+        return false;
+    return c->nwords < 4 || parse_format(c, c->words[3], &cmd->format);
+}
+
+static bool h_tex3d(cmdctx *c, glib_cmd *cmd)
+{
+    if (c->nwords < 2) {
+        cerr(c, "Texture3D needs a unit and a file, or a unit and a size: %s", c->usage);
+        return false;
+    }
+    if (!parse_arg(c, &unit_rule, c->words[0], &cmd->num[0]))
+        return false;
+    cmd->nnum = 1;
+    if (!is_decimal(c->words[1])) {
+        warn_extra(c, 2, path_hint);
+        return take_path(c, c->words[1], cmd->path);
+    }
+    if (c->nwords < 4) {
+        cerr(c, "Texture3D: an empty texture needs a width, a height and a depth: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, 4, "");
+    return parse_sizes(c, cmd, 3, 2048);
+}
+
+static bool h_cube(cmdctx *c, glib_cmd *cmd)
+{
+    if (c->nwords < 7) {
+        cerr(c, "CubeMap needs a unit and 6 files, got %d file%s: %s",
+             c->nwords ? c->nwords - 1 : 0, c->nwords == 2 ? "" : "s", c->usage);
+        return false;
+    }
+    warn_extra(c, 7, path_hint);
+    if (!parse_arg(c, &unit_rule, c->words[0], &cmd->num[0]))
+        return false;
+    cmd->nnum = 1;
+    cmd->cube_paths = xrealloc(NULL, 6 * sizeof *cmd->cube_paths);
+    for (int i = 0; i < 6; i++)
+        if (!take_path(c, c->words[1 + i], cmd->cube_paths[i]))
+            return false;
+    return true;
+}
+
+static bool h_rtt(cmdctx *c, glib_cmd *cmd)
+{
+    warn_extra(c, GLIB_MAX_UNITS, "");
+    int n = c->nwords < GLIB_MAX_UNITS ? c->nwords : GLIB_MAX_UNITS;
+    for (int i = 0; i < n; i++) {
+        if (!parse_arg(c, &unit_rule, c->words[i], &cmd->num[i]))
+            return false;
+        for (int j = 0; j < i; j++)
+            if (cmd->num[j] == cmd->num[i])
+                cwarn(c, "RenderToTexture: unit %g is listed twice", cmd->num[i]);
+    }
+    cmd->nnum = n;
+    return true;
+}
+
+/* ------------------------------------------------------------------ */
+/* keyword commands (our extensions)                                   */
+
+typedef struct keyword { const char *word; const char *canon; double value; } keyword;
+
+static const keyword *find_keyword(cmdctx *c, const keyword *k, size_t n, const char *choices)
+{
+    if (c->nwords < 1) {
+        cerr(c, "%s needs one of %s: %s", c->spec->name, choices, c->usage);
+        return NULL;
+    }
+    warn_extra(c, 1, "");
+    for (size_t i = 0; i < n; i++)
+        if (strcasecmp(c->words[0], k[i].word) == 0)
+            return &k[i];
+    cerr(c, "%s: unknown mode '%.40s': write %s", c->spec->name, c->words[0], choices);
+    return NULL;
+}
+
+static bool h_cull(cmdctx *c, glib_cmd *cmd)
+{
+    static const keyword k[] = {
+        { "back", "back", 0 }, { "front", "front", 0 }, { "none", "none", 0 }, { "off", "none", 0 },
+    };
+    const keyword *m = find_keyword(c, k, sizeof k / sizeof k[0], "back, front or none");
+    if (m)
+        snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    return m != NULL;
+}
+
+static bool h_blend(cmdctx *c, glib_cmd *cmd)
+{
+    static const keyword k[] = {
+        { "off", "off", 0 }, { "none", "off", 0 }, { "alpha", "alpha", 0 }, { "add", "add", 0 },
+    };
+    const keyword *m = find_keyword(c, k, sizeof k / sizeof k[0], "off, alpha or add");
+    if (m)
+        snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    return m != NULL;
+}
+
+static bool h_depth(cmdctx *c, glib_cmd *cmd)
+{
+    static const keyword k[] = {
+        { "on", "on", 1 }, { "off", "off", 0 }, { "1", "on", 1 }, { "0", "off", 0 },
+        { "true", "on", 1 }, { "false", "off", 0 },
+    };
+    const keyword *m = find_keyword(c, k, sizeof k / sizeof k[0], "on or off");
+    if (!m)
+        return false;
+    cmd->num[0] = m->value;
+    cmd->nnum = 1;
+    snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    return true;
+}
+
+/* ------------------------------------------------------------------ */
+/* uniform values: 5  [a b c]  <min default max>  <true>  {r g b a}     */
+
+typedef enum { VAL_OK, VAL_BAD, VAL_STOP } val_result;
+
+static const char *bracket_example(char open)
+{
+    return open == '<' ? "<min default max> or <true>"
+         : open == '{' ? "{r g b} or {r g b a}" : "[a b c]";
+}
+
+static val_result bracket_numbers(cmdctx *c, char **items, int n, glib_uniform *u,
+                                  const char *owner)
+{
+    for (int i = 0; i < n; i++)
+        if (!parse_number(items[i], &u->v[i])) {
+            cerr(c, "%s: bad number '%.60s' (write e.g. 2, -0.5, .25 or 1e-3)", owner, items[i]);
+            return VAL_BAD;
+        }
+    u->n = n;
+    return VAL_OK;
+}
+
+static val_result slider_value(cmdctx *c, glib_uniform *u, const char *owner)
+{
+    double *v = u->v;
+    if (v[0] > v[2]) {
+        cerr(c, "%s: slider minimum %g is greater than its maximum %g: write <min default max>",
+             owner, v[0], v[2]);
+        return VAL_BAD;
+    }
+    if (v[1] < v[0] || v[1] > v[2]) {
+        double d = v[1] < v[0] ? v[0] : v[2];
+        cwarn(c, "%s: default %g is outside <%g .. %g>; using %g", owner, v[1], v[0], v[2], d);
+        v[1] = d;
+    }
+    return VAL_OK;
+}
+
+static val_result typed_bracket(cmdctx *c, char open, char **items, int n,
+                                glib_uniform *u, const char *owner)
+{
+    if (open == '<' && n == 1 && is_bool_word(items[0], &u->v[0])) {
+        u->kind = GLIB_UNIFORM_BOOL;
+        u->n = 1;
+        return VAL_OK;
+    }
+    int lo = open == '<' ? 3 : open == '{' ? 3 : 1;
+    int hi = open == '<' ? 3 : open == '{' ? 4 : GLIB_MAX_NUMS;
+    if (n < lo || n > hi) {
+        const char *need = open == '<' ? "3 numbers <min default max> or <true>/<false>"
+                         : open == '{' ? "3 or 4 numbers {r g b [a]}" : "1 to 16 numbers [a b c]";
+        cerr(c, "%s: %c%c needs %s, got %d", owner, open, closer_of(open), need, n);
+        return VAL_BAD;
+    }
+    u->kind = open == '<' ? GLIB_UNIFORM_SLIDER
+            : open == '{' ? GLIB_UNIFORM_COLOR : GLIB_UNIFORM_ARRAY;
+    val_result r = bracket_numbers(c, items, n, u, owner);
+    if (r == VAL_OK && u->kind == GLIB_UNIFORM_SLIDER)
+        r = slider_value(c, u, owner);
+    return r;
+}
+
+/* A bracketed value at *sp. An unclosed bracket ends the line: nothing
+ * after it can be told apart from the bracket's contents. */
+static val_result read_bracket(cmdctx *c, char **sp, glib_uniform *u, const char *owner)
+{
+    char *s = *sp;
+    char open = *s, close = closer_of(open);
+    char *e = s + 1;
+    while (*e && *e != close && !is_opener(*e) && !is_closer(*e))
+        e++;
+    if (*e != close) {
+        if (*e)
+            cerr(c, "%s: '%c' is not closed before '%c': write %s", owner, open, *e,
+                 bracket_example(open));
+        else
+            cerr(c, "%s: unclosed '%c': add '%c' (%s)", owner, open, close, bracket_example(open));
+        *sp = s + strlen(s);
+        return VAL_STOP;
+    }
+    *e = '\0';
+    *sp = e + 1;
+    char *items[GLIB_MAX_NUMS];
+    int n = split_items(s + 1, items, GLIB_MAX_NUMS);
+    return typed_bracket(c, open, items, n, u, owner);
+}
+
+static val_result read_value(cmdctx *c, char **sp, glib_uniform *u, const char *owner)
+{
+    char *s = skip_space(*sp);
+    if (is_opener(*s)) {
+        *sp = s;
+        return read_bracket(c, sp, u, owner);
+    }
+    char *e = s;
+    while (*e && !is_space((unsigned char)*e))
+        e++;
+    *sp = *e ? e + 1 : e;
+    *e = '\0';
+    double b;
+    if (is_closer(*s)) {
+        cerr(c, "%s: '%c' closes a bracket that was not opened", owner, *s);
+        return VAL_BAD;
+    }
+    if (is_bool_word(s, &b)) {
+        cerr(c, "%s: write <%s> (with the angle brackets) for a checkbox", owner, s);
+        return VAL_BAD;
+    }
+    if (!parse_number(s, &u->v[0])) {
+        cerr(c, "%s: bad number '%.60s' (write e.g. 2, -0.5, .25 or 1e-3)", owner, s);
+        return VAL_BAD;
+    }
+    u->kind = GLIB_UNIFORM_SCALAR;
+    u->n = 1;
+    return VAL_OK;
+}
+
+/* Copies a name at *sp (up to whitespace or a bracket, which may follow
+ * with no space: uKa<0 1 2>) into out and checks it is a GLSL identifier. */
+static bool take_name(cmdctx *c, char **sp, char out[GLIB_NAME_MAX], const char *what)
+{
+    char *s = *sp, *e = s;
+    while (*e && !is_space((unsigned char)*e) && !is_opener(*e))
+        e++;
+    *sp = e;
+    size_t n = (size_t)(e - s);
+    if (n >= GLIB_NAME_MAX) {
+        cerr(c, "%s name '%.40s...' is too long (at most %d characters)", what, s,
+             GLIB_NAME_MAX - 1);
+        return false;
+    }
+    memcpy(out, s, n);
+    out[n] = '\0';
+    if (!is_ident(out)) {
+        cerr(c, "'%s' is not a valid %s name: use letters, digits and _, not starting with a digit",
+             out, what);
+        return false;
+    }
+    return true;
+}
+
+static void add_uniform(cmdctx *c, glib_cmd *cmd, const glib_uniform *u, int *cap)
+{
+    for (int i = 0; i < cmd->nuniforms; i++)
+        if (strcmp(cmd->uniforms[i].name, u->name) == 0) {
+            cwarn(c, "Program %s: uniform '%s' is given twice; the later value wins",
+                  cmd->name, u->name);
+            cmd->uniforms[i] = *u;
+            return;
+        }
+    if (cmd->nuniforms >= LIM_PROGRAM_UNIFORMS || c->p->scene_uniforms >= LIM_SCENE_UNIFORMS) {
+        cerr(c, "Program %s: too many uniforms (at most %d on one Program); '%s' ignored",
+             cmd->name, LIM_PROGRAM_UNIFORMS, u->name);
+        return;
+    }
+    cmd->uniforms = grow(cmd->uniforms, cap, cmd->nuniforms + 1, sizeof *cmd->uniforms);
+    cmd->uniforms[cmd->nuniforms++] = *u;
+    c->p->scene_uniforms++;
+}
+
+static void take_pending_defines(parser *p, glib_cmd *cmd)
+{
+    cmd->defines = p->pending;
+    cmd->ndefines = p->npending;
+    p->pending = NULL;
+    p->npending = p->pending_cap = 0;
+}
+
+/* Reads one `name value` pair of a Program line into u; false when the
+ * rest of the line cannot be read. *ok says whether u is usable. */
+static bool program_uniform(cmdctx *c, glib_cmd *cmd, char **sp, glib_uniform *u, bool *ok)
+{
+    char *s = *sp;
+    bool named = !is_opener(*s);
+    if (!named)
+        cerr(c, "Program %s: a value '%c...' has no uniform name before it", cmd->name, *s);
+    else
+        named = take_name(c, &s, u->name, "uniform");
+    s = skip_space(s);
+    *sp = s;
+    *ok = false;
+    if (!*s) {
+        if (named)
+            cerr(c, "Program %s: uniform '%s' has no value: write %s 5, <min default max>, <true>, [a b c] or {r g b}",
+                 cmd->name, u->name, u->name);
+        return false;
+    }
+    char owner[GLIB_NAME_MAX * 2 + 32];
+    snprintf(owner, sizeof owner, "Program %s: uniform '%s'", cmd->name, u->name);
+    val_result r = read_value(c, sp, u, owner);
+    *ok = r == VAL_OK && named;
+    return r != VAL_STOP;
+}
+
+static bool h_program(cmdctx *c, glib_cmd *cmd)
+{
+    char *s = skip_space(c->rest), *e = s;
+    while (*e && !is_space((unsigned char)*e) && !is_opener(*e))
+        e++;
+    if (e == s) {
+        cerr(c, "Program needs a name: %s", c->usage);
+        return false;
+    }
+    if (e - s >= GLIB_NAME_MAX) {
+        cerr(c, "Program name '%.40s...' is too long (at most %d characters)", s, GLIB_NAME_MAX - 1);
+        return false;
+    }
+    memcpy(cmd->name, s, (size_t)(e - s));
+    int cap = 0;
+    for (s = skip_space(e); *s; s = skip_space(s)) {
+        glib_uniform u = { .file = c->file, .line = c->line };
+        bool ok;
+        bool go_on = program_uniform(c, cmd, &s, &u, &ok);
+        if (ok)
+            add_uniform(c, cmd, &u, &cap);
+        if (!go_on)
+            break;
+    }
+    take_pending_defines(c->p, cmd);
+    return true;
+}
+
+static void add_pending(cmdctx *c, const glib_uniform *u)
+{
+    parser *p = c->p;
+    for (int i = 0; i < p->npending; i++)
+        if (strcmp(p->pending[i].name, u->name) == 0) {
+            cwarn(c, "Define %s is given twice before the next Program; the later one wins", u->name);
+            p->pending[i] = *u;
+            return;
+        }
+    p->pending = grow(p->pending, &p->pending_cap, p->npending + 1, sizeof *p->pending);
+    p->pending[p->npending++] = *u;
+}
+
+/* Define NAME [<true>|<false>|value|<min default max>]: a #define the
+ * shaders of the next Program are compiled with (a bare name is <true>). */
+static bool h_define(cmdctx *c, glib_cmd *cmd)
+{
+    glib_uniform u = { .file = c->file, .line = c->line, .kind = GLIB_UNIFORM_BOOL,
+                       .v = { 1 }, .n = 1 };
+    char *s = skip_space(c->rest);
+    if (!*s) {
+        cerr(c, "Define needs a name: %s", c->usage);
+        return false;
+    }
+    if (!take_name(c, &s, u.name, "Define"))
+        return false;
+    s = skip_space(s);
+    if (*s) {
+        char owner[GLIB_NAME_MAX + 16];
+        snprintf(owner, sizeof owner, "Define %s", u.name);
+        if (read_value(c, &s, &u, owner) != VAL_OK)
+            return false;
+        if (u.kind == GLIB_UNIFORM_ARRAY || u.kind == GLIB_UNIFORM_COLOR) {
+            cerr(c, "Define %s takes <true>, <false>, a number or <min default max>, not a list",
+                 u.name);
+            return false;
+        }
+        s = skip_space(s);
+        if (*s)
+            cwarn(c, "Define %s: ignoring '%.40s' after the value", u.name, s);
+    }
+    memcpy(cmd->name, u.name, sizeof cmd->name);
+    cmd->uniforms = xrealloc(NULL, sizeof u);
+    cmd->uniforms[0] = u;
+    cmd->nuniforms = 1;
+    add_pending(c, &u);
+    return true;
+}
+
+/* ------------------------------------------------------------------ */
+/* reading files and lines                                             */
+
+/* Reads a whole regular file of at most LIM_FILE_BYTES into *out (NUL
+ * terminated, freed by the caller); on failure *why says why. */
+static bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+        snprintf(why, whylen, "%s", strerror(errno));
+        return false;
+    }
+    struct stat st;
+    const char *bad = fstat(fd, &st) != 0 ? "cannot stat it"
+                    : S_ISDIR(st.st_mode) ? "it is a directory"
+                    : !S_ISREG(st.st_mode) ? "it is not a regular file"
+                    : st.st_size > LIM_FILE_BYTES ? "it is larger than 1 MiB; a .glib is a short text file"
+                    : NULL;
+    size_t n = 0, cap = bad ? 0 : (size_t)st.st_size + 1;
+    char *buf = bad ? NULL : xrealloc(NULL, cap);
+    ssize_t got = 0;
+    while (buf && (got = read(fd, buf + n, cap - n)) > 0) {
+        n += (size_t)got;
+        if (n == cap && n <= LIM_FILE_BYTES)     /* it grew since fstat */
+            buf = xrealloc(buf, cap = cap * 2 < LIM_FILE_BYTES + 1 ? cap * 2 : LIM_FILE_BYTES + 1);
+        else if (n == cap)
+            break;
+    }
+    if (!bad && got < 0)
+        bad = strerror(errno);
+    else if (!bad && n > LIM_FILE_BYTES)
+        bad = "it is larger than 1 MiB; a .glib is a short text file";
+    close(fd);
+    if (bad) {
+        snprintf(why, whylen, "%s", bad);
+        free(buf);
+        return false;
+    }
+    buf[n] = '\0';
+    *out = buf;
+    *len = n;
+    return true;
+}
+
+typedef struct reader {
+    const char *text;
+    size_t len, pos;
+    int lineno;
+} reader;
+
+/* The next physical line, without its end (\n, \r\n or a lone \r). */
+static bool next_phys(reader *r, const char **b, size_t *n)
+{
+    if (r->pos >= r->len)
+        return false;
+    size_t i = r->pos;
+    while (i < r->len && r->text[i] != '\n' && r->text[i] != '\r')
+        i++;
+    *b = r->text + r->pos;
+    *n = i - r->pos;
+    if (i + 1 < r->len && r->text[i] == '\r' && r->text[i + 1] == '\n')
+        i++;
+    r->pos = i + 1;
+    r->lineno++;
+    return true;
+}
+
+/* Where a comment starts in a physical line: `#` or `//` at the start of a
+ * word (so a/b//c.png stays a path), not inside "quotes". */
+static size_t comment_start(const char *s, size_t n)
+{
+    bool quoted = false;
+    for (size_t i = 0; i < n; i++) {
+        if (s[i] == '"')
+            quoted = !quoted;
+        if (quoted)
+            continue;
+        bool word_start = i == 0 || is_space((unsigned char)s[i - 1]) || is_closer(s[i - 1]);
+        if (word_start && (s[i] == '#' || (s[i] == '/' && i + 1 < n && s[i + 1] == '/')))
+            return i;
+    }
+    return n;
+}
+
+/* Index of the first byte that cannot be in a text line: a control code
+ * (NUL, ...) or broken UTF-8; n when there is none. */
+static size_t first_bad_byte(const unsigned char *s, size_t n)
+{
+    size_t i = 0;
+    while (i < n) {
+        unsigned c = s[i];
+        if (c < 0x80) {
+            if ((c < 0x20 && !is_space((int)c)) || c == 0x7f)
+                return i;
+            i++;
+            continue;
+        }
+        size_t extra = c >= 0xc2 && c <= 0xdf ? 1 : c >= 0xe0 && c <= 0xef ? 2
+                     : c >= 0xf0 && c <= 0xf4 ? 3 : 0;
+        if (!extra || i + extra >= n)   /* not a lead byte, or cut off */
+            return i;
+        for (size_t k = 1; k <= extra; k++)
+            if ((s[i + k] & 0xc0) != 0x80)
+                return i;
+        i += extra + 1;
+    }
+    return n;
+}
+
+typedef struct logical {
+    char *buf;                  /* LIM_LINE_CHARS + 1 */
+    size_t n;
+    int first_line;
+    bool too_long;
+    int bad_byte, bad_col;      /* bad_byte -1: none */
+} logical;
+
+static void append_phys(logical *lg, const char *b, size_t n, bool cont)
+{
+    if (lg->bad_byte < 0) {
+        size_t bad = first_bad_byte((const unsigned char *)b, n);
+        if (bad < n) {
+            lg->bad_byte = (unsigned char)b[bad];
+            lg->bad_col = (int)bad + 1;
+        }
+    }
+    if (lg->too_long || lg->n + n + 1 > LIM_LINE_CHARS) {
+        lg->too_long = true;
+        return;
+    }
+    memcpy(lg->buf + lg->n, b, n);
+    lg->n += n;
+    if (cont)
+        lg->buf[lg->n++] = ' ';     /* the backslash separates, like a space */
+}
+
+/* Joins physical lines ending in `\` into one logical line, comments cut. */
+static bool next_logical(reader *r, logical *lg)
+{
+    const char *b;
+    size_t n;
+    lg->n = 0;
+    lg->too_long = false;
+    lg->bad_byte = -1;
+    if (!next_phys(r, &b, &n))
+        return false;
+    lg->first_line = r->lineno;
+    for (;;) {
+        n = comment_start(b, n);
+        while (n > 0 && is_space((unsigned char)b[n - 1]))
+            n--;
+        bool cont = n > 0 && b[n - 1] == '\\';
+        append_phys(lg, b, cont ? n - 1 : n, cont);
+        if (!cont || !next_phys(r, &b, &n))
+            break;
+    }
+    lg->buf[lg->n] = '\0';
+    return true;
+}
+
+/* ------------------------------------------------------------------ */
+/* commands                                                            */
+
+static void free_cmd_parts(glib_cmd *cmd)
+{
+    free(cmd->cube_paths);
+    free(cmd->uniforms);
+    free(cmd->defines);
+}
+
+static void push_cmd(parser *p, glib_cmd *cmd)
+{
+    glib_scene *sc = p->sc;
+    if (sc->ncmds >= LIM_CMDS) {
+        diag(p, GLIB_ERROR, cmd->file, cmd->line,
+             "too many commands (more than %d); the rest of the scene is ignored", LIM_CMDS);
+        free_cmd_parts(cmd);
+        p->stop = true;
+        return;
+    }
+    sc->cmds = grow(sc->cmds, &p->cmd_cap, sc->ncmds + 1, sizeof *sc->cmds);
+    sc->cmds[sc->ncmds++] = *cmd;
+}
+
+static const cmd_spec *find_spec(const char *name);
+static const char *suggest(const char *name);
+
+static void unknown_command(parser *p, const char *name, char *rest, const char *file, int line)
+{
+    const char *near = suggest(name);
+    char hint[96] = "";
+    if (near)
+        snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
+    else if (is_opener(*skip_space(rest)))
+        snprintf(hint, sizeof hint, "; a uniform on its own line? end the Program line above with '\\'");
+    diag(p, GLIB_WARNING, file, line, "unknown command '%.60s' (skipped)%s", name, hint);
+}
+
+static void process_line(parser *p, char *s, const char *file, int line)
+{
+    s = skip_space(s);
+    if (!*s)
+        return;
+    char *name = s;
+    while (*s && !is_space((unsigned char)*s))
+        s++;
+    if (*s)
+        *s++ = '\0';
+    const cmd_spec *spec = find_spec(name);
+    if (!spec) {
+        unknown_command(p, name, s, file, line);
+        return;
+    }
+    cmdctx c = { .p = p, .file = file, .line = line, .spec = spec, .rest = s };
+    build_usage(spec, c.usage, sizeof c.usage);
+    if (!spec->raw && (c.nwords = split_words(s, c.words, LIM_WORDS)) < 0) {
+        cerr(&c, "%s: unclosed '\"': add the closing quote", spec->name);
+        return;
+    }
+    glib_cmd cmd;
+    memset(&cmd, 0, sizeof cmd);
+    cmd.kind = spec->kind;
+    cmd.file = file;
+    cmd.line = line;
+    cmd.wire = spec->wire;
+    if (spec->fn(&c, &cmd))
+        push_cmd(p, &cmd);
+    else
+        free_cmd_parts(&cmd);
+}
+
+/* glman demands the header; we only remind (a header with a trailing
+ * comment or odd spacing still counts). */
+static bool is_header(const char *b, size_t n)
+{
+    static const char want[] = "##openglglib";
+    size_t k = 0;
+    for (size_t i = 0; i < n && want[k]; i++) {
+        if (is_space((unsigned char)b[i]))
+            continue;
+        if (tolower((unsigned char)b[i]) != want[k++])
+            return false;
+    }
+    return want[k] == '\0';
+}
+
+static bool all_space(const char *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!is_space((unsigned char)s[i]) && s[i] != '\n')
+            return false;
+    return true;
+}
+
+/* The top file must say what it is; an included file need not. */
+static bool check_top(parser *p, const reader *r, const char *file)
+{
+    if (all_space(r->text + r->pos, r->len - r->pos)) {
+        diag(p, GLIB_ERROR, file, 1, "empty file: expected '##OpenGL GLIB' and commands");
+        return false;
+    }
+    reader first = *r;
+    const char *b = "";
+    size_t n = 0;
+    next_phys(&first, &b, &n);
+    if (!is_header(b, n))
+        diag(p, GLIB_WARNING, file, 1,
+             "first line is not '##OpenGL GLIB': glman will not open this file; add that line");
+    return true;
+}
+
+static void parse_text(parser *p, const char *text, size_t len, const char *file, bool top)
+{
+    reader r = { text ? text : "", text ? len : 0, 0, 0 };
+    if (r.len >= 3 && memcmp(r.text, "\xEF\xBB\xBF", 3) == 0)
+        r.pos = 3;              /* a UTF-8 byte order mark from a Windows editor */
+    if (top && !check_top(p, &r, file))
+        return;
+    logical lg = { .buf = xrealloc(NULL, LIM_LINE_CHARS + 1) };
+    int binary = 0;
+    while (!p->stop && next_logical(&r, &lg)) {
+        if (lg.too_long) {
+            diag(p, GLIB_ERROR, file, lg.first_line,
+                 "line too long (over %d characters); command skipped", LIM_LINE_CHARS);
+        } else if (lg.bad_byte >= 0) {
+            diag(p, GLIB_ERROR, file, lg.first_line,
+                 lg.bad_byte >= 0x80 ? "byte 0x%02X at column %d is not UTF-8 text; line skipped (save the file as UTF-8)"
+                                     : "binary data (byte 0x%02X at column %d) in a text file; line skipped",
+                 lg.bad_byte, lg.bad_col);
+            if (++binary >= LIM_BINARY_LINES) {
+                diag(p, GLIB_ERROR, file, lg.first_line,
+                     "this does not look like a .glib text file; stopped reading it");
+                break;
+            }
+        } else {
+            process_line(p, lg.buf, file, lg.first_line);
+        }
+    }
+    free(lg.buf);
+}
+
+/* Reads text as the file `name` with the include stack pushed; takes canon. */
+static void parse_nested(parser *p, const char *text, size_t len, const char *name,
+                         char *canon, bool top)
+{
+    p->stack_name[p->depth] = name;
+    p->stack_canon[p->depth] = canon;
+    p->depth++;
+    parse_text(p, text, len, name, top);
+    p->depth--;
+    free(canon);
+}
+
+/* A path that names the same file however it is spelled, for cycles. */
+static char *canonical(const char *path)
+{
+    char *real = realpath(path, NULL);
+    return real ? real : xstrdup(path);
+}
+
+/* Appends s to buf (size bytes, *n used), cutting what does not fit. */
+static void append_cut(char *buf, size_t size, size_t *n, const char *s)
+{
+    size_t l = strlen(s);
+    if (*n + l >= size)
+        l = size - 1 - *n;
+    memcpy(buf + *n, s, l);
+    *n += l;
+    buf[*n] = '\0';
+}
+
+static void report_cycle(cmdctx *c, int at, const char *path)
+{
+    char chain[256] = "";
+    size_t n = 0;
+    for (int i = at; i < c->p->depth; i++) {
+        append_cut(chain, sizeof chain, &n, c->p->stack_name[i]);
+        append_cut(chain, sizeof chain, &n, " -> ");
+    }
+    append_cut(chain, sizeof chain, &n, path);
+    cerr(c, "Include cycle: %s; remove one of these Includes", chain);
+}
+
+/* Include file: its commands are read in place of this line. */
+static bool h_include(cmdctx *c, glib_cmd *cmd)
+{
+    parser *p = c->p;
+    char path[GLIB_PATH_MAX], why[128], *buf;
+    size_t len;
+    if (c->nwords < 1) {
+        cerr(c, "Include needs a file: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, 1, path_hint);
+    if (!resolve_path(c, c->words[0], path))
+        return false;
+    if (p->nreads >= LIM_INCLUDE_READS) {
+        cerr(c, "more than %d Includes in one scene; '%s' skipped", LIM_INCLUDE_READS, path);
+        return false;
+    }
+    if (!read_file(path, &buf, &len, why, sizeof why)) {
+        if (access(path, R_OK) != 0)
+            check_readable(c, path);        /* says why, with a case hint */
+        else                                /* there, but a directory or huge */
+            cerr(c, "cannot open '%s' (from command Include): %s", path, why);
+        return false;
+    }
+    p->nreads++;
+    char *canon = canonical(path);
+    for (int i = 0; i < p->depth; i++)
+        if (strcmp(p->stack_canon[i], canon) == 0) {
+            report_cycle(c, i, path);
+            free(canon);
+            free(buf);
+            return false;
+        }
+    if (p->depth > LIM_INCLUDE_DEPTH) {
+        cerr(c, "Include '%s' is nested more than %d files deep; is there a loop?", path,
+             LIM_INCLUDE_DEPTH);
+        free(canon);
+        free(buf);
+        return false;
+    }
+    parse_nested(p, buf, len, add_file(p, path), canon, false);
+    free(buf);
+    return false;               /* no command of its own: its lines are inlined */
+}
+
+/* ------------------------------------------------------------------ */
+/* the public functions                                                */
+
+static void finish(parser *p)
+{
+    glib_scene *sc = p->sc;
+    for (int i = 0; i < p->npending; i++)
+        diag(p, GLIB_WARNING, p->pending[i].file, p->pending[i].line,
+             "Define %s comes after the last Program, so no shader sees it; move it above a Program",
+             p->pending[i].name);
+    free(p->pending);
+    p->pending = NULL;
+    if (sc->ncmds == 0 && sc->nerrors == 0 && sc->nfiles > 0)
+        diag(p, GLIB_WARNING, sc->files[0], 1, "no commands: the scene draws nothing");
+    if (p->dropped) {
+        char msg[128];
+        snprintf(msg, sizeof msg, "too many errors: %d more diagnostics not shown (%d errors); fix the ones above first",
+                 p->dropped, p->dropped_errors);
+        add_diag(p, p->dropped_errors ? GLIB_ERROR : GLIB_WARNING,
+                 sc->files[0], 0, msg);
+    }
+}
+
+static glib_scene *new_scene(parser *p)
+{
+    memset(p, 0, sizeof *p);
+    p->sc = xrealloc(NULL, sizeof *p->sc);
+    memset(p->sc, 0, sizeof *p->sc);
+    return p->sc;
+}
+
+glib_scene *glib_parse(const char *text, size_t len, const char *virtual_path)
+{
+    parser p;
+    glib_scene *sc = new_scene(&p);
+    const char *name = add_file(&p, virtual_path ? virtual_path : "<memory>");
+    parse_nested(&p, text, len, name, canonical(name), true);
+    finish(&p);
+    return sc;
+}
+
+glib_scene *glib_load(const char *path)
+{
+    parser p;
+    glib_scene *sc = new_scene(&p);
+    const char *name = add_file(&p, path ? path : "<null>");
+    char *buf, why[128];
+    size_t len;
+    if (!path || !read_file(path, &buf, &len, why, sizeof why)) {
+        diag(&p, GLIB_ERROR, name, 0, "cannot open '%s': %s", name, path ? why : "no path given");
+    } else {
+        parse_nested(&p, buf, len, name, canonical(path), true);
+        free(buf);
+    }
+    finish(&p);
+    return sc;
+}
+
+void glib_free(glib_scene *scene)
+{
+    if (!scene)
+        return;
+    for (int i = 0; i < scene->ncmds; i++)
+        free_cmd_parts(&scene->cmds[i]);
+    for (int i = 0; i < scene->nfiles; i++)
+        free(scene->files[i]);
+    free(scene->cmds);
+    free(scene->diags);
+    free(scene->files);
+    free(scene);
+}
+
+void glib_print_diags(const glib_scene *scene, void *stream)
+{
+    FILE *f = stream;
+    for (int i = 0; scene && i < scene->ndiags; i++) {
+        const glib_diag *d = &scene->diags[i];
+        fprintf(f, "%s:%d: %s: %s\n", d->file ? d->file : "?", d->line,
+                d->severity == GLIB_ERROR ? "error" : "warning", d->message);
+    }
+}
+
+static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
+    [GLIB_CMD_NONE] = "(none)",
+    [GLIB_CMD_WINDOW_SIZE] = "WindowSize", [GLIB_CMD_PERSPECTIVE] = "Perspective",
+    [GLIB_CMD_ORTHO] = "Ortho", [GLIB_CMD_LOOKAT] = "LookAt",
+    [GLIB_CMD_TRANSLATE] = "Translate", [GLIB_CMD_ROTATE] = "Rotate",
+    [GLIB_CMD_SCALE] = "Scale", [GLIB_CMD_PUSH_MATRIX] = "PushMatrix",
+    [GLIB_CMD_POP_MATRIX] = "PopMatrix",
+    [GLIB_CMD_QUAD_XY] = "QuadXY", [GLIB_CMD_QUAD_XZ] = "QuadXZ", [GLIB_CMD_QUAD_YZ] = "QuadYZ",
+    [GLIB_CMD_SPHERE] = "Sphere", [GLIB_CMD_TORUS] = "Torus", [GLIB_CMD_BOX] = "Box",
+    [GLIB_CMD_CYLINDER] = "Cylinder", [GLIB_CMD_CONE] = "Cone", [GLIB_CMD_TEAPOT] = "Teapot",
+    [GLIB_CMD_OBJ] = "Obj", [GLIB_CMD_COLOR] = "Color",
+    [GLIB_CMD_TEXTURE2D_FILE] = "Texture2D", [GLIB_CMD_TEXTURE2D_EMPTY] = "Texture2D",
+    [GLIB_CMD_TEXTURE3D] = "Texture3D", [GLIB_CMD_CUBEMAP] = "CubeMap",
+    [GLIB_CMD_NOISE2D] = "Noise2D", [GLIB_CMD_NOISE3D] = "Noise3D",
+    [GLIB_CMD_RENDER_TO_TEXTURE] = "RenderToTexture", [GLIB_CMD_CLEAR] = "Clear",
+    [GLIB_CMD_BACKGROUND] = "Background",
+    [GLIB_CMD_VERTEX] = "Vertex", [GLIB_CMD_TESS_CONTROL] = "TessControl",
+    [GLIB_CMD_TESS_EVALUATION] = "TessEvaluation", [GLIB_CMD_GEOMETRY] = "Geometry",
+    [GLIB_CMD_FRAGMENT] = "Fragment", [GLIB_CMD_PROGRAM] = "Program",
+    [GLIB_CMD_TIMER] = "Timer", [GLIB_CMD_GSTAP] = "GSTAP",
+    [GLIB_CMD_DEFINE] = "Define", [GLIB_CMD_CULL] = "Cull",
+    [GLIB_CMD_DEPTH_TEST] = "DepthTest", [GLIB_CMD_BLEND] = "Blend",
+};
+
+const char *glib_cmd_name(glib_cmd_kind kind)
+{
+    if ((int)kind < 0 || kind >= GLIB_CMD_KIND_COUNT || !kind_names[kind])
+        return "?";
+    return kind_names[kind];
+}
+
+/* ------------------------------------------------------------------ */
+/* the command table                                                   */
+
+#define ARG_R(s, w)             { s, w, 'r', 0, 0, 0 }
+#define ARG_RD(s, d)            { s, NULL, 'r', 0, 0, d }
+#define ARG_P(s, w)             { s, w, 'p', 0, 0, 0 }
+#define ARG_PD(s, d)            { s, NULL, 'p', 0, 0, d }
+#define ARG_ID(s, lo, hi, d)    { s, NULL, 'i', lo, hi, d }
+#define ARG_I(s, w, lo, hi)     { s, w, 'i', lo, hi, 0 }
+
+#define QUAD_ARGS(a, b, c) { ARG_R(a, "a position"), ARG_P("size", "a size"), \
+    ARG_ID(b, 1, 4096, 1), ARG_ID(c, 1, 4096, 1) }
+#define SPHERE_ARGS { ARG_P("r", "a radius"), ARG_ID("slices", 3, 1024, 32), \
+    ARG_ID("stacks", 2, 1024, 16) }
+#define TORUS_ARGS { ARG_P("r_major", "the major radius"), ARG_P("r_minor", "the minor radius"), \
+    ARG_ID("sides", 3, 1024, 16), ARG_ID("rings", 3, 1024, 32) }
+#define BOX_ARGS { ARG_P("dx", "a size"), ARG_PD("dy", 0), ARG_PD("dz", 0) }
+#define ROUND_ARGS { ARG_P("r", "a radius"), ARG_P("h", "a height"), \
+    ARG_ID("slices", 3, 1024, 32), ARG_ID("stacks", 1, 1024, 8) }
+#define RGBA_ARGS { ARG_R("r", NULL), ARG_R("g", NULL), ARG_R("b", "a blue value"), ARG_RD("a", 1) }
+
+static const cmd_spec specs[] = {
+    { "WindowSize", GLIB_CMD_WINDOW_SIZE, false, h_nums, false, 2, 2,
+      { ARG_I("w", NULL, 1, 16384), ARG_I("h", "a height", 1, 16384) }, NULL },
+    { "Perspective", GLIB_CMD_PERSPECTIVE, false, h_nums, false, 1, 3,
+      { { "fov", "a field of view in degrees", 'a', 0, 0, 0 }, ARG_PD("near", 0.1),
+        ARG_PD("far", 1000) }, NULL },
+    { "Ortho", GLIB_CMD_ORTHO, false, h_nums, false, 4, 6,
+      { ARG_R("l", NULL), ARG_R("r", NULL), ARG_R("b", NULL), ARG_R("t", "a top"),
+        ARG_RD("near", 0.1), ARG_RD("far", 1000) }, NULL },
+    { "LookAt", GLIB_CMD_LOOKAT, false, h_nums, false, 9, 9,
+      { ARG_R("ex", NULL), ARG_R("ey", NULL), ARG_R("ez", NULL), ARG_R("cx", NULL),
+        ARG_R("cy", NULL), ARG_R("cz", NULL), ARG_R("ux", NULL), ARG_R("uy", NULL),
+        ARG_R("uz", "an up vector") }, NULL },
+    { "Translate", GLIB_CMD_TRANSLATE, false, h_nums, false, 3, 3,
+      { ARG_R("x", NULL), ARG_R("y", NULL), ARG_R("z", "a z") }, NULL },
+    { "Rotate", GLIB_CMD_ROTATE, false, h_nums, false, 4, 4,
+      { ARG_R("deg", NULL), ARG_R("ax", NULL), ARG_R("ay", NULL), ARG_R("az", "an axis z") }, NULL },
+    { "Scale", GLIB_CMD_SCALE, false, h_nums, false, 1, 3,
+      { ARG_R("s", "a scale factor"), ARG_RD("sy", 0), ARG_RD("sz", 0) }, "Scale s | Scale sx sy sz" },
+    { "PushMatrix", GLIB_CMD_PUSH_MATRIX, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "TransformBegin", GLIB_CMD_PUSH_MATRIX, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "PopMatrix", GLIB_CMD_POP_MATRIX, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "TransformEnd", GLIB_CMD_POP_MATRIX, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "QuadXY", GLIB_CMD_QUAD_XY, false, h_nums, false, 2, 4, QUAD_ARGS("z", "nx", "ny"), NULL },
+    { "QuadXZ", GLIB_CMD_QUAD_XZ, false, h_nums, false, 2, 4, QUAD_ARGS("y", "nx", "nz"), NULL },
+    { "QuadYZ", GLIB_CMD_QUAD_YZ, false, h_nums, false, 2, 4, QUAD_ARGS("x", "ny", "nz"), NULL },
+    { "Sphere", GLIB_CMD_SPHERE, false, h_nums, false, 1, 3, SPHERE_ARGS, NULL },
+    { "Torus", GLIB_CMD_TORUS, false, h_nums, false, 2, 4, TORUS_ARGS, NULL },
+    { "Box", GLIB_CMD_BOX, false, h_nums, false, 1, 3, BOX_ARGS, "Box dx | Box dx dy dz" },
+    { "Cylinder", GLIB_CMD_CYLINDER, false, h_nums, false, 2, 4, ROUND_ARGS, NULL },
+    { "Cone", GLIB_CMD_CONE, false, h_nums, false, 2, 4, ROUND_ARGS, NULL },
+    { "Teapot", GLIB_CMD_TEAPOT, false, h_nums, false, 0, 1, { ARG_PD("size", 1) }, NULL },
+    { "WireQuadXY", GLIB_CMD_QUAD_XY, true, h_nums, false, 2, 4, QUAD_ARGS("z", "nx", "ny"), NULL },
+    { "WireQuadXZ", GLIB_CMD_QUAD_XZ, true, h_nums, false, 2, 4, QUAD_ARGS("y", "nx", "nz"), NULL },
+    { "WireQuadYZ", GLIB_CMD_QUAD_YZ, true, h_nums, false, 2, 4, QUAD_ARGS("x", "ny", "nz"), NULL },
+    { "WireSphere", GLIB_CMD_SPHERE, true, h_nums, false, 1, 3, SPHERE_ARGS, NULL },
+    { "WireTorus", GLIB_CMD_TORUS, true, h_nums, false, 2, 4, TORUS_ARGS, NULL },
+    { "WireBox", GLIB_CMD_BOX, true, h_nums, false, 1, 3, BOX_ARGS, "WireBox dx | WireBox dx dy dz" },
+    { "WireCylinder", GLIB_CMD_CYLINDER, true, h_nums, false, 2, 4, ROUND_ARGS, NULL },
+    { "WireCone", GLIB_CMD_CONE, true, h_nums, false, 2, 4, ROUND_ARGS, NULL },
+    { "WireTeapot", GLIB_CMD_TEAPOT, true, h_nums, false, 0, 1, { ARG_PD("size", 1) }, NULL },
+    { "Obj", GLIB_CMD_OBJ, false, h_obj, false, 0, 0, { { 0 } }, "Obj file.obj" },
+    { "Color", GLIB_CMD_COLOR, false, h_nums, false, 3, 4, RGBA_ARGS, NULL },
+    { "Texture2D", GLIB_CMD_TEXTURE2D_FILE, false, h_tex2d, false, 0, 0, { { 0 } },
+      "Texture2D unit file | Texture2D unit w h [float|float16|depth]" },
+    { "Texture3D", GLIB_CMD_TEXTURE3D, false, h_tex3d, false, 0, 0, { { 0 } },
+      "Texture3D unit file | Texture3D unit w h d" },
+    { "CubeMap", GLIB_CMD_CUBEMAP, false, h_cube, false, 0, 0, { { 0 } },
+      "CubeMap unit +x -x +y -y +z -z" },
+    { "Noise2D", GLIB_CMD_NOISE2D, false, h_nums, false, 0, 1, { ARG_ID("res", 1, 4096, 256) }, NULL },
+    { "Noise3D", GLIB_CMD_NOISE3D, false, h_nums, false, 0, 1, { ARG_ID("res", 1, 256, 64) }, NULL },
+    { "RenderToTexture", GLIB_CMD_RENDER_TO_TEXTURE, false, h_rtt, false, 0, 0, { { 0 } },
+      "RenderToTexture [unit ...]" },
+    { "Clear", GLIB_CMD_CLEAR, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "Background", GLIB_CMD_BACKGROUND, false, h_nums, false, 3, 4, RGBA_ARGS, NULL },
+    { "Vertex", GLIB_CMD_VERTEX, false, h_stage, false, 0, 0, { { 0 } }, "Vertex file.vert" },
+    { "TessControl", GLIB_CMD_TESS_CONTROL, false, h_stage, false, 0, 0, { { 0 } }, "TessControl file.tcs" },
+    { "TessEvaluation", GLIB_CMD_TESS_EVALUATION, false, h_stage, false, 0, 0, { { 0 } },
+      "TessEvaluation file.tes" },
+    { "Geometry", GLIB_CMD_GEOMETRY, false, h_stage, false, 0, 0, { { 0 } }, "Geometry file.geom" },
+    { "Fragment", GLIB_CMD_FRAGMENT, false, h_stage, false, 0, 0, { { 0 } }, "Fragment file.frag" },
+    { "Program", GLIB_CMD_PROGRAM, false, h_program, true, 0, 0, { { 0 } },
+      "Program Name [uniform value ...]" },
+    { "Timer", GLIB_CMD_TIMER, false, h_nums, false, 1, 1, { ARG_P("secs", "a period in seconds") }, NULL },
+    { "GSTAP", GLIB_CMD_GSTAP, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "Include", GLIB_CMD_NONE, false, h_include, false, 0, 0, { { 0 } }, "Include file.glib" },
+    { "Define", GLIB_CMD_DEFINE, false, h_define, true, 0, 0, { { 0 } },
+      "Define NAME [<true>|<false>|value|<min default max>]" },
+    { "Cull", GLIB_CMD_CULL, false, h_cull, false, 0, 0, { { 0 } }, "Cull back|front|none" },
+    { "DepthTest", GLIB_CMD_DEPTH_TEST, false, h_depth, false, 0, 0, { { 0 } }, "DepthTest on|off" },
+    { "Blend", GLIB_CMD_BLEND, false, h_blend, false, 0, 0, { { 0 } }, "Blend off|alpha|add" },
+};
+
+#define NSPECS (sizeof specs / sizeof specs[0])
+
+static const cmd_spec *find_spec(const char *name)
+{
+    for (size_t i = 0; i < NSPECS; i++)
+        if (strcasecmp(specs[i].name, name) == 0)
+            return &specs[i];
+    return NULL;
+}
+
+/* Case-insensitive edit distance, for "did you mean"; long words don't
+ * get a suggestion. */
+static int edit_distance(const char *a, const char *b)
+{
+    enum { MAXW = 32 };
+    size_t la = strlen(a), lb = strlen(b);
+    if (la >= MAXW || lb >= MAXW)
+        return MAXW;
+    int d[MAXW][MAXW];
+    for (size_t i = 0; i <= la; i++)
+        d[i][0] = (int)i;
+    for (size_t j = 0; j <= lb; j++)
+        d[0][j] = (int)j;
+    for (size_t i = 1; i <= la; i++)
+        for (size_t j = 1; j <= lb; j++) {
+            int sub = d[i - 1][j - 1] +
+                      (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
+            int del = d[i - 1][j] + 1, ins = d[i][j - 1] + 1;
+            d[i][j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+        }
+    return d[la][lb];
+}
+
+static const char *suggest(const char *name)
+{
+    const char *best = NULL;
+    int best_d = 3;             /* at most 2 edits */
+    for (size_t i = 0; i < NSPECS; i++) {
+        int dist = edit_distance(name, specs[i].name);
+        if (dist < best_d && (size_t)dist < strlen(name) / 2 + 1) {
+            best_d = dist;
+            best = specs[i].name;
+        }
+    }
+    return best;
+}

@@ -1,0 +1,673 @@
+#include "render.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "glib.h"
+#include "render_prog.h"
+#include "render_res.h"
+
+#ifndef TARN_SOURCE_DIR
+#define TARN_SOURCE_DIR "."
+#endif
+
+#define MATRIX_STACK_MAX 30   /* GL guarantees 32 modelview entries */
+
+/* What a glib says about viewing and time (the last command of each wins). */
+typedef struct scene_settings {
+    int win_w, win_h;
+    double timer_s;
+    float background[4];
+    bool ortho;
+    double fov, near_z, far_z;
+    double ortho_lrbt[4];
+    render_view view;
+} scene_settings;
+
+/* Everything built from one parse of the glib. */
+typedef struct scene_state {
+    glib_scene *glib;
+    int *cmd_res;            /* per command: index into meshes/texs/progs, or -1 */
+    gpu_mesh *meshes;
+    int nmeshes;
+    gpu_tex *texs;
+    int ntexs;
+    prog *progs;
+    unif_set *unifs;         /* progs[i].unifs == &unifs[i] */
+    int nprogs;
+    scene_settings set;
+} scene_state;
+
+struct render {
+    char root[GLIB_PATH_MAX];
+    char common_dir[GLIB_PATH_MAX + 16];
+    const char *include_dirs[1];
+    char path[GLIB_PATH_MAX];
+    scene_state cur;
+    char *messages;
+    bool errors;
+    const char **deps;
+    int ndeps;
+    unsigned rtt_fbo, rtt_depth;
+    int rtt_w, rtt_h;
+    unsigned query[2][2];      /* [frame slot][begin, end] timestamps */
+    bool query_pending[2];
+    int query_next;
+    double gpu_ms;
+};
+
+render *render_create(const render_desc *desc) {
+    render *r = calloc(1, sizeof *r);
+    if (!r) return NULL;
+    snprintf(r->root, sizeof r->root, "%s", desc && desc->repo_root ? desc->repo_root : TARN_SOURCE_DIR);
+    snprintf(r->common_dir, sizeof r->common_dir, "%s/packs/common", r->root);
+    r->include_dirs[0] = r->common_dir;
+    r->gpu_ms = -1;
+    glGenQueries(4, &r->query[0][0]);
+    return r;
+}
+
+static void scene_free(scene_state *s) {
+    for (int i = 0; i < s->nmeshes; i++) res_mesh_free(&s->meshes[i]);
+    for (int i = 0; i < s->ntexs; i++) res_tex_free(&s->texs[i]);
+    for (int i = 0; i < s->nprogs; i++) prog_free(&s->progs[i]);
+    free(s->meshes);
+    free(s->texs);
+    free(s->progs);
+    free(s->unifs);
+    free(s->cmd_res);
+    if (s->glib) glib_free(s->glib);
+    memset(s, 0, sizeof *s);
+}
+
+static void free_deps(render *r) {
+    for (int i = 0; i < r->ndeps; i++) free((char *)r->deps[i]);
+    free(r->deps);
+    r->deps = NULL;
+    r->ndeps = 0;
+}
+
+void render_destroy(render *r) {
+    if (!r) return;
+    scene_free(&r->cur);
+    free_deps(r);
+    free(r->messages);
+    if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
+    if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
+    glDeleteQueries(4, &r->query[0][0]);
+    free(r);
+}
+
+/* ---- settings ---- */
+
+static void settings_default(scene_settings *s) {
+    memset(s, 0, sizeof *s);
+    s->win_w = 800;
+    s->win_h = 600;
+    s->timer_s = 10.0;
+    s->background[3] = 1.0f;
+    s->fov = 50.0;
+    s->near_z = 0.1;
+    s->far_z = 1000.0;
+    s->view = (render_view){ {0, 0, 3}, {0, 0, 0}, {0, 1, 0} };
+}
+
+static void settings_from_glib(scene_settings *s, const glib_scene *g) {
+    settings_default(s);
+    bool have_background = false;
+    for (int i = 0; i < g->ncmds; i++) {
+        const glib_cmd *c = &g->cmds[i];
+        switch (c->kind) {
+        case GLIB_CMD_WINDOW_SIZE:
+            if (c->nnum >= 2 && c->num[0] >= 16 && c->num[1] >= 16 && c->num[0] <= 8192 && c->num[1] <= 8192) {
+                s->win_w = (int)c->num[0];
+                s->win_h = (int)c->num[1];
+            }
+            break;
+        case GLIB_CMD_PERSPECTIVE:
+            s->ortho = false;
+            if (c->nnum >= 1 && c->num[0] > 0 && c->num[0] < 180) s->fov = c->num[0];
+            if (c->nnum >= 3 && c->num[1] > 0 && c->num[2] > c->num[1]) { s->near_z = c->num[1]; s->far_z = c->num[2]; }
+            break;
+        case GLIB_CMD_ORTHO:
+            if (c->nnum >= 4) {
+                s->ortho = true;
+                memcpy(s->ortho_lrbt, c->num, sizeof s->ortho_lrbt);
+            }
+            break;
+        case GLIB_CMD_LOOKAT:
+            if (c->nnum >= 9)
+                for (int k = 0; k < 3; k++) {
+                    s->view.eye[k] = (float)c->num[k];
+                    s->view.center[k] = (float)c->num[3 + k];
+                    s->view.up[k] = (float)c->num[6 + k];
+                }
+            break;
+        case GLIB_CMD_TIMER:
+            if (c->nnum >= 1 && c->num[0] > 0) s->timer_s = c->num[0];
+            break;
+        case GLIB_CMD_BACKGROUND:   /* the first Background is the screen's clear colour */
+            if (!have_background && c->nnum >= 3) {
+                for (int k = 0; k < 4; k++) s->background[k] = k < c->nnum ? (float)c->num[k] : 1.0f;
+                have_background = true;
+            }
+            break;
+        default: break;
+        }
+    }
+}
+
+/* ---- loading ---- */
+
+static void diags_to_log(const glib_scene *g, char **log) {
+    for (int i = 0; i < g->ndiags; i++) {
+        const glib_diag *d = &g->diags[i];
+        log_append(log, "%s:%d: %s: %s\n", d->file ? d->file : "?", d->line,
+                   d->severity == GLIB_ERROR ? "error" : "warning", d->message);
+    }
+}
+
+static int steal_mesh(scene_state *old, const char *key) {
+    for (int i = 0; i < old->nmeshes; i++)
+        if (old->meshes[i].vbo && strcmp(old->meshes[i].key, key) == 0) return i;
+    return -1;
+}
+
+static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int ci, char **log) {
+    gpu_mesh *m = &s->meshes[s->nmeshes];
+    memset(m, 0, sizeof *m);
+    res_key(c, m->key, sizeof m->key);
+    int o = steal_mesh(old, m->key);
+    if (o >= 0) {
+        *m = old->meshes[o];
+        memset(&old->meshes[o], 0, sizeof old->meshes[o]);
+    } else {
+        res_mesh_build(c, m, log);   /* on failure vbo stays 0: nothing drawn */
+    }
+    s->cmd_res[ci] = s->nmeshes++;
+}
+
+/* Equal key: reuse. A texture that fails keeps the last good one of that file. */
+static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int ci, char **log) {
+    gpu_tex *t = &s->texs[s->ntexs];
+    memset(t, 0, sizeof *t);
+    res_key(c, t->key, sizeof t->key);
+    for (int i = 0; i < old->ntexs; i++) {
+        if (old->texs[i].tex && strcmp(old->texs[i].key, t->key) == 0) {
+            *t = old->texs[i];
+            memset(&old->texs[i], 0, sizeof old->texs[i]);
+            s->cmd_res[ci] = s->ntexs++;
+            return;
+        }
+    }
+    char key[RES_KEY_MAX];
+    memcpy(key, t->key, sizeof key);
+    if (!res_tex_build(c, t, log)) {
+        const char *want = c->kind == GLIB_CMD_CUBEMAP && c->cube_paths ? c->cube_paths[0] : c->path;
+        for (int i = 0; i < old->ntexs; i++) {
+            if (old->texs[i].tex && want[0] && strcmp(old->texs[i].path, want) == 0) {
+                *t = old->texs[i];
+                memset(&old->texs[i], 0, sizeof old->texs[i]);
+                log_append(log, "%s:%d: note: keeping the last good image of '%s'\n", c->file, c->line, want);
+                break;
+            }
+        }
+        if (!t->tex) return;
+    }
+    memcpy(t->key, key, sizeof key);
+    s->cmd_res[ci] = s->ntexs++;
+}
+
+static prog *find_old_prog(scene_state *old, const char *name) {
+    for (int i = 0; i < old->nprogs; i++)
+        if (!old->progs[i].cmd && strcmp(old->progs[i].name, name) == 0) return &old->progs[i];
+    return NULL;
+}
+
+typedef struct stage_state {
+    char path[SHADER_STAGE_COUNT][GLIB_PATH_MAX];
+    bool gstap;
+} stage_state;
+
+static void build_prog(render *r, scene_state *s, scene_state *old, const glib_cmd *c,
+                       const stage_state *st, int ci, char **log) {
+    prog *p = &s->progs[s->nprogs];
+    memset(p, 0, sizeof *p);
+    p->unifs = &s->unifs[s->nprogs];
+    snprintf(p->name, sizeof p->name, "%s", c->name);
+    p->cmd = c;
+    p->gstap = st->gstap;
+    memcpy(p->stage_path, st->path, sizeof p->stage_path);
+    char err[512] = "";
+    if (!unif_set_from_glib(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
+    snprintf(p->unifs->program, sizeof p->unifs->program, "%s", c->name);
+    prog *o = find_old_prog(old, p->name);
+    if (o) {   /* the last good build and the user's values (defines first) */
+        p->gl = o->gl;
+        p->hash = o->hash;
+        p->good = o->good;
+        o->gl = 0;
+        o->cmd = c;   /* marks it taken */
+        unif_merge(p->unifs, o->unifs);
+    }
+    prog_build(p, (const char *const *)r->include_dirs, 1, log);
+    prog_introspect(p, log);
+    if (o) unif_merge(p->unifs, o->unifs);   /* now both carry shader types */
+    s->cmd_res[ci] = s->nprogs++;
+}
+
+static void stage_set(stage_state *st, const glib_cmd *c) {
+    shader_stage which = SHADER_VERTEX;
+    switch (c->kind) {
+    case GLIB_CMD_VERTEX: which = SHADER_VERTEX; break;
+    case GLIB_CMD_TESS_CONTROL: which = SHADER_TESS_CONTROL; break;
+    case GLIB_CMD_TESS_EVALUATION: which = SHADER_TESS_EVALUATION; break;
+    case GLIB_CMD_GEOMETRY: which = SHADER_GEOMETRY; break;
+    default: which = SHADER_FRAGMENT; break;
+    }
+    snprintf(st->path[which], sizeof st->path[which], "%s", c->path);
+}
+
+static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
+    int n = s->glib->ncmds;
+    s->cmd_res = malloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
+    s->meshes = calloc((size_t)(n > 0 ? n : 1), sizeof *s->meshes);
+    s->texs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->texs);
+    s->progs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->progs);
+    s->unifs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->unifs);
+    if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs) return false;
+    /* old programs are matched by name; clear the "taken" marks */
+    for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
+    stage_state st;
+    memset(&st, 0, sizeof st);
+    for (int i = 0; i < n; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        s->cmd_res[i] = -1;
+        if (res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
+        else if (res_is_texture(c->kind)) build_tex(s, old, c, i, log);
+        else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log);
+        else if (c->kind == GLIB_CMD_GSTAP) st.gstap = true;
+        else if (c->kind >= GLIB_CMD_VERTEX && c->kind <= GLIB_CMD_FRAGMENT) stage_set(&st, c);
+    }
+    settings_from_glib(&s->set, s->glib);
+    return true;
+}
+
+static void add_dep(render *r, const char *path) {
+    if (!path || !path[0]) return;
+    for (int i = 0; i < r->ndeps; i++)
+        if (strcmp(r->deps[i], path) == 0) return;
+    const char **d = realloc(r->deps, (size_t)(r->ndeps + 1) * sizeof *d);
+    if (!d) return;
+    r->deps = d;
+    r->deps[r->ndeps++] = strdup(path);
+}
+
+static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
+    free_deps(r);
+    add_dep(r, r->path);
+    if (g)
+        for (int i = 0; i < g->nfiles; i++) add_dep(r, g->files[i]);
+    if (g)
+        for (int i = 0; i < g->ncmds; i++) {
+            const glib_cmd *c = &g->cmds[i];
+            if (c->kind == GLIB_CMD_CUBEMAP && c->cube_paths)
+                for (int f = 0; f < 6; f++) add_dep(r, c->cube_paths[f]);
+            else if (res_is_geometry(c->kind) || res_is_texture(c->kind))
+                add_dep(r, c->path);
+        }
+    for (int i = 0; i < s->nprogs; i++)
+        for (int k = 0; k < s->progs[i].ndeps; k++) add_dep(r, s->progs[i].deps[k]);
+}
+
+bool render_load(render *r, const char *glib_path) {
+    if (glib_path && glib_path != r->path) snprintf(r->path, sizeof r->path, "%s", glib_path);
+    char *log = NULL;
+    glib_scene *g = glib_load(r->path);
+    diags_to_log(g, &log);
+    if (g->nerrors > 0 && r->cur.glib) {
+        /* a half-written glib: keep everything that is on screen */
+        log_append(&log, "%s: the scene has errors; keeping the last good scene\n", r->path);
+        collect_deps(r, g, &r->cur);
+        glib_free(g);
+        free(r->messages);
+        r->messages = log;
+        r->errors = true;
+        return false;
+    }
+    scene_state fresh;
+    memset(&fresh, 0, sizeof fresh);
+    fresh.glib = g;
+    build_scene(r, &fresh, &r->cur, &log);
+    scene_free(&r->cur);
+    r->cur = fresh;
+    collect_deps(r, g, &r->cur);
+    free(r->messages);
+    r->messages = log;
+    r->errors = g->nerrors > 0 || (log && strstr(log, ": error"));
+    return !r->errors;
+}
+
+bool render_rebuild_programs(render *r) {
+    char *log = NULL;
+    bool ok = true;
+    for (int i = 0; i < r->cur.nprogs; i++) {
+        prog *p = &r->cur.progs[i];
+        if (!prog_build(p, (const char *const *)r->include_dirs, 1, &log)) ok = false;
+        prog_introspect(p, &log);
+    }
+    collect_deps(r, r->cur.glib, &r->cur);
+    free(r->messages);
+    r->messages = log;
+    r->errors = !ok;
+    return ok;
+}
+
+const char *render_messages(const render *r) { return r->messages ? r->messages : ""; }
+bool render_has_errors(const render *r) { return r->errors; }
+bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
+const char *render_scene_path(const render *r) { return r->path; }
+
+int render_deps(const render *r, const char *const **paths) {
+    *paths = (const char *const *)r->deps;
+    return r->ndeps;
+}
+
+unif_set *render_uniforms(render *r, int *nsets) {
+    *nsets = r->cur.nprogs;
+    return r->cur.unifs;
+}
+
+void render_window_size(const render *r, int *w, int *h) {
+    const scene_settings *s = &r->cur.set;
+    *w = r->cur.glib ? s->win_w : 800;
+    *h = r->cur.glib ? s->win_h : 600;
+}
+
+render_view render_default_view(const render *r) {
+    if (r->cur.glib) return r->cur.set.view;
+    scene_settings s;
+    settings_default(&s);
+    return s.view;
+}
+
+/* ---- drawing ---- */
+
+static void bind_textures(const scene_state *s) {
+    for (int i = 0; i < s->ntexs; i++) {
+        const gpu_tex *t = &s->texs[i];
+        if (!t->tex) continue;
+        glActiveTexture(GL_TEXTURE0 + (GLenum)t->unit);
+        glBindTexture(t->target, t->tex);
+    }
+    glActiveTexture(GL_TEXTURE0);
+}
+
+static void load_matrices(const scene_settings *s, int w, int h, const render_view *v) {
+    mat4 proj, view;
+    float aspect = h > 0 ? (float)w / (float)h : 1.0f;
+    if (s->ortho)
+        glm_ortho((float)s->ortho_lrbt[0], (float)s->ortho_lrbt[1], (float)s->ortho_lrbt[2],
+                  (float)s->ortho_lrbt[3], -1000.0f, 1000.0f, proj);
+    else
+        glm_perspective(glm_rad((float)s->fov), aspect, (float)s->near_z, (float)s->far_z, proj);
+    vec3 eye, center, up;
+    memcpy(eye, v->eye, sizeof eye);
+    memcpy(center, v->center, sizeof center);
+    memcpy(up, v->up, sizeof up);
+    glm_lookat(eye, center, up, view);
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixf((const float *)proj);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixf((const float *)view);
+}
+
+/* RenderToTexture u1 u2 ...: colour units become attachments 0..n-1, a
+ * depth-format unit the depth attachment (else a private depth buffer). */
+static void begin_rtt(render *r, const glib_cmd *c) {
+    const scene_state *s = &r->cur;
+    if (!r->rtt_fbo) glGenFramebuffers(1, &r->rtt_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->rtt_fbo);
+    GLenum bufs[GLIB_MAX_UNITS];
+    int nbufs = 0, w = 0, h = 0;
+    bool have_depth = false;
+    for (int a = 0; a < 8; a++)
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)a, GL_TEXTURE_2D, 0, 0);
+    for (int k = 0; k < c->nnum && k < GLIB_MAX_UNITS; k++) {
+        int unit = (int)c->num[k];
+        const gpu_tex *t = NULL;
+        for (int i = 0; i < s->ntexs; i++)
+            if (s->texs[i].tex && s->texs[i].render_target && s->texs[i].unit == unit) t = &s->texs[i];
+        if (!t) continue;
+        w = t->w;
+        h = t->h;
+        if (t->format == GLIB_TARGET_DEPTH) {
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t->tex, 0);
+            have_depth = true;
+        } else {
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)nbufs, GL_TEXTURE_2D, t->tex, 0);
+            bufs[nbufs] = GL_COLOR_ATTACHMENT0 + (GLenum)nbufs;
+            nbufs++;
+        }
+    }
+    if (!have_depth && w > 0) {
+        if (!r->rtt_depth) glGenRenderbuffers(1, &r->rtt_depth);
+        if (r->rtt_w != w || r->rtt_h != h) {
+            glBindRenderbuffer(GL_RENDERBUFFER, r->rtt_depth);
+            glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+            r->rtt_w = w;
+            r->rtt_h = h;
+        }
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->rtt_depth);
+    }
+    if (nbufs) glDrawBuffers(nbufs, bufs);
+    else glDrawBuffer(GL_NONE);
+    if (w > 0) glViewport(0, 0, w, h);
+}
+
+typedef struct frame_state {
+    unsigned screen_fbo;
+    int w, h;
+    bool in_rtt;
+    int depth;
+    const prog *cur;
+    double t;
+} frame_state;
+
+static void end_rtt(frame_state *f) {
+    glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
+    glViewport(0, 0, f->w, f->h);
+    f->in_rtt = false;
+}
+
+static void exec_state_cmd(const glib_cmd *c) {
+    switch (c->kind) {
+    case GLIB_CMD_COLOR:
+        glColor4f((float)c->num[0], (float)c->num[1], (float)c->num[2], c->nnum > 3 ? (float)c->num[3] : 1.0f);
+        break;
+    case GLIB_CMD_CLEAR: glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); break;
+    case GLIB_CMD_BACKGROUND:
+        glClearColor((float)c->num[0], (float)c->num[1], (float)c->num[2], c->nnum > 3 ? (float)c->num[3] : 1.0f);
+        break;
+    case GLIB_CMD_CULL:
+        if (strcmp(c->name, "none") == 0) glDisable(GL_CULL_FACE);
+        else { glEnable(GL_CULL_FACE); glCullFace(strcmp(c->name, "front") == 0 ? GL_FRONT : GL_BACK); }
+        break;
+    case GLIB_CMD_DEPTH_TEST:
+        if (c->nnum > 0 && c->num[0] == 0) glDisable(GL_DEPTH_TEST); else glEnable(GL_DEPTH_TEST);
+        break;
+    case GLIB_CMD_BLEND:
+        if (strcmp(c->name, "off") == 0) { glDisable(GL_BLEND); break; }
+        glEnable(GL_BLEND);
+        if (strcmp(c->name, "add") == 0) glBlendFunc(GL_ONE, GL_ONE);
+        else glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        break;
+    default: break;
+    }
+}
+
+static void exec_transform(frame_state *f, const glib_cmd *c) {
+    switch (c->kind) {
+    case GLIB_CMD_TRANSLATE: glTranslatef((float)c->num[0], (float)c->num[1], (float)c->num[2]); break;
+    case GLIB_CMD_ROTATE: glRotatef((float)c->num[0], (float)c->num[1], (float)c->num[2], (float)c->num[3]); break;
+    case GLIB_CMD_SCALE:
+        if (c->nnum >= 3) glScalef((float)c->num[0], (float)c->num[1], (float)c->num[2]);
+        else glScalef((float)c->num[0], (float)c->num[0], (float)c->num[0]);
+        break;
+    case GLIB_CMD_PUSH_MATRIX:   /* deeper pushes are ignored rather than overflowing GL's stack */
+        if (f->depth < MATRIX_STACK_MAX) glPushMatrix();
+        f->depth++;
+        break;
+    case GLIB_CMD_POP_MATRIX:
+        if (f->depth > 0 && f->depth <= MATRIX_STACK_MAX) glPopMatrix();
+        if (f->depth > 0) f->depth--;
+        break;
+    default: break;
+    }
+}
+
+static void exec_cmd(render *r, frame_state *f, int i) {
+    const scene_state *s = &r->cur;
+    const glib_cmd *c = &s->glib->cmds[i];
+    int res = s->cmd_res[i];
+    if (res_is_geometry(c->kind)) {
+        if (res >= 0) res_mesh_draw(&s->meshes[res], f->cur ? f->cur->tangent_loc : -1);
+    } else if (c->kind == GLIB_CMD_PROGRAM) {
+        f->cur = res >= 0 ? &s->progs[res] : NULL;
+        glUseProgram(f->cur ? f->cur->gl : 0);
+        if (f->cur && f->cur->gl) prog_upload(f->cur, f->t, s->set.timer_s);
+    } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
+        if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
+        else end_rtt(f);
+    } else if (c->kind >= GLIB_CMD_TRANSLATE && c->kind <= GLIB_CMD_POP_MATRIX) {
+        exec_transform(f, c);
+    } else {
+        exec_state_cmd(c);
+    }
+}
+
+static void query_collect(render *r, bool wait) {
+    for (int k = 0; k < 2; k++) {
+        if (!r->query_pending[k]) continue;
+        GLint ready = 0;
+        if (!wait) glGetQueryObjectiv(r->query[k][1], GL_QUERY_RESULT_AVAILABLE, &ready);
+        if (!wait && !ready) continue;
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(r->query[k][0], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(r->query[k][1], GL_QUERY_RESULT, &t1);
+        r->gpu_ms = t1 >= t0 ? (double)(t1 - t0) / 1e6 : -1.0;
+        r->query_pending[k] = false;
+    }
+}
+
+void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_view *view) {
+    int q = r->query_next;
+    if (r->query_pending[q]) query_collect(r, true);
+    /* timestamps rather than GL_TIME_ELAPSED: llvmpipe's elapsed query
+     * returned nonsense across framebuffer switches */
+    glQueryCounter(r->query[q][0], GL_TIMESTAMP);
+    const scene_state *s = &r->cur;
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glColor4f(1, 1, 1, 1);
+    const float *bg = s->set.background;
+    glClearColor(bg[0], bg[1], bg[2], bg[3]);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (s->glib) {
+        render_view v = view ? *view : s->set.view;
+        load_matrices(&s->set, w, h, &v);
+        bind_textures(s);
+        frame_state f = { .screen_fbo = fbo, .w = w, .h = h, .t = t };
+        glPushMatrix();
+        for (int i = 0; i < s->glib->ncmds; i++) exec_cmd(r, &f, i);
+        for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */
+            if (f.depth <= MATRIX_STACK_MAX) glPopMatrix();
+        glPopMatrix();
+        if (f.in_rtt) end_rtt(&f);
+        glUseProgram(0);
+    }
+    glQueryCounter(r->query[q][1], GL_TIMESTAMP);
+    r->query_pending[q] = true;
+    r->query_next = 1 - q;
+    query_collect(r, false);
+}
+
+double render_gpu_ms(render *r, bool wait) {
+    query_collect(r, wait);
+    return r->gpu_ms;
+}
+
+bool render_read_uniform(render *r, const char *program, const char *name, float *out, int n) {
+    for (int i = 0; i < r->cur.nprogs; i++) {
+        prog *p = &r->cur.progs[i];
+        if (strcmp(p->name, program) != 0 || !p->gl) continue;
+        GLint loc = glGetUniformLocation(p->gl, name);
+        if (loc < 0) return false;
+        float buf[16];
+        glGetUniformfv(p->gl, loc, buf);
+        memcpy(out, buf, (size_t)(n < 16 ? n : 16) * sizeof(float));
+        return true;
+    }
+    return false;
+}
+
+/* ---- offscreen targets ---- */
+
+bool render_target_create(render_target *t, int w, int h, bool is_float) {
+    memset(t, 0, sizeof *t);
+    t->w = w;
+    t->h = h;
+    t->is_float = is_float;
+    glGenTextures(1, &t->color);
+    glBindTexture(GL_TEXTURE_2D, t->color);
+    glTexImage2D(GL_TEXTURE_2D, 0, is_float ? GL_RGBA32F : GL_RGBA8, w, h, 0, GL_RGBA,
+                 is_float ? GL_FLOAT : GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glGenRenderbuffers(1, &t->depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glGenFramebuffers(1, &t->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->color, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
+    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (!ok) render_target_destroy(t);
+    return ok;
+}
+
+void render_target_destroy(render_target *t) {
+    if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
+    if (t->color) glDeleteTextures(1, &t->color);
+    if (t->depth) glDeleteRenderbuffers(1, &t->depth);
+    memset(t, 0, sizeof *t);
+}
+
+bool render_target_read(const render_target *t, float *rgba) {
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, t->w, t->h, GL_RGBA, GL_FLOAT, rgba);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    /* GL's row 0 is the bottom; files start at the top */
+    size_t row = (size_t)t->w * 4;
+    float *tmp = malloc(row * sizeof(float));
+    if (!tmp) return false;
+    for (int y = 0; y < t->h / 2; y++) {
+        float *a = rgba + (size_t)y * row, *b = rgba + (size_t)(t->h - 1 - y) * row;
+        memcpy(tmp, a, row * sizeof(float));
+        memcpy(a, b, row * sizeof(float));
+        memcpy(b, tmp, row * sizeof(float));
+    }
+    free(tmp);
+    return glGetError() == GL_NO_ERROR;
+}

@@ -1,0 +1,67 @@
+/* render: executes a parsed .glib scene with OpenGL, as glman does, and
+ * reloads it without losing what worked.
+ *
+ * render_load() parses the glib, loads textures and meshes, and builds every
+ * Program. A reload builds into new objects and swaps per part: a glib with
+ * errors keeps the whole previous scene; a shader that fails keeps that
+ * Program's last good build; a texture that fails keeps its last good image.
+ * Messages (file:line: ...) of the latest load are in render_messages().
+ */
+#ifndef TARN_RENDER_H
+#define TARN_RENDER_H
+
+#include <stdbool.h>
+#include "unif.h"
+
+typedef struct render render;
+
+typedef struct render_desc {
+    const char *repo_root;      /* 0: TARN_SOURCE_DIR; packs/common is an include dir */
+} render_desc;
+
+typedef struct render_view {
+    float eye[3], center[3], up[3];
+} render_view;
+
+render *render_create(const render_desc *desc);
+void render_destroy(render *r);
+
+/* Loads (or reloads, when path equals the current one or is NULL) the scene.
+ * Returns false if the load had errors; what could be kept is in use. */
+bool render_load(render *r, const char *glib_path);
+
+/* Rebuilds programs whose `Define` toggles changed in the panel. */
+bool render_rebuild_programs(render *r);
+
+const char *render_messages(const render *r);   /* "" when the last load was clean */
+bool render_has_errors(const render *r);
+bool render_has_scene(const render *r);
+
+/* Every file the scene depends on (glib, includes, shader stages and their
+ * #includes, textures, OBJs): what the watcher watches. */
+int render_deps(const render *r, const char *const **paths);
+
+/* Draws one frame at simulated time t (seconds) into framebuffer `fbo`
+ * (0: the window) of w x h. view NULL: the glib's LookAt. */
+void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_view *view);
+
+/* GPU time of the last finished frame in ms (timer query), or -1. When
+ * wait is true, blocks until the latest frame's time is known. */
+double render_gpu_ms(render *r, bool wait);
+
+unif_set *render_uniforms(render *r, int *nsets);
+void render_window_size(const render *r, int *w, int *h);   /* WindowSize, default 800x600 */
+render_view render_default_view(const render *r);          /* the glib's LookAt */
+const char *render_scene_path(const render *r);
+
+/* Reads a uniform's current value from the linked GL program (tests). */
+bool render_read_uniform(render *r, const char *program, const char *name, float *out, int n);
+
+/* An offscreen colour+depth framebuffer for headless rendering. */
+typedef struct render_target { unsigned fbo, color, depth; int w, h; bool is_float; } render_target;
+bool render_target_create(render_target *t, int w, int h, bool is_float);
+void render_target_destroy(render_target *t);
+/* Reads the target back as RGBA floats, row 0 = top (the file order). */
+bool render_target_read(const render_target *t, float *rgba);
+
+#endif

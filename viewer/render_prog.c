@@ -1,0 +1,268 @@
+#include "render_prog.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const GLenum stage_gl[SHADER_STAGE_COUNT] = {
+    GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
+    GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER };
+
+void log_append(char **log, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    int add = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (add <= 0) return;
+    size_t old = *log ? strlen(*log) : 0;
+    char *s = realloc(*log, old + (size_t)add + 1);
+    if (!s) return;
+    va_start(ap, fmt);
+    vsnprintf(s + old, (size_t)add + 1, fmt, ap);
+    va_end(ap);
+    *log = s;
+}
+
+static char *gl_info_log(GLuint obj, bool is_program) {
+    GLint len = 0;
+    if (is_program) glGetProgramiv(obj, GL_INFO_LOG_LENGTH, &len);
+    else glGetShaderiv(obj, GL_INFO_LOG_LENGTH, &len);
+    char *s = calloc(1, (size_t)(len > 0 ? len : 1) + 1);
+    if (!s) return NULL;
+    if (len > 0) {
+        if (is_program) glGetProgramInfoLog(obj, len, NULL, s);
+        else glGetShaderInfoLog(obj, len, NULL, s);
+    }
+    return s;
+}
+
+/* The defines to compile with: the current values of the Define entries. */
+static int collect_defines(const prog *p, shader_define *out, int max) {
+    int n = 0;
+    for (int i = 0; i < p->unifs->n && n < max; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (!e->is_define) continue;
+        if (e->widget == UNIF_WIDGET_CHECKBOX && e->value[0] == 0.0f) continue;
+        memset(&out[n], 0, sizeof out[n]);
+        snprintf(out[n].name, sizeof out[n].name, "%s", e->name);
+        unif_define_value(e, out[n].value, (int)sizeof out[n].value);
+        n++;
+    }
+    return n;
+}
+
+static void set_deps(prog *p, shader_src *src, int nsrc) {
+    for (int i = 0; i < p->ndeps; i++) free(p->deps[i]);
+    free(p->deps);
+    p->deps = NULL;
+    p->ndeps = 0;
+    int total = 0;
+    for (int s = 0; s < nsrc; s++) total += src[s].nfiles;
+    if (total == 0) return;
+    p->deps = calloc((size_t)total, sizeof *p->deps);
+    if (!p->deps) return;
+    for (int s = 0; s < nsrc; s++)
+        for (int f = 0; f < src[s].nfiles; f++) p->deps[p->ndeps++] = strdup(src[s].files[f]);
+}
+
+/* Compiles one stage; on failure appends the mapped log. */
+static GLuint compile_stage(const shader_src *src, shader_stage st, char **log) {
+    GLuint sh = glCreateShader(stage_gl[st]);
+    const char *text = src->text;
+    glShaderSource(sh, 1, &text, NULL);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char *raw = gl_info_log(sh, false);
+        char *mapped = shader_src_map_log(src, raw ? raw : "");
+        log_append(log, "%s", mapped ? mapped : (raw ? raw : "compile failed\n"));
+        size_t l = mapped ? strlen(mapped) : 0;
+        if (l && mapped[l - 1] != '\n') log_append(log, "\n");
+        free(mapped);
+        free(raw);
+        glDeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+static GLuint link_program(const prog *p, const GLuint *shaders, char **log) {
+    GLuint prg = glCreateProgram();
+    for (int s = 0; s < SHADER_STAGE_COUNT; s++)
+        if (shaders[s]) glAttachShader(prg, shaders[s]);
+    /* glman's Tangent attribute gets a fixed slot, away from gl_Vertex's 0. */
+    glBindAttribLocation(prg, 6, "Tangent");
+    glLinkProgram(prg);
+    GLint ok = 0;
+    glGetProgramiv(prg, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char *raw = gl_info_log(prg, true);
+        log_append(log, "%s:%d: error: program '%s' failed to link: %s\n",
+                   p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name,
+                   raw ? raw : "");
+        free(raw);
+        glDeleteProgram(prg);
+        return 0;
+    }
+    return prg;
+}
+
+bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, char **log) {
+    shader_define defines[64];
+    int ndefines = collect_defines(p, defines, 64);
+    shader_src src[SHADER_STAGE_COUNT];
+    memset(src, 0, sizeof src);
+    bool ok = true, any = false;
+    unsigned long long hash = 1469598103934665603ull;
+    for (int s = 0; s < SHADER_STAGE_COUNT; s++) {
+        if (!p->stage_path[s][0]) continue;
+        any = true;
+        shader_src_desc d = { .path = p->stage_path[s], .stage = (shader_stage)s,
+            .gstap = p->gstap, .defines = defines, .ndefines = ndefines,
+            .include_dirs = include_dirs, .ninclude_dirs = ninclude_dirs };
+        if (!shader_src_load(&d, &src[s])) {
+            log_append(log, "%s\n", src[s].error);
+            ok = false;
+            /* still watch the stage file so fixing it triggers a reload */
+            if (!src[s].nfiles) {
+                src[s].files = calloc(1, sizeof *src[s].files);
+                if (src[s].files) { src[s].files[0] = strdup(p->stage_path[s]); src[s].nfiles = 1; }
+            }
+            continue;
+        }
+        hash = (hash ^ src[s].hash) * 1099511628211ull;
+    }
+    set_deps(p, src, SHADER_STAGE_COUNT);
+    if (!any) {
+        log_append(log, "%s:%d: error: Program '%s' has no shader stage: name files with "
+                   "Vertex and Fragment before the Program line\n",
+                   p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name);
+        ok = false;
+    }
+    if (ok && p->good && p->gl && hash == p->hash) {   /* same text: keep the build */
+        for (int s = 0; s < SHADER_STAGE_COUNT; s++) shader_src_free(&src[s]);
+        return true;
+    }
+    GLuint shaders[SHADER_STAGE_COUNT] = {0};
+    for (int s = 0; ok && s < SHADER_STAGE_COUNT; s++) {
+        if (!p->stage_path[s][0]) continue;
+        shaders[s] = compile_stage(&src[s], (shader_stage)s, log);
+        if (!shaders[s]) ok = false;
+    }
+    GLuint prg = ok ? link_program(p, shaders, log) : 0;
+    for (int s = 0; s < SHADER_STAGE_COUNT; s++) {
+        if (shaders[s]) glDeleteShader(shaders[s]);
+        shader_src_free(&src[s]);
+    }
+    if (!prg) { p->good = false; return false; }
+    if (p->gl) glDeleteProgram(p->gl);
+    p->gl = prg;
+    p->hash = hash;
+    p->good = true;
+    return true;
+}
+
+static unif_type map_gl_type(GLenum t) {
+    switch (t) {
+    case GL_FLOAT: return UNIF_FLOAT;
+    case GL_FLOAT_VEC2: return UNIF_VEC2;
+    case GL_FLOAT_VEC3: return UNIF_VEC3;
+    case GL_FLOAT_VEC4: return UNIF_VEC4;
+    case GL_INT: case GL_UNSIGNED_INT: return UNIF_INT;
+    case GL_BOOL: return UNIF_BOOL;
+    case GL_FLOAT_MAT3: return UNIF_MAT3;
+    case GL_FLOAT_MAT4: return UNIF_MAT4;
+    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_2D_ARRAY: case GL_INT_SAMPLER_2D:
+    case GL_UNSIGNED_INT_SAMPLER_2D: case GL_SAMPLER_2D_RECT: case GL_SAMPLER_CUBE_SHADOW:
+        return UNIF_SAMPLER;
+    default: return UNIF_TYPE_UNKNOWN;
+    }
+}
+
+void prog_introspect(prog *p, char **log) {
+    for (int i = 0; i < p->unifs->n; i++) {
+        p->unifs->entries[i].in_shader = false;
+        p->unifs->entries[i].location = -1;
+    }
+    p->timer_loc = -1;
+    p->tangent_loc = -1;
+    if (!p->gl) return;
+    GLint count = 0;
+    glGetProgramiv(p->gl, GL_ACTIVE_UNIFORMS, &count);
+    for (GLint i = 0; i < count; i++) {
+        char name[UNIF_NAME_MAX];
+        GLint size = 0;
+        GLenum type = 0;
+        glGetActiveUniform(p->gl, (GLuint)i, sizeof name, NULL, &size, &type, name);
+        if (strncmp(name, "gl_", 3) == 0) continue;
+        char *bracket = strstr(name, "[0]");
+        if (bracket) *bracket = '\0';
+        if (strchr(name, '.') || strchr(name, '[')) continue;  /* struct members: not ours */
+        GLint loc = glGetUniformLocation(p->gl, name);
+        if (strcmp(name, "Timer") == 0) { p->timer_loc = loc; continue; }
+        unif_entry *e = unif_set_shader_type(p->unifs, name, map_gl_type(type), size, loc);
+        if (!e || e->from_glib) continue;
+        /* glman's noise samplers live at fixed units */
+        if (e->type == UNIF_SAMPLER && strcmp(name, "Noise2") == 0) e->value[0] = e->def[0] = 2;
+        if (e->type == UNIF_SAMPLER && strcmp(name, "Noise3") == 0) e->value[0] = e->def[0] = 3;
+    }
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (e->is_define || !e->from_glib || e->in_shader) continue;
+        log_append(log, "%s:%d: warning: uniform '%s' is not an active uniform of program "
+                   "'%s' (not declared, or unused and optimised out)\n",
+                   e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
+    }
+    p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
+}
+
+static void upload_entry(const unif_entry *e) {
+    int n = e->array_len > 1 ? e->array_len : 1;
+    int comp = unif_type_components(e->type);
+    if (comp > 0 && n * comp > UNIF_MAX_COMPONENTS) n = UNIF_MAX_COMPONENTS / comp;  /* values hold 16 */
+    int loc = e->location;
+    switch (e->type) {
+    case UNIF_FLOAT: glUniform1fv(loc, n, e->value); break;
+    case UNIF_VEC2: glUniform2fv(loc, n, e->value); break;
+    case UNIF_VEC3: glUniform3fv(loc, n, e->value); break;
+    case UNIF_VEC4: glUniform4fv(loc, n, e->value); break;
+    case UNIF_MAT3: glUniformMatrix3fv(loc, 1, GL_FALSE, e->value); break;
+    case UNIF_MAT4: glUniformMatrix4fv(loc, 1, GL_FALSE, e->value); break;
+    case UNIF_INT: case UNIF_BOOL: case UNIF_SAMPLER: {
+        GLint iv[UNIF_MAX_COMPONENTS];
+        if (n > UNIF_MAX_COMPONENTS) n = UNIF_MAX_COMPONENTS;
+        for (int i = 0; i < n; i++) iv[i] = (GLint)lrintf(e->value[i]);
+        glUniform1iv(loc, n, iv);
+        break;
+    }
+    default: break;
+    }
+}
+
+void prog_upload(const prog *p, double t, double timer_s) {
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (e->location < 0 || !unif_uploadable(e)) continue;
+        upload_entry(e);
+    }
+    if (p->timer_loc >= 0) {
+        double period = timer_s > 0 ? timer_s : 10.0;
+        glUniform1f(p->timer_loc, (float)(fmod(t, period) / period));
+    }
+}
+
+void prog_free(prog *p) {
+    if (p->gl) glDeleteProgram(p->gl);
+    p->gl = 0;
+    if (p->unifs) unif_set_free(p->unifs);
+    for (int i = 0; i < p->ndeps; i++) free(p->deps[i]);
+    free(p->deps);
+    p->deps = NULL;
+    p->ndeps = 0;
+}

@@ -1,0 +1,44 @@
+/* render_prog: builds one glib Program into a linked GL program, maps the
+ * driver's messages to file:line through shader_src, and keeps the uniform
+ * model in step with what the program declares. Private to render.c. */
+#ifndef TARN_RENDER_PROG_H
+#define TARN_RENDER_PROG_H
+
+#include <stdbool.h>
+#include "glib.h"
+#include "shader_src.h"
+#include "unif.h"
+
+typedef struct prog {
+    char name[GLIB_NAME_MAX];
+    const glib_cmd *cmd;                     /* the Program line (for messages) */
+    char stage_path[SHADER_STAGE_COUNT][GLIB_PATH_MAX];  /* "" = stage unused */
+    bool gstap;
+    unsigned gl;                             /* linked program, 0 when none */
+    unsigned long long hash;                 /* of all stage texts: unchanged -> no rebuild */
+    bool good;                               /* gl is the build of the current sources */
+    unif_set *unifs;                         /* owned by the scene (an array the panel walks) */
+    char **deps;                             /* shader files read, incl. #includes */
+    int ndeps;
+    int timer_loc, tangent_loc;
+} prog;
+
+/* Builds p from its stage paths, defines (from p->unifs' define entries)
+ * and include dirs. On failure p->gl is left as it was (the last good build)
+ * and the mapped messages are appended to *log. Returns true on success or
+ * when nothing changed. */
+bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, char **log);
+
+/* Introspects p->gl: types, locations, uniforms the glib did not mention,
+ * glib uniforms the program lacks (a warning in *log). */
+void prog_introspect(prog *p, char **log);
+
+/* Uploads every uniform value and Timer (0..1 sawtooth of period timer_s). */
+void prog_upload(const prog *p, double t, double timer_s);
+
+void prog_free(prog *p);
+
+/* Appends printf-style text to a heap string (NULL starts one). */
+void log_append(char **log, const char *fmt, ...);
+
+#endif

@@ -1,0 +1,43 @@
+/* render_res: GPU meshes and textures made from glib commands, with a key
+ * per resource so a reload reuses what did not change. Private to render.c. */
+#ifndef TARN_RENDER_RES_H
+#define TARN_RENDER_RES_H
+
+#include <stdbool.h>
+#include "glib.h"
+
+#define RES_KEY_MAX (GLIB_PATH_MAX * 2)
+
+typedef struct gpu_mesh {
+    char key[RES_KEY_MAX];
+    unsigned vbo, ibo;
+    int nidx;
+    bool lines;
+    long off_nrm, off_tc, off_tan;
+} gpu_mesh;
+
+typedef struct gpu_tex {
+    char key[RES_KEY_MAX];      /* command + file stamps: equal key, same texture */
+    char path[GLIB_PATH_MAX];   /* first file, to keep the last good image on failure */
+    unsigned tex;
+    unsigned target;            /* GL_TEXTURE_2D, _3D, _CUBE_MAP */
+    int unit, w, h;
+    glib_target_format format;
+    bool render_target;         /* an empty Texture2D that RenderToTexture draws into */
+} gpu_tex;
+
+/* The reuse key of a geometry or texture command (includes file size and
+ * modification time of the files it reads). */
+void res_key(const glib_cmd *c, char *out, int outlen);
+
+bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
+void res_mesh_draw(const gpu_mesh *m, int tangent_loc);
+void res_mesh_free(gpu_mesh *m);
+
+bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
+void res_tex_free(gpu_tex *t);
+
+bool res_is_geometry(glib_cmd_kind k);
+bool res_is_texture(glib_cmd_kind k);
+
+#endif

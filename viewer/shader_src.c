@@ -1,0 +1,798 @@
+/* shader_src: assembles a shader stage's source text (see shader_src.h). */
+#include "shader_src.h"
+
+#include <assert.h>
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+/* ---- a growable string ---------------------------------------------------- */
+
+typedef struct sbuf {
+    char *p;
+    size_t n, cap;
+    bool oom;
+} sbuf;
+
+static void sb_put(sbuf *b, const char *s, size_t n) {
+    if (b->oom) return;
+    if (b->n + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 256;
+        while (b->n + n + 1 > cap) cap *= 2;
+        char *p = realloc(b->p, cap);
+        if (!p) { b->oom = true; return; }
+        b->p = p;
+        b->cap = cap;
+    }
+    memcpy(b->p + b->n, s, n);
+    b->n += n;
+    b->p[b->n] = '\0';
+}
+
+static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
+
+static void sb_printf(sbuf *b, const char *fmt, ...) {
+    char tmp[512];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n < 0) return;
+    if ((size_t)n < sizeof tmp) { sb_put(b, tmp, (size_t)n); return; }
+    char *big = malloc((size_t)n + 1);
+    if (!big) { b->oom = true; return; }
+    va_start(ap, fmt);
+    vsnprintf(big, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    sb_put(b, big, (size_t)n);
+    free(big);
+}
+
+/* ---- paths and files ------------------------------------------------------ */
+
+/* Lexically simplified path: "a/./b/../c" -> "a/c". Heap. */
+static char *path_normalize(const char *path) {
+    size_t len = strlen(path);
+    char *out = malloc(len + 2);
+    if (!out) return NULL;
+    bool abs = path[0] == '/';
+    /* component start offsets in out, to pop on ".." */
+    size_t *starts = malloc((len / 2 + 2) * sizeof *starts);
+    if (!starts) { free(out); return NULL; }
+    int ncomp = 0, nup = 0;   /* nup: leading ".." kept in a relative path */
+    size_t o = 0;
+    if (abs) out[o++] = '/';
+    const char *p = path;
+    while (*p) {
+        while (*p == '/') p++;
+        if (!*p) break;
+        const char *e = strchr(p, '/');
+        size_t n = e ? (size_t)(e - p) : strlen(p);
+        if (n == 1 && p[0] == '.') {
+            /* skip */
+        } else if (n == 2 && p[0] == '.' && p[1] == '.') {
+            if (ncomp > nup) {
+                o = starts[--ncomp];
+                if (o > (abs ? 1u : 0u)) o--;          /* drop the '/' before it */
+                if (ncomp == 0 && abs) o = 1;
+            } else if (!abs) {
+                if (o > 0) out[o++] = '/';
+                starts[ncomp++] = o;
+                nup++;
+                out[o++] = '.';
+                out[o++] = '.';
+            }
+        } else {
+            if (o > 0 && out[o - 1] != '/') out[o++] = '/';
+            starts[ncomp++] = o;
+            memcpy(out + o, p, n);
+            o += n;
+        }
+        p += n;
+    }
+    if (o == 0) out[o++] = '.';
+    out[o] = '\0';
+    free(starts);
+    return out;
+}
+
+static char *path_dirname(const char *path) {
+    const char *slash = strrchr(path, '/');
+    if (!slash) return strdup(".");
+    if (slash == path) return strdup("/");
+    size_t n = (size_t)(slash - path);
+    char *d = malloc(n + 1);
+    if (!d) return NULL;
+    memcpy(d, path, n);
+    d[n] = '\0';
+    return d;
+}
+
+static char *path_join(const char *dir, const char *name) {
+    if (name[0] == '/' || !dir || !dir[0] || strcmp(dir, ".") == 0) return path_normalize(name);
+    size_t n = strlen(dir) + strlen(name) + 2;
+    char *j = malloc(n);
+    if (!j) return NULL;
+    snprintf(j, n, "%s/%s", dir, name);
+    char *r = path_normalize(j);
+    free(j);
+    return r;
+}
+
+static bool is_regular_file(const char *path) {
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* Reads a whole file; CRLF becomes LF. On failure returns NULL and errno
+ * describes why (EISDIR for a directory, EILSEQ for a NUL byte). */
+static char *read_text(const char *path) {
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) { errno = EISDIR; return NULL; }
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    sbuf b = {0};
+    char chunk[8192];
+    size_t n;
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) sb_put(&b, chunk, n);
+    int err = ferror(f) ? errno : 0;
+    fclose(f);
+    if (err || b.oom) { free(b.p); errno = err ? err : ENOMEM; return NULL; }
+    if (!b.p) return strdup("");
+    if (memchr(b.p, '\0', b.n)) { free(b.p); errno = EILSEQ; return NULL; }
+    if (b.n >= 3 && memcmp(b.p, "\xEF\xBB\xBF", 3) == 0) {     /* a UTF-8 byte order mark */
+        memmove(b.p, b.p + 3, b.n - 2);
+        b.n -= 3;
+    }
+    size_t w = 0;
+    for (size_t r = 0; r < b.n; r++) {
+        if (b.p[r] == '\r' && r + 1 < b.n && b.p[r + 1] == '\n') continue;
+        b.p[w++] = b.p[r];
+    }
+    b.p[w] = '\0';
+    return b.p;
+}
+
+static const char *errno_text(int err) {
+    if (err == EILSEQ) return "contains a NUL byte (not a text file?)";
+    return strerror(err);
+}
+
+/* ---- scanning GLSL lines -------------------------------------------------- */
+
+typedef struct line_view {
+    const char *p;      /* start */
+    size_t n;           /* length, without the '\n' */
+} line_view;
+
+/* Updates *in_comment across one line (block comments only; `//` ends it). */
+static void scan_comments(line_view l, bool *in_comment) {
+    for (size_t i = 0; i < l.n; i++) {
+        if (*in_comment) {
+            if (l.p[i] == '*' && i + 1 < l.n && l.p[i + 1] == '/') { *in_comment = false; i++; }
+        } else if (l.p[i] == '/' && i + 1 < l.n && l.p[i + 1] == '/') {
+            return;
+        } else if (l.p[i] == '/' && i + 1 < l.n && l.p[i + 1] == '*') {
+            *in_comment = true;
+            i++;
+        }
+    }
+}
+
+/* True when the line has something but whitespace and comments; updates
+ * *in_comment. */
+static bool line_has_code(line_view l, bool *in_comment) {
+    bool code = false;
+    for (size_t i = 0; i < l.n; i++) {
+        if (*in_comment) {
+            if (l.p[i] == '*' && i + 1 < l.n && l.p[i + 1] == '/') { *in_comment = false; i++; }
+        } else if (l.p[i] == '/' && i + 1 < l.n && l.p[i + 1] == '/') {
+            break;
+        } else if (l.p[i] == '/' && i + 1 < l.n && l.p[i + 1] == '*') {
+            *in_comment = true;
+            i++;
+        } else if (!isspace((unsigned char)l.p[i])) {
+            code = true;
+        }
+    }
+    return code;
+}
+
+/* If the line (not starting inside a comment) is a preprocessor directive,
+ * returns a pointer just past its name and sets *name and *name_len. */
+static const char *directive(line_view l, const char **name, size_t *name_len) {
+    size_t i = 0;
+    while (i < l.n && (l.p[i] == ' ' || l.p[i] == '\t')) i++;
+    if (i >= l.n || l.p[i] != '#') return NULL;
+    i++;
+    while (i < l.n && (l.p[i] == ' ' || l.p[i] == '\t')) i++;
+    size_t s = i;
+    while (i < l.n && (isalnum((unsigned char)l.p[i]) || l.p[i] == '_')) i++;
+    *name = l.p + s;
+    *name_len = i - s;
+    return l.p + i;
+}
+
+static bool word_is(const char *w, size_t n, const char *lit) {
+    return n == strlen(lit) && memcmp(w, lit, n) == 0;
+}
+
+/* ---- assembly -------------------------------------------------------------- */
+
+typedef struct src_file {
+    char *path;         /* as shown (lexically normalised) */
+    char *id;           /* realpath, for identity */
+    bool once;          /* has #pragma once */
+    int times;          /* times included so far */
+} src_file;
+
+typedef struct asm_ctx {
+    const shader_src_desc *desc;
+    shader_src *out;
+    sbuf text;
+    src_file *files;
+    int nfiles, capfiles;
+    int stack[SHADER_SRC_MAX_INCLUDE_DEPTH + 2];
+    int depth;
+    bool old_line_rule; /* desktop GLSL < 3.30: `#line N` numbers the next line N + 1 */
+    bool failed;
+} asm_ctx;
+
+static void fail(asm_ctx *c, const char *file, int line, const char *fmt, ...) {
+    if (c->failed) return;
+    c->failed = true;
+    int n = snprintf(c->out->error, sizeof c->out->error, "%s:%d: error: ", file, line);
+    if (n < 0 || (size_t)n >= sizeof c->out->error) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->out->error + n, sizeof c->out->error - (size_t)n, fmt, ap);
+    va_end(ap);
+}
+
+/* Index of the file with this identity, adding it when new; -1 when out of memory. */
+static int file_index(asm_ctx *c, const char *path) {
+    char *id = realpath(path, NULL);
+    if (!id) id = path_normalize(path);
+    if (!id) return -1;
+    for (int i = 0; i < c->nfiles; i++)
+        if (strcmp(c->files[i].id, id) == 0) { free(id); return i; }
+    if (c->nfiles == c->capfiles) {
+        int cap = c->capfiles ? c->capfiles * 2 : 8;
+        src_file *f = realloc(c->files, (size_t)cap * sizeof *f);
+        if (!f) { free(id); return -1; }
+        c->files = f;
+        c->capfiles = cap;
+    }
+    src_file *f = &c->files[c->nfiles];
+    memset(f, 0, sizeof *f);
+    f->path = path_normalize(path);
+    f->id = id;
+    if (!f->path) { free(id); return -1; }
+    return c->nfiles++;
+}
+
+static void emit_line_directive(asm_ctx *c, int fidx, int line) {
+    long v = (long)fidx * SHADER_SRC_LINE_BASE + line - (c->old_line_rule ? 1 : 0);
+    sb_printf(&c->text, "#line %ld %d\n", v, fidx);
+}
+
+static bool line_is_pragma_once(line_view l) {
+    const char *name;
+    size_t nn;
+    const char *rest = directive(l, &name, &nn);
+    if (!rest || !word_is(name, nn, "pragma")) return false;
+    const char *end = l.p + l.n;
+    while (rest < end && (*rest == ' ' || *rest == '\t')) rest++;
+    return (size_t)(end - rest) >= 4 && memcmp(rest, "once", 4) == 0 &&
+           (end - rest == 4 || !(isalnum((unsigned char)rest[4]) || rest[4] == '_'));
+}
+
+static bool has_pragma_once(const char *text) {
+    bool in_comment = false;
+    const char *p = text;
+    while (*p) {
+        const char *e = strchr(p, '\n');
+        line_view l = { p, e ? (size_t)(e - p) : strlen(p) };
+        if (!in_comment && line_is_pragma_once(l)) return true;
+        scan_comments(l, &in_comment);
+        if (!e) break;
+        p = e + 1;
+    }
+    return false;
+}
+
+static bool emit_file(asm_ctx *c, int fidx, const char *text, int first_line, bool in_comment);
+
+/* Handles `#include` on line `line` of file fidx; `rest` points past "include". */
+static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const char *end) {
+    const char *from = c->files[fidx].path;
+    while (rest < end && (*rest == ' ' || *rest == '\t')) rest++;
+    char close = rest < end && *rest == '"' ? '"' : rest < end && *rest == '<' ? '>' : 0;
+    const char *q = close ? memchr(rest + 1, close, (size_t)(end - rest - 1)) : NULL;
+    if (!q || q == rest + 1) {
+        fail(c, from, line, "malformed #include: expected \"file\" or <file>");
+        return false;
+    }
+    size_t nlen = (size_t)(q - rest - 1);
+    char name[1024];
+    if (nlen >= sizeof name) { fail(c, from, line, "#include name too long"); return false; }
+    memcpy(name, rest + 1, nlen);
+    name[nlen] = '\0';
+    for (const char *t = q + 1; t < end; t++) {
+        if (*t == ' ' || *t == '\t') continue;
+        if (*t == '/' && t + 1 < end && (t[1] == '/' || t[1] == '*')) break;
+        fail(c, from, line, "unexpected text after #include \"%s\"", name);
+        return false;
+    }
+
+    /* where: next to the including file, then the include dirs */
+    char *found = NULL;
+    if (name[0] == '/') {
+        if (is_regular_file(name)) found = path_normalize(name);
+    } else {
+        char *dir = path_dirname(from);
+        char *cand = dir ? path_join(dir, name) : NULL;
+        free(dir);
+        if (cand && is_regular_file(cand)) found = cand;
+        else free(cand);
+        for (int i = 0; !found && i < c->desc->ninclude_dirs; i++) {
+            const char *idir = c->desc->include_dirs[i];
+            if (!idir || !idir[0]) continue;
+            cand = path_join(idir, name);
+            if (cand && is_regular_file(cand)) found = cand;
+            else free(cand);
+        }
+    }
+    if (!found) {
+        char where[400] = "";
+        size_t w = 0;
+        char *dir = path_dirname(from);
+        w += (size_t)snprintf(where, sizeof where, "%s", dir ? dir : ".");
+        free(dir);
+        for (int i = 0; i < c->desc->ninclude_dirs && w < sizeof where; i++)
+            if (c->desc->include_dirs[i] && c->desc->include_dirs[i][0])
+                w += (size_t)snprintf(where + w, sizeof where - w, ", %s", c->desc->include_dirs[i]);
+        fail(c, from, line, "cannot find include \"%s\" (looked in %s)", name, where);
+        return false;
+    }
+
+    int k = file_index(c, found);
+    if (k < 0) { free(found); fail(c, from, line, "out of memory"); return false; }
+    /* a cycle: k is already being read */
+    for (int d = 0; d <= c->depth; d++) {
+        if (c->stack[d] != k) continue;
+        char chain[400] = "";
+        size_t w = 0;
+        for (int e = d; e <= c->depth && w < sizeof chain; e++)
+            w += (size_t)snprintf(chain + w, sizeof chain - w, "%s -> ", c->files[c->stack[e]].path);
+        if (w < sizeof chain) snprintf(chain + w, sizeof chain - w, "%s", c->files[k].path);
+        free(found);
+        fail(c, from, line, "include cycle: %s", chain);
+        return false;
+    }
+    if (c->depth + 1 > SHADER_SRC_MAX_INCLUDE_DEPTH) {
+        free(found);
+        fail(c, from, line, "#include nested too deeply (more than %d levels) at \"%s\"",
+             SHADER_SRC_MAX_INCLUDE_DEPTH, name);
+        return false;
+    }
+    char *text = read_text(found);
+    if (!text) {
+        int err = errno;
+        fail(c, from, line, "cannot read include \"%s\": %s", found, errno_text(err));
+        free(found);
+        return false;
+    }
+    free(found);
+    if (c->files[k].times == 0) c->files[k].once = has_pragma_once(text);
+    if (c->files[k].once && c->files[k].times > 0) {
+        free(text);
+        sb_puts(&c->text, "\n");            /* keeps the including file's numbering */
+        return true;
+    }
+    c->files[k].times++;
+    c->stack[++c->depth] = k;
+    emit_line_directive(c, k, 1);
+    bool ok = emit_file(c, k, text, 1, false);
+    c->depth--;
+    free(text);
+    if (ok) emit_line_directive(c, fidx, line + 1);
+    return ok;
+}
+
+/* Emits lines first_line.. of text (file fidx), resolving includes. */
+static bool emit_file(asm_ctx *c, int fidx, const char *text, int first_line, bool in_comment) {
+    const char *p = text;
+    int line = 1;
+    bool seen_code = fidx == 0;     /* an included file's leading #version is dropped */
+    while (*p) {
+        const char *e = strchr(p, '\n');
+        line_view l = { p, e ? (size_t)(e - p) : strlen(p) };
+        if (line >= SHADER_SRC_LINE_BASE) {
+            fail(c, c->files[fidx].path, line, "file too long (more than %d lines)",
+                 SHADER_SRC_LINE_BASE - 1);
+            return false;
+        }
+        if (line >= first_line) {
+            bool handled = false;
+            if (!in_comment) {
+                const char *name;
+                size_t nn;
+                const char *rest = directive(l, &name, &nn);
+                if (rest && word_is(name, nn, "include")) {
+                    if (!do_include(c, fidx, line, rest, l.p + l.n)) return false;
+                    handled = true;
+                } else if (line_is_pragma_once(l)) {
+                    sb_puts(&c->text, "\n");
+                    handled = true;
+                } else if (rest && word_is(name, nn, "version") && !seen_code) {
+                    sb_puts(&c->text, "\n");
+                    handled = true;
+                }
+            }
+            if (!handled) {
+                sb_put(&c->text, l.p, l.n);
+                sb_puts(&c->text, "\n");
+            }
+            bool ic = in_comment;
+            if (line_has_code(l, &ic)) seen_code = true;
+        }
+        scan_comments(l, &in_comment);
+        if (!e) break;
+        p = e + 1;
+        line++;
+    }
+    return !c->text.oom;
+}
+
+static bool valid_identifier(const char *s) {
+    if (!(isalpha((unsigned char)s[0]) || s[0] == '_')) return false;
+    for (const char *p = s; *p; p++)
+        if (!(isalnum((unsigned char)*p) || *p == '_')) return false;
+    return true;
+}
+
+static const char *const gstap_matrices[][2] = {
+    { "uModelViewMatrix", "gl_ModelViewMatrix" },
+    { "uProjectionMatrix", "gl_ProjectionMatrix" },
+    { "uModelViewProjectionMatrix", "gl_ModelViewProjectionMatrix" },
+    { "uNormalMatrix", "gl_NormalMatrix" },
+    { "uModelViewMatrixInverse", "gl_ModelViewMatrixInverse" },
+};
+
+static void emit_prologue(asm_ctx *c) {
+    const shader_src_desc *d = c->desc;
+    for (int i = 0; i < d->ndefines; i++) {
+        if (d->defines[i].value[0]) sb_printf(&c->text, "#define %s %s\n", d->defines[i].name, d->defines[i].value);
+        else sb_printf(&c->text, "#define %s\n", d->defines[i].name);
+    }
+    if (d->gstap) {
+        sb_puts(&c->text, "// GSTAP: glman's generic names for the compatibility built-ins\n");
+        if (d->stage == SHADER_VERTEX) {
+            sb_puts(&c->text, "#define aVertex gl_Vertex\n#define aNormal gl_Normal\n"
+                              "#define aColor gl_Color\n");
+            for (int i = 0; i < 8; i++) sb_printf(&c->text, "#define aTexCoord%d gl_MultiTexCoord%d\n", i, i);
+        }
+        for (size_t i = 0; i < sizeof gstap_matrices / sizeof gstap_matrices[0]; i++)
+            sb_printf(&c->text, "#define %s %s\n", gstap_matrices[i][0], gstap_matrices[i][1]);
+    }
+}
+
+/* Finds the stage file's #version: its 1-based line (0 if none comes first),
+ * and the directive's extent in that line. A #version after code is left to
+ * the compiler to report. */
+typedef struct version_info {
+    int line;
+    size_t start, len;      /* the directive text within the line */
+    int number;
+    bool es;
+} version_info;
+
+static version_info find_version(const char *text) {
+    version_info v = {0};
+    bool in_comment = false;
+    const char *p = text;
+    int line = 1;
+    while (*p) {
+        const char *e = strchr(p, '\n');
+        line_view l = { p, e ? (size_t)(e - p) : strlen(p) };
+        const char *name;
+        size_t nn;
+        const char *rest = in_comment ? NULL : directive(l, &name, &nn);
+        if (rest && word_is(name, nn, "version")) {
+            v.line = line;
+            size_t s = 0;
+            while (s < l.n && (l.p[s] == ' ' || l.p[s] == '\t')) s++;
+            const char *end = l.p + l.n, *q = rest;
+            while (q < end && !(q[0] == '/' && q + 1 < end && (q[1] == '/' || q[1] == '*'))) q++;
+            while (q > rest && (q[-1] == ' ' || q[-1] == '\t')) q--;
+            v.start = s;
+            v.len = (size_t)(q - (l.p + s));
+            char num[32] = "";
+            const char *r = rest;
+            while (r < q && (*r == ' ' || *r == '\t')) r++;
+            size_t k = 0;
+            while (r < q && isdigit((unsigned char)*r) && k + 1 < sizeof num) num[k++] = *r++;
+            num[k] = '\0';
+            v.number = atoi(num);
+            while (r < q && (*r == ' ' || *r == '\t')) r++;
+            v.es = (q - r >= 2 && r[0] == 'e' && r[1] == 's') || v.number == 100;
+            return v;
+        }
+        bool ic = in_comment;
+        if (line_has_code(l, &ic)) return v;    /* code first: no #version in place */
+        in_comment = ic;
+        if (!e) break;
+        p = e + 1;
+        line++;
+    }
+    return v;
+}
+
+bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
+    assert(desc && out);
+    memset(out, 0, sizeof *out);
+    asm_ctx c = { .desc = desc, .out = out };
+    const char *path = desc->path ? desc->path : "";
+    char *main_text = NULL;
+    bool ok = false;
+
+    if (!path[0]) { fail(&c, "(none)", 0, "no shader file named"); goto done; }
+    if ((unsigned)desc->stage >= SHADER_STAGE_COUNT) { fail(&c, path, 0, "bad shader stage %d", (int)desc->stage); goto done; }
+    for (int i = 0; i < desc->ndefines; i++) {
+        if (!valid_identifier(desc->defines[i].name)) {
+            fail(&c, path, 0, "bad #define name \"%s\"", desc->defines[i].name);
+            goto done;
+        }
+        if (strpbrk(desc->defines[i].value, "\r\n")) {
+            fail(&c, path, 0, "#define %s: a value may not hold a line break", desc->defines[i].name);
+            goto done;
+        }
+    }
+    int k0 = file_index(&c, path);
+    if (k0 != 0) { fail(&c, path, 0, "out of memory"); goto done; }
+    c.stack[0] = 0;
+    c.files[0].times = 1;
+    main_text = read_text(path);
+    if (!main_text) {
+        int err = errno;
+        fail(&c, path, 0, "cannot read shader: %s", errno_text(err));
+        goto done;
+    }
+
+    version_info v = find_version(main_text);
+    if (v.line) {
+        /* the file's #version first, then ours, then the file from there on */
+        const char *lp = main_text;
+        for (int i = 1; i < v.line; i++) lp = strchr(lp, '\n') + 1;
+        const char *le = strchr(lp, '\n');
+        size_t ln = le ? (size_t)(le - lp) : strlen(lp);
+        sb_put(&c.text, lp + v.start, v.len);
+        sb_puts(&c.text, "\n");
+        c.old_line_rule = !v.es && v.number < 330;
+        emit_prologue(&c);
+        /* what followed the directive on its line (a comment, maybe opening a block) */
+        line_view tail = { lp + v.start + v.len, ln - v.start - v.len };
+        bool in_comment = false;
+        bool tail_has_text = false;
+        for (size_t i = 0; i < tail.n; i++)
+            if (!isspace((unsigned char)tail.p[i])) tail_has_text = true;
+        scan_comments(tail, &in_comment);
+        if (tail_has_text) {
+            emit_line_directive(&c, 0, v.line);
+            sb_put(&c.text, tail.p, tail.n);
+            sb_puts(&c.text, "\n");
+        } else {
+            emit_line_directive(&c, 0, v.line + 1);
+        }
+        ok = emit_file(&c, 0, main_text, v.line + 1, in_comment);
+    } else {
+        sb_puts(&c.text, "#version 330 compatibility  "
+                         "// tarn: the file has no #version; glman's default assumed\n");
+        c.old_line_rule = false;
+        emit_prologue(&c);
+        emit_line_directive(&c, 0, 1);
+        ok = emit_file(&c, 0, main_text, 1, false);
+    }
+    if (ok && c.text.oom) { fail(&c, path, 0, "out of memory"); ok = false; }
+
+done:
+    free(main_text);
+    /* the files found so far go to the caller even on failure (to watch them) */
+    if (c.nfiles > 0) {
+        out->files = calloc((size_t)c.nfiles, sizeof *out->files);
+        if (out->files) {
+            for (int i = 0; i < c.nfiles; i++) { out->files[i] = c.files[i].path; c.files[i].path = NULL; }
+            out->nfiles = c.nfiles;
+        }
+    }
+    for (int i = 0; i < c.nfiles; i++) { free(c.files[i].path); free(c.files[i].id); }
+    free(c.files);
+    if (!ok) {
+        free(c.text.p);
+        out->text = NULL;
+        if (!out->error[0]) snprintf(out->error, sizeof out->error, "%s:0: error: cannot assemble shader", path);
+        return false;
+    }
+    out->text = c.text.p ? c.text.p : strdup("");
+    unsigned long long h = 14695981039346656037ull;
+    for (const unsigned char *q = (const unsigned char *)out->text; *q; q++) {
+        h ^= *q;
+        h *= 1099511628211ull;
+    }
+    out->hash = h;
+    return true;
+}
+
+void shader_src_free(shader_src *s) {
+    if (!s) return;
+    free(s->text);
+    for (int i = 0; i < s->nfiles; i++) free(s->files[i]);
+    free(s->files);
+    s->text = NULL;
+    s->files = NULL;
+    s->nfiles = 0;
+}
+
+/* ---- info logs ---------------------------------------------------------------- */
+
+/* Parses a non-negative decimal; advances *p. */
+static bool parse_uint(const char **p, const char *end, long *v) {
+    const char *q = *p;
+    long x = 0;
+    if (q >= end || !isdigit((unsigned char)*q)) return false;
+    while (q < end && isdigit((unsigned char)*q)) {
+        if (x > (LONG_MAX - 9) / 10) return false;
+        x = x * 10 + (*q++ - '0');
+    }
+    *p = q;
+    *v = x;
+    return true;
+}
+
+/* (reported index, reported line) -> (file index, real line) */
+static bool decode_loc(const shader_src *s, long idx, long line, int *file, long *real) {
+    if (line >= SHADER_SRC_LINE_BASE) {
+        long k = line / SHADER_SRC_LINE_BASE;
+        if (k >= s->nfiles) return false;
+        *file = (int)k;
+        *real = line % SHADER_SRC_LINE_BASE;
+        return true;
+    }
+    if (idx < 0 || idx >= s->nfiles) return false;
+    *file = (int)idx;
+    *real = line;
+    return true;
+}
+
+static bool map_line(const shader_src *s, line_view l, sbuf *o) {
+    const char *p = l.p, *end = l.p + l.n;
+    while (p < end && (*p == ' ' || *p == '\t')) p++;
+    static const char *const sev[][2] = {
+        { "ERROR: ", "error" }, { "WARNING: ", "warning" }, { "NOTE: ", "note" },
+        { "UNIMPLEMENTED: ", "error: unimplemented" },
+    };
+    long idx, line;
+    int file;
+    long real;
+    /* glslang, AMD, Apple: "ERROR: 0:12: message" */
+    for (size_t i = 0; i < sizeof sev / sizeof sev[0]; i++) {
+        size_t n = strlen(sev[i][0]);
+        if ((size_t)(end - p) < n || memcmp(p, sev[i][0], n) != 0) continue;
+        const char *q = p + n;
+        if (!parse_uint(&q, end, &idx) || q >= end || *q != ':') return false;
+        q++;
+        if (!parse_uint(&q, end, &line) || q >= end || *q != ':') return false;
+        q++;
+        while (q < end && *q == ' ') q++;
+        if (!decode_loc(s, idx, line, &file, &real)) return false;
+        const char *e = end;
+        while (e > q && (e[-1] == ' ' || e[-1] == '\t')) e--;
+        sb_printf(o, "%s:%ld: %s: ", s->files[file], real, sev[i][1]);
+        sb_put(o, q, (size_t)(e - q));
+        return true;
+    }
+    const char *q = p;
+    if (!parse_uint(&q, end, &idx)) return false;
+    if (q < end && *q == ':') {
+        /* Mesa: "0:12(5): error: message" */
+        q++;
+        if (!parse_uint(&q, end, &line)) return false;
+        if (q < end && *q == '(') {
+            long col;
+            q++;
+            if (!parse_uint(&q, end, &col) || q >= end || *q != ')') return false;
+            q++;
+        }
+        if (q >= end || *q != ':') return false;
+        q++;
+    } else if (q < end && *q == '(') {
+        /* NVIDIA: "0(12) : error C0000: message" */
+        q++;
+        if (!parse_uint(&q, end, &line) || q >= end || *q != ')') return false;
+        q++;
+        while (q < end && *q == ' ') q++;
+        if (q >= end || *q != ':') return false;
+        q++;
+    } else {
+        return false;
+    }
+    while (q < end && *q == ' ') q++;
+    if (!decode_loc(s, idx, line, &file, &real)) return false;
+    sb_printf(o, "%s:%ld: ", s->files[file], real);
+    sb_put(o, q, (size_t)(end - q));
+    return true;
+}
+
+char *shader_src_map_log(const shader_src *s, const char *log) {
+    sbuf o = {0};
+    sb_puts(&o, "");
+    if (!log) return o.p;
+    const char *p = log;
+    while (*p) {
+        const char *e = strchr(p, '\n');
+        line_view l = { p, e ? (size_t)(e - p) : strlen(p) };
+        size_t mark = o.n;
+        if (!s || !map_line(s, l, &o)) {
+            o.n = mark;
+            if (o.p) o.p[o.n] = '\0';
+            sb_put(&o, l.p, l.n);
+        }
+        if (!e) break;
+        sb_puts(&o, "\n");
+        p = e + 1;
+    }
+    if (o.oom) { free(o.p); return NULL; }
+    return o.p;
+}
+
+const char *shader_stage_name(shader_stage st) {
+    switch (st) {
+    case SHADER_VERTEX: return "vertex";
+    case SHADER_TESS_CONTROL: return "tess control";
+    case SHADER_TESS_EVALUATION: return "tess evaluation";
+    case SHADER_GEOMETRY: return "geometry";
+    case SHADER_FRAGMENT: return "fragment";
+    default: return "unknown";
+    }
+}
+
+static shader_stage stage_from_word(const char *w, size_t n) {
+    static const struct { const char *w; shader_stage st; } words[] = {
+        { "vert", SHADER_VERTEX }, { "vs", SHADER_VERTEX }, { "vertex", SHADER_VERTEX },
+        { "tesc", SHADER_TESS_CONTROL }, { "tcs", SHADER_TESS_CONTROL },
+        { "tese", SHADER_TESS_EVALUATION }, { "tes", SHADER_TESS_EVALUATION },
+        { "geom", SHADER_GEOMETRY }, { "gs", SHADER_GEOMETRY }, { "geometry", SHADER_GEOMETRY },
+        { "frag", SHADER_FRAGMENT }, { "fs", SHADER_FRAGMENT }, { "fragment", SHADER_FRAGMENT },
+    };
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
+        if (n == strlen(words[i].w) && strncasecmp(w, words[i].w, n) == 0) return words[i].st;
+    return SHADER_STAGE_COUNT;
+}
+
+shader_stage shader_stage_from_path(const char *path) {
+    if (!path) return SHADER_STAGE_COUNT;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base) return SHADER_STAGE_COUNT;
+    const char *ext = dot + 1;
+    if (strcasecmp(ext, "glsl") != 0) {
+        /* only the short extensions; "vertex"/"fragment" as an extension is unusual */
+        if (strcasecmp(ext, "vertex") == 0 || strcasecmp(ext, "fragment") == 0 ||
+            strcasecmp(ext, "geometry") == 0)
+            return SHADER_STAGE_COUNT;
+        return stage_from_word(ext, strlen(ext));
+    }
+    /* name.SUFFIX.glsl, name_SUFFIX.glsl, name-SUFFIX.glsl */
+    const char *e = dot, *s = dot;
+    while (s > base && s[-1] != '.' && s[-1] != '_' && s[-1] != '-') s--;
+    if (s == base) return SHADER_STAGE_COUNT;
+    return stage_from_word(s, (size_t)(e - s));
+}

@@ -1,0 +1,106 @@
+/* shader_src: assembles the source text of one shader stage.
+ *
+ * It reads the stage file, resolves `#include "file"` and `#include <file>`
+ * (relative to the including file first, then each include dir), inserts the
+ * `Define` toggles and, for glman's GSTAP, the GSTAP names, and keeps
+ * `#version` the first directive. Every original line keeps its number:
+ * the text carries `#line LINE FILEINDEX` directives, and
+ * shader_src_map_log() turns a compiler's info log back into
+ * `file:line: message` lines.
+ *
+ * The assembled text, for a stage file with `#version` on line 1:
+ *
+ *     #version 330 compatibility            <- the file's own line
+ *     #define FOO 1                         <- desc->defines, in order
+ *     #define uModelViewMatrix gl_ModelViewMatrix   <- GSTAP (desc->gstap)
+ *     ...
+ *     #line 2 0                             <- the file's line 2 follows
+ *     ...
+ *     #line 100001 1                        <- an included file (index 1)
+ *     ...
+ *     #line 7 0                             <- back in the stage file
+ *
+ * Line numbers: lines of files[0] carry their real number. Lines of an
+ * included file k >= 1 carry k * SHADER_SRC_LINE_BASE + line, as well as
+ * the index k. The offset is there because Mesa (22.3, llvmpipe) reports
+ * most semantic errors with source-string number 0 whatever `#line` said, so
+ * the line number alone must tell the file; glslang and syntax errors on
+ * Mesa do carry k. shader_src_map_log() undoes both.
+ * `#line N` sets the number of the next line to N (GLSL >= 3.30 and ES) or
+ * N + 1 (desktop GLSL before 3.30, which glslang and Mesa both follow); the
+ * directives are written for the file's own #version.
+ *
+ * A file with no #version gets glman's default, `#version 330
+ * compatibility`, with a comment saying so.
+ */
+#ifndef TARN_SHADER_SRC_H
+#define TARN_SHADER_SRC_H
+
+#include <stdbool.h>
+
+typedef enum shader_stage {
+    SHADER_VERTEX,
+    SHADER_TESS_CONTROL,
+    SHADER_TESS_EVALUATION,
+    SHADER_GEOMETRY,
+    SHADER_FRAGMENT,
+    SHADER_STAGE_COUNT
+} shader_stage;
+
+/* One `#define NAME VALUE` line. value "" gives `#define NAME`; a true bool
+ * toggle is best passed as "1" (so both `#ifdef FOO` and `#if FOO` work);
+ * a false bool toggle is simply not passed. */
+typedef struct shader_define {
+    char name[64];
+    char value[64];
+} shader_define;
+
+typedef struct shader_src_desc {
+    const char *path;                   /* the stage file */
+    shader_stage stage;
+    bool gstap;                         /* insert the GSTAP names */
+    const shader_define *defines;
+    int ndefines;
+    const char *const *include_dirs;    /* searched after the including file's dir */
+    int ninclude_dirs;
+} shader_src_desc;
+
+typedef struct shader_src {
+    char *text;                 /* the assembled source (heap); NULL after a failure */
+    char **files;               /* files[0] = the stage file, then includes in the
+                                 * order first met; what the watcher should watch.
+                                 * Also filled (with what was found) on failure. */
+    int nfiles;
+    unsigned long long hash;    /* FNV-1a 64 of text */
+    char error[512];            /* on failure: "file:line: error: message" */
+} shader_src;
+
+/* Lines of files[k], k >= 1, are numbered k * SHADER_SRC_LINE_BASE + line. */
+#define SHADER_SRC_LINE_BASE 100000
+#define SHADER_SRC_MAX_INCLUDE_DEPTH 32
+
+/* Assembles desc->path into *out (which it zeroes first). Returns false and
+ * sets out->error on a missing or unreadable file, a missing include, an
+ * include cycle, includes nested deeper than 32, a `#version` after other
+ * code, or a define name that is not an identifier. Always call
+ * shader_src_free() afterwards, whether it succeeded or not. */
+bool shader_src_load(const shader_src_desc *desc, shader_src *out);
+void shader_src_free(shader_src *s);
+
+/* Rewrites a compiler's info log so that every message reads
+ * `file:line: message`. Understands Mesa (`0:12(5): error: ...`), NVIDIA
+ * (`0(12) : error C0000: ...`) and glslang/AMD (`ERROR: 0:12: ...`,
+ * `WARNING: ...`, which become `file:12: error: ...` / `warning:`). Lines it
+ * does not recognise, or whose file index is out of range, pass through
+ * unchanged. Returns a heap string (never NULL unless out of memory). */
+char *shader_src_map_log(const shader_src *s, const char *log);
+
+/* "vertex", "tess control", "tess evaluation", "geometry", "fragment". */
+const char *shader_stage_name(shader_stage st);
+
+/* The stage a file name implies: .vert .vs .tesc .tese .geom .gs .frag .fs,
+ * or for .glsl a stage suffix before it (water.frag.glsl, water_vert.glsl,
+ * water-fs.glsl). SHADER_STAGE_COUNT when it implies none. */
+shader_stage shader_stage_from_path(const char *path);
+
+#endif

@@ -1,0 +1,1032 @@
+/* validate: glslang validation of shader stages and .glib Programs (see validate.h). */
+#include "validate.h"
+
+#include "glib.h"
+
+#include <glslang/Include/glslang_c_interface.h>
+#include <glslang/Public/resource_limits_c.h>
+
+#include <ctype.h>
+#include <dirent.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#define MAX_TOGGLES_VARIED 10       /* 2^10 combinations at most */
+#define MAX_DEFINES 64
+
+/* The module's one context: glslang's process state. */
+typedef struct validate_ctx {
+    bool glslang_ready;
+} validate_ctx;
+
+static validate_ctx g_validate;
+
+static void ensure_glslang(void) {
+    if (!g_validate.glslang_ready) {
+        glslang_initialize_process();
+        g_validate.glslang_ready = true;
+    }
+}
+
+/* ---- small helpers ---------------------------------------------------------- */
+
+static char *xstrdup(const char *s) {
+    char *d = strdup(s ? s : "");
+    if (!d) { fputs("tarn: out of memory\n", stderr); abort(); }
+    return d;
+}
+
+static char *xprintf(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    char *s = malloc(n > 0 ? (size_t)n + 1 : 1);
+    if (!s) { fputs("tarn: out of memory\n", stderr); abort(); }
+    s[0] = '\0';
+    if (n > 0) {
+        va_start(ap, fmt);
+        vsnprintf(s, (size_t)n + 1, fmt, ap);
+        va_end(ap);
+    }
+    return s;
+}
+
+static void append(char **log, const char *text) {
+    size_t old = *log ? strlen(*log) : 0, add = strlen(text);
+    char *s = realloc(*log, old + add + 1);
+    if (!s) return;
+    memcpy(s + old, text, add + 1);
+    *log = s;
+}
+
+static bool is_regular_file(const char *path) {
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+static bool is_dir(const char *path) {
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+static const char *path_ext(const char *path) {
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    return dot && dot != base ? dot + 1 : "";
+}
+
+typedef struct strlist {
+    char **v;
+    int n, cap;
+} strlist;
+
+static void strlist_add(strlist *l, char *owned) {
+    if (l->n == l->cap) {
+        int cap = l->cap ? l->cap * 2 : 16;
+        char **v = realloc(l->v, (size_t)cap * sizeof *v);
+        if (!v) { free(owned); return; }
+        l->v = v;
+        l->cap = cap;
+    }
+    l->v[l->n++] = owned;
+}
+
+static void strlist_free(strlist *l) {
+    for (int i = 0; i < l->n; i++) free(l->v[i]);
+    free(l->v);
+    memset(l, 0, sizeof *l);
+}
+
+static int cmp_str(const void *a, const void *b) {
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* ---- messages ---------------------------------------------------------------- */
+
+typedef enum sev { SEV_WARNING = 1, SEV_ERROR = 2 } sev;
+
+typedef struct vmsg {
+    sev severity;
+    char *text;             /* `file:line: error|warning: message` */
+    int count;              /* combinations it appeared in */
+    int first_combo;
+} vmsg;
+
+typedef struct vmsgs {
+    vmsg *v;
+    int n, cap;
+} vmsgs;
+
+static void msgs_add(vmsgs *m, sev s, const char *text_in) {
+    /* glslang likes double spaces ("'=' :  cannot convert") */
+    char text[2048];
+    size_t w = 0;
+    for (const char *p = text_in; *p && w + 1 < sizeof text; p++)
+        if (!(*p == ' ' && w > 0 && text[w - 1] == ' ')) text[w++] = *p;
+    text[w] = '\0';
+    for (int i = 0; i < m->n; i++)
+        if (strcmp(m->v[i].text, text) == 0) return;      /* once per compile */
+    if (m->n == m->cap) {
+        int cap = m->cap ? m->cap * 2 : 8;
+        vmsg *v = realloc(m->v, (size_t)cap * sizeof *v);
+        if (!v) return;
+        m->v = v;
+        m->cap = cap;
+    }
+    m->v[m->n++] = (vmsg){ s, xstrdup(text), 0, 0 };
+}
+
+static void msgs_free(vmsgs *m) {
+    for (int i = 0; i < m->n; i++) free(m->v[i].text);
+    free(m->v);
+    memset(m, 0, sizeof *m);
+}
+
+/* Adds one combination's messages to a Program's table. */
+static void msgs_merge(vmsgs *table, const vmsgs *m, int combo) {
+    for (int i = 0; i < m->n; i++) {
+        int j = 0;
+        while (j < table->n && strcmp(table->v[j].text, m->v[i].text) != 0) j++;
+        if (j == table->n) {
+            msgs_add(table, m->v[i].severity, m->v[i].text);
+            if (j == table->n) continue;            /* out of memory */
+            table->v[j].first_combo = combo;
+        }
+        table->v[j].count++;
+    }
+}
+
+static bool starts_with(const char *s, const char *prefix) {
+    return strncmp(s, prefix, strlen(prefix)) == 0;
+}
+
+/* glslang's lines that say nothing of their own. */
+static bool is_noise(const char *line) {
+    return strstr(line, "No code generated") || strstr(line, "' : compilation terminated") ||
+           (starts_with(line, "ERROR: ") && isdigit((unsigned char)line[7]) &&
+            strstr(line, " compilation errors"));
+}
+
+/* Splits a (mapped) compiler log into messages. Lines that are neither an
+ * error nor a warning continue the message before them. */
+static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m) {
+    if (!log || !log[0]) return;
+    char *mapped = shader_src_map_log(src, log);
+    if (!mapped) return;
+    char *pending = NULL;
+    sev pending_sev = SEV_ERROR;
+    for (char *p = mapped; p && *p;) {
+        char *e = strchr(p, '\n');
+        if (e) *e = '\0';
+        size_t n = strlen(p);
+        while (n > 0 && isspace((unsigned char)p[n - 1])) p[--n] = '\0';
+        if (n > 0 && !is_noise(p)) {
+            sev s;
+            char *text = NULL;
+            if (starts_with(p, "ERROR: ")) {
+                s = SEV_ERROR;
+                text = xprintf("%s:0: error: %s", src->files[0], p + 7);
+            } else if (starts_with(p, "WARNING: ")) {
+                s = SEV_WARNING;
+                text = xprintf("%s:0: warning: %s", src->files[0], p + 9);
+            } else if (strstr(p, ": error") || strstr(p, ": warning")) {
+                const char *er = strstr(p, ": error"), *wa = strstr(p, ": warning");
+                s = er && (!wa || er < wa) ? SEV_ERROR : SEV_WARNING;
+                text = xstrdup(p);
+            }
+            if (text) {
+                if (pending) msgs_add(m, pending_sev, pending);
+                free(pending);
+                pending = text;
+                pending_sev = s;
+            } else {
+                const char *t = p;
+                while (isspace((unsigned char)*t)) t++;
+                if (pending) {
+                    char *joined = xprintf("%s %s", pending, t);
+                    free(pending);
+                    pending = joined;
+                } else {
+                    pending = xprintf("%s:0: %s: %s", src->files[0], compiled ? "warning" : "error", t);
+                    pending_sev = compiled ? SEV_WARNING : SEV_ERROR;
+                }
+            }
+        }
+        p = e ? e + 1 : NULL;
+    }
+    if (pending) msgs_add(m, pending_sev, pending);
+    free(pending);
+    free(mapped);
+}
+
+/* ---- glslang -------------------------------------------------------------------- */
+
+static const glslang_stage_t glslang_stages[SHADER_STAGE_COUNT] = {
+    GLSLANG_STAGE_VERTEX, GLSLANG_STAGE_TESSCONTROL, GLSLANG_STAGE_TESSEVALUATION,
+    GLSLANG_STAGE_GEOMETRY, GLSLANG_STAGE_FRAGMENT,
+};
+
+static glslang_input_t make_input(const char *code, shader_stage st) {
+    glslang_input_t in;
+    memset(&in, 0, sizeof in);
+    in.language = GLSLANG_SOURCE_GLSL;
+    in.stage = glslang_stages[st];
+    /* NONE: desktop GLSL as a driver sees it (no SPIR-V rules) */
+    in.client = GLSLANG_CLIENT_NONE;
+    in.target_language = GLSLANG_TARGET_NONE;
+    in.code = code;
+    /* every assembled text starts with a #version; these only apply without one */
+    in.default_version = 110;
+    in.default_profile = GLSLANG_NO_PROFILE;
+    in.force_default_version_and_profile = 0;
+    in.forward_compatible = 0;
+    in.messages = GLSLANG_MSG_DEFAULT_BIT;
+    in.resource = glslang_default_resource();
+    return in;
+}
+
+/* Compiles src; its messages go to m. Returns the shader (the caller
+ * deletes it) and sets *ok; *preprocessed (if wanted) gets a heap copy of
+ * the preprocessed text.
+ *
+ * glslang's C interface parses the text glslang_shader_preprocess() left
+ * behind, not input->code: without preprocessing first it parses an empty
+ * string and says yes to anything. The info log collects both steps, so a
+ * message can come twice (msgs_add keeps one). */
+static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *m, bool *ok,
+                                 char **preprocessed) {
+    ensure_glslang();
+    if (preprocessed) *preprocessed = NULL;
+    glslang_input_t in = make_input(src->text, st);
+    glslang_shader_t *sh = glslang_shader_create(&in);
+    if (!sh) {
+        char *t = xprintf("%s:0: error: glslang could not create a %s shader", src->files[0],
+                          shader_stage_name(st));
+        msgs_add(m, SEV_ERROR, t);
+        free(t);
+        *ok = false;
+        return NULL;
+    }
+    int before = m->n;
+    *ok = glslang_shader_preprocess(sh, &in) != 0;
+    if (*ok) {
+        const char *code = glslang_shader_get_preprocessed_code(sh);
+        if (preprocessed && code) *preprocessed = xstrdup(code);
+        *ok = glslang_shader_parse(sh, &in) != 0;
+    }
+    add_compile_log(src, glslang_shader_get_info_log(sh), *ok, m);
+    if (!*ok) {
+        /* a failure glslang explained nowhere still counts */
+        bool any = false;
+        for (int i = before; i < m->n; i++) any |= m->v[i].severity == SEV_ERROR;
+        if (!any) {
+            char *t = xprintf("%s:0: error: the %s shader does not compile", src->files[0],
+                              shader_stage_name(st));
+            msgs_add(m, SEV_ERROR, t);
+            free(t);
+        }
+    }
+    return sh;
+}
+
+bool validate_stage(const shader_src *src, shader_stage stage, char **log) {
+    if (!src || !src->text || (unsigned)stage >= SHADER_STAGE_COUNT) {
+        if (log) append(log, src && src->error[0] ? src->error : "error: no shader text");
+        if (log) append(log, "\n");
+        return false;
+    }
+    vmsgs m = {0};
+    bool ok = false;
+    glslang_shader_t *sh = compile(src, stage, &m, &ok, NULL);
+    if (sh) glslang_shader_delete(sh);
+    if (log)
+        for (int i = 0; i < m.n; i++) { append(log, m.v[i].text); append(log, "\n"); }
+    msgs_free(&m);
+    return ok;
+}
+
+/* glslang 12 reports "Anonymous member name used for global variable or
+ * other anonymous member" when a 3.30 compatibility fragment shader reads
+ * the gl_PerFragment built-ins (gl_TexCoord, gl_Color, ...): not an error. */
+static bool is_spurious_link_error(const char *msg) {
+    if (!strstr(msg, "Anonymous member name used for global variable")) return false;
+    static const char *const builtins[] = {
+        "TexCoord", "FogFragCoord", "Color", "SecondaryColor", "FrontColor", "BackColor",
+        "FrontSecondaryColor", "BackSecondaryColor", "ClipVertex", "PointSize", "Position",
+        "ClipDistance", "CullDistance",
+    };
+    const char *last = strrchr(msg, ' ');
+    last = last ? last + 1 : msg;
+    if (starts_with(last, "gl_")) return true;
+    for (size_t i = 0; i < sizeof builtins / sizeof builtins[0]; i++)
+        if (strcmp(last, builtins[i]) == 0) return true;
+    return false;
+}
+
+/* Replaces every `from` in *s by `to` (which is not longer). */
+static void replace_all(char *s, const char *from, const char *to) {
+    size_t nf = strlen(from), nt = strlen(to);
+    for (char *p = s; (p = strstr(p, from)) != NULL; p += nt) {
+        memmove(p + nt, p + nf, strlen(p + nf) + 1);
+        memcpy(p, to, nt);
+    }
+}
+
+/* Links the compiled stages; messages are placed at the Program's line. */
+static void link_stages(glslang_shader_t *const *sh, int n, const char *where, const char *prog, vmsgs *m) {
+    glslang_program_t *p = glslang_program_create();
+    if (!p) return;
+    for (int i = 0; i < n; i++) glslang_program_add_shader(p, sh[i]);
+    int ok = glslang_program_link(p, GLSLANG_MSG_DEFAULT_BIT);
+    const char *log = glslang_program_get_info_log(p);
+    /* messages start with ERROR: or WARNING:, continuation lines are indented */
+    char *copy = xstrdup(log);
+    char *pending = NULL;
+    sev pending_sev = SEV_ERROR;
+    int reported = 0, spurious = 0;
+    for (char *q = copy; q && *q;) {
+        char *e = strchr(q, '\n');
+        if (e) *e = '\0';
+        size_t len = strlen(q);
+        while (len > 0 && isspace((unsigned char)q[len - 1])) q[--len] = '\0';
+        /* glslang names the other side of a uniform mismatch "unknown stage" */
+        replace_all(q, "Linking unknown stage and ", "Linking ");
+        replace_all(q, "unknown stage stage:", "an earlier stage:");
+        const char *t = q;
+        while (isspace((unsigned char)*t)) t++;
+        bool head = starts_with(q, "ERROR: ") || starts_with(q, "WARNING: ");
+        if (head || !pending) {
+            if (pending && is_spurious_link_error(pending)) spurious++;
+            else if (pending) {
+                char *msg = xprintf("%s %s: program %s: %s", where,
+                                    pending_sev == SEV_ERROR ? "error" : "warning", prog, pending);
+                msgs_add(m, pending_sev, msg);
+                free(msg);
+                reported += pending_sev == SEV_ERROR;
+            }
+            free(pending);
+            pending = NULL;
+            if (*t) {
+                pending_sev = starts_with(q, "WARNING: ") ? SEV_WARNING : SEV_ERROR;
+                pending = xstrdup(head ? q + (pending_sev == SEV_WARNING ? 9 : 7) : t);
+            }
+        } else if (*t) {
+            char *joined = xprintf("%s %s", pending, t);
+            free(pending);
+            pending = joined;
+        }
+        q = e ? e + 1 : NULL;
+    }
+    if (pending && is_spurious_link_error(pending)) spurious++;
+    else if (pending) {
+        char *msg = xprintf("%s %s: program %s: %s", where,
+                            pending_sev == SEV_ERROR ? "error" : "warning", prog, pending);
+        msgs_add(m, pending_sev, msg);
+        free(msg);
+        reported += pending_sev == SEV_ERROR;
+    }
+    free(pending);
+    free(copy);
+    /* a failed link whose only errors were spurious passes */
+    if (!ok && reported == 0 && spurious == 0) {
+        char *msg = xprintf("%s error: program %s: glslang could not link it", where, prog);
+        msgs_add(m, SEV_ERROR, msg);
+        free(msg);
+    }
+    glslang_program_delete(p);
+}
+
+/* ---- stage interfaces (what glslang's linker leaves out) --------------------- */
+
+typedef struct tok {
+    const char *p;
+    int n;
+    long str, line;
+} tok;
+
+typedef struct toks {
+    tok *v;
+    int n, cap;
+    int version;
+    bool es;
+} toks;
+
+static void toks_add(toks *t, tok k) {
+    if (t->n == t->cap) {
+        int cap = t->cap ? t->cap * 2 : 256;
+        tok *v = realloc(t->v, (size_t)cap * sizeof *v);
+        if (!v) return;
+        t->v = v;
+        t->cap = cap;
+    }
+    t->v[t->n++] = k;
+}
+
+static bool is_ident_start(char c) { return isalpha((unsigned char)c) || c == '_'; }
+static bool is_ident_char(char c) { return isalnum((unsigned char)c) || c == '_'; }
+
+/* Tokenises preprocessed GLSL, following #line to know where each token was. */
+static void tokenize(const char *code, toks *t) {
+    long line = 1, str = 0;
+    bool line_start = true;
+    bool old_rule = false;
+    const char *p = code;
+    while (*p) {
+        if (*p == '\n') { line++; line_start = true; p++; continue; }
+        if (isspace((unsigned char)*p)) { p++; continue; }
+        if (line_start && *p == '#') {
+            const char *e = strchr(p, '\n');
+            size_t n = e ? (size_t)(e - p) : strlen(p);
+            char buf[128];
+            if (n < sizeof buf) {
+                memcpy(buf, p, n);
+                buf[n] = '\0';
+                long a, b;
+                int v;
+                char prof[16] = "";
+                int got = sscanf(buf, "# line %ld %ld", &a, &b);
+                if (got >= 1) {
+                    line = (old_rule ? a + 1 : a) - 1;   /* the '\n' below adds one */
+                    if (got == 2) str = b;
+                } else if (sscanf(buf, "# version %d %15s", &v, prof) >= 1) {
+                    t->version = v;
+                    t->es = strcmp(prof, "es") == 0 || v == 100;
+                    old_rule = !t->es && v < 330;
+                }
+            }
+            p += n;
+            continue;
+        }
+        line_start = false;
+        if (p[0] == '/' && p[1] == '/') { while (*p && *p != '\n') p++; continue; }
+        if (p[0] == '/' && p[1] == '*') {
+            p += 2;
+            while (*p && !(p[0] == '*' && p[1] == '/')) { if (*p == '\n') line++; p++; }
+            if (*p) p += 2;
+            continue;
+        }
+        tok k = { p, 1, str, line };
+        if (is_ident_start(*p)) {
+            while (is_ident_char(p[k.n])) k.n++;
+        } else if (isdigit((unsigned char)*p) || (*p == '.' && isdigit((unsigned char)p[1]))) {
+            while (is_ident_char(p[k.n]) || p[k.n] == '.') k.n++;
+        }
+        toks_add(t, k);
+        p += k.n;
+    }
+}
+
+static bool tok_is(const tok *k, const char *s) {
+    return (size_t)k->n == strlen(s) && memcmp(k->p, s, (size_t)k->n) == 0;
+}
+
+typedef struct ivar {
+    char name[64];
+    bool block;
+    bool in;                    /* input (else output) */
+    long str, line;
+    bool used;
+} ivar;
+
+typedef struct iface {
+    ivar *v;
+    int n, cap;
+    int version;
+    bool es;
+} iface;
+
+static void iface_add(iface *f, const tok *name, bool block, bool in) {
+    if (name->n >= 64 || (name->n >= 3 && memcmp(name->p, "gl_", 3) == 0)) return;
+    if (f->n == f->cap) {
+        int cap = f->cap ? f->cap * 2 : 16;
+        ivar *v = realloc(f->v, (size_t)cap * sizeof *v);
+        if (!v) return;
+        f->v = v;
+        f->cap = cap;
+    }
+    ivar *x = &f->v[f->n++];
+    memset(x, 0, sizeof *x);
+    memcpy(x->name, name->p, (size_t)name->n);
+    x->block = block;
+    x->in = in;
+    x->str = name->str;
+    x->line = name->line;
+}
+
+static int skip_group(const toks *t, int i, char open, char close) {
+    int depth = 0;
+    for (; i < t->n; i++) {
+        if (t->v[i].n == 1 && t->v[i].p[0] == open) depth++;
+        else if (t->v[i].n == 1 && t->v[i].p[0] == close && --depth == 0) return i;
+    }
+    return t->n - 1;
+}
+
+static bool is_qualifier(const tok *k) {
+    static const char *const q[] = {
+        "in", "out", "varying", "attribute", "uniform", "buffer", "shared", "const", "flat",
+        "smooth", "noperspective", "centroid", "sample", "patch", "invariant", "precise",
+        "highp", "mediump", "lowp", "coherent", "volatile", "restrict", "readonly", "writeonly",
+        "inout",
+    };
+    for (size_t i = 0; i < sizeof q / sizeof q[0]; i++)
+        if (tok_is(k, q[i])) return true;
+    return false;
+}
+
+/* The qualifiers of a declaration from tokens [s, e): direction of in/out
+ * (0 none, 1 in, 2 out) and whether it has layout(location). Returns the
+ * index after the qualifiers. */
+static int read_qualifiers(const toks *t, int s, int e, shader_stage st, int *dir, bool *location) {
+    *dir = 0;
+    *location = false;
+    int i = s;
+    while (i < e) {
+        const tok *k = &t->v[i];
+        if (tok_is(k, "layout") && i + 1 < e && tok_is(&t->v[i + 1], "(")) {
+            int close = skip_group(t, i + 1, '(', ')');
+            for (int j = i + 1; j < close; j++)
+                if (tok_is(&t->v[j], "location")) *location = true;
+            i = close + 1;
+            continue;
+        }
+        if (!is_qualifier(k)) break;
+        if (tok_is(k, "in")) *dir = 1;
+        else if (tok_is(k, "out")) *dir = 2;
+        else if (tok_is(k, "varying")) *dir = st == SHADER_FRAGMENT ? 1 : 2;
+        else if (tok_is(k, "attribute") || tok_is(k, "uniform") || tok_is(k, "buffer") ||
+                 tok_is(k, "inout")) { *dir = 0; return e; }
+        i++;
+    }
+    return i;
+}
+
+/* A global declaration [s, e) (no braces): records its in/out names. */
+static void read_declaration(const toks *t, int s, int e, shader_stage st, iface *f) {
+    for (int i = s; i < e; i++)
+        if (tok_is(&t->v[i], "struct") || tok_is(&t->v[i], "(") ) {
+            /* a function prototype, or `layout(...)` handled below */
+            if (tok_is(&t->v[i], "(") && i > s && tok_is(&t->v[i - 1], "layout")) continue;
+            return;
+        }
+    int dir;
+    bool location;
+    int i = read_qualifiers(t, s, e, st, &dir, &location);
+    if (!dir || location || i >= e) return;
+    i++;                                            /* the type */
+    if (i < e && tok_is(&t->v[i], "[")) i = skip_group(t, i, '[', ']') + 1;
+    while (i < e) {
+        if (!is_ident_start(t->v[i].p[0])) return;
+        iface_add(f, &t->v[i], false, dir == 1);
+        i++;
+        if (i < e && tok_is(&t->v[i], "[")) i = skip_group(t, i, '[', ']') + 1;
+        while (i < e && !tok_is(&t->v[i], ",")) i++;   /* an initializer */
+        i++;
+    }
+}
+
+static void read_interface(const char *code, shader_stage st, iface *f) {
+    toks t = {0};
+    tokenize(code, &t);
+    f->version = t.version;
+    f->es = t.es;
+    int s = 0;
+    for (int i = 0; i < t.n; i++) {
+        if (tok_is(&t.v[i], ";")) {
+            read_declaration(&t, s, i, st, f);
+            s = i + 1;
+        } else if (tok_is(&t.v[i], "{")) {
+            int close = skip_group(&t, i, '{', '}');
+            int dir;
+            bool location;
+            read_qualifiers(&t, s, i, st, &dir, &location);
+            bool is_struct = false;
+            for (int j = s; j < i; j++) is_struct |= tok_is(&t.v[j], "struct");
+            if (dir && !location && i > s) {
+                /* an interface block: matched by its block name */
+                iface_add(f, &t.v[i - 1], true, dir == 1);
+            }
+            if (dir || is_struct) {
+                /* `} instance;` or `} var;` follows */
+                i = close;
+                while (i + 1 < t.n && !tok_is(&t.v[i + 1], ";")) i++;
+                i++;
+                s = i + 1;
+            } else {
+                i = close;      /* a function body */
+                s = i + 1;
+            }
+        }
+    }
+    /* an input counts only when the stage reads it */
+    for (int k = 0; k < f->n; k++) {
+        if (!f->v[k].in) continue;
+        int uses = 0;
+        size_t n = strlen(f->v[k].name);
+        for (int i = 0; i < t.n; i++)
+            if ((size_t)t.v[i].n == n && memcmp(t.v[i].p, f->v[k].name, n) == 0) uses++;
+        f->v[k].used = f->v[k].block || uses > 1;
+    }
+    free(t.v);
+}
+
+/* Inputs of each stage that the stage before it does not write. */
+static void check_interfaces(const shader_src *src, char *const *pp, const shader_stage *stages, int n,
+                             vmsgs *m) {
+    iface f[SHADER_STAGE_COUNT];
+    memset(f, 0, sizeof f);
+    bool have[SHADER_STAGE_COUNT] = { false };
+    for (int i = 0; i < n; i++) {
+        if (!pp[i]) continue;
+        read_interface(pp[i], stages[i], &f[i]);
+        have[i] = true;
+    }
+    for (int i = 1; i < n; i++) {
+        if (!have[i] || !have[i - 1]) continue;
+        const iface *cur = &f[i], *prev = &f[i - 1];
+        for (int k = 0; k < cur->n; k++) {
+            const ivar *v = &cur->v[k];
+            if (!v->in || !v->used) continue;
+            bool found = false;
+            for (int j = 0; j < prev->n && !found; j++)
+                found = !prev->v[j].in && prev->v[j].block == v->block &&
+                        strcmp(prev->v[j].name, v->name) == 0;
+            if (found) continue;
+            /* Mesa: an error before GLSL 1.30, a warning after */
+            bool error = !cur->es && cur->version < 130;
+            char *raw = xprintf("%s: %ld:%ld: %s shader input %s'%s' is not written by the %s shader\n",
+                                error ? "ERROR" : "WARNING", v->str, v->line,
+                                shader_stage_name(stages[i]), v->block ? "block " : "", v->name,
+                                shader_stage_name(stages[i - 1]));
+            add_compile_log(&src[stages[i]], raw, true, m);
+            free(raw);
+        }
+    }
+    for (int i = 0; i < n; i++) free(f[i].v);
+}
+
+/* ---- a run ------------------------------------------------------------------------- */
+
+typedef struct run {
+    FILE *out;
+    const char *include_dirs[1];
+    char common_dir[4096];
+    validate_result res;
+} run;
+
+static void print_msg(run *r, const vmsg *v, const char *suffix) {
+    fprintf(r->out, "%s%s\n", v->text, suffix ? suffix : "");
+    if (v->severity == SEV_ERROR) r->res.nerrors++;
+    else r->res.nwarnings++;
+}
+
+static void report(run *r, sev s, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(r->out, fmt, ap);
+    va_end(ap);
+    fputc('\n', r->out);
+    if (s == SEV_ERROR) r->res.nerrors++;
+    else r->res.nwarnings++;
+}
+
+static const char *const stage_cmd_names[SHADER_STAGE_COUNT] = {
+    "Vertex", "TessControl", "TessEvaluation", "Geometry", "Fragment",
+};
+
+typedef struct toggle {
+    const char *name;
+    bool deflt;
+} toggle;
+
+static void format_number(double v, char *buf, size_t n) {
+    if (v == (double)(long long)v && v > -1e9 && v < 1e9) snprintf(buf, n, "%lld", (long long)v);
+    else snprintf(buf, n, "%.9g", v);
+}
+
+/* Did the glib parser already report an error on this command's line? */
+static bool glib_reported(const glib_scene *sc, const glib_cmd *c) {
+    for (int i = 0; i < sc->ndiags; i++)
+        if (sc->diags[i].severity == GLIB_ERROR && sc->diags[i].line == c->line && sc->diags[i].file &&
+            c->file && strcmp(sc->diags[i].file, c->file) == 0)
+            return true;
+    return false;
+}
+
+static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cmd,
+                             const glib_cmd *const *stage_cmd, bool gstap) {
+    r->res.nprograms++;
+    shader_stage stages[SHADER_STAGE_COUNT];
+    int nst = 0;
+    for (int s = 0; s < SHADER_STAGE_COUNT; s++)
+        if (stage_cmd[s]) stages[nst++] = (shader_stage)s;
+    if (nst == 0) {
+        report(r, SEV_ERROR, "%s:%d: error: Program %s has no shader stages: name files with "
+               "Vertex and Fragment before the Program line", cmd->file, cmd->line, cmd->name);
+        return;
+    }
+    r->res.nstages += nst;
+    bool missing = false;
+    for (int i = 0; i < nst; i++) {
+        const glib_cmd *sc = stage_cmd[stages[i]];
+        if (!is_regular_file(sc->path)) {
+            int err = errno;
+            missing = true;
+            if (glib_reported(scene, sc)) continue;
+            report(r, SEV_ERROR, "%s:%d: error: %s %s: %s (Program %s)", sc->file, sc->line,
+                   stage_cmd_names[stages[i]], sc->path, is_dir(sc->path) ? "is a directory" : strerror(err),
+                   cmd->name);
+        }
+    }
+    if (missing) return;
+
+    /* the toggles vary; other Defines keep their value */
+    toggle toggles[MAX_DEFINES];
+    int nt = 0;
+    shader_define fixed[MAX_DEFINES];
+    int nfixed = 0;
+    for (int i = 0; i < cmd->ndefines; i++) {
+        const glib_uniform *u = &cmd->defines[i];
+        if (u->kind == GLIB_UNIFORM_BOOL) {
+            if (nt < MAX_DEFINES) toggles[nt++] = (toggle){ u->name, u->n > 0 && u->v[0] != 0 };
+        } else if (nfixed < MAX_DEFINES) {
+            shader_define *d = &fixed[nfixed++];
+            memset(d, 0, sizeof *d);
+            snprintf(d->name, sizeof d->name, "%s", u->name);
+            double v = u->kind == GLIB_UNIFORM_SLIDER && u->n >= 2 ? u->v[1] : u->n > 0 ? u->v[0] : 0;
+            format_number(v, d->value, sizeof d->value);
+        }
+    }
+    int nvary = nt < MAX_TOGGLES_VARIED ? nt : MAX_TOGGLES_VARIED;
+    int ncombo = 1 << nvary;
+    if (nt > nvary) {
+        char names[512] = "";
+        size_t w = 0;
+        for (int i = nvary; i < nt && w < sizeof names; i++)
+            w += (size_t)snprintf(names + w, sizeof names - w, "%s%s", i > nvary ? " " : "", toggles[i].name);
+        report(r, SEV_WARNING, "%s:%d: warning: Program %s has %d Define toggles; validating the %d "
+               "combinations of the first %d, with %s at their defaults", cmd->file, cmd->line,
+               cmd->name, nt, ncombo, nvary, names);
+    }
+    r->res.ncombinations += ncombo;
+
+    vmsgs table = {0};
+    for (int c = 0; c < ncombo; c++) {
+        shader_define defs[2 * MAX_DEFINES];
+        int nd = 0;
+        for (int i = 0; i < nfixed; i++) defs[nd++] = fixed[i];
+        for (int i = 0; i < nt; i++) {
+            bool on = i < nvary ? (c >> i) & 1 : toggles[i].deflt;
+            if (!on) continue;
+            memset(&defs[nd], 0, sizeof defs[nd]);
+            snprintf(defs[nd].name, sizeof defs[nd].name, "%s", toggles[i].name);
+            snprintf(defs[nd].value, sizeof defs[nd].value, "1");
+            nd++;
+        }
+        vmsgs m = {0};
+        shader_src src[SHADER_STAGE_COUNT];
+        memset(src, 0, sizeof src);
+        glslang_shader_t *sh[SHADER_STAGE_COUNT] = { NULL };
+        char *pp[SHADER_STAGE_COUNT] = { NULL };
+        int nsh = 0;
+        bool ok = true;
+        for (int i = 0; i < nst; i++) {
+            shader_stage st = stages[i];
+            shader_src_desc d = { .path = stage_cmd[st]->path, .stage = st, .gstap = gstap,
+                                  .defines = defs, .ndefines = nd, .include_dirs = r->include_dirs,
+                                  .ninclude_dirs = 1 };
+            if (!shader_src_load(&d, &src[st])) {
+                msgs_add(&m, SEV_ERROR, src[st].error);
+                ok = false;
+            }
+        }
+        /* every stage, even after one fails, so each shows its errors */
+        for (int i = 0; ok && i < nst; i++) {
+            bool cok = false;
+            glslang_shader_t *s = compile(&src[stages[i]], stages[i], &m, &cok, &pp[i]);
+            if (s) sh[nsh++] = s;
+            if (!cok || !s) {
+                for (int j = i + 1; j < nst; j++) {
+                    glslang_shader_t *s2 = compile(&src[stages[j]], stages[j], &m, &cok, NULL);
+                    if (s2) sh[nsh++] = s2;
+                }
+                ok = false;
+            }
+        }
+        if (ok) {
+            char where[GLIB_PATH_MAX + 32];
+            snprintf(where, sizeof where, "%s:%d:", cmd->file, cmd->line);
+            link_stages(sh, nsh, where, cmd->name, &m);
+            check_interfaces(src, pp, stages, nst, &m);
+        }
+        for (int i = 0; i < nsh; i++) glslang_shader_delete(sh[i]);
+        for (int i = 0; i < nst; i++) free(pp[i]);
+        for (int i = 0; i < nst; i++) shader_src_free(&src[stages[i]]);
+        msgs_merge(&table, &m, c);
+        msgs_free(&m);
+    }
+
+    for (int i = 0; i < table.n; i++) {
+        const vmsg *v = &table.v[i];
+        char suffix[1024] = "";
+        size_t w = 0;
+        if (nt > 0) {
+            w += (size_t)snprintf(suffix + w, sizeof suffix - w, " [with");
+            for (int t = 0; t < nt && w < sizeof suffix; t++) {
+                bool on = t < nvary ? (v->first_combo >> t) & 1 : toggles[t].deflt;
+                w += (size_t)snprintf(suffix + w, sizeof suffix - w, " %s=%d", toggles[t].name, on);
+            }
+            if (w < sizeof suffix) w += (size_t)snprintf(suffix + w, sizeof suffix - w, "]");
+        }
+        if (ncombo > 1 && v->count > 1 && w < sizeof suffix) {
+            if (v->count == ncombo) snprintf(suffix + w, sizeof suffix - w, " (all %d combinations)", ncombo);
+            else snprintf(suffix + w, sizeof suffix - w, " (%d of %d combinations)", v->count, ncombo);
+        }
+        print_msg(r, v, suffix);
+    }
+    msgs_free(&table);
+}
+
+static void validate_glib(run *r, const char *path) {
+    glib_scene *sc = glib_load(path);
+    if (!sc) {
+        report(r, SEV_ERROR, "%s:0: error: cannot read the scene", path);
+        return;
+    }
+    glib_print_diags(sc, r->out);
+    r->res.nerrors += sc->nerrors;
+    r->res.nwarnings += sc->ndiags - sc->nerrors;
+    const glib_cmd *stage_cmd[SHADER_STAGE_COUNT] = { NULL };
+    bool gstap = false;
+    for (int i = 0; i < sc->ncmds; i++) {
+        const glib_cmd *c = &sc->cmds[i];
+        int st = -1;
+        switch (c->kind) {
+        case GLIB_CMD_VERTEX: st = SHADER_VERTEX; break;
+        case GLIB_CMD_TESS_CONTROL: st = SHADER_TESS_CONTROL; break;
+        case GLIB_CMD_TESS_EVALUATION: st = SHADER_TESS_EVALUATION; break;
+        case GLIB_CMD_GEOMETRY: st = SHADER_GEOMETRY; break;
+        case GLIB_CMD_FRAGMENT: st = SHADER_FRAGMENT; break;
+        case GLIB_CMD_GSTAP: gstap = true; break;
+        case GLIB_CMD_PROGRAM: validate_program(r, sc, c, stage_cmd, gstap); break;
+        default: break;
+        }
+        if (st >= 0) stage_cmd[st] = c->path[0] ? c : NULL;
+    }
+    glib_free(sc);
+}
+
+/* Does a .glsl without a stage suffix look like a stage (it has main)? */
+static bool has_main(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    char buf[4096];
+    bool found = false;
+    size_t keep = 0;
+    size_t n;
+    while (!found && (n = fread(buf + keep, 1, sizeof buf - 1 - keep, f)) > 0) {
+        size_t len = keep + n;
+        buf[len] = '\0';
+        for (char *p = buf; (p = strstr(p, "main")) != NULL; p += 4) {
+            bool left = p == buf || !is_ident_char(p[-1]);
+            char *q = p + 4;
+            while (*q == ' ' || *q == '\t' || *q == '\n' || *q == '\r') q++;
+            if (left && *q == '(') { found = true; break; }
+        }
+        keep = len < 16 ? len : 16;
+        memmove(buf, buf + len - keep, keep);
+    }
+    fclose(f);
+    return found;
+}
+
+static void validate_stage_file(run *r, const char *path, shader_stage st) {
+    r->res.nstages++;
+    shader_src src;
+    shader_src_desc d = { .path = path, .stage = st, .include_dirs = r->include_dirs, .ninclude_dirs = 1 };
+    vmsgs m = {0};
+    if (!shader_src_load(&d, &src)) {
+        msgs_add(&m, SEV_ERROR, src.error);
+    } else {
+        bool ok = false;
+        glslang_shader_t *sh = compile(&src, st, &m, &ok, NULL);
+        if (sh) glslang_shader_delete(sh);
+    }
+    shader_src_free(&src);
+    for (int i = 0; i < m.n; i++) print_msg(r, &m.v[i], NULL);
+    msgs_free(&m);
+}
+
+static bool is_stage_ext(const char *ext) {
+    static const char *const exts[] = { "vert", "vs", "tesc", "tese", "geom", "gs", "frag", "fs", "glsl" };
+    for (size_t i = 0; i < sizeof exts / sizeof exts[0]; i++)
+        if (strcasecmp(ext, exts[i]) == 0) return true;
+    return false;
+}
+
+/* Files under dir (recursively, hidden names skipped), .glib ones or stage ones. */
+static void collect(const char *dir, bool glibs, strlist *out) {
+    DIR *d = opendir(dir);
+    if (!d) return;
+    strlist names = {0};
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.') continue;
+        strlist_add(&names, xprintf("%s/%s", dir, e->d_name));
+    }
+    closedir(d);
+    qsort(names.v, (size_t)names.n, sizeof *names.v, cmp_str);
+    for (int i = 0; i < names.n; i++) {
+        const char *p = names.v[i];
+        if (is_dir(p)) { collect(p, glibs, out); continue; }
+        if (!is_regular_file(p)) continue;
+        const char *ext = path_ext(p);
+        if (glibs ? strcasecmp(ext, "glib") == 0 : is_stage_ext(ext)) strlist_add(out, xstrdup(p));
+    }
+    strlist_free(&names);
+}
+
+static void validate_file(run *r, const char *path, bool named) {
+    const char *ext = path_ext(path);
+    if (strcasecmp(ext, "glib") == 0) { validate_glib(r, path); return; }
+    shader_stage st = shader_stage_from_path(path);
+    if (st != SHADER_STAGE_COUNT) { validate_stage_file(r, path, st); return; }
+    if (strcasecmp(ext, "glsl") == 0) {
+        /* a .glsl without a stage suffix is usually an include: say so only
+         * when it was named, or when it has a main() */
+        if (named || has_main(path))
+            report(r, SEV_WARNING, "%s:0: warning: cannot tell the stage of this .glsl; name it "
+                   "like water.frag.glsl (or .vert .tesc .tese .geom .frag); skipped", path);
+        return;
+    }
+    report(r, SEV_WARNING, "%s:0: warning: not a .glib or a shader stage file "
+           "(.vert .tesc .tese .geom .frag .glsl); skipped", path);
+}
+
+static void validate_path(run *r, const char *path) {
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        report(r, SEV_ERROR, "%s:0: error: %s", path, strerror(errno));
+        return;
+    }
+    if (!S_ISDIR(st.st_mode)) { validate_file(r, path, true); return; }
+    strlist files = {0};
+    collect(path, true, &files);
+    if (files.n == 0) collect(path, false, &files);
+    if (files.n == 0)
+        report(r, SEV_WARNING, "%s:0: warning: no .glib or shader stage files here", path);
+    for (int i = 0; i < files.n; i++) validate_file(r, files.v[i], false);
+    strlist_free(&files);
+}
+
+int validate_run_ex(const char *const *paths, int npaths, const char *repo_root, FILE *out,
+                    validate_result *res) {
+    run r;
+    memset(&r, 0, sizeof r);
+    r.out = out ? out : stdout;
+    if (!repo_root || !repo_root[0]) repo_root = ".";
+    snprintf(r.common_dir, sizeof r.common_dir, "%s/packs/common", repo_root);
+    r.include_dirs[0] = r.common_dir;
+
+    if (npaths > 0) {
+        for (int i = 0; i < npaths; i++) validate_path(&r, paths[i]);
+    } else {
+        strlist files = {0};
+        char *packs = xprintf("%s/packs", repo_root);
+        DIR *d = opendir(packs);
+        if (d) {
+            strlist dirs = {0};
+            struct dirent *e;
+            while ((e = readdir(d)) != NULL)
+                if (e->d_name[0] != '.') strlist_add(&dirs, xprintf("%s/%s", packs, e->d_name));
+            closedir(d);
+            qsort(dirs.v, (size_t)dirs.n, sizeof *dirs.v, cmp_str);
+            for (int i = 0; i < dirs.n; i++)
+                if (is_dir(dirs.v[i])) collect(dirs.v[i], true, &files);
+            strlist_free(&dirs);
+        }
+        free(packs);
+        char *scenes = xprintf("%s/scenes", repo_root);
+        collect(scenes, true, &files);
+        free(scenes);
+        if (files.n == 0)
+            report(&r, SEV_WARNING, "%s:0: warning: no .glib files under packs/*/ or scenes/", repo_root);
+        for (int i = 0; i < files.n; i++) validate_glib(&r, files.v[i]);
+        strlist_free(&files);
+    }
+    fprintf(r.out, "validate: %d programs, %d stages, %d combinations: %d errors\n", r.res.nprograms,
+            r.res.nstages, r.res.ncombinations, r.res.nerrors);
+    fflush(r.out);
+    if (res) *res = r.res;
+    return r.res.nerrors ? 1 : 0;
+}
+
+int validate_run(const char *const *paths, int npaths, const char *repo_root, FILE *out) {
+    return validate_run_ex(paths, npaths, repo_root, out, NULL);
+}

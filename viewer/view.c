@@ -1,0 +1,321 @@
+/* `tarn view`: the interactive window. Draws the scene, the generated slider
+ * panel and any error overlay; watches every file the scene reads and
+ * reloads within a frame or two of a save; orbit/pan/zoom camera. */
+#include <GL/gl.h>
+#include <GLFW/glfw3.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "cli.h"
+#include "gl_ctx.h"
+#include "image_io.h"
+#include "panel.h"
+#include "render.h"
+#include "view_script.h"
+#include "watch.h"
+
+typedef struct orbit {
+    float center[3], up[3];
+    float distance, yaw, pitch;      /* radians */
+} orbit;
+
+typedef struct viewer {
+    gl_ctx *ctx;
+    GLFWwindow *win;
+    render *r;
+    panel *panel;
+    watch *watch;
+    orbit cam, cam_home;
+    double t, last_wall;
+    bool paused;
+    double last_mx, last_my;
+    bool dragging_orbit, dragging_pan;
+    double scroll;
+    int shots;
+    double fps;
+} viewer;
+
+/* ---- camera ---- */
+
+static orbit orbit_from_view(render_view v) {
+    orbit o;
+    memcpy(o.center, v.center, sizeof o.center);
+    memcpy(o.up, v.up, sizeof o.up);
+    float d[3] = { v.eye[0] - v.center[0], v.eye[1] - v.center[1], v.eye[2] - v.center[2] };
+    o.distance = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (o.distance < 1e-6f) o.distance = 1.0f;
+    o.yaw = atan2f(d[0], d[2]);
+    o.pitch = asinf(fmaxf(-1.0f, fminf(1.0f, d[1] / o.distance)));
+    return o;
+}
+
+static render_view orbit_view(const orbit *o) {
+    render_view v;
+    memcpy(v.center, o->center, sizeof v.center);
+    memcpy(v.up, o->up, sizeof v.up);
+    v.eye[0] = o->center[0] + o->distance * cosf(o->pitch) * sinf(o->yaw);
+    v.eye[1] = o->center[1] + o->distance * sinf(o->pitch);
+    v.eye[2] = o->center[2] + o->distance * cosf(o->pitch) * cosf(o->yaw);
+    return v;
+}
+
+static void orbit_pan(orbit *o, float dx, float dy) {
+    /* camera right = normalize(cross(forward, up)), camera up = cross(right, forward) */
+    render_view v = orbit_view(o);
+    float f[3] = { v.center[0] - v.eye[0], v.center[1] - v.eye[1], v.center[2] - v.eye[2] };
+    float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int i = 0; i < 3; i++) f[i] /= fl;
+    float rgt[3] = { f[1] * o->up[2] - f[2] * o->up[1], f[2] * o->up[0] - f[0] * o->up[2],
+                     f[0] * o->up[1] - f[1] * o->up[0] };
+    float rl = sqrtf(rgt[0] * rgt[0] + rgt[1] * rgt[1] + rgt[2] * rgt[2]);
+    if (rl < 1e-6f) return;
+    for (int i = 0; i < 3; i++) rgt[i] /= rl;
+    float u[3] = { rgt[1] * f[2] - rgt[2] * f[1], rgt[2] * f[0] - rgt[0] * f[2], rgt[0] * f[1] - rgt[1] * f[0] };
+    float k = o->distance * 0.0015f;
+    for (int i = 0; i < 3; i++) o->center[i] += (-dx * rgt[i] + dy * u[i]) * k;
+}
+
+/* ---- actions ---- */
+
+static void report_load(viewer *v) {
+    const char *m = render_messages(v->r);
+    if (m[0]) fputs(m, stderr);
+    else fprintf(stderr, "tarn: loaded %s\n", render_scene_path(v->r));
+}
+
+/* A dependency in a directory that does not exist (a typo in the glib)
+ * cannot be watched; watch the rest rather than nothing. */
+static bool dir_exists(const char *path) {
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (!slash) return true;
+    *slash = '\0';
+    struct stat st;
+    return stat(dir[0] ? dir : "/", &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+static void rewatch(viewer *v) {
+    if (!v->watch) return;
+    const char *const *paths;
+    int n = render_deps(v->r, &paths);
+    char err[512];
+    if (watch_set_files(v->watch, paths, n, err, sizeof err)) return;
+    const char **ok = calloc((size_t)n + 1, sizeof *ok);
+    int nok = 0;
+    for (int i = 0; ok && i < n; i++)
+        if (dir_exists(paths[i])) ok[nok++] = paths[i];
+    if (!ok || !watch_set_files(v->watch, ok, nok, err, sizeof err))
+        fprintf(stderr, "tarn: watching files: %s\n", err);
+    free(ok);
+}
+
+static void reload(viewer *v) {
+    render_load(v->r, NULL);
+    report_load(v);
+    rewatch(v);
+}
+
+static bool screenshot(viewer *v, const char *path) {
+    int w, h;
+    glfwGetFramebufferSize(v->win, &w, &h);
+    img im;
+    memset(&im, 0, sizeof im);
+    if (!img_alloc(&im, w, h, 4)) return false;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, im.px);
+    img_flip_rows(&im);
+    char err[512];
+    bool ok = img_write(path, &im, err, sizeof err);
+    fprintf(stderr, ok ? "tarn: screenshot %s\n" : "tarn: screenshot failed: %s\n", ok ? path : err);
+    img_free(&im);
+    return ok;
+}
+
+static void default_shot_path(viewer *v, char *out, size_t len) {
+    time_t now = time(NULL);
+    struct tm tmv;
+    localtime_r(&now, &tmv);
+    char stamp[32];
+    strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tmv);
+    snprintf(out, len, "tarn-%s-%d.png", stamp, v->shots++);
+}
+
+static void preset(viewer *v, bool save) {
+    char path[1100], err[512] = "";
+    unif_preset_path(render_scene_path(v->r), path, (int)sizeof path);
+    int n;
+    unif_set *sets = render_uniforms(v->r, &n);
+    bool ok = save ? unif_preset_save(sets, n, path, err, sizeof err)
+                   : unif_preset_load(sets, n, path, err, sizeof err);
+    if (ok && !save) render_rebuild_programs(v->r);   /* defines may have changed */
+    fprintf(stderr, "tarn: %s preset %s%s%s\n", save ? "save" : "load", path, ok ? "" : ": ", ok ? "" : err);
+}
+
+static void apply_actions(viewer *v, const panel_actions *a) {
+    int n;
+    unif_set *sets = render_uniforms(v->r, &n);
+    if (a->reset_all)
+        for (int i = 0; i < n; i++) unif_reset_all(&sets[i]);
+    if (a->recompile || a->reset_all) {
+        render_rebuild_programs(v->r);
+        report_load(v);
+        rewatch(v);
+    }
+    if (a->save_preset) preset(v, true);
+    if (a->load_preset) preset(v, false);
+    if (a->reload) reload(v);
+    if (a->toggle_pause) v->paused = !v->paused;
+    if (a->screenshot) {
+        char path[128];
+        default_shot_path(v, path, sizeof path);
+        screenshot(v, path);
+    }
+}
+
+/* ---- input ---- */
+
+static void on_scroll(GLFWwindow *w, double dx, double dy) {
+    viewer *v = glfwGetWindowUserPointer(w);
+    if (!v->panel || !panel_wants_mouse(v->panel)) v->scroll += dy;
+}
+
+static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
+    viewer *v = glfwGetWindowUserPointer(w);
+    if (action != GLFW_PRESS || !v->panel || panel_wants_keyboard(v->panel)) return;
+    panel_actions a;
+    memset(&a, 0, sizeof a);
+    switch (key) {
+    case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
+    case GLFW_KEY_R: a.reload = true; break;
+    case GLFW_KEY_SPACE: a.toggle_pause = true; break;
+    case GLFW_KEY_P: case GLFW_KEY_F12: a.screenshot = true; break;
+    case GLFW_KEY_HOME: case GLFW_KEY_F: v->cam = v->cam_home; break;
+    default: break;
+    }
+    apply_actions(v, &a);
+}
+
+static void handle_mouse(viewer *v) {
+    double mx, my;
+    glfwGetCursorPos(v->win, &mx, &my);
+    bool left = glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    bool pan = glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+               glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    bool ui = panel_wants_mouse(v->panel);
+    float dx = (float)(mx - v->last_mx), dy = (float)(my - v->last_my);
+    if (left && v->dragging_orbit) {
+        v->cam.yaw -= dx * 0.01f;
+        v->cam.pitch = fmaxf(-1.55f, fminf(1.55f, v->cam.pitch + dy * 0.01f));
+    }
+    if (pan && v->dragging_pan) orbit_pan(&v->cam, dx, dy);
+    v->dragging_orbit = left && (v->dragging_orbit || !ui);
+    v->dragging_pan = pan && (v->dragging_pan || !ui);
+    if (v->scroll != 0) {
+        v->cam.distance *= powf(0.9f, (float)v->scroll);
+        v->cam.distance = fmaxf(1e-3f, v->cam.distance);
+        v->scroll = 0;
+    }
+    v->last_mx = mx;
+    v->last_my = my;
+}
+
+/* ---- the loop ---- */
+
+static void frame(viewer *v, view_script *script) {
+    double now = glfwGetTime();
+    double dt = now - v->last_wall;
+    v->last_wall = now;
+    if (dt > 0) v->fps = v->fps * 0.9 + 0.1 / dt;
+    if (!v->paused && !script) v->t += dt;
+    if (v->watch && watch_poll(v->watch, 0) > 0) reload(v);
+    handle_mouse(v);
+    int w, h;
+    glfwGetFramebufferSize(v->win, &w, &h);
+    render_view view = orbit_view(&v->cam);
+    render_frame(v->r, v->t, 0, w, h, &view);
+    int n;
+    unif_set *sets = render_uniforms(v->r, &n);
+    panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
+                        .fps = v->fps, .paused = v->paused, .time_s = v->t,
+                        .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL };
+    panel_actions a;
+    memset(&a, 0, sizeof a);
+    panel_begin_frame(v->panel);
+    panel_draw(v->panel, sets, n, &info, &a);
+    panel_render(v->panel);
+    apply_actions(v, &a);
+}
+
+static int run(viewer *v, const cli_view_desc *d) {
+    view_script *script = NULL;
+    if (d->script) {
+        char err[512];
+        script = view_script_load(d->script, err, sizeof err);
+        if (!script) { fprintf(stderr, "tarn: %s\n", err); return CLI_USAGE; }
+    }
+    int rc = CLI_OK;
+    while (!glfwWindowShouldClose(v->win)) {
+        glfwPollEvents();
+        frame(v, script);
+        if (script) {
+            view_script_ctx sc = { .r = v->r, .time_s = &v->t };
+            int st = view_script_step(script, &sc);
+            if (st == VIEW_SCRIPT_SCREENSHOT) screenshot(v, view_script_arg(script));
+            if (st == VIEW_SCRIPT_RELOAD) reload(v);
+            if (st == VIEW_SCRIPT_REBUILD) render_rebuild_programs(v->r);
+            if (st == VIEW_SCRIPT_FAILED) rc = CLI_INPUT_ERROR;
+            if (st == VIEW_SCRIPT_DONE || st == VIEW_SCRIPT_FAILED) glfwSetWindowShouldClose(v->win, 1);
+        }
+        glfwSwapBuffers(v->win);
+    }
+    view_script_free(script);
+    return rc;
+}
+
+int cli_view(const cli_view_desc *d) {
+    viewer v;
+    memset(&v, 0, sizeof v);
+    char err[1024];
+    /* GL objects need the context first, so the glib's WindowSize is
+     * applied by resizing once the scene is loaded */
+    v.ctx = gl_ctx_create_window(d->width > 0 ? d->width : 1000, d->height > 0 ? d->height : 700,
+                                 "tarn", err, sizeof err);
+    if (!v.ctx) { fprintf(stderr, "tarn: %s\n", err); return CLI_NO_GL; }
+    v.win = gl_ctx_window(v.ctx);
+    glfwSetWindowUserPointer(v.win, &v);
+    v.r = render_create(NULL);
+    bool ok = render_load(v.r, d->glib);
+    report_load(&v);
+    if (d->width <= 0 || d->height <= 0) {
+        int w, h;
+        render_window_size(v.r, &w, &h);
+        glfwSetWindowSize(v.win, w + 360, h);   /* room for the panel beside the scene */
+    }
+    char title[1200];
+    snprintf(title, sizeof title, "tarn — %s", d->glib);
+    glfwSetWindowTitle(v.win, title);
+    /* ours first: the ImGui backend chains to callbacks installed before it */
+    glfwSetScrollCallback(v.win, on_scroll);
+    glfwSetKeyCallback(v.win, on_key);
+    v.panel = panel_create(v.win, "#version 130");
+    v.watch = watch_create(err, sizeof err);
+    if (!v.watch) fprintf(stderr, "tarn: hot reload is off: %s\n", err);
+    rewatch(&v);
+    v.cam = v.cam_home = orbit_from_view(render_default_view(v.r));
+    v.t = d->time_s;
+    v.last_wall = glfwGetTime();
+    int rc = run(&v, d);
+    if (rc == CLI_OK && !ok && d->script) rc = CLI_INPUT_ERROR;
+    watch_destroy(v.watch);
+    panel_destroy(v.panel);
+    render_destroy(v.r);
+    gl_ctx_destroy(v.ctx);
+    return rc;
+}

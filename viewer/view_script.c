@@ -1,0 +1,132 @@
+#include "view_script.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SCRIPT_LINE_MAX 512
+
+struct view_script {
+    char path[1024];
+    char (*lines)[SCRIPT_LINE_MAX];
+    int nlines, next;
+    int wait_frames;
+    char arg[SCRIPT_LINE_MAX];
+};
+
+view_script *view_script_load(const char *path, char *err, int errlen) {
+    FILE *f = fopen(path, "r");
+    if (!f) { snprintf(err, errlen, "%s: cannot open the script", path); return NULL; }
+    view_script *s = calloc(1, sizeof *s);
+    if (!s) { fclose(f); return NULL; }
+    snprintf(s->path, sizeof s->path, "%s", path);
+    char buf[SCRIPT_LINE_MAX];
+    while (fgets(buf, sizeof buf, f)) {
+        void *grown = realloc(s->lines, (size_t)(s->nlines + 1) * sizeof *s->lines);
+        if (!grown) break;
+        s->lines = grown;
+        buf[strcspn(buf, "\r\n")] = '\0';
+        char *hash = strchr(buf, '#');
+        if (hash) *hash = '\0';
+        snprintf(s->lines[s->nlines++], SCRIPT_LINE_MAX, "%s", buf);
+    }
+    fclose(f);
+    return s;
+}
+
+void view_script_free(view_script *s) {
+    if (!s) return;
+    free(s->lines);
+    free(s);
+}
+
+const char *view_script_arg(const view_script *s) { return s->arg; }
+
+static int parse_floats(char *rest, float *v, int max) {
+    int n = 0;
+    for (char *tok = strtok(rest, " \t"); tok && n < max; tok = strtok(NULL, " \t")) {
+        char *end;
+        v[n] = strtof(tok, &end);
+        if (*end) return -1;
+        n++;
+    }
+    return n;
+}
+
+static unif_entry *find_entry(render *r, const char *program, const char *name) {
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    for (int i = 0; i < n; i++)
+        if (strcmp(sets[i].program, program) == 0) return unif_find(&sets[i], name);
+    return NULL;
+}
+
+/* set/expect PROGRAM UNIFORM v... */
+static view_script_status value_action(view_script *s, view_script_ctx *c, bool expect, char *rest, int line) {
+    char program[64], name[64];
+    int used = 0;
+    if (sscanf(rest, "%63s %63s %n", program, name, &used) < 2) {
+        fprintf(stderr, "%s:%d: expected PROGRAM UNIFORM values\n", s->path, line);
+        return VIEW_SCRIPT_FAILED;
+    }
+    float v[16];
+    int n = parse_floats(rest + used, v, 16);
+    if (n <= 0) {
+        fprintf(stderr, "%s:%d: expected numbers\n", s->path, line);
+        return VIEW_SCRIPT_FAILED;
+    }
+    if (!expect) {
+        unif_entry *e = find_entry(c->r, program, name);
+        if (!e) {
+            fprintf(stderr, "%s:%d: no uniform '%s' in program '%s'\n", s->path, line, name, program);
+            return VIEW_SCRIPT_FAILED;
+        }
+        for (int i = 0; i < n && i < e->ncomp; i++) e->value[i] = v[i];
+        return e->is_define ? VIEW_SCRIPT_REBUILD : VIEW_SCRIPT_CONTINUE;
+    }
+    float got[16];
+    if (!render_read_uniform(c->r, program, name, got, n)) {
+        fprintf(stderr, "%s:%d: expect: program '%s' has no active uniform '%s'\n", s->path, line, program, name);
+        return VIEW_SCRIPT_FAILED;
+    }
+    for (int i = 0; i < n; i++)
+        if (fabsf(got[i] - v[i]) > 1e-5f) {
+            fprintf(stderr, "%s:%d: expect: %s.%s[%d] is %g, expected %g\n", s->path, line, program, name, i, got[i], v[i]);
+            return VIEW_SCRIPT_FAILED;
+        }
+    fprintf(stderr, "tarn: script: %s.%s holds the expected value\n", program, name);
+    return VIEW_SCRIPT_CONTINUE;
+}
+
+static view_script_status run_line(view_script *s, view_script_ctx *c, char *text, int line) {
+    char cmd[32];
+    int used = 0;
+    if (sscanf(text, "%31s %n", cmd, &used) < 1) return VIEW_SCRIPT_CONTINUE;   /* blank */
+    char *rest = text + used;
+    if (strcmp(cmd, "frames") == 0) { s->wait_frames = atoi(rest); return VIEW_SCRIPT_CONTINUE; }
+    if (strcmp(cmd, "time") == 0) { *c->time_s = atof(rest); return VIEW_SCRIPT_CONTINUE; }
+    if (strcmp(cmd, "set") == 0) return value_action(s, c, false, rest, line);
+    if (strcmp(cmd, "expect") == 0) return value_action(s, c, true, rest, line);
+    if (strcmp(cmd, "reload") == 0) return VIEW_SCRIPT_RELOAD;
+    if (strcmp(cmd, "quit") == 0) return VIEW_SCRIPT_DONE;
+    if (strcmp(cmd, "screenshot") == 0) {
+        snprintf(s->arg, sizeof s->arg, "%s", rest);
+        s->arg[strcspn(s->arg, " \t")] = '\0';
+        return VIEW_SCRIPT_SCREENSHOT;
+    }
+    fprintf(stderr, "%s:%d: unknown script action '%s'\n", s->path, line, cmd);
+    return VIEW_SCRIPT_FAILED;
+}
+
+view_script_status view_script_step(view_script *s, view_script_ctx *c) {
+    if (s->wait_frames > 0) { s->wait_frames--; return VIEW_SCRIPT_CONTINUE; }
+    while (s->next < s->nlines) {
+        int line = s->next + 1;
+        char text[SCRIPT_LINE_MAX];
+        memcpy(text, s->lines[s->next++], sizeof text);
+        view_script_status st = run_line(s, c, text, line);
+        if (st != VIEW_SCRIPT_CONTINUE || s->wait_frames > 0) return st;
+    }
+    return VIEW_SCRIPT_DONE;
+}

@@ -1,0 +1,594 @@
+/* watch: see watch.h. */
+#include "watch.h"
+
+#include <assert.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <poll.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/inotify.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define MS ((int64_t)1000000)
+#define NEVER INT64_MAX
+
+/* What a watched directory reports. IN_ONLYDIR makes a path that is not a
+ * directory fail instead of watching a file. */
+#define DIR_MASK (IN_CLOSE_WRITE | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MODIFY | \
+                  IN_MOVED_FROM | IN_ATTRIB | IN_DELETE_SELF | IN_MOVE_SELF | IN_ONLYDIR)
+
+typedef struct watch_dir {
+    char *path;
+    int wd;                     /* -1: not watched now (deleted or moved away) */
+} watch_dir;
+
+typedef struct watch_key {      /* where events for a file arrive */
+    int dir;                    /* index into dirs */
+    char *base;                 /* the name in that directory */
+} watch_key;
+
+typedef struct watch_file {
+    char *path;                 /* normalised absolute */
+    watch_key key[2];           /* [0] the path itself; [1] a symlink's target */
+    int nkeys;
+    bool present;               /* recorded: the file existed */
+    uint64_t hash;              /* recorded content hash, when present */
+    bool dirty;                 /* an event came since it was last decided */
+    bool writing;               /* modified or created, no close seen yet */
+    int64_t last_ns;            /* time of its last event */
+} watch_file;
+
+struct watch {
+    int fd;
+    watch_dir *dirs;
+    int ndirs;
+    watch_file *files;
+    int nfiles;
+    int *changed;               /* indices into files, capacity nfiles */
+    int nchanged;
+    int64_t retry_ns;           /* last re-watch attempt of a lost directory */
+    int64_t next_ns;            /* when a pending file is next due (NEVER: none) */
+    char *evbuf;                /* inotify read buffer */
+};
+
+enum { EVBUF_SIZE = 64 * 1024 };
+
+static int64_t min64(int64_t a, int64_t b) { return a < b ? a : b; }
+
+static int64_t now_ns(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static void set_err(char *err, int errlen, const char *fmt, ...) {
+    if (!err || errlen <= 0) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, (size_t)errlen, fmt, ap);
+    va_end(ap);
+}
+
+/* ---- paths -------------------------------------------------------------- */
+
+static char *dup_cwd(void) {
+    size_t cap = 256;
+    for (;;) {
+        char *buf = malloc(cap);
+        if (!buf) return NULL;
+        if (getcwd(buf, cap)) return buf;
+        free(buf);
+        if (errno != ERANGE) return NULL;
+        cap *= 2;
+    }
+}
+
+/* The last component as written, before normalisation: a file path must end
+ * in a name, not in "", "." or "..". */
+static bool names_a_file(const char *path) {
+    size_t len = strlen(path);
+    if (len == 0 || path[len - 1] == '/') return false;
+    const char *slash = strrchr(path, '/');
+    const char *last = slash ? slash + 1 : path;
+    return strcmp(last, ".") != 0 && strcmp(last, "..") != 0;
+}
+
+/* Absolute, with `//`, `.` and `..` removed lexically. NULL (errno set) when
+ * out of memory or the current directory is gone. */
+static char *normalise(const char *path) {
+    char *joined;
+    if (path[0] == '/') {
+        joined = strdup(path);
+    } else {
+        char *cwd = dup_cwd();
+        if (!cwd) return NULL;
+        size_t a = strlen(cwd), b = strlen(path);
+        joined = malloc(a + b + 2);
+        if (joined) {
+            memcpy(joined, cwd, a);
+            joined[a] = '/';
+            memcpy(joined + a + 1, path, b + 1);
+        }
+        free(cwd);
+    }
+    if (!joined) return NULL;
+
+    /* Rewrite in place as "/name/name": every name written was preceded by
+     * at least one '/' in the input, so the output never overtakes it. */
+    size_t out = 0;
+    const char *p = joined;
+    char *res = joined;
+    while (*p) {
+        while (*p == '/') p++;
+        const char *start = p;
+        while (*p && *p != '/') p++;
+        size_t n = (size_t)(p - start);
+        if (n == 0 || (n == 1 && start[0] == '.')) continue;
+        if (n == 2 && start[0] == '.' && start[1] == '.') {
+            while (out > 0 && res[out - 1] != '/') out--;   /* drop the last component */
+            if (out > 0) out--;                             /* and its '/' */
+            continue;
+        }
+        res[out++] = '/';
+        memmove(res + out, start, n);
+        out += n;
+    }
+    if (out == 0) res[out++] = '/';
+    res[out] = '\0';
+    return res;
+}
+
+/* Splits a normalised absolute path into freshly allocated directory and
+ * base name. */
+static bool split_path(const char *path, char **dir, char **base) {
+    const char *slash = strrchr(path, '/');
+    size_t dlen = (size_t)(slash - path);
+    *dir = malloc(dlen ? dlen + 1 : 2);
+    *base = strdup(slash + 1);
+    if (!*dir || !*base) {
+        free(*dir);
+        free(*base);
+        *dir = *base = NULL;
+        return false;
+    }
+    if (dlen) {
+        memcpy(*dir, path, dlen);
+        (*dir)[dlen] = '\0';
+    } else {
+        strcpy(*dir, "/");
+    }
+    return true;
+}
+
+/* ---- content ------------------------------------------------------------ */
+
+/* FNV-1a 64 of the file's bytes. false when it cannot be read as a regular
+ * file (missing, a directory, a FIFO, no permission): "missing". */
+static bool hash_file(const char *path, uint64_t *hash) {
+    int fd;
+    do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    while (fd < 0 && errno == EINTR);
+    if (fd < 0) return false;
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        return false;
+    }
+    uint64_t h = 0xcbf29ce484222325ull;
+    unsigned char buf[16384];
+    for (;;) {
+        ssize_t got = read(fd, buf, sizeof buf);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) {
+            close(fd);
+            return false;
+        }
+        if (got == 0) break;
+        for (ssize_t i = 0; i < got; i++) {
+            h ^= buf[i];
+            h *= 0x100000001b3ull;
+        }
+    }
+    close(fd);
+    *hash = h;
+    return true;
+}
+
+static bool is_regular(const char *path) {
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* ---- tables ------------------------------------------------------------- */
+
+static void free_tables(watch_dir *dirs, int ndirs, watch_file *files, int nfiles) {
+    for (int i = 0; i < ndirs; i++) free(dirs[i].path);
+    for (int i = 0; i < nfiles; i++) {
+        free(files[i].path);
+        for (int k = 0; k < files[i].nkeys; k++) free(files[i].key[k].base);
+    }
+    free(dirs);
+    free(files);
+}
+
+static bool dirs_have_wd(const watch_dir *dirs, int ndirs, int wd) {
+    for (int i = 0; i < ndirs; i++)
+        if (dirs[i].wd == wd) return true;
+    return false;
+}
+
+/* Watches `path` (a directory) for the new table *dirs and returns its
+ * index, reusing an entry with the same path or the same watch (the same
+ * directory reached by another path). -1 with errno set on failure; a watch
+ * it added and could not record is removed unless the old set `w` holds it. */
+static int add_dir(watch *w, watch_dir **dirs, int *ndirs, int *cap, const char *path) {
+    for (int i = 0; i < *ndirs; i++)
+        if (strcmp((*dirs)[i].path, path) == 0) return i;
+    int wd = inotify_add_watch(w->fd, path, DIR_MASK);
+    if (wd < 0) return -1;
+    for (int i = 0; i < *ndirs; i++)
+        if ((*dirs)[i].wd == wd) return i;
+    char *copy = strdup(path);
+    if (copy && *ndirs == *cap) {
+        int ncap = *cap ? *cap * 2 : 8;
+        watch_dir *grown = realloc(*dirs, (size_t)ncap * sizeof *grown);
+        if (grown) {
+            *dirs = grown;
+            *cap = ncap;
+        } else {
+            free(copy);
+            copy = NULL;
+        }
+    }
+    if (!copy) {
+        if (!dirs_have_wd(w->dirs, w->ndirs, wd)) inotify_rm_watch(w->fd, wd);
+        errno = ENOMEM;
+        return -1;
+    }
+    (*dirs)[*ndirs] = (watch_dir){ .path = copy, .wd = wd };
+    return (*ndirs)++;
+}
+
+/* ---- events ------------------------------------------------------------- */
+
+static void mark_dirty(watch_file *f, int64_t t) {
+    f->dirty = true;
+    f->last_ns = t;
+}
+
+static void mark_dir_dirty(watch *w, int dir, int64_t t) {
+    for (int i = 0; i < w->nfiles; i++)
+        for (int k = 0; k < w->files[i].nkeys; k++)
+            if (w->files[i].key[k].dir == dir) {
+                mark_dirty(&w->files[i], t);
+                w->files[i].writing = false;
+            }
+}
+
+static void handle_event(watch *w, const struct inotify_event *ev, int64_t t) {
+    if (ev->mask & IN_Q_OVERFLOW) {     /* events were lost: look at everything */
+        for (int i = 0; i < w->nfiles; i++) {
+            mark_dirty(&w->files[i], t);
+            w->files[i].writing = false;
+        }
+        return;
+    }
+    for (int d = 0; d < w->ndirs; d++) {
+        watch_dir *dir = &w->dirs[d];
+        if (dir->wd != ev->wd) continue;
+        if (ev->mask & (IN_IGNORED | IN_DELETE_SELF | IN_MOVE_SELF | IN_UNMOUNT)) {
+            /* The directory is gone from its path; what was watched is not
+             * there. A moved directory keeps its watch: drop it (its
+             * IN_IGNORED will arrive for a wd we no longer hold). */
+            if (ev->mask & IN_MOVE_SELF) inotify_rm_watch(w->fd, dir->wd);
+            if (ev->mask & (IN_IGNORED | IN_MOVE_SELF)) dir->wd = -1;
+            mark_dir_dirty(w, d, t);
+            continue;
+        }
+        if (ev->len == 0) continue;
+        for (int i = 0; i < w->nfiles; i++) {
+            watch_file *f = &w->files[i];
+            for (int k = 0; k < f->nkeys; k++) {
+                if (f->key[k].dir != d || strcmp(f->key[k].base, ev->name) != 0) continue;
+                mark_dirty(f, t);
+                if (ev->mask & (IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE | IN_MOVED_FROM))
+                    f->writing = false;
+                else if ((ev->mask & IN_MODIFY) ||
+                         ((ev->mask & IN_CREATE) && !(ev->mask & IN_ISDIR)))
+                    f->writing = true;
+            }
+        }
+    }
+}
+
+/* Reads and handles every queued event, without blocking. */
+static void drain(watch *w) {
+    for (;;) {
+        ssize_t got = read(w->fd, w->evbuf, EVBUF_SIZE);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return;           /* EAGAIN: empty */
+        int64_t t = now_ns();
+        for (char *p = w->evbuf; p < w->evbuf + got;) {
+            const struct inotify_event *ev = (const struct inotify_event *)(void *)p;
+            handle_event(w, ev, t);
+            p += sizeof *ev + ev->len;
+        }
+    }
+}
+
+static bool any_lost_dir(const watch *w) {
+    for (int d = 0; d < w->ndirs; d++)
+        if (w->dirs[d].wd < 0) return true;
+    return false;
+}
+
+/* Tries to watch again the directories that were deleted or moved away; one
+ * that is back makes its files dirty (they are compared by content). */
+static void retry_lost_dirs(watch *w, int64_t t) {
+    if (!any_lost_dir(w)) return;
+    w->retry_ns = t;
+    for (int d = 0; d < w->ndirs; d++) {
+        if (w->dirs[d].wd >= 0) continue;
+        int wd = inotify_add_watch(w->fd, w->dirs[d].path, DIR_MASK);
+        if (wd < 0) continue;
+        w->dirs[d].wd = wd;
+        mark_dir_dirty(w, d, t);
+    }
+}
+
+/* ---- deciding ----------------------------------------------------------- */
+
+/* Decides the dirty files that have settled, appending the changed ones to
+ * w->changed. Returns when the next undecided file is due (NEVER if none). */
+static int64_t decide(watch *w, int64_t t) {
+    int64_t next = NEVER, earliest_ready = NEVER;
+    bool busy = false;
+    int nready = 0;
+    for (int i = 0; i < w->nfiles; i++) {
+        watch_file *f = &w->files[i];
+        if (!f->dirty) continue;
+        int64_t quiet_at = f->last_ns + WATCH_QUIET_MS * MS;
+        int64_t ready_at = quiet_at;
+        if (t < quiet_at) {                         /* still in a burst */
+            busy = true;
+            if (quiet_at < next) next = quiet_at;
+            continue;
+        }
+        if (f->writing) {                           /* wait for the close */
+            int64_t until = f->last_ns + WATCH_WRITE_GRACE_MS * MS;
+            if (t < until) {
+                if (until < next) next = until;
+                continue;
+            }
+            ready_at = until;
+        } else if (f->present && !is_regular(f->path)) {  /* wait for it to come back */
+            int64_t until = f->last_ns + WATCH_MISSING_GRACE_MS * MS;
+            if (t < until) {
+                if (until < next) next = until;
+                continue;
+            }
+            ready_at = until;
+        }
+        nready++;
+        if (ready_at < earliest_ready) earliest_ready = ready_at;
+    }
+    if (nready == 0) return next;
+    /* Let files of the same burst that are still busy join, for a while. */
+    if (busy && t < earliest_ready + WATCH_BATCH_MS * MS) {
+        int64_t batch_at = earliest_ready + WATCH_BATCH_MS * MS;
+        return batch_at < next ? batch_at : next;
+    }
+    for (int i = 0; i < w->nfiles; i++) {
+        watch_file *f = &w->files[i];
+        if (!f->dirty || t < f->last_ns + WATCH_QUIET_MS * MS) continue;
+        if (f->writing && t < f->last_ns + WATCH_WRITE_GRACE_MS * MS) continue;
+        uint64_t h = 0;
+        bool present = hash_file(f->path, &h);
+        if (!present && f->present && !f->writing &&
+            t < f->last_ns + WATCH_MISSING_GRACE_MS * MS) {
+            next = min64(next, f->last_ns + WATCH_MISSING_GRACE_MS * MS);
+            continue;                               /* gone just now: wait for it */
+        }
+        f->dirty = false;
+        f->writing = false;
+        if (present == f->present && (!present || h == f->hash)) continue;
+        f->present = present;
+        f->hash = h;
+        w->changed[w->nchanged++] = i;
+    }
+    return next;
+}
+
+/* ---- API ---------------------------------------------------------------- */
+
+watch *watch_create(char *err, int errlen) {
+    watch *w = calloc(1, sizeof *w);
+    if (!w) {
+        set_err(err, errlen, "watch: out of memory");
+        return NULL;
+    }
+    w->evbuf = malloc(EVBUF_SIZE);
+    if (!w->evbuf) {
+        free(w);
+        set_err(err, errlen, "watch: out of memory");
+        return NULL;
+    }
+    w->next_ns = NEVER;
+    w->fd = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    if (w->fd < 0) {
+        set_err(err, errlen, "watch: cannot start inotify: %s%s", strerror(errno),
+                errno == EMFILE ? " (raise fs.inotify.max_user_instances)" : "");
+        free(w->evbuf);
+        free(w);
+        return NULL;
+    }
+    return w;
+}
+
+void watch_destroy(watch *w) {
+    if (!w) return;
+    close(w->fd);
+    free_tables(w->dirs, w->ndirs, w->files, w->nfiles);
+    free(w->changed);
+    free(w->evbuf);
+    free(w);
+}
+
+bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int errlen) {
+    watch_dir *dirs = NULL;
+    watch_file *files = NULL;
+    int ndirs = 0, dcap = 0, nfiles = 0;
+    int *changed = NULL;
+    char *norm = NULL, *dpath = NULL, *base = NULL;
+    char *real = NULL, *rdir = NULL, *rbase = NULL;
+
+    assert(w && (paths || n <= 0));
+    if (n < 0) n = 0;
+    drain(w);   /* keep the old set's directory states current */
+    if (n > 0) {
+        files = calloc((size_t)n, sizeof *files);
+        changed = calloc((size_t)n, sizeof *changed);
+        if (!files || !changed) {
+            set_err(err, errlen, "watch: out of memory");
+            goto fail;
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        const char *p = paths[i];
+        if (!p || !names_a_file(p)) {
+            set_err(err, errlen, "watch: '%s' does not name a file", p ? p : "(null)");
+            goto fail;
+        }
+        norm = normalise(p);
+        if (!norm) {
+            set_err(err, errlen, "watch: cannot resolve '%s': %s", p, strerror(errno));
+            goto fail;
+        }
+        bool dup = false;
+        for (int j = 0; j < nfiles && !dup; j++) dup = strcmp(files[j].path, norm) == 0;
+        if (dup) {
+            free(norm);
+            norm = NULL;
+            continue;
+        }
+        if (!split_path(norm, &dpath, &base)) {
+            set_err(err, errlen, "watch: out of memory");
+            goto fail;
+        }
+        int d = add_dir(w, &dirs, &ndirs, &dcap, dpath);
+        if (d < 0) {
+            int e = errno;
+            set_err(err, errlen, "watch: cannot watch directory '%s' of '%s': %s%s", dpath, p,
+                    strerror(e), e == ENOSPC ? " (raise fs.inotify.max_user_watches)" : "");
+            goto fail;
+        }
+        watch_file *f = &files[nfiles++];
+        f->path = norm;
+        f->key[0] = (watch_key){ .dir = d, .base = base };
+        f->nkeys = 1;
+        norm = base = NULL;
+        free(dpath);
+        dpath = NULL;
+
+        /* A symlink: watch its target's directory too (best effort). */
+        struct stat st;
+        if (lstat(f->path, &st) == 0 && S_ISLNK(st.st_mode) && (real = realpath(f->path, NULL)) &&
+            split_path(real, &rdir, &rbase)) {
+            int d2 = add_dir(w, &dirs, &ndirs, &dcap, rdir);
+            if (d2 >= 0 && !(dirs[d2].wd == dirs[d].wd && strcmp(rbase, f->key[0].base) == 0)) {
+                f->key[1] = (watch_key){ .dir = d2, .base = rbase };
+                f->nkeys = 2;
+                rbase = NULL;
+            }
+        }
+        free(real);
+        free(rdir);
+        free(rbase);
+        real = rdir = rbase = NULL;
+
+        f->present = hash_file(f->path, &f->hash);
+    }
+
+    /* Success: drop the watches the new set no longer needs. */
+    for (int d = 0; d < w->ndirs; d++)
+        if (w->dirs[d].wd >= 0 && !dirs_have_wd(dirs, ndirs, w->dirs[d].wd))
+            inotify_rm_watch(w->fd, w->dirs[d].wd);
+    free_tables(w->dirs, w->ndirs, w->files, w->nfiles);
+    free(w->changed);
+    w->dirs = dirs;
+    w->ndirs = ndirs;
+    w->files = files;
+    w->nfiles = nfiles;
+    w->changed = changed;
+    w->nchanged = 0;
+    w->next_ns = NEVER;
+    return true;
+
+fail:
+    /* Roll back: remove the watches that only the new set had added. */
+    for (int d = 0; d < ndirs; d++)
+        if (!dirs_have_wd(w->dirs, w->ndirs, dirs[d].wd)) inotify_rm_watch(w->fd, dirs[d].wd);
+    free_tables(dirs, ndirs, files, nfiles);
+    free(changed);
+    free(norm);
+    free(dpath);
+    free(base);
+    free(real);
+    free(rdir);
+    free(rbase);
+    return false;
+}
+
+int watch_poll(watch *w, int timeout_ms) {
+    assert(w);
+    w->nchanged = 0;
+    int64_t deadline = timeout_ms < 0 ? NEVER : now_ns() + (int64_t)timeout_ms * MS;
+    for (;;) {
+        drain(w);
+        int64_t t = now_ns();
+        if (any_lost_dir(w) && t - w->retry_ns >= WATCH_RETRY_MS * MS) retry_lost_dirs(w, t);
+        int64_t next = decide(w, t);
+        w->next_ns = next;
+        if (w->nchanged > 0) return w->nchanged;
+        if (t >= deadline) return 0;
+        int64_t wake = min64(deadline, next);
+        if (any_lost_dir(w)) wake = min64(wake, t + WATCH_RETRY_MS * MS);
+        int wait_ms = -1;
+        if (wake != NEVER) {
+            int64_t ms = (wake - t + MS - 1) / MS;
+            wait_ms = ms > INT_MAX ? INT_MAX : (int)ms;
+        }
+        struct pollfd pfd = { .fd = w->fd, .events = POLLIN };
+        if (poll(&pfd, 1, wait_ms) < 0 && errno != EINTR) return 0;
+    }
+}
+
+const char *watch_changed(const watch *w, int i) {
+    if (!w || i < 0 || i >= w->nchanged) return NULL;
+    return w->files[w->changed[i]].path;
+}
+
+int watch_fd(const watch *w) {
+    assert(w);
+    return w->fd;
+}
+
+int watch_timeout_ms(const watch *w) {
+    assert(w);
+    int64_t t = now_ns(), next = w->next_ns;
+    if (any_lost_dir(w)) next = min64(next, w->retry_ns + WATCH_RETRY_MS * MS);
+    if (next == NEVER) return -1;
+    if (next <= t) return 0;
+    int64_t ms = (next - t + MS - 1) / MS;
+    return ms > INT_MAX ? INT_MAX : (int)ms;
+}
