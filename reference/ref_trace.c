@@ -14,7 +14,7 @@
 #define DEFAULT_MAX_STEPS 1000000
 #define TERRAIN_DEFAULT_STEP 0.01
 #define TERRAIN_DEFAULT_MIN_STEP 1e-5
-#define TERRAIN_FD_STEP 1e-5
+#define TERRAIN_FD_STEP 6e-6
 #define BRENT_MAX_IT 200
 
 typedef struct trace_params {
@@ -115,12 +115,12 @@ typedef struct water_ctx {
 static double water_f(void *vctx, double t) {
     water_ctx *c = vctx;
     double x = c->o[0] + t * c->d[0], z = c->o[2] + t * c->d[2];
-    ref_waves_point p;
-    ref_waves_at(c->w, x, z, c->time, c->have_guess ? c->guess : NULL, &p);
-    c->guess[0] = p.param[0];
-    c->guess[1] = p.param[1];
+    double uv[2], h;
+    ref_waves_rest_point(c->w, x, z, c->time, c->have_guess ? c->guess : NULL, uv, &h);
+    c->guess[0] = uv[0];
+    c->guess[1] = uv[1];
     c->have_guess = 1;
-    return c->o[1] + t * c->d[1] - p.pos[1];
+    return c->o[1] + t * c->d[1] - h;
 }
 
 int ref_trace_water(const ref_waves *w, double time, const double o[3], const double d[3],
@@ -188,7 +188,9 @@ void ref_terrain_normal(const ref_terrain *ter, double x, double z, double n[3])
     if (ter->gradient) {
         ter->gradient(ter->user, x, z, g);
     } else {
-        double h = TERRAIN_FD_STEP * fmax(1.0, fmax(fabs(x), fabs(z)));
+        /* ~ cbrt(eps * scale): balances truncation h^2 |h'''| / 6 against
+         * rounding eps |x| |h'| / h */
+        double h = TERRAIN_FD_STEP * cbrt(fmax(1.0, fmax(fabs(x), fabs(z))));
         g[0] = (ter->height(ter->user, x + h, z) - ter->height(ter->user, x - h, z)) / (2.0 * h);
         g[1] = (ter->height(ter->user, x, z + h) - ter->height(ter->user, x, z - h)) / (2.0 * h);
     }

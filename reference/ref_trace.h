@@ -55,7 +55,8 @@ typedef void (*ref_gradient_fn)(const void *user, double x, double z, double gra
 typedef struct ref_terrain {
     ref_height_fn height;       /* required: y of the terrain over (x, z) */
     const void *user;           /* passed to height and gradient */
-    ref_gradient_fn gradient;   /* NULL: central differences, step 1e-5 */
+    ref_gradient_fn gradient;   /* NULL: central differences, step
+                                   6e-6 * cbrt(max(1, |x|, |z|)) */
     double lipschitz;           /* a bound on |grad h|; 0 = unknown: fixed steps */
     double step;                /* the fixed step without a bound (0 = 0.01) */
     double min_step;            /* smallest step with a bound (0 = 1e-5) */

@@ -364,8 +364,8 @@ static double horiz_residual(const ref_waves *w, double u, double v, double t, d
 #define NEWTON_MAX_HALVINGS 40
 #define FIXED_POINT_MAX_IT 2000
 
-int ref_waves_at(const ref_waves *w, double x, double z, double t,
-                 const double guess[2], ref_waves_point *out) {
+static int invert(const ref_waves *w, double x, double z, double t, const double guess[2],
+                  double uv[2], double *residual, int *iterations) {
     double tol = 1e-12 * fmax(1.0, fmax(fabs(x), fabs(z)));
     double u = guess ? guess[0] : x, v = guess ? guess[1] : z;
     double F[2], J[3];
@@ -426,19 +426,43 @@ int ref_waves_at(const ref_waves *w, double x, double z, double t,
         }
         ok = r <= tol;
     }
-
-    wave_sums s;
-    sum_waves(w, u, v, t, 1, &s);
-    fill_point(w, u, v, &s, out);
-    out->residual = r;
-    out->iterations = it;
+    uv[0] = u;
+    uv[1] = v;
+    *residual = r;
+    *iterations = it;
     return ok ? 0 : -1;
 }
 
+int ref_waves_at(const ref_waves *w, double x, double z, double t,
+                 const double guess[2], ref_waves_point *out) {
+    double uv[2], r;
+    int it;
+    int rc = invert(w, x, z, t, guess, uv, &r, &it);
+    wave_sums s;
+    sum_waves(w, uv[0], uv[1], t, 1, &s);
+    fill_point(w, uv[0], uv[1], &s, out);
+    out->residual = r;
+    out->iterations = it;
+    return rc;
+}
+
+int ref_waves_rest_point(const ref_waves *w, double x, double z, double t,
+                         const double guess[2], double uv[2], double *height) {
+    double r;
+    int it;
+    int rc = invert(w, x, z, t, guess, uv, &r, &it);
+    if (height) {
+        wave_sums s;
+        sum_waves(w, uv[0], uv[1], t, 0, &s);
+        *height = w->desc.level + s.h;
+    }
+    return rc;
+}
+
 double ref_waves_height(const ref_waves *w, double x, double z, double t) {
-    ref_waves_point p;
-    if (ref_waves_at(w, x, z, t, NULL, &p) != 0) return NAN;
-    return p.pos[1];
+    double uv[2], h;
+    if (ref_waves_rest_point(w, x, z, t, NULL, uv, &h) != 0) return NAN;
+    return h;
 }
 
 /* ------------------------------------------------------------------ */

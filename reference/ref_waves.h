@@ -147,7 +147,13 @@ double ref_waves_noise(const ref_waves *w, double u, double v, double t, double 
 int ref_waves_at(const ref_waves *w, double x, double z, double t,
                  const double guess[2], ref_waves_point *out);
 
-/* Height over the world point (x, z) (NaN if ref_waves_at failed). */
+/* The same inversion without the frame: the rest point uv under (x, z) and,
+ * when height is not NULL, the surface height there (cheaper: no
+ * derivatives). Returns 0, or -1 as ref_waves_at. */
+int ref_waves_rest_point(const ref_waves *w, double x, double z, double t,
+                         const double guess[2], double uv[2], double *height);
+
+/* Height over the world point (x, z) (NaN if the inversion failed). */
 double ref_waves_height(const ref_waves *w, double x, double z, double t);
 
 /* The GLSL uniforms of packs/common/waves.glsl for a resolved wave set:

@@ -258,6 +258,10 @@ static void test_bad_define_name(void) {
     CHECK(!load(&s, "good_compat.frag", SHADER_FRAGMENT, defs, 1, false));
     CHECK_STR_CONTAINS(s.error, "2BAD");
     shader_src_free(&s);
+    shader_define gl[1] = { { "GL_MINE", "1" } };
+    CHECK(!load(&s, "good_compat.frag", SHADER_FRAGMENT, gl, 1, false));
+    CHECK_STR_CONTAINS(s.error, "GL_MINE");
+    shader_src_free(&s);
 }
 
 /* A scratch directory, for files the test writes. */

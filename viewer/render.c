@@ -472,7 +472,7 @@ static void begin_rtt(render *r, const glib_cmd *c) {
 
 typedef struct frame_state {
     unsigned screen_fbo;
-    int w, h;
+    int x, y, w, h;
     bool in_rtt;
     int depth;
     const prog *cur;
@@ -481,7 +481,7 @@ typedef struct frame_state {
 
 static void end_rtt(frame_state *f) {
     glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
-    glViewport(0, 0, f->w, f->h);
+    glViewport(f->x, f->y, f->w, f->h);
     f->in_rtt = false;
 }
 
@@ -566,6 +566,10 @@ static void query_collect(render *r, bool wait) {
 }
 
 void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_view *view) {
+    render_frame_at(r, t, fbo, 0, 0, w, h, view);
+}
+
+void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view) {
     int q = r->query_next;
     if (r->query_pending[q]) query_collect(r, true);
     /* timestamps rather than GL_TIME_ELAPSED: llvmpipe's elapsed query
@@ -573,7 +577,9 @@ void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_
     glQueryCounter(r->query[q][0], GL_TIMESTAMP);
     const scene_state *s = &r->cur;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, w, h);
+    glViewport(x, y, w, h);
+    glScissor(x, y, w, h);   /* the clear stays inside the scene's rectangle */
+    glEnable(GL_SCISSOR_TEST);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
@@ -581,11 +587,12 @@ void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_
     const float *bg = s->set.background;
     glClearColor(bg[0], bg[1], bg[2], bg[3]);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
     if (s->glib) {
         render_view v = view ? *view : s->set.view;
         load_matrices(&s->set, w, h, &v);
         bind_textures(s);
-        frame_state f = { .screen_fbo = fbo, .w = w, .h = h, .t = t };
+        frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };
         glPushMatrix();
         for (int i = 0; i < s->glib->ncmds; i++) exec_cmd(r, &f, i);
         for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */

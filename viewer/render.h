@@ -44,6 +44,9 @@ int render_deps(const render *r, const char *const **paths);
 /* Draws one frame at simulated time t (seconds) into framebuffer `fbo`
  * (0: the window) of w x h. view NULL: the glib's LookAt. */
 void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_view *view);
+/* The same into the rectangle (x, y, w, h) of the framebuffer (the window
+ * beside the panel). */
+void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view);
 
 /* GPU time of the last finished frame in ms (timer query), or -1. When
  * wait is true, blocks until the latest frame's time is known. */

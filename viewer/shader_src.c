@@ -544,10 +544,17 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     bool ok = false;
 
     if (!path[0]) { fail(&c, "(none)", 0, "no shader file named"); goto done; }
-    if ((unsigned)desc->stage >= SHADER_STAGE_COUNT) { fail(&c, path, 0, "bad shader stage %d", (int)desc->stage); goto done; }
+    if ((unsigned)desc->stage >= SHADER_STAGE_COUNT) {
+        fail(&c, path, 0, "bad shader stage %d", (int)desc->stage);
+        goto done;
+    }
     for (int i = 0; i < desc->ndefines; i++) {
         if (!valid_identifier(desc->defines[i].name)) {
             fail(&c, path, 0, "bad #define name \"%s\"", desc->defines[i].name);
+            goto done;
+        }
+        if (strncmp(desc->defines[i].name, "GL_", 3) == 0) {
+            fail(&c, path, 0, "#define %s: names starting with GL_ are reserved in GLSL", desc->defines[i].name);
             goto done;
         }
         if (strpbrk(desc->defines[i].value, "\r\n")) {

@@ -338,6 +338,21 @@ static void replace_all(char *s, const char *from, const char *to) {
     }
 }
 
+typedef struct link_log {
+    const char *where, *prog;
+    vmsgs *m;
+    int reported, spurious;
+} link_log;
+
+static void link_message(link_log *l, sev s, const char *text) {
+    if (is_spurious_link_error(text)) { l->spurious++; return; }
+    char *msg = xprintf("%s %s: program %s: %s", l->where, s == SEV_ERROR ? "error" : "warning",
+                        l->prog, text);
+    msgs_add(l->m, s, msg);
+    free(msg);
+    l->reported += s == SEV_ERROR;
+}
+
 /* Links the compiled stages; messages are placed at the Program's line. */
 static void link_stages(glslang_shader_t *const *sh, int n, const char *where, const char *prog, vmsgs *m) {
     glslang_program_t *p = glslang_program_create();
@@ -349,7 +364,7 @@ static void link_stages(glslang_shader_t *const *sh, int n, const char *where, c
     char *copy = xstrdup(log);
     char *pending = NULL;
     sev pending_sev = SEV_ERROR;
-    int reported = 0, spurious = 0;
+    link_log l = { where, prog, m, 0, 0 };
     for (char *q = copy; q && *q;) {
         char *e = strchr(q, '\n');
         if (e) *e = '\0';
@@ -362,14 +377,7 @@ static void link_stages(glslang_shader_t *const *sh, int n, const char *where, c
         while (isspace((unsigned char)*t)) t++;
         bool head = starts_with(q, "ERROR: ") || starts_with(q, "WARNING: ");
         if (head || !pending) {
-            if (pending && is_spurious_link_error(pending)) spurious++;
-            else if (pending) {
-                char *msg = xprintf("%s %s: program %s: %s", where,
-                                    pending_sev == SEV_ERROR ? "error" : "warning", prog, pending);
-                msgs_add(m, pending_sev, msg);
-                free(msg);
-                reported += pending_sev == SEV_ERROR;
-            }
+            if (pending) link_message(&l, pending_sev, pending);
             free(pending);
             pending = NULL;
             if (*t) {
@@ -383,18 +391,11 @@ static void link_stages(glslang_shader_t *const *sh, int n, const char *where, c
         }
         q = e ? e + 1 : NULL;
     }
-    if (pending && is_spurious_link_error(pending)) spurious++;
-    else if (pending) {
-        char *msg = xprintf("%s %s: program %s: %s", where,
-                            pending_sev == SEV_ERROR ? "error" : "warning", prog, pending);
-        msgs_add(m, pending_sev, msg);
-        free(msg);
-        reported += pending_sev == SEV_ERROR;
-    }
+    if (pending) link_message(&l, pending_sev, pending);
     free(pending);
     free(copy);
     /* a failed link whose only errors were spurious passes */
-    if (!ok && reported == 0 && spurious == 0) {
+    if (!ok && l.reported == 0 && l.spurious == 0) {
         char *msg = xprintf("%s error: program %s: glslang could not link it", where, prog);
         msgs_add(m, SEV_ERROR, msg);
         free(msg);

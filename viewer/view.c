@@ -18,6 +18,8 @@
 #include "view_script.h"
 #include "watch.h"
 
+#define PANEL_WIDTH 440   /* the slider panel's column, left of the scene */
+
 typedef struct orbit {
     float center[3], up[3];
     float distance, yaw, pitch;      /* radians */
@@ -239,7 +241,11 @@ static void frame(viewer *v, view_script *script) {
     int w, h;
     glfwGetFramebufferSize(v->win, &w, &h);
     render_view view = orbit_view(&v->cam);
-    render_frame(v->r, v->t, 0, w, h, &view);
+    /* the scene sits right of the panel when the window has room for both */
+    int x0 = w > PANEL_WIDTH + 160 ? PANEL_WIDTH : 0;
+    glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    render_frame_at(v->r, v->t, 0, x0, 0, w - x0, h, &view);
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
     panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
@@ -296,7 +302,7 @@ int cli_view(const cli_view_desc *d) {
     if (d->width <= 0 || d->height <= 0) {
         int w, h;
         render_window_size(v.r, &w, &h);
-        glfwSetWindowSize(v.win, w + 360, h);   /* room for the panel beside the scene */
+        glfwSetWindowSize(v.win, w + PANEL_WIDTH, h);   /* room for the panel beside the scene */
     }
     char title[1200];
     snprintf(title, sizeof title, "tarn — %s", d->glib);
