@@ -225,6 +225,8 @@ static void test_normals_vs_finite_differences(void) {
     CHECK_MSG(worst_n <= 1e-7, "max |N - N_FD| = %g", worst_n);
     double order = log2(e_h / e_h2);
     CHECK_MSG(order > 1.8 && order < 2.2, "observed order %g", order);
+    fprintf(stderr, "  max |B - FD| %.3g, |T - FD| %.3g, |N - N_FD| %.3g (h = 1e-4); order %.3f\n",
+            worst_b, worst_t, worst_n, order);
 }
 
 /* The chapter's normal (eq. 12) drops the cross terms of cross(B, T): it is

@@ -326,6 +326,61 @@ static void test_deps_list_every_file(void) {
     render_destroy(r);
 }
 
+/* A 1x1 24-bit BMP of one colour. */
+static void write_bmp_1x1(const char *name, unsigned char r_, unsigned char g_, unsigned char b_) {
+    unsigned char file[58] = { 'B', 'M', 58, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0,
+        40, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 24, 0, 0, 0, 0, 0, 4, 0, 0, 0,
+        0x13, 0x0b, 0, 0, 0x13, 0x0b, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    file[54] = b_; file[55] = g_; file[56] = r_;
+    FILE *f = fopen(path_of(name), "wb");
+    if (!f) exit(1);
+    fwrite(file, 1, sizeof file, f);
+    fclose(f);
+}
+
+/* CubeMap: the face a direction looks at is the file given for it. */
+static void test_cube_map_faces(void) {
+    const char *faces[6] = { "px.bmp", "nx.bmp", "py.bmp", "ny.bmp", "pz.bmp", "nz.bmp" };
+    const unsigned char col[6][3] = { {255,0,0}, {0,255,0}, {0,0,255}, {255,255,0}, {0,255,255}, {255,0,255} };
+    for (int i = 0; i < 6; i++) write_bmp_1x1(faces[i], col[i][0], col[i][1], col[i][2]);
+    write_file("cube.frag", "#version 330 compatibility\nuniform samplerCube uSky;\nuniform vec3 uDir;\nout vec4 c;\n"
+                            "void main() { c = texture(uSky, uDir); }\n");
+    write_file("cube.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nCubeMap 7 px.bmp nx.bmp py.bmp ny.bmp pz.bmp nz.bmp\n"
+                            "Vertex flat.vert\nFragment cube.frag\nProgram C uSky 7 uDir [0 0 1]\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("cube.glib")), "%s", render_messages(r));
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    unif_entry *dir_e = n ? unif_find(&sets[0], "uDir") : NULL;
+    CHECK(dir_e != NULL);
+    for (int f = 0; dir_e && f < 6; f++) {
+        float d[3] = {0, 0, 0};
+        d[f / 2] = (f % 2) ? -1.0f : 1.0f;
+        memcpy(dir_e->value, d, sizeof d);
+        draw(r, 0);
+        CHECK_MSG(fabsf(at(32, 32)[0] - col[f][0] / 255.0f) < TOL && fabsf(at(32, 32)[1] - col[f][1] / 255.0f) < TOL &&
+                  fabsf(at(32, 32)[2] - col[f][2] / 255.0f) < TOL, "face %d shows %g %g %g", f,
+                  at(32, 32)[0], at(32, 32)[1], at(32, 32)[2]);
+    }
+    render_destroy(r);
+}
+
+/* An OBJ triangle with its corners at NDC (-1,-1), (1,-1), (-1,1) fills
+ * the lower-left half of the screen. */
+static void test_obj_geometry(void) {
+    write_file("tri.obj", "# one triangle\nv -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n");
+    write_file("obj.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\nVertex flat.vert\nFragment flat.frag\n"
+                           "Program O uColor {1 1 1 1}\nObj tri.obj\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path_of("obj.glib")), "%s", render_messages(r));
+    draw(r, 0);
+    CHECK_RGB(at(8, 56), 1, 1, 1);     /* bottom left: inside */
+    CHECK_RGB(at(56, 8), 0, 0, 0);     /* top right: outside */
+    CHECK_RGB(at(20, 40), 1, 1, 1);    /* below the diagonal */
+    CHECK_RGB(at(40, 20), 0, 0, 0);    /* above it */
+    render_destroy(r);
+}
+
 static double now_ms(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -396,6 +451,8 @@ int main(void) {
     RUN(test_define_toggle_recompiles);
     RUN(test_noise_texture_is_centred);
     RUN(test_deps_list_every_file);
+    RUN(test_cube_map_faces);
+    RUN(test_obj_geometry);
     RUN(test_save_is_seen_and_reloaded);
     RUN(test_no_gl_errors);
     gl_ctx_destroy(ctx);
