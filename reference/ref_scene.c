@@ -1,0 +1,331 @@
+#include "ref_scene.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <string.h>
+
+#include "ref_trace.h"
+
+#define PI 3.14159265358979323846
+
+static double smoothstep(double e0, double e1, double x) {
+    double t = (x - e0) / (e1 - e0);
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return t * t * (3 - 2 * t);
+}
+
+/* d/dx smoothstep(e0, e1, x) */
+static double smoothstep_d(double e0, double e1, double x) {
+    double t = (x - e0) / (e1 - e0);
+    if (t <= 0 || t >= 1) return 0;
+    return 6 * t * (1 - t) / (e1 - e0);
+}
+
+static void normalize3(double v[3]) {
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0) for (int i = 0; i < 3; i++) v[i] /= l;
+}
+
+static void default3(double v[3], double a, double b, double c) {
+    if (v[0] == 0 && v[1] == 0 && v[2] == 0) { v[0] = a; v[1] = b; v[2] = c; }
+}
+
+void ref_world_init(ref_world *w, const ref_world_desc *d) {
+    memset(w, 0, sizeof *w);
+    if (d) w->d = *d;
+    ref_world_desc *s = &w->d;
+    default3(s->sun_dir, 0.4, 0.8, -0.45);
+    normalize3(s->sun_dir);
+    default3(s->sun_irradiance, 3.0, 2.85, 2.6);
+    default3(s->sky_zenith, 0.25, 0.45, 0.85);
+    default3(s->sky_horizon, 0.70, 0.80, 0.92);
+    default3(s->absorption, 0.45, 0.09, 0.06);
+    if (s->ior <= 0) s->ior = 1.333;
+    if (s->water_mesh_res <= 0) s->water_mesh_res = 256;
+    if (s->half_size <= 0) s->half_size = 12;
+    if (s->depth <= 0) s->depth = 3;
+    if (s->shore_height <= 0) s->shore_height = 0.6;
+    if (s->slope == 0) s->slope = 0.25;
+    if (s->terrain_res <= 0) s->terrain_res = 256;
+    if (s->nobjects < 0) s->nobjects = 0;
+    if (s->nobjects > REF_MAX_OBJECTS) s->nobjects = REF_MAX_OBJECTS;
+    for (int i = 0; i < 3; i++) w->ambient[i] = 0.5 * (s->sky_zenith[i] + s->sky_horizon[i]);
+    s->waves.level = s->water_level;
+    char err[256];
+    if (ref_waves_init(&w->waves, &s->waves, err, sizeof err) != 0) {
+        ref_waves_desc calm;
+        memset(&calm, 0, sizeof calm);
+        calm.level = s->water_level;
+        ref_waves_init(&w->waves, &calm, err, sizeof err);
+    }
+    /* the lake's bottom detail: deterministic from the seed */
+    uint64_t state = 0x9e3779b97f4a7c15ull ^ (uint64_t)s->seed;
+    double bound = 0;
+    for (int i = 0; i < REF_TERRAIN_DETAIL; i++) {
+        double u1 = (double)(ref_splitmix64(&state) >> 11) / 9007199254740992.0;
+        double u2 = (double)(ref_splitmix64(&state) >> 11) / 9007199254740992.0;
+        double u3 = (double)(ref_splitmix64(&state) >> 11) / 9007199254740992.0;
+        double angle = 2 * PI * u1, k = 0.35 * pow(1.8, i) * (0.8 + 0.4 * u2);
+        w->detail_k[i][0] = k * cos(angle);
+        w->detail_k[i][1] = k * sin(angle);
+        w->detail_a[i] = 0.12 * s->depth / pow(1.9, i) / 3.0;
+        w->detail_phi[i] = 2 * PI * u3;
+        bound += w->detail_a[i] * k;
+    }
+    /* bowl slope bound: depth * max smoothstep' over the radius, with the
+     * 1.3 squeeze in z; shore term likewise */
+    double r_scale = 1.3 / s->half_size;
+    bound += (s->depth * 1.5 / 0.6 + s->shore_height * 1.5 / 0.3) * r_scale;
+    if (s->terrain == REF_TERRAIN_SLOPE) bound = fabs(s->slope);
+    if (s->terrain == REF_TERRAIN_FLAT) bound = 0;
+    w->terrain_slope_bound = bound;
+}
+
+/* The lake: r is an elliptic radius in [0, ~1.4]; the bottom is flat-ish
+ * below r = 0.35, rises to the water line near r = 0.95 and the shore goes
+ * on rising to shore_height at the rim; the detail fades out on land. */
+static double lake_radius(const ref_world *w, double x, double z, double dr[2]) {
+    double hs = w->d.half_size;
+    double ex = x / hs, ez = 1.3 * z / hs;
+    double r = sqrt(ex * ex + ez * ez);
+    if (dr) {
+        if (r > 1e-12) { dr[0] = ex / (r * hs); dr[1] = 1.3 * ez / (r * hs); }
+        else dr[0] = dr[1] = 0;
+    }
+    return r;
+}
+
+static double detail(const ref_world *w, double x, double z, double grad[2]) {
+    double h = 0;
+    if (grad) grad[0] = grad[1] = 0;
+    for (int i = 0; i < REF_TERRAIN_DETAIL; i++) {
+        double ph = w->detail_k[i][0] * x + w->detail_k[i][1] * z + w->detail_phi[i];
+        h += w->detail_a[i] * sin(ph);
+        if (grad) {
+            grad[0] += w->detail_a[i] * w->detail_k[i][0] * cos(ph);
+            grad[1] += w->detail_a[i] * w->detail_k[i][1] * cos(ph);
+        }
+    }
+    return h;
+}
+
+static double lake_height(const ref_world *w, double x, double z, double grad[2]) {
+    const ref_world_desc *s = &w->d;
+    double dr[2], dg[2];
+    double r = lake_radius(w, x, z, dr);
+    double bowl = smoothstep(0.35, 0.95, r), bowl_d = smoothstep_d(0.35, 0.95, r);
+    double rim = smoothstep(0.95, 1.25, r), rim_d = smoothstep_d(0.95, 1.25, r);
+    double fade = 1.0 - rim;                         /* the detail fades on land */
+    double det = detail(w, x, z, dg);
+    double h = s->water_level - s->depth * (1.0 - bowl) + s->shore_height * rim + fade * det;
+    if (grad) {
+        double dh_dr = s->depth * bowl_d + s->shore_height * rim_d - rim_d * det;
+        grad[0] = dh_dr * dr[0] + fade * dg[0];
+        grad[1] = dh_dr * dr[1] + fade * dg[1];
+    }
+    return h;
+}
+
+double ref_terrain_height(const ref_world *w, double x, double z) {
+    switch (w->d.terrain) {
+    case REF_TERRAIN_LAKE: return lake_height(w, x, z, NULL);
+    case REF_TERRAIN_SLOPE: return w->d.water_level - w->d.depth + w->d.slope * (x + w->d.half_size);
+    default: return w->d.water_level - w->d.depth;
+    }
+}
+
+void ref_terrain_gradient(const ref_world *w, double x, double z, double grad[2]) {
+    switch (w->d.terrain) {
+    case REF_TERRAIN_LAKE: lake_height(w, x, z, grad); break;
+    case REF_TERRAIN_SLOPE: grad[0] = w->d.slope; grad[1] = 0; break;
+    default: grad[0] = grad[1] = 0; break;
+    }
+}
+
+void ref_terrain_normal_at(const ref_world *w, double x, double z, double n[3]) {
+    double g[2];
+    ref_terrain_gradient(w, x, z, g);
+    n[0] = -g[0];
+    n[1] = 1.0;
+    n[2] = -g[1];
+    normalize3(n);
+}
+
+static void mix3(const double a[3], const double b[3], double t, double out[3]) {
+    for (int i = 0; i < 3; i++) out[i] = a[i] + (b[i] - a[i]) * t;
+}
+
+void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]) {
+    static const double silt[3] = { 0.30, 0.28, 0.20 }, sand[3] = { 0.76, 0.68, 0.50 },
+                        grass[3] = { 0.22, 0.40, 0.14 }, rock[3] = { 0.42, 0.40, 0.37 };
+    double h = ref_terrain_height(w, x, z) - w->d.water_level;
+    double n[3];
+    ref_terrain_normal_at(w, x, z, n);
+    double c[3];
+    mix3(silt, sand, smoothstep(-1.6, -0.4, h), c);          /* deep silt to shallow sand */
+    mix3(c, grass, smoothstep(0.15, 0.35, h), c);            /* grass above the beach */
+    mix3(c, rock, smoothstep(0.80, 0.65, n[1]), c);          /* rock where it is steep */
+    /* a faint pattern so perturbed lookups show: ripples of the detail */
+    double stripes = 0.06 * sin(3.1 * x + 1.7 * sin(0.9 * z)) * sin(2.3 * z + 1.3 * sin(0.7 * x));
+    for (int i = 0; i < 3; i++) rgb[i] = c[i] * (1.0 + stripes);
+}
+
+void ref_sky_radiance(const ref_world *w, const double dir[3], double rgb[3]) {
+    const ref_world_desc *s = &w->d;
+    double y = dir[1];
+    if (y >= 0) {
+        double t = pow(y, 0.6);
+        mix3(s->sky_horizon, s->sky_zenith, t, rgb);
+    } else {   /* below the horizon: a dim ground, continuous at y = 0 */
+        static const double ground[3] = { 0.18, 0.17, 0.15 };
+        mix3(s->sky_horizon, ground, smoothstep(0.0, 0.15, -y), rgb);
+    }
+    double c = dir[0] * s->sun_dir[0] + dir[1] * s->sun_dir[1] + dir[2] * s->sun_dir[2];
+    if (c > 0) {   /* a smooth glow, not a disc: it stays band-limited for image metrics */
+        double glow = 0.6 * pow(c, 64.0) + 0.25 * pow(c, 8.0);
+        for (int i = 0; i < 3; i++) rgb[i] += glow * s->sun_irradiance[i] / 3.0;
+    }
+}
+
+void ref_shade_lambert(const ref_world *w, const double albedo[3], const double n[3],
+                       double sun_scale, double rgb[3]) {
+    const double *l = w->d.sun_dir;
+    double c = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+    if (c < 0) c = 0;
+    for (int i = 0; i < 3; i++)
+        rgb[i] = albedo[i] * (w->d.sun_irradiance[i] * c * sun_scale / PI + w->ambient[i]);
+}
+
+/* ---- objects ---- */
+
+static bool hit_sphere(const ref_object *ob, const double o[3], const double d[3], double tmin,
+                       double tmax, double *t, double n[3]) {
+    double oc[3] = { o[0] - ob->center[0], o[1] - ob->center[1], o[2] - ob->center[2] };
+    double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - ob->size[0] * ob->size[0];
+    double disc = b * b - dd * c;
+    if (disc < 0) return false;
+    double sq = sqrt(disc);
+    double ts[2] = { (-b - sq) / dd, (-b + sq) / dd };
+    for (int k = 0; k < 2; k++) {
+        if (ts[k] > tmin && ts[k] < tmax) {
+            *t = ts[k];
+            for (int i = 0; i < 3; i++) n[i] = (oc[i] + ts[k] * d[i]) / ob->size[0];
+            return true;
+        }
+    }
+    return false;
+}
+
+static bool hit_box(const ref_object *ob, const double o[3], const double d[3], double tmin,
+                    double tmax, double *t, double n[3]) {
+    double t0 = -INFINITY, t1 = INFINITY;
+    int axis0 = 0, axis1 = 0;
+    for (int a = 0; a < 3; a++) {
+        double lo = ob->center[a] - ob->size[a], hi = ob->center[a] + ob->size[a];
+        if (fabs(d[a]) < 1e-300) {
+            if (o[a] < lo || o[a] > hi) return false;
+            continue;
+        }
+        double ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
+        if (ta > tb) { double tmp = ta; ta = tb; tb = tmp; }
+        if (ta > t0) { t0 = ta; axis0 = a; }
+        if (tb < t1) { t1 = tb; axis1 = a; }
+    }
+    if (t0 > t1) return false;
+    double th = t0 > tmin ? t0 : t1;
+    int axis = t0 > tmin ? axis0 : axis1;
+    if (th <= tmin || th >= tmax) return false;
+    *t = th;
+    n[0] = n[1] = n[2] = 0;
+    double p = o[axis] + th * d[axis];
+    n[axis] = p > ob->center[axis] ? 1 : -1;
+    return true;
+}
+
+static bool hit_cylinder(const ref_object *ob, const double o[3], const double d[3], double tmin,
+                         double tmax, double *t, double n[3]) {
+    double r = ob->size[0], h = ob->size[1];
+    double ox = o[0] - ob->center[0], oz = o[2] - ob->center[2];
+    double best = tmax;
+    bool found = false;
+    double a = d[0] * d[0] + d[2] * d[2];
+    if (a > 1e-300) {   /* the side */
+        double b = ox * d[0] + oz * d[2], c = ox * ox + oz * oz - r * r;
+        double disc = b * b - a * c;
+        if (disc >= 0) {
+            double sq = sqrt(disc);
+            double ts[2] = { (-b - sq) / a, (-b + sq) / a };
+            for (int k = 0; k < 2; k++) {
+                double y = o[1] + ts[k] * d[1] - ob->center[1];
+                if (ts[k] > tmin && ts[k] < best && y >= 0 && y <= h) {
+                    best = ts[k];
+                    n[0] = (ox + ts[k] * d[0]) / r;
+                    n[1] = 0;
+                    n[2] = (oz + ts[k] * d[2]) / r;
+                    found = true;
+                }
+            }
+        }
+    }
+    if (fabs(d[1]) > 1e-300) {   /* the caps */
+        for (int k = 0; k < 2; k++) {
+            double yc = ob->center[1] + (k ? h : 0);
+            double tc = (yc - o[1]) / d[1];
+            double px = ox + tc * d[0], pz = oz + tc * d[2];
+            if (tc > tmin && tc < best && px * px + pz * pz <= r * r) {
+                best = tc;
+                n[0] = 0;
+                n[1] = k ? 1 : -1;
+                n[2] = 0;
+                found = true;
+            }
+        }
+    }
+    if (found) *t = best;
+    return found;
+}
+
+int ref_objects_hit(const ref_world *w, const double o[3], const double d[3], double tmin,
+                    double tmax, double *t, double n[3]) {
+    int best = -1;
+    double best_t = tmax, nn[3];
+    for (int i = 0; i < w->d.nobjects; i++) {
+        const ref_object *ob = &w->d.objects[i];
+        double ti;
+        bool hit = false;
+        switch (ob->kind) {
+        case REF_OBJECT_SPHERE: hit = hit_sphere(ob, o, d, tmin, best_t, &ti, nn); break;
+        case REF_OBJECT_BOX: hit = hit_box(ob, o, d, tmin, best_t, &ti, nn); break;
+        case REF_OBJECT_CYLINDER: hit = hit_cylinder(ob, o, d, tmin, best_t, &ti, nn); break;
+        default: break;
+        }
+        if (hit && ti < best_t) {
+            best_t = ti;
+            best = i;
+            memcpy(n, nn, sizeof nn);
+        }
+    }
+    if (best >= 0) *t = best_t;
+    return best;
+}
+
+void ref_world_desc_lake(ref_world_desc *d) {
+    memset(d, 0, sizeof *d);
+    d->terrain = REF_TERRAIN_LAKE;
+    d->waves = ref_waves_default();
+    d->water_level = 0.0;
+    d->seed = 7;
+    ref_object objs[] = {
+        { REF_OBJECT_CYLINDER, { 2.5, -2.0, 1.0 }, { 0.12, 3.2, 0 }, { 0.45, 0.32, 0.20 } },  /* pier post */
+        { REF_OBJECT_SPHERE, { -3.0, -0.2, -2.0 }, { 0.9, 0, 0 }, { 0.50, 0.48, 0.45 } },    /* a rock breaking the surface */
+        { REF_OBJECT_BOX, { 4.0, 0.5, -5.0 }, { 0.6, 0.8, 0.6 }, { 0.62, 0.30, 0.22 } },     /* a crate on the far shore */
+        { REF_OBJECT_CYLINDER, { -7.5, 0.3, 6.5 }, { 0.25, 2.2, 0 }, { 0.35, 0.25, 0.15 } }, /* tree trunk */
+        { REF_OBJECT_SPHERE, { -7.5, 3.2, 6.5 }, { 1.3, 0, 0 }, { 0.18, 0.42, 0.15 } },      /* its crown */
+        { REF_OBJECT_SPHERE, { 1.0, -2.4, -1.5 }, { 0.6, 0, 0 }, { 0.55, 0.50, 0.42 } },     /* a boulder below */
+        { REF_OBJECT_BOX, { -1.5, -2.6, 2.0 }, { 0.5, 0.3, 0.8 }, { 0.40, 0.28, 0.18 } },    /* a sunken crate */
+    };
+    d->nobjects = (int)(sizeof objs / sizeof objs[0]);
+    memcpy(d->objects, objs, sizeof objs);
+}

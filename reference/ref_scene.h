@@ -1,0 +1,109 @@
+/* ref_scene: the world a scene describes, shared by the GL renderer and the
+ * CPU reference: terrain, objects, sky, sun, water and its waves.
+ *
+ * One definition of each function, in double precision: the GL side bakes
+ * what it needs from these (the terrain mesh, its albedo texture, the sky
+ * cube map), so packs and the reference see the same world. Shading of
+ * everything that is not water is one formula (ref_shade_lambert), written
+ * again only in packs/common/world.glsl.
+ *
+ * Coordinates: y up, metres. The world is the square |x|, |z| <= half_size.
+ * ref_world_desc is a desc where zero means default; ref_world_init fills
+ * the defaults in one place.
+ */
+#ifndef TARN_REF_SCENE_H
+#define TARN_REF_SCENE_H
+
+#include "ref_waves.h"
+
+#define REF_MAX_OBJECTS 32
+#define REF_TERRAIN_DETAIL 6       /* sine terms of the terrain's detail */
+
+typedef enum ref_object_kind {
+    REF_OBJECT_SPHERE = 1,         /* center, radius */
+    REF_OBJECT_BOX,                /* center, half extents (axis-aligned) */
+    REF_OBJECT_CYLINDER            /* base center, radius, height (vertical, capped) */
+} ref_object_kind;
+
+typedef struct ref_object {
+    ref_object_kind kind;
+    double center[3];              /* the base centre for a cylinder */
+    double size[3];                /* sphere: r; box: half x y z; cylinder: r, h */
+    double albedo[3];
+} ref_object;
+
+typedef enum ref_terrain_kind {
+    REF_TERRAIN_FLAT = 0,          /* y = -depth everywhere (tests) */
+    REF_TERRAIN_LAKE,              /* a bowl with a shore rising above the water */
+    REF_TERRAIN_SLOPE              /* a plane rising along +x (tests, the shore) */
+} ref_terrain_kind;
+
+typedef struct ref_world_desc {
+    /* light */
+    double sun_dir[3];             /* towards the sun (normalised); 0: (0.4, 0.8, -0.45) */
+    double sun_irradiance[3];      /* W/m^2-like units per channel; 0: (3.0, 2.85, 2.6) */
+    double sky_zenith[3];          /* sky radiance straight up; 0: (0.25, 0.45, 0.85) */
+    double sky_horizon[3];         /* at the horizon; 0: (0.70, 0.80, 0.92) */
+    /* water */
+    double water_level;            /* mean height (the waves' level follows it) */
+    double ior;                    /* 0: 1.333 */
+    double absorption[3];          /* Beer-Lambert sigma per metre; 0: (0.45, 0.09, 0.06) */
+    int water_mesh_res;            /* GL surface grid cells per side; 0: 256 */
+    ref_waves_desc waves;          /* level is overwritten by water_level */
+    /* ground */
+    ref_terrain_kind terrain;
+    double half_size;              /* 0: 12 */
+    double depth;                  /* deepest point below the water; 0: 3 */
+    double shore_height;           /* rim above the water; 0: 0.6 */
+    double slope;                  /* REF_TERRAIN_SLOPE: dy/dx; 0: 0.25 */
+    unsigned seed;                 /* detail of the lake's bottom */
+    int terrain_res;               /* GL mesh / albedo texture cells per side; 0: 256 */
+    /* objects */
+    int nobjects;
+    ref_object objects[REF_MAX_OBJECTS];
+} ref_world_desc;
+
+typedef struct ref_world {
+    ref_world_desc d;              /* with the defaults filled in */
+    ref_waves waves;               /* resolved */
+    double ambient[3];             /* sky ambient radiance: mean of zenith and horizon */
+    /* the lake's detail: sum of a_i sin(k_i . (x, z) + phi_i) */
+    double detail_k[REF_TERRAIN_DETAIL][2];
+    double detail_a[REF_TERRAIN_DETAIL];
+    double detail_phi[REF_TERRAIN_DETAIL];
+    double terrain_slope_bound;    /* |grad h| <= this everywhere (for tracing) */
+} ref_world;
+
+/* Fills defaults, normalises, resolves the waves. */
+void ref_world_init(ref_world *w, const ref_world_desc *d);
+
+/* Terrain: height, gradient (dh/dx, dh/dz), unit normal; C1 everywhere. */
+double ref_terrain_height(const ref_world *w, double x, double z);
+void ref_terrain_gradient(const ref_world *w, double x, double z, double grad[2]);
+void ref_terrain_normal_at(const ref_world *w, double x, double z, double n[3]);
+
+/* Ground colour (linear RGB reflectance) by height over the water, depth
+ * and slope: silt in the deep, sand at the shore, grass above, rock on
+ * steep slopes. */
+void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]);
+
+/* Sky radiance along unit direction dir (linear RGB): a zenith-horizon
+ * gradient, a smooth glow around the sun, and a dim ground colour below
+ * the horizon. */
+void ref_sky_radiance(const ref_world *w, const double dir[3], double rgb[3]);
+
+/* Radiance leaving a Lambertian surface lit by the sun and the sky ambient:
+ * albedo * (E_sun * max(0, n . l) / pi + ambient). sun_scale scales the sun
+ * term (shadow or caustic factor; 1 for plain sunlight). */
+void ref_shade_lambert(const ref_world *w, const double albedo[3], const double n[3],
+                       double sun_scale, double rgb[3]);
+
+/* Ray against the objects: the nearest hit with t in (tmin, tmax); returns
+ * the object index or -1, with t, the point and its unit normal. */
+int ref_objects_hit(const ref_world *w, const double o[3], const double d[3], double tmin,
+                    double tmax, double *t, double n[3]);
+
+/* The lake scene's world (what scenes/lake.glib describes). */
+void ref_world_desc_lake(ref_world_desc *d);
+
+#endif

@@ -1,0 +1,32 @@
+/* scene: the world a .glib describes (terrain, objects, sky, sun, water
+ * and waves, camera), read from our world commands into the reference's
+ * ref_world_desc, so the GL renderer and the CPU reference draw the same
+ * world. See docs/glib.md, "Describing the world". */
+#ifndef TARN_SCENE_H
+#define TARN_SCENE_H
+
+#include <stdbool.h>
+#include "glib.h"
+#include "ref_scene.h"
+
+typedef struct scene_camera {
+    double eye[3], center[3], up[3];   /* LookAt; default (0 0 3) (0 0 0) (0 1 0) */
+    double fov_deg;                    /* Perspective; default 50 */
+    double near_z, far_z;              /* default 0.1, 1000 */
+    int width, height;                 /* WindowSize; default 800 x 600 */
+} scene_camera;
+
+/* Fills world (zeroed first; the defaults are ref_world_init's) and cam from
+ * the glib's commands. has_world tells whether the glib has any world
+ * command. Returns false with `file:line: message` lines in err for values
+ * out of range (they are repaired, never fatal). */
+bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *cam,
+                     bool *has_world, char *err, int errlen);
+
+/* Parses path (with the scene's Pack included or pack_override, as the
+ * renderer does) and fills world and cam. False with the parser's first
+ * errors in err when the glib has errors. */
+bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,
+                scene_camera *cam, bool *has_world, char *err, int errlen);
+
+#endif
