@@ -36,7 +36,7 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
     ref_world_desc *s = &w->d;
     default3(s->sun_dir, 0.4, 0.8, -0.45);
     normalize3(s->sun_dir);
-    default3(s->sun_irradiance, 3.0, 2.85, 2.6);
+    default3(s->sun_irradiance, 2.2, 2.1, 1.9);
     default3(s->sky_zenith, 0.25, 0.45, 0.85);
     default3(s->sky_horizon, 0.70, 0.80, 0.92);
     default3(s->absorption, 0.45, 0.09, 0.06);
@@ -49,7 +49,9 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
     if (s->terrain_res <= 0) s->terrain_res = 256;
     if (s->nobjects < 0) s->nobjects = 0;
     if (s->nobjects > REF_MAX_OBJECTS) s->nobjects = REF_MAX_OBJECTS;
-    for (int i = 0; i < 3; i++) w->ambient[i] = 0.5 * (s->sky_zenith[i] + s->sky_horizon[i]);
+    /* what the sky gives a horizontal surface, roughly: half its mean radiance
+     * (the lower hemisphere sees ground, not sky) */
+    for (int i = 0; i < 3; i++) w->ambient[i] = 0.25 * (s->sky_zenith[i] + s->sky_horizon[i]);
     s->waves.level = s->water_level;
     char err[256];
     if (ref_waves_init(&w->waves, &s->waves, err, sizeof err) != 0) {

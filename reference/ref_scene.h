@@ -41,7 +41,7 @@ typedef enum ref_terrain_kind {
 typedef struct ref_world_desc {
     /* light */
     double sun_dir[3];             /* towards the sun (normalised); 0: (0.4, 0.8, -0.45) */
-    double sun_irradiance[3];      /* W/m^2-like units per channel; 0: (3.0, 2.85, 2.6) */
+    double sun_irradiance[3];      /* W/m^2-like units per channel; 0: (2.2, 2.1, 1.9) */
     double sky_zenith[3];          /* sky radiance straight up; 0: (0.25, 0.45, 0.85) */
     double sky_horizon[3];         /* at the horizon; 0: (0.70, 0.80, 0.92) */
     /* water */
@@ -66,7 +66,7 @@ typedef struct ref_world_desc {
 typedef struct ref_world {
     ref_world_desc d;              /* with the defaults filled in */
     ref_waves waves;               /* resolved */
-    double ambient[3];             /* sky ambient radiance: mean of zenith and horizon */
+    double ambient[3];             /* sky ambient radiance: half the mean of zenith and horizon */
     /* the lake's detail: sum of a_i sin(k_i . (x, z) + phi_i) */
     double detail_k[REF_TERRAIN_DETAIL][2];
     double detail_a[REF_TERRAIN_DETAIL];

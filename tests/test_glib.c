@@ -1090,6 +1090,253 @@ static void test_program_errors(void)
     glib_free(s);
 }
 
+/* ------------------------------------------------------------------ */
+/* describing the world                                                */
+
+static void test_world_commands(void)
+{
+    glib_scene *s = load("world.glib",
+        "##OpenGL GLIB\n"
+        "Sun 0.4 0.8 -0.45\n"                                   /* 2 */
+        "sun 1 2 3  3 2.85 2.6\n"                               /* 3 */
+        "Sky 0.25 0.45 0.85  0.7 0.8 0.92\n"                    /* 4 */
+        "Water 0.1\n"                                           /* 5 */
+        "Water -0.5 1.34\n"                                     /* 6 */
+        "Water 0 1.333 0.45 0.09 0.06\n"                        /* 7 */
+        "WaterMesh 128\n"                                       /* 8 */
+        "Terrain LAKE\n"                                        /* 9 */
+        "Terrain slope 10 2 0.3 7 64\n"                         /* 10 */
+        "WaveSine 160 2.3 0.012\n"                              /* 11 */
+        "WaveGerstner 20 9 0.1 1.5 2\n"                         /* 12 */
+        "WaveSteepness 0.6\n"                                   /* 13 */
+        "WaveNoise 0.01 2 3 0 30 1 32 0.5\n"                    /* 14 */
+        "Object sphere 1 2 3 0.5 0.1 0.2 0.3\n"                 /* 15 */
+        "Object Box 1 2 3 0.4 0.5 0.6 0.7 0.8 0.9\n"            /* 16 */
+        "Object cylinder -7.5 0.3 6.5 0.25 2.2 0.35 0.25 0.15\n" /* 17 */
+        "Pack basic\n"                                          /* 18 */
+        "World\n"                                               /* 19 */
+        "World below\n"                                         /* 20 */
+        "WaterSurface\n");                                      /* 21 */
+    CHECK_NO_DIAGS(s);
+    CHECK(s->ncmds == 20);
+    static const glib_cmd_kind kinds[] = {
+        GLIB_CMD_SUN, GLIB_CMD_SUN, GLIB_CMD_SKY, GLIB_CMD_WATER, GLIB_CMD_WATER, GLIB_CMD_WATER,
+        GLIB_CMD_WATER_MESH, GLIB_CMD_TERRAIN, GLIB_CMD_TERRAIN, GLIB_CMD_WAVE_SINE,
+        GLIB_CMD_WAVE_GERSTNER, GLIB_CMD_WAVE_STEEPNESS, GLIB_CMD_WAVE_NOISE, GLIB_CMD_OBJECT,
+        GLIB_CMD_OBJECT, GLIB_CMD_OBJECT, GLIB_CMD_PACK, GLIB_CMD_WORLD, GLIB_CMD_WORLD,
+        GLIB_CMD_WATER_SURFACE };
+    for (int i = 0; i < s->ncmds && i < 20; i++) {
+        CHECK_MSG(s->cmds[i].kind == kinds[i], "cmd %d", i);
+        CHECK_MSG(s->cmds[i].line == i + 2, "cmd %d line %d", i, s->cmds[i].line);
+    }
+    if (s->ncmds == 20) {
+        const glib_cmd *c = s->cmds;
+        /* nnum counts the numbers written: the rest are the world's defaults */
+        CHECK(c[0].nnum == 3 && c[0].num[0] == 0.4 && c[0].num[2] == -0.45 && c[0].num[3] == 0);
+        CHECK(c[1].nnum == 6 && c[1].num[3] == 3 && c[1].num[5] == 2.6);
+        CHECK(c[2].nnum == 6 && c[2].num[0] == 0.25 && c[2].num[5] == 0.92);
+        CHECK(c[3].nnum == 1 && c[3].num[0] == 0.1);
+        CHECK(c[4].nnum == 2 && c[4].num[0] == -0.5 && c[4].num[1] == 1.34);
+        CHECK(c[5].nnum == 5 && c[5].num[2] == 0.45 && c[5].num[4] == 0.06);
+        CHECK(c[6].nnum == 1 && c[6].num[0] == 128);
+        CHECK(strcmp(c[7].name, "lake") == 0 && c[7].nnum == 0);
+        CHECK(strcmp(c[8].name, "slope") == 0 && c[8].nnum == 5 && c[8].num[0] == 10 &&
+              c[8].num[1] == 2 && c[8].num[2] == 0.3 && c[8].num[3] == 7 && c[8].num[4] == 64);
+        CHECK(c[9].nnum == 3 && c[9].num[0] == 160 && c[9].num[1] == 2.3 && c[9].num[2] == 0.012);
+        CHECK(c[10].nnum == 5 && c[10].num[3] == 1.5 && c[10].num[4] == 2);
+        CHECK(c[11].nnum == 1 && c[11].num[0] == 0.6);
+        CHECK(c[12].nnum == 8 && c[12].num[0] == 0.01 && c[12].num[2] == 3 && c[12].num[4] == 30 &&
+              c[12].num[6] == 32 && c[12].num[7] == 0.5);
+        CHECK(strcmp(c[13].name, "sphere") == 0 && c[13].nnum == 7 && c[13].num[3] == 0.5 &&
+              c[13].num[6] == 0.3);
+        CHECK(strcmp(c[14].name, "box") == 0 && c[14].nnum == 9 && c[14].num[8] == 0.9);
+        CHECK(strcmp(c[15].name, "cylinder") == 0 && c[15].nnum == 8 && c[15].num[1] == 0.3 &&
+              c[15].num[4] == 2.2);
+        CHECK(strcmp(c[16].name, "basic") == 0);
+        CHECK(strcmp(c[17].name, "all") == 0 && strcmp(c[18].name, "below") == 0);
+        CHECK(c[19].nnum == 0);
+    }
+    glib_free(s);
+}
+
+static void test_world_errors(void)
+{
+    glib_scene *s = load("world_bad.glib",
+        "##OpenGL GLIB\n"
+        "Sun 1 2\n"                             /* 2 */
+        "Sun 0 0 0\n"                           /* 3 */
+        "Sun 0 1 0 1\n"                         /* 4 */
+        "Water 0 1.3 0.1\n"                     /* 5 */
+        "Water\n"                               /* 6 */
+        "WaterMesh 1.5\n"                       /* 7 */
+        "Terrain\n"                             /* 8 */
+        "Terrain pond\n"                        /* 9 */
+        "Terrain lake 12 x\n"                   /* 10 */
+        "Terrain lake 12 3 0.6 -1\n"            /* 11 */
+        "WaveSine 10 2\n"                       /* 12 */
+        "WaveGerstner 10\n"                     /* 13 */
+        "WaveNoise 0.1 2 3.5\n"                 /* 14 */
+        "Object sphere 1 2 3\n"                 /* 15 */
+        "Object cone 1 2 3 4 5 6 7\n"           /* 16 */
+        "Object\n"                              /* 17 */
+        "World sideways\n"                      /* 18 */
+        "WaterSurface now\n"                    /* 19 */
+        "Sky 1 1 1 1 1 1 1\n"                   /* 20 */
+        "Pack\n"                                /* 21 */
+        "Pack ../evil\n"                        /* 22 */
+        "Sky 1 1 1\n");                         /* 23 */
+    const char *f = P("world_bad.glib");
+    CHECK(has_diag(s, f, 2, GLIB_ERROR, "Sun needs a direction z: Sun dx dy dz [r g b]"));
+    CHECK(has_diag(s, f, 3, GLIB_ERROR, "Sun: the direction is zero"));
+    CHECK(has_diag(s, f, 4, GLIB_ERROR, "Sun: the irradiance needs 3 numbers (r g b), got 1"));
+    CHECK(has_diag(s, f, 5, GLIB_ERROR, "Water: the absorption needs 3 numbers (ar ag ab), got 1: Water level [ior [ar ag ab]]"));
+    CHECK(has_diag(s, f, 6, GLIB_ERROR, "Water needs a water level"));
+    CHECK(has_diag(s, f, 7, GLIB_ERROR, "WaterMesh: res must be a whole number from 0 to 65536, not '1.5'"));
+    CHECK(has_diag(s, f, 8, GLIB_ERROR, "Terrain needs one of flat, lake or slope"));
+    CHECK(has_diag(s, f, 9, GLIB_ERROR, "Terrain: unknown kind 'pond': write flat, lake or slope"));
+    CHECK(has_diag(s, f, 10, GLIB_ERROR, "Terrain: bad number 'x' for depth"));
+    CHECK(has_diag(s, f, 11, GLIB_ERROR, "Terrain: seed must be a whole number from 0 to 4294967295, not '-1'"));
+    CHECK(has_diag(s, f, 12, GLIB_ERROR, "WaveSine needs an amplitude: WaveSine angle_deg wavelength amplitude [speed [phase]]"));
+    CHECK(has_diag(s, f, 13, GLIB_ERROR, "WaveGerstner needs at least 3 numbers, got 1"));
+    CHECK(has_diag(s, f, 14, GLIB_ERROR, "WaveNoise: octaves must be a whole number"));
+    CHECK(has_diag(s, f, 15, GLIB_ERROR, "Object sphere needs 7 numbers, got 3: Object sphere x y z r R G B"));
+    CHECK(has_diag(s, f, 16, GLIB_ERROR, "Object: unknown kind 'cone': write sphere, box or cylinder"));
+    CHECK(has_diag(s, f, 17, GLIB_ERROR, "Object needs one of sphere, box or cylinder"));
+    CHECK(has_diag(s, f, 18, GLIB_ERROR, "World: unknown mode 'sideways': write all, above or below"));
+    CHECK(has_diag(s, f, 19, GLIB_WARNING, "WaterSurface takes no arguments; ignoring 'now'"));
+    CHECK(has_diag(s, f, 20, GLIB_WARNING, "Sky takes at most 6 arguments; ignoring '1'"));
+    CHECK(has_diag(s, f, 21, GLIB_ERROR, "Pack needs a name: Pack name"));
+    CHECK(has_diag(s, f, 22, GLIB_ERROR, "Pack: '../evil' is not a pack name"));
+    CHECK(has_diag(s, f, 23, GLIB_ERROR, "Sky needs 6 numbers, got 3"));
+    CHECK(s->nerrors == 20 && count_sev(s, GLIB_WARNING) == 2);
+    CHECK(s->ncmds == 2);       /* WaterSurface now, Sky 1 1 1 1 1 1 (1) */
+    glib_free(s);
+}
+
+static glib_scene *load_opts(const char *name, const char *text, const char *packs,
+                             const char *override)
+{
+    put(name, text);
+    glib_options o = { .packs_dir = packs, .pack_override = override };
+    return glib_load_opts(P(name), &o);
+}
+
+static void test_pack_include(void)
+{
+    put("pk/packs/calm/water.vert", "x");
+    put("pk/packs/calm/pack.glib", "##OpenGL GLIB\n# the calm pack\nWorld\nVertex water.vert\nSphere -1\nWaterSurface\n");
+    put("pk/packs/rough/pack.glib", "World above\n");
+    put("pk/packs/notapack/readme.txt", "x");
+    const char *text = "##OpenGL GLIB\nSun 0 1 0\nPack calm\nSphere 2\n";
+    glib_scene *s = load_opts("pk/lake.glib", text, P("pk/packs"), NULL);
+    /* the pack's lines come in place of the Pack line, and its messages
+     * name its own file and lines */
+    CHECK(has_diag(s, P("pk/packs/calm/pack.glib"), 5, GLIB_ERROR, "Sphere: r must be greater than 0"));
+    CHECK(s->nerrors == 1 && s->ndiags == 1);
+    CHECK(s->nfiles == 2 && strcmp(s->files[1], P("pk/packs/calm/pack.glib")) == 0);
+    CHECK(s->ncmds == 6);
+    if (s->ncmds == 6) {
+        const glib_cmd *c = s->cmds;
+        CHECK(c[0].kind == GLIB_CMD_SUN);
+        CHECK(c[1].kind == GLIB_CMD_PACK && strcmp(c[1].name, "calm") == 0 && c[1].line == 3 &&
+              c[1].file == s->files[0]);
+        CHECK(c[2].kind == GLIB_CMD_WORLD && c[2].file == s->files[1] && c[2].line == 3);
+        CHECK(c[3].kind == GLIB_CMD_VERTEX && strcmp(c[3].path, P("pk/packs/calm/water.vert")) == 0);
+        CHECK(c[4].kind == GLIB_CMD_WATER_SURFACE && c[4].line == 6);
+        CHECK(c[5].kind == GLIB_CMD_SPHERE && c[5].file == s->files[0] && c[5].line == 4);
+    }
+    glib_free(s);
+
+    /* without a packs directory, Pack is only recorded */
+    s = load_opts("pk/lake.glib", text, NULL, NULL);
+    CHECK_NO_DIAGS(s);
+    CHECK(s->ncmds == 3 && s->cmds[1].kind == GLIB_CMD_PACK && strcmp(s->cmds[1].name, "calm") == 0);
+    glib_free(s);
+    s = glib_load(P("pk/lake.glib"));           /* glib_load is glib_load_opts(path, NULL) */
+    CHECK(s->ncmds == 3 && s->ndiags == 0);
+    glib_free(s);
+
+    /* a second Pack is a warning, and only the first pack is read */
+    s = load_opts("pk/two.glib", "##OpenGL GLIB\nPack rough\nPack calm\n", P("pk/packs"), NULL);
+    CHECK(has_diag(s, P("pk/two.glib"), 3, GLIB_WARNING,
+                   "Pack calm ignored: this scene's pack is already 'rough'"));
+    CHECK(s->ncmds == 2 && s->cmds[0].kind == GLIB_CMD_PACK && s->cmds[1].kind == GLIB_CMD_WORLD &&
+          strcmp(s->cmds[1].name, "above") == 0);
+    glib_free(s);
+
+    /* a pack that includes the scene that names it is a cycle */
+    put("pk/packs/loop/pack.glib", "Include ../../cyc.glib\n");
+    s = load_opts("pk/cyc.glib", "##OpenGL GLIB\nPack loop\n", P("pk/packs"), NULL);
+    CHECK(has_diag(s, P("pk/packs/loop/pack.glib"), 1, GLIB_ERROR, "Include cycle:"));
+    glib_free(s);
+}
+
+static void test_pack_missing(void)
+{
+    put("pm/packs/basic/pack.glib", "World\n");
+    put("pm/packs/natural/pack.glib", "World\n");
+    put("pm/packs/common/waves.glsl", "x");
+    glib_scene *s = load_opts("pm/a.glib", "##OpenGL GLIB\n\nPack basik\nSphere 1\n", P("pm/packs"), NULL);
+    char want[600];
+    snprintf(want, sizeof want,
+             "Pack: no pack 'basik' in %s (no basik/pack.glib); the packs are: basic, natural; did you mean 'basic'?",
+             P("pm/packs"));
+    CHECK(has_diag(s, P("pm/a.glib"), 3, GLIB_ERROR, want));
+    /* the command stays, so tools see which pack was asked for */
+    CHECK(s->nerrors == 1 && s->ncmds == 2 && s->cmds[0].kind == GLIB_CMD_PACK &&
+          strcmp(s->cmds[0].name, "basik") == 0);
+    glib_free(s);
+
+    s = load_opts("pm/b.glib", "##OpenGL GLIB\nPack x\n", P("pm/nowhere"), NULL);
+    CHECK(has_diag(s, P("pm/b.glib"), 2, GLIB_ERROR, "the packs are: (none)"));
+    glib_free(s);
+}
+
+static void test_pack_override(void)
+{
+    put("po/packs/basic/pack.glib", "World\n");
+    put("po/packs/natural/pack.glib", "World above\nWorld below\n");
+    /* the override replaces the scene's pack */
+    glib_scene *s = load_opts("po/a.glib", "##OpenGL GLIB\nPack basic\nSphere 1\n", P("po/packs"), "natural");
+    CHECK_NO_DIAGS(s);
+    CHECK(s->ncmds == 4);
+    if (s->ncmds == 4) {
+        CHECK(s->cmds[0].kind == GLIB_CMD_PACK && strcmp(s->cmds[0].name, "natural") == 0 &&
+              s->cmds[0].line == 2);
+        CHECK(strcmp(s->cmds[1].name, "above") == 0 && strcmp(s->cmds[2].name, "below") == 0);
+        CHECK(s->cmds[3].kind == GLIB_CMD_SPHERE);
+    }
+    glib_free(s);
+
+    /* a scene with no Pack gets the override's at the end of the top file */
+    put("po/inc.glib", "Sphere 2\n");
+    s = load_opts("po/b.glib", "##OpenGL GLIB\nInclude inc.glib\nSphere 1\n", P("po/packs"), "basic");
+    CHECK_NO_DIAGS(s);
+    CHECK(s->ncmds == 4);
+    if (s->ncmds == 4) {
+        CHECK(s->cmds[0].num[0] == 2 && s->cmds[1].num[0] == 1);
+        CHECK(s->cmds[2].kind == GLIB_CMD_PACK && strcmp(s->cmds[2].name, "basic") == 0 &&
+              s->cmds[2].file == s->files[0] && s->cmds[2].line == 0);
+        CHECK(s->cmds[3].kind == GLIB_CMD_WORLD && strcmp(s->cmds[3].file, P("po/packs/basic/pack.glib")) == 0);
+    }
+    glib_free(s);
+
+    /* a missing override pack is an error at line 0 of the top file */
+    s = load_opts("po/c.glib", "##OpenGL GLIB\nSphere 1\n", P("po/packs"), "nope");
+    CHECK(has_diag(s, P("po/c.glib"), 0, GLIB_ERROR, "no pack 'nope'"));
+    CHECK(has_diag(s, P("po/c.glib"), 0, GLIB_ERROR, "the packs are: basic, natural"));
+    glib_free(s);
+    s = load_opts("po/d.glib", "##OpenGL GLIB\nPack basic\n", P("po/packs"), "a/b");
+    CHECK(has_diag(s, P("po/d.glib"), 2, GLIB_ERROR, "'a/b' (the pack chosen instead of the scene's) is not a pack name"));
+    glib_free(s);
+
+    /* no packs directory: the name is replaced or added, nothing is read */
+    s = load_opts("po/e.glib", "##OpenGL GLIB\nSphere 1\n", NULL, "natural");
+    CHECK_NO_DIAGS(s);
+    CHECK(s->ncmds == 2 && s->cmds[1].kind == GLIB_CMD_PACK && strcmp(s->cmds[1].name, "natural") == 0);
+    glib_free(s);
+}
+
 static void test_print_diags(void)
 {
     glib_scene *s = load("print.glib", "##OpenGL GLIB\n\nFoo\nSphere\n");
@@ -1115,6 +1362,8 @@ static void test_cmd_name(void)
     CHECK(strcmp(glib_cmd_name(GLIB_CMD_DEPTH_TEST), "DepthTest") == 0);
     CHECK(strcmp(glib_cmd_name(GLIB_CMD_KIND_COUNT), "?") == 0);
     CHECK(strcmp(glib_cmd_name((glib_cmd_kind)-1), "?") == 0);
+    CHECK(strcmp(glib_cmd_name(GLIB_CMD_WAVE_GERSTNER), "WaveGerstner") == 0);
+    CHECK(strcmp(glib_cmd_name(GLIB_CMD_WATER_SURFACE), "WaterSurface") == 0);
     for (int k = 1; k < GLIB_CMD_KIND_COUNT; k++)
         CHECK_MSG(strcmp(glib_cmd_name((glib_cmd_kind)k), "?") != 0, "kind %d", k);
 }
@@ -1216,6 +1465,11 @@ int main(void)
     RUN(test_define);
     RUN(test_extensions);
     RUN(test_program_errors);
+    RUN(test_world_commands);
+    RUN(test_world_errors);
+    RUN(test_pack_include);
+    RUN(test_pack_missing);
+    RUN(test_pack_override);
     RUN(test_print_diags);
     RUN(test_cmd_name);
     RUN(test_glman_real_file);

@@ -15,6 +15,7 @@ typedef struct cli_render_desc {
     double time_s;              /* simulated time of the (first) frame */
     int frames;                 /* 0: 1 */
     bool quiet;
+    const char *pack;           /* replaces the scene's `Pack` */
 } cli_render_desc;
 
 typedef struct cli_view_desc {
@@ -22,6 +23,7 @@ typedef struct cli_view_desc {
     int width, height;          /* 0: the glib's WindowSize */
     const char *script;         /* a file of scripted actions (tests, demos) */
     double time_s;
+    const char *pack;           /* replaces the scene's `Pack` */
 } cli_view_desc;
 
 int cli_render(const cli_render_desc *d);

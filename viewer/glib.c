@@ -93,6 +93,13 @@ typedef struct parser {
     int scene_uniforms;
     int dropped, dropped_errors;    /* diagnostics beyond LIM_DIAGS */
     bool stop;                      /* a scene-wide limit was hit */
+    /* glib_options */
+    const char *packs_dir;
+    const char *pack_override;
+    bool pack_seen;                 /* the scene's (first) Pack command was read */
+    const char *pack_file;          /* where, for the message about a second one */
+    int pack_line;
+    char pack_name[GLIB_NAME_MAX];
 } parser;
 
 static void add_diag(parser *p, glib_severity sev, const char *file, int line,
@@ -370,7 +377,7 @@ static bool parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out
         return false;
     }
     if (a->type == 'i' && (v != floor(v) || v < a->lo || v > a->hi)) {
-        cerr(c, "%s: %s must be a whole number from %g to %g, not '%.60s'",
+        cerr(c, "%s: %s must be a whole number from %.15g to %.15g, not '%.60s'",
              cmd, a->sym, a->lo, a->hi, tok);
         return false;
     }
@@ -757,6 +764,246 @@ static bool h_depth(cmdctx *c, glib_cmd *cmd)
     cmd->nnum = 1;
     snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
     return true;
+}
+
+/* ------------------------------------------------------------------ */
+/* describing the world (our extensions; docs/glib.md)                 */
+
+/* These commands keep nnum = the numbers written: what is left out takes
+ * the world model's default (ref_world_init), which lives in one place.
+ * Here only the form is checked (numbers, whole numbers, counts); ranges
+ * are repaired by scene_from_glib, with a message, so a slider-happy user
+ * never loses the scene to one absurd value. */
+
+/* Reads the numbers words[w0..] by rules[0..]; nreq..nmax of them. */
+static bool nums_from(cmdctx *c, glib_cmd *cmd, int w0, const arg_rule *rules, int nreq,
+                      int nmax, const char *what)
+{
+    int have = c->nwords - w0;
+    if (have < nreq) {
+        if (nreq - have == 1 && rules[have].what)
+            cerr(c, "%s needs %s: %s", what, rules[have].what, c->usage);
+        else
+            cerr(c, "%s needs %s%d numbers, got %d: %s", what, nreq < nmax ? "at least " : "",
+                 nreq, have < 0 ? 0 : have, c->usage);
+        return false;
+    }
+    warn_extra(c, w0 + nmax, "");
+    int given = have < nmax ? have : nmax;
+    for (int i = 0; i < given; i++)
+        if (!parse_arg(c, &rules[i], c->words[w0 + i], &cmd->num[i]))
+            return false;
+    cmd->nnum = given;
+    return true;
+}
+
+/* Sun, Sky, Water, WaterMesh, Wave*: numbers only, nnum as written. */
+static bool h_world_nums(cmdctx *c, glib_cmd *cmd)
+{
+    const cmd_spec *s = c->spec;
+    if (!nums_from(c, cmd, 0, s->args, s->nreq, s->nmax, s->name))
+        return false;
+    const double *n = cmd->num;
+    int given = cmd->nnum;
+    if (cmd->kind == GLIB_CMD_SUN && given != 3 && given != 6) {
+        cerr(c, "Sun: the irradiance needs 3 numbers (r g b), got %d: %s", given - 3, c->usage);
+        return false;
+    }
+    if (cmd->kind == GLIB_CMD_SUN && n[0] == 0 && n[1] == 0 && n[2] == 0) {
+        cerr(c, "Sun: the direction is zero; write the direction towards the sun, e.g. Sun 0.4 0.8 -0.45");
+        return false;
+    }
+    if (cmd->kind == GLIB_CMD_WATER && given > 2 && given != 5) {
+        cerr(c, "Water: the absorption needs 3 numbers (ar ag ab), got %d: %s", given - 2, c->usage);
+        return false;
+    }
+    return true;
+}
+
+/* The first word is a mode from k; its canonical word goes to cmd->name. */
+static const keyword *mode_word(cmdctx *c, const keyword *k, size_t n, const char *choices)
+{
+    if (c->nwords < 1) {
+        cerr(c, "%s needs one of %s: %s", c->spec->name, choices, c->usage);
+        return NULL;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (strcasecmp(c->words[0], k[i].word) == 0)
+            return &k[i];
+    cerr(c, "%s: unknown kind '%.40s': write %s", c->spec->name, c->words[0], choices);
+    return NULL;
+}
+
+#define SEED_RULE(s) { s, NULL, 'i', 0, 4294967295.0, 0 }
+#define RES_RULE(s) { s, NULL, 'i', 0, 65536, 0 }
+
+static bool h_terrain(cmdctx *c, glib_cmd *cmd)
+{
+    static const keyword k[] = { { "flat", "flat", 0 }, { "lake", "lake", 1 }, { "slope", "slope", 2 } };
+    static const arg_rule rules[] = {
+        { "half_size", NULL, 'r', 0, 0, 0 }, { "depth", NULL, 'r', 0, 0, 0 },
+        { "shore_height_or_slope", NULL, 'r', 0, 0, 0 }, SEED_RULE("seed"), RES_RULE("res"),
+    };
+    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "flat, lake or slope");
+    if (!m)
+        return false;
+    snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    return nums_from(c, cmd, 1, rules, 0, 5, "Terrain");
+}
+
+static bool h_object(cmdctx *c, glib_cmd *cmd)
+{
+    static const keyword k[] = { { "sphere", "sphere", 7 }, { "box", "box", 9 },
+                                 { "cylinder", "cylinder", 8 } };
+    static const char *const syms[3][9] = {
+        { "x", "y", "z", "r", "R", "G", "B" },
+        { "x", "y", "z", "hx", "hy", "hz", "R", "G", "B" },
+        { "x", "y", "z", "r", "h", "R", "G", "B" },
+    };
+    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "sphere, box or cylinder");
+    if (!m)
+        return false;
+    int which = (int)(m - k), n = (int)m->value;
+    arg_rule rules[9];
+    char what[64], usage[96];
+    size_t u = (size_t)snprintf(usage, sizeof usage, "Object %s", m->canon);
+    for (int i = 0; i < n; i++) {
+        rules[i] = (arg_rule){ syms[which][i], NULL, 'r', 0, 0, 0 };
+        u += (size_t)snprintf(usage + u, sizeof usage - u, " %s", syms[which][i]);
+    }
+    snprintf(what, sizeof what, "Object %s", m->canon);
+    snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    snprintf(c->usage, sizeof c->usage, "%s", usage);   /* the usage of this kind */
+    return nums_from(c, cmd, 1, rules, n, n, what);
+}
+
+static bool h_world(cmdctx *c, glib_cmd *cmd)
+{
+    static const keyword k[] = { { "all", "all", 0 }, { "above", "above", 0 }, { "below", "below", 0 } };
+    if (c->nwords == 0) {
+        snprintf(cmd->name, sizeof cmd->name, "all");
+        return true;
+    }
+    const keyword *m = find_keyword(c, k, sizeof k / sizeof k[0], "all, above or below");
+    if (m)
+        snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    return m != NULL;
+}
+
+/* ---- Pack: a scene names the pack that draws its water ---- */
+
+static void push_cmd(parser *p, glib_cmd *cmd);
+static void include_file(cmdctx *c, const char *path);
+static void append_cut(char *buf, size_t size, size_t *n, const char *s);
+static int edit_distance(const char *a, const char *b);
+
+/* A directory name under packs/: no path separators, no leading dot. */
+static bool is_pack_name(const char *s)
+{
+    if (!*s || *s == '.' || strlen(s) >= GLIB_NAME_MAX)
+        return false;
+    for (; *s; s++)
+        if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-' && *s != '.')
+            return false;
+    return true;
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* "basic, natural, raymarch" (the directories of dir holding a pack.glib)
+ * into out, and the one closest to name into near (or ""). */
+static void list_packs(const char *dir, const char *name, char *out, size_t outlen,
+                       char near[GLIB_NAME_MAX])
+{
+    enum { MAXP = 64 };
+    char *names[MAXP];
+    int n = 0;
+    out[0] = near[0] = '\0';
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    while (d && n < MAXP && (e = readdir(d)) != NULL) {
+        char path[GLIB_PATH_MAX];
+        struct stat st;
+        if (!is_pack_name(e->d_name) ||
+            snprintf(path, sizeof path, "%s/%s/pack.glib", dir, e->d_name) >= (int)sizeof path)
+            continue;
+        if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+            names[n++] = xstrdup(e->d_name);
+    }
+    if (d)
+        closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], cmp_str);
+    size_t len = 0;
+    int best = 3;
+    for (int i = 0; i < n; i++) {
+        append_cut(out, outlen, &len, i ? ", " : "");
+        append_cut(out, outlen, &len, names[i]);
+        int dist = edit_distance(name, names[i]);
+        if (dist < best) {
+            best = dist;
+            snprintf(near, GLIB_NAME_MAX, "%s", names[i]);
+        }
+        free(names[i]);
+    }
+}
+
+/* The scene's pack is `name` (or the override): records the command and,
+ * with a packs directory, reads the pack's pack.glib in place. */
+static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written)
+{
+    parser *p = c->p;
+    const char *name = p->pack_override ? p->pack_override : written;
+    if (!is_pack_name(name)) {
+        cerr(c, "Pack: '%.60s'%s is not a pack name: write the name of a directory under packs/, e.g. Pack basic",
+             name, p->pack_override ? " (the pack chosen instead of the scene's)" : "");
+        return;
+    }
+    p->pack_seen = true;
+    p->pack_file = c->file;
+    p->pack_line = c->line;
+    snprintf(p->pack_name, sizeof p->pack_name, "%s", name);
+    snprintf(cmd->name, sizeof cmd->name, "%s", name);
+    push_cmd(p, cmd);
+    memset(cmd, 0, sizeof *cmd);        /* pushed: the caller frees nothing */
+    if (!p->packs_dir || p->stop)
+        return;
+    char path[GLIB_PATH_MAX];
+    if (snprintf(path, sizeof path, "%s/%s/pack.glib", p->packs_dir, name) >= (int)sizeof path) {
+        cerr(c, "Pack %s: the path of its pack.glib is too long (at most %d characters)", name,
+             GLIB_PATH_MAX - 1);
+        return;
+    }
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
+        char packs[160], near[GLIB_NAME_MAX], hint[GLIB_NAME_MAX + 24] = "";
+        list_packs(p->packs_dir, name, packs, sizeof packs, near);
+        if (near[0])
+            snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
+        cerr(c, "Pack: no pack '%s' in %s (no %s/pack.glib); the packs are: %s%s", name,
+             p->packs_dir, name, packs[0] ? packs : "(none)", hint);
+        return;
+    }
+    include_file(c, path);
+}
+
+static bool h_pack(cmdctx *c, glib_cmd *cmd)
+{
+    parser *p = c->p;
+    if (c->nwords < 1) {
+        cerr(c, "Pack needs a name: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, 1, "");
+    if (p->pack_seen) {
+        cwarn(c, "Pack %.60s ignored: this scene's pack is already '%s' (%s:%d); a scene has one pack",
+              c->words[0], p->pack_name, p->pack_file, p->pack_line);
+        return false;
+    }
+    use_pack(c, cmd, c->words[0]);
+    return false;               /* pushed by use_pack, before the pack's commands */
 }
 
 /* ------------------------------------------------------------------ */
@@ -1302,6 +1549,19 @@ static bool check_top(parser *p, const reader *r, const char *file)
     return true;
 }
 
+/* A pack chosen from outside for a scene that names none: as if the top
+ * file ended with `Pack name` (at its line 0). */
+static void override_pack_at_end(parser *p, const char *file)
+{
+    cmdctx c = { .p = p, .file = file, .line = 0, .spec = find_spec("Pack") };
+    build_usage(c.spec, c.usage, sizeof c.usage);
+    glib_cmd cmd;
+    memset(&cmd, 0, sizeof cmd);
+    cmd.kind = GLIB_CMD_PACK;
+    cmd.file = file;
+    use_pack(&c, &cmd, p->pack_override);
+}
+
 static void parse_text(parser *p, const char *text, size_t len, const char *file, bool top)
 {
     reader r = { text ? text : "", text ? len : 0, 0, 0 };
@@ -1330,6 +1590,8 @@ static void parse_text(parser *p, const char *text, size_t len, const char *file
         }
     }
     free(lg.buf);
+    if (top && p->pack_override && !p->pack_seen && !p->stop)
+        override_pack_at_end(p, file);
 }
 
 /* Reads text as the file `name` with the include stack pushed; takes canon. */
@@ -1371,32 +1633,25 @@ static void report_cycle(cmdctx *c, int at, const char *path)
         append_cut(chain, sizeof chain, &n, " -> ");
     }
     append_cut(chain, sizeof chain, &n, path);
-    cerr(c, "Include cycle: %s; remove one of these Includes", chain);
+    cerr(c, "%s cycle: %s; remove one of these Includes", c->spec->name, chain);
 }
 
-/* Include file: its commands are read in place of this line. */
-static bool h_include(cmdctx *c, glib_cmd *cmd)
+/* Reads the file at path in place of the current line (Include, Pack). */
+static void include_file(cmdctx *c, const char *path)
 {
     parser *p = c->p;
-    char path[GLIB_PATH_MAX], why[128], *buf;
+    char why[128], *buf;
     size_t len;
-    if (c->nwords < 1) {
-        cerr(c, "Include needs a file: %s", c->usage);
-        return false;
-    }
-    warn_extra(c, 1, path_hint);
-    if (!resolve_path(c, c->words[0], path))
-        return false;
     if (p->nreads >= LIM_INCLUDE_READS) {
         cerr(c, "more than %d Includes in one scene; '%s' skipped", LIM_INCLUDE_READS, path);
-        return false;
+        return;
     }
     if (!read_file(path, &buf, &len, why, sizeof why)) {
         if (access(path, R_OK) != 0)
             check_readable(c, path);        /* says why, with a case hint */
         else                                /* there, but a directory or huge */
-            cerr(c, "cannot open '%s' (from command Include): %s", path, why);
-        return false;
+            cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+        return;
     }
     p->nreads++;
     char *canon = canonical(path);
@@ -1405,17 +1660,30 @@ static bool h_include(cmdctx *c, glib_cmd *cmd)
             report_cycle(c, i, path);
             free(canon);
             free(buf);
-            return false;
+            return;
         }
     if (p->depth > LIM_INCLUDE_DEPTH) {
-        cerr(c, "Include '%s' is nested more than %d files deep; is there a loop?", path,
-             LIM_INCLUDE_DEPTH);
+        cerr(c, "%s '%s' is nested more than %d files deep; is there a loop?", c->spec->name,
+             path, LIM_INCLUDE_DEPTH);
         free(canon);
         free(buf);
-        return false;
+        return;
     }
     parse_nested(p, buf, len, add_file(p, path), canon, false);
     free(buf);
+}
+
+/* Include file: its commands are read in place of this line. */
+static bool h_include(cmdctx *c, glib_cmd *cmd)
+{
+    char path[GLIB_PATH_MAX];
+    if (c->nwords < 1) {
+        cerr(c, "Include needs a file: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, 1, path_hint);
+    if (resolve_path(c, c->words[0], path))
+        include_file(c, path);
     return false;               /* no command of its own: its lines are inlined */
 }
 
@@ -1462,8 +1730,17 @@ glib_scene *glib_parse(const char *text, size_t len, const char *virtual_path)
 
 glib_scene *glib_load(const char *path)
 {
+    return glib_load_opts(path, NULL);
+}
+
+glib_scene *glib_load_opts(const char *path, const glib_options *opt)
+{
     parser p;
     glib_scene *sc = new_scene(&p);
+    if (opt) {
+        p.packs_dir = opt->packs_dir && opt->packs_dir[0] ? opt->packs_dir : NULL;
+        p.pack_override = opt->pack_override && opt->pack_override[0] ? opt->pack_override : NULL;
+    }
     const char *name = add_file(&p, path ? path : "<null>");
     char *buf, why[128];
     size_t len;
@@ -1523,6 +1800,12 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_TIMER] = "Timer", [GLIB_CMD_GSTAP] = "GSTAP",
     [GLIB_CMD_DEFINE] = "Define", [GLIB_CMD_CULL] = "Cull",
     [GLIB_CMD_DEPTH_TEST] = "DepthTest", [GLIB_CMD_BLEND] = "Blend",
+    [GLIB_CMD_SUN] = "Sun", [GLIB_CMD_SKY] = "Sky", [GLIB_CMD_WATER] = "Water",
+    [GLIB_CMD_WATER_MESH] = "WaterMesh", [GLIB_CMD_TERRAIN] = "Terrain",
+    [GLIB_CMD_WAVE_SINE] = "WaveSine", [GLIB_CMD_WAVE_GERSTNER] = "WaveGerstner",
+    [GLIB_CMD_WAVE_STEEPNESS] = "WaveSteepness", [GLIB_CMD_WAVE_NOISE] = "WaveNoise",
+    [GLIB_CMD_OBJECT] = "Object", [GLIB_CMD_PACK] = "Pack", [GLIB_CMD_WORLD] = "World",
+    [GLIB_CMD_WATER_SURFACE] = "WaterSurface",
 };
 
 const char *glib_cmd_name(glib_cmd_kind kind)
@@ -1551,6 +1834,8 @@ const char *glib_cmd_name(glib_cmd_kind kind)
 #define BOX_ARGS { ARG_P("dx", "a size"), ARG_PD("dy", 0), ARG_PD("dz", 0) }
 #define ROUND_ARGS { ARG_P("r", "a radius"), ARG_P("h", "a height"), \
     ARG_ID("slices", 3, 1024, 32), ARG_ID("stacks", 1, 1024, 8) }
+#define WAVE_ARGS { ARG_R("angle_deg", NULL), ARG_R("wavelength", NULL), \
+    ARG_R("amplitude", "an amplitude"), ARG_RD("speed", 0), ARG_RD("phase", 0) }
 #define RGBA_ARGS { ARG_R("r", NULL), ARG_R("g", NULL), ARG_R("b", "a blue value"), ARG_RD("a", 1) }
 
 static const cmd_spec specs[] = {
@@ -1624,6 +1909,37 @@ static const cmd_spec specs[] = {
     { "Cull", GLIB_CMD_CULL, false, h_cull, false, 0, 0, { { 0 } }, "Cull back|front|none" },
     { "DepthTest", GLIB_CMD_DEPTH_TEST, false, h_depth, false, 0, 0, { { 0 } }, "DepthTest on|off" },
     { "Blend", GLIB_CMD_BLEND, false, h_blend, false, 0, 0, { { 0 } }, "Blend off|alpha|add" },
+    /* describing the world */
+    { "Sun", GLIB_CMD_SUN, false, h_world_nums, false, 3, 6,
+      { ARG_R("dx", NULL), ARG_R("dy", NULL), ARG_R("dz", "a direction z"), ARG_RD("r", 0),
+        ARG_RD("g", 0), ARG_RD("b", 0) }, NULL },
+    { "Sky", GLIB_CMD_SKY, false, h_world_nums, false, 6, 6,
+      { ARG_R("zr", NULL), ARG_R("zg", NULL), ARG_R("zb", NULL), ARG_R("hr", NULL),
+        ARG_R("hg", NULL), ARG_R("hb", "a horizon blue") }, NULL },
+    { "Water", GLIB_CMD_WATER, false, h_world_nums, false, 1, 5,
+      { ARG_R("level", "a water level"), ARG_RD("ior", 0), ARG_RD("ar", 0), ARG_RD("ag", 0),
+        ARG_RD("ab", 0) }, "Water level [ior [ar ag ab]]" },
+    { "WaterMesh", GLIB_CMD_WATER_MESH, false, h_world_nums, false, 1, 1,
+      { { "res", "a resolution (grid cells per side)", 'i', 0, 65536, 0 } }, NULL },
+    { "Terrain", GLIB_CMD_TERRAIN, false, h_terrain, false, 0, 0, { { 0 } },
+      "Terrain flat|lake|slope [half_size [depth [shore_height_or_slope [seed [res]]]]]" },
+    { "WaveSine", GLIB_CMD_WAVE_SINE, false, h_world_nums, false, 3, 5, WAVE_ARGS,
+      "WaveSine angle_deg wavelength amplitude [speed [phase]]" },
+    { "WaveGerstner", GLIB_CMD_WAVE_GERSTNER, false, h_world_nums, false, 3, 5, WAVE_ARGS,
+      "WaveGerstner angle_deg wavelength amplitude [speed [phase]]" },
+    { "WaveSteepness", GLIB_CMD_WAVE_STEEPNESS, false, h_world_nums, false, 1, 1,
+      { ARG_R("Q", "a steepness Q") }, NULL },
+    { "WaveNoise", GLIB_CMD_WAVE_NOISE, false, h_world_nums, false, 1, 8,
+      { ARG_R("amplitude", "an amplitude"), ARG_RD("cell", 0), { "octaves", NULL, 'i', 0, 64, 0 },
+        ARG_RD("speed", 0), ARG_RD("angle_deg", 0), SEED_RULE("seed"),
+        { "period", NULL, 'i', 0, 65536, 0 }, ARG_RD("gain", 0) },
+      "WaveNoise amplitude [cell [octaves [speed [angle_deg [seed [period [gain]]]]]]]" },
+    { "Object", GLIB_CMD_OBJECT, false, h_object, false, 0, 0, { { 0 } },
+      "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B" },
+    { "Pack", GLIB_CMD_PACK, false, h_pack, false, 0, 0, { { 0 } }, "Pack name" },
+    /* drawing the world (packs) */
+    { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below]" },
+    { "WaterSurface", GLIB_CMD_WATER_SURFACE, false, h_nums, false, 0, 0, { { 0 } }, NULL },
 };
 
 #define NSPECS (sizeof specs / sizeof specs[0])

@@ -71,6 +71,28 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_CULL,              /* name: "back" | "front" | "none" */
     GLIB_CMD_DEPTH_TEST,        /* num: 0 | 1 (name "off" | "on") */
     GLIB_CMD_BLEND,             /* name: "off" | "alpha" | "add" */
+    /* describing the world (docs/glib.md, "Describing the world"). Unlike
+     * the commands above, these keep nnum = the numbers written: what is
+     * left out takes the world model's default (ref_world_init), and the
+     * ranges are checked and repaired by scene_from_glib (viewer/scene.h) */
+    GLIB_CMD_SUN,               /* num: dx dy dz [r g b] (nnum 3 or 6) */
+    GLIB_CMD_SKY,               /* num: zr zg zb hr hg hb */
+    GLIB_CMD_WATER,             /* num: level [ior [ar ag ab]] (nnum 1, 2 or 5) */
+    GLIB_CMD_WATER_MESH,        /* num: res */
+    GLIB_CMD_TERRAIN,           /* name: "flat" | "lake" | "slope";
+                                 * num: [half_size depth shore_height_or_slope seed res] */
+    GLIB_CMD_WAVE_SINE,         /* num: angle_deg wavelength amplitude [speed phase] */
+    GLIB_CMD_WAVE_GERSTNER,     /* num: as WaveSine */
+    GLIB_CMD_WAVE_STEEPNESS,    /* num: Q */
+    GLIB_CMD_WAVE_NOISE,        /* num: amplitude [cell octaves speed angle_deg seed period gain] */
+    GLIB_CMD_OBJECT,            /* name: "sphere" | "box" | "cylinder"; num:
+                                 * sphere x y z r R G B; box x y z hx hy hz R G B;
+                                 * cylinder x y z r h R G B (y: its base) */
+    GLIB_CMD_PACK,              /* name: the pack (after the override); with
+                                 * glib_options.packs_dir its pack.glib follows inline */
+    /* drawing the world (in packs) */
+    GLIB_CMD_WORLD,             /* name: "all" | "above" | "below" (default "all") */
+    GLIB_CMD_WATER_SURFACE,     /* the water grid, with the current program */
     GLIB_CMD_KIND_COUNT
 } glib_cmd_kind;
 
@@ -153,6 +175,26 @@ typedef struct glib_scene {
  * A file named by a command but missing now is an error that keeps the
  * command (it may appear before the renderer needs it). */
 glib_scene *glib_load(const char *path);
+
+/* Options of glib_load_opts (zero or NULL fields: off). */
+typedef struct glib_options {
+    /* Where packs live (e.g. TARN_SOURCE_DIR "/packs"). When set, a
+     * `Pack name` command reads <packs_dir>/<name>/pack.glib in place, like
+     * Include (its diagnostics name the pack's file and lines); a pack that
+     * is not there is an error at the Pack line that lists the packs there
+     * are (directories holding a pack.glib). The Pack command itself stays
+     * in the list, before the pack's commands. */
+    const char *packs_dir;
+    /* A pack chosen from outside (`--pack`): it replaces the name on the
+     * scene's Pack command; when the scene has none, a Pack command for it
+     * (line 0 of the top file) is added at the end of the top file. */
+    const char *pack_override;
+} glib_options;
+
+/* glib_load with options; glib_load(path) is glib_load_opts(path, NULL).
+ * Only the first Pack command of a scene counts: later ones are warnings
+ * and skipped. */
+glib_scene *glib_load_opts(const char *path, const glib_options *opt);
 
 /* Parses text in memory, as if it were the file `virtual_path` (used for
  * tests and the fuzzer). Includes are resolved relative to virtual_path. */

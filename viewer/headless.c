@@ -56,7 +56,8 @@ int cli_render(const cli_render_desc *d) {
     char err[1024];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return CLI_NO_GL; }
-    render *r = render_create(NULL);
+    render_desc rd = { .pack = d->pack };
+    render *r = render_create(&rd);
     bool ok = render_load(r, d->glib);
     if (render_messages(r)[0]) fputs(render_messages(r), stderr);
     int w = d->width, h = d->height;

@@ -133,7 +133,7 @@ extern "C" bool img_read(const char *path, img *out, char *err, int errlen)
     }
 }
 
-extern "C" bool img_write(const char *path, const img *im, char *err, int errlen)
+static bool write_image(const char *path, const img *im, bool full_float, char *err, int errlen)
 {
     if (!path || !*path) { set_err(err, errlen, path, "no file name"); return false; }
     if (!im || !im->px || !size_ok(im->w, im->h, im->d, im->channels)) {
@@ -143,6 +143,7 @@ extern "C" bool img_write(const char *path, const img *im, char *err, int errlen
     try {
         bool rgb_only;
         TypeDesc fmt = format_for(path, &rgb_only);
+        if (full_float && fmt == TypeDesc::HALF) fmt = TypeDesc::FLOAT;
         auto out = ImageOutput::create(path);
         if (!out) {
             set_err(err, errlen, path, "unsupported format (" + OIIO::geterror() + ")");
@@ -174,4 +175,14 @@ extern "C" bool img_write(const char *path, const img *im, char *err, int errlen
         set_err(err, errlen, path, e.what());
         return false;
     }
+}
+
+extern "C" bool img_write(const char *path, const img *im, char *err, int errlen)
+{
+    return write_image(path, im, false, err, errlen);
+}
+
+extern "C" bool img_write_float(const char *path, const img *im, char *err, int errlen)
+{
+    return write_image(path, im, true, err, errlen);
 }

@@ -43,6 +43,10 @@ bool img_read(const char *path, img *out, char *err, int errlen);
  * stores them (TIFF). */
 bool img_write(const char *path, const img *im, char *err, int errlen);
 
+/* img_write, but .exr is stored as 32-bit float instead of half (for data
+ * such as the reference's hit points, where half's 11 bits are too few). */
+bool img_write_float(const char *path, const img *im, char *err, int errlen);
+
 /* Allocates a zeroed 2D image (d = 1). False (im emptied) for sizes out of
  * range or no memory. */
 bool img_alloc(img *im, int w, int h, int channels);

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "compare.h"
 #include "gl_ctx.h"
 #include "validate.h"
 
@@ -21,6 +22,7 @@ static const char *usage_main =
     "  view FILE.glib       open a window; edits to any file the scene reads reload it\n"
     "  render FILE.glib     render without a display (EGL) to an image\n"
     "  validate [PATH...]   check every shader of every pack with glslang\n"
+    "  compare A B          error of image A against reference B: RMSE, PSNR, heat map, JSON/CSV\n"
     "  help [COMMAND]       this text, or a command's options\n"
     "\n"
     "With no command, tarn opens the default scene (scenes/pond.glib) in a window,\n"
@@ -28,13 +30,14 @@ static const char *usage_main =
     "`tarn COMMAND --help` lists a command's options.\n";
 
 static const char *usage_view =
-    "usage: tarn view FILE.glib [--size WxH] [--time SECONDS] [--script FILE]\n"
+    "usage: tarn view FILE.glib [--pack NAME] [--size WxH] [--time SECONDS] [--script FILE]\n"
     "\n"
     "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
     "generated sliders (one section per Program). Every file the scene reads is\n"
     "watched; a save reloads within a frame or two. A shader that fails to\n"
     "compile keeps the last good one running and shows the error.\n"
     "\n"
+    "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
     "  --size WxH       window size of the scene (default: the glib's WindowSize)\n"
     "  --time SECONDS   start at this simulated time\n"
     "  --script FILE    run scripted actions (frames N, set P U v, expect P U v,\n"
@@ -45,13 +48,14 @@ static const char *usage_view =
     "       Esc or Q quit\n";
 
 static const char *usage_render =
-    "usage: tarn render FILE.glib -o OUT [--size WxH] [--time SECONDS] [--frames N]\n"
+    "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
     "\n"
     "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
     "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
     "\n"
     "  -o, --out OUT    output image: .png (8-bit) or .exr (float), any format\n"
     "                   OpenImageIO writes; a %d in the name writes every frame\n"
+    "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
     "  --size WxH       image size (default: the glib's WindowSize)\n"
     "  --time SECONDS   simulated time of the first frame (default 0)\n"
     "  --frames N       render N frames, 1/60 s apart; prints the median GPU time\n"
@@ -107,7 +111,8 @@ static int main_render(int argc, char **argv) {
             if (!parse_double(next, &f) || f < 1 || f > 100000) return bad_usage(usage_render, "--frames wants 1..100000");
             d.frames = (int)f;
             i++;
-        } else if (strcmp(a, "--quiet") == 0) d.quiet = true;
+        } else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }
+        else if (strcmp(a, "--quiet") == 0) d.quiet = true;
         else if (a[0] == '-') return bad_usage(usage_render, "unknown option");
         else if (!d.glib) d.glib = a;
         else return bad_usage(usage_render, "one scene at a time");
@@ -129,6 +134,7 @@ static int main_view(int argc, char **argv) {
             if (!parse_double(next, &d.time_s)) return bad_usage(usage_view, "--time wants seconds");
             i++;
         } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
+        else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }
         else if (a[0] == '-') return bad_usage(usage_view, "unknown option");
         else if (!d.glib) d.glib = a;
         else return bad_usage(usage_view, "one scene at a time");
@@ -163,12 +169,14 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "help") == 0) {
         const char *which = argc > 2 ? argv[2] : "";
         fputs(strcmp(which, "view") == 0 ? usage_view : strcmp(which, "render") == 0 ? usage_render
-              : strcmp(which, "validate") == 0 ? usage_validate : usage_main, stdout);
+              : strcmp(which, "validate") == 0 ? usage_validate
+              : strcmp(which, "compare") == 0 ? compare_usage() : usage_main, stdout);
         return CLI_OK;
     }
     if (strcmp(cmd, "render") == 0) return main_render(argc - 2, argv + 2);
     if (strcmp(cmd, "view") == 0) return main_view(argc - 2, argv + 2);
     if (strcmp(cmd, "validate") == 0) return main_validate(argc - 2, argv + 2);
+    if (strcmp(cmd, "compare") == 0) return cli_compare(argc - 2, argv + 2);
     if (strstr(cmd, ".glib")) return main_view(argc - 1, argv + 1);   /* `tarn scene.glib` */
     fprintf(stderr, "tarn: unknown command '%s'\n\n%s", cmd, usage_main);
     return CLI_USAGE;

@@ -11,6 +11,8 @@
 #include "glib.h"
 #include "render_prog.h"
 #include "render_res.h"
+#include "render_world.h"
+#include "scene.h"
 
 #ifndef TARN_SOURCE_DIR
 #define TARN_SOURCE_DIR "."
@@ -45,6 +47,9 @@ typedef struct scene_state {
 
 struct render {
     char root[GLIB_PATH_MAX];
+    char packs_dir[GLIB_PATH_MAX + 16];
+    char pack[GLIB_NAME_MAX];      /* --pack: replaces the scene's Pack */
+    gpu_world world;               /* kept across reloads while the world is unchanged */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];
     char path[GLIB_PATH_MAX];
@@ -67,6 +72,8 @@ render *render_create(const render_desc *desc) {
     snprintf(r->root, sizeof r->root, "%s", desc && desc->repo_root ? desc->repo_root : TARN_SOURCE_DIR);
     snprintf(r->common_dir, sizeof r->common_dir, "%s/packs/common", r->root);
     r->include_dirs[0] = r->common_dir;
+    snprintf(r->packs_dir, sizeof r->packs_dir, "%s/packs", r->root);
+    if (desc && desc->pack) snprintf(r->pack, sizeof r->pack, "%s", desc->pack);
     r->gpu_ms = -1;
     glGenQueries(4, &r->query[0][0]);
     return r;
@@ -95,6 +102,7 @@ static void free_deps(render *r) {
 void render_destroy(render *r) {
     if (!r) return;
     scene_free(&r->cur);
+    world_free(&r->world);
     free_deps(r);
     free(r->messages);
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
@@ -242,6 +250,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     snprintf(p->name, sizeof p->name, "%s", c->name);
     p->cmd = c;
     p->gstap = st->gstap;
+    p->world_uniforms = r->world.active;
     memcpy(p->stage_path, st->path, sizeof p->stage_path);
     char err[512] = "";
     if (!unif_set_from_glib(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
@@ -323,12 +332,26 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
         }
     for (int i = 0; i < s->nprogs; i++)
         for (int k = 0; k < s->progs[i].ndeps; k++) add_dep(r, s->progs[i].deps[k]);
+    if (r->world.active)
+        for (int k = 0; k < r->world.prog.ndeps; k++) add_dep(r, r->world.prog.deps[k]);
+}
+
+/* The world the scene describes (if any), rebuilt only when it changed. */
+static void build_world(render *r, const glib_scene *g, char **log) {
+    ref_world_desc desc;
+    scene_camera cam;
+    bool has_world = false;
+    char err[1024] = "";
+    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) log_append(log, "%s\n", err);
+    if (has_world) world_build(&r->world, &desc, (const char *const *)r->include_dirs, r->common_dir, log);
+    else world_free(&r->world);
 }
 
 bool render_load(render *r, const char *glib_path) {
     if (glib_path && glib_path != r->path) snprintf(r->path, sizeof r->path, "%s", glib_path);
     char *log = NULL;
-    glib_scene *g = glib_load(r->path);
+    glib_options opts = { .packs_dir = r->packs_dir, .pack_override = r->pack[0] ? r->pack : NULL };
+    glib_scene *g = glib_load_opts(r->path, &opts);
     diags_to_log(g, &log);
     if (g->nerrors > 0 && r->cur.glib) {
         /* a half-written glib: keep everything that is on screen */
@@ -340,6 +363,7 @@ bool render_load(render *r, const char *glib_path) {
         r->errors = true;
         return false;
     }
+    build_world(r, g, &log);
     scene_state fresh;
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
@@ -360,6 +384,10 @@ bool render_rebuild_programs(render *r) {
         prog *p = &r->cur.progs[i];
         if (!prog_build(p, (const char *const *)r->include_dirs, 1, &log)) ok = false;
         prog_introspect(p, &log);
+    }
+    if (r->world.active) {
+        if (!prog_build(&r->world.prog, (const char *const *)r->include_dirs, 1, &log)) ok = false;
+        prog_introspect(&r->world.prog, &log);
     }
     collect_deps(r, r->cur.glib, &r->cur);
     free(r->messages);
@@ -477,6 +505,7 @@ typedef struct frame_state {
     int depth;
     const prog *cur;
     double t;
+    float eye[3];
 } frame_state;
 
 static void end_rtt(frame_state *f) {
@@ -540,7 +569,14 @@ static void exec_cmd(render *r, frame_state *f, int i) {
     } else if (c->kind == GLIB_CMD_PROGRAM) {
         f->cur = res >= 0 ? &s->progs[res] : NULL;
         glUseProgram(f->cur ? f->cur->gl : 0);
-        if (f->cur && f->cur->gl) prog_upload(f->cur, f->t, s->set.timer_s);
+        if (f->cur && f->cur->gl) {
+            prog_upload(f->cur, f->t, s->set.timer_s);
+            world_upload(&r->world, f->cur->gl, f->t, f->eye);
+        }
+    } else if (c->kind == GLIB_CMD_WORLD) {
+        world_draw(&r->world, c->name[0] ? c->name : "all", f->t, f->eye, f->cur ? f->cur->gl : 0);
+    } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
+        world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
         if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
@@ -592,7 +628,9 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         render_view v = view ? *view : s->set.view;
         load_matrices(&s->set, w, h, &v);
         bind_textures(s);
+        world_bind_textures(&r->world);
         frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };
+        memcpy(f.eye, v.eye, sizeof f.eye);
         glPushMatrix();
         for (int i = 0; i < s->glib->ncmds; i++) exec_cmd(r, &f, i);
         for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */

@@ -17,6 +17,7 @@ typedef struct render render;
 
 typedef struct render_desc {
     const char *repo_root;      /* 0: TARN_SOURCE_DIR; packs/common is an include dir */
+    const char *pack;           /* 0: the scene's own `Pack`; else this pack instead */
 } render_desc;
 
 typedef struct render_view {

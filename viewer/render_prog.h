@@ -21,6 +21,7 @@ typedef struct prog {
     char **deps;                             /* shader files read, incl. #includes */
     int ndeps;
     int timer_loc, tangent_loc;
+    bool world_uniforms;                     /* the scene has a world: its uniforms get no slider */
 } prog;
 
 /* Builds p from its stage paths, defines (from p->unifs' define entries)

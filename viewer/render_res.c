@@ -75,17 +75,9 @@ static bool make_mesh(const glib_cmd *c, geom_mesh *g, char *err, int errlen) {
     }
 }
 
-bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
-    geom_mesh g;
-    memset(&g, 0, sizeof g);
-    char err[512] = "";
-    if (!make_mesh(c, &g, err, sizeof err) || g.nvert <= 0) {
-        log_append(log, "%s:%d: error: cannot build %s: %s\n", c->file, c->line,
-                   glib_cmd_name(c->kind), err[0] ? err : "bad arguments");
-        geom_free(&g);
-        return false;
-    }
-    long nv = g.nvert;
+bool res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
+    if (g->nvert <= 0 || g->nidx <= 0) return false;
+    long nv = g->nvert;
     long sz_pos = nv * 3 * (long)sizeof(float), sz_tc = nv * 2 * (long)sizeof(float);
     m->off_nrm = sz_pos;
     m->off_tc = 2 * sz_pos;
@@ -93,17 +85,30 @@ bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
     glGenBuffers(1, &m->vbo);
     glBindBuffer(GL_ARRAY_BUFFER, m->vbo);
     glBufferData(GL_ARRAY_BUFFER, 3 * sz_pos + sz_tc, NULL, GL_STATIC_DRAW);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sz_pos, g.pos);
-    glBufferSubData(GL_ARRAY_BUFFER, m->off_nrm, sz_pos, g.nrm);
-    glBufferSubData(GL_ARRAY_BUFFER, m->off_tc, sz_tc, g.tc);
-    glBufferSubData(GL_ARRAY_BUFFER, m->off_tan, sz_pos, g.tan);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sz_pos, g->pos);
+    glBufferSubData(GL_ARRAY_BUFFER, m->off_nrm, sz_pos, g->nrm);
+    glBufferSubData(GL_ARRAY_BUFFER, m->off_tc, sz_tc, g->tc);
+    glBufferSubData(GL_ARRAY_BUFFER, m->off_tan, sz_pos, g->tan);
     glGenBuffers(1, &m->ibo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (long)g.nidx * (long)sizeof(unsigned), g.idx, GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (long)g->nidx * (long)sizeof(unsigned), g->idx, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-    m->nidx = g.nidx;
-    m->lines = g.lines;
+    m->nidx = g->nidx;
+    m->lines = g->lines;
+    return true;
+}
+
+bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
+    geom_mesh g;
+    memset(&g, 0, sizeof g);
+    char err[512] = "";
+    if (!make_mesh(c, &g, err, sizeof err) || !res_mesh_upload(&g, m)) {
+        log_append(log, "%s:%d: error: cannot build %s: %s\n", c->file, c->line,
+                   glib_cmd_name(c->kind), err[0] ? err : "bad arguments");
+        geom_free(&g);
+        return false;
+    }
     geom_free(&g);
     return true;
 }

@@ -31,6 +31,8 @@ typedef struct gpu_tex {
 void res_key(const glib_cmd *c, char *out, int outlen);
 
 bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
+struct geom_mesh;
+bool res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);
 void res_mesh_draw(const gpu_mesh *m, int tangent_loc);
 void res_mesh_free(gpu_mesh *m);
 

@@ -296,7 +296,8 @@ int cli_view(const cli_view_desc *d) {
     if (!v.ctx) { fprintf(stderr, "tarn: %s\n", err); return CLI_NO_GL; }
     v.win = gl_ctx_window(v.ctx);
     glfwSetWindowUserPointer(v.win, &v);
-    v.r = render_create(NULL);
+    render_desc rd = { .pack = d->pack };
+    v.r = render_create(&rd);
     bool ok = render_load(v.r, d->glib);
     report_load(&v);
     if (d->width <= 0 || d->height <= 0) {

@@ -1,0 +1,479 @@
+/* `tarn compare A B`: on images this test writes, the JSON and CSV carry the
+ * values worked out by hand, the heat map has the documented colours, the
+ * reference buffers are compared, and bad input gives the documented exit
+ * codes and messages naming the files. Most cases call compare_run()
+ * directly; the last runs $TARN_BIN compare (skipped while main.c does not
+ * know the command). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "compare.h"
+#include "image_io.h"
+#include "ref_metrics.h"
+
+static char dir[256];
+static char out_buf[65536], err_buf[65536];
+
+/* ---- helpers ----------------------------------------------------------------- */
+
+static const char *path(const char *name) {
+    static char p[8][512];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(p[k], sizeof p[k], "%s/%s", dir, name);
+    return p[k];
+}
+
+static void slurp(FILE *f, char *buf, size_t len) {
+    fflush(f);
+    rewind(f);
+    size_t n = fread(buf, 1, len - 1, f);
+    buf[n] = '\0';
+}
+
+/* Runs compare_run on a space-separated argument line (printf-style);
+ * stdout and stderr land in out_buf and err_buf. */
+static int compare(const char *fmt, ...) {
+    char line[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    char *argv[64];
+    int argc = 0;
+    for (char *t = strtok(line, " "); t && argc < 64; t = strtok(NULL, " ")) argv[argc++] = t;
+    FILE *o = tmpfile(), *e = tmpfile();
+    if (!o || !e) { fprintf(stderr, "tmpfile failed\n"); exit(1); }
+    int rc = compare_run(argc, argv, o, e);
+    slurp(o, out_buf, sizeof out_buf);
+    slurp(e, err_buf, sizeof err_buf);
+    fclose(o);
+    fclose(e);
+    return rc;
+}
+
+static char *read_file(const char *p) {
+    FILE *f = fopen(p, "rb");
+    if (!f) return NULL;
+    static char buf[65536];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+/* The number (or "inf" string, or null = NaN) after "key": in json, after
+ * "section": { when section is given. found = 0 when the key is absent. */
+static double jnum(const char *json, const char *section, const char *key, int *found) {
+    char pat[128];
+    if (found) *found = 0;
+    if (!json) return NAN;
+    if (section) {
+        snprintf(pat, sizeof pat, "\"%s\": {", section);
+        json = strstr(json, pat);
+        if (!json) return NAN;
+    }
+    snprintf(pat, sizeof pat, "\"%s\": ", key);
+    const char *p = strstr(json, pat);
+    if (!p) return NAN;
+    if (found) *found = 1;
+    p += strlen(pat);
+    if (strncmp(p, "\"inf\"", 5) == 0) return INFINITY;
+    if (strncmp(p, "null", 4) == 0) return NAN;
+    if (strncmp(p, "true", 4) == 0) return 1;
+    if (strncmp(p, "false", 5) == 0) return 0;
+    return strtod(p, NULL);
+}
+
+/* A minimal JSON validator: true when s is one well-formed value. */
+static const char *jv_value(const char *s);
+static const char *jv_ws(const char *s) { while (*s == ' ' || *s == '\n' || *s == '\t' || *s == '\r') s++; return s; }
+static const char *jv_string(const char *s) {
+    if (*s != '"') return NULL;
+    for (s++; *s && *s != '"'; s++) {
+        if ((unsigned char)*s < 0x20) return NULL;
+        if (*s == '\\') { s++; if (!*s) return NULL; }
+    }
+    return *s == '"' ? s + 1 : NULL;
+}
+static const char *jv_value(const char *s) {
+    s = jv_ws(s);
+    if (*s == '{' || *s == '[') {
+        char close = *s == '{' ? '}' : ']';
+        s = jv_ws(s + 1);
+        if (*s == close) return s + 1;
+        for (;;) {
+            if (close == '}') {
+                if (!(s = jv_string(jv_ws(s)))) return NULL;
+                s = jv_ws(s);
+                if (*s++ != ':') return NULL;
+            }
+            if (!(s = jv_value(s))) return NULL;
+            s = jv_ws(s);
+            if (*s == ',') { s++; continue; }
+            return *s == close ? s + 1 : NULL;
+        }
+    }
+    if (*s == '"') return jv_string(s);
+    if (!strncmp(s, "true", 4) || !strncmp(s, "null", 4)) return s + 4;
+    if (!strncmp(s, "false", 5)) return s + 5;
+    char *end;
+    strtod(s, &end);
+    return end != s && (*s == '-' || (*s >= '0' && *s <= '9')) ? end : NULL;
+}
+static int json_valid(const char *s) {
+    const char *e = s ? jv_value(s) : NULL;
+    return e && *jv_ws(e) == '\0';
+}
+
+/* Writes a w x h x c image whose every value is v. */
+static img make(int w, int h, int c, float v) {
+    img im;
+    if (!img_alloc(&im, w, h, c)) { fprintf(stderr, "img_alloc failed\n"); exit(1); }
+    for (long i = 0; i < (long)w * h * c; i++) im.px[i] = v;
+    return im;
+}
+
+static void save(const char *p, img *im) {
+    char err[512];
+    if (!img_write(p, im, err, sizeof err)) fprintf(stderr, "img_write: %s\n", err);
+    img_free(im);
+}
+
+static float *at(img *im, int x, int y) { return im->px + ((size_t)y * im->w + x) * im->channels; }
+
+/* ---- cases ---------------------------------------------------------------------- */
+
+/* 16x8, one value off by 0.1 (G at (5, 3)) and one NaN pixel in A:
+ * RMSE over the 127 compared pixels x 3 channels = 0.1 / sqrt(381). */
+static void test_json_has_the_hand_computed_values(void) {
+    img a = make(16, 8, 3, 0.5f), b = make(16, 8, 3, 0.5f);
+    at(&a, 5, 3)[1] = 0.6f;
+    at(&a, 0, 0)[0] = NAN;
+    save(path("a.tif"), &a);                    /* 32-bit float: exact */
+    save(path("b.tif"), &b);
+    int rc = compare("%s %s --json %s", path("a.tif"), path("b.tif"), path("m.json"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    CHECK_STR_CONTAINS(out_buf, "RMSE");
+    CHECK_STR_CONTAINS(out_buf, "PSNR");
+    CHECK_STR_CONTAINS(out_buf, "NaN pixels in A");
+    char *j = read_file(path("m.json"));
+    CHECK(j && json_valid(j));
+    double e = (double)0.6f - 0.5, rmse = e / sqrt(381.0);
+    CHECK_NEAR(jnum(j, NULL, "rmse", NULL), rmse, 1e-9);
+    CHECK_NEAR(jnum(j, NULL, "psnr_db", NULL), 20 * log10(1 / rmse), 1e-6);
+    CHECK_NEAR(jnum(j, NULL, "max_abs", NULL), e, 1e-9);
+    CHECK(jnum(j, NULL, "max_at_x", NULL) == 5);
+    CHECK(jnum(j, NULL, "max_at_y", NULL) == 3);
+    CHECK(jnum(j, NULL, "max_at_channel", NULL) == 1);
+    CHECK_NEAR(jnum(j, NULL, "mae", NULL), e / 381, 1e-9);
+    CHECK_NEAR(jnum(j, NULL, "over_threshold_share", NULL), 1.0 / 127, 1e-9);
+    CHECK(jnum(j, NULL, "threshold", NULL) == 0.05);
+    CHECK(jnum(j, NULL, "nan_pixels_a", NULL) == 1);
+    CHECK(jnum(j, NULL, "nan_pixels_b", NULL) == 0);
+    CHECK(jnum(j, NULL, "compared_pixels", NULL) == 127);
+    CHECK(jnum(j, NULL, "width", NULL) == 16);
+    CHECK(jnum(j, NULL, "height", NULL) == 8);
+    CHECK(jnum(j, NULL, "a_srgb_decoded", NULL) == 0);
+    int found;
+    jnum(j, NULL, "heatmap", &found);
+    CHECK(found);                               /* null without --out: keys are stable */
+
+    /* --threshold moves the share. */
+    rc = compare("%s %s --threshold 0.2 --json %s", path("a.tif"), path("b.tif"), path("m.json"));
+    CHECK(rc == 0);
+    j = read_file(path("m.json"));
+    CHECK(jnum(j, NULL, "over_threshold_share", NULL) == 0);
+    CHECK(jnum(j, NULL, "threshold", NULL) == 0.2);
+}
+
+static void test_identical_images_psnr_inf(void) {
+    img a = make(4, 4, 4, 0.3f), b = make(4, 4, 4, 0.3f);
+    save(path("i1.exr"), &a);
+    save(path("i2.exr"), &b);
+    int rc = compare("%s %s --json %s --csv %s", path("i1.exr"), path("i2.exr"), path("i.json"), path("i.csv"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    CHECK_STR_CONTAINS(out_buf, "inf");
+    char *j = read_file(path("i.json"));
+    CHECK(j && json_valid(j));
+    CHECK_STR_CONTAINS(j, "\"psnr_db\": \"inf\"");
+    CHECK(jnum(j, NULL, "rmse", NULL) == 0);
+    CHECK(jnum(j, NULL, "differing_pixels", NULL) == 0);
+    char *c = read_file(path("i.csv"));
+    CHECK_STR_CONTAINS(c, ",inf,");
+}
+
+/* --csv -: a header row and a value row on stdout, the table on stderr. */
+static void test_csv_to_stdout(void) {
+    int rc = compare("%s %s --csv -", path("a.tif"), path("b.tif"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    CHECK_STR_CONTAINS(err_buf, "RMSE");
+    char *nl = strchr(out_buf, '\n');
+    CHECK(nl && strchr(nl + 1, '\n') && *(strchr(nl + 1, '\n') + 1) == '\0');
+    if (!nl) return;
+    *nl = '\0';
+    /* Find the rmse column. */
+    int col = -1, k = 0;
+    static char header[sizeof out_buf];
+    memcpy(header, out_buf, sizeof header);
+    for (char *t = strtok(header, ","); t; t = strtok(NULL, ","), k++)
+        if (strcmp(t, "rmse") == 0) col = k;
+    CHECK(col >= 0);
+    CHECK_STR_CONTAINS(out_buf, "nan_pixels_a");
+    CHECK_STR_CONTAINS(out_buf, "over_threshold_share");
+    const char *v = nl + 1;
+    for (k = 0; k < col && v; k++) {
+        v = strchr(v, ',');
+        if (v) v++;
+    }
+    CHECK(v && fabs(strtod(v, NULL) - ((double)0.6f - 0.5) / sqrt(381.0)) < 1e-9);
+    CHECK(compare("%s %s --csv - --json -", path("a.tif"), path("b.tif")) == 2);
+}
+
+/* PNG values are sRGB: 128/255 decodes to 0.2158605; --linear keeps it. */
+static void test_png_is_srgb_decoded(void) {
+    double lin = ref_srgb_to_linear(128 / 255.0);
+    img a = make(8, 8, 3, 128 / 255.0f), b = make(8, 8, 3, (float)lin);
+    save(path("s.png"), &a);
+    save(path("s.tif"), &b);
+    int rc = compare("%s %s --json %s", path("s.png"), path("s.tif"), path("s.json"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    char *j = read_file(path("s.json"));
+    CHECK(jnum(j, NULL, "a_srgb_decoded", NULL) == 1);
+    CHECK(jnum(j, NULL, "b_srgb_decoded", NULL) == 0);
+    CHECK(jnum(j, NULL, "rmse", NULL) < 1e-6);
+    rc = compare("%s %s --linear --json %s", path("s.png"), path("s.tif"), path("s.json"));
+    CHECK(rc == 0);
+    j = read_file(path("s.json"));
+    CHECK(jnum(j, NULL, "a_srgb_decoded", NULL) == 0);
+    CHECK_NEAR(jnum(j, NULL, "rmse", NULL), 128 / 255.0 - lin, 1e-6);
+    CHECK(compare_is_srgb_path("x/y.PNG") && compare_is_srgb_path("a.jpeg"));
+    CHECK(!compare_is_srgb_path("a.exr") && !compare_is_srgb_path("a.png/x") && !compare_is_srgb_path("noext"));
+}
+
+/* The heat map: inferno from black (no error) to pale yellow (--max), cyan
+ * for NaN, grey outside the mask. */
+static void test_heatmap_png(void) {
+    img a = make(4, 2, 3, 0.5f), b = make(4, 2, 3, 0.5f);
+    at(&a, 1, 0)[0] = 0.55f;                    /* half the scale */
+    at(&a, 2, 0)[2] = 0.75f;                    /* over the scale */
+    at(&b, 3, 0)[1] = NAN;
+    at(&a, 0, 1)[0] = 0.9f;                     /* masked out */
+    img mask = make(4, 2, 1, 1.0f);
+    at(&mask, 0, 1)[0] = 0;
+    save(path("h1.tif"), &a);
+    save(path("h2.tif"), &b);
+    save(path("mask.png"), &mask);
+    int rc = compare("%s %s --out %s --max 0.1 --mask %s --json %s", path("h1.tif"), path("h2.tif"),
+                     path("heat.png"), path("mask.png"), path("h.json"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    char *j = read_file(path("h.json"));
+    CHECK(jnum(j, NULL, "heatmap_scale", NULL) == 0.1);
+    CHECK(jnum(j, NULL, "masked_pixels", NULL) == 1);
+    CHECK(jnum(j, NULL, "nan_pixels_b", NULL) == 1);
+    CHECK_NEAR(jnum(j, NULL, "max_abs", NULL), 0.25, 1e-7);   /* not the masked 0.4 */
+    img h;
+    char err[512];
+    CHECK_MSG(img_read(path("heat.png"), &h, err, sizeof err), "%s", err);
+    if (!h.px) return;
+    CHECK(h.w == 4 && h.h == 2 && h.channels == 3);
+    float *p = at(&h, 0, 0);                    /* no error: inferno(0) = (0, 0, 4) */
+    CHECK(p[0] == 0 && p[1] == 0 && fabsf(p[2] - 4 / 255.0f) < 1e-6f);
+    float c[3];
+    ref_colormap_inferno((double)(0.55f - 0.5f) / 0.1, c);
+    p = at(&h, 1, 0);
+    for (int k = 0; k < 3; k++) CHECK(fabsf(p[k] - c[k]) <= 0.6f / 255);
+    p = at(&h, 2, 0);                           /* clamped: (252, 255, 164) */
+    CHECK(fabsf(p[0] - 252 / 255.0f) < 1e-6f && p[1] == 1 && fabsf(p[2] - 164 / 255.0f) < 1e-6f);
+    p = at(&h, 3, 0);
+    CHECK(p[0] == 0 && p[1] == 1 && p[2] == 1);   /* NaN: cyan */
+    p = at(&h, 0, 1);
+    CHECK(fabsf(p[0] - 0.5f) < 1 / 255.0f && p[0] == p[1] && p[1] == p[2]);   /* masked: grey */
+    img_free(&h);
+    /* Automatic scale: the 99th percentile of the per-pixel error. */
+    rc = compare("%s %s --out %s --json %s", path("h1.tif"), path("h2.tif"), path("heat.png"), path("h.json"));
+    CHECK(rc == 0);
+    j = read_file(path("h.json"));
+    /* 7 compared (the NaN pixel is not): 0 x4, 0.05, 0.25, 0.4 (unmasked
+     * now); p99 at rank 0.99 * 6 = 5.94. */
+    double e4 = (double)0.9f - 0.5;
+    CHECK_NEAR(jnum(j, NULL, "heatmap_scale", NULL), 0.25 + 0.94 * (e4 - 0.25), 1e-6);
+}
+
+/* --buffers: X.refract_hit.exr (world units, texels), X.fresnel.exr; a
+ * buffer on one side only is named and not compared. */
+static void test_buffers(void) {
+    mkdir(path("ra"), 0755);
+    mkdir(path("rb"), 0755);
+    img a = make(8, 4, 3, 0.25f), b = make(8, 4, 3, 0.25f);
+    save(path("ra/x.exr"), &a);
+    save(path("rb/x.exr"), &b);
+    a = make(8, 4, 3, 2.0f);
+    b = make(8, 4, 3, 2.0f);
+    at(&a, 6, 1)[0] = 2.5f;                     /* 0.5 world units */
+    at(&a, 2, 2)[1] = 1.875f;                   /* 0.125 */
+    at(&a, 0, 0)[0] = NAN;                      /* a miss on one side */
+    save(path("ra/x.refract_hit.exr"), &a);
+    save(path("rb/x.refract_hit.exr"), &b);
+    a = make(8, 4, 1, 0.5f);
+    b = make(8, 4, 1, 0.5f);
+    at(&a, 7, 3)[0] = 0.25f;
+    save(path("ra/x.fresnel.exr"), &a);
+    save(path("rb/x.fresnel.exr"), &b);
+    a = make(8, 4, 1, 1.0f);
+    save(path("ra/x.depth.exr"), &a);
+    /* reflect: xyz + flag; flag 2 (REF_REFLECT_SKY) means xyz is a direction. */
+    a = make(8, 4, 4, 1.0f);
+    b = make(8, 4, 4, 1.0f);
+    float *p = at(&a, 3, 0);
+    p[0] = 0; p[1] = 1; p[2] = 0; p[3] = 2;     /* a direction in A: left out */
+    p = at(&a, 4, 0);
+    p[0] = 1.25f; p[3] = 3;                     /* met water instead of terrain */
+    save(path("ra/x.reflect.exr"), &a);
+    save(path("rb/x.reflect.exr"), &b);
+    int rc = compare("%s %s --buffers --texel 0.25 --json %s --csv %s --out %s", path("ra/x.exr"),
+                     path("rb/x.exr"), path("buf.json"), path("buf.csv"), path("bheat.png"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    CHECK_STR_CONTAINS(err_buf, "depth");
+    CHECK_STR_CONTAINS(err_buf, "ra/x.depth.exr");
+    CHECK_STR_CONTAINS(err_buf, "not compared");
+    CHECK_STR_CONTAINS(out_buf, "buffer refract_hit");
+    CHECK_STR_CONTAINS(out_buf, "texels");
+    char *j = read_file(path("buf.json"));
+    CHECK_MSG(j && json_valid(j), "%s", j ? j : "(no file)");
+    CHECK(jnum(j, NULL, "rmse", NULL) == 0);
+    CHECK(jnum(j, "refract_hit", "dist_max", NULL) == 0.5);
+    CHECK(jnum(j, "refract_hit", "dist_max_at_x", NULL) == 6);
+    CHECK(jnum(j, "refract_hit", "dist_max_at_y", NULL) == 1);
+    CHECK_NEAR(jnum(j, "refract_hit", "dist_mean", NULL), 0.625 / 31, 1e-9);
+    CHECK(jnum(j, "refract_hit", "dist_median", NULL) == 0);
+    CHECK(jnum(j, "refract_hit", "texel_max", NULL) == 2);
+    CHECK(jnum(j, "refract_hit", "texel_size", NULL) == 0.25);
+    CHECK(jnum(j, "refract_hit", "nan_pixels_a", NULL) == 1);
+    CHECK(jnum(j, "refract_hit", "compared_pixels", NULL) == 31);
+    CHECK(jnum(j, "fresnel", "abs_max", NULL) == 0.25);
+    CHECK(jnum(j, "fresnel", "abs_max_at_x", NULL) == 7);
+    CHECK(jnum(j, "fresnel", "rel_max", NULL) == 0.5);
+    CHECK_NEAR(jnum(j, "fresnel", "bias", NULL), -0.25 / 32, 1e-12);
+    CHECK(!strstr(j, "\"depth\""));
+    int found;
+    CHECK(isnan(jnum(j, "refract_hit", "flag_mismatch_pixels", &found)) && found);
+    CHECK(jnum(j, "reflect", "direction_pixels", NULL) == 1);
+    CHECK(jnum(j, "reflect", "flag_mismatch_pixels", NULL) == 2);
+    CHECK(jnum(j, "reflect", "masked_pixels", NULL) == 1);
+    CHECK(jnum(j, "reflect", "compared_pixels", NULL) == 31);
+    CHECK(jnum(j, "reflect", "dist_max", NULL) == 0.25);
+    struct stat st;
+    CHECK(stat(path("bheat.refract_hit.png"), &st) == 0);
+    CHECK(stat(path("bheat.fresnel.png"), &st) == 0);
+    char *c = read_file(path("buf.csv"));
+    CHECK_STR_CONTAINS(c, "refract_hit.dist_max");
+    CHECK_STR_CONTAINS(c, "fresnel.rel_p95");
+    /* Nothing beside A or B: said, and still a comparison. */
+    rc = compare("%s %s --buffers", path("a.tif"), path("b.tif"));
+    CHECK(rc == 0);
+    CHECK_STR_CONTAINS(err_buf, "no buffers");
+}
+
+static void test_mismatch_and_missing_files(void) {
+    img a = make(16, 8, 3, 0), b = make(8, 16, 3, 0);
+    save(path("w.exr"), &a);
+    save(path("t.exr"), &b);
+    int rc = compare("%s %s", path("w.exr"), path("t.exr"));
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(err_buf, "w.exr");
+    CHECK_STR_CONTAINS(err_buf, "t.exr");
+    CHECK_STR_CONTAINS(err_buf, "16x8");
+    CHECK_STR_CONTAINS(err_buf, "8x16");
+    rc = compare("%s %s", path("nope-a.exr"), path("t.exr"));
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(err_buf, "nope-a.exr");
+    rc = compare("%s %s", path("nope-a.exr"), path("nope-b.png"));
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(err_buf, "nope-a.exr");
+    CHECK_STR_CONTAINS(err_buf, "nope-b.png");
+    rc = compare("%s %s --mask %s", path("w.exr"), path("w.exr"), path("t.exr"));
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(err_buf, "mask");
+    rc = compare("%s %s --json %s/no/such/dir.json", path("w.exr"), path("w.exr"), dir);
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(err_buf, "no/such/dir.json");
+}
+
+static void test_usage(void) {
+    CHECK(compare("--help") == 0);
+    const char *opts[] = { "--out", "--threshold", "--max", "--json", "--csv", "--buffers", "--texel",
+                           "--mask", "--linear", "exit codes" };
+    for (int i = 0; i < (int)(sizeof opts / sizeof opts[0]); i++) CHECK_STR_CONTAINS(out_buf, opts[i]);
+    CHECK(compare("") == 2);
+    CHECK_STR_CONTAINS(err_buf, "usage: tarn compare");
+    CHECK(compare("a.exr") == 2);
+    CHECK(compare("a.exr b.exr c.exr") == 2);
+    CHECK(compare("a.exr b.exr --frob") == 2);
+    CHECK_STR_CONTAINS(err_buf, "unknown option '--frob'");
+    CHECK(compare("a.exr b.exr --threshold 0") == 2);
+    CHECK(compare("a.exr b.exr --threshold abc") == 2);
+    CHECK(compare("a.exr b.exr --max -1") == 2);
+    CHECK(compare("a.exr b.exr --texel") == 2);
+    CHECK(compare("a.exr b.exr --json") == 2);
+}
+
+/* ---- the program ------------------------------------------------------------------ */
+
+static int run(const char *cmdline, char *out, size_t outlen) {
+    FILE *p = popen(cmdline, "r");
+    if (!p) return -1;
+    size_t n = fread(out, 1, outlen - 1, p);
+    out[n] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void test_tarn_compare_program(void) {
+    const char *bin = getenv("TARN_BIN");
+    if (!bin) SKIP("TARN_BIN is not set (run through ctest)");
+    char cmd[2048];
+    static char out[65536];
+    snprintf(cmd, sizeof cmd, "%s compare --help 2>&1", bin);
+    int rc = run(cmd, out, sizeof out);
+    if (rc == 2 && strstr(out, "unknown command")) SKIP("tarn has no compare command yet (main.c)");
+    CHECK(rc == 0);
+    CHECK_STR_CONTAINS(out, "--buffers");
+    snprintf(cmd, sizeof cmd, "%s compare %s %s --json - 2>/dev/null", bin, path("a.tif"), path("b.tif"));
+    CHECK(run(cmd, out, sizeof out) == 0);
+    CHECK(json_valid(out));
+    CHECK_NEAR(jnum(out, NULL, "rmse", NULL), ((double)0.6f - 0.5) / sqrt(381.0), 1e-9);
+    snprintf(cmd, sizeof cmd, "%s compare %s %s 2>&1", bin, path("w.exr"), path("t.exr"));
+    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK_STR_CONTAINS(out, "16x8");
+    snprintf(cmd, sizeof cmd, "%s compare %s %s 2>&1", bin, path("missing.exr"), path("t.exr"));
+    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK_STR_CONTAINS(out, "missing.exr");
+    snprintf(cmd, sizeof cmd, "%s compare %s 2>&1", bin, path("t.exr"));
+    CHECK(run(cmd, out, sizeof out) == 2);
+}
+
+int main(void) {
+    snprintf(dir, sizeof dir, "/tmp/tarn-test-compare-XXXXXX");
+    if (!mkdtemp(dir)) return 1;
+    RUN(test_json_has_the_hand_computed_values);
+    RUN(test_identical_images_psnr_inf);
+    RUN(test_csv_to_stdout);
+    RUN(test_png_is_srgb_decoded);
+    RUN(test_heatmap_png);
+    RUN(test_buffers);
+    RUN(test_mismatch_and_missing_files);
+    RUN(test_usage);
+    RUN(test_tarn_compare_program);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    return check_summary();
+}

@@ -1,0 +1,433 @@
+/* test_ref_render: the CPU reference renderer against independent truth:
+ * closed-form Snell, Fresnel and path length over flat water, total
+ * internal reflection from below, the shading composition in closed form,
+ * flat-water caustic irradiance within the Monte-Carlo bound, bitwise
+ * determinism across thread counts, exact sky pixels, finite images of the
+ * lake, and wavy-water hits that obey Snell at the exact surface. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "ref_render.h"
+
+#define PI 3.14159265358979323846
+#define N_WATER 1.333
+
+/* a max that keeps NaN (fmax would drop it) */
+static double worse(double worst, double e) { return isnan(e) || e > worst ? e : worst; }
+
+static double dot3(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void normalize3(double v[3]) {
+    double l = sqrt(dot3(v, v));
+    for (int i = 0; i < 3; i++) v[i] /= l;
+}
+
+/* The camera ray written out again (gluLookAt + gluPerspective): forward
+ * f, right r = f x up, true up u = r x f; pixel centre (i + .5, j + .5). */
+static void camera_ray(const ref_camera *c, int i, int j, double d[3]) {
+    double f[3], r[3], u[3];
+    for (int k = 0; k < 3; k++) f[k] = c->center[k] - c->eye[k];
+    normalize3(f);
+    r[0] = f[1] * c->up[2] - f[2] * c->up[1];
+    r[1] = f[2] * c->up[0] - f[0] * c->up[2];
+    r[2] = f[0] * c->up[1] - f[1] * c->up[0];
+    normalize3(r);
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    double t = tan(c->fov_deg * PI / 360.0), aspect = (double)c->width / c->height;
+    double x = ((i + 0.5) / c->width * 2 - 1) * t * aspect, y = (1 - (j + 0.5) / c->height * 2) * t;
+    for (int k = 0; k < 3; k++) d[k] = f[k] + x * r[k] + y * u[k];
+    normalize3(d);
+}
+
+/* Fresnel by the sine and tangent laws (independent of ref_fresnel). */
+static double fresnel_laws(double ti, double tt) {
+    double rs = sin(ti - tt) / sin(ti + tt), rp = tan(ti - tt) / tan(ti + tt);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+/* Flat water at y = 0 over a flat floor y = -depth, no objects. */
+static void flat_world(ref_world *w, double depth) {
+    ref_world_desc d;
+    memset(&d, 0, sizeof d);
+    d.terrain = REF_TERRAIN_FLAT;
+    d.depth = depth;
+    ref_world_init(w, &d);
+}
+
+static void lake_world(ref_world *w) {
+    ref_world_desc d;
+    ref_world_desc_lake(&d);
+    ref_world_init(w, &d);
+}
+
+static int render(const ref_render_desc *d, ref_render_result *r) {
+    char err[256] = "";
+    int rc = ref_render(d, r, err, sizeof err);
+    if (rc != 0) fprintf(stderr, "ref_render: %s\n", err);
+    return rc;
+}
+
+/* ---- flat water, camera above --------------------------------------- */
+
+static void test_flat_snell(void) {
+    ref_world w;
+    const double D = 2.0;
+    flat_world(&w, D);
+    ref_render_desc d = { .world = &w, .caustics = REF_CAUSTICS_FLAT, .threads = 2 };
+    d.camera = (ref_camera){ { 0.3, 1.5, 4.0 }, { 0.0, -1.0, 0.0 }, { 0, 1, 0 }, 60, 48, 32 };
+    ref_render_result r;
+    CHECK(render(&d, &r) == 0);
+    if (!r.color) return;
+    double err_hit = 0, err_fres = 0, err_laws = 0, err_depth = 0;
+    int n = 0;
+    for (int j = 0; j < r.height; j++)
+        for (int i = 0; i < r.width; i++) {
+            size_t p = (size_t)j * r.width + i;
+            double dir[3];
+            camera_ray(&d.camera, i, j, dir);
+            if (!(dir[1] < -1e-3)) { CHECK(r.mask[p] == REF_MASK_SKY); continue; }
+            CHECK(r.mask[p] == REF_MASK_WATER);
+            const double *e = d.camera.eye;
+            double tw = e[1] / -dir[1];
+            double s[3] = { e[0] + tw * dir[0], 0.0, e[2] + tw * dir[2] };
+            double sin_i = hypot(dir[0], dir[2]), cos_i = -dir[1];
+            double sin_t = sin_i / N_WATER, cos_t = sqrt(1 - sin_t * sin_t);
+            double run = D * sin_t / cos_t;
+            double hit[3] = { s[0] + run * dir[0] / sin_i, -D, s[2] + run * dir[2] / sin_i };
+            for (int k = 0; k < 3; k++) {
+                err_hit = worse(err_hit, fabs(r.refract_hit[p * 4 + k] - hit[k]));
+                err_hit = worse(err_hit, fabs(r.surface[p * 3 + k] - s[k]));
+            }
+            err_fres = worse(err_fres, fabs(r.fresnel[p] - ref_fresnel(cos_i, 1.0, N_WATER)));
+            if (sin_i > 0.02)
+                err_laws = worse(err_laws, fabs(r.fresnel[p] - fresnel_laws(asin(sin_i), asin(sin_t))));
+            err_depth = worse(err_depth, fabs(r.depth[p] - D / cos_t));
+            /* the reflection goes to the sky along the mirrored ray */
+            CHECK(r.reflect[p * 4 + 3] == REF_REFLECT_SKY);
+            CHECK_NEAR(r.reflect[p * 4 + 1], -dir[1], 1e-12);
+            n++;
+        }
+    fprintf(stderr, "  %d water pixels: hit %.2g, Fresnel %.2g (laws %.2g), depth %.2g\n", n, err_hit,
+            err_fres, err_laws, err_depth);
+    CHECK(n > r.width * r.height / 2);
+    CHECK(err_hit <= 1e-9);
+    CHECK(err_fres <= 1e-12);
+    CHECK(err_laws <= 1e-12);
+    CHECK(err_depth <= 1e-9);
+    ref_render_free(&r);
+}
+
+/* The colour of a flat-water pixel written out: R sky(reflected) + (1 - R)
+ * exp(-sigma s) albedo (E_flat / pi + ambient (1 - R0) exp(-sigma D)). */
+static void test_flat_color(void) {
+    ref_world w;
+    const double D = 1.5;
+    flat_world(&w, D);
+    ref_render_desc d = { .world = &w, .caustics = REF_CAUSTICS_FLAT, .threads = 1 };
+    d.camera = (ref_camera){ { -0.5, 2.0, 3.0 }, { 0.5, -1.0, -1.0 }, { 0, 1, 0 }, 50, 24, 16 };
+    ref_render_result r;
+    CHECK(render(&d, &r) == 0);
+    if (!r.color) return;
+    const double *sun = w.d.sun_dir, *sig = w.d.absorption;
+    double cos_s = sun[1], sin_ts = sqrt(1 - cos_s * cos_s) / N_WATER, cos_ts = sqrt(1 - sin_ts * sin_ts);
+    double Rs = fresnel_laws(acos(cos_s), asin(sin_ts));
+    double R0 = pow((N_WATER - 1) / (N_WATER + 1), 2);
+    double worst = 0;
+    int n = 0;
+    for (size_t p = 0; p < (size_t)r.width * r.height; p++) {
+        if (r.mask[p] != REF_MASK_WATER) continue;
+        const double *hit = r.refract_hit + p * 4;
+        double dir[3];
+        camera_ray(&d.camera, (int)(p % r.width), (int)(p / r.width), dir);
+        double refl[3] = { dir[0], -dir[1], dir[2] }, sky[3], alb[3];
+        ref_sky_radiance(&w, refl, sky);
+        ref_terrain_albedo(&w, hit[0], hit[2], alb);
+        double R = r.fresnel[p], s = r.depth[p];
+        for (int k = 0; k < 3; k++) {
+            /* E on the floor: E_sun cos_s (1 - R_s), attenuated over D / cos_ts */
+            double E = w.d.sun_irradiance[k] * cos_s * (1 - Rs) * exp(-sig[k] * D / cos_ts);
+            double amb = w.ambient[k] * (1 - R0) * exp(-sig[k] * D);
+            double floor = alb[k] * (E / PI + amb);
+            double want = R * sky[k] + (1 - R) * exp(-sig[k] * s) * floor;
+            worst = worse(worst, fabs(r.color[p * 3 + k] - want) / want);
+            CHECK_NEAR(r.irradiance[p * 3 + k], E, 1e-12 * E);
+        }
+        n++;
+    }
+    fprintf(stderr, "  %d pixels, colour relative error %.2g\n", n, worst);
+    CHECK(n > 100);
+    CHECK(worst <= 1e-12);
+    ref_render_free(&r);
+}
+
+/* ---- camera under water ------------------------------------------------ */
+
+static void test_tir_from_below(void) {
+    ref_world w;
+    flat_world(&w, 5.0);
+    ref_render_desc d = { .world = &w, .caustics = REF_CAUSTICS_FLAT, .threads = 2 };
+    /* looking up at 45 degrees with a 90 degree field: 0..90 degrees from the zenith */
+    d.camera = (ref_camera){ { 0.0, -1.0, 0.0 }, { 0.0, 0.0, -1.0 }, { 0, 1, 0 }, 90, 32, 32 };
+    ref_render_result r;
+    CHECK(render(&d, &r) == 0);
+    if (!r.color) return;
+    double crit = asin(1.0 / N_WATER) * 180 / PI;   /* 48.61 */
+    int tir = 0, through = 0;
+    for (int j = 0; j < r.height; j++)
+        for (int i = 0; i < r.width; i++) {
+            size_t p = (size_t)j * r.width + i;
+            double dir[3];
+            camera_ray(&d.camera, i, j, dir);
+            if (dir[1] <= 1e-3) continue;
+            CHECK(r.mask[p] == REF_MASK_WATER);
+            double theta = acos(dir[1]) * 180 / PI;
+            CHECK_NEAR(r.depth[p], 1.0 / dir[1], 1e-9);          /* eye to surface, in water */
+            if (theta > crit + 0.01) {
+                CHECK(r.fresnel[p] == 1.0);
+                CHECK(isnan(r.refract_hit[p * 4]) && r.refract_hit[p * 4 + 3] == REF_MASK_SKY);
+                CHECK(r.reflect[p * 4 + 3] == REF_REFLECT_POINT);   /* down to the floor */
+                CHECK_NEAR(r.reflect[p * 4 + 1], -5.0, 1e-9);
+                tir++;
+            } else if (theta < crit - 0.01) {
+                CHECK(r.fresnel[p] < 1.0);
+                CHECK_NEAR(r.fresnel[p], ref_fresnel(dir[1], N_WATER, 1.0), 1e-12);
+                double st = N_WATER * sin(acos(dir[1]));
+                CHECK_NEAR(r.fresnel[p], fresnel_laws(acos(dir[1]), asin(st)), 1e-12);
+                through++;
+            }
+        }
+    fprintf(stderr, "  %d pixels beyond the critical angle, %d inside it\n", tir, through);
+    CHECK(tir > 100 && through > 100);
+    ref_render_free(&r);
+}
+
+/* ---- caustics over flat water ------------------------------------------ */
+
+static void test_flat_caustics(void) {
+    ref_world w;
+    ref_world_desc wd;
+    memset(&wd, 0, sizeof wd);
+    wd.terrain = REF_TERRAIN_FLAT;
+    wd.depth = 2.5;
+    wd.half_size = 6;
+    ref_world_init(&w, &wd);
+    /* k = 32 strata a side per cell: the count's sd is at most sqrt(k+1) of
+       k^2 photons (docs/reference.md), 0.56%; bound 5 sd = 2.8% */
+    ref_render_desc d = { .world = &w, .threads = 2, .caustic_res = 8, .photons_per_cell = 1024 };
+    d.camera = (ref_camera){ { 0.5, 2.0, 3.0 }, { 0.0, -2.5, 0.0 }, { 0, 1, 0 }, 60, 32, 24 };
+    ref_render_result r;
+    CHECK(render(&d, &r) == 0);
+    if (!r.color) return;
+    CHECK(r.have_caustics);
+    const double k = 32, bound = 5 * sqrt(k + 1) / (k * k);
+    const double *sun = w.d.sun_dir;
+    double cos_s = sun[1], sin_ts = sqrt(1 - cos_s * cos_s) / N_WATER, cos_ts = sqrt(1 - sin_ts * sin_ts);
+    double Rs = fresnel_laws(acos(cos_s), asin(sin_ts));
+    double worst = 0;
+    int n = 0;
+    for (size_t p = 0; p < (size_t)r.width * r.height; p++) {
+        if (r.mask[p] != REF_MASK_WATER || isnan(r.irradiance[p * 3])) continue;
+        const double *hit = r.refract_hit + p * 4;
+        CHECK(fabs(hit[0]) < 6 && fabs(hit[2]) < 6);
+        for (int c = 0; c < 3; c++) {
+            double want = w.d.sun_irradiance[c] * cos_s * (1 - Rs) * exp(-w.d.absorption[c] * 2.5 / cos_ts);
+            worst = worse(worst, fabs(r.irradiance[p * 3 + c] / want - 1));
+        }
+        n++;
+    }
+    fprintf(stderr, "  %d pixels, %ld photons: worst relative error %.2g (bound %.3g)\n", n,
+            r.caustics.stats.photons, worst, bound);
+    CHECK(n == r.width * r.height);
+    CHECK(worst <= bound);
+    ref_render_free(&r);
+}
+
+/* ---- the lake ------------------------------------------------------------- */
+
+static ref_render_desc lake_desc(const ref_world *w, int threads, double t) {
+    ref_render_desc d = { .world = w, .threads = threads, .time = t, .caustic_res = 48,
+                          .photons_per_cell = 16 };
+    d.camera = (ref_camera){ { 0.0, 3.0, 14.0 }, { 0.0, -0.5, 0.0 }, { 0, 1, 0 }, 50, 64, 36 };
+    return d;
+}
+
+#define SAME(a, b, n) (memcmp((a), (b), (n) * sizeof *(a)) == 0)
+
+static void test_deterministic(void) {
+    ref_world w;
+    lake_world(&w);
+    ref_render_desc d1 = lake_desc(&w, 1, 2.0), d2 = lake_desc(&w, 2, 2.0), d3 = lake_desc(&w, 3, 2.0);
+    ref_render_result a, b, c;
+    CHECK(render(&d1, &a) == 0);
+    CHECK(render(&d2, &b) == 0);
+    CHECK(render(&d3, &c) == 0);
+    if (!a.color || !b.color || !c.color) return;
+    size_t n = (size_t)a.width * a.height;
+    const ref_render_result *o[2] = { &b, &c };
+    for (int k = 0; k < 2; k++) {
+        CHECK(SAME(a.color, o[k]->color, n * 3));
+        CHECK(SAME(a.mask, o[k]->mask, n));
+        CHECK(SAME(a.surface, o[k]->surface, n * 3));
+        CHECK(SAME(a.refract_hit, o[k]->refract_hit, n * 4));
+        CHECK(SAME(a.reflect, o[k]->reflect, n * 4));
+        CHECK(SAME(a.fresnel, o[k]->fresnel, n));
+        CHECK(SAME(a.depth, o[k]->depth, n));
+        CHECK(SAME(a.irradiance, o[k]->irradiance, n * 3));
+        CHECK(a.caustics.nx == o[k]->caustics.nx && a.caustics.nz == o[k]->caustics.nz);
+        CHECK(SAME(a.caustics.irradiance, o[k]->caustics.irradiance,
+                   (size_t)a.caustics.nx * a.caustics.nz * 3));
+        CHECK(a.caustics.stats.flux_in_grid[1] == o[k]->caustics.stats.flux_in_grid[1]);
+    }
+    CHECK(a.threads == 1 && b.threads == 2 && c.threads == 3);
+    ref_render_free(&a);
+    ref_render_free(&b);
+    ref_render_free(&c);
+}
+
+static void test_lake_finite(void) {
+    ref_world w;
+    lake_world(&w);
+    const double times[] = { 0.0, 3.7, 11.25 };
+    for (int t = 0; t < 3; t++) {
+        ref_render_desc d = lake_desc(&w, 2, times[t]);
+        if (t == 2) d.spp = 2;
+        ref_render_result r;
+        CHECK(render(&d, &r) == 0);
+        if (!r.color) return;
+        int bad = 0, kinds[4] = { 0 };
+        for (size_t p = 0; p < (size_t)r.width * r.height; p++) {
+            for (int k = 0; k < 3; k++) bad += !isfinite(r.color[p * 3 + k]) || r.color[p * 3 + k] < 0;
+            kinds[r.mask[p]]++;
+        }
+        CHECK_MSG(bad == 0, "t = %g: %d non-finite or negative values", times[t], bad);
+        CHECK(kinds[0] > 0 && kinds[1] > 0 && kinds[2] > 0 && kinds[3] > 0);   /* it sees it all */
+        /* energy: the photons' flux splits into reflected and transmitted */
+        const ref_caustics_stats *s = &r.caustics.stats;
+        CHECK_NEAR(s->flux_reflected + s->flux_transmitted,
+                   s->flux_emitted * s->hit_water / (double)s->photons, 1e-9 * s->flux_emitted);
+        ref_render_free(&r);
+    }
+}
+
+/* Wavy water: every refraction hit lies on the terrain, along the Snell
+ * direction at the exact surface normal from a point on the surface. */
+static void test_lake_snell(void) {
+    ref_world w;
+    lake_world(&w);
+    ref_render_desc d = lake_desc(&w, 2, 4.5);
+    d.caustics = REF_CAUSTICS_FLAT;
+    ref_render_result r;
+    CHECK(render(&d, &r) == 0);
+    if (!r.color) return;
+    double worst_surf = 0, worst_dir = 0, worst_floor = 0;
+    int n = 0, nter = 0, nobj = 0;
+    for (int j = 0; j < r.height; j++)
+        for (int i = 0; i < r.width; i++) {
+            size_t p = (size_t)j * r.width + i;
+            if (r.mask[p] != REF_MASK_WATER) continue;
+            const double *s = r.surface + p * 3, *h = r.refract_hit + p * 4;
+            ref_waves_point wp;
+            CHECK(ref_waves_at(&w.waves, s[0], s[2], d.time, NULL, &wp) == 0);
+            worst_surf = worse(worst_surf, fabs(wp.pos[1] - s[1]));
+            if (isnan(h[0])) continue;
+            double dir[3], t[3], seg[3];
+            camera_ray(&d.camera, i, j, dir);
+            CHECK(ref_refract(dir, wp.normal, 1.0, N_WATER, t));
+            for (int k = 0; k < 3; k++) seg[k] = h[k] - s[k];
+            double len = sqrt(dot3(seg, seg));
+            /* the floor hit is within t_tol = 1e-9 of the crossing along the ray */
+            for (int k = 0; k < 3; k++)
+                worst_dir = worse(worst_dir, fabs(seg[k] / len - t[k]) / (1e-12 + 2e-9 / len));
+            CHECK_NEAR(len, r.depth[p], 1e-9);
+            if (h[3] == REF_MASK_TERRAIN) {
+                worst_floor = worse(worst_floor, fabs(h[1] - ref_terrain_height(&w, h[0], h[2])));
+                nter++;
+            } else {   /* an object: the segment ends on its surface */
+                double to, no[3];
+                CHECK(h[3] == REF_MASK_OBJECT);
+                CHECK(ref_objects_hit(&w, s, t, 0.0, len + 1e-6, &to, no) >= 0);
+                CHECK_NEAR(to, len, 1e-9);
+                nobj++;
+            }
+            n++;
+        }
+    fprintf(stderr, "  %d pixels (%d terrain, %d objects): surface %.2g, direction %.2g of the bound, on the terrain %.2g\n",
+            n, nter, nobj, worst_surf, worst_dir, worst_floor);
+    CHECK(n > 200 && nter > 0 && nobj > 0);
+    CHECK(worst_surf <= 1e-9);
+    CHECK(worst_dir <= 1.0);      /* in units of the bound 2e-9 / len + 1e-12 */
+    CHECK(worst_floor <= 1e-12);
+    ref_render_free(&r);
+}
+
+static void test_sky_exact(void) {
+    ref_world w;
+    lake_world(&w);
+    ref_render_desc d = { .world = &w, .threads = 2, .caustics = REF_CAUSTICS_FLAT };
+    d.camera = (ref_camera){ { 1.0, 2.0, 13.0 }, { 0.0, 2.5, 0.0 }, { 0, 1, 0 }, 70, 40, 30 };
+    ref_render_result r;
+    CHECK(render(&d, &r) == 0);
+    if (!r.color) return;
+    int n = 0;
+    for (int j = 0; j < r.height; j++)
+        for (int i = 0; i < r.width; i++) {
+            size_t p = (size_t)j * r.width + i;
+            if (r.mask[p] != REF_MASK_SKY) continue;
+            double o[3], dir[3], want[3], mine[3];
+            ref_camera_ray(&d.camera, i + 0.5, j + 0.5, o, dir);
+            camera_ray(&d.camera, i, j, mine);
+            for (int k = 0; k < 3; k++) CHECK_NEAR(dir[k], mine[k], 1e-14);
+            ref_sky_radiance(&w, dir, want);
+            CHECK(memcmp(want, r.color + p * 3, sizeof want) == 0);
+            CHECK(isnan(r.fresnel[p]) && isnan(r.depth[p]) && r.reflect[p * 4 + 3] == REF_REFLECT_NONE);
+            n++;
+        }
+    fprintf(stderr, "  %d sky pixels\n", n);
+    CHECK(n > 300);
+    ref_render_free(&r);
+}
+
+static void test_bad_input(void) {
+    ref_world w;
+    flat_world(&w, 1.0);
+    ref_render_result r;
+    char err[256] = "";
+    ref_render_desc d = { 0 };
+    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "no world");
+    d.world = &w;
+    d.camera = (ref_camera){ { 0, 1, 0 }, { 0, 1, 0 }, { 0, 1, 0 }, 50, 8, 8 };
+    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "eye equals");
+    d.camera.center[1] = 5;
+    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "up lies along");
+    d.camera.center[2] = 1;
+    d.spp = 100;
+    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK(r.color == NULL);
+    ref_render_desc z = ref_render_resolve(NULL);
+    CHECK(z.camera.width == 640 && z.camera.height == 360 && z.camera.fov_deg == 50);
+    CHECK(z.spp == 1 && z.threads >= 1 && z.max_depth == 5 && z.t_tol == 1e-9);
+}
+
+int main(void) {
+    RUN(test_flat_snell);
+    RUN(test_flat_color);
+    RUN(test_tir_from_below);
+    RUN(test_flat_caustics);
+    RUN(test_deterministic);
+    RUN(test_lake_finite);
+    RUN(test_lake_snell);
+    RUN(test_sky_exact);
+    RUN(test_bad_input);
+    return check_summary();
+}

@@ -1,0 +1,287 @@
+/* cli_reference: the `tarn reference` command (see cli_reference.h). */
+#include "cli_reference.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "image_io.h"
+#include "ref_render.h"
+#include "scene.h"
+
+static const char *usage =
+    "usage: tarn reference SCENE.glib -o OUT.exr [--size WxH] [--time SECONDS]\n"
+    "                      [--threads N] [--spp N] [--photons N] [--caustic-res N]\n"
+    "                      [--flat-caustics] [--radiance-n2] [--quiet]\n"
+    "\n"
+    "Renders the scene's world on the CPU in double precision: the ground truth\n"
+    "the packs are measured against (exact waves, Fresnel, refraction, ray/terrain\n"
+    "intersection, Beer-Lambert, caustics by photon tracing). Deterministic: the\n"
+    "same output for any number of threads.\n"
+    "\n"
+    "  -o, --out OUT.exr    the image, linear RGB, 32-bit float; beside it:\n"
+    "                         OUT.png              the image, sRGB 8-bit\n"
+    "                         OUT.refract_hit.exr  xyz the refracted ray meets, and what (A)\n"
+    "                         OUT.reflect.exr      xyz the reflected ray meets, or its\n"
+    "                                              direction, and a flag (A)\n"
+    "                         OUT.fresnel.exr      Fresnel reflectance at the water\n"
+    "                         OUT.depth.exr        path length in water\n"
+    "                         OUT.irradiance.exr   sun irradiance at the refraction hit\n"
+    "                         OUT.surface.exr      where the ray meets the water\n"
+    "                         OUT.mask.exr         0 sky, 1 water, 2 terrain, 3 object\n"
+    "                       (NaN where a buffer has no value; docs/reference.md)\n"
+    "  --size WxH           image size (default: the scene's WindowSize)\n"
+    "  --time SECONDS       simulated time of the waves (default 0)\n"
+    "  --threads N          worker threads (default: every core)\n"
+    "  --spp N              N x N subsamples per pixel for the colour (default 1);\n"
+    "                       the buffers are always the pixel centre's\n"
+    "  --photons N          photons per caustic grid cell (default 36)\n"
+    "  --caustic-res N      caustic grid cells along the underwater floor (default 256)\n"
+    "  --flat-caustics      no photons: the floor lit through flat water\n"
+    "  --radiance-n2        scale radiance crossing the surface by (n_t/n_i)^2\n"
+    "  --quiet              no progress bar and no summary, only errors\n"
+    "\n"
+    "exit codes: 0 ok, 1 the scene has errors or an output could not be written,\n"
+    "2 bad usage\n";
+
+const char *cli_reference_usage(void) { return usage; }
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int bad_usage(const char *what) {
+    fprintf(stderr, "tarn reference: %s\n\n%s", what, usage);
+    return CLI_USAGE;
+}
+
+static int parse_int(const char *s, int lo, int hi, int *out) {
+    char *end;
+    if (!s) return 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < lo || v > hi) return 0;
+    *out = (int)v;
+    return 1;
+}
+
+static int parse_size(const char *s, int *w, int *h) {
+    char x, extra;
+    return s && sscanf(s, "%d%c%d%c", w, &x, h, &extra) == 3 && (x == 'x' || x == 'X') && *w > 0 &&
+           *h > 0 && *w <= 16384 && *h <= 16384;
+}
+
+/* ---- the progress bar ------------------------------------------------- */
+
+typedef struct bar {
+    double start, last;
+    int drawn;
+} bar;
+
+static void fmt_time(double s, char *buf, size_t n) {
+    if (s < 60) snprintf(buf, n, "%.1f s", s);
+    else snprintf(buf, n, "%d:%02d", (int)(s / 60), (int)fmod(s, 60));
+}
+
+static void bar_progress(void *user, double f) {
+    bar *b = user;
+    double t = now_s();
+    if (f < 1.0 && t - b->last < 0.1) return;
+    b->last = t;
+    enum { WIDTH = 30 };
+    int fill = (int)(f * WIDTH + 0.5);
+    char line[WIDTH + 1], el[32], eta[32] = "";
+    for (int i = 0; i < WIDTH; i++) line[i] = i < fill ? '#' : '.';
+    line[WIDTH] = '\0';
+    double elapsed = t - b->start;
+    fmt_time(elapsed, el, sizeof el);
+    if (f > 0.005 && f < 1.0) {
+        char e[24];
+        fmt_time(elapsed * (1.0 - f) / f, e, sizeof e);
+        snprintf(eta, sizeof eta, "  ETA %s", e);
+    }
+    fprintf(stderr, "\r[%s] %5.1f%%  elapsed %s%s\033[K", line, 100.0 * f, el, eta);
+    fflush(stderr);
+    b->drawn = 1;
+}
+
+/* ---- writing ----------------------------------------------------------- */
+
+static double srgb_encode(double v) {
+    if (!(v > 0)) return 0;
+    if (v >= 1) return 1;
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+
+/* Writes n doubles a pixel (from src, stride n) as a float image. */
+static int write_buffer(const char *path, const double *src, const unsigned char *bytes, int w,
+                        int h, int n, int srgb, char *err, int errlen) {
+    img im;
+    if (!img_alloc(&im, w, h, n)) {
+        snprintf(err, (size_t)errlen, "%s: out of memory", path);
+        return 0;
+    }
+    size_t count = (size_t)w * h * n;
+    for (size_t i = 0; i < count; i++) {
+        double v = bytes ? (double)bytes[i] : src[i];
+        im.px[i] = (float)(srgb ? srgb_encode(v) : v);
+    }
+    int ok = srgb ? img_write(path, &im, err, errlen) : img_write_float(path, &im, err, errlen);
+    img_free(&im);
+    return ok;
+}
+
+static int write_outputs(const char *out, const ref_render_result *r, int quiet) {
+    size_t stem_len = strlen(out) - 4;   /* without ".exr" */
+    size_t cap = stem_len + 32;
+    char *path = malloc(cap), err[512];
+    if (!path) { fprintf(stderr, "tarn reference: out of memory\n"); return 0; }
+    struct { const char *suffix; const double *px; const unsigned char *bytes; int n, srgb; } files[] = {
+        { ".exr", r->color, NULL, 3, 0 },
+        { ".png", r->color, NULL, 3, 1 },
+        { ".refract_hit.exr", r->refract_hit, NULL, 4, 0 },
+        { ".reflect.exr", r->reflect, NULL, 4, 0 },
+        { ".fresnel.exr", r->fresnel, NULL, 1, 0 },
+        { ".depth.exr", r->depth, NULL, 1, 0 },
+        { ".irradiance.exr", r->irradiance, NULL, 3, 0 },
+        { ".surface.exr", r->surface, NULL, 3, 0 },
+        { ".mask.exr", NULL, r->mask, 1, 0 },
+    };
+    int ok = 1;
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snprintf(path, cap, "%.*s%s", (int)stem_len, out, files[i].suffix);
+        if (!write_buffer(path, files[i].px, files[i].bytes, r->width, r->height, files[i].n,
+                          files[i].srgb, err, sizeof err)) {
+            fprintf(stderr, "tarn reference: cannot write %s\n", err);
+            ok = 0;
+            break;
+        }
+    }
+    if (ok && !quiet)
+        printf("wrote %s, %.*s.png and the buffers %.*s.{refract_hit,reflect,fresnel,depth,"
+               "irradiance,surface,mask}.exr\n", out, (int)stem_len, out, (int)stem_len, out);
+    free(path);
+    return ok;
+}
+
+/* ---- the command -------------------------------------------------------- */
+
+int cli_reference(int argc, char **argv) {
+    const char *glib = NULL, *out = NULL;
+    int width = 0, height = 0, quiet = 0;
+    ref_render_desc d;
+    memset(&d, 0, sizeof d);
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage, stdout); return CLI_OK; }
+        if (strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) {
+            if (!next) return bad_usage("-o wants a path, e.g. -o out/ref.exr");
+            out = next;
+            i++;
+        } else if (strcmp(a, "--size") == 0) {
+            if (!parse_size(next, &width, &height)) return bad_usage("--size wants WxH, e.g. 640x360");
+            i++;
+        } else if (strcmp(a, "--time") == 0) {
+            char *end;
+            if (!next || (d.time = strtod(next, &end), end == next || *end || !isfinite(d.time)))
+                return bad_usage("--time wants seconds, e.g. 2.5");
+            i++;
+        } else if (strcmp(a, "--threads") == 0) {
+            if (!parse_int(next, 1, 256, &d.threads)) return bad_usage("--threads wants 1..256");
+            i++;
+        } else if (strcmp(a, "--spp") == 0) {
+            if (!parse_int(next, 1, 16, &d.spp)) return bad_usage("--spp wants 1..16 (N x N subsamples)");
+            i++;
+        } else if (strcmp(a, "--photons") == 0) {
+            if (!parse_int(next, 1, 1 << 20, &d.photons_per_cell)) return bad_usage("--photons wants 1..1048576 per cell");
+            i++;
+        } else if (strcmp(a, "--caustic-res") == 0) {
+            if (!parse_int(next, 1, 8192, &d.caustic_res)) return bad_usage("--caustic-res wants 1..8192");
+            i++;
+        } else if (strcmp(a, "--flat-caustics") == 0) {
+            d.caustics = REF_CAUSTICS_FLAT;
+        } else if (strcmp(a, "--radiance-n2") == 0) {
+            d.radiance_n2 = 1;
+        } else if (strcmp(a, "--quiet") == 0) {
+            quiet = 1;
+        } else if (a[0] == '-') {
+            char what[160];
+            snprintf(what, sizeof what, "unknown option '%.100s'", a);
+            return bad_usage(what);
+        } else if (!glib) {
+            glib = a;
+        } else {
+            return bad_usage("one scene at a time");
+        }
+    }
+    if (!glib) return bad_usage("which scene? give SCENE.glib");
+    if (!out) return bad_usage("where to? give -o OUT.exr");
+    size_t ol = strlen(out);
+    if (ol < 5 || strcmp(out + ol - 4, ".exr") != 0)
+        return bad_usage("-o wants a .exr path (the PNG and the buffers go beside it)");
+
+    ref_world_desc wd;
+    scene_camera cam;
+    bool has_world = false;
+    char err[4096] = "";
+    if (!scene_load(glib, NULL, &wd, &cam, &has_world, err, (int)sizeof err)) {
+        if (strstr(err, ": error:")) {
+            fprintf(stderr, "%s\ntarn reference: %s has errors\n", err, glib);
+            return CLI_INPUT_ERROR;
+        }
+        fprintf(stderr, "%s\n", err);   /* warnings: repaired values */
+    }
+    if (!has_world) {
+        fprintf(stderr, "tarn reference: %s describes no world (no Sun, Water, Terrain, Wave... or "
+                        "Object commands; see docs/glib.md)\n", glib);
+        return CLI_INPUT_ERROR;
+    }
+    ref_world world;
+    ref_world_init(&world, &wd);
+
+    d.world = &world;
+    memcpy(d.camera.eye, cam.eye, sizeof cam.eye);
+    memcpy(d.camera.center, cam.center, sizeof cam.center);
+    memcpy(d.camera.up, cam.up, sizeof cam.up);
+    d.camera.fov_deg = cam.fov_deg;
+    d.camera.width = width ? width : cam.width;
+    d.camera.height = height ? height : cam.height;
+    bar b = { .start = now_s() };
+    if (!quiet && isatty(STDERR_FILENO)) {
+        d.progress = bar_progress;
+        d.progress_user = &b;
+    }
+    ref_render_desc rd = ref_render_resolve(&d);
+    if (!quiet)
+        printf("tarn reference: %s at t = %g s, %dx%d, %d x %d subsamples, %d threads\n", glib,
+               rd.time, rd.camera.width, rd.camera.height, rd.spp, rd.spp, rd.threads);
+    fflush(stdout);
+
+    ref_render_result r;
+    char rerr[512] = "";
+    double t0 = now_s();
+    int rc = ref_render(&d, &r, rerr, sizeof rerr);
+    double total = now_s() - t0;
+    if (b.drawn) fputc('\n', stderr);
+    if (rc != 0) {
+        fprintf(stderr, "tarn reference: %s\n", rerr);
+        return CLI_INPUT_ERROR;
+    }
+    if (!quiet) {
+        if (r.have_caustics)
+            printf("photons: %ld on a %dx%d grid (%.3g m cells) in %.2f s\n", r.caustics.stats.photons,
+                   r.caustics.nx, r.caustics.nz, (r.caustics.x1 - r.caustics.x0) / r.caustics.nx,
+                   r.seconds_photons);
+        else
+            printf("photons: none (the floor is lit through flat water)\n");
+        printf("pixels: %.2f s; total %.2f s\n", r.seconds_pixels, total);
+    }
+    int ok = write_outputs(out, &r, quiet);
+    ref_render_free(&r);
+    return ok ? CLI_OK : CLI_INPUT_ERROR;
+}

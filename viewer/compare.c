@@ -1,0 +1,723 @@
+/* `tarn compare A B`: reads the images, runs ref_metrics, prints a table
+ * and writes the heat map, JSON and CSV. See compare.h, docs/metrics.md. */
+#include "compare.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "ref_metrics.h"
+#include "ref_render.h"
+
+static const char usage_text[] =
+    "usage: tarn compare A B [--out HEATMAP.png] [--threshold T] [--max E]\n"
+    "                        [--mask M] [--json FILE|-] [--csv FILE|-]\n"
+    "                        [--buffers] [--texel W] [--linear]\n"
+    "\n"
+    "Measures the error of image A (under test) against image B (the reference),\n"
+    "in linear RGB: RMSE and MAE over all channel values, PSNR (peak 1.0), the\n"
+    "largest error and its pixel, the share of pixels whose error (the largest\n"
+    "of the R, G, B errors) exceeds a threshold, and NaN/Inf pixels of each side\n"
+    "(left out of the statistics and counted). A and B are any format\n"
+    "OpenImageIO reads, of the same size. PNG, JPEG, BMP, GIF, TGA, WebP and\n"
+    "PNM inputs are sRGB-decoded to linear first; EXR, HDR and TIFF are read\n"
+    "as linear. Alpha is ignored; a grey image stands for R = G = B.\n"
+    "\n"
+    "  -o, --out HEATMAP.png\n"
+    "                     write the per-pixel error as an inferno heat map\n"
+    "                     (black = 0, pale yellow = the scale or more,\n"
+    "                     cyan = NaN/Inf in A or B, grey = outside the mask)\n"
+    "  --max E            heat-map scale (default: the 99th percentile of the\n"
+    "                     per-pixel error)\n"
+    "  --threshold T      error counted as 'over' when > T (default 0.05)\n"
+    "  --mask M           compare only where image M's first channel is > 0.5\n"
+    "  --json FILE|-      write every metric as JSON (- : stdout)\n"
+    "  --csv FILE|-       write every metric as CSV, a header row and a value\n"
+    "                     row (- : stdout); with either on stdout the table\n"
+    "                     goes to stderr\n"
+    "  --buffers          also compare the reference buffers beside A and B:\n"
+    "                     for X.exr, X.refract_hit.exr, X.reflect.exr and\n"
+    "                     X.surface.exr (hit points: distance in world units;\n"
+    "                     a 4th channel is what the ray met), X.fresnel.exr,\n"
+    "                     X.depth.exr and X.irradiance.exr (scalars: absolute\n"
+    "                     and relative error), each pair that exists on both\n"
+    "                     sides; with --out, one heat map per buffer too\n"
+    "                     (HEATMAP.NAME.png)\n"
+    "  --texel W          world units per texel: hit-point errors in texels too\n"
+    "  --linear           take every input as linear (no sRGB decoding)\n"
+    "\n"
+    "exit codes: 0 compared, 1 a file could not be read, compared or written,\n"
+    "2 bad usage\n";
+
+const char *compare_usage(void) { return usage_text; }
+
+/* ---- files -------------------------------------------------------------------- */
+
+bool compare_is_srgb_path(const char *path) {
+    static const char *exts[] = { "png", "jpg", "jpeg", "bmp", "gif", "tga", "webp", "ppm", "pgm", "pnm" };
+    if (!path) return false;
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    if (!dot || (slash && dot < slash)) return false;
+    char ext[8];
+    size_t n = strlen(dot + 1);
+    if (n == 0 || n >= sizeof ext) return false;
+    for (size_t i = 0; i <= n; i++) ext[i] = (char)tolower((unsigned char)dot[1 + i]);
+    for (size_t i = 0; i < sizeof exts / sizeof exts[0]; i++)
+        if (strcmp(ext, exts[i]) == 0) return true;
+    return false;
+}
+
+bool compare_load(const char *path, bool decode_srgb, img *out, bool *decoded, char *err, int errlen) {
+    if (decoded) *decoded = false;
+    if (!img_read(path, out, err, errlen)) return false;
+    if (out->d != 1) {
+        snprintf(err, (size_t)errlen, "%s: a 3D image (depth %d); compare takes 2D images", path, out->d);
+        img_free(out);
+        return false;
+    }
+    if (decode_srgb && compare_is_srgb_path(path)) {
+        int ch = out->channels, colour = ch >= 3 ? 3 : 1;
+        long n = (long)out->w * out->h;
+        for (long i = 0; i < n; i++)
+            for (int c = 0; c < colour; c++) {
+                float *v = &out->px[(size_t)i * (size_t)ch + (size_t)c];
+                *v = (float)ref_srgb_to_linear(*v);
+            }
+        if (decoded) *decoded = true;
+    }
+    return true;
+}
+
+static bool file_exists(const char *path) {
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* path with its extension (after the last '/') replaced by "." insert ext;
+ * e.g. ("out/x.exr", "depth", ".exr") -> "out/x.depth.exr". */
+static void sibling_path(char *dst, size_t len, const char *path, const char *insert, const char *ext) {
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    int stem = (dot && (!slash || dot > slash)) ? (int)(dot - path) : (int)strlen(path);
+    snprintf(dst, len, "%.*s.%s%s", stem, path, insert, ext);
+}
+
+/* ---- results: an ordered list of named values --------------------------------- */
+
+typedef enum { KV_NUM, KV_INT, KV_STR, KV_BOOL, KV_SHARE } kv_type;
+
+typedef struct kv {
+    const char *group;      /* NULL: top level; else a buffer's name */
+    const char *key;
+    const char *label;      /* for the table; NULL: JSON/CSV only */
+    const char *unit;       /* table only, may be NULL */
+    kv_type type;
+    bool table_only;        /* a line of the table, not in JSON/CSV */
+    double num;
+    long inum;
+    char *str;              /* KV_STR: owned */
+} kv;
+
+typedef struct kvlist {
+    kv *v;
+    int n, cap;
+    bool oom;
+} kvlist;
+
+static kv *kv_add(kvlist *l, const char *group, const char *key, const char *label, kv_type t) {
+    if (l->n == l->cap) {
+        int cap = l->cap ? 2 * l->cap : 64;
+        kv *nv = realloc(l->v, (size_t)cap * sizeof *nv);
+        if (!nv) { l->oom = true; return NULL; }
+        l->v = nv;
+        l->cap = cap;
+    }
+    kv *e = &l->v[l->n++];
+    memset(e, 0, sizeof *e);
+    e->group = group;
+    e->key = key;
+    e->label = label;
+    e->type = t;
+    return e;
+}
+
+static void kv_set_str(kvlist *l, kv *e, const char *s) {
+    size_t n = strlen(s) + 1;
+    e->str = malloc(n);
+    if (e->str) memcpy(e->str, s, n);
+    else { l->oom = true; e->type = KV_NUM; e->num = NAN; }
+}
+
+static void kvlist_free(kvlist *l) {
+    for (int i = 0; i < l->n; i++) free(l->v[i].str);
+    free(l->v);
+    memset(l, 0, sizeof *l);
+}
+
+static void add_num(kvlist *l, const char *g, const char *key, const char *label, double v, const char *unit) {
+    kv *e = kv_add(l, g, key, label, KV_NUM);
+    if (e) { e->num = v; e->unit = unit; }
+}
+
+static void add_share(kvlist *l, const char *g, const char *key, const char *label, double v) {
+    kv *e = kv_add(l, g, key, label, KV_SHARE);
+    if (e) e->num = v;
+}
+
+static void add_int(kvlist *l, const char *g, const char *key, const char *label, long v) {
+    kv *e = kv_add(l, g, key, label, KV_INT);
+    if (e) e->inum = v;
+}
+
+static void add_str(kvlist *l, const char *g, const char *key, const char *label, const char *s) {
+    kv *e = kv_add(l, g, key, label, s ? KV_STR : KV_NUM);
+    if (!e) return;
+    if (s) kv_set_str(l, e, s);
+    else e->num = NAN;     /* null */
+}
+
+/* A line of the table only. */
+static void add_note(kvlist *l, const char *g, const char *label, const char *s) {
+    kv *e = kv_add(l, g, "", label, KV_STR);
+    if (!e) return;
+    e->table_only = true;
+    kv_set_str(l, e, s);
+}
+
+static void add_bool(kvlist *l, const char *g, const char *key, const char *label, bool b) {
+    kv *e = kv_add(l, g, key, label, KV_BOOL);
+    if (e) e->inum = b;
+}
+
+static void add_counts(kvlist *l, const char *g, const ref_pixel_counts *c) {
+    add_int(l, g, "pixels", NULL, c->pixels);
+    add_int(l, g, "compared_pixels", "pixels compared", c->compared);
+    add_int(l, g, "masked_pixels", c->masked_out ? "pixels outside the mask" : NULL, c->masked_out);
+    add_int(l, g, "invalid_pixels", c->invalid ? "pixels left out (NaN/Inf)" : NULL, c->invalid);
+    add_int(l, g, "nan_pixels_a", "NaN pixels in A", c->nan_a);
+    add_int(l, g, "nan_pixels_b", "NaN pixels in B", c->nan_b);
+    add_int(l, g, "inf_pixels_a", "Inf pixels in A", c->inf_a);
+    add_int(l, g, "inf_pixels_b", "Inf pixels in B", c->inf_b);
+}
+
+/* ---- formatting ------------------------------------------------------------------ */
+
+static void fmt_num(char *dst, size_t len, double v, bool json) {
+    if (isnan(v)) snprintf(dst, len, "%s", json ? "null" : "");
+    else if (isinf(v)) snprintf(dst, len, "%s", json ? (v > 0 ? "\"inf\"" : "\"-inf\"") : (v > 0 ? "inf" : "-inf"));
+    else snprintf(dst, len, "%.9g", v);
+}
+
+static void json_string(FILE *f, const char *s) {
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
+        else if (*p == '\n') fputs("\\n", f);
+        else if (*p == '\t') fputs("\\t", f);
+        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
+        else fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+static void json_value(FILE *f, const kv *e) {
+    char buf[64];
+    switch (e->type) {
+    case KV_STR: json_string(f, e->str); break;
+    case KV_INT: fprintf(f, "%ld", e->inum); break;
+    case KV_BOOL: fputs(e->inum ? "true" : "false", f); break;
+    default: fmt_num(buf, sizeof buf, e->num, true); fputs(buf, f); break;
+    }
+}
+
+static void write_json(FILE *f, const kvlist *l) {
+    fputs("{\n", f);
+    bool first = true;
+    for (int i = 0; i < l->n; i++) {
+        if (l->v[i].group || l->v[i].table_only) continue;
+        fprintf(f, "%s  \"%s\": ", first ? "" : ",\n", l->v[i].key);
+        json_value(f, &l->v[i]);
+        first = false;
+    }
+    fprintf(f, "%s  \"buffers\": {", first ? "" : ",\n");
+    const char *group = NULL;
+    bool any = false;
+    for (int i = 0; i < l->n; i++) {
+        const kv *e = &l->v[i];
+        if (!e->group || e->table_only) continue;
+        if (!group || strcmp(group, e->group) != 0) {
+            fprintf(f, "%s\n    \"%s\": {\n", group ? "\n    }," : "", e->group);
+            group = e->group;
+            first = true;
+        }
+        fprintf(f, "%s      \"%s\": ", first ? "" : ",\n", e->key);
+        json_value(f, e);
+        first = false;
+        any = true;
+    }
+    fputs(any ? "\n    }\n  }\n}\n" : "}\n}\n", f);
+}
+
+static void csv_field(FILE *f, const char *s) {
+    if (!strpbrk(s, ",\"\n\r")) { fputs(s, f); return; }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+static void write_csv(FILE *f, const kvlist *l) {
+    char buf[600];
+    bool first = true;
+    for (int i = 0; i < l->n; i++) {
+        const kv *e = &l->v[i];
+        if (e->table_only) continue;
+        if (e->group) snprintf(buf, sizeof buf, "%s.%s", e->group, e->key);
+        else snprintf(buf, sizeof buf, "%s", e->key);
+        if (!first) fputc(',', f);
+        csv_field(f, buf);
+        first = false;
+    }
+    fputc('\n', f);
+    first = true;
+    for (int i = 0; i < l->n; i++) {
+        const kv *e = &l->v[i];
+        if (e->table_only) continue;
+        if (!first) fputc(',', f);
+        first = false;
+        switch (e->type) {
+        case KV_STR: csv_field(f, e->str); break;
+        case KV_INT: fprintf(f, "%ld", e->inum); break;
+        case KV_BOOL: fputs(e->inum ? "true" : "false", f); break;
+        default: fmt_num(buf, sizeof buf, e->num, false); fputs(buf, f); break;
+        }
+    }
+    fputc('\n', f);
+}
+
+static void write_table(FILE *f, const kvlist *l) {
+    const char *group = NULL;
+    fprintf(f, "%-36s %s\n", "metric", "value");
+    for (int i = 0; i < l->n; i++) {
+        const kv *e = &l->v[i];
+        if (!e->label) continue;
+        if (e->group && (!group || strcmp(group, e->group) != 0)) {
+            fprintf(f, "\nbuffer %s\n", e->group);
+            group = e->group;
+        }
+        char val[128];
+        if (e->type == KV_STR) {
+            fprintf(f, "%s%-*s %s\n", e->group ? "  " : "", e->group ? 34 : 36, e->label, e->str);
+            continue;
+        }
+        switch (e->type) {
+        case KV_INT: snprintf(val, sizeof val, "%ld", e->inum); break;
+        case KV_BOOL: snprintf(val, sizeof val, "%s", e->inum ? "yes" : "no"); break;
+        case KV_SHARE:
+            if (isnan(e->num)) snprintf(val, sizeof val, "n/a");
+            else snprintf(val, sizeof val, "%.6g (%.3g%%)", e->num, 100.0 * e->num);
+            break;
+        default:
+            if (isnan(e->num)) snprintf(val, sizeof val, "n/a");
+            else if (isinf(e->num)) snprintf(val, sizeof val, "%s", e->num > 0 ? "inf" : "-inf");
+            else snprintf(val, sizeof val, "%.6g%s%s", e->num, e->unit ? " " : "", e->unit ? e->unit : "");
+            break;
+        }
+        fprintf(f, "%s%-*s %s\n", e->group ? "  " : "", e->group ? 34 : 36, e->label, val);
+    }
+}
+
+/* ---- the command ------------------------------------------------------------------ */
+
+typedef struct compare_opts {
+    const char *a, *b, *out, *json, *csv, *mask;
+    double threshold, max_err, texel;
+    bool buffers, linear;
+} compare_opts;
+
+/* A reference buffer. Point buffers may carry a flag in channel 3 (what
+ * the ray met, ref_render.h); where it is direction_flag on either side,
+ * xyz is a direction, not a point, and the pixel is left out. */
+typedef struct buffer_kind {
+    const char *name;
+    ref_err_kind kind;
+    int direction_flag;         /* 0: none */
+} buffer_kind;
+
+static const buffer_kind buffer_kinds[] = {
+    { "refract_hit", REF_ERR_POINT, 0 },
+    { "reflect", REF_ERR_POINT, REF_REFLECT_SKY },
+    { "surface", REF_ERR_POINT, 0 },
+    { "fresnel", REF_ERR_SCALAR, 0 },
+    { "depth", REF_ERR_SCALAR, 0 },
+    { "irradiance", REF_ERR_SCALAR, 0 },
+};
+#define N_BUFFERS (int)(sizeof buffer_kinds / sizeof buffer_kinds[0])
+
+static bool parse_pos(const char *s, double *v) {
+    char *end;
+    if (!s) return false;
+    errno = 0;
+    *v = strtod(s, &end);
+    return end != s && *end == '\0' && errno == 0 && isfinite(*v) && *v > 0;
+}
+
+static int usage_error(FILE *err, const char *fmt, ...) {
+    va_list ap;
+    fputs("tarn compare: ", err);
+    va_start(ap, fmt);
+    vfprintf(err, fmt, ap);
+    va_end(ap);
+    fprintf(err, "\n\n%s", usage_text);
+    return CLI_USAGE;
+}
+
+/* Writes field's heat map to path; returns the scale (NaN on failure). */
+static double write_heatmap(const char *path, const float *field, int w, int h, double scale, FILE *err) {
+    img im;
+    char msg[1024];
+    if (!img_alloc(&im, w, h, 3)) { fprintf(err, "tarn compare: %s: out of memory\n", path); return NAN; }
+    double used = ref_heatmap(field, w, h, scale, im.px);
+    bool ok = img_write(path, &im, msg, sizeof msg);
+    img_free(&im);
+    if (!ok) { fprintf(err, "tarn compare: cannot write the heat map: %s\n", msg); return NAN; }
+    return used;
+}
+
+/* Builds the mask: nonzero where M's first channel is > 0.5. */
+static unsigned char *load_mask(const char *path, int w, int h, FILE *err) {
+    img m;
+    char msg[1024];
+    if (!img_read(path, &m, msg, sizeof msg)) { fprintf(err, "tarn compare: cannot read the mask: %s\n", msg); return NULL; }
+    unsigned char *mask = NULL;
+    if (m.w != w || m.h != h || m.d != 1)
+        fprintf(err, "tarn compare: the mask %s is %dx%d, the images are %dx%d\n", path, m.w, m.h, w, h);
+    else if (!(mask = malloc((size_t)w * (size_t)h)))
+        fprintf(err, "tarn compare: out of memory\n");
+    else
+        for (long i = 0; i < (long)w * h; i++) mask[i] = m.px[(size_t)i * (size_t)m.channels] > 0.5f;
+    img_free(&m);
+    return mask;
+}
+
+/* Compares one buffer pair into l (group = its name). False on failure. */
+static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb, const compare_opts *o,
+                           const unsigned char *mask, int mw, int mh, kvlist *l, FILE *err) {
+    img a = {0}, b = {0};
+    char msg[1024];
+    bool ok = false;
+    float *field = NULL;
+    unsigned char *own_mask = NULL;
+    if (!compare_load(pa, !o->linear, &a, NULL, msg, sizeof msg) ||
+        !compare_load(pb, !o->linear, &b, NULL, msg, sizeof msg)) {
+        fprintf(err, "tarn compare: buffer %s: cannot read %s\n", bk->name, msg);
+        goto done;
+    }
+    if (a.w != b.w || a.h != b.h) {
+        fprintf(err, "tarn compare: buffer %s: sizes differ: A (%s) is %dx%d, B (%s) is %dx%d\n",
+                bk->name, pa, a.w, a.h, pb, b.w, b.h);
+        goto done;
+    }
+    ref_fimage fa = { a.px, a.w, a.h, a.channels }, fb = { b.px, b.w, b.h, b.channels };
+    ref_metrics_desc d = { .texel_size = o->texel };
+    if (mask && a.w == mw && a.h == mh) d.mask = mask;
+    else if (mask) fprintf(err, "tarn compare: buffer %s is %dx%d, not the mask's %dx%d: compared unmasked\n",
+                           bk->name, a.w, a.h, mw, mh);
+    ref_err_kind kind = bk->kind;
+    if (kind == REF_ERR_POINT && (a.channels < 3 || b.channels < 3)) kind = REF_ERR_SCALAR;
+    const char *g = bk->name;
+    /* The flag channel: pixels whose flags differ; directions left out. */
+    long flag_mismatch = -1, directions = -1;
+    if (kind == REF_ERR_POINT && a.channels >= 4 && b.channels >= 4) {
+        long n = (long)a.w * a.h;
+        flag_mismatch = 0;
+        if (bk->direction_flag) {
+            directions = 0;
+            if (!(own_mask = malloc((size_t)n))) { fprintf(err, "tarn compare: out of memory\n"); goto done; }
+        }
+        for (long i = 0; i < n; i++) {
+            bool in = !d.mask || d.mask[i];
+            float ka = a.px[(size_t)i * (size_t)a.channels + 3], kb = b.px[(size_t)i * (size_t)b.channels + 3];
+            if (in && ka != kb && !isnan(ka) && !isnan(kb)) flag_mismatch++;
+            if (own_mask) {
+                bool dir = ka == (float)bk->direction_flag || kb == (float)bk->direction_flag;
+                own_mask[i] = in && !dir;
+                if (in && dir) directions++;
+            }
+        }
+        if (own_mask) d.mask = own_mask;
+    }
+    if (kind == REF_ERR_POINT) {
+        ref_point_metrics m;
+        if (!ref_metrics_points(&fa, &fb, &d, &m, msg, sizeof msg)) {
+            fprintf(err, "tarn compare: buffer %s: %s\n", g, msg);
+            goto done;
+        }
+        add_str(l, g, "kind", NULL, "point");
+        add_str(l, g, "a", NULL, pa);
+        add_str(l, g, "b", NULL, pb);
+        add_int(l, g, "width", NULL, m.width);
+        add_int(l, g, "height", NULL, m.height);
+        add_counts(l, g, &m.count);
+        kv *e = kv_add(l, g, "flag_mismatch_pixels", flag_mismatch >= 0 ? "pixels whose flags differ" : NULL,
+                       flag_mismatch >= 0 ? KV_INT : KV_NUM);
+        if (e) { e->inum = flag_mismatch; e->num = NAN; }
+        e = kv_add(l, g, "direction_pixels", directions >= 0 ? "pixels left out: a direction" : NULL,
+                   directions >= 0 ? KV_INT : KV_NUM);
+        if (e) { e->inum = directions; e->num = NAN; }
+        add_num(l, g, "dist_mean", "hit point error, mean", m.world.mean, "world units");
+        add_num(l, g, "dist_rms", NULL, m.world.rms, NULL);
+        add_num(l, g, "dist_median", "hit point error, median", m.world.median, "world units");
+        add_num(l, g, "dist_p95", "hit point error, 95th percentile", m.world.p95, "world units");
+        add_num(l, g, "dist_p99", NULL, m.world.p99, NULL);
+        add_num(l, g, "dist_max", "hit point error, max", m.world.max, "world units");
+        add_int(l, g, "dist_max_at_x", NULL, m.world.max_x);
+        add_int(l, g, "dist_max_at_y", NULL, m.world.max_y);
+        bool tx = m.texel_size > 0;
+        add_num(l, g, "texel_size", tx ? "texel size" : NULL, tx ? m.texel_size : NAN, "world units");
+        add_num(l, g, "texel_mean", tx ? "hit point error, mean" : NULL, m.texels.mean, "texels");
+        add_num(l, g, "texel_median", tx ? "hit point error, median" : NULL, m.texels.median, "texels");
+        add_num(l, g, "texel_p95", tx ? "hit point error, 95th percentile" : NULL, m.texels.p95, "texels");
+        add_num(l, g, "texel_max", tx ? "hit point error, max" : NULL, m.texels.max, "texels");
+    } else {
+        ref_scalar_metrics m;
+        if (!ref_metrics_scalar(&fa, &fb, &d, &m, msg, sizeof msg)) {
+            fprintf(err, "tarn compare: buffer %s: %s\n", g, msg);
+            goto done;
+        }
+        add_str(l, g, "kind", NULL, "scalar");
+        add_str(l, g, "a", NULL, pa);
+        add_str(l, g, "b", NULL, pb);
+        add_int(l, g, "width", NULL, m.width);
+        add_int(l, g, "height", NULL, m.height);
+        add_int(l, g, "channels", NULL, m.channels);
+        add_counts(l, g, &m.count);
+        add_num(l, g, "rmse", "RMSE", m.abs.rms, NULL);
+        add_num(l, g, "abs_mean", "absolute error, mean", m.abs.mean, NULL);
+        add_num(l, g, "abs_median", "absolute error, median", m.abs.median, NULL);
+        add_num(l, g, "abs_p95", "absolute error, 95th percentile", m.abs.p95, NULL);
+        add_num(l, g, "abs_p99", NULL, m.abs.p99, NULL);
+        add_num(l, g, "abs_max", "absolute error, max", m.abs.max, NULL);
+        add_int(l, g, "abs_max_at_x", NULL, m.abs.max_x);
+        add_int(l, g, "abs_max_at_y", NULL, m.abs.max_y);
+        add_int(l, g, "abs_max_at_channel", NULL, m.abs.max_c);
+        add_num(l, g, "bias", "bias, mean of A - B", m.bias, NULL);
+        add_num(l, g, "rel_floor", NULL, m.rel_floor, NULL);
+        add_num(l, g, "rel_mean", "relative error, mean", m.rel.mean, NULL);
+        add_num(l, g, "rel_median", "relative error, median", m.rel.median, NULL);
+        add_num(l, g, "rel_p95", "relative error, 95th percentile", m.rel.p95, NULL);
+        add_num(l, g, "rel_max", "relative error, max", m.rel.max, NULL);
+    }
+    if (o->out) {
+        char hp[4096];
+        const char *dot = strrchr(o->out, '.'), *slash = strrchr(o->out, '/');
+        sibling_path(hp, sizeof hp, o->out, g, dot && (!slash || dot > slash) ? dot : ".png");
+        if (!(field = malloc((size_t)a.w * (size_t)a.h * sizeof *field)) ||
+            !ref_metrics_error_field(&fa, &fb, kind, &d, field, msg, sizeof msg)) {
+            fprintf(err, "tarn compare: buffer %s: heat map: %s\n", g, field ? msg : "out of memory");
+            goto done;
+        }
+        double s = write_heatmap(hp, field, a.w, a.h, 0, err);
+        if (isnan(s)) goto done;
+        add_str(l, g, "heatmap", "heat map", hp);
+        add_num(l, g, "heatmap_scale", "heat map scale (pale yellow)", s, NULL);
+    }
+    ok = true;
+done:
+    free(field);
+    free(own_mask);
+    img_free(&a);
+    img_free(&b);
+    return ok;
+}
+
+/* Opens FILE or "-" (out) for writing. */
+static FILE *open_out(const char *path, FILE *out, FILE *err) {
+    if (strcmp(path, "-") == 0) return out;
+    FILE *f = fopen(path, "w");
+    if (!f) fprintf(err, "tarn compare: cannot write %s: %s\n", path, strerror(errno));
+    return f;
+}
+
+static bool close_out(FILE *f, const char *path, FILE *out, FILE *err) {
+    bool ok = !ferror(f);
+    if (f != out) ok = (fclose(f) == 0) && ok;
+    else fflush(f);
+    if (!ok) fprintf(err, "tarn compare: error writing %s\n", path);
+    return ok;
+}
+
+int compare_run(int argc, char **argv, FILE *out, FILE *err) {
+    compare_opts o = {0};
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage_text, out); return CLI_OK; }
+        if (strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) {
+            if (!next) return usage_error(err, "%s wants a file name, e.g. heat.png", a);
+            o.out = next; i++;
+        } else if (strcmp(a, "--json") == 0 || strcmp(a, "--csv") == 0 || strcmp(a, "--mask") == 0) {
+            if (!next) return usage_error(err, "%s wants a file name%s", a, a[2] == 'm' ? "" : " or -");
+            if (a[2] == 'j') o.json = next; else if (a[2] == 'c') o.csv = next; else o.mask = next;
+            i++;
+        } else if (strcmp(a, "--threshold") == 0) {
+            if (!parse_pos(next, &o.threshold)) return usage_error(err, "--threshold wants a number > 0, e.g. 0.05");
+            i++;
+        } else if (strcmp(a, "--max") == 0) {
+            if (!parse_pos(next, &o.max_err)) return usage_error(err, "--max wants a number > 0, e.g. 0.1");
+            i++;
+        } else if (strcmp(a, "--texel") == 0) {
+            if (!parse_pos(next, &o.texel)) return usage_error(err, "--texel wants world units per texel > 0, e.g. 0.05");
+            i++;
+        } else if (strcmp(a, "--buffers") == 0) o.buffers = true;
+        else if (strcmp(a, "--linear") == 0) o.linear = true;
+        else if (a[0] == '-' && a[1] != '\0') return usage_error(err, "unknown option '%s'", a);
+        else if (!o.a) o.a = a;
+        else if (!o.b) o.b = a;
+        else return usage_error(err, "two images at a time (got a third: '%s')", a);
+    }
+    if (!o.a || !o.b) return usage_error(err, "which images? give A and B");
+    if (o.json && o.csv && strcmp(o.json, "-") == 0 && strcmp(o.csv, "-") == 0)
+        return usage_error(err, "--json - and --csv - cannot both go to stdout");
+    FILE *table = (o.json && strcmp(o.json, "-") == 0) || (o.csv && strcmp(o.csv, "-") == 0) ? err : out;
+
+    img ia = {0}, ib = {0};
+    char msg[1024];
+    bool dec_a = false, dec_b = false, ok_a, ok_b;
+    if (!(ok_a = compare_load(o.a, !o.linear, &ia, &dec_a, msg, sizeof msg)))
+        fprintf(err, "tarn compare: cannot read A: %s\n", msg);
+    if (!(ok_b = compare_load(o.b, !o.linear, &ib, &dec_b, msg, sizeof msg)))
+        fprintf(err, "tarn compare: cannot read B: %s\n", msg);
+    if (!ok_a || !ok_b) { img_free(&ia); img_free(&ib); return CLI_INPUT_ERROR; }
+
+    int rc = CLI_INPUT_ERROR;
+    unsigned char *mask = NULL;
+    float *field = NULL;
+    kvlist l = {0};
+    if (ia.w != ib.w || ia.h != ib.h) {
+        fprintf(err, "tarn compare: sizes differ: A (%s) is %dx%d, B (%s) is %dx%d\n",
+                o.a, ia.w, ia.h, o.b, ib.w, ib.h);
+        goto done;
+    }
+    if (o.mask && !(mask = load_mask(o.mask, ia.w, ia.h, err))) goto done;
+
+    ref_fimage fa = { ia.px, ia.w, ia.h, ia.channels }, fb = { ib.px, ib.w, ib.h, ib.channels };
+    ref_metrics_desc d = { .threshold = o.threshold, .mask = mask };
+    ref_image_metrics m;
+    if (!ref_metrics_image(&fa, &fb, &d, &m, msg, sizeof msg)) {
+        fprintf(err, "tarn compare: %s vs %s: %s\n", o.a, o.b, msg);
+        goto done;
+    }
+    bool all_ok = true;
+    char size[64];
+    snprintf(size, sizeof size, "%dx%d", m.width, m.height);
+    char desc[4200];
+    snprintf(desc, sizeof desc, "%s (%s, %d channels)", o.a, dec_a ? "sRGB, decoded to linear" : "linear", ia.channels);
+    add_note(&l, NULL, "A (under test)", desc);
+    snprintf(desc, sizeof desc, "%s (%s, %d channels)", o.b, dec_b ? "sRGB, decoded to linear" : "linear", ib.channels);
+    add_note(&l, NULL, "B (reference)", desc);
+    add_str(&l, NULL, "a", NULL, o.a);
+    add_str(&l, NULL, "b", NULL, o.b);
+    add_bool(&l, NULL, "a_srgb_decoded", NULL, dec_a);
+    add_bool(&l, NULL, "b_srgb_decoded", NULL, dec_b);
+    add_int(&l, NULL, "width", NULL, m.width);
+    add_int(&l, NULL, "height", NULL, m.height);
+    add_note(&l, NULL, "size", size);
+    add_int(&l, NULL, "channels_a", NULL, ia.channels);
+    add_int(&l, NULL, "channels_b", NULL, ib.channels);
+    add_counts(&l, NULL, &m.count);
+    add_num(&l, NULL, "rmse", "RMSE (linear RGB)", m.rmse, NULL);
+    add_num(&l, NULL, "rmse_r", NULL, m.rmse_c[0], NULL);
+    add_num(&l, NULL, "rmse_g", NULL, m.rmse_c[1], NULL);
+    add_num(&l, NULL, "rmse_b", NULL, m.rmse_c[2], NULL);
+    add_num(&l, NULL, "psnr_db", "PSNR (peak 1.0)", m.psnr_db, "dB");
+    add_num(&l, NULL, "psnr_peak", NULL, m.peak, NULL);
+    add_num(&l, NULL, "mae", "mean absolute error", m.mae, NULL);
+    add_num(&l, NULL, "max_abs", "max absolute error", m.max_abs, NULL);
+    add_int(&l, NULL, "max_at_x", NULL, m.max_x);
+    add_int(&l, NULL, "max_at_y", NULL, m.max_y);
+    add_int(&l, NULL, "max_at_channel", NULL, m.max_c);
+    char at[96];
+    if (m.max_x >= 0) {
+        static const char *names[3] = { "red", "green", "blue" };
+        snprintf(at, sizeof at, "(%d, %d), %s", m.max_x, m.max_y, names[m.max_c]);
+        add_note(&l, NULL, "  at pixel (x, y from top-left)", at);
+    }
+    add_num(&l, NULL, "threshold", "threshold", m.threshold, NULL);
+    add_int(&l, NULL, "over_threshold_pixels", "pixels over the threshold", m.over_threshold);
+    add_share(&l, NULL, "over_threshold_share", "share over the threshold", m.over_threshold_share);
+    add_int(&l, NULL, "differing_pixels", "pixels that differ at all", m.differing);
+    add_num(&l, NULL, "bias_r", NULL, m.bias[0], NULL);
+    add_num(&l, NULL, "bias_g", NULL, m.bias[1], NULL);
+    add_num(&l, NULL, "bias_b", NULL, m.bias[2], NULL);
+    add_num(&l, NULL, "error_median", "pixel error, median", m.pixel_err.median, NULL);
+    add_num(&l, NULL, "error_p95", "pixel error, 95th percentile", m.pixel_err.p95, NULL);
+    add_num(&l, NULL, "error_p99", "pixel error, 99th percentile", m.pixel_err.p99, NULL);
+
+    if (o.out) {
+        if (!(field = malloc((size_t)ia.w * (size_t)ia.h * sizeof *field)) ||
+            !ref_metrics_error_field(&fa, &fb, REF_ERR_COLOR, &d, field, msg, sizeof msg)) {
+            fprintf(err, "tarn compare: heat map: %s\n", field ? msg : "out of memory");
+            goto done;
+        }
+        double s = write_heatmap(o.out, field, ia.w, ia.h, o.max_err, err);
+        if (isnan(s)) all_ok = false;
+        add_str(&l, NULL, "heatmap", "heat map", isnan(s) ? NULL : o.out);
+        add_num(&l, NULL, "heatmap_scale", "heat map scale (pale yellow)", s, NULL);
+    } else {
+        add_str(&l, NULL, "heatmap", NULL, NULL);
+        add_num(&l, NULL, "heatmap_scale", NULL, NAN, NULL);
+    }
+
+    if (o.buffers) {
+        int found = 0;
+        for (int k = 0; k < N_BUFFERS; k++) {
+            char pa[4096], pb[4096];
+            sibling_path(pa, sizeof pa, o.a, buffer_kinds[k].name, ".exr");
+            sibling_path(pb, sizeof pb, o.b, buffer_kinds[k].name, ".exr");
+            bool ea = file_exists(pa), eb = file_exists(pb);
+            if (!ea && !eb) continue;
+            found++;
+            if (ea != eb) {
+                fprintf(err, "tarn compare: buffer %s: only %s exists (no %s): not compared\n",
+                        buffer_kinds[k].name, ea ? pa : pb, ea ? pb : pa);
+                continue;
+            }
+            if (!compare_buffer(&buffer_kinds[k], pa, pb, &o, mask, ia.w, ia.h, &l, err)) all_ok = false;
+        }
+        if (!found) {
+            char pa[4096];
+            sibling_path(pa, sizeof pa, o.a, "NAME", ".exr");
+            fprintf(err, "tarn compare: --buffers: no buffers beside A or B (looked for %s, NAME = "
+                    "refract_hit, reflect, fresnel, depth, irradiance)\n", pa);
+        }
+    }
+    if (l.oom) { fprintf(err, "tarn compare: out of memory\n"); goto done; }
+
+    write_table(table, &l);
+    if (o.json) {
+        FILE *f = open_out(o.json, out, err);
+        if (!f) all_ok = false;
+        else { write_json(f, &l); if (!close_out(f, o.json, out, err)) all_ok = false; }
+    }
+    if (o.csv) {
+        FILE *f = open_out(o.csv, out, err);
+        if (!f) all_ok = false;
+        else { write_csv(f, &l); if (!close_out(f, o.csv, out, err)) all_ok = false; }
+    }
+    rc = all_ok ? CLI_OK : CLI_INPUT_ERROR;
+done:
+    kvlist_free(&l);
+    free(field);
+    free(mask);
+    img_free(&ia);
+    img_free(&ib);
+    return rc;
+}
+
+int cli_compare(int argc, char **argv) { return compare_run(argc, argv, stdout, stderr); }

@@ -1,0 +1,295 @@
+#include "render_world.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+
+/* The world uniforms besides the wave set (ref_waves_uniforms names those). */
+static const char *const world_names[] = {
+    "uSunDir", "uSunIrradiance", "uSkyZenith", "uSkyHorizon", "uAmbient", "uIOR",
+    "uAbsorption", "uTerrainHalfSize", "uCameraPos", "uTime", "uSky", "uTerrainAlbedo",
+    "uWorldAlbedo", "uWorldMode", "uWorldClip" };
+
+bool world_is_uniform(const char *name) {
+    for (size_t i = 0; i < sizeof world_names / sizeof *world_names; i++)
+        if (strcmp(name, world_names[i]) == 0) return true;
+    /* the wave set of packs/common/waves.glsl */
+    static const char *const prefixes[] = { "uWaterLevel", "uSteepness", "uSine", "uGerstner", "uNoise" };
+    for (size_t i = 0; i < sizeof prefixes / sizeof *prefixes; i++)
+        if (strncmp(name, prefixes[i], strlen(prefixes[i])) == 0) return true;
+    return false;
+}
+
+/* ---- baking ---- */
+
+static bool build_terrain(gpu_world *gw) {
+    const ref_world *w = &gw->w;
+    int res = w->d.terrain_res;
+    double hs = w->d.half_size;
+    geom_mesh g;
+    if (!geom_quad(&g, 1, 0.0f, (float)hs, res, res, false)) return false;
+    for (int i = 0; i < g.nvert; i++) {   /* lift the flat grid onto the heightfield */
+        double x = g.pos[i * 3], z = g.pos[i * 3 + 2], n[3];
+        g.pos[i * 3 + 1] = (float)ref_terrain_height(w, x, z);
+        ref_terrain_normal_at(w, x, z, n);
+        for (int k = 0; k < 3; k++) g.nrm[i * 3 + k] = (float)n[k];
+        /* the albedo texture is addressed by world position: s = x, t = z */
+        g.tc[i * 2] = (float)((x + hs) / (2 * hs));
+        g.tc[i * 2 + 1] = (float)((z + hs) / (2 * hs));
+    }
+    bool ok = res_mesh_upload(&g, &gw->terrain);
+    geom_free(&g);
+    return ok;
+}
+
+/* A unit box the world program draws around the eye, at the far plane. */
+static bool build_sky_box(gpu_world *gw) {
+    geom_mesh g;
+    if (!geom_box(&g, 2.0f, 2.0f, 2.0f, false)) return false;
+    bool ok = res_mesh_upload(&g, &gw->sky_box);
+    geom_free(&g);
+    return ok;
+}
+
+static bool build_water(gpu_world *gw) {
+    geom_mesh g;
+    int res = gw->w.d.water_mesh_res;
+    if (!geom_quad(&g, 1, (float)gw->w.d.water_level, (float)gw->w.d.half_size, res, res, false)) return false;
+    bool ok = res_mesh_upload(&g, &gw->water);
+    geom_free(&g);
+    return ok;
+}
+
+static bool build_object(gpu_world *gw, const ref_object *ob, gpu_mesh *m) {
+    geom_mesh g;
+    bool ok = false;
+    double off_y = 0;
+    switch (ob->kind) {
+    case REF_OBJECT_SPHERE: ok = geom_sphere(&g, (float)ob->size[0], 48, 24, false); break;
+    case REF_OBJECT_BOX:
+        ok = geom_box(&g, (float)(2 * ob->size[0]), (float)(2 * ob->size[1]), (float)(2 * ob->size[2]), false);
+        break;
+    case REF_OBJECT_CYLINDER:   /* geom's cylinder is centred; ours stands on its base */
+        ok = geom_cylinder(&g, (float)ob->size[0], (float)ob->size[1], 48, 1, false);
+        off_y = ob->size[1] / 2;
+        break;
+    default: break;
+    }
+    if (!ok) return false;
+    for (int i = 0; i < g.nvert; i++) {   /* world space, so shaders need no model matrix */
+        g.pos[i * 3] += (float)ob->center[0];
+        g.pos[i * 3 + 1] += (float)(ob->center[1] + off_y);
+        g.pos[i * 3 + 2] += (float)ob->center[2];
+    }
+    ok = res_mesh_upload(&g, m);
+    geom_free(&g);
+    return ok;
+}
+
+/* Texel (i, j) covers world x = -hs + (i + 0.5) * 2hs / res, z likewise with
+ * j the row GL stores first (t = 0), matching build_terrain's tc. */
+static bool bake_albedo(gpu_world *gw) {
+    const ref_world *w = &gw->w;
+    int res = w->d.terrain_res;
+    double hs = w->d.half_size;
+    float *px = malloc((size_t)res * res * 3 * sizeof(float));
+    if (!px) return false;
+    for (int j = 0; j < res; j++)
+        for (int i = 0; i < res; i++) {
+            double rgb[3];
+            ref_terrain_albedo(w, -hs + (i + 0.5) * 2 * hs / res, -hs + (j + 0.5) * 2 * hs / res, rgb);
+            for (int k = 0; k < 3; k++) px[((size_t)j * res + i) * 3 + k] = (float)rgb[k];
+        }
+    glGenTextures(1, &gw->albedo_tex);
+    glBindTexture(GL_TEXTURE_2D, gw->albedo_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    free(px);
+    return true;
+}
+
+/* The direction of texel (u, v) in [-1, 1] of cube face f, with v growing
+ * with the row index in memory: OpenGL's cube map table (spec 8.13). */
+static void cube_dir(int f, double u, double v, double d[3]) {
+    switch (f) {
+    case 0: d[0] = 1; d[1] = -v; d[2] = -u; break;    /* +X */
+    case 1: d[0] = -1; d[1] = -v; d[2] = u; break;    /* -X */
+    case 2: d[0] = u; d[1] = 1; d[2] = v; break;      /* +Y */
+    case 3: d[0] = u; d[1] = -1; d[2] = -v; break;    /* -Y */
+    case 4: d[0] = u; d[1] = -v; d[2] = 1; break;     /* +Z */
+    default: d[0] = -u; d[1] = -v; d[2] = -1; break;  /* -Z */
+    }
+    double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int k = 0; k < 3; k++) d[k] /= l;
+}
+
+static bool bake_sky(gpu_world *gw) {
+    int res = WORLD_SKY_RES;
+    float *px = malloc((size_t)res * res * 3 * sizeof(float));
+    if (!px) return false;
+    glGenTextures(1, &gw->sky_tex);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, gw->sky_tex);
+    for (int f = 0; f < 6; f++) {
+        for (int j = 0; j < res; j++)
+            for (int i = 0; i < res; i++) {
+                double d[3], rgb[3];
+                cube_dir(f, (i + 0.5) / res * 2 - 1, (j + 0.5) / res * 2 - 1, d);
+                ref_sky_radiance(&gw->w, d, rgb);
+                for (int k = 0; k < 3; k++) px[((size_t)j * res + i) * 3 + k] = (float)rgb[k];
+            }
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
+    }
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    free(px);
+    return true;
+}
+
+static bool build_program(gpu_world *gw, const char *const *include_dirs, const char *common_dir, char **log) {
+    memset(&gw->prog, 0, sizeof gw->prog);
+    memset(&gw->prog_unifs, 0, sizeof gw->prog_unifs);
+    gw->prog.unifs = &gw->prog_unifs;
+    gw->prog.world_uniforms = true;
+    snprintf(gw->prog.name, sizeof gw->prog.name, "World");
+    snprintf(gw->prog.stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world.vert", common_dir);
+    snprintf(gw->prog.stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world.frag", common_dir);
+    bool ok = prog_build(&gw->prog, include_dirs, 1, log);
+    prog_introspect(&gw->prog, log);
+    return ok;
+}
+
+void world_free(gpu_world *gw) {
+    res_mesh_free(&gw->terrain);
+    res_mesh_free(&gw->water);
+    res_mesh_free(&gw->sky_box);
+    for (int i = 0; i < gw->nobjects; i++) res_mesh_free(&gw->objects[i]);
+    if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
+    if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
+    prog_free(&gw->prog);
+    memset(gw, 0, sizeof *gw);
+}
+
+bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *include_dirs,
+                 const char *common_dir, char **log) {
+    if (gw->active && memcmp(&gw->desc, desc, sizeof *desc) == 0) {
+        /* same world: only the shaders may have changed */
+        bool ok = prog_build(&gw->prog, include_dirs, 1, log);
+        prog_introspect(&gw->prog, log);
+        return ok;
+    }
+    world_free(gw);
+    gw->desc = *desc;
+    ref_world_init(&gw->w, desc);
+    gw->nwaves = ref_waves_uniforms(&gw->w.waves, gw->waves, REF_WAVES_UNIFORMS_MAX);
+    bool ok = build_terrain(gw) && build_water(gw) && bake_albedo(gw) && bake_sky(gw) && build_sky_box(gw);
+    for (int i = 0; ok && i < gw->w.d.nobjects; i++) {
+        const ref_object *ob = &gw->w.d.objects[i];
+        if (!build_object(gw, ob, &gw->objects[gw->nobjects])) continue;
+        for (int k = 0; k < 3; k++) gw->object_albedo[gw->nobjects][k] = (float)ob->albedo[k];
+        gw->nobjects++;
+    }
+    if (!ok) log_append(log, "tarn: error: could not build the scene's world (out of memory?)\n");
+    ok = build_program(gw, include_dirs, common_dir, log) && ok;
+    gw->active = true;
+    return ok;
+}
+
+/* ---- per frame ---- */
+
+static void set3(unsigned p, const char *name, const double v[3]) {
+    GLint loc = glGetUniformLocation(p, name);
+    if (loc >= 0) glUniform3f(loc, (float)v[0], (float)v[1], (float)v[2]);
+}
+
+static void set1(unsigned p, const char *name, float v) {
+    GLint loc = glGetUniformLocation(p, name);
+    if (loc >= 0) glUniform1f(loc, v);
+}
+
+static void seti(unsigned p, const char *name, int v) {
+    GLint loc = glGetUniformLocation(p, name);
+    if (loc >= 0) glUniform1i(loc, v);
+}
+
+void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3]) {
+    if (!gw->active || !p) return;
+    const ref_world_desc *d = &gw->w.d;
+    set3(p, "uSunDir", d->sun_dir);
+    set3(p, "uSunIrradiance", d->sun_irradiance);
+    set3(p, "uSkyZenith", d->sky_zenith);
+    set3(p, "uSkyHorizon", d->sky_horizon);
+    set3(p, "uAmbient", gw->w.ambient);
+    set3(p, "uAbsorption", d->absorption);
+    set1(p, "uIOR", (float)d->ior);
+    set1(p, "uTerrainHalfSize", (float)d->half_size);
+    set1(p, "uTime", (float)t);
+    seti(p, "uSky", WORLD_UNIT_SKY);
+    seti(p, "uTerrainAlbedo", WORLD_UNIT_ALBEDO);
+    GLint loc = glGetUniformLocation(p, "uCameraPos");
+    if (loc >= 0) glUniform3fv(loc, 1, eye);
+    for (int i = 0; i < gw->nwaves; i++) {
+        const ref_waves_uniform *u = &gw->waves[i];
+        loc = glGetUniformLocation(p, u->name);
+        if (loc < 0) continue;
+        if (u->is_int) glUniform1i(loc, u->i);
+        else glUniform1fv(loc, u->count, u->v);
+    }
+}
+
+void world_bind_textures(const gpu_world *gw) {
+    if (!gw->active) return;
+    glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_ALBEDO);
+    glBindTexture(GL_TEXTURE_2D, gw->albedo_tex);
+    glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_SKY);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, gw->sky_tex);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+void world_draw(const gpu_world *gw, const char *which, double t, const float eye[3],
+                unsigned restore_program) {
+    if (!gw->active || !gw->prog.gl) return;
+    unsigned p = gw->prog.gl;
+    glUseProgram(p);
+    world_upload(gw, p, t, eye);
+    /* clip at the water plane: "above" keeps y > level, "below" y < level */
+    float level = (float)gw->w.d.water_level, plane[4] = { 0, 0, 0, 1 };
+    if (strcmp(which, "above") == 0) { plane[1] = 1; plane[3] = -level; }
+    if (strcmp(which, "below") == 0) { plane[1] = -1; plane[3] = level; }
+    GLint clip = glGetUniformLocation(p, "uWorldClip");
+    if (clip >= 0) glUniform4fv(clip, 1, plane);
+    glEnable(GL_CLIP_DISTANCE0);
+    GLint mode = glGetUniformLocation(p, "uWorldMode");
+    GLint albedo = glGetUniformLocation(p, "uWorldAlbedo");
+    if (strcmp(which, "below") != 0) {   /* the sky, behind everything */
+        glUniform1i(mode, 2);
+        res_mesh_draw(&gw->sky_box, -1);
+    }
+    glUniform1i(mode, 0);
+    res_mesh_draw(&gw->terrain, -1);
+    glUniform1i(mode, 1);
+    for (int i = 0; i < gw->nobjects; i++) {
+        if (albedo >= 0) glUniform3fv(albedo, 1, gw->object_albedo[i]);
+        res_mesh_draw(&gw->objects[i], -1);
+    }
+    glDisable(GL_CLIP_DISTANCE0);
+    glUseProgram(restore_program);
+}
+
+void world_draw_water(const gpu_world *gw, int tangent_loc) {
+    if (gw->active) res_mesh_draw(&gw->water, tangent_loc);
+}

@@ -1,0 +1,57 @@
+/* render_world: the world a scene describes (scene.h), made drawable: the
+ * terrain mesh and its albedo texture, the objects, the sky cube map and
+ * the water grid, all baked from reference/ref_scene so the GL side and
+ * the CPU reference see one world. Private to render.c.
+ *
+ * Fixed texture units: 14 the terrain albedo (sampler uTerrainAlbedo),
+ * 15 the sky cube map (samplerCube uSky). Every program that declares a
+ * world uniform (uSunDir, uWaterLevel, the wave set, ...) gets it set. */
+#ifndef TARN_RENDER_WORLD_H
+#define TARN_RENDER_WORLD_H
+
+#include <stdbool.h>
+#include "ref_scene.h"
+#include "render_prog.h"
+#include "render_res.h"
+
+#define WORLD_UNIT_ALBEDO 14
+#define WORLD_UNIT_SKY 15
+#define WORLD_SKY_RES 128
+
+typedef struct gpu_world {
+    bool active;
+    ref_world_desc desc;          /* what was built: equal desc, nothing rebuilt */
+    ref_world w;
+    gpu_mesh terrain, water, sky_box;
+    gpu_mesh objects[REF_MAX_OBJECTS];
+    float object_albedo[REF_MAX_OBJECTS][3];
+    int nobjects;
+    unsigned albedo_tex, sky_tex;
+    prog prog;                    /* the built-in program: packs/common/world.{vert,frag} */
+    unif_set prog_unifs;
+    ref_waves_uniform waves[REF_WAVES_UNIFORMS_MAX];
+    int nwaves;
+} gpu_world;
+
+/* Builds (or keeps, when desc is unchanged) the world's GPU resources. */
+bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *include_dirs,
+                 const char *common_dir, char **log);
+void world_free(gpu_world *gw);
+
+/* True for the names world_upload sets (they get no slider). */
+bool world_is_uniform(const char *name);
+
+/* Sets every world uniform the bound program declares. */
+void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);
+
+void world_bind_textures(const gpu_world *gw);
+
+/* `World all|above|below`: terrain and objects with the world program,
+ * clipped at the water plane for above/below; restores `restore_program`. */
+void world_draw(const gpu_world *gw, const char *which, double t, const float eye[3],
+                unsigned restore_program);
+
+/* `WaterSurface`: the water grid with the bound program. */
+void world_draw_water(const gpu_world *gw, int tangent_loc);
+
+#endif

@@ -1,0 +1,420 @@
+/* scene.c: the world and the camera a .glib describes (scene.h).
+ *
+ * The world commands (docs/glib.md, "Describing the world") fill a
+ * ref_world_desc, zeroed first, so what a glib leaves out takes
+ * ref_world_init's defaults: the defaults live there and nowhere else (the
+ * messages below read them from a world built from the zero desc). The
+ * parser checked the form of each command; here the values are checked
+ * and absurd ones are repaired, each with a `file:line: warning:` message,
+ * so one bad number never loses the scene.
+ */
+#include "scene.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+/* An explicit 0 0 0 (a dark sun, a black sky, clear water) would read as
+ * "default" in a desc; this keeps it (almost exactly) zero. */
+#define SCENE_ZERO 1e-12
+
+enum { MESH_RES_MIN = 8, MESH_RES_MAX = 2048 };
+#define HALF_SIZE_MAX 10000.0
+#define DEPTH_MAX 1000.0
+
+typedef struct ctx {
+    char *err;
+    int errlen;
+    size_t used;
+    int nmsgs;
+    ref_world def;              /* the defaults, for messages */
+} ctx;
+
+__attribute__((format(printf, 3, 4)))
+static void msg(ctx *x, const glib_cmd *c, const char *fmt, ...)
+{
+    x->nmsgs++;
+    if (!x->err || x->errlen <= 0 || x->used + 1 >= (size_t)x->errlen)
+        return;
+    char line[512];
+    int n = snprintf(line, sizeof line, "%s:%d: warning: %s: ", c->file ? c->file : "?", c->line,
+                     glib_cmd_name(c->kind));
+    va_list ap;
+    va_start(ap, fmt);
+    if (n > 0 && (size_t)n < sizeof line)
+        vsnprintf(line + n, sizeof line - (size_t)n, fmt, ap);
+    va_end(ap);
+    size_t room = (size_t)x->errlen - x->used;
+    int w = snprintf(x->err + x->used, room, "%s%s", x->used ? "\n" : "", line);
+    if (w < 0 || (size_t)w >= room) {          /* cut: say so where it ends */
+        x->used = (size_t)x->errlen - 1;
+        if (x->errlen >= 4)
+            memcpy(x->err + x->errlen - 4, "...", 4);
+    } else {
+        x->used += (size_t)w;
+    }
+}
+
+/* r g b that may not be negative; an explicit 0 0 0 stays zero. */
+static void set_rgb(ctx *x, const glib_cmd *c, const double *v, double out[3], const char *what)
+{
+    bool neg = false;
+    for (int i = 0; i < 3; i++) {
+        out[i] = v[i] < 0 ? 0 : v[i];
+        neg |= v[i] < 0;
+    }
+    if (neg)
+        msg(x, c, "%s %g %g %g has a negative part; using %g %g %g", what, v[0], v[1], v[2],
+            out[0], out[1], out[2]);
+    if (out[0] == 0 && out[1] == 0 && out[2] == 0)
+        out[0] = out[1] = out[2] = SCENE_ZERO;
+}
+
+static int clamp_res(ctx *x, const glib_cmd *c, double v, const char *what)
+{
+    if (v >= MESH_RES_MIN && v <= MESH_RES_MAX)
+        return (int)v;
+    int r = v < MESH_RES_MIN ? MESH_RES_MIN : MESH_RES_MAX;
+    msg(x, c, "%s %g is outside %d..%d; using %d", what, v, MESH_RES_MIN, MESH_RES_MAX, r);
+    return r;
+}
+
+static void do_sun(ctx *x, const glib_cmd *c, ref_world_desc *w)
+{
+    memcpy(w->sun_dir, c->num, sizeof w->sun_dir);   /* the parser refused zero */
+    if (c->nnum >= 6)
+        set_rgb(x, c, c->num + 3, w->sun_irradiance, "the irradiance");
+    else
+        memset(w->sun_irradiance, 0, sizeof w->sun_irradiance);
+}
+
+static void do_water(ctx *x, const glib_cmd *c, ref_world_desc *w)
+{
+    w->water_level = c->num[0];
+    w->ior = 0;
+    if (c->nnum >= 2) {
+        if (c->num[1] > 1 && c->num[1] <= 4)
+            w->ior = c->num[1];
+        else
+            msg(x, c, "ior %g must be above 1 (air) and at most 4 (water is 1.333); using %g",
+                c->num[1], x->def.d.ior);
+    }
+    memset(w->absorption, 0, sizeof w->absorption);
+    if (c->nnum >= 5)
+        set_rgb(x, c, c->num + 2, w->absorption, "the absorption");
+}
+
+static void do_terrain(ctx *x, const glib_cmd *c, ref_world_desc *w)
+{
+    const double *n = c->num;
+    w->terrain = strcmp(c->name, "lake") == 0 ? REF_TERRAIN_LAKE
+               : strcmp(c->name, "slope") == 0 ? REF_TERRAIN_SLOPE : REF_TERRAIN_FLAT;
+    w->half_size = w->depth = w->shore_height = w->slope = 0;
+    w->seed = 0;
+    w->terrain_res = 0;
+    if (c->nnum >= 1) {
+        if (n[0] > 0 && n[0] <= HALF_SIZE_MAX)
+            w->half_size = n[0];
+        else if (n[0] > HALF_SIZE_MAX)
+            msg(x, c, "half_size %g is above %g; using %g", n[0], HALF_SIZE_MAX,
+                w->half_size = HALF_SIZE_MAX);
+        else
+            msg(x, c, "half_size %g must be greater than 0; using %g", n[0], x->def.d.half_size);
+    }
+    if (c->nnum >= 2) {
+        if (n[1] > 0 && n[1] <= DEPTH_MAX)
+            w->depth = n[1];
+        else if (n[1] > DEPTH_MAX)
+            msg(x, c, "depth %g is above %g; using %g", n[1], DEPTH_MAX, w->depth = DEPTH_MAX);
+        else
+            msg(x, c, "depth %g must be greater than 0; using %g", n[1], x->def.d.depth);
+    }
+    if (c->nnum >= 3) {
+        if (w->terrain == REF_TERRAIN_LAKE) {
+            if (n[2] > 0)
+                w->shore_height = n[2];
+            else
+                msg(x, c, "the shore height %g must be greater than 0; using %g", n[2],
+                    x->def.d.shore_height);
+        } else if (w->terrain == REF_TERRAIN_SLOPE) {
+            if (n[2] != 0)
+                w->slope = n[2];
+            else
+                msg(x, c, "a slope of 0 is the flat terrain (Terrain flat); using %g",
+                    x->def.d.slope);
+        } else if (n[2] != 0) {
+            msg(x, c, "flat terrain has no shore height or slope; ignoring %g", n[2]);
+        }
+    }
+    if (c->nnum >= 4)
+        w->seed = (unsigned)n[3];
+    if (c->nnum >= 5)
+        w->terrain_res = clamp_res(x, c, n[4], "res");
+}
+
+static void do_wave(ctx *x, const glib_cmd *c, ref_waves_desc *wd)
+{
+    bool sine = c->kind == GLIB_CMD_WAVE_SINE;
+    int *count = sine ? &wd->sine_count : &wd->gerstner_count;
+    if (*count >= REF_WAVES_MAX) {
+        msg(x, c, "more than %d waves of this kind; this one is dropped", REF_WAVES_MAX);
+        return;
+    }
+    ref_wave_desc v = { .angle_deg = c->num[0], .wavelength = c->num[1], .amplitude = c->num[2],
+                        .speed = c->nnum >= 4 ? c->num[3] : 0, .phase = c->nnum >= 5 ? c->num[4] : 0 };
+    if (v.wavelength == 0) {
+        msg(x, c, "a wavelength of 0 is no wave; this one is dropped");
+        return;
+    }
+    if (v.wavelength < 0) {
+        msg(x, c, "wavelength %g is negative; using %g", v.wavelength, -v.wavelength);
+        v.wavelength = -v.wavelength;
+    }
+    if (v.amplitude < 0) {
+        /* A sin(t) = |A| sin(t + pi), and the Gerstner sideways term
+         * follows the sign of A likewise: the same wave */
+        msg(x, c, "amplitude %g is negative; using %g with the phase turned by pi (the same wave)",
+            v.amplitude, -v.amplitude);
+        v.amplitude = -v.amplitude;
+        v.phase += PI;
+    }
+    (sine ? wd->sine : wd->gerstner)[(*count)++] = v;
+}
+
+static void do_steepness(ctx *x, const glib_cmd *c, ref_waves_desc *wd)
+{
+    double q = c->num[0];
+    if (q < 0) {
+        msg(x, c, "Q %g is negative; using 0 (the Gerstner waves become sines)", q);
+        q = 0;
+    } else if (q > 1) {
+        msg(x, c, "Q %g is above 1, where the surface folds into loops; using 1", q);
+        q = 1;
+    }
+    wd->steepness = q;
+}
+
+static void do_noise(ctx *x, const glib_cmd *c, ref_noise_desc *nd)
+{
+    const double *n = c->num;
+    memset(nd, 0, sizeof *nd);
+    nd->amplitude = n[0];
+    if (n[0] < 0) {
+        msg(x, c, "amplitude %g is negative; using %g", n[0], -n[0]);
+        nd->amplitude = -n[0];
+    }
+    if (c->nnum >= 2) {
+        if (n[1] > 0)
+            nd->cell = n[1];
+        else if (n[1] < 0)
+            msg(x, c, "cell %g must be greater than 0; using %g", n[1], REF_NOISE_DEFAULT_CELL);
+    }
+    if (c->nnum >= 3) {
+        int o = (int)n[2];
+        if (o < 1 || o > REF_NOISE_OCTAVES_MAX) {
+            int r = o < 1 ? 1 : REF_NOISE_OCTAVES_MAX;
+            msg(x, c, "octaves %d is outside 1..%d; using %d", o, REF_NOISE_OCTAVES_MAX, r);
+            o = r;
+        }
+        nd->octaves = o;
+    }
+    if (c->nnum >= 4)
+        nd->speed = n[3];
+    if (c->nnum >= 5)
+        nd->angle_deg = n[4];
+    if (c->nnum >= 6)
+        nd->seed = (uint32_t)n[5];
+    if (c->nnum >= 7) {
+        if (n[6] >= 1)
+            nd->period = (int)n[6];
+        else
+            msg(x, c, "period %g must be at least 1 lattice cell; using %d", n[6],
+                REF_NOISE_DEFAULT_PERIOD);
+    }
+    if (c->nnum >= 8) {
+        if (n[7] > 0)
+            nd->gain = n[7];
+        else
+            msg(x, c, "gain %g must be greater than 0; using %g", n[7], REF_NOISE_DEFAULT_GAIN);
+    }
+}
+
+/* A size that must be positive: |v| for a negative one; false for 0. */
+static bool positive(ctx *x, const glib_cmd *c, double *v, const char *what)
+{
+    if (*v > 0)
+        return true;
+    if (*v == 0) {
+        msg(x, c, "%s is 0; the object is dropped", what);
+        return false;
+    }
+    msg(x, c, "%s %g is negative; using %g", what, *v, -*v);
+    *v = -*v;
+    return true;
+}
+
+static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_told)
+{
+    if (w->nobjects >= REF_MAX_OBJECTS) {
+        if (!*full_told)
+            msg(x, c, "more than %d objects; this one and the ones after it are dropped",
+                REF_MAX_OBJECTS);
+        *full_told = true;
+        return;
+    }
+    ref_object o;
+    memset(&o, 0, sizeof o);
+    const double *n = c->num;
+    memcpy(o.center, n, sizeof o.center);
+    int col;
+    if (strcmp(c->name, "sphere") == 0) {
+        o.kind = REF_OBJECT_SPHERE;
+        o.size[0] = n[3];
+        if (!positive(x, c, &o.size[0], "the radius"))
+            return;
+        col = 4;
+    } else if (strcmp(c->name, "box") == 0) {
+        static const char *const names[3] = { "hx", "hy", "hz" };
+        o.kind = REF_OBJECT_BOX;
+        for (int i = 0; i < 3; i++) {
+            o.size[i] = n[3 + i];
+            if (!positive(x, c, &o.size[i], names[i]))
+                return;
+        }
+        col = 6;
+    } else {
+        o.kind = REF_OBJECT_CYLINDER;
+        o.size[0] = n[3];
+        o.size[1] = n[4];
+        if (!positive(x, c, &o.size[0], "the radius") || !positive(x, c, &o.size[1], "the height"))
+            return;
+        col = 5;
+    }
+    bool clamped = false;
+    for (int i = 0; i < 3; i++) {
+        double v = n[col + i];
+        o.albedo[i] = v < 0 ? 0 : v > 1 ? 1 : v;
+        clamped |= o.albedo[i] != v;
+    }
+    if (clamped)
+        msg(x, c, "the colour %g %g %g is a reflectance, from 0 to 1; using %g %g %g", n[col],
+            n[col + 1], n[col + 2], o.albedo[0], o.albedo[1], o.albedo[2]);
+    w->objects[w->nobjects++] = o;
+}
+
+static bool is_world_kind(glib_cmd_kind k)
+{
+    return k >= GLIB_CMD_SUN && k <= GLIB_CMD_WATER_SURFACE;
+}
+
+static void camera_default(scene_camera *cam)
+{
+    memset(cam, 0, sizeof *cam);
+    cam->eye[2] = 3;
+    cam->up[1] = 1;
+    cam->fov_deg = 50;
+    cam->near_z = 0.1;
+    cam->far_z = 1000;
+    cam->width = 800;
+    cam->height = 600;
+}
+
+bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *cam,
+                     bool *has_world, char *err, int errlen)
+{
+    ctx x = { .err = err, .errlen = errlen };
+    if (err && errlen > 0)
+        err[0] = '\0';
+    ref_world_init(&x.def, NULL);
+    ref_world_desc w;
+    scene_camera cm;
+    memset(&w, 0, sizeof w);
+    camera_default(&cm);
+    bool any = false, full_told = false;
+    for (int i = 0; g && i < g->ncmds; i++) {
+        const glib_cmd *c = &g->cmds[i];
+        const double *n = c->num;
+        any |= is_world_kind(c->kind);
+        switch (c->kind) {
+        case GLIB_CMD_WINDOW_SIZE:
+            cm.width = (int)n[0];
+            cm.height = (int)n[1];
+            break;
+        case GLIB_CMD_PERSPECTIVE:
+            cm.fov_deg = n[0];
+            cm.near_z = n[1];
+            cm.far_z = n[2];
+            break;
+        case GLIB_CMD_LOOKAT:
+            memcpy(cm.eye, n, sizeof cm.eye);
+            memcpy(cm.center, n + 3, sizeof cm.center);
+            memcpy(cm.up, n + 6, sizeof cm.up);
+            break;
+        case GLIB_CMD_SUN: do_sun(&x, c, &w); break;
+        case GLIB_CMD_SKY:
+            set_rgb(&x, c, n, w.sky_zenith, "the zenith radiance");
+            set_rgb(&x, c, n + 3, w.sky_horizon, "the horizon radiance");
+            break;
+        case GLIB_CMD_WATER: do_water(&x, c, &w); break;
+        case GLIB_CMD_WATER_MESH: w.water_mesh_res = clamp_res(&x, c, n[0], "res"); break;
+        case GLIB_CMD_TERRAIN: do_terrain(&x, c, &w); break;
+        case GLIB_CMD_WAVE_SINE:
+        case GLIB_CMD_WAVE_GERSTNER: do_wave(&x, c, &w.waves); break;
+        case GLIB_CMD_WAVE_STEEPNESS: do_steepness(&x, c, &w.waves); break;
+        case GLIB_CMD_WAVE_NOISE: do_noise(&x, c, &w.waves.noise); break;
+        case GLIB_CMD_OBJECT: do_object(&x, c, &w, &full_told); break;
+        default: break;
+        }
+    }
+    w.waves.level = w.water_level;
+    if (world)
+        *world = w;
+    if (cam)
+        *cam = cm;
+    if (has_world)
+        *has_world = any;
+    return x.nmsgs == 0;
+}
+
+/* The parser's errors, as `file:line: error: message` lines, as many as fit. */
+static void parser_errors(const glib_scene *g, char *err, int errlen)
+{
+    size_t used = 0;
+    for (int i = 0; i < g->ndiags && used + 1 < (size_t)errlen; i++) {
+        const glib_diag *d = &g->diags[i];
+        if (d->severity != GLIB_ERROR)
+            continue;
+        size_t room = (size_t)errlen - used;
+        int w = snprintf(err + used, room, "%s%s:%d: error: %s", used ? "\n" : "",
+                         d->file ? d->file : "?", d->line, d->message);
+        if (w < 0 || (size_t)w >= room) {
+            if (errlen >= 4)
+                memcpy(err + errlen - 4, "...", 4);
+            return;
+        }
+        used += (size_t)w;
+    }
+}
+
+bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,
+                scene_camera *cam, bool *has_world, char *err, int errlen)
+{
+    glib_options opt = { .packs_dir = TARN_SOURCE_DIR "/packs", .pack_override = pack_override };
+    glib_scene *g = glib_load_opts(path, &opt);
+    bool ok;
+    if (g->nerrors > 0) {
+        scene_from_glib(g, world, cam, has_world, NULL, 0);
+        if (err && errlen > 0) {
+            err[0] = '\0';
+            parser_errors(g, err, errlen);
+        }
+        ok = false;
+    } else {
+        ok = scene_from_glib(g, world, cam, has_world, err, errlen);
+    }
+    glib_free(g);
+    return ok;
+}
