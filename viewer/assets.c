@@ -391,8 +391,9 @@ typedef struct out_dir {
     bool failed;
 } out_dir;
 
-/* Writes res x res x 3 floats (GL order) as DIR/name; flip: 2D textures
- * (files are top row first), not cube faces. */
+/* Writes res x res x 3 floats (GL order) as DIR/name (EXR as 32-bit
+ * float, exactly the baked values); flip: 2D textures (files are top row
+ * first), not cube faces. */
 static void save(out_dir *o, const char *name, const float *rgb, int res, bool flip, double scale)
 {
     if (o->failed)
@@ -409,7 +410,9 @@ static void save(out_dir *o, const char *name, const float *rgb, int res, bool f
         im.px[k] = (float)(rgb[k] * scale);
     if (flip)
         img_flip_rows(&im);
-    if (!img_write(path, &im, err, sizeof err)) {
+    size_t len = strlen(name);
+    bool exr = len > 4 && strcmp(name + len - 4, ".exr") == 0;
+    if (!(exr ? img_write_float : img_write)(path, &im, err, sizeof err)) {
         fprintf(stderr, "tarn assets: %s\n", err);
         o->failed = true;
     } else {

@@ -16,9 +16,10 @@
  *   foam.png             tileable red and blue circles on black, 512
  *   caustics.exr / .png  a tileable caustic pattern from photon tracing, 256
  * PNGs are 8-bit and hold LINEAR values (no sRGB curve), as the shaders
- * read them; EXRs hold the linear values as half floats (image_io writes
- * EXR as half; use them where the range or precision matters: the sky is
- * brighter than 1 round the sun). 2D files are written top row first as
+ * read them; EXRs hold exactly the baked values as 32-bit floats
+ * (img_write_float): use them where the range or precision matters (the
+ * sky is brighter than 1 round the sun; caustics reach ~20 times their
+ * mean, and their PNG holds half the value, mean 0.5, clipped at 1). 2D files are written top row first as
  * files are, so a `Texture2D` of them (which flips rows on load) has the
  * buffer's orientation: t grows with world z. Cube faces keep the file's row
  * order (the cube map convention), as CubeMap loads them.

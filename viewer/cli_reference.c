@@ -79,7 +79,7 @@ static int parse_size(const char *s, int *w, int *h) {
 /* ---- the progress bar ------------------------------------------------- */
 
 typedef struct bar {
-    double start, last;
+    double start, last, last_f;
     int drawn;
 } bar;
 
@@ -91,8 +91,9 @@ static void fmt_time(double s, char *buf, size_t n) {
 static void bar_progress(void *user, double f) {
     bar *b = user;
     double t = now_s();
-    if (f < 1.0 && t - b->last < 0.1) return;
+    if ((f < 1.0 && t - b->last < 0.1) || (b->drawn && f == b->last_f)) return;
     b->last = t;
+    b->last_f = f;
     enum { WIDTH = 30 };
     int fill = (int)(f * WIDTH + 0.5);
     char line[WIDTH + 1], el[32], eta[32] = "";

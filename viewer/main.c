@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "assets.h"
 #include "cli.h"
 #include "compare.h"
 #include "gl_ctx.h"
@@ -23,6 +24,7 @@ static const char *usage_main =
     "  render FILE.glib     render without a display (EGL) to an image\n"
     "  validate [PATH...]   check every shader of every pack with glslang\n"
     "  compare A B          error of image A against reference B: RMSE, PSNR, heat map, JSON/CSV\n"
+    "  assets [--out DIR]   write the generated textures (terrain, sky, normal maps, foam, caustics)\n"
     "  help [COMMAND]       this text, or a command's options\n"
     "\n"
     "With no command, tarn opens the default scene (scenes/pond.glib) in a window,\n"
@@ -177,6 +179,7 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "view") == 0) return main_view(argc - 2, argv + 2);
     if (strcmp(cmd, "validate") == 0) return main_validate(argc - 2, argv + 2);
     if (strcmp(cmd, "compare") == 0) return cli_compare(argc - 2, argv + 2);
+    if (strcmp(cmd, "assets") == 0) return cli_assets(argc - 2, argv + 2);
     if (strstr(cmd, ".glib")) return main_view(argc - 1, argv + 1);   /* `tarn scene.glib` */
     fprintf(stderr, "tarn: unknown command '%s'\n\n%s", cmd, usage_main);
     return CLI_USAGE;

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "assets.h"
 #include "geom.h"
 
 /* The world uniforms besides the wave set (ref_waves_uniforms names those). */
@@ -91,20 +92,12 @@ static bool build_object(gpu_world *gw, const ref_object *ob, gpu_mesh *m) {
     return ok;
 }
 
-/* Texel (i, j) covers world x = -hs + (i + 0.5) * 2hs / res, z likewise with
- * j the row GL stores first (t = 0), matching build_terrain's tc. */
+/* The albedo texture from assets_bake_albedo: row 0 is t = 0, s runs with
+ * world x and t with z, matching build_terrain's texture coordinates. */
 static bool bake_albedo(gpu_world *gw) {
-    const ref_world *w = &gw->w;
-    int res = w->d.terrain_res;
-    double hs = w->d.half_size;
+    int res = gw->w.d.terrain_res;
     float *px = malloc((size_t)res * res * 3 * sizeof(float));
-    if (!px) return false;
-    for (int j = 0; j < res; j++)
-        for (int i = 0; i < res; i++) {
-            double rgb[3];
-            ref_terrain_albedo(w, -hs + (i + 0.5) * 2 * hs / res, -hs + (j + 0.5) * 2 * hs / res, rgb);
-            for (int k = 0; k < 3; k++) px[((size_t)j * res + i) * 3 + k] = (float)rgb[k];
-        }
+    if (!px || !assets_bake_albedo(&gw->w, res, px)) { free(px); return false; }
     glGenTextures(1, &gw->albedo_tex);
     glBindTexture(GL_TEXTURE_2D, gw->albedo_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
@@ -118,21 +111,6 @@ static bool bake_albedo(gpu_world *gw) {
     return true;
 }
 
-/* The direction of texel (u, v) in [-1, 1] of cube face f, with v growing
- * with the row index in memory: OpenGL's cube map table (spec 8.13). */
-static void cube_dir(int f, double u, double v, double d[3]) {
-    switch (f) {
-    case 0: d[0] = 1; d[1] = -v; d[2] = -u; break;    /* +X */
-    case 1: d[0] = -1; d[1] = -v; d[2] = u; break;    /* -X */
-    case 2: d[0] = u; d[1] = 1; d[2] = v; break;      /* +Y */
-    case 3: d[0] = u; d[1] = -1; d[2] = -v; break;    /* -Y */
-    case 4: d[0] = u; d[1] = -v; d[2] = 1; break;     /* +Z */
-    default: d[0] = -u; d[1] = -v; d[2] = -1; break;  /* -Z */
-    }
-    double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (int k = 0; k < 3; k++) d[k] /= l;
-}
-
 static bool bake_sky(gpu_world *gw) {
     int res = WORLD_SKY_RES;
     float *px = malloc((size_t)res * res * 3 * sizeof(float));
@@ -140,13 +118,7 @@ static bool bake_sky(gpu_world *gw) {
     glGenTextures(1, &gw->sky_tex);
     glBindTexture(GL_TEXTURE_CUBE_MAP, gw->sky_tex);
     for (int f = 0; f < 6; f++) {
-        for (int j = 0; j < res; j++)
-            for (int i = 0; i < res; i++) {
-                double d[3], rgb[3];
-                cube_dir(f, (i + 0.5) / res * 2 - 1, (j + 0.5) / res * 2 - 1, d);
-                ref_sky_radiance(&gw->w, d, rgb);
-                for (int k = 0; k < 3; k++) px[((size_t)j * res + i) * 3 + k] = (float)rgb[k];
-            }
+        assets_bake_sky_face(&gw->w, f, res, px);   /* GL's cube face table */
         glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
     }
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);

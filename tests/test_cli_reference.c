@@ -1,0 +1,147 @@
+/* test_cli_reference: `tarn reference` end to end (cli_reference called
+ * directly): the files it writes, their channels, 32-bit float precision
+ * of the buffers against an in-memory render of the same scene, NaN where
+ * a buffer has no value, and usage errors. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "cli.h"
+#include "cli_reference.h"
+#include "image_io.h"
+#include "ref_render.h"
+#include "scene.h"
+
+#ifndef TARN_SOURCE_DIR
+#define TARN_SOURCE_DIR "."
+#endif
+
+static char tmpdir[256];
+
+static const char *tmp_path(const char *name) {
+    static char buf[4][512];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
+    return buf[k];
+}
+
+static int run(int argc, const char **argv) { return cli_reference(argc, (char **)argv); }
+
+static const char *lake(void) { return TARN_SOURCE_DIR "/scenes/lake.glib"; }
+
+static void test_writes_everything(void) {
+    if (access(lake(), R_OK) != 0) SKIP("no %s", lake());
+    const char *out = tmp_path("ref.exr");
+    const char *argv[] = { lake(), "-o", out, "--size", "32x18", "--time", "1.5", "--threads", "2",
+                           "--photons", "4", "--caustic-res", "48", "--quiet" };
+    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == CLI_OK);
+
+    /* the same render in memory */
+    ref_world_desc wd;
+    scene_camera cam;
+    bool has_world;
+    char err[2048];
+    CHECK(scene_load(lake(), NULL, &wd, &cam, &has_world, err, sizeof err) || !strstr(err, ": error:"));
+    ref_world w;
+    ref_world_init(&w, &wd);
+    ref_render_desc d = { .world = &w, .time = 1.5, .threads = 1, .photons_per_cell = 4, .caustic_res = 48 };
+    memcpy(d.camera.eye, cam.eye, sizeof cam.eye);
+    memcpy(d.camera.center, cam.center, sizeof cam.center);
+    memcpy(d.camera.up, cam.up, sizeof cam.up);
+    d.camera.fov_deg = cam.fov_deg;
+    d.camera.width = 32;
+    d.camera.height = 18;
+    ref_render_result r;
+    CHECK(ref_render(&d, &r, err, sizeof err) == 0);
+    if (!r.color) return;
+
+    struct { const char *name; int channels; const double *ref; } files[] = {
+        { "ref.exr", 3, r.color },
+        { "ref.refract_hit.exr", 4, r.refract_hit },
+        { "ref.reflect.exr", 4, r.reflect },
+        { "ref.fresnel.exr", 1, r.fresnel },
+        { "ref.depth.exr", 1, r.depth },
+        { "ref.irradiance.exr", 3, r.irradiance },
+        { "ref.surface.exr", 3, r.surface },
+        { "ref.mask.exr", 1, NULL },
+        { "ref.png", 3, NULL },
+    };
+    for (size_t f = 0; f < sizeof files / sizeof *files; f++) {
+        img im;
+        CHECK_MSG(img_read(tmp_path(files[f].name), &im, err, sizeof err), "%s", err);
+        if (!im.px) continue;
+        CHECK(im.w == 32 && im.h == 18 && im.channels == files[f].channels);
+        size_t n = (size_t)32 * 18 * im.channels;
+        for (size_t i = 0; files[f].ref && i < n; i++) {
+            double want = files[f].ref[i], got = im.px[i];
+            if (isnan(want)) { CHECK(isnan(got)); continue; }
+            if (isinf(want)) { CHECK(got == want); continue; }
+            /* float: 24 bits, so 6e-8 relative (half would be 5e-4) */
+            CHECK_MSG(fabs(got - want) <= 6e-8 * fabs(want) + 1e-30, "%s[%zu] = %.9g, want %.9g",
+                      files[f].name, i, got, want);
+        }
+        if (strcmp(files[f].name, "ref.mask.exr") == 0)
+            for (size_t i = 0; i < n; i++) CHECK(im.px[i] == r.mask[i]);
+        if (strcmp(files[f].name, "ref.png") == 0)   /* sRGB-encoded 8 bits */
+            for (size_t i = 0; i < n; i++) {
+                double v = r.color[i] > 1 ? 1 : r.color[i];
+                double s = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+                CHECK_NEAR(im.px[i], s, 0.5 / 255 + 1e-6);
+            }
+        img_free(&im);
+    }
+    ref_render_free(&r);
+}
+
+static void test_usage(void) {
+    const char *no_out[] = { "scene.glib" };
+    CHECK(run(1, no_out) == CLI_USAGE);
+    const char *no_scene[] = { "-o", "x.exr" };
+    CHECK(run(2, no_scene) == CLI_USAGE);
+    const char *png[] = { "s.glib", "-o", "x.png" };
+    CHECK(run(3, png) == CLI_USAGE);
+    const char *size[] = { "s.glib", "-o", "x.exr", "--size", "64" };
+    CHECK(run(5, size) == CLI_USAGE);
+    const char *spp[] = { "s.glib", "-o", "x.exr", "--spp", "0" };
+    CHECK(run(5, spp) == CLI_USAGE);
+    const char *unknown[] = { "s.glib", "-o", "x.exr", "--frobnicate" };
+    CHECK(run(4, unknown) == CLI_USAGE);
+    CHECK_STR_CONTAINS(cli_reference_usage(), "--threads");
+    CHECK_STR_CONTAINS(cli_reference_usage(), "refract_hit.exr");
+}
+
+static void test_input_errors(void) {
+    const char *missing[] = { tmp_path("nope.glib"), "-o", tmp_path("x.exr"), "--quiet" };
+    CHECK(run(4, missing) == CLI_INPUT_ERROR);
+    /* a glman scene with no world commands: nothing to render */
+    const char *glib = tmp_path("noworld.glib");
+    FILE *f = fopen(glib, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("##OpenGL GLIB\nLookAt 0 2 5  0 0 0  0 1 0\n", f);
+    fclose(f);
+    const char *noworld[] = { glib, "-o", tmp_path("x.exr"), "--quiet" };
+    CHECK(run(4, noworld) == CLI_INPUT_ERROR);
+    /* an output that cannot be written */
+    if (access(lake(), R_OK) == 0) {
+        const char *bad[] = { lake(), "-o", tmp_path("no/such/dir/x.exr"), "--size", "8x4",
+                              "--flat-caustics", "--quiet" };
+        CHECK(run(7, bad) == CLI_INPUT_ERROR);
+    }
+}
+
+int main(void) {
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/tarn_cli_reference_XXXXXX");
+    if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
+    RUN(test_writes_everything);
+    RUN(test_usage);
+    RUN(test_input_errors);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", tmpdir);
+    return check_summary();
+}
