@@ -744,8 +744,9 @@ static bool h_blend(cmdctx *c, glib_cmd *cmd)
 {
     static const keyword k[] = {
         { "off", "off", 0 }, { "none", "off", 0 }, { "alpha", "alpha", 0 }, { "add", "add", 0 },
+        { "premultiplied", "premultiplied", 0 },
     };
-    const keyword *m = find_keyword(c, k, sizeof k / sizeof k[0], "off, alpha or add");
+    const keyword *m = find_keyword(c, k, sizeof k / sizeof k[0], "off, alpha, premultiplied or add");
     if (m)
         snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
     return m != NULL;

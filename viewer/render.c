@@ -534,6 +534,7 @@ static void exec_state_cmd(const glib_cmd *c) {
         if (strcmp(c->name, "off") == 0) { glDisable(GL_BLEND); break; }
         glEnable(GL_BLEND);
         if (strcmp(c->name, "add") == 0) glBlendFunc(GL_ONE, GL_ONE);
+        else if (strcmp(c->name, "premultiplied") == 0) glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         else glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
         break;
     default: break;

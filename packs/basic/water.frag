@@ -27,7 +27,8 @@ void main() {
 #endif
     vec3 sky = texture(uSky, reflect(-e, n)).rgb;
     vec3 color = f * sky + (1.0 - f) * uTint;
+    // Blend premultiplied: out = color + dst * (1 - alpha), the floor seen
+    // through what neither reflects nor absorbs
     float alpha = f + (1.0 - f) * uOpacity;
-    // premultiplied-style blend with Blend alpha: out = color*alpha + dst*(1-alpha)
-    fragColor = vec4(color / max(alpha, 1e-4), clamp(alpha, 0.0, 1.0));
+    fragColor = vec4(color, clamp(alpha, 0.0, 1.0));
 }
