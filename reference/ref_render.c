@@ -28,6 +28,7 @@
 #define MAX_SPP 16
 #define PHOTON_CHUNK_ROWS 8      /* strata rows per photon work item (fixed: the
                                     flux is summed chunk by chunk in order) */
+#define PHOTON_T_TOL 1e-6         /* a photon's landing point to 1 um: cells are cm */
 #define REGION_SAMPLES 257       /* samples per side to find the underwater floor */
 #define PIXEL_PHOTON_COST 5.0    /* a pixel costs about this many photons (progress) */
 
@@ -620,7 +621,7 @@ static int plan_caustics(rctx *c, worker *wk, char *err, size_t errlen) {
     cd.nz = nz;
     cd.photons_per_cell = c->d.photons_per_cell;
     cd.margin = photon_margin(w, box, cell);
-    cd.opts.t_tol = c->d.t_tol;
+    cd.opts.t_tol = PHOTON_T_TOL;
 
     ref_caustics *g = &r->caustics;
     if (ref_caustics_plan_init(&cd, &g->plan, err, errlen) != 0) return -1;

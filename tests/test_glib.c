@@ -1202,14 +1202,56 @@ static void test_world_errors(void)
     CHECK(has_diag(s, f, 15, GLIB_ERROR, "Object sphere needs 7 numbers, got 3: Object sphere x y z r R G B"));
     CHECK(has_diag(s, f, 16, GLIB_ERROR, "Object: unknown kind 'cone': write sphere, box or cylinder"));
     CHECK(has_diag(s, f, 17, GLIB_ERROR, "Object needs one of sphere, box or cylinder"));
-    CHECK(has_diag(s, f, 18, GLIB_ERROR, "World: unknown mode 'sideways': write all, above or below"));
-    CHECK(has_diag(s, f, 19, GLIB_WARNING, "WaterSurface takes no arguments; ignoring 'now'"));
+    CHECK(has_diag(s, f, 18, GLIB_ERROR, "World: unknown mode 'sideways': write World all|above|below [offset]"));
+    CHECK(has_diag(s, f, 19, GLIB_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
     CHECK(has_diag(s, f, 20, GLIB_WARNING, "Sky takes at most 6 arguments; ignoring '1'"));
     CHECK(has_diag(s, f, 21, GLIB_ERROR, "Pack needs a name: Pack name"));
     CHECK(has_diag(s, f, 22, GLIB_ERROR, "Pack: '../evil' is not a pack name"));
     CHECK(has_diag(s, f, 23, GLIB_ERROR, "Sky needs 6 numbers, got 3"));
-    CHECK(s->nerrors == 20 && count_sev(s, GLIB_WARNING) == 2);
-    CHECK(s->ncmds == 2);       /* WaterSurface now, Sky 1 1 1 1 1 1 (1) */
+    CHECK(s->nerrors == 21 && count_sev(s, GLIB_WARNING) == 1);
+    CHECK(s->ncmds == 1);       /* Sky 1 1 1 1 1 1 (1) */
+    glib_free(s);
+}
+
+/* The pack contract's drawing commands (docs/packs/contract.md). */
+static void test_pack_contract_commands(void)
+{
+    glib_scene *s = load("contract.glib",
+        "##OpenGL GLIB\n"
+        "Camera mirror 1.5\n"                  /* 2 */
+        "Camera main uFovScale\n"              /* 3 */
+        "Camera top\n"                         /* 4 */
+        "World above -0.02\n"                  /* 5 */
+        "WaterSurface points 64\n"             /* 6 */
+        "RenderToTextureOnce 6 7\n"            /* 7 */
+        "Splat 8 9\n"                          /* 8 */
+        "Texture2D 10 @caustics\n"             /* 9 */
+        "Camera sideways\n"                    /* 10 */
+        "Camera main 0\n"                      /* 11 */
+        "Texture2D 11 @nothing\n"              /* 12 */
+        "WaterSurface points\n"                /* 13 */
+        "Splat 1\n");                          /* 14 */
+    const char *f = P("contract.glib");
+    CHECK(s->ncmds == 8);
+    if (s->ncmds == 8) {
+        CHECK(s->cmds[0].kind == GLIB_CMD_CAMERA && !strcmp(s->cmds[0].name, "mirror") && s->cmds[0].nnum == 1 &&
+              s->cmds[0].num[0] == 1.5 && s->cmds[0].arg[0] == '\0');
+        CHECK(s->cmds[1].kind == GLIB_CMD_CAMERA && !strcmp(s->cmds[1].name, "main") && s->cmds[1].nnum == 0 &&
+              !strcmp(s->cmds[1].arg, "uFovScale"));
+        CHECK(s->cmds[2].kind == GLIB_CMD_CAMERA && !strcmp(s->cmds[2].name, "top"));
+        CHECK(s->cmds[3].kind == GLIB_CMD_WORLD && !strcmp(s->cmds[3].name, "above") && s->cmds[3].nnum == 1 &&
+              s->cmds[3].num[0] == -0.02);
+        CHECK(s->cmds[4].kind == GLIB_CMD_WATER_SURFACE && !strcmp(s->cmds[4].name, "points") &&
+              s->cmds[4].num[0] == 64);
+        CHECK(s->cmds[5].kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE && s->cmds[5].nnum == 2 && s->cmds[5].num[1] == 7);
+        CHECK(s->cmds[6].kind == GLIB_CMD_SPLAT && s->cmds[6].num[0] == 8 && s->cmds[6].num[1] == 9);
+        CHECK(s->cmds[7].kind == GLIB_CMD_TEXTURE2D_FILE && !strcmp(s->cmds[7].path, "@caustics"));
+    }
+    CHECK(has_diag(s, f, 10, GLIB_ERROR, "Camera: unknown camera 'sideways'"));
+    CHECK(has_diag(s, f, 11, GLIB_ERROR, "Camera: fov_scale must be greater than 0"));
+    CHECK(has_diag(s, f, 12, GLIB_ERROR, "unknown generated texture '@nothing'"));
+    CHECK(has_diag(s, f, 13, GLIB_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
+    CHECK(has_diag(s, f, 14, GLIB_ERROR, "Splat needs"));
     glib_free(s);
 }
 
@@ -1467,6 +1509,7 @@ int main(void)
     RUN(test_program_errors);
     RUN(test_world_commands);
     RUN(test_world_errors);
+    RUN(test_pack_contract_commands);
     RUN(test_pack_include);
     RUN(test_pack_missing);
     RUN(test_pack_override);

@@ -312,7 +312,7 @@ static void test_lake_finite(void) {
         /* energy: the photons' flux splits into reflected and transmitted */
         const ref_caustics_stats *s = &r.caustics.stats;
         CHECK_NEAR(s->flux_reflected + s->flux_transmitted,
-                   s->flux_emitted * s->hit_water / (double)s->photons, 1e-9 * s->flux_emitted);
+                   s->flux_emitted * (double)s->hit_water / (double)s->photons, 1e-9 * s->flux_emitted);
         ref_render_free(&r);
     }
 }

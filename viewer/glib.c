@@ -641,6 +641,18 @@ static bool h_tex2d(cmdctx *c, glib_cmd *cmd)
     if (!parse_arg(c, &unit_rule, c->words[0], &cmd->num[0]))
         return false;
     cmd->nnum = 1;
+    if (c->words[1][0] == '@') {       /* a texture tarn generates: not a file */
+        warn_extra(c, 2, "");
+        static const char *const known[] = { "@caustics", "@foam", "@water_normal", "@terrain_normal" };
+        for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
+            if (strcmp(c->words[1], known[i]) == 0) {
+                snprintf(cmd->path, sizeof cmd->path, "%s", known[i]);
+                return true;
+            }
+        cerr(c, "Texture2D: unknown generated texture '%.40s': write @caustics, @foam, "
+                "@water_normal or @terrain_normal", c->words[1]);
+        return false;
+    }
     if (!is_decimal(c->words[1])) {
         warn_extra(c, 2, path_hint);
         return take_path(c, c->words[1], cmd->path);
@@ -665,6 +677,18 @@ static bool h_tex3d(cmdctx *c, glib_cmd *cmd)
     if (!parse_arg(c, &unit_rule, c->words[0], &cmd->num[0]))
         return false;
     cmd->nnum = 1;
+    if (c->words[1][0] == '@') {       /* a texture tarn generates: not a file */
+        warn_extra(c, 2, "");
+        static const char *const known[] = { "@caustics", "@foam", "@water_normal", "@terrain_normal" };
+        for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
+            if (strcmp(c->words[1], known[i]) == 0) {
+                snprintf(cmd->path, sizeof cmd->path, "%s", known[i]);
+                return true;
+            }
+        cerr(c, "Texture2D: unknown generated texture '%.40s': write @caustics, @foam, "
+                "@water_normal or @terrain_normal", c->words[1]);
+        return false;
+    }
     if (!is_decimal(c->words[1])) {
         warn_extra(c, 2, path_hint);
         return take_path(c, c->words[1], cmd->path);
@@ -880,15 +904,79 @@ static bool h_object(cmdctx *c, glib_cmd *cmd)
 
 static bool h_world(cmdctx *c, glib_cmd *cmd)
 {
-    static const keyword k[] = { { "all", "all", 0 }, { "above", "above", 0 }, { "below", "below", 0 } };
-    if (c->nwords == 0) {
-        snprintf(cmd->name, sizeof cmd->name, "all");
+    static const arg_rule offset_rule = { "offset", "a clip offset", 'r', 0, 0, 0 };
+    static const char *const modes[] = { "all", "above", "below" };
+    snprintf(cmd->name, sizeof cmd->name, "all");
+    if (c->nwords == 0)
+        return true;
+    size_t m = 0;
+    while (m < 3 && strcasecmp(c->words[0], modes[m]) != 0)
+        m++;
+    if (m == 3) {
+        cerr(c, "World: unknown mode '%.40s': write World all|above|below [offset]", c->words[0]);
+        return false;
+    }
+    snprintf(cmd->name, sizeof cmd->name, "%s", modes[m]);
+    warn_extra(c, 2, "");
+    if (c->nwords >= 2) {
+        if (!parse_arg(c, &offset_rule, c->words[1], &cmd->num[0]))
+            return false;
+        cmd->nnum = 1;
+    }
+    return true;
+}
+
+/* Camera main|mirror|top|light [fov_scale | uniform] */
+static bool h_camera(cmdctx *c, glib_cmd *cmd)
+{
+    static const arg_rule scale_rule = { "fov_scale", "a field-of-view scale", 'p', 0, 0, 0 };
+    static const char *const kinds[] = { "main", "mirror", "top", "light" };
+    if (c->nwords < 1) {
+        cerr(c, "Camera needs main, mirror, top or light: %s", c->usage);
+        return false;
+    }
+    size_t k = 0;
+    while (k < 4 && strcasecmp(c->words[0], kinds[k]) != 0)
+        k++;
+    if (k == 4) {
+        cerr(c, "Camera: unknown camera '%.40s': write main, mirror, top or light", c->words[0]);
+        return false;
+    }
+    snprintf(cmd->name, sizeof cmd->name, "%s", kinds[k]);
+    warn_extra(c, 2, "");
+    if (c->nwords < 2)
+        return true;
+    const char *w = c->words[1];
+    if (isalpha((unsigned char)w[0]) || w[0] == '_') {
+        if (strlen(w) >= sizeof cmd->arg) {
+            cerr(c, "Camera: the uniform name '%.40s...' is too long", w);
+            return false;
+        }
+        snprintf(cmd->arg, sizeof cmd->arg, "%s", w);
         return true;
     }
-    const keyword *m = find_keyword(c, k, sizeof k / sizeof k[0], "all, above or below");
-    if (m)
-        snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
-    return m != NULL;
+    if (!parse_arg(c, &scale_rule, w, &cmd->num[0]))
+        return false;
+    cmd->nnum = 1;
+    return true;
+}
+
+/* WaterSurface [points N] */
+static bool h_water_surface(cmdctx *c, glib_cmd *cmd)
+{
+    static const arg_rule n_rule = { "N", "a point count per side", 'i', 1, 4096, 0 };
+    if (c->nwords == 0)
+        return true;
+    if (strcasecmp(c->words[0], "points") != 0 || c->nwords < 2) {
+        cerr(c, "WaterSurface: write WaterSurface, or WaterSurface points N");
+        return false;
+    }
+    warn_extra(c, 2, "");
+    snprintf(cmd->name, sizeof cmd->name, "points");
+    if (!parse_arg(c, &n_rule, c->words[1], &cmd->num[0]))
+        return false;
+    cmd->nnum = 1;
+    return true;
 }
 
 /* ---- Pack: a scene names the pack that draws its water ---- */
@@ -1807,6 +1895,9 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_WAVE_STEEPNESS] = "WaveSteepness", [GLIB_CMD_WAVE_NOISE] = "WaveNoise",
     [GLIB_CMD_OBJECT] = "Object", [GLIB_CMD_PACK] = "Pack", [GLIB_CMD_WORLD] = "World",
     [GLIB_CMD_WATER_SURFACE] = "WaterSurface",
+    [GLIB_CMD_CAMERA] = "Camera",
+    [GLIB_CMD_RENDER_TO_TEXTURE_ONCE] = "RenderToTextureOnce",
+    [GLIB_CMD_SPLAT] = "Splat",
 };
 
 const char *glib_cmd_name(glib_cmd_kind kind)
@@ -1939,8 +2030,16 @@ static const cmd_spec specs[] = {
       "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B" },
     { "Pack", GLIB_CMD_PACK, false, h_pack, false, 0, 0, { { 0 } }, "Pack name" },
     /* drawing the world (packs) */
-    { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below]" },
-    { "WaterSurface", GLIB_CMD_WATER_SURFACE, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below [offset]]" },
+    { "WaterSurface", GLIB_CMD_WATER_SURFACE, false, h_water_surface, false, 0, 0, { { 0 } },
+      "WaterSurface [points N]" },
+    { "Camera", GLIB_CMD_CAMERA, false, h_camera, false, 0, 0, { { 0 } },
+      "Camera main|mirror|top|light [fov_scale|uniform]" },
+    { "RenderToTextureOnce", GLIB_CMD_RENDER_TO_TEXTURE_ONCE, false, h_rtt, false, 0, 0, { { 0 } },
+      "RenderToTextureOnce unit [unit...]" },
+    { "Splat", GLIB_CMD_SPLAT, false, h_nums, false, 2, 2,
+      { { "src", "a texture unit", 'i', 0, LIM_UNIT, 0 }, { "dst", "a texture unit", 'i', 0, LIM_UNIT, 0 } },
+      "Splat src_unit dst_unit" },
 };
 
 #define NSPECS (sizeof specs / sizeof specs[0])

@@ -91,6 +91,10 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_PACK,              /* name: the pack (after the override); with
                                  * glib_options.packs_dir its pack.glib follows inline */
     /* drawing the world (in packs) */
+    GLIB_CMD_CAMERA,            /* name: main|mirror|top|light; num[0] fov scale (nnum 1),
+                                   or arg: a float uniform of the last Program */
+    GLIB_CMD_RENDER_TO_TEXTURE_ONCE, /* num: units; runs only on the first frame after a load */
+    GLIB_CMD_SPLAT,             /* num: src_unit dst_unit (CPU photon splat) */
     GLIB_CMD_WORLD,             /* name: "all" | "above" | "below" (default "all") */
     GLIB_CMD_WATER_SURFACE,     /* the water grid, with the current program */
     GLIB_CMD_KIND_COUNT
@@ -140,6 +144,7 @@ typedef struct glib_cmd {
      * `Define NAME 3` / `Define NAME <1 4 8>`) */
     glib_uniform *defines;
     int ndefines;
+    char arg[GLIB_NAME_MAX];    /* Camera: the uniform that gives fov_scale ("" when a number) */
 } glib_cmd;
 
 typedef enum glib_severity { GLIB_WARNING = 1, GLIB_ERROR = 2 } glib_severity;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "glib.h"
+#include "render_camera.h"
 #include "render_prog.h"
 #include "render_res.h"
 #include "render_world.h"
@@ -41,6 +42,7 @@ typedef struct scene_state {
     int ntexs;
     prog *progs;
     unif_set *unifs;         /* progs[i].unifs == &unifs[i] */
+    bool *once_done;         /* per command: a RenderToTextureOnce block already drawn */
     int nprogs;
     scene_settings set;
 } scene_state;
@@ -87,6 +89,7 @@ static void scene_free(scene_state *s) {
     free(s->texs);
     free(s->progs);
     free(s->unifs);
+    free(s->once_done);
     free(s->cmd_res);
     if (s->glib) glib_free(s->glib);
     memset(s, 0, sizeof *s);
@@ -289,7 +292,8 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     s->texs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->texs);
     s->progs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->progs);
     s->unifs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->unifs);
-    if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs) return false;
+    s->once_done = calloc((size_t)(n > 0 ? n : 1), sizeof *s->once_done);
+    if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs || !s->once_done) return false;
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
     stage_state st;
@@ -436,23 +440,41 @@ static void bind_textures(const scene_state *s) {
     glActiveTexture(GL_TEXTURE0);
 }
 
-static void load_matrices(const scene_settings *s, int w, int h, const render_view *v) {
-    mat4 proj, view;
-    float aspect = h > 0 ? (float)w / (float)h : 1.0f;
-    if (s->ortho)
-        glm_ortho((float)s->ortho_lrbt[0], (float)s->ortho_lrbt[1], (float)s->ortho_lrbt[2],
-                  (float)s->ortho_lrbt[3], -1000.0f, 1000.0f, proj);
-    else
-        glm_perspective(glm_rad((float)s->fov), aspect, (float)s->near_z, (float)s->far_z, proj);
-    vec3 eye, center, up;
-    memcpy(eye, v->eye, sizeof eye);
-    memcpy(center, v->center, sizeof center);
-    memcpy(up, v->up, sizeof up);
-    glm_lookat(eye, center, up, view);
-    glMatrixMode(GL_PROJECTION);
-    glLoadMatrixf((const float *)proj);
-    glMatrixMode(GL_MODELVIEW);
-    glLoadMatrixf((const float *)view);
+/* The fov scale a `Camera` command asks for: its number, or the current
+ * value of the named float uniform of the Program before it. */
+static float camera_scale(const scene_state *s, int ci) {
+    const glib_cmd *c = &s->glib->cmds[ci];
+    if (c->nnum > 0) return (float)c->num[0];
+    if (!c->arg[0]) return 1.0f;
+    for (int i = ci - 1; i >= 0; i--) {
+        if (s->glib->cmds[i].kind != GLIB_CMD_PROGRAM || s->cmd_res[i] < 0) continue;
+        unif_entry *e = unif_find(s->progs[s->cmd_res[i]].unifs, c->arg);
+        return e && e->value[0] > 0 ? e->value[0] : 1.0f;
+    }
+    return 1.0f;
+}
+
+static void compute_cameras(const render *r, const render_view *v, int w, int h, cam_set *out) {
+    const scene_state *s = &r->cur;
+    const scene_settings *set = &s->set;
+    cam_inputs in = { .view = *v, .fov_deg = set->fov, .near_z = set->near_z, .far_z = set->far_z,
+                      .ortho = set->ortho, .aspect = h > 0 ? (float)w / (float)h : 1.0f,
+                      .level = 0, .half_size = 12, .depth = 3, .sun_dir = { 0, 1, 0 } };
+    memcpy(in.ortho_lrbt, set->ortho_lrbt, sizeof in.ortho_lrbt);
+    for (int k = 0; k < CAM_COUNT; k++) in.fov_scale[k] = 1.0f;
+    if (r->world.active) {
+        const ref_world_desc *d = &r->world.w.d;
+        in.level = d->water_level;
+        in.half_size = d->half_size;
+        in.depth = d->depth;
+        memcpy(in.sun_dir, d->sun_dir, sizeof in.sun_dir);
+    }
+    for (int i = 0; i < s->glib->ncmds; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        int k = c->kind == GLIB_CMD_CAMERA ? cam_kind_from_name(c->name) : -1;
+        if (k >= 0) in.fov_scale[k] = camera_scale(s, i);
+    }
+    cam_compute(&in, out);
 }
 
 /* RenderToTexture u1 u2 ...: colour units become attachments 0..n-1, a
@@ -502,6 +524,8 @@ typedef struct frame_state {
     unsigned screen_fbo;
     int x, y, w, h;
     bool in_rtt;
+    bool skipping;           /* inside a RenderToTextureOnce block already drawn */
+    cam_set cams;
     int depth;
     const prog *cur;
     double t;
@@ -512,6 +536,61 @@ static void end_rtt(frame_state *f) {
     glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
     glViewport(f->x, f->y, f->w, f->h);
     f->in_rtt = false;
+}
+
+static const gpu_tex *tex_at_unit(const scene_state *s, int unit) {
+    const gpu_tex *t = NULL;
+    for (int i = 0; i < s->ntexs; i++)   /* the last one declared at a unit wins, as bound */
+        if (s->texs[i].tex && s->texs[i].unit == unit) t = &s->texs[i];
+    return t;
+}
+
+/* Adds every photon's energy bilinearly into the w x h grid over the world
+ * square |x|, |z| <= hs (texel (i, j) centred at x = -hs + (i + 0.5) 2hs / w,
+ * row j likewise in z), as irradiance: energy over the texel's area. */
+static void splat_photons(const float *photons, long n, float *grid, int w, int h, double hs) {
+    double cw = 2 * hs / w, ch = 2 * hs / h, inv_area = 1.0 / (cw * ch);
+    for (long p = 0; p < n; p++) {
+        const float *ph = photons + p * 4;
+        if (!(ph[3] > 0) || !isfinite(ph[0]) || !isfinite(ph[1]) || !isfinite(ph[2])) continue;
+        double gx = (ph[0] + hs) / cw - 0.5, gy = (ph[1] + hs) / ch - 0.5;
+        int i0 = (int)floor(gx), j0 = (int)floor(gy);
+        double fx = gx - i0, fy = gy - j0;
+        for (int dj = 0; dj < 2; dj++)
+            for (int di = 0; di < 2; di++) {
+                int i = i0 + di, j = j0 + dj;
+                if (i < 0 || j < 0 || i >= w || j >= h) continue;
+                double wgt = (di ? fx : 1 - fx) * (dj ? fy : 1 - fy);
+                float *g = grid + ((size_t)j * w + i) * 4;
+                float e = (float)(ph[2] * wgt * inv_area);
+                g[0] += e;
+                g[1] += e;
+                g[2] += e;
+                g[3] = 1.0f;
+            }
+    }
+}
+
+/* `Splat SRC DST`: the paper's CPU caustics. Each texel of SRC is a photon
+ * (R, G: world x, z of its floor hit; B: energy; A > 0: valid); DST gets the
+ * irradiance they make over the world square and is uploaded. */
+static void splat(const render *r, int src_unit, int dst_unit) {
+    const scene_state *s = &r->cur;
+    const gpu_tex *src = tex_at_unit(s, src_unit), *dst = tex_at_unit(s, dst_unit);
+    if (!src || !dst || src->target != GL_TEXTURE_2D || dst->target != GL_TEXTURE_2D) return;
+    float *in = malloc((size_t)src->w * src->h * 4 * sizeof(float));
+    float *out = calloc((size_t)dst->w * dst->h * 4, sizeof(float));
+    if (in && out) {
+        glBindTexture(GL_TEXTURE_2D, src->tex);
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, in);
+        double hs = r->world.active ? r->world.w.d.half_size : 12.0;
+        splat_photons(in, (long)src->w * src->h, out, dst->w, dst->h, hs);
+        glBindTexture(GL_TEXTURE_2D, dst->tex);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, dst->w, dst->h, GL_RGBA, GL_FLOAT, out);
+        glBindTexture(GL_TEXTURE_2D, 0);
+    }
+    free(in);
+    free(out);
 }
 
 static void exec_state_cmd(const glib_cmd *c) {
@@ -562,10 +641,23 @@ static void exec_transform(frame_state *f, const glib_cmd *c) {
 }
 
 static void exec_cmd(render *r, frame_state *f, int i) {
-    const scene_state *s = &r->cur;
+    scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
     int res = s->cmd_res[i];
-    if (res_is_geometry(c->kind)) {
+    bool pass_cmd = c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE;
+    if (f->skipping && !pass_cmd) return;
+    f->skipping = false;
+    if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE) {
+        if (s->once_done[i] || c->nnum == 0) { f->skipping = true; return; }
+        s->once_done[i] = true;
+        begin_rtt(r, c);
+        f->in_rtt = true;
+    } else if (c->kind == GLIB_CMD_CAMERA) {
+        int k = cam_kind_from_name(c->name);
+        if (k >= 0) cam_load(&f->cams, k);
+    } else if (c->kind == GLIB_CMD_SPLAT) {
+        splat(r, (int)c->num[0], (int)c->num[1]);
+    } else if (res_is_geometry(c->kind)) {
         if (res >= 0) res_mesh_draw(&s->meshes[res], f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_PROGRAM) {
         f->cur = res >= 0 ? &s->progs[res] : NULL;
@@ -573,11 +665,14 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         if (f->cur && f->cur->gl) {
             prog_upload(f->cur, f->t, s->set.timer_s);
             world_upload(&r->world, f->cur->gl, f->t, f->eye);
+            cam_upload(&f->cams, f->cur->gl);
         }
     } else if (c->kind == GLIB_CMD_WORLD) {
-        world_draw(&r->world, c->name[0] ? c->name : "all", f->t, f->eye, f->cur ? f->cur->gl : 0);
+        world_draw(&r->world, c->name[0] ? c->name : "all", c->nnum > 0 ? c->num[0] : 0.0, f->t, f->eye,
+                   f->cur ? f->cur->gl : 0);
     } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
-        world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
+        if (strcmp(c->name, "points") == 0) world_draw_points(&r->world, (int)c->num[0]);
+        else world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
         if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
@@ -627,11 +722,12 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     glDisable(GL_SCISSOR_TEST);
     if (s->glib) {
         render_view v = view ? *view : s->set.view;
-        load_matrices(&s->set, w, h, &v);
         bind_textures(s);
         world_bind_textures(&r->world);
         frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };
         memcpy(f.eye, v.eye, sizeof f.eye);
+        compute_cameras(r, &v, w, h, &f.cams);
+        cam_load(&f.cams, CAM_MAIN);
         glPushMatrix();
         for (int i = 0; i < s->glib->ncmds; i++) exec_cmd(r, &f, i);
         for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */
@@ -639,6 +735,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         glPopMatrix();
         if (f.in_rtt) end_rtt(&f);
         glUseProgram(0);
+        glFrontFace(GL_CCW);
     }
     glQueryCounter(r->query[q][1], GL_TIMESTAMP);
     r->query_pending[q] = true;

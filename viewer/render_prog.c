@@ -1,4 +1,5 @@
 #include "render_prog.h"
+#include "render_camera.h"
 #include "render_world.h"
 
 #include <GL/gl.h>
@@ -207,7 +208,7 @@ void prog_introspect(prog *p, char **log) {
         if (strchr(name, '.') || strchr(name, '[')) continue;  /* struct members: not ours */
         GLint loc = glGetUniformLocation(p->gl, name);
         if (strcmp(name, "Timer") == 0) { p->timer_loc = loc; continue; }
-        if (p->world_uniforms && world_is_uniform(name)) continue;   /* set from the scene */
+        if (cam_is_uniform(name) || (p->world_uniforms && world_is_uniform(name))) continue;   /* set by tarn */
         unif_entry *e = unif_set_shader_type(p->unifs, name, map_gl_type(type), size, loc);
         if (!e || e->from_glib) continue;
         /* glman's noise samplers live at fixed units */

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "assets.h"
 #include "geom.h"
 #include "image_io.h"
 #include "noise.h"
@@ -188,7 +189,43 @@ static bool load_image(const char *path, img *im, const glib_cmd *c, char **log)
     return false;
 }
 
+/* `Texture2D unit @NAME`: a texture tarn generates (viewer/assets.h). */
+static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
+    const char *name = c->path + 1;
+    int res = strcmp(name, "caustics") == 0 ? 128 : 256;   /* caustics: photon tracing, ~1 s */
+    float *px = malloc((size_t)res * res * 3 * sizeof(float));
+    if (!px) return false;
+    char err[256] = "";
+    bool ok = false, one_channel = false;
+    if (strcmp(name, "caustics") == 0) { ok = assets_bake_caustics(res, px, err, sizeof err); one_channel = true; }
+    else if (strcmp(name, "foam") == 0) ok = assets_bake_foam(res, px);
+    else if (strcmp(name, "water_normal") == 0) ok = assets_bake_water_normal(res, px);
+    else if (strcmp(name, "terrain_normal") == 0) {
+        ref_world w;
+        ref_world_desc d;
+        ref_world_desc_lake(&d);   /* no world at hand here: the lake's terrain */
+        ref_world_init(&w, &d);
+        ok = assets_bake_terrain_normal(&w, res, px);
+    }
+    if (!ok) {
+        log_append(log, "%s:%d: error: Texture2D %s: %s\n", c->file, c->line, c->path, err[0] ? err : "cannot generate");
+        free(px);
+        return false;
+    }
+    t->w = t->h = res;
+    glTexImage2D(GL_TEXTURE_2D, 0, one_channel ? GL_R16F : GL_RGB16F, res, res, 0, one_channel ? GL_RED : GL_RGB,
+                 GL_FLOAT, px);
+    if (one_channel) {   /* read as grey: .rgb all the pattern */
+        GLint swizzle[4] = { GL_RED, GL_RED, GL_RED, GL_ONE };
+        glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
+    }
+    free(px);
+    sampling(GL_TEXTURE_2D, true, GL_REPEAT);
+    return true;
+}
+
 static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
+    if (c->path[0] == '@') return tex_2d_generated(c, t, log);
     img im;
     if (!load_image(c->path, &im, c, log)) return false;
     img_flip_rows(&im);            /* files store the top row first, GL the bottom */

@@ -9,6 +9,7 @@
 
 #include "assets.h"
 #include "geom.h"
+#include "render_camera.h"
 
 /* The world uniforms besides the wave set (ref_waves_uniforms names those). */
 static const char *const world_names[] = {
@@ -17,6 +18,7 @@ static const char *const world_names[] = {
     "uWorldAlbedo", "uWorldMode", "uWorldClip" };
 
 bool world_is_uniform(const char *name) {
+    if (cam_is_uniform(name)) return true;
     for (size_t i = 0; i < sizeof world_names / sizeof *world_names; i++)
         if (strcmp(name, world_names[i]) == 0) return true;
     /* the wave set of packs/common/waves.glsl */
@@ -149,6 +151,7 @@ void world_free(gpu_world *gw) {
     res_mesh_free(&gw->terrain);
     res_mesh_free(&gw->water);
     res_mesh_free(&gw->sky_box);
+    if (gw->points_vbo) glDeleteBuffers(1, &gw->points_vbo);
     for (int i = 0; i < gw->nobjects; i++) res_mesh_free(&gw->objects[i]);
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
     if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
@@ -232,14 +235,14 @@ void world_bind_textures(const gpu_world *gw) {
     glActiveTexture(GL_TEXTURE0);
 }
 
-void world_draw(const gpu_world *gw, const char *which, double t, const float eye[3],
+void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
                 unsigned restore_program) {
     if (!gw->active || !gw->prog.gl) return;
     unsigned p = gw->prog.gl;
     glUseProgram(p);
     world_upload(gw, p, t, eye);
     /* clip at the water plane: "above" keeps y > level, "below" y < level */
-    float level = (float)gw->w.d.water_level, plane[4] = { 0, 0, 0, 1 };
+    float level = (float)(gw->w.d.water_level + offset), plane[4] = { 0, 0, 0, 1 };
     if (strcmp(which, "above") == 0) { plane[1] = 1; plane[3] = -level; }
     if (strcmp(which, "below") == 0) { plane[1] = -1; plane[3] = level; }
     GLint clip = glGetUniformLocation(p, "uWorldClip");
@@ -264,4 +267,34 @@ void world_draw(const gpu_world *gw, const char *which, double t, const float ey
 
 void world_draw_water(const gpu_world *gw, int tangent_loc) {
     if (gw->active) res_mesh_draw(&gw->water, tangent_loc);
+}
+
+/* N x N points at the cell centres of the world square, at the mean level;
+ * built on first use and kept while N and the world stay the same. */
+void world_draw_points(gpu_world *gw, int n) {
+    if (!gw->active || n < 1) return;
+    if (gw->points_n != n) {
+        if (!gw->points_vbo) glGenBuffers(1, &gw->points_vbo);
+        float *p = malloc((size_t)n * n * 3 * sizeof(float));
+        if (!p) return;
+        double hs = gw->w.d.half_size;
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                float *v = p + ((size_t)j * n + i) * 3;
+                v[0] = (float)(-hs + (i + 0.5) * 2 * hs / n);
+                v[1] = (float)gw->w.d.water_level;
+                v[2] = (float)(-hs + (j + 0.5) * 2 * hs / n);
+            }
+        glBindBuffer(GL_ARRAY_BUFFER, gw->points_vbo);
+        glBufferData(GL_ARRAY_BUFFER, (long)n * n * 3 * (long)sizeof(float), p, GL_STATIC_DRAW);
+        free(p);
+        gw->points_n = n;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, gw->points_vbo);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glVertexPointer(3, GL_FLOAT, 0, (const void *)0);
+    glPointSize(1.0f);
+    glDrawArrays(GL_POINTS, 0, n * n);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
 }

@@ -23,6 +23,8 @@ typedef struct gpu_world {
     ref_world_desc desc;          /* what was built: equal desc, nothing rebuilt */
     ref_world w;
     gpu_mesh terrain, water, sky_box;
+    unsigned points_vbo;          /* WaterSurface points N */
+    int points_n;
     gpu_mesh objects[REF_MAX_OBJECTS];
     float object_albedo[REF_MAX_OBJECTS][3];
     int nobjects;
@@ -48,10 +50,13 @@ void world_bind_textures(const gpu_world *gw);
 
 /* `World all|above|below`: terrain and objects with the world program,
  * clipped at the water plane for above/below; restores `restore_program`. */
-void world_draw(const gpu_world *gw, const char *which, double t, const float eye[3],
+void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
                 unsigned restore_program);
 
 /* `WaterSurface`: the water grid with the bound program. */
 void world_draw_water(const gpu_world *gw, int tangent_loc);
+
+/* `WaterSurface points N`: N x N points over the world square. */
+void world_draw_points(gpu_world *gw, int n);
 
 #endif

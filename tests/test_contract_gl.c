@@ -1,0 +1,203 @@
+/* The pack contract (docs/packs/contract.md) on llvmpipe: the top camera's
+ * texel-to-world mapping, the mirror camera's matrix, RenderToTextureOnce,
+ * additive photon points, the CPU Splat's energy, generated textures. */
+#include <GL/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "gl_ctx.h"
+#include "render.h"
+
+static char dir[256];
+
+static void write_file(const char *name, const char *text) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) exit(1);
+    fputs(text, f);
+    fclose(f);
+}
+
+static const char *path_of(const char *name) {
+    static char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return path;
+}
+
+/* A flat world 4 m a side (half size 2), water at 0.5, no waves. */
+static const char *world =
+    "##OpenGL GLIB\nPerspective 50\nLookAt 0 3 5  0 0 0  0 1 0\n"
+    "Terrain flat 2 1\nWater 0.5\nWaterMesh 8\n";
+
+/* Renders path into a w x h float target; returns RGBA rows, top first. */
+static float *draw(const char *path, int w, int h, double t, render **keep) {
+    render *r = keep && *keep ? *keep : render_create(NULL);
+    if (!keep || !*keep) CHECK_MSG(render_load(r, path), "%s", render_messages(r));
+    render_target tg;
+    render_target_create(&tg, w, h, true);
+    render_frame(r, t, tg.fbo, w, h, NULL);
+    float *px = malloc((size_t)w * h * 4 * sizeof(float));
+    render_target_read(&tg, px);
+    render_target_destroy(&tg);
+    GLenum e = glGetError();
+    CHECK_MSG(e == GL_NO_ERROR, "GL error 0x%x", e);
+    if (keep) *keep = r;
+    else render_destroy(r);
+    return px;
+}
+
+/* Camera top: the water grid drawn with it puts world (x, z) at clip
+ * (x / h, z / h), h = uCamTopHalfSize = 1.05 * 2; a fragment writes its
+ * interpolated world position, which must equal the texel's own. */
+static void test_top_camera_maps_texels_to_world(void) {
+    write_file("pos.vert", "#version 330 compatibility\nout vec3 vW;\n"
+                           "void main() { vW = gl_Vertex.xyz; gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
+    write_file("pos.frag", "#version 330 compatibility\nin vec3 vW;\nout vec4 c;\nvoid main() { c = vec4(vW, 1.); }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sBackground 0 0 0 0\nCamera top\nVertex pos.vert\nFragment pos.frag\nProgram P\n"
+             "WaterSurface\n", world);
+    write_file("top.glib", text);
+    int n = 42;
+    float *px = draw(path_of("top.glib"), n, n, 0, NULL);
+    double h = 1.05 * 2, worst = 0;
+    int inside = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double x = -h + (i + 0.5) * 2 * h / n, z = -h + ((n - 1 - j) + 0.5) * 2 * h / n;  /* row 0 = top */
+            const float *p = px + ((size_t)j * n + i) * 4;
+            bool on_water = fabs(x) < 2 - 1e-3 && fabs(z) < 2 - 1e-3;
+            if (!on_water) continue;
+            inside++;
+            CHECK(p[3] == 1.0f);
+            worst = fmax(worst, fmax(fabs(p[0] - x), fabs(p[2] - z)));
+            CHECK_NEAR(p[1], 0.5, 1e-6);
+        }
+    fprintf(stderr, "  %d texels, worst |texel centre - world| = %.3g m\n", inside, worst);
+    CHECK(inside > n * n / 2);
+    CHECK(worst < 1e-4);     /* a linear map interpolated exactly, float rounding only */
+    free(px);
+}
+
+/* uCamMirrorVP p equals uCamMainVP applied to p reflected about y = level. */
+static void test_mirror_matrix_reflects_about_the_water(void) {
+    write_file("mir.frag", "#version 330 compatibility\nuniform mat4 uCamMainVP, uCamMirrorVP;\nuniform float uWaterLevel;\n"
+                           "out vec4 c;\nvoid main() {\n"
+                           "  vec4 p = vec4(1.3, 2.7, -0.8, 1.0);\n"
+                           "  vec4 m = vec4(p.x, 2.0 * uWaterLevel - p.y, p.z, 1.0);\n"
+                           "  vec4 a = uCamMirrorVP * p, b = uCamMainVP * m;\n"
+                           "  c = vec4(abs(a - b).xyz, abs(a.w) + abs(b.w));\n}\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sVertex pos.vert\nFragment mir.frag\nProgram M\nCamera top\nWaterSurface\n", world);
+    write_file("mir.glib", text);
+    float *px = draw(path_of("mir.glib"), 8, 8, 0, NULL);
+    const float *p = px + (4 * 8 + 4) * 4;
+    CHECK(p[3] > 0.1f);                          /* the fragment ran and the matrices were set */
+    CHECK(p[0] < 1e-4f && p[1] < 1e-4f && p[2] < 1e-4f);
+    free(px);
+}
+
+/* A RenderToTextureOnce block draws on the first frame only: its target
+ * keeps the first frame's Timer value. */
+static void test_render_to_texture_once(void) {
+    write_file("time.frag", "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
+                            "void main() { c = vec4(Timer, 0., 0., 1.); }\n");
+    write_file("show.frag", "#version 330 compatibility\nuniform sampler2D uT;\nout vec4 c;\n"
+                            "void main() { c = texelFetch(uT, ivec2(0), 0); }\n");
+    write_file("flat.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_Vertex; }\n");
+    write_file("once.glib", "##OpenGL GLIB\nTimer 10\nTexture2D 6 4 4 float\n"
+                            "RenderToTextureOnce 6\nClear\nVertex flat.vert\nFragment time.frag\nProgram T\nQuadXY 0 1 1 1\n"
+                            "RenderToTexture\nFragment show.frag\nProgram S uT 6\nQuadXY 0 1 1 1\n");
+    render *r = NULL;
+    float *a = draw(path_of("once.glib"), 4, 4, 2.0, &r);
+    float *b = draw(path_of("once.glib"), 4, 4, 7.0, &r);
+    CHECK_NEAR(a[0], 0.2, 1e-6);
+    CHECK_NEAR(b[0], 0.2, 1e-6);                 /* not 0.7: the block did not run again */
+    CHECK(render_load(r, NULL));                 /* a reload draws it once more */
+    free(b);
+    b = draw(path_of("once.glib"), 4, 4, 7.0, &r);
+    CHECK_NEAR(b[0], 0.7, 1e-6);
+    free(a);
+    free(b);
+    render_destroy(r);
+}
+
+/* WaterSurface points N with Blend add: every point lands once, so the
+ * target sums to N^2 (what GPU photon splatting relies on). */
+static void test_points_add_up(void) {
+    write_file("one.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1.); }\n");
+    write_file("pt.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sBackground 0 0 0 0\nCamera top\nDepthTest off\nBlend add\n"
+             "Vertex pt.vert\nFragment one.frag\nProgram P\nWaterSurface points 20\n", world);
+    write_file("points.glib", text);
+    float *px = draw(path_of("points.glib"), 16, 16, 0, NULL);
+    double sum = 0;
+    for (int i = 0; i < 16 * 16; i++) sum += px[i * 4];
+    CHECK_NEAR(sum, 400.0, 1e-3);
+    free(px);
+}
+
+/* Splat: 16 photons of energy 0.25 at world (0.3, -0.7): the irradiance
+ * times the texel area sums to 4 and peaks at that point's texel. */
+static void test_splat_conserves_energy(void) {
+    write_file("photon.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0.3, -0.7, 0.25, 1.); }\n");
+    write_file("grid.frag", "#version 330 compatibility\nuniform sampler2D uG;\nout vec4 c;\n"
+                            "void main() { c = texelFetch(uG, ivec2(gl_FragCoord.xy), 0); }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sTexture2D 6 4 4 float\nTexture2D 7 10 10 float\n"
+             "RenderToTexture 6\nClear\nVertex flat.vert\nFragment photon.frag\nProgram Ph\nQuadXY 0 1 1 1\nRenderToTexture\n"
+             "Splat 6 7\nFragment grid.frag\nProgram G uG 7\nQuadXY 0 1 1 1\n", world);
+    write_file("splat.glib", text);
+    float *px = draw(path_of("splat.glib"), 10, 10, 0, NULL);
+    double texel_area = (4.0 / 10) * (4.0 / 10), sum = 0, peak = 0;
+    int pi = -1, pj = -1;
+    for (int j = 0; j < 10; j++)
+        for (int i = 0; i < 10; i++) {
+            double e = px[(j * 10 + i) * 4];
+            sum += e * texel_area;
+            if (e > peak) { peak = e; pi = i; pj = 9 - j; }   /* back to GL rows: t ~ z */
+        }
+    CHECK_NEAR(sum, 4.0, 1e-4);
+    /* x = 0.3 -> texel 5 (centres at -1.8 + 0.4 i), z = -0.7 -> row 3 */
+    CHECK(pi == 5 && pj == 3);
+    free(px);
+}
+
+/* @caustics is generated, tileable, with mean 1. */
+static void test_generated_caustics(void) {
+    write_file("caus.frag", "#version 330 compatibility\nuniform sampler2D uC;\nout vec4 c;\n"
+                            "void main() { c = texture(uC, gl_FragCoord.xy / 64.0); }\n");
+    write_file("caus.glib", "##OpenGL GLIB\nTexture2D 5 @caustics\nVertex flat.vert\nFragment caus.frag\n"
+                            "Program C uC 5\nQuadXY 0 1 1 1\n");
+    float *px = draw(path_of("caus.glib"), 64, 64, 0, NULL);
+    double mean = 0, var = 0;
+    for (int i = 0; i < 64 * 64; i++) mean += px[i * 4] / (64.0 * 64.0);
+    for (int i = 0; i < 64 * 64; i++) var += (px[i * 4] - mean) * (px[i * 4] - mean) / (64.0 * 64.0);
+    fprintf(stderr, "  caustics: mean %.3f, std %.3f\n", mean, sqrt(var));
+    CHECK_NEAR(mean, 1.0, 0.05);   /* 64^2 samples of a 128^2 texture with mip filtering: ~1% off */
+    CHECK(sqrt(var) > 0.1);        /* a pattern, not a constant */
+    free(px);
+}
+
+int main(void) {
+    char err[512];
+    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
+    snprintf(dir, sizeof dir, "/tmp/tarn-test-contract-XXXXXX");
+    if (!mkdtemp(dir)) return 1;
+    RUN(test_top_camera_maps_texels_to_world);
+    RUN(test_mirror_matrix_reflects_about_the_water);
+    RUN(test_render_to_texture_once);
+    RUN(test_points_add_up);
+    RUN(test_splat_conserves_energy);
+    RUN(test_generated_caustics);
+    gl_ctx_destroy(ctx);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    return check_summary();
+}

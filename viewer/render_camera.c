@@ -1,0 +1,121 @@
+#include "render_camera.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <cglm/cglm.h>
+#include <math.h>
+#include <string.h>
+
+static const char *const cam_names[CAM_COUNT] = { "main", "mirror", "top", "light" };
+static const char *const vp_uniforms[CAM_COUNT] = { "uCamMainVP", "uCamMirrorVP", "uCamTopVP", "uCamLightVP" };
+
+int cam_kind_from_name(const char *name) {
+    for (int k = 0; k < CAM_COUNT; k++)
+        if (strcmp(name, cam_names[k]) == 0) return k;
+    return -1;
+}
+
+bool cam_is_uniform(const char *name) {
+    for (int k = 0; k < CAM_COUNT; k++)
+        if (strcmp(name, vp_uniforms[k]) == 0) return true;
+    return strcmp(name, "uCamTopHalfSize") == 0 || strcmp(name, "uCamLightHalfSize") == 0;
+}
+
+static void lookat(const render_view *v, mat4 out) {
+    vec3 eye, center, up;
+    memcpy(eye, v->eye, sizeof eye);
+    memcpy(center, v->center, sizeof center);
+    memcpy(up, v->up, sizeof up);
+    glm_lookat(eye, center, up, out);
+}
+
+static void perspective(const cam_inputs *in, float scale, mat4 out) {
+    if (in->ortho) {
+        glm_ortho((float)in->ortho_lrbt[0], (float)in->ortho_lrbt[1], (float)in->ortho_lrbt[2],
+                  (float)in->ortho_lrbt[3], -1000.0f, 1000.0f, out);
+        return;
+    }
+    /* widen the field of view by scale, never to 180 degrees */
+    double fov = in->fov_deg * (scale > 0 ? scale : 1.0f);
+    if (fov > 170.0) fov = 170.0;
+    glm_perspective(glm_rad((float)fov), in->aspect, (float)in->near_z, (float)in->far_z, out);
+}
+
+/* The reflection about the plane y = level: y -> 2 level - y. */
+static void mirror_matrix(double level, mat4 out) {
+    glm_mat4_identity(out);
+    out[1][1] = -1.0f;
+    out[3][1] = (float)(2.0 * level);
+}
+
+/* Straight down over the square |x|, |z| <= h: clip x = x / h, clip y = z / h,
+ * depth from the top of the world (near) to below its floor (far). */
+static void top_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) {
+    double ymin = in->level - 2.0 * in->depth - 10.0, ymax = in->level + 50.0, range = ymax - ymin;
+    glm_mat4_identity(view);
+    glm_mat4_zero(proj);
+    proj[0][0] = 1.0f / h;                       /* column-major: proj[col][row] */
+    proj[2][1] = 1.0f / h;
+    proj[1][2] = (float)(-2.0 / range);
+    proj[3][2] = (float)(1.0 + 2.0 * ymin / range);
+    proj[3][3] = 1.0f;
+}
+
+static void light_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) {
+    const double *s = in->sun_dir;
+    render_view v = { { 0, 0, 0 }, { 0, (float)in->level, 0 }, { 0, 1, 0 } };
+    for (int k = 0; k < 3; k++) v.eye[k] = v.center[k] + (float)(s[k] * 200.0);
+    if (fabs(s[1]) > 0.99) { v.up[1] = 0; v.up[2] = 1; }   /* sun overhead: any horizontal up */
+    lookat(&v, view);
+    glm_ortho(-h, h, -h, h, 1.0f, 400.0f, proj);
+}
+
+void cam_compute(const cam_inputs *in, cam_set *out) {
+    mat4 view, proj, vp, m;
+    /* main */
+    lookat(&in->view, view);
+    perspective(in, in->fov_scale[CAM_MAIN], proj);
+    memcpy(out->view[CAM_MAIN], view, sizeof view);
+    memcpy(out->proj[CAM_MAIN], proj, sizeof proj);
+    /* mirror: the main view of the reflected world */
+    mirror_matrix(in->level, m);
+    glm_mat4_mul(view, m, vp);
+    memcpy(out->view[CAM_MIRROR], vp, sizeof vp);
+    perspective(in, in->fov_scale[CAM_MIRROR], proj);
+    memcpy(out->proj[CAM_MIRROR], proj, sizeof proj);
+    /* top and light */
+    out->top_half = (float)(in->half_size * 1.05);
+    top_matrices(in, out->top_half, view, proj);
+    memcpy(out->view[CAM_TOP], view, sizeof view);
+    memcpy(out->proj[CAM_TOP], proj, sizeof proj);
+    out->light_half = (float)(in->half_size * 1.5 + in->depth + 2.0);
+    light_matrices(in, out->light_half, view, proj);
+    memcpy(out->view[CAM_LIGHT], view, sizeof view);
+    memcpy(out->proj[CAM_LIGHT], proj, sizeof proj);
+    for (int k = 0; k < CAM_COUNT; k++) {
+        mat4 a, b;
+        memcpy(a, out->proj[k], sizeof a);
+        memcpy(b, out->view[k], sizeof b);
+        glm_mat4_mul(a, b, vp);
+        memcpy(out->vp[k], vp, sizeof vp);
+    }
+}
+
+void cam_load(const cam_set *c, int kind) {
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixf(c->proj[kind]);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixf(c->view[kind]);
+    glFrontFace(kind == CAM_MIRROR ? GL_CW : GL_CCW);
+}
+
+void cam_upload(const cam_set *c, unsigned p) {
+    for (int k = 0; k < CAM_COUNT; k++) {
+        GLint loc = glGetUniformLocation(p, vp_uniforms[k]);
+        if (loc >= 0) glUniformMatrix4fv(loc, 1, GL_FALSE, c->vp[k]);
+    }
+    GLint loc = glGetUniformLocation(p, "uCamTopHalfSize");
+    if (loc >= 0) glUniform1f(loc, c->top_half);
+    loc = glGetUniformLocation(p, "uCamLightHalfSize");
+    if (loc >= 0) glUniform1f(loc, c->light_half);
+}

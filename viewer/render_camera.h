@@ -1,0 +1,45 @@
+/* render_camera: the cameras of the pack contract (docs/packs/contract.md):
+ * main, main mirrored about the water plane, orthographic top-down and
+ * orthographic along the sun. All four are computed at the start of each
+ * frame, so any program can project with any of them (uCam*VP). Private to
+ * render.c. */
+#ifndef TARN_RENDER_CAMERA_H
+#define TARN_RENDER_CAMERA_H
+
+#include <stdbool.h>
+#include "render.h"
+
+typedef enum cam_kind { CAM_MAIN = 0, CAM_MIRROR, CAM_TOP, CAM_LIGHT, CAM_COUNT } cam_kind;
+
+typedef struct cam_inputs {
+    render_view view;             /* the viewer's camera */
+    double fov_deg, near_z, far_z;
+    bool ortho;                   /* the glib's Ortho instead of Perspective */
+    double ortho_lrbt[4];
+    float aspect;
+    float fov_scale[CAM_COUNT];   /* Camera main|mirror 1.5 (1: as written) */
+    double level, half_size, depth;   /* the world (defaults when there is none) */
+    double sun_dir[3];
+} cam_inputs;
+
+typedef struct cam_set {
+    float view[CAM_COUNT][16], proj[CAM_COUNT][16], vp[CAM_COUNT][16];
+    float top_half, light_half;
+} cam_set;
+
+void cam_compute(const cam_inputs *in, cam_set *out);
+
+/* CAM_MAIN..CAM_LIGHT for "main".."light", -1 otherwise. */
+int cam_kind_from_name(const char *name);
+
+/* Loads kind's projection and view into GL's matrices (front face flipped
+ * for the mirror, whose image is reflected). */
+void cam_load(const cam_set *c, int kind);
+
+/* Sets uCamMainVP, uCamMirrorVP, uCamTopVP, uCamLightVP, uCamTopHalfSize,
+ * uCamLightHalfSize on the bound program where declared. */
+void cam_upload(const cam_set *c, unsigned program);
+
+bool cam_is_uniform(const char *name);
+
+#endif
