@@ -424,6 +424,17 @@ static void test_no_gl_errors(void) {
     render *r = render_create(NULL);
     CHECK(render_load(r, path_of("rtt.glib")));
     draw(r, 0);
+    /* rtt.glib: the screen, then a pass into unit 6 (line 4), then the screen again (line 11) */
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, true, &names, &ms);
+    CHECK(n == 3);
+    if (n == 3) {
+        CHECK(strcmp(names[0], "screen") == 0);
+        CHECK_MSG(strcmp(names[1], "pass:4 6") == 0, "%s", names[1]);
+        CHECK_MSG(strcmp(names[2], "screen:11") == 0, "%s", names[2]);
+        for (int i = 0; i < n; i++) CHECK(ms[i] >= 0);
+    }
     GLenum e = glGetError();
     CHECK_MSG(e == GL_NO_ERROR, "GL error 0x%x", e);
     render_destroy(r);

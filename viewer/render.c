@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "glib.h"
+#include "gpu_timer.h"
 #include "render_camera.h"
 #include "render_prog.h"
 #include "render_res.h"
@@ -62,10 +63,7 @@ struct render {
     int ndeps;
     unsigned rtt_fbo, rtt_depth;
     int rtt_w, rtt_h;
-    unsigned query[2][2];      /* [frame slot][begin, end] timestamps */
-    bool query_pending[2];
-    int query_next;
-    double gpu_ms;
+    gpu_timer timer;           /* per frame and per pass */
 };
 
 render *render_create(const render_desc *desc) {
@@ -76,8 +74,7 @@ render *render_create(const render_desc *desc) {
     r->include_dirs[0] = r->common_dir;
     snprintf(r->packs_dir, sizeof r->packs_dir, "%s/packs", r->root);
     if (desc && desc->pack) snprintf(r->pack, sizeof r->pack, "%s", desc->pack);
-    r->gpu_ms = -1;
-    glGenQueries(4, &r->query[0][0]);
+    gpu_timer_init(&r->timer);
     return r;
 }
 
@@ -110,7 +107,7 @@ void render_destroy(render *r) {
     free(r->messages);
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
-    glDeleteQueries(4, &r->query[0][0]);
+    gpu_timer_free(&r->timer);
     free(r);
 }
 
@@ -532,6 +529,13 @@ typedef struct frame_state {
     float eye[3];
 } frame_state;
 
+static void mark_pass(render *r, const glib_cmd *c) {
+    char name[GPU_TIMER_NAME];
+    int n = snprintf(name, sizeof name, "%s:%d", c->nnum ? "pass" : "screen", c->line);
+    for (int k = 0; k < c->nnum && n < (int)sizeof name - 4; k++) n += snprintf(name + n, sizeof name - (size_t)n, " %d", (int)c->num[k]);
+    gpu_timer_mark(&r->timer, name);
+}
+
 static void end_rtt(frame_state *f) {
     glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
     glViewport(f->x, f->y, f->w, f->h);
@@ -650,6 +654,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
     if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE) {
         if (s->once_done[i] || c->nnum == 0) { f->skipping = true; return; }
         s->once_done[i] = true;
+        mark_pass(r, c);
         begin_rtt(r, c);
         f->in_rtt = true;
     } else if (c->kind == GLIB_CMD_CAMERA) {
@@ -674,6 +679,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         if (strcmp(c->name, "points") == 0) world_draw_points(&r->world, (int)c->num[0]);
         else world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
+        mark_pass(r, c);
         if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
     } else if (c->kind >= GLIB_CMD_TRANSLATE && c->kind <= GLIB_CMD_POP_MATRIX) {
@@ -683,30 +689,12 @@ static void exec_cmd(render *r, frame_state *f, int i) {
     }
 }
 
-static void query_collect(render *r, bool wait) {
-    for (int k = 0; k < 2; k++) {
-        if (!r->query_pending[k]) continue;
-        GLint ready = 0;
-        if (!wait) glGetQueryObjectiv(r->query[k][1], GL_QUERY_RESULT_AVAILABLE, &ready);
-        if (!wait && !ready) continue;
-        GLuint64 t0 = 0, t1 = 0;
-        glGetQueryObjectui64v(r->query[k][0], GL_QUERY_RESULT, &t0);
-        glGetQueryObjectui64v(r->query[k][1], GL_QUERY_RESULT, &t1);
-        r->gpu_ms = t1 >= t0 ? (double)(t1 - t0) / 1e6 : -1.0;
-        r->query_pending[k] = false;
-    }
-}
-
 void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_view *view) {
     render_frame_at(r, t, fbo, 0, 0, w, h, view);
 }
 
 void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view) {
-    int q = r->query_next;
-    if (r->query_pending[q]) query_collect(r, true);
-    /* timestamps rather than GL_TIME_ELAPSED: llvmpipe's elapsed query
-     * returned nonsense across framebuffer switches */
-    glQueryCounter(r->query[q][0], GL_TIMESTAMP);
+    gpu_timer_begin_frame(&r->timer);
     const scene_state *s = &r->cur;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(x, y, w, h);
@@ -737,15 +725,19 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         glUseProgram(0);
         glFrontFace(GL_CCW);
     }
-    glQueryCounter(r->query[q][1], GL_TIMESTAMP);
-    r->query_pending[q] = true;
-    r->query_next = 1 - q;
-    query_collect(r, false);
+    gpu_timer_end_frame(&r->timer);
 }
 
 double render_gpu_ms(render *r, bool wait) {
-    query_collect(r, wait);
-    return r->gpu_ms;
+    gpu_timer_collect(&r->timer, wait);
+    return r->timer.frame_ms;
+}
+
+int render_pass_times(render *r, bool wait, const char (**names)[GPU_TIMER_NAME], const double **ms) {
+    gpu_timer_collect(&r->timer, wait);
+    *names = (const char (*)[GPU_TIMER_NAME])r->timer.pass_names;
+    *ms = r->timer.pass_ms;
+    return r->timer.npasses;
 }
 
 bool render_read_uniform(render *r, const char *program, const char *name, float *out, int n) {

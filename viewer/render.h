@@ -53,6 +53,11 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
  * wait is true, blocks until the latest frame's time is known. */
 double render_gpu_ms(render *r, bool wait);
 
+/* GPU time per pass of the last finished frame: names are "screen:LINE" or
+ * "pass:LINE u1 u2" (the glib line of the RenderToTexture that began it). */
+#include "gpu_timer.h"
+int render_pass_times(render *r, bool wait, const char (**names)[GPU_TIMER_NAME], const double **ms);
+
 unif_set *render_uniforms(render *r, int *nsets);
 void render_window_size(const render *r, int *w, int *h);   /* WindowSize, default 800x600 */
 render_view render_default_view(const render *r);          /* the glib's LookAt */
