@@ -183,6 +183,39 @@ static void test_generated_caustics(void) {
     free(px);
 }
 
+/* If blocks: a Define toggle of the pack, and scene facts. The flat world
+ * (floor 1 m under the water, no objects) has nothing above the water. */
+static void test_if_blocks(void) {
+    write_file("red.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1., 0., 0., 1.); }\n");
+    write_file("green.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 0., 1.); }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sBackground 0 0 0 0\nVertex flat.vert\n"
+             "Fragment red.frag\nDefine EXTRA <false>\nProgram R\n"
+             "If EXTRA\nQuadXY 0 1 1 1\nEndIf\n"
+             "Fragment green.frag\nProgram G\n"
+             "If above_water\nQuadXY 0 1 1 1\nEndIf\n"
+             "Blend add\nIf not above_water\nIf not EXTRA\nQuadXY 0 1 1 1\nEndIf\nEndIf\n", world);
+    write_file("if.glib", text);
+    render *r = NULL;
+    float *px = draw(path_of("if.glib"), 4, 4, 0, &r);
+    CHECK_NEAR(px[0], 0.0, 1e-6);    /* EXTRA off: no red */
+    CHECK_NEAR(px[1], 1.0, 1e-6);    /* one green: only the `not above_water` block */
+    free(px);
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    unif_entry *extra = n ? unif_find(&sets[0], "EXTRA") : NULL;
+    CHECK(extra != NULL);
+    if (extra) {
+        extra->value[0] = 1;
+        render_rebuild_programs(r);
+        px = draw(path_of("if.glib"), 4, 4, 0, &r);
+        CHECK_NEAR(px[0], 1.0, 1e-6);    /* EXTRA on: red, and the nested green block is off */
+        CHECK_NEAR(px[1], 0.0, 1e-6);
+        free(px);
+    }
+    render_destroy(r);
+}
+
 int main(void) {
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
@@ -195,6 +228,7 @@ int main(void) {
     RUN(test_points_add_up);
     RUN(test_splat_conserves_energy);
     RUN(test_generated_caustics);
+    RUN(test_if_blocks);
     gl_ctx_destroy(ctx);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);

@@ -961,6 +961,29 @@ static bool h_camera(cmdctx *c, glib_cmd *cmd)
     return true;
 }
 
+/* If [not] NAME: a block the renderer skips while NAME is false */
+static bool h_if(cmdctx *c, glib_cmd *cmd)
+{
+    int w = 0;
+    if (c->nwords >= 1 && strcasecmp(c->words[0], "not") == 0) {
+        cmd->num[0] = 1;
+        cmd->nnum = 1;
+        w = 1;
+    }
+    if (c->nwords <= w) {
+        cerr(c, "If needs a condition: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, w + 1, "");
+    const char *name = c->words[w];
+    if (!(isalpha((unsigned char)name[0]) || name[0] == '_') || strlen(name) >= sizeof cmd->name) {
+        cerr(c, "If: '%.40s' is not a condition: write a Define name, above_water or under_water", name);
+        return false;
+    }
+    snprintf(cmd->name, sizeof cmd->name, "%s", name);
+    return true;
+}
+
 /* WaterSurface [points N] */
 static bool h_water_surface(cmdctx *c, glib_cmd *cmd)
 {
@@ -1897,7 +1920,7 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_WATER_SURFACE] = "WaterSurface",
     [GLIB_CMD_CAMERA] = "Camera",
     [GLIB_CMD_RENDER_TO_TEXTURE_ONCE] = "RenderToTextureOnce",
-    [GLIB_CMD_SPLAT] = "Splat",
+    [GLIB_CMD_SPLAT] = "Splat", [GLIB_CMD_IF] = "If", [GLIB_CMD_END_IF] = "EndIf",
 };
 
 const char *glib_cmd_name(glib_cmd_kind kind)
@@ -2037,6 +2060,8 @@ static const cmd_spec specs[] = {
       "Camera main|mirror|top|light [fov_scale|uniform]" },
     { "RenderToTextureOnce", GLIB_CMD_RENDER_TO_TEXTURE_ONCE, false, h_rtt, false, 0, 0, { { 0 } },
       "RenderToTextureOnce unit [unit...]" },
+    { "If", GLIB_CMD_IF, false, h_if, false, 0, 0, { { 0 } }, "If [not] DEFINE|above_water|under_water" },
+    { "EndIf", GLIB_CMD_END_IF, false, h_nums, false, 0, 0, { { 0 } }, NULL },
     { "Splat", GLIB_CMD_SPLAT, false, h_nums, false, 2, 2,
       { { "src", "a texture unit", 'i', 0, LIM_UNIT, 0 }, { "dst", "a texture unit", 'i', 0, LIM_UNIT, 0 } },
       "Splat src_unit dst_unit" },

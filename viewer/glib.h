@@ -95,6 +95,8 @@ typedef enum glib_cmd_kind {
                                    or arg: a float uniform of the last Program */
     GLIB_CMD_RENDER_TO_TEXTURE_ONCE, /* num: units; runs only on the first frame after a load */
     GLIB_CMD_SPLAT,             /* num: src_unit dst_unit (CPU photon splat) */
+    GLIB_CMD_IF,                /* name: a condition; num[0] = 1 for `If not NAME` */
+    GLIB_CMD_END_IF,
     GLIB_CMD_WORLD,             /* name: "all" | "above" | "below" (default "all") */
     GLIB_CMD_WATER_SURFACE,     /* the water grid, with the current program */
     GLIB_CMD_KIND_COUNT

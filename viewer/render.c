@@ -282,6 +282,23 @@ static void stage_set(stage_state *st, const glib_cmd *c) {
     snprintf(st->path[which], sizeof st->path[which], "%s", c->path);
 }
 
+/* If/EndIf must pair up; an unmatched one is reported and the renderer
+ * treats a missing EndIf as the end of the scene. */
+static void check_if_nesting(const glib_scene *g, char **log) {
+    int depth = 0;
+    const glib_cmd *open_if = NULL;
+    for (int i = 0; i < g->ncmds; i++) {
+        const glib_cmd *c = &g->cmds[i];
+        if (c->kind == GLIB_CMD_IF) { if (depth++ == 0) open_if = c; }
+        else if (c->kind == GLIB_CMD_END_IF && --depth < 0) {
+            log_append(log, "%s:%d: error: EndIf without an If\n", c->file, c->line);
+            depth = 0;
+        }
+    }
+    if (depth > 0 && open_if)
+        log_append(log, "%s:%d: error: If without an EndIf (the block runs to the end)\n", open_if->file, open_if->line);
+}
+
 static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
     int n = s->glib->ncmds;
     s->cmd_res = malloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
@@ -305,6 +322,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
         else if (c->kind >= GLIB_CMD_VERTEX && c->kind <= GLIB_CMD_FRAGMENT) stage_set(&st, c);
     }
     settings_from_glib(&s->set, s->glib);
+    check_if_nesting(s->glib, log);
     return true;
 }
 
@@ -522,6 +540,7 @@ typedef struct frame_state {
     int x, y, w, h;
     bool in_rtt;
     bool skipping;           /* inside a RenderToTextureOnce block already drawn */
+    int if_depth, if_false;  /* If blocks: nesting, and how deep the first false one is (0: none) */
     cam_set cams;
     int depth;
     const prog *cur;
@@ -644,10 +663,38 @@ static void exec_transform(frame_state *f, const glib_cmd *c) {
     }
 }
 
+/* `If NAME`: a Define toggle of any Program that is on, or a scene fact. */
+static bool condition(const render *r, const frame_state *f, const char *name) {
+    if (strcmp(name, "above_water") == 0) return r->world.active && r->world.has_above_water;
+    if (strcmp(name, "under_water") == 0)
+        return r->world.active && f->eye[1] < r->world.w.d.water_level;
+    for (int p = 0; p < r->cur.nprogs; p++) {
+        const unif_entry *e = unif_find(r->cur.progs[p].unifs, name);
+        if (e && e->is_define) return e->value[0] != 0;
+    }
+    return false;
+}
+
+/* Handles If/EndIf; true when command c is inside a false block. */
+static bool skipped_by_if(const render *r, frame_state *f, const glib_cmd *c) {
+    if (c->kind == GLIB_CMD_IF) {
+        f->if_depth++;
+        if (!f->if_false && condition(r, f, c->name) == (c->nnum > 0 && c->num[0] == 1)) f->if_false = f->if_depth;
+        return true;
+    }
+    if (c->kind == GLIB_CMD_END_IF) {
+        if (f->if_depth > 0 && f->if_false == f->if_depth) f->if_false = 0;
+        if (f->if_depth > 0) f->if_depth--;
+        return true;
+    }
+    return f->if_false != 0;
+}
+
 static void exec_cmd(render *r, frame_state *f, int i) {
     scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
     int res = s->cmd_res[i];
+    if (skipped_by_if(r, f, c)) return;
     bool pass_cmd = c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE;
     if (f->skipping && !pass_cmd) return;
     f->skipping = false;

@@ -147,6 +147,22 @@ static bool build_program(gpu_world *gw, const char *const *include_dirs, const 
     return ok;
 }
 
+/* Does anything but sky stand above the water? (terrain sampled on the
+ * mesh grid; objects by their top) */
+static bool above_water(const ref_world *w) {
+    double level = w->d.water_level, hs = w->d.half_size;
+    for (int i = 0; i < w->d.nobjects; i++) {
+        const ref_object *o = &w->d.objects[i];
+        double top = o->center[1] + (o->kind == REF_OBJECT_CYLINDER ? o->size[1] : o->kind == REF_OBJECT_SPHERE ? o->size[0] : o->size[1]);
+        if (top > level) return true;
+    }
+    int n = w->d.terrain_res;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            if (ref_terrain_height(w, -hs + 2 * hs * i / n, -hs + 2 * hs * j / n) > level) return true;
+    return false;
+}
+
 void world_free(gpu_world *gw) {
     res_mesh_free(&gw->terrain);
     res_mesh_free(&gw->water);
@@ -178,6 +194,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
         for (int k = 0; k < 3; k++) gw->object_albedo[gw->nobjects][k] = (float)ob->albedo[k];
         gw->nobjects++;
     }
+    gw->has_above_water = above_water(&gw->w);
     if (!ok) log_append(log, "tarn: error: could not build the scene's world (out of memory?)\n");
     ok = build_program(gw, include_dirs, common_dir, log) && ok;
     gw->active = true;

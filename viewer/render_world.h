@@ -28,6 +28,7 @@ typedef struct gpu_world {
     gpu_mesh objects[REF_MAX_OBJECTS];
     float object_albedo[REF_MAX_OBJECTS][3];
     int nobjects;
+    bool has_above_water;         /* terrain or an object rises above the water (If above_water) */
     unsigned albedo_tex, sky_tex;
     prog prog;                    /* the built-in program: packs/common/world.{vert,frag} */
     unif_set prog_unifs;
