@@ -172,7 +172,7 @@ static float *to_rgba(const img *im) {
     return out;
 }
 
-static void sampling(GLenum target, bool mipmaps, GLenum wrap) {
+void res_sampling(unsigned target, bool mipmaps, unsigned wrap) {
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(target, GL_TEXTURE_WRAP_S, (GLint)wrap);
@@ -220,7 +220,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
         glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
     }
     free(px);
-    sampling(GL_TEXTURE_2D, true, GL_REPEAT);
+    res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
     return true;
 }
 
@@ -237,7 +237,7 @@ static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
     if (!rgba) return false;
     glTexImage2D(GL_TEXTURE_2D, 0, hdr ? GL_RGBA16F : GL_RGBA8, t->w, t->h, 0, GL_RGBA, GL_FLOAT, rgba);
     free(rgba);
-    sampling(GL_TEXTURE_2D, true, GL_REPEAT);
+    res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
     return true;
 }
 
@@ -255,7 +255,7 @@ static bool tex_2d_empty(const glib_cmd *c, gpu_tex *t, char **log) {
     if (c->format == GLIB_TARGET_RGBA32F) { ifmt = GL_RGBA32F; type = GL_FLOAT; }
     if (c->format == GLIB_TARGET_DEPTH) { ifmt = GL_DEPTH_COMPONENT32F; fmt = GL_DEPTH_COMPONENT; type = GL_FLOAT; }
     glTexImage2D(GL_TEXTURE_2D, 0, (GLint)ifmt, t->w, t->h, 0, fmt, type, NULL);
-    sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
+    res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
     return true;
 }
 
@@ -267,7 +267,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
             return false;
         }
         glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, w, h, d, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-        sampling(GL_TEXTURE_3D, false, GL_REPEAT);
+        res_sampling(GL_TEXTURE_3D, false, GL_REPEAT);
         return true;
     }
     img im;
@@ -278,7 +278,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
     img_free(&im);
     free(rgba);
     if (!rgba) return false;
-    sampling(GL_TEXTURE_3D, true, GL_REPEAT);
+    res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
     return true;
 }
 
@@ -295,7 +295,7 @@ static bool tex_cube(const glib_cmd *c, gpu_tex *t, char **log) {
         free(rgba);
         if (!rgba) return false;
     }
-    sampling(GL_TEXTURE_CUBE_MAP, true, GL_CLAMP_TO_EDGE);
+    res_sampling(GL_TEXTURE_CUBE_MAP, true, GL_CLAMP_TO_EDGE);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     return true;
 }
@@ -316,7 +316,7 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
     if (ok && is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, res, res, res, 0, GL_RGBA, GL_FLOAT, px);
     if (ok && !is3d) glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
     free(px);
-    if (ok) sampling(t->target, true, GL_REPEAT);
+    if (ok) res_sampling(t->target, true, GL_REPEAT);
     return ok;
 }
 

@@ -37,6 +37,8 @@ void res_mesh_draw(const gpu_mesh *m, int tangent_loc);
 void res_mesh_free(gpu_mesh *m);
 
 bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
+/* Filtering and wrapping of the bound texture; mipmaps are generated. */
+void res_sampling(unsigned target, bool mipmaps, unsigned wrap);
 void res_tex_free(gpu_tex *t);
 
 bool res_is_geometry(glib_cmd_kind k);
