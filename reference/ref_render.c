@@ -197,9 +197,8 @@ void ref_render_flat_sun(const ref_world *w, const double p[3], const double n[3
 
 static void caustic_lookup(const ref_caustics *g, const ref_world *w, double x, double z,
                            double e[3]) {
-    double y = ref_terrain_height(w, x, z);
     if (!g || !g->irradiance || !(x >= g->x0 && x <= g->x1 && z >= g->z0 && z <= g->z1)) {
-        double p[3] = { x, y, z }, n[3];
+        double p[3] = { x, ref_terrain_height(w, x, z), z }, n[3];
         ref_terrain_normal_at(w, x, z, n);
         ref_render_flat_sun(w, p, n, e);
         return;

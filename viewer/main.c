@@ -4,7 +4,9 @@
 #include <string.h>
 
 #include "assets.h"
+#include "bench.h"
 #include "cli.h"
+#include "cli_reference.h"
 #include "compare.h"
 #include "gl_ctx.h"
 #include "validate.h"
@@ -23,6 +25,7 @@ static const char *usage_main =
     "  view FILE.glib       open a window; edits to any file the scene reads reload it\n"
     "  render FILE.glib     render without a display (EGL) to an image\n"
     "  validate [PATH...]   check every shader of every pack with glslang\n"
+    "  reference FILE.glib  the CPU ground truth: image and per-pixel buffers (double precision)\n"
     "  compare A B          error of image A against reference B: RMSE, PSNR, heat map, JSON/CSV\n"
     "  assets [--out DIR]   write the generated textures (terrain, sky, normal maps, foam, caustics)\n"
     "  help [COMMAND]       this text, or a command's options\n"
@@ -172,13 +175,16 @@ int main(int argc, char **argv) {
         const char *which = argc > 2 ? argv[2] : "";
         fputs(strcmp(which, "view") == 0 ? usage_view : strcmp(which, "render") == 0 ? usage_render
               : strcmp(which, "validate") == 0 ? usage_validate
-              : strcmp(which, "compare") == 0 ? compare_usage() : usage_main, stdout);
+              : strcmp(which, "compare") == 0 ? compare_usage()
+              : strcmp(which, "bench") == 0 ? bench_usage() : usage_main, stdout);
         return CLI_OK;
     }
     if (strcmp(cmd, "render") == 0) return main_render(argc - 2, argv + 2);
     if (strcmp(cmd, "view") == 0) return main_view(argc - 2, argv + 2);
     if (strcmp(cmd, "validate") == 0) return main_validate(argc - 2, argv + 2);
     if (strcmp(cmd, "compare") == 0) return cli_compare(argc - 2, argv + 2);
+    if (strcmp(cmd, "reference") == 0) return cli_reference(argc - 2, argv + 2);
+    if (strcmp(cmd, "bench") == 0) return cli_bench(argc - 2, argv + 2);
     if (strcmp(cmd, "assets") == 0) return cli_assets(argc - 2, argv + 2);
     if (strstr(cmd, ".glib")) return main_view(argc - 1, argv + 1);   /* `tarn scene.glib` */
     fprintf(stderr, "tarn: unknown command '%s'\n\n%s", cmd, usage_main);
