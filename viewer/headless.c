@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "gl_ctx.h"
 #include "image_io.h"
+#include "ref_metrics.h"
 #include "render.h"
 
 #ifndef TARN_SOURCE_DIR
@@ -23,12 +24,18 @@ static bool wants_float(const char *path) {
     return dot && (strcmp(dot, ".exr") == 0 || strcmp(dot, ".hdr") == 0 || strcmp(dot, ".tif") == 0);
 }
 
-static bool write_target(const render_target *t, const char *path, char *err, int errlen) {
+/* A scene with a world is lit in linear radiance (as the reference): float
+ * files keep it linear, 8-bit ones get the sRGB encoding a display expects
+ * (like the reference's PNG). A plain glman scene is written as drawn. */
+static bool write_target(const render_target *t, const char *path, bool encode_srgb, char *err, int errlen) {
     img im;
     memset(&im, 0, sizeof im);
     if (!img_alloc(&im, t->w, t->h, 4)) { snprintf(err, errlen, "out of memory"); return false; }
     bool ok = render_target_read(t, im.px);
     if (!ok) snprintf(err, errlen, "reading the framebuffer failed");
+    if (ok && encode_srgb && !wants_float(path))
+        for (long i = 0; i < (long)t->w * t->h; i++)
+            for (int k = 0; k < 3; k++) im.px[i * 4 + k] = (float)ref_linear_to_srgb(im.px[i * 4 + k]);
     if (ok) ok = img_write(path, &im, err, errlen);
     img_free(&im);
     return ok;
@@ -63,7 +70,8 @@ int cli_render(const cli_render_desc *d) {
     int w = d->width, h = d->height;
     if (w <= 0 || h <= 0) render_window_size(r, &w, &h);
     render_target t;
-    if (!render_target_create(&t, w, h, wants_float(d->out))) {
+    bool linear_scene = render_has_world(r);
+    if (!render_target_create(&t, w, h, wants_float(d->out) || linear_scene)) {
         fprintf(stderr, "tarn: cannot create a %dx%d framebuffer\n", w, h);
         render_destroy(r);
         gl_ctx_destroy(ctx);
@@ -83,7 +91,7 @@ int cli_render(const cli_render_desc *d) {
         if (per_frame || f == frames - 1) {
             char path[2048];
             frame_path(path, sizeof path, d->out, per_frame ? f : -1);
-            if (!write_target(&t, path, err, sizeof err)) {
+            if (!write_target(&t, path, linear_scene, err, sizeof err)) {
                 fprintf(stderr, "tarn: %s\n", err);
                 rc = CLI_INPUT_ERROR;
                 break;

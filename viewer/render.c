@@ -418,6 +418,7 @@ bool render_rebuild_programs(render *r) {
 const char *render_messages(const render *r) { return r->messages ? r->messages : ""; }
 bool render_has_errors(const render *r) { return r->errors; }
 bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
+bool render_has_world(const render *r) { return r->world.active; }
 const char *render_scene_path(const render *r) { return r->path; }
 
 int render_deps(const render *r, const char *const **paths) {

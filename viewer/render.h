@@ -37,6 +37,8 @@ bool render_rebuild_programs(render *r);
 const char *render_messages(const render *r);   /* "" when the last load was clean */
 bool render_has_errors(const render *r);
 bool render_has_scene(const render *r);
+/* The scene describes a world (lit in linear radiance, like the reference). */
+bool render_has_world(const render *r);
 
 /* Every file the scene depends on (glib, includes, shader stages and their
  * #includes, textures, OBJs): what the watcher watches. */

@@ -59,6 +59,73 @@ static bool build_sky_box(gpu_world *gw) {
     return ok;
 }
 
+/* The land beyond the world square, out to SKIRT_SCALE times its size: the
+ * reference's terrain goes on there (a plain at shore height), so the GL
+ * view of the far shore shows it too. Rings of squares, the first on the
+ * square's border with the terrain mesh's own vertices, so no crack. */
+#define SKIRT_RINGS 8
+#define SKIRT_SCALE 8.0
+
+static void skirt_vertex(const ref_world *w, double x, double z, float *pos, float *nrm, float *tc) {
+    double n[3], hs = w->d.half_size;
+    pos[0] = (float)x;
+    pos[1] = (float)ref_terrain_height(w, x, z);
+    pos[2] = (float)z;
+    ref_terrain_normal_at(w, x, z, n);
+    for (int k = 0; k < 3; k++) nrm[k] = (float)n[k];
+    tc[0] = (float)((x + hs) / (2 * hs));   /* outside [0, 1]: the texture's clamped edge */
+    tc[1] = (float)((z + hs) / (2 * hs));
+}
+
+/* Point p (0 <= p < 4 res) along the perimeter of the square of half size h. */
+static void perimeter(double h, int res, int p, double *x, double *z) {
+    int side = p / res;
+    double u = -h + 2 * h * (p % res) / res;
+    switch (side) {
+    case 0: *x = u; *z = -h; break;
+    case 1: *x = h; *z = u; break;
+    case 2: *x = -u; *z = h; break;
+    default: *x = -h; *z = -u; break;
+    }
+}
+
+static bool build_skirt(gpu_world *gw) {
+    const ref_world *w = &gw->w;
+    int res = w->d.terrain_res, per = 4 * res, nv = per * (SKIRT_RINGS + 1);
+    geom_mesh g;
+    memset(&g, 0, sizeof g);
+    g.nvert = nv;
+    g.nidx = per * SKIRT_RINGS * 6;
+    g.pos = malloc((size_t)nv * 3 * sizeof(float));
+    g.nrm = malloc((size_t)nv * 3 * sizeof(float));
+    g.tan = calloc((size_t)nv * 3, sizeof(float));
+    g.tc = malloc((size_t)nv * 2 * sizeof(float));
+    g.idx = malloc((size_t)g.nidx * sizeof(unsigned));
+    bool ok = g.pos && g.nrm && g.tan && g.tc && g.idx;
+    for (int k = 0; ok && k <= SKIRT_RINGS; k++) {
+        double h = w->d.half_size * pow(SKIRT_SCALE, (double)k / SKIRT_RINGS);
+        for (int p = 0; p < per; p++) {
+            double x, z;
+            perimeter(h, res, p, &x, &z);
+            int v = k * per + p;
+            skirt_vertex(w, x, z, g.pos + v * 3, g.nrm + v * 3, g.tc + v * 2);
+            g.tan[v * 3] = 1.0f;
+        }
+    }
+    int n = 0;
+    for (int k = 0; ok && k < SKIRT_RINGS; k++)
+        for (int p = 0; p < per; p++) {
+            unsigned a = (unsigned)(k * per + p), b = (unsigned)(k * per + (p + 1) % per);
+            unsigned c = a + (unsigned)per, d = b + (unsigned)per;
+            unsigned quad[6] = { a, c, b, b, c, d };
+            memcpy(g.idx + n, quad, sizeof quad);
+            n += 6;
+        }
+    ok = ok && res_mesh_upload(&g, &gw->skirt);
+    geom_free(&g);
+    return ok;
+}
+
 static bool build_water(gpu_world *gw) {
     geom_mesh g;
     int res = gw->w.d.water_mesh_res;
@@ -159,6 +226,7 @@ void world_free(gpu_world *gw) {
     res_mesh_free(&gw->terrain);
     res_mesh_free(&gw->water);
     res_mesh_free(&gw->sky_box);
+    res_mesh_free(&gw->skirt);
     if (gw->points_vbo) glDeleteBuffers(1, &gw->points_vbo);
     for (int i = 0; i < gw->nobjects; i++) res_mesh_free(&gw->objects[i]);
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
@@ -179,7 +247,8 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
     gw->desc = *desc;
     ref_world_init(&gw->w, desc);
     gw->nwaves = ref_waves_uniforms(&gw->w.waves, gw->waves, REF_WAVES_UNIFORMS_MAX);
-    bool ok = build_terrain(gw) && build_water(gw) && bake_albedo(gw) && bake_sky(gw) && build_sky_box(gw);
+    bool ok = build_terrain(gw) && build_skirt(gw) && build_water(gw) && bake_albedo(gw) && bake_sky(gw) &&
+              build_sky_box(gw);
     for (int i = 0; ok && i < gw->w.d.nobjects; i++) {
         const ref_object *ob = &gw->w.d.objects[i];
         if (!build_object(gw, ob, &gw->objects[gw->nobjects])) continue;
@@ -265,6 +334,7 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
     }
     glUniform1i(mode, 0);
     res_mesh_draw(&gw->terrain, -1);
+    res_mesh_draw(&gw->skirt, -1);
     glUniform1i(mode, 1);
     for (int i = 0; i < gw->nobjects; i++) {
         if (albedo >= 0) glUniform3fv(albedo, 1, gw->object_albedo[i]);

@@ -22,7 +22,7 @@ typedef struct gpu_world {
     bool active;
     ref_world_desc desc;          /* what was built: equal desc, nothing rebuilt */
     ref_world w;
-    gpu_mesh terrain, water, sky_box;
+    gpu_mesh terrain, skirt, water, sky_box;   /* skirt: the land beyond the world square */
     unsigned points_vbo;          /* WaterSurface points N */
     int points_n;
     gpu_mesh objects[REF_MAX_OBJECTS];

@@ -245,7 +245,11 @@ static void frame(viewer *v, view_script *script) {
     int x0 = w > PANEL_WIDTH + 160 ? PANEL_WIDTH : 0;
     glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
+    /* a world is lit in linear radiance: the window encodes sRGB, as the
+     * reference's PNG does; glman scenes are shown as drawn */
+    if (render_has_world(v->r)) glEnable(GL_FRAMEBUFFER_SRGB);
     render_frame_at(v->r, v->t, 0, x0, 0, w - x0, h, &view);
+    glDisable(GL_FRAMEBUFFER_SRGB);
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
     panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
