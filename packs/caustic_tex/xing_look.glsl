@@ -22,13 +22,15 @@ uniform float uCausticOffset;    // the second layer's offset, in tiles
 uniform float uCausticVisible;   // 0 none, 1 the traced pattern (mean 1), >1 exaggerated
 uniform float uChromaticOffset;  // R and B this far (tiles) each side of G; backward: +-delta n
 uniform float uCausticScale;     // (ours) units of the floor per caustic tile
-uniform float uCausticPower;     // (ours) backward caustics: the exponent
 uniform float uWaterTiling;      // ripple tiles across the water
 uniform float uWaterBump;        // (ours) how much of the ripple slope is added
 uniform bool  uShowFoam;
 uniform float uFoamWidth;        // (ours) how far the foam reaches in from the border
 
 #define XING_CAUSTIC_MAX 64.0    // backward caustics: no factor above this
+#ifndef CAUSTIC_POWER
+#define CAUSTIC_POWER 16         // backward caustics: the exponent (a Define slider)
+#endif
 
 vec2 xingFlip(vec2 uv) {
 #ifdef UV_FLIP
@@ -68,13 +70,14 @@ vec3 xingCausticTex(vec2 xz, vec2 offA, vec2 offB, vec2 chromaDir, float contras
 // GPU Gems 1 ch. 2 (Guardado and Sanchez-Crespo), the backward method:
 // the vertical ray from the floor point up to the surface is refracted
 // out through the surface normal n there; the closer it points to the
-// light (unit, towards it), the brighter: (dot(t, L) / L.y)^p, so flat
+// light (unit, towards it), the brighter: (dot(t, L) / L.y)^p (p the
+// Define CAUSTIC_POWER), so flat
 // water gives 1. Chromatic aberration: R, G, B refract with the index
 // ior - d, ior, ior + d (d = uChromaticOffset). Total internal
 // reflection gives 0; the factor is clamped to XING_CAUSTIC_MAX.
 vec3 xingCausticBackward(vec3 n, vec3 towardsLight, float ior, float contrast) {
     float ly = max(towardsLight.y, 1e-3);
-    float p = max(uCausticPower, 0.0);
+    float p = max(float(CAUSTIC_POWER), 0.0);
     vec3 k;
     for (int c = 0; c < 3; c++) {
         float eta = max(ior + float(c - 1) * uChromaticOffset, 1.0);
