@@ -8,6 +8,8 @@
 
 static const char *const cam_names[CAM_COUNT] = { "main", "mirror", "top", "light" };
 static const char *const vp_uniforms[CAM_COUNT] = { "uCamMainVP", "uCamMirrorVP", "uCamTopVP", "uCamLightVP" };
+static const char *const inv_uniforms[CAM_COUNT] = { "uCamMainInvVP", "uCamMirrorInvVP", "uCamTopInvVP",
+                                                     "uCamLightInvVP" };
 
 int cam_kind_from_name(const char *name) {
     for (int k = 0; k < CAM_COUNT; k++)
@@ -17,7 +19,7 @@ int cam_kind_from_name(const char *name) {
 
 bool cam_is_uniform(const char *name) {
     for (int k = 0; k < CAM_COUNT; k++)
-        if (strcmp(name, vp_uniforms[k]) == 0) return true;
+        if (strcmp(name, vp_uniforms[k]) == 0 || strcmp(name, inv_uniforms[k]) == 0) return true;
     return strcmp(name, "uCamTopHalfSize") == 0 || strcmp(name, "uCamLightHalfSize") == 0;
 }
 
@@ -98,6 +100,8 @@ void cam_compute(const cam_inputs *in, cam_set *out) {
         memcpy(b, out->view[k], sizeof b);
         glm_mat4_mul(a, b, vp);
         memcpy(out->vp[k], vp, sizeof vp);
+        glm_mat4_inv(vp, a);
+        memcpy(out->inv_vp[k], a, sizeof a);
     }
 }
 
@@ -113,6 +117,8 @@ void cam_upload(const cam_set *c, unsigned p) {
     for (int k = 0; k < CAM_COUNT; k++) {
         GLint loc = glGetUniformLocation(p, vp_uniforms[k]);
         if (loc >= 0) glUniformMatrix4fv(loc, 1, GL_FALSE, c->vp[k]);
+        loc = glGetUniformLocation(p, inv_uniforms[k]);
+        if (loc >= 0) glUniformMatrix4fv(loc, 1, GL_FALSE, c->inv_vp[k]);
     }
     GLint loc = glGetUniformLocation(p, "uCamTopHalfSize");
     if (loc >= 0) glUniform1f(loc, c->top_half);

@@ -23,7 +23,7 @@ typedef struct cam_inputs {
 } cam_inputs;
 
 typedef struct cam_set {
-    float view[CAM_COUNT][16], proj[CAM_COUNT][16], vp[CAM_COUNT][16];
+    float view[CAM_COUNT][16], proj[CAM_COUNT][16], vp[CAM_COUNT][16], inv_vp[CAM_COUNT][16];
     float top_half, light_half;
 } cam_set;
 
@@ -36,8 +36,9 @@ int cam_kind_from_name(const char *name);
  * for the mirror, whose image is reflected). */
 void cam_load(const cam_set *c, int kind);
 
-/* Sets uCamMainVP, uCamMirrorVP, uCamTopVP, uCamLightVP, uCamTopHalfSize,
- * uCamLightHalfSize on the bound program where declared. */
+/* Sets uCam{Main,Mirror,Top,Light}VP, their inverses uCam*InvVP (clip to
+ * world), uCamTopHalfSize, uCamLightHalfSize on the bound program where
+ * declared. */
 void cam_upload(const cam_set *c, unsigned program);
 
 bool cam_is_uniform(const char *name);

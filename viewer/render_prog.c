@@ -4,6 +4,7 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -114,6 +115,25 @@ static GLuint link_program(const prog *p, const GLuint *shaders, char **log) {
     return prg;
 }
 
+static void keep_source(prog *p, const shader_src *src) {
+    free(p->source);
+    p->source = NULL;
+    for (int s = 0; s < SHADER_STAGE_COUNT; s++)
+        if (src[s].text) log_append(&p->source, "%s\n", src[s].text);
+}
+
+/* Is name a whole word of the program's source (declared, maybe compiled
+ * out by a Define or unused)? */
+static bool in_source(const prog *p, const char *name) {
+    size_t n = strlen(name);
+    for (const char *s = p->source; s && (s = strstr(s, name)) != NULL; s += n) {
+        bool start = s == p->source || !(isalnum((unsigned char)s[-1]) || s[-1] == '_');
+        bool end = !(isalnum((unsigned char)s[n]) || s[n] == '_');
+        if (start && end) return true;
+    }
+    return false;
+}
+
 bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, char **log) {
     shader_define defines[64];
     int ndefines = collect_defines(p, defines, 64);
@@ -157,6 +177,7 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
         if (!shaders[s]) ok = false;
     }
     GLuint prg = ok ? link_program(p, shaders, log) : 0;
+    if (prg) keep_source(p, src);
     for (int s = 0; s < SHADER_STAGE_COUNT; s++) {
         if (shaders[s]) glDeleteShader(shaders[s]);
         shader_src_free(&src[s]);
@@ -218,9 +239,14 @@ void prog_introspect(prog *p, char **log) {
     for (int i = 0; i < p->unifs->n; i++) {
         const unif_entry *e = &p->unifs->entries[i];
         if (e->is_define || !e->from_glib || e->in_shader) continue;
-        log_append(log, "%s:%d: warning: uniform '%s' is not an active uniform of program "
-                   "'%s' (not declared, or unused and optimised out)\n",
-                   e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
+        if (in_source(p, e->name))   /* compiled out by a Define, or unused: say so quietly */
+            log_append(log, "%s:%d: note: uniform '%s' is inactive in program '%s' as built "
+                       "(compiled out by a Define, or unused and optimised out)\n",
+                       e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
+        else
+            log_append(log, "%s:%d: warning: uniform '%s' is not declared in program '%s' "
+                       "(a typo in the glib or the shader?)\n",
+                       e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
     }
     p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
 }
@@ -261,6 +287,8 @@ void prog_upload(const prog *p, double t, double timer_s) {
 }
 
 void prog_free(prog *p) {
+    free(p->source);
+    p->source = NULL;
     if (p->gl) glDeleteProgram(p->gl);
     p->gl = 0;
     if (p->unifs) unif_set_free(p->unifs);

@@ -22,6 +22,7 @@ typedef struct prog {
     int ndeps;
     int timer_loc, tangent_loc;
     bool world_uniforms;                     /* the scene has a world: its uniforms get no slider */
+    char *source;                            /* all stage texts as compiled (for messages) */
 } prog;
 
 /* Builds p from its stage paths, defines (from p->unifs' define entries)

@@ -21,10 +21,14 @@ bool world_is_uniform(const char *name) {
     if (cam_is_uniform(name)) return true;
     for (size_t i = 0; i < sizeof world_names / sizeof *world_names; i++)
         if (strcmp(name, world_names[i]) == 0) return true;
-    /* the wave set of packs/common/waves.glsl */
-    static const char *const prefixes[] = { "uWaterLevel", "uSteepness", "uSine", "uGerstner", "uNoise" };
-    for (size_t i = 0; i < sizeof prefixes / sizeof *prefixes; i++)
-        if (strncmp(name, prefixes[i], strlen(prefixes[i])) == 0) return true;
+    /* the wave set of packs/common/waves.glsl: exactly the names
+     * ref_waves_uniforms gives (a pack's own uSineWave is not one of them) */
+    ref_waves calm;
+    ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
+    ref_waves_init(&calm, NULL, NULL, 0);
+    int n = ref_waves_uniforms(&calm, u, REF_WAVES_UNIFORMS_MAX);
+    for (int i = 0; i < n; i++)
+        if (strcmp(name, u[i].name) == 0) return true;
     return false;
 }
 
