@@ -50,7 +50,11 @@ vec3 worldShadeAt(vec3 albedo, vec3 n, vec3 pos) {
     // this is E_sun cosI (1 - R) attenuated, the photon tracer's figure.
     float c = max(dot(n, -lt), 0.0);
     vec3 e = uSunIrradiance * trans * c * cosI / cosT;
-    return albedo * (e / WORLD_PI + uAmbient);
+    // the sky's ambient reaches down through the surface like the reference
+    // has it: ambient (1 - R0) exp(-sigma depth)
+    float r0 = (uIOR - 1.0) / (uIOR + 1.0);
+    vec3 ambient = uAmbient * (1.0 - r0 * r0) * exp(-uAbsorption * depth);
+    return albedo * (e / WORLD_PI + ambient);
 }
 
 #endif

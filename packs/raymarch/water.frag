@@ -3,12 +3,13 @@
 // reflection, by a steep-parallax ray march through top-down world-Y
 // textures (docs/packs/raymarch.md has the method, citations and figures).
 //
-// From above: R = refract(-E, N, 1/ior) is marched through the ground's
-// world-Y texture to the ground, whose colour is fetched there and
-// attenuated along the path in water; reflect(-E, N) is marched against the
-// above-water geometry (a slab per texel: its top seen from above, its
-// underside seen from below) and falls back to the sky cube map; exact
-// Fresnel mixes them; a Phong highlight of the sun is added.
+// The world is a texel-wise solid of top-down textures (march.glsl): below
+// the floor under the water, and between the bottom of floating things and
+// the top seen from above. From above: R = refract(-E, N, 1/ior) is marched
+// down through it to the ground, whose colour is fetched there and
+// attenuated along the path in water; reflect(-E, N) is marched up through
+// the same solid and falls back to the sky cube map; exact Fresnel mixes
+// them; a Phong highlight of the sun is added.
 // From below (camera under water): the reflected ray goes down through the
 // same ground march, the refracted one up through the above-water march,
 // with total internal reflection, and the camera's own path in water
@@ -30,12 +31,10 @@ uniform samplerCube uSky;
 uniform vec3 uCameraPos;
 uniform float uTime;
 
-uniform sampler2D uGroundColor;      // Camera top, World all: colour
-uniform sampler2D uGroundDepth;      //   and depth (world Y)
-uniform sampler2D uAboveColor;       // Camera top, World above: colour
-uniform sampler2D uAboveTop;         //   and depth (the top of what is above the water)
-uniform sampler2D uAboveUnderColor;  // the same drawn with Cull front: undersides
-uniform sampler2D uAboveBottom;      //   and their depth (the bottom of floating things)
+uniform sampler2D uTopColor;      // Camera top, World all: colour
+uniform sampler2D uUnderColor;    // the same, undersides only: colour
+uniform sampler2D uFloorColor;    // World below: colour
+uniform sampler2D uWorldY;        // pack_y.frag: world Y of top, bottom, floor
 uniform sampler2D uFresnelLut;       // fresnel_lut.frag's table
 uniform sampler2D uWaterNormal;      // @water_normal
 
@@ -58,6 +57,8 @@ uniform vec2 uNormalScroll[4]; // the four scroll velocities, tiles per second a
 in vec2 vRest;
 in vec3 vWorldPos;
 out vec4 fragColor;
+
+int gFetches = 0;   // world-Y texels the marches read (DEBUG_OUTPUT 5)
 
 vec3 waterNormal() {
     vec3 n = wavesNormal(vRest, uTime);
@@ -113,18 +114,31 @@ vec3 attenuate(vec3 c, float s) {
 #endif
 }
 
+// The colour of the solid met at hit: the floor's where the floor makes the
+// texel solid there (World below: what lies under an overhang), else the
+// underside's when the ray came up through a bottom, else the top's.
+vec3 solidColor(vec3 hit, bool underside) {
+    vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
+    vec3 t = marchFetch(uWorldY, textureSize(uWorldY, 0), uv);
+    float slab = hit.y - t.x;
+    if (t.y < t.x) slab = max(slab, t.y - hit.y);
+    if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
+    return underside ? texture(uUnderColor, uv).rgb : texture(uTopColor, uv).rgb;
+}
+
 // The ground seen from p along dir (downwards, in water): its colour, the
 // path s in water, the point and the march's status.
 vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     vec3 d = marchClampDir(dir, true);
-    March m = marchHeightfield(uGroundDepth, uGroundDepth, false, p, d, 0.0, uMinDepth, uStepsGrazing,
+    March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth, uStepsGrazing,
                                uStepsSteep, uMaxStep, -1e30, 1e30, uMaxIter, REFINE_COUNT);
+    gFetches += m.fetches;
     s = m.t;
     // no bracket: on down to the ground height of the last column
     if (m.status == MARCH_CAP || m.status == MARCH_LEFT) s += max(m.f, 0.0) / -d.y;
     hit = p + s * d;
     status = m.status;
-    return texture(uGroundColor, clamp(marchUV(hit), 0.0, 1.0)).rgb;
+    return solidColor(hit, false);
 }
 
 // What is seen from p along dir (upwards, in air): the above-water geometry
@@ -136,16 +150,19 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
 #ifndef NOREFLECTION
     vec3 d = marchClampDir(dir, false);
     float step = marchStep(uReflectHeight, d.y, uStepsGrazing, uStepsSteep, uMaxStep);
-    March m = marchHeightfield(uAboveTop, uAboveBottom, true, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
+    March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
                                uMaxStep, -1e30, uWaterLevel + uReflectHeight, uMaxIter, REFINE_COUNT);
     status = m.status;
+    gFetches += m.fetches;
     if (m.status == MARCH_HIT || m.status == MARCH_INSIDE) {
         hit = p + m.t * d;
-        vec2 uv = clamp(marchUV(hit), 0.0, 1.0);
-        ivec2 size = textureSize(uAboveTop, 0);
-        float yTop = marchFetchY(uAboveTop, size, uv), yBottom = marchFetchY(uAboveBottom, size, uv);
-        // the side met: the underside when the hit is nearer the slab's bottom
-        return hit.y - yBottom < yTop - hit.y ? texture(uAboveUnderColor, uv).rgb : texture(uAboveColor, uv).rgb;
+        // the side met: the underside when the ray was below the bottom of
+        // the column it left (it came up through a bottom), else the top
+        vec3 a = p + m.ta * d;
+        vec2 uva = clamp(marchUV(a), 0.0, 0.999999);
+        vec3 ya = marchFetch(uWorldY, textureSize(uWorldY, 0), uva);
+        bool underside = m.status == MARCH_HIT && ya.y < ya.x && a.y < ya.y;
+        return solidColor(hit, underside);
     }
 #endif
     return texture(uSky, dir).rgb;
@@ -192,5 +209,7 @@ void main() {
     fragColor = vec4(F, F, F, 1.0);         // Fresnel reflectance
 #elif DEBUG_OUTPUT == 4
     fragColor = vec4(s, s, s, 1.0);         // path in water of the marched ray (m)
+#elif DEBUG_OUTPUT == 5
+    fragColor = vec4(float(gFetches), 0.0, 0.0, 1.0);   // world-Y texels read
 #endif
 }
