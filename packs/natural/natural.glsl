@@ -7,7 +7,7 @@
 //   natCausticUV / natCausticRatio   the caustic texture and its lookup
 //
 // Include after waves.glsl and world.glsl (it uses uWaterLevel, uSunDir,
-// uIOR, uAbsorption and worldFresnel). No #version here.
+// uIOR, uAbsorption, uAmbient and worldFresnel). No #version here.
 //
 // The caustic texture holds a RATIO, not an irradiance: the sun's irradiance
 // on the floor divided by what flat water would give there (1 under calm
@@ -40,6 +40,14 @@ vec2 natCausticQ(vec3 p) {
 }
 
 vec2 natCausticUV(vec2 q) { return q / natCausticHalfSize() * 0.5 + 0.5; }
+
+// The ambient term of tarn's world shading under the water at p, as
+// worldShadeAt (packs/common/world.glsl) has it: ambient (1 - R0)
+// exp(-sigma depth). The caustic ratio scales what is left: the sun term.
+vec3 natAmbientUnder(vec3 p) {
+    float r0 = (uIOR - 1.0) / (uIOR + 1.0);
+    return uAmbient * (1.0 - r0 * r0) * exp(-uAbsorption * max(uWaterLevel - p.y, 0.0));
+}
 
 // ---- projective lookups ---------------------------------------------------
 

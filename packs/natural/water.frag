@@ -1,18 +1,19 @@
 #version 330 compatibility
 // packs/natural: the water pixel of Mihálik's "Natural Water Shader"
 // (docs/packs/natural.md). Two projective lookups into the passes drawn
-// before the surface:
+// before the surface, on the camera's side of the water:
 //   refraction  R = refract(-E, N, 1/ior), W = U + dv' R, dv' = clamp(dv, 0,
 //               uDepthClamp) uDepthScale with dv the view ray's path in
-//               water (depth target), W projected with uCamMainVP into the
-//               refraction target; C = C_w + exp(-d k) (C_refr - C_w)
+//               water (from the depth target), W projected with uCamMainVP
+//               into the refraction target; C = C_w + exp(-d k) (C_refr - C_w)
 //   reflection  W = U + c reflect(-E, N), projected with uCamMirrorVP
 //   Fresnel     F = (1 - E.N)^q, or exact (EXACT_FRESNEL)
 //   colour      C_refr + F (C_refl - C_refr), plus a specular highlight
-// Seen from below (the camera under water) the roles swap: the internal
-// reflection is looked up in the refraction target (the world below), the
-// way out into the air in the reflection target (the world above), with
-// total internal reflection beyond the critical angle.
+// With the camera under the water pack.glib swaps what the passes draw
+// (the refraction target holds the world above, the reflection target the
+// world below, mirrored); this shader swaps the optics to match: Snell's
+// window out of the water, total internal reflection beyond it, and the
+// eye's own path through the water.
 #include "waves.glsl"
 #include "world.glsl"
 #include "natural.glsl"
@@ -24,13 +25,13 @@ uniform float uTime;
 uniform mat4 uCamMainVP;
 uniform mat4 uCamMirrorVP;
 
-uniform sampler2D uRefraction;        // pass 1: world below the water, main camera, widened
-uniform sampler2D uRefractionDepth;   //         its depth
-uniform sampler2D uReflection;        // pass 2: world above the water, mirror camera, widened
-uniform sampler2D uReflectionDepth;   //         its depth (the sky seen from below)
+uniform sampler2D uRefraction;        // the far side of the water from the main camera
+uniform sampler2D uRefractionDepth;   //   its depth
+uniform sampler2D uReflection;        // the near side, mirrored (camera widened by uFovScale)
+uniform sampler2D uReflectionDepth;   //   its depth
 uniform sampler2D uCaustics;          // caustic ratio over refracted-sun space (natural.glsl)
 
-uniform float uFovScale;         // the passes' field of view / the camera's (the Camera lines read it)
+uniform float uFovScale;         // the reflection pass's field of view over the camera's
 uniform float uReflectDist;      // c: reflection lookup distance
 uniform float uAttenuation;      // k: attenuation per metre (the paper's model)
 uniform vec3  uWaterColor;       // C_w: what deep water shows (the paper's model)
@@ -42,11 +43,16 @@ uniform float uShininess;        // highlight exponent
 uniform float uCausticStrength;  // 1: the photons' ratio as computed; 0: flat-water light
 
 #ifndef REFINE_STEPS
-#define REFINE_STEPS 0           // extra depth lookups refining the refraction hit (0: the paper)
+#define REFINE_STEPS 0           // march steps finding the refraction hit in the depth target (0: the paper)
 #endif
 #ifndef DEBUG_PASS
-#define DEBUG_PASS 0             // 1: refracted colour only, 2: reflected colour only
+#define DEBUG_PASS 0             // 1: refracted colour only, 2: reflected colour only, 3: caustic ratio / 2,
+                                 // 4: the refraction hit point (world xyz: float targets, tests)
 #endif
+
+// A depth at or beyond this is the sky (tarn draws it at the far plane)
+// or nothing: with near 0.1 and far 200, beyond about 196 m.
+#define NAT_SKY_DEPTH 0.99999
 
 in vec2 vRest;
 in vec3 vWorldPos;
@@ -62,17 +68,26 @@ vec3 attenuate(vec3 c, float d) {
 #endif
 }
 
+float gCausticRatio = 1.0;      // the last ratio applied (DEBUG_PASS 3)
+vec3 gRefractHit = vec3(0.0);   // the point the refraction lookup showed (DEBUG_PASS 4)
+
 // The caustic ratio applied to the sun term of a floor colour that tarn's
-// world program shaded with flat-water sunlight: albedo * (E/pi + ambient),
-// the albedo read from the terrain's texture at p.
+// world program shaded with flat-water sunlight, albedo (E/pi + A_w):
+// the albedo from the terrain's texture at p, the ratio filtered by four
+// bilinear taps half a texel apart (a tent two texels wide, which removes
+// the period-2 beat of a regular photon grid splatted onto the texels).
 vec3 applyCaustics(vec3 c, vec3 p) {
 #ifdef CAUSTICS
     if (p.y < uWaterLevel) {
         vec2 uv = natCausticUV(natCausticQ(p));
         if (natInside(uv)) {
-            float ratio = max(1.0 + uCausticStrength * (texture(uCaustics, uv).r - 1.0), 0.0);
+            vec2 o = 0.5 / vec2(textureSize(uCaustics, 0));
+            float cr = 0.25 * (texture(uCaustics, uv + vec2(-o.x, -o.y)).r + texture(uCaustics, uv + vec2(o.x, -o.y)).r
+                             + texture(uCaustics, uv + vec2(-o.x, o.y)).r + texture(uCaustics, uv + vec2(o.x, o.y)).r);
+            float ratio = max(1.0 + uCausticStrength * (cr - 1.0), 0.0);
+            gCausticRatio = ratio;
             vec3 albedo = texture(uTerrainAlbedo, p.xz / uTerrainHalfSize * 0.5 + 0.5).rgb;
-            vec3 amb = albedo * uAmbient;
+            vec3 amb = albedo * natAmbientUnder(p);
             c = amb + max(c - amb, vec3(0.0)) * ratio;
         }
     }
@@ -80,22 +95,46 @@ vec3 applyCaustics(vec3 c, vec3 p) {
     return c;
 }
 
-// What the refraction target shows along direction r from the surface point
-// U: W = U + s r with s from `s0`, refined by REFINE_STEPS fixed-point steps
-// s <- |shown(W) - U|. fallback: the unperturbed lookup. path: |shown - U|.
-vec3 lookBelow(vec3 U, vec3 r, float s0, bool useFallback, out float path) {
-    vec3 W = U + s0 * r;
+// What the refraction target shows along direction r from the surface
+// point U. The paper: W = U + s0 r. With REFINE_STEPS > 0, a march instead:
+// W = U + s r for s = smax i / REFINE_STEPS until W passes behind what the
+// target shows at W (g(s) = |W - eye| - |shown(W) - eye| > 0; g(0) = g0 =
+// -|shown(U) - U| < 0), then two regula-falsi steps in the bracket; a ray
+// that leaves the target keeps its last point in front. fallback: the
+// unperturbed lookup when W leaves the target or meets nothing. path:
+// |shown - U|. sky: the lookup met the sky (or nothing).
+vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, out float path, out bool sky) {
+    float s = s0;
     vec2 uv;
     bool ok;
-    for (int i = 0; i < REFINE_STEPS; i++) {
-        vec3 b = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, W, uv, ok);
-        if (!ok) break;
-        W = U + distance(U, b) * r;
+#if REFINE_STEPS > 0
+    float sa = 0.0, ga = min(g0, -1e-4);
+    s = smax;
+    for (int i = 1; i <= REFINE_STEPS; i++) {
+        float sb = smax * float(i) / float(REFINE_STEPS);
+        vec3 b = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + sb * r, uv, ok);
+        if (!ok) { s = sa; break; }
+        float gb = distance(uCameraPos, U + sb * r) - distance(uCameraPos, b);
+        if (gb > 0.0) {
+            for (int k = 0; k < 2; k++) {
+                float sm = sa + (sb - sa) * (-ga) / (gb - ga);
+                vec3 bm = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + sm * r, uv, ok);
+                float gm = ok ? distance(uCameraPos, U + sm * r) - distance(uCameraPos, bm) : 1.0;
+                if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
+            }
+            s = sa + (sb - sa) * (-ga) / (gb - ga);
+            break;
+        }
+        sa = sb;
+        ga = gb;
     }
-    vec3 shown = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, W, uv, ok);
-    if (!ok && useFallback)   // the perturbed lookup left the water: the classic fix
+#endif
+    vec3 shown = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
+    if (!ok && fallback)   // the perturbed lookup left the target: the classic fix
         shown = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv, ok);
+    sky = !ok || texture(uRefractionDepth, uv).r >= NAT_SKY_DEPTH;
     path = ok ? distance(U, shown) : 1e4;
+    gRefractHit = ok ? shown : vec3(0.0);
     if (!ok) return vec3(0.0);
     return applyCaustics(texture(uRefraction, uv).rgb, shown);
 }
@@ -104,34 +143,44 @@ void main() {
     vec3 U = vWorldPos;
     vec3 N = wavesNormal(vRest, uTime);
     vec3 E = normalize(uCameraPos - U);
-    bool fromBelow = dot(E, N) < 0.0;
-    vec3 n = fromBelow ? -N : N;               // faces the eye
+    vec3 n = dot(E, N) < 0.0 ? -N : N;          // faces the eye
     float cosI = clamp(dot(E, n), 0.0, 1.0);
     vec3 Rr = reflect(-E, n);
+    bool under = uCameraPos.y < uWaterLevel;    // pack.glib's under_water: the passes' roles
     vec3 refr, refl, color;
-    float F;
+    vec3 hit = vec3(0.0);
+    float F, path;
+    bool sky;
 
-    if (!fromBelow) {
+    if (!under) {
         // ---- from above: the paper ----
         vec3 R = refract(-E, n, 1.0 / uIOR);
         vec2 uv0;
         bool ok0;
         vec3 b0 = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
         float dv = ok0 ? distance(U, b0) : 1e4;          // the view ray's path in water
-        float path;
-        vec3 c = lookBelow(U, R, clamp(dv, 0.0, uDepthClamp) * uDepthScale, true, path);
+        vec3 c = lookThrough(U, R, clamp(dv, 0.0, uDepthClamp) * uDepthScale, min(1.5 * dv + 0.5, 50.0), -dv,
+                             true, path, sky);
+        hit = gRefractHit;
 #ifdef BEER_LAMBERT
         refr = attenuate(c, path);
 #else
         refr = attenuate(c, dv);                         // the paper's d: the pixel's depth difference
 #endif
-#ifdef SKY_REFLECTION
-        refl = texture(uSky, Rr).rgb;
-#else
+        // Reflection. Only perturbed lookups reach the band of the widened
+        // target that the camera's own view leaves out (about 1/2 (1 -
+        // 1/uFovScale) of it each side): fade them into the sky over the
+        // band's outer half, so no seam shows where they leave the target.
+        // Where the target shows the sky or nothing (no reflection pass: only
+        // sky above the water), the cube map along Rr.
         float w;
         vec2 uv = natProject(uCamMirrorVP, U + uReflectDist * Rr, w);
-        refl = w > 0.0 && natInside(uv) ? texture(uReflection, uv).rgb : texture(uSky, Rr).rgb;
-#endif
+        float band = 0.5 * (1.0 - 1.0 / max(uFovScale, 1.0));
+        float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
+        float keep = w <= 0.0 ? 0.0 : band > 0.0 ? clamp(inside / (0.5 * band), 0.0, 1.0) : float(inside >= 0.0);
+        refl = texture(uSky, Rr).rgb;
+        if (keep > 0.0 && texture(uReflectionDepth, uv).r < NAT_SKY_DEPTH)
+            refl = mix(refl, texture(uReflection, uv).rgb, keep);
 #ifdef EXACT_FRESNEL
         F = worldFresnel(cosI, 1.0, uIOR);
 #else
@@ -143,22 +192,28 @@ void main() {
         color += uSpecular * pow(max(dot(n, H), 0.0), uShininess) * uSunIrradiance;
 #endif
     } else {
-        // ---- from below: roles swapped ----
+        // ---- from below: the roles swapped ----
         vec3 T = refract(-E, n, uIOR);                   // out into the air; 0 on TIR
         bool tir = dot(T, T) == 0.0;
-        // the way out: the world above (mirror target) or, where that shows
-        // the sky, the sky along T itself
+        // Snell's window: the refraction target holds the world above
         refr = vec3(0.0);
         if (!tir) {
-            float w;
-            vec2 uv = natProject(uCamMirrorVP, U + uReflectDist * T, w);
-            bool sky = !(w > 0.0 && natInside(uv)) || texture(uReflectionDepth, uv).r >= 0.99999;
-            refr = sky ? texture(uSky, T).rgb : texture(uReflection, uv).rgb;
+            vec2 uv0;
+            bool ok0;
+            vec3 b0 = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
+            float d0 = ok0 ? distance(U, b0) : 1e4;      // what lies behind U, seen from the eye
+            vec3 c = lookThrough(U, T, uReflectDist, min(1.5 * d0 + 0.5, 50.0), -d0, false, path, sky);
+            hit = gRefractHit;
+            refr = sky ? texture(uSky, T).rgb : c;
         }
-        // the internal reflection: the world below (refraction target)
-        float path;
-        vec3 c = lookBelow(U, Rr, uReflectDist, false, path);
-        refl = attenuate(c, path);
+        // the internal reflection: the reflection target holds the world
+        // below, mirrored (for flat water exact for any c, as above)
+        vec3 mirrorEye = vec3(uCameraPos.x, 2.0 * uWaterLevel - uCameraPos.y, uCameraPos.z);
+        vec2 uv;
+        bool ok;
+        vec3 shown = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U + uReflectDist * Rr, uv, ok);
+        refl = ok ? attenuate(applyCaustics(texture(uReflection, uv).rgb, shown), distance(U, shown))
+                  : attenuate(vec3(0.0), 1e4);
 #ifdef EXACT_FRESNEL
         F = worldFresnel(cosI, uIOR, 1.0);
 #else
@@ -175,6 +230,10 @@ void main() {
     color = refr;
 #elif DEBUG_PASS == 2
     color = refl;
+#elif DEBUG_PASS == 3
+    color = vec3(0.5 * gCausticRatio);
+#elif DEBUG_PASS == 4
+    color = hit;
 #endif
     fragColor = vec4(color, 1.0);
 }
