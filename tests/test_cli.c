@@ -119,6 +119,31 @@ static void test_frames_write_every_frame(void) {
     img_free(&i2);
 }
 
+/* --set does what the panel does: the sand colour set to pure red makes a
+ * floor pixel red-dominant; a name the scene lacks is an error naming it. */
+static void test_set_changes_uniforms(void) {
+    char cmd[2048], out[8192], a[512];
+    snprintf(a, sizeof a, "%s/set.png", dir);
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 160x90 --quiet "
+             "--set Floor.uSandColor=1,0,0 --set Water.uClarity=1 --set SPECULAR=0 2>&1", bin, src, a);
+    int rc = run(cmd, out, sizeof out);
+    if (rc == 3) SKIP("no OpenGL");
+    CHECK_MSG(rc == 0, "%s", out);
+    img im;
+    char err[256];
+    memset(&im, 0, sizeof im);
+    CHECK_MSG(img_read(a, &im, err, sizeof err), "%s", err);
+    if (im.px) {
+        const float *p = im.px + ((size_t)80 * im.w + 80) * im.channels;   /* near the bottom: floor through water */
+        CHECK_MSG(p[0] > p[1] + 0.1f && p[0] > p[2] + 0.1f, "pixel %g %g %g", p[0], p[1], p[2]);
+    }
+    img_free(&im);
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 32x18 --quiet "
+             "--set Water.uNope=1 2>&1", bin, src, a);
+    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK_STR_CONTAINS(out, "no entry 'uNope' in Water");
+}
+
 /* No arguments and no display: the default scene goes to out/default.png. */
 static void test_no_arguments_renders_default_scene(void) {
     char cmd[2048], out[8192], png[512];
@@ -142,6 +167,7 @@ int main(void) {
     RUN(test_missing_scene_names_the_file);
     RUN(test_render_headless_is_deterministic_and_follows_scene);
     RUN(test_frames_write_every_frame);
+    RUN(test_set_changes_uniforms);
     RUN(test_no_arguments_renders_default_scene);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);

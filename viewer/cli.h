@@ -16,6 +16,8 @@ typedef struct cli_render_desc {
     int frames;                 /* 0: 1 */
     bool quiet;
     const char *pack;           /* replaces the scene's `Pack` */
+    const char *const *sets;    /* --set PROGRAM.NAME=V[,V...] or NAME=V: sliders, checkboxes, Defines */
+    int nsets;
 } cli_render_desc;
 
 typedef struct cli_view_desc {

@@ -918,11 +918,20 @@ static bool h_world(cmdctx *c, glib_cmd *cmd)
     }
     snprintf(cmd->name, sizeof cmd->name, "%s", modes[m]);
     warn_extra(c, 2, "");
-    if (c->nwords >= 2) {
-        if (!parse_arg(c, &offset_rule, c->words[1], &cmd->num[0]))
+    if (c->nwords < 2)
+        return true;
+    const char *w = c->words[1];
+    if (isalpha((unsigned char)w[0]) || w[0] == '_') {   /* a float slider of the last Program */
+        if (strlen(w) >= sizeof cmd->arg) {
+            cerr(c, "World: the uniform name '%.40s...' is too long", w);
             return false;
-        cmd->nnum = 1;
+        }
+        snprintf(cmd->arg, sizeof cmd->arg, "%s", w);
+        return true;
     }
+    if (!parse_arg(c, &offset_rule, w, &cmd->num[0]))
+        return false;
+    cmd->nnum = 1;
     return true;
 }
 
@@ -930,16 +939,16 @@ static bool h_world(cmdctx *c, glib_cmd *cmd)
 static bool h_camera(cmdctx *c, glib_cmd *cmd)
 {
     static const arg_rule scale_rule = { "fov_scale", "a field-of-view scale", 'p', 0, 0, 0 };
-    static const char *const kinds[] = { "main", "mirror", "top", "light" };
+    static const char *const kinds[] = { "main", "wide", "mirror", "top", "light" };
     if (c->nwords < 1) {
-        cerr(c, "Camera needs main, mirror, top or light: %s", c->usage);
+        cerr(c, "Camera needs main, wide, mirror, top or light: %s", c->usage);
         return false;
     }
     size_t k = 0;
-    while (k < 4 && strcasecmp(c->words[0], kinds[k]) != 0)
+    while (k < 5 && strcasecmp(c->words[0], kinds[k]) != 0)
         k++;
-    if (k == 4) {
-        cerr(c, "Camera: unknown camera '%.40s': write main, mirror, top or light", c->words[0]);
+    if (k == 5) {
+        cerr(c, "Camera: unknown camera '%.40s': write main, wide, mirror, top or light", c->words[0]);
         return false;
     }
     snprintf(cmd->name, sizeof cmd->name, "%s", kinds[k]);
@@ -2053,11 +2062,11 @@ static const cmd_spec specs[] = {
       "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B" },
     { "Pack", GLIB_CMD_PACK, false, h_pack, false, 0, 0, { { 0 } }, "Pack name" },
     /* drawing the world (packs) */
-    { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below [offset]]" },
+    { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below [offset|uniform]]" },
     { "WaterSurface", GLIB_CMD_WATER_SURFACE, false, h_water_surface, false, 0, 0, { { 0 } },
       "WaterSurface [points N]" },
     { "Camera", GLIB_CMD_CAMERA, false, h_camera, false, 0, 0, { { 0 } },
-      "Camera main|mirror|top|light [fov_scale|uniform]" },
+      "Camera main|wide|mirror|top|light [fov_scale|uniform]" },
     { "RenderToTextureOnce", GLIB_CMD_RENDER_TO_TEXTURE_ONCE, false, h_rtt, false, 0, 0, { { 0 } },
       "RenderToTextureOnce unit [unit...]" },
     { "If", GLIB_CMD_IF, false, h_if, false, 0, 0, { { 0 } }, "If [not] DEFINE|above_water|under_water" },

@@ -91,7 +91,7 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_PACK,              /* name: the pack (after the override); with
                                  * glib_options.packs_dir its pack.glib follows inline */
     /* drawing the world (in packs) */
-    GLIB_CMD_CAMERA,            /* name: main|mirror|top|light; num[0] fov scale (nnum 1),
+    GLIB_CMD_CAMERA,            /* name: main|wide|mirror|top|light; num[0] fov scale (nnum 1),
                                    or arg: a float uniform of the last Program */
     GLIB_CMD_RENDER_TO_TEXTURE_ONCE, /* num: units; runs only on the first frame after a load */
     GLIB_CMD_SPLAT,             /* num: src_unit dst_unit (CPU photon splat) */
@@ -146,7 +146,8 @@ typedef struct glib_cmd {
      * `Define NAME 3` / `Define NAME <1 4 8>`) */
     glib_uniform *defines;
     int ndefines;
-    char arg[GLIB_NAME_MAX];    /* Camera: the uniform that gives fov_scale ("" when a number) */
+    char arg[GLIB_NAME_MAX];    /* Camera, World: the uniform that gives fov_scale or the clip
+                                   offset ("" when a number is written) */
 } glib_cmd;
 
 typedef enum glib_severity { GLIB_WARNING = 1, GLIB_ERROR = 2 } glib_severity;

@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "gl_ctx.h"
 #include "image_io.h"
+#include "packset.h"
 #include "ref_metrics.h"
 #include "render.h"
 
@@ -54,6 +55,30 @@ static double now_ms(void) {
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
+/* --set: what moving a slider or ticking a Define would do, written as
+ * bench.txt assignments (PROGRAM.NAME=V, or NAME=V for every Program). */
+static bool apply_sets(render *r, const cli_render_desc *d) {
+    if (d->nsets == 0) return true;
+    char text[4096] = "cli";
+    size_t n = strlen(text);
+    for (int i = 0; i < d->nsets && n < sizeof text; i++) {
+        const char *eq = strchr(d->sets[i], '='), *dot = strchr(d->sets[i], '.');
+        bool bare = !dot || (eq && dot > eq);
+        n += (size_t)snprintf(text + n, sizeof text - n, " %s%s", bare ? "*." : "", d->sets[i]);
+    }
+    packset_bench b;
+    char err[2048] = "";
+    bool ok = packset_bench_parse(text, "--set", &b, err, sizeof err) && b.n > 0;
+    bool defines = false;
+    int nsets;
+    unif_set *sets = render_uniforms(r, &nsets);
+    if (ok) ok = packset_apply(sets, nsets, &b.settings[0], &defines, err, sizeof err);
+    if (defines) render_rebuild_programs(r);
+    if (err[0]) fprintf(stderr, "tarn: --set: %s\n", err);
+    packset_bench_free(&b);
+    return ok;
+}
+
 static int cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
@@ -67,6 +92,7 @@ int cli_render(const cli_render_desc *d) {
     render *r = render_create(&rd);
     bool ok = render_load(r, d->glib);
     if (render_messages(r)[0]) fputs(render_messages(r), stderr);
+    if (!apply_sets(r, d)) ok = false;
     int w = d->width, h = d->height;
     if (w <= 0 || h <= 0) render_window_size(r, &w, &h);
     render_target t;
@@ -86,6 +112,11 @@ int cli_render(const cli_render_desc *d) {
         double t0 = now_ms();
         render_frame(r, d->time_s + f / 60.0, t.fbo, w, h, NULL);
         glFinish();   /* wall time of the whole frame, including deferred rasterisation */
+        if (gl_ctx_lost(ctx, err, sizeof err)) {   /* a GPU reset: nothing drawn can be trusted */
+            fprintf(stderr, "tarn: %s\n", err);
+            rc = CLI_NO_GL;
+            break;
+        }
         if (wall) wall[f] = now_ms() - t0;
         if (ms) ms[f] = render_gpu_ms(r, true);
         if (per_frame || f == frames - 1) {
@@ -100,7 +131,7 @@ int cli_render(const cli_render_desc *d) {
                 printf("tarn: wrote %s (%dx%d, t=%.3f s)\n", path, w, h, d->time_s + f / 60.0);
         }
     }
-    if (ms && wall && !d->quiet) {
+    if (ms && wall && !d->quiet && rc != CLI_NO_GL) {
         qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
         qsort(wall, (size_t)frames, sizeof *wall, cmp_double);
         printf("tarn: %d frame(s) at %dx%d: median GPU time %.3f ms, wall %.3f ms, on %s\n", frames, w, h,

@@ -194,8 +194,20 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
     if (o >= 0) {
         *m = old->meshes[o];
         memset(&old->meshes[o], 0, sizeof old->meshes[o]);
-    } else {
-        res_mesh_build(c, m, log);   /* on failure vbo stays 0: nothing drawn */
+    } else if (!res_mesh_build(c, m, log) && c->path[0]) {
+        /* a broken OBJ keeps the last good mesh of that file (as textures do) */
+        for (int i = 0; i < old->nmeshes; i++) {
+            const char *a = old->meshes[i].key, *at = strrchr(a, '@'), *bt = strrchr(m->key, '@');
+            if (!old->meshes[i].vbo || !at || !bt || at - a != bt - m->key || memcmp(a, m->key, (size_t)(at - a)) != 0)
+                continue;   /* the key without its file stamp: same command, same file */
+            char key[RES_KEY_MAX];
+            memcpy(key, m->key, sizeof key);
+            *m = old->meshes[i];
+            memset(&old->meshes[i], 0, sizeof old->meshes[i]);
+            memcpy(m->key, key, sizeof key);
+            log_append(log, "%s:%d: note: keeping the last good mesh of '%s'\n", c->file, c->line, c->path);
+            break;
+        }
     }
     s->cmd_res[ci] = s->nmeshes++;
 }
@@ -224,6 +236,17 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
                 log_append(log, "%s:%d: note: keeping the last good image of '%s'\n", c->file, c->line, want);
                 break;
             }
+        }
+        /* a glib edit that names another file, which fails: keep what that unit showed */
+        int unit = t->unit;
+        unsigned target = t->target;
+        for (int i = 0; !t->tex && i < old->ntexs; i++) {
+            const gpu_tex *o = &old->texs[i];
+            if (!o->tex || o->render_target || o->unit != unit || o->target != target) continue;
+            log_append(log, "%s:%d: note: keeping the last good image of unit %d ('%s')\n", c->file, c->line,
+                       unit, o->path);
+            *t = old->texs[i];
+            memset(&old->texs[i], 0, sizeof old->texs[i]);
         }
         if (!t->tex) return;
     }
@@ -456,21 +479,27 @@ static void bind_textures(const scene_state *s) {
     glActiveTexture(GL_TEXTURE0);
 }
 
-/* The fov scale a `Camera` command asks for: its number, or the current
- * value of the named float uniform of the Program before it. */
-static float camera_scale(const scene_state *s, int ci) {
+/* The number a `Camera` (fov scale) or `World` (clip offset) command asks
+ * for: the one written, else the current value of the named float uniform
+ * of the Program before it, else def. */
+static float cmd_number(const scene_state *s, int ci, float def) {
     const glib_cmd *c = &s->glib->cmds[ci];
     if (c->nnum > 0) return (float)c->num[0];
-    if (!c->arg[0]) return 1.0f;
+    if (!c->arg[0]) return def;
     for (int i = ci - 1; i >= 0; i--) {
         if (s->glib->cmds[i].kind != GLIB_CMD_PROGRAM || s->cmd_res[i] < 0) continue;
         unif_entry *e = unif_find(s->progs[s->cmd_res[i]].unifs, c->arg);
-        return e && e->value[0] > 0 ? e->value[0] : 1.0f;
+        return e && isfinite(e->value[0]) ? e->value[0] : def;
     }
-    return 1.0f;
+    return def;
 }
 
-static void compute_cameras(const render *r, const render_view *v, int w, int h, cam_set *out) {
+static float camera_scale(const scene_state *s, int ci) {
+    float v = cmd_number(s, ci, 1.0f);
+    return v > 0 ? v : 1.0f;
+}
+
+static void camera_inputs(const render *r, const render_view *v, int w, int h, cam_inputs *out) {
     const scene_state *s = &r->cur;
     const scene_settings *set = &s->set;
     cam_inputs in = { .view = *v, .fov_deg = set->fov, .near_z = set->near_z, .far_z = set->far_z,
@@ -490,7 +519,7 @@ static void compute_cameras(const render *r, const render_view *v, int w, int h,
         int k = c->kind == GLIB_CMD_CAMERA ? cam_kind_from_name(c->name) : -1;
         if (k >= 0) in.fov_scale[k] = camera_scale(s, i);
     }
-    cam_compute(&in, out);
+    *out = in;
 }
 
 /* RenderToTexture u1 u2 ...: colour units become attachments 0..n-1, a
@@ -541,6 +570,8 @@ typedef struct frame_state {
     int x, y, w, h;
     bool in_rtt;
     bool skipping;           /* inside a RenderToTextureOnce block already drawn */
+    cam_inputs cam_in;
+    float cam_eye[3];        /* the current camera's eye (the mirror's is reflected): the sky box's centre */
     int if_depth, if_false;  /* If blocks: nesting, and how deep the first false one is (0: none) */
     cam_set cams;
     int depth;
@@ -707,7 +738,10 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         f->in_rtt = true;
     } else if (c->kind == GLIB_CMD_CAMERA) {
         int k = cam_kind_from_name(c->name);
-        if (k >= 0) cam_load(&f->cams, k);
+        if (k >= 0) {
+            cam_load(&f->cams, k);
+            cam_eye(&f->cam_in, k, f->cam_eye);
+        }
     } else if (c->kind == GLIB_CMD_SPLAT) {
         splat(r, (int)c->num[0], (int)c->num[1]);
     } else if (res_is_geometry(c->kind)) {
@@ -721,7 +755,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
             cam_upload(&f->cams, f->cur->gl);
         }
     } else if (c->kind == GLIB_CMD_WORLD) {
-        world_draw(&r->world, c->name[0] ? c->name : "all", c->nnum > 0 ? c->num[0] : 0.0, f->t, f->eye,
+        world_draw(&r->world, c->name[0] ? c->name : "all", cmd_number(s, i, 0.0f), f->t, f->cam_eye,
                    f->cur ? f->cur->gl : 0);
     } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
         if (strcmp(c->name, "points") == 0) world_draw_points(&r->world, (int)c->num[0]);
@@ -762,8 +796,10 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         world_bind_textures(&r->world);
         frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };
         memcpy(f.eye, v.eye, sizeof f.eye);
-        compute_cameras(r, &v, w, h, &f.cams);
+        camera_inputs(r, &v, w, h, &f.cam_in);
+        cam_compute(&f.cam_in, &f.cams);
         cam_load(&f.cams, CAM_MAIN);
+        memcpy(f.cam_eye, v.eye, sizeof f.cam_eye);
         glPushMatrix();
         for (int i = 0; i < s->glib->ncmds; i++) exec_cmd(r, &f, i);
         for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */

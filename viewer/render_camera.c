@@ -6,10 +6,11 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const cam_names[CAM_COUNT] = { "main", "mirror", "top", "light" };
-static const char *const vp_uniforms[CAM_COUNT] = { "uCamMainVP", "uCamMirrorVP", "uCamTopVP", "uCamLightVP" };
-static const char *const inv_uniforms[CAM_COUNT] = { "uCamMainInvVP", "uCamMirrorInvVP", "uCamTopInvVP",
-                                                     "uCamLightInvVP" };
+static const char *const cam_names[CAM_COUNT] = { "main", "wide", "mirror", "top", "light" };
+static const char *const vp_uniforms[CAM_COUNT] = { "uCamMainVP", "uCamWideVP", "uCamMirrorVP", "uCamTopVP",
+                                                    "uCamLightVP" };
+static const char *const inv_uniforms[CAM_COUNT] = { "uCamMainInvVP", "uCamWideInvVP", "uCamMirrorInvVP",
+                                                     "uCamTopInvVP", "uCamLightInvVP" };
 
 int cam_kind_from_name(const char *name) {
     for (int k = 0; k < CAM_COUNT; k++)
@@ -79,6 +80,10 @@ void cam_compute(const cam_inputs *in, cam_set *out) {
     perspective(in, in->fov_scale[CAM_MAIN], proj);
     memcpy(out->view[CAM_MAIN], view, sizeof view);
     memcpy(out->proj[CAM_MAIN], proj, sizeof proj);
+    /* wide: the main view with its own (widened) field of view */
+    memcpy(out->view[CAM_WIDE], view, sizeof view);
+    perspective(in, in->fov_scale[CAM_WIDE], proj);
+    memcpy(out->proj[CAM_WIDE], proj, sizeof proj);
     /* mirror: the main view of the reflected world */
     mirror_matrix(in->level, m);
     glm_mat4_mul(view, m, vp);
@@ -103,6 +108,11 @@ void cam_compute(const cam_inputs *in, cam_set *out) {
         glm_mat4_inv(vp, a);
         memcpy(out->inv_vp[k], a, sizeof a);
     }
+}
+
+void cam_eye(const cam_inputs *in, int kind, float eye[3]) {
+    memcpy(eye, in->view.eye, 3 * sizeof(float));
+    if (kind == CAM_MIRROR) eye[1] = (float)(2.0 * in->level - in->view.eye[1]);
 }
 
 void cam_load(const cam_set *c, int kind) {

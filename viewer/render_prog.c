@@ -248,6 +248,14 @@ void prog_introspect(prog *p, char **log) {
                        "(a typo in the glib or the shader?)\n",
                        e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
     }
+    for (int i = 0; i < p->unifs->n; i++) {   /* written as another type than declared: not uploaded */
+        const unif_entry *e = &p->unifs->entries[i];
+        char why[512];
+        if (e->is_define || !e->from_glib || !e->in_shader || !unif_describe_mismatch(e, why, sizeof why)) continue;
+        const char *rest = strstr(why, ": uniform '");   /* "file:line: uniform ..." -> add "warning:" */
+        log_append(log, "%.*s: warning:%s; it is not set\n", rest ? (int)(rest - why) : 0, why,
+                   rest ? rest + 1 : why);
+    }
     p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
 }
 

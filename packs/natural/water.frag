@@ -4,7 +4,7 @@
 // before the surface, on the camera's side of the water:
 //   refraction  R = refract(-E, N, 1/ior), W = U + dv' R, dv' = clamp(dv, 0,
 //               uDepthClamp) uDepthScale with dv the view ray's path in
-//               water (from the depth target), W projected with uCamMainVP
+//               water (from the depth target), W projected with uCamWideVP
 //               into the refraction target; C = C_w + exp(-d k) (C_refr - C_w)
 //   reflection  W = U + c reflect(-E, N), projected with uCamMirrorVP
 //   Fresnel     F = (1 - E.N)^q, or exact (EXACT_FRESNEL)
@@ -22,7 +22,7 @@ uniform samplerCube uSky;
 uniform sampler2D uTerrainAlbedo;
 uniform vec3 uCameraPos;
 uniform float uTime;
-uniform mat4 uCamMainVP;
+uniform mat4 uCamWideVP;    // the refraction pass's camera: main, field of view widened
 uniform mat4 uCamMirrorVP;
 
 uniform sampler2D uRefraction;        // the far side of the water from the main camera
@@ -112,13 +112,13 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
     s = smax;
     for (int i = 1; i <= REFINE_STEPS; i++) {
         float sb = smax * float(i) / float(REFINE_STEPS);
-        vec3 b = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + sb * r, uv, ok);
+        vec3 b = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + sb * r, uv, ok);
         if (!ok) { s = sa; break; }
         float gb = distance(uCameraPos, U + sb * r) - distance(uCameraPos, b);
         if (gb > 0.0) {
             for (int k = 0; k < 2; k++) {
                 float sm = sa + (sb - sa) * (-ga) / (gb - ga);
-                vec3 bm = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + sm * r, uv, ok);
+                vec3 bm = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + sm * r, uv, ok);
                 float gm = ok ? distance(uCameraPos, U + sm * r) - distance(uCameraPos, bm) : 1.0;
                 if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
             }
@@ -129,9 +129,9 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
         ga = gb;
     }
 #endif
-    vec3 shown = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
+    vec3 shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
     if (!ok && fallback)   // the perturbed lookup left the target: the classic fix
-        shown = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv, ok);
+        shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv, ok);
     sky = !ok || texture(uRefractionDepth, uv).r >= NAT_SKY_DEPTH;
     path = ok ? distance(U, shown) : 1e4;
     gRefractHit = ok ? shown : vec3(0.0);
@@ -157,7 +157,7 @@ void main() {
         vec3 R = refract(-E, n, 1.0 / uIOR);
         vec2 uv0;
         bool ok0;
-        vec3 b0 = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
+        vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
         float dv = ok0 ? distance(U, b0) : 1e4;          // the view ray's path in water
         vec3 c = lookThrough(U, R, clamp(dv, 0.0, uDepthClamp) * uDepthScale, min(1.5 * dv + 0.5, 50.0), -dv,
                              true, path, sky);
@@ -200,7 +200,7 @@ void main() {
         if (!tir) {
             vec2 uv0;
             bool ok0;
-            vec3 b0 = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
+            vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
             float d0 = ok0 ? distance(U, b0) : 1e4;      // what lies behind U, seen from the eye
             vec3 c = lookThrough(U, T, uReflectDist, min(1.5 * d0 + 0.5, 50.0), -d0, false, path, sky);
             hit = gRefractHit;
