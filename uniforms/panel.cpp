@@ -161,6 +161,38 @@ void error_overlay(const char *text) {
     ImGui::PopStyleColor(4);
 }
 
+// One collapsing header per set with a widget per entry; changes go to out.
+void draw_sets(unif_set *sets, int nsets, panel_actions *out) {
+    for (int s = 0; sets && s < nsets; s++) {
+        unif_set *set = &sets[s];
+        ImGui::PushID(s);
+        char header[UNIF_NAME_MAX + 32];
+        std::snprintf(header, sizeof header, "%s (%d)###set", set->program[0] ? set->program : "(unnamed)",
+                      set->n);
+        if (ImGui::CollapsingHeader(header, ImGuiTreeNodeFlags_DefaultOpen)) {
+            bool defines_open = false;
+            for (int i = 0; i < set->n; i++) {
+                unif_entry *e = &set->entries[i];
+                if (e->is_define && !defines_open) {
+                    ImGui::TextColored(kGrey, "defines (changing one recompiles)");
+                    defines_open = true;
+                } else if (!e->is_define && defines_open) {
+                    ImGui::Separator();
+                    defines_open = false;
+                }
+                ImGui::PushID(i);
+                if (entry_widget(e)) {
+                    out->changed = true;
+                    if (e->is_define) out->recompile = true;
+                }
+                ImGui::PopID();
+            }
+            if (set->n == 0) ImGui::TextColored(kGrey, "no uniforms");
+        }
+        ImGui::PopID();
+    }
+}
+
 }  // namespace
 
 extern "C" {
@@ -241,34 +273,7 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
         ImGui::Separator();
 
         ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
-        for (int s = 0; sets && s < nsets; s++) {
-            unif_set *set = &sets[s];
-            ImGui::PushID(s);
-            char header[UNIF_NAME_MAX + 32];
-            std::snprintf(header, sizeof header, "%s (%d)###set", set->program[0] ? set->program : "(unnamed)",
-                          set->n);
-            if (ImGui::CollapsingHeader(header, ImGuiTreeNodeFlags_DefaultOpen)) {
-                bool defines_open = false;
-                for (int i = 0; i < set->n; i++) {
-                    unif_entry *e = &set->entries[i];
-                    if (e->is_define && !defines_open) {
-                        ImGui::TextColored(kGrey, "defines (changing one recompiles)");
-                        defines_open = true;
-                    } else if (!e->is_define && defines_open) {
-                        ImGui::Separator();
-                        defines_open = false;
-                    }
-                    ImGui::PushID(i);
-                    if (entry_widget(e)) {
-                        out->changed = true;
-                        if (e->is_define) out->recompile = true;
-                    }
-                    ImGui::PopID();
-                }
-                if (set->n == 0) ImGui::TextColored(kGrey, "no uniforms");
-            }
-            ImGui::PopID();
-        }
+        draw_sets(sets, nsets, out);
         ImGui::PopItemWidth();
     }
     ImGui::End();
@@ -283,6 +288,125 @@ void panel_render(panel *p) {
     ImGui::Render();
     p->in_frame = false;
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions *out) {
+    panel_compare_actions none;
+    if (!out) out = &none;
+    std::memset(out, 0, sizeof *out);
+    out->changed_pack = -1;
+    if (!p || !p->in_frame || !c) return;
+    ImGui::SetCurrentContext(p->ctx);
+    ImGuiIO &io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(420, io.DisplaySize.y > 40 ? io.DisplaySize.y - 20 : 400),
+                             ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("tarn compare")) {
+        if (c->scene_path) ImGui::TextUnformatted(c->scene_path);
+        ImGui::Text("t = %.2f s%s   %.0f fps", c->time_s, c->paused ? " (paused)" : "", c->fps);
+        out->common.toggle_pause = ImGui::Button(c->paused ? "Play" : "Pause");
+        ImGui::SameLine();
+        out->common.reload = ImGui::Button("Reload");
+        ImGui::SameLine();
+        out->common.screenshot = ImGui::Button("Screenshot");
+        ImGui::SameLine();
+        out->reset_camera = ImGui::Button("Reset camera");
+        ImGui::Separator();
+
+        if (c->layout) {
+            ImGui::RadioButton("grid", c->layout, PANEL_LAYOUT_GRID);
+            ImGui::SameLine();
+            ImGui::RadioButton("wipe", c->layout, PANEL_LAYOUT_WIPE);
+        }
+        if (c->layout && *c->layout == PANEL_LAYOUT_WIPE && c->wipe_a && c->wipe_b && c->npacks > 0) {
+            ImGui::PushItemWidth(ImGui::GetFontSize() * 8.0f);
+            const char *names[8];
+            char labels[8][80];
+            int n = c->npacks < 8 ? c->npacks : 8;
+            for (int i = 0; i < n; i++) {
+                std::snprintf(labels[i], sizeof labels[i], "%d %s", i + 1, c->packs[i].name);
+                names[i] = labels[i];
+            }
+            ImGui::SameLine();
+            ImGui::Combo("left", c->wipe_a, names, n);
+            ImGui::SameLine();
+            ImGui::Combo("right", c->wipe_b, names, n);
+            ImGui::PopItemWidth();
+            if (c->wipe) ImGui::SliderFloat("divider", c->wipe, 0.0f, 1.0f, "%.2f");
+        }
+        if (c->show_heat) ImGui::Checkbox("heat maps (H)", c->show_heat);
+        ImGui::SameLine();
+        out->compute_heat = ImGui::Button("Compute heat maps");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("the CPU reference of this frame at the viewport size; time pauses");
+        if (c->heat_max) {
+            ImGui::PushItemWidth(ImGui::GetFontSize() * 12.0f);
+            ImGui::SliderFloat("scale (0: auto)", c->heat_max, 0.0f, 1.0f, "%.3f");
+            ImGui::PopItemWidth();
+        }
+        if (c->heat_status) ImGui::TextWrapped("%s", c->heat_status);
+        ImGui::Separator();
+
+        if (ImGui::BeginTable("timings", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+            ImGui::TableSetupColumn("pack");
+            ImGui::TableSetupColumn("GPU ms");
+            ImGui::TableSetupColumn("wall ms");
+            ImGui::TableSetupColumn("RMSE");
+            ImGui::TableHeadersRow();
+            for (int i = 0; i < c->npacks; i++) {
+                const panel_compare_pack *pk = &c->packs[i];
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::Text("%d %s", i + 1, pk->name);
+                ImGui::TableNextColumn();
+                if (pk->gpu_ms >= 0) ImGui::Text("%.2f", pk->gpu_ms); else ImGui::TextUnformatted("-");
+                ImGui::TableNextColumn();
+                if (pk->wall_ms >= 0) ImGui::Text("%.2f", pk->wall_ms); else ImGui::TextUnformatted("-");
+                ImGui::TableNextColumn();
+                if (pk->rmse == pk->rmse) ImGui::Text("%.4f", pk->rmse); else ImGui::TextUnformatted("-");
+            }
+            ImGui::EndTable();
+        }
+        if (c->note) ImGui::TextColored(kGrey, "%s", c->note);
+        ImGui::Separator();
+
+        ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
+        for (int i = 0; i < c->npacks && i < 8; i++) {
+            panel_compare_pack *pk = &c->packs[i];
+            ImGui::PushID(1000 + i);
+            char header[160];
+            std::snprintf(header, sizeof header, "%d %s###pack", i + 1, pk->name);
+            if (ImGui::CollapsingHeader(header, i == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+                if (pk->error_text && pk->error_text[0]) ImGui::TextColored(kRed, "%s", pk->error_text);
+                if (ImGui::SmallButton("Reset all")) {
+                    for (int s = 0; s < pk->nsets; s++)
+                        if (unif_reset_all_ex(&pk->sets[s])) out->recompile[i] = true;
+                    out->reset_all[i] = true;
+                    out->changed_pack = i;
+                }
+                ImGui::Indent();
+                panel_actions a;
+                std::memset(&a, 0, sizeof a);
+                draw_sets(pk->sets, pk->nsets, &a);
+                if (a.changed) out->changed_pack = i;
+                if (a.recompile) out->recompile[i] = true;
+                ImGui::Unindent();
+            }
+            ImGui::PopID();
+        }
+        ImGui::PopItemWidth();
+    }
+    ImGui::End();
+}
+
+void panel_label(panel *p, float x, float y, const char *text, bool right_align) {
+    if (!p || !p->in_frame || !text) return;
+    ImGui::SetCurrentContext(p->ctx);
+    ImDrawList *dl = ImGui::GetForegroundDrawList();
+    ImVec2 size = ImGui::CalcTextSize(text);
+    if (right_align) x -= size.x + 8;
+    dl->AddRectFilled(ImVec2(x, y), ImVec2(x + size.x + 8, y + size.y + 4), IM_COL32(0, 0, 0, 170), 3.0f);
+    dl->AddText(ImVec2(x + 4, y + 2), IM_COL32(255, 255, 255, 255), text);
 }
 
 bool panel_wants_mouse(const panel *p) {

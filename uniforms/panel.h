@@ -65,6 +65,55 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
 
 void panel_render(panel *p);     /* ImGui::Render + the OpenGL3 backend's draw */
 
+/* ---- `tarn compare-view`: several packs side by side ---- */
+
+typedef struct panel_compare_pack {
+    const char *name;            /* the pack (a second copy shows "basic #2") */
+    unif_set *sets;              /* its Programs' entries */
+    int nsets;
+    double gpu_ms, wall_ms;      /* this pack's frame; < 0 when not measured */
+    double rmse, psnr_db;        /* against the reference (NaN: no heat map yet) */
+    const char *error_text;      /* its load or build errors, NULL if none */
+} panel_compare_pack;
+
+enum { PANEL_LAYOUT_GRID = 0, PANEL_LAYOUT_WIPE = 1 };
+
+typedef struct panel_compare {
+    const char *scene_path;
+    double fps, time_s;
+    bool paused;
+    panel_compare_pack *packs;
+    int npacks;
+    /* in and out: the widgets edit these */
+    int *layout;                 /* PANEL_LAYOUT_* */
+    int *wipe_a, *wipe_b;        /* the two packs of the wipe */
+    float *wipe;                 /* the divider, 0..1 from the left */
+    bool *show_heat;             /* heat maps instead of the images */
+    float *heat_max;             /* the heat map's full scale (0: automatic) */
+    const char *heat_status;     /* what the heat maps show, or why there are none */
+    const char *note;            /* a line under the timings (the time axis, ...) */
+} panel_compare;
+
+typedef struct panel_compare_actions {
+    panel_actions common;        /* reload, pause, screenshot, save/load preset */
+    int changed_pack;            /* a pack whose values changed (-1: none) */
+    bool recompile[8];           /* per pack: a define changed */
+    bool reset_all[8];           /* per pack: its "Reset all" (already applied) */
+    bool compute_heat;           /* "Compute heat maps" */
+    bool reset_camera;
+} panel_compare_actions;
+
+/* The compare window's panel: the layout (grid or wipe, and which two
+ * packs), the heat-map controls, a row per pack with its GPU and wall time
+ * and error, then a collapsing section per pack with its sliders. */
+void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions *out);
+
+/* Text over the scene on a dark box, e.g. a pack's name and time in its
+ * corner of the grid: its top-left corner at (x, y) window pixels (top-left
+ * origin), or its top-right corner there when right_align. Call between
+ * panel_begin_frame and panel_render. */
+void panel_label(panel *p, float x, float y, const char *text, bool right_align);
+
 /* true while ImGui uses the mouse / keyboard: the camera should not. */
 bool panel_wants_mouse(const panel *p);
 bool panel_wants_keyboard(const panel *p);

@@ -8,6 +8,7 @@
 #include "cli.h"
 #include "cli_reference.h"
 #include "compare.h"
+#include "compare_view.h"
 #include "gl_ctx.h"
 #include "validate.h"
 
@@ -54,6 +55,7 @@ static const char *usage_view =
 
 static const char *usage_render =
     "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
+    "                   [--set PROGRAM.NAME=VALUE]...\n"
     "\n"
     "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
     "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
@@ -64,6 +66,8 @@ static const char *usage_render =
     "  --size WxH       image size (default: the glib's WindowSize)\n"
     "  --time SECONDS   simulated time of the first frame (default 0)\n"
     "  --frames N       render N frames, 1/60 s apart; prints the median GPU time\n"
+    "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
+    "                   as the panel would (NAME=V: of every Program); repeatable\n"
     "  --quiet          print only errors\n"
     "\n"
     "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
@@ -101,6 +105,8 @@ static int bad_usage(const char *usage, const char *what) {
 
 static int main_render(int argc, char **argv) {
     cli_render_desc d = {0};
+    static const char *sets[64];
+    d.sets = sets;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         if (is_help(a)) { fputs(usage_render, stdout); return CLI_OK; }
@@ -117,7 +123,10 @@ static int main_render(int argc, char **argv) {
             d.frames = (int)f;
             i++;
         } else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }
-        else if (strcmp(a, "--quiet") == 0) d.quiet = true;
+        else if (strcmp(a, "--set") == 0 && next) {
+            if (d.nsets < (int)(sizeof sets / sizeof *sets)) sets[d.nsets++] = next;
+            i++;
+        } else if (strcmp(a, "--quiet") == 0) d.quiet = true;
         else if (a[0] == '-') return bad_usage(usage_render, "unknown option");
         else if (!d.glib) d.glib = a;
         else return bad_usage(usage_render, "one scene at a time");
@@ -148,6 +157,46 @@ static int main_view(int argc, char **argv) {
     return cli_view(&d);
 }
 
+static int main_compare_view(int argc, char **argv) {
+    cli_compare_view_desc d = {0};
+    const char *u = compare_view_usage();
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
+        double v;
+        if (is_help(a)) { fputs(u, stdout); return CLI_OK; }
+        if (strcmp(a, "--size") == 0) {
+            if (!parse_size(next, &d.width, &d.height)) return bad_usage(u, "--size wants WxH");
+            i++;
+        } else if (strcmp(a, "--time") == 0) {
+            if (!parse_double(next, &d.time_s)) return bad_usage(u, "--time wants seconds");
+            i++;
+        } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
+        else if (strcmp(a, "--packs") == 0 && next) {
+            static char buf[1024];
+            snprintf(buf, sizeof buf, "%s", next);
+            d.npacks = 0;
+            for (char *save = NULL, *p = strtok_r(buf, ",", &save); p; p = strtok_r(NULL, ",", &save)) {
+                if (d.npacks >= COMPARE_VIEW_MAX_PACKS) return bad_usage(u, "--packs takes 2 to 4 packs");
+                d.packs[d.npacks++] = p;
+            }
+            i++;
+        } else if (strcmp(a, "--ref-caustic-res") == 0) {
+            if (!parse_double(next, &v) || v < 1 || v > 8192) return bad_usage(u, "--ref-caustic-res wants 1..8192");
+            d.ref_caustic_res = (int)v;
+            i++;
+        } else if (strcmp(a, "--ref-photons") == 0) {
+            if (!parse_double(next, &v) || v < 1 || v > 1e6) return bad_usage(u, "--ref-photons wants 1..1000000");
+            d.ref_photons = (int)v;
+            i++;
+        } else if (a[0] == '-') return bad_usage(u, "unknown option");
+        else if (!d.glib) d.glib = a;
+        else return bad_usage(u, "one scene at a time");
+    }
+    if (!d.glib) return bad_usage(u, "which scene? give FILE.glib");
+    if (d.npacks < 2) return bad_usage(u, "which packs? give --packs a,b (2 to 4)");
+    return cli_compare_view(&d);
+}
+
 static int main_validate(int argc, char **argv) {
     for (int i = 0; i < argc; i++)
         if (is_help(argv[i])) { fputs(usage_validate, stdout); return CLI_OK; }
@@ -176,7 +225,8 @@ int main(int argc, char **argv) {
         fputs(strcmp(which, "view") == 0 ? usage_view : strcmp(which, "render") == 0 ? usage_render
               : strcmp(which, "validate") == 0 ? usage_validate
               : strcmp(which, "compare") == 0 ? compare_usage()
-              : strcmp(which, "bench") == 0 ? bench_usage() : usage_main, stdout);
+              : strcmp(which, "bench") == 0 ? bench_usage()
+              : strcmp(which, "compare-view") == 0 ? compare_view_usage() : usage_main, stdout);
         return CLI_OK;
     }
     if (strcmp(cmd, "render") == 0) return main_render(argc - 2, argv + 2);
@@ -185,6 +235,7 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "compare") == 0) return cli_compare(argc - 2, argv + 2);
     if (strcmp(cmd, "reference") == 0) return cli_reference(argc - 2, argv + 2);
     if (strcmp(cmd, "bench") == 0) return cli_bench(argc - 2, argv + 2);
+    if (strcmp(cmd, "compare-view") == 0) return main_compare_view(argc - 2, argv + 2);
     if (strcmp(cmd, "assets") == 0) return cli_assets(argc - 2, argv + 2);
     if (strstr(cmd, ".glib")) return main_view(argc - 1, argv + 1);   /* `tarn scene.glib` */
     fprintf(stderr, "tarn: unknown command '%s'\n\n%s", cmd, usage_main);

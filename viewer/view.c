@@ -16,14 +16,10 @@
 #include "panel.h"
 #include "render.h"
 #include "view_script.h"
+#include "view_util.h"
 #include "watch.h"
 
 #define PANEL_WIDTH 440   /* the slider panel's column, left of the scene */
-
-typedef struct orbit {
-    float center[3], up[3];
-    float distance, yaw, pitch;      /* radians */
-} orbit;
 
 typedef struct viewer {
     gl_ctx *ctx;
@@ -34,52 +30,10 @@ typedef struct viewer {
     orbit cam, cam_home;
     double t, last_wall;
     bool paused;
-    double last_mx, last_my;
-    bool dragging_orbit, dragging_pan;
-    double scroll;
+    view_mouse mouse;
     int shots;
     double fps;
 } viewer;
-
-/* ---- camera ---- */
-
-static orbit orbit_from_view(render_view v) {
-    orbit o;
-    memcpy(o.center, v.center, sizeof o.center);
-    memcpy(o.up, v.up, sizeof o.up);
-    float d[3] = { v.eye[0] - v.center[0], v.eye[1] - v.center[1], v.eye[2] - v.center[2] };
-    o.distance = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    if (o.distance < 1e-6f) o.distance = 1.0f;
-    o.yaw = atan2f(d[0], d[2]);
-    o.pitch = asinf(fmaxf(-1.0f, fminf(1.0f, d[1] / o.distance)));
-    return o;
-}
-
-static render_view orbit_view(const orbit *o) {
-    render_view v;
-    memcpy(v.center, o->center, sizeof v.center);
-    memcpy(v.up, o->up, sizeof v.up);
-    v.eye[0] = o->center[0] + o->distance * cosf(o->pitch) * sinf(o->yaw);
-    v.eye[1] = o->center[1] + o->distance * sinf(o->pitch);
-    v.eye[2] = o->center[2] + o->distance * cosf(o->pitch) * cosf(o->yaw);
-    return v;
-}
-
-static void orbit_pan(orbit *o, float dx, float dy) {
-    /* camera right = normalize(cross(forward, up)), camera up = cross(right, forward) */
-    render_view v = orbit_view(o);
-    float f[3] = { v.center[0] - v.eye[0], v.center[1] - v.eye[1], v.center[2] - v.eye[2] };
-    float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    for (int i = 0; i < 3; i++) f[i] /= fl;
-    float rgt[3] = { f[1] * o->up[2] - f[2] * o->up[1], f[2] * o->up[0] - f[0] * o->up[2],
-                     f[0] * o->up[1] - f[1] * o->up[0] };
-    float rl = sqrtf(rgt[0] * rgt[0] + rgt[1] * rgt[1] + rgt[2] * rgt[2]);
-    if (rl < 1e-6f) return;
-    for (int i = 0; i < 3; i++) rgt[i] /= rl;
-    float u[3] = { rgt[1] * f[2] - rgt[2] * f[1], rgt[2] * f[0] - rgt[0] * f[2], rgt[0] * f[1] - rgt[1] * f[0] };
-    float k = o->distance * 0.0015f;
-    for (int i = 0; i < 3; i++) o->center[i] += (-dx * rgt[i] + dy * u[i]) * k;
-}
 
 /* ---- actions ---- */
 
@@ -122,32 +76,7 @@ static void reload(viewer *v) {
     rewatch(v);
 }
 
-static bool screenshot(viewer *v, const char *path) {
-    int w, h;
-    glfwGetFramebufferSize(v->win, &w, &h);
-    img im;
-    memset(&im, 0, sizeof im);
-    if (!img_alloc(&im, w, h, 4)) return false;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, im.px);
-    img_flip_rows(&im);
-    char err[512];
-    bool ok = img_write(path, &im, err, sizeof err);
-    fprintf(stderr, ok ? "tarn: screenshot %s\n" : "tarn: screenshot failed: %s\n", ok ? path : err);
-    img_free(&im);
-    return ok;
-}
-
-static void default_shot_path(viewer *v, char *out, size_t len) {
-    time_t now = time(NULL);
-    struct tm tmv;
-    localtime_r(&now, &tmv);
-    char stamp[32];
-    strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tmv);
-    snprintf(out, len, "tarn-%s-%d.png", stamp, v->shots++);
-}
+static bool screenshot(viewer *v, const char *path) { return view_screenshot(v->win, path); }
 
 static void preset(viewer *v, bool save) {
     char path[1100], err[512] = "";
@@ -176,7 +105,7 @@ static void apply_actions(viewer *v, const panel_actions *a) {
     if (a->toggle_pause) v->paused = !v->paused;
     if (a->screenshot) {
         char path[128];
-        default_shot_path(v, path, sizeof path);
+        view_shot_path(v->shots++, path, sizeof path);
         screenshot(v, path);
     }
 }
@@ -185,7 +114,7 @@ static void apply_actions(viewer *v, const panel_actions *a) {
 
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
     viewer *v = glfwGetWindowUserPointer(w);
-    if (!v->panel || !panel_wants_mouse(v->panel)) v->scroll += dy;
+    if (!v->panel || !panel_wants_mouse(v->panel)) v->mouse.scroll += dy;
 }
 
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
@@ -205,27 +134,7 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
 }
 
 static void handle_mouse(viewer *v) {
-    double mx, my;
-    glfwGetCursorPos(v->win, &mx, &my);
-    bool left = glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    bool pan = glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
-               glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-    bool ui = panel_wants_mouse(v->panel);
-    float dx = (float)(mx - v->last_mx), dy = (float)(my - v->last_my);
-    if (left && v->dragging_orbit) {
-        v->cam.yaw -= dx * 0.01f;
-        v->cam.pitch = fmaxf(-1.55f, fminf(1.55f, v->cam.pitch + dy * 0.01f));
-    }
-    if (pan && v->dragging_pan) orbit_pan(&v->cam, dx, dy);
-    v->dragging_orbit = left && (v->dragging_orbit || !ui);
-    v->dragging_pan = pan && (v->dragging_pan || !ui);
-    if (v->scroll != 0) {
-        v->cam.distance *= powf(0.9f, (float)v->scroll);
-        v->cam.distance = fmaxf(1e-3f, v->cam.distance);
-        v->scroll = 0;
-    }
-    v->last_mx = mx;
-    v->last_my = my;
+    view_mouse_update(&v->mouse, v->win, panel_wants_mouse(v->panel), &v->cam);
 }
 
 /* ---- the loop ---- */
@@ -274,6 +183,8 @@ static int run(viewer *v, const cli_view_desc *d) {
     while (!glfwWindowShouldClose(v->win)) {
         glfwPollEvents();
         frame(v, script);
+        char lost[1024];
+        if (gl_ctx_lost(v->ctx, lost, sizeof lost)) { fprintf(stderr, "tarn: %s\n", lost); rc = CLI_NO_GL; break; }
         if (script) {
             view_script_ctx sc = { .r = v->r, .time_s = &v->t };
             int st = view_script_step(script, &sc);

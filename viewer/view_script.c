@@ -115,6 +115,7 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
         s->arg[strcspn(s->arg, " \t")] = '\0';
         return VIEW_SCRIPT_SCREENSHOT;
     }
+    if (c->custom) return c->custom(c->user, cmd, rest, s->path, line);
     fprintf(stderr, "%s:%d: unknown script action '%s'\n", s->path, line, cmd);
     return VIEW_SCRIPT_FAILED;
 }

@@ -7,7 +7,8 @@
  *   screenshot PATH               write the window's image
  *   reload                        reload the scene, as a save would
  *   quit
- * `#` starts a comment. */
+ * `#` starts a comment. A window may add actions of its own (ctx.custom):
+ * `tarn compare-view` does (compare_view.h). */
 #ifndef TARN_VIEW_SCRIPT_H
 #define TARN_VIEW_SCRIPT_H
 
@@ -27,6 +28,11 @@ typedef enum view_script_status {
 typedef struct view_script_ctx {
     render *r;
     double *time_s;
+    /* An action this module does not know goes here (NULL: unknown actions
+     * fail). cmd is its first word, rest the words after it; return what
+     * the caller must do, VIEW_SCRIPT_FAILED with a message on stderr. */
+    view_script_status (*custom)(void *user, const char *cmd, char *rest, const char *file, int line);
+    void *user;
 } view_script_ctx;
 
 view_script *view_script_load(const char *path, char *err, int errlen);

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# `tarn compare-view` under Xvfb: two packs in one window, a slider of one
+# reaches only its own program, the wipe and the heat maps are drawn, and
+# each pack's time is reported.
+set -u
+bin=$1; src=$2
+command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
+rm -f compare-grid.png compare-wipe.png compare-heat.png
+xvfb-run -a -s "-screen 0 1280x800x24" "$bin" compare-view "$src/scenes/lake.glib" --packs basic,basic \
+    --size 320x180 --time 1 --ref-caustic-res 32 --ref-photons 4 \
+    --script "$src/tests/data/compare_view/compare.script" 2>&1 | tee compare-view-test.log
+rc=${PIPESTATUS[0]}
+fail() { echo "FAIL: $*"; exit 1; }
+[ "$rc" -eq 0 ] || fail "tarn compare-view exited $rc"
+[ "$(grep -c 'holds the expected value' compare-view-test.log)" -eq 2 ] || fail "an expect is missing"
+grep -q "every pack has a heat map" compare-view-test.log || fail "no heat maps"
+[ "$(grep -c 'heat map .*RMSE [0-9.]*, PSNR' compare-view-test.log)" -eq 2 ] || fail "a pack's RMSE is missing"
+grep -q "1 basic: [0-9.]* ms GPU, [0-9.]* ms wall" compare-view-test.log || fail "no timings for pack 1"
+grep -q "2 basic #2: [0-9.]* ms GPU, [0-9.]* ms wall" compare-view-test.log || fail "no timings for pack 2"
+for f in compare-grid.png compare-wipe.png compare-heat.png; do [ -s "$f" ] || fail "no $f"; done
+echo "compare-view test: ok"

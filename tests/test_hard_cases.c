@@ -1,0 +1,320 @@
+/* test_hard_cases: every hard case (the scenes in scenes/hard) through every pack
+ * there is (packs/NAME/pack.glib, found at run time), and every slider of
+ * every pack at each end of its range:
+ *
+ *   - no NaN or Inf in any pixel of the image (a float target), nor in any
+ *     buffer the pack shows (bench.txt `buffer` lines, TARN_OUTPUT) where
+ *     the reference sees water; no GL error;
+ *   - the colour error against the CPU reference of the same frame (RMSE,
+ *     linear RGB) within the pack's bound for the case: its
+ *     packs/NAME/bounds.txt line for the case, else its `*` line, else the
+ *     built-in table (packset_bound_resolve, viewer/packset.c). A bound of
+ *     `none` says why the pack cannot hold one there; the test prints the
+ *     reason and checks the rest.
+ *
+ * Images are 96x54, the reference at the same size with a coarse caustic
+ * grid (48 cells, 9 photons a cell): the bounds are about the pack, not
+ * the photon noise. References are cached in ./hard-ref (keyed by the
+ * world, camera, size and time, so an edited scene is rendered again).
+ * See docs/benchmark.md, "Hard cases". The scenes are every .glib file in
+ * scenes/hard. */
+#include <GL/gl.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "check.h"
+#include "gl_ctx.h"
+#include "packset.h"
+#include "ref_metrics.h"
+#include "refcache.h"
+#include "render.h"
+
+#define W 96
+#define H 54
+#define T 1.0
+#define MAX_CASES 64
+
+typedef struct hard_case { char name[128], path[1024]; } hard_case;
+
+static hard_case cases[MAX_CASES];
+static int ncases;
+static packset_name packs[PACKSET_MAX];
+static int npacks;
+static refcache_image refs[MAX_CASES];
+static bool have_ref[MAX_CASES];
+static float px[W * H * 4];
+
+static double wall_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp_case(const void *a, const void *b) {
+    return strcmp(((const hard_case *)a)->name, ((const hard_case *)b)->name);
+}
+
+static void find_cases(void) {
+    const char *dir = TARN_SOURCE_DIR "/scenes/hard";
+    DIR *d = opendir(dir);
+    if (!d) return;
+    struct dirent *e;
+    while ((e = readdir(d)) && ncases < MAX_CASES) {
+        size_t n = strlen(e->d_name);
+        if (n < 6 || strcmp(e->d_name + n - 5, ".glib") != 0 || n - 5 >= sizeof cases[0].name) continue;
+        snprintf(cases[ncases].name, sizeof cases[ncases].name, "%.*s", (int)(n - 5), e->d_name);
+        snprintf(cases[ncases].path, sizeof cases[ncases].path, "%s/%s", dir, e->d_name);
+        ncases++;
+    }
+    closedir(d);
+    qsort(cases, (size_t)ncases, sizeof *cases, cmp_case);
+}
+
+static long nonfinite(const float *p, long n) {
+    long bad = 0;
+    for (long i = 0; i < n; i++)
+        for (int c = 0; c < 4; c++)
+            if (!isfinite(p[i * 4 + c])) { bad++; break; }
+    return bad;
+}
+
+/* Draws one frame into the target; false on a GL error (message printed). */
+static bool draw(render *r, const render_target *tg, const char *what) {
+    while (glGetError() != GL_NO_ERROR) {}
+    render_frame(r, T, tg->fbo, W, H, NULL);
+    bool ok = render_target_read(tg, px);
+    GLenum e = glGetError();
+    CHECK_MSG(ok && e == GL_NO_ERROR, "%s: GL error 0x%x", what, e);
+    return ok && e == GL_NO_ERROR;
+}
+
+static void test_references(void) {
+    CHECK_MSG(ncases >= 13, "%d hard cases in scenes/hard", ncases);
+    refcache_opts o = { .caustic_res = 48, .photons_per_cell = 9 };
+    for (int c = 0; c < ncases; c++) {
+        char err[4096] = "";
+        have_ref[c] = refcache_get("hard-ref", cases[c].path, NULL, W, H, T, NULL, &o, NULL, NULL, &refs[c],
+                                   err, sizeof err);
+        CHECK_MSG(have_ref[c], "%s: %s", cases[c].name, err);
+        fprintf(stderr, "  reference %-14s %s\n", cases[c].name, have_ref[c] && refs[c].from_cache ? "(cached)" : "");
+    }
+}
+
+static void test_every_case_through_every_pack(void) {
+    if (!npacks) SKIP("no packs under %s/packs", TARN_SOURCE_DIR);
+    render_target tg;
+    CHECK(render_target_create(&tg, W, H, true));
+    fprintf(stderr, "  %-12s %-14s %9s %9s  %s\n", "pack", "case", "RMSE", "bound", "");
+    for (int p = 0; p < npacks; p++) {
+        packset_bounds pb;
+        char err[2048] = "";
+        CHECK_MSG(packset_bounds_load(TARN_SOURCE_DIR, packs[p], &pb, err, sizeof err), "%s", err);
+        render_desc rd = { .pack = packs[p] };
+        render *r = render_create(&rd);
+        for (int c = 0; c < ncases; c++) {
+            char what[256];
+            snprintf(what, sizeof what, "%.120s with %.60s", cases[c].name, packs[p]);
+            bool loaded = render_load(r, cases[c].path);
+            CHECK_MSG(loaded, "%s: %s", what, render_messages(r));
+            if (strcmp(cases[c].name, "steep_over") == 0)
+                CHECK_STR_CONTAINS(render_messages(r), "is above 1, where the surface folds into loops; using 1");
+            if (!loaded || !draw(r, &tg, what)) continue;
+            long bad = nonfinite(px, (long)W * H);
+            CHECK_MSG(bad == 0, "%s: %ld pixels are NaN or Inf", what, bad);
+            if (!have_ref[c]) continue;
+            ref_fimage A = { px, W, H, 4 }, B = { refs[c].color, W, H, 3 };
+            ref_image_metrics m;
+            char merr[256];
+            CHECK(ref_metrics_image(&A, &B, NULL, &m, merr, sizeof merr));
+            const char *from = NULL;
+            const packset_bound *pbd = packset_bound_resolve(&pb, cases[c].name, &from);
+            double bound = pbd ? pbd->max_rmse : -1;
+            const char *why = pbd ? pbd->why : "no bound given";
+            if (bound < 0) {
+                fprintf(stderr, "  %-12s %-14s %9.4f %9s  no bound (%s): %s\n", packs[p], cases[c].name, m.rmse,
+                        "none", from, why && why[0] ? why : "(no reason given)");
+                CHECK_MSG(why && why[0], "%s: a bound of 'none' must say why (%s)", what, from);
+                continue;
+            }
+            fprintf(stderr, "  %-12s %-14s %9.4f %9.4f  %s\n", packs[p], cases[c].name, m.rmse, bound,
+                    m.rmse <= bound ? "" : "OVER");
+            CHECK_MSG(m.rmse <= bound, "%s: RMSE %.4f is over the bound %.4f (%s)", what, m.rmse, bound, from);
+        }
+        render_destroy(r);
+        packset_bounds_free(&pb);
+    }
+    render_target_destroy(&tg);
+}
+
+/* The per-pixel buffers a pack shows (its bench.txt `buffer` lines, or
+ * `Define TARN_OUTPUT`): finite on every hard case, over the pixels where
+ * the reference sees water. */
+static void test_buffers_are_finite(void) {
+    if (!npacks) SKIP("no packs");
+    render_target tg;
+    CHECK(render_target_create(&tg, W, H, true));
+    int shown = 0;
+    for (int p = 0; p < npacks; p++) {
+        packset_bench pb;
+        char err[2048] = "";
+        packset_bench_load(TARN_SOURCE_DIR, packs[p], &pb, err, sizeof err);
+        render_desc rd = { .pack = packs[p] };
+        render *r = render_create(&rd);
+        for (int mode = 1; mode <= 4; mode++) {
+            const packset_buffer *spec = NULL;
+            for (int i = 0; i < pb.nbuffers; i++)
+                if (strcmp(pb.buffers[i].name, packset_buffer_names[mode - 1]) == 0) spec = &pb.buffers[i];
+            for (int c = 0; c < ncases; c++) {
+                if (!render_load(r, cases[c].path)) continue;   /* reported by the case test */
+                int nsets;
+                unif_set *sets = render_uniforms(r, &nsets);
+                bool any = false;
+                if (spec) {
+                    bool changed;
+                    any = packset_apply(sets, nsets, &spec->how, &changed, err, sizeof err);
+                    CHECK_MSG(any, "%s: buffer %s: %s", pb.path, spec->name, err);
+                } else {
+                    for (int i = 0; i < nsets; i++) {
+                        unif_entry *e = unif_find(&sets[i], "TARN_OUTPUT");
+                        if (e && e->is_define && e->min <= mode && e->max >= mode) {
+                            e->value[0] = (float)mode;
+                            any = true;
+                        }
+                    }
+                }
+                if (!any) break;
+                render_rebuild_programs(r);
+                char what[256];
+                snprintf(what, sizeof what, "%.60s buffer %s on %.100s", packs[p], packset_buffer_names[mode - 1],
+                         cases[c].name);
+                if (!draw(r, &tg, what) || !have_ref[c]) continue;
+                long bad = 0;
+                for (long i = 0; i < (long)W * H; i++)
+                    if (refs[c].mask[i] == 1 /* REF_MASK_WATER */)
+                        for (int k = 0; k < 3; k++)
+                            if (!isfinite(px[i * 4 + k])) { bad++; break; }
+                CHECK_MSG(bad == 0, "%s: %ld water pixels are NaN or Inf", what, bad);
+                shown++;
+                for (int i = 0; i < nsets; i++) unif_reset_all(&sets[i]);
+            }
+        }
+        render_destroy(r);
+        packset_bench_free(&pb);
+    }
+    fprintf(stderr, "  %d buffer images checked\n", shown);
+    render_target_destroy(&tg);
+}
+
+/* Sets an entry to one end of its range (a colour: every component 0 or 1;
+ * a checkbox: 0 or 1). False for entries without a range. */
+static bool set_end(unif_entry *e, bool high) {
+    switch (e->widget) {
+    case UNIF_WIDGET_SLIDER:
+        e->value[0] = high ? e->max : e->min;
+        return true;
+    case UNIF_WIDGET_CHECKBOX:
+        e->value[0] = high ? 1.0f : 0.0f;
+        return true;
+    case UNIF_WIDGET_COLOR:
+        for (int k = 0; k < e->ncomp; k++) e->value[k] = high ? 1.0f : 0.0f;
+        return true;
+    case UNIF_WIDGET_DRAG:
+        if (!(e->min < e->max)) return false;
+        for (int k = 0; k < e->ncomp; k++) e->value[k] = high ? e->max : e->min;
+        return true;
+    default:
+        return false;
+    }
+}
+
+/* Every slider, checkbox and colour of every pack at each end of its range:
+ * all at once on the lake and under water, then one at a time on the lake
+ * (a define's rebuild is shared with the next entry's; an end that is the
+ * default was drawn already): no NaN, no Inf, no GL error. The error is not bounded here: a slider at an end
+ * is a deliberate departure (opacity 1 hides the floor). */
+static void test_every_slider_at_each_end(void) {
+    if (!npacks) SKIP("no packs");
+    render_target tg;
+    CHECK(render_target_create(&tg, W, H, true));
+    const char *scenes[] = { TARN_SOURCE_DIR "/scenes/lake.glib", TARN_SOURCE_DIR "/scenes/hard/underwater.glib" };
+    for (int p = 0; p < npacks; p++) {
+        double t0 = wall_s();
+        render_desc rd = { .pack = packs[p] };
+        render *r = render_create(&rd);
+        int tried = 0;
+        for (int s = 0; s < 2; s++) {
+            if (!render_load(r, scenes[s])) {
+                CHECK_MSG(false, "%s: %s", packs[p], render_messages(r));
+                continue;
+            }
+            int nsets;
+            unif_set *sets = render_uniforms(r, &nsets);
+            bool stale = false;   /* the programs were built with a define since reset */
+            for (int high = 0; high < 2; high++) {
+                /* every entry at once (k = -1), then (on the lake) one entry at a time */
+                for (int i = 0; i < nsets; i++)
+                    for (int k = -1; k < sets[i].n; k++) {
+                        if (k < 0 && i > 0) continue;
+                        if (k >= 0 && s > 0) break;
+                        bool rebuild = false, any = false;
+                        for (int i2 = 0; i2 < nsets; i2++)
+                            for (int k2 = 0; k2 < sets[i2].n; k2++) {
+                                unif_entry *e = &sets[i2].entries[k2];
+                                if ((k < 0 || (i2 == i && k2 == k)) && set_end(e, high)) {
+                                    rebuild |= e->is_define && !unif_is_default(e);
+                                    any |= !unif_is_default(e);   /* an end at the default: drawn already */
+                                }
+                            }
+                        if (!any) continue;
+                        if (rebuild || stale)
+                            CHECK_MSG(render_rebuild_programs(r), "%s: %s", packs[p], render_messages(r));
+                        stale = rebuild;
+                        char what[512];
+                        snprintf(what, sizeof what, "%.60s, %.63s at its %s (%.300s)", packs[p],
+                                 k < 0 ? "every entry" : sets[i].entries[k].name, high ? "max" : "min", scenes[s]);
+                        if (draw(r, &tg, what)) {
+                            long bad = nonfinite(px, (long)W * H);
+                            CHECK_MSG(bad == 0, "%s: %ld pixels are NaN or Inf", what, bad);
+                        }
+                        tried++;
+                        for (int i2 = 0; i2 < nsets; i2++) unif_reset_all(&sets[i2]);
+                    }
+                if (stale) render_rebuild_programs(r);
+                stale = false;
+            }
+        }
+        fprintf(stderr, "  %-12s %d slider ends drawn in %.1f s\n", packs[p], tried, wall_s() - t0);
+        render_destroy(r);
+    }
+    render_target_destroy(&tg);
+}
+
+int main(void) {
+    char err[512];
+    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
+    find_cases();
+    npacks = packset_list(TARN_SOURCE_DIR, packs, PACKSET_MAX);
+    fprintf(stderr, "  %d hard cases, %d packs:", ncases, npacks);
+    for (int p = 0; p < npacks; p++) fprintf(stderr, " %s", packs[p]);
+    fputc('\n', stderr);
+    double t = wall_s();
+    RUN(test_references);
+    fprintf(stderr, "  %.1f s\n", wall_s() - t);
+    t = wall_s();
+    RUN(test_every_case_through_every_pack);
+    fprintf(stderr, "  %.1f s\n", wall_s() - t);
+    t = wall_s();
+    RUN(test_buffers_are_finite);
+    fprintf(stderr, "  %.1f s\n", wall_s() - t);
+    t = wall_s();
+    RUN(test_every_slider_at_each_end);
+    fprintf(stderr, "  %.1f s\n", wall_s() - t);
+    for (int c = 0; c < ncases; c++) refcache_free(&refs[c]);
+    gl_ctx_destroy(ctx);
+    return check_summary();
+}

@@ -1,0 +1,1607 @@
+/* bench: `tarn bench`, speed against error (see bench.h, docs/benchmark.md). */
+#include "bench.h"
+
+#include <GL/gl.h>
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "gl_ctx.h"
+#include "image_io.h"
+#include "packset.h"
+#include "plot.h"
+#include "ref_metrics.h"
+#include "refcache.h"
+#include "render.h"
+
+#ifndef TARN_SOURCE_DIR
+#define TARN_SOURCE_DIR "."
+#endif
+
+#define MAX_SCENES 16
+#define MAX_TIMES 16
+#define PATH_LEN 2048
+
+static const char *usage =
+    "usage: tarn bench [SCENE.glib...] [--packs a,b] [--size WxH] [--times t1,t2]\n"
+    "                  [--frames N] [--out DIR] [--docs FILE] [options]\n"
+    "\n"
+    "Speed against error: every pack (or those named) at every setting its\n"
+    "packs/NAME/bench.txt declares, at fixed simulated times, timed and compared\n"
+    "with the CPU reference of the same frame. Writes DIR/bench.csv, bench.json,\n"
+    "passes.csv (GPU time per pass), report.md, plot-SCENE.png, the frames and\n"
+    "their heat maps (DIR/img), and\n"
+    "caches the reference images in DIR/ref (reruns reuse them).\n"
+    "\n"
+    "  SCENE.glib         scenes to measure (default: scenes/lake.glib)\n"
+    "  --packs a,b        packs to measure (default: every packs/NAME/pack.glib)\n"
+    "  --size WxH         image size (default 480x270)\n"
+    "  --times t1,t2      simulated times, seconds (default 1,4)\n"
+    "  --frames N         at most N timed frames per setting and time (default 30)\n"
+    "  --frame-budget S   ...and no more than S seconds of them, at least 3 frames\n"
+    "                     (default 1.5: on a CPU rasteriser frames take long)\n"
+    "  --warmup N         untimed frames first (default 1; the first frame\n"
+    "                     also runs the RenderToTextureOnce passes)\n"
+    "  --out DIR          where the results go (default out/bench)\n"
+    "  --docs FILE        also write the report into FILE between the markers\n"
+    "                     <!-- bench:begin --> and <!-- bench:end --> (e.g.\n"
+    "                     docs/benchmark.md), and the plots beside it\n"
+    "  --time-axis A      auto, gpu or wall: the time the plot and the Pareto front\n"
+    "                     use (auto: wall time on a CPU rasteriser such as\n"
+    "                     llvmpipe, whose GPU timestamps do not time the\n"
+    "                     rasterisation; GPU time otherwise)\n"
+    "  --ref-spp N        reference subsamples N x N (default 1)\n"
+    "  --ref-photons N    reference photons per caustic cell (default 36)\n"
+    "  --ref-caustic-res N  reference caustic grid (default 256)\n"
+    "  --heat-max E       heat-map scale, linear RGB error (default 0.25)\n"
+    "  --no-images        do not write the frames and heat maps\n"
+    "  --quiet            no progress bar\n"
+    "  --root DIR         the tree whose packs/ is used (default: tarn's source tree)\n"
+    "\n"
+    "exit codes: 0 ok, 1 a scene, pack or output failed (the rest is measured),\n"
+    "2 bad usage, 3 no OpenGL\n";
+
+const char *bench_usage(void) { return usage; }
+
+/* ---- the run's state ---- */
+
+typedef struct bench_opts {
+    const char *scenes[MAX_SCENES];
+    int nscenes;
+    packset_name packs[PACKSET_MAX];
+    int npacks;
+    int w, h;
+    double times[MAX_TIMES];
+    int ntimes;
+    int frames, warmup;
+    double frame_budget;
+    const char *out, *docs;
+    int time_axis;               /* 0 auto, 1 gpu, 2 wall */
+    refcache_opts ref;
+    double heat_max;
+    bool images, quiet;
+} bench_opts;
+
+typedef struct row {             /* one scene, pack, setting and time */
+    int scene, pack, setting, ti;
+    bool ok;
+    char error[600];
+    char note[600];
+    int frames;
+    double gpu_ms, wall_ms, first_wall_ms;
+    double rmse, psnr, mae, p95, p99, max_abs, over_share;
+    long nan_px, inf_px;
+    unsigned gl_error;
+    bool has[BENCH_OUTPUT_COUNT];
+    double comp_median[BENCH_OUTPUT_COUNT], comp_p95[BENCH_OUTPUT_COUNT], comp_mean[BENCH_OUTPUT_COUNT];
+    double comp_rel_mean[BENCH_OUTPUT_COUNT];
+    int npasses;                 /* GPU time per pass (render_pass_times), medians */
+    char pass_name[GPU_TIMER_MARKS][GPU_TIMER_NAME];
+    double pass_ms[GPU_TIMER_MARKS];
+} row;
+
+typedef struct summary {         /* one scene, pack and setting, over the times */
+    int scene, pack, setting;
+    bool ok;
+    double gpu_ms, wall_ms, rmse, psnr, p95, over_share;
+    double comp[BENCH_OUTPUT_COUNT];   /* hit p95 (m), Fresnel MAE, irradiance rel. mean, depth MAE */
+    bool has[BENCH_OUTPUT_COUNT];
+    long nan_px;
+    bool pareto;
+} summary;
+
+typedef struct ref_entry {
+    uint64_t key;
+    int ti;
+    refcache_image im;
+    bool tried, ok;
+    double weight;               /* progress units: a render, or a read from the cache */
+} ref_entry;
+
+typedef struct progress {
+    double start, total, done, last_draw;
+    bool tty, quiet;
+    char what[160];
+} progress;
+
+typedef struct bench {
+    bench_opts o;
+    char root[PATH_LEN];
+    char scene_abs[MAX_SCENES][PATH_LEN];
+    packset_bench pb[PACKSET_MAX];
+    row *rows;
+    int nrows;
+    summary *sums;
+    int nsums;
+    ref_entry *refs;
+    int nrefs;
+    double floor_gpu, floor_wall;
+    char gl_renderer[256], gl_version[256], cpu[256];
+    int cores;
+    bool cpu_raster;
+    int axis;                    /* resolved: 1 gpu, 2 wall */
+    double seconds;
+    char started[64];
+    progress pr;
+    int failures;
+    int refs_rendered, refs_cached;
+} bench;
+
+/* ---- small helpers ---- */
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n) {
+    if (n <= 0) return NAN;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* snprintf for paths: a path too long for its buffer is cut (and then
+ * not found), never overflowed. */
+static void fmt(char *out, size_t len, const char *f, ...) {
+    va_list ap;
+    va_start(ap, f);
+    vsnprintf(out, len, f, ap);
+    va_end(ap);
+}
+
+static bool mkdirs(const char *dir) {
+    char path[PATH_LEN];
+    snprintf(path, sizeof path, "%s", dir);
+    for (char *p = path + 1; *p; p++) {
+        if (*p != '/') continue;
+        *p = '\0';
+        if (mkdir(path, 0755) != 0 && errno != EEXIST) return false;
+        *p = '/';
+    }
+    return mkdir(path, 0755) == 0 || errno == EEXIST;
+}
+
+static bool is_file(const char *p) {
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+static void stem(const char *path, char *out, size_t len) {
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    size_t n = strlen(b);
+    if (n > 5 && strcmp(b + n - 5, ".glib") == 0) n -= 5;
+    snprintf(out, len, "%.*s", (int)n, b);
+}
+
+static bool write_text(const char *path, const char *text) {
+    FILE *f = fopen(path, "w");
+    if (!f) return false;
+    fputs(text, f);
+    return fclose(f) == 0;
+}
+
+/* A growing string. */
+typedef struct sbuf { char *s; size_t len, cap; } sbuf;
+
+static void sb_printf(sbuf *b, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    va_list ap2;
+    va_copy(ap2, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (n < 0) { va_end(ap2); return; }
+    if (b->len + (size_t)n + 1 > b->cap) {
+        size_t cap = (b->cap ? b->cap * 2 : 4096);
+        while (cap < b->len + (size_t)n + 1) cap *= 2;
+        char *s = realloc(b->s, cap);
+        if (!s) { va_end(ap2); return; }
+        b->s = s;
+        b->cap = cap;
+    }
+    vsnprintf(b->s + b->len, b->cap - b->len, fmt, ap2);
+    va_end(ap2);
+    b->len += (size_t)n;
+}
+
+/* ---- the progress bar ---- */
+
+static void fmt_dur(double s, char *buf, size_t n) {
+    if (s < 60) snprintf(buf, n, "%.0f s", s);
+    else snprintf(buf, n, "%d:%02d", (int)(s / 60), (int)fmod(s, 60));
+}
+
+static void progress_draw(progress *p, bool force) {
+    if (p->quiet) return;
+    double t = now_s();
+    if (!force && t - p->last_draw < 0.2) return;
+    p->last_draw = t;
+    double f = p->total > 0 ? p->done / p->total : 0;
+    if (f > 1) f = 1;
+    char el[32], eta[48] = "";
+    fmt_dur(t - p->start, el, sizeof el);
+    if (f > 0.02 && f < 1) {
+        char e[32];
+        fmt_dur((t - p->start) * (1 - f) / f, e, sizeof e);
+        snprintf(eta, sizeof eta, " ETA %s", e);
+    }
+    if (p->tty) {
+        enum { WIDTH = 28 };
+        char bar[WIDTH + 1];
+        int fill = (int)(f * WIDTH + 0.5);
+        for (int i = 0; i < WIDTH; i++) bar[i] = i < fill ? '#' : '.';
+        bar[WIDTH] = '\0';
+        fprintf(stderr, "\r[%s] %3.0f%% %s%s  %s\033[K", bar, 100 * f, el, eta, p->what);
+    } else if (force) {
+        fprintf(stderr, "bench: %3.0f%% %s%s  %s\n", 100 * f, el, eta, p->what);
+    }
+    fflush(stderr);
+}
+
+static void progress_set(progress *p, double done, bool force, const char *fmt, ...) {
+    p->done = done;
+    if (fmt) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(p->what, sizeof p->what, fmt, ap);
+        va_end(ap);
+    }
+    progress_draw(p, force);
+}
+
+typedef struct ref_progress_ctx { progress *p; double base, weight; } ref_progress_ctx;
+
+static void on_ref_progress(void *user, double f) {
+    ref_progress_ctx *c = user;
+    c->p->done = c->base + f * c->weight;
+    progress_draw(c->p, false);
+}
+
+/* ---- the machine ---- */
+
+static void machine(bench *b) {
+    snprintf(b->cpu, sizeof b->cpu, "unknown CPU");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (f) {
+        char line[512];
+        while (fgets(line, sizeof line, f)) {
+            if (strncmp(line, "model name", 10) != 0) continue;
+            char *colon = strchr(line, ':');
+            if (!colon) continue;
+            colon++;
+            while (*colon == ' ') colon++;
+            colon[strcspn(colon, "\n")] = '\0';
+            snprintf(b->cpu, sizeof b->cpu, "%s", colon);
+            break;
+        }
+        fclose(f);
+    }
+    b->cores = (int)sysconf(_SC_NPROCESSORS_ONLN);
+    const char *r = (const char *)glGetString(GL_RENDERER), *v = (const char *)glGetString(GL_VERSION);
+    snprintf(b->gl_renderer, sizeof b->gl_renderer, "%s", r ? r : "?");
+    snprintf(b->gl_version, sizeof b->gl_version, "%s", v ? v : "?");
+    b->cpu_raster = strstr(b->gl_renderer, "llvmpipe") || strstr(b->gl_renderer, "softpipe") ||
+                    strstr(b->gl_renderer, "SwiftShader") || strstr(b->gl_renderer, "lavapipe");
+    b->axis = b->o.time_axis ? b->o.time_axis : b->cpu_raster ? 2 : 1;
+    time_t now = time(NULL);
+    struct tm tmv;
+    gmtime_r(&now, &tmv);
+    strftime(b->started, sizeof b->started, "%Y-%m-%d %H:%M UTC", &tmv);
+}
+
+/* ---- command line ---- */
+
+static bool parse_size(const char *s, int *w, int *h) {
+    char x, extra;
+    return s && sscanf(s, "%d%c%d%c", w, &x, h, &extra) == 3 && (x == 'x' || x == 'X') && *w >= 8 && *h >= 8 &&
+           *w <= 8192 && *h <= 8192;
+}
+
+static bool parse_num(const char *s, double lo, double hi, double *out) {
+    char *end;
+    if (!s) return false;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end || errno || !isfinite(v) || v < lo || v > hi) return false;
+    *out = v;
+    return true;
+}
+
+static int bad_usage(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "tarn bench: ");
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\n\n%s", usage);
+    return CLI_USAGE;
+}
+
+static int parse_args(bench *b, int argc, char **argv) {
+    bench_opts *o = &b->o;
+    o->w = 480;
+    o->h = 270;
+    o->times[0] = 1.0;
+    o->times[1] = 4.0;
+    o->ntimes = 2;
+    o->frames = 30;
+    o->warmup = 1;
+    o->frame_budget = 1.5;
+    o->out = "out/bench";
+    o->heat_max = 0.25;
+    o->images = true;
+    const char *packs = NULL;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
+        double v;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage, stdout); return -1; }
+        if (strcmp(a, "--packs") == 0 && next) { packs = next; i++; }
+        else if (strcmp(a, "--root") == 0 && next) {
+            if (!realpath(next, b->root)) return bad_usage("--root: no directory '%s'", next);
+            i++;
+        }
+        else if (strcmp(a, "--size") == 0) {
+            if (!parse_size(next, &o->w, &o->h)) return bad_usage("--size wants WxH, e.g. 480x270");
+            i++;
+        } else if (strcmp(a, "--times") == 0) {
+            if (!next) return bad_usage("--times wants seconds, e.g. 1,4");
+            char buf[512];
+            snprintf(buf, sizeof buf, "%s", next);
+            o->ntimes = 0;
+            char *save = NULL;
+            for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+                if (o->ntimes >= MAX_TIMES || !parse_num(t, -1e6, 1e6, &o->times[o->ntimes]))
+                    return bad_usage("--times wants up to %d numbers, e.g. 1,4", MAX_TIMES);
+                o->ntimes++;
+            }
+            if (!o->ntimes) return bad_usage("--times wants seconds, e.g. 1,4");
+            i++;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (!parse_num(next, 1, 100000, &v)) return bad_usage("--frames wants 1..100000");
+            o->frames = (int)v;
+            i++;
+        } else if (strcmp(a, "--warmup") == 0) {
+            if (!parse_num(next, 0, 1000, &v)) return bad_usage("--warmup wants 0..1000");
+            o->warmup = (int)v;
+            i++;
+        } else if (strcmp(a, "--frame-budget") == 0) {
+            if (!parse_num(next, 0, 1e5, &o->frame_budget)) return bad_usage("--frame-budget wants seconds");
+            i++;
+        } else if (strcmp(a, "--out") == 0 && next) { o->out = next; i++; }
+        else if (strcmp(a, "--docs") == 0 && next) { o->docs = next; i++; }
+        else if (strcmp(a, "--time-axis") == 0 && next) {
+            if (strcmp(next, "auto") == 0) o->time_axis = 0;
+            else if (strcmp(next, "gpu") == 0) o->time_axis = 1;
+            else if (strcmp(next, "wall") == 0) o->time_axis = 2;
+            else return bad_usage("--time-axis wants auto, gpu or wall");
+            i++;
+        } else if (strcmp(a, "--ref-spp") == 0) {
+            if (!parse_num(next, 1, 16, &v)) return bad_usage("--ref-spp wants 1..16");
+            o->ref.spp = (int)v;
+            i++;
+        } else if (strcmp(a, "--ref-photons") == 0) {
+            if (!parse_num(next, 1, 1 << 20, &v)) return bad_usage("--ref-photons wants 1..1048576");
+            o->ref.photons_per_cell = (int)v;
+            i++;
+        } else if (strcmp(a, "--ref-caustic-res") == 0) {
+            if (!parse_num(next, 1, 8192, &v)) return bad_usage("--ref-caustic-res wants 1..8192");
+            o->ref.caustic_res = (int)v;
+            i++;
+        } else if (strcmp(a, "--heat-max") == 0) {
+            if (!parse_num(next, 1e-9, 1e9, &o->heat_max)) return bad_usage("--heat-max wants a positive error");
+            i++;
+        } else if (strcmp(a, "--no-images") == 0) o->images = false;
+        else if (strcmp(a, "--quiet") == 0) o->quiet = true;
+        else if (a[0] == '-') return bad_usage("unknown option '%s'", a);
+        else if (o->nscenes < MAX_SCENES) o->scenes[o->nscenes++] = a;
+        else return bad_usage("at most %d scenes", MAX_SCENES);
+    }
+    if (!o->nscenes) o->scenes[o->nscenes++] = TARN_SOURCE_DIR "/scenes/lake.glib";
+    for (int s = 0; s < o->nscenes; s++) {
+        char alt[PATH_LEN];
+        const char *p = o->scenes[s];
+        if (!is_file(p)) {
+            fmt(alt, sizeof alt, "%s/%s", b->root, p);
+            if (!is_file(alt)) return bad_usage("no scene '%s'", p);
+            p = alt;
+        }
+        if (!realpath(p, b->scene_abs[s])) return bad_usage("cannot resolve '%s'", p);
+    }
+    packset_name all[PACKSET_MAX];
+    int nall = packset_list(b->root, all, PACKSET_MAX);
+    char list[PACKSET_MAX * PACKSET_NAME_MAX] = "";
+    for (int i = 0; i < nall; i++) {
+        strcat(list, i ? ", " : "");
+        strcat(list, all[i]);
+    }
+    if (packs) {
+        char buf[1024];
+        snprintf(buf, sizeof buf, "%s", packs);
+        char *save = NULL;
+        for (char *p = strtok_r(buf, ",", &save); p; p = strtok_r(NULL, ",", &save)) {
+            if (!packset_exists(b->root, p))
+                return bad_usage("no pack '%s' (no %s/packs/%s/pack.glib); the packs are: %s", p, b->root, p,
+                                 nall ? list : "none");
+            if (o->npacks >= PACKSET_MAX) return bad_usage("at most %d packs", PACKSET_MAX);
+            snprintf(o->packs[o->npacks++], PACKSET_NAME_MAX, "%s", p);
+        }
+    } else {
+        for (int i = 0; i < nall; i++) memcpy(o->packs[o->npacks++], all[i], sizeof all[i]);
+    }
+    if (!o->npacks) return bad_usage("no packs in %s/packs", b->root);
+    return 0;
+}
+
+/* ---- references ---- */
+
+static const char *wrapper_path(bench *b, int s, int p, int k, char *out, size_t len) {
+    const packset_setting *st = &b->pb[p].settings[k];
+    char lines[4096];
+    if (packset_scene_lines(st, lines, sizeof lines) == 0) return b->scene_abs[s];
+    char sc[256];
+    stem(b->scene_abs[s], sc, sizeof sc);
+    snprintf(out, len, "%s/scenes/%s.%s.%s.glib", b->o.out, sc, b->o.packs[p], st->name);
+    return out;
+}
+
+static ref_entry *find_ref(bench *b, uint64_t key, int ti) {
+    for (int i = 0; i < b->nrefs; i++)
+        if (b->refs[i].key == key && b->refs[i].ti == ti) return &b->refs[i];
+    return NULL;
+}
+
+/* Progress weights, roughly seconds on the 2-core machine: a load, and a
+ * reference (photons: 35 s for the default 256-cell grid of 36 photons a
+ * cell; pixels: 5 s for 480x270 at 1 sample). */
+static const double LOAD_WEIGHT = 3;
+
+static double ref_weight(const bench *b) {
+    ref_render_desc d = ref_render_resolve(&(ref_render_desc){ .caustic_res = b->o.ref.caustic_res,
+                                                                .photons_per_cell = b->o.ref.photons_per_cell,
+                                                                .spp = b->o.ref.spp });
+    double cr = d.caustic_res / 256.0;
+    return 35 * cr * cr * d.photons_per_cell / 36.0 + 5.0 * b->o.w * b->o.h / (480.0 * 270.0) * d.spp * d.spp;
+}
+
+/* Keys of every reference the run needs; renders or reads each once. */
+static void prepare_refs(bench *b) {
+    char dir[PATH_LEN];
+    snprintf(dir, sizeof dir, "%s/ref", b->o.out);
+    for (int s = 0; s < b->o.nscenes; s++)
+        for (int p = 0; p < b->o.npacks; p++)
+            for (int k = 0; k < b->pb[p].n; k++) {
+                char wp[PATH_LEN], err[2048] = "";
+                const char *scene = wrapper_path(b, s, p, k, wp, sizeof wp);
+                if (scene != b->scene_abs[s] && !packset_write_wrapper(&b->pb[p].settings[k], b->scene_abs[s], scene,
+                                                                        err, sizeof err))
+                    continue;
+                for (int ti = 0; ti < b->o.ntimes; ti++) {
+                    uint64_t key;
+                    if (!refcache_key(scene, b->o.w, b->o.h, b->o.times[ti], &b->o.ref, &key, err, sizeof err))
+                        continue;
+                    if (find_ref(b, key, ti)) continue;
+                    char named[PATH_LEN], sc[256];
+                    stem(b->scene_abs[s], sc, sizeof sc);
+                    fmt(named, sizeof named, "%s/%s.glib", dir, sc);
+                    bool cached = refcache_cached(dir, scene, named, b->o.w, b->o.h, b->o.times[ti], &b->o.ref);
+                    ref_entry *grown = realloc(b->refs, (size_t)(b->nrefs + 1) * sizeof *grown);
+                    if (!grown) return;
+                    b->refs = grown;
+                    ref_entry *e = &b->refs[b->nrefs++];
+                    memset(e, 0, sizeof *e);
+                    e->key = key;
+                    e->ti = ti;
+                    e->weight = cached ? 0.2 : ref_weight(b);
+                }
+            }
+}
+
+static double ref_total_weight(bench *b) {
+    double w = 0;
+    for (int i = 0; i < b->nrefs; i++) w += b->refs[i].weight;
+    return w;
+}
+
+/* The reference for (scene path, pack, time), rendered on first use. */
+static ref_entry *get_ref(bench *b, int s, const char *scene, int ti) {
+    uint64_t key;
+    char err[2048] = "";
+    if (!refcache_key(scene, b->o.w, b->o.h, b->o.times[ti], &b->o.ref, &key, err, sizeof err)) return NULL;
+    ref_entry *e = find_ref(b, key, ti);
+    if (!e) return NULL;
+    if (e->tried) return e->ok ? e : NULL;
+    e->tried = true;
+    char dir[PATH_LEN], sc[256];
+    snprintf(dir, sizeof dir, "%s/ref", b->o.out);
+    stem(b->scene_abs[s], sc, sizeof sc);
+    ref_progress_ctx pc = { &b->pr, b->pr.done, e->weight };
+    progress_set(&b->pr, b->pr.done, true, "reference %s t=%g", sc, b->o.times[ti]);
+    /* the stem names the scene, not the wrapper: settings that share a world share the file */
+    char named[PATH_LEN];
+    fmt(named, sizeof named, "%s/%s.glib", dir, sc);
+    e->ok = refcache_get(dir, scene, named, b->o.w, b->o.h, b->o.times[ti], NULL, &b->o.ref,
+                               on_ref_progress, &pc, &e->im, err, sizeof err);
+    progress_set(&b->pr, pc.base + e->weight, true, NULL);
+    if (e->ok && e->im.from_cache) b->refs_cached++;
+    else if (e->ok) b->refs_rendered++;
+    if (!e->ok) {
+        fprintf(stderr, "%starn bench: %s\n", b->pr.tty ? "\n" : "", err);
+        b->failures++;
+        return NULL;
+    }
+    return e;
+}
+
+/* ---- the cost floor: a full-screen pass with one texture fetch ---- */
+
+static const char *floor_glib =
+    "##OpenGL GLIB\n"
+    "# tarn bench's cost floor: one full-screen pass, one texture fetch a pixel.\n"
+    "# Every pack's time is also given as a multiple of this one's.\n"
+    "Ortho -1 1 -1 1\n"
+    "Noise2D 64\n"
+    "Vertex   floor.vert\n"
+    "Fragment floor.frag\n"
+    "Program  Floor  Noise2 2\n"
+    "QuadXY 0 1 1 1\n";
+static const char *floor_vert =
+    "#version 330 compatibility\n"
+    "out vec2 vUv;\n"
+    "void main() {\n"
+    "    vUv = gl_Vertex.xy * 0.5 + 0.5;\n"
+    "    gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex;\n"
+    "}\n";
+static const char *floor_frag =
+    "#version 330 compatibility\n"
+    "uniform sampler2D Noise2;\n"
+    "in vec2 vUv;\n"
+    "out vec4 fragColor;\n"
+    "void main() { fragColor = vec4(texture(Noise2, vUv).rgb, 1.0); }\n";
+
+typedef struct timing { double gpu_ms, wall_ms, first_wall_ms; int frames; } timing;
+
+/* Collects this frame's GPU time per pass into per-name sample lists. */
+typedef struct pass_samples {
+    int n;
+    char name[GPU_TIMER_MARKS][GPU_TIMER_NAME];
+    double *ms[GPU_TIMER_MARKS];
+    int count[GPU_TIMER_MARKS];
+} pass_samples;
+
+static void pass_collect(pass_samples *ps, render *r, int max) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, true, &names, &ms);
+    for (int i = 0; i < n; i++) {
+        int k = 0;
+        while (k < ps->n && strcmp(ps->name[k], names[i]) != 0) k++;
+        if (k == ps->n) {
+            if (ps->n >= GPU_TIMER_MARKS) continue;
+            memcpy(ps->name[k], names[i], GPU_TIMER_NAME);
+            ps->ms[k] = calloc((size_t)max, sizeof(double));
+            ps->count[k] = 0;
+            ps->n++;
+        }
+        if (ps->ms[k] && ps->count[k] < max && ms[i] >= 0) ps->ms[k][ps->count[k]++] = ms[i];
+    }
+}
+
+/* Warm-up frames, then timed frames at the fixed time t: medians (and,
+ * with rw, the median GPU time of each pass). */
+static timing time_frames(bench *b, render *r, const render_target *tg, double t, row *rw) {
+    timing out = { NAN, NAN, NAN, 0 };
+    for (int i = 0; i < b->o.warmup; i++) {
+        double t0 = now_s();
+        render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
+        glFinish();
+        if (i == 0) out.first_wall_ms = (now_s() - t0) * 1e3;
+        render_gpu_ms(r, true);
+    }
+    int max = b->o.frames;
+    double *gpu = calloc((size_t)max, sizeof *gpu), *wall = calloc((size_t)max, sizeof *wall);
+    if (!gpu || !wall) { free(gpu); free(wall); return out; }
+    double start = now_s();
+    int n = 0;
+    pass_samples ps;
+    memset(&ps, 0, sizeof ps);
+    while (n < max) {
+        double t0 = now_s();
+        render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
+        glFinish();   /* the wall time of the whole frame, deferred rasterisation included */
+        wall[n] = (now_s() - t0) * 1e3;
+        gpu[n] = render_gpu_ms(r, true);
+        if (rw) pass_collect(&ps, r, max);
+        n++;
+        if (n >= 3 && now_s() - start > b->o.frame_budget) break;
+    }
+    out.frames = n;
+    out.wall_ms = median(wall, n);
+    int ng = 0;
+    for (int i = 0; i < n; i++)
+        if (gpu[i] >= 0) gpu[ng++] = gpu[i];
+    out.gpu_ms = ng ? median(gpu, ng) : NAN;
+    if (rw) {
+        rw->npasses = ps.n;
+        for (int k = 0; k < ps.n; k++) {
+            memcpy(rw->pass_name[k], ps.name[k], GPU_TIMER_NAME);
+            rw->pass_ms[k] = ps.count[k] ? median(ps.ms[k], ps.count[k]) : NAN;
+        }
+    }
+    for (int k = 0; k < ps.n; k++) free(ps.ms[k]);
+    free(gpu);
+    free(wall);
+    return out;
+}
+
+static bool measure_floor(bench *b) {
+    char dir[PATH_LEN], path[PATH_LEN + 32];
+    snprintf(dir, sizeof dir, "%s/floor", b->o.out);
+    if (!mkdirs(dir)) return false;
+    snprintf(path, sizeof path, "%s/floor.vert", dir);
+    bool ok = write_text(path, floor_vert);
+    snprintf(path, sizeof path, "%s/floor.frag", dir);
+    ok = ok && write_text(path, floor_frag);
+    snprintf(path, sizeof path, "%s/floor.glib", dir);
+    ok = ok && write_text(path, floor_glib);
+    if (!ok) return false;
+    render_desc rd = { .repo_root = b->root };
+    render *r = render_create(&rd);
+    ok = render_load(r, path);
+    if (!ok) fprintf(stderr, "%s", render_messages(r));
+    render_target tg;
+    if (ok && render_target_create(&tg, b->o.w, b->o.h, true)) {
+        timing tm = time_frames(b, r, &tg, 0.0, NULL);
+        b->floor_gpu = tm.gpu_ms;
+        b->floor_wall = tm.wall_ms;
+        render_target_destroy(&tg);
+    } else {
+        ok = false;
+    }
+    render_destroy(r);
+    return ok;
+}
+
+/* ---- one setting ---- */
+
+static unif_entry *find_output_define(render *r, unif_set **owner) {
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    for (int i = 0; i < n; i++) {
+        unif_entry *e = unif_find(&sets[i], BENCH_OUTPUT_DEFINE);
+        if (e && e->is_define) {
+            if (owner) *owner = &sets[i];
+            return e;
+        }
+    }
+    return NULL;
+}
+
+/* Sets TARN_OUTPUT in every Program that has it; true when any has it. */
+static bool set_output(render *r, int mode) {
+    int n;
+    bool any = false;
+    unif_set *sets = render_uniforms(r, &n);
+    for (int i = 0; i < n; i++) {
+        unif_entry *e = unif_find(&sets[i], BENCH_OUTPUT_DEFINE);
+        if (!e || !e->is_define) continue;
+        unif_set_component(e, 0, mode);
+        any = true;
+    }
+    if (any) render_rebuild_programs(r);
+    return any;
+}
+
+static void write_images(bench *b, const row *rw, const float *rgba, const ref_entry *ref) {
+    char dir[PATH_LEN], path[PATH_LEN + 256], sc[256], err[512];
+    snprintf(dir, sizeof dir, "%s/img", b->o.out);
+    if (!mkdirs(dir)) return;
+    stem(b->scene_abs[rw->scene], sc, sizeof sc);
+    int w = b->o.w, h = b->o.h;
+    img im;
+    if (!img_alloc(&im, w, h, 3)) return;
+    for (long i = 0; i < (long)w * h; i++)
+        for (int k = 0; k < 3; k++) {
+            float v = rgba[i * 4 + k];
+            im.px[i * 3 + k] = !(v > 0) ? 0.0f : v >= 1 ? 1.0f : (float)ref_linear_to_srgb(v);
+        }
+    fmt(path, sizeof path, "%s/%s.%s.%s.t%g.png", dir, sc, b->o.packs[rw->pack],
+             b->pb[rw->pack].settings[rw->setting].name, b->o.times[rw->ti]);
+    img_write(path, &im, err, sizeof err);
+    if (ref) {
+        float *field = malloc((size_t)w * h * sizeof *field);
+        ref_fimage A = { rgba, w, h, 4 }, B = { ref->im.color, w, h, 3 };
+        if (field && ref_metrics_error_field(&A, &B, REF_ERR_COLOR, NULL, field, err, sizeof err)) {
+            ref_heatmap(field, w, h, b->o.heat_max, im.px);
+            fmt(path, sizeof path, "%s/%s.%s.%s.t%g.heat.png", dir, sc, b->o.packs[rw->pack],
+                     b->pb[rw->pack].settings[rw->setting].name, b->o.times[rw->ti]);
+            img_write(path, &im, err, sizeof err);
+        }
+        free(field);
+    }
+    img_free(&im);
+}
+
+/* A buffer the pack wrote (TARN_OUTPUT = mode) against the reference's, over
+ * the pixels where the reference sees water first. */
+static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const ref_entry *ref) {
+    int w = b->o.w, h = b->o.h;
+    long n = (long)w * h;
+    unsigned char *mask = malloc((size_t)n);
+    if (!mask) return;
+    for (long i = 0; i < n; i++) mask[i] = ref->im.mask[i] == REF_MASK_WATER;
+    ref_metrics_desc d = { .mask = mask };
+    ref_fimage A = { rgba, w, h, 4 };
+    char err[256];
+    if (mode == BENCH_OUTPUT_REFRACT_HIT) {
+        ref_fimage B = { ref->im.refract_hit, w, h, 4 };
+        ref_fimage A3 = A;
+        ref_point_metrics m;
+        /* the pack's alpha is not a flag: compare xyz only */
+        float *xyz = malloc((size_t)n * 3 * sizeof *xyz);
+        float *bxyz = malloc((size_t)n * 3 * sizeof *bxyz);
+        if (xyz && bxyz) {
+            for (long i = 0; i < n; i++)
+                for (int k = 0; k < 3; k++) {
+                    xyz[i * 3 + k] = rgba[i * 4 + k];
+                    bxyz[i * 3 + k] = ref->im.refract_hit[i * 4 + k];
+                }
+            A3 = (ref_fimage){ xyz, w, h, 3 };
+            B = (ref_fimage){ bxyz, w, h, 3 };
+            if (ref_metrics_points(&A3, &B, &d, &m, err, sizeof err)) {
+                rw->has[mode] = true;
+                rw->comp_median[mode] = m.world.median;
+                rw->comp_p95[mode] = m.world.p95;
+                rw->comp_mean[mode] = m.world.mean;
+                rw->comp_rel_mean[mode] = NAN;
+            }
+        }
+        free(xyz);
+        free(bxyz);
+    } else {
+        const float *src = mode == BENCH_OUTPUT_FRESNEL ? ref->im.fresnel
+                           : mode == BENCH_OUTPUT_IRRADIANCE ? ref->im.irradiance : ref->im.depth;
+        int ch = mode == BENCH_OUTPUT_IRRADIANCE ? 3 : 1;
+        /* the pack's side: R (or RGB) of its output */
+        float *a = malloc((size_t)n * ch * sizeof *a);
+        if (a) {
+            for (long i = 0; i < n; i++)
+                for (int k = 0; k < ch; k++) a[i * ch + k] = rgba[i * 4 + k];
+            ref_fimage A1 = { a, w, h, ch }, B = { src, w, h, ch };
+            ref_scalar_metrics m;
+            if (ref_metrics_scalar(&A1, &B, &d, &m, err, sizeof err)) {
+                rw->has[mode] = true;
+                rw->comp_median[mode] = m.abs.median;
+                rw->comp_p95[mode] = m.abs.p95;
+                rw->comp_mean[mode] = m.abs.mean;
+                rw->comp_rel_mean[mode] = m.rel.mean;
+            }
+        }
+        free(a);
+    }
+    free(mask);
+}
+
+/* Every entry's values, to return to between buffers. */
+static float *snapshot(render *r, bool restore, float *snap) {
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    size_t total = 0;
+    for (int i = 0; i < n; i++) total += (size_t)sets[i].n;
+    if (!restore) snap = malloc((total ? total : 1) * UNIF_MAX_COMPONENTS * sizeof *snap);
+    if (!snap) return NULL;
+    size_t k = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < sets[i].n; j++, k++) {
+            float *v = sets[i].entries[j].value, *sv = snap + k * UNIF_MAX_COMPONENTS;
+            memcpy(restore ? v : sv, restore ? sv : v, UNIF_MAX_COMPONENTS * sizeof *v);
+        }
+    return snap;
+}
+
+static void measure_buffers(bench *b, render *r, const render_target *tg, int s, int p, const char *scene,
+                            int first_row, float *rgba) {
+    const packset_bench *pb = &b->pb[p];
+    unif_entry *out_def = find_output_define(r, NULL);
+    float *snap = NULL;
+    char sc[256];
+    stem(b->scene_abs[s], sc, sizeof sc);
+    for (int mode = 1; mode < BENCH_OUTPUT_COUNT; mode++) {
+        const packset_buffer *spec = NULL;
+        for (int i = 0; i < pb->nbuffers; i++)
+            if (strcmp(pb->buffers[i].name, packset_buffer_names[mode - 1]) == 0) spec = &pb->buffers[i];
+        bool via_define = !spec && out_def && out_def->min <= mode && out_def->max >= mode;
+        if (!spec && !via_define) continue;
+        if (!snap) snap = snapshot(r, false, NULL);
+        else snapshot(r, true, snap);
+        progress_set(&b->pr, b->pr.done, true, "%s %s: buffer %s", sc, b->o.packs[p], packset_buffer_names[mode - 1]);
+        if (spec) {
+            int n;
+            unif_set *sets = render_uniforms(r, &n);
+            char err[1024] = "";
+            bool changed;
+            if (!packset_apply(sets, n, &spec->how, &changed, err, sizeof err))
+                fprintf(stderr, "%starn bench: %s: buffer %s: %s", b->pr.tty ? "\n" : "", pb->path, spec->name, err);
+            render_rebuild_programs(r);
+        } else {
+            set_output(r, mode);
+        }
+        for (int ti = 0; ti < b->o.ntimes; ti++) {
+            ref_entry *ref = get_ref(b, s, scene, ti);
+            if (!ref) continue;
+            render_frame(r, b->o.times[ti], tg->fbo, tg->w, tg->h, NULL);
+            render_target_read(tg, rgba);
+            compare_buffer(b, &b->rows[first_row + ti], mode, rgba, ref);
+        }
+    }
+    free(snap);
+}
+
+static void first_line(const char *text, char *out, size_t len) {
+    size_t n = strcspn(text, "\n");
+    snprintf(out, len, "%.*s", (int)n, text);
+}
+
+static void measure_setting(bench *b, int s, int p, int k, double weight_each_time) {
+    const packset_setting *st = &b->pb[p].settings[k];
+    char wp[PATH_LEN], sc[256];
+    const char *scene = wrapper_path(b, s, p, k, wp, sizeof wp);
+    stem(b->scene_abs[s], sc, sizeof sc);
+    int first_row = b->nrows;
+    row *grown = realloc(b->rows, (size_t)(b->nrows + b->o.ntimes) * sizeof *grown);
+    if (!grown) return;
+    b->rows = grown;
+    for (int ti = 0; ti < b->o.ntimes; ti++) {
+        row *rw = &b->rows[b->nrows++];
+        memset(rw, 0, sizeof *rw);
+        rw->scene = s;
+        rw->pack = p;
+        rw->setting = k;
+        rw->ti = ti;
+        rw->gpu_ms = rw->wall_ms = rw->first_wall_ms = rw->rmse = rw->psnr = rw->mae = NAN;
+        rw->p95 = rw->p99 = rw->max_abs = rw->over_share = NAN;
+    }
+    double base = b->pr.done;
+    progress_set(&b->pr, base, true, "%s %s %s: loading", sc, b->o.packs[p], st->name);
+    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p] };
+    render *r = render_create(&rd);
+    bool loaded = render_load(r, scene);
+    char err[4096] = "";
+    bool defines_changed = false;
+    if (loaded) {
+        int n;
+        unif_set *sets = render_uniforms(r, &n);
+        if (!packset_apply(sets, n, st, &defines_changed, err, sizeof err))
+            for (int ti = 0; ti < b->o.ntimes; ti++)
+                first_line(err, b->rows[first_row + ti].note, sizeof b->rows[first_row + ti].note);
+        if (defines_changed && !render_rebuild_programs(r)) loaded = false;
+    }
+    render_target tg;
+    bool have_target = loaded && render_target_create(&tg, b->o.w, b->o.h, true);
+    if (!loaded || !have_target) {
+        char why[600];
+        first_line(render_messages(r)[0] ? render_messages(r) : "cannot create the framebuffer", why, sizeof why);
+        for (const char *m = render_messages(r); m && *m; m = strchr(m, '\n') ? strchr(m, '\n') + 1 : NULL)
+            if (strstr(m, ": error")) { first_line(m, why, sizeof why); break; }
+        for (int ti = 0; ti < b->o.ntimes; ti++) snprintf(b->rows[first_row + ti].error, sizeof why, "%s", why);
+        fprintf(stderr, "%starn bench: %s with %s, setting %s: %s\n", b->pr.tty ? "\n" : "", sc, b->o.packs[p],
+                st->name, why);
+        b->failures++;
+        render_destroy(r);
+        progress_set(&b->pr, base + LOAD_WEIGHT + weight_each_time * b->o.ntimes, true, NULL);
+        return;
+    }
+    progress_set(&b->pr, base + LOAD_WEIGHT, false, NULL);
+    float *rgba = malloc((size_t)b->o.w * b->o.h * 4 * sizeof *rgba);
+    for (int ti = 0; ti < b->o.ntimes && rgba; ti++) {
+        row *rw = &b->rows[first_row + ti];
+        double t = b->o.times[ti];
+        progress_set(&b->pr, b->pr.done, true, "%s %s %s t=%g", sc, b->o.packs[p], st->name, t);
+        while (glGetError() != GL_NO_ERROR) {}
+        timing tm = time_frames(b, r, &tg, t, rw);
+        rw->frames = tm.frames;
+        rw->gpu_ms = tm.gpu_ms;
+        rw->wall_ms = tm.wall_ms;
+        rw->first_wall_ms = tm.first_wall_ms;
+        render_target_read(&tg, rgba);
+        GLenum ge = glGetError();
+        if (ge != GL_NO_ERROR) rw->gl_error = ge;
+        rw->ok = true;
+        ref_entry *ref = get_ref(b, s, scene, ti);
+        if (ref) {
+            ref_fimage A = { rgba, b->o.w, b->o.h, 4 }, B = { ref->im.color, b->o.w, b->o.h, 3 };
+            ref_image_metrics m;
+            char merr[256];
+            if (ref_metrics_image(&A, &B, NULL, &m, merr, sizeof merr)) {
+                rw->rmse = m.rmse;
+                rw->psnr = m.psnr_db;
+                rw->mae = m.mae;
+                rw->p95 = m.pixel_err.p95;
+                rw->p99 = m.pixel_err.p99;
+                rw->max_abs = m.max_abs;
+                rw->over_share = m.over_threshold_share;
+                rw->nan_px = m.count.nan_a;
+                rw->inf_px = m.count.inf_a;
+            }
+        } else {
+            snprintf(rw->note, sizeof rw->note, "no reference");
+            long n = (long)b->o.w * b->o.h;
+            for (long i = 0; i < n; i++)
+                for (int c = 0; c < 3; c++) {
+                    if (isnan(rgba[i * 4 + c])) { rw->nan_px++; break; }
+                    if (isinf(rgba[i * 4 + c])) { rw->inf_px++; break; }
+                }
+        }
+        if (b->o.images) write_images(b, rw, rgba, ref);
+        progress_set(&b->pr, base + LOAD_WEIGHT + weight_each_time * (ti + 1), false, NULL);
+    }
+    /* the buffers the pack shows: its bench.txt `buffer` lines, else TARN_OUTPUT */
+    if (rgba) measure_buffers(b, r, &tg, s, p, scene, first_row, rgba);
+    free(rgba);
+    render_target_destroy(&tg);
+    render_destroy(r);
+}
+
+/* ---- summaries ---- */
+
+static double axis_time(const bench *b, const summary *s) { return b->axis == 1 ? s->gpu_ms : s->wall_ms; }
+
+static void summarise(bench *b) {
+    b->sums = calloc((size_t)(b->nrows > 0 ? b->nrows : 1), sizeof *b->sums);
+    if (!b->sums) return;
+    for (int i = 0; i < b->nrows; i++) {
+        const row *r0 = &b->rows[i];
+        if (r0->ti != 0) continue;
+        summary *s = &b->sums[b->nsums++];
+        s->scene = r0->scene;
+        s->pack = r0->pack;
+        s->setting = r0->setting;
+        double gpu[MAX_TIMES], wall[MAX_TIMES];
+        int ng = 0, nw = 0, ne = 0;
+        double rmse = 0, psnr = 0, p95 = 0, share = 0;
+        double comp[BENCH_OUTPUT_COUNT] = { 0 };
+        int ncomp[BENCH_OUTPUT_COUNT] = { 0 };
+        s->ok = true;
+        for (int j = i; j < b->nrows && j < i + b->o.ntimes; j++) {
+            const row *r = &b->rows[j];
+            s->ok &= r->ok;
+            s->nan_px += r->nan_px + r->inf_px;
+            if (isfinite(r->gpu_ms)) gpu[ng++] = r->gpu_ms;
+            if (isfinite(r->wall_ms)) wall[nw++] = r->wall_ms;
+            if (isfinite(r->rmse)) {
+                rmse += r->rmse;
+                psnr += isfinite(r->psnr) ? r->psnr : 99;
+                p95 += r->p95;
+                share += r->over_share;
+                ne++;
+            }
+            for (int m = 1; m < BENCH_OUTPUT_COUNT; m++)
+                if (r->has[m]) {
+                    comp[m] += m == BENCH_OUTPUT_REFRACT_HIT ? r->comp_p95[m]
+                               : m == BENCH_OUTPUT_IRRADIANCE ? r->comp_rel_mean[m] : r->comp_mean[m];
+                    ncomp[m]++;
+                }
+        }
+        s->gpu_ms = median(gpu, ng);
+        s->wall_ms = median(wall, nw);
+        s->rmse = ne ? rmse / ne : NAN;
+        s->psnr = ne ? psnr / ne : NAN;
+        s->p95 = ne ? p95 / ne : NAN;
+        s->over_share = ne ? share / ne : NAN;
+        for (int m = 1; m < BENCH_OUTPUT_COUNT; m++) {
+            s->has[m] = ncomp[m] > 0;
+            s->comp[m] = ncomp[m] ? comp[m] / ncomp[m] : NAN;
+        }
+    }
+    /* the Pareto front of each scene, over every pack */
+    for (int sc = 0; sc < b->o.nscenes; sc++) {
+        double x[1024], y[1024];
+        bool on[1024];
+        int idx[1024], n = 0;
+        for (int i = 0; i < b->nsums && n < 1024; i++) {
+            if (b->sums[i].scene != sc) continue;
+            x[n] = b->sums[i].ok ? axis_time(b, &b->sums[i]) : NAN;
+            y[n] = b->sums[i].rmse;
+            idx[n++] = i;
+        }
+        plot_pareto(x, y, n, on);
+        for (int i = 0; i < n; i++) b->sums[idx[i]].pareto = on[i];
+    }
+}
+
+/* ---- writing ---- */
+
+static void json_num(sbuf *o, double v) {
+    if (isnan(v)) sb_printf(o, "null");
+    else if (isinf(v)) sb_printf(o, v > 0 ? "\"inf\"" : "\"-inf\"");
+    else sb_printf(o, "%.9g", v);
+}
+
+static void json_str(sbuf *o, const char *s) {
+    sb_printf(o, "\"");
+    for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
+        if (*c == '"' || *c == '\\') sb_printf(o, "\\%c", *c);
+        else if (*c < 0x20) sb_printf(o, "\\u%04x", *c);
+        else sb_printf(o, "%c", *c);
+    }
+    sb_printf(o, "\"");
+}
+
+static void csv_num(sbuf *o, double v) {
+    if (isnan(v)) sb_printf(o, ",");
+    else if (isinf(v)) sb_printf(o, ",%s", v > 0 ? "inf" : "-inf");
+    else sb_printf(o, ",%.9g", v);
+}
+
+static void csv_str(sbuf *o, const char *s, bool first) {
+    sb_printf(o, first ? "\"" : ",\"");
+    for (const char *c = s; *c; c++) sb_printf(o, *c == '"' ? "\"\"" : "%c", *c);
+    sb_printf(o, "\"");
+}
+
+static const char *comp_names[BENCH_OUTPUT_COUNT] = { "color", "refract_hit", "fresnel", "irradiance", "depth" };
+
+static bool write_csv(bench *b, const char *path) {
+    sbuf o = { 0 };
+    sb_printf(&o, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms,first_frame_wall_ms,"
+                  "floor_gpu_ms,floor_wall_ms,x_floor_gpu,x_floor_wall,rmse,psnr_db,mae,error_p95,error_p99,"
+                  "max_abs,over_threshold_share,nan_pixels,inf_pixels,gl_error");
+    for (int m = 1; m < BENCH_OUTPUT_COUNT; m++)
+        sb_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean", comp_names[m], comp_names[m], comp_names[m],
+                  comp_names[m]);
+    sb_printf(&o, ",error,note\n");
+    for (int i = 0; i < b->nrows; i++) {
+        const row *r = &b->rows[i];
+        char sc[256];
+        stem(b->scene_abs[r->scene], sc, sizeof sc);
+        csv_str(&o, sc, true);
+        csv_str(&o, b->o.packs[r->pack], false);
+        csv_str(&o, b->pb[r->pack].settings[r->setting].name, false);
+        csv_num(&o, b->o.times[r->ti]);
+        sb_printf(&o, ",%d,%d,%d", b->o.w, b->o.h, r->frames);
+        csv_num(&o, r->gpu_ms);
+        csv_num(&o, r->wall_ms);
+        csv_num(&o, r->first_wall_ms);
+        csv_num(&o, b->floor_gpu);
+        csv_num(&o, b->floor_wall);
+        csv_num(&o, r->gpu_ms / b->floor_gpu);
+        csv_num(&o, r->wall_ms / b->floor_wall);
+        csv_num(&o, r->rmse);
+        csv_num(&o, r->psnr);
+        csv_num(&o, r->mae);
+        csv_num(&o, r->p95);
+        csv_num(&o, r->p99);
+        csv_num(&o, r->max_abs);
+        csv_num(&o, r->over_share);
+        sb_printf(&o, ",%ld,%ld,%u", r->nan_px, r->inf_px, r->gl_error);
+        for (int m = 1; m < BENCH_OUTPUT_COUNT; m++) {
+            csv_num(&o, r->has[m] ? r->comp_median[m] : NAN);
+            csv_num(&o, r->has[m] ? r->comp_p95[m] : NAN);
+            csv_num(&o, r->has[m] ? r->comp_mean[m] : NAN);
+            csv_num(&o, r->has[m] ? r->comp_rel_mean[m] : NAN);
+        }
+        csv_str(&o, r->error, false);
+        csv_str(&o, r->note, false);
+        sb_printf(&o, "\n");
+    }
+    bool ok = o.s && write_text(path, o.s);
+    free(o.s);
+    return ok;
+}
+
+/* One row per pass: scene, pack, setting, time, pass, its median GPU time. */
+static bool write_passes_csv(bench *b, const char *path) {
+    sbuf o = { 0 };
+    sb_printf(&o, "scene,pack,setting,time_s,pass,gpu_ms\n");
+    for (int i = 0; i < b->nrows; i++) {
+        const row *r = &b->rows[i];
+        char sc[256];
+        stem(b->scene_abs[r->scene], sc, sizeof sc);
+        for (int k = 0; k < r->npasses; k++) {
+            csv_str(&o, sc, true);
+            csv_str(&o, b->o.packs[r->pack], false);
+            csv_str(&o, b->pb[r->pack].settings[r->setting].name, false);
+            csv_num(&o, b->o.times[r->ti]);
+            csv_str(&o, r->pass_name[k], false);
+            csv_num(&o, r->pass_ms[k]);
+            sb_printf(&o, "\n");
+        }
+    }
+    bool ok = o.s && write_text(path, o.s);
+    free(o.s);
+    return ok;
+}
+
+static bool write_json(bench *b, const char *path) {
+    sbuf o = { 0 };
+    sb_printf(&o, "{\n  \"machine\": {\"cpu\": ");
+    json_str(&o, b->cpu);
+    sb_printf(&o, ", \"cores\": %d, \"gl_renderer\": ", b->cores);
+    json_str(&o, b->gl_renderer);
+    sb_printf(&o, ", \"gl_version\": ");
+    json_str(&o, b->gl_version);
+    sb_printf(&o, ", \"cpu_rasteriser\": %s},\n", b->cpu_raster ? "true" : "false");
+    sb_printf(&o, "  \"run\": {\"started\": \"%s\", \"seconds\": %.1f, \"width\": %d, \"height\": %d, \"times\": [",
+              b->started, b->seconds, b->o.w, b->o.h);
+    for (int i = 0; i < b->o.ntimes; i++) sb_printf(&o, "%s%.9g", i ? ", " : "", b->o.times[i]);
+    sb_printf(&o, "], \"max_frames\": %d, \"frame_budget_s\": %g, \"warmup\": %d, \"time_axis\": \"%s\", "
+                  "\"references_rendered\": %d, \"references_cached\": %d},\n",
+              b->o.frames, b->o.frame_budget, b->o.warmup, b->axis == 1 ? "gpu" : "wall", b->refs_rendered,
+              b->refs_cached);
+    sb_printf(&o, "  \"floor\": {\"gpu_ms\": ");
+    json_num(&o, b->floor_gpu);
+    sb_printf(&o, ", \"wall_ms\": ");
+    json_num(&o, b->floor_wall);
+    sb_printf(&o, "},\n  \"summary\": [\n");
+    for (int i = 0; i < b->nsums; i++) {
+        const summary *s = &b->sums[i];
+        char sc[256];
+        stem(b->scene_abs[s->scene], sc, sizeof sc);
+        sb_printf(&o, "    {\"scene\": ");
+        json_str(&o, sc);
+        sb_printf(&o, ", \"pack\": ");
+        json_str(&o, b->o.packs[s->pack]);
+        sb_printf(&o, ", \"setting\": ");
+        json_str(&o, b->pb[s->pack].settings[s->setting].name);
+        sb_printf(&o, ", \"ok\": %s, \"gpu_ms\": ", s->ok ? "true" : "false");
+        json_num(&o, s->gpu_ms);
+        sb_printf(&o, ", \"wall_ms\": ");
+        json_num(&o, s->wall_ms);
+        sb_printf(&o, ", \"x_floor_gpu\": ");
+        json_num(&o, s->gpu_ms / b->floor_gpu);
+        sb_printf(&o, ", \"x_floor_wall\": ");
+        json_num(&o, s->wall_ms / b->floor_wall);
+        sb_printf(&o, ", \"rmse\": ");
+        json_num(&o, s->rmse);
+        sb_printf(&o, ", \"psnr_db\": ");
+        json_num(&o, s->psnr);
+        sb_printf(&o, ", \"error_p95\": ");
+        json_num(&o, s->p95);
+        sb_printf(&o, ", \"over_threshold_share\": ");
+        json_num(&o, s->over_share);
+        sb_printf(&o, ", \"refract_hit_p95_m\": ");
+        json_num(&o, s->has[1] ? s->comp[1] : NAN);
+        sb_printf(&o, ", \"fresnel_mae\": ");
+        json_num(&o, s->has[2] ? s->comp[2] : NAN);
+        sb_printf(&o, ", \"irradiance_rel_mean\": ");
+        json_num(&o, s->has[3] ? s->comp[3] : NAN);
+        sb_printf(&o, ", \"depth_mae\": ");
+        json_num(&o, s->has[4] ? s->comp[4] : NAN);
+        sb_printf(&o, ", \"nonfinite_pixels\": %ld, \"pareto\": %s}%s\n", s->nan_px, s->pareto ? "true" : "false",
+                  i + 1 < b->nsums ? "," : "");
+    }
+    sb_printf(&o, "  ],\n  \"rows\": [\n");
+    for (int i = 0; i < b->nrows; i++) {
+        const row *r = &b->rows[i];
+        char sc[256];
+        stem(b->scene_abs[r->scene], sc, sizeof sc);
+        sb_printf(&o, "    {\"scene\": ");
+        json_str(&o, sc);
+        sb_printf(&o, ", \"pack\": ");
+        json_str(&o, b->o.packs[r->pack]);
+        sb_printf(&o, ", \"setting\": ");
+        json_str(&o, b->pb[r->pack].settings[r->setting].name);
+        sb_printf(&o, ", \"time_s\": %.9g, \"ok\": %s, \"frames\": %d, \"gpu_ms\": ", b->o.times[r->ti],
+                  r->ok ? "true" : "false", r->frames);
+        json_num(&o, r->gpu_ms);
+        sb_printf(&o, ", \"wall_ms\": ");
+        json_num(&o, r->wall_ms);
+        sb_printf(&o, ", \"first_frame_wall_ms\": ");
+        json_num(&o, r->first_wall_ms);
+        sb_printf(&o, ", \"rmse\": ");
+        json_num(&o, r->rmse);
+        sb_printf(&o, ", \"psnr_db\": ");
+        json_num(&o, r->psnr);
+        sb_printf(&o, ", \"mae\": ");
+        json_num(&o, r->mae);
+        sb_printf(&o, ", \"error_p95\": ");
+        json_num(&o, r->p95);
+        sb_printf(&o, ", \"error_p99\": ");
+        json_num(&o, r->p99);
+        sb_printf(&o, ", \"max_abs\": ");
+        json_num(&o, r->max_abs);
+        sb_printf(&o, ", \"over_threshold_share\": ");
+        json_num(&o, r->over_share);
+        sb_printf(&o, ", \"nan_pixels\": %ld, \"inf_pixels\": %ld, \"gl_error\": %u, \"buffers\": {", r->nan_px,
+                  r->inf_px, r->gl_error);
+        bool first = true;
+        for (int m = 1; m < BENCH_OUTPUT_COUNT; m++) {
+            if (!r->has[m]) continue;
+            sb_printf(&o, "%s\"%s\": {\"median\": ", first ? "" : ", ", comp_names[m]);
+            json_num(&o, r->comp_median[m]);
+            sb_printf(&o, ", \"p95\": ");
+            json_num(&o, r->comp_p95[m]);
+            sb_printf(&o, ", \"mean\": ");
+            json_num(&o, r->comp_mean[m]);
+            sb_printf(&o, ", \"rel_mean\": ");
+            json_num(&o, r->comp_rel_mean[m]);
+            sb_printf(&o, "}");
+            first = false;
+        }
+        sb_printf(&o, "}, \"passes\": [");
+        for (int k = 0; k < r->npasses; k++) {
+            sb_printf(&o, "%s{\"pass\": ", k ? ", " : "");
+            json_str(&o, r->pass_name[k]);
+            sb_printf(&o, ", \"gpu_ms\": ");
+            json_num(&o, r->pass_ms[k]);
+            sb_printf(&o, "}");
+        }
+        sb_printf(&o, "], \"error\": ");
+        json_str(&o, r->error);
+        sb_printf(&o, ", \"note\": ");
+        json_str(&o, r->note);
+        sb_printf(&o, "}%s\n", i + 1 < b->nrows ? "," : "");
+    }
+    sb_printf(&o, "  ]\n}\n");
+    bool ok = o.s && write_text(path, o.s);
+    free(o.s);
+    return ok;
+}
+
+static void md_num(sbuf *o, const char *fmt, double v) {
+    if (isnan(v)) sb_printf(o, " – |");
+    else if (isinf(v)) sb_printf(o, " ∞ |");
+    else {
+        sb_printf(o, " ");
+        sb_printf(o, fmt, v);
+        sb_printf(o, " |");
+    }
+}
+
+/* The report: machine, run, floor, a table per scene, the plot. plot_dir is
+ * how the Markdown names the plots' directory ("" for beside it). */
+static void report_md(bench *b, sbuf *o, const char *plot_prefix) {
+    sb_printf(o, "Measured %s by `tarn bench` in %.0f s (%d:%02d; references: %d rendered, %d read from "
+                 "the cache).\n\n",
+              b->started, b->seconds, (int)(b->seconds / 60), (int)fmod(b->seconds, 60), b->refs_rendered,
+              b->refs_cached);
+    sb_printf(o, "| machine | |\n|---|---|\n| CPU | %s (%d cores online) |\n| GL renderer | %s |\n"
+                 "| GL version | %s |\n\n",
+              b->cpu, b->cores, b->gl_renderer, b->gl_version);
+    sb_printf(o, "Images %dx%d at t =", b->o.w, b->o.h);
+    for (int i = 0; i < b->o.ntimes; i++) sb_printf(o, "%s %g", i ? "," : "", b->o.times[i]);
+    sb_printf(o, " s; per setting and time %d warm-up frame(s), then up to %d timed frames (at least 3, "
+                 "stopping after %.3g s); medians. Error: the mean over the times of the colour error against "
+                 "the CPU reference of the same frame (linear RGB).\n\n",
+              b->o.warmup, b->o.frames, b->o.frame_budget);
+    if (b->cpu_raster)
+        sb_printf(o, "**%s is a CPU rasteriser**: its GPU timestamps are taken when commands are issued, "
+                     "not when pixels are drawn, so the GPU column is not meaningful here. The wall time "
+                     "(after `glFinish`) is what the plot and the Pareto front use.\n\n",
+                  b->gl_renderer);
+    sb_printf(o, "Cost floor (a full-screen pass with one texture fetch): %.3f ms GPU, %.3f ms wall. "
+                 "\"× floor\" is a setting's %s time over the floor's.\n\n",
+              b->floor_gpu, b->floor_wall, b->axis == 1 ? "GPU" : "wall");
+    for (int sc = 0; sc < b->o.nscenes; sc++) {
+        char st[256];
+        stem(b->scene_abs[sc], st, sizeof st);
+        sb_printf(o, "### %s\n\n", st);
+        sb_printf(o, "| pack | setting | GPU ms | wall ms | × floor | RMSE | PSNR dB | p95 error | > 0.05 | "
+                     "hit p95 m | Fresnel MAE | irradiance rel. | Pareto |\n"
+                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
+        for (int i = 0; i < b->nsums; i++) {
+            const summary *s = &b->sums[i];
+            if (s->scene != sc) continue;
+            sb_printf(o, "| %s | %s |", b->o.packs[s->pack], b->pb[s->pack].settings[s->setting].name);
+            if (!s->ok) {
+                const row *r = NULL;
+                for (int j = 0; j < b->nrows; j++)
+                    if (b->rows[j].scene == sc && b->rows[j].pack == s->pack && b->rows[j].setting == s->setting)
+                        r = &b->rows[j];
+                sb_printf(o, " failed: %s | | | | | | | | | | |\n", r && r->error[0] ? r->error : "?");
+                continue;
+            }
+            md_num(o, "%.2f", s->gpu_ms);
+            md_num(o, "%.1f", s->wall_ms);
+            md_num(o, "%.1f", axis_time(b, s) / (b->axis == 1 ? b->floor_gpu : b->floor_wall));
+            md_num(o, "%.4f", s->rmse);
+            md_num(o, "%.1f", s->psnr);
+            md_num(o, "%.4f", s->p95);
+            md_num(o, "%.1f%%", 100 * s->over_share);
+            md_num(o, "%.3f", s->has[1] ? s->comp[1] : NAN);
+            md_num(o, "%.4f", s->has[2] ? s->comp[2] : NAN);
+            md_num(o, "%.3f", s->has[3] ? s->comp[3] : NAN);
+            sb_printf(o, " %s |\n", s->pareto ? "●" : "");
+            if (s->nan_px) sb_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | |\n", s->nan_px);
+        }
+        sb_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
+                     "RenderToTexture that begins it, `screen:LINE` what is drawn to the screen):\n\n");
+        for (int i = 0; i < b->nrows; i++) {
+            const row *r = &b->rows[i];
+            if (r->scene != sc || r->ti != 0 || !r->npasses) continue;
+            sb_printf(o, "- %s / %s:", b->o.packs[r->pack], b->pb[r->pack].settings[r->setting].name);
+            for (int k = 0; k < r->npasses; k++)
+                sb_printf(o, "%s `%s` %.2f ms", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
+            sb_printf(o, "\n");
+        }
+        sb_printf(o, "\n![speed against error, %s](%splot-%s.png)\n\n", st, plot_prefix, st);
+    }
+    sb_printf(o, "– : not measured: the pack shows no such buffer (a `buffer` line in its bench.txt, or "
+                 "`Define %s`; docs/benchmark.md).\n",
+              BENCH_OUTPUT_DEFINE);
+}
+
+static bool write_plot(bench *b, int sc, const char *path) {
+    plot_series series[PACKSET_MAX];
+    plot_point *pts = calloc((size_t)(b->nsums > 0 ? b->nsums : 1), sizeof *pts);
+    if (!pts) return false;
+    int np = 0, ns = 0;
+    for (int p = 0; p < b->o.npacks; p++) {
+        plot_series *se = &series[ns];
+        se->name = b->o.packs[p];
+        if (b->pb[p].has_colour) memcpy(se->rgb, b->pb[p].colour, sizeof se->rgb);
+        else packset_palette(p, se->rgb);
+        se->pts = pts + np;
+        se->n = 0;
+        for (int i = 0; i < b->nsums; i++) {
+            const summary *s = &b->sums[i];
+            if (s->scene != sc || s->pack != p || !s->ok) continue;
+            pts[np++] = (plot_point){ axis_time(b, s), s->rmse, b->pb[p].settings[s->setting].name, s->pareto };
+            se->n++;
+        }
+        ns++;
+    }
+    char st[256], title[512], sub[512], floor[64];
+    stem(b->scene_abs[sc], st, sizeof st);
+    snprintf(title, sizeof title, "%s %dx%d: speed against error", st, b->o.w, b->o.h);
+    snprintf(sub, sizeof sub, "%.60s", b->gl_renderer);
+    snprintf(floor, sizeof floor, "floor %.3g ms", b->axis == 1 ? b->floor_gpu : b->floor_wall);
+    plot_chart c = { .title = title, .subtitle = sub,
+                     .xlabel = b->axis == 1 ? "GPU time per frame, ms (log)" : "wall time per frame, ms (log)",
+                     .ylabel = "RMSE vs reference (log)", .series = series, .nseries = ns,
+                     .floor_x = b->axis == 1 ? b->floor_gpu : b->floor_wall, .floor_label = floor };
+    img im;
+    bool ok = plot_speed_error(&c, &im);
+    char err[512];
+    if (ok) ok = img_write(path, &im, err, sizeof err);
+    img_free(&im);
+    free(pts);
+    return ok;
+}
+
+/* text with what lies between the markers replaced by content (or, when
+ * text has no such markers, with a section `heading` holding them added at
+ * its end). A new string. */
+static char *replace_section(const char *text, const char *begin, const char *end, const char *heading,
+                             const char *content) {
+    sbuf o = { 0 };
+    const char *bp = strstr(text, begin), *ep = bp ? strstr(bp, end) : NULL;
+    if (bp && ep) sb_printf(&o, "%.*s%s\n%s%s", (int)(bp - text), text, begin, content, ep);
+    else sb_printf(&o, "%s\n%s\n\n%s\n%s%s\n", text, heading, begin, content, end);
+    return o.s;
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* The hard-case bounds of every pack (bounds.txt, else the built-in table),
+ * a row per scenes/hard case, with the reasons where a pack has none. */
+static void bounds_md(bench *b, sbuf *o) {
+    char dir[PATH_LEN + 16];
+    fmt(dir, sizeof dir, "%s/scenes/hard", b->root);
+    char *cases[128];
+    int nc = 0;
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    while (d && (e = readdir(d)) && nc < 128) {
+        size_t len = strlen(e->d_name);
+        if (len > 5 && strcmp(e->d_name + len - 5, ".glib") == 0) cases[nc++] = strndup(e->d_name, len - 5);
+    }
+    if (d) closedir(d);
+    qsort(cases, (size_t)nc, sizeof *cases, cmp_str);
+    packset_name packs[PACKSET_MAX];
+    int np = packset_list(b->root, packs, PACKSET_MAX);
+    packset_bounds pb[PACKSET_MAX];
+    for (int p = 0; p < np; p++) packset_bounds_load(b->root, packs[p], &pb[p], NULL, 0);
+    sb_printf(o, "RMSE (linear RGB) that tests/test_hard_cases.c allows, 96x54 at t = 1 s: from each pack's "
+                 "bounds.txt, else (*in italics*) the built-in table of viewer/packset.c. Written by `tarn bench "
+                 "--docs` from the files as they were then.\n\n| case |");
+    for (int p = 0; p < np; p++) sb_printf(o, " %s |", packs[p]);
+    sb_printf(o, "\n|---|");
+    for (int p = 0; p < np; p++) sb_printf(o, "---:|");
+    sb_printf(o, "\n");
+    sbuf notes = { 0 };
+    int nnotes = 0;
+    for (int c = 0; c < nc; c++) {
+        sb_printf(o, "| %s |", cases[c]);
+        for (int p = 0; p < np; p++) {
+            const char *from = NULL;
+            const packset_bound *bd = packset_bound_resolve(&pb[p], cases[c], &from);
+            bool builtin = from && strcmp(from, "built-in") == 0;
+            if (!bd) {
+                sb_printf(o, " – |");
+            } else if (bd->max_rmse >= 0) {
+                sb_printf(o, builtin ? " *%.3g* |" : " %.3g |", bd->max_rmse);
+            } else {
+                nnotes++;
+                sb_printf(o, builtin ? " *none* (%d) |" : " none (%d) |", nnotes);
+                sb_printf(&notes, "%d. %s, %s: %s\n", nnotes, packs[p], cases[c],
+                          bd->why[0] ? bd->why : "(no reason given)");
+            }
+        }
+        sb_printf(o, "\n");
+    }
+    if (notes.s) sb_printf(o, "\nWhere a pack holds no bound:\n\n%s", notes.s);
+    free(notes.s);
+    for (int p = 0; p < np; p++) packset_bounds_free(&pb[p]);
+    for (int c = 0; c < nc; c++) free(cases[c]);
+}
+
+/* Writes the report and the bounds between their markers in the docs page
+ * (adding the sections when the page has no markers), the plots beside it. */
+static bool write_docs(bench *b, const char *path) {
+    sbuf gen = { 0 };
+    char dir[PATH_LEN];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash) *slash = '\0';
+    else snprintf(dir, sizeof dir, ".");
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    char prefix[256];
+    snprintf(prefix, sizeof prefix, "%.*s-", (int)(strcspn(base, ".")), base);
+    report_md(b, &gen, prefix);
+    for (int sc = 0; sc < b->o.nscenes; sc++) {
+        char st[256], pp[PATH_LEN + 300];
+        stem(b->scene_abs[sc], st, sizeof st);
+        fmt(pp, sizeof pp, "%s/%splot-%s.png", dir, prefix, st);
+        write_plot(b, sc, pp);
+    }
+    FILE *f = fopen(path, "r");
+    char *old = NULL;
+    if (f) {
+        old = malloc(1 << 20);
+        size_t n = old ? fread(old, 1, (1 << 20) - 1, f) : 0;
+        if (old) old[n] = '\0';
+        fclose(f);
+    }
+    sbuf bounds = { 0 };
+    bounds_md(b, &bounds);
+    char *mid = replace_section(old ? old : "# Benchmark\n", "<!-- bench:begin -->", "<!-- bench:end -->",
+                                "## Latest results", gen.s ? gen.s : "");
+    char *page = mid ? replace_section(mid, "<!-- bounds:begin -->", "<!-- bounds:end -->", "## Hard-case bounds",
+                                       bounds.s ? bounds.s : "")
+                     : NULL;
+    bool ok = page && write_text(path, page);
+    free(page);
+    free(mid);
+    free(bounds.s);
+    free(gen.s);
+    free(old);
+    return ok;
+}
+
+/* ---- the command ---- */
+
+int cli_bench(int argc, char **argv) {
+    bench *b = calloc(1, sizeof *b);
+    if (!b) return CLI_INPUT_ERROR;
+    snprintf(b->root, sizeof b->root, "%s", TARN_SOURCE_DIR);
+    int rc = parse_args(b, argc, argv);
+    if (rc != 0) {
+        free(b);
+        return rc < 0 ? CLI_OK : rc;
+    }
+    double t_start = now_s();
+    char err[4096] = "";
+    for (int p = 0; p < b->o.npacks; p++) {
+        err[0] = '\0';
+        if (!packset_bench_load(b->root, b->o.packs[p], &b->pb[p], err, sizeof err)) fputs(err, stderr);
+    }
+    if (!mkdirs(b->o.out)) {
+        fprintf(stderr, "tarn bench: cannot create %s: %s\n", b->o.out, strerror(errno));
+        for (int p = 0; p < b->o.npacks; p++) packset_bench_free(&b->pb[p]);
+        free(b);
+        return CLI_INPUT_ERROR;
+    }
+    char sdir[PATH_LEN + 16];
+    snprintf(sdir, sizeof sdir, "%s/scenes", b->o.out);
+    mkdirs(sdir);
+    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) {
+        fprintf(stderr, "tarn bench: %s\n", err);
+        for (int p = 0; p < b->o.npacks; p++) packset_bench_free(&b->pb[p]);
+        free(b);
+        return CLI_NO_GL;
+    }
+    machine(b);
+    b->pr = (progress){ .start = t_start, .tty = isatty(STDERR_FILENO), .quiet = b->o.quiet };
+    prepare_refs(b);
+
+    /* progress weights: a frame is 1; a reference, a load, the floor */
+    int nsettings = 0;
+    for (int p = 0; p < b->o.npacks; p++) nsettings += b->pb[p].n;
+    double per_time = 0.5 * b->o.warmup + b->o.frame_budget + 0.3;
+    b->pr.total = ref_total_weight(b) + 2 + (double)b->o.nscenes * nsettings * (LOAD_WEIGHT + per_time * b->o.ntimes);
+    if (!b->o.quiet)
+        fprintf(stderr, "tarn bench: %d scene(s) x %d pack(s), %d setting(s), %d time(s) at %dx%d on %s\n",
+                b->o.nscenes, b->o.npacks, nsettings, b->o.ntimes, b->o.w, b->o.h, b->gl_renderer);
+    progress_set(&b->pr, 0, true, "cost floor");
+    if (!measure_floor(b)) {
+        fprintf(stderr, "tarn bench: the cost floor could not be measured\n");
+        b->failures++;
+    }
+    progress_set(&b->pr, 2, true, NULL);
+    for (int s = 0; s < b->o.nscenes; s++)
+        for (int p = 0; p < b->o.npacks; p++)
+            for (int k = 0; k < b->pb[p].n; k++) measure_setting(b, s, p, k, per_time);
+    b->seconds = now_s() - t_start;
+    progress_set(&b->pr, b->pr.total, true, "done");
+    if (b->pr.tty && !b->o.quiet) fputc('\n', stderr);
+
+    summarise(b);
+    char path[PATH_LEN + 64];
+    snprintf(path, sizeof path, "%s/bench.csv", b->o.out);
+    bool ok = write_csv(b, path);
+    snprintf(path, sizeof path, "%s/passes.csv", b->o.out);
+    ok &= write_passes_csv(b, path);
+    snprintf(path, sizeof path, "%s/bench.json", b->o.out);
+    ok &= write_json(b, path);
+    sbuf md = { 0 };
+    sb_printf(&md, "# tarn bench\n\n");
+    report_md(b, &md, "");
+    snprintf(path, sizeof path, "%s/report.md", b->o.out);
+    ok &= md.s && write_text(path, md.s);
+    for (int sc = 0; sc < b->o.nscenes; sc++) {
+        char st[256];
+        stem(b->scene_abs[sc], st, sizeof st);
+        snprintf(path, sizeof path, "%s/plot-%s.png", b->o.out, st);
+        ok &= write_plot(b, sc, path);
+    }
+    if (b->o.docs && !write_docs(b, b->o.docs)) {
+        fprintf(stderr, "tarn bench: cannot write %s\n", b->o.docs);
+        ok = false;
+    }
+    if (!ok) {
+        fprintf(stderr, "tarn bench: cannot write the results in %s\n", b->o.out);
+        b->failures++;
+    }
+    if (!b->o.quiet) {
+        fputs(md.s ? md.s : "", stdout);
+        printf("\ntarn bench: %d rows in %.1f s; results in %s (bench.csv, bench.json, report.md, plot-*.png)\n",
+               b->nrows, b->seconds, b->o.out);
+    }
+    free(md.s);
+    rc = b->failures ? CLI_INPUT_ERROR : CLI_OK;
+    for (int i = 0; i < b->nrefs; i++) refcache_free(&b->refs[i].im);
+    free(b->refs);
+    free(b->rows);
+    free(b->sums);
+    for (int p = 0; p < b->o.npacks; p++) packset_bench_free(&b->pb[p]);
+    gl_ctx_destroy(ctx);
+    free(b);
+    return rc;
+}

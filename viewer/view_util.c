@@ -1,0 +1,111 @@
+/* view_util: the orbit camera, the mouse and screenshots (see view_util.h). */
+#include "view_util.h"
+
+#include <GL/gl.h>
+#include <GLFW/glfw3.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "image_io.h"
+
+orbit orbit_from_view(render_view v) {
+    orbit o;
+    memcpy(o.center, v.center, sizeof o.center);
+    memcpy(o.up, v.up, sizeof o.up);
+    float d[3] = { v.eye[0] - v.center[0], v.eye[1] - v.center[1], v.eye[2] - v.center[2] };
+    o.distance = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (o.distance < 1e-6f) o.distance = 1.0f;
+    o.yaw = atan2f(d[0], d[2]);
+    o.pitch = asinf(fmaxf(-1.0f, fminf(1.0f, d[1] / o.distance)));
+    return o;
+}
+
+render_view orbit_view(const orbit *o) {
+    render_view v;
+    memcpy(v.center, o->center, sizeof v.center);
+    memcpy(v.up, o->up, sizeof v.up);
+    v.eye[0] = o->center[0] + o->distance * cosf(o->pitch) * sinf(o->yaw);
+    v.eye[1] = o->center[1] + o->distance * sinf(o->pitch);
+    v.eye[2] = o->center[2] + o->distance * cosf(o->pitch) * cosf(o->yaw);
+    return v;
+}
+
+void orbit_pan(orbit *o, float dx, float dy) {
+    /* camera right = normalize(cross(forward, up)), camera up = cross(right, forward) */
+    render_view v = orbit_view(o);
+    float f[3] = { v.center[0] - v.eye[0], v.center[1] - v.eye[1], v.center[2] - v.eye[2] };
+    float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int i = 0; i < 3; i++) f[i] /= fl;
+    float rgt[3] = { f[1] * o->up[2] - f[2] * o->up[1], f[2] * o->up[0] - f[0] * o->up[2],
+                     f[0] * o->up[1] - f[1] * o->up[0] };
+    float rl = sqrtf(rgt[0] * rgt[0] + rgt[1] * rgt[1] + rgt[2] * rgt[2]);
+    if (rl < 1e-6f) return;
+    for (int i = 0; i < 3; i++) rgt[i] /= rl;
+    float u[3] = { rgt[1] * f[2] - rgt[2] * f[1], rgt[2] * f[0] - rgt[0] * f[2], rgt[0] * f[1] - rgt[1] * f[0] };
+    float k = o->distance * 0.0015f;
+    for (int i = 0; i < 3; i++) o->center[i] += (-dx * rgt[i] + dy * u[i]) * k;
+}
+
+void orbit_rotate(orbit *o, float dx, float dy) {
+    o->yaw -= dx * 0.01f;
+    o->pitch = fmaxf(-1.55f, fminf(1.55f, o->pitch + dy * 0.01f));
+}
+
+void orbit_zoom(orbit *o, double clicks) {
+    o->distance *= powf(0.9f, (float)clicks);
+    o->distance = fmaxf(1e-3f, o->distance);
+}
+
+bool orbit_equal(const orbit *a, const orbit *b) {
+    return memcmp(a->center, b->center, sizeof a->center) == 0 && memcmp(a->up, b->up, sizeof a->up) == 0 &&
+           a->distance == b->distance && a->yaw == b->yaw && a->pitch == b->pitch;
+}
+
+void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *cam) {
+    GLFWwindow *win = glfw_window;
+    double mx, my;
+    glfwGetCursorPos(win, &mx, &my);
+    bool left = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    bool pan = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+               glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    float dx = (float)(mx - m->last_x), dy = (float)(my - m->last_y);
+    if (left && m->dragging_orbit) orbit_rotate(cam, dx, dy);
+    if (pan && m->dragging_pan) orbit_pan(cam, dx, dy);
+    m->dragging_orbit = left && (m->dragging_orbit || !ui_wants);
+    m->dragging_pan = pan && (m->dragging_pan || !ui_wants);
+    if (m->scroll != 0) {
+        orbit_zoom(cam, m->scroll);
+        m->scroll = 0;
+    }
+    m->last_x = mx;
+    m->last_y = my;
+}
+
+bool view_screenshot(void *glfw_window, const char *path) {
+    int w, h;
+    glfwGetFramebufferSize(glfw_window, &w, &h);
+    img im;
+    memset(&im, 0, sizeof im);
+    if (!img_alloc(&im, w, h, 4)) return false;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, im.px);
+    img_flip_rows(&im);
+    char err[512];
+    bool ok = img_write(path, &im, err, sizeof err);
+    fprintf(stderr, ok ? "tarn: screenshot %s\n" : "tarn: screenshot failed: %s\n", ok ? path : err);
+    img_free(&im);
+    return ok;
+}
+
+void view_shot_path(int n, char *out, size_t len) {
+    time_t now = time(NULL);
+    struct tm tmv;
+    localtime_r(&now, &tmv);
+    char stamp[32];
+    strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tmv);
+    snprintf(out, len, "tarn-%s-%d.png", stamp, n);
+}

@@ -1,0 +1,45 @@
+/* view_util: what the interactive windows share (`tarn view`, `tarn
+ * compare-view`): the orbit camera, the mouse that drives it, and window
+ * screenshots. */
+#ifndef TARN_VIEW_UTIL_H
+#define TARN_VIEW_UTIL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "render.h"
+
+typedef struct orbit {
+    float center[3], up[3];
+    float distance, yaw, pitch;      /* radians */
+} orbit;
+
+orbit orbit_from_view(render_view v);
+render_view orbit_view(const orbit *o);
+/* Moves the centre in the view plane by a mouse delta in pixels. */
+void orbit_pan(orbit *o, float dx, float dy);
+/* A left drag of (dx, dy) pixels: yaw and pitch (clamped short of the poles). */
+void orbit_rotate(orbit *o, float dx, float dy);
+/* Wheel clicks: each 10% closer (positive) or further. */
+void orbit_zoom(orbit *o, double clicks);
+bool orbit_equal(const orbit *a, const orbit *b);
+
+/* The mouse over a window: drags that started outside the panel move the
+ * camera. GLFWwindow* as void* keeps GLFW out of this header. */
+typedef struct view_mouse {
+    double last_x, last_y;
+    bool dragging_orbit, dragging_pan;
+    double scroll;                   /* wheel clicks not applied yet */
+} view_mouse;
+
+/* Applies this frame's drags and wheel to the camera; ui_wants is true
+ * while the panel has the mouse (a drag started over it is the panel's). */
+void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *cam);
+
+/* Writes the window's back buffer to path (any img_write format). */
+bool view_screenshot(void *glfw_window, const char *path);
+
+/* "tarn-YYYYmmdd-HHMMSS-N.png" into out. */
+void view_shot_path(int n, char *out, size_t len);
+
+#endif
