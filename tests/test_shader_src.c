@@ -497,6 +497,36 @@ static void test_stage_names_and_paths(void) {
     CHECK(shader_stage_from_path("Makefile") == SHADER_STAGE_COUNT);
 }
 
+/* A file beyond SHADER_SRC_MAX_FILE_BYTES is refused, and so is a "regular"
+ * file that never ends (/proc/self/pagemap reads on for terabytes). */
+static void test_file_size_limit(void) {
+    char path[600];
+    snprintf(path, sizeof path, "%s/huge.glsl", g_tmp);
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL);
+    if (!f) return;
+    static char line[1024];
+    memset(line, ' ', sizeof line - 1);
+    line[sizeof line - 2] = '\n';
+    for (long n = 0; n <= SHADER_SRC_MAX_FILE_BYTES; n += (long)sizeof line - 1) fputs(line, f);
+    fclose(f);
+    write_file("big.frag", "#version 330 compatibility\n#include \"huge.glsl\"\nvoid main() {}\n");
+    shader_src s;
+    shader_src_desc d = { .path = tmp("big.frag"), .stage = SHADER_FRAGMENT };
+    CHECK(!shader_src_load(&d, &s));
+    CHECK_STR_CONTAINS(s.error, "big.frag:2: error: cannot read include");
+    CHECK_STR_CONTAINS(s.error, "larger than 8 MiB");
+    shader_src_free(&s);
+    struct stat st;
+    if (stat("/proc/self/pagemap", &st) == 0 && S_ISREG(st.st_mode)) {
+        write_file("proc.frag", "#version 330 compatibility\n#include \"/proc/self/pagemap\"\nvoid main() {}\n");
+        d.path = tmp("proc.frag");
+        CHECK(!shader_src_load(&d, &s));
+        CHECK_STR_CONTAINS(s.error, "proc.frag:2: error: cannot read include");
+        shader_src_free(&s);
+    }
+}
+
 int main(void) {
     find_data();
     snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_shader_src_XXXXXX");
@@ -516,6 +546,7 @@ int main(void) {
     RUN(test_include_quirks);
     RUN(test_map_log_passthrough);
     RUN(test_stage_names_and_paths);
+    RUN(test_file_size_limit);
     char cmd[320];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmp);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_tmp);

@@ -3,17 +3,19 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/gl.h>
+#include <GL/glext.h>
 #include <GLFW/glfw3.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Under AddressSanitizer, LeakSanitizer's check at exit runs after Mesa's
- * own exit handler has unloaded the driver (swrast_dri.so, libLLVM), so
- * whatever the driver leaks shows as frames of no module, and a
- * suppression cannot name it. An exit handler registered after the context
- * exists runs before Mesa's: it does the leak check while the driver is
- * still mapped (tests/lsan.supp then names the driver's libraries). */
+/* Under AddressSanitizer: the OpenGL driver (Mesa's swrast_dri.so and
+ * libLLVM, loaded by EGL at run time) is unloaded again by eglTerminate, so
+ * what the driver itself leaks is reported at exit with frames of no
+ * module, and a suppression (tests/lsan.supp) cannot name it. Once the
+ * context exists, every library loaded so far is marked RTLD_NODELETE, so
+ * the driver stays mapped and its leaks are attributed to it. Sanitizer
+ * builds only. */
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
 #define TARN_ASAN 1
@@ -23,14 +25,24 @@
 #define TARN_ASAN 1
 #endif
 #ifdef TARN_ASAN
-#include <sanitizer/lsan_interface.h>
-static void leak_check_now(void) { __lsan_do_leak_check(); }
-static void leak_check_before_driver_unloads(void) {
-    static bool registered;
-    if (!registered) registered = atexit(leak_check_now) == 0;
+#include <dlfcn.h>
+static void keep_driver_loaded(void) {
+    FILE *maps = fopen("/proc/self/maps", "r");
+    if (!maps) return;
+    char line[4352], last[4096] = "";
+    while (fgets(line, sizeof line, maps)) {
+        char *path = strchr(line, '/');
+        if (!path) continue;
+        path[strcspn(path, "\n")] = '\0';
+        if (!strstr(path, ".so") || strcmp(path, last) == 0) continue;
+        snprintf(last, sizeof last, "%s", path);
+        void *h = dlopen(path, RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
+        if (h) dlclose(h);   /* drops this reference; RTLD_NODELETE stays */
+    }
+    fclose(maps);
 }
 #else
-static void leak_check_before_driver_unloads(void) {}
+static void keep_driver_loaded(void) {}
 #endif
 
 struct gl_ctx {
@@ -38,10 +50,12 @@ struct gl_ctx {
     EGLContext context;
     GLFWwindow *window;
     char description[256];
+    bool robust;                /* made with reset notification: losses are reported */
+    long checks, lose_after;    /* TARN_SIMULATE_CONTEXT_LOSS (tests): checks before a "loss" */
 };
 
 static const char *install_hint =
-    "install Mesa's EGL and OpenGL drivers (Debian: apt-get install libegl-mesa0 "
+    "install Mesa's EGL and OpenGL drivers (Debian: apt-get install libegl1 libegl-mesa0 "
     "libgl1-mesa-dri libopengl0), or run scripts/deps.sh";
 
 static void describe(gl_ctx *c) {
@@ -51,23 +65,77 @@ static void describe(gl_ctx *c) {
              ver ? ver : "?", ren ? ren : "?");
 }
 
+static const char *egl_error_name(EGLint e) {
+    switch (e) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    default: return "an EGL error";
+    }
+}
+
+/* How far the attempts got: the furthest stage reached says what is missing. */
+typedef enum egl_stage {
+    EGL_STAGE_NONE,             /* no attempt was possible: no platform entry point */
+    EGL_STAGE_NO_DISPLAY,       /* no display for the platform */
+    EGL_STAGE_INIT,             /* eglInitialize failed: the driver did not load */
+    EGL_STAGE_API,              /* no desktop OpenGL in this EGL */
+    EGL_STAGE_CONTEXT,          /* no OpenGL 4.5 compatibility context */
+    EGL_STAGE_CURRENT           /* the context could not be made current */
+} egl_stage;
+
+typedef struct egl_diag {
+    egl_stage stage;
+    EGLint error;
+    char vendor[128];
+} egl_diag;
+
+static void note(egl_diag *g, egl_stage st) {
+    EGLint e = eglGetError();
+    if (st >= g->stage) { g->stage = st; g->error = e; }
+}
+
 /* Tries one EGL platform; on success fills c and returns true. */
-static bool try_egl_platform(gl_ctx *c, EGLenum platform, void *native) {
+static bool try_egl_platform(gl_ctx *c, EGLenum platform, void *native, egl_diag *g) {
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
     if (!get_display) return false;
     EGLDisplay d = get_display(platform, native, NULL);
-    if (d == EGL_NO_DISPLAY) return false;
+    if (d == EGL_NO_DISPLAY) { note(g, EGL_STAGE_NO_DISPLAY); return false; }
     EGLint major, minor;
-    if (!eglInitialize(d, &major, &minor)) return false;
-    if (!eglBindAPI(EGL_OPENGL_API)) { eglTerminate(d); return false; }
+    if (!eglInitialize(d, &major, &minor)) { note(g, EGL_STAGE_INIT); return false; }
+    const char *vendor = eglQueryString(d, EGL_VENDOR);
+    if (vendor) snprintf(g->vendor, sizeof g->vendor, "%s", vendor);
+    if (!eglBindAPI(EGL_OPENGL_API)) { note(g, EGL_STAGE_API); eglTerminate(d); return false; }
+    /* Ask to be told about a GPU reset (EGL 1.5 / EGL_EXT_create_context_robustness),
+     * so that a lost context ends tarn with a message instead of black frames;
+     * a driver that cannot do that still gets a context without it. */
+    const char *ext = eglQueryString(d, EGL_EXTENSIONS);
+    bool can_robust = (major > 1 || (major == 1 && minor >= 5)) ||
+                      (ext && strstr(ext, "EGL_EXT_create_context_robustness"));
+    static const EGLint robust_attribs[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
+        EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET,
+        EGL_NONE };
     static const EGLint attribs[] = {
         EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
         EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
         EGL_NONE };
-    EGLContext ctx = eglCreateContext(d, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
-    if (ctx == EGL_NO_CONTEXT) { eglTerminate(d); return false; }
+    EGLContext ctx = can_robust ? eglCreateContext(d, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, robust_attribs)
+                                : EGL_NO_CONTEXT;
+    c->robust = ctx != EGL_NO_CONTEXT;
+    if (ctx == EGL_NO_CONTEXT) ctx = eglCreateContext(d, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+    if (ctx == EGL_NO_CONTEXT) { note(g, EGL_STAGE_CONTEXT); eglTerminate(d); return false; }
     if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+        note(g, EGL_STAGE_CURRENT);
         eglDestroyContext(d, ctx);
         eglTerminate(d);
         return false;
@@ -78,7 +146,7 @@ static bool try_egl_platform(gl_ctx *c, EGLenum platform, void *native) {
 }
 
 /* The device platform finds a GPU without a display server (NVIDIA's EGL). */
-static bool try_egl_devices(gl_ctx *c) {
+static bool try_egl_devices(gl_ctx *c, egl_diag *g) {
     PFNEGLQUERYDEVICESEXTPROC query_devices =
         (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
     if (!query_devices) return false;
@@ -86,28 +154,100 @@ static bool try_egl_devices(gl_ctx *c) {
     EGLint n = 0;
     if (!query_devices(16, devices, &n)) return false;
     for (EGLint i = 0; i < n; i++)
-        if (try_egl_platform(c, EGL_PLATFORM_DEVICE_EXT, devices[i])) return true;
+        if (try_egl_platform(c, EGL_PLATFORM_DEVICE_EXT, devices[i], g)) return true;
     return false;
+}
+
+/* Names the environment variables that steer EGL and Mesa, when set. */
+static void env_note(char *out, size_t len) {
+    static const char *const vars[] = { "__EGL_VENDOR_LIBRARY_FILENAMES", "__EGL_VENDOR_LIBRARY_DIRS",
+        "EGL_PLATFORM", "LIBGL_DRIVERS_PATH", "MESA_LOADER_DRIVER_OVERRIDE", "MESA_GL_VERSION_OVERRIDE",
+        "LIBGL_ALWAYS_SOFTWARE", "GALLIUM_DRIVER", "TARN_EGL_PLATFORM" };
+    size_t n = 0;
+    out[0] = '\0';
+    for (size_t i = 0; i < sizeof vars / sizeof vars[0] && n < len; i++) {
+        const char *v = getenv(vars[i]);
+        if (!v) continue;
+        n += (size_t)snprintf(out + n, len - n, "%s%s=%s", n ? ", " : " (set in the environment: ",
+                              vars[i], v);
+    }
+    if (n && n < len) snprintf(out + n, len - n, ")");
+}
+
+static void explain(const egl_diag *g, char *err, int errlen) {
+    char env[512];
+    env_note(env, sizeof env);
+    const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    bool no_vendor = !ext || !ext[0];
+    if (no_vendor || g->stage <= EGL_STAGE_NO_DISPLAY) {
+        snprintf(err, (size_t)errlen,
+                 "cannot start OpenGL: no EGL driver was found (libglvnd's libEGL found no vendor "
+                 "library, or none offers a display without a window system: Mesa's is libEGL_mesa.so.0, "
+                 "listed in /usr/share/glvnd/egl_vendor.d/50_mesa.json)%s; %s", env, install_hint);
+    } else if (g->stage == EGL_STAGE_INIT) {
+        snprintf(err, (size_t)errlen,
+                 "cannot start OpenGL: EGL (%s) could not load an OpenGL driver (%s; Mesa's software "
+                 "renderer is swrast_dri.so, in libgl1-mesa-dri)%s; %s",
+                 g->vendor[0] ? g->vendor : "the EGL vendor library", egl_error_name(g->error), env, install_hint);
+    } else if (g->stage == EGL_STAGE_API) {
+        snprintf(err, (size_t)errlen,
+                 "cannot start OpenGL: the EGL driver (%s) offers OpenGL ES only, not desktop OpenGL%s; %s",
+                 g->vendor[0] ? g->vendor : "?", env, install_hint);
+    } else if (g->stage == EGL_STAGE_CONTEXT) {
+        snprintf(err, (size_t)errlen,
+                 "cannot start OpenGL: the driver (%s) gives no OpenGL 4.5 compatibility-profile context "
+                 "(%s); tarn needs OpenGL 4.5 (Mesa 20 or later, whose llvmpipe runs on any CPU, or a GPU "
+                 "driver)%s; %s", g->vendor[0] ? g->vendor : "?", egl_error_name(g->error), env, install_hint);
+    } else {
+        snprintf(err, (size_t)errlen, "cannot start OpenGL: the driver (%s) made a context but could not "
+                 "make it current (%s)%s; %s", g->vendor[0] ? g->vendor : "?", egl_error_name(g->error), env,
+                 install_hint);
+    }
+}
+
+static void loss_setup(gl_ctx *c) {
+    const char *sim = getenv("TARN_SIMULATE_CONTEXT_LOSS");
+    c->lose_after = sim && sim[0] ? atol(sim) : -1;
 }
 
 gl_ctx *gl_ctx_create_headless(char *err, int errlen) {
     gl_ctx *c = calloc(1, sizeof *c);
     if (!c) { snprintf(err, errlen, "out of memory"); return NULL; }
+    egl_diag g = { EGL_STAGE_NONE, EGL_SUCCESS, "" };
     /* TARN_EGL_PLATFORM=device forces the device platform (GPU machines). */
     const char *want = getenv("TARN_EGL_PLATFORM");
     bool device_first = want && strcmp(want, "device") == 0;
-    bool ok = device_first ? try_egl_devices(c) : false;
-    if (!ok) ok = try_egl_platform(c, EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY);
-    if (!ok && !device_first) ok = try_egl_devices(c);
+    bool ok = device_first ? try_egl_devices(c, &g) : false;
+    if (!ok) ok = try_egl_platform(c, EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, &g);
+    if (!ok && !device_first) ok = try_egl_devices(c, &g);
     if (!ok) {
-        snprintf(err, errlen, "cannot create a headless OpenGL 4.5 compatibility context "
-                 "through EGL (EGL error 0x%x): %s", (unsigned)eglGetError(), install_hint);
+        explain(&g, err, errlen);
         free(c);
         return NULL;
     }
     describe(c);
-    leak_check_before_driver_unloads();
+    loss_setup(c);
+    keep_driver_loaded();
     return c;
+}
+
+bool gl_ctx_lost(gl_ctx *c, char *err, int errlen) {
+    if (!c) return false;
+    c->checks++;
+    GLenum st = GL_NO_ERROR;
+    if (c->lose_after >= 0 && c->checks > c->lose_after) st = GL_UNKNOWN_CONTEXT_RESET;
+    else if (c->robust) st = glGetGraphicsResetStatus();
+    if (st == GL_NO_ERROR) return false;
+    const char *why = st == GL_GUILTY_CONTEXT_RESET ? "a GPU reset that tarn's own drawing caused (a shader "
+                                                      "that runs too long, or reads out of bounds)"
+                    : st == GL_INNOCENT_CONTEXT_RESET ? "a GPU reset caused by another program"
+                    : "a GPU reset or a driver restart of unknown cause";
+    snprintf(err, (size_t)errlen,
+             "the OpenGL context was lost: %s. Nothing more can be drawn in it; your files are unchanged, "
+             "start tarn again. If it happens again, update or reinstall the GPU driver (Debian: apt-get "
+             "install --reinstall libgl1-mesa-dri libegl-mesa0, or your GPU vendor's driver)%s",
+             why, st == GL_GUILTY_CONTEXT_RESET ? ", or make the scene lighter (a smaller --size, fewer steps)" : "");
+    return true;
 }
 
 static void glfw_error(int code, const char *msg) {
@@ -127,7 +267,13 @@ gl_ctx *gl_ctx_create_window(int w, int h, const char *title, char *err, int err
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_COMPAT_PROFILE);
     glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_TRUE);   /* scenes with a world are lit in linear radiance */
+    glfwWindowHint(GLFW_CONTEXT_ROBUSTNESS, GLFW_LOSE_CONTEXT_ON_RESET);   /* report a GPU reset */
     c->window = glfwCreateWindow(w, h, title, NULL, NULL);
+    c->robust = c->window != NULL;
+    if (!c->window) {   /* a driver without robustness: a context without it */
+        glfwWindowHint(GLFW_CONTEXT_ROBUSTNESS, GLFW_NO_ROBUSTNESS);
+        c->window = glfwCreateWindow(w, h, title, NULL, NULL);
+    }
     if (!c->window) {
         snprintf(err, errlen, "cannot create an OpenGL 4.5 compatibility window: %s",
                  install_hint);
@@ -138,7 +284,8 @@ gl_ctx *gl_ctx_create_window(int w, int h, const char *title, char *err, int err
     glfwMakeContextCurrent(c->window);
     glfwSwapInterval(1);
     describe(c);
-    leak_check_before_driver_unloads();
+    loss_setup(c);
+    keep_driver_loaded();
     return c;
 }
 

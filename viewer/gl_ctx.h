@@ -10,7 +10,8 @@
 typedef struct gl_ctx gl_ctx;
 
 /* Creates a headless context and makes it current. NULL with a message that
- * says what is missing and how to install it. */
+ * says what is missing (no EGL vendor library, no driver, no OpenGL 4.5
+ * compatibility context) and how to install it. */
 gl_ctx *gl_ctx_create_headless(char *err, int errlen);
 
 /* Creates a window of w x h and makes its context current. */
@@ -20,6 +21,14 @@ void gl_ctx_destroy(gl_ctx *c);
 
 /* The GLFWwindow* of a window context, NULL when headless. */
 void *gl_ctx_window(gl_ctx *c);
+
+/* true when the context is lost (a GPU reset, the driver restarted:
+ * glGetGraphicsResetStatus; contexts are made with reset notification where
+ * the driver offers it), with a message saying what happened and what to
+ * do. Nothing can be drawn in a lost context: end with exit code 3. Call
+ * it once a frame. TARN_SIMULATE_CONTEXT_LOSS=N in the environment makes
+ * the check after the first N report a loss (tests). */
+bool gl_ctx_lost(gl_ctx *c, char *err, int errlen);
 
 /* "4.5 (Compatibility Profile) Mesa ... | llvmpipe ..." */
 const char *gl_ctx_describe(gl_ctx *c);

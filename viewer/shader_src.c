@@ -131,7 +131,9 @@ static bool is_regular_file(const char *path) {
 }
 
 /* Reads a whole file; CRLF becomes LF. On failure returns NULL and errno
- * describes why (EISDIR for a directory, EILSEQ for a NUL byte). */
+ * describes why (EISDIR for a directory, EILSEQ for a NUL byte, EFBIG past
+ * SHADER_SRC_MAX_FILE_BYTES: a "regular" file such as /proc/self/pagemap
+ * would otherwise be read for ever). */
 static char *read_text(const char *path) {
     struct stat st;
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) { errno = EISDIR; return NULL; }
@@ -140,8 +142,8 @@ static char *read_text(const char *path) {
     sbuf b = {0};
     char chunk[8192];
     size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) sb_put(&b, chunk, n);
-    int err = ferror(f) ? errno : 0;
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0 && b.n <= SHADER_SRC_MAX_FILE_BYTES) sb_put(&b, chunk, n);
+    int err = ferror(f) ? errno : b.n > SHADER_SRC_MAX_FILE_BYTES ? EFBIG : 0;
     fclose(f);
     if (err || b.oom) { free(b.p); errno = err ? err : ENOMEM; return NULL; }
     if (!b.p) return strdup("");
@@ -161,6 +163,7 @@ static char *read_text(const char *path) {
 
 static const char *errno_text(int err) {
     if (err == EILSEQ) return "contains a NUL byte (not a text file?)";
+    if (err == EFBIG) return "larger than 8 MiB (not a shader?)";
     return strerror(err);
 }
 

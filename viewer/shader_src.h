@@ -78,11 +78,12 @@ typedef struct shader_src {
 /* Lines of files[k], k >= 1, are numbered k * SHADER_SRC_LINE_BASE + line. */
 #define SHADER_SRC_LINE_BASE 100000
 #define SHADER_SRC_MAX_INCLUDE_DEPTH 32
+#define SHADER_SRC_MAX_FILE_BYTES (8L << 20)   /* one stage file or include */
 
 /* Assembles desc->path into *out (which it zeroes first). Returns false and
- * sets out->error on a missing or unreadable file, a missing include, an
- * include cycle, includes nested deeper than 32, a `#version` after other
- * code, or a define name that is not an identifier. Always call
+ * sets out->error on a missing or unreadable file (or one over 8 MiB), a
+ * missing include, an include cycle, includes nested deeper than 32, a
+ * `#version` after other code, or a define name that is not an identifier. Always call
  * shader_src_free() afterwards, whether it succeeded or not. */
 bool shader_src_load(const shader_src_desc *desc, shader_src *out);
 void shader_src_free(shader_src *s);

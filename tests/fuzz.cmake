@@ -1,0 +1,15 @@
+# The fuzz targets (tests/fuzz/) replayed in every build: each seed corpus
+# and every input a fuzzer crashed on (tests/fuzz/regress_<target>/, kept
+# as regression tests). The fuzzing itself is a TARN_FUZZ build (clang).
+foreach(t glib shader preset)
+  add_executable(fuzz_replay_${t} ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/fuzz_${t}.c
+                                  ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/replay_main.c)
+  target_compile_options(fuzz_replay_${t} PRIVATE ${TARN_WARNINGS})
+  target_link_libraries(fuzz_replay_${t} PRIVATE tarn_core)
+  set(dirs ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/corpus_${t})
+  if(IS_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/regress_${t})
+    list(APPEND dirs ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/regress_${t})
+  endif()
+  add_test(NAME fuzz_replay_${t} COMMAND fuzz_replay_${t} ${dirs})
+  set_tests_properties(fuzz_replay_${t} PROPERTIES TIMEOUT 300)
+endforeach()

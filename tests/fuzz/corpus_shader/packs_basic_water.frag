@@ -1,0 +1,34 @@
+#version 330 compatibility
+#include "waves.glsl"
+#include "world.glsl"
+
+uniform samplerCube uSky;
+uniform vec3 uCameraPos;
+uniform float uTime;
+uniform vec3 uTint;       // what the water adds where light is absorbed
+uniform float uOpacity;   // how much of the floor the water hides at normal incidence
+in vec2 vRest;
+in vec3 vWorldPos;
+out vec4 fragColor;
+
+void main() {
+    // the normal per fragment, from the rest point: exact, not interpolated
+    vec3 n = wavesNormal(vRest, uTime);
+    vec3 e = normalize(uCameraPos - vWorldPos);
+    bool below = dot(e, n) < 0.0;
+    if (below) n = -n;
+    float cosI = clamp(dot(e, n), 0.0, 1.0);
+#ifdef EXACT_FRESNEL
+    float f = below ? worldFresnel(cosI, uIOR, 1.0) : worldFresnel(cosI, 1.0, uIOR);
+#else
+    float r0 = (uIOR - 1.0) / (uIOR + 1.0);
+    r0 *= r0;
+    float f = r0 + (1.0 - r0) * pow(1.0 - cosI, 5.0);
+#endif
+    vec3 sky = texture(uSky, reflect(-e, n)).rgb;
+    vec3 color = f * sky + (1.0 - f) * uTint;
+    // Blend premultiplied: out = color + dst * (1 - alpha), the floor seen
+    // through what neither reflects nor absorbs
+    float alpha = f + (1.0 - f) * uOpacity;
+    fragColor = vec4(color, clamp(alpha, 0.0, 1.0));
+}

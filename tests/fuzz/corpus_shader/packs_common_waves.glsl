@@ -1,0 +1,267 @@
+// waves.glsl: tarn's wave set in GLSL (float), shared by every pack.
+//
+// The double-precision twin is reference/ref_waves.c: the same uniforms,
+// the same formulas and the same defaults for zero values, one definition
+// each, so the CPU reference and the packs draw the same water
+// (docs/reference.md). Include it after #version (330 or later: the noise
+// hashes with uint arithmetic). No #version here.
+//
+//   sum of sines (height only):  h += A sin(k D.p0 + omega t + phase)
+//   Gerstner (GPU Gems 1 ch. 1, eq. 9), parametric in the rest point p0:
+//       P = (x0 + sum Q_i A_i D.x cos th, level + sum A_i sin th, z0 + sum Q_i A_i D.z cos th)
+//       with Q_i = Q / (k_i A_i N), N the number of active Gerstner waves
+//   noise: octaves of tileable gradient noise (quintic fade), each drifting
+//
+// k = 2 pi / L, omega = S k, S = sqrt(g L / 2 pi) when the speed is 0.
+// A wave with L <= 0 or A == 0 is inactive (and not counted in N).
+// y is up; p0 = (x0, z0) are the undisplaced coordinates.
+//
+// Normals: the exact one is normalize(cross(T, B)) with B = dP/dx0 and
+// T = dP/dz0 (the chapter's cross(B, T) in its z-up frame). Define
+// WAVES_APPROX_NORMAL before the include to get the chapter's eq. 12
+// instead, (-sum D.x WA C, 1 - sum Q_i WA S, -sum D.z WA C), which drops the
+// cross terms (exact for a single Gerstner wave).
+//
+// Functions:
+//   vec3  wavesDisplace(vec2 p0, float t)            displaced position P
+//   vec3  wavesNormal(vec2 p0, float t)              unit normal (exact, or eq. 12)
+//   vec3  wavesNormalExact(vec2 p0, float t)
+//   vec3  wavesNormalApprox(vec2 p0, float t)
+//   void  wavesEval(vec2 p0, float t, out vec3 pos, out vec3 normal)
+//   vec3  wavesNoise(vec2 p0, float t)               (height, d/dx0, d/dz0) of the noise
+//   vec2  wavesRestPoint(vec2 xz, float t)            p0 under a world (x, z) (Newton)
+//   float wavesHeightAt(vec2 xz, float t)             surface height over a world (x, z)
+#ifndef WAVES_GLSL
+#define WAVES_GLSL
+
+#define WAVES_MAX 8
+#define WAVES_NOISE_OCTAVES_MAX 8
+#define WAVES_GRAVITY 9.81
+#define WAVES_TWO_PI 6.28318530717958647692
+#define WAVES_NOISE_TURN 0.5            // radians the drift turns per octave
+#ifndef WAVES_NEWTON_ITERATIONS
+#define WAVES_NEWTON_ITERATIONS 4       // for wavesRestPoint / wavesHeightAt
+#endif
+
+uniform float uWaterLevel;              // mean water height
+uniform float uSteepness;               // Q = sum Q_i k_i A_i (loop-free while <= 1)
+
+uniform int   uSineCount;               // 0..WAVES_MAX
+uniform float uSineAngle[WAVES_MAX];    // direction of travel, degrees from +x towards +z
+uniform float uSineLength[WAVES_MAX];   // wavelength L
+uniform float uSineAmp[WAVES_MAX];      // amplitude A
+uniform float uSineSpeed[WAVES_MAX];    // phase speed S (0: deep water)
+uniform float uSinePhase[WAVES_MAX];    // radians
+
+uniform int   uGerstnerCount;
+uniform float uGerstnerAngle[WAVES_MAX];
+uniform float uGerstnerLength[WAVES_MAX];
+uniform float uGerstnerAmp[WAVES_MAX];
+uniform float uGerstnerSpeed[WAVES_MAX];
+uniform float uGerstnerPhase[WAVES_MAX];
+
+uniform float uNoiseAmp;                // octave 0 amplitude; 0: no noise
+uniform float uNoiseCell;               // lattice cell of octave 0 (0: 4)
+uniform int   uNoiseOctaves;            // 0: 4
+uniform int   uNoisePeriod;             // cells per tile at octave 0 (0: 16)
+uniform float uNoiseGain;               // 0: 0.5
+uniform float uNoiseAngle;              // drift direction of octave 0, degrees
+uniform float uNoiseSpeed;              // drift speed of octave 0 (0: deep water for L = 2 cell)
+uniform int   uNoiseSeed;               // 32 bits, read as uint
+
+float wavesPhaseSpeed(float speed, float L) {
+    return speed != 0.0 ? speed : sqrt(WAVES_GRAVITY * L / WAVES_TWO_PI);
+}
+
+// ---- noise ------------------------------------------------------------
+
+uint wavesHash(uint x) {                // "lowbias32", as in ref_waves.c
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+vec2 wavesLatticeGrad(uint seed, float i, float j) {
+    uint h = wavesHash(uint(i) + wavesHash(uint(j) + seed));
+    float a = float(h >> 8u) * (WAVES_TWO_PI / 16777216.0);
+    return vec2(cos(a), sin(a));
+}
+
+// One octave at lattice coordinates q: (value, d/dq.x, d/dq.y).
+vec3 wavesNoiseOctave(vec2 q, float period, uint seed) {
+    vec2 f = floor(q);
+    vec2 x = q - f;
+    float i0 = mod(f.x, period), i1 = mod(f.x + 1.0, period);
+    float j0 = mod(f.y, period), j1 = mod(f.y + 1.0, period);
+    vec2 ga = wavesLatticeGrad(seed, i0, j0);
+    vec2 gb = wavesLatticeGrad(seed, i1, j0);
+    vec2 gc = wavesLatticeGrad(seed, i0, j1);
+    vec2 gd = wavesLatticeGrad(seed, i1, j1);
+    float va = dot(ga, x);
+    float vb = dot(gb, x - vec2(1.0, 0.0));
+    float vc = dot(gc, x - vec2(0.0, 1.0));
+    float vd = dot(gd, x - vec2(1.0, 1.0));
+    vec2 u = x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
+    vec2 m = x * (x - 1.0);
+    vec2 du = 30.0 * m * m;
+    float e = va - vb - vc + vd;
+    float n = va + u.x * (vb - va) + u.y * (vc - va) + u.x * u.y * e;
+    vec2 dn = ga + u.x * (gb - ga) + u.y * (gc - ga) + u.x * u.y * (ga - gb - gc + gd)
+            + du * vec2(vb - va + u.y * e, vc - va + u.x * e);
+    return vec3(n, dn);
+}
+
+vec3 wavesNoise(vec2 p0, float t) {
+    vec3 r = vec3(0.0);
+    if (uNoiseAmp == 0.0) return r;
+    float cell = uNoiseCell != 0.0 ? uNoiseCell : 4.0;
+    int octaves = uNoiseOctaves != 0 ? uNoiseOctaves : 4;
+    float period = float(uNoisePeriod != 0 ? uNoisePeriod : 16);
+    float gain = uNoiseGain != 0.0 ? uNoiseGain : 0.5;
+    float speed = uNoiseSpeed != 0.0 ? uNoiseSpeed : sqrt(WAVES_GRAVITY * 2.0 * cell / WAVES_TWO_PI);
+    float amp = uNoiseAmp, scale = 1.0;
+    for (int o = 0; o < WAVES_NOISE_OCTAVES_MAX; o++) {
+        if (o >= octaves) break;
+        float ang = radians(uNoiseAngle) + float(o) * WAVES_NOISE_TURN;
+        vec2 drift = speed / sqrt(scale) * vec2(cos(ang), sin(ang));
+        float freq = scale / cell;
+        uint seed = wavesHash(uint(uNoiseSeed) + uint(o) * 0x9E3779B9u);
+        vec3 n = wavesNoiseOctave((p0 - drift * t) * freq, period * scale, seed);
+        r += amp * vec3(n.x, freq * n.yz);
+        amp *= gain;
+        scale *= 2.0;
+    }
+    return r;
+}
+
+// ---- the sums -----------------------------------------------------------
+
+// Height h (without level) and its gradient, Gerstner displacement D and its
+// Jacobian entries a = dDx/dx0, b = dDx/dz0 = dDz/dx0, d = dDz/dz0.
+void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
+    h = 0.0; dh = vec2(0.0); disp = vec2(0.0); abd = vec3(0.0);
+    for (int i = 0; i < WAVES_MAX; i++) {
+        if (i >= uSineCount) break;
+        float L = uSineLength[i], A = uSineAmp[i];
+        if (L <= 0.0 || A == 0.0) continue;
+        float ang = radians(uSineAngle[i]);
+        vec2 D = vec2(cos(ang), sin(ang));
+        float k = WAVES_TWO_PI / L;
+        float th = k * dot(D, p0) + wavesPhaseSpeed(uSineSpeed[i], L) * k * t + uSinePhase[i];
+        h += A * sin(th);
+        dh += k * A * cos(th) * D;
+    }
+    int n = 0;
+    for (int i = 0; i < WAVES_MAX; i++) {
+        if (i >= uGerstnerCount) break;
+        if (uGerstnerLength[i] > 0.0 && uGerstnerAmp[i] != 0.0) n++;
+    }
+    for (int i = 0; i < WAVES_MAX; i++) {
+        if (i >= uGerstnerCount) break;
+        float L = uGerstnerLength[i], A = uGerstnerAmp[i];
+        if (L <= 0.0 || A == 0.0) continue;
+        float ang = radians(uGerstnerAngle[i]);
+        vec2 D = vec2(cos(ang), sin(ang));
+        float k = WAVES_TWO_PI / L;
+        float qa = uSteepness / (k * float(n)) * sign(A);      // Q_i A_i
+        float th = k * dot(D, p0) + wavesPhaseSpeed(uGerstnerSpeed[i], L) * k * t + uGerstnerPhase[i];
+        float s = sin(th), c = cos(th);
+        h += A * s;
+        dh += k * A * c * D;
+        disp += qa * c * D;
+        abd -= qa * k * s * vec3(D.x * D.x, D.x * D.y, D.y * D.y);
+    }
+    vec3 nz = wavesNoise(p0, t);
+    h += nz.x;
+    dh += nz.yz;
+}
+
+vec3 wavesDisplace(vec2 p0, float t) {
+    float h; vec2 dh, disp; vec3 abd;
+    wavesSums(p0, t, h, dh, disp, abd);
+    return vec3(p0.x + disp.x, uWaterLevel + h, p0.y + disp.y);
+}
+
+vec3 wavesNormalFrom(vec2 dh, vec3 abd, bool approx) {
+    if (approx)   // GPU Gems 1 eq. 12 (1 + a + d = 1 - sum Q_i k A sin)
+        return normalize(vec3(-dh.x, 1.0 + abd.x + abd.z, -dh.y));
+    vec3 B = vec3(1.0 + abd.x, dh.x, abd.y);    // dP/dx0
+    vec3 T = vec3(abd.y, dh.y, 1.0 + abd.z);    // dP/dz0
+    return normalize(cross(T, B));
+}
+
+vec3 wavesNormalExact(vec2 p0, float t) {
+    float h; vec2 dh, disp; vec3 abd;
+    wavesSums(p0, t, h, dh, disp, abd);
+    return wavesNormalFrom(dh, abd, false);
+}
+
+vec3 wavesNormalApprox(vec2 p0, float t) {
+    float h; vec2 dh, disp; vec3 abd;
+    wavesSums(p0, t, h, dh, disp, abd);
+    return wavesNormalFrom(dh, abd, true);
+}
+
+#ifdef WAVES_APPROX_NORMAL
+#define WAVES_USE_APPROX true
+#else
+#define WAVES_USE_APPROX false
+#endif
+
+vec3 wavesNormal(vec2 p0, float t) {
+    float h; vec2 dh, disp; vec3 abd;
+    wavesSums(p0, t, h, dh, disp, abd);
+    return wavesNormalFrom(dh, abd, WAVES_USE_APPROX);
+}
+
+void wavesEval(vec2 p0, float t, out vec3 pos, out vec3 normal) {
+    float h; vec2 dh, disp; vec3 abd;
+    wavesSums(p0, t, h, dh, disp, abd);
+    pos = vec3(p0.x + disp.x, uWaterLevel + h, p0.y + disp.y);
+    normal = wavesNormalFrom(dh, abd, WAVES_USE_APPROX);
+}
+
+// ---- inversion -----------------------------------------------------------
+
+// The rest point p0 whose displaced position lies over the world (x, z):
+// Newton on p0 + D(p0) = xz from p0 = xz (only Gerstner waves move points
+// sideways); WAVES_NEWTON_ITERATIONS steps (the reference iterates to 1e-12).
+vec2 wavesRestPoint(vec2 xz, float t) {
+    int n = 0;
+    for (int i = 0; i < WAVES_MAX; i++) {
+        if (i >= uGerstnerCount) break;
+        if (uGerstnerLength[i] > 0.0 && uGerstnerAmp[i] != 0.0) n++;
+    }
+    vec2 p0 = xz;
+    if (n == 0 || uSteepness == 0.0) return p0;
+    for (int it = 0; it < WAVES_NEWTON_ITERATIONS; it++) {
+        vec2 disp = vec2(0.0);
+        vec3 abd = vec3(0.0);
+        for (int i = 0; i < WAVES_MAX; i++) {
+            if (i >= uGerstnerCount) break;
+            float L = uGerstnerLength[i], A = uGerstnerAmp[i];
+            if (L <= 0.0 || A == 0.0) continue;
+            float ang = radians(uGerstnerAngle[i]);
+            vec2 D = vec2(cos(ang), sin(ang));
+            float k = WAVES_TWO_PI / L;
+            float qa = uSteepness / (k * float(n)) * sign(A);
+            float th = k * dot(D, p0) + wavesPhaseSpeed(uGerstnerSpeed[i], L) * k * t + uGerstnerPhase[i];
+            disp += qa * cos(th) * D;
+            abd -= qa * k * sin(th) * vec3(D.x * D.x, D.x * D.y, D.y * D.y);
+        }
+        vec2 F = p0 + disp - xz;
+        mat2 J = mat2(1.0 + abd.x, abd.y, abd.y, 1.0 + abd.z);
+        float det = determinant(J);
+        p0 -= abs(det) > 1e-6 ? inverse(J) * F : F;
+    }
+    return p0;
+}
+
+float wavesHeightAt(vec2 xz, float t) {
+    return wavesDisplace(wavesRestPoint(xz, t), t).y;
+}
+
+#endif // WAVES_GLSL

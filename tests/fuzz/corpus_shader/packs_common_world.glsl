@@ -1,0 +1,56 @@
+// The shading of everything that is not water, the GLSL twin of
+// reference/ref_scene.c's ref_shade_lambert:
+//   radiance = albedo * (E_sun * max(0, n.l) * sunScale / pi + ambient)
+// Below the water the sun arrives refracted through a flat surface: it is
+// scaled by the Fresnel transmittance and Beer-Lambert along the refracted
+// sun ray (the flat-water caustic; packs with caustics replace sunScale).
+#ifndef TARN_WORLD_GLSL
+#define TARN_WORLD_GLSL
+
+uniform vec3 uSunDir;          // towards the sun, unit
+uniform vec3 uSunIrradiance;
+uniform vec3 uAmbient;         // sky ambient radiance
+uniform vec3 uAbsorption;      // Beer-Lambert sigma per metre
+uniform float uIOR;
+#ifndef WAVES_GLSL   // waves.glsl declares it too; include either first
+uniform float uWaterLevel;
+#endif
+
+const float WORLD_PI = 3.14159265358979;
+
+vec3 worldLambert(vec3 albedo, vec3 n, vec3 sunScale) {
+    float c = max(dot(n, uSunDir), 0.0);
+    return albedo * (uSunIrradiance * c * sunScale / WORLD_PI + uAmbient);
+}
+
+// Exact unpolarised Fresnel reflectance for cos of the incidence angle,
+// from medium n1 to n2; 1 under total internal reflection.
+float worldFresnel(float cosI, float n1, float n2) {
+    float eta = n1 / n2;
+    float sinT2 = eta * eta * max(0.0, 1.0 - cosI * cosI);
+    if (sinT2 >= 1.0) return 1.0;
+    float cosT = sqrt(1.0 - sinT2);
+    float rs = (n1 * cosI - n2 * cosT) / (n1 * cosI + n2 * cosT);
+    float rp = (n2 * cosI - n1 * cosT) / (n2 * cosI + n1 * cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// Sunlight reaching a point below flat water: the refracted direction's
+// cosine replaces n.l's light, scaled by transmittance and attenuation.
+vec3 worldShadeAt(vec3 albedo, vec3 n, vec3 pos) {
+    float depth = uWaterLevel - pos.y;
+    if (depth <= 0.0) return worldLambert(albedo, n, vec3(1.0));
+    float cosI = max(uSunDir.y, 1e-4);
+    vec3 lt = refract(-uSunDir, vec3(0.0, 1.0, 0.0), 1.0 / uIOR);   // downward
+    float cosT = max(-lt.y, 1e-4);
+    vec3 trans = (1.0 - worldFresnel(cosI, 1.0, uIOR)) * exp(-uAbsorption * depth / cosT);
+    // The beam carries E_sun cosI (1 - R) per unit of horizontal area, so
+    // E_sun cosI (1 - R) / cosT per unit of its own cross-section; a
+    // surface with normal n receives that times n.(-lt). On a flat floor
+    // this is E_sun cosI (1 - R) attenuated, the photon tracer's figure.
+    float c = max(dot(n, -lt), 0.0);
+    vec3 e = uSunIrradiance * trans * c * cosI / cosT;
+    return albedo * (e / WORLD_PI + uAmbient);
+}
+
+#endif

@@ -1,0 +1,160 @@
+// natural.glsl: what the programs of packs/natural share (docs/packs/natural.md).
+//
+//   natProject / natRefrPoint   the projective lookups of the water shader
+//   natPhoton                   one photon of the sun through the surface to
+//                               the floor, found in the light camera's depth
+//                               map (both caustic methods)
+//   natCausticUV / natCausticRatio   the caustic texture and its lookup
+//
+// Include after waves.glsl and world.glsl (it uses uWaterLevel, uSunDir,
+// uIOR, uAbsorption and worldFresnel). No #version here.
+//
+// The caustic texture holds a RATIO, not an irradiance: the sun's irradiance
+// on the floor divided by what flat water would give there (1 under calm
+// water). Its coordinates are "refracted-sun space": a floor point p maps
+// to the point q where the sun ray refracted by the FLAT surface, through
+// p, leaves the mean plane,
+//     q = p.xz - t_s.xz * D / cos_t,   D = level - p.y,  t_s the flat refracted sun,
+// over the square |q| <= NAT_CAUSTIC_MARGIN * uTerrainHalfSize. In that space
+// flat water spreads the light evenly whatever the floor's slope, so the
+// ratio multiplies the sun term of tarn's world shading (worldShadeAt: flat
+// sun through flat water) on any floor: exactly under flat water, and to
+// first order in the photon directions' departure from t_s under waves.
+#ifndef NATURAL_GLSL
+#define NATURAL_GLSL
+
+#define NAT_CAUSTIC_MARGIN 1.25   // caustic square / world square (photons land beyond the edge)
+
+uniform float uTerrainHalfSize;
+
+float natCausticHalfSize() { return NAT_CAUSTIC_MARGIN * uTerrainHalfSize; }
+
+// The sun refracted by flat water (downward, unit) and the cosines.
+vec3 natFlatSun() { return refract(-uSunDir, vec3(0.0, 1.0, 0.0), 1.0 / uIOR); }
+
+// Refracted-sun space of a point under water (see above).
+vec2 natCausticQ(vec3 p) {
+    vec3 ts = natFlatSun();
+    float depth = uWaterLevel - p.y;
+    return p.xz - ts.xz * (depth / max(-ts.y, 1e-4));
+}
+
+vec2 natCausticUV(vec2 q) { return q / natCausticHalfSize() * 0.5 + 0.5; }
+
+// ---- projective lookups ---------------------------------------------------
+
+// Texture coordinates of a world point in a camera's colour/depth target,
+// with the clip w (the view depth for a perspective camera).
+vec2 natProject(mat4 vp, vec3 p, out float w) {
+    vec4 c = vp * vec4(p, 1.0);
+    w = c.w;
+    return c.xy / c.w * 0.5 + 0.5;
+}
+
+bool natInside(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))); }
+
+// The scene point a perspective target shows in the direction of world
+// point x from the camera's eye: on the ray eye -> x at the view depth
+// read from the depth target. For P = perspective, clip.z = -A clip.w + B
+// with B = clip.z of the eye, so the view depth of an NDC depth z is
+// B / (z + A). valid: the target holds something there (depth < 1).
+vec3 natShownPoint(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out vec2 uv, out bool valid) {
+    vec4 cx = vp * vec4(x, 1.0);
+    float B = (vp * vec4(eye, 1.0)).z;
+    float A = (B - cx.z) / cx.w;
+    uv = cx.xy / cx.w * 0.5 + 0.5;
+    float zt = texture(depthTex, uv).r;
+    valid = natInside(uv) && zt < 1.0 && cx.w > 0.0;
+    float wv = B / (2.0 * zt - 1.0 + A);
+    return eye + (x - eye) * (wv / cx.w);
+}
+
+// ---- photons ----------------------------------------------------------------
+
+uniform sampler2D uLightDepth;   // the light camera's depth of the world below the water
+uniform mat4 uCamLightVP;
+
+// Light-target coordinates (xy) and depth (z), both 0..1.
+vec3 natLightTex(vec3 p) {
+    vec4 c = uCamLightVP * vec4(p, 1.0);
+    return c.xyz / c.w * 0.5 + 0.5;
+}
+
+// > 0 when p lies behind (under) the floor as the light sees it; -2 off the map.
+float natBehindFloor(vec3 p) {
+    vec3 l = natLightTex(p);
+    if (!natInside(l.xy)) return -2.0;
+    return l.z - texture(uLightDepth, l.xy).r;
+}
+
+#ifndef PHOTON_STEPS
+#define PHOTON_STEPS 8
+#endif
+
+// Where the ray S + s t (t refracted, downward) meets the floor of the
+// light's depth map: PHOTON_STEPS steps over [0, 2 s0 + 0.25], s0 the
+// vertical drop to the floor under S along the sun divided by |t.y|, then
+// three regula-falsi steps in the bracket. False when it meets nothing.
+bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
+    s = 0.0;
+    hit = S;
+    vec3 lS = natLightTex(S);
+    if (!natInside(lS.xy) || t.y >= 0.0) return false;
+    float zF = texture(uLightDepth, lS.xy).r;
+    if (zF >= 1.0) return false;
+    // d(depth)/d(distance) along -sun: the light's ortho depth is linear
+    vec3 row2 = vec3(uCamLightVP[0][2], uCamLightVP[1][2], uCamLightVP[2][2]);
+    float kz = 0.5 * dot(row2, -uSunDir);
+    float drop = abs(kz) > 1e-8 ? max(zF - lS.z, 0.0) / kz * uSunDir.y : 1.0;
+    float smax = 2.0 * max(drop, 0.0) / -t.y + 0.25;
+    float s0 = 0.0, g0 = natBehindFloor(S);
+    if (g0 >= 0.0) { hit = S; return true; }   // the floor touches the surface here
+    for (int i = 1; i <= PHOTON_STEPS; i++) {
+        float s1 = smax * float(i) / float(PHOTON_STEPS);
+        float g1 = natBehindFloor(S + s1 * t);
+        if (g1 >= 0.0) {
+            for (int k = 0; k < 3; k++) {          // regula falsi in [s0, s1]
+                float sm = s0 + (s1 - s0) * (-g0) / max(g1 - g0, 1e-12);
+                float gm = natBehindFloor(S + sm * t);
+                if (gm >= 0.0) { s1 = sm; g1 = gm; } else { s0 = sm; g0 = gm; }
+            }
+            s = s0 + (s1 - s0) * (-g0) / max(g1 - g0, 1e-12);
+            hit = S + s * t;
+            return true;
+        }
+        if (g1 < -1.5) return false;               // left the map
+        s0 = s1;
+        g0 = g1;
+    }
+    return false;
+}
+
+// One photon through the surface point S with unit normal N, standing for
+// `area` of the mean water plane under a sun of unit flux density (flat
+// water: area; waves: the patch's projected area / cos_s). Its weight w is
+// that area times the flux it brings to the floor relative to flat water:
+//     w = area (1 - R(cos_i)) / (1 - R(cos_s)) exp(-sigma (s - D / cos_t))
+// (sigma the mean absorption, s its path in water, D the depth of its hit).
+// Summed per unit of refracted-sun-space area, the weights give the ratio.
+bool natPhoton(vec3 S, vec3 N, float area, out vec2 q, out float w) {
+    q = vec2(0.0);
+    w = 0.0;
+    float cosS = max(uSunDir.y, 1e-4);
+    float cosI = dot(N, uSunDir);
+    if (cosI <= 0.0 || area <= 0.0) return false;
+    vec3 t = refract(-uSunDir, N, 1.0 / uIOR);
+    float s;
+    vec3 hit;
+    if (!natTraceFloor(S, t, s, hit)) return false;
+    float depth = uWaterLevel - hit.y;
+    if (depth <= 0.0) return false;
+    vec3 ts = natFlatSun();
+    float cosT = max(-ts.y, 1e-4);
+    q = hit.xz - ts.xz * (depth / cosT);
+    float sigma = dot(uAbsorption, vec3(1.0 / 3.0));
+    w = area * (1.0 - worldFresnel(cosI, 1.0, uIOR)) / (1.0 - worldFresnel(cosS, 1.0, uIOR))
+        * exp(-sigma * (s - depth / cosT));
+    return true;
+}
+
+#endif // NATURAL_GLSL

@@ -1,0 +1,224 @@
+#version 330 compatibility
+// packs/natural: the water pixel of Mihálik's "Natural Water Shader"
+// (docs/packs/natural.md). Two projective lookups into the passes drawn
+// before the surface, on the camera's side of the water:
+//   refraction  R = refract(-E, N, 1/ior), W = U + dv' R, dv' = clamp(dv, 0,
+//               uDepthClamp) uDepthScale with dv the view ray's path in
+//               water (from the depth target), W projected with uCamMainVP
+//               into the refraction target; C = C_w + exp(-d k) (C_refr - C_w)
+//   reflection  W = U + c reflect(-E, N), projected with uCamMirrorVP
+//   Fresnel     F = (1 - E.N)^q, or exact (EXACT_FRESNEL)
+//   colour      C_refr + F (C_refl - C_refr), plus a specular highlight
+// With the camera under the water pack.glib swaps what the passes draw
+// (the refraction target holds the world above, the reflection target the
+// world below, mirrored); this shader swaps the optics to match: Snell's
+// window out of the water, total internal reflection beyond it, and the
+// eye's own path through the water.
+#include "waves.glsl"
+#include "world.glsl"
+#include "natural.glsl"
+
+uniform samplerCube uSky;
+uniform sampler2D uTerrainAlbedo;
+uniform vec3 uCameraPos;
+uniform float uTime;
+uniform mat4 uCamMainVP;
+uniform mat4 uCamMirrorVP;
+
+uniform sampler2D uRefraction;        // the far side of the water from the main camera
+uniform sampler2D uRefractionDepth;   //   its depth
+uniform sampler2D uReflection;        // the near side, mirrored (camera widened by uFovScale)
+uniform sampler2D uReflectionDepth;   //   its depth
+uniform sampler2D uCaustics;          // caustic ratio over refracted-sun space (natural.glsl)
+
+uniform float uFovScale;         // the reflection pass's field of view over the camera's
+uniform float uReflectDist;      // c: reflection lookup distance
+uniform float uAttenuation;      // k: attenuation per metre (the paper's model)
+uniform vec3  uWaterColor;       // C_w: what deep water shows (the paper's model)
+uniform float uFresnelPower;     // q of (1 - E.N)^q
+uniform float uDepthClamp;       // dv clamp (paper: 2)
+uniform float uDepthScale;       // dv scale (paper: 1/3)
+uniform float uSpecular;         // highlight strength (times the sun's irradiance)
+uniform float uShininess;        // highlight exponent
+uniform float uCausticStrength;  // 1: the photons' ratio as computed; 0: flat-water light
+
+#ifndef REFINE_STEPS
+#define REFINE_STEPS 0           // depth lookups refining the refraction hit (0: the paper)
+#endif
+#ifndef DEBUG_PASS
+#define DEBUG_PASS 0             // 1: refracted colour only, 2: reflected colour only, 3: caustic ratio / 2,
+                                 // 4: the refraction hit point (world xyz: float targets, tests)
+#endif
+
+// A depth at or beyond this is the sky (tarn draws it at the far plane)
+// or nothing: with near 0.1 and far 200, beyond about 196 m.
+#define NAT_SKY_DEPTH 0.99999
+
+in vec2 vRest;
+in vec3 vWorldPos;
+out vec4 fragColor;
+
+// Light lost along a path of length d in water: the paper's blend towards
+// the water colour, or Beer-Lambert with the scene's absorption.
+vec3 attenuate(vec3 c, float d) {
+#ifdef BEER_LAMBERT
+    return c * exp(-uAbsorption * d);
+#else
+    return uWaterColor + exp(-d * uAttenuation) * (c - uWaterColor);
+#endif
+}
+
+float gCausticRatio = 1.0;      // the last ratio applied (DEBUG_PASS 3)
+vec3 gRefractHit = vec3(0.0);   // the point the refraction lookup showed (DEBUG_PASS 4)
+
+// The caustic ratio applied to the sun term of a floor colour that tarn's
+// world program shaded with flat-water sunlight, albedo (E/pi + ambient):
+// the albedo from the terrain's texture at p, the ratio filtered by four
+// bilinear taps half a texel apart (a tent two texels wide, which removes
+// the period-2 beat of a regular photon grid splatted onto the texels).
+vec3 applyCaustics(vec3 c, vec3 p) {
+#ifdef CAUSTICS
+    if (p.y < uWaterLevel) {
+        vec2 uv = natCausticUV(natCausticQ(p));
+        if (natInside(uv)) {
+            vec2 o = 0.5 / vec2(textureSize(uCaustics, 0));
+            float cr = 0.25 * (texture(uCaustics, uv + vec2(-o.x, -o.y)).r + texture(uCaustics, uv + vec2(o.x, -o.y)).r
+                             + texture(uCaustics, uv + vec2(-o.x, o.y)).r + texture(uCaustics, uv + vec2(o.x, o.y)).r);
+            float ratio = max(1.0 + uCausticStrength * (cr - 1.0), 0.0);
+            gCausticRatio = ratio;
+            vec3 albedo = texture(uTerrainAlbedo, p.xz / uTerrainHalfSize * 0.5 + 0.5).rgb;
+            vec3 amb = albedo * uAmbient;
+            c = amb + max(c - amb, vec3(0.0)) * ratio;
+        }
+    }
+#endif
+    return c;
+}
+
+// What the refraction target shows along direction r from the surface
+// point U: W = U + s r from s = s0, refined by REFINE_STEPS steps on the
+// residual f(s) = |shown(W(s)) - U| - s (zero where W lies on what the
+// target shows): a fixed-point step s += f first, secant steps after
+// (kept while they stay in (0, 2 (s + f) + 1)). fallback: the unperturbed
+// lookup when W leaves the target or meets nothing. path: |shown - U|.
+// sky: the lookup met the sky (or nothing).
+vec3 lookThrough(vec3 U, vec3 r, float s0, bool fallback, out float path, out bool sky) {
+    float s = s0, sPrev = s0, fPrev = 0.0;
+    vec2 uv;
+    bool ok;
+    for (int i = 0; i < REFINE_STEPS; i++) {
+        vec3 b = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
+        if (!ok) break;
+        float f = distance(U, b) - s;
+        float next = s + f;
+        if (i > 0 && abs(f - fPrev) > 1e-6) {
+            float sec = s - f * (s - sPrev) / (f - fPrev);
+            if (sec > 0.0 && sec < 2.0 * next + 1.0) next = sec;
+        }
+        sPrev = s;
+        fPrev = f;
+        s = next;
+    }
+    vec3 shown = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
+    if (!ok && fallback)   // the perturbed lookup left the target: the classic fix
+        shown = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv, ok);
+    sky = !ok || texture(uRefractionDepth, uv).r >= NAT_SKY_DEPTH;
+    path = ok ? distance(U, shown) : 1e4;
+    gRefractHit = ok ? shown : vec3(0.0);
+    if (!ok) return vec3(0.0);
+    return applyCaustics(texture(uRefraction, uv).rgb, shown);
+}
+
+void main() {
+    vec3 U = vWorldPos;
+    vec3 N = wavesNormal(vRest, uTime);
+    vec3 E = normalize(uCameraPos - U);
+    vec3 n = dot(E, N) < 0.0 ? -N : N;          // faces the eye
+    float cosI = clamp(dot(E, n), 0.0, 1.0);
+    vec3 Rr = reflect(-E, n);
+    bool under = uCameraPos.y < uWaterLevel;    // pack.glib's under_water: the passes' roles
+    vec3 refr, refl, color;
+    vec3 hit = vec3(0.0);
+    float F, path;
+    bool sky;
+
+    if (!under) {
+        // ---- from above: the paper ----
+        vec3 R = refract(-E, n, 1.0 / uIOR);
+        vec2 uv0;
+        bool ok0;
+        vec3 b0 = natShownPoint(uCamMainVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
+        float dv = ok0 ? distance(U, b0) : 1e4;          // the view ray's path in water
+        vec3 c = lookThrough(U, R, clamp(dv, 0.0, uDepthClamp) * uDepthScale, true, path, sky);
+        hit = gRefractHit;
+#ifdef BEER_LAMBERT
+        refr = attenuate(c, path);
+#else
+        refr = attenuate(c, dv);                         // the paper's d: the pixel's depth difference
+#endif
+        // Reflection. Only perturbed lookups reach the band of the widened
+        // target that the camera's own view leaves out (about 1/2 (1 -
+        // 1/uFovScale) of it each side): fade them into the sky over the
+        // band's outer half, so no seam shows where they leave the target.
+        // Where the target shows the sky or nothing (no reflection pass: only
+        // sky above the water), the cube map along Rr.
+        float w;
+        vec2 uv = natProject(uCamMirrorVP, U + uReflectDist * Rr, w);
+        float band = 0.5 * (1.0 - 1.0 / max(uFovScale, 1.0));
+        float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
+        float keep = w <= 0.0 ? 0.0 : band > 0.0 ? clamp(inside / (0.5 * band), 0.0, 1.0) : float(inside >= 0.0);
+        refl = texture(uSky, Rr).rgb;
+        if (keep > 0.0 && texture(uReflectionDepth, uv).r < NAT_SKY_DEPTH)
+            refl = mix(refl, texture(uReflection, uv).rgb, keep);
+#ifdef EXACT_FRESNEL
+        F = worldFresnel(cosI, 1.0, uIOR);
+#else
+        F = pow(1.0 - cosI, uFresnelPower);
+#endif
+        color = refr + F * (refl - refr);
+#ifdef SPECULAR
+        vec3 H = normalize(E + uSunDir);
+        color += uSpecular * pow(max(dot(n, H), 0.0), uShininess) * uSunIrradiance;
+#endif
+    } else {
+        // ---- from below: the roles swapped ----
+        vec3 T = refract(-E, n, uIOR);                   // out into the air; 0 on TIR
+        bool tir = dot(T, T) == 0.0;
+        // Snell's window: the refraction target holds the world above
+        refr = vec3(0.0);
+        if (!tir) {
+            vec3 c = lookThrough(U, T, uReflectDist, false, path, sky);
+            hit = gRefractHit;
+            refr = sky ? texture(uSky, T).rgb : c;
+        }
+        // the internal reflection: the reflection target holds the world
+        // below, mirrored (for flat water exact for any c, as above)
+        vec3 mirrorEye = vec3(uCameraPos.x, 2.0 * uWaterLevel - uCameraPos.y, uCameraPos.z);
+        vec2 uv;
+        bool ok;
+        vec3 shown = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U + uReflectDist * Rr, uv, ok);
+        refl = ok ? attenuate(applyCaustics(texture(uReflection, uv).rgb, shown), distance(U, shown))
+                  : attenuate(vec3(0.0), 1e4);
+#ifdef EXACT_FRESNEL
+        F = worldFresnel(cosI, uIOR, 1.0);
+#else
+        F = tir ? 1.0 : pow(1.0 - clamp(-dot(T, n), 0.0, 1.0), uFresnelPower);
+#endif
+        color = refr + F * (refl - refr);
+        color = attenuate(color, distance(uCameraPos, U));   // the eye's own path in water
+    }
+
+#ifdef DEBUG_FRESNEL
+    color = vec3(F);                                     // white: reflection, black: refraction
+#endif
+#if DEBUG_PASS == 1
+    color = refr;
+#elif DEBUG_PASS == 2
+    color = refl;
+#elif DEBUG_PASS == 3
+    color = vec3(0.5 * gCausticRatio);
+#elif DEBUG_PASS == 4
+    color = hit;
+#endif
+    fragColor = vec4(color, 1.0);
+}

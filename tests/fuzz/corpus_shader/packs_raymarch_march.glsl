@@ -1,0 +1,164 @@
+// march.glsl: the steep-parallax ray march of packs/raymarch through a
+// top-down world-Y texture (Lipp, after McGuire's steep parallax mapping
+// and Sousa, GPU Gems 2 ch. 19). No #version.
+//
+// The heightfield is rendered once with `Camera top` (orthographic,
+// straight down): for a world point p, clip = uCamTopVP * p, the texture
+// coordinates are uv = clip.xy / 2 + 1/2 and the depth is d = clip.z / 2 +
+// 1/2 with clip.z = M[1][2] y + M[3][2] (the camera looks straight down:
+// M[0][2] = M[2][2] = 0), so world Y is affine in the depth
+// (marchDepthToY). pack_y.frag turns three depth targets into one RGBA32F
+// texel of world Y, read here with texelFetch (nearest, as the source):
+//   x  top:    the highest surface, seen from above (World all)
+//   y  bottom: the highest face turned away from the camera (World all
+//              with the undersides only): the bottom of a floating thing
+//   z  floor:  the highest surface below the water (World below): what
+//              lies under an overhang
+// (-1e30 where nothing was drawn). A texel is solid where y <= floor, or
+// bottom <= y <= top (for bottom < top; else y <= top): f(y) below is
+// positive outside, <= 0 inside.
+//
+// The C twin of every function here is in tests/test_pack_raymarch.c
+// (same float arithmetic, same order); change one, change the other.
+//
+// A march steps along o + t dir by a fixed length from t = 0 until f <= 0
+// (the first sample at or inside the solid), at most `maxIter` steps, then
+// refines the bracket [ta, tb] (f(ta) > 0 >= f(tb)) by `refine` regula
+// falsi (REFINE_SECANT) or bisection (REFINE_BINARY) steps, and ends with
+// the linear interpolation between the bracket's ends (the source's step).
+//
+// Hazards, each a status rather than a NaN:
+//   MARCH_INSIDE  f(0) <= 0 (or NaN): the start is already inside (shore,
+//                 ground above the water, depth zero): t = 0.
+//   MARCH_CAP     no sample inside within maxIter steps: t is the last
+//                 sample, f its distance above the ground there.
+//   MARCH_LEFT    the ray left the texture's square, the drawn world (a
+//                 texel with no top: the border around the world square)
+//                 or [yMin, yMax] (or its start is outside): t, f of the
+//                 last sample inside.
+//   The interpolation's denominator f(ta) - f(tb) is > 0 for a bracket; if
+//   it is not (a NaN, equal or same-signed values) tb is returned.
+#ifndef RAYMARCH_MARCH_GLSL
+#define RAYMARCH_MARCH_GLSL
+
+#define MARCH_MAX_ITER 64       // compile-time bound of the uMaxIter slider
+#define MARCH_REFINE_MAX 8      // compile-time bound of the uRefineSteps slider
+#define MARCH_MIN_DIR_Y 0.02    // |dir.y| is clamped to this (grazing rays)
+
+#define MARCH_EMPTY_Y -1e29     // pack_y.frag writes -1e30 where nothing was drawn
+
+#define MARCH_HIT 0
+#define MARCH_INSIDE 1
+#define MARCH_CAP 2
+#define MARCH_LEFT 3
+
+uniform mat4 uCamTopVP;         // world -> clip of `Camera top` (set by tarn)
+
+struct March {
+    float t;        // ray parameter of the hit (or of the last sample, see above)
+    float f;        // f at t for MARCH_CAP / MARCH_LEFT (0 otherwise)
+    float ta;       // the last sample above the ground (the bracket's start)
+    int status;
+};
+
+// World Y of a depth value of a `Camera top` depth texture.
+float marchDepthToY(float d) {
+    return (2.0 * d - 1.0 - uCamTopVP[3][2]) / uCamTopVP[1][2];
+}
+
+// Texture coordinates of a world point, and their derivative along a direction.
+vec2 marchUV(vec3 p) { return (uCamTopVP * vec4(p, 1.0)).xy * 0.5 + 0.5; }
+vec2 marchUVDir(vec3 d) { return (uCamTopVP * vec4(d, 0.0)).xy * 0.5; }
+
+bool marchInFootprint(vec2 uv) {   // false for NaN too
+    return uv.x >= 0.0 && uv.x < 1.0 && uv.y >= 0.0 && uv.y < 1.0;
+}
+
+// (top, bottom, floor) of the texel under uv (nearest); uv in the footprint.
+vec3 marchFetch(sampler2D hf, ivec2 size, vec2 uv) {
+    ivec2 ij = min(ivec2(uv * vec2(size)), size - 1);
+    return texelFetch(hf, ij, 0).xyz;
+}
+
+// f of height y in a texel: > 0 outside the solid, <= 0 inside.
+float marchSolid(vec3 t, float y) {
+    float f = y - t.x;
+    if (t.y < t.x) f = max(f, t.y - y);
+    return min(f, y - t.z);
+}
+
+float marchF(sampler2D hf, ivec2 size, vec2 uv, float y) {
+    return marchSolid(marchFetch(hf, size, uv), y);
+}
+
+// The source's linear interpolation between the last two samples, guarded.
+float marchInterp(float ta, float fa, float tb, float fb) {
+    float den = fa - fb;
+    return den > 0.0 ? ta + (tb - ta) * clamp(fa / den, 0.0, 1.0) : tb;
+}
+
+// Step length: the ray crosses `range` metres of height in n = mix(nGrazing,
+// nSteep, |dir.y|) steps (the source's mix(10, 3, -R.y)), at most maxStep.
+float marchStep(float range, float dirY, float nGrazing, float nSteep, float maxStep) {
+    float cy = max(abs(dirY), MARCH_MIN_DIR_Y);
+    float n = max(mix(nGrazing, nSteep, cy), 1.0);
+    return min(range / (n * cy), maxStep);
+}
+
+// dir with |dir.y| >= MARCH_MIN_DIR_Y and the sign `down` asks for, unit.
+vec3 marchClampDir(vec3 dir, bool down) {
+    float y = down ? min(dir.y, -MARCH_MIN_DIR_Y) : max(dir.y, MARCH_MIN_DIR_Y);
+    return normalize(vec3(dir.x, y, dir.z));
+}
+
+// The march. step <= 0: the step comes from the depth under the start,
+// marchStep(max(f(0), minRange), ...) (the refraction march).
+March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
+                       float step, float minRange, float nGrazing, float nSteep, float maxStep,
+                       float yMin, float yMax, int maxIter, int refine) {
+    March m;
+    m.t = 0.0;
+    m.f = 0.0;
+    m.ta = 0.0;
+    m.status = MARCH_LEFT;
+    ivec2 size = textureSize(hf, 0);
+    vec2 uv0 = marchUV(o), duv = marchUVDir(dir);
+    if (!marchInFootprint(uv0)) return m;
+    vec3 t0 = marchFetch(hf, size, uv0);
+    if (t0.x <= MARCH_EMPTY_Y) return m;
+    float fa = marchSolid(t0, o.y);
+    if (!(fa > 0.0)) { m.status = MARCH_INSIDE; return m; }
+    if (step <= 0.0) step = marchStep(max(fa, minRange), dir.y, nGrazing, nSteep, maxStep);
+    float ta = 0.0, tb = 0.0, fb = fa;
+    m.status = MARCH_CAP;
+    for (int i = 0; i < MARCH_MAX_ITER; i++) {
+        if (i >= maxIter) break;
+        float t = step * float(i + 1);
+        float y = o.y + t * dir.y;
+        vec2 uv = uv0 + t * duv;
+        if (!marchInFootprint(uv) || y < yMin || y > yMax) { m.status = MARCH_LEFT; break; }
+        vec3 tx = marchFetch(hf, size, uv);
+        if (tx.x <= MARCH_EMPTY_Y) { m.status = MARCH_LEFT; break; }   // off the world square
+        float f = marchSolid(tx, y);
+        if (f <= 0.0) { tb = t; fb = f; m.status = MARCH_HIT; break; }
+        ta = t;
+        fa = f;
+    }
+    m.ta = ta;
+    if (m.status != MARCH_HIT) { m.t = ta; m.f = fa; return m; }
+    for (int k = 0; k < MARCH_REFINE_MAX; k++) {
+        if (k >= refine) break;
+#ifdef REFINE_BINARY
+        float t = 0.5 * (ta + tb);
+#else
+        float t = marchInterp(ta, fa, tb, fb);
+#endif
+        float f = marchF(hf, size, uv0 + t * duv, o.y + t * dir.y);
+        if (f > 0.0) { ta = t; fa = f; } else { tb = t; fb = f; }
+    }
+    m.ta = ta;
+    m.t = marchInterp(ta, fa, tb, fb);
+    return m;
+}
+
+#endif

@@ -1,0 +1,209 @@
+#version 330 compatibility
+// packs/raymarch: Lipp's physically based perturbed planar refraction and
+// reflection, by a steep-parallax ray march through top-down world-Y
+// textures (docs/packs/raymarch.md has the method, citations and figures).
+//
+// The world is a texel-wise solid of top-down textures (march.glsl): below
+// the floor under the water, and between the bottom of floating things and
+// the top seen from above. From above: R = refract(-E, N, 1/ior) is marched
+// down through it to the ground, whose colour is fetched there and
+// attenuated along the path in water; reflect(-E, N) is marched up through
+// the same solid and falls back to the sky cube map; exact Fresnel mixes
+// them; a Phong highlight of the sun is added.
+// From below (camera under water): the reflected ray goes down through the
+// same ground march, the refracted one up through the above-water march,
+// with total internal reflection, and the camera's own path in water
+// attenuates the result.
+#include "waves.glsl"
+#include "world.glsl"
+#include "march.glsl"
+
+#ifndef DEBUG_OUTPUT
+#define DEBUG_OUTPUT 0
+#endif
+#if defined(REFINE_BINARY) || defined(REFINE_SECANT)
+#define REFINE_COUNT uRefineSteps
+#else
+#define REFINE_COUNT 0
+#endif
+
+uniform samplerCube uSky;
+uniform vec3 uCameraPos;
+uniform float uTime;
+
+uniform sampler2D uTopColor;      // Camera top, World all: colour
+uniform sampler2D uUnderColor;    // the same, undersides only: colour
+uniform sampler2D uFloorColor;    // World below: colour
+uniform sampler2D uWorldY;        // pack_y.frag: world Y of top, bottom, floor
+uniform sampler2D uFresnelLut;       // fresnel_lut.frag's table
+uniform sampler2D uWaterNormal;      // @water_normal
+
+uniform float uStepsGrazing;   // steps across the depth for a horizontal ray (source: 10)
+uniform float uStepsSteep;     // ... for a vertical ray (source: 3)
+uniform int uMaxIter;          // march steps at most (source: 40)
+uniform float uMinDepth;       // smallest depth the steps are laid over (m)
+uniform float uMaxStep;        // longest step (m)
+uniform int uRefineSteps;      // regula falsi / bisection steps after the search
+uniform float uReflectHeight;  // height of the above-water geometry (m)
+uniform float uAttenLinear;    // linear attenuation per metre (source: 1/7.5)
+uniform vec3 uWaterColor;      // what the water fades to
+uniform float uSpecular;       // Phong highlight scale
+uniform float uShininess;      // Phong exponent (source: 256)
+uniform float uBumpMult;       // normal map strength (source: BumptexMult)
+uniform float uNormalTile;     // metres per normal map tile
+uniform float uNormalSpeed;    // scroll speed scale
+uniform vec2 uNormalScroll[4]; // the four scroll velocities, tiles per second at speed 1
+
+in vec2 vRest;
+in vec3 vWorldPos;
+out vec4 fragColor;
+
+vec3 waterNormal() {
+    vec3 n = wavesNormal(vRest, uTime);
+#ifdef NORMAL_MAP
+    // the source's four scrolled samples of one normal map, averaged; their
+    // slopes, times BumptexMult, are added to the waves' slopes
+    vec3 m = vec3(0.0);
+    vec2 st = vWorldPos.xz / uNormalTile;
+    for (int k = 0; k < 4; k++) {
+        vec3 c = texture(uWaterNormal, st + uNormalScroll[k] * (uNormalSpeed * uTime)).rgb;
+        m += vec3(c.r, c.b, c.g) * 2.0 - 1.0;   // the texture stores (x, z, y) / 2 + 1/2
+    }
+    m.y = max(m.y, 1e-3);
+    vec2 slope = -n.xz / max(n.y, 1e-3) - uBumpMult * m.xz / m.y;
+    n = normalize(vec3(-slope.x, 1.0, -slope.y));
+#endif
+    return n;
+}
+
+float fresnelLut(float x, float row) {
+    float w = float(textureSize(uFresnelLut, 0).x);
+    return texture(uFresnelLut, vec2((x * (w - 1.0) + 0.5) / w, row)).r;
+}
+
+// Reflectance for light arriving from the air at cos cosI.
+float fresnelFromAir(float cosI) {
+#ifdef FRESNEL_LUT
+    return fresnelLut(cosI, 0.25);            // row 0: texel i at cos = i / (w - 1)
+#else
+    return worldFresnel(cosI, 1.0, uIOR);
+#endif
+}
+
+// Reflectance for light arriving from the water: 1 beyond the critical
+// angle (exactly, with no table), and the table in sqrt((c - cC)/(1 - cC)),
+// in which R is smooth at the critical angle, where in c it is not.
+float fresnelFromWater(float cosI) {
+    float cosC = sqrt(max(1.0 - 1.0 / (uIOR * uIOR), 0.0));
+    if (cosI <= cosC) return 1.0;
+#ifdef FRESNEL_LUT
+    return fresnelLut(sqrt((cosI - cosC) / (1.0 - cosC)), 0.75);
+#else
+    return worldFresnel(cosI, uIOR, 1.0);
+#endif
+}
+
+vec3 attenuate(vec3 c, float s) {
+#ifdef BEER_LAMBERT
+    vec3 tr = exp(-uAbsorption * s);
+    return c * tr + uWaterColor * (1.0 - tr);
+#else
+    return mix(c, uWaterColor, clamp(s * uAttenLinear, 0.0, 1.0));
+#endif
+}
+
+// The colour of the solid met at hit: the floor's where the floor makes the
+// texel solid there (World below: what lies under an overhang), else the
+// underside's when the ray came up through a bottom, else the top's.
+vec3 solidColor(vec3 hit, bool underside) {
+    vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
+    vec3 t = marchFetch(uWorldY, textureSize(uWorldY, 0), uv);
+    float slab = hit.y - t.x;
+    if (t.y < t.x) slab = max(slab, t.y - hit.y);
+    if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
+    return underside ? texture(uUnderColor, uv).rgb : texture(uTopColor, uv).rgb;
+}
+
+// The ground seen from p along dir (downwards, in water): its colour, the
+// path s in water, the point and the march's status.
+vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
+    vec3 d = marchClampDir(dir, true);
+    March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth, uStepsGrazing,
+                               uStepsSteep, uMaxStep, -1e30, 1e30, uMaxIter, REFINE_COUNT);
+    s = m.t;
+    // no bracket: on down to the ground height of the last column
+    if (m.status == MARCH_CAP || m.status == MARCH_LEFT) s += max(m.f, 0.0) / -d.y;
+    hit = p + s * d;
+    status = m.status;
+    return solidColor(hit, false);
+}
+
+// What is seen from p along dir (upwards, in air): the above-water geometry
+// where the march meets it, else the sky. hit: the point, or the direction
+// when the sky.
+vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
+    hit = dir;
+    status = MARCH_LEFT;
+#ifndef NOREFLECTION
+    vec3 d = marchClampDir(dir, false);
+    float step = marchStep(uReflectHeight, d.y, uStepsGrazing, uStepsSteep, uMaxStep);
+    March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
+                               uMaxStep, -1e30, uWaterLevel + uReflectHeight, uMaxIter, REFINE_COUNT);
+    status = m.status;
+    if (m.status == MARCH_HIT || m.status == MARCH_INSIDE) {
+        hit = p + m.t * d;
+        // the side met: the underside when the ray was below the bottom of
+        // the column it left (it came up through a bottom), else the top
+        vec3 a = p + m.ta * d;
+        vec2 uva = clamp(marchUV(a), 0.0, 0.999999);
+        vec3 ya = marchFetch(uWorldY, textureSize(uWorldY, 0), uva);
+        bool underside = m.status == MARCH_HIT && ya.y < ya.x && a.y < ya.y;
+        return solidColor(hit, underside);
+    }
+#endif
+    return texture(uSky, dir).rgb;
+}
+
+void main() {
+    vec3 n = waterNormal();
+    vec3 p = vWorldPos;
+    vec3 e = normalize(uCameraPos - p);
+    bool below = dot(e, n) < 0.0;
+    float F, s;
+    vec3 color, hitT, hitR;
+    int stT, stR;
+    if (!below) {
+        float cosI = clamp(dot(e, n), 0.0, 1.0);
+        F = fresnelFromAir(cosI);
+        vec3 rdir = reflect(-e, n);
+        vec3 tdir = refract(-e, n, 1.0 / uIOR);   // from the air there is no TIR
+        vec3 refr = attenuate(groundAlong(p, tdir, s, hitT, stT), s);
+        vec3 refl = aboveAlong(p, rdir, hitR, stR);
+        vec3 spec = uSpecular * uSunIrradiance * pow(max(dot(rdir, uSunDir), 0.0), uShininess);
+        color = F * (refl + spec) + (1.0 - F) * refr;
+    } else {
+        n = -n;
+        float cosI = clamp(dot(e, n), 0.0, 1.0);
+        vec3 tdir = refract(-e, n, uIOR);         // (0, 0, 0) on total internal reflection
+        bool tir = dot(tdir, tdir) == 0.0;
+        F = tir ? 1.0 : fresnelFromWater(cosI);
+        vec3 refl = attenuate(groundAlong(p, reflect(-e, n), s, hitR, stR), s);
+        vec3 refr = vec3(0.0);
+        hitT = vec3(0.0);
+        stT = MARCH_LEFT;
+        if (!tir) refr = aboveAlong(p, tdir, hitT, stT);
+        color = F * refl + (1.0 - F) * refr;
+        // the camera's own path in water (camera under the mean level)
+        if (uCameraPos.y < uWaterLevel) color = attenuate(color, length(uCameraPos - p));
+    }
+    fragColor = vec4(color, 1.0);
+#if DEBUG_OUTPUT == 1
+    fragColor = vec4(hitT, float(stT));     // refracted ray: point met, status
+#elif DEBUG_OUTPUT == 2
+    fragColor = vec4(hitR, float(stR));     // reflected ray: point met (or direction), status
+#elif DEBUG_OUTPUT == 3
+    fragColor = vec4(F, F, F, 1.0);         // Fresnel reflectance
+#elif DEBUG_OUTPUT == 4
+    fragColor = vec4(s, s, s, 1.0);         // path in water of the marched ray (m)
+#endif
+}
