@@ -677,18 +677,6 @@ static bool h_tex3d(cmdctx *c, glib_cmd *cmd)
     if (!parse_arg(c, &unit_rule, c->words[0], &cmd->num[0]))
         return false;
     cmd->nnum = 1;
-    if (c->words[1][0] == '@') {       /* a texture tarn generates: not a file */
-        warn_extra(c, 2, "");
-        static const char *const known[] = { "@caustics", "@foam", "@water_normal", "@terrain_normal" };
-        for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
-            if (strcmp(c->words[1], known[i]) == 0) {
-                snprintf(cmd->path, sizeof cmd->path, "%s", known[i]);
-                return true;
-            }
-        cerr(c, "Texture2D: unknown generated texture '%.40s': write @caustics, @foam, "
-                "@water_normal or @terrain_normal", c->words[1]);
-        return false;
-    }
     if (!is_decimal(c->words[1])) {
         warn_extra(c, 2, path_hint);
         return take_path(c, c->words[1], cmd->path);
