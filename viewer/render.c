@@ -200,11 +200,8 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
             const char *a = old->meshes[i].key, *at = strrchr(a, '@'), *bt = strrchr(m->key, '@');
             if (!old->meshes[i].vbo || !at || !bt || at - a != bt - m->key || memcmp(a, m->key, (size_t)(at - a)) != 0)
                 continue;   /* the key without its file stamp: same command, same file */
-            char key[RES_KEY_MAX];
-            memcpy(key, m->key, sizeof key);
-            *m = old->meshes[i];
+            *m = old->meshes[i];   /* with its own key: the next reload retries the file */
             memset(&old->meshes[i], 0, sizeof old->meshes[i]);
-            memcpy(m->key, key, sizeof key);
             log_append(log, "%s:%d: note: keeping the last good mesh of '%s'\n", c->file, c->line, c->path);
             break;
         }
@@ -249,6 +246,10 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
             memset(&old->texs[i], 0, sizeof old->texs[i]);
         }
         if (!t->tex) return;
+        /* the kept image keeps its own key: the next reload tries the broken
+         * file again and reports it until it is fixed */
+        s->cmd_res[ci] = s->ntexs++;
+        return;
     }
     memcpy(t->key, key, sizeof key);
     s->cmd_res[ci] = s->ntexs++;
