@@ -167,6 +167,81 @@ static void test_splat_conserves_energy(void) {
     free(px);
 }
 
+static unif_entry *uniform_of(render *r, const char *program, const char *name) {
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    for (int i = 0; i < n; i++)
+        if (strcmp(sets[i].program, program) == 0) return unif_find(&sets[i], name);
+    return NULL;
+}
+
+/* `Texture2D 6 uRes uRes`: the target is uRes texels a side and follows
+ * the slider; a RenderToTextureOnce block into it draws again after a
+ * resize; uTargetSize tells the program drawing into it its size. */
+static void test_target_sized_by_a_slider(void) {
+    write_file("size.frag", "#version 330 compatibility\nuniform vec2 uTargetSize;\nout vec4 c;\n"
+                            "void main() { c = vec4(uTargetSize, 0., 1.); }\n");
+    write_file("tsize.frag", "#version 330 compatibility\nuniform sampler2D uT;\nout vec4 c;\n"
+                             "void main() { c = vec4(texelFetch(uT, ivec2(0), 0).xy, vec2(textureSize(uT, 0))); }\n");
+    write_file("sized.glib", "##OpenGL GLIB\nTexture2D 6 uRes uRes float\n"
+                             "RenderToTextureOnce 6\nClear\nVertex flat.vert\nFragment size.frag\nProgram T\nQuadXY 0 1 1 1\n"
+                             "RenderToTexture\nFragment tsize.frag\nProgram S uT 6 uRes <8 32 128>\nQuadXY 0 1 1 1\n");
+    render *r = NULL;
+    float *a = draw(path_of("sized.glib"), 4, 4, 0, &r);
+    CHECK_MSG(!strstr(render_messages(r), "uRes"), "%s", render_messages(r));   /* no 'not declared' warning */
+    CHECK_NEAR(a[0], 32, 0);      /* the once-pass saw a 32 x 32 target */
+    CHECK_NEAR(a[2], 32, 0);      /* and it is one */
+    unif_entry *e = uniform_of(r, "S", "uRes");
+    CHECK(e && unif_is_int(e));   /* a size: a whole-number slider */
+    if (e) {
+        e->value[0] = 100;
+        float *b = draw(path_of("sized.glib"), 4, 4, 0, &r);
+        CHECK_NEAR(b[0], 100, 0);  /* the once-pass drew again, at the new size */
+        CHECK_NEAR(b[3], 100, 0);
+        free(b);
+        e->value[0] = NAN;        /* a broken value: the fallback size, no GL error (draw checks) */
+        b = draw(path_of("sized.glib"), 4, 4, 0, &r);
+        CHECK_NEAR(b[2], 256, 0);
+        free(b);
+    }
+    free(a);
+    render_destroy(r);
+    /* a name no Program has: a warning naming the line, and 256 */
+    write_file("unsized.glib", "##OpenGL GLIB\nTexture2D 6 uNope 16 float\n"
+                               "Vertex flat.vert\nFragment tsize.frag\nProgram S uT 6\nQuadXY 0 1 1 1\n");
+    r = NULL;
+    a = draw(path_of("unsized.glib"), 4, 4, 0, &r);
+    CHECK_MSG(strstr(render_messages(r), "unsized.glib:2: warning: Texture2D: no Program") != NULL, "%s",
+              render_messages(r));
+    CHECK_NEAR(a[2], 256, 0);
+    CHECK_NEAR(a[3], 16, 0);
+    free(a);
+    render_destroy(r);
+}
+
+/* `WaterSurface points uN`: N from a slider, and uPointGrid = N, so points
+ * of energy 1 / N^2 sum to 1 whatever N is. */
+static void test_points_from_a_slider(void) {
+    write_file("share.frag", "#version 330 compatibility\nuniform float uPointGrid;\nout vec4 c;\n"
+                             "void main() { c = vec4(1. / (uPointGrid * uPointGrid)); }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sBackground 0 0 0 0\nCamera top\nDepthTest off\nBlend add\n"
+             "Vertex pt.vert\nFragment share.frag\nProgram P uN <1 20 64>\nWaterSurface points uN\n", world);
+    write_file("npoints.glib", text);
+    render *r = NULL;
+    for (int k = 0; k < 2; k++) {
+        float *px = draw(path_of("npoints.glib"), 16, 16, 0, &r);
+        double sum = 0;
+        for (int i = 0; i < 16 * 16; i++) sum += px[i * 4];
+        CHECK_NEAR(sum, 1.0, 1e-4);
+        free(px);
+        unif_entry *e = uniform_of(r, "P", "uN");
+        CHECK(e != NULL);
+        if (e) e->value[0] = 37;
+    }
+    render_destroy(r);
+}
+
 /* @caustics is generated, tileable, with mean 1. */
 static void test_generated_caustics(void) {
     write_file("caus.frag", "#version 330 compatibility\nuniform sampler2D uC;\nout vec4 c;\n"
@@ -226,6 +301,8 @@ int main(void) {
     RUN(test_mirror_matrix_reflects_about_the_water);
     RUN(test_render_to_texture_once);
     RUN(test_points_add_up);
+    RUN(test_target_sized_by_a_slider);
+    RUN(test_points_from_a_slider);
     RUN(test_splat_conserves_energy);
     RUN(test_generated_caustics);
     RUN(test_if_blocks);

@@ -918,6 +918,45 @@ static void test_command_cap(void)
     free(t);
 }
 
+/* Sizes and point counts a slider gives: `Texture2D 4 uRes uRes` names the
+ * uniforms (kept in name and arg, num 0), a file stays a file, and
+ * glib_uniform_consumed finds every uniform a command reads. */
+static void test_sizes_from_sliders(void)
+{
+    glib_scene *s = load("named/n.glib",
+        "##OpenGL GLIB\n"
+        "Texture2D 4 uRes uRes float16\n"               /* 2 */
+        "Texture2D 5 512 uH depth\n"                    /* 3 */
+        "Texture2D 6 uW 8\n"                            /* 4 */
+        "WaterSurface points uN\n"                      /* 5 */
+        "Camera wide uFov\n"                            /* 6 */
+        "Texture2D 7 uRes 9x\n"                         /* 7 */
+        "Texture2D 8 uRes\n");                          /* 8 */
+    const char *f = P("named/n.glib");
+    CHECK(has_diag(s, f, 7, GLIB_WARNING, "ignoring '9x'"));   /* a file 'uRes' with an extra word */
+    CHECK(has_diag(s, f, 7, GLIB_ERROR, "cannot open"));
+    CHECK(has_diag(s, f, 8, GLIB_ERROR, "cannot open"));
+    CHECK(s->ncmds == 7);
+    if (s->ncmds == 7) {
+        const glib_cmd *c = s->cmds;
+        CHECK(c[0].kind == GLIB_CMD_TEXTURE2D_EMPTY && c[0].nnum == 3 && strcmp(c[0].name, "uRes") == 0 &&
+              strcmp(c[0].arg, "uRes") == 0 && c[0].num[1] == 0 && c[0].format == GLIB_TARGET_RGBA16F);
+        CHECK(c[1].kind == GLIB_CMD_TEXTURE2D_EMPTY && c[1].name[0] == '\0' && c[1].num[1] == 512 &&
+              strcmp(c[1].arg, "uH") == 0 && c[1].format == GLIB_TARGET_DEPTH);
+        CHECK(strcmp(c[2].name, "uW") == 0 && c[2].arg[0] == '\0' && c[2].num[2] == 8);
+        CHECK(c[3].kind == GLIB_CMD_WATER_SURFACE && strcmp(c[3].name, "points") == 0 &&
+              strcmp(c[3].arg, "uN") == 0 && c[3].nnum == 0);
+        CHECK(c[5].kind == GLIB_CMD_TEXTURE2D_FILE && strcmp(c[5].path, P("named/uRes")) == 0);
+    }
+    bool count = false;
+    CHECK(glib_uniform_consumed(s, "uRes", &count) && count);
+    CHECK(glib_uniform_consumed(s, "uH", &count) && count);
+    CHECK(glib_uniform_consumed(s, "uN", &count) && count);
+    CHECK(glib_uniform_consumed(s, "uFov", &count) && !count);
+    CHECK(!glib_uniform_consumed(s, "uOther", NULL));
+    glib_free(s);
+}
+
 static void test_textures(void)
 {
     put("tex/w.bmp", "x");
@@ -1504,6 +1543,7 @@ int main(void)
     RUN(test_diag_cap);
     RUN(test_command_cap);
     RUN(test_textures);
+    RUN(test_sizes_from_sliders);
     RUN(test_define);
     RUN(test_extensions);
     RUN(test_program_errors);

@@ -630,7 +630,42 @@ static bool parse_sizes(cmdctx *c, glib_cmd *cmd, int count, double max)
     return true;
 }
 
-/* Texture2D unit file | Texture2D unit w h [format]: a number after the
+/* A name where a number may stand (a uniform whose value the renderer
+ * reads): into dst, with an error if it does not fit. */
+static bool take_uniform_name(cmdctx *c, const char *what, const char *w, char *dst, size_t size)
+{
+    if (strlen(w) >= size) {
+        cerr(c, "%s: the uniform name '%.40s...' is too long", what, w);
+        return false;
+    }
+    snprintf(dst, size, "%s", w);
+    return true;
+}
+
+/* The w and h of an empty Texture2D: each a number, or the name of a
+ * slider of a Program of this glib (kept in cmd->name and cmd->arg; the
+ * renderer sizes the target from the slider's value, num 0 until then). */
+static bool parse_target_size(cmdctx *c, glib_cmd *cmd)
+{
+    static const char *const syms[] = { "w", "h" };
+    char *names[] = { cmd->name, cmd->arg };
+    for (int i = 0; i < 2; i++) {
+        const char *w = c->words[1 + i];
+        if (is_ident(w)) {
+            if (!take_uniform_name(c, "Texture2D", w, names[i], GLIB_NAME_MAX))
+                return false;
+            cmd->num[1 + i] = 0;
+            continue;
+        }
+        arg_rule r = { syms[i], NULL, 'i', 1, 16384, 0 };
+        if (!parse_arg(c, &r, w, &cmd->num[1 + i]))
+            return false;
+    }
+    cmd->nnum = 3;
+    return true;
+}
+
+/* Texture2D unit file | Texture2D unit w h [format]: a size after the
  * unit means an empty render target. */
 static bool h_tex2d(cmdctx *c, glib_cmd *cmd)
 {
@@ -653,7 +688,11 @@ static bool h_tex2d(cmdctx *c, glib_cmd *cmd)
                 "@water_normal or @terrain_normal", c->words[1]);
         return false;
     }
-    if (!is_decimal(c->words[1])) {
+    /* a size is a number or the name of a slider (`Texture2D 4 uRes uRes`);
+     * a single word that is no number is a file */
+    bool sized = is_decimal(c->words[1]) ||
+                 (c->nwords >= 3 && is_ident(c->words[1]) && (is_ident(c->words[2]) || is_decimal(c->words[2])));
+    if (!sized) {
         warn_extra(c, 2, path_hint);
         return take_path(c, c->words[1], cmd->path);
     }
@@ -663,7 +702,7 @@ static bool h_tex2d(cmdctx *c, glib_cmd *cmd)
     }
     cmd->kind = GLIB_CMD_TEXTURE2D_EMPTY;
     warn_extra(c, 4, "");
-    if (!parse_sizes(c, cmd, 2, 16384))
+    if (!parse_target_size(c, cmd))
         return false;
     return c->nwords < 4 || parse_format(c, c->words[3], &cmd->format);
 }
@@ -910,12 +949,7 @@ static bool h_world(cmdctx *c, glib_cmd *cmd)
         return true;
     const char *w = c->words[1];
     if (isalpha((unsigned char)w[0]) || w[0] == '_') {   /* a float slider of the last Program */
-        if (strlen(w) >= sizeof cmd->arg) {
-            cerr(c, "World: the uniform name '%.40s...' is too long", w);
-            return false;
-        }
-        snprintf(cmd->arg, sizeof cmd->arg, "%s", w);
-        return true;
+        return take_uniform_name(c, "World", w, cmd->arg, sizeof cmd->arg);
     }
     if (!parse_arg(c, &offset_rule, w, &cmd->num[0]))
         return false;
@@ -945,12 +979,7 @@ static bool h_camera(cmdctx *c, glib_cmd *cmd)
         return true;
     const char *w = c->words[1];
     if (isalpha((unsigned char)w[0]) || w[0] == '_') {
-        if (strlen(w) >= sizeof cmd->arg) {
-            cerr(c, "Camera: the uniform name '%.40s...' is too long", w);
-            return false;
-        }
-        snprintf(cmd->arg, sizeof cmd->arg, "%s", w);
-        return true;
+        return take_uniform_name(c, "Camera", w, cmd->arg, sizeof cmd->arg);
     }
     if (!parse_arg(c, &scale_rule, w, &cmd->num[0]))
         return false;
@@ -981,7 +1010,7 @@ static bool h_if(cmdctx *c, glib_cmd *cmd)
     return true;
 }
 
-/* WaterSurface [points N] */
+/* WaterSurface [points N|uniform] */
 static bool h_water_surface(cmdctx *c, glib_cmd *cmd)
 {
     static const arg_rule n_rule = { "N", "a point count per side", 'i', 1, 4096, 0 };
@@ -993,6 +1022,8 @@ static bool h_water_surface(cmdctx *c, glib_cmd *cmd)
     }
     warn_extra(c, 2, "");
     snprintf(cmd->name, sizeof cmd->name, "points");
+    if (is_ident(c->words[1]))   /* N from a slider: `WaterSurface points uPhotonGrid` */
+        return take_uniform_name(c, "WaterSurface", c->words[1], cmd->arg, sizeof cmd->arg);
     if (!parse_arg(c, &n_rule, c->words[1], &cmd->num[0]))
         return false;
     cmd->nnum = 1;
@@ -2109,4 +2140,20 @@ static const char *suggest(const char *name)
         }
     }
     return best;
+}
+
+bool glib_uniform_consumed(const glib_scene *scene, const char *name, bool *is_count)
+{
+    for (int i = 0; scene && i < scene->ncmds; i++) {
+        const glib_cmd *c = &scene->cmds[i];
+        bool count = c->kind == GLIB_CMD_WATER_SURFACE || c->kind == GLIB_CMD_TEXTURE2D_EMPTY;
+        if (!count && c->kind != GLIB_CMD_CAMERA && c->kind != GLIB_CMD_WORLD)
+            continue;
+        if (strcmp(c->arg, name) == 0 || (c->kind == GLIB_CMD_TEXTURE2D_EMPTY && strcmp(c->name, name) == 0)) {
+            if (is_count)
+                *is_count = count;
+            return true;
+        }
+    }
+    return false;
 }

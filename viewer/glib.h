@@ -47,7 +47,8 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_COLOR,             /* num: r g b [a] -> gl_Color for what follows */
     /* textures; num[0] is the texture unit */
     GLIB_CMD_TEXTURE2D_FILE,    /* num: unit; path */
-    GLIB_CMD_TEXTURE2D_EMPTY,   /* num: unit w h; format */
+    GLIB_CMD_TEXTURE2D_EMPTY,   /* num: unit w h; format; name, arg: the sliders giving
+                                 * w and h when written as names (num 0 then) */
     GLIB_CMD_TEXTURE3D,         /* num: unit; path (a 3D image, or w h d empty: nnum 4) */
     GLIB_CMD_CUBEMAP,           /* num: unit; paths[6] in +x -x +y -y +z -z order */
     GLIB_CMD_NOISE2D,           /* num: res (unit 2, sampler Noise2) */
@@ -98,7 +99,8 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_IF,                /* name: a condition; num[0] = 1 for `If not NAME` */
     GLIB_CMD_END_IF,
     GLIB_CMD_WORLD,             /* name: "all" | "above" | "below" (default "all") */
-    GLIB_CMD_WATER_SURFACE,     /* the water grid, with the current program */
+    GLIB_CMD_WATER_SURFACE,     /* the water grid, with the current program; name "points":
+                                 * N x N points, num[0] = N or arg = the slider giving N */
     GLIB_CMD_KIND_COUNT
 } glib_cmd_kind;
 
@@ -213,6 +215,12 @@ void glib_free(glib_scene *scene);
 /* Writes every diagnostic as `file:line: warning|error: message` to stream
  * (a FILE*; void* keeps stdio out of this header). */
 void glib_print_diags(const glib_scene *scene, void *stream);
+
+/* Whether a command of the scene reads the uniform `name` itself (Camera,
+ * World, WaterSurface points, a Texture2D size): a slider the glib uses,
+ * which the shaders need not declare. *is_count (may be NULL) says whether
+ * it is read as a whole number (a size or a point count). */
+bool glib_uniform_consumed(const glib_scene *scene, const char *name, bool *is_count);
 
 /* The command's name as written in docs ("QuadXZ"), for messages. */
 const char *glib_cmd_name(glib_cmd_kind kind);

@@ -275,6 +275,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->cmd = c;
     p->gstap = st->gstap;
     p->world_uniforms = r->world.active;
+    p->scene = s->glib;
     memcpy(p->stage_path, st->path, sizeof p->stage_path);
     char err[512] = "";
     if (!unif_set_from_glib(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
@@ -323,6 +324,67 @@ static void check_if_nesting(const glib_scene *g, char **log) {
         log_append(log, "%s:%d: error: If without an EndIf (the block runs to the end)\n", open_if->file, open_if->line);
 }
 
+/* The current value of the uniform `name` of the first Program that has
+ * it (Texture2D sizes and point counts, which come before their Program). */
+static bool program_value(const scene_state *s, const char *name, float *out) {
+    for (int i = 0; i < s->nprogs; i++) {
+        const unif_entry *e = unif_find(s->progs[i].unifs, name);
+        if (e && !e->is_define) {
+            *out = e->value[0];
+            return true;
+        }
+    }
+    return false;
+}
+
+#define NAMED_SIZE_FALLBACK 256
+
+/* A count a slider gives (a target's side, points per side): rounded and
+ * kept in 1..max; a missing slider or a NaN gives NAMED_SIZE_FALLBACK. */
+static int slider_count(const scene_state *s, const char *name, int max) {
+    float v;
+    if (!program_value(s, name, &v) || !isfinite(v)) return NAMED_SIZE_FALLBACK;
+    long n = lrintf(v);
+    return n < 1 ? 1 : n > max ? max : (int)n;
+}
+
+/* Render targets whose size a slider gives follow its value; a resized
+ * target loses its contents, so RenderToTextureOnce blocks draw again. */
+static void size_targets(render *r) {
+    scene_state *s = &r->cur;
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max);
+    if (max < 1 || max > 16384) max = 16384;
+    for (int i = 0; i < s->glib->ncmds; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || (!c->name[0] && !c->arg[0]) || s->cmd_res[i] < 0) continue;
+        gpu_tex *t = &s->texs[s->cmd_res[i]];
+        int w = c->name[0] ? slider_count(s, c->name, max) : (int)c->num[1];
+        int h = c->arg[0] ? slider_count(s, c->arg, max) : (int)c->num[2];
+        if (w == t->w && h == t->h) continue;
+        res_target_resize(t, w, h);
+        memset(s->once_done, 0, (size_t)s->glib->ncmds * sizeof *s->once_done);
+    }
+}
+
+/* Names in sizes and point counts that no Program has: said once a load. */
+static void check_named_counts(const scene_state *s, char **log) {
+    for (int i = 0; i < s->glib->ncmds; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        const char *names[2] = { NULL, NULL };
+        if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY) { names[0] = c->name; names[1] = c->arg; }
+        if (c->kind == GLIB_CMD_WATER_SURFACE) names[0] = c->arg;
+        for (int k = 0; k < 2; k++) {
+            float v;
+            if (!names[k] || !names[k][0] || (k == 1 && strcmp(names[1], names[0]) == 0)) continue;
+            if (!program_value(s, names[k], &v))
+                log_append(log, "%s:%d: warning: %s: no Program of this glib has a uniform '%s' to give "
+                           "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)\n",
+                           c->file, c->line, glib_cmd_name(c->kind), names[k], NAMED_SIZE_FALLBACK, names[k]);
+        }
+    }
+}
+
 static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
     int n = s->glib->ncmds;
     s->cmd_res = malloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
@@ -347,6 +409,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     }
     settings_from_glib(&s->set, s->glib);
     check_if_nesting(s->glib, log);
+    check_named_counts(s, log);
     return true;
 }
 
@@ -723,6 +786,29 @@ static bool skipped_by_if(const render *r, frame_state *f, const glib_cmd *c) {
     return f->if_false != 0;
 }
 
+/* uTargetSize (contract): the size in texels of what the current program
+ * draws into, the viewport's; set when a program is bound and when a pass
+ * begins or ends. */
+static void upload_target_size(const frame_state *f) {
+    if (!f->cur || !f->cur->gl) return;
+    GLint loc = glGetUniformLocation(f->cur->gl, "uTargetSize");
+    if (loc < 0) return;
+    GLint vp[4];
+    glGetIntegerv(GL_VIEWPORT, vp);
+    glUniform2f(loc, (float)vp[2], (float)vp[3]);
+}
+
+/* `WaterSurface points N`: N x N points; uPointGrid (contract) tells the
+ * current program the N it is drawn with. */
+static void draw_points(render *r, const frame_state *f, const glib_cmd *c) {
+    int n = c->arg[0] ? slider_count(&r->cur, c->arg, 4096) : (int)c->num[0];
+    if (f->cur && f->cur->gl) {
+        GLint loc = glGetUniformLocation(f->cur->gl, "uPointGrid");
+        if (loc >= 0) glUniform1f(loc, (float)n);
+    }
+    world_draw_points(&r->world, n);
+}
+
 static void exec_cmd(render *r, frame_state *f, int i) {
     scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
@@ -737,6 +823,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         mark_pass(r, c);
         begin_rtt(r, c);
         f->in_rtt = true;
+        upload_target_size(f);
     } else if (c->kind == GLIB_CMD_CAMERA) {
         int k = cam_kind_from_name(c->name);
         if (k >= 0) {
@@ -754,17 +841,19 @@ static void exec_cmd(render *r, frame_state *f, int i) {
             prog_upload(f->cur, f->t, s->set.timer_s);
             world_upload(&r->world, f->cur->gl, f->t, f->eye);
             cam_upload(&f->cams, f->cur->gl);
+            upload_target_size(f);
         }
     } else if (c->kind == GLIB_CMD_WORLD) {
         world_draw(&r->world, c->name[0] ? c->name : "all", cmd_number(s, i, 0.0f), f->t, f->cam_eye,
                    f->cur ? f->cur->gl : 0);
     } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
-        if (strcmp(c->name, "points") == 0) world_draw_points(&r->world, (int)c->num[0]);
+        if (strcmp(c->name, "points") == 0) draw_points(r, f, c);
         else world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
         mark_pass(r, c);
         if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
+        upload_target_size(f);
     } else if (c->kind >= GLIB_CMD_TRANSLATE && c->kind <= GLIB_CMD_POP_MATRIX) {
         exec_transform(f, c);
     } else {
@@ -793,6 +882,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     glDisable(GL_SCISSOR_TEST);
     if (s->glib) {
         render_view v = view ? *view : s->set.view;
+        size_targets(r);
         bind_textures(s);
         world_bind_textures(&r->world);
         frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };

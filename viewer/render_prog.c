@@ -236,6 +236,18 @@ void prog_introspect(prog *p, char **log) {
         if (e->type == UNIF_SAMPLER && strcmp(name, "Noise2") == 0) e->value[0] = e->def[0] = 2;
         if (e->type == UNIF_SAMPLER && strcmp(name, "Noise3") == 0) e->value[0] = e->def[0] = 3;
     }
+    /* a slider that glib commands read (a target's size, a field-of-view
+     * scale) is in use though no shader declares it: an int or a float
+     * with no location, so it has its widget and nothing is uploaded */
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        bool is_count = false;
+        if (e->is_define || !e->from_glib || e->in_shader || !glib_uniform_consumed(p->scene, e->name, &is_count))
+            continue;
+        char name[UNIF_NAME_MAX];
+        snprintf(name, sizeof name, "%s", e->name);
+        unif_set_shader_type(p->unifs, name, is_count ? UNIF_INT : UNIF_FLOAT, 1, -1);
+    }
     for (int i = 0; i < p->unifs->n; i++) {
         const unif_entry *e = &p->unifs->entries[i];
         if (e->is_define || !e->from_glib || e->in_shader) continue;

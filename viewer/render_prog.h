@@ -23,6 +23,7 @@ typedef struct prog {
     int timer_loc, tangent_loc;
     bool world_uniforms;                     /* the scene has a world: its uniforms get no slider */
     char *source;                            /* all stage texts as compiled (for messages) */
+    const glib_scene *scene;                 /* its glib: sliders that glib commands read */
 } prog;
 
 /* Builds p from its stage paths, defines (from p->unifs' define entries)

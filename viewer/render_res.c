@@ -41,6 +41,8 @@ void res_key(const glib_cmd *c, char *out, int outlen) {
     int l = snprintf(out, (size_t)outlen, "%d%c%d", (int)c->kind, c->wire ? 'w' : 's', (int)c->format);
     for (int i = 0; i < c->nnum && l < outlen; i++)
         l += snprintf(out + l, (size_t)(outlen - l), " %.9g", c->num[i]);
+    if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY && (c->name[0] || c->arg[0]) && l < outlen)
+        l += snprintf(out + l, (size_t)(outlen - l), " =%s =%s", c->name, c->arg);
     if (c->kind == GLIB_CMD_CUBEMAP && c->cube_paths)
         for (int f = 0; f < 6; f++) append_stamp(out, outlen, c->cube_paths[f]);
     else if (c->path[0])
@@ -241,22 +243,37 @@ static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
     return true;
 }
 
+static void target_storage(const gpu_tex *t) {
+    GLenum ifmt = GL_RGBA8, fmt = GL_RGBA, type = GL_UNSIGNED_BYTE;
+    if (t->format == GLIB_TARGET_RGBA16F) { ifmt = GL_RGBA16F; type = GL_FLOAT; }
+    if (t->format == GLIB_TARGET_RGBA32F) { ifmt = GL_RGBA32F; type = GL_FLOAT; }
+    if (t->format == GLIB_TARGET_DEPTH) { ifmt = GL_DEPTH_COMPONENT32F; fmt = GL_DEPTH_COMPONENT; type = GL_FLOAT; }
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)ifmt, t->w, t->h, 0, fmt, type, NULL);
+}
+
 static bool tex_2d_empty(const glib_cmd *c, gpu_tex *t, char **log) {
-    t->w = arg_i(c, 1, 0);
-    t->h = arg_i(c, 2, 0);
+    /* a size that a slider gives starts at 1 texel: render.c sizes it
+     * from the slider before the first frame draws into it */
+    t->w = c->name[0] ? 1 : arg_i(c, 1, 0);
+    t->h = c->arg[0] ? 1 : arg_i(c, 2, 0);
     if (t->w < 1 || t->h < 1 || t->w > 16384 || t->h > 16384) {
         log_append(log, "%s:%d: error: Texture2D size %dx%d: use 1..16384\n", c->file, c->line, t->w, t->h);
         return false;
     }
     t->render_target = true;
     t->format = c->format;
-    GLenum ifmt = GL_RGBA8, fmt = GL_RGBA, type = GL_UNSIGNED_BYTE;
-    if (c->format == GLIB_TARGET_RGBA16F) { ifmt = GL_RGBA16F; type = GL_FLOAT; }
-    if (c->format == GLIB_TARGET_RGBA32F) { ifmt = GL_RGBA32F; type = GL_FLOAT; }
-    if (c->format == GLIB_TARGET_DEPTH) { ifmt = GL_DEPTH_COMPONENT32F; fmt = GL_DEPTH_COMPONENT; type = GL_FLOAT; }
-    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)ifmt, t->w, t->h, 0, fmt, type, NULL);
+    target_storage(t);
     res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
     return true;
+}
+
+void res_target_resize(gpu_tex *t, int w, int h) {
+    if (!t->tex || !t->render_target || (t->w == w && t->h == h)) return;
+    t->w = w;
+    t->h = h;
+    glBindTexture(GL_TEXTURE_2D, t->tex);
+    target_storage(t);   /* a new image of the same format: framebuffers attach it afresh each pass */
+    glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {

@@ -30,6 +30,10 @@ typedef struct gpu_tex {
  * modification time of the files it reads). */
 void res_key(const glib_cmd *c, char *out, int outlen);
 
+/* Gives a render target a new image of w x h texels (same format; the
+ * old contents are gone). Nothing happens when the size is the same. */
+void res_target_resize(gpu_tex *t, int w, int h);
+
 bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
 struct geom_mesh;
 bool res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);

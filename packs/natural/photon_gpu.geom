@@ -4,7 +4,7 @@
 layout(points) in;
 layout(points, max_vertices = 4) out;
 
-uniform float uCausticRes;
+uniform vec2 uTargetSize;   // the caustic target's size in texels (set by tarn)
 in vec2 vTexel[];
 in float vWeight[];
 in float vValid[];
@@ -18,7 +18,7 @@ void main() {
     for (int k = 0; k < 4; k++) {
         vec2 o = vec2(float(k & 1), float(k >> 1));
         vec2 wt = mix(1.0 - a, a, o);
-        vec2 c = (i0 + o + 0.5) / uCausticRes * 2.0 - 1.0;
+        vec2 c = (i0 + o + 0.5) / uTargetSize * 2.0 - 1.0;
         gl_Position = vec4(c, 0.0, 1.0);
         gWeight = vWeight[0] * wt.x * wt.y;
         EmitVertex();
