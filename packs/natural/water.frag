@@ -47,7 +47,8 @@ uniform float uCausticStrength;  // 1: the photons' ratio as computed; 0: flat-w
 #endif
 #ifndef DEBUG_PASS
 #define DEBUG_PASS 0             // 1: refracted colour only, 2: reflected colour only, 3: caustic ratio / 2,
-                                 // 4: the refraction hit point (world xyz: float targets, tests)
+                                 // 4: the refraction hit point (world xyz: float targets, tests),
+                                 // 5: the sun's irradiance there, 6: the refracted path in water (m)
 #endif
 
 // A depth at or beyond this is the sky (tarn draws it at the far plane)
@@ -70,6 +71,8 @@ vec3 attenuate(vec3 c, float d) {
 
 float gCausticRatio = 1.0;      // the last ratio applied (DEBUG_PASS 3)
 vec3 gRefractHit = vec3(0.0);   // the point the refraction lookup showed (DEBUG_PASS 4)
+vec3 gIrradiance = vec3(0.0);   // the sun's irradiance the last applyCaustics shaded with
+vec3 gRefractIrradiance = vec3(0.0);   // that of the refraction lookup (DEBUG_PASS 5)
 
 // The caustic ratio applied to the sun term of a floor colour that tarn's
 // world program shaded with flat-water sunlight, albedo (E/pi + A_w):
@@ -77,21 +80,23 @@ vec3 gRefractHit = vec3(0.0);   // the point the refraction lookup showed (DEBUG
 // bilinear taps half a texel apart (a tent two texels wide, which removes
 // the period-2 beat of a regular photon grid splatted onto the texels).
 vec3 applyCaustics(vec3 c, vec3 p) {
+    if (p.y >= uWaterLevel) return c;
+    vec3 albedo = texture(uTerrainAlbedo, p.xz / uTerrainHalfSize * 0.5 + 0.5).rgb;
+    vec3 amb = albedo * natAmbientUnder(p);
+    vec3 sun = max(c - amb, vec3(0.0));     // albedo E / pi
+    float ratio = 1.0;
 #ifdef CAUSTICS
-    if (p.y < uWaterLevel) {
-        vec2 uv = natCausticUV(natCausticQ(p));
-        if (natInside(uv)) {
-            vec2 o = 0.5 / vec2(textureSize(uCaustics, 0));
-            float cr = 0.25 * (texture(uCaustics, uv + vec2(-o.x, -o.y)).r + texture(uCaustics, uv + vec2(o.x, -o.y)).r
-                             + texture(uCaustics, uv + vec2(-o.x, o.y)).r + texture(uCaustics, uv + vec2(o.x, o.y)).r);
-            float ratio = max(1.0 + uCausticStrength * (cr - 1.0), 0.0);
-            gCausticRatio = ratio;
-            vec3 albedo = texture(uTerrainAlbedo, p.xz / uTerrainHalfSize * 0.5 + 0.5).rgb;
-            vec3 amb = albedo * natAmbientUnder(p);
-            c = amb + max(c - amb, vec3(0.0)) * ratio;
-        }
+    vec2 uv = natCausticUV(natCausticQ(p));
+    if (natInside(uv)) {
+        vec2 o = 0.5 / vec2(textureSize(uCaustics, 0));
+        float cr = 0.25 * (texture(uCaustics, uv + vec2(-o.x, -o.y)).r + texture(uCaustics, uv + vec2(o.x, -o.y)).r
+                         + texture(uCaustics, uv + vec2(-o.x, o.y)).r + texture(uCaustics, uv + vec2(o.x, o.y)).r);
+        ratio = max(1.0 + uCausticStrength * (cr - 1.0), 0.0);
+        gCausticRatio = ratio;
+        c = amb + sun * ratio;
     }
 #endif
+    gIrradiance = WORLD_PI * sun * ratio / max(albedo, vec3(1e-3));   // E as this shading has it
     return c;
 }
 
@@ -136,7 +141,10 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
     path = ok ? distance(U, shown) : 1e4;
     gRefractHit = ok ? shown : vec3(0.0);
     if (!ok) return vec3(0.0);
-    return applyCaustics(texture(uRefraction, uv).rgb, shown);
+    gIrradiance = vec3(0.0);
+    vec3 c = applyCaustics(texture(uRefraction, uv).rgb, shown);
+    gRefractIrradiance = gIrradiance;
+    return c;
 }
 
 void main() {
@@ -234,6 +242,10 @@ void main() {
     color = vec3(0.5 * gCausticRatio);
 #elif DEBUG_PASS == 4
     color = hit;
+#elif DEBUG_PASS == 5
+    color = gRefractIrradiance;
+#elif DEBUG_PASS == 6
+    color = vec3(under ? distance(uCameraPos, U) : path);   // the reference's `depth`: the eye's path under water
 #endif
     fragColor = vec4(color, 1.0);
 }
