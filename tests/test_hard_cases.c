@@ -47,6 +47,7 @@ static int npacks;
 static refcache_image refs[MAX_CASES];
 static bool have_ref[MAX_CASES];
 static float px[W * H * 4];
+static long targets_checked;   /* render targets read back by check_targets */
 
 static double wall_s(void) {
     struct timespec ts;
@@ -92,6 +93,30 @@ static bool draw(render *r, const render_target *tg, const char *what) {
     return ok && e == GL_NO_ERROR;
 }
 
+/* Every float and depth render target the scene's passes wrote (the
+ * packs' intermediate textures: refraction, reflection, world Y, photons,
+ * caustics): no NaN or Inf texel. */
+static void check_targets(render *r, const char *what) {
+    render_target_info t[32];
+    int n = render_targets(r, t, 32);
+    for (int k = 0; k < n && k < 32; k++) {
+        if (!t[k].is_float && !t[k].is_depth) continue;   /* 8-bit targets hold no NaN */
+        int ch = t[k].is_depth ? 1 : 4;
+        long count = (long)t[k].w * t[k].h;
+        float *texels = malloc((size_t)count * ch * sizeof *texels);
+        if (!texels) continue;
+        glBindTexture(GL_TEXTURE_2D, t[k].tex);
+        glGetTexImage(GL_TEXTURE_2D, 0, t[k].is_depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, texels);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        long bad = 0;
+        for (long i = 0; i < count * ch; i++) bad += !isfinite(texels[i]);
+        CHECK_MSG(bad == 0, "%s: target at unit %d (%s:%d, %dx%d): %ld values are NaN or Inf", what, t[k].unit,
+                  t[k].file, t[k].line, t[k].w, t[k].h, bad);
+        targets_checked++;
+        free(texels);
+    }
+}
+
 static void test_references(void) {
     CHECK_MSG(ncases >= 13, "%d hard cases in scenes/hard", ncases);
     refcache_opts o = { .caustic_res = 48, .photons_per_cell = 9 };
@@ -125,6 +150,7 @@ static void test_every_case_through_every_pack(void) {
             if (!loaded || !draw(r, &tg, what)) continue;
             long bad = nonfinite(px, (long)W * H);
             CHECK_MSG(bad == 0, "%s: %ld pixels are NaN or Inf", what, bad);
+            check_targets(r, what);
             if (!have_ref[c]) continue;
             ref_fimage A = { px, W, H, 4 }, B = { refs[c].color, W, H, 3 };
             ref_image_metrics m;
@@ -147,6 +173,8 @@ static void test_every_case_through_every_pack(void) {
         render_destroy(r);
         packset_bounds_free(&pb);
     }
+    fprintf(stderr, "  %ld float and depth render targets read back\n", targets_checked);
+    CHECK(targets_checked > 0);   /* the packs have targets: the check ran */
     render_target_destroy(&tg);
 }
 
@@ -279,6 +307,7 @@ static void test_every_slider_at_each_end(void) {
                         if (draw(r, &tg, what)) {
                             long bad = nonfinite(px, (long)W * H);
                             CHECK_MSG(bad == 0, "%s: %ld pixels are NaN or Inf", what, bad);
+                            check_targets(r, what);
                         }
                         tried++;
                         for (int i2 = 0; i2 < nsets; i2++) unif_reset_all(&sets[i2]);

@@ -915,6 +915,23 @@ int render_pass_times(render *r, bool wait, const char (**names)[GPU_TIMER_NAME]
     return r->timer.npasses;
 }
 
+int render_targets(const render *r, render_target_info *out, int max) {
+    const scene_state *s = &r->cur;
+    int n = 0;
+    for (int i = 0; s->glib && i < s->glib->ncmds; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || s->cmd_res[i] < 0) continue;
+        const gpu_tex *t = &s->texs[s->cmd_res[i]];
+        if (!t->tex || !t->render_target) continue;
+        if (n < max)
+            out[n] = (render_target_info){ .unit = t->unit, .w = t->w, .h = t->h, .tex = t->tex,
+                                           .is_float = t->format == GLIB_TARGET_RGBA16F || t->format == GLIB_TARGET_RGBA32F,
+                                           .is_depth = t->format == GLIB_TARGET_DEPTH, .file = c->file, .line = c->line };
+        n++;
+    }
+    return n;
+}
+
 bool render_read_uniform(render *r, const char *program, const char *name, float *out, int n) {
     for (int i = 0; i < r->cur.nprogs; i++) {
         prog *p = &r->cur.progs[i];

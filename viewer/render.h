@@ -66,6 +66,21 @@ render_view render_default_view(const render *r);          /* the glib's LookAt 
 const char *render_scene_path(const render *r);
 
 /* Reads a uniform's current value from the linked GL program (tests). */
+/* A render target of the loaded scene (an empty `Texture2D`), as it is
+ * now: for checks of what the passes wrote (tests read it back). */
+typedef struct render_target_info {
+    int unit, w, h;
+    bool is_float;        /* float or float16 colour */
+    bool is_depth;
+    unsigned tex;         /* the GL texture */
+    const char *file;     /* the Texture2D line */
+    int line;
+} render_target_info;
+
+/* Fills out[0..max-1] with the scene's render targets in glib order and
+ * returns how many there are (which may be more than max). */
+int render_targets(const render *r, render_target_info *out, int max);
+
 bool render_read_uniform(render *r, const char *program, const char *name, float *out, int n);
 
 /* An offscreen colour+depth framebuffer for headless rendering. */
