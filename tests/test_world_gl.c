@@ -7,9 +7,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "gl_ctx.h"
+#include "ref_render.h"
 #include "ref_trace.h"
 #include "render.h"
 #include "scene.h"
@@ -143,6 +145,80 @@ static void test_dry_shore_pixels_are_lambert(void) {
     CHECK(checked > 20);
 }
 
+/* An eye under the water sees the world through its own path in water:
+ * what the world program draws to the screen is faded by exp(-sigma s), s
+ * the eye's path under the mean level, as the reference has it (terrain and
+ * objects under flat water: albedo (E_flat / pi + A_w(y))). */
+static void test_under_water_eye_path_is_attenuated(void) {
+    char dir[] = "/tmp/tarn-test-world-XXXXXX", path[64];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/under.glib", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("##OpenGL GLIB\nPerspective 60\nLookAt 0 -0.5 4  0 -2.5 0  0 1 0\n"
+          "Terrain flat 8 3\nWater 0\nWaterMesh 8\n"
+          "Object sphere 0.6 -2.2 0.5 0.6  0.8 0.5 0.3\n"
+          "World all\n", f);
+    fclose(f);
+    char err[2048];
+    ref_world_desc desc;
+    bool has_world;
+    CHECK_MSG(scene_load(path, NULL, &desc, &cam, &has_world, err, sizeof err), "%s", err);
+    ref_world_init(&world, &desc);
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, path), "%s", render_messages(r));
+    render_target tg;
+    CHECK(render_target_create(&tg, W, H, true));
+    render_frame(r, 0.0, tg.fbo, W, H, NULL);
+    render_target_read(&tg, px);
+    CHECK(glGetError() == GL_NO_ERROR);
+    render_target_destroy(&tg);
+    render_destroy(r);
+    double r0 = (world.d.ior - 1) / (world.d.ior + 1);
+    r0 *= r0;
+    int checked = 0;
+    double worst = 0, worst_unfaded = 0;
+    for (int j = 0; j < H; j += 3)
+        for (int i = 0; i < W; i += 3) {
+            double d[3], n[3], t, albedo[3], e[3];
+            pixel_ray(i, j, d);
+            if (d[1] >= -1e-3) continue;
+            t = (-world.d.depth - cam.eye[1]) / d[1];                 /* the flat floor */
+            int obj = ref_objects_hit(&world, cam.eye, d, 1e-6, t, &t, n);
+            double p[3] = { cam.eye[0] + t * d[0], cam.eye[1] + t * d[1], cam.eye[2] + t * d[2] };
+            if (fabs(p[0]) > world.d.half_size - 0.5 || fabs(p[2]) > world.d.half_size - 0.5) continue;
+            if (obj >= 0 && -(n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) < 0.3) continue;   /* the silhouette: facets */
+            if (obj >= 0) {
+                memcpy(albedo, world.d.objects[obj].albedo, sizeof albedo);
+            } else {
+                ref_terrain_albedo(&world, p[0], p[2], albedo);
+                n[0] = 0, n[1] = 1, n[2] = 0;
+            }
+            ref_render_flat_sun(&world, p, n, e);
+            const float *q = px + ((size_t)j * W + i) * 4;
+            for (int k = 0; k < 3; k++) {
+                double aw = world.ambient[k] * (1 - r0) * exp(-world.d.absorption[k] * (world.d.water_level - p[1]));
+                double unfaded = albedo[k] * (e[k] / M_PI + aw);
+                double expect = unfaded * exp(-world.d.absorption[k] * t);
+                worst = fmax(worst, fabs(q[k] - expect));
+                worst_unfaded = fmax(worst_unfaded, fabs(q[k] - unfaded));
+            }
+            checked++;
+        }
+    fprintf(stderr, "  %d pixels: worst |GL - reference| %.4f (%.4f without the eye's path)\n", checked, worst,
+            worst_unfaded);
+    CHECK(checked > 300);
+    /* 0.005: a float target, so what remains is the albedo texture's
+     * bilinear sampling of the terrain's pattern and the sphere mesh's
+     * facets away from its silhouette (observed 0.0018); the fade itself is
+     * far larger (the last check) */
+    CHECK(worst < 0.005);
+    CHECK(worst_unfaded > 0.1);
+    remove(path);
+    rmdir(dir);
+}
+
 int main(void) {
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
@@ -150,6 +226,7 @@ int main(void) {
     RUN(test_no_nan_at_several_times);
     RUN(test_sky_pixels_are_the_sky);
     RUN(test_dry_shore_pixels_are_lambert);
+    RUN(test_under_water_eye_path_is_attenuated);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

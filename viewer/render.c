@@ -844,7 +844,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
             upload_target_size(f);
         }
     } else if (c->kind == GLIB_CMD_WORLD) {
-        world_draw(&r->world, c->name[0] ? c->name : "all", cmd_number(s, i, 0.0f), f->t, f->cam_eye,
+        world_draw(&r->world, c->name[0] ? c->name : "all", cmd_number(s, i, 0.0f), f->t, f->cam_eye, !f->in_rtt,
                    f->cur ? f->cur->gl : 0);
     } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
         if (strcmp(c->name, "points") == 0) draw_points(r, f, c);

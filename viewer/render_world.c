@@ -318,11 +318,13 @@ void world_bind_textures(const gpu_world *gw) {
 }
 
 void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
-                unsigned restore_program) {
+                bool to_screen, unsigned restore_program) {
     if (!gw->active || !gw->prog.gl) return;
     unsigned p = gw->prog.gl;
     glUseProgram(p);
     world_upload(gw, p, t, eye);
+    GLint eye_path = glGetUniformLocation(p, "uWorldEyePath");
+    if (eye_path >= 0) glUniform1i(eye_path, to_screen ? 1 : 0);
     /* clip at the water plane: "above" keeps y > level, "below" y < level */
     float level = (float)(gw->w.d.water_level + offset), plane[4] = { 0, 0, 0, 1 };
     if (strcmp(which, "above") == 0) { plane[1] = 1; plane[3] = -level; }

@@ -50,9 +50,13 @@ void world_upload(const gpu_world *gw, unsigned program, double t, const float e
 void world_bind_textures(const gpu_world *gw);
 
 /* `World all|above|below`: terrain and objects with the world program,
- * clipped at the water plane for above/below; restores `restore_program`. */
+ * clipped at the water plane for above/below; restores `restore_program`.
+ * to_screen: the final image (not a pass into a texture), where an eye
+ * under the water sees the world through its own path in water, which the
+ * world program then attenuates (a pack attenuates the paths of its
+ * passes itself). */
 void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
-                unsigned restore_program);
+                bool to_screen, unsigned restore_program);
 
 /* `WaterSurface`: the water grid with the bound program. */
 void world_draw_water(const gpu_world *gw, int tangent_loc);
