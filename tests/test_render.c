@@ -185,6 +185,13 @@ static void test_render_to_texture(void) {
     CHECK_MSG(render_load(r, path_of("rtt.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0.4, 0.3, 0.2);
+    /* the panel's per-pass times name the pass by its glib line and units */
+    char passes[512];
+    render_gpu_ms(r, true);   /* wait for the frame's timer queries */
+    render_pass_summary(r, passes, sizeof passes);
+    CHECK_STR_CONTAINS(passes, "pass:4 6 ");
+    CHECK_STR_CONTAINS(passes, "screen:11 ");   /* the RenderToTexture that ends it */
+    CHECK_STR_CONTAINS(passes, " ms");
     render_destroy(r);
 }
 

@@ -255,6 +255,10 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
             else ImGui::Text("%.0f fps", info->fps);
             ImGui::SameLine();
             ImGui::Text("  t = %.2f s%s", info->time_s, info->paused ? " (paused)" : "");
+            if (info->passes && info->passes[0] && ImGui::TreeNode("GPU time per pass")) {
+                ImGui::TextUnformatted(info->passes);
+                ImGui::TreePop();
+            }
         }
         if (ImGui::Button("Reset all")) {
             for (int s = 0; s < nsets; s++)

@@ -42,6 +42,7 @@ typedef struct panel_info {
     bool paused;
     double time_s;               /* simulated time */
     const char *error_text;      /* shown in a red overlay window; NULL if none */
+    const char *passes;          /* GPU time per pass, a line each; NULL or "" if none */
 } panel_info;
 
 typedef struct panel_actions {

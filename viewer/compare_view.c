@@ -268,17 +268,6 @@ static void update_heat(cview *v) {
 
 /* ---- drawing ---- */
 
-static void pass_summary(cv_pack *p) {
-    const char (*names)[GPU_TIMER_NAME];
-    const double *ms;
-    int n = render_pass_times(p->r, false, &names, &ms);
-    int len = 0;
-    p->passes[0] = '\0';
-    for (int i = 0; i < n && len < (int)sizeof p->passes - 40; i++)
-        len += snprintf(p->passes + len, sizeof p->passes - (size_t)len, "%s%s %.2f", i ? "\n" : "", names[i],
-                        ms[i]);
-}
-
 static void draw_packs(cview *v, const render_view *view) {
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
@@ -289,7 +278,7 @@ static void draw_packs(cview *v, const render_view *view) {
         double wall = (now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);
         p->wall_ms = p->wall_ms > 0 ? 0.9 * p->wall_ms + 0.1 * wall : wall;
         if (gpu >= 0) p->gpu_ms = p->gpu_ms > 0 ? 0.9 * p->gpu_ms + 0.1 * gpu : gpu;
-        pass_summary(p);
+        render_pass_summary(p->r, p->passes, sizeof p->passes);
     }
 }
 

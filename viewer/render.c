@@ -932,6 +932,15 @@ int render_targets(const render *r, render_target_info *out, int max) {
     return n;
 }
 
+void render_pass_summary(render *r, char *out, int len) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, false, &names, &ms), used = 0;
+    if (len > 0) out[0] = '\0';
+    for (int i = 0; i < n && used < len - 40; i++)
+        used += snprintf(out + used, (size_t)(len - used), "%s%s %.2f ms", i ? "\n" : "", names[i], ms[i]);
+}
+
 bool render_read_uniform(render *r, const char *program, const char *name, float *out, int n) {
     for (int i = 0; i < r->cur.nprogs; i++) {
         prog *p = &r->cur.progs[i];

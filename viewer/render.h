@@ -60,6 +60,10 @@ double render_gpu_ms(render *r, bool wait);
 #include "gpu_timer.h"
 int render_pass_times(render *r, bool wait, const char (**names)[GPU_TIMER_NAME], const double **ms);
 
+/* The same as text, a pass a line ("pass:63 10 12.40 ms"), cut to fit
+ * len; "" before the first frame's times are known. */
+void render_pass_summary(render *r, char *out, int len);
+
 unif_set *render_uniforms(render *r, int *nsets);
 void render_window_size(const render *r, int *w, int *h);   /* WindowSize, default 800x600 */
 render_view render_default_view(const render *r);          /* the glib's LookAt */

@@ -161,9 +161,11 @@ static void frame(viewer *v, view_script *script) {
     glDisable(GL_FRAMEBUFFER_SRGB);
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
+    char passes[1024];
+    render_pass_summary(v->r, passes, sizeof passes);
     panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
                         .fps = v->fps, .paused = v->paused, .time_s = v->t,
-                        .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL };
+                        .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL, .passes = passes };
     panel_actions a;
     memset(&a, 0, sizeof a);
     panel_begin_frame(v->panel);
