@@ -242,6 +242,34 @@ static void test_points_from_a_slider(void) {
     render_destroy(r);
 }
 
+/* A Gerstner wave far longer than the world square slides the whole
+ * surface (here Q L / 2 pi = 9.5 km along +x): the water grid's rest
+ * points follow (world_follow_waves), so the displaced surface, drawn from
+ * above, still covers the world square. */
+static void test_water_grid_follows_a_sliding_surface(void) {
+    write_file("disp.vert", "#version 330 compatibility\n#include \"waves.glsl\"\nuniform float uTime;\n"
+                            "uniform mat4 uCamTopVP;\nout vec3 vP;\n"
+                            "void main() { vec3 n; wavesEval(gl_Vertex.xz, uTime, vP, n); gl_Position = uCamTopVP * vec4(vP, 1.); }\n");
+    write_file("disp.frag", "#version 330 compatibility\nin vec3 vP;\nout vec4 c;\nvoid main() { c = vec4(vP, 1.); }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sWaveGerstner 0 100000 0.1 0.000001 0\nWaveSteepness 0.6\n"
+             "Background 0 0 0 0\nVertex disp.vert\nFragment disp.frag\nProgram P\nWaterSurface\n", world);
+    write_file("slide.glib", text);
+    int n = 40, inside = 0, covered = 0;
+    float *px = draw(path_of("slide.glib"), n, n, 3.0, NULL);
+    double h = 1.05 * 2;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double x = -h + (i + 0.5) * 2 * h / n, z = -h + ((n - 1 - j) + 0.5) * 2 * h / n;
+            if (fabs(x) > 1.9 || fabs(z) > 1.9) continue;   /* a cell's margin inside the square */
+            inside++;
+            covered += px[((size_t)j * n + i) * 4 + 3] == 1.0f;
+        }
+    fprintf(stderr, "  %d of %d texels inside the square covered\n", covered, inside);
+    CHECK(inside > 0 && covered == inside);
+    free(px);
+}
+
 /* @caustics is generated, tileable, with mean 1. */
 static void test_generated_caustics(void) {
     write_file("caus.frag", "#version 330 compatibility\nuniform sampler2D uC;\nout vec4 c;\n"
@@ -303,6 +331,7 @@ int main(void) {
     RUN(test_points_add_up);
     RUN(test_target_sized_by_a_slider);
     RUN(test_points_from_a_slider);
+    RUN(test_water_grid_follows_a_sliding_surface);
     RUN(test_splat_conserves_energy);
     RUN(test_generated_caustics);
     RUN(test_if_blocks);

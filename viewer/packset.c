@@ -426,10 +426,6 @@ const packset_bound *packset_bound_for(const packset_bounds *b, const char *case
  * (RMSE, linear RGB, 96x54); each pack tightens its own. */
 static const packset_bound builtin_bounds[] = {
     { "*", 0.30, "", 0 },
-    { "long_gerstner", -1,
-      "a Gerstner wave of wavelength 100 km slides the whole surface sideways by Q L / (2 pi N) = 1.9 km; the "
-      "reference's endless surface follows it, a water grid over the world square cannot (the world should treat "
-      "such a wave as a sine)", 0 },
 };
 
 const packset_bound *packset_bound_resolve(const packset_bounds *b, const char *case_name, const char **from) {

@@ -883,6 +883,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     if (s->glib) {
         render_view v = view ? *view : s->set.view;
         size_targets(r);
+        world_follow_waves(&r->world, t);
         bind_textures(s);
         world_bind_textures(&r->world);
         frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };

@@ -134,6 +134,10 @@ static bool build_water(gpu_world *gw) {
     geom_mesh g;
     int res = gw->w.d.water_mesh_res;
     if (!geom_quad(&g, 1, (float)gw->w.d.water_level, (float)gw->w.d.half_size, res, res, false)) return false;
+    for (int i = 0; i < g.nvert; i++) {
+        g.pos[i * 3 + 0] += (float)gw->water_shift[0];
+        g.pos[i * 3 + 2] += (float)gw->water_shift[1];
+    }
     bool ok = res_mesh_upload(&g, &gw->water);
     geom_free(&g);
     return ok;
@@ -268,6 +272,42 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
 
 /* ---- per frame ---- */
 
+/* Where the rest points of the square moved by shift land, on average,
+ * relative to the square's own points. */
+static void mean_residual(const gpu_world *gw, const double shift[2], double t, double out[2]) {
+    enum { SAMPLES = 8 };
+    double hs = gw->w.d.half_size;
+    out[0] = out[1] = 0;
+    for (int j = 0; j < SAMPLES; j++)
+        for (int i = 0; i < SAMPLES; i++) {
+            double u = -hs + (i + 0.5) * 2 * hs / SAMPLES, v = -hs + (j + 0.5) * 2 * hs / SAMPLES, p[3];
+            ref_waves_displace(&gw->w.waves, u + shift[0], v + shift[1], t, p);
+            out[0] += (p[0] - u) / (SAMPLES * SAMPLES);
+            out[1] += (p[2] - v) / (SAMPLES * SAMPLES);
+        }
+}
+
+void world_follow_waves(gpu_world *gw, double t) {
+    if (!gw->active) return;
+    double cell = 2 * gw->w.d.half_size / gw->w.d.water_mesh_res, shift[2] = { gw->water_shift[0], gw->water_shift[1] };
+    double res[2];
+    mean_residual(gw, shift, t, res);
+    if (!isfinite(res[0]) || !isfinite(res[1]) || hypot(res[0], res[1]) <= cell) return;
+    /* a fixed point: the displacement changes a little with the rest point
+     * (by its Jacobian, under 1 while Q <= 1), so a few steps settle it */
+    for (int it = 0; it < 16 && isfinite(res[0]) && isfinite(res[1]) && hypot(res[0], res[1]) > 0.01 * cell; it++) {
+        shift[0] -= res[0];
+        shift[1] -= res[1];
+        mean_residual(gw, shift, t, res);
+    }
+    if (!isfinite(shift[0]) || !isfinite(shift[1])) return;
+    gw->water_shift[0] = shift[0];
+    gw->water_shift[1] = shift[1];
+    res_mesh_free(&gw->water);
+    if (!build_water(gw)) memset(&gw->water, 0, sizeof gw->water);
+    gw->points_n = 0;   /* rebuilt with the shift when next drawn */
+}
+
 static void set3(unsigned p, const char *name, const double v[3]) {
     GLint loc = glGetUniformLocation(p, name);
     if (loc >= 0) glUniform3f(loc, (float)v[0], (float)v[1], (float)v[2]);
@@ -366,9 +406,9 @@ void world_draw_points(gpu_world *gw, int n) {
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {
                 float *v = p + ((size_t)j * n + i) * 3;
-                v[0] = (float)(-hs + (i + 0.5) * 2 * hs / n);
+                v[0] = (float)(-hs + (i + 0.5) * 2 * hs / n + gw->water_shift[0]);
                 v[1] = (float)gw->w.d.water_level;
-                v[2] = (float)(-hs + (j + 0.5) * 2 * hs / n);
+                v[2] = (float)(-hs + (j + 0.5) * 2 * hs / n + gw->water_shift[1]);
             }
         glBindBuffer(GL_ARRAY_BUFFER, gw->points_vbo);
         glBufferData(GL_ARRAY_BUFFER, (long)n * n * 3 * (long)sizeof(float), p, GL_STATIC_DRAW);

@@ -34,6 +34,10 @@ typedef struct gpu_world {
     unif_set prog_unifs;
     ref_waves_uniform waves[REF_WAVES_UNIFORMS_MAX];
     int nwaves;
+    /* the water grid's and the photon points' rest positions are the world
+     * square moved by this (x, z): 0 unless the waves slide the whole
+     * surface (world_follow_waves) */
+    double water_shift[2];
 } gpu_world;
 
 /* Builds (or keeps, when desc is unchanged) the world's GPU resources. */
@@ -48,6 +52,16 @@ bool world_is_uniform(const char *name);
 void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);
 
 void world_bind_textures(const gpu_world *gw);
+
+/* Keeps the water's rest grid under the surface at time t. A Gerstner wave
+ * moves each rest point by Q_i A_i cos(phase) sideways, at most Q L / (2 pi
+ * N): a few centimetres for the lake, but a wave far longer than the world
+ * square slides the whole surface (100 km: 1.9 km), and a grid over the
+ * world square would leave the lake dry. When the mean displacement over
+ * the square is more than a grid cell from the current shift, the grid and
+ * the photon points are rebuilt moved back by it, so that the displaced
+ * surface covers the square again. */
+void world_follow_waves(gpu_world *gw, double t);
 
 /* `World all|above|below`: terrain and objects with the world program,
  * clipped at the water plane for above/below; restores `restore_program`.
