@@ -237,6 +237,39 @@ static void test_stage_files_and_directories(void) {
     free(out);
 }
 
+/* A whole-number Define slider is validated at its other values too: every
+ * value of a short range (MODE 0..3), the ends of a long one (STEPS 1..32),
+ * each with the toggles at their defaults; an error only one value compiles
+ * names that value. */
+static void test_define_slider_values_are_validated(void) {
+    char path[512], frag[512];
+    snprintf(frag, sizeof frag, "%s/modes.frag", g_tmp);
+    FILE *f = fopen(frag, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("#version 330 core\nout vec4 c;\nvoid main() {\n    c = vec4(0.0);\n"
+          "    for (int i = 0; i < STEPS; i++) c += vec4(0.1);\n"
+          "#if MODE == 2\n    c = 1;\n#endif\n}\n", f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/modes.glib", g_tmp);
+    f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("##OpenGL GLIB\nFragment modes.frag\nDefine MODE <0 0 3>\nDefine STEPS <1 8 32>\nDefine FLAG <true>\n"
+          "Program Modes\n", f);
+    fclose(f);
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { path };
+    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    /* FLAG on and off, then MODE 1, 2, 3 and STEPS 1, 32 */
+    CHECK(res.ncombinations == 2 + 3 + 2);
+    CHECK(rc == 1 && res.nerrors == 1);
+    CHECK_STR_CONTAINS(out, "modes.frag:7: error: ");
+    CHECK_STR_CONTAINS(out, "[with MODE=2 FLAG=1]\n");
+    free(out);
+}
+
 static void test_too_many_toggles_are_capped(void) {
     /* 12 toggles: 2^10 combinations, the last two at their defaults */
     char path[512], frag[512];
@@ -296,6 +329,7 @@ int main(void) {
     RUN(test_no_paths_means_packs_and_scenes);
     RUN(test_stage_files_and_directories);
     RUN(test_too_many_toggles_are_capped);
+    RUN(test_define_slider_values_are_validated);
     RUN(test_validate_stage_without_text);
     char cmd[320];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmp);

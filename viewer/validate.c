@@ -9,6 +9,7 @@
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -706,6 +707,39 @@ typedef struct toggle {
     bool deflt;
 } toggle;
 
+/* A whole-number Define slider at one more value (`#if DEBUG_PASS == 5`
+ * compiles code the default leaves out): validated with the toggles at
+ * their defaults. */
+typedef struct slider_value {
+    int define;             /* index into the fixed Defines */
+    long long value;
+} slider_value;
+
+#define SLIDER_ALL_VALUES 8         /* a range this short: every value; longer: min and max */
+#define MAX_SLIDER_VALUES 128
+
+/* The values of the program's whole-number Define sliders to validate
+ * beside their defaults. */
+static int slider_values(const glib_cmd *cmd, const shader_define *fixed, int nfixed, slider_value *out) {
+    int n = 0;
+    for (int i = 0, f = 0; i < cmd->ndefines && f < nfixed; i++) {
+        const glib_uniform *u = &cmd->defines[i];
+        if (u->kind == GLIB_UNIFORM_BOOL) continue;
+        int fi = f++;   /* fixed[] holds the non-toggles in this order */
+        if (u->kind != GLIB_UNIFORM_SLIDER || u->n < 3) continue;
+        double lo = u->v[0], def = u->v[1], hi = u->v[2];
+        if (lo != floor(lo) || hi != floor(hi) || !(lo <= hi) || hi - lo > 1e6) continue;
+        long long span = (long long)(hi - lo);
+        for (long long k = 0; k <= span && n < MAX_SLIDER_VALUES; k++) {
+            long long v = (long long)lo + k;
+            bool end = k == 0 || k == span;
+            if ((double)v == def || (span >= SLIDER_ALL_VALUES && !end)) continue;
+            out[n++] = (slider_value){ fi, v };
+        }
+    }
+    return n;
+}
+
 static void format_number(double v, char *buf, size_t n) {
     if (v == (double)(long long)v && v > -1e9 && v < 1e9) snprintf(buf, n, "%lld", (long long)v);
     else snprintf(buf, n, "%.9g", v);
@@ -775,15 +809,21 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
                "combinations of the first %d, with %s at their defaults", cmd->file, cmd->line,
                cmd->name, nt, ncombo, nvary, names);
     }
-    r->res.ncombinations += ncombo;
+    slider_value extra[MAX_SLIDER_VALUES];
+    int nextra = slider_values(cmd, fixed, nfixed, extra), total = ncombo + nextra;
+    r->res.ncombinations += total;
 
     vmsgs table = {0};
-    for (int c = 0; c < ncombo; c++) {
+    for (int c = 0; c < total; c++) {
         shader_define defs[2 * MAX_DEFINES];
         int nd = 0;
         for (int i = 0; i < nfixed; i++) defs[nd++] = fixed[i];
+        if (c >= ncombo) {   /* a slider's other value, the toggles at their defaults */
+            const slider_value *sv = &extra[c - ncombo];
+            snprintf(defs[sv->define].value, sizeof defs[sv->define].value, "%lld", sv->value);
+        }
         for (int i = 0; i < nt; i++) {
-            bool on = i < nvary ? (c >> i) & 1 : toggles[i].deflt;
+            bool on = i < nvary && c < ncombo ? (c >> i) & 1 : toggles[i].deflt;
             if (!on) continue;
             memset(&defs[nd], 0, sizeof defs[nd]);
             snprintf(defs[nd].name, sizeof defs[nd].name, "%s", toggles[i].name);
@@ -837,17 +877,22 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
         const vmsg *v = &table.v[i];
         char suffix[1024] = "";
         size_t w = 0;
-        if (nt > 0) {
+        bool is_extra = v->first_combo >= ncombo;
+        if (nt > 0 || is_extra) {
             w += (size_t)snprintf(suffix + w, sizeof suffix - w, " [with");
+            if (is_extra) {
+                const slider_value *sv = &extra[v->first_combo - ncombo];
+                w += (size_t)snprintf(suffix + w, sizeof suffix - w, " %s=%lld", fixed[sv->define].name, sv->value);
+            }
             for (int t = 0; t < nt && w < sizeof suffix; t++) {
-                bool on = t < nvary ? (v->first_combo >> t) & 1 : toggles[t].deflt;
+                bool on = t < nvary && !is_extra ? (v->first_combo >> t) & 1 : toggles[t].deflt;
                 w += (size_t)snprintf(suffix + w, sizeof suffix - w, " %s=%d", toggles[t].name, on);
             }
             if (w < sizeof suffix) w += (size_t)snprintf(suffix + w, sizeof suffix - w, "]");
         }
-        if (ncombo > 1 && v->count > 1 && w < sizeof suffix) {
-            if (v->count == ncombo) snprintf(suffix + w, sizeof suffix - w, " (all %d combinations)", ncombo);
-            else snprintf(suffix + w, sizeof suffix - w, " (%d of %d combinations)", v->count, ncombo);
+        if (total > 1 && v->count > 1 && w < sizeof suffix) {
+            if (v->count == total) snprintf(suffix + w, sizeof suffix - w, " (all %d combinations)", total);
+            else snprintf(suffix + w, sizeof suffix - w, " (%d of %d combinations)", v->count, total);
         }
         print_msg(r, v, suffix);
     }

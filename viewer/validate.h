@@ -49,9 +49,15 @@ bool validate_stage(const shader_src *src, shader_stage stage, char **log);
  * `#include` searches the including file's directory, then
  * <repo_root>/packs/common.
  *
+ * Combinations: every combination of a Program's `Define NAME <true>`
+ * toggles (the first 10; the rest at their defaults), then each
+ * whole-number Define slider (`Define MODE <0 0 6>`) at its other values
+ * with the toggles at their defaults: every value of a range of at most 8,
+ * else its two ends (code under `#if MODE == 5` is compiled too).
+ *
  * Prints each problem once as `file:line: error: message`, with
- * ` [with FOO=1 BAR=0]` (the first failing combination of the Program's
- * toggles) when it has toggles and `(k of N combinations)` when it fails in
+ * ` [with FOO=1 BAR=0]` (the first failing combination, a slider's value
+ * first) when it has toggles and `(k of N combinations)` when it fails in
  * several, then the summary line
  * `validate: N programs, M stages, K combinations: E errors`.
  * Returns 0 if there were no errors, 1 otherwise. */
