@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "scratch.h"
 #include "gl_ctx.h"
 #include "render.h"
 #include "unif.h"
@@ -26,27 +27,11 @@
 #define H 32
 #define TOL (1.5 / 255.0)
 
-static char dir[256];
 static float px[W * H * 4];
 static render_target target;
 
-static const char *path_of(const char *name) {
-    static char buf[8][512];
-    static int i;
-    i = (i + 1) % 8;
-    snprintf(buf[i], sizeof buf[i], "%s/%s", dir, name);
-    return buf[i];
-}
-
-static void write_file(const char *name, const char *text) {
-    FILE *f = fopen(path_of(name), "w");
-    if (!f) { perror(name); exit(1); }
-    fputs(text, f);
-    fclose(f);
-}
-
 static void write_bytes(const char *name, const void *data, size_t n) {
-    FILE *f = fopen(path_of(name), "wb");
+    FILE *f = fopen(scratch_path(name), "wb");
     if (!f) { perror(name); exit(1); }
     fwrite(data, 1, n, f);
     fclose(f);
@@ -54,7 +39,7 @@ static void write_bytes(const char *name, const void *data, size_t n) {
 
 static void remove_path(const char *name) {
     char cmd[700];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", path_of(name));
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", scratch_path(name));
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", name);
 }
 
@@ -110,14 +95,14 @@ static const char *good_glib_fmt =
 static void write_glib(const char *extra) {
     char text[1024];
     snprintf(text, sizeof text, good_glib_fmt, extra);
-    write_file("b.glib", text);
+    scratch_write("b.glib", text);
 }
 
 static void write_good_scene(void) {
-    write_file("b.vert", good_vert);
-    write_file("b.frag", good_frag);
-    write_file("b_inc.glsl", good_inc);
-    write_file("b.obj", good_obj);
+    scratch_write("b.vert", good_vert);
+    scratch_write("b.frag", good_frag);
+    scratch_write("b_inc.glsl", good_inc);
+    scratch_write("b.obj", good_obj);
     write_bmp("b.bmp", 255, 128, 0);
     write_glib("");
 }
@@ -145,7 +130,7 @@ static void print_pixels(void) {
 static render *good_render(void) {
     write_good_scene();
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("b.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("b.glib")), "%s", render_messages(r));
     draw(r);
     CHECK_MSG(shows_good(), "the good scene is not on screen");
     return r;
@@ -156,8 +141,8 @@ static const char *where(const char *file, int line) {
     static char buf[4][700];
     static int i;
     i = (i + 1) % 4;
-    if (line >= 0) snprintf(buf[i], sizeof buf[i], "%s:%d:", path_of(file), line);
-    else snprintf(buf[i], sizeof buf[i], "%s", path_of(file));
+    if (line >= 0) snprintf(buf[i], sizeof buf[i], "%s:%d:", scratch_path(file), line);
+    else snprintf(buf[i], sizeof buf[i], "%s", scratch_path(file));
     return buf[i];
 }
 
@@ -201,14 +186,14 @@ static void test_missing_shader(void) {
 static void test_unreadable_shader(void) {
     render *r = good_render();
     remove_path("b.frag");
-    mkdir(path_of("b.frag"), 0755);
+    mkdir(scratch_path("b.frag"), 0755);
     expect_kept(r, "shader is a directory", where("b.glib", 5), "b.frag", NULL);
     remove_path("b.frag");
     if (geteuid() != 0) {
-        write_file("b.frag", good_frag);
-        chmod(path_of("b.frag"), 0);
+        scratch_write("b.frag", good_frag);
+        chmod(scratch_path("b.frag"), 0);
         expect_kept(r, "shader without read permission", where("b.glib", 5), "b.frag", NULL);
-        chmod(path_of("b.frag"), 0644);
+        chmod(scratch_path("b.frag"), 0644);
     }
     expect_recovers(r, "unreadable shader");
     render_destroy(r);
@@ -216,12 +201,12 @@ static void test_unreadable_shader(void) {
 
 static void test_missing_include(void) {
     render *r = good_render();
-    write_file("b_inc.glsl", "// helpers\n#include \"b_gone.glsl\"\nfloat scale() { return 1.0; }\n");
+    scratch_write("b_inc.glsl", "// helpers\n#include \"b_gone.glsl\"\nfloat scale() { return 1.0; }\n");
     expect_kept(r, "missing #include", where("b_inc.glsl", 2), "b_gone.glsl", NULL);
     remove_path("b_inc.glsl");
     expect_kept(r, "missing included file", where("b.frag", 2), "b_inc.glsl", NULL);
     remove_path("b_inc.glsl");
-    mkdir(path_of("b_inc.glsl"), 0755);
+    mkdir(scratch_path("b_inc.glsl"), 0755);
     expect_kept(r, "#include of a directory", where("b.frag", 2), "b_inc.glsl", NULL);
     remove_path("b_inc.glsl");
     expect_recovers(r, "missing include");
@@ -230,10 +215,10 @@ static void test_missing_include(void) {
 
 static void test_include_cycle(void) {
     render *r = good_render();
-    write_file("b_inc.glsl", "#include \"b_inc2.glsl\"\nfloat scale() { return 1.0; }\n");
-    write_file("b_inc2.glsl", "// back again\n#include \"b_inc.glsl\"\n");
+    scratch_write("b_inc.glsl", "#include \"b_inc2.glsl\"\nfloat scale() { return 1.0; }\n");
+    scratch_write("b_inc2.glsl", "// back again\n#include \"b_inc.glsl\"\n");
     expect_kept(r, "#include cycle", where("b_inc2.glsl", 2), "include cycle", NULL);
-    write_file("b_inc.glsl", "#include \"b.frag\"\n");
+    scratch_write("b_inc.glsl", "#include \"b.frag\"\n");
     expect_kept(r, "#include of the stage file", where("b_inc.glsl", 1), "include cycle", NULL);
     expect_recovers(r, "include cycle");
     render_destroy(r);
@@ -241,7 +226,7 @@ static void test_include_cycle(void) {
 
 static void test_compile_error(void) {
     render *r = good_render();
-    write_file("b_inc.glsl", "float scale() {\n    return 1.0 +;\n}\n");
+    scratch_write("b_inc.glsl", "float scale() {\n    return 1.0 +;\n}\n");
     expect_kept(r, "syntax error in an include", where("b_inc.glsl", 2), NULL);
     expect_recovers(r, "compile error");
     render_destroy(r);
@@ -250,7 +235,7 @@ static void test_compile_error(void) {
 /* A program with no stage at all, and one whose stages do not link. */
 static void test_program_links_on_no_stage(void) {
     render *r = good_render();
-    write_file("b.glib",
+    scratch_write("b.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nTexture2D 5 b.bmp\n"
                "Vertex\nFragment\n"
                "Program B uTex 5 uColor {0.25 0.5 0.75 1}\nObj b.obj\n");
@@ -265,7 +250,7 @@ static void test_program_links_on_no_stage(void) {
 
     /* each stage compiles, but the program does not link: a function
      * declared and called, defined in no stage */
-    write_file("b.frag", "#version 330 compatibility\nfloat defined_nowhere(float x);\nout vec4 c;\n"
+    scratch_write("b.frag", "#version 330 compatibility\nfloat defined_nowhere(float x);\nout vec4 c;\n"
                          "void main() { c = vec4(defined_nowhere(1.)); }\n");
     expect_kept(r, "link error", where("b.glib", PROGRAM_LINE), "link", NULL);
     expect_recovers(r, "link error");
@@ -278,7 +263,7 @@ static void test_missing_texture(void) {
     render *r = good_render();
     remove_path("b.bmp");
     expect_kept(r, "missing texture", where("b.glib", 3), "b.bmp", NULL);
-    mkdir(path_of("b.bmp"), 0755);
+    mkdir(scratch_path("b.bmp"), 0755);
     expect_kept(r, "texture is a directory", where("b.glib", 3), "b.bmp", NULL);
     remove_path("b.bmp");
     expect_recovers(r, "missing texture");
@@ -287,16 +272,16 @@ static void test_missing_texture(void) {
 
 static void test_texture_unsupported_format(void) {
     render *r = good_render();
-    write_file("b.bmp", "this is not a bitmap\n");
+    scratch_write("b.bmp", "this is not a bitmap\n");
     expect_kept(r, "text under an image name", where("b.glib", 3), "b.bmp", NULL);
     /* an extension no image library knows */
-    write_file("b.qqq", "P?\n");
+    scratch_write("b.qqq", "P?\n");
     write_glib("");
     char text[1024];
     snprintf(text, sizeof text, good_glib_fmt, "");
     char *bmp = strstr(text, "b.bmp");
     if (bmp) memcpy(bmp, "b.qqq", 5);
-    write_file("b.glib", text);
+    scratch_write("b.glib", text);
     expect_kept(r, "unknown image format", where("b.glib", 3), "b.qqq", NULL);
     expect_recovers(r, "unsupported format");
     render_destroy(r);
@@ -324,7 +309,7 @@ static void test_missing_obj(void) {
     render *r = good_render();
     remove_path("b.obj");
     expect_kept(r, "missing OBJ", where("b.glib", 7), "b.obj", NULL);
-    mkdir(path_of("b.obj"), 0755);
+    mkdir(scratch_path("b.obj"), 0755);
     expect_kept(r, "OBJ is a directory", where("b.glib", 7), "b.obj", NULL);
     remove_path("b.obj");
     expect_recovers(r, "missing OBJ");
@@ -333,11 +318,11 @@ static void test_missing_obj(void) {
 
 static void test_obj_bad_indices(void) {
     render *r = good_render();
-    write_file("b.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\nf 1 3 9\n");
+    scratch_write("b.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\nf 1 3 9\n");
     expect_kept(r, "OBJ index out of range", where("b.glib", 7), where("b.obj", 5), NULL);
-    write_file("b.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 0 1 2\n");
+    scratch_write("b.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 0 1 2\n");
     expect_kept(r, "OBJ index 0", where("b.glib", 7), where("b.obj", 4), NULL);
-    write_file("b.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/7 3/1\n");
+    scratch_write("b.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/7 3/1\n");
     expect_kept(r, "OBJ texture index out of range", where("b.glib", 7), where("b.obj", 5), NULL);
     expect_recovers(r, "OBJ bad indices");
     render_destroy(r);
@@ -349,7 +334,7 @@ static void test_glib_include_missing_and_cycle(void) {
     render *r = good_render();
     write_glib("\nInclude b_more.glib");
     expect_kept(r, "missing glib Include", where("b.glib", 7), "b_more.glib", NULL);
-    write_file("b_more.glib", "Include b.glib\n");
+    scratch_write("b_more.glib", "Include b.glib\n");
     expect_kept(r, "glib Include cycle", where("b_more.glib", 1), NULL);
     remove_path("b_more.glib");
     expect_recovers(r, "glib include");
@@ -370,7 +355,7 @@ static void test_uniform_absent_or_optimised_out(void) {
     draw(r);
     CHECK(shows_good());
     /* declared but unused: the linker drops it */
-    write_file("b.frag", "#version 330 compatibility\n#include \"b_inc.glsl\"\nuniform sampler2D uTex;\n"
+    scratch_write("b.frag", "#version 330 compatibility\n#include \"b_inc.glsl\"\nuniform sampler2D uTex;\n"
                          "uniform vec4 uColor;\nuniform float uUnused;\nin vec2 st;\nout vec4 c;\n"
                          "void main() { c = st.x < 0.5 ? uColor * scale() : texture(uTex, vec2(0.5)); }\n");
     write_glib(" uUnused <0. 0.5 1.>");
@@ -389,14 +374,14 @@ static void test_uniform_absent_or_optimised_out(void) {
 static void test_uniform_of_another_type(void) {
     render *r = good_render();
     write_glib(" uExtra 1");
-    write_file("b.frag", "#version 330 compatibility\n#include \"b_inc.glsl\"\nuniform sampler2D uTex;\n"
+    scratch_write("b.frag", "#version 330 compatibility\n#include \"b_inc.glsl\"\nuniform sampler2D uTex;\n"
                          "uniform vec4 uColor;\nuniform vec3 uExtra;\nin vec2 st;\nout vec4 c;\n"
                          "void main() { c = st.x < 0.5 ? uColor * scale() + vec4(uExtra, 0.) * 0. : texture(uTex, vec2(0.5)); }\n");
     char text[1024];
     snprintf(text, sizeof text, good_glib_fmt, "");
     char *col = strstr(text, "uColor {0.25 0.5 0.75 1}");
     if (col) memcpy(col, "uColor <0. 0.25 1.>     ", 24);   /* a slider for a vec4 */
-    write_file("b.glib", text);
+    scratch_write("b.glib", text);
     bool ok = render_load(r, NULL);
     const char *msg = render_messages(r);
     fprintf(stderr, "  uniform of another type:\n    %s", msg);
@@ -429,18 +414,18 @@ static void test_preset_corrupt_or_old(void) {
     int n = 0;
     unif_set *sets = render_uniforms(r, &n);
     char err[2048];
-    CHECK(unif_preset_save(sets, n, path_of("b.preset"), err, sizeof err));
+    CHECK(unif_preset_save(sets, n, scratch_path("b.preset"), err, sizeof err));
 
-    write_file("b.preset", "tarn-preset 1\nB uColor 4 0.1 0.2\n");
+    scratch_write("b.preset", "tarn-preset 1\nB uColor 4 0.1 0.2\n");
     sets = render_uniforms(r, &n);
-    CHECK(!unif_preset_load(sets, n, path_of("b.preset"), err, sizeof err));
+    CHECK(!unif_preset_load(sets, n, scratch_path("b.preset"), err, sizeof err));
     CHECK_STR_CONTAINS(err, where("b.preset", 2));
     fprintf(stderr, "  corrupt preset: %s\n", err);
     draw(r);
     CHECK_MSG(shows_good(), "a corrupt preset changed the image");
 
-    write_file("b.preset", "tarn-preset 0\nB uColor 4 0.1 0.2 0.3 1\n");
-    CHECK(!unif_preset_load(sets, n, path_of("b.preset"), err, sizeof err));
+    scratch_write("b.preset", "tarn-preset 0\nB uColor 4 0.1 0.2 0.3 1\n");
+    CHECK(!unif_preset_load(sets, n, scratch_path("b.preset"), err, sizeof err));
     CHECK_STR_CONTAINS(err, where("b.preset", 1));
     CHECK_STR_CONTAINS(err, "version");
     fprintf(stderr, "  old preset: %s\n", err);
@@ -448,13 +433,13 @@ static void test_preset_corrupt_or_old(void) {
     CHECK_MSG(shows_good(), "an old preset changed the image");
 
     write_bytes("b.preset", "\x7f" "ELF\x02\x01\x01\0\0\0", 10);
-    CHECK(!unif_preset_load(sets, n, path_of("b.preset"), err, sizeof err));
+    CHECK(!unif_preset_load(sets, n, scratch_path("b.preset"), err, sizeof err));
     CHECK_STR_CONTAINS(err, "b.preset");
     draw(r);
     CHECK_MSG(shows_good(), "a binary preset changed the image");
 
     remove_path("b.preset");
-    CHECK(!unif_preset_load(sets, n, path_of("b.preset"), err, sizeof err));
+    CHECK(!unif_preset_load(sets, n, scratch_path("b.preset"), err, sizeof err));
     CHECK_STR_CONTAINS(err, "b.preset");
     draw(r);
     CHECK(shows_good());
@@ -475,8 +460,7 @@ int main(void) {
         return 77;
     }
     fprintf(stderr, "context: %s\n", gl_ctx_describe(ctx));
-    snprintf(dir, sizeof dir, "/tmp/tarn-test-bad-XXXXXX");
-    if (!mkdtemp(dir)) return 1;
+    if (!scratch_create("bad")) return 1;
     if (!render_target_create(&target, W, H, false)) { fprintf(stderr, "no target\n"); return 1; }
     RUN(test_missing_shader);
     RUN(test_unreadable_shader);
@@ -497,8 +481,6 @@ int main(void) {
     RUN(test_no_gl_errors_after_all_that);
     render_target_destroy(&target);
     gl_ctx_destroy(ctx);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    scratch_remove();
     return check_summary();
 }

@@ -8,25 +8,10 @@
 #include <string.h>
 
 #include "check.h"
+#include "scratch.h"
 #include "gl_ctx.h"
 #include "render.h"
 
-static char dir[256];
-
-static void write_file(const char *name, const char *text) {
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) exit(1);
-    fputs(text, f);
-    fclose(f);
-}
-
-static const char *path_of(const char *name) {
-    static char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    return path;
-}
 
 /* A flat world 4 m a side (half size 2), water at 0.5, no waves. */
 static const char *world =
@@ -54,15 +39,15 @@ static float *draw(const char *path, int w, int h, double t, render **keep) {
  * (x / h, z / h), h = uCamTopHalfSize = 1.05 * 2; a fragment writes its
  * interpolated world position, which must equal the texel's own. */
 static void test_top_camera_maps_texels_to_world(void) {
-    write_file("pos.vert", "#version 330 compatibility\nout vec3 vW;\n"
+    scratch_write("pos.vert", "#version 330 compatibility\nout vec3 vW;\n"
                            "void main() { vW = gl_Vertex.xyz; gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
-    write_file("pos.frag", "#version 330 compatibility\nin vec3 vW;\nout vec4 c;\nvoid main() { c = vec4(vW, 1.); }\n");
+    scratch_write("pos.frag", "#version 330 compatibility\nin vec3 vW;\nout vec4 c;\nvoid main() { c = vec4(vW, 1.); }\n");
     char text[2048];
     snprintf(text, sizeof text, "%sBackground 0 0 0 0\nCamera top\nVertex pos.vert\nFragment pos.frag\nProgram P\n"
              "WaterSurface\n", world);
-    write_file("top.glib", text);
+    scratch_write("top.glib", text);
     int n = 42;
-    float *px = draw(path_of("top.glib"), n, n, 0, NULL);
+    float *px = draw(scratch_path("top.glib"), n, n, 0, NULL);
     double h = 1.05 * 2, worst = 0;
     int inside = 0;
     for (int j = 0; j < n; j++)
@@ -84,7 +69,7 @@ static void test_top_camera_maps_texels_to_world(void) {
 
 /* uCamMirrorVP p equals uCamMainVP applied to p reflected about y = level. */
 static void test_mirror_matrix_reflects_about_the_water(void) {
-    write_file("mir.frag", "#version 330 compatibility\nuniform mat4 uCamMainVP, uCamMirrorVP;\nuniform float uWaterLevel;\n"
+    scratch_write("mir.frag", "#version 330 compatibility\nuniform mat4 uCamMainVP, uCamMirrorVP;\nuniform float uWaterLevel;\n"
                            "out vec4 c;\nvoid main() {\n"
                            "  vec4 p = vec4(1.3, 2.7, -0.8, 1.0);\n"
                            "  vec4 m = vec4(p.x, 2.0 * uWaterLevel - p.y, p.z, 1.0);\n"
@@ -92,8 +77,8 @@ static void test_mirror_matrix_reflects_about_the_water(void) {
                            "  c = vec4(abs(a - b).xyz, abs(a.w) + abs(b.w));\n}\n");
     char text[2048];
     snprintf(text, sizeof text, "%sVertex pos.vert\nFragment mir.frag\nProgram M\nCamera top\nWaterSurface\n", world);
-    write_file("mir.glib", text);
-    float *px = draw(path_of("mir.glib"), 8, 8, 0, NULL);
+    scratch_write("mir.glib", text);
+    float *px = draw(scratch_path("mir.glib"), 8, 8, 0, NULL);
     const float *p = px + (4 * 8 + 4) * 4;
     CHECK(p[3] > 0.1f);                          /* the fragment ran and the matrices were set */
     CHECK(p[0] < 1e-4f && p[1] < 1e-4f && p[2] < 1e-4f);
@@ -103,22 +88,22 @@ static void test_mirror_matrix_reflects_about_the_water(void) {
 /* A RenderToTextureOnce block draws on the first frame only: its target
  * keeps the first frame's Timer value. */
 static void test_render_to_texture_once(void) {
-    write_file("time.frag", "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
+    scratch_write("time.frag", "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
                             "void main() { c = vec4(Timer, 0., 0., 1.); }\n");
-    write_file("show.frag", "#version 330 compatibility\nuniform sampler2D uT;\nout vec4 c;\n"
+    scratch_write("show.frag", "#version 330 compatibility\nuniform sampler2D uT;\nout vec4 c;\n"
                             "void main() { c = texelFetch(uT, ivec2(0), 0); }\n");
-    write_file("flat.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_Vertex; }\n");
-    write_file("once.glib", "##OpenGL GLIB\nTimer 10\nTexture2D 6 4 4 float\n"
+    scratch_write("flat.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_Vertex; }\n");
+    scratch_write("once.glib", "##OpenGL GLIB\nTimer 10\nTexture2D 6 4 4 float\n"
                             "RenderToTextureOnce 6\nClear\nVertex flat.vert\nFragment time.frag\nProgram T\nQuadXY 0 1 1 1\n"
                             "RenderToTexture\nFragment show.frag\nProgram S uT 6\nQuadXY 0 1 1 1\n");
     render *r = NULL;
-    float *a = draw(path_of("once.glib"), 4, 4, 2.0, &r);
-    float *b = draw(path_of("once.glib"), 4, 4, 7.0, &r);
+    float *a = draw(scratch_path("once.glib"), 4, 4, 2.0, &r);
+    float *b = draw(scratch_path("once.glib"), 4, 4, 7.0, &r);
     CHECK_NEAR(a[0], 0.2, 1e-6);
     CHECK_NEAR(b[0], 0.2, 1e-6);                 /* not 0.7: the block did not run again */
     CHECK(render_load(r, NULL));                 /* a reload draws it once more */
     free(b);
-    b = draw(path_of("once.glib"), 4, 4, 7.0, &r);
+    b = draw(scratch_path("once.glib"), 4, 4, 7.0, &r);
     CHECK_NEAR(b[0], 0.7, 1e-6);
     free(a);
     free(b);
@@ -128,13 +113,13 @@ static void test_render_to_texture_once(void) {
 /* WaterSurface points N with Blend add: every point lands once, so the
  * target sums to N^2 (what GPU photon splatting relies on). */
 static void test_points_add_up(void) {
-    write_file("one.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1.); }\n");
-    write_file("pt.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
+    scratch_write("one.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1.); }\n");
+    scratch_write("pt.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
     char text[2048];
     snprintf(text, sizeof text, "%sBackground 0 0 0 0\nCamera top\nDepthTest off\nBlend add\n"
              "Vertex pt.vert\nFragment one.frag\nProgram P\nWaterSurface points 20\n", world);
-    write_file("points.glib", text);
-    float *px = draw(path_of("points.glib"), 16, 16, 0, NULL);
+    scratch_write("points.glib", text);
+    float *px = draw(scratch_path("points.glib"), 16, 16, 0, NULL);
     double sum = 0;
     for (int i = 0; i < 16 * 16; i++) sum += px[i * 4];
     CHECK_NEAR(sum, 400.0, 1e-3);
@@ -144,15 +129,15 @@ static void test_points_add_up(void) {
 /* Splat: 16 photons of energy 0.25 at world (0.3, -0.7): the irradiance
  * times the texel area sums to 4 and peaks at that point's texel. */
 static void test_splat_conserves_energy(void) {
-    write_file("photon.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0.3, -0.7, 0.25, 1.); }\n");
-    write_file("grid.frag", "#version 330 compatibility\nuniform sampler2D uG;\nout vec4 c;\n"
+    scratch_write("photon.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0.3, -0.7, 0.25, 1.); }\n");
+    scratch_write("grid.frag", "#version 330 compatibility\nuniform sampler2D uG;\nout vec4 c;\n"
                             "void main() { c = texelFetch(uG, ivec2(gl_FragCoord.xy), 0); }\n");
     char text[2048];
     snprintf(text, sizeof text, "%sTexture2D 6 4 4 float\nTexture2D 7 10 10 float\n"
              "RenderToTexture 6\nClear\nVertex flat.vert\nFragment photon.frag\nProgram Ph\nQuadXY 0 1 1 1\nRenderToTexture\n"
              "Splat 6 7\nFragment grid.frag\nProgram G uG 7\nQuadXY 0 1 1 1\n", world);
-    write_file("splat.glib", text);
-    float *px = draw(path_of("splat.glib"), 10, 10, 0, NULL);
+    scratch_write("splat.glib", text);
+    float *px = draw(scratch_path("splat.glib"), 10, 10, 0, NULL);
     double texel_area = (4.0 / 10) * (4.0 / 10), sum = 0, peak = 0;
     int pi = -1, pj = -1;
     for (int j = 0; j < 10; j++)
@@ -179,15 +164,15 @@ static unif_entry *uniform_of(render *r, const char *program, const char *name) 
  * the slider; a RenderToTextureOnce block into it draws again after a
  * resize; uTargetSize tells the program drawing into it its size. */
 static void test_target_sized_by_a_slider(void) {
-    write_file("size.frag", "#version 330 compatibility\nuniform vec2 uTargetSize;\nout vec4 c;\n"
+    scratch_write("size.frag", "#version 330 compatibility\nuniform vec2 uTargetSize;\nout vec4 c;\n"
                             "void main() { c = vec4(uTargetSize, 0., 1.); }\n");
-    write_file("tsize.frag", "#version 330 compatibility\nuniform sampler2D uT;\nout vec4 c;\n"
+    scratch_write("tsize.frag", "#version 330 compatibility\nuniform sampler2D uT;\nout vec4 c;\n"
                              "void main() { c = vec4(texelFetch(uT, ivec2(0), 0).xy, vec2(textureSize(uT, 0))); }\n");
-    write_file("sized.glib", "##OpenGL GLIB\nTexture2D 6 uRes uRes float\n"
+    scratch_write("sized.glib", "##OpenGL GLIB\nTexture2D 6 uRes uRes float\n"
                              "RenderToTextureOnce 6\nClear\nVertex flat.vert\nFragment size.frag\nProgram T\nQuadXY 0 1 1 1\n"
                              "RenderToTexture\nFragment tsize.frag\nProgram S uT 6 uRes <8 32 128>\nQuadXY 0 1 1 1\n");
     render *r = NULL;
-    float *a = draw(path_of("sized.glib"), 4, 4, 0, &r);
+    float *a = draw(scratch_path("sized.glib"), 4, 4, 0, &r);
     CHECK_MSG(!strstr(render_messages(r), "uRes"), "%s", render_messages(r));   /* no 'not declared' warning */
     CHECK_NEAR(a[0], 32, 0);      /* the once-pass saw a 32 x 32 target */
     CHECK_NEAR(a[2], 32, 0);      /* and it is one */
@@ -195,22 +180,22 @@ static void test_target_sized_by_a_slider(void) {
     CHECK(e && unif_is_int(e));   /* a size: a whole-number slider */
     if (e) {
         e->value[0] = 100;
-        float *b = draw(path_of("sized.glib"), 4, 4, 0, &r);
+        float *b = draw(scratch_path("sized.glib"), 4, 4, 0, &r);
         CHECK_NEAR(b[0], 100, 0);  /* the once-pass drew again, at the new size */
         CHECK_NEAR(b[3], 100, 0);
         free(b);
         e->value[0] = NAN;        /* a broken value: the fallback size, no GL error (draw checks) */
-        b = draw(path_of("sized.glib"), 4, 4, 0, &r);
+        b = draw(scratch_path("sized.glib"), 4, 4, 0, &r);
         CHECK_NEAR(b[2], 256, 0);
         free(b);
     }
     free(a);
     render_destroy(r);
     /* a name no Program has: a warning naming the line, and 256 */
-    write_file("unsized.glib", "##OpenGL GLIB\nTexture2D 6 uNope 16 float\n"
+    scratch_write("unsized.glib", "##OpenGL GLIB\nTexture2D 6 uNope 16 float\n"
                                "Vertex flat.vert\nFragment tsize.frag\nProgram S uT 6\nQuadXY 0 1 1 1\n");
     r = NULL;
-    a = draw(path_of("unsized.glib"), 4, 4, 0, &r);
+    a = draw(scratch_path("unsized.glib"), 4, 4, 0, &r);
     CHECK_MSG(strstr(render_messages(r), "unsized.glib:2: warning: Texture2D: no Program") != NULL, "%s",
               render_messages(r));
     CHECK_NEAR(a[2], 256, 0);
@@ -222,15 +207,15 @@ static void test_target_sized_by_a_slider(void) {
 /* `WaterSurface points uN`: N from a slider, and uPointGrid = N, so points
  * of energy 1 / N^2 sum to 1 whatever N is. */
 static void test_points_from_a_slider(void) {
-    write_file("share.frag", "#version 330 compatibility\nuniform float uPointGrid;\nout vec4 c;\n"
+    scratch_write("share.frag", "#version 330 compatibility\nuniform float uPointGrid;\nout vec4 c;\n"
                              "void main() { c = vec4(1. / (uPointGrid * uPointGrid)); }\n");
     char text[2048];
     snprintf(text, sizeof text, "%sBackground 0 0 0 0\nCamera top\nDepthTest off\nBlend add\n"
              "Vertex pt.vert\nFragment share.frag\nProgram P uN <1 20 64>\nWaterSurface points uN\n", world);
-    write_file("npoints.glib", text);
+    scratch_write("npoints.glib", text);
     render *r = NULL;
     for (int k = 0; k < 2; k++) {
-        float *px = draw(path_of("npoints.glib"), 16, 16, 0, &r);
+        float *px = draw(scratch_path("npoints.glib"), 16, 16, 0, &r);
         double sum = 0;
         for (int i = 0; i < 16 * 16; i++) sum += px[i * 4];
         CHECK_NEAR(sum, 1.0, 1e-4);
@@ -247,16 +232,16 @@ static void test_points_from_a_slider(void) {
  * points follow (world_follow_waves), so the displaced surface, drawn from
  * above, still covers the world square. */
 static void test_water_grid_follows_a_sliding_surface(void) {
-    write_file("disp.vert", "#version 330 compatibility\n#include \"waves.glsl\"\nuniform float uTime;\n"
+    scratch_write("disp.vert", "#version 330 compatibility\n#include \"waves.glsl\"\nuniform float uTime;\n"
                             "uniform mat4 uCamTopVP;\nout vec3 vP;\n"
                             "void main() { vec3 n; wavesEval(gl_Vertex.xz, uTime, vP, n); gl_Position = uCamTopVP * vec4(vP, 1.); }\n");
-    write_file("disp.frag", "#version 330 compatibility\nin vec3 vP;\nout vec4 c;\nvoid main() { c = vec4(vP, 1.); }\n");
+    scratch_write("disp.frag", "#version 330 compatibility\nin vec3 vP;\nout vec4 c;\nvoid main() { c = vec4(vP, 1.); }\n");
     char text[2048];
     snprintf(text, sizeof text, "%sWaveGerstner 0 100000 0.1 0.000001 0\nWaveSteepness 0.6\n"
              "Background 0 0 0 0\nVertex disp.vert\nFragment disp.frag\nProgram P\nWaterSurface\n", world);
-    write_file("slide.glib", text);
+    scratch_write("slide.glib", text);
     int n = 40, inside = 0, covered = 0;
-    float *px = draw(path_of("slide.glib"), n, n, 3.0, NULL);
+    float *px = draw(scratch_path("slide.glib"), n, n, 3.0, NULL);
     double h = 1.05 * 2;
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++) {
@@ -272,11 +257,11 @@ static void test_water_grid_follows_a_sliding_surface(void) {
 
 /* @caustics is generated, tileable, with mean 1. */
 static void test_generated_caustics(void) {
-    write_file("caus.frag", "#version 330 compatibility\nuniform sampler2D uC;\nout vec4 c;\n"
+    scratch_write("caus.frag", "#version 330 compatibility\nuniform sampler2D uC;\nout vec4 c;\n"
                             "void main() { c = texture(uC, gl_FragCoord.xy / 64.0); }\n");
-    write_file("caus.glib", "##OpenGL GLIB\nTexture2D 5 @caustics\nVertex flat.vert\nFragment caus.frag\n"
+    scratch_write("caus.glib", "##OpenGL GLIB\nTexture2D 5 @caustics\nVertex flat.vert\nFragment caus.frag\n"
                             "Program C uC 5\nQuadXY 0 1 1 1\n");
-    float *px = draw(path_of("caus.glib"), 64, 64, 0, NULL);
+    float *px = draw(scratch_path("caus.glib"), 64, 64, 0, NULL);
     double mean = 0, var = 0;
     for (int i = 0; i < 64 * 64; i++) mean += px[i * 4] / (64.0 * 64.0);
     for (int i = 0; i < 64 * 64; i++) var += (px[i * 4] - mean) * (px[i * 4] - mean) / (64.0 * 64.0);
@@ -289,8 +274,8 @@ static void test_generated_caustics(void) {
 /* If blocks: a Define toggle of the pack, and scene facts. The flat world
  * (floor 1 m under the water, no objects) has nothing above the water. */
 static void test_if_blocks(void) {
-    write_file("red.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1., 0., 0., 1.); }\n");
-    write_file("green.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 0., 1.); }\n");
+    scratch_write("red.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1., 0., 0., 1.); }\n");
+    scratch_write("green.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 0., 1.); }\n");
     char text[2048];
     snprintf(text, sizeof text, "%sBackground 0 0 0 0\nVertex flat.vert\n"
              "Fragment red.frag\nDefine EXTRA <false>\nProgram R\n"
@@ -298,9 +283,9 @@ static void test_if_blocks(void) {
              "Fragment green.frag\nProgram G\n"
              "If above_water\nQuadXY 0 1 1 1\nEndIf\n"
              "Blend add\nIf not above_water\nIf not EXTRA\nQuadXY 0 1 1 1\nEndIf\nEndIf\n", world);
-    write_file("if.glib", text);
+    scratch_write("if.glib", text);
     render *r = NULL;
-    float *px = draw(path_of("if.glib"), 4, 4, 0, &r);
+    float *px = draw(scratch_path("if.glib"), 4, 4, 0, &r);
     CHECK_NEAR(px[0], 0.0, 1e-6);    /* EXTRA off: no red */
     CHECK_NEAR(px[1], 1.0, 1e-6);    /* one green: only the `not above_water` block */
     free(px);
@@ -311,7 +296,7 @@ static void test_if_blocks(void) {
     if (extra) {
         extra->value[0] = 1;
         render_rebuild_programs(r);
-        px = draw(path_of("if.glib"), 4, 4, 0, &r);
+        px = draw(scratch_path("if.glib"), 4, 4, 0, &r);
         CHECK_NEAR(px[0], 1.0, 1e-6);    /* EXTRA on: red, and the nested green block is off */
         CHECK_NEAR(px[1], 0.0, 1e-6);
         free(px);
@@ -323,8 +308,7 @@ int main(void) {
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
-    snprintf(dir, sizeof dir, "/tmp/tarn-test-contract-XXXXXX");
-    if (!mkdtemp(dir)) return 1;
+    if (!scratch_create("contract")) return 1;
     RUN(test_top_camera_maps_texels_to_world);
     RUN(test_mirror_matrix_reflects_about_the_water);
     RUN(test_render_to_texture_once);
@@ -336,8 +320,6 @@ int main(void) {
     RUN(test_generated_caustics);
     RUN(test_if_blocks);
     gl_ctx_destroy(ctx);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    scratch_remove();
     return check_summary();
 }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "scratch.h"
 #include "gl_ctx.h"
 #include "render.h"
 #include "watch.h"
@@ -19,23 +20,7 @@
 #define TOL (1.5 / 255.0)   /* RGBA8 target: half a step of rounding, plus slack */
 
 static gl_ctx *ctx;
-static char dir[256];
 static float px[W * H * 4];
-
-static void write_file(const char *name, const char *text) {
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) { perror(path); exit(1); }
-    fputs(text, f);
-    fclose(f);
-}
-
-static const char *path_of(const char *name) {
-    static char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    return path;
-}
 
 /* Renders r at time t into a fresh W x H target and reads it back. */
 static void draw(render *r, double t) {
@@ -63,14 +48,14 @@ static const char *flat_frag =
     "void main() { fragColor = uColor; }\n";
 
 static void test_uniform_colour_fills_the_screen(void) {
-    write_file("flat.vert", flat_vert);
-    write_file("flat.frag", flat_frag);
-    write_file("flat.glib",
+    scratch_write("flat.vert", flat_vert);
+    scratch_write("flat.frag", flat_frag);
+    scratch_write("flat.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\n"
                "Vertex flat.vert\nFragment flat.frag\n"
                "Program Flat uColor {0.2 0.4 0.6 1.}\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("flat.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("flat.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(0, 0), 0.2, 0.4, 0.6);
     CHECK_RGB(at(W / 2, H / 2), 0.2, 0.4, 0.6);
@@ -81,13 +66,13 @@ static void test_uniform_colour_fills_the_screen(void) {
 /* Translate 0.5 0 0, Scale 0.25: the quad covers x in [0.25, 0.75] of NDC,
  * i.e. pixels 40..55 of 64, and y in [-0.25, 0.25], rows 24..39. */
 static void test_transforms_place_geometry(void) {
-    write_file("xf.glib",
+    scratch_write("xf.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 1\n"
                "Vertex flat.vert\nFragment flat.frag\n"
                "Program Flat uColor {1 0 0 1}\n"
                "PushMatrix\nTranslate 0.5 0 0\nScale 0.25\nQuadXY 0 1 1 1\nPopMatrix\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("xf.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("xf.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(48, 32), 1, 0, 0);        /* inside */
     CHECK_RGB(at(41, 25), 1, 0, 0);
@@ -102,14 +87,14 @@ static void test_transforms_place_geometry(void) {
 /* Timer: a 0..1 sawtooth of period `Timer secs`: at t = 12.5 with a 10 s
  * period it is 0.25. */
 static void test_timer_is_a_sawtooth(void) {
-    write_file("timer.frag",
+    scratch_write("timer.frag",
                "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
                "void main() { c = vec4(Timer, 0., 0., 1.); }\n");
-    write_file("timer.glib",
+    scratch_write("timer.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nTimer 10\nVertex flat.vert\nFragment timer.frag\n"
                "Program T\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("timer.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("timer.glib")), "%s", render_messages(r));
     draw(r, 12.5);
     CHECK_NEAR(at(10, 10)[0], 0.25, TOL);
     draw(r, 7.0);
@@ -119,14 +104,14 @@ static void test_timer_is_a_sawtooth(void) {
 
 /* GSTAP maps aVertex and uModelViewProjectionMatrix to the built-ins. */
 static void test_gstap_names_work(void) {
-    write_file("gstap.vert",
+    scratch_write("gstap.vert",
                "#version 330 compatibility\n"
                "void main() { gl_Position = uModelViewProjectionMatrix * aVertex; }\n");
-    write_file("gstap.glib",
+    scratch_write("gstap.glib",
                "##OpenGL GLIB\nGSTAP\nOrtho -1 1 -1 1\nVertex gstap.vert\nFragment flat.frag\n"
                "Program G uColor {0 1 0 1}\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("gstap.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("gstap.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0, 1, 0);
     render_destroy(r);
@@ -143,7 +128,7 @@ static void write_bmp_2x2(const char *name) {
         255, 0, 0, 255, 255, 255, 0, 0,      /* bottom row (BGR): blue, white, pad */
         0, 0, 255, 0, 255, 0, 0, 0 };        /* top row: red, green, pad */
     memcpy(file + 54, rows, 16);
-    FILE *f = fopen(path_of(name), "wb");
+    FILE *f = fopen(scratch_path(name), "wb");
     if (!f) exit(1);
     fwrite(file, 1, sizeof file, f);
     fclose(f);
@@ -151,17 +136,17 @@ static void write_bmp_2x2(const char *name) {
 
 static void test_texture_from_bmp(void) {
     write_bmp_2x2("quad.bmp");
-    write_file("tex.vert",
+    scratch_write("tex.vert",
                "#version 330 compatibility\nout vec2 st;\n"
                "void main() { st = gl_MultiTexCoord0.st; gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
-    write_file("tex.frag",
+    scratch_write("tex.frag",
                "#version 330 compatibility\nuniform sampler2D uTex;\nin vec2 st;\nout vec4 c;\n"
                "void main() { c = texelFetch(uTex, ivec2(st * 2.0), 0); }\n");
-    write_file("tex.glib",
+    scratch_write("tex.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nTexture2D 5 quad.bmp\nVertex tex.vert\nFragment tex.frag\n"
                "Program Tex uTex 5\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("tex.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("tex.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(8, 8), 1, 0, 0);            /* top left: red */
     CHECK_RGB(at(56, 8), 0, 1, 0);           /* top right: green */
@@ -172,17 +157,17 @@ static void test_texture_from_bmp(void) {
 
 /* Pass 1 draws a colour into texture unit 6; pass 2 shows that texture. */
 static void test_render_to_texture(void) {
-    write_file("show.frag",
+    scratch_write("show.frag",
                "#version 330 compatibility\nuniform sampler2D uTarget;\nin vec2 st;\nout vec4 c;\n"
                "void main() { c = texture(uTarget, st) * vec4(0.5, 0.5, 0.5, 1.); }\n");
-    write_file("rtt.glib",
+    scratch_write("rtt.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nTexture2D 6 32 32\n"
                "RenderToTexture 6\nBackground 0 0 0\nClear\n"
                "Vertex flat.vert\nFragment flat.frag\nProgram Fill uColor {0.8 0.6 0.4 1}\nQuadXY 0 1 1 1\n"
                "RenderToTexture\n"
                "Vertex tex.vert\nFragment show.frag\nProgram Show uTarget 6\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("rtt.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("rtt.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0.4, 0.3, 0.2);
     /* the panel's per-pass times name the pass by its glib line and units */
@@ -198,24 +183,24 @@ static void test_render_to_texture(void) {
 /* A shader error keeps the last good program (and so the image) and names
  * the file and line; fixing it applies the change. */
 static void test_shader_error_keeps_last_good_then_fix_applies(void) {
-    write_file("edit.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 0., 1.); }\n");
-    write_file("edit.glib",
+    scratch_write("edit.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 0., 1.); }\n");
+    scratch_write("edit.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment edit.frag\nProgram E\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("edit.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("edit.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0, 1, 0);
 
-    write_file("edit.frag", "#version 330 compatibility\nout vec4 c;\n\nvoid main() { c = vec4(1., 0., 0., 1.) + nope; }\n");
+    scratch_write("edit.frag", "#version 330 compatibility\nout vec4 c;\n\nvoid main() { c = vec4(1., 0., 0., 1.) + nope; }\n");
     CHECK(!render_load(r, NULL));
     CHECK(render_has_errors(r));
     char want[600];
-    snprintf(want, sizeof want, "%s:4:", path_of("edit.frag"));
+    snprintf(want, sizeof want, "%s:4:", scratch_path("edit.frag"));
     CHECK_STR_CONTAINS(render_messages(r), want);
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0, 1, 0);           /* still the last good green */
 
-    write_file("edit.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 0., 1., 1.); }\n");
+    scratch_write("edit.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 0., 1., 1.); }\n");
     CHECK_MSG(render_load(r, NULL), "%s", render_messages(r));
     CHECK(!render_has_errors(r));
     draw(r, 0);
@@ -225,11 +210,11 @@ static void test_shader_error_keeps_last_good_then_fix_applies(void) {
 
 /* A glib with an error keeps the whole last good scene. */
 static void test_glib_error_keeps_last_good_scene(void) {
-    write_file("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
+    scratch_write("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
                          "Program F uColor {1 1 0 1}\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("g.glib")), "%s", render_messages(r));
-    write_file("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
+    CHECK_MSG(render_load(r, scratch_path("g.glib")), "%s", render_messages(r));
+    scratch_write("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
                          "Program F uColor {1 1 0 1\nQuadXY 0 1 1 1\n");
     CHECK(!render_load(r, NULL));
     CHECK_STR_CONTAINS(render_messages(r), "g.glib:5:");
@@ -248,12 +233,12 @@ static unif_entry *entry(render *r, const char *program, const char *name) {
 
 /* Slider values survive a reload; a changed default resets that uniform. */
 static void test_slider_values_survive_reload(void) {
-    write_file("s.frag", "#version 330 compatibility\nuniform float uGrey;\nuniform float uBlue;\nout vec4 c;\n"
+    scratch_write("s.frag", "#version 330 compatibility\nuniform float uGrey;\nuniform float uBlue;\nout vec4 c;\n"
                          "void main() { c = vec4(uGrey, uGrey, uBlue, 1.); }\n");
-    write_file("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
+    scratch_write("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
                          "Program S uGrey <0. 0.2 1.> uBlue <0. 0.1 1.>\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("s.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("s.glib")), "%s", render_messages(r));
     unif_entry *grey = entry(r, "S", "uGrey"), *blue = entry(r, "S", "uBlue");
     CHECK(grey && blue);
     if (!grey || !blue) { render_destroy(r); return; }
@@ -262,7 +247,7 @@ static void test_slider_values_survive_reload(void) {
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0.6, 0.6, 0.8);
     /* the glib changes uBlue's default only */
-    write_file("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
+    scratch_write("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
                          "Program S uGrey <0. 0.2 1.> uBlue <0. 0.3 1.>\nQuadXY 0 1 1 1\n");
     CHECK_MSG(render_load(r, NULL), "%s", render_messages(r));
     grey = entry(r, "S", "uGrey");
@@ -278,12 +263,12 @@ static void test_slider_values_survive_reload(void) {
 
 /* A Define toggle compiles the shader with or without the #define. */
 static void test_define_toggle_recompiles(void) {
-    write_file("d.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() {\n#ifdef RED\n"
+    scratch_write("d.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() {\n#ifdef RED\n"
                          "c = vec4(1., 0., 0., 1.);\n#else\nc = vec4(0., 0., 1., 1.);\n#endif\n}\n");
-    write_file("d.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment d.frag\n"
+    scratch_write("d.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment d.frag\n"
                          "Define RED <true>\nProgram D\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("d.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("d.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(32, 32), 1, 0, 0);
     unif_entry *red = entry(r, "D", "RED");
@@ -299,12 +284,12 @@ static void test_define_toggle_recompiles(void) {
 
 /* The built-in noise: each channel an octave centred on 0.5. */
 static void test_noise_texture_is_centred(void) {
-    write_file("n.frag", "#version 330 compatibility\nuniform sampler2D Noise2;\nin vec2 st;\nout vec4 c;\n"
+    scratch_write("n.frag", "#version 330 compatibility\nuniform sampler2D Noise2;\nin vec2 st;\nout vec4 c;\n"
                          "void main() { c = texture(Noise2, st); }\n");
-    write_file("n.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nNoise2D 64\nVertex tex.vert\nFragment n.frag\n"
+    scratch_write("n.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nNoise2D 64\nVertex tex.vert\nFragment n.frag\n"
                          "Program N Noise2 2\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("n.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("n.glib")), "%s", render_messages(r));
     draw(r, 0);
     double mean[4] = {0};
     for (int i = 0; i < W * H; i++)
@@ -315,12 +300,12 @@ static void test_noise_texture_is_centred(void) {
 
 /* Every file the scene reads is a dependency the watcher must watch. */
 static void test_deps_list_every_file(void) {
-    write_file("inc.glsl", "vec4 tint() { return vec4(0.5); }\n");
-    write_file("inc.frag", "#version 330 compatibility\n#include \"inc.glsl\"\nout vec4 c;\nvoid main() { c = tint(); }\n");
-    write_file("sub.glib", "Vertex flat.vert\nFragment inc.frag\n");
-    write_file("deps.glib", "##OpenGL GLIB\nInclude sub.glib\nTexture2D 5 quad.bmp\nProgram I\nQuadXY 0 1 1 1\n");
+    scratch_write("inc.glsl", "vec4 tint() { return vec4(0.5); }\n");
+    scratch_write("inc.frag", "#version 330 compatibility\n#include \"inc.glsl\"\nout vec4 c;\nvoid main() { c = tint(); }\n");
+    scratch_write("sub.glib", "Vertex flat.vert\nFragment inc.frag\n");
+    scratch_write("deps.glib", "##OpenGL GLIB\nInclude sub.glib\nTexture2D 5 quad.bmp\nProgram I\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("deps.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("deps.glib")), "%s", render_messages(r));
     const char *const *deps;
     int n = render_deps(r, &deps);
     const char *want[] = { "deps.glib", "sub.glib", "flat.vert", "inc.frag", "inc.glsl", "quad.bmp" };
@@ -339,7 +324,7 @@ static void write_bmp_1x1(const char *name, unsigned char r_, unsigned char g_, 
         40, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 24, 0, 0, 0, 0, 0, 4, 0, 0, 0,
         0x13, 0x0b, 0, 0, 0x13, 0x0b, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
     file[54] = b_; file[55] = g_; file[56] = r_;
-    FILE *f = fopen(path_of(name), "wb");
+    FILE *f = fopen(scratch_path(name), "wb");
     if (!f) exit(1);
     fwrite(file, 1, sizeof file, f);
     fclose(f);
@@ -350,12 +335,12 @@ static void test_cube_map_faces(void) {
     const char *faces[6] = { "px.bmp", "nx.bmp", "py.bmp", "ny.bmp", "pz.bmp", "nz.bmp" };
     const unsigned char col[6][3] = { {255,0,0}, {0,255,0}, {0,0,255}, {255,255,0}, {0,255,255}, {255,0,255} };
     for (int i = 0; i < 6; i++) write_bmp_1x1(faces[i], col[i][0], col[i][1], col[i][2]);
-    write_file("cube.frag", "#version 330 compatibility\nuniform samplerCube uSky;\nuniform vec3 uDir;\nout vec4 c;\n"
+    scratch_write("cube.frag", "#version 330 compatibility\nuniform samplerCube uSky;\nuniform vec3 uDir;\nout vec4 c;\n"
                             "void main() { c = texture(uSky, uDir); }\n");
-    write_file("cube.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nCubeMap 7 px.bmp nx.bmp py.bmp ny.bmp pz.bmp nz.bmp\n"
+    scratch_write("cube.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nCubeMap 7 px.bmp nx.bmp py.bmp ny.bmp pz.bmp nz.bmp\n"
                             "Vertex flat.vert\nFragment cube.frag\nProgram C uSky 7 uDir [0 0 1]\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("cube.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("cube.glib")), "%s", render_messages(r));
     int n;
     unif_set *sets = render_uniforms(r, &n);
     unif_entry *dir_e = n ? unif_find(&sets[0], "uDir") : NULL;
@@ -375,11 +360,11 @@ static void test_cube_map_faces(void) {
 /* An OBJ triangle with its corners at NDC (-1,-1), (1,-1), (-1,1) fills
  * the lower-left half of the screen. */
 static void test_obj_geometry(void) {
-    write_file("tri.obj", "# one triangle\nv -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n");
-    write_file("obj.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\nVertex flat.vert\nFragment flat.frag\n"
+    scratch_write("tri.obj", "# one triangle\nv -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n");
+    scratch_write("obj.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\nVertex flat.vert\nFragment flat.frag\n"
                            "Program O uColor {1 1 1 1}\nObj tri.obj\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("obj.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("obj.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(8, 56), 1, 1, 1);     /* bottom left: inside */
     CHECK_RGB(at(56, 8), 0, 0, 0);     /* top right: outside */
@@ -398,10 +383,10 @@ static double now_ms(void) {
  * is seen by the watcher on the scene's dependencies, and the reload shows
  * the new colour. The latency is printed (timing is not asserted here). */
 static void test_save_is_seen_and_reloaded(void) {
-    write_file("live.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1., 0., 1., 1.); }\n");
-    write_file("live.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment live.frag\nProgram L\nQuadXY 0 1 1 1\n");
+    scratch_write("live.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1., 0., 1., 1.); }\n");
+    scratch_write("live.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment live.frag\nProgram L\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("live.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("live.glib")), "%s", render_messages(r));
     char err[256];
     watch *w = watch_create(err, sizeof err);
     CHECK_MSG(w != NULL, "%s", err);
@@ -411,11 +396,11 @@ static void test_save_is_seen_and_reloaded(void) {
     CHECK(watch_set_files(w, deps, n, err, sizeof err));
     draw(r, 0);
     CHECK_RGB(at(32, 32), 1, 0, 1);
-    write_file("live.frag.tmp", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 1., 1.); }\n");
+    scratch_write("live.frag.tmp", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 1., 1.); }\n");
     char tmp[512];
-    snprintf(tmp, sizeof tmp, "%s", path_of("live.frag.tmp"));
+    snprintf(tmp, sizeof tmp, "%s", scratch_path("live.frag.tmp"));
     double t0 = now_ms();
-    CHECK(rename(tmp, path_of("live.frag")) == 0);
+    CHECK(rename(tmp, scratch_path("live.frag")) == 0);
     int changed = watch_poll(w, 2000);
     CHECK(changed == 1);
     CHECK(render_load(r, NULL));
@@ -429,7 +414,7 @@ static void test_save_is_seen_and_reloaded(void) {
 
 static void test_no_gl_errors(void) {
     render *r = render_create(NULL);
-    CHECK(render_load(r, path_of("rtt.glib")));
+    CHECK(render_load(r, scratch_path("rtt.glib")));
     draw(r, 0);
     /* rtt.glib: the screen, then a pass into unit 6 (line 4), then the screen again (line 11) */
     const char (*names)[GPU_TIMER_NAME];
@@ -455,8 +440,7 @@ int main(void) {
         return 77;
     }
     fprintf(stderr, "context: %s\n", gl_ctx_describe(ctx));
-    snprintf(dir, sizeof dir, "/tmp/tarn-test-render-XXXXXX");
-    if (!mkdtemp(dir)) return 1;
+    if (!scratch_create("render")) return 1;
     RUN(test_uniform_colour_fills_the_screen);
     RUN(test_transforms_place_geometry);
     RUN(test_timer_is_a_sawtooth);
@@ -474,8 +458,6 @@ int main(void) {
     RUN(test_save_is_seen_and_reloaded);
     RUN(test_no_gl_errors);
     gl_ctx_destroy(ctx);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    scratch_remove();
     return check_summary();
 }

@@ -27,6 +27,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "scratch.h"
 #include "gl_ctx.h"
 #include "render.h"
 
@@ -45,23 +46,7 @@
 #endif
 #endif
 
-static char dir[256];
 static float px[W * H * 4];
-
-static const char *path_of(const char *name) {
-    static char buf[4][512];
-    static int i;
-    i = (i + 1) % 4;
-    snprintf(buf[i], sizeof buf[i], "%s/%s", dir, name);
-    return buf[i];
-}
-
-static void write_file(const char *name, const char *text) {
-    FILE *f = fopen(path_of(name), "w");
-    if (!f) { perror(name); exit(1); }
-    fputs(text, f);
-    fclose(f);
-}
 
 /* The renderer reuses a texture whose (path, mtime, size) is unchanged; two
  * saves of equal size inside one kernel clock tick (~4 ms) look the same.
@@ -71,7 +56,7 @@ static void stamp(const char *name, long serial) {
     struct timespec ts[2];
     ts[0].tv_sec = ts[1].tv_sec = 1000000000L + serial;
     ts[0].tv_nsec = ts[1].tv_nsec = 0;
-    if (utimensat(AT_FDCWD, path_of(name), ts, 0) != 0) { perror(name); exit(1); }
+    if (utimensat(AT_FDCWD, scratch_path(name), ts, 0) != 0) { perror(name); exit(1); }
 }
 
 /* A 1x1 24-bit BMP of one colour. */
@@ -80,7 +65,7 @@ static void write_bmp(const char *name, int r, int g, int b, long serial) {
         40, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 24, 0, 0, 0, 0, 0, 4, 0, 0, 0,
         0x13, 0x0b, 0, 0, 0x13, 0x0b, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
     file[54] = (unsigned char)b; file[55] = (unsigned char)g; file[56] = (unsigned char)r;
-    FILE *f = fopen(path_of(name), "wb");
+    FILE *f = fopen(scratch_path(name), "wb");
     if (!f) exit(1);
     fwrite(file, 1, sizeof file, f);
     fclose(f);
@@ -115,7 +100,7 @@ static void write_shader(int g) {
              "    if (st.x < 0.5) c = vec4(%.6f, %.6f, inc_blue(), 1.) * uTint;\n"
              "    else c = texture(uTex, vec2(0.5));\n"
              "}\n", shader_r(g), shader_g(g));
-    write_file("soak.frag", text);
+    scratch_write("soak.frag", text);
 }
 
 #define BROKEN_SHADER_LINE 8
@@ -131,13 +116,13 @@ static void write_broken_shader(int g) {
              "void main() {\n"
              "    c = vec4(%.6f, half_typed_name_%d, 0., 1.);\n"
              "}\n", shader_r(g), g);
-    write_file("soak.frag", text);
+    scratch_write("soak.frag", text);
 }
 
 static void write_inc(int g) {
     char text[256];
     snprintf(text, sizeof text, "// the include\nfloat inc_blue() { return %.6f; }\n", inc_b(g));
-    write_file("soak_inc.glsl", text);
+    scratch_write("soak_inc.glsl", text);
 }
 
 #define GLIB_PROGRAM_LINE 6
@@ -151,7 +136,7 @@ static void write_glib(int g, bool broken) {
              "Fragment soak.frag\n"
              "Program Soak uTex 5 uTint {1. %.2f 1. 1.%s\n"
              "QuadXY 0 1 %d %d\n", tint_g(g), broken ? "" : "}", 1 + g % 2, 1 + g % 2);
-    write_file("soak.glib", text);
+    scratch_write("soak.glib", text);
 }
 
 static void write_tex(int g, long serial) { write_bmp("soak.bmp", tex_r(g), tex_g(g), tex_b(g), serial); }
@@ -273,14 +258,14 @@ static void expect_broken(render *r, const gen *G, int i, const char *what, cons
                     ok ? "reported no error" : "did not keep the last good image", render_messages(r));
     }
     char want[600];
-    if (line > 0) snprintf(want, sizeof want, "%s:%d:", path_of(file), line);
-    else snprintf(want, sizeof want, "%s", path_of(file));
+    if (line > 0) snprintf(want, sizeof want, "%s:%d:", scratch_path(file), line);
+    else snprintf(want, sizeof want, "%s", scratch_path(file));
     if (!strstr(render_messages(r), want) && bad_message++ < 5)
         fprintf(stderr, "reload %d (%s): expected \"%s\" in:\n%s", i, what, want, render_messages(r));
 }
 
 static void test_soak(void) {
-    write_file("soak.vert", "#version 330 compatibility\nout vec2 st;\n"
+    scratch_write("soak.vert", "#version 330 compatibility\nout vec2 st;\n"
                             "void main() { st = gl_MultiTexCoord0.st; gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
     gen G = { 1, 1, 1, 1 };
     long serial = 0;
@@ -290,7 +275,7 @@ static void test_soak(void) {
     write_tex(G.tex, ++serial);
     CHECK(render_target_create(&target, W, H, false));
     render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, path_of("soak.glib")), "%s", render_messages(r));
+    CHECK_MSG(render_load(r, scratch_path("soak.glib")), "%s", render_messages(r));
     draw(r);
     CHECK_MSG(shows(&G), "the first load is not on screen");
 
@@ -325,7 +310,7 @@ static void test_soak(void) {
             expect_good(r, &G, i, "texture swap");
             break;
         case 6:   /* a texture that is not an image */
-            write_file("soak.bmp", "BM this is not a bitmap any more");
+            scratch_write("soak.bmp", "BM this is not a bitmap any more");
             stamp("soak.bmp", ++serial);
             expect_broken(r, &G, i, "broken texture", "soak.glib", 3);
             break;
@@ -336,10 +321,10 @@ static void test_soak(void) {
             break;
         case 0:   /* an #include that loops, or one that is missing */
             if ((i / 8) % 2) {
-                write_file("soak_inc.glsl", "// the include\n#include \"soak_inc.glsl\"\n");
+                scratch_write("soak_inc.glsl", "// the include\n#include \"soak_inc.glsl\"\n");
                 expect_broken(r, &G, i, "include cycle", "soak_inc.glsl", 2);
             } else {
-                write_file("soak_inc.glsl", "// the include\n#include \"soak_missing.glsl\"\n");
+                scratch_write("soak_inc.glsl", "// the include\n#include \"soak_missing.glsl\"\n");
                 expect_broken(r, &G, i, "missing include", "soak_inc.glsl", 2);
             }
             /* the end of a cycle: the same structure every time */
@@ -414,12 +399,9 @@ int main(void) {
         return 77;
     }
     fprintf(stderr, "context: %s\n", gl_ctx_describe(ctx));
-    snprintf(dir, sizeof dir, "/tmp/tarn-test-soak-XXXXXX");
-    if (!mkdtemp(dir)) return 1;
+    if (!scratch_create("soak")) return 1;
     RUN(test_soak);
     gl_ctx_destroy(ctx);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    scratch_remove();
     return check_summary();
 }

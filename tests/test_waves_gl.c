@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "scratch.h"
 #include "gl_ctx.h"
 #include "ref_waves.h"
 #include "render.h"
@@ -24,20 +25,10 @@
 #define TIME 3.7
 #define TOL 1e-4
 
-static char dir[256];
-
-static void write_file(const char *name, const char *text) {
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) exit(1);
-    fputs(text, f);
-    fclose(f);
-}
 
 static GLuint compile(GLenum type, const char *name, const shader_define *defs, int ndefs) {
     char path[512], common[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
+    snprintf(path, sizeof path, "%s/%s", scratch_dir, name);
     snprintf(common, sizeof common, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
     const char *inc[1] = { common };
     shader_src src;
@@ -170,11 +161,10 @@ int main(void) {
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
-    snprintf(dir, sizeof dir, "/tmp/tarn-test-waves-XXXXXX");
-    if (!mkdtemp(dir)) return 1;
-    write_file("grid.vert", "#version 330 compatibility\nout vec2 vNdc;\n"
+    if (!scratch_create("waves")) return 1;
+    scratch_write("grid.vert", "#version 330 compatibility\nout vec2 vNdc;\n"
                             "void main() { vNdc = gl_Vertex.xy; gl_Position = gl_Vertex; }\n");
-    write_file("grid.frag",
+    scratch_write("grid.frag",
                "#version 330 compatibility\n#include \"waves.glsl\"\n"
                "uniform float uTime;\nuniform float uExtent;\nuniform int uMode;\n"
                "out vec4 c;\n"
@@ -188,8 +178,6 @@ int main(void) {
     RUN(test_approximate_normal_matches_reference);
     RUN(test_zero_steepness_matches);
     gl_ctx_destroy(ctx);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+    scratch_remove();
     return check_summary();
 }
