@@ -16,6 +16,12 @@
 //   BEER_LAMBERT       (ours) attenuation along the refracted path
 //   SHOW_IRRADIANCE    (ours) output the sun's irradiance on the floor, E K,
 //                      per channel, for measurement against the reference
+//   DEBUG_OUTPUT       (ours) 1: the floor point the refracted lookup shows
+//                      (world xyz), 2: the Fresnel reflectance, 3: the path
+//                      in water to that point (m); for the benchmark
+#ifndef DEBUG_OUTPUT
+#define DEBUG_OUTPUT 0
+#endif
 #include "waves.glsl"
 #include "world.glsl"
 #include "xing_look.glsl"
@@ -189,6 +195,17 @@ void main() {
     }
 #ifdef SHOW_IRRADIANCE
     fragColor = vec4(E * K, 1.0);
+    return;
+#endif
+#if DEBUG_OUTPUT == 1
+    fragColor = vec4(hit ? F : vec3(0.0), 1.0);
+    return;
+#elif DEBUG_OUTPUT == 2
+    float Rd = below ? worldFresnel(cosI, uIOR, 1.0) : worldFresnel(cosI, 1.0, uIOR);
+    fragColor = vec4(vec3(Rd), 1.0);
+    return;
+#elif DEBUG_OUTPUT == 3
+    fragColor = vec4(vec3(below ? distance(uCameraPos, P) : hit ? distance(P, F) : 1e4), 1.0);
     return;
 #endif
     float diffuse = max(dot(n, uSunDir), 0.0);
