@@ -184,6 +184,11 @@ static void test_target_sized_by_a_slider(void) {
         CHECK_NEAR(b[0], 100, 0);  /* the once-pass drew again, at the new size */
         CHECK_NEAR(b[3], 100, 0);
         free(b);
+        e->max = 1e6f;            /* an absurd slider end: kept to 8192 a side */
+        e->value[0] = 1e6f;
+        b = draw(scratch_path("sized.glib"), 4, 4, 0, &r);
+        CHECK_NEAR(b[2], 8192, 0);
+        free(b);
         e->value[0] = NAN;        /* a broken value: the fallback size, no GL error (draw checks) */
         b = draw(scratch_path("sized.glib"), 4, 4, 0, &r);
         CHECK_NEAR(b[2], 256, 0);

@@ -338,6 +338,7 @@ static bool program_value(const scene_state *s, const char *name, float *out) {
 }
 
 #define NAMED_SIZE_FALLBACK 256
+#define NAMED_SIZE_MAX 8192
 
 /* A count a slider gives (a target's side, points per side): rounded and
  * kept in 1..max; a missing slider or a NaN gives NAMED_SIZE_FALLBACK. */
@@ -354,7 +355,9 @@ static void size_targets(render *r) {
     scene_state *s = &r->cur;
     GLint max = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max);
-    if (max < 1 || max > 16384) max = 16384;
+    /* a slider dragged to an absurd end must not ask for gigabytes: 8192
+     * a side is 1 GiB in RGBA32F, the most a target may take this way */
+    if (max < 1 || max > NAMED_SIZE_MAX) max = NAMED_SIZE_MAX;
     for (int i = 0; i < s->glib->ncmds; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
         if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || (!c->name[0] && !c->arg[0]) || s->cmd_res[i] < 0) continue;
