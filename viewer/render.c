@@ -63,6 +63,7 @@ struct render {
     int ndeps;
     unsigned rtt_fbo, rtt_depth;
     int rtt_w, rtt_h;
+    int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
     gpu_timer timer;           /* per frame and per pass */
 };
 
@@ -353,11 +354,14 @@ static int slider_count(const scene_state *s, const char *name, int max) {
  * target loses its contents, so RenderToTextureOnce blocks draw again. */
 static void size_targets(render *r) {
     scene_state *s = &r->cur;
-    GLint max = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max);
-    /* a slider dragged to an absurd end must not ask for gigabytes: 8192
-     * a side is 1 GiB in RGBA32F, the most a target may take this way */
-    if (max < 1 || max > NAMED_SIZE_MAX) max = NAMED_SIZE_MAX;
+    if (!r->max_target) {   /* asked once: the context's limit does not change */
+        GLint max = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max);
+        /* a slider dragged to an absurd end must not ask for gigabytes: 8192
+         * a side is 1 GiB in RGBA32F, the most a target may take this way */
+        r->max_target = max < 1 || max > NAMED_SIZE_MAX ? NAMED_SIZE_MAX : max;
+    }
+    int max = r->max_target;
     for (int i = 0; i < s->glib->ncmds; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
         if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || (!c->name[0] && !c->arg[0]) || s->cmd_res[i] < 0) continue;

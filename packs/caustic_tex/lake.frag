@@ -197,12 +197,12 @@ void main() {
     fragColor = vec4(E * K, 1.0);
     return;
 #endif
+    float R = below ? worldFresnel(cosI, uIOR, 1.0) : worldFresnel(cosI, 1.0, uIOR);
 #if DEBUG_OUTPUT == 1
     fragColor = vec4(hit ? F : vec3(0.0), 1.0);
     return;
 #elif DEBUG_OUTPUT == 2
-    float Rd = below ? worldFresnel(cosI, uIOR, 1.0) : worldFresnel(cosI, 1.0, uIOR);
-    fragColor = vec4(vec3(Rd), 1.0);
+    fragColor = vec4(vec3(R), 1.0);
     return;
 #elif DEBUG_OUTPUT == 3
     fragColor = vec4(vec3(below ? distance(uCameraPos, P) : hit ? distance(P, F) : 1e4), 1.0);
@@ -212,7 +212,6 @@ void main() {
     vec3 turquoise = uColor * (uKa + uKd * diffuse);
     vec3 color = mix(under, turquoise, uWaterRefractMix);
 #ifdef SKY_REFLECTION
-    float R = below ? worldFresnel(cosI, uIOR, 1.0) : worldFresnel(cosI, 1.0, uIOR);
     color = R * texture(uSky, reflect(-e, n)).rgb + (1.0 - R) * color;
 #endif
     color += uKs * pow(max(dot(reflect(-uSunDir, n), e), 0.0), max(uShininess, 1.0)) * uSunIrradiance;

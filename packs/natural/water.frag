@@ -80,10 +80,9 @@ vec3 gRefractIrradiance = vec3(0.0);   // that of the refraction lookup (DEBUG_P
 // bilinear taps half a texel apart (a tent two texels wide, which removes
 // the period-2 beat of a regular photon grid splatted onto the texels).
 vec3 applyCaustics(vec3 c, vec3 p) {
+#if defined(CAUSTICS) || DEBUG_PASS == 5
     if (p.y >= uWaterLevel) return c;
-    vec3 albedo = texture(uTerrainAlbedo, p.xz / uTerrainHalfSize * 0.5 + 0.5).rgb;
-    vec3 amb = albedo * natAmbientUnder(p);
-    vec3 sun = max(c - amb, vec3(0.0));     // albedo E / pi
+    bool applied = false;
     float ratio = 1.0;
 #ifdef CAUSTICS
     vec2 uv = natCausticUV(natCausticQ(p));
@@ -93,11 +92,22 @@ vec3 applyCaustics(vec3 c, vec3 p) {
                          + texture(uCaustics, uv + vec2(-o.x, o.y)).r + texture(uCaustics, uv + vec2(o.x, o.y)).r);
         ratio = max(1.0 + uCausticStrength * (cr - 1.0), 0.0);
         gCausticRatio = ratio;
-        c = amb + sun * ratio;
+        applied = true;
     }
 #endif
+#if DEBUG_PASS != 5
+    if (!applied) return c;    // no albedo fetch where there is nothing to relight
+#endif
+    vec3 albedo = texture(uTerrainAlbedo, p.xz / uTerrainHalfSize * 0.5 + 0.5).rgb;
+    vec3 amb = albedo * natAmbientUnder(p);
+    vec3 sun = max(c - amb, vec3(0.0));     // albedo E / pi
+#if DEBUG_PASS == 5
     gIrradiance = WORLD_PI * sun * ratio / max(albedo, vec3(1e-3));   // E as this shading has it
+#endif
+    return applied ? amb + sun * ratio : c;
+#else
     return c;
+#endif
 }
 
 // What the refraction target shows along direction r from the surface
