@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "scratch.h"
+#include "support.h"
 #include "gl_ctx.h"
 #include "render.h"
 #include "unif.h"

@@ -7,36 +7,27 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "support.h"
 #include "image_io.h"
 
 static const char *bin, *src;
 static char dir[256];
 
-/* Runs a shell command line; returns the exit status, output in *out. */
-static int run(const char *cmdline, char *out, size_t outlen) {
-    FILE *p = popen(cmdline, "r");
-    if (!p) return -1;
-    size_t n = fread(out, 1, outlen - 1, p);
-    out[n] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
 static void test_help_lists_every_command(void) {
     char cmd[1024], out[8192];
     snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin);
-    CHECK(run(cmd, out, sizeof out) == 0);
+    CHECK(run_command(cmd, out, sizeof out) == 0);
     CHECK_STR_CONTAINS(out, "view FILE.glib");
     CHECK_STR_CONTAINS(out, "render FILE.glib");
     CHECK_STR_CONTAINS(out, "validate");
     const char *cmds[] = { "view", "render", "validate" };
     for (int i = 0; i < 3; i++) {
         snprintf(cmd, sizeof cmd, "%s %s --help 2>&1", bin, cmds[i]);
-        CHECK(run(cmd, out, sizeof out) == 0);
+        CHECK(run_command(cmd, out, sizeof out) == 0);
         CHECK_STR_CONTAINS(out, "usage: tarn");
     }
     snprintf(cmd, sizeof cmd, "%s render --help 2>&1", bin);
-    run(cmd, out, sizeof out);
+    run_command(cmd, out, sizeof out);
     CHECK_STR_CONTAINS(out, "--size WxH");
     CHECK_STR_CONTAINS(out, "--frames N");
     CHECK_STR_CONTAINS(out, "--time SECONDS");
@@ -45,19 +36,19 @@ static void test_help_lists_every_command(void) {
 static void test_bad_usage_exits_2(void) {
     char cmd[1024], out[8192];
     snprintf(cmd, sizeof cmd, "%s frobnicate 2>&1", bin);
-    CHECK(run(cmd, out, sizeof out) == 2);
+    CHECK(run_command(cmd, out, sizeof out) == 2);
     CHECK_STR_CONTAINS(out, "unknown command 'frobnicate'");
     snprintf(cmd, sizeof cmd, "%s render %s/scenes/pond.glib 2>&1", bin, src);
-    CHECK(run(cmd, out, sizeof out) == 2);
+    CHECK(run_command(cmd, out, sizeof out) == 2);
     CHECK_STR_CONTAINS(out, "-o OUT");
     snprintf(cmd, sizeof cmd, "%s render x.glib -o x.png --size 12by3 2>&1", bin);
-    CHECK(run(cmd, out, sizeof out) == 2);
+    CHECK(run_command(cmd, out, sizeof out) == 2);
 }
 
 static void test_missing_scene_names_the_file(void) {
     char cmd[1024], out[8192];
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/nope.glib -o %s/nope.png 2>&1", bin, dir, dir);
-    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK(run_command(cmd, out, sizeof out) == 1);
     CHECK_STR_CONTAINS(out, "nope.glib");
 }
 
@@ -70,13 +61,13 @@ static void test_render_headless_is_deterministic_and_follows_scene(void) {
     snprintf(b, sizeof b, "%s/pond-b.png", dir);
     snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY %s render %s/scenes/pond.glib -o %s "
              "--size 160x90 --time 3.5 2>&1", bin, src, a);
-    int rc = run(cmd, out, sizeof out);
+    int rc = run_command(cmd, out, sizeof out);
     if (rc == 3) SKIP("no OpenGL: %s", out);
     CHECK_MSG(rc == 0, "%s", out);
     CHECK_STR_CONTAINS(out, "wrote");
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 160x90 --time 3.5 --quiet 2>&1",
              bin, src, b);
-    CHECK(run(cmd, out, sizeof out) == 0);
+    CHECK(run_command(cmd, out, sizeof out) == 0);
     img ia, ib;
     char err[512];
     memset(&ia, 0, sizeof ia);
@@ -101,7 +92,7 @@ static void test_frames_write_every_frame(void) {
     char cmd[2048], out[8192], p0[512], p2[512];
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s/f%%d.exr --size 64x36 --frames 3 2>&1",
              bin, src, dir);
-    int rc = run(cmd, out, sizeof out);
+    int rc = run_command(cmd, out, sizeof out);
     if (rc == 3) SKIP("no OpenGL");
     CHECK_MSG(rc == 0, "%s", out);
     CHECK_STR_CONTAINS(out, "median GPU time");
@@ -126,7 +117,7 @@ static void test_set_changes_uniforms(void) {
     snprintf(a, sizeof a, "%s/set.png", dir);
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 160x90 --quiet "
              "--set Floor.uSandColor=1,0,0 --set Water.uClarity=1 --set SPECULAR=0 2>&1", bin, src, a);
-    int rc = run(cmd, out, sizeof out);
+    int rc = run_command(cmd, out, sizeof out);
     if (rc == 3) SKIP("no OpenGL");
     CHECK_MSG(rc == 0, "%s", out);
     img im;
@@ -140,7 +131,7 @@ static void test_set_changes_uniforms(void) {
     img_free(&im);
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 32x18 --quiet "
              "--set Water.uNope=1 2>&1", bin, src, a);
-    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK(run_command(cmd, out, sizeof out) == 1);
     CHECK_STR_CONTAINS(out, "no entry 'uNope' in Water");
 }
 
@@ -148,7 +139,7 @@ static void test_set_changes_uniforms(void) {
 static void test_no_arguments_renders_default_scene(void) {
     char cmd[2048], out[8192], png[512];
     snprintf(cmd, sizeof cmd, "cd %s && env -u DISPLAY -u WAYLAND_DISPLAY %s 2>&1", dir, bin);
-    int rc = run(cmd, out, sizeof out);
+    int rc = run_command(cmd, out, sizeof out);
     if (rc == 3) SKIP("no OpenGL");
     CHECK_MSG(rc == 0, "%s", out);
     CHECK_STR_CONTAINS(out, "out/default.png");

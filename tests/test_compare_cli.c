@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "support.h"
 #include "compare.h"
 #include "image_io.h"
 #include "ref_metrics.h"
@@ -427,37 +428,28 @@ static void test_usage(void) {
 
 /* ---- the program ------------------------------------------------------------------ */
 
-static int run(const char *cmdline, char *out, size_t outlen) {
-    FILE *p = popen(cmdline, "r");
-    if (!p) return -1;
-    size_t n = fread(out, 1, outlen - 1, p);
-    out[n] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
 static void test_tarn_compare_program(void) {
     const char *bin = getenv("TARN_BIN");
     if (!bin) SKIP("TARN_BIN is not set (run through ctest)");
     char cmd[2048];
     static char out[65536];
     snprintf(cmd, sizeof cmd, "%s compare --help 2>&1", bin);
-    int rc = run(cmd, out, sizeof out);
+    int rc = run_command(cmd, out, sizeof out);
     if (rc == 2 && strstr(out, "unknown command")) SKIP("tarn has no compare command yet (main.c)");
     CHECK(rc == 0);
     CHECK_STR_CONTAINS(out, "--buffers");
     snprintf(cmd, sizeof cmd, "%s compare %s %s --json - 2>/dev/null", bin, path("a.tif"), path("b.tif"));
-    CHECK(run(cmd, out, sizeof out) == 0);
+    CHECK(run_command(cmd, out, sizeof out) == 0);
     CHECK(json_valid(out));
     CHECK_NEAR(jnum(out, NULL, "rmse", NULL), ((double)0.6f - 0.5) / sqrt(381.0), 1e-9);
     snprintf(cmd, sizeof cmd, "%s compare %s %s 2>&1", bin, path("w.exr"), path("t.exr"));
-    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK(run_command(cmd, out, sizeof out) == 1);
     CHECK_STR_CONTAINS(out, "16x8");
     snprintf(cmd, sizeof cmd, "%s compare %s %s 2>&1", bin, path("missing.exr"), path("t.exr"));
-    CHECK(run(cmd, out, sizeof out) == 1);
+    CHECK(run_command(cmd, out, sizeof out) == 1);
     CHECK_STR_CONTAINS(out, "missing.exr");
     snprintf(cmd, sizeof cmd, "%s compare %s 2>&1", bin, path("t.exr"));
-    CHECK(run(cmd, out, sizeof out) == 2);
+    CHECK(run_command(cmd, out, sizeof out) == 2);
 }
 
 int main(void) {

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "scratch.h"
+#include "support.h"
 #include "gl_ctx.h"
 #include "render.h"
 

@@ -6,6 +6,7 @@
  * reporting source string 0), writing logs in the Mesa, NVIDIA and glslang
  * formats; test_validate checks the same with glslang itself. */
 #include "check.h"
+#include "support.h"
 #include "shader_src.h"
 
 #include <stdbool.h>
@@ -15,7 +16,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static char g_data[1024];   /* tests/data/shaders */
 
 static bool mem_has(const char *p, size_t n, const char *needle) {
     size_t k = strlen(needle);
@@ -24,35 +24,10 @@ static bool mem_has(const char *p, size_t n, const char *needle) {
     return false;
 }
 
-static void find_data(void) {
-    const char *root = getenv("TARN_SOURCE_DIR");
-#ifdef TARN_SOURCE_DIR
-    if (!root || !root[0]) root = TARN_SOURCE_DIR;
-#endif
-    if (root && root[0]) {
-        snprintf(g_data, sizeof g_data, "%s/tests/data/shaders", root);
-        return;
-    }
-    /* next to this source file */
-    snprintf(g_data, sizeof g_data, "%s", __FILE__);
-    char *slash = strrchr(g_data, '/');
-    if (slash) *slash = '\0';
-    else snprintf(g_data, sizeof g_data, ".");
-    strncat(g_data, "/data/shaders", sizeof g_data - strlen(g_data) - 1);
-}
-
-static const char *data(const char *name) {
-    static char buf[4][1200];
-    static int i;
-    i = (i + 1) % 4;
-    snprintf(buf[i], sizeof buf[i], "%s/%s", g_data, name);
-    return buf[i];
-}
-
 static bool load(shader_src *s, const char *name, shader_stage st, const shader_define *defs, int ndefs,
                  bool gstap) {
-    const char *dirs[] = { data("repo/packs/common") };
-    shader_src_desc d = { .path = data(name), .stage = st, .gstap = gstap, .defines = defs,
+    const char *dirs[] = { shader_data("repo/packs/common") };
+    shader_src_desc d = { .path = shader_data(name), .stage = st, .gstap = gstap, .defines = defs,
                           .ndefines = ndefs, .include_dirs = dirs, .ninclude_dirs = 1 };
     return shader_src_load(&d, s);
 }
@@ -528,7 +503,6 @@ static void test_file_size_limit(void) {
 }
 
 int main(void) {
-    find_data();
     snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_shader_src_XXXXXX");
     if (!mkdtemp(g_tmp)) { perror("mkdtemp"); return 1; }
     RUN(test_includes_and_line_map);

@@ -2,6 +2,7 @@
  * file:line), and `tarn validate` over .glib files, directories and stage
  * files, with every combination of a Program's Define toggles. No GPU. */
 #include "check.h"
+#include "support.h"
 #include "shader_src.h"
 #include "validate.h"
 
@@ -11,37 +12,12 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static char g_data[1024];   /* tests/data/shaders */
 static char g_tmp[256];     /* scratch */
-
-static void find_data(void) {
-    const char *root = getenv("TARN_SOURCE_DIR");
-#ifdef TARN_SOURCE_DIR
-    if (!root || !root[0]) root = TARN_SOURCE_DIR;
-#endif
-    if (root && root[0]) {
-        snprintf(g_data, sizeof g_data, "%s/tests/data/shaders", root);
-        return;
-    }
-    snprintf(g_data, sizeof g_data, "%s", __FILE__);
-    char *slash = strrchr(g_data, '/');
-    if (slash) *slash = '\0';
-    else snprintf(g_data, sizeof g_data, ".");
-    strncat(g_data, "/data/shaders", sizeof g_data - strlen(g_data) - 1);
-}
-
-static const char *data(const char *name) {
-    static char buf[8][1200];
-    static int i;
-    i = (i + 1) % 8;
-    snprintf(buf[i], sizeof buf[i], "%s/%s", g_data, name);
-    return buf[i];
-}
 
 /* Assembles and compiles a fixture; returns whether it compiled, *log the messages. */
 static bool check_stage(const char *name, shader_stage st, bool gstap, char **log) {
-    const char *dirs[] = { data("repo/packs/common") };
-    shader_src_desc d = { .path = data(name), .stage = st, .gstap = gstap, .include_dirs = dirs,
+    const char *dirs[] = { shader_data("repo/packs/common") };
+    shader_src_desc d = { .path = shader_data(name), .stage = st, .gstap = gstap, .include_dirs = dirs,
                           .ninclude_dirs = 1 };
     shader_src s;
     *log = NULL;
@@ -133,13 +109,13 @@ static void test_gstap_names_compile(void) {
 
     int rc = -1;
     validate_result res;
-    const char *p1[] = { data("gstap.glib") };
-    char *out = run_validate(p1, 1, data("repo"), &rc, &res);
+    const char *p1[] = { shader_data("gstap.glib") };
+    char *out = run_validate(p1, 1, shader_data("repo"), &rc, &res);
     CHECK(rc == 0);
     CHECK(res.nerrors == 0 && res.nprograms == 1 && res.nstages == 2);
     free(out);
-    const char *p2[] = { data("nogstap.glib") };
-    out = run_validate(p2, 1, data("repo"), &rc, &res);
+    const char *p2[] = { shader_data("nogstap.glib") };
+    out = run_validate(p2, 1, shader_data("repo"), &rc, &res);
     CHECK(rc == 1);
     CHECK_STR_CONTAINS(out, "gstap.vert:7: error: ");
     free(out);
@@ -148,8 +124,8 @@ static void test_gstap_names_compile(void) {
 static void test_toggle_combination_that_breaks_is_found(void) {
     int rc = -1;
     validate_result res;
-    const char *paths[] = { data("toggle.glib") };
-    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    const char *paths[] = { shader_data("toggle.glib") };
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
     CHECK(rc == 1);
     CHECK(res.nprograms == 1);
     CHECK(res.ncombinations == 4);
@@ -164,8 +140,8 @@ static void test_toggle_combination_that_breaks_is_found(void) {
 static void test_good_glib_passes(void) {
     int rc = -1;
     validate_result res;
-    const char *paths[] = { data("good.glib") };
-    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    const char *paths[] = { shader_data("good.glib") };
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
     CHECK(rc == 0);
     CHECK(res.nerrors == 0 && res.nwarnings == 0);
     CHECK_STR_CONTAINS(out, "validate: 1 programs, 2 stages, 1 combinations: 0 errors\n");
@@ -175,8 +151,8 @@ static void test_good_glib_passes(void) {
 static void test_link_checks(void) {
     int rc = -1;
     validate_result res;
-    const char *paths[] = { data("link.glib") };
-    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    const char *paths[] = { shader_data("link.glib") };
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
     CHECK(rc == 1);
     CHECK(res.nprograms == 3);
     /* vec3 out, vec4 in: glslang's link finds it; it is placed at the Program line */
@@ -196,8 +172,8 @@ static void test_link_checks(void) {
 static void test_missing_stage_file_is_reported_at_glib_line(void) {
     int rc = -1;
     validate_result res;
-    const char *paths[] = { data("missing_stage.glib") };
-    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    const char *paths[] = { shader_data("missing_stage.glib") };
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
     CHECK(rc == 1);
     CHECK_STR_CONTAINS(out, "missing_stage.glib:4: error: ");
     CHECK(count_lines_with(out, "missing_stage.glib:4: error: ") == 1);    /* once */
@@ -207,7 +183,7 @@ static void test_missing_stage_file_is_reported_at_glib_line(void) {
 static void test_no_paths_means_packs_and_scenes(void) {
     int rc = -1;
     validate_result res;
-    char *out = run_validate(NULL, 0, data("repo"), &rc, &res);
+    char *out = run_validate(NULL, 0, shader_data("repo"), &rc, &res);
     /* packs/testpack/pack.glib (its shader includes packs/common) and
      * scenes/sub/scene.glib, whose GLSL 1.20 fragment shader reads a varying
      * the vertex shader does not write: an error before GLSL 1.30 */
@@ -222,9 +198,9 @@ static void test_no_paths_means_packs_and_scenes(void) {
 static void test_stage_files_and_directories(void) {
     int rc = -1;
     validate_result res;
-    const char *paths[] = { data("good_compat.vert"), data("inc_error.frag"), data("inc/map_waves.glsl"),
-                            data("no_such_file.frag"), data("inc") };
-    char *out = run_validate(paths, 5, data("repo"), &rc, &res);
+    const char *paths[] = { shader_data("good_compat.vert"), shader_data("inc_error.frag"), shader_data("inc/map_waves.glsl"),
+                            shader_data("no_such_file.frag"), shader_data("inc") };
+    char *out = run_validate(paths, 5, shader_data("repo"), &rc, &res);
     CHECK(rc == 1);
     CHECK(res.nprograms == 0);
     CHECK(res.nstages == 2);
@@ -261,7 +237,7 @@ static void test_define_slider_values_are_validated(void) {
     int rc = -1;
     validate_result res;
     const char *paths[] = { path };
-    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
     /* FLAG on and off, then MODE 1, 2, 3 and STEPS 1, 32 */
     CHECK(res.ncombinations == 2 + 3 + 2);
     CHECK(rc == 1 && res.nerrors == 1);
@@ -291,7 +267,7 @@ static void test_too_many_toggles_are_capped(void) {
     int rc = -1;
     validate_result res;
     const char *paths[] = { path };
-    char *out = run_validate(paths, 1, data("repo"), &rc, &res);
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
     CHECK(res.ncombinations == 1024);
     CHECK(res.nwarnings == 1);
     CHECK_STR_CONTAINS(out, "t12.glib:15: warning: Program Many has 12 Define toggles");
@@ -304,7 +280,7 @@ static void test_too_many_toggles_are_capped(void) {
 
 static void test_validate_stage_without_text(void) {
     shader_src s;
-    shader_src_desc d = { .path = data("missing_inc.frag"), .stage = SHADER_FRAGMENT };
+    shader_src_desc d = { .path = shader_data("missing_inc.frag"), .stage = SHADER_FRAGMENT };
     CHECK(!shader_src_load(&d, &s));
     char *log = NULL;
     CHECK(!validate_stage(&s, SHADER_FRAGMENT, &log));
@@ -314,7 +290,6 @@ static void test_validate_stage_without_text(void) {
 }
 
 int main(void) {
-    find_data();
     snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_validate_XXXXXX");
     if (!mkdtemp(g_tmp)) { perror("mkdtemp"); return 1; }
     RUN(test_good_compat_shader_validates);

@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "scratch.h"
+#include "support.h"
 #include "gl_ctx.h"
 #include "ref_waves.h"
 #include "render.h"
