@@ -5,4 +5,4 @@
 add_test(NAME compare_view_xvfb
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/compare_view_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-set_tests_properties(compare_view_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
+set_tests_properties(compare_view_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")

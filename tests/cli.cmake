@@ -2,9 +2,10 @@
 
 # glslang validation of every pack and scene (what CI checks).
 add_test(NAME validate_all COMMAND tarn validate WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+set_tests_properties(validate_all PROPERTIES LABELS unit)
 
 # The interactive window under Xvfb with a scripted slider change.
 add_test(NAME window_xvfb
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-set_tests_properties(window_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
+set_tests_properties(window_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")

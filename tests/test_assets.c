@@ -1,4 +1,4 @@
-/* test_assets: the generated textures (viewer/assets.c): the same bytes
+/* test_assets: the generated textures (viewer/gfx/assets.c): the same bytes
  * every time, tileable where they must tile, cube faces that follow the GL
  * spec's face table, texels that are the world model's values, caustics
  * with mean 1, and `tarn assets` writing all of it. Small resolutions keep
@@ -282,8 +282,8 @@ static void test_cli(void)
     snprintf(b, sizeof b, "%s/two", root);
     const char *args_a[] = { "--out", a, "--size", "16" };
     const char *args_b[] = { "--size", "16", "-o", b, TARN_SOURCE_DIR "/scenes/lake.glib" };
-    CHECK(run_cli(4, args_a) == CLI_OK);
-    CHECK(run_cli(5, args_b) == CLI_OK);
+    CHECK(run_cli(4, args_a) == TARN_EXIT_OK);
+    CHECK(run_cli(5, args_b) == TARN_EXIT_OK);
     /* the same bytes twice, and the lake glib's world is the default one */
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         char pa[256], pb[256], *ba = NULL, *bb = NULL;
@@ -358,9 +358,9 @@ static void test_cli(void)
 
     /* usage and input errors */
     const char *help[] = { "--help" }, *bad[] = { "--frobnicate" }, *badsize[] = { "--size", "2" };
-    CHECK(run_cli(1, help) == CLI_OK);
-    CHECK(run_cli(1, bad) == CLI_USAGE);
-    CHECK(run_cli(2, badsize) == CLI_USAGE);
+    CHECK(run_cli(1, help) == TARN_EXIT_OK);
+    CHECK(run_cli(1, bad) == TARN_EXIT_USAGE);
+    CHECK(run_cli(2, badsize) == TARN_EXIT_USAGE);
     char scene[128];
     snprintf(scene, sizeof scene, "%s/bad.glib", root);
     FILE *f = fopen(scene, "w");
@@ -369,10 +369,10 @@ static void test_cli(void)
     char out3[128];
     snprintf(out3, sizeof out3, "%s/three", root);
     const char *args_bad[] = { "--out", out3, scene };
-    CHECK(run_cli(3, args_bad) == CLI_INPUT_ERROR);
+    CHECK(run_cli(3, args_bad) == TARN_EXIT_INPUT);
     CHECK(access(out3, F_OK) != 0);                 /* nothing written */
     const char *args_file[] = { "--out", scene, "--size", "8" };   /* a file, not a directory */
-    CHECK(run_cli(4, args_file) == CLI_INPUT_ERROR);
+    CHECK(run_cli(4, args_file) == TARN_EXIT_INPUT);
 }
 
 int main(void)

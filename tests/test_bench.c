@@ -295,8 +295,8 @@ static void test_bench_end_to_end(void) {
     CHECK(system(cmd) == 0);
     write_file(tmp("docs/benchmark.md"), "# Benchmark\n\nkept\n\n<!-- bench:begin -->\nold\n<!-- bench:end -->\n\ntail\n");
     int rc = bench(tmp("out"), true);
-    if (rc == CLI_NO_GL) SKIP("no OpenGL context");
-    CHECK(rc == CLI_OK);
+    if (rc == TARN_EXIT_NO_GL) SKIP("no OpenGL context");
+    CHECK(rc == TARN_EXIT_OK);
 
     char *csv = read_file(tmp("out/bench.csv"));
     CHECK(csv != NULL);
@@ -351,7 +351,7 @@ static void test_bench_end_to_end(void) {
     }
 
     /* again: the references come from the cache */
-    CHECK(bench(tmp("out"), false) == CLI_OK);
+    CHECK(bench(tmp("out"), false) == TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 0, \"references_cached\": 2");
     free(json);
@@ -359,15 +359,15 @@ static void test_bench_end_to_end(void) {
 
 static void test_usage(void) {
     const char *a1[] = { "--packs", "nosuchpack", "--root", tmp("root") };
-    CHECK(cli_bench(4, (char **)a1) == CLI_USAGE);
+    CHECK(cli_bench(4, (char **)a1) == TARN_EXIT_USAGE);
     const char *a2[] = { "--size", "12" };
-    CHECK(cli_bench(2, (char **)a2) == CLI_USAGE);
+    CHECK(cli_bench(2, (char **)a2) == TARN_EXIT_USAGE);
     const char *a3[] = { "--times", "1,x" };
-    CHECK(cli_bench(2, (char **)a3) == CLI_USAGE);
+    CHECK(cli_bench(2, (char **)a3) == TARN_EXIT_USAGE);
     const char *a4[] = { "no/such/scene.glib" };
-    CHECK(cli_bench(1, (char **)a4) == CLI_USAGE);
+    CHECK(cli_bench(1, (char **)a4) == TARN_EXIT_USAGE);
     const char *a5[] = { "--help" };
-    CHECK(cli_bench(1, (char **)a5) == CLI_OK);
+    CHECK(cli_bench(1, (char **)a5) == TARN_EXIT_OK);
 }
 
 int main(void) {

@@ -38,7 +38,7 @@ static void test_writes_everything(void) {
     const char *out = tmp_path("ref.exr");
     const char *argv[] = { lake(), "-o", out, "--size", "32x18", "--time", "1.5", "--threads", "2",
                            "--photons", "4", "--caustic-res", "48", "--quiet" };
-    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == CLI_OK);
+    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == TARN_EXIT_OK);
 
     /* the same render in memory */
     ref_world_desc wd;
@@ -99,24 +99,24 @@ static void test_writes_everything(void) {
 
 static void test_usage(void) {
     const char *no_out[] = { "scene.glib" };
-    CHECK(run(1, no_out) == CLI_USAGE);
+    CHECK(run(1, no_out) == TARN_EXIT_USAGE);
     const char *no_scene[] = { "-o", "x.exr" };
-    CHECK(run(2, no_scene) == CLI_USAGE);
+    CHECK(run(2, no_scene) == TARN_EXIT_USAGE);
     const char *png[] = { "s.glib", "-o", "x.png" };
-    CHECK(run(3, png) == CLI_USAGE);
+    CHECK(run(3, png) == TARN_EXIT_USAGE);
     const char *size[] = { "s.glib", "-o", "x.exr", "--size", "64" };
-    CHECK(run(5, size) == CLI_USAGE);
+    CHECK(run(5, size) == TARN_EXIT_USAGE);
     const char *spp[] = { "s.glib", "-o", "x.exr", "--spp", "0" };
-    CHECK(run(5, spp) == CLI_USAGE);
+    CHECK(run(5, spp) == TARN_EXIT_USAGE);
     const char *unknown[] = { "s.glib", "-o", "x.exr", "--frobnicate" };
-    CHECK(run(4, unknown) == CLI_USAGE);
+    CHECK(run(4, unknown) == TARN_EXIT_USAGE);
     CHECK_STR_CONTAINS(cli_reference_usage(), "--threads");
     CHECK_STR_CONTAINS(cli_reference_usage(), "refract_hit.exr");
 }
 
 static void test_input_errors(void) {
     const char *missing[] = { tmp_path("nope.glib"), "-o", tmp_path("x.exr"), "--quiet" };
-    CHECK(run(4, missing) == CLI_INPUT_ERROR);
+    CHECK(run(4, missing) == TARN_EXIT_INPUT);
     /* a glman scene with no world commands: nothing to render */
     const char *glib = tmp_path("noworld.glib");
     FILE *f = fopen(glib, "w");
@@ -125,12 +125,12 @@ static void test_input_errors(void) {
     fputs("##OpenGL GLIB\nLookAt 0 2 5  0 0 0  0 1 0\n", f);
     fclose(f);
     const char *noworld[] = { glib, "-o", tmp_path("x.exr"), "--quiet" };
-    CHECK(run(4, noworld) == CLI_INPUT_ERROR);
+    CHECK(run(4, noworld) == TARN_EXIT_INPUT);
     /* an output that cannot be written */
     if (access(lake(), R_OK) == 0) {
         const char *bad[] = { lake(), "-o", tmp_path("no/such/dir/x.exr"), "--size", "8x4",
                               "--flat-caustics", "--quiet" };
-        CHECK(run(7, bad) == CLI_INPUT_ERROR);
+        CHECK(run(7, bad) == TARN_EXIT_INPUT);
     }
 }
 

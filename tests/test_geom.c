@@ -1,4 +1,4 @@
-/* test_geom: meshes for the geometry commands (viewer/geom.h).
+/* test_geom: meshes for the geometry commands (viewer/gfx/geom.h).
  *
  * Truth is geometric: points on a sphere are at distance r, a closed mesh
  * encloses the volume of its solid (divergence theorem, which also checks

@@ -1,4 +1,4 @@
-/* test_glib: the .glib parser (viewer/glib.c).
+/* test_glib: the .glib parser (viewer/scene/glib.c).
  *
  * Each case writes its files under one mkdtemp directory (includes, shaders
  * and textures that must exist or must be missing), parses, and checks the
@@ -89,7 +89,7 @@ static int count_sev(const glib_scene *s, glib_severity sev)
     return n;
 }
 
-static const glib_uniform *find_uniform(const glib_cmd *c, const char *name)
+static const unif_decl *find_uniform(const glib_cmd *c, const char *name)
 {
     for (int i = 0; i < c->nuniforms; i++)
         if (strcmp(c->uniforms[i].name, name) == 0)
@@ -227,7 +227,7 @@ static void test_comments(void)
         CHECK(s->cmds[1].num[0] == 2 && s->cmds[1].line == 6);
         CHECK(strcmp(s->cmds[2].path, P("c/sub//t.bmp")) == 0);
         CHECK(strcmp(s->cmds[3].path, P("c/a#b.bmp")) == 0);
-        CHECK(s->cmds[4].nuniforms == 1 && s->cmds[4].uniforms[0].kind == GLIB_UNIFORM_COLOR);
+        CHECK(s->cmds[4].nuniforms == 1 && s->cmds[4].uniforms[0].kind == UNIF_DECL_COLOR);
         CHECK(s->cmds[5].num[0] == 4 && s->cmds[5].line == 11);
     }
     glib_free(s);
@@ -288,9 +288,9 @@ static void test_continuation(void)
     if (s->ncmds == 3) {
         const glib_cmd *w = &s->cmds[0];
         CHECK(w->kind == GLIB_CMD_PROGRAM && w->line == 2 && w->nuniforms == 2);
-        const glib_uniform *a = find_uniform(w, "uA"), *b = find_uniform(w, "uB");
-        CHECK(a && a->kind == GLIB_UNIFORM_SLIDER && a->n == 3 && a->v[1] == 0.5 && a->line == 2);
-        CHECK(b && b->kind == GLIB_UNIFORM_COLOR && b->n == 3 && b->v[2] == 0.25);
+        const unif_decl *a = find_uniform(w, "uA"), *b = find_uniform(w, "uB");
+        CHECK(a && a->kind == UNIF_DECL_SLIDER && a->n == 3 && a->v[1] == 0.5 && a->line == 2);
+        CHECK(b && b->kind == UNIF_DECL_COLOR && b->n == 3 && b->v[2] == 0.25);
         CHECK(s->cmds[1].kind == GLIB_CMD_SPHERE && s->cmds[1].line == 6);
         CHECK(s->cmds[1].num[0] == 1 && s->cmds[1].num[1] == 8 && s->cmds[1].num[2] == 4);
         CHECK(s->cmds[2].line == 9 && s->cmds[2].nuniforms == 1);
@@ -312,21 +312,21 @@ static void test_uniform_kinds(void)
     CHECK(s->ncmds == 1);
     const glib_cmd *c = &s->cmds[0];
     CHECK(strcmp(c->name, "Ocean") == 0 && c->nuniforms == 11);
-    const glib_uniform *u;
-    CHECK((u = find_uniform(c, "uKa")) && u->kind == GLIB_UNIFORM_SLIDER && u->n == 3 &&
+    const unif_decl *u;
+    CHECK((u = find_uniform(c, "uKa")) && u->kind == UNIF_DECL_SLIDER && u->n == 3 &&
           u->v[0] == 0 && u->v[1] == 0.1 && u->v[2] == 1);
-    CHECK((u = find_uniform(c, "uColor")) && u->kind == GLIB_UNIFORM_COLOR && u->n == 4 &&
+    CHECK((u = find_uniform(c, "uColor")) && u->kind == UNIF_DECL_COLOR && u->n == 4 &&
           u->v[0] == 0.4 && u->v[3] == 1);
-    CHECK((u = find_uniform(c, "uLo")) && u->kind == GLIB_UNIFORM_SLIDER && u->v[0] == -2 &&
+    CHECK((u = find_uniform(c, "uLo")) && u->kind == UNIF_DECL_SLIDER && u->v[0] == -2 &&
           u->v[1] == 0.5 && u->v[2] == 3);
-    CHECK((u = find_uniform(c, "uHi")) && u->kind == GLIB_UNIFORM_SLIDER && u->v[0] == -2);
-    CHECK((u = find_uniform(c, "uShow")) && u->kind == GLIB_UNIFORM_BOOL && u->n == 1 && u->v[0] == 1);
-    CHECK((u = find_uniform(c, "uHide")) && u->kind == GLIB_UNIFORM_BOOL && u->v[0] == 0);
-    CHECK((u = find_uniform(c, "uArr")) && u->kind == GLIB_UNIFORM_ARRAY && u->n == 4 && u->v[3] == 4);
-    CHECK((u = find_uniform(c, "uTex")) && u->kind == GLIB_UNIFORM_SCALAR && u->n == 1 && u->v[0] == 5);
-    CHECK((u = find_uniform(c, "uRGB")) && u->kind == GLIB_UNIFORM_COLOR && u->n == 3);
-    CHECK((u = find_uniform(c, "uTight")) && u->kind == GLIB_UNIFORM_SLIDER && u->v[2] == 2);
-    CHECK((u = find_uniform(c, "uOne")) && u->kind == GLIB_UNIFORM_ARRAY && u->n == 1 && u->v[0] == 7);
+    CHECK((u = find_uniform(c, "uHi")) && u->kind == UNIF_DECL_SLIDER && u->v[0] == -2);
+    CHECK((u = find_uniform(c, "uShow")) && u->kind == UNIF_DECL_BOOL && u->n == 1 && u->v[0] == 1);
+    CHECK((u = find_uniform(c, "uHide")) && u->kind == UNIF_DECL_BOOL && u->v[0] == 0);
+    CHECK((u = find_uniform(c, "uArr")) && u->kind == UNIF_DECL_ARRAY && u->n == 4 && u->v[3] == 4);
+    CHECK((u = find_uniform(c, "uTex")) && u->kind == UNIF_DECL_SCALAR && u->n == 1 && u->v[0] == 5);
+    CHECK((u = find_uniform(c, "uRGB")) && u->kind == UNIF_DECL_COLOR && u->n == 3);
+    CHECK((u = find_uniform(c, "uTight")) && u->kind == UNIF_DECL_SLIDER && u->v[2] == 2);
+    CHECK((u = find_uniform(c, "uOne")) && u->kind == UNIF_DECL_ARRAY && u->n == 1 && u->v[0] == 7);
     CHECK(c->nuniforms > 0 && c->uniforms[0].file == s->files[0] && c->uniforms[0].line == 2);
     glib_free(s);
 }
@@ -431,10 +431,10 @@ static void test_slider_checks(void)
     CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uG': {} needs 3 or 4 numbers"));
     CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uH': [] needs 1 to 16 numbers [a b c], got 17"));
     CHECK(s->ncmds == 1);
-    const glib_uniform *u;
+    const unif_decl *u;
     CHECK((u = find_uniform(&s->cmds[0], "uB")) && u->v[1] == 1);
     CHECK((u = find_uniform(&s->cmds[0], "uC")) && u->v[1] == 0);
-    CHECK((u = find_uniform(&s->cmds[0], "uI")) && u->kind == GLIB_UNIFORM_SLIDER);
+    CHECK((u = find_uniform(&s->cmds[0], "uI")) && u->kind == UNIF_DECL_SLIDER);
     CHECK(s->cmds[0].nuniforms == 3);
     glib_free(s);
 }
@@ -444,8 +444,8 @@ static void test_duplicate_uniform(void)
     glib_scene *s = load("dup.glib", "##OpenGL GLIB\nProgram P uA 1 uB 2 uA <0 3 5>\n");
     CHECK(has_diag(s, P("dup.glib"), 2, GLIB_WARNING, "Program P: uniform 'uA' is given twice; the later value wins"));
     CHECK(s->nerrors == 0 && s->ncmds == 1 && s->cmds[0].nuniforms == 2);
-    const glib_uniform *u = find_uniform(&s->cmds[0], "uA");
-    CHECK(u && u->kind == GLIB_UNIFORM_SLIDER && u->v[1] == 3);
+    const unif_decl *u = find_uniform(&s->cmds[0], "uA");
+    CHECK(u && u->kind == UNIF_DECL_SLIDER && u->v[1] == 3);
     glib_free(s);
 }
 
@@ -1055,11 +1055,11 @@ static void test_define(void)
     if (s->ncmds == 11) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].kind == GLIB_CMD_DEFINE && strcmp(c[0].name, "WAVES") == 0 && c[0].nuniforms == 1 &&
-              c[0].uniforms[0].kind == GLIB_UNIFORM_BOOL && c[0].uniforms[0].v[0] == 1);
-        CHECK(c[1].uniforms[0].kind == GLIB_UNIFORM_BOOL && c[1].uniforms[0].v[0] == 0);
-        CHECK(c[2].uniforms[0].kind == GLIB_UNIFORM_SCALAR && c[2].uniforms[0].v[0] == 4);
-        CHECK(c[3].uniforms[0].kind == GLIB_UNIFORM_SLIDER && c[3].uniforms[0].v[1] == 32);
-        CHECK(c[4].uniforms[0].kind == GLIB_UNIFORM_BOOL && c[4].uniforms[0].v[0] == 1 &&
+              c[0].uniforms[0].kind == UNIF_DECL_BOOL && c[0].uniforms[0].v[0] == 1);
+        CHECK(c[1].uniforms[0].kind == UNIF_DECL_BOOL && c[1].uniforms[0].v[0] == 0);
+        CHECK(c[2].uniforms[0].kind == UNIF_DECL_SCALAR && c[2].uniforms[0].v[0] == 4);
+        CHECK(c[3].uniforms[0].kind == UNIF_DECL_SLIDER && c[3].uniforms[0].v[1] == 32);
+        CHECK(c[4].uniforms[0].kind == UNIF_DECL_BOOL && c[4].uniforms[0].v[0] == 1 &&
               strcmp(c[4].uniforms[0].name, "BARE") == 0);
         const glib_cmd *p1 = &c[5], *p2 = &c[8];
         CHECK(p1->kind == GLIB_CMD_PROGRAM && p1->ndefines == 5 && p1->nuniforms == 1);
@@ -1484,9 +1484,9 @@ static void test_glman_real_file(void)
         const glib_cmd *c = s->cmds;
         CHECK(c[2].kind == GLIB_CMD_TEXTURE2D_FILE && strcmp(c[2].path, P("proj/textures/sky.bmp")) == 0);
         CHECK(c[5].kind == GLIB_CMD_PROGRAM && c[5].line == 10 && c[5].nuniforms == 4);
-        const glib_uniform *u = find_uniform(&c[5], "uColor");
+        const unif_decl *u = find_uniform(&c[5], "uColor");
         CHECK(u && u->n == 4 && u->v[2] == 0.95);
-        CHECK((u = find_uniform(&c[5], "uUseFoam")) && u->kind == GLIB_UNIFORM_BOOL);
+        CHECK((u = find_uniform(&c[5], "uUseFoam")) && u->kind == UNIF_DECL_BOOL);
         CHECK(c[6].kind == GLIB_CMD_PUSH_MATRIX && c[6].line == 16);
         CHECK(c[8].kind == GLIB_CMD_QUAD_XZ && c[8].num[2] == 200);
         CHECK(c[10].kind == GLIB_CMD_SPHERE && c[10].wire && c[10].line == 20);

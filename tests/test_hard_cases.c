@@ -8,7 +8,7 @@
  *   - the colour error against the CPU reference of the same frame (RMSE,
  *     linear RGB) within the pack's bound for the case: its
  *     packs/NAME/bounds.txt line for the case, else its `*` line, else the
- *     built-in table (packset_bound_resolve, viewer/packset.c). A bound of
+ *     built-in table (packset_bound_resolve, viewer/scene/packset.c). A bound of
  *     `none` says why the pack cannot hold one there; the test prints the
  *     reason and checks the rest.
  *

@@ -1,4 +1,4 @@
-/* test_image: the OpenImageIO bridge (viewer/image_io.h).
+/* test_image: the OpenImageIO bridge (viewer/gfx/image_io.h).
  *
  * Truth comes from outside the bridge: BMP files written byte by byte here,
  * the 8-bit rounding rule, and half-float precision. */

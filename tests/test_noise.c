@@ -1,4 +1,4 @@
-/* test_noise: glman's built-in noise textures (viewer/noise.h). */
+/* test_noise: glman's built-in noise textures (viewer/gfx/noise.h). */
 #include "check.h"
 #include "noise.h"
 

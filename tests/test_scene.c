@@ -1,4 +1,4 @@
-/* test_scene: the world and camera a .glib describes (viewer/scene.c), and
+/* test_scene: the world and camera a .glib describes (viewer/scene/scene.c), and
  * scenes/lake.glib against ref_world_desc_lake(). */
 #include "check.h"
 #include "scene.h"

@@ -1,6 +1,7 @@
 /* test_unif: the uniform model (uniforms/unif.c) without OpenGL or the
  * parser: glib Program commands are built by hand here. */
 #include "check.h"
+#include "glib.h"
 #include "unif.h"
 
 #include <float.h>
@@ -12,8 +13,8 @@
 
 #define FILE_NAME "scene.glib"
 
-static glib_uniform mk(const char *name, glib_uniform_kind kind, int line, int n, const double *v) {
-    glib_uniform u;
+static unif_decl mk(const char *name, unif_decl_kind kind, int line, int n, const double *v) {
+    unif_decl u;
     memset(&u, 0, sizeof u);
     snprintf(u.name, sizeof u.name, "%s", name);
     u.kind = kind;
@@ -23,14 +24,14 @@ static glib_uniform mk(const char *name, glib_uniform_kind kind, int line, int n
     for (int i = 0; i < n && i < GLIB_MAX_NUMS; i++) u.v[i] = v[i];
     return u;
 }
-#define SLIDER(name, line, a, b, c) mk(name, GLIB_UNIFORM_SLIDER, line, 3, (const double[]){a, b, c})
-#define BOOLU(name, line, b) mk(name, GLIB_UNIFORM_BOOL, line, 1, (const double[]){b})
-#define COLOR3(name, line, r, g, b) mk(name, GLIB_UNIFORM_COLOR, line, 3, (const double[]){r, g, b})
-#define COLOR4(name, line, r, g, b, a) mk(name, GLIB_UNIFORM_COLOR, line, 4, (const double[]){r, g, b, a})
-#define SCALAR(name, line, x) mk(name, GLIB_UNIFORM_SCALAR, line, 1, (const double[]){x})
-#define ARRAY(name, line, n, ...) mk(name, GLIB_UNIFORM_ARRAY, line, n, (const double[]){__VA_ARGS__})
+#define SLIDER(name, line, a, b, c) mk(name, UNIF_DECL_SLIDER, line, 3, (const double[]){a, b, c})
+#define BOOLU(name, line, b) mk(name, UNIF_DECL_BOOL, line, 1, (const double[]){b})
+#define COLOR3(name, line, r, g, b) mk(name, UNIF_DECL_COLOR, line, 3, (const double[]){r, g, b})
+#define COLOR4(name, line, r, g, b, a) mk(name, UNIF_DECL_COLOR, line, 4, (const double[]){r, g, b, a})
+#define SCALAR(name, line, x) mk(name, UNIF_DECL_SCALAR, line, 1, (const double[]){x})
+#define ARRAY(name, line, n, ...) mk(name, UNIF_DECL_ARRAY, line, n, (const double[]){__VA_ARGS__})
 
-static glib_cmd program(const char *name, glib_uniform *u, int nu, glib_uniform *d, int nd) {
+static glib_cmd program(const char *name, unif_decl *u, int nu, unif_decl *d, int nd) {
     glib_cmd c;
     memset(&c, 0, sizeof c);
     c.kind = GLIB_CMD_PROGRAM;
@@ -77,7 +78,7 @@ static char *read_text(const char *path) {
 /* ---- building from the glib ---- */
 
 static void test_from_glib_kinds(void) {
-    glib_uniform u[] = {
+    unif_decl u[] = {
         SLIDER("uK", 11, 0, 0.5, 2),
         BOOLU("uFoam", 11, 1),
         COLOR3("uWater", 12, 0.1, 0.4, 0.9),
@@ -85,7 +86,7 @@ static void test_from_glib_kinds(void) {
         SCALAR("uTex", 13, 5),
         ARRAY("uW", 13, 3, 1, 2, 3),
     };
-    glib_uniform d[] = {
+    unif_decl d[] = {
         BOOLU("FOAM", 8, 0),
         SLIDER("STEPS", 9, 1, 4, 8),
         SCALAR("SCALE", 9, 2.5),
@@ -95,7 +96,7 @@ static void test_from_glib_kinds(void) {
     glib_cmd cmd = program("Water", u, 6, d, 5);
     unif_set set = {0};
     char err[512] = "junk";
-    CHECK(unif_set_from_glib(&set, &cmd, err, sizeof err));
+    CHECK(glib_unif_set(&set, &cmd, err, sizeof err));
     CHECK(err[0] == '\0');
     CHECK(strcmp(set.program, "Water") == 0);
     CHECK(set.n == 11);
@@ -127,7 +128,7 @@ static void test_from_glib_kinds(void) {
     CHECK(e && e->min == 0.0f && e->max == 2.0f && e->def[0] == 0.5f && e->value[0] == 0.5f);
     CHECK(e && e->from_glib && !e->in_shader && e->location == -1 && e->ncomp == 1);
     CHECK(e && e->glib_line == 11 && e->glib_file && strcmp(e->glib_file, FILE_NAME) == 0);
-    CHECK(e && e->glib_kind == GLIB_UNIFORM_SLIDER);
+    CHECK(e && e->glib_kind == UNIF_DECL_SLIDER);
 
     e = unif_find(&set, "uFoam");
     CHECK(e && e->widget == UNIF_WIDGET_CHECKBOX && e->type == UNIF_BOOL && e->value[0] == 1.0f);
@@ -155,16 +156,16 @@ static void test_not_a_program(void) {
     cmd.line = 4;
     unif_set set = {0};
     char err[256];
-    CHECK(!unif_set_from_glib(&set, &cmd, err, sizeof err));
+    CHECK(!glib_unif_set(&set, &cmd, err, sizeof err));
     CHECK_STR_CONTAINS(err, "scene.glib:4:");
     CHECK(set.n == 0);
-    CHECK(!unif_set_from_glib(&set, NULL, NULL, 0));
+    CHECK(!glib_unif_set(&set, NULL, NULL, 0));
 }
 
 /* ---- shader types ---- */
 
 static void test_int_vs_float_slider(void) {
-    glib_uniform u[] = {
+    unif_decl u[] = {
         SLIDER("uSteps", 11, 0.4, 2.6, 9.7),
         SLIDER("uK", 11, 0.4, 2.6, 9.7),
         SCALAR("uTex", 12, 5),
@@ -172,7 +173,7 @@ static void test_int_vs_float_slider(void) {
     };
     glib_cmd cmd = program("P", u, 4, NULL, 0);
     unif_set set = {0};
-    CHECK(unif_set_from_glib(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
     unif_entry *e = unif_set_shader_type(&set, "uSteps", UNIF_INT, 1, 7);
     CHECK(e == unif_find(&set, "uSteps"));
     CHECK(e && e->type == UNIF_INT && e->in_shader && e->location == 7 && unif_is_int(e));
@@ -207,7 +208,7 @@ static void test_int_vs_float_slider(void) {
 }
 
 static void test_fit_arrays_and_colours(void) {
-    glib_uniform u[] = {
+    unif_decl u[] = {
         ARRAY("uDir", 11, 3, 0.0, 1.0, 0.0),
         ARRAY("uLights", 11, 6, 1, 2, 3, 4, 5, 6),
         ARRAY("uW", 12, 3, 1.0, 2.0, 3.0),
@@ -219,7 +220,7 @@ static void test_fit_arrays_and_colours(void) {
     };
     glib_cmd cmd = program("P", u, 8, NULL, 0);
     unif_set set = {0};
-    CHECK(unif_set_from_glib(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
 
     unif_entry *e = unif_set_shader_type(&set, "uDir", UNIF_VEC3, 1, 1);
     CHECK(e && e->array_len == 1 && e->ncomp == 3 && !unif_type_mismatch(e) && unif_uploadable(e));
@@ -243,7 +244,7 @@ static void test_fit_arrays_and_colours(void) {
 }
 
 static void test_type_mismatch(void) {
-    glib_uniform u[] = {
+    unif_decl u[] = {
         COLOR3("uCol", 12, 1, 0, 0),
         SLIDER("uVec", 13, 0, 1, 2),
         BOOLU("uV2", 14, 1),
@@ -252,7 +253,7 @@ static void test_type_mismatch(void) {
     };
     glib_cmd cmd = program("P", u, 5, NULL, 0);
     unif_set set = {0};
-    CHECK(unif_set_from_glib(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
     CHECK(unif_type_mismatch(unif_find(&set, "uCol")) == NULL);   /* nothing known yet */
 
     unif_entry *e = unif_set_shader_type(&set, "uCol", UNIF_FLOAT, 1, 1);
@@ -324,25 +325,25 @@ static void test_introspected_defaults(void) {
 /* ---- malformed input ---- */
 
 static void test_malformed_ranges_repaired(void) {
-    glib_uniform u[] = {
+    unif_decl u[] = {
         SLIDER("uSwap", 20, 5, 1, 0),
         SLIDER("uNan", 21, 0, NAN, 1),
         SLIDER("uOut", 22, 0, 7, 5),
         SLIDER("uInf", 23, 0, 0.5, INFINITY),
         SLIDER("uHuge", 24, -1e300, 0, 1),
-        mk("uTwo", GLIB_UNIFORM_SLIDER, 25, 2, (const double[]){2, 4}),
-        mk("uNone", GLIB_UNIFORM_SLIDER, 26, 0, NULL),
+        mk("uTwo", UNIF_DECL_SLIDER, 25, 2, (const double[]){2, 4}),
+        mk("uNone", UNIF_DECL_SLIDER, 26, 0, NULL),
         COLOR3("uCol", 27, 1, NAN, 0),
-        mk("uCol2", GLIB_UNIFORM_COLOR, 28, 2, (const double[]){1, 1}),
+        mk("uCol2", UNIF_DECL_COLOR, 28, 2, (const double[]){1, 1}),
         BOOLU("uB", 29, NAN),
-        mk("", GLIB_UNIFORM_SCALAR, 30, 1, (const double[]){1}),
+        mk("", UNIF_DECL_SCALAR, 30, 1, (const double[]){1}),
         SLIDER("uGood", 31, 0, 0.25, 1),
         SLIDER("uSwap", 32, 5, 1, 0),
     };
     glib_cmd cmd = program("P", u, 13, NULL, 0);
     unif_set set = {0};
     char err[4096];
-    CHECK(!unif_set_from_glib(&set, &cmd, err, sizeof err));
+    CHECK(!glib_unif_set(&set, &cmd, err, sizeof err));
     CHECK_STR_CONTAINS(err, "scene.glib:20: uniform 'uSwap': min 5 is greater than max 0; swapped");
     CHECK_STR_CONTAINS(err, "scene.glib:21: uniform 'uNan': default is not a finite number");
     CHECK_STR_CONTAINS(err, "scene.glib:22: uniform 'uOut': default 7 is outside");
@@ -389,18 +390,18 @@ static void test_malformed_ranges_repaired(void) {
 
     /* a tiny message buffer or none at all is fine */
     char small[8];
-    CHECK(!unif_set_from_glib(&set, &cmd, small, sizeof small));
+    CHECK(!glib_unif_set(&set, &cmd, small, sizeof small));
     CHECK(strlen(small) < sizeof small);
     unif_set_free(&set);
-    CHECK(!unif_set_from_glib(&set, &cmd, NULL, 0));
+    CHECK(!glib_unif_set(&set, &cmd, NULL, 0));
     unif_set_free(&set);
 
     /* glib kinds a define cannot take, and counts beyond the arrays */
-    glib_uniform d[] = { COLOR3("TINT", 5, 1, 1, 1), SLIDER("OK", 6, 1, 2, 3) };
-    glib_uniform big = mk("uBig", GLIB_UNIFORM_ARRAY, 7, 3, (const double[]){1, 2, 3});
+    unif_decl d[] = { COLOR3("TINT", 5, 1, 1, 1), SLIDER("OK", 6, 1, 2, 3) };
+    unif_decl big = mk("uBig", UNIF_DECL_ARRAY, 7, 3, (const double[]){1, 2, 3});
     big.n = 1000;
     glib_cmd cmd2 = program("P", &big, 1, d, 2);
-    CHECK(!unif_set_from_glib(&set, &cmd2, err, sizeof err));
+    CHECK(!glib_unif_set(&set, &cmd2, err, sizeof err));
     CHECK_STR_CONTAINS(err, "scene.glib:5: define 'TINT'");
     CHECK(unif_find(&set, "TINT") == NULL && unif_find(&set, "OK") != NULL);
     e = unif_find(&set, "uBig");
@@ -411,16 +412,16 @@ static void test_malformed_ranges_repaired(void) {
 /* ---- merge ---- */
 
 /* Builds a set like the renderer does: glib, then the shader's declarations. */
-static void build(unif_set *set, glib_uniform *u, int nu, glib_uniform *d, int nd,
+static void build(unif_set *set, unif_decl *u, int nu, unif_decl *d, int nd,
                   const char *const *names, const unif_type *types, int ntypes) {
     glib_cmd cmd = program("Water", u, nu, d, nd);
     memset(set, 0, sizeof *set);
-    unif_set_from_glib(set, &cmd, NULL, 0);
+    glib_unif_set(set, &cmd, NULL, 0);
     for (int i = 0; i < ntypes; i++) unif_set_shader_type(set, names[i], types[i], 1, i);
 }
 
 static void test_merge(void) {
-    glib_uniform u_old[] = {
+    unif_decl u_old[] = {
         SLIDER("uK", 11, 0, 0.5, 2),
         SLIDER("uN", 11, 0, 3, 10),
         COLOR3("uCol", 12, 1, 0, 0),
@@ -429,7 +430,7 @@ static void test_merge(void) {
         SLIDER("uType", 13, 0, 1, 2),
         COLOR3("uAlpha", 14, 1, 1, 1),
     };
-    glib_uniform d_old[] = { BOOLU("FOAM", 8, 0), SLIDER("STEPS", 9, 1, 4, 8) };
+    unif_decl d_old[] = { BOOLU("FOAM", 8, 0), SLIDER("STEPS", 9, 1, 4, 8) };
     const char *const names_old[] = { "uK", "uN", "uCol", "uGone", "uRange", "uType", "uAlpha", "uAmp" };
     const unif_type types_old[] = { UNIF_FLOAT, UNIF_INT, UNIF_VEC3, UNIF_FLOAT, UNIF_FLOAT, UNIF_FLOAT,
                                     UNIF_VEC4, UNIF_FLOAT };
@@ -447,7 +448,7 @@ static void test_merge(void) {
     CHECK(unif_find(&old, "uN")->value[0] == 8.0f);   /* 7.5 rounded */
     CHECK(unif_find(&old, "STEPS")->value[0] == 6.0f);
 
-    glib_uniform u_new[] = {
+    unif_decl u_new[] = {
         SLIDER("uNew", 10, 0, 0.1, 1),
         COLOR3("uCol", 12, 1, 0, 0),
         SLIDER("uN", 11, 0, 4, 10),            /* default changed */
@@ -456,7 +457,7 @@ static void test_merge(void) {
         SLIDER("uType", 13, 0, 1, 2),          /* the shader now says int */
         COLOR4("uAlpha", 14, 1, 1, 1, 1),      /* ncomp changed */
     };
-    glib_uniform d_new[] = { BOOLU("FOAM", 8, 0), SLIDER("STEPS", 9, 1, 4, 8) };
+    unif_decl d_new[] = { BOOLU("FOAM", 8, 0), SLIDER("STEPS", 9, 1, 4, 8) };
     const char *const names_new[] = { "uNew", "uCol", "uN", "uK", "uRange", "uType", "uAlpha", "uAmp" };
     const unif_type types_new[] = { UNIF_FLOAT, UNIF_VEC3, UNIF_INT, UNIF_FLOAT, UNIF_FLOAT, UNIF_INT,
                                     UNIF_VEC4, UNIF_FLOAT };
@@ -479,7 +480,7 @@ static void test_merge(void) {
     CHECK(unif_find(&fresh, "uK")->in_shader && unif_find(&fresh, "uK")->location == 3);
 
     /* the introspected uniform now written in the glib: the glib's default wins */
-    glib_uniform u3[] = { SLIDER("uAmp", 15, 0, 0.3, 1) };
+    unif_decl u3[] = { SLIDER("uAmp", 15, 0, 0.3, 1) };
     const char *const names3[] = { "uAmp" };
     const unif_type types3[] = { UNIF_FLOAT };
     unif_set third;
@@ -489,7 +490,7 @@ static void test_merge(void) {
     unif_set_free(&third);
 
     /* merge before the shader's types are known still carries values */
-    glib_uniform u4[] = { SLIDER("uK", 11, 0, 0.5, 2) };
+    unif_decl u4[] = { SLIDER("uK", 11, 0, 0.5, 2) };
     build(&third, u4, 1, NULL, 0, NULL, NULL, 0);
     unif_merge(&third, &fresh);
     CHECK(unif_find(&third, "uK")->value[0] == 1.5f);
@@ -505,7 +506,7 @@ static void test_merge(void) {
  * introspect, merge again once both sides carry shader types. Introspecting
  * the same set again (a define recompile) keeps the values. */
 static void test_merge_twice_like_the_renderer(void) {
-    glib_uniform u[] = { SLIDER("uN", 11, 0.5, 3, 10), SLIDER("uF", 11, 0, 3, 10) };
+    unif_decl u[] = { SLIDER("uN", 11, 0.5, 3, 10), SLIDER("uF", 11, 0, 3, 10) };
     const char *const names[] = { "uN", "uF" };
     const unif_type t_old[] = { UNIF_FLOAT, UNIF_INT };
     const unif_type t_new[] = { UNIF_INT, UNIF_INT };
@@ -516,7 +517,7 @@ static void test_merge_twice_like_the_renderer(void) {
 
     glib_cmd cmd = program("Water", u, 2, NULL, 0);
     unif_set fresh = {0};
-    unif_set_from_glib(&fresh, &cmd, NULL, 0);
+    glib_unif_set(&fresh, &cmd, NULL, 0);
     unif_merge(&fresh, &old);
     for (int i = 0; i < 2; i++) unif_set_shader_type(&fresh, names[i], t_new[i], 1, i);
     unif_merge(&fresh, &old);
@@ -532,11 +533,11 @@ static void test_merge_twice_like_the_renderer(void) {
 }
 
 static void test_reset_all(void) {
-    glib_uniform u[] = { SLIDER("uK", 11, 0, 0.5, 2) };
-    glib_uniform d[] = { BOOLU("FOAM", 8, 0) };
+    unif_decl u[] = { SLIDER("uK", 11, 0, 0.5, 2) };
+    unif_decl d[] = { BOOLU("FOAM", 8, 0) };
     glib_cmd cmd = program("P", u, 1, d, 1);
     unif_set set = {0};
-    CHECK(unif_set_from_glib(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
     unif_set_component(unif_find(&set, "uK"), 0, 1.0);
     CHECK(!unif_reset_all_ex(&set));                 /* no define moved */
     CHECK(unif_find(&set, "uK")->value[0] == 0.5f);
@@ -555,24 +556,24 @@ static void test_reset_all(void) {
 typedef struct two_sets { unif_set s[2]; } two_sets;
 
 static void build_presets(two_sets *t) {
-    glib_uniform u1[] = {
+    unif_decl u1[] = {
         SLIDER("uK", 11, -1000, 0, 1000),
         SLIDER("uN", 11, 0, 3, 10),
         COLOR4("uCol", 12, 1, 0, 0, 1),
         BOOLU("uFoam", 12, 0),
         SCALAR("uTex", 13, 4),
     };
-    glib_uniform d1[] = { SLIDER("STEPS", 9, 1, 4, 8) };
+    unif_decl d1[] = { SLIDER("STEPS", 9, 1, 4, 8) };
     const char *const n1[] = { "uK", "uN", "uCol", "uFoam", "uTex", "uWind" };
     const unif_type t1[] = { UNIF_FLOAT, UNIF_INT, UNIF_VEC4, UNIF_BOOL, UNIF_SAMPLER, UNIF_VEC3 };
     glib_cmd cmd = program("Water", u1, 5, d1, 1);
     memset(t, 0, sizeof *t);
-    unif_set_from_glib(&t->s[0], &cmd, NULL, 0);
+    glib_unif_set(&t->s[0], &cmd, NULL, 0);
     for (int i = 0; i < 6; i++) unif_set_shader_type(&t->s[0], n1[i], t1[i], 1, i);
 
-    glib_uniform u2[] = { SLIDER("uK", 20, 0, 0.5, 1) };
+    unif_decl u2[] = { SLIDER("uK", 20, 0, 0.5, 1) };
     glib_cmd cmd2 = program("Sky", u2, 1, NULL, 0);
-    unif_set_from_glib(&t->s[1], &cmd2, NULL, 0);
+    glib_unif_set(&t->s[1], &cmd2, NULL, 0);
 }
 
 static void free_presets(two_sets *t) {

@@ -165,7 +165,7 @@ static void problem(where *w, const char *fmt, ...) {
 }
 
 /* Repairs <min default max> in place; messages through w. */
-static void repair_slider(where *w, const glib_uniform *u, int n, float *lo, float *df, float *hi) {
+static void repair_slider(where *w, const unif_decl *u, int n, float *lo, float *df, float *hi) {
     double v[3] = {0.0, 0.0, 1.0};
     if (n >= 3) {
         for (int i = 0; i < 3; i++) v[i] = u->v[i];
@@ -202,7 +202,7 @@ static void repair_slider(where *w, const glib_uniform *u, int n, float *lo, flo
 }
 
 /* Reads component i of u, 0 with a message when not a finite number. */
-static float number_at(where *w, const glib_uniform *u, int i, const char *label) {
+static float number_at(where *w, const unif_decl *u, int i, const char *label) {
     float f;
     if (to_float(u->v[i], &f)) return f;
     if (label) problem(w, "%s is not a finite number; using 0", label);
@@ -210,8 +210,8 @@ static float number_at(where *w, const glib_uniform *u, int i, const char *label
     return 0.0f;
 }
 
-static bool fill_entry(unif_entry *e, const glib_uniform *u, bool is_define, where *w) {
-    int n = u->n < 0 ? 0 : u->n > GLIB_MAX_NUMS ? GLIB_MAX_NUMS : u->n;
+static bool fill_entry(unif_entry *e, const unif_decl *u, bool is_define, where *w) {
+    int n = u->n < 0 ? 0 : u->n > UNIF_DECL_MAX_NUMS ? UNIF_DECL_MAX_NUMS : u->n;
     if (n > UNIF_MAX_COMPONENTS) n = UNIF_MAX_COMPONENTS;
     copy_name(e->name, u->name);
     e->is_define = is_define;
@@ -221,7 +221,7 @@ static bool fill_entry(unif_entry *e, const glib_uniform *u, bool is_define, whe
     e->glib_kind = u->kind;
     e->ncomp = 1;
     switch (u->kind) {
-    case GLIB_UNIFORM_SLIDER: {
+    case UNIF_DECL_SLIDER: {
         float lo, df, hi;
         repair_slider(w, u, n, &lo, &df, &hi);
         e->widget = UNIF_WIDGET_SLIDER;
@@ -230,14 +230,14 @@ static bool fill_entry(unif_entry *e, const glib_uniform *u, bool is_define, whe
         if (is_define && is_whole(lo) && is_whole(df) && is_whole(hi)) e->type = UNIF_INT;
         break;
     }
-    case GLIB_UNIFORM_BOOL:
+    case UNIF_DECL_BOOL:
         e->widget = UNIF_WIDGET_CHECKBOX;
         e->type = UNIF_BOOL;
         e->max = 1.0f;
         if (n != 1) problem(w, "a checkbox takes <true> or <false>, got %d values", n);
         if (n >= 1) e->def[0] = number_at(w, u, 0, "the checkbox value") != 0.0f ? 1.0f : 0.0f;
         break;
-    case GLIB_UNIFORM_COLOR:
+    case UNIF_DECL_COLOR:
         if (is_define) { problem(w, "a define takes <true|false>, a number or <min default max>; ignored"); return false; }
         e->widget = UNIF_WIDGET_COLOR;
         e->ncomp = n < 3 ? 3 : n > 4 ? 4 : n;
@@ -247,7 +247,7 @@ static bool fill_entry(unif_entry *e, const glib_uniform *u, bool is_define, whe
                     n < 3 ? "the missing ones are 0" : "the rest are ignored");
         for (int i = 0; i < e->ncomp && i < n; i++) e->def[i] = number_at(w, u, i, NULL);
         break;
-    case GLIB_UNIFORM_SCALAR:
+    case UNIF_DECL_SCALAR:
         e->widget = UNIF_WIDGET_NONE;
         e->type = UNIF_FLOAT;
         if (n != 1)
@@ -256,7 +256,7 @@ static bool fill_entry(unif_entry *e, const glib_uniform *u, bool is_define, whe
         if (n >= 1) e->def[0] = number_at(w, u, 0, "the value");
         if (is_define && is_whole(e->def[0])) e->type = UNIF_INT;
         break;
-    case GLIB_UNIFORM_ARRAY:
+    case UNIF_DECL_ARRAY:
         if (is_define) { problem(w, "a define takes <true|false>, a number or <min default max>; ignored"); return false; }
         e->widget = UNIF_WIDGET_NONE;
         e->type = UNIF_FLOAT;
@@ -276,8 +276,8 @@ static bool fill_entry(unif_entry *e, const glib_uniform *u, bool is_define, whe
     return true;
 }
 
-static void add_glib_uniform(unif_set *set, const glib_uniform *u, bool is_define,
-                             const glib_cmd *cmd, char *err, int errlen, bool *ok) {
+static void add_decl(unif_set *set, const unif_decl *u, bool is_define,
+                     const unif_program_decl *cmd, char *err, int errlen, bool *ok) {
     where w = {
         .file = u->file ? u->file : cmd->file ? cmd->file : "(glib)",
         .what = is_define ? "define" : "uniform",
@@ -312,20 +312,15 @@ static void add_glib_uniform(unif_set *set, const glib_uniform *u, bool is_defin
     if (!w.ok) *ok = false;
 }
 
-bool unif_set_from_glib(unif_set *set, const glib_cmd *program, char *err, int errlen) {
+bool unif_set_from_decls(unif_set *set, const unif_program_decl *program, char *err, int errlen) {
     msg_clear(err, errlen);
     if (!set || !program) return false;
-    if (program->kind != GLIB_CMD_PROGRAM) {
-        msg_add(err, errlen, "%s:%d: not a Program command", program->file ? program->file : "(glib)",
-                program->line);
-        return false;
-    }
-    copy_name(set->program, program->name);
+    copy_name(set->program, program->name ? program->name : "");
     bool ok = true;
     for (int i = 0; program->defines && i < program->ndefines; i++)
-        add_glib_uniform(set, &program->defines[i], true, program, err, errlen, &ok);
+        add_decl(set, &program->defines[i], true, program, err, errlen, &ok);
     for (int i = 0; program->uniforms && i < program->nuniforms; i++)
-        add_glib_uniform(set, &program->uniforms[i], false, program, err, errlen, &ok);
+        add_decl(set, &program->uniforms[i], false, program, err, errlen, &ok);
     return ok;
 }
 
@@ -344,13 +339,13 @@ static void fit_to_shader(unif_entry *e, unif_type prev, unif_type t, int shader
     e->mismatch = NULL;
     bool whole = t == UNIF_INT || t == UNIF_SAMPLER;
     switch (e->glib_kind) {
-    case GLIB_UNIFORM_SCALAR:
+    case UNIF_DECL_SCALAR:
         if (t == UNIF_FLOAT) break;
         if (whole) round_values(e);
         else if (t == UNIF_BOOL) bool_values(e);
         else e->mismatch = MISMATCH_SCALAR;
         break;
-    case GLIB_UNIFORM_ARRAY: {
+    case UNIF_DECL_ARRAY: {
         int c = unif_type_components(t);
         if (c == 0 || e->ncomp % c != 0) { e->mismatch = MISMATCH_ARRAY_FILL; break; }
         if (e->ncomp / c > shader_len) { e->mismatch = MISMATCH_ARRAY_LONG; break; }
@@ -359,7 +354,7 @@ static void fit_to_shader(unif_entry *e, unif_type prev, unif_type t, int shader
         else if (t == UNIF_BOOL) bool_values(e);
         break;
     }
-    case GLIB_UNIFORM_SLIDER:
+    case UNIF_DECL_SLIDER:
         if (t == UNIF_FLOAT) break;
         if (t != UNIF_INT) { e->mismatch = MISMATCH_SLIDER; break; }
         e->min = roundf(e->min);
@@ -371,10 +366,10 @@ static void fit_to_shader(unif_entry *e, unif_type prev, unif_type t, int shader
          * over from the float slider resets (an int one seen again keeps it) */
         if (prev != UNIF_INT) e->value[0] = e->def[0];
         break;
-    case GLIB_UNIFORM_BOOL:
+    case UNIF_DECL_BOOL:
         if (t != UNIF_BOOL && t != UNIF_INT && t != UNIF_FLOAT) e->mismatch = MISMATCH_BOOL;
         break;
-    case GLIB_UNIFORM_COLOR:
+    case UNIF_DECL_COLOR:
         if (t == UNIF_VEC3) {
             e->ncomp = 3;               /* {r g b a}: alpha has nowhere to go */
         } else if (t == UNIF_VEC4) {

@@ -13,13 +13,12 @@
 #define TARN_UNIF_H
 
 #include <stdbool.h>
-#include "glib.h"
+#include "unif_decl.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define UNIF_NAME_MAX 64
 #define UNIF_MAX_COMPONENTS 16
 
 typedef enum unif_type {
@@ -55,7 +54,7 @@ typedef struct unif_entry {
     int location;               /* GL uniform location, -1 if none; set by the renderer */
     /* the syntax the glib wrote (0 when introspected), and why it does not fit
      * the type the shader declares (NULL when it fits): see unif_type_mismatch */
-    glib_uniform_kind glib_kind;
+    unif_decl_kind glib_kind;
     const char *mismatch;
 } unif_entry;
 
@@ -65,8 +64,9 @@ typedef struct unif_set {
     int n, cap;
 } unif_set;
 
-/* Fills set (zeroed by the caller) from a glib Program command: its uniforms
- * and its defines. Types are guessed from the syntax until the renderer calls
+/* Fills set (zeroed by the caller) from a Program's declarations: its
+ * uniforms and its defines (glib_program_decl gives them for a Program
+ * command). Types are guessed from the syntax until the renderer calls
  * unif_set_shader_type(). Returns false with a file:line message in err when a
  * uniform is malformed for its kind (min > max, NaN): the entry is still added
  * with a repaired range so the panel works.
@@ -79,7 +79,7 @@ typedef struct unif_set {
  * default outside the range is clamped, a wrong count of numbers is padded
  * or cut; a name written twice keeps the last. err gets one message a line
  * (err may be NULL). */
-bool unif_set_from_glib(unif_set *set, const glib_cmd *program, char *err, int errlen);
+bool unif_set_from_decls(unif_set *set, const unif_program_decl *program, char *err, int errlen);
 
 /* Records the type the linked shader declares for name (and its location).
  * Adds an introspected entry with a sensible default range and widget when

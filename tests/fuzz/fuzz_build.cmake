@@ -17,25 +17,22 @@ endif()
 set(TARN_FUZZ_SECONDS 20 CACHE STRING "Seconds each fuzz target runs in ctest")
 set(TARN_FUZZ_SAN -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 
-file(GLOB TARN_FUZZ_REF_SRC ${CMAKE_SOURCE_DIR}/reference/*.c)
-add_library(tarn_fuzz_core STATIC
-  ${CMAKE_SOURCE_DIR}/viewer/glib.c ${CMAKE_SOURCE_DIR}/viewer/shader_src.c
-  ${CMAKE_SOURCE_DIR}/viewer/scene.c ${CMAKE_SOURCE_DIR}/uniforms/unif.c ${TARN_FUZZ_REF_SRC})
-target_include_directories(tarn_fuzz_core PUBLIC
-  ${CMAKE_SOURCE_DIR}/viewer ${CMAKE_SOURCE_DIR}/uniforms ${CMAKE_SOURCE_DIR}/reference)
-target_compile_options(tarn_fuzz_core PRIVATE ${TARN_WARNINGS} -fsanitize=fuzzer-no-link ${TARN_FUZZ_SAN})
-find_package(Threads REQUIRED)
-target_link_libraries(tarn_fuzz_core PUBLIC Threads::Threads m)
+# The pure-C layers (base, reference, the uniform model, scene), every
+# file instrumented: the same targets a normal build defines.
+add_compile_options(-fsanitize=fuzzer-no-link ${TARN_FUZZ_SAN})
+add_subdirectory(${CMAKE_SOURCE_DIR}/reference ${CMAKE_BINARY_DIR}/reference)
+add_subdirectory(${CMAKE_SOURCE_DIR}/uniforms ${CMAKE_BINARY_DIR}/uniforms)
+add_subdirectory(${CMAKE_SOURCE_DIR}/viewer ${CMAKE_BINARY_DIR}/viewer)
 
 enable_testing()
 foreach(t glib shader preset)
   add_executable(fuzz_${t} ${CMAKE_SOURCE_DIR}/tests/fuzz/fuzz_${t}.c)
   target_compile_options(fuzz_${t} PRIVATE ${TARN_WARNINGS} -fsanitize=fuzzer ${TARN_FUZZ_SAN})
   target_link_options(fuzz_${t} PRIVATE -fsanitize=fuzzer ${TARN_FUZZ_SAN})
-  target_link_libraries(fuzz_${t} PRIVATE tarn_fuzz_core)
+  target_link_libraries(fuzz_${t} PRIVATE tarn_scene)
   add_test(NAME fuzz_${t}_run
     COMMAND ${CMAKE_SOURCE_DIR}/tests/fuzz/run.sh $<TARGET_FILE:fuzz_${t}> ${t} ${TARN_FUZZ_SECONDS}
             ${CMAKE_SOURCE_DIR}/tests/fuzz
     WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
-  set_tests_properties(fuzz_${t}_run PROPERTIES TIMEOUT 600)
+  set_tests_properties(fuzz_${t}_run PROPERTIES TIMEOUT 600 LABELS "fuzz;slow")
 endforeach()

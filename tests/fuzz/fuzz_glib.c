@@ -1,7 +1,7 @@
 /* fuzz_glib: libFuzzer target for the .glib parser and what consumes its
  * output without OpenGL: glib_parse on the bytes (Include resolved next to
  * a scratch file, where fixture files wait), the uniform model built from
- * every Program (unif_set_from_glib, typed as a shader might declare it,
+ * every Program (glib_unif_set, typed as a shader might declare it,
  * merged as a reload does), and the world model (scene_from_glib,
  * ref_world_init). A text that names a pack also goes through glib_load_opts
  * with a packs directory.
@@ -108,9 +108,9 @@ static void exercise(const glib_scene *g) {
         if (c->kind != GLIB_CMD_PROGRAM) continue;
         char err[2048];
         unif_set old = {0}, fresh = {0};
-        unif_set_from_glib(&old, c, err, sizeof err);
+        glib_unif_set(&old, c, err, sizeof err);
         exercise_set(&old, i);
-        unif_set_from_glib(&fresh, c, err, sizeof err);
+        glib_unif_set(&fresh, c, err, sizeof err);
         unif_merge(&fresh, &old);          /* what a reload does */
         exercise_set(&fresh, i + 1);
         unif_merge(&fresh, &old);

@@ -15,9 +15,11 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#define GLIB_NAME_MAX 64
+#include "unif_decl.h"   /* a Program line's uniforms (unif_decl) */
+
+#define GLIB_NAME_MAX UNIF_NAME_MAX
 #define GLIB_PATH_MAX 1024
-#define GLIB_MAX_NUMS 16        /* numbers one command or uniform may carry */
+#define GLIB_MAX_NUMS UNIF_DECL_MAX_NUMS /* numbers one command or uniform may carry */
 #define GLIB_MAX_UNITS 8        /* RenderToTexture units at once */
 
 typedef enum glib_cmd_kind {
@@ -75,7 +77,7 @@ typedef enum glib_cmd_kind {
     /* describing the world (docs/glib.md, "Describing the world"). Unlike
      * the commands above, these keep nnum = the numbers written: what is
      * left out takes the world model's default (ref_world_init), and the
-     * ranges are checked and repaired by scene_from_glib (viewer/scene.h) */
+     * ranges are checked and repaired by scene_from_glib (viewer/scene/scene.h) */
     GLIB_CMD_SUN,               /* num: dx dy dz [r g b] (nnum 3 or 6) */
     GLIB_CMD_SKY,               /* num: zr zg zb hr hg hb */
     GLIB_CMD_WATER,             /* num: level [ior [ar ag ab]] (nnum 1, 2 or 5) */
@@ -104,23 +106,6 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_KIND_COUNT
 } glib_cmd_kind;
 
-typedef enum glib_uniform_kind {
-    GLIB_UNIFORM_SCALAR = 1,    /* name 5       -> v[0]; also a sampler's unit */
-    GLIB_UNIFORM_ARRAY,         /* name [a b c] -> v[0..n-1] */
-    GLIB_UNIFORM_SLIDER,        /* name <min default max> -> v = {min, def, max} */
-    GLIB_UNIFORM_BOOL,          /* name <true>  -> v[0] = 1 or 0 */
-    GLIB_UNIFORM_COLOR          /* name {r g b [a]} -> v[0..3], n = 3 or 4 */
-} glib_uniform_kind;
-
-typedef struct glib_uniform {
-    char name[GLIB_NAME_MAX];
-    glib_uniform_kind kind;
-    double v[GLIB_MAX_NUMS];
-    int n;                      /* count of numbers in v */
-    int line;                   /* where it was written */
-    const char *file;           /* points into glib_scene.files */
-} glib_uniform;
-
 typedef enum glib_target_format {
     GLIB_TARGET_RGBA8 = 0,      /* default for `Texture2D unit w h` */
     GLIB_TARGET_RGBA16F,        /* extension: `Texture2D unit w h float16` */
@@ -141,12 +126,12 @@ typedef struct glib_cmd {
     char path[GLIB_PATH_MAX];   /* resolved file path (absolute or relative to cwd) */
     char (*cube_paths)[GLIB_PATH_MAX]; /* CubeMap: 6 resolved paths (heap) */
     glib_target_format format;  /* Texture2D empty */
-    glib_uniform *uniforms;     /* Program: its uniforms (heap); Define: uniforms[0] */
+    unif_decl *uniforms;     /* Program: its uniforms (heap); Define: uniforms[0] */
     int nuniforms;
     /* Program: the `Define` toggles written since the previous Program
      * (heap copies; kind BOOL for `Define NAME <true>`, SCALAR/SLIDER for
      * `Define NAME 3` / `Define NAME <1 4 8>`) */
-    glib_uniform *defines;
+    unif_decl *defines;
     int ndefines;
     char arg[GLIB_NAME_MAX];    /* Camera, World: the uniform that gives fov_scale or the clip
                                    offset ("" when a number is written) */
@@ -221,6 +206,16 @@ void glib_print_diags(const glib_scene *scene, void *stream);
  * which the shaders need not declare. *is_count (may be NULL) says whether
  * it is read as a whole number (a size or a point count). */
 bool glib_uniform_consumed(const glib_scene *scene, const char *name, bool *is_count);
+
+/* A Program command's declarations as the uniform model takes them
+ * (pointers into the command). */
+unif_program_decl glib_program_decl(const glib_cmd *program);
+
+/* Fills set (zeroed by the caller) from a Program command through
+ * unif_set_from_decls. False with `file:line: not a Program command` when
+ * it is not one. */
+struct unif_set;
+bool glib_unif_set(struct unif_set *set, const glib_cmd *program, char *err, int errlen);
 
 /* The command's name as written in docs ("QuadXZ"), for messages. */
 const char *glib_cmd_name(glib_cmd_kind kind);

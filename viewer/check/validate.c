@@ -723,10 +723,10 @@ typedef struct slider_value {
 static int slider_values(const glib_cmd *cmd, const shader_define *fixed, int nfixed, slider_value *out) {
     int n = 0;
     for (int i = 0, f = 0; i < cmd->ndefines && f < nfixed; i++) {
-        const glib_uniform *u = &cmd->defines[i];
-        if (u->kind == GLIB_UNIFORM_BOOL) continue;
+        const unif_decl *u = &cmd->defines[i];
+        if (u->kind == UNIF_DECL_BOOL) continue;
         int fi = f++;   /* fixed[] holds the non-toggles in this order */
-        if (u->kind != GLIB_UNIFORM_SLIDER || u->n < 3) continue;
+        if (u->kind != UNIF_DECL_SLIDER || u->n < 3) continue;
         double lo = u->v[0], def = u->v[1], hi = u->v[2];
         if (lo != floor(lo) || hi != floor(hi) || !(lo <= hi) || hi - lo > 1e6) continue;
         long long span = (long long)(hi - lo);
@@ -787,14 +787,14 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
     shader_define fixed[MAX_DEFINES];
     int nfixed = 0;
     for (int i = 0; i < cmd->ndefines; i++) {
-        const glib_uniform *u = &cmd->defines[i];
-        if (u->kind == GLIB_UNIFORM_BOOL) {
+        const unif_decl *u = &cmd->defines[i];
+        if (u->kind == UNIF_DECL_BOOL) {
             if (nt < MAX_DEFINES) toggles[nt++] = (toggle){ u->name, u->n > 0 && u->v[0] != 0 };
         } else if (nfixed < MAX_DEFINES) {
             shader_define *d = &fixed[nfixed++];
             memset(d, 0, sizeof *d);
             snprintf(d->name, sizeof d->name, "%s", u->name);
-            double v = u->kind == GLIB_UNIFORM_SLIDER && u->n >= 2 ? u->v[1] : u->n > 0 ? u->v[0] : 0;
+            double v = u->kind == UNIF_DECL_SLIDER && u->n >= 2 ? u->v[1] : u->n > 0 ? u->v[0] : 0;
             format_number(v, d->value, sizeof d->value);
         }
     }

@@ -279,7 +279,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->scene = s->glib;
     memcpy(p->stage_path, st->path, sizeof p->stage_path);
     char err[512] = "";
-    if (!unif_set_from_glib(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
+    if (!glib_unif_set(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
     snprintf(p->unifs->program, sizeof p->unifs->program, "%s", c->name);
     prog *o = find_old_prog(old, p->name);
     if (o) {   /* the last good build and the user's values (defines first) */

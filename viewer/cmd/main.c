@@ -9,6 +9,7 @@
 #include "cli_reference.h"
 #include "compare.h"
 #include "compare_view.h"
+#include "view.h"
 #include "gl_ctx.h"
 #include "validate.h"
 
@@ -100,7 +101,7 @@ static bool is_help(const char *a) {
 
 static int bad_usage(const char *usage, const char *what) {
     fprintf(stderr, "tarn: %s\n\n%s", what, usage);
-    return CLI_USAGE;
+    return TARN_EXIT_USAGE;
 }
 
 static int main_render(int argc, char **argv) {
@@ -109,7 +110,7 @@ static int main_render(int argc, char **argv) {
     d.sets = sets;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (is_help(a)) { fputs(usage_render, stdout); return CLI_OK; }
+        if (is_help(a)) { fputs(usage_render, stdout); return TARN_EXIT_OK; }
         if ((strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) && next) { d.out = next; i++; }
         else if (strcmp(a, "--size") == 0) {
             if (!parse_size(next, &d.width, &d.height)) return bad_usage(usage_render, "--size wants WxH, e.g. 640x360");
@@ -137,10 +138,10 @@ static int main_render(int argc, char **argv) {
 }
 
 static int main_view(int argc, char **argv) {
-    cli_view_desc d = {0};
+    view_desc d = {0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (is_help(a)) { fputs(usage_view, stdout); return CLI_OK; }
+        if (is_help(a)) { fputs(usage_view, stdout); return TARN_EXIT_OK; }
         if (strcmp(a, "--size") == 0) {
             if (!parse_size(next, &d.width, &d.height)) return bad_usage(usage_view, "--size wants WxH");
             i++;
@@ -154,7 +155,7 @@ static int main_view(int argc, char **argv) {
         else return bad_usage(usage_view, "one scene at a time");
     }
     if (!d.glib) return bad_usage(usage_view, "which scene? give FILE.glib");
-    return cli_view(&d);
+    return view_run(&d);
 }
 
 static int main_compare_view(int argc, char **argv) {
@@ -163,7 +164,7 @@ static int main_compare_view(int argc, char **argv) {
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         double v;
-        if (is_help(a)) { fputs(u, stdout); return CLI_OK; }
+        if (is_help(a)) { fputs(u, stdout); return TARN_EXIT_OK; }
         if (strcmp(a, "--size") == 0) {
             if (!parse_size(next, &d.width, &d.height)) return bad_usage(u, "--size wants WxH");
             i++;
@@ -199,15 +200,15 @@ static int main_compare_view(int argc, char **argv) {
 
 static int main_validate(int argc, char **argv) {
     for (int i = 0; i < argc; i++)
-        if (is_help(argv[i])) { fputs(usage_validate, stdout); return CLI_OK; }
+        if (is_help(argv[i])) { fputs(usage_validate, stdout); return TARN_EXIT_OK; }
     return validate_run((const char *const *)argv, argc, TARN_SOURCE_DIR, stdout);
 }
 
 /* No arguments: the default scene, in a window when there is a display. */
 static int main_default(void) {
     if (gl_ctx_have_display()) {
-        cli_view_desc d = { .glib = cli_default_scene() };
-        return cli_view(&d);
+        view_desc d = { .glib = cli_default_scene() };
+        return view_run(&d);
     }
     const char *out = "out/default.png";
     if (system("mkdir -p out") != 0) out = "default.png";
@@ -219,7 +220,7 @@ static int main_default(void) {
 int main(int argc, char **argv) {
     if (argc < 2) return main_default();
     const char *cmd = argv[1];
-    if (is_help(cmd)) { fputs(usage_main, stdout); return CLI_OK; }
+    if (is_help(cmd)) { fputs(usage_main, stdout); return TARN_EXIT_OK; }
     if (strcmp(cmd, "help") == 0) {
         const char *which = argc > 2 ? argv[2] : "";
         fputs(strcmp(which, "view") == 0 ? usage_view : strcmp(which, "render") == 0 ? usage_render
@@ -227,7 +228,7 @@ int main(int argc, char **argv) {
               : strcmp(which, "compare") == 0 ? compare_usage()
               : strcmp(which, "bench") == 0 ? bench_usage()
               : strcmp(which, "compare-view") == 0 ? compare_view_usage() : usage_main, stdout);
-        return CLI_OK;
+        return TARN_EXIT_OK;
     }
     if (strcmp(cmd, "render") == 0) return main_render(argc - 2, argv + 2);
     if (strcmp(cmd, "view") == 0) return main_view(argc - 2, argv + 2);
@@ -239,5 +240,5 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "assets") == 0) return cli_assets(argc - 2, argv + 2);
     if (strstr(cmd, ".glib")) return main_view(argc - 1, argv + 1);   /* `tarn scene.glib` */
     fprintf(stderr, "tarn: unknown command '%s'\n\n%s", cmd, usage_main);
-    return CLI_USAGE;
+    return TARN_EXIT_USAGE;
 }

@@ -10,7 +10,8 @@
 #include <sys/stat.h>
 #include <time.h>
 
-#include "cli.h"
+#include "exit_code.h"
+#include "view.h"
 #include "gl_ctx.h"
 #include "image_io.h"
 #include "panel.h"
@@ -174,26 +175,26 @@ static void frame(viewer *v, view_script *script) {
     apply_actions(v, &a);
 }
 
-static int run(viewer *v, const cli_view_desc *d) {
+static int run(viewer *v, const view_desc *d) {
     view_script *script = NULL;
     if (d->script) {
         char err[512];
         script = view_script_load(d->script, err, sizeof err);
-        if (!script) { fprintf(stderr, "tarn: %s\n", err); return CLI_USAGE; }
+        if (!script) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_USAGE; }
     }
-    int rc = CLI_OK;
+    int rc = TARN_EXIT_OK;
     while (!glfwWindowShouldClose(v->win)) {
         glfwPollEvents();
         frame(v, script);
         char lost[1024];
-        if (gl_ctx_lost(v->ctx, lost, sizeof lost)) { fprintf(stderr, "tarn: %s\n", lost); rc = CLI_NO_GL; break; }
+        if (gl_ctx_lost(v->ctx, lost, sizeof lost)) { fprintf(stderr, "tarn: %s\n", lost); rc = TARN_EXIT_NO_GL; break; }
         if (script) {
             view_script_ctx sc = { .r = v->r, .time_s = &v->t };
             int st = view_script_step(script, &sc);
             if (st == VIEW_SCRIPT_SCREENSHOT) screenshot(v, view_script_arg(script));
             if (st == VIEW_SCRIPT_RELOAD) reload(v);
             if (st == VIEW_SCRIPT_REBUILD) render_rebuild_programs(v->r);
-            if (st == VIEW_SCRIPT_FAILED) rc = CLI_INPUT_ERROR;
+            if (st == VIEW_SCRIPT_FAILED) rc = TARN_EXIT_INPUT;
             if (st == VIEW_SCRIPT_DONE || st == VIEW_SCRIPT_FAILED) glfwSetWindowShouldClose(v->win, 1);
         }
         glfwSwapBuffers(v->win);
@@ -202,7 +203,7 @@ static int run(viewer *v, const cli_view_desc *d) {
     return rc;
 }
 
-int cli_view(const cli_view_desc *d) {
+int view_run(const view_desc *d) {
     viewer v;
     memset(&v, 0, sizeof v);
     char err[1024];
@@ -210,7 +211,7 @@ int cli_view(const cli_view_desc *d) {
      * applied by resizing once the scene is loaded */
     v.ctx = gl_ctx_create_window(d->width > 0 ? d->width : 1000, d->height > 0 ? d->height : 700,
                                  "tarn", err, sizeof err);
-    if (!v.ctx) { fprintf(stderr, "tarn: %s\n", err); return CLI_NO_GL; }
+    if (!v.ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     v.win = gl_ctx_window(v.ctx);
     glfwSetWindowUserPointer(v.win, &v);
     render_desc rd = { .pack = d->pack };
@@ -236,7 +237,7 @@ int cli_view(const cli_view_desc *d) {
     v.t = d->time_s;
     v.last_wall = glfwGetTime();
     int rc = run(&v, d);
-    if (rc == CLI_OK && !ok && d->script) rc = CLI_INPUT_ERROR;
+    if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
     watch_destroy(v.watch);
     panel_destroy(v.panel);
     render_destroy(v.r);

@@ -58,7 +58,7 @@ static double now_s(void) {
 
 static int bad_usage(const char *what) {
     fprintf(stderr, "tarn reference: %s\n\n%s", what, usage);
-    return CLI_USAGE;
+    return TARN_EXIT_USAGE;
 }
 
 static int parse_int(const char *s, int lo, int hi, int *out) {
@@ -179,7 +179,7 @@ int cli_reference(int argc, char **argv) {
     memset(&d, 0, sizeof d);
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage, stdout); return CLI_OK; }
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage, stdout); return TARN_EXIT_OK; }
         if (strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) {
             if (!next) return bad_usage("-o wants a path, e.g. -o out/ref.exr");
             out = next;
@@ -233,14 +233,14 @@ int cli_reference(int argc, char **argv) {
     if (!scene_load(glib, NULL, &wd, &cam, &has_world, err, (int)sizeof err)) {
         if (strstr(err, ": error:")) {
             fprintf(stderr, "%s\ntarn reference: %s has errors\n", err, glib);
-            return CLI_INPUT_ERROR;
+            return TARN_EXIT_INPUT;
         }
         fprintf(stderr, "%s\n", err);   /* warnings: repaired values */
     }
     if (!has_world) {
         fprintf(stderr, "tarn reference: %s describes no world (no Sun, Water, Terrain, Wave... or "
                         "Object commands; see docs/glib.md)\n", glib);
-        return CLI_INPUT_ERROR;
+        return TARN_EXIT_INPUT;
     }
     ref_world world;
     ref_world_init(&world, &wd);
@@ -271,7 +271,7 @@ int cli_reference(int argc, char **argv) {
     if (b.drawn) fputc('\n', stderr);
     if (rc != 0) {
         fprintf(stderr, "tarn reference: %s\n", rerr);
-        return CLI_INPUT_ERROR;
+        return TARN_EXIT_INPUT;
     }
     if (!quiet) {
         if (r.have_caustics)
@@ -284,5 +284,5 @@ int cli_reference(int argc, char **argv) {
     }
     int ok = write_outputs(out, &r, quiet);
     ref_render_free(&r);
-    return ok ? CLI_OK : CLI_INPUT_ERROR;
+    return ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
 }

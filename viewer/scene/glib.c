@@ -14,6 +14,7 @@
 #define _DEFAULT_SOURCE         /* realpath(), which is XSI, not plain POSIX */
 #endif
 #include "glib.h"
+#include "unif.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -88,7 +89,7 @@ typedef struct parser {
     int depth;
     int nreads;
     /* Define toggles waiting for the next Program */
-    glib_uniform *pending;
+    unif_decl *pending;
     int npending, pending_cap;
     int scene_uniforms;
     int dropped, dropped_errors;    /* diagnostics beyond LIM_DIAGS */
@@ -1157,7 +1158,7 @@ static const char *bracket_example(char open)
          : open == '{' ? "{r g b} or {r g b a}" : "[a b c]";
 }
 
-static val_result bracket_numbers(cmdctx *c, char **items, int n, glib_uniform *u,
+static val_result bracket_numbers(cmdctx *c, char **items, int n, unif_decl *u,
                                   const char *owner)
 {
     for (int i = 0; i < n; i++)
@@ -1169,7 +1170,7 @@ static val_result bracket_numbers(cmdctx *c, char **items, int n, glib_uniform *
     return VAL_OK;
 }
 
-static val_result slider_value(cmdctx *c, glib_uniform *u, const char *owner)
+static val_result slider_value(cmdctx *c, unif_decl *u, const char *owner)
 {
     double *v = u->v;
     if (v[0] > v[2]) {
@@ -1186,10 +1187,10 @@ static val_result slider_value(cmdctx *c, glib_uniform *u, const char *owner)
 }
 
 static val_result typed_bracket(cmdctx *c, char open, char **items, int n,
-                                glib_uniform *u, const char *owner)
+                                unif_decl *u, const char *owner)
 {
     if (open == '<' && n == 1 && is_bool_word(items[0], &u->v[0])) {
-        u->kind = GLIB_UNIFORM_BOOL;
+        u->kind = UNIF_DECL_BOOL;
         u->n = 1;
         return VAL_OK;
     }
@@ -1201,17 +1202,17 @@ static val_result typed_bracket(cmdctx *c, char open, char **items, int n,
         cerr(c, "%s: %c%c needs %s, got %d", owner, open, closer_of(open), need, n);
         return VAL_BAD;
     }
-    u->kind = open == '<' ? GLIB_UNIFORM_SLIDER
-            : open == '{' ? GLIB_UNIFORM_COLOR : GLIB_UNIFORM_ARRAY;
+    u->kind = open == '<' ? UNIF_DECL_SLIDER
+            : open == '{' ? UNIF_DECL_COLOR : UNIF_DECL_ARRAY;
     val_result r = bracket_numbers(c, items, n, u, owner);
-    if (r == VAL_OK && u->kind == GLIB_UNIFORM_SLIDER)
+    if (r == VAL_OK && u->kind == UNIF_DECL_SLIDER)
         r = slider_value(c, u, owner);
     return r;
 }
 
 /* A bracketed value at *sp. An unclosed bracket ends the line: nothing
  * after it can be told apart from the bracket's contents. */
-static val_result read_bracket(cmdctx *c, char **sp, glib_uniform *u, const char *owner)
+static val_result read_bracket(cmdctx *c, char **sp, unif_decl *u, const char *owner)
 {
     char *s = *sp;
     char open = *s, close = closer_of(open);
@@ -1234,7 +1235,7 @@ static val_result read_bracket(cmdctx *c, char **sp, glib_uniform *u, const char
     return typed_bracket(c, open, items, n, u, owner);
 }
 
-static val_result read_value(cmdctx *c, char **sp, glib_uniform *u, const char *owner)
+static val_result read_value(cmdctx *c, char **sp, unif_decl *u, const char *owner)
 {
     char *s = skip_space(*sp);
     if (is_opener(*s)) {
@@ -1259,7 +1260,7 @@ static val_result read_value(cmdctx *c, char **sp, glib_uniform *u, const char *
         cerr(c, "%s: bad number '%.60s' (write e.g. 2, -0.5, .25 or 1e-3)", owner, s);
         return VAL_BAD;
     }
-    u->kind = GLIB_UNIFORM_SCALAR;
+    u->kind = UNIF_DECL_SCALAR;
     u->n = 1;
     return VAL_OK;
 }
@@ -1288,7 +1289,7 @@ static bool take_name(cmdctx *c, char **sp, char out[GLIB_NAME_MAX], const char 
     return true;
 }
 
-static void add_uniform(cmdctx *c, glib_cmd *cmd, const glib_uniform *u, int *cap)
+static void add_uniform(cmdctx *c, glib_cmd *cmd, const unif_decl *u, int *cap)
 {
     for (int i = 0; i < cmd->nuniforms; i++)
         if (strcmp(cmd->uniforms[i].name, u->name) == 0) {
@@ -1317,7 +1318,7 @@ static void take_pending_defines(parser *p, glib_cmd *cmd)
 
 /* Reads one `name value` pair of a Program line into u; false when the
  * rest of the line cannot be read. *ok says whether u is usable. */
-static bool program_uniform(cmdctx *c, glib_cmd *cmd, char **sp, glib_uniform *u, bool *ok)
+static bool program_uniform(cmdctx *c, glib_cmd *cmd, char **sp, unif_decl *u, bool *ok)
 {
     char *s = *sp;
     bool named = !is_opener(*s);
@@ -1357,7 +1358,7 @@ static bool h_program(cmdctx *c, glib_cmd *cmd)
     memcpy(cmd->name, s, (size_t)(e - s));
     int cap = 0;
     for (s = skip_space(e); *s; s = skip_space(s)) {
-        glib_uniform u = { .file = c->file, .line = c->line };
+        unif_decl u = { .file = c->file, .line = c->line };
         bool ok;
         bool go_on = program_uniform(c, cmd, &s, &u, &ok);
         if (ok)
@@ -1369,7 +1370,7 @@ static bool h_program(cmdctx *c, glib_cmd *cmd)
     return true;
 }
 
-static void add_pending(cmdctx *c, const glib_uniform *u)
+static void add_pending(cmdctx *c, const unif_decl *u)
 {
     parser *p = c->p;
     for (int i = 0; i < p->npending; i++)
@@ -1386,7 +1387,7 @@ static void add_pending(cmdctx *c, const glib_uniform *u)
  * shaders of the next Program are compiled with (a bare name is <true>). */
 static bool h_define(cmdctx *c, glib_cmd *cmd)
 {
-    glib_uniform u = { .file = c->file, .line = c->line, .kind = GLIB_UNIFORM_BOOL,
+    unif_decl u = { .file = c->file, .line = c->line, .kind = UNIF_DECL_BOOL,
                        .v = { 1 }, .n = 1 };
     char *s = skip_space(c->rest);
     if (!*s) {
@@ -1401,7 +1402,7 @@ static bool h_define(cmdctx *c, glib_cmd *cmd)
         snprintf(owner, sizeof owner, "Define %s", u.name);
         if (read_value(c, &s, &u, owner) != VAL_OK)
             return false;
-        if (u.kind == GLIB_UNIFORM_ARRAY || u.kind == GLIB_UNIFORM_COLOR) {
+        if (u.kind == UNIF_DECL_ARRAY || u.kind == UNIF_DECL_COLOR) {
             cerr(c, "Define %s takes <true>, <false>, a number or <min default max>, not a list",
                  u.name);
             return false;
@@ -2156,4 +2157,26 @@ bool glib_uniform_consumed(const glib_scene *scene, const char *name, bool *is_c
         }
     }
     return false;
+}
+
+unif_program_decl glib_program_decl(const glib_cmd *c) {
+    unif_program_decl d = {
+        .name = c->name, .file = c->file, .line = c->line,
+        .defines = c->defines, .ndefines = c->ndefines,
+        .uniforms = c->uniforms, .nuniforms = c->nuniforms,
+    };
+    return d;
+}
+
+bool glib_unif_set(unif_set *set, const glib_cmd *program, char *err, int errlen) {
+    if (err && errlen > 0) err[0] = '\0';
+    if (!set || !program) return false;
+    if (program->kind != GLIB_CMD_PROGRAM) {
+        if (err && errlen > 0)
+            snprintf(err, (size_t)errlen, "%s:%d: not a Program command", program->file ? program->file : "(glib)",
+                     program->line);
+        return false;
+    }
+    unif_program_decl d = glib_program_decl(program);
+    return unif_set_from_decls(set, &d, err, errlen);
 }

@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "exit_code.h"
 #include "glib.h"
 #include "image_io.h"
 #include "noise.h"
@@ -454,7 +454,7 @@ int cli_assets(int argc, char **argv)
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             fputs(usage_assets, stdout);
-            return CLI_OK;
+            return TARN_EXIT_OK;
         } else if ((strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) && next) {
             dir = next;
             i++;
@@ -464,7 +464,7 @@ int cli_assets(int argc, char **argv)
             if (*end || v < CAUSTIC_MIN_RES || v > CAUSTIC_MAX_RES) {
                 fprintf(stderr, "tarn assets: --size takes a whole number from %d to %d, not '%s'\n",
                         CAUSTIC_MIN_RES, CAUSTIC_MAX_RES, next);
-                return CLI_USAGE;
+                return TARN_EXIT_USAGE;
             }
             size = (int)v;
             i++;
@@ -472,19 +472,19 @@ int cli_assets(int argc, char **argv)
             scene = a;
         } else {
             fprintf(stderr, "tarn assets: unexpected argument '%s'\n%s", a, usage_assets);
-            return CLI_USAGE;
+            return TARN_EXIT_USAGE;
         }
     }
     ref_world *w = malloc(sizeof *w);
     if (!w || !world_for(scene, w)) {
         free(w);
-        return CLI_INPUT_ERROR;
+        return TARN_EXIT_INPUT;
     }
     char err[512];
     if (!make_dirs(dir, err, sizeof err)) {
         fprintf(stderr, "tarn assets: %s\n", err);
         free(w);
-        return CLI_INPUT_ERROR;
+        return TARN_EXIT_INPUT;
     }
     int r_terrain = size ? size : w->d.terrain_res;
     int r_sky = size ? size : 256, r_tile = size ? size : 512, r_caustic = size ? size : 256;
@@ -495,7 +495,7 @@ int cli_assets(int argc, char **argv)
     if (!buf) {
         fprintf(stderr, "tarn assets: out of memory\n");
         free(w);
-        return CLI_INPUT_ERROR;
+        return TARN_EXIT_INPUT;
     }
     assets_bake_albedo(w, r_terrain, buf);
     save(&o, "terrain_albedo.png", buf, r_terrain, true, 1.0);
@@ -528,5 +528,5 @@ int cli_assets(int argc, char **argv)
     free(rgb);
     free(buf);
     free(w);
-    return o.failed ? CLI_INPUT_ERROR : CLI_OK;
+    return o.failed ? TARN_EXIT_INPUT : TARN_EXIT_OK;
 }

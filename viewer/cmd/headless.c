@@ -87,7 +87,7 @@ static int cmp_double(const void *a, const void *b) {
 int cli_render(const cli_render_desc *d) {
     char err[1024];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return CLI_NO_GL; }
+    if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     render_desc rd = { .pack = d->pack };
     render *r = render_create(&rd);
     bool ok = render_load(r, d->glib);
@@ -101,20 +101,20 @@ int cli_render(const cli_render_desc *d) {
         fprintf(stderr, "tarn: cannot create a %dx%d framebuffer\n", w, h);
         render_destroy(r);
         gl_ctx_destroy(ctx);
-        return CLI_NO_GL;
+        return TARN_EXIT_NO_GL;
     }
     int frames = d->frames > 0 ? d->frames : 1;
     double *ms = calloc((size_t)frames, sizeof *ms);
     double *wall = calloc((size_t)frames, sizeof *wall);
     bool per_frame = strstr(d->out, "%d") != NULL;
-    int rc = ok ? CLI_OK : CLI_INPUT_ERROR;
+    int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
     for (int f = 0; f < frames; f++) {
         double t0 = now_ms();
         render_frame(r, d->time_s + f / 60.0, t.fbo, w, h, NULL);
         glFinish();   /* wall time of the whole frame, including deferred rasterisation */
         if (gl_ctx_lost(ctx, err, sizeof err)) {   /* a GPU reset: nothing drawn can be trusted */
             fprintf(stderr, "tarn: %s\n", err);
-            rc = CLI_NO_GL;
+            rc = TARN_EXIT_NO_GL;
             break;
         }
         if (wall) wall[f] = now_ms() - t0;
@@ -124,14 +124,14 @@ int cli_render(const cli_render_desc *d) {
             frame_path(path, sizeof path, d->out, per_frame ? f : -1);
             if (!write_target(&t, path, linear_scene, err, sizeof err)) {
                 fprintf(stderr, "tarn: %s\n", err);
-                rc = CLI_INPUT_ERROR;
+                rc = TARN_EXIT_INPUT;
                 break;
             }
             if (!d->quiet && (!per_frame || f == frames - 1))
                 printf("tarn: wrote %s (%dx%d, t=%.3f s)\n", path, w, h, d->time_s + f / 60.0);
         }
     }
-    if (ms && wall && !d->quiet && rc != CLI_NO_GL) {
+    if (ms && wall && !d->quiet && rc != TARN_EXIT_NO_GL) {
         qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
         qsort(wall, (size_t)frames, sizeof *wall, cmp_double);
         printf("tarn: %d frame(s) at %dx%d: median GPU time %.3f ms, wall %.3f ms, on %s\n", frames, w, h,

@@ -6,7 +6,7 @@
 
 #include <stdbool.h>
 
-enum { CLI_OK = 0, CLI_INPUT_ERROR = 1, CLI_USAGE = 2, CLI_NO_GL = 3 };
+#include "exit_code.h"
 
 typedef struct cli_render_desc {
     const char *glib;
@@ -20,16 +20,7 @@ typedef struct cli_render_desc {
     int nsets;
 } cli_render_desc;
 
-typedef struct cli_view_desc {
-    const char *glib;
-    int width, height;          /* 0: the glib's WindowSize */
-    const char *script;         /* a file of scripted actions (tests, demos) */
-    double time_s;
-    const char *pack;           /* replaces the scene's `Pack` */
-} cli_view_desc;
-
 int cli_render(const cli_render_desc *d);
-int cli_view(const cli_view_desc *d);
 
 /* The scene tarn opens with no arguments. */
 const char *cli_default_scene(void);

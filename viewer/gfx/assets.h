@@ -8,7 +8,7 @@
  * buffer goes to glTexImage2D as it is. Texel (i, j) samples its centre,
  * s = (i + 0.5) / res, t = (j + 0.5) / res.
  *
- * The files (written by cli_assets with img_write, viewer/image_io.h):
+ * The files (written by cli_assets with img_write, viewer/gfx/image_io.h):
  *   terrain_albedo.png   ref_terrain_albedo over the world square, terrain_res
  *   terrain_normal.png   the terrain's exact normal, terrain_res
  *   sky_{px,nx,py,ny,pz,nz}.exr / .png   the sky cube map, 256 a face
@@ -92,8 +92,8 @@ bool assets_bake_caustics(int res, float *out, char *err, int errlen);
  * file above into DIR (default assets/ under the current directory, made
  * if missing) for SCENE's world (default: the lake, ref_world_desc_lake);
  * --size N bakes every texture at N x N (tests, quick looks). Returns
- * CLI_OK, CLI_INPUT_ERROR (the scene has errors, or a file cannot be
- * written) or CLI_USAGE. */
+ * TARN_EXIT_OK, TARN_EXIT_INPUT (the scene has errors, or a file cannot be
+ * written) or TARN_EXIT_USAGE. */
 int cli_assets(int argc, char **argv);
 
 #endif

@@ -13,7 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "exit_code.h"
 #include "gl_ctx.h"
 #include "image_io.h"
 #include "packset.h"
@@ -353,7 +353,7 @@ static int bad_usage(const char *fmt, ...) {
     vfprintf(stderr, fmt, ap);
     va_end(ap);
     fprintf(stderr, "\n\n%s", usage);
-    return CLI_USAGE;
+    return TARN_EXIT_USAGE;
 }
 
 static int parse_args(bench *b, int argc, char **argv) {
@@ -1437,7 +1437,7 @@ static void bounds_md(bench *b, sbuf *o) {
     packset_bounds pb[PACKSET_MAX];
     for (int p = 0; p < np; p++) packset_bounds_load(b->root, packs[p], &pb[p], NULL, 0);
     sb_printf(o, "RMSE (linear RGB) that tests/test_hard_cases.c allows, 96x54 at t = 1 s: from each pack's "
-                 "bounds.txt, else (*in italics*) the built-in table of viewer/packset.c. Written by `tarn bench "
+                 "bounds.txt, else (*in italics*) the built-in table of viewer/scene/packset.c. Written by `tarn bench "
                  "--docs` from the files as they were then.\n\n| case |");
     for (int p = 0; p < np; p++) sb_printf(o, " %s |", packs[p]);
     sb_printf(o, "\n|---|");
@@ -1518,12 +1518,12 @@ static bool write_docs(bench *b, const char *path) {
 
 int cli_bench(int argc, char **argv) {
     bench *b = calloc(1, sizeof *b);
-    if (!b) return CLI_INPUT_ERROR;
+    if (!b) return TARN_EXIT_INPUT;
     snprintf(b->root, sizeof b->root, "%s", TARN_SOURCE_DIR);
     int rc = parse_args(b, argc, argv);
     if (rc != 0) {
         free(b);
-        return rc < 0 ? CLI_OK : rc;
+        return rc < 0 ? TARN_EXIT_OK : rc;
     }
     double t_start = now_s();
     char err[4096] = "";
@@ -1535,7 +1535,7 @@ int cli_bench(int argc, char **argv) {
         fprintf(stderr, "tarn bench: cannot create %s: %s\n", b->o.out, strerror(errno));
         for (int p = 0; p < b->o.npacks; p++) packset_bench_free(&b->pb[p]);
         free(b);
-        return CLI_INPUT_ERROR;
+        return TARN_EXIT_INPUT;
     }
     char sdir[PATH_LEN + 16];
     snprintf(sdir, sizeof sdir, "%s/scenes", b->o.out);
@@ -1545,7 +1545,7 @@ int cli_bench(int argc, char **argv) {
         fprintf(stderr, "tarn bench: %s\n", err);
         for (int p = 0; p < b->o.npacks; p++) packset_bench_free(&b->pb[p]);
         free(b);
-        return CLI_NO_GL;
+        return TARN_EXIT_NO_GL;
     }
     machine(b);
     b->pr = (progress){ .start = t_start, .tty = isatty(STDERR_FILENO), .quiet = b->o.quiet };
@@ -1605,7 +1605,7 @@ int cli_bench(int argc, char **argv) {
                b->nrows, b->seconds, b->o.out);
     }
     free(md.s);
-    rc = b->failures ? CLI_INPUT_ERROR : CLI_OK;
+    rc = b->failures ? TARN_EXIT_INPUT : TARN_EXIT_OK;
     for (int i = 0; i < b->nrefs; i++) refcache_free(&b->refs[i].im);
     free(b->refs);
     free(b->rows);

@@ -16,7 +16,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "cli.h"
+#include "exit_code.h"
 #include "gl_ctx.h"
 #include "panel.h"
 #include "ref_metrics.h"
@@ -610,9 +610,9 @@ static int run(cview *v, const cli_compare_view_desc *d) {
     if (d->script) {
         char err[512];
         script = view_script_load(d->script, err, sizeof err);
-        if (!script) { fprintf(stderr, "tarn: %s\n", err); return CLI_USAGE; }
+        if (!script) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_USAGE; }
     }
-    int rc = CLI_OK;
+    int rc = TARN_EXIT_OK;
     while (!glfwWindowShouldClose(v->win)) {
         glfwPollEvents();
         frame(v, script != NULL);
@@ -629,7 +629,7 @@ static int run(cview *v, const cli_compare_view_desc *d) {
             }
             if (st == VIEW_SCRIPT_RELOAD) reload_all(v);
             if (st == VIEW_SCRIPT_REBUILD) render_rebuild_programs(v->packs[v->script_pack].r);
-            if (st == VIEW_SCRIPT_FAILED) rc = CLI_INPUT_ERROR;
+            if (st == VIEW_SCRIPT_FAILED) rc = TARN_EXIT_INPUT;
             if (st == VIEW_SCRIPT_DONE || st == VIEW_SCRIPT_FAILED) glfwSetWindowShouldClose(v->win, 1);
         }
         glfwSwapBuffers(v->win);
@@ -641,10 +641,10 @@ static int run(cview *v, const cli_compare_view_desc *d) {
 int cli_compare_view(const cli_compare_view_desc *d) {
     if (d->npacks < 2 || d->npacks > COMPARE_VIEW_MAX_PACKS) {
         fprintf(stderr, "tarn compare-view: give 2 to 4 packs (--packs a,b)\n");
-        return CLI_USAGE;
+        return TARN_EXIT_USAGE;
     }
     cview *v = calloc(1, sizeof *v);
-    if (!v) return CLI_INPUT_ERROR;
+    if (!v) return TARN_EXIT_INPUT;
     v->scene = d->glib;
     v->n = d->npacks;
     v->wipe = 0.5f;
@@ -657,7 +657,7 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     if (!v->ctx) {
         fprintf(stderr, "tarn compare-view: %s\n", err);
         free(v);
-        return CLI_NO_GL;
+        return TARN_EXIT_NO_GL;
     }
     v->win = gl_ctx_window(v->ctx);
     glfwSetWindowUserPointer(v->win, v);
@@ -693,7 +693,7 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     v->t = d->time_s;
     v->last_wall = glfwGetTime();
     int rc = run(v, d);
-    if (rc == CLI_OK && !ok && d->script) rc = CLI_INPUT_ERROR;
+    if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
     watch_destroy(v->watch);
     panel_destroy(v->panel);
     for (int i = 0; i < v->n; i++) {

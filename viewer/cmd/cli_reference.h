@@ -6,8 +6,8 @@
 
 /* argv holds the arguments after the command word (argv[0] is the first
  * option or the scene, as main.c passes argc - 2, argv + 2). Returns the
- * exit code: CLI_OK, CLI_INPUT_ERROR (scene errors, render or write
- * failure), CLI_USAGE. */
+ * exit code: TARN_EXIT_OK, TARN_EXIT_INPUT (scene errors, render or write
+ * failure), TARN_EXIT_USAGE. */
 int cli_reference(int argc, char **argv);
 
 /* The usage text (`tarn reference --help`, `tarn help reference`). */

@@ -10,7 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cli.h"
+#include "exit_code.h"
 #include "ref_metrics.h"
 #include "ref_render.h"
 
@@ -375,7 +375,7 @@ static int usage_error(FILE *err, const char *fmt, ...) {
     vfprintf(err, fmt, ap);
     va_end(ap);
     fprintf(err, "\n\n%s", usage_text);
-    return CLI_USAGE;
+    return TARN_EXIT_USAGE;
 }
 
 /* Writes field's heat map to path; returns the scale (NaN on failure). */
@@ -557,7 +557,7 @@ int compare_run(int argc, char **argv, FILE *out, FILE *err) {
     compare_opts o = {0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage_text, out); return CLI_OK; }
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage_text, out); return TARN_EXIT_OK; }
         if (strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) {
             if (!next) return usage_error(err, "%s wants a file name, e.g. heat.png", a);
             o.out = next; i++;
@@ -593,9 +593,9 @@ int compare_run(int argc, char **argv, FILE *out, FILE *err) {
         fprintf(err, "tarn compare: cannot read A: %s\n", msg);
     if (!(ok_b = compare_load(o.b, !o.linear, &ib, &dec_b, msg, sizeof msg)))
         fprintf(err, "tarn compare: cannot read B: %s\n", msg);
-    if (!ok_a || !ok_b) { img_free(&ia); img_free(&ib); return CLI_INPUT_ERROR; }
+    if (!ok_a || !ok_b) { img_free(&ia); img_free(&ib); return TARN_EXIT_INPUT; }
 
-    int rc = CLI_INPUT_ERROR;
+    int rc = TARN_EXIT_INPUT;
     unsigned char *mask = NULL;
     float *field = NULL;
     kvlist l = {0};
@@ -710,7 +710,7 @@ int compare_run(int argc, char **argv, FILE *out, FILE *err) {
         if (!f) all_ok = false;
         else { write_csv(f, &l); if (!close_out(f, o.csv, out, err)) all_ok = false; }
     }
-    rc = all_ok ? CLI_OK : CLI_INPUT_ERROR;
+    rc = all_ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
 done:
     kvlist_free(&l);
     free(field);

@@ -191,7 +191,7 @@ static bool load_image(const char *path, img *im, const glib_cmd *c, char **log)
     return false;
 }
 
-/* `Texture2D unit @NAME`: a texture tarn generates (viewer/assets.h). */
+/* `Texture2D unit @NAME`: a texture tarn generates (viewer/gfx/assets.h). */
 static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
     const char *name = c->path + 1;
     int res = strcmp(name, "caustics") == 0 ? 128 : 256;   /* caustics: photon tracing, ~1 s */

@@ -1,0 +1,18 @@
+/* view: `tarn view SCENE.glib`, the live window: the scene with hot reload,
+ * the generated slider panel, orbit camera, screenshots and scripts. */
+#ifndef TARN_VIEW_H
+#define TARN_VIEW_H
+
+typedef struct view_desc {
+    const char *glib;
+    int width, height;          /* 0: the glib's WindowSize */
+    const char *script;         /* a file of scripted actions (tests, demos) */
+    double time_s;
+    const char *pack;           /* replaces the scene's `Pack` */
+} view_desc;
+
+/* Runs the window until it is closed (or the script quits). Returns a
+ * tarn_exit_code. */
+int view_run(const view_desc *d);
+
+#endif
