@@ -1,0 +1,98 @@
+#include "diag.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mem.h"
+
+const char *diag_severity_name(diag_severity s) {
+    return s == DIAG_ERROR ? "error" : s == DIAG_WARNING ? "warning" : "note";
+}
+
+static diag *push(diag_list *l, diag_severity sev, const char *file, int line) {
+    if (l->n == l->cap) {
+        l->cap = l->cap ? l->cap * 2 : 8;
+        l->d = mem_realloc(l->d, (size_t)l->cap * sizeof *l->d);
+    }
+    diag *d = &l->d[l->n++];
+    memset(d, 0, sizeof *d);
+    d->severity = sev;
+    d->line = line;
+    snprintf(d->file, sizeof d->file, "%s", file ? file : "");
+    if (sev == DIAG_ERROR) l->nerrors++;
+    if (sev == DIAG_WARNING) l->nwarnings++;
+    return d;
+}
+
+void diag_add(diag_list *l, diag_severity sev, const char *file, int line, const char *fmt, ...) {
+    diag *d = push(l, sev, file, line);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d->text, sizeof d->text, fmt, ap);
+    va_end(ap);
+}
+
+/* `file:line: severity: text`, the shape tarn and most compilers print. */
+static bool parse_line(const char *s, size_t n, diag_severity *sev, char *file, size_t filelen, int *line,
+                       const char **text) {
+    static const char *const names[] = { "note", "warning", "error" };
+    for (int k = 0; k < 3; k++) {
+        char pat[16];
+        snprintf(pat, sizeof pat, ": %s: ", names[k]);
+        const char *m = NULL;
+        for (const char *p = s; p + strlen(pat) <= s + n; p++)
+            if (strncmp(p, pat, strlen(pat)) == 0) { m = p; break; }
+        if (!m) continue;
+        const char *colon = m - 1;
+        while (colon > s && *colon >= '0' && *colon <= '9') colon--;
+        if (colon == s || *colon != ':' || colon == m - 1) continue;
+        snprintf(file, filelen, "%.*s", (int)(colon - s), s);
+        *line = atoi(colon + 1);
+        *sev = (diag_severity)k;
+        *text = m + strlen(pat);
+        return true;
+    }
+    return false;
+}
+
+void diag_add_text(diag_list *l, diag_severity sev, const char *text) {
+    for (const char *s = text; s && *s;) {
+        const char *e = strchr(s, '\n');
+        size_t n = e ? (size_t)(e - s) : strlen(s);
+        if (n > 0) {
+            char file[DIAG_FILE_MAX];
+            int line = 0;
+            diag_severity got;
+            const char *t;
+            if (parse_line(s, n, &got, file, sizeof file, &line, &t)) {
+                diag *d = push(l, got, file, line);
+                snprintf(d->text, sizeof d->text, "%.*s", (int)(s + n - t), t);
+            } else {
+                diag *d = push(l, sev, NULL, 0);
+                snprintf(d->text, sizeof d->text, "%.*s", (int)n, s);
+            }
+        }
+        s = e ? e + 1 : s + n;
+    }
+}
+
+void diag_list_free(diag_list *l) {
+    free(l->d);
+    memset(l, 0, sizeof *l);
+}
+
+void diag_format(const diag *d, char *out, size_t outlen) {
+    if (d->file[0])
+        snprintf(out, outlen, "%s:%d: %s: %s", d->file, d->line, diag_severity_name(d->severity), d->text);
+    else
+        snprintf(out, outlen, "tarn: %s: %s", diag_severity_name(d->severity), d->text);
+}
+
+void diag_print(const diag_list *l, FILE *f) {
+    char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
+    for (int i = 0; i < l->n; i++) {
+        diag_format(&l->d[i], line, sizeof line);
+        fprintf(f, "%s\n", line);
+    }
+}

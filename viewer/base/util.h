@@ -1,0 +1,30 @@
+/* util: the small things every layer needs once: a monotonic clock, qsort
+ * comparators and the median, option parsing, and where tarn's data is. */
+#ifndef TARN_UTIL_H
+#define TARN_UTIL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* Seconds on a monotonic clock (only differences mean anything). */
+double clock_now_s(void);
+
+/* qsort comparators: doubles ascending, `char *` elements by strcmp. */
+int cmp_double(const void *a, const void *b);
+int cmp_str_ptr(const void *a, const void *b);
+
+/* The median of v[0..n-1] (sorts v); 0 when n is 0. */
+double median_double(double *v, size_t n);
+
+/* Command-line values. WxH with 1 <= W, H <= 16384; a whole string as a
+ * double; -h or --help. */
+bool opt_size(const char *s, int *w, int *h);
+bool opt_double(const char *s, double *out);
+bool opt_is_help(const char *a);
+
+/* Where tarn's packs/ and scenes/ are: $TARN_ROOT when set, else the
+ * installed data folder when tarn runs from an install, else the source
+ * tree it was built from. One place decides. */
+const char *tarn_root(void);
+
+#endif
