@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "util.h"
 #include "cli.h"
 #include "gl_ctx.h"
 #include "image_io.h"
@@ -14,11 +15,11 @@
 #include "ref_metrics.h"
 #include "render.h"
 
-#ifndef TARN_SOURCE_DIR
-#define TARN_SOURCE_DIR "."
-#endif
-
-const char *cli_default_scene(void) { return TARN_SOURCE_DIR "/scenes/pond.glib"; }
+const char *cli_default_scene(void) {
+    static char path[4096];
+    snprintf(path, sizeof path, "%s/scenes/pond.glib", tarn_root());
+    return path;
+}
 
 static bool wants_float(const char *path) {
     const char *dot = strrchr(path, '.');
@@ -77,11 +78,6 @@ static bool apply_sets(render *r, const cli_render_desc *d) {
     if (err[0]) fprintf(stderr, "tarn: --set: %s\n", err);
     packset_bench_free(&b);
     return ok;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 int cli_render(const cli_render_desc *d) {

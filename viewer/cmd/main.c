@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util.h"
 #include "assets.h"
 #include "bench.h"
 #include "cli.h"
@@ -12,10 +13,6 @@
 #include "view.h"
 #include "gl_ctx.h"
 #include "validate.h"
-
-#ifndef TARN_SOURCE_DIR
-#define TARN_SOURCE_DIR "."
-#endif
 
 static const char *usage_main =
     "usage: tarn [COMMAND] [ARGS]\n"
@@ -201,7 +198,7 @@ static int main_compare_view(int argc, char **argv) {
 static int main_validate(int argc, char **argv) {
     for (int i = 0; i < argc; i++)
         if (is_help(argv[i])) { fputs(usage_validate, stdout); return TARN_EXIT_OK; }
-    return validate_run((const char *const *)argv, argc, TARN_SOURCE_DIR, stdout);
+    return validate_run((const char *const *)argv, argc, tarn_root(), stdout);
 }
 
 /* No arguments: the default scene, in a window when there is a display. */

@@ -1,3 +1,4 @@
+#include "util.h"
 #include "render.h"
 
 #include <GL/gl.h>
@@ -15,10 +16,6 @@
 #include "render_res.h"
 #include "render_world.h"
 #include "scene.h"
-
-#ifndef TARN_SOURCE_DIR
-#define TARN_SOURCE_DIR "."
-#endif
 
 #define MATRIX_STACK_MAX 30   /* GL guarantees 32 modelview entries */
 
@@ -70,7 +67,7 @@ struct render {
 render *render_create(const render_desc *desc) {
     render *r = calloc(1, sizeof *r);
     if (!r) return NULL;
-    snprintf(r->root, sizeof r->root, "%s", desc && desc->repo_root ? desc->repo_root : TARN_SOURCE_DIR);
+    snprintf(r->root, sizeof r->root, "%s", desc && desc->repo_root ? desc->repo_root : tarn_root());
     snprintf(r->common_dir, sizeof r->common_dir, "%s/packs/common", r->root);
     r->include_dirs[0] = r->common_dir;
     snprintf(r->packs_dir, sizeof r->packs_dir, "%s/packs", r->root);

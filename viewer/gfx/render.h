@@ -16,7 +16,7 @@
 typedef struct render render;
 
 typedef struct render_desc {
-    const char *repo_root;      /* 0: TARN_SOURCE_DIR; packs/common is an include dir */
+    const char *repo_root;      /* 0: tarn_root(); packs/common is an include dir */
     const char *pack;           /* 0: the scene's own `Pack`; else this pack instead */
 } render_desc;
 

@@ -173,7 +173,7 @@ glib_scene *glib_load(const char *path);
 
 /* Options of glib_load_opts (zero or NULL fields: off). */
 typedef struct glib_options {
-    /* Where packs live (e.g. TARN_SOURCE_DIR "/packs"). When set, a
+    /* Where packs live (e.g. tarn_root() + "/packs"). When set, a
      * `Pack name` command reads <packs_dir>/<name>/pack.glib in place, like
      * Include (its diagnostics name the pack's file and lines); a pack that
      * is not there is an error at the Pack line that lists the packs there

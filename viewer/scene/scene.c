@@ -8,6 +8,7 @@
  * and absurd ones are repaired, each with a `file:line: warning:` message,
  * so one bad number never loses the scene.
  */
+#include "util.h"
 #include "scene.h"
 
 #include <math.h>
@@ -402,7 +403,9 @@ static void parser_errors(const glib_scene *g, char *err, int errlen)
 bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,
                 scene_camera *cam, bool *has_world, char *err, int errlen)
 {
-    glib_options opt = { .packs_dir = TARN_SOURCE_DIR "/packs", .pack_override = pack_override };
+    char packs[4096];
+    snprintf(packs, sizeof packs, "%s/packs", tarn_root());
+    glib_options opt = { .packs_dir = packs, .pack_override = pack_override };
     glib_scene *g = glib_load_opts(path, &opt);
     bool ok;
     if (g->nerrors > 0) {

@@ -1,4 +1,5 @@
 /* bench: `tarn bench`, speed against error (see bench.h, docs/benchmark.md). */
+#include "util.h"
 #include "bench.h"
 
 #include <GL/gl.h>
@@ -21,10 +22,6 @@
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
-
-#ifndef TARN_SOURCE_DIR
-#define TARN_SOURCE_DIR "."
-#endif
 
 #define MAX_SCENES 16
 #define MAX_TIMES 16
@@ -161,22 +158,8 @@ typedef struct bench {
 
 /* ---- small helpers ---- */
 
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-    if (n <= 0) return NAN;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+/* the median of v (NAN when empty: "not measured") */
+static double median(double *v, int n) { return n <= 0 ? NAN : median_double(v, (size_t)n); }
 
 /* snprintf for paths: a path too long for its buffer is cut (and then
  * not found), never overflowed. */
@@ -252,7 +235,7 @@ static void fmt_dur(double s, char *buf, size_t n) {
 
 static void progress_draw(progress *p, bool force) {
     if (p->quiet) return;
-    double t = now_s();
+    double t = clock_now_s();
     if (!force && t - p->last_draw < 0.2) return;
     p->last_draw = t;
     double f = p->total > 0 ? p->done / p->total : 0;
@@ -435,7 +418,11 @@ static int parse_args(bench *b, int argc, char **argv) {
         else if (o->nscenes < MAX_SCENES) o->scenes[o->nscenes++] = a;
         else return bad_usage("at most %d scenes", MAX_SCENES);
     }
-    if (!o->nscenes) o->scenes[o->nscenes++] = TARN_SOURCE_DIR "/scenes/lake.glib";
+    if (!o->nscenes) {
+        static char lake[4096];
+        snprintf(lake, sizeof lake, "%s/scenes/lake.glib", tarn_root());
+        o->scenes[o->nscenes++] = lake;
+    }
     for (int s = 0; s < o->nscenes; s++) {
         char alt[PATH_LEN];
         const char *p = o->scenes[s];
@@ -630,28 +617,28 @@ static void pass_collect(pass_samples *ps, render *r, int max) {
 static timing time_frames(bench *b, render *r, const render_target *tg, double t, row *rw) {
     timing out = { NAN, NAN, NAN, 0 };
     for (int i = 0; i < b->o.warmup; i++) {
-        double t0 = now_s();
+        double t0 = clock_now_s();
         render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
         glFinish();
-        if (i == 0) out.first_wall_ms = (now_s() - t0) * 1e3;
+        if (i == 0) out.first_wall_ms = (clock_now_s() - t0) * 1e3;
         render_gpu_ms(r, true);
     }
     int max = b->o.frames;
     double *gpu = calloc((size_t)max, sizeof *gpu), *wall = calloc((size_t)max, sizeof *wall);
     if (!gpu || !wall) { free(gpu); free(wall); return out; }
-    double start = now_s();
+    double start = clock_now_s();
     int n = 0;
     pass_samples ps;
     memset(&ps, 0, sizeof ps);
     while (n < max) {
-        double t0 = now_s();
+        double t0 = clock_now_s();
         render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
         glFinish();   /* the wall time of the whole frame, deferred rasterisation included */
-        wall[n] = (now_s() - t0) * 1e3;
+        wall[n] = (clock_now_s() - t0) * 1e3;
         gpu[n] = render_gpu_ms(r, true);
         if (rw) pass_collect(&ps, r, max);
         n++;
-        if (n >= 3 && now_s() - start > b->o.frame_budget) break;
+        if (n >= 3 && clock_now_s() - start > b->o.frame_budget) break;
     }
     out.frames = n;
     out.wall_ms = median(wall, n);
@@ -1415,7 +1402,6 @@ static char *replace_section(const char *text, const char *begin, const char *en
     return o.s;
 }
 
-static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 /* The hard-case bounds of every pack (bounds.txt, else the built-in table),
  * a row per scenes/hard case, with the reasons where a pack has none. */
@@ -1431,7 +1417,7 @@ static void bounds_md(bench *b, sbuf *o) {
         if (len > 5 && strcmp(e->d_name + len - 5, ".glib") == 0) cases[nc++] = strndup(e->d_name, len - 5);
     }
     if (d) closedir(d);
-    qsort(cases, (size_t)nc, sizeof *cases, cmp_str);
+    qsort(cases, (size_t)nc, sizeof *cases, cmp_str_ptr);
     packset_name packs[PACKSET_MAX];
     int np = packset_list(b->root, packs, PACKSET_MAX);
     packset_bounds pb[PACKSET_MAX];
@@ -1519,13 +1505,13 @@ static bool write_docs(bench *b, const char *path) {
 int cli_bench(int argc, char **argv) {
     bench *b = calloc(1, sizeof *b);
     if (!b) return TARN_EXIT_INPUT;
-    snprintf(b->root, sizeof b->root, "%s", TARN_SOURCE_DIR);
+    snprintf(b->root, sizeof b->root, "%s", tarn_root());
     int rc = parse_args(b, argc, argv);
     if (rc != 0) {
         free(b);
         return rc < 0 ? TARN_EXIT_OK : rc;
     }
-    double t_start = now_s();
+    double t_start = clock_now_s();
     char err[4096] = "";
     for (int p = 0; p < b->o.npacks; p++) {
         err[0] = '\0';
@@ -1568,7 +1554,7 @@ int cli_bench(int argc, char **argv) {
     for (int s = 0; s < b->o.nscenes; s++)
         for (int p = 0; p < b->o.npacks; p++)
             for (int k = 0; k < b->pb[p].n; k++) measure_setting(b, s, p, k, per_time);
-    b->seconds = now_s() - t_start;
+    b->seconds = clock_now_s() - t_start;
     progress_set(&b->pr, b->pr.total, true, "done");
     if (b->pr.tty && !b->o.quiet) fputc('\n', stderr);
 
