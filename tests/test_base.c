@@ -1,0 +1,148 @@
+/* test_base: the base layer (viewer/base): the string builder and message
+ * buffers, whole-file reads and writes, mkdir -p, the comparators and
+ * median, option values, tarn_root and the diagnostics list. */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "diag.h"
+#include "file.h"
+#include "strbuf.h"
+#include "support.h"
+#include "util.h"
+
+static void test_strbuf_grows_and_formats(void) {
+    strbuf b = {0};
+    for (int i = 0; i < 1000; i++) strbuf_printf(&b, "%d,", i % 10);
+    CHECK(b.len == 2000);
+    CHECK(strncmp(b.s, "0,1,2,", 6) == 0);
+    strbuf_put(&b, "xyz", 2);
+    CHECK(b.len == 2002 && strcmp(b.s + 2000, "xy") == 0);
+    char *s = strbuf_take(&b);
+    CHECK(b.s == NULL && b.len == 0);
+    CHECK(strlen(s) == 2002);
+    free(s);
+    s = strbuf_take(&b);                   /* empty: "" not NULL */
+    CHECK(s && s[0] == '\0');
+    free(s);
+}
+
+static void test_str_appendf(void) {
+    char *log = NULL;
+    str_appendf(&log, "a%d\n", 1);
+    str_appendf(&log, "%s", "b2\n");
+    CHECK(log && strcmp(log, "a1\nb2\n") == 0);
+    free(log);
+}
+
+static void test_messages_never_overrun(void) {
+    char err[8];
+    msg_set(err, sizeof err, "0123456789");
+    CHECK(strcmp(err, "0123456") == 0);
+    msg_set(err, sizeof err, "ab");
+    msg_add(err, sizeof err, "cd");
+    CHECK(strcmp(err, "abcd\n") == 0);     /* a line each */
+    msg_add(err, sizeof err, "efghij");
+    CHECK(strlen(err) == 7);
+    msg_set(NULL, 0, "nothing");           /* no buffer: fine */
+    msg_add(err, 0, "nothing");
+}
+
+static void test_files(void) {
+    char dir[512], sub[1200], path[1300], err[512];
+    if (!scratch_create("base")) { CHECK(false); return; }
+    snprintf(dir, sizeof dir, "%s", scratch_dir);
+    snprintf(sub, sizeof sub, "%s/a/b/c", dir);
+    CHECK_MSG(file_mkdir_p(sub, err, sizeof err), "%s", err);
+    CHECK(file_is_dir(sub));
+    CHECK(file_mkdir_p(sub, err, sizeof err));      /* again: fine */
+    snprintf(path, sizeof path, "%s/x.txt", sub);
+    CHECK_MSG(file_write(path, "hello\0there", 11, err, sizeof err), "%s", err);
+    size_t n = 0;
+    char *s = file_read(path, 0, &n, err, sizeof err);
+    CHECK(s && n == 11 && memcmp(s, "hello\0there", 11) == 0 && s[11] == '\0');
+    free(s);
+    CHECK(file_read(path, 10, &n, err, sizeof err) == NULL);   /* over the limit */
+    CHECK_STR_CONTAINS(err, "larger than 10 bytes");
+    CHECK(file_read(sub, 0, &n, err, sizeof err) == NULL);     /* a folder */
+    CHECK_STR_CONTAINS(err, "not a regular file");
+    snprintf(path, sizeof path, "%s/missing", dir);
+    CHECK(file_read(path, 0, &n, err, sizeof err) == NULL);
+    CHECK_STR_CONTAINS(err, "cannot open");
+    snprintf(path, sizeof path, "%s/a/b/c/x.txt/d", dir);      /* under a file */
+    CHECK(!file_mkdir_p(path, err, sizeof err));
+    char d[64];
+    file_dirname("a/b.glib", d, sizeof d);
+    CHECK(strcmp(d, "a") == 0);
+    file_dirname("b.glib", d, sizeof d);
+    CHECK(strcmp(d, ".") == 0);
+    file_dirname("/b.glib", d, sizeof d);
+    CHECK(strcmp(d, "/") == 0);
+    scratch_remove();
+}
+
+static void test_median_and_sort(void) {
+    double v[] = { 5, 1, 4, 2, 3 };
+    CHECK(median_double(v, 5) == 3);
+    double w[] = { 4, 1, 3, 2 };
+    CHECK(median_double(w, 4) == 2.5);
+    CHECK(median_double(NULL, 0) == 0);
+    const char *s[] = { "pear", "apple", "fig" };
+    qsort(s, 3, sizeof *s, cmp_str_ptr);
+    CHECK(strcmp(s[0], "apple") == 0 && strcmp(s[2], "pear") == 0);
+}
+
+static void test_options(void) {
+    int w = 0, h = 0;
+    CHECK(opt_size("640x360", &w, &h) && w == 640 && h == 360);
+    CHECK(opt_size("8X4", &w, &h) && w == 8 && h == 4);
+    CHECK(!opt_size("640", &w, &h) && !opt_size("0x5", &w, &h) && !opt_size("20000x5", &w, &h));
+    CHECK(!opt_size(NULL, &w, &h));
+    double d;
+    CHECK(opt_double("2.5", &d) && d == 2.5);
+    CHECK(!opt_double("2.5s", &d) && !opt_double("", &d) && !opt_double(NULL, &d));
+    CHECK(opt_is_help("-h") && opt_is_help("--help") && !opt_is_help("help") && !opt_is_help(NULL));
+}
+
+static void test_root_follows_environment(void) {
+    const char *old = getenv("TARN_ROOT");
+    char keep[4096] = "";
+    if (old) snprintf(keep, sizeof keep, "%s", old);
+    setenv("TARN_ROOT", "/some/where", 1);
+    CHECK(strcmp(tarn_root(), "/some/where") == 0);
+    unsetenv("TARN_ROOT");
+    char packs[4200];
+    snprintf(packs, sizeof packs, "%s/packs", tarn_root());   /* this build's tree */
+    CHECK_MSG(file_is_dir(packs), "%s", packs);
+    if (keep[0]) setenv("TARN_ROOT", keep, 1);
+}
+
+static void test_diagnostics(void) {
+    diag_list l = {0};
+    diag_add(&l, DIAG_WARNING, "a.glib", 3, "unknown command '%s'", "Foo");
+    diag_add_text(&l, DIAG_ERROR, "water.frag:12: error: 'x' undeclared\nplain words\n\nb.glsl:1: warning: w\n");
+    CHECK(l.n == 4 && l.nerrors == 2 && l.nwarnings == 2);
+    CHECK(strcmp(l.d[1].file, "water.frag") == 0 && l.d[1].line == 12 && l.d[1].severity == DIAG_ERROR);
+    CHECK(strcmp(l.d[1].text, "'x' undeclared") == 0);
+    CHECK(l.d[2].file[0] == '\0' && l.d[2].severity == DIAG_ERROR && strcmp(l.d[2].text, "plain words") == 0);
+    char line[2048];
+    diag_format(&l.d[0], line, sizeof line);
+    CHECK(strcmp(line, "a.glib:3: warning: unknown command 'Foo'") == 0);
+    diag_format(&l.d[2], line, sizeof line);
+    CHECK(strcmp(line, "tarn: error: plain words") == 0);
+    diag_list_free(&l);
+    CHECK(l.n == 0 && l.d == NULL);
+}
+
+int main(void) {
+    RUN(test_strbuf_grows_and_formats);
+    RUN(test_str_appendf);
+    RUN(test_messages_never_overrun);
+    RUN(test_files);
+    RUN(test_median_and_sort);
+    RUN(test_options);
+    RUN(test_root_follows_environment);
+    RUN(test_diagnostics);
+    return check_summary();
+}
