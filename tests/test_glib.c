@@ -61,27 +61,27 @@ static void dump(const glib_scene *s)
     fprintf(stderr, "  diagnostics (%d):\n", s->ndiags);
     for (int i = 0; i < s->ndiags; i++)
         fprintf(stderr, "    %s:%d: %s: %s\n", s->diags[i].file, s->diags[i].line,
-                s->diags[i].severity == GLIB_ERROR ? "error" : "warning", s->diags[i].message);
+                s->diags[i].severity == DIAG_ERROR ? "error" : "warning", s->diags[i].text);
 }
 
 /* A diagnostic at exactly file:line with that severity whose message
  * contains msg; prints all of them when there is none. */
-static bool has_diag(const glib_scene *s, const char *file, int line, glib_severity sev,
+static bool has_diag(const glib_scene *s, const char *file, int line, diag_severity sev,
                      const char *msg)
 {
     for (int i = 0; i < s->ndiags; i++) {
-        const glib_diag *d = &s->diags[i];
-        if (d->line == line && d->severity == sev && d->file && strcmp(d->file, file) == 0 &&
-            strstr(d->message, msg))
+        const diag *d = &s->diags[i];
+        if (d->line == line && d->severity == sev && strcmp(d->file, file) == 0 &&
+            strstr(d->text, msg))
             return true;
     }
     fprintf(stderr, "  wanted %s:%d: %s: ...%s...\n", file, line,
-            sev == GLIB_ERROR ? "error" : "warning", msg);
+            sev == DIAG_ERROR ? "error" : "warning", msg);
     dump(s);
     return false;
 }
 
-static int count_sev(const glib_scene *s, glib_severity sev)
+static int count_sev(const glib_scene *s, diag_severity sev)
 {
     int n = 0;
     for (int i = 0; i < s->ndiags; i++)
@@ -152,7 +152,7 @@ static void test_basic_scene(void)
 static void test_header(void)
 {
     glib_scene *s = load("nohead.glib", "Sphere 1\n");
-    CHECK(has_diag(s, P("nohead.glib"), 1, GLIB_WARNING, "first line is not '##OpenGL GLIB'"));
+    CHECK(has_diag(s, P("nohead.glib"), 1, DIAG_WARNING, "first line is not '##OpenGL GLIB'"));
     CHECK(s->nerrors == 0 && s->ncmds == 1 && s->cmds[0].kind == GLIB_CMD_SPHERE);
     glib_free(s);
 
@@ -169,19 +169,19 @@ static void test_empty_file(void)
     for (int i = 0; i < 2; i++) {
         glib_scene *s = load("empty.glib", texts[i]);
         CHECK(s->ndiags == 1 && s->nerrors == 1 && s->ncmds == 0);
-        CHECK(has_diag(s, P("empty.glib"), 1, GLIB_ERROR,
+        CHECK(has_diag(s, P("empty.glib"), 1, DIAG_ERROR,
                        "empty file: expected '##OpenGL GLIB' and commands"));
         glib_free(s);
     }
     glib_scene *s = glib_parse(NULL, 0, NULL);
     CHECK(s && s->nerrors == 1 && s->nfiles == 1);
-    CHECK(has_diag(s, "<memory>", 1, GLIB_ERROR, "empty file"));
+    CHECK(has_diag(s, "<memory>", 1, DIAG_ERROR, "empty file"));
     glib_free(s);
 
     /* header and comments only: valid, but worth a word */
     s = load("onlyhead.glib", "##OpenGL GLIB\n# nothing yet\n");
     CHECK(s->nerrors == 0 && s->ncmds == 0);
-    CHECK(has_diag(s, P("onlyhead.glib"), 1, GLIB_WARNING, "no commands"));
+    CHECK(has_diag(s, P("onlyhead.glib"), 1, DIAG_WARNING, "no commands"));
     glib_free(s);
 }
 
@@ -189,12 +189,12 @@ static void test_cannot_open(void)
 {
     glib_scene *s = glib_load(P("nope.glib"));
     CHECK(s && s->ncmds == 0 && s->nerrors == 1 && s->ndiags == 1);
-    CHECK(has_diag(s, P("nope.glib"), 0, GLIB_ERROR, "No such file or directory"));
+    CHECK(has_diag(s, P("nope.glib"), 0, DIAG_ERROR, "No such file or directory"));
     CHECK(s->nfiles == 1 && strcmp(s->files[0], P("nope.glib")) == 0);
     glib_free(s);
 
     s = glib_load(root);        /* a directory */
-    CHECK(has_diag(s, root, 0, GLIB_ERROR, "it is a directory"));
+    CHECK(has_diag(s, root, 0, DIAG_ERROR, "it is a directory"));
     glib_free(s);
 
     s = glib_load(NULL);
@@ -221,7 +221,7 @@ static void test_comments(void)
         "Sphere 4\t//\ttabs\n");
     CHECK(s->ncmds == 6);
     CHECK(s->nerrors == 1);
-    CHECK(has_diag(s, P("c/comments.glib"), 7, GLIB_ERROR, "bad number '3#not' for r"));
+    CHECK(has_diag(s, P("c/comments.glib"), 7, DIAG_ERROR, "bad number '3#not' for r"));
     if (s->ncmds == 6) {
         CHECK(s->cmds[0].num[0] == 1 && s->cmds[0].line == 5);
         CHECK(s->cmds[1].num[0] == 2 && s->cmds[1].line == 6);
@@ -265,7 +265,7 @@ static void test_case_insensitive(void)
 
     /* arguments are not case-insensitive: foo.vert is not Foo.vert */
     s = load("ci/case2.glib", "##OpenGL GLIB\nVertex foo.vert\n");
-    CHECK(has_diag(s, P("ci/case2.glib"), 2, GLIB_ERROR, "cannot open"));
+    CHECK(has_diag(s, P("ci/case2.glib"), 2, DIAG_ERROR, "cannot open"));
     glib_free(s);
 }
 
@@ -296,8 +296,8 @@ static void test_continuation(void)
         CHECK(s->cmds[2].line == 9 && s->cmds[2].nuniforms == 1);
     }
     /* errors name the line the command starts on */
-    CHECK(has_diag(s, P("cont.glib"), 9, GLIB_ERROR, "uniform 'uB': bad number '1.2.3'"));
-    CHECK(has_diag(s, P("cont.glib"), 11, GLIB_ERROR, "Translate needs a z: Translate x y z"));
+    CHECK(has_diag(s, P("cont.glib"), 9, DIAG_ERROR, "uniform 'uB': bad number '1.2.3'"));
+    CHECK(has_diag(s, P("cont.glib"), 11, DIAG_ERROR, "Translate needs a z: Translate x y z"));
     glib_free(s);
 }
 
@@ -366,17 +366,17 @@ static void test_bad_numbers(void)
         "Scale 1e\n"
         "Program P uA <0 x 2> uB 1..2 uC {1 2 three} uD -\n");
     const char *f = P("badnum.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "Sphere: bad number '1.2.3' for r"));
-    CHECK(has_diag(s, f, 3, GLIB_ERROR, "Translate: bad number 'abc' for x"));
-    CHECK(has_diag(s, f, 4, GLIB_ERROR, "bad number 'nan'"));
-    CHECK(has_diag(s, f, 5, GLIB_ERROR, "bad number 'inf'"));
-    CHECK(has_diag(s, f, 6, GLIB_ERROR, "bad number '1e999'"));
-    CHECK(has_diag(s, f, 7, GLIB_ERROR, "bad number '0x10'"));
-    CHECK(has_diag(s, f, 8, GLIB_ERROR, "bad number '1e'"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "uniform 'uA': bad number 'x'"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "uniform 'uB': bad number '1..2'"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "uniform 'uC': bad number 'three'"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "uniform 'uD': bad number '-'"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Sphere: bad number '1.2.3' for r"));
+    CHECK(has_diag(s, f, 3, DIAG_ERROR, "Translate: bad number 'abc' for x"));
+    CHECK(has_diag(s, f, 4, DIAG_ERROR, "bad number 'nan'"));
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "bad number 'inf'"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "bad number '1e999'"));
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "bad number '0x10'"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "bad number '1e'"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uA': bad number 'x'"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uB': bad number '1..2'"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uC': bad number 'three'"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uD': bad number '-'"));
     CHECK(s->nerrors == 11);
     /* the bad commands are skipped; the Program stays, without its bad uniforms */
     CHECK(s->ncmds == 1 && s->cmds[0].kind == GLIB_CMD_PROGRAM && s->cmds[0].nuniforms == 0);
@@ -397,13 +397,13 @@ static void test_unclosed_brackets(void)
         "Program G uI <0 1 2 uJ <0 1 2>\n"
         "Sphere 1\n");
     const char *f = P("unclosed.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uA': unclosed '<': add '>'"));
-    CHECK(has_diag(s, f, 3, GLIB_ERROR, "uniform 'uC': unclosed '{': add '}'"));
-    CHECK(has_diag(s, f, 4, GLIB_ERROR, "uniform 'uD': unclosed '[': add ']'"));
-    CHECK(has_diag(s, f, 5, GLIB_ERROR, "uniform 'uE': '<' is not closed before '}'"));
-    CHECK(has_diag(s, f, 6, GLIB_ERROR, "uniform 'uG': unclosed '<'"));
-    CHECK(has_diag(s, f, 8, GLIB_ERROR, "'2>' is not a valid uniform name"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "uniform 'uI': '<' is not closed before '<'"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uA': unclosed '<': add '>'"));
+    CHECK(has_diag(s, f, 3, DIAG_ERROR, "uniform 'uC': unclosed '{': add '}'"));
+    CHECK(has_diag(s, f, 4, DIAG_ERROR, "uniform 'uD': unclosed '[': add ']'"));
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "uniform 'uE': '<' is not closed before '}'"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "uniform 'uG': unclosed '<'"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "'2>' is not a valid uniform name"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uI': '<' is not closed before '<'"));
     CHECK(s->nerrors == 7);
     CHECK(s->ncmds == 8);
     if (s->ncmds == 8) {
@@ -422,14 +422,14 @@ static void test_slider_checks(void)
         "Program P uA <3 1 0> uB <0 5 1> uC <0 -1 1> uD <0 1> uE <maybe> uF <> uG {1 2} "
         "uH [1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17] uI <0 0 0>\n");
     const char *f = P("slider.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uA': slider minimum 3 is greater than its maximum 0"));
-    CHECK(has_diag(s, f, 2, GLIB_WARNING, "uniform 'uB': default 5 is outside <0 .. 1>; using 1"));
-    CHECK(has_diag(s, f, 2, GLIB_WARNING, "uniform 'uC': default -1 is outside <0 .. 1>; using 0"));
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uD': <> needs 3 numbers"));
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uE': <> needs 3 numbers"));
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uF': <> needs 3 numbers <min default max> or <true>/<false>, got 0"));
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uG': {} needs 3 or 4 numbers"));
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "uniform 'uH': [] needs 1 to 16 numbers [a b c], got 17"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uA': slider minimum 3 is greater than its maximum 0"));
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "uniform 'uB': default 5 is outside <0 .. 1>; using 1"));
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "uniform 'uC': default -1 is outside <0 .. 1>; using 0"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uD': <> needs 3 numbers"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uE': <> needs 3 numbers"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uF': <> needs 3 numbers <min default max> or <true>/<false>, got 0"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uG': {} needs 3 or 4 numbers"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uH': [] needs 1 to 16 numbers [a b c], got 17"));
     CHECK(s->ncmds == 1);
     const unif_decl *u;
     CHECK((u = find_uniform(&s->cmds[0], "uB")) && u->v[1] == 1);
@@ -442,7 +442,7 @@ static void test_slider_checks(void)
 static void test_duplicate_uniform(void)
 {
     glib_scene *s = load("dup.glib", "##OpenGL GLIB\nProgram P uA 1 uB 2 uA <0 3 5>\n");
-    CHECK(has_diag(s, P("dup.glib"), 2, GLIB_WARNING, "Program P: uniform 'uA' is given twice; the later value wins"));
+    CHECK(has_diag(s, P("dup.glib"), 2, DIAG_WARNING, "Program P: uniform 'uA' is given twice; the later value wins"));
     CHECK(s->nerrors == 0 && s->ncmds == 1 && s->cmds[0].nuniforms == 2);
     const unif_decl *u = find_uniform(&s->cmds[0], "uA");
     CHECK(u && u->kind == UNIF_DECL_SLIDER && u->v[1] == 3);
@@ -464,19 +464,19 @@ static void test_arg_counts(void)
         "Ortho -1 1 -1\n"
         "Color 1 0\n");
     const char *f = P("args.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "Sphere needs a radius: Sphere r [slices stacks]"));
-    CHECK(has_diag(s, f, 3, GLIB_ERROR,
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Sphere needs a radius: Sphere r [slices stacks]"));
+    CHECK(has_diag(s, f, 3, DIAG_ERROR,
                    "LookAt needs 9 numbers, got 3: LookAt ex ey ez cx cy cz ux uy uz"));
-    CHECK(has_diag(s, f, 4, GLIB_WARNING,
+    CHECK(has_diag(s, f, 4, DIAG_WARNING,
                    "Sphere takes at most 3 arguments; ignoring '99' and what follows"));
-    CHECK(has_diag(s, f, 5, GLIB_ERROR, "Scale takes 1 number or 3, not 2"));
-    CHECK(has_diag(s, f, 6, GLIB_ERROR, "QuadXZ needs a size: QuadXZ y size [nx nz]"));
-    CHECK(has_diag(s, f, 7, GLIB_WARNING, "Clear takes no arguments; ignoring 'now'"));
-    CHECK(has_diag(s, f, 8, GLIB_ERROR, "WindowSize needs a height"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "Perspective needs a field of view in degrees"));
-    CHECK(has_diag(s, f, 10, GLIB_ERROR, "Ortho needs a top: Ortho l r b t [near far]"));
-    CHECK(has_diag(s, f, 11, GLIB_ERROR, "Color needs a blue value"));
-    CHECK(s->nerrors == 8 && count_sev(s, GLIB_WARNING) == 2);
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "Scale takes 1 number or 3, not 2"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "QuadXZ needs a size: QuadXZ y size [nx nz]"));
+    CHECK(has_diag(s, f, 7, DIAG_WARNING, "Clear takes no arguments; ignoring 'now'"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "WindowSize needs a height"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "Perspective needs a field of view in degrees"));
+    CHECK(has_diag(s, f, 10, DIAG_ERROR, "Ortho needs a top: Ortho l r b t [near far]"));
+    CHECK(has_diag(s, f, 11, DIAG_ERROR, "Color needs a blue value"));
+    CHECK(s->nerrors == 8 && count_sev(s, DIAG_WARNING) == 2);
     CHECK(s->ncmds == 2);
     if (s->ncmds == 2) {
         CHECK(s->cmds[0].kind == GLIB_CMD_SPHERE && s->cmds[0].line == 4 && s->cmds[0].nnum == 3);
@@ -540,17 +540,17 @@ static void test_range_checks(void)
         "WindowSize 0 600\n"
         "Ortho 1 1 -1 1\n");
     const char *f = P("range.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "Sphere: r must be greater than 0, not '0'"));
-    CHECK(has_diag(s, f, 3, GLIB_ERROR, "Sphere: slices must be a whole number from 3 to 1024, not '2'"));
-    CHECK(has_diag(s, f, 4, GLIB_ERROR, "QuadXZ: nx must be a whole number from 1 to 4096, not '2.5'"));
-    CHECK(has_diag(s, f, 5, GLIB_ERROR, "Perspective: fov must be an angle between 0 and 180"));
-    CHECK(has_diag(s, f, 6, GLIB_ERROR, "LookAt: the eye and the point looked at are the same"));
-    CHECK(has_diag(s, f, 7, GLIB_ERROR, "LookAt: the up vector is zero or along the line of sight"));
-    CHECK(has_diag(s, f, 8, GLIB_ERROR, "Rotate: the axis is zero"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "Perspective: near (10) must be less than far (1)"));
-    CHECK(has_diag(s, f, 10, GLIB_ERROR, "Texture2D: unit must be a whole number from 0 to 31, not '40'"));
-    CHECK(has_diag(s, f, 11, GLIB_ERROR, "WindowSize: w must be a whole number from 1 to 16384"));
-    CHECK(has_diag(s, f, 12, GLIB_ERROR, "Ortho: left/right, bottom/top and near/far must differ"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Sphere: r must be greater than 0, not '0'"));
+    CHECK(has_diag(s, f, 3, DIAG_ERROR, "Sphere: slices must be a whole number from 3 to 1024, not '2'"));
+    CHECK(has_diag(s, f, 4, DIAG_ERROR, "QuadXZ: nx must be a whole number from 1 to 4096, not '2.5'"));
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "Perspective: fov must be an angle between 0 and 180"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "LookAt: the eye and the point looked at are the same"));
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "LookAt: the up vector is zero or along the line of sight"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "Rotate: the axis is zero"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "Perspective: near (10) must be less than far (1)"));
+    CHECK(has_diag(s, f, 10, DIAG_ERROR, "Texture2D: unit must be a whole number from 0 to 31, not '40'"));
+    CHECK(has_diag(s, f, 11, DIAG_ERROR, "WindowSize: w must be a whole number from 1 to 16384"));
+    CHECK(has_diag(s, f, 12, DIAG_ERROR, "Ortho: left/right, bottom/top and near/far must differ"));
     CHECK(s->ncmds == 0 && s->nerrors == 11);
     glib_free(s);
 }
@@ -585,7 +585,7 @@ static void test_paths_relative(void)
     const char *t = "##OpenGL GLIB\nVertex some/x.vert\n";
     s = glib_parse(t, strlen(t), "scene.glib");
     CHECK(s->ncmds == 1 && strcmp(s->cmds[0].path, "some/x.vert") == 0);
-    CHECK(has_diag(s, "scene.glib", 2, GLIB_ERROR, "cannot open 'some/x.vert' (from command Vertex)"));
+    CHECK(has_diag(s, "scene.glib", 2, DIAG_ERROR, "cannot open 'some/x.vert' (from command Vertex)"));
     glib_free(s);
 }
 
@@ -617,9 +617,9 @@ static void test_missing_files(void)
         snprintf(rel, sizeof rel, "miss/%s", lines[i][0]);
         snprintf(want, sizeof want, "cannot open '%s' (from command %s): No such file or directory",
                  P(rel), lines[i][1]);
-        CHECK_MSG(has_diag(s, f, 2 + i, GLIB_ERROR, want), "%s", want);
+        CHECK_MSG(has_diag(s, f, 2 + i, DIAG_ERROR, want), "%s", want);
     }
-    CHECK(has_diag(s, f, 11, GLIB_ERROR, "it is a directory"));
+    CHECK(has_diag(s, f, 11, DIAG_ERROR, "it is a directory"));
     CHECK(s->nerrors == 10);
     /* the commands stay: the files may appear before the renderer needs them */
     CHECK(s->ncmds == 10);
@@ -639,7 +639,7 @@ static void test_case_hint(void)
     char want[600];
     snprintf(want, sizeof want, "did you mean '%s'? (file names are case-sensitive)",
              P("hint/Water.BMP"));
-    CHECK(has_diag(s, P("hint/h.glib"), 2, GLIB_ERROR, want));
+    CHECK(has_diag(s, P("hint/h.glib"), 2, DIAG_ERROR, want));
     glib_free(s);
 }
 
@@ -670,7 +670,7 @@ static void test_include(void)
     /* an error inside an included file names that file */
     put("inc/bad.glib", "\n\nSphere -1\n");
     s = load("inc/main2.glib", "##OpenGL GLIB\nInclude bad.glib\n");
-    CHECK(has_diag(s, P("inc/bad.glib"), 3, GLIB_ERROR, "Sphere: r must be greater than 0"));
+    CHECK(has_diag(s, P("inc/bad.glib"), 3, DIAG_ERROR, "Sphere: r must be greater than 0"));
     glib_free(s);
 }
 
@@ -681,13 +681,13 @@ static void test_include_missing(void)
     char want[600];
     snprintf(want, sizeof want, "cannot open '%s' (from command Include): No such file or directory",
              P("incm/nope.glib"));
-    CHECK(has_diag(s, P("incm/main.glib"), 3, GLIB_ERROR, want));
-    CHECK(has_diag(s, P("incm/main.glib"), 4, GLIB_ERROR, "Include needs a file: Include file.glib"));
+    CHECK(has_diag(s, P("incm/main.glib"), 3, DIAG_ERROR, want));
+    CHECK(has_diag(s, P("incm/main.glib"), 4, DIAG_ERROR, "Include needs a file: Include file.glib"));
     CHECK(s->nerrors == 2 && s->ncmds == 1 && s->cmds[0].line == 5 && s->nfiles == 1);
     glib_free(s);
 
     s = load("incm/dir.glib", "##OpenGL GLIB\nInclude .\n");
-    CHECK(has_diag(s, P("incm/dir.glib"), 2, GLIB_ERROR, "(from command Include): it is a directory"));
+    CHECK(has_diag(s, P("incm/dir.glib"), 2, DIAG_ERROR, "(from command Include): it is a directory"));
     CHECK(s->nerrors == 1);
     glib_free(s);
 }
@@ -699,7 +699,7 @@ static void test_include_cycle(void)
     char want[600];
     snprintf(want, sizeof want, "Include cycle: %s -> %s -> %s", P("cyc/a.glib"),
              P("cyc/b.glib"), P("cyc/a.glib"));
-    CHECK(has_diag(s, P("cyc/b.glib"), 2, GLIB_ERROR, want));
+    CHECK(has_diag(s, P("cyc/b.glib"), 2, DIAG_ERROR, want));
     CHECK(s->nerrors == 1 && s->ncmds == 4);
     for (int i = 0; i < s->ncmds; i++)
         CHECK(s->cmds[i].num[0] == i + 1);
@@ -707,7 +707,7 @@ static void test_include_cycle(void)
 
     /* itself, spelled differently */
     s = load("cyc/self.glib", "##OpenGL GLIB\nInclude ./self.glib\nSphere 1\n");
-    CHECK(has_diag(s, P("cyc/self.glib"), 2, GLIB_ERROR, "Include cycle"));
+    CHECK(has_diag(s, P("cyc/self.glib"), 2, DIAG_ERROR, "Include cycle"));
     CHECK(s->ncmds == 1);
     glib_free(s);
 }
@@ -722,7 +722,7 @@ static void test_include_depth(void)
         put(name, text);
     }
     glib_scene *s = glib_load(P("deep/d0.glib"));
-    CHECK(has_diag(s, P("deep/d32.glib"), 1, GLIB_ERROR, "is nested more than 32 files deep"));
+    CHECK(has_diag(s, P("deep/d32.glib"), 1, DIAG_ERROR, "is nested more than 32 files deep"));
     CHECK(s->nerrors == 1);
     CHECK(s->ncmds == 33);      /* d0 .. d32 */
     CHECK(s->nfiles == 33);
@@ -740,10 +740,10 @@ static void test_unknown_command(void)
         "Tessellation x\n"
         "Sphere 1\n");
     const char *f = P("unk.glib");
-    CHECK(has_diag(s, f, 2, GLIB_WARNING, "unknown command 'Foo' (skipped)"));
-    CHECK(has_diag(s, f, 3, GLIB_WARNING, "unknown command 'Sphear' (skipped); did you mean 'Sphere'?"));
-    CHECK(has_diag(s, f, 5, GLIB_WARNING, "unknown command 'uB' (skipped); a uniform on its own line?"));
-    CHECK(has_diag(s, f, 6, GLIB_WARNING, "unknown command 'Tessellation' (skipped)"));
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "unknown command 'Foo' (skipped)"));
+    CHECK(has_diag(s, f, 3, DIAG_WARNING, "unknown command 'Sphear' (skipped); did you mean 'Sphere'?"));
+    CHECK(has_diag(s, f, 5, DIAG_WARNING, "unknown command 'uB' (skipped); a uniform on its own line?"));
+    CHECK(has_diag(s, f, 6, DIAG_WARNING, "unknown command 'Tessellation' (skipped)"));
     CHECK(s->nerrors == 0 && s->ndiags == 4 && s->ncmds == 2);
     glib_free(s);
 }
@@ -755,8 +755,8 @@ static void test_binary_junk(void)
     put_bytes("bin/nul.glib", t1, sizeof t1 - 1);
     glib_scene *s = glib_load(P("bin/nul.glib"));
     const char *f = P("bin/nul.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "binary data (byte 0x00 at column 4)"));
-    CHECK(has_diag(s, f, 5, GLIB_ERROR, "byte 0xFF at column 8 is not UTF-8"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "binary data (byte 0x00 at column 4)"));
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "byte 0xFF at column 8 is not UTF-8"));
     CHECK(s->nerrors == 2 && s->ncmds == 2);
     if (s->ncmds == 2)
         CHECK(s->cmds[0].line == 3 && s->cmds[1].line == 6 && s->cmds[1].num[0] == 3);
@@ -779,10 +779,10 @@ static void test_binary_junk(void)
     put_bytes("bin/junk.glib", junk, n);
     s = glib_load(P("bin/junk.glib"));
     CHECK(s->nerrors >= 1 && s->ndiags <= 8);
-    CHECK(has_diag(s, P("bin/junk.glib"), 1, GLIB_WARNING, "first line is not"));
+    CHECK(has_diag(s, P("bin/junk.glib"), 1, DIAG_WARNING, "first line is not"));
     bool stopped = false;
     for (int i = 0; i < s->ndiags; i++)
-        stopped |= strstr(s->diags[i].message, "stopped reading it") != NULL;
+        stopped |= strstr(s->diags[i].text, "stopped reading it") != NULL;
     CHECK(stopped);
     glib_free(s);
     /* the same bytes from memory */
@@ -844,7 +844,7 @@ static void test_long_inputs(void)
     memset(t + n, 'p', 2000);
     strcpy(t + n + 2000, ".bmp\nSphere 1\n");
     glib_scene *s = glib_parse(t, strlen(t), P("long.glib"));
-    CHECK(has_diag(s, P("long.glib"), 2, GLIB_ERROR, "Texture2D: path too long"));
+    CHECK(has_diag(s, P("long.glib"), 2, DIAG_ERROR, "Texture2D: path too long"));
     CHECK(s->ncmds == 1 && s->cmds[0].line == 3);
     glib_free(s);
 
@@ -859,10 +859,10 @@ static void test_long_inputs(void)
     memset(t + n, 'Q', 80);
     strcpy(t + n + 80, "\n");
     s = glib_parse(t, strlen(t), P("long.glib"));
-    CHECK(has_diag(s, P("long.glib"), 2, GLIB_ERROR, "uniform name 'uaaaa"));
-    CHECK(has_diag(s, P("long.glib"), 2, GLIB_ERROR, "is too long (at most 63 characters)"));
-    CHECK(has_diag(s, P("long.glib"), 3, GLIB_ERROR, "Define name 'DDDD"));
-    CHECK(has_diag(s, P("long.glib"), 4, GLIB_ERROR, "Program name 'QQQ"));
+    CHECK(has_diag(s, P("long.glib"), 2, DIAG_ERROR, "uniform name 'uaaaa"));
+    CHECK(has_diag(s, P("long.glib"), 2, DIAG_ERROR, "is too long (at most 63 characters)"));
+    CHECK(has_diag(s, P("long.glib"), 3, DIAG_ERROR, "Define name 'DDDD"));
+    CHECK(has_diag(s, P("long.glib"), 4, DIAG_ERROR, "Program name 'QQQ"));
     CHECK(s->ncmds == 1 && s->cmds[0].nuniforms == 1 && strcmp(s->cmds[0].uniforms[0].name, "uB") == 0);
     glib_free(s);
 
@@ -871,12 +871,12 @@ static void test_long_inputs(void)
     memset(t + n, 'x', big);
     strcpy(t + n + big, "\nSphere 2\n");
     s = glib_parse(t, strlen(t), P("long.glib"));
-    CHECK(has_diag(s, P("long.glib"), 2, GLIB_ERROR, "line too long (over 16384 characters)"));
+    CHECK(has_diag(s, P("long.glib"), 2, DIAG_ERROR, "line too long (over 16384 characters)"));
     CHECK(s->ncmds == 1 && s->cmds[0].num[0] == 2);
     glib_free(s);
     memset(t + 14, 'a', big);
     s = glib_parse(t, 14 + big, P("long.glib"));
-    CHECK(has_diag(s, P("long.glib"), 2, GLIB_ERROR, "line too long"));
+    CHECK(has_diag(s, P("long.glib"), 2, DIAG_ERROR, "line too long"));
     glib_free(s);
     free(t);
 }
@@ -890,7 +890,7 @@ static void test_diag_cap(void)
         n += (size_t)snprintf(t + n, cap - n, "Foo\n");
     glib_scene *s = glib_parse(t, n, "cap.glib");
     CHECK(s->ndiags == 200);
-    CHECK(has_diag(s, "cap.glib", 0, GLIB_WARNING, "too many errors: 301 more diagnostics not shown (0 errors)"));
+    CHECK(has_diag(s, "cap.glib", 0, DIAG_WARNING, "too many errors: 301 more diagnostics not shown (0 errors)"));
     CHECK(s->nerrors == 0);
     glib_free(s);
 
@@ -899,7 +899,7 @@ static void test_diag_cap(void)
         n += (size_t)snprintf(t + n, cap - n, "Sphere\n");
     s = glib_parse(t, n, "cap.glib");
     CHECK(s->ndiags == 200 && s->nerrors == 200);
-    CHECK(has_diag(s, "cap.glib", 0, GLIB_ERROR, "101 more diagnostics not shown (101 errors)"));
+    CHECK(has_diag(s, "cap.glib", 0, DIAG_ERROR, "101 more diagnostics not shown (101 errors)"));
     glib_free(s);
     free(t);
 }
@@ -913,7 +913,7 @@ static void test_command_cap(void)
         n += (size_t)snprintf(t + n, cap - n, "Clear\n");
     glib_scene *s = glib_parse(t, n, "many.glib");
     CHECK(s->ncmds == 16384 && s->nerrors == 1);
-    CHECK(has_diag(s, "many.glib", 16384 + 2, GLIB_ERROR, "too many commands (more than 16384)"));
+    CHECK(has_diag(s, "many.glib", 16384 + 2, DIAG_ERROR, "too many commands (more than 16384)"));
     glib_free(s);
     free(t);
 }
@@ -933,9 +933,9 @@ static void test_sizes_from_sliders(void)
         "Texture2D 7 uRes 9x\n"                         /* 7 */
         "Texture2D 8 uRes\n");                          /* 8 */
     const char *f = P("named/n.glib");
-    CHECK(has_diag(s, f, 7, GLIB_WARNING, "ignoring '9x'"));   /* a file 'uRes' with an extra word */
-    CHECK(has_diag(s, f, 7, GLIB_ERROR, "cannot open"));
-    CHECK(has_diag(s, f, 8, GLIB_ERROR, "cannot open"));
+    CHECK(has_diag(s, f, 7, DIAG_WARNING, "ignoring '9x'"));   /* a file 'uRes' with an extra word */
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "cannot open"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "cannot open"));
     CHECK(s->ncmds == 7);
     if (s->ncmds == 7) {
         const glib_cmd *c = s->cmds;
@@ -988,15 +988,15 @@ static void test_textures(void)
         "Texture2D 5 my water.png\n"                    /* 18 */
         "Texture3D 4 64 32\n");                         /* 19 */
     const char *f = P("tex/t.glib");
-    CHECK(has_diag(s, f, 7, GLIB_ERROR, "Texture2D: unknown format 'bogus'"));
-    CHECK(has_diag(s, f, 8, GLIB_ERROR, "Texture2D: an empty texture needs a width and a height"));
-    CHECK(has_diag(s, f, 14, GLIB_WARNING, "RenderToTexture: unit 6 is listed twice"));
-    CHECK(has_diag(s, f, 16, GLIB_ERROR, "Texture2D: unclosed '\"'"));
-    CHECK(has_diag(s, f, 17, GLIB_ERROR, "CubeMap needs a unit and 6 files, got 1 file"));
-    CHECK(has_diag(s, f, 18, GLIB_WARNING, "ignoring 'water.png' (quote a path that has spaces"));
-    CHECK(has_diag(s, f, 18, GLIB_ERROR, "cannot open"));
-    CHECK(has_diag(s, f, 19, GLIB_ERROR, "Texture3D: an empty texture needs a width, a height and a depth"));
-    CHECK(s->nerrors == 6 && count_sev(s, GLIB_WARNING) == 2);
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "Texture2D: unknown format 'bogus'"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "Texture2D: an empty texture needs a width and a height"));
+    CHECK(has_diag(s, f, 14, DIAG_WARNING, "RenderToTexture: unit 6 is listed twice"));
+    CHECK(has_diag(s, f, 16, DIAG_ERROR, "Texture2D: unclosed '\"'"));
+    CHECK(has_diag(s, f, 17, DIAG_ERROR, "CubeMap needs a unit and 6 files, got 1 file"));
+    CHECK(has_diag(s, f, 18, DIAG_WARNING, "ignoring 'water.png' (quote a path that has spaces"));
+    CHECK(has_diag(s, f, 18, DIAG_ERROR, "cannot open"));
+    CHECK(has_diag(s, f, 19, DIAG_ERROR, "Texture3D: an empty texture needs a width, a height and a depth"));
+    CHECK(s->nerrors == 6 && count_sev(s, DIAG_WARNING) == 2);
     CHECK(s->ncmds == 13);
     if (s->ncmds == 13) {
         const glib_cmd *c = s->cmds;
@@ -1041,14 +1041,14 @@ static void test_define(void)
         "Define\n"                      /* 15 */
         "Define ORPHAN\n");             /* 16 */
     const char *f = P("def.glib");
-    CHECK(has_diag(s, f, 9, GLIB_WARNING, "Define LATE is given twice before the next Program; the later one wins"));
-    CHECK(has_diag(s, f, 11, GLIB_ERROR, "'1X' is not a valid Define name"));
-    CHECK(has_diag(s, f, 12, GLIB_ERROR, "Define C takes <true>, <false>, a number or <min default max>, not a list"));
-    CHECK(has_diag(s, f, 13, GLIB_ERROR, "Define D: <> needs 3 numbers"));
-    CHECK(has_diag(s, f, 14, GLIB_WARNING, "Define E: ignoring 'junk' after the value"));
-    CHECK(has_diag(s, f, 15, GLIB_ERROR, "Define needs a name"));
-    CHECK(has_diag(s, f, 16, GLIB_WARNING, "Define ORPHAN comes after the last Program"));
-    CHECK(has_diag(s, f, 14, GLIB_WARNING, "Define E comes after the last Program"));
+    CHECK(has_diag(s, f, 9, DIAG_WARNING, "Define LATE is given twice before the next Program; the later one wins"));
+    CHECK(has_diag(s, f, 11, DIAG_ERROR, "'1X' is not a valid Define name"));
+    CHECK(has_diag(s, f, 12, DIAG_ERROR, "Define C takes <true>, <false>, a number or <min default max>, not a list"));
+    CHECK(has_diag(s, f, 13, DIAG_ERROR, "Define D: <> needs 3 numbers"));
+    CHECK(has_diag(s, f, 14, DIAG_WARNING, "Define E: ignoring 'junk' after the value"));
+    CHECK(has_diag(s, f, 15, DIAG_ERROR, "Define needs a name"));
+    CHECK(has_diag(s, f, 16, DIAG_WARNING, "Define ORPHAN comes after the last Program"));
+    CHECK(has_diag(s, f, 14, DIAG_WARNING, "Define E comes after the last Program"));
     CHECK(s->nerrors == 4);
     /* DEFINE x5, P1, DEFINE x2, P2, DEFINE E, DEFINE ORPHAN */
     CHECK(s->ncmds == 11);
@@ -1085,10 +1085,10 @@ static void test_extensions(void)
         "DepthTest on\n" "DepthTest OFF\n" "DepthTest 1\n" "DepthTest 0\n" "DepthTest maybe\n"
         "Blend alpha\n" "Blend add\n" "Blend off\n" "Blend none\n" "Blend screen\n");
     const char *f = P("ext.glib");
-    CHECK(has_diag(s, f, 6, GLIB_ERROR, "Cull: unknown mode 'sideways': write back, front or none"));
-    CHECK(has_diag(s, f, 7, GLIB_ERROR, "Cull needs one of back, front or none"));
-    CHECK(has_diag(s, f, 12, GLIB_ERROR, "DepthTest: unknown mode 'maybe': write on or off"));
-    CHECK(has_diag(s, f, 17, GLIB_ERROR, "Blend: unknown mode 'screen'"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "Cull: unknown mode 'sideways': write back, front or none"));
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "Cull needs one of back, front or none"));
+    CHECK(has_diag(s, f, 12, DIAG_ERROR, "DepthTest: unknown mode 'maybe': write on or off"));
+    CHECK(has_diag(s, f, 17, DIAG_ERROR, "Blend: unknown mode 'screen'"));
     CHECK(s->nerrors == 4 && s->ncmds == 12);
     if (s->ncmds == 12) {
         const glib_cmd *c = s->cmds;
@@ -1115,12 +1115,12 @@ static void test_program_errors(void)
         "Program P <0 1 2> uC 3\n"      /* 6 */
         "Program P uA 1 }\n");          /* 7 */
     const char *f = P("prog.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "Program needs a name: Program Name [uniform value ...]"));
-    CHECK(has_diag(s, f, 3, GLIB_ERROR, "Program P: uniform 'uA' has no value: write uA 5"));
-    CHECK(has_diag(s, f, 4, GLIB_ERROR, "uniform 'uA': write <true> (with the angle brackets) for a checkbox"));
-    CHECK(has_diag(s, f, 5, GLIB_ERROR, "'2x' is not a valid uniform name"));
-    CHECK(has_diag(s, f, 6, GLIB_ERROR, "Program P: a value '<...' has no uniform name before it"));
-    CHECK(has_diag(s, f, 7, GLIB_ERROR, "'}' is not a valid uniform name"));
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Program needs a name: Program Name [uniform value ...]"));
+    CHECK(has_diag(s, f, 3, DIAG_ERROR, "Program P: uniform 'uA' has no value: write uA 5"));
+    CHECK(has_diag(s, f, 4, DIAG_ERROR, "uniform 'uA': write <true> (with the angle brackets) for a checkbox"));
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "'2x' is not a valid uniform name"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "Program P: a value '<...' has no uniform name before it"));
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "'}' is not a valid uniform name"));
     CHECK(s->nerrors == 6 && s->ncmds == 5);
     if (s->ncmds == 5) {
         CHECK(s->cmds[2].nuniforms == 1 && strcmp(s->cmds[2].uniforms[0].name, "uB") == 0);
@@ -1225,29 +1225,29 @@ static void test_world_errors(void)
         "Pack ../evil\n"                        /* 22 */
         "Sky 1 1 1\n");                         /* 23 */
     const char *f = P("world_bad.glib");
-    CHECK(has_diag(s, f, 2, GLIB_ERROR, "Sun needs a direction z: Sun dx dy dz [r g b]"));
-    CHECK(has_diag(s, f, 3, GLIB_ERROR, "Sun: the direction is zero"));
-    CHECK(has_diag(s, f, 4, GLIB_ERROR, "Sun: the irradiance needs 3 numbers (r g b), got 1"));
-    CHECK(has_diag(s, f, 5, GLIB_ERROR, "Water: the absorption needs 3 numbers (ar ag ab), got 1: Water level [ior [ar ag ab]]"));
-    CHECK(has_diag(s, f, 6, GLIB_ERROR, "Water needs a water level"));
-    CHECK(has_diag(s, f, 7, GLIB_ERROR, "WaterMesh: res must be a whole number from 0 to 65536, not '1.5'"));
-    CHECK(has_diag(s, f, 8, GLIB_ERROR, "Terrain needs one of flat, lake or slope"));
-    CHECK(has_diag(s, f, 9, GLIB_ERROR, "Terrain: unknown kind 'pond': write flat, lake or slope"));
-    CHECK(has_diag(s, f, 10, GLIB_ERROR, "Terrain: bad number 'x' for depth"));
-    CHECK(has_diag(s, f, 11, GLIB_ERROR, "Terrain: seed must be a whole number from 0 to 4294967295, not '-1'"));
-    CHECK(has_diag(s, f, 12, GLIB_ERROR, "WaveSine needs an amplitude: WaveSine angle_deg wavelength amplitude [speed [phase]]"));
-    CHECK(has_diag(s, f, 13, GLIB_ERROR, "WaveGerstner needs at least 3 numbers, got 1"));
-    CHECK(has_diag(s, f, 14, GLIB_ERROR, "WaveNoise: octaves must be a whole number"));
-    CHECK(has_diag(s, f, 15, GLIB_ERROR, "Object sphere needs 7 numbers, got 3: Object sphere x y z r R G B"));
-    CHECK(has_diag(s, f, 16, GLIB_ERROR, "Object: unknown kind 'cone': write sphere, box or cylinder"));
-    CHECK(has_diag(s, f, 17, GLIB_ERROR, "Object needs one of sphere, box or cylinder"));
-    CHECK(has_diag(s, f, 18, GLIB_ERROR, "World: unknown mode 'sideways': write World all|above|below [offset]"));
-    CHECK(has_diag(s, f, 19, GLIB_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
-    CHECK(has_diag(s, f, 20, GLIB_WARNING, "Sky takes at most 6 arguments; ignoring '1'"));
-    CHECK(has_diag(s, f, 21, GLIB_ERROR, "Pack needs a name: Pack name"));
-    CHECK(has_diag(s, f, 22, GLIB_ERROR, "Pack: '../evil' is not a pack name"));
-    CHECK(has_diag(s, f, 23, GLIB_ERROR, "Sky needs 6 numbers, got 3"));
-    CHECK(s->nerrors == 21 && count_sev(s, GLIB_WARNING) == 1);
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Sun needs a direction z: Sun dx dy dz [r g b]"));
+    CHECK(has_diag(s, f, 3, DIAG_ERROR, "Sun: the direction is zero"));
+    CHECK(has_diag(s, f, 4, DIAG_ERROR, "Sun: the irradiance needs 3 numbers (r g b), got 1"));
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "Water: the absorption needs 3 numbers (ar ag ab), got 1: Water level [ior [ar ag ab]]"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "Water needs a water level"));
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "WaterMesh: res must be a whole number from 0 to 65536, not '1.5'"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "Terrain needs one of flat, lake or slope"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "Terrain: unknown kind 'pond': write flat, lake or slope"));
+    CHECK(has_diag(s, f, 10, DIAG_ERROR, "Terrain: bad number 'x' for depth"));
+    CHECK(has_diag(s, f, 11, DIAG_ERROR, "Terrain: seed must be a whole number from 0 to 4294967295, not '-1'"));
+    CHECK(has_diag(s, f, 12, DIAG_ERROR, "WaveSine needs an amplitude: WaveSine angle_deg wavelength amplitude [speed [phase]]"));
+    CHECK(has_diag(s, f, 13, DIAG_ERROR, "WaveGerstner needs at least 3 numbers, got 1"));
+    CHECK(has_diag(s, f, 14, DIAG_ERROR, "WaveNoise: octaves must be a whole number"));
+    CHECK(has_diag(s, f, 15, DIAG_ERROR, "Object sphere needs 7 numbers, got 3: Object sphere x y z r R G B"));
+    CHECK(has_diag(s, f, 16, DIAG_ERROR, "Object: unknown kind 'cone': write sphere, box or cylinder"));
+    CHECK(has_diag(s, f, 17, DIAG_ERROR, "Object needs one of sphere, box or cylinder"));
+    CHECK(has_diag(s, f, 18, DIAG_ERROR, "World: unknown mode 'sideways': write World all|above|below [offset]"));
+    CHECK(has_diag(s, f, 19, DIAG_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
+    CHECK(has_diag(s, f, 20, DIAG_WARNING, "Sky takes at most 6 arguments; ignoring '1'"));
+    CHECK(has_diag(s, f, 21, DIAG_ERROR, "Pack needs a name: Pack name"));
+    CHECK(has_diag(s, f, 22, DIAG_ERROR, "Pack: '../evil' is not a pack name"));
+    CHECK(has_diag(s, f, 23, DIAG_ERROR, "Sky needs 6 numbers, got 3"));
+    CHECK(s->nerrors == 21 && count_sev(s, DIAG_WARNING) == 1);
     CHECK(s->ncmds == 1);       /* Sky 1 1 1 1 1 1 (1) */
     glib_free(s);
 }
@@ -1286,11 +1286,11 @@ static void test_pack_contract_commands(void)
         CHECK(s->cmds[6].kind == GLIB_CMD_SPLAT && s->cmds[6].num[0] == 8 && s->cmds[6].num[1] == 9);
         CHECK(s->cmds[7].kind == GLIB_CMD_TEXTURE2D_FILE && !strcmp(s->cmds[7].path, "@caustics"));
     }
-    CHECK(has_diag(s, f, 10, GLIB_ERROR, "Camera: unknown camera 'sideways'"));
-    CHECK(has_diag(s, f, 11, GLIB_ERROR, "Camera: fov_scale must be greater than 0"));
-    CHECK(has_diag(s, f, 12, GLIB_ERROR, "unknown generated texture '@nothing'"));
-    CHECK(has_diag(s, f, 13, GLIB_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
-    CHECK(has_diag(s, f, 14, GLIB_ERROR, "Splat needs"));
+    CHECK(has_diag(s, f, 10, DIAG_ERROR, "Camera: unknown camera 'sideways'"));
+    CHECK(has_diag(s, f, 11, DIAG_ERROR, "Camera: fov_scale must be greater than 0"));
+    CHECK(has_diag(s, f, 12, DIAG_ERROR, "unknown generated texture '@nothing'"));
+    CHECK(has_diag(s, f, 13, DIAG_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
+    CHECK(has_diag(s, f, 14, DIAG_ERROR, "Splat needs"));
     glib_free(s);
 }
 
@@ -1312,7 +1312,7 @@ static void test_pack_include(void)
     glib_scene *s = load_opts("pk/lake.glib", text, P("pk/packs"), NULL);
     /* the pack's lines come in place of the Pack line, and its messages
      * name its own file and lines */
-    CHECK(has_diag(s, P("pk/packs/calm/pack.glib"), 5, GLIB_ERROR, "Sphere: r must be greater than 0"));
+    CHECK(has_diag(s, P("pk/packs/calm/pack.glib"), 5, DIAG_ERROR, "Sphere: r must be greater than 0"));
     CHECK(s->nerrors == 1 && s->ndiags == 1);
     CHECK(s->nfiles == 2 && strcmp(s->files[1], P("pk/packs/calm/pack.glib")) == 0);
     CHECK(s->ncmds == 6);
@@ -1339,7 +1339,7 @@ static void test_pack_include(void)
 
     /* a second Pack is a warning, and only the first pack is read */
     s = load_opts("pk/two.glib", "##OpenGL GLIB\nPack rough\nPack calm\n", P("pk/packs"), NULL);
-    CHECK(has_diag(s, P("pk/two.glib"), 3, GLIB_WARNING,
+    CHECK(has_diag(s, P("pk/two.glib"), 3, DIAG_WARNING,
                    "Pack calm ignored: this scene's pack is already 'rough'"));
     CHECK(s->ncmds == 2 && s->cmds[0].kind == GLIB_CMD_PACK && s->cmds[1].kind == GLIB_CMD_WORLD &&
           strcmp(s->cmds[1].name, "above") == 0);
@@ -1348,7 +1348,7 @@ static void test_pack_include(void)
     /* a pack that includes the scene that names it is a cycle */
     put("pk/packs/loop/pack.glib", "Include ../../cyc.glib\n");
     s = load_opts("pk/cyc.glib", "##OpenGL GLIB\nPack loop\n", P("pk/packs"), NULL);
-    CHECK(has_diag(s, P("pk/packs/loop/pack.glib"), 1, GLIB_ERROR, "Include cycle:"));
+    CHECK(has_diag(s, P("pk/packs/loop/pack.glib"), 1, DIAG_ERROR, "Include cycle:"));
     glib_free(s);
 }
 
@@ -1362,14 +1362,14 @@ static void test_pack_missing(void)
     snprintf(want, sizeof want,
              "Pack: no pack 'basik' in %s (no basik/pack.glib); the packs are: basic, natural; did you mean 'basic'?",
              P("pm/packs"));
-    CHECK(has_diag(s, P("pm/a.glib"), 3, GLIB_ERROR, want));
+    CHECK(has_diag(s, P("pm/a.glib"), 3, DIAG_ERROR, want));
     /* the command stays, so tools see which pack was asked for */
     CHECK(s->nerrors == 1 && s->ncmds == 2 && s->cmds[0].kind == GLIB_CMD_PACK &&
           strcmp(s->cmds[0].name, "basik") == 0);
     glib_free(s);
 
     s = load_opts("pm/b.glib", "##OpenGL GLIB\nPack x\n", P("pm/nowhere"), NULL);
-    CHECK(has_diag(s, P("pm/b.glib"), 2, GLIB_ERROR, "the packs are: (none)"));
+    CHECK(has_diag(s, P("pm/b.glib"), 2, DIAG_ERROR, "the packs are: (none)"));
     glib_free(s);
 }
 
@@ -1404,11 +1404,11 @@ static void test_pack_override(void)
 
     /* a missing override pack is an error at line 0 of the top file */
     s = load_opts("po/c.glib", "##OpenGL GLIB\nSphere 1\n", P("po/packs"), "nope");
-    CHECK(has_diag(s, P("po/c.glib"), 0, GLIB_ERROR, "no pack 'nope'"));
-    CHECK(has_diag(s, P("po/c.glib"), 0, GLIB_ERROR, "the packs are: basic, natural"));
+    CHECK(has_diag(s, P("po/c.glib"), 0, DIAG_ERROR, "no pack 'nope'"));
+    CHECK(has_diag(s, P("po/c.glib"), 0, DIAG_ERROR, "the packs are: basic, natural"));
     glib_free(s);
     s = load_opts("po/d.glib", "##OpenGL GLIB\nPack basic\n", P("po/packs"), "a/b");
-    CHECK(has_diag(s, P("po/d.glib"), 2, GLIB_ERROR, "'a/b' (the pack chosen instead of the scene's) is not a pack name"));
+    CHECK(has_diag(s, P("po/d.glib"), 2, DIAG_ERROR, "'a/b' (the pack chosen instead of the scene's) is not a pack name"));
     glib_free(s);
 
     /* no packs directory: the name is replaced or added, nothing is read */
@@ -1497,7 +1497,7 @@ static void test_glman_real_file(void)
     /* old Mac line ends (a lone CR) count lines too */
     s = load("proj/cr.glib", "##OpenGL GLIB\rSphere 1\r\rSphere\r");
     CHECK(s->ncmds == 1 && s->cmds[0].line == 2);
-    CHECK(has_diag(s, P("proj/cr.glib"), 4, GLIB_ERROR, "Sphere needs a radius"));
+    CHECK(has_diag(s, P("proj/cr.glib"), 4, DIAG_ERROR, "Sphere needs a radius"));
     glib_free(s);
 }
 

@@ -21,7 +21,7 @@ static bool world_of(const char *text, ref_world_desc *d, scene_camera *cam, boo
 {
     glib_scene *g = parse(text);
     CHECK_MSG(g->nerrors == 0, "the test's glib has %d errors: %s", g->nerrors,
-              g->ndiags ? g->diags[0].message : "");
+              g->ndiags ? g->diags[0].text : "");
     bool ok = scene_from_glib(g, d, cam, has, err, errlen);
     glib_free(g);
     return ok;
@@ -285,7 +285,7 @@ static void test_camera(void)
 static void test_lake_matches_reference(void)
 {
     glib_scene *g = glib_load(TARN_SOURCE_DIR "/scenes/lake.glib");
-    CHECK_MSG(g->nerrors == 0 && g->ndiags == 0, "%s", g->ndiags ? g->diags[0].message : "");
+    CHECK_MSG(g->nerrors == 0 && g->ndiags == 0, "%s", g->ndiags ? g->diags[0].text : "");
     ref_world_desc dg, dr;
     scene_camera cam;
     bool has = false;

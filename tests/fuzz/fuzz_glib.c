@@ -59,6 +59,13 @@ static bool points_into_files(const glib_scene *g, const char *f) {
     return false;
 }
 
+/* A diagnostic keeps its own copy of the file name: one of the files read. */
+static bool names_a_file(const glib_scene *g, const char *f) {
+    for (int i = 0; i < g->nfiles; i++)
+        if (strcmp(g->files[i], f) == 0) return true;
+    return false;
+}
+
 static unif_type type_for(const char *name, int salt) {
     unsigned h = 2166136261u;
     for (const char *p = name; *p; p++) h = (h ^ (unsigned char)*p) * 16777619u;
@@ -93,9 +100,9 @@ static void exercise(const glib_scene *g) {
     check(g->ndiags <= 200, "diagnostics capped");
     int nerr = 0;
     for (int i = 0; i < g->ndiags; i++) {
-        check(points_into_files(g, g->diags[i].file), "diag file points into files");
+        check(names_a_file(g, g->diags[i].file), "diag names one of the files read");
         check(g->diags[i].line >= 0, "diag line >= 0");
-        if (g->diags[i].severity == GLIB_ERROR) nerr++;
+        if (g->diags[i].severity == DIAG_ERROR) nerr++;
     }
     check(nerr <= g->nerrors, "nerrors counts the error diagnostics");
     if (devnull) glib_print_diags(g, devnull);

@@ -748,8 +748,7 @@ static void format_number(double v, char *buf, size_t n) {
 /* Did the glib parser already report an error on this command's line? */
 static bool glib_reported(const glib_scene *sc, const glib_cmd *c) {
     for (int i = 0; i < sc->ndiags; i++)
-        if (sc->diags[i].severity == GLIB_ERROR && sc->diags[i].line == c->line && sc->diags[i].file &&
-            c->file && strcmp(sc->diags[i].file, c->file) == 0)
+        if (sc->diags[i].severity == DIAG_ERROR && sc->diags[i].line == c->line && c->file && strcmp(sc->diags[i].file, c->file) == 0)
             return true;
     return false;
 }

@@ -172,9 +172,9 @@ static void settings_from_glib(scene_settings *s, const glib_scene *g) {
 
 static void diags_to_log(const glib_scene *g, char **log) {
     for (int i = 0; i < g->ndiags; i++) {
-        const glib_diag *d = &g->diags[i];
-        log_append(log, "%s:%d: %s: %s\n", d->file ? d->file : "?", d->line,
-                   d->severity == GLIB_ERROR ? "error" : "warning", d->message);
+        const diag *d = &g->diags[i];
+        log_append(log, "%s:%d: %s: %s\n", d->file, d->line,
+                   d->severity == DIAG_ERROR ? "error" : "warning", d->text);
     }
 }
 

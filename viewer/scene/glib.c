@@ -103,36 +103,37 @@ typedef struct parser {
     char pack_name[GLIB_NAME_MAX];
 } parser;
 
-static void add_diag(parser *p, glib_severity sev, const char *file, int line,
+static void add_diag(parser *p, diag_severity sev, const char *file, int line,
                      const char *msg)
 {
     glib_scene *sc = p->sc;
     sc->diags = grow(sc->diags, &p->diag_cap, sc->ndiags + 1, sizeof *sc->diags);
-    glib_diag *d = &sc->diags[sc->ndiags++];
+    diag *d = &sc->diags[sc->ndiags++];
+    memset(d, 0, sizeof *d);
     d->severity = sev;
-    d->file = file;
+    snprintf(d->file, sizeof d->file, "%s", file ? file : "?");
     d->line = line;
-    snprintf(d->message, sizeof d->message, "%s", msg);
-    if (sev == GLIB_ERROR)
+    snprintf(d->text, sizeof d->text, "%s", msg);
+    if (sev == DIAG_ERROR)
         sc->nerrors++;
 }
 
 __attribute__((format(printf, 5, 0)))
-static void vdiag(parser *p, glib_severity sev, const char *file, int line,
+static void vdiag(parser *p, diag_severity sev, const char *file, int line,
                   const char *fmt, va_list ap)
 {
     if (p->sc->ndiags >= LIM_DIAGS - 1) {
         p->dropped++;
-        p->dropped_errors += sev == GLIB_ERROR;
+        p->dropped_errors += sev == DIAG_ERROR;
         return;
     }
-    char msg[sizeof p->sc->diags[0].message];
+    char msg[sizeof p->sc->diags[0].text];
     vsnprintf(msg, sizeof msg, fmt, ap);
     add_diag(p, sev, file, line, msg);
 }
 
 __attribute__((format(printf, 5, 6)))
-static void diag(parser *p, glib_severity sev, const char *file, int line,
+static void report(parser *p, diag_severity sev, const char *file, int line,
                  const char *fmt, ...)
 {
     va_list ap;
@@ -175,7 +176,7 @@ static void cerr(cmdctx *c, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vdiag(c->p, GLIB_ERROR, c->file, c->line, fmt, ap);
+    vdiag(c->p, DIAG_ERROR, c->file, c->line, fmt, ap);
     va_end(ap);
 }
 
@@ -184,7 +185,7 @@ static void cwarn(cmdctx *c, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vdiag(c->p, GLIB_WARNING, c->file, c->line, fmt, ap);
+    vdiag(c->p, DIAG_WARNING, c->file, c->line, fmt, ap);
     va_end(ap);
 }
 
@@ -1593,7 +1594,7 @@ static void push_cmd(parser *p, glib_cmd *cmd)
 {
     glib_scene *sc = p->sc;
     if (sc->ncmds >= LIM_CMDS) {
-        diag(p, GLIB_ERROR, cmd->file, cmd->line,
+        report(p, DIAG_ERROR, cmd->file, cmd->line,
              "too many commands (more than %d); the rest of the scene is ignored", LIM_CMDS);
         free_cmd_parts(cmd);
         p->stop = true;
@@ -1614,7 +1615,7 @@ static void unknown_command(parser *p, const char *name, char *rest, const char 
         snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
     else if (is_opener(*skip_space(rest)))
         snprintf(hint, sizeof hint, "; a uniform on its own line? end the Program line above with '\\'");
-    diag(p, GLIB_WARNING, file, line, "unknown command '%.60s' (skipped)%s", name, hint);
+    report(p, DIAG_WARNING, file, line, "unknown command '%.60s' (skipped)%s", name, hint);
 }
 
 static void process_line(parser *p, char *s, const char *file, int line)
@@ -1677,7 +1678,7 @@ static bool all_space(const char *s, size_t n)
 static bool check_top(parser *p, const reader *r, const char *file)
 {
     if (all_space(r->text + r->pos, r->len - r->pos)) {
-        diag(p, GLIB_ERROR, file, 1, "empty file: expected '##OpenGL GLIB' and commands");
+        report(p, DIAG_ERROR, file, 1, "empty file: expected '##OpenGL GLIB' and commands");
         return false;
     }
     reader first = *r;
@@ -1685,7 +1686,7 @@ static bool check_top(parser *p, const reader *r, const char *file)
     size_t n = 0;
     next_phys(&first, &b, &n);
     if (!is_header(b, n))
-        diag(p, GLIB_WARNING, file, 1,
+        report(p, DIAG_WARNING, file, 1,
              "first line is not '##OpenGL GLIB': glman will not open this file; add that line");
     return true;
 }
@@ -1714,15 +1715,15 @@ static void parse_text(parser *p, const char *text, size_t len, const char *file
     int binary = 0;
     while (!p->stop && next_logical(&r, &lg)) {
         if (lg.too_long) {
-            diag(p, GLIB_ERROR, file, lg.first_line,
+            report(p, DIAG_ERROR, file, lg.first_line,
                  "line too long (over %d characters); command skipped", LIM_LINE_CHARS);
         } else if (lg.bad_byte >= 0) {
-            diag(p, GLIB_ERROR, file, lg.first_line,
+            report(p, DIAG_ERROR, file, lg.first_line,
                  lg.bad_byte >= 0x80 ? "byte 0x%02X at column %d is not UTF-8 text; line skipped (save the file as UTF-8)"
                                      : "binary data (byte 0x%02X at column %d) in a text file; line skipped",
                  lg.bad_byte, lg.bad_col);
             if (++binary >= LIM_BINARY_LINES) {
-                diag(p, GLIB_ERROR, file, lg.first_line,
+                report(p, DIAG_ERROR, file, lg.first_line,
                      "this does not look like a .glib text file; stopped reading it");
                 break;
             }
@@ -1835,18 +1836,18 @@ static void finish(parser *p)
 {
     glib_scene *sc = p->sc;
     for (int i = 0; i < p->npending; i++)
-        diag(p, GLIB_WARNING, p->pending[i].file, p->pending[i].line,
+        report(p, DIAG_WARNING, p->pending[i].file, p->pending[i].line,
              "Define %s comes after the last Program, so no shader sees it; move it above a Program",
              p->pending[i].name);
     free(p->pending);
     p->pending = NULL;
     if (sc->ncmds == 0 && sc->nerrors == 0 && sc->nfiles > 0)
-        diag(p, GLIB_WARNING, sc->files[0], 1, "no commands: the scene draws nothing");
+        report(p, DIAG_WARNING, sc->files[0], 1, "no commands: the scene draws nothing");
     if (p->dropped) {
         char msg[128];
         snprintf(msg, sizeof msg, "too many errors: %d more diagnostics not shown (%d errors); fix the ones above first",
                  p->dropped, p->dropped_errors);
-        add_diag(p, p->dropped_errors ? GLIB_ERROR : GLIB_WARNING,
+        add_diag(p, p->dropped_errors ? DIAG_ERROR : DIAG_WARNING,
                  sc->files[0], 0, msg);
     }
 }
@@ -1886,7 +1887,7 @@ glib_scene *glib_load_opts(const char *path, const glib_options *opt)
     char *buf, why[128];
     size_t len;
     if (!path || !read_file(path, &buf, &len, why, sizeof why)) {
-        diag(&p, GLIB_ERROR, name, 0, "cannot open '%s': %s", name, path ? why : "no path given");
+        report(&p, DIAG_ERROR, name, 0, "cannot open '%s': %s", name, path ? why : "no path given");
     } else {
         parse_nested(&p, buf, len, name, canonical(path), true);
         free(buf);
@@ -1911,12 +1912,8 @@ void glib_free(glib_scene *scene)
 
 void glib_print_diags(const glib_scene *scene, void *stream)
 {
-    FILE *f = stream;
-    for (int i = 0; scene && i < scene->ndiags; i++) {
-        const glib_diag *d = &scene->diags[i];
-        fprintf(f, "%s:%d: %s: %s\n", d->file ? d->file : "?", d->line,
-                d->severity == GLIB_ERROR ? "error" : "warning", d->message);
-    }
+    diag_list l = { .d = scene ? scene->diags : NULL, .n = scene ? scene->ndiags : 0 };
+    diag_print(&l, stream);
 }
 
 static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {

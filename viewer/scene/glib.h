@@ -15,6 +15,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "diag.h"        /* diagnostics: one type for all of tarn */
 #include "unif_decl.h"   /* a Program line's uniforms (unif_decl) */
 
 #define GLIB_NAME_MAX UNIF_NAME_MAX
@@ -137,21 +138,13 @@ typedef struct glib_cmd {
                                    offset ("" when a number is written) */
 } glib_cmd;
 
-typedef enum glib_severity { GLIB_WARNING = 1, GLIB_ERROR = 2 } glib_severity;
-
-typedef struct glib_diag {
-    glib_severity severity;
-    const char *file;
-    int line;
-    char message[256];
-} glib_diag;
 
 typedef struct glib_scene {
     glib_cmd *cmds;
     int ncmds;
-    glib_diag *diags;
+    diag *diags;                /* file points to a copy of the file name */
     int ndiags;
-    int nerrors;                /* diags with GLIB_ERROR */
+    int nerrors;                /* diags with DIAG_ERROR */
     /* every file read (the glib and its includes), each a heap string;
      * cmds and diags point into these */
     char **files;

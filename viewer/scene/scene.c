@@ -385,12 +385,12 @@ static void parser_errors(const glib_scene *g, char *err, int errlen)
 {
     size_t used = 0;
     for (int i = 0; i < g->ndiags && used + 1 < (size_t)errlen; i++) {
-        const glib_diag *d = &g->diags[i];
-        if (d->severity != GLIB_ERROR)
+        const diag *d = &g->diags[i];
+        if (d->severity != DIAG_ERROR)
             continue;
         size_t room = (size_t)errlen - used;
         int w = snprintf(err + used, room, "%s%s:%d: error: %s", used ? "\n" : "",
-                         d->file ? d->file : "?", d->line, d->message);
+                         d->file, d->line, d->text);
         if (w < 0 || (size_t)w >= room) {
             if (errlen >= 4)
                 memcpy(err + errlen - 4, "...", 4);

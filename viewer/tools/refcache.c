@@ -39,9 +39,9 @@ static bool load(const char *scene, loaded *l, char *err, int errlen) {
     if (g->nerrors > 0) {
         int len = 0;
         for (int i = 0; i < g->ndiags && len < errlen - 1; i++)
-            if (g->diags[i].severity == GLIB_ERROR)
+            if (g->diags[i].severity == DIAG_ERROR)
                 len += snprintf(err + len, (size_t)(errlen - len), "%s:%d: error: %s\n",
-                                g->diags[i].file ? g->diags[i].file : scene, g->diags[i].line, g->diags[i].message);
+                                g->diags[i].file, g->diags[i].line, g->diags[i].text);
         glib_free(g);
         return false;
     }
