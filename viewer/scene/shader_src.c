@@ -1,6 +1,8 @@
 /* shader_src: assembles a shader stage's source text (see shader_src.h). */
 #include "shader_src.h"
 
+#include "strbuf.h"
+
 #include <assert.h>
 #include <ctype.h>
 #include <errno.h>
@@ -11,48 +13,6 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
-
-/* ---- a growable string ---------------------------------------------------- */
-
-typedef struct sbuf {
-    char *p;
-    size_t n, cap;
-    bool oom;
-} sbuf;
-
-static void sb_put(sbuf *b, const char *s, size_t n) {
-    if (b->oom) return;
-    if (b->n + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 256;
-        while (b->n + n + 1 > cap) cap *= 2;
-        char *p = realloc(b->p, cap);
-        if (!p) { b->oom = true; return; }
-        b->p = p;
-        b->cap = cap;
-    }
-    memcpy(b->p + b->n, s, n);
-    b->n += n;
-    b->p[b->n] = '\0';
-}
-
-static void sb_puts(sbuf *b, const char *s) { sb_put(b, s, strlen(s)); }
-
-static void sb_printf(sbuf *b, const char *fmt, ...) {
-    char tmp[512];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    if (n < 0) return;
-    if ((size_t)n < sizeof tmp) { sb_put(b, tmp, (size_t)n); return; }
-    char *big = malloc((size_t)n + 1);
-    if (!big) { b->oom = true; return; }
-    va_start(ap, fmt);
-    vsnprintf(big, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-    sb_put(b, big, (size_t)n);
-    free(big);
-}
 
 /* ---- paths and files ------------------------------------------------------ */
 
@@ -139,26 +99,26 @@ static char *read_text(const char *path) {
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) { errno = EISDIR; return NULL; }
     FILE *f = fopen(path, "rb");
     if (!f) return NULL;
-    sbuf b = {0};
+    strbuf b = {0};
     char chunk[8192];
     size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0 && b.n <= SHADER_SRC_MAX_FILE_BYTES) sb_put(&b, chunk, n);
-    int err = ferror(f) ? errno : b.n > SHADER_SRC_MAX_FILE_BYTES ? EFBIG : 0;
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0 && b.len <= SHADER_SRC_MAX_FILE_BYTES) strbuf_put(&b, chunk, n);
+    int err = ferror(f) ? errno : b.len > SHADER_SRC_MAX_FILE_BYTES ? EFBIG : 0;
     fclose(f);
-    if (err || b.oom) { free(b.p); errno = err ? err : ENOMEM; return NULL; }
-    if (!b.p) return strdup("");
-    if (memchr(b.p, '\0', b.n)) { free(b.p); errno = EILSEQ; return NULL; }
-    if (b.n >= 3 && memcmp(b.p, "\xEF\xBB\xBF", 3) == 0) {     /* a UTF-8 byte order mark */
-        memmove(b.p, b.p + 3, b.n - 2);
-        b.n -= 3;
+    if (err) { free(b.s); errno = err; return NULL; }
+    if (!b.s) return strdup("");
+    if (memchr(b.s, '\0', b.len)) { free(b.s); errno = EILSEQ; return NULL; }
+    if (b.len >= 3 && memcmp(b.s, "\xEF\xBB\xBF", 3) == 0) {     /* a UTF-8 byte order mark */
+        memmove(b.s, b.s + 3, b.len - 2);
+        b.len -= 3;
     }
     size_t w = 0;
-    for (size_t r = 0; r < b.n; r++) {
-        if (b.p[r] == '\r' && r + 1 < b.n && b.p[r + 1] == '\n') continue;
-        b.p[w++] = b.p[r];
+    for (size_t r = 0; r < b.len; r++) {
+        if (b.s[r] == '\r' && r + 1 < b.len && b.s[r + 1] == '\n') continue;
+        b.s[w++] = b.s[r];
     }
-    b.p[w] = '\0';
-    return b.p;
+    b.s[w] = '\0';
+    return b.s;
 }
 
 static const char *errno_text(int err) {
@@ -238,7 +198,7 @@ typedef struct src_file {
 typedef struct asm_ctx {
     const shader_src_desc *desc;
     shader_src *out;
-    sbuf text;
+    strbuf text;
     src_file *files;
     int nfiles, capfiles;
     int stack[SHADER_SRC_MAX_INCLUDE_DEPTH + 2];
@@ -282,7 +242,7 @@ static int file_index(asm_ctx *c, const char *path) {
 
 static void emit_line_directive(asm_ctx *c, int fidx, int line) {
     long v = (long)fidx * SHADER_SRC_LINE_BASE + line - (c->old_line_rule ? 1 : 0);
-    sb_printf(&c->text, "#line %ld %d\n", v, fidx);
+    strbuf_printf(&c->text, "#line %ld %d\n", v, fidx);
 }
 
 static bool line_is_pragma_once(line_view l) {
@@ -396,7 +356,7 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
     if (c->files[k].times == 0) c->files[k].once = has_pragma_once(text);
     if (c->files[k].once && c->files[k].times > 0) {
         free(text);
-        sb_puts(&c->text, "\n");            /* keeps the including file's numbering */
+        strbuf_puts(&c->text, "\n");            /* keeps the including file's numbering */
         return true;
     }
     c->files[k].times++;
@@ -432,16 +392,16 @@ static bool emit_file(asm_ctx *c, int fidx, const char *text, int first_line, bo
                     if (!do_include(c, fidx, line, rest, l.p + l.n)) return false;
                     handled = true;
                 } else if (line_is_pragma_once(l)) {
-                    sb_puts(&c->text, "\n");
+                    strbuf_puts(&c->text, "\n");
                     handled = true;
                 } else if (rest && word_is(name, nn, "version") && !seen_code) {
-                    sb_puts(&c->text, "\n");
+                    strbuf_puts(&c->text, "\n");
                     handled = true;
                 }
             }
             if (!handled) {
-                sb_put(&c->text, l.p, l.n);
-                sb_puts(&c->text, "\n");
+                strbuf_put(&c->text, l.p, l.n);
+                strbuf_puts(&c->text, "\n");
             }
             bool ic = in_comment;
             if (line_has_code(l, &ic)) seen_code = true;
@@ -451,7 +411,7 @@ static bool emit_file(asm_ctx *c, int fidx, const char *text, int first_line, bo
         p = e + 1;
         line++;
     }
-    return !c->text.oom;
+    return true;
 }
 
 static bool valid_identifier(const char *s) {
@@ -472,18 +432,18 @@ static const char *const gstap_matrices[][2] = {
 static void emit_prologue(asm_ctx *c) {
     const shader_src_desc *d = c->desc;
     for (int i = 0; i < d->ndefines; i++) {
-        if (d->defines[i].value[0]) sb_printf(&c->text, "#define %s %s\n", d->defines[i].name, d->defines[i].value);
-        else sb_printf(&c->text, "#define %s\n", d->defines[i].name);
+        if (d->defines[i].value[0]) strbuf_printf(&c->text, "#define %s %s\n", d->defines[i].name, d->defines[i].value);
+        else strbuf_printf(&c->text, "#define %s\n", d->defines[i].name);
     }
     if (d->gstap) {
-        sb_puts(&c->text, "// GSTAP: glman's generic names for the compatibility built-ins\n");
+        strbuf_puts(&c->text, "// GSTAP: glman's generic names for the compatibility built-ins\n");
         if (d->stage == SHADER_VERTEX) {
-            sb_puts(&c->text, "#define aVertex gl_Vertex\n#define aNormal gl_Normal\n"
+            strbuf_puts(&c->text, "#define aVertex gl_Vertex\n#define aNormal gl_Normal\n"
                               "#define aColor gl_Color\n");
-            for (int i = 0; i < 8; i++) sb_printf(&c->text, "#define aTexCoord%d gl_MultiTexCoord%d\n", i, i);
+            for (int i = 0; i < 8; i++) strbuf_printf(&c->text, "#define aTexCoord%d gl_MultiTexCoord%d\n", i, i);
         }
         for (size_t i = 0; i < sizeof gstap_matrices / sizeof gstap_matrices[0]; i++)
-            sb_printf(&c->text, "#define %s %s\n", gstap_matrices[i][0], gstap_matrices[i][1]);
+            strbuf_printf(&c->text, "#define %s %s\n", gstap_matrices[i][0], gstap_matrices[i][1]);
     }
 }
 
@@ -583,8 +543,8 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
         for (int i = 1; i < v.line; i++) lp = strchr(lp, '\n') + 1;
         const char *le = strchr(lp, '\n');
         size_t ln = le ? (size_t)(le - lp) : strlen(lp);
-        sb_put(&c.text, lp + v.start, v.len);
-        sb_puts(&c.text, "\n");
+        strbuf_put(&c.text, lp + v.start, v.len);
+        strbuf_puts(&c.text, "\n");
         c.old_line_rule = !v.es && v.number < 330;
         emit_prologue(&c);
         /* what followed the directive on its line (a comment, maybe opening a block) */
@@ -596,21 +556,20 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
         scan_comments(tail, &in_comment);
         if (tail_has_text) {
             emit_line_directive(&c, 0, v.line);
-            sb_put(&c.text, tail.p, tail.n);
-            sb_puts(&c.text, "\n");
+            strbuf_put(&c.text, tail.p, tail.n);
+            strbuf_puts(&c.text, "\n");
         } else {
             emit_line_directive(&c, 0, v.line + 1);
         }
         ok = emit_file(&c, 0, main_text, v.line + 1, in_comment);
     } else {
-        sb_puts(&c.text, "#version 330 compatibility  "
+        strbuf_puts(&c.text, "#version 330 compatibility  "
                          "// tarn: the file has no #version; glman's default assumed\n");
         c.old_line_rule = false;
         emit_prologue(&c);
         emit_line_directive(&c, 0, 1);
         ok = emit_file(&c, 0, main_text, 1, false);
     }
-    if (ok && c.text.oom) { fail(&c, path, 0, "out of memory"); ok = false; }
 
 done:
     free(main_text);
@@ -625,12 +584,12 @@ done:
     for (int i = 0; i < c.nfiles; i++) { free(c.files[i].path); free(c.files[i].id); }
     free(c.files);
     if (!ok) {
-        free(c.text.p);
+        free(c.text.s);
         out->text = NULL;
         if (!out->error[0]) snprintf(out->error, sizeof out->error, "%s:0: error: cannot assemble shader", path);
         return false;
     }
-    out->text = c.text.p ? c.text.p : strdup("");
+    out->text = c.text.s ? c.text.s : strdup("");
     unsigned long long h = 14695981039346656037ull;
     for (const unsigned char *q = (const unsigned char *)out->text; *q; q++) {
         h ^= *q;
@@ -681,7 +640,7 @@ static bool decode_loc(const shader_src *s, long idx, long line, int *file, long
     return true;
 }
 
-static bool map_line(const shader_src *s, line_view l, sbuf *o) {
+static bool map_line(const shader_src *s, line_view l, strbuf *o) {
     const char *p = l.p, *end = l.p + l.n;
     while (p < end && (*p == ' ' || *p == '\t')) p++;
     static const char *const sev[][2] = {
@@ -704,8 +663,8 @@ static bool map_line(const shader_src *s, line_view l, sbuf *o) {
         if (!decode_loc(s, idx, line, &file, &real)) return false;
         const char *e = end;
         while (e > q && (e[-1] == ' ' || e[-1] == '\t')) e--;
-        sb_printf(o, "%s:%ld: %s: ", s->files[file], real, sev[i][1]);
-        sb_put(o, q, (size_t)(e - q));
+        strbuf_printf(o, "%s:%ld: %s: ", s->files[file], real, sev[i][1]);
+        strbuf_put(o, q, (size_t)(e - q));
         return true;
     }
     const char *q = p;
@@ -735,31 +694,30 @@ static bool map_line(const shader_src *s, line_view l, sbuf *o) {
     }
     while (q < end && *q == ' ') q++;
     if (!decode_loc(s, idx, line, &file, &real)) return false;
-    sb_printf(o, "%s:%ld: ", s->files[file], real);
-    sb_put(o, q, (size_t)(end - q));
+    strbuf_printf(o, "%s:%ld: ", s->files[file], real);
+    strbuf_put(o, q, (size_t)(end - q));
     return true;
 }
 
 char *shader_src_map_log(const shader_src *s, const char *log) {
-    sbuf o = {0};
-    sb_puts(&o, "");
-    if (!log) return o.p;
+    strbuf o = {0};
+    strbuf_puts(&o, "");
+    if (!log) return o.s;
     const char *p = log;
     while (*p) {
         const char *e = strchr(p, '\n');
         line_view l = { p, e ? (size_t)(e - p) : strlen(p) };
-        size_t mark = o.n;
+        size_t mark = o.len;
         if (!s || !map_line(s, l, &o)) {
-            o.n = mark;
-            if (o.p) o.p[o.n] = '\0';
-            sb_put(&o, l.p, l.n);
+            o.len = mark;
+            if (o.s) o.s[o.len] = '\0';
+            strbuf_put(&o, l.p, l.n);
         }
         if (!e) break;
-        sb_puts(&o, "\n");
+        strbuf_puts(&o, "\n");
         p = e + 1;
     }
-    if (o.oom) { free(o.p); return NULL; }
-    return o.p;
+    return o.s;
 }
 
 const char *shader_stage_name(shader_stage st) {
