@@ -1,6 +1,8 @@
 /* ref_metrics: error metrics between float images and buffers, heat maps.
  * See ref_metrics.h and docs/metrics.md. */
 #include "ref_metrics.h"
+#include "strbuf.h"
+#include "util.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -34,14 +36,6 @@ static const char inferno_hex[] =
     "f2ea69f1ec6df1ed71f1ef75f1f179f2f27df2f482f3f586f3f68af4f88ef5f992f6fa96"
     "f8fb9af9fc9dfafda1fcffa4";
 
-static void set_err(char *err, int errlen, const char *fmt, ...) {
-    if (!err || errlen <= 0) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, (size_t)errlen, fmt, ap);
-    va_end(ap);
-}
-
 /* ---- colour map, sRGB ----------------------------------------------------- */
 
 static int hexval(char c) {
@@ -73,11 +67,6 @@ double ref_linear_to_srgb(double c) {
 }
 
 /* ---- percentiles ----------------------------------------------------------- */
-
-static int cmp_double(const void *pa, const void *pb) {
-    double a = *(const double *)pa, b = *(const double *)pb;
-    return (a > b) - (a < b);
-}
 
 double ref_percentile_sorted(const double *sorted, long n, double p) {
     if (n <= 0 || !sorted) return NAN;
@@ -167,11 +156,11 @@ static bool pair_init(pair *p, const ref_fimage *a, const ref_fimage *b, ref_err
                       const ref_metrics_desc *d, char *err, int errlen) {
     memset(p, 0, sizeof *p);
     if (!image_ok(a) || !image_ok(b)) {
-        set_err(err, errlen, "%s is empty", !image_ok(a) ? "A" : "B");
+        msg_set(err, (size_t)errlen, "%s is empty", !image_ok(a) ? "A" : "B");
         return false;
     }
     if (a->w != b->w || a->h != b->h) {
-        set_err(err, errlen, "sizes differ: A is %dx%d, B is %dx%d", a->w, a->h, b->w, b->h);
+        msg_set(err, (size_t)errlen, "sizes differ: A is %dx%d, B is %dx%d", a->w, a->h, b->w, b->h);
         return false;
     }
     p->a = a;
@@ -191,7 +180,7 @@ static bool pair_init(pair *p, const ref_fimage *a, const ref_fimage *b, ref_err
         break;
     case REF_ERR_POINT:
         if (ca < 3 || cb < 3) {
-            set_err(err, errlen, "hit points need 3 channels (x, y, z): A has %d, B has %d", ca, cb);
+            msg_set(err, (size_t)errlen, "hit points need 3 channels (x, y, z): A has %d, B has %d", ca, cb);
             return false;
         }
         p->nc = 3;
@@ -207,7 +196,7 @@ static bool pair_init(pair *p, const ref_fimage *a, const ref_fimage *b, ref_err
         }
         break;
     default:
-        set_err(err, errlen, "unknown error kind %d", (int)kind);
+        msg_set(err, (size_t)errlen, "unknown error kind %d", (int)kind);
         return false;
     }
     return true;
@@ -269,7 +258,7 @@ bool ref_metrics_image(const ref_fimage *a, const ref_fimage *b, const ref_metri
     if (!pair_init(&p, a, b, REF_ERR_COLOR, d, err, errlen)) return false;
     long npx = (long)p.w * p.h;
     sampler s;
-    if (!sampler_init(&s, npx)) { set_err(err, errlen, "out of memory"); return false; }
+    if (!sampler_init(&s, npx)) { msg_set(err, (size_t)errlen, "out of memory"); return false; }
     out->width = p.w;
     out->height = p.h;
     out->channels = p.nc;
@@ -334,7 +323,7 @@ bool ref_metrics_points(const ref_fimage *a, const ref_fimage *b, const ref_metr
     bool texels = out->texel_size > 0;
     if (!sampler_init(&sw, npx) || !sampler_init(&st, texels ? npx : 1)) {
         free(sw.v);
-        set_err(err, errlen, "out of memory");
+        msg_set(err, (size_t)errlen, "out of memory");
         return false;
     }
     out->width = p.w;
@@ -367,7 +356,7 @@ bool ref_metrics_scalar(const ref_fimage *a, const ref_fimage *b, const ref_metr
     sampler sa, sr;
     if (!sampler_init(&sa, npx * p.nc) || !sampler_init(&sr, npx * p.nc)) {
         free(sa.v);
-        set_err(err, errlen, "out of memory");
+        msg_set(err, (size_t)errlen, "out of memory");
         return false;
     }
     out->width = p.w;
@@ -403,7 +392,7 @@ bool ref_metrics_error_field(const ref_fimage *a, const ref_fimage *b, ref_err_k
                              const ref_metrics_desc *d, float *field, char *err, int errlen) {
     pair p;
     if (!pair_init(&p, a, b, kind, d, err, errlen)) return false;
-    if (!field) { set_err(err, errlen, "no field to write"); return false; }
+    if (!field) { msg_set(err, (size_t)errlen, "no field to write"); return false; }
     long npx = (long)p.w * p.h;
     ref_pixel_counts n = {0};
     for (long i = 0; i < npx; i++) {

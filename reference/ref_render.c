@@ -1,6 +1,9 @@
 /* ref_render: the CPU ground-truth renderer (see ref_render.h and
  * docs/reference.md, "The renderer"). */
 #include "ref_render.h"
+#include "strbuf.h"
+#include "util.h"
+#include "vec3.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -32,20 +35,6 @@
 #define REGION_SAMPLES 257       /* samples per side to find the underwater floor */
 #define PIXEL_PHOTON_COST 5.0    /* a pixel costs about this many photons (progress) */
 
-static void set_err(char *err, size_t errlen, const char *fmt, ...) {
-    if (!err || errlen == 0) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static double dot3(const double a[3], const double b[3]) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
@@ -54,12 +43,6 @@ static void cross3(const double a[3], const double b[3], double c[3]) {
     c[0] = a[1] * b[2] - a[2] * b[1];
     c[1] = a[2] * b[0] - a[0] * b[2];
     c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double normalize3(double v[3]) {
-    double l = sqrt(dot3(v, v));
-    if (l > 0) for (int i = 0; i < 3; i++) v[i] /= l;
-    return l;
 }
 
 static void set3(double v[3], double x) { v[0] = v[1] = v[2] = x; }
@@ -92,10 +75,10 @@ ref_render_desc ref_render_resolve(const ref_render_desc *din) {
 void ref_camera_ray(const ref_camera *cam, double px, double py, double o[3], double d[3]) {
     double f[3] = { cam->center[0] - cam->eye[0], cam->center[1] - cam->eye[1],
                     cam->center[2] - cam->eye[2] };
-    normalize3(f);
+    vec3_normalize(f);
     double r[3], u[3];
     cross3(f, cam->up, r);
-    normalize3(r);
+    vec3_normalize(r);
     cross3(r, f, u);
     double th = tan(0.5 * cam->fov_deg * PI / 180.0);
     double sy = (1.0 - 2.0 * py / cam->height) * th;
@@ -104,7 +87,7 @@ void ref_camera_ray(const ref_camera *cam, double px, double py, double o[3], do
         o[i] = cam->eye[i];
         d[i] = f[i] + sx * r[i] + sy * u[i];
     }
-    normalize3(d);
+    vec3_normalize(d);
 }
 
 /* ------------------------------------------------------------------ */
@@ -322,7 +305,7 @@ static void trace_path(const rctx *c, const double o[3], const double d[3], int 
         double R = ref_fresnel(cos_i, n1, n2);
         double rdir[3], tdir[3];
         ref_reflect(d, s->normal, rdir);
-        normalize3(rdir);
+        vec3_normalize(rdir);
         int tir = !ref_refract(d, s->normal, n1, n2, tdir);
         if (pi) {
             pi->water = 1;
@@ -632,7 +615,7 @@ static int plan_caustics(rctx *c, worker *wk, char *err, size_t errlen) {
     int ok = g->irradiance && g->area;
     for (int i = 0; ok && i < c->nthreads; i++) ok = (wk[i].buf = malloc(n * 3 * sizeof *wk[i].buf)) != NULL;
     if (!ok) {
-        set_err(err, errlen, "reference: out of memory for a %d x %d caustic grid", nx, nz);
+        msg_set(err, errlen, "reference: out of memory for a %d x %d caustic grid", nx, nz);
         return -1;
     }
     r->have_caustics = 1;
@@ -674,37 +657,37 @@ void ref_render_free(ref_render_result *r) {
 
 static int check_desc(const ref_render_desc *d, char *err, size_t errlen) {
     const ref_camera *c = &d->camera;
-    if (!d->world) { set_err(err, errlen, "reference: no world"); return -1; }
+    if (!d->world) { msg_set(err, errlen, "reference: no world"); return -1; }
     if (c->width > 16384 || c->height > 16384 || (long)c->width * c->height > (1L << 26)) {
-        set_err(err, errlen, "reference: image size %dx%d out of range", c->width, c->height);
+        msg_set(err, errlen, "reference: image size %dx%d out of range", c->width, c->height);
         return -1;
     }
     if (d->spp > MAX_SPP) {
-        set_err(err, errlen, "reference: %d x %d subsamples per pixel (at most %d x %d)", d->spp,
+        msg_set(err, errlen, "reference: %d x %d subsamples per pixel (at most %d x %d)", d->spp,
                 d->spp, MAX_SPP, MAX_SPP);
         return -1;
     }
     if (d->caustic_res > 8192 || d->photons_per_cell > 1 << 20 || d->max_depth > 64) {
-        set_err(err, errlen, "reference: caustic_res, photons_per_cell or max_depth out of range");
+        msg_set(err, errlen, "reference: caustic_res, photons_per_cell or max_depth out of range");
         return -1;
     }
     if (d->caustics != REF_CAUSTICS_PHOTONS && d->caustics != REF_CAUSTICS_FLAT) {
-        set_err(err, errlen, "reference: unknown caustics mode %d", d->caustics);
+        msg_set(err, errlen, "reference: unknown caustics mode %d", d->caustics);
         return -1;
     }
     double f[3] = { c->center[0] - c->eye[0], c->center[1] - c->eye[1], c->center[2] - c->eye[2] }, s[3];
     for (int i = 0; i < 3; i++)
         if (!isfinite(c->eye[i]) || !isfinite(c->center[i]) || !isfinite(c->up[i])) {
-            set_err(err, errlen, "reference: camera has a non-finite number");
+            msg_set(err, errlen, "reference: camera has a non-finite number");
             return -1;
         }
-    if (normalize3(f) == 0) { set_err(err, errlen, "reference: camera eye equals its centre"); return -1; }
+    if (vec3_normalize(f) == 0) { msg_set(err, errlen, "reference: camera eye equals its centre"); return -1; }
     cross3(f, c->up, s);
     if (sqrt(dot3(s, s)) < 1e-9 * sqrt(dot3(c->up, c->up))) {
-        set_err(err, errlen, "reference: camera up lies along the line of sight");
+        msg_set(err, errlen, "reference: camera up lies along the line of sight");
         return -1;
     }
-    if (!(c->fov_deg < 179.0)) { set_err(err, errlen, "reference: field of view %g out of range", c->fov_deg); return -1; }
+    if (!(c->fov_deg < 179.0)) { msg_set(err, errlen, "reference: field of view %g out of range", c->fov_deg); return -1; }
     return 0;
 }
 
@@ -718,7 +701,7 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     if (!c || !wk) {
         free(c);
         free(wk);
-        set_err(err, errlen, "reference: out of memory");
+        msg_set(err, errlen, "reference: out of memory");
         return -1;
     }
     c->w = d.world;
@@ -753,7 +736,7 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     int rc = 0;
     if (!out->color || !out->mask || !out->surface || !out->refract_hit || !out->reflect ||
         !out->fresnel || !out->depth || !out->irradiance) {
-        set_err(err, errlen, "reference: out of memory for a %dx%d image", w, h);
+        msg_set(err, errlen, "reference: out of memory for a %dx%d image", w, h);
         rc = -1;
     }
 
@@ -766,14 +749,14 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     double photon_work = out->have_caustics ? (double)out->caustics.plan.mx * out->caustics.plan.mz : 0.0;
     double f1 = photon_work / (photon_work + pixel_work);
     if (rc == 0 && out->have_caustics) {
-        double t0 = now_s();
+        double t0 = clock_now_s();
         trace_caustics(c, wk, f1);
-        out->seconds_photons = now_s() - t0;
+        out->seconds_photons = clock_now_s() - t0;
     }
     if (rc == 0) {
-        double t0 = now_s();
+        double t0 = clock_now_s();
         run_phase(c, pixel_worker, wk, h, f1, 1.0);
-        out->seconds_pixels = now_s() - t0;
+        out->seconds_pixels = clock_now_s() - t0;
         if (d.progress) d.progress(d.progress_user, 1.0);
     }
 

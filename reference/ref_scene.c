@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "ref_trace.h"
+#include "vec3.h"
 
 #define PI 3.14159265358979323846
 
@@ -21,11 +22,6 @@ static double smoothstep_d(double e0, double e1, double x) {
     return 6 * t * (1 - t) / (e1 - e0);
 }
 
-static void normalize3(double v[3]) {
-    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0) for (int i = 0; i < 3; i++) v[i] /= l;
-}
-
 static void default3(double v[3], double a, double b, double c) {
     if (v[0] == 0 && v[1] == 0 && v[2] == 0) { v[0] = a; v[1] = b; v[2] = c; }
 }
@@ -35,7 +31,7 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
     if (d) w->d = *d;
     ref_world_desc *s = &w->d;
     default3(s->sun_dir, 0.4, 0.8, -0.45);
-    normalize3(s->sun_dir);
+    vec3_normalize(s->sun_dir);
     default3(s->sun_irradiance, 2.2, 2.1, 1.9);
     default3(s->sky_zenith, 0.25, 0.45, 0.85);
     default3(s->sky_horizon, 0.70, 0.80, 0.92);
@@ -150,7 +146,7 @@ void ref_terrain_normal_at(const ref_world *w, double x, double z, double n[3]) 
     n[0] = -g[0];
     n[1] = 1.0;
     n[2] = -g[1];
-    normalize3(n);
+    vec3_normalize(n);
 }
 
 static void mix3(const double a[3], const double b[3], double t, double out[3]) {

@@ -1,6 +1,7 @@
 /* ref_trace: ray casting against water and terrain, attenuation, photons
  * (see ref_trace.h). */
 #include "ref_trace.h"
+#include "strbuf.h"
 
 #include <float.h>
 #include <math.h>
@@ -30,14 +31,6 @@ static trace_params resolve_opts(const ref_trace_opts *o) {
     p.min_step = o && o->min_step > 0.0 ? o->min_step : 0.0;   /* per-surface default */
     p.max_steps = o && o->max_steps > 0 ? o->max_steps : DEFAULT_MAX_STEPS;
     return p;
-}
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...) {
-    if (!err || errlen == 0) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
 }
 
 /* ------------------------------------------------------------------ */
@@ -315,20 +308,20 @@ static double floor_height(const ref_caustics_desc *d, double x, double z) {
 int ref_caustics_plan_init(const ref_caustics_desc *din, ref_caustics_plan *p, char *err, size_t errlen) {
     memset(p, 0, sizeof *p);
     ref_caustics_desc d = *din;
-    if (!d.waves) { set_err(err, errlen, "caustics: no wave set"); return -1; }
+    if (!d.waves) { msg_set(err, errlen, "caustics: no wave set"); return -1; }
     if (!(d.x1 > d.x0) || !(d.z1 > d.z0)) {
-        set_err(err, errlen, "caustics: empty floor region [%g, %g] x [%g, %g]", d.x0, d.x1, d.z0, d.z1);
+        msg_set(err, errlen, "caustics: empty floor region [%g, %g] x [%g, %g]", d.x0, d.x1, d.z0, d.z1);
         return -1;
     }
-    if (d.floor && !d.floor->height) { set_err(err, errlen, "caustics: floor without a height function"); return -1; }
+    if (d.floor && !d.floor->height) { msg_set(err, errlen, "caustics: floor without a height function"); return -1; }
     if (d.nx == 0) d.nx = 64;
     if (d.nz == 0) d.nz = 64;
     if (d.nx < 0 || d.nz < 0 || (long)d.nx * d.nz > (1L << 26)) {
-        set_err(err, errlen, "caustics: grid %d x %d out of range", d.nx, d.nz);
+        msg_set(err, errlen, "caustics: grid %d x %d out of range", d.nx, d.nz);
         return -1;
     }
     if (d.photons_per_cell == 0) d.photons_per_cell = 256;
-    if (d.photons_per_cell < 0) { set_err(err, errlen, "caustics: photons_per_cell < 0"); return -1; }
+    if (d.photons_per_cell < 0) { msg_set(err, errlen, "caustics: photons_per_cell < 0"); return -1; }
     if (d.sun_irradiance == 0.0) d.sun_irradiance = 1.0;
     if (d.n_air == 0.0) d.n_air = REF_N_AIR;
     if (d.n_water == 0.0) d.n_water = REF_N_WATER;
@@ -337,7 +330,7 @@ int ref_caustics_plan_init(const ref_caustics_desc *din, ref_caustics_plan *p, c
     double sl = sqrt(d.sun_dir[0] * d.sun_dir[0] + d.sun_dir[1] * d.sun_dir[1] + d.sun_dir[2] * d.sun_dir[2]);
     if (sl == 0.0) { p->sun[0] = 0.0; p->sun[1] = 1.0; p->sun[2] = 0.0; }
     else for (int i = 0; i < 3; i++) p->sun[i] = d.sun_dir[i] / sl;
-    if (!(p->sun[1] > 1e-6)) { set_err(err, errlen, "caustics: the sun is below the horizon"); return -1; }
+    if (!(p->sun[1] > 1e-6)) { msg_set(err, errlen, "caustics: the sun is below the horizon"); return -1; }
 
     const ref_waves *w = d.waves;
     double level = w->desc.level;
@@ -396,7 +389,7 @@ int ref_caustics_plan_init(const ref_caustics_desc *din, ref_caustics_plan *p, c
     if (k < 1) k = 1;
     double mxd = ceil((ex1 - p->ex0) / (p->cell_dx / k));
     double mzd = ceil((ez1 - p->ez0) / (p->cell_dz / k));
-    if (mxd * mzd > 4e9) { set_err(err, errlen, "caustics: too many photons (%g)", mxd * mzd); return -1; }
+    if (mxd * mzd > 4e9) { msg_set(err, errlen, "caustics: too many photons (%g)", mxd * mzd); return -1; }
     p->mx = (int)mxd;
     p->mz = (int)mzd;
     p->sx = (ex1 - p->ex0) / p->mx;
@@ -533,7 +526,7 @@ int ref_caustics_trace(const ref_caustics_desc *d, ref_caustics *out, char *err,
     out->area = calloc((size_t)nx * nz, sizeof *out->area);
     if (!out->irradiance || !out->area) {
         ref_caustics_free(out);
-        set_err(err, errlen, "caustics: out of memory for a %d x %d grid", nx, nz);
+        msg_set(err, errlen, "caustics: out of memory for a %d x %d grid", nx, nz);
         return -1;
     }
     ref_caustics_trace_rows(p, 0, p->mz, out->irradiance, &out->stats);

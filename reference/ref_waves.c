@@ -1,6 +1,8 @@
 /* ref_waves: sum of sines, Gerstner and noise waves in double precision
  * (see ref_waves.h; the float twin is packs/common/waves.glsl). */
 #include "ref_waves.h"
+#include "strbuf.h"
+#include "vec3.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -42,14 +44,6 @@ static double deep_water_speed(double wavelength) {
     return sqrt(REF_GRAVITY * wavelength / TWO_PI);
 }
 
-static void set_err(char *err, size_t errlen, const char *fmt, ...) {
-    if (!err || errlen == 0) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
-
 static int wave_finite(const ref_wave_desc *w) {
     return isfinite(w->angle_deg) && isfinite(w->wavelength) && isfinite(w->amplitude) &&
            isfinite(w->speed) && isfinite(w->phase);
@@ -89,25 +83,25 @@ int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t e
     if (err && errlen) err[0] = '\0';
 
     if (d.sine_count < 0 || d.sine_count > REF_WAVES_MAX) {
-        set_err(err, errlen, "sine_count %d out of range 0..%d", d.sine_count, REF_WAVES_MAX);
+        msg_set(err, errlen, "sine_count %d out of range 0..%d", d.sine_count, REF_WAVES_MAX);
         return -1;
     }
     if (d.gerstner_count < 0 || d.gerstner_count > REF_WAVES_MAX) {
-        set_err(err, errlen, "gerstner_count %d out of range 0..%d", d.gerstner_count, REF_WAVES_MAX);
+        msg_set(err, errlen, "gerstner_count %d out of range 0..%d", d.gerstner_count, REF_WAVES_MAX);
         return -1;
     }
     if (!isfinite(d.steepness) || d.steepness < 0.0) {
-        set_err(err, errlen, "steepness Q must be finite and >= 0 (got %g)", d.steepness);
+        msg_set(err, errlen, "steepness Q must be finite and >= 0 (got %g)", d.steepness);
         return -1;
     }
     if (!isfinite(d.level)) {
-        set_err(err, errlen, "level must be finite");
+        msg_set(err, errlen, "level must be finite");
         return -1;
     }
     for (int i = 0; i < d.sine_count; i++)
-        if (!wave_finite(&d.sine[i])) { set_err(err, errlen, "sine wave %d has a non-finite value", i); return -1; }
+        if (!wave_finite(&d.sine[i])) { msg_set(err, errlen, "sine wave %d has a non-finite value", i); return -1; }
     for (int i = 0; i < d.gerstner_count; i++)
-        if (!wave_finite(&d.gerstner[i])) { set_err(err, errlen, "Gerstner wave %d has a non-finite value", i); return -1; }
+        if (!wave_finite(&d.gerstner[i])) { msg_set(err, errlen, "Gerstner wave %d has a non-finite value", i); return -1; }
 
     ref_noise_desc *nd = &d.noise;
     if (nd->cell == 0.0) nd->cell = REF_NOISE_DEFAULT_CELL;
@@ -117,15 +111,15 @@ int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t e
     if (nd->speed == 0.0) nd->speed = deep_water_speed(2.0 * nd->cell);
     if (!isfinite(nd->amplitude) || !isfinite(nd->cell) || !isfinite(nd->gain) ||
         !isfinite(nd->angle_deg) || !isfinite(nd->speed) || nd->cell < 0.0) {
-        set_err(err, errlen, "noise parameters must be finite, cell > 0");
+        msg_set(err, errlen, "noise parameters must be finite, cell > 0");
         return -1;
     }
     if (nd->octaves < 0 || nd->octaves > REF_NOISE_OCTAVES_MAX) {
-        set_err(err, errlen, "noise octaves %d out of range 1..%d", nd->octaves, REF_NOISE_OCTAVES_MAX);
+        msg_set(err, errlen, "noise octaves %d out of range 1..%d", nd->octaves, REF_NOISE_OCTAVES_MAX);
         return -1;
     }
     if (nd->period < 0 || nd->period > (1 << 16)) {
-        set_err(err, errlen, "noise period %d out of range 1..65536", nd->period);
+        msg_set(err, errlen, "noise period %d out of range 1..65536", nd->period);
         return -1;
     }
 
@@ -295,11 +289,6 @@ void ref_waves_displace(const ref_waves *w, double u, double v, double t, double
     pos[2] = v + s.dz;
 }
 
-static void normalize3(double v[3]) {
-    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0.0) { v[0] /= l; v[1] /= l; v[2] /= l; }
-}
-
 static void fill_point(const ref_waves *w, double u, double v, const wave_sums *s, ref_waves_point *p) {
     p->param[0] = u;
     p->param[1] = v;
@@ -315,13 +304,13 @@ static void fill_point(const ref_waves *w, double u, double v, const wave_sums *
     p->normal[0] = T[1] * B[2] - T[2] * B[1];
     p->normal[1] = T[2] * B[0] - T[0] * B[2];
     p->normal[2] = T[0] * B[1] - T[1] * B[0];
-    normalize3(p->normal);
+    vec3_normalize(p->normal);
     /* chapter eq. 12: (-sum D.x WA C, 1 - sum Q_i WA S, -sum D.z WA C);
      * 1 + a + d = 1 - sum Q_i k A sin since |D| = 1 */
     p->normal_approx[0] = -s->hu;
     p->normal_approx[1] = 1.0 + s->a + s->d;
     p->normal_approx[2] = -s->hv;
-    normalize3(p->normal_approx);
+    vec3_normalize(p->normal_approx);
     p->jacobian = (1.0 + s->a) * (1.0 + s->d) - s->b * s->b;
 }
 

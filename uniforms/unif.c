@@ -1,6 +1,9 @@
 /* unif: the uniform model behind the generated slider panel (see unif.h). */
 #include "unif.h"
 
+#include "file.h"
+#include "strbuf.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <float.h>
@@ -16,23 +19,6 @@
 #define PRESET_MAX_BYTES (16L * 1024 * 1024)
 
 /* ---- messages ---------------------------------------------------------- */
-
-static void msg_clear(char *err, int errlen) {
-    if (err && errlen > 0) err[0] = '\0';
-}
-
-/* Appends one message (a line) to err, keeping it terminated when full. */
-static void msg_add(char *err, int errlen, const char *fmt, ...) {
-    if (!err || errlen <= 0) return;
-    size_t len = strnlen(err, (size_t)errlen - 1);
-    err[len] = '\0';
-    if (len > 0 && len + 1 < (size_t)errlen) { err[len++] = '\n'; err[len] = '\0'; }
-    if (len + 1 >= (size_t)errlen) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err + len, (size_t)errlen - len, fmt, ap);
-    va_end(ap);
-}
 
 static void copy_name(char *dst, const char *src) {
     snprintf(dst, UNIF_NAME_MAX, "%s", src ? src : "");
@@ -633,29 +619,10 @@ bool unif_preset_save(const unif_set *sets, int nsets, const char *path, char *e
 }
 
 static char *read_file(const char *path, long *len_out, char *err, int errlen) {
-    FILE *f = fopen(path, "rb");
-    if (!f) { msg_add(err, errlen, "%s: cannot open the preset: %s", path, strerror(errno)); return NULL; }
-    size_t cap = 4096, len = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        if (len + 1 >= cap) {
-            if ((long)cap > PRESET_MAX_BYTES) {
-                msg_add(err, errlen, "%s: too large for a preset", path);
-                free(buf); buf = NULL; break;
-            }
-            char *grown = realloc(buf, cap * 2);
-            if (!grown) { free(buf); buf = NULL; break; }
-            buf = grown;
-            cap *= 2;
-        }
-        size_t got = fread(buf + len, 1, cap - 1 - len, f);
-        len += got;
-        if (got == 0) break;
-    }
-    if (buf && ferror(f)) { msg_add(err, errlen, "%s: read error", path); free(buf); buf = NULL; }
-    fclose(f);
-    if (!buf) return NULL;
-    buf[len] = '\0';
+    char why[1200];
+    size_t len = 0;
+    char *buf = file_read(path, PRESET_MAX_BYTES, &len, why, sizeof why);
+    if (!buf) { msg_add(err, errlen, "%s: cannot read the preset: %s", path, why); return NULL; }
     if (memchr(buf, '\0', len)) { msg_add(err, errlen, "%s: not a tarn preset (binary data)", path); free(buf); return NULL; }
     *len_out = (long)len;
     return buf;

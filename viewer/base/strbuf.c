@@ -78,13 +78,18 @@ void msg_set(char *err, size_t errlen, const char *fmt, ...) {
     va_end(ap);
 }
 
+void msg_clear(char *err, size_t errlen) {
+    if (err && errlen > 0) err[0] = '\0';
+}
+
 void msg_add(char *err, size_t errlen, const char *fmt, ...) {
     if (!err || errlen == 0) return;
-    size_t at = strnlen(err, errlen);
+    size_t len = strnlen(err, errlen - 1);
+    err[len] = '\0';
+    if (len > 0 && len + 1 < errlen) { err[len++] = '\n'; err[len] = '\0'; }
+    if (len + 1 >= errlen) return;
     va_list ap;
     va_start(ap, fmt);
-    vmsg_at(err, errlen, at, fmt, ap);
+    vmsg_at(err, errlen, len, fmt, ap);
     va_end(ap);
-    at = strnlen(err, errlen);
-    if (at > 0 && at + 1 < errlen && err[at - 1] != '\n') { err[at] = '\n'; err[at + 1] = '\0'; }
 }

@@ -23,9 +23,11 @@ void strbuf_free(strbuf *b);
 /* Appends to a heap string (*s may be NULL): the renderer's logs. */
 void str_appendf(char **s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* err (may be NULL or errlen 0) := the message / += the message and a
- * newline when it does not end in one. Truncated to fit, never overrun. */
+/* err (may be NULL or errlen 0) := the message / += one more line (a
+ * newline first when err is not empty) / := "". Truncated to fit, never
+ * overrun. */
 void msg_set(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 void msg_add(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+void msg_clear(char *err, size_t errlen);
 
 #endif

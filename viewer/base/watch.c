@@ -1,6 +1,8 @@
 /* watch: see watch.h. */
 #include "watch.h"
 
+#include "strbuf.h"
+
 #include <assert.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -66,17 +68,6 @@ static int64_t now_ns(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static void set_err(char *err, int errlen, const char *fmt, ...) {
-    if (!err || errlen <= 0) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, (size_t)errlen, fmt, ap);
-    va_end(ap);
 }
 
 /* ---- paths -------------------------------------------------------------- */
@@ -414,19 +405,19 @@ static int64_t decide(watch *w, int64_t t) {
 watch *watch_create(char *err, int errlen) {
     watch *w = calloc(1, sizeof *w);
     if (!w) {
-        set_err(err, errlen, "watch: out of memory");
+        msg_set(err, (size_t)errlen, "watch: out of memory");
         return NULL;
     }
     w->evbuf = malloc(EVBUF_SIZE);
     if (!w->evbuf) {
         free(w);
-        set_err(err, errlen, "watch: out of memory");
+        msg_set(err, (size_t)errlen, "watch: out of memory");
         return NULL;
     }
     w->next_ns = NEVER;
     w->fd = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
     if (w->fd < 0) {
-        set_err(err, errlen, "watch: cannot start inotify: %s%s", strerror(errno),
+        msg_set(err, (size_t)errlen, "watch: cannot start inotify: %s%s", strerror(errno),
                 errno == EMFILE ? " (raise fs.inotify.max_user_instances)" : "");
         free(w->evbuf);
         free(w);
@@ -459,19 +450,19 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
         files = calloc((size_t)n, sizeof *files);
         changed = calloc((size_t)n, sizeof *changed);
         if (!files || !changed) {
-            set_err(err, errlen, "watch: out of memory");
+            msg_set(err, (size_t)errlen, "watch: out of memory");
             goto fail;
         }
     }
     for (int i = 0; i < n; i++) {
         const char *p = paths[i];
         if (!p || !names_a_file(p)) {
-            set_err(err, errlen, "watch: '%s' does not name a file", p ? p : "(null)");
+            msg_set(err, (size_t)errlen, "watch: '%s' does not name a file", p ? p : "(null)");
             goto fail;
         }
         norm = normalise(p);
         if (!norm) {
-            set_err(err, errlen, "watch: cannot resolve '%s': %s", p, strerror(errno));
+            msg_set(err, (size_t)errlen, "watch: cannot resolve '%s': %s", p, strerror(errno));
             goto fail;
         }
         bool dup = false;
@@ -482,13 +473,13 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
             continue;
         }
         if (!split_path(norm, &dpath, &base)) {
-            set_err(err, errlen, "watch: out of memory");
+            msg_set(err, (size_t)errlen, "watch: out of memory");
             goto fail;
         }
         int d = add_dir(w, &dirs, &ndirs, &dcap, dpath);
         if (d < 0) {
             int e = errno;
-            set_err(err, errlen, "watch: cannot watch directory '%s' of '%s': %s%s", dpath, p,
+            msg_set(err, (size_t)errlen, "watch: cannot watch directory '%s' of '%s': %s%s", dpath, p,
                     strerror(e), e == ENOSPC ? " (raise fs.inotify.max_user_watches)" : "");
             goto fail;
         }

@@ -20,6 +20,7 @@
 #include "noise.h"
 #include "ref_trace.h"
 #include "scene.h"
+#include "vec3.h"
 
 #define PI 3.14159265358979323846
 
@@ -33,14 +34,6 @@ static void put_normal(float *px, const double n[3])
     px[0] = (float)(0.5 + 0.5 * n[0]);
     px[1] = (float)(0.5 + 0.5 * n[2]);
     px[2] = (float)(0.5 + 0.5 * n[1]);
-}
-
-static void normalize3(double v[3])
-{
-    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0)
-        for (int i = 0; i < 3; i++)
-            v[i] /= l;
 }
 
 /* ------------------------------------------------------------------ */
@@ -97,7 +90,7 @@ void assets_face_dir(int face, double s, double t, double dir[3])
     case ASSETS_FACE_PZ: dir[0] = sc;  dir[1] = -tc; dir[2] = 1;   break;
     default:             dir[0] = -sc; dir[1] = -tc; dir[2] = -1;  break;
     }
-    normalize3(dir);
+    vec3_normalize(dir);
 }
 
 bool assets_bake_sky_face(const ref_world *w, int face, int res, float *rgb)
@@ -158,7 +151,7 @@ bool assets_bake_water_normal(int res, float *rgb)
     double scale = sum2 > 0 ? RIPPLE_RMS_SLOPE / sqrt(sum2 / (double)n) : 0;
     for (size_t k = 0; k < n; k++) {
         double nv[3] = { -scale * g[2 * k], 1.0, -scale * g[2 * k + 1] };
-        normalize3(nv);
+        vec3_normalize(nv);
         put_normal(rgb + k * 3, nv);
     }
     free(g);

@@ -1,6 +1,8 @@
 /* packset: packs on disk, bench.txt and bounds.txt (see packset.h). */
 #include "packset.h"
 
+#include "mem.h"
+
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
@@ -63,14 +65,15 @@ int packset_list(const char *root, packset_name *names, int max) {
     return n;
 }
 
-/* Reads a whole small text file; NULL when missing (errno says why). */
+/* Reads a whole small text file; NULL when missing (errno says why). A
+ * longer file is read up to FILE_MAX_LEN, as a line limit would. */
 static char *read_text(const char *path) {
     FILE *f = fopen(path, "rb");
     if (!f) return NULL;
-    char *buf = malloc(FILE_MAX_LEN + 1);
-    size_t n = buf ? fread(buf, 1, FILE_MAX_LEN, f) : 0;
+    char *buf = mem_alloc(FILE_MAX_LEN + 1);
+    size_t n = fread(buf, 1, FILE_MAX_LEN, f);
     fclose(f);
-    if (buf) buf[n] = '\0';
+    buf[n] = '\0';
     return buf;
 }
 
