@@ -32,6 +32,7 @@
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
+#include "ref_buffers.h"
 
 #define W 96
 #define H 54
@@ -195,7 +196,7 @@ static void test_buffers_are_finite(void) {
         for (int mode = 1; mode <= 4; mode++) {
             const packset_buffer *spec = NULL;
             for (int i = 0; i < pb.nbuffers; i++)
-                if (strcmp(pb.buffers[i].name, packset_buffer_names[mode - 1]) == 0) spec = &pb.buffers[i];
+                if (strcmp(pb.buffers[i].name, ref_buffer_for_output(mode)->name) == 0) spec = &pb.buffers[i];
             for (int c = 0; c < ncases; c++) {
                 if (!render_load(r, cases[c].path)) continue;   /* reported by the case test */
                 int nsets;
@@ -217,7 +218,7 @@ static void test_buffers_are_finite(void) {
                 if (!any) break;
                 render_rebuild_programs(r);
                 char what[256];
-                snprintf(what, sizeof what, "%.60s buffer %s on %.100s", packs[p], packset_buffer_names[mode - 1],
+                snprintf(what, sizeof what, "%.60s buffer %s on %.100s", packs[p], ref_buffer_for_output(mode)->name,
                          cases[c].name);
                 if (!draw(r, &tg, what) || !have_ref[c]) continue;
                 long bad = 0;

@@ -12,6 +12,7 @@
 #include "image_io.h"
 #include "ref_render.h"
 #include "scene.h"
+#include "ref_buffers.h"
 
 static const char *usage =
     "usage: tarn reference SCENE.glib -o OUT.exr [--size WxH] [--time SECONDS]\n"
@@ -142,19 +143,24 @@ static int write_outputs(const char *out, const ref_render_result *r, int quiet)
     size_t cap = stem_len + 32;
     char *path = malloc(cap), err[512];
     if (!path) { fprintf(stderr, "tarn reference: out of memory\n"); return 0; }
-    struct { const char *suffix; const double *px; const unsigned char *bytes; int n, srgb; } files[] = {
-        { ".exr", r->color, NULL, 3, 0 },
-        { ".png", r->color, NULL, 3, 1 },
-        { ".refract_hit.exr", r->refract_hit, NULL, 4, 0 },
-        { ".reflect.exr", r->reflect, NULL, 4, 0 },
-        { ".fresnel.exr", r->fresnel, NULL, 1, 0 },
-        { ".depth.exr", r->depth, NULL, 1, 0 },
-        { ".irradiance.exr", r->irradiance, NULL, 3, 0 },
-        { ".surface.exr", r->surface, NULL, 3, 0 },
-        { ".mask.exr", NULL, r->mask, 1, 0 },
-    };
+    /* every buffer of ref_buffers.h, and the image once more as sRGB PNG */
+    struct { const char *suffix; const double *px; const unsigned char *bytes; int n, srgb; } files[REF_BUF_COUNT + 1];
+    int nfiles = 0;
+    for (int i = 0; i < REF_BUF_COUNT; i++) {
+        const ref_buffer_info *bi = &ref_buffers[i];
+        files[nfiles].suffix = bi->suffix;
+        files[nfiles].px = ref_buffer_data(r, bi->id);
+        files[nfiles].bytes = bi->id == REF_BUF_MASK ? r->mask : NULL;
+        files[nfiles].n = bi->channels;
+        files[nfiles++].srgb = 0;
+        if (bi->id == REF_BUF_COLOR) {
+            files[nfiles] = files[nfiles - 1];
+            files[nfiles].suffix = ".png";
+            files[nfiles++].srgb = 1;
+        }
+    }
     int ok = 1;
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+    for (int i = 0; i < nfiles; i++) {
         snprintf(path, cap, "%.*s%s", (int)stem_len, out, files[i].suffix);
         if (!write_buffer(path, files[i].px, files[i].bytes, r->width, r->height, files[i].n,
                           files[i].srgb, err, sizeof err)) {

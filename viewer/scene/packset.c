@@ -2,6 +2,7 @@
 #include "packset.h"
 
 #include "mem.h"
+#include "ref_buffers.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -163,7 +164,6 @@ static bool parse_hex_colour(const char *s, float rgb[3]) {
     return true;
 }
 
-const char *const packset_buffer_names[4] = { "refract_hit", "fresnel", "irradiance", "depth" };
 
 static bool add_default(packset_bench *b) {
     b->settings = calloc(1, sizeof *b->settings);
@@ -212,12 +212,14 @@ bool packset_bench_parse(const char *text, const char *path, packset_bench *out,
         bool is_buffer = strcmp(first, "buffer") == 0;
         if (is_buffer) {
             first = strtok_r(NULL, " \t", &save);
-            int known = -1;
-            for (int i = 0; first && i < 4; i++)
-                if (strcmp(first, packset_buffer_names[i]) == 0) known = i;
-            if (known < 0) {
-                msg(err, errlen, "%s:%d: buffer wants one of refract_hit, fresnel, irradiance, depth\n",
-                    out->path, lineno);
+            const ref_buffer_info *known = ref_buffer_named(first);
+            if (!known || !known->tarn_output) {
+                char names[256] = "";
+                for (int i = 0; i < REF_BUF_COUNT; i++)
+                    if (ref_buffers[i].tarn_output)
+                        snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", names[0] ? ", " : "",
+                                 ref_buffers[i].name);
+                msg(err, errlen, "%s:%d: buffer wants one of %s\n", out->path, lineno, names);
                 ok = false;
                 continue;
             }

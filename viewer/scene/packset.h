@@ -71,13 +71,9 @@ typedef struct packset_setting {
 } packset_setting;
 
 typedef struct packset_buffer {
-    char name[PACKSET_NAME_MAX];      /* refract_hit, fresnel, irradiance, depth */
+    char name[PACKSET_NAME_MAX];      /* a buffer of reference/ref_buffers.h a pack can write */
     packset_setting how;              /* its assignments (how.name = the buffer) */
 } packset_buffer;
-
-/* The buffer names a `buffer` line may give, in the order of bench.h's
- * BENCH_OUTPUT_* from 1. */
-extern const char *const packset_buffer_names[4];
 
 typedef struct packset_bench {
     char path[1024];                  /* bench.txt ("" when the pack has none) */

@@ -22,6 +22,7 @@
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
+#include "ref_buffers.h"
 
 #define MAX_SCENES 16
 #define MAX_TIMES 16
@@ -97,10 +98,10 @@ typedef struct row {             /* one scene, pack, setting and time */
     double rmse, psnr, mae, p95, p99, max_abs, over_share;
     long nan_px, inf_px;
     unsigned gl_error;
-    bool has[BENCH_OUTPUT_COUNT];
-    double comp_median[BENCH_OUTPUT_COUNT], comp_p95[BENCH_OUTPUT_COUNT], comp_mean[BENCH_OUTPUT_COUNT];
-    double comp_rel_mean[BENCH_OUTPUT_COUNT];
-    double comp_rel_median[BENCH_OUTPUT_COUNT];
+    bool has[REF_OUTPUT_COUNT];
+    double comp_median[REF_OUTPUT_COUNT], comp_p95[REF_OUTPUT_COUNT], comp_mean[REF_OUTPUT_COUNT];
+    double comp_rel_mean[REF_OUTPUT_COUNT];
+    double comp_rel_median[REF_OUTPUT_COUNT];
     int npasses;                 /* GPU time per pass (render_pass_times), medians */
     char pass_name[GPU_TIMER_MARKS][GPU_TIMER_NAME];
     double pass_ms[GPU_TIMER_MARKS];
@@ -113,8 +114,8 @@ typedef struct summary {         /* one scene, pack and setting, over the times 
     /* hit p95 (m), Fresnel MAE, irradiance relative error's median (the
      * mean is ruled by the few points the reference has almost no sun),
      * depth MAE (m) */
-    double comp[BENCH_OUTPUT_COUNT];
-    bool has[BENCH_OUTPUT_COUNT];
+    double comp[REF_OUTPUT_COUNT];
+    bool has[REF_OUTPUT_COUNT];
     long nan_px;
     bool pareto;
 } summary;
@@ -758,7 +759,7 @@ static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const
     ref_metrics_desc d = { .mask = mask };
     ref_fimage A = { rgba, w, h, 4 };
     char err[256];
-    if (mode == BENCH_OUTPUT_REFRACT_HIT) {
+    if (mode == REF_OUTPUT_REFRACT_HIT) {
         ref_fimage B = { ref->im.refract_hit, w, h, 4 };
         ref_fimage A3 = A;
         ref_point_metrics m;
@@ -785,9 +786,9 @@ static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const
         free(xyz);
         free(bxyz);
     } else {
-        const float *src = mode == BENCH_OUTPUT_FRESNEL ? ref->im.fresnel
-                           : mode == BENCH_OUTPUT_IRRADIANCE ? ref->im.irradiance : ref->im.depth;
-        int ch = mode == BENCH_OUTPUT_IRRADIANCE ? 3 : 1;
+        const float *src = mode == REF_OUTPUT_FRESNEL ? ref->im.fresnel
+                           : mode == REF_OUTPUT_IRRADIANCE ? ref->im.irradiance : ref->im.depth;
+        int ch = mode == REF_OUTPUT_IRRADIANCE ? 3 : 1;
         /* the pack's side: R (or RGB) of its output */
         float *a = malloc((size_t)n * ch * sizeof *a);
         if (a) {
@@ -833,15 +834,15 @@ static void measure_buffers(bench *b, render *r, const render_target *tg, int s,
     float *snap = NULL;
     char sc[256];
     stem(b->scene_abs[s], sc, sizeof sc);
-    for (int mode = 1; mode < BENCH_OUTPUT_COUNT; mode++) {
+    for (int mode = 1; mode < REF_OUTPUT_COUNT; mode++) {
         const packset_buffer *spec = NULL;
         for (int i = 0; i < pb->nbuffers; i++)
-            if (strcmp(pb->buffers[i].name, packset_buffer_names[mode - 1]) == 0) spec = &pb->buffers[i];
+            if (strcmp(pb->buffers[i].name, ref_buffer_for_output(mode)->name) == 0) spec = &pb->buffers[i];
         bool via_define = !spec && out_def && out_def->min <= mode && out_def->max >= mode;
         if (!spec && !via_define) continue;
         if (!snap) snap = snapshot(r, false, NULL);
         else snapshot(r, true, snap);
-        progress_set(&b->pr, b->pr.done, true, "%s %s: buffer %s", sc, b->o.packs[p], packset_buffer_names[mode - 1]);
+        progress_set(&b->pr, b->pr.done, true, "%s %s: buffer %s", sc, b->o.packs[p], ref_buffer_for_output(mode)->name);
         if (spec) {
             int n;
             unif_set *sets = render_uniforms(r, &n);
@@ -986,8 +987,8 @@ static void summarise(bench *b) {
         double gpu[MAX_TIMES], wall[MAX_TIMES];
         int ng = 0, nw = 0, ne = 0;
         double rmse = 0, psnr = 0, p95 = 0, share = 0;
-        double comp[BENCH_OUTPUT_COUNT] = { 0 };
-        int ncomp[BENCH_OUTPUT_COUNT] = { 0 };
+        double comp[REF_OUTPUT_COUNT] = { 0 };
+        int ncomp[REF_OUTPUT_COUNT] = { 0 };
         s->ok = true;
         for (int j = i; j < b->nrows && j < i + b->o.ntimes; j++) {
             const row *r = &b->rows[j];
@@ -1002,10 +1003,10 @@ static void summarise(bench *b) {
                 share += r->over_share;
                 ne++;
             }
-            for (int m = 1; m < BENCH_OUTPUT_COUNT; m++)
+            for (int m = 1; m < REF_OUTPUT_COUNT; m++)
                 if (r->has[m]) {
-                    comp[m] += m == BENCH_OUTPUT_REFRACT_HIT ? r->comp_p95[m]
-                               : m == BENCH_OUTPUT_IRRADIANCE ? r->comp_rel_median[m] : r->comp_mean[m];
+                    comp[m] += m == REF_OUTPUT_REFRACT_HIT ? r->comp_p95[m]
+                               : m == REF_OUTPUT_IRRADIANCE ? r->comp_rel_median[m] : r->comp_mean[m];
                     ncomp[m]++;
                 }
         }
@@ -1015,7 +1016,7 @@ static void summarise(bench *b) {
         s->psnr = ne ? psnr / ne : NAN;
         s->p95 = ne ? p95 / ne : NAN;
         s->over_share = ne ? share / ne : NAN;
-        for (int m = 1; m < BENCH_OUTPUT_COUNT; m++) {
+        for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
             s->has[m] = ncomp[m] > 0;
             s->comp[m] = ncomp[m] ? comp[m] / ncomp[m] : NAN;
         }
@@ -1066,16 +1067,15 @@ static void csv_str(sbuf *o, const char *s, bool first) {
     sb_printf(o, "\"");
 }
 
-static const char *comp_names[BENCH_OUTPUT_COUNT] = { "color", "refract_hit", "fresnel", "irradiance", "depth" };
 
 static bool write_csv(bench *b, const char *path) {
     sbuf o = { 0 };
     sb_printf(&o, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms,first_frame_wall_ms,"
                   "floor_gpu_ms,floor_wall_ms,x_floor_gpu,x_floor_wall,rmse,psnr_db,mae,error_p95,error_p99,"
                   "max_abs,over_threshold_share,nan_pixels,inf_pixels,gl_error");
-    for (int m = 1; m < BENCH_OUTPUT_COUNT; m++)
-        sb_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean,%s.rel_median", comp_names[m], comp_names[m],
-                  comp_names[m], comp_names[m], comp_names[m]);
+    for (int m = 1; m < REF_OUTPUT_COUNT; m++)
+        sb_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean,%s.rel_median", ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name,
+                  ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name);
     sb_printf(&o, ",error,note\n");
     for (int i = 0; i < b->nrows; i++) {
         const row *r = &b->rows[i];
@@ -1101,7 +1101,7 @@ static bool write_csv(bench *b, const char *path) {
         csv_num(&o, r->max_abs);
         csv_num(&o, r->over_share);
         sb_printf(&o, ",%ld,%ld,%u", r->nan_px, r->inf_px, r->gl_error);
-        for (int m = 1; m < BENCH_OUTPUT_COUNT; m++) {
+        for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
             csv_num(&o, r->has[m] ? r->comp_median[m] : NAN);
             csv_num(&o, r->has[m] ? r->comp_p95[m] : NAN);
             csv_num(&o, r->has[m] ? r->comp_mean[m] : NAN);
@@ -1233,9 +1233,9 @@ static bool write_json(bench *b, const char *path) {
         sb_printf(&o, ", \"nan_pixels\": %ld, \"inf_pixels\": %ld, \"gl_error\": %u, \"buffers\": {", r->nan_px,
                   r->inf_px, r->gl_error);
         bool first = true;
-        for (int m = 1; m < BENCH_OUTPUT_COUNT; m++) {
+        for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
             if (!r->has[m]) continue;
-            sb_printf(&o, "%s\"%s\": {\"median\": ", first ? "" : ", ", comp_names[m]);
+            sb_printf(&o, "%s\"%s\": {\"median\": ", first ? "" : ", ", ref_buffer_for_output(m)->name);
             json_num(&o, r->comp_median[m]);
             sb_printf(&o, ", \"p95\": ");
             json_num(&o, r->comp_p95[m]);

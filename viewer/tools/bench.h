@@ -18,16 +18,8 @@ int cli_bench(int argc, char **argv);
 
 const char *bench_usage(void);
 
-/* The `Define` a pack declares to expose its per-pixel buffers, and what
- * each of its values writes to the colour output (RGB, alpha 1): */
+/* The `Define` a pack declares to expose its per-pixel buffers; what each
+ * of its values writes is reference/ref_buffers.h's ref_output. */
 #define BENCH_OUTPUT_DEFINE "TARN_OUTPUT"
-enum {
-    BENCH_OUTPUT_COLOR = 0,       /* the normal image */
-    BENCH_OUTPUT_REFRACT_HIT = 1, /* world xyz the refracted ray meets */
-    BENCH_OUTPUT_FRESNEL = 2,     /* the Fresnel reflectance, in R */
-    BENCH_OUTPUT_IRRADIANCE = 3,  /* sun irradiance at the refraction hit, RGB */
-    BENCH_OUTPUT_DEPTH = 4,       /* the path length in water, in R */
-    BENCH_OUTPUT_COUNT
-};
 
 #endif

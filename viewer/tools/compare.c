@@ -13,6 +13,7 @@
 #include "exit_code.h"
 #include "ref_metrics.h"
 #include "ref_render.h"
+#include "ref_buffers.h"
 
 static const char usage_text[] =
     "usage: tarn compare A B [--out HEATMAP.png] [--threshold T] [--max E]\n"
@@ -341,24 +342,11 @@ typedef struct compare_opts {
     bool buffers, linear;
 } compare_opts;
 
-/* A reference buffer. Point buffers may carry a flag in channel 3 (what
- * the ray met, ref_render.h); where it is direction_flag on either side,
- * xyz is a direction, not a point, and the pixel is left out. */
-typedef struct buffer_kind {
-    const char *name;
-    ref_err_kind kind;
-    int direction_flag;         /* 0: none */
-} buffer_kind;
-
-static const buffer_kind buffer_kinds[] = {
-    { "refract_hit", REF_ERR_POINT, 0 },
-    { "reflect", REF_ERR_POINT, REF_REFLECT_SKY },
-    { "surface", REF_ERR_POINT, 0 },
-    { "fresnel", REF_ERR_SCALAR, 0 },
-    { "depth", REF_ERR_SCALAR, 0 },
-    { "irradiance", REF_ERR_SCALAR, 0 },
-};
-#define N_BUFFERS (int)(sizeof buffer_kinds / sizeof buffer_kinds[0])
+/* The buffers are reference/ref_buffers.h's. Point buffers may carry a flag
+ * in channel 3 (what the ray met, ref_render.h); where it is the buffer's
+ * direction_flag on either side, xyz is a direction, not a point, and the
+ * pixel is left out. */
+typedef ref_buffer_info buffer_kind;
 
 static bool parse_pos(const char *s, double *v) {
     char *end;
@@ -429,7 +417,7 @@ static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb
     if (mask && a.w == mw && a.h == mh) d.mask = mask;
     else if (mask) fprintf(err, "tarn compare: buffer %s is %dx%d, not the mask's %dx%d: compared unmasked\n",
                            bk->name, a.w, a.h, mw, mh);
-    ref_err_kind kind = bk->kind;
+    ref_err_kind kind = bk->err;
     if (kind == REF_ERR_POINT && (a.channels < 3 || b.channels < 3)) kind = REF_ERR_SCALAR;
     const char *g = bk->name;
     /* The flag channel: pixels whose flags differ; directions left out. */
@@ -676,19 +664,20 @@ int compare_run(int argc, char **argv, FILE *out, FILE *err) {
 
     if (o.buffers) {
         int found = 0;
-        for (int k = 0; k < N_BUFFERS; k++) {
+        for (int k = 0; k < REF_BUF_COUNT; k++) {
+            if (!ref_buffers[k].measured) continue;
             char pa[4096], pb[4096];
-            sibling_path(pa, sizeof pa, o.a, buffer_kinds[k].name, ".exr");
-            sibling_path(pb, sizeof pb, o.b, buffer_kinds[k].name, ".exr");
+            sibling_path(pa, sizeof pa, o.a, ref_buffers[k].name, ".exr");
+            sibling_path(pb, sizeof pb, o.b, ref_buffers[k].name, ".exr");
             bool ea = file_exists(pa), eb = file_exists(pb);
             if (!ea && !eb) continue;
             found++;
             if (ea != eb) {
                 fprintf(err, "tarn compare: buffer %s: only %s exists (no %s): not compared\n",
-                        buffer_kinds[k].name, ea ? pa : pb, ea ? pb : pa);
+                        ref_buffers[k].name, ea ? pa : pb, ea ? pb : pa);
                 continue;
             }
-            if (!compare_buffer(&buffer_kinds[k], pa, pb, &o, mask, ia.w, ia.h, &l, err)) all_ok = false;
+            if (!compare_buffer(&ref_buffers[k], pa, pb, &o, mask, ia.w, ia.h, &l, err)) all_ok = false;
         }
         if (!found) {
             char pa[4096];

@@ -13,6 +13,7 @@
 #include "ref_metrics.h"
 #include "glib.h"
 #include "scene.h"
+#include "ref_buffers.h"
 
 typedef struct loaded {
     ref_world_desc wd;
@@ -118,11 +119,12 @@ static void stem_of(const char *dir, const char *scene, int w, int h, double t, 
     snprintf(out, len, "%s/%.*s-%dx%d-t%g-%016" PRIx64, dir, (int)bl, base, w, h, t, key);
 }
 
-static const struct { const char *suffix; int channels; } bufs[] = {
-    { ".exr", 3 }, { ".refract_hit.exr", 4 }, { ".fresnel.exr", 1 },
-    { ".depth.exr", 1 }, { ".irradiance.exr", 3 }, { ".mask.exr", 1 },
+/* The buffers the cache keeps (ref_buffers.h gives their files and
+ * channels): what bench and the hard cases measure. */
+static const ref_buffer_id cached[] = {
+    REF_BUF_COLOR, REF_BUF_REFRACT_HIT, REF_BUF_FRESNEL, REF_BUF_DEPTH, REF_BUF_IRRADIANCE, REF_BUF_MASK,
 };
-enum { NBUFS = sizeof bufs / sizeof bufs[0] };
+enum { NBUFS = sizeof cached / sizeof cached[0] };
 
 static float **slot(refcache_image *im, int i) {
     float **s[NBUFS] = { &im->color, &im->refract_hit, &im->fresnel, &im->depth, &im->irradiance, &im->mask };
@@ -137,10 +139,10 @@ void refcache_free(refcache_image *im) {
 static bool read_cached(const char *stem, int w, int h, refcache_image *out) {
     for (int i = 0; i < NBUFS; i++) {
         char path[1200], err[256];
-        snprintf(path, sizeof path, "%s%s", stem, bufs[i].suffix);
+        snprintf(path, sizeof path, "%s%s", stem, ref_buffers[cached[i]].suffix);
         img im;
         if (!img_read(path, &im, err, sizeof err)) return false;
-        if (im.w != w || im.h != h || im.d != 1 || im.channels != bufs[i].channels) {
+        if (im.w != w || im.h != h || im.d != 1 || im.channels != ref_buffers[cached[i]].channels) {
             img_free(&im);
             return false;
         }
@@ -197,7 +199,7 @@ bool refcache_cached(const char *dir, const char *scene, const char *name, int w
     stem_of(dir, name ? name : scene, w, h, t, key, stem, sizeof stem);
     for (int i = 0; i < NBUFS; i++) {
         struct stat st;
-        snprintf(path, sizeof path, "%s%s", stem, bufs[i].suffix);
+        snprintf(path, sizeof path, "%s%s", stem, ref_buffers[cached[i]].suffix);
         if (stat(path, &st) != 0) return false;
     }
     return true;
@@ -235,11 +237,9 @@ bool refcache_get(const char *dir, const char *scene, const char *name, int w, i
         return false;
     }
     size_t n = (size_t)w * h;
-    out->color = to_float(r.color, n * 3);
-    out->refract_hit = to_float(r.refract_hit, n * 4);
-    out->fresnel = to_float(r.fresnel, n);
-    out->depth = to_float(r.depth, n);
-    out->irradiance = to_float(r.irradiance, n * 3);
+    for (int i = 0; i < NBUFS; i++)
+        if (cached[i] != REF_BUF_MASK)
+            *slot(out, i) = to_float(ref_buffer_data(&r, cached[i]), n * (size_t)ref_buffers[cached[i]].channels);
     out->mask = malloc(n * sizeof *out->mask);
     if (out->mask)
         for (size_t i = 0; i < n; i++) out->mask[i] = (float)r.mask[i];
@@ -258,8 +258,8 @@ bool refcache_get(const char *dir, const char *scene, const char *name, int w, i
         }
         char path[1200];
         for (int i = 0; i < NBUFS; i++) {
-            snprintf(path, sizeof path, "%s%s", out->stem, bufs[i].suffix);
-            if (!write_buf(path, *slot(out, i), w, h, bufs[i].channels, false, err, errlen)) return true;
+            snprintf(path, sizeof path, "%s%s", out->stem, ref_buffers[cached[i]].suffix);
+            if (!write_buf(path, *slot(out, i), w, h, ref_buffers[cached[i]].channels, false, err, errlen)) return true;
         }
         snprintf(path, sizeof path, "%s.png", out->stem);
         write_buf(path, out->color, w, h, 3, true, err, errlen);
