@@ -383,6 +383,40 @@ static void test_buffers(void) {
     CHECK_STR_CONTAINS(err_buf, "no buffers");
 }
 
+/* 10x4 with B's class mask beside it (B.mask.exr, as `tarn reference`
+ * writes): the left 4 columns water, the rest land. A is off by 0.2 on
+ * the water only and by 0.05 in one channel of one land pixel, so the
+ * water RMSE is 0.2, the off-water one 0.05 / sqrt(24 x 3) and the whole
+ * frame mixes both. The water figures lead the table. */
+static void test_water_first_from_the_reference_mask(void) {
+    img a = make(10, 4, 3, 0.5f), b = make(10, 4, 3, 0.5f), m = make(10, 4, 1, 2.0f);   /* REF_MASK_TERRAIN */
+    for (int y = 0; y < 4; y++)
+        for (int x = 0; x < 4; x++) {
+            at(&m, x, y)[0] = 1.0f;                                                       /* REF_MASK_WATER */
+            for (int c = 0; c < 3; c++) at(&a, x, y)[c] = 0.7f;
+        }
+    at(&a, 9, 3)[0] = 0.55f;
+    save(path("wa.tif"), &a);
+    save(path("wb.exr"), &b);
+    save(path("wb.mask.exr"), &m);
+    int rc = compare("%s %s --json %s", path("wa.tif"), path("wb.exr"), path("w.json"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    char *j = read_file(path("w.json"));
+    CHECK(j && json_valid(j));
+    double ew = (double)0.7f - 0.5, el = (double)0.55f - 0.5;
+    CHECK_NEAR(jnum(j, NULL, "water_rmse", NULL), ew, 1e-6);
+    CHECK(jnum(j, NULL, "water_pixels", NULL) == 16);
+    CHECK_NEAR(jnum(j, NULL, "off_water_rmse", NULL), el / sqrt(24.0 * 3), 1e-6);
+    CHECK(jnum(j, NULL, "off_water_pixels", NULL) == 24);
+    CHECK_NEAR(jnum(j, NULL, "rmse", NULL), sqrt((16 * 3 * ew * ew + el * el) / (40.0 * 3)), 1e-6);
+    const char *water = strstr(out_buf, "water RMSE"), *whole = strstr(out_buf, "RMSE, whole frame");
+    CHECK(water && whole && water < whole);
+    /* without a mask beside B: the whole frame, and a note saying why */
+    rc = compare("%s %s", path("wa.tif"), path("wa.tif"));
+    CHECK(rc == 0);
+    CHECK_STR_CONTAINS(out_buf, "water-only error");
+}
+
 static void test_mismatch_and_missing_files(void) {
     img a = make(16, 8, 3, 0), b = make(8, 16, 3, 0);
     save(path("w.exr"), &a);
@@ -461,6 +495,7 @@ int main(void) {
     RUN(test_png_is_srgb_decoded);
     RUN(test_heatmap_png);
     RUN(test_buffers);
+    RUN(test_water_first_from_the_reference_mask);
     RUN(test_mismatch_and_missing_files);
     RUN(test_usage);
     RUN(test_tarn_compare_program);

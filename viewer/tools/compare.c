@@ -14,6 +14,7 @@
 #include "ref_metrics.h"
 #include "ref_render.h"
 #include "ref_buffers.h"
+#include "ref_render.h"
 
 static const char usage_text[] =
     "usage: tarn compare A B [--out HEATMAP.png] [--threshold T] [--max E]\n"
@@ -378,6 +379,58 @@ static double write_heatmap(const char *path, const float *field, int w, int h, 
     return used;
 }
 
+/* The reference's pixel classes (B.mask.exr beside B: REF_MASK_* per pixel),
+ * or NULL when B has none (B is not a `tarn reference` output) or its size
+ * differs. *why says which. */
+static float *load_classes(const char *b, int w, int h, char *why, size_t whylen) {
+    char path[4096], msg[512];
+    sibling_path(path, sizeof path, b, "mask", ".exr");
+    img m;
+    if (!file_exists(path)) { snprintf(why, whylen, "no %s beside B", path); return NULL; }
+    if (!img_read(path, &m, msg, sizeof msg)) { snprintf(why, whylen, "%s", msg); return NULL; }
+    if (m.w != w || m.h != h || m.d != 1) {
+        snprintf(why, whylen, "%s is %dx%d, the images %dx%d", path, m.w, m.h, w, h);
+        img_free(&m);
+        return NULL;
+    }
+    float *cls = malloc((size_t)w * (size_t)h * sizeof *cls);
+    if (cls)
+        for (long i = 0; i < (long)w * h; i++) cls[i] = m.px[(size_t)i * (size_t)m.channels];
+    img_free(&m);
+    return cls;
+}
+
+/* RMSE, PSNR, MAE and the pixel count over the pixels on one side of the
+ * reference's water mask (and inside --mask when given): the error of the
+ * water technique, and of the world around it. */
+static void add_region(kvlist *l, bool water, const ref_fimage *fa, const ref_fimage *fb, const float *cls,
+                       const unsigned char *user_mask, double threshold) {
+    static const char *const keys[2][4] = {
+        { "off_water_rmse", "off_water_psnr_db", "off_water_mae", "off_water_pixels" },
+        { "water_rmse", "water_psnr_db", "water_mae", "water_pixels" },
+    };
+    static const char *const labels[2][4] = {
+        { "off-water RMSE (sky, land, objects)", "off-water PSNR", "off-water mean abs. error",
+          "off-water pixels" },
+        { "water RMSE (reference's mask)", "water PSNR", "water mean abs. error",
+          "water pixels" },
+    };
+    long n = (long)fa->w * fa->h;
+    unsigned char *m = malloc((size_t)n);
+    if (!m) { l->oom = true; return; }
+    for (long i = 0; i < n; i++) m[i] = (cls[i] == (float)REF_MASK_WATER) == water && (!user_mask || user_mask[i]);
+    ref_metrics_desc d = { .threshold = threshold, .mask = m };
+    ref_image_metrics r;
+    char msg[256];
+    bool ok = ref_metrics_image(fa, fb, &d, &r, msg, sizeof msg);
+    free(m);
+    const char *const *k = keys[water], *const *lab = labels[water];
+    add_num(l, NULL, k[0], lab[0], ok ? r.rmse : NAN, NULL);
+    add_num(l, NULL, k[1], lab[1], ok ? r.psnr_db : NAN, "dB");
+    add_num(l, NULL, k[2], lab[2], ok ? r.mae : NAN, NULL);
+    add_int(l, NULL, k[3], lab[3], ok ? r.count.compared : 0);
+}
+
 /* Builds the mask: nonzero where M's first channel is > 0.5. */
 static unsigned char *load_mask(const char *path, int w, int h, FILE *err) {
     img m;
@@ -618,8 +671,20 @@ int compare_run(int argc, char **argv, FILE *out, FILE *err) {
     add_note(&l, NULL, "size", size);
     add_int(&l, NULL, "channels_a", NULL, ia.channels);
     add_int(&l, NULL, "channels_b", NULL, ib.channels);
+    /* water first: the error of the technique, where the reference sees
+     * water; the world around it second; the whole frame last */
+    char why[4200] = "";
+    float *cls = load_classes(o.b, ia.w, ia.h, why, sizeof why);
+    if (cls) {
+        add_region(&l, true, &fa, &fb, cls, mask, o.threshold);
+        add_region(&l, false, &fa, &fb, cls, mask, o.threshold);
+        free(cls);
+    } else {
+        add_note(&l, NULL, "water-only error", why);
+        add_num(&l, NULL, "water_rmse", NULL, NAN, NULL);
+    }
     add_counts(&l, NULL, &m.count);
-    add_num(&l, NULL, "rmse", "RMSE (linear RGB)", m.rmse, NULL);
+    add_num(&l, NULL, "rmse", "RMSE, whole frame (linear RGB)", m.rmse, NULL);
     add_num(&l, NULL, "rmse_r", NULL, m.rmse_c[0], NULL);
     add_num(&l, NULL, "rmse_g", NULL, m.rmse_c[1], NULL);
     add_num(&l, NULL, "rmse_b", NULL, m.rmse_c[2], NULL);
