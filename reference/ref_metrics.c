@@ -1,6 +1,7 @@
 /* ref_metrics: error metrics between float images and buffers, heat maps.
  * See ref_metrics.h and docs/metrics.md. */
 #include "ref_metrics.h"
+#include "ref_render.h"
 #include "strbuf.h"
 #include "util.h"
 
@@ -431,4 +432,9 @@ double ref_heatmap(const float *field, int w, int h, double scale, float *rgb) {
         else ref_colormap_inferno(e / scale, o);
     }
     return scale;
+}
+
+void ref_mask_water(const float *classes, long n, int water, const unsigned char *and_mask, unsigned char *out) {
+    const float w = (float)REF_MASK_WATER;
+    for (long i = 0; i < n; i++) out[i] = ((classes[i] == w) == (water != 0)) && (!and_mask || and_mask[i]);
 }

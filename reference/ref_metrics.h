@@ -65,6 +65,13 @@ typedef struct ref_metrics_desc {
                                        max(|b|, rel_floor) (0 = 1e-3) */
 } ref_metrics_desc;
 
+/* The pixels of one side of the reference's water mask: out[i] = 1 where
+ * classes[i] (REF_MASK_* of ref_render.h, as floats: a mask.exr's values)
+ * is water (water = true) or is not (false), and and_mask (may be NULL) is
+ * nonzero. Error figures lead with the water side: it is what a water
+ * technique gets right or wrong. */
+void ref_mask_water(const float *classes, long n, int water, const unsigned char *and_mask, unsigned char *out);
+
 /* How many pixels went where (see the header comment). */
 typedef struct ref_pixel_counts {
     long pixels;            /* w * h */

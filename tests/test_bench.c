@@ -194,6 +194,28 @@ static void test_pareto(void) {
     CHECK(on[0] && on[1]);
 }
 
+/* With tolerances: a point only slightly faster or slightly better than
+ * another ties with it (both stay), a clear improvement still dominates,
+ * and noise within the tolerances cannot change the front. */
+static void test_pareto_ties(void) {
+    /* 0 and 1 differ by 5% in time and 0.5% in error: a tie; 2 is 3x slower
+     * and worse: off; 3 is twice as slow and half the error: on */
+    double x[] = { 10, 10.5, 30, 20 }, y[] = { 0.100, 0.1005, 0.2, 0.05 };
+    double dx[4], dy[4];
+    for (int i = 0; i < 4; i++) { dx[i] = 0.2 * x[i]; dy[i] = 0.01 * y[i]; }
+    bool on[4];
+    plot_pareto_ties(x, y, dx, dy, 4, on);
+    CHECK(on[0] && on[1] && !on[2] && on[3]);
+    plot_pareto(x, y, 4, on);                          /* without tolerances 1 falls off */
+    CHECK(on[0] && !on[1]);
+    /* a second "run" with every time moved by up to 10%: the same front */
+    double x2[] = { 10.9, 9.6, 27.5, 21.8 };
+    bool on2[4];
+    plot_pareto_ties(x2, y, dx, dy, 4, on2);
+    plot_pareto_ties(x, y, dx, dy, 4, on);
+    for (int i = 0; i < 4; i++) CHECK(on[i] == on2[i]);
+}
+
 static bool has_colour(const img *im, const float rgb[3], double tol) {
     for (long i = 0; i < (long)im->w * im->h; i++) {
         const float *p = im->px + i * im->channels;
@@ -378,6 +400,7 @@ int main(void) {
     RUN(test_apply);
     RUN(test_bounds);
     RUN(test_pareto);
+    RUN(test_pareto_ties);
     RUN(test_plot);
     RUN(test_pack_list);
     RUN(test_usage);

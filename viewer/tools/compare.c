@@ -418,7 +418,7 @@ static void add_region(kvlist *l, bool water, const ref_fimage *fa, const ref_fi
     long n = (long)fa->w * fa->h;
     unsigned char *m = malloc((size_t)n);
     if (!m) { l->oom = true; return; }
-    for (long i = 0; i < n; i++) m[i] = (cls[i] == (float)REF_MASK_WATER) == water && (!user_mask || user_mask[i]);
+    ref_mask_water(cls, n, water, user_mask, m);
     ref_metrics_desc d = { .threshold = threshold, .mask = m };
     ref_image_metrics r;
     char msg[256];

@@ -160,6 +160,20 @@ void plot_pareto(const double *x, const double *y, int n, bool *on_front) {
     }
 }
 
+void plot_pareto_ties(const double *x, const double *y, const double *dx, const double *dy, int n,
+                      bool *on_front) {
+    for (int i = 0; i < n; i++) {
+        on_front[i] = isfinite(x[i]) && isfinite(y[i]);
+        for (int j = 0; j < n && on_front[i]; j++) {
+            if (j == i || !isfinite(x[j]) || !isfinite(y[j])) continue;
+            double tx = dx[i] + dx[j], ty = dy[i] + dy[j];
+            bool no_worse = x[j] <= x[i] + tx && y[j] <= y[i] + ty;
+            bool better = x[j] < x[i] - tx || y[j] < y[i] - ty;
+            if (no_worse && better) on_front[i] = false;
+        }
+    }
+}
+
 /* ---- the chart ---- */
 
 typedef struct axis {

@@ -31,6 +31,14 @@ int plot_text_width(const char *s, int scale);
  * never on the front. */
 void plot_pareto(const double *x, const double *y, int n, bool *on_front);
 
+/* The front with tolerances: j takes i off the front only when it is no
+ * worse than i beyond their summed tolerances in both coordinates
+ * (x[j] <= x[i] + dx[i] + dx[j], likewise y) and better beyond them in one.
+ * Points within each other's tolerance tie and stay on the front together,
+ * so noise below the tolerances cannot change the front. */
+void plot_pareto_ties(const double *x, const double *y, const double *dx, const double *dy, int n,
+                      bool *on_front);
+
 typedef struct plot_point {
     double x, y;              /* time (> 0), error (> 0); non-finite: not drawn */
     const char *label;        /* drawn beside the point (may be NULL) */
