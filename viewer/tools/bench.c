@@ -99,6 +99,7 @@ typedef struct row {             /* one scene, pack, setting and time */
     long water_px;
     double rmse, psnr, mae, p95, p99, max_abs, over_share;   /* the whole frame */
     double wall_spread;          /* the timed frames' wall time, (p75 - p25) / median */
+    double capped_share;         /* water pixels whose refraction march ran out (NaN: not shown) */
     long nan_px, inf_px;
     unsigned gl_error;
     bool has[REF_OUTPUT_COUNT];
@@ -116,6 +117,7 @@ typedef struct summary {         /* one scene, pack and setting, over the times 
     double gpu_ms, wall_ms, rmse, psnr, p95, over_share;
     double water_rmse, water_psnr, off_rmse;   /* means over the times */
     double wall_spread;                        /* the largest of its rows' */
+    double capped_share;                       /* the largest of its rows' (NaN: not shown) */
     /* hit p95 (m), Fresnel MAE, irradiance relative error's median (the
      * mean is ruled by the few points the reference has almost no sun),
      * depth MAE (m) */
@@ -790,6 +792,12 @@ static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const
     ref_fimage A = { rgba, w, h, 4 };
     char err[256];
     if (mode == REF_OUTPUT_REFRACT_HIT) {
+        /* a truncated march is never silent: the contract's alpha of the
+         * refraction-hit buffer is BENCH_MARCH_CAPPED where it ran out */
+        long water = 0, capped = 0;
+        for (long i = 0; i < n; i++)
+            if (mask[i]) { water++; capped += rgba[i * 4 + 3] == BENCH_MARCH_CAPPED; }
+        rw->capped_share = water ? (double)capped / (double)water : NAN;
         ref_fimage B = { ref->im.refract_hit, w, h, 4 };
         ref_fimage A3 = A;
         ref_point_metrics m;
@@ -917,7 +925,7 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
         rw->setting = k;
         rw->ti = ti;
         rw->gpu_ms = rw->wall_ms = rw->first_wall_ms = rw->rmse = rw->psnr = rw->mae = NAN;
-        rw->water_rmse = rw->water_psnr = rw->off_rmse = rw->wall_spread = NAN;
+        rw->water_rmse = rw->water_psnr = rw->off_rmse = rw->wall_spread = rw->capped_share = NAN;
         rw->p95 = rw->p99 = rw->max_abs = rw->over_share = NAN;
     }
     double base = b->pr.done;
@@ -1029,6 +1037,7 @@ static void summarise(bench *b) {
         double gpu[MAX_TIMES], wall[MAX_TIMES];
         int ng = 0, nw = 0, ne = 0;
         double rmse = 0, psnr = 0, p95 = 0, share = 0, wrmse = 0, wpsnr = 0, off = 0;
+        s->capped_share = NAN;
         int nw_err = 0;
         s->wall_spread = 0;
         double comp[REF_OUTPUT_COUNT] = { 0 };
@@ -1041,6 +1050,7 @@ static void summarise(bench *b) {
             if (isfinite(r->gpu_ms)) gpu[ng++] = r->gpu_ms;
             if (isfinite(r->wall_ms)) wall[nw++] = r->wall_ms;
             if (isfinite(r->wall_spread) && r->wall_spread > s->wall_spread) s->wall_spread = r->wall_spread;
+            if (isfinite(r->capped_share) && !(r->capped_share <= s->capped_share)) s->capped_share = r->capped_share;
             if (isfinite(r->water_rmse)) {
                 wrmse += r->water_rmse;
                 wpsnr += isfinite(r->water_psnr) ? r->water_psnr : 99;
@@ -1133,7 +1143,7 @@ static bool write_csv(bench *b, const char *path) {
     sbuf o = { 0 };
     sb_printf(&o, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms,first_frame_wall_ms,"
                   "floor_gpu_ms,floor_wall_ms,x_floor_gpu,x_floor_wall,water_rmse,water_psnr_db,water_pixels,"
-                  "off_water_rmse,rmse,psnr_db,mae,error_p95,error_p99,"
+                  "off_water_rmse,march_capped_share,rmse,psnr_db,mae,error_p95,error_p99,"
                   "max_abs,over_threshold_share,nan_pixels,inf_pixels,gl_error");
     for (int m = 1; m < REF_OUTPUT_COUNT; m++)
         sb_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean,%s.rel_median", ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name,
@@ -1159,6 +1169,7 @@ static bool write_csv(bench *b, const char *path) {
         csv_num(&o, r->water_psnr);
         sb_printf(&o, ",%ld", r->water_px);
         csv_num(&o, r->off_rmse);
+        csv_num(&o, r->capped_share);
         csv_num(&o, r->rmse);
         csv_num(&o, r->psnr);
         csv_num(&o, r->mae);
@@ -1251,6 +1262,8 @@ static bool write_json(bench *b, const char *path) {
         json_num(&o, s->water_psnr);
         sb_printf(&o, ", \"off_water_rmse\": ");
         json_num(&o, s->off_rmse);
+        sb_printf(&o, ", \"march_capped_share\": ");
+        json_num(&o, s->capped_share);
         sb_printf(&o, ", \"rmse\": ");
         json_num(&o, s->rmse);
         sb_printf(&o, ", \"psnr_db\": ");
@@ -1295,6 +1308,8 @@ static bool write_json(bench *b, const char *path) {
         sb_printf(&o, ", \"water_pixels\": %ld", r->water_px);
         sb_printf(&o, ", \"off_water_rmse\": ");
         json_num(&o, r->off_rmse);
+        sb_printf(&o, ", \"march_capped_share\": ");
+        json_num(&o, r->capped_share);
         sb_printf(&o, ", \"rmse\": ");
         json_num(&o, r->rmse);
         sb_printf(&o, ", \"psnr_db\": ");
@@ -1390,9 +1405,9 @@ static void report_md(bench *b, sbuf *o, const char *plot_prefix) {
         stem(b->scene_abs[sc], st, sizeof st);
         sb_printf(o, "### %s\n\n", st);
         sb_printf(o, "| pack | setting | GPU ms | wall ms | × floor | water RMSE | water PSNR dB | off-water RMSE | "
-                     "frame RMSE | p95 error | > 0.05 | hit p95 m | Fresnel MAE | irradiance rel. median | "
+                     "frame RMSE | p95 error | > 0.05 | hit p95 m | march capped | Fresnel MAE | irradiance rel. median | "
                      "depth MAE m | Pareto |\n"
-                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
+                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
         for (int i = 0; i < b->nsums; i++) {
             const summary *s = &b->sums[i];
             if (s->scene != sc) continue;
@@ -1402,7 +1417,7 @@ static void report_md(bench *b, sbuf *o, const char *plot_prefix) {
                 for (int j = 0; j < b->nrows; j++)
                     if (b->rows[j].scene == sc && b->rows[j].pack == s->pack && b->rows[j].setting == s->setting)
                         r = &b->rows[j];
-                sb_printf(o, " failed: %s | | | | | | | | | | | | | | |\n", r && r->error[0] ? r->error : "?");
+                sb_printf(o, " failed: %s | | | | | | | | | | | | | | | |\n", r && r->error[0] ? r->error : "?");
                 continue;
             }
             md_num(o, "%.2f", s->gpu_ms);
@@ -1415,11 +1430,12 @@ static void report_md(bench *b, sbuf *o, const char *plot_prefix) {
             md_num(o, "%.4f", s->p95);
             md_num(o, "%.1f%%", 100 * s->over_share);
             md_num(o, "%.3f", s->has[1] ? s->comp[1] : NAN);
+            md_num(o, "%.1f%%", 100 * s->capped_share);
             md_num(o, "%.4f", s->has[2] ? s->comp[2] : NAN);
             md_num(o, "%.3f", s->has[3] ? s->comp[3] : NAN);
             md_num(o, "%.3f", s->has[4] ? s->comp[4] : NAN);
             sb_printf(o, " %s |\n", s->pareto ? "●" : "");
-            if (s->nan_px) sb_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | |\n", s->nan_px);
+            if (s->nan_px) sb_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | |\n", s->nan_px);
         }
         sb_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
                      "RenderToTexture that begins it, `screen:LINE` what is drawn to the screen):\n\n");

@@ -22,4 +22,9 @@ const char *bench_usage(void);
  * of its values writes is reference/ref_buffers.h's ref_output. */
 #define BENCH_OUTPUT_DEFINE "TARN_OUTPUT"
 
+/* The alpha a pack writes in its refraction-hit buffer where its march ran
+ * out of steps before it found the ground (raymarch's MARCH_CAP); bench
+ * reports the share of water pixels so. */
+#define BENCH_MARCH_CAPPED 2.0f
+
 #endif
