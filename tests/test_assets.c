@@ -7,6 +7,7 @@
 #include "check.h"
 #include "assets.h"
 #include "cli.h"
+#include "cmd.h"
 #include "image_io.h"
 
 #include <ftw.h>
@@ -271,7 +272,7 @@ static const char *const files[] = {
 static int run_cli(int argc, const char *const *argv)
 {
     fflush(stdout);
-    return cli_assets(argc, (char **)argv);
+    return cmd_assets(argc, (char **)argv);
 }
 
 static void test_cli(void)

@@ -14,6 +14,7 @@
 #include "bench.h"
 #include "check.h"
 #include "cli.h"
+#include "cmd.h"
 #include "image_io.h"
 #include "packset.h"
 #include "plot.h"
@@ -308,7 +309,7 @@ static int bench(const char *out, bool docs) {
                            "--times", "0.5,2", "--frames", "3", "--ref-caustic-res", "16", "--ref-photons", "1",
                            "--out", out, "--quiet", "--docs", docs_path };
     int argc = (int)(sizeof argv / sizeof *argv) - (docs ? 0 : 2);
-    return cli_bench(argc, (char **)argv);
+    return cmd_bench(argc, (char **)argv);
 }
 
 static void test_bench_end_to_end(void) {
@@ -381,15 +382,15 @@ static void test_bench_end_to_end(void) {
 
 static void test_usage(void) {
     const char *a1[] = { "--packs", "nosuchpack", "--root", tmp("root") };
-    CHECK(cli_bench(4, (char **)a1) == TARN_EXIT_USAGE);
+    CHECK(cmd_bench(4, (char **)a1) == TARN_EXIT_USAGE);
     const char *a2[] = { "--size", "12" };
-    CHECK(cli_bench(2, (char **)a2) == TARN_EXIT_USAGE);
+    CHECK(cmd_bench(2, (char **)a2) == TARN_EXIT_USAGE);
     const char *a3[] = { "--times", "1,x" };
-    CHECK(cli_bench(2, (char **)a3) == TARN_EXIT_USAGE);
+    CHECK(cmd_bench(2, (char **)a3) == TARN_EXIT_USAGE);
     const char *a4[] = { "no/such/scene.glib" };
-    CHECK(cli_bench(1, (char **)a4) == TARN_EXIT_USAGE);
+    CHECK(cmd_bench(1, (char **)a4) == TARN_EXIT_USAGE);
     const char *a5[] = { "--help" };
-    CHECK(cli_bench(1, (char **)a5) == TARN_EXIT_OK);
+    CHECK(cmd_bench(1, (char **)a5) == TARN_EXIT_OK);
 }
 
 int main(void) {

@@ -135,6 +135,30 @@ static void test_set_changes_uniforms(void) {
     CHECK_STR_CONTAINS(out, "no entry 'uNope' in Water");
 }
 
+/* Every --set is applied, however many: 69 harmless ones before the one
+ * that turns the sand red (a fixed array of 64 once dropped the 65th on). */
+static void test_many_sets_all_applied(void) {
+    char cmd[8192], out[8192], a[512];
+    snprintf(a, sizeof a, "%s/sets.png", dir);
+    int n = snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 160x90 --quiet",
+                     bin, src, a);
+    for (int i = 0; i < 69; i++) n += snprintf(cmd + n, sizeof cmd - (size_t)n, " --set Water.uClarity=1");
+    snprintf(cmd + n, sizeof cmd - (size_t)n, " --set Floor.uSandColor=1,0,0 2>&1");
+    int rc = run_command(cmd, out, sizeof out);
+    if (rc == 3) SKIP("no OpenGL");
+    CHECK_MSG(rc == 0, "%s", out);
+    img im;
+    char err[256];
+    memset(&im, 0, sizeof im);
+    CHECK_MSG(img_read(a, &im, err, sizeof err), "%s", err);
+    if (im.px) {
+        const float *p = im.px + ((size_t)80 * im.w + 80) * im.channels;   /* the floor, as in test_set_changes_uniforms */
+        CHECK_MSG(p[0] > p[1] + 0.1f && p[0] > p[2] + 0.1f, "the 70th --set was lost: pixel %g %g %g", p[0], p[1],
+                  p[2]);
+    }
+    img_free(&im);
+}
+
 /* No arguments and no display: the default scene goes to out/default.png. */
 static void test_no_arguments_renders_default_scene(void) {
     char cmd[2048], out[8192], png[512];
@@ -159,6 +183,7 @@ int main(void) {
     RUN(test_render_headless_is_deterministic_and_follows_scene);
     RUN(test_frames_write_every_frame);
     RUN(test_set_changes_uniforms);
+    RUN(test_many_sets_all_applied);
     RUN(test_no_arguments_renders_default_scene);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);

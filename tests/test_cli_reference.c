@@ -1,4 +1,4 @@
-/* test_cli_reference: `tarn reference` end to end (cli_reference called
+/* test_cli_reference: `tarn reference` end to end (cmd_reference called
  * directly): the files it writes, their channels, 32-bit float precision
  * of the buffers against an in-memory render of the same scene, NaN where
  * a buffer has no value, and usage errors. */
@@ -10,7 +10,7 @@
 
 #include "check.h"
 #include "cli.h"
-#include "cli_reference.h"
+#include "cmd.h"
 #include "image_io.h"
 #include "ref_render.h"
 #include "scene.h"
@@ -29,7 +29,7 @@ static const char *tmp_path(const char *name) {
     return buf[k];
 }
 
-static int run(int argc, const char **argv) { return cli_reference(argc, (char **)argv); }
+static int run(int argc, const char **argv) { return cmd_reference(argc, (char **)argv); }
 
 static const char *lake(void) { return TARN_SOURCE_DIR "/scenes/lake.glib"; }
 
@@ -110,8 +110,8 @@ static void test_usage(void) {
     CHECK(run(5, spp) == TARN_EXIT_USAGE);
     const char *unknown[] = { "s.glib", "-o", "x.exr", "--frobnicate" };
     CHECK(run(4, unknown) == TARN_EXIT_USAGE);
-    CHECK_STR_CONTAINS(cli_reference_usage(), "--threads");
-    CHECK_STR_CONTAINS(cli_reference_usage(), "refract_hit.exr");
+    CHECK_STR_CONTAINS(cmd_reference_usage(), "--threads");
+    CHECK_STR_CONTAINS(cmd_reference_usage(), "refract_hit.exr");
 }
 
 static void test_input_errors(void) {

@@ -1,7 +1,7 @@
 /* `tarn compare A B`: on images this test writes, the JSON and CSV carry the
  * values worked out by hand, the heat map has the documented colours, the
  * reference buffers are compared, and bad input gives the documented exit
- * codes and messages naming the files. Most cases call compare_run()
+ * codes and messages naming the files. Most cases call cmd_compare_io()
  * directly; the last runs $TARN_BIN compare (skipped while main.c does not
  * know the command). */
 #include <math.h>
@@ -15,6 +15,7 @@
 
 #include "check.h"
 #include "support.h"
+#include "cmd.h"
 #include "compare.h"
 #include "image_io.h"
 #include "ref_metrics.h"
@@ -39,7 +40,7 @@ static void slurp(FILE *f, char *buf, size_t len) {
     buf[n] = '\0';
 }
 
-/* Runs compare_run on a space-separated argument line (printf-style);
+/* Runs cmd_compare_io on a space-separated argument line (printf-style);
  * stdout and stderr land in out_buf and err_buf. */
 static int compare(const char *fmt, ...) {
     char line[4096];
@@ -52,7 +53,7 @@ static int compare(const char *fmt, ...) {
     for (char *t = strtok(line, " "); t && argc < 64; t = strtok(NULL, " ")) argv[argc++] = t;
     FILE *o = tmpfile(), *e = tmpfile();
     if (!o || !e) { fprintf(stderr, "tmpfile failed\n"); exit(1); }
-    int rc = compare_run(argc, argv, o, e);
+    int rc = cmd_compare_io(argc, argv, o, e);
     slurp(o, out_buf, sizeof out_buf);
     slurp(e, err_buf, sizeof err_buf);
     fclose(o);

@@ -1,6 +1,7 @@
-/* cli: the tarn commands. main.c parses the command line into these desc
- * structs (zero means default) and calls one; each returns the exit code:
- * 0 ok, 1 the input had errors, 2 bad usage, 3 no OpenGL context. */
+/* cli: headless rendering, which lives in the cmd layer (cmd_render.c) as
+ * `tarn render` and the no-display default of main.c use it. cmd_render
+ * parses the command line into this desc (zero means default); cli_render
+ * returns the exit code: 0 ok, 1 the input had errors, 3 no OpenGL. */
 #ifndef TARN_CLI_H
 #define TARN_CLI_H
 

@@ -214,8 +214,8 @@ bool assets_bake_foam(int res, float *rgb)
  * floor, repeat with the tile. */
 #define CAUSTIC_TILE 4.0
 #define CAUSTIC_DEPTH 2.5
-enum { CAUSTIC_PHOTONS_PER_CELL = 64, CAUSTIC_CHUNKS = 8, CAUSTIC_MIN_RES = 4,
-       CAUSTIC_MAX_RES = 1024 };
+enum { CAUSTIC_PHOTONS_PER_CELL = 64, CAUSTIC_CHUNKS = 8, CAUSTIC_MIN_RES = ASSETS_MIN_SIZE,
+       CAUSTIC_MAX_RES = ASSETS_MAX_SIZE };
 
 static const struct { int m, n; double amp, phase; } caustic_waves[] = {
     { 2, 1, 0.040, 0.3 }, { -1, 2, 0.036, 1.9 }, { 3, -1, 0.024, 4.1 },
@@ -342,14 +342,6 @@ bool assets_bake_caustics(int res, float *out, char *err, int errlen)
 /* ------------------------------------------------------------------ */
 /* tarn assets                                                         */
 
-static const char usage_assets[] =
-    "usage: tarn assets [--out DIR] [--size N] [SCENE.glib]\n"
-    "  Generates the textures the packs use (the same bytes every time) into\n"
-    "  DIR (default: assets/ here): terrain albedo and normal map, the sky cube\n"
-    "  map (sky_px.exr ... sky_nz.exr and .png), water_normal.png, foam.png,\n"
-    "  caustics.exr and .png. The terrain and sky come from SCENE's world\n"
-    "  (default: the lake). --size N bakes every texture at N x N.\n";
-
 /* mkdir -p */
 static bool make_dirs(const char *path, char *err, int errlen)
 {
@@ -439,34 +431,13 @@ static bool world_for(const char *scene, ref_world *w)
     return true;
 }
 
-int cli_assets(int argc, char **argv)
+int assets_run(const assets_desc *d)
 {
-    const char *dir = "assets", *scene = NULL;
-    int size = 0;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            fputs(usage_assets, stdout);
-            return TARN_EXIT_OK;
-        } else if ((strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) && next) {
-            dir = next;
-            i++;
-        } else if (strcmp(a, "--size") == 0 && next) {
-            char *end;
-            long v = strtol(next, &end, 10);
-            if (*end || v < CAUSTIC_MIN_RES || v > CAUSTIC_MAX_RES) {
-                fprintf(stderr, "tarn assets: --size takes a whole number from %d to %d, not '%s'\n",
-                        CAUSTIC_MIN_RES, CAUSTIC_MAX_RES, next);
-                return TARN_EXIT_USAGE;
-            }
-            size = (int)v;
-            i++;
-        } else if (a[0] != '-' && !scene) {
-            scene = a;
-        } else {
-            fprintf(stderr, "tarn assets: unexpected argument '%s'\n%s", a, usage_assets);
-            return TARN_EXIT_USAGE;
-        }
+    const char *dir = d->dir ? d->dir : "assets", *scene = d->scene;
+    int size = d->size;
+    if (size && (size < CAUSTIC_MIN_RES || size > CAUSTIC_MAX_RES)) {
+        fprintf(stderr, "tarn assets: size %d is out of %d..%d\n", size, CAUSTIC_MIN_RES, CAUSTIC_MAX_RES);
+        return TARN_EXIT_USAGE;
     }
     ref_world *w = malloc(sizeof *w);
     if (!w || !world_for(scene, w)) {

@@ -8,7 +8,7 @@
  * buffer goes to glTexImage2D as it is. Texel (i, j) samples its centre,
  * s = (i + 0.5) / res, t = (j + 0.5) / res.
  *
- * The files (written by cli_assets with img_write, viewer/gfx/image_io.h):
+ * The files (written by assets_run with img_write, viewer/gfx/image_io.h):
  *   terrain_albedo.png   ref_terrain_albedo over the world square, terrain_res
  *   terrain_normal.png   the terrain's exact normal, terrain_res
  *   sky_{px,nx,py,ny,pz,nz}.exr / .png   the sky cube map, 256 a face
@@ -87,13 +87,20 @@ bool assets_bake_foam(int res, float *rgb);
  * ~20). False with a message in err for res out of 4..1024. */
 bool assets_bake_caustics(int res, float *out, char *err, int errlen);
 
-/* `tarn assets [--out DIR] [--size N] [SCENE.glib]`: argv holds the
- * arguments after `assets` (argv[0] is the first of them). Writes every
- * file above into DIR (default assets/ under the current directory, made
- * if missing) for SCENE's world (default: the lake, ref_world_desc_lake);
- * --size N bakes every texture at N x N (tests, quick looks). Returns
- * TARN_EXIT_OK, TARN_EXIT_INPUT (the scene has errors, or a file cannot be
- * written) or TARN_EXIT_USAGE. */
-int cli_assets(int argc, char **argv);
+/* What `tarn assets` writes (zero means default): every file above into
+ * dir (NULL: assets/ under the current directory, made if missing) for
+ * scene's world (NULL: the lake, ref_world_desc_lake); size N > 0 bakes
+ * every texture at N x N (tests, quick looks), ASSETS_MIN_SIZE..MAX_SIZE. */
+enum { ASSETS_MIN_SIZE = 4, ASSETS_MAX_SIZE = 1024 };
+typedef struct assets_desc {
+    const char *dir;
+    const char *scene;
+    int size;
+} assets_desc;
+
+/* Bakes and writes, printing each file written. Returns TARN_EXIT_OK,
+ * TARN_EXIT_INPUT (the scene has errors, or a file cannot be written) or
+ * TARN_EXIT_USAGE (size out of range). */
+int assets_run(const assets_desc *d);
 
 #endif

@@ -24,50 +24,9 @@
 #include "render.h"
 #include "ref_buffers.h"
 
-#define MAX_SCENES 16
-#define MAX_TIMES 16
+#define MAX_SCENES BENCH_MAX_SCENES
+#define MAX_TIMES BENCH_MAX_TIMES
 #define PATH_LEN 2048
-
-static const char *usage =
-    "usage: tarn bench [SCENE.glib...] [--packs a,b] [--size WxH] [--times t1,t2]\n"
-    "                  [--frames N] [--out DIR] [--docs FILE] [options]\n"
-    "\n"
-    "Speed against error: every pack (or those named) at every setting its\n"
-    "packs/NAME/bench.txt declares, at fixed simulated times, timed and compared\n"
-    "with the CPU reference of the same frame. Writes DIR/bench.csv, bench.json,\n"
-    "passes.csv (GPU time per pass), report.md, plot-SCENE.png, the frames and\n"
-    "their heat maps (DIR/img), and\n"
-    "caches the reference images in DIR/ref (reruns reuse them).\n"
-    "\n"
-    "  SCENE.glib         scenes to measure (default: scenes/lake.glib)\n"
-    "  --packs a,b        packs to measure (default: every packs/NAME/pack.glib)\n"
-    "  --size WxH         image size (default 480x270)\n"
-    "  --times t1,t2      simulated times, seconds (default 1,4)\n"
-    "  --frames N         at most N timed frames per setting and time (default 30)\n"
-    "  --frame-budget S   ...and no more than S seconds of them, at least 3 frames\n"
-    "                     (default 1.5: on a CPU rasteriser frames take long)\n"
-    "  --warmup N         untimed frames first (default 1; the first frame\n"
-    "                     also runs the RenderToTextureOnce passes)\n"
-    "  --out DIR          where the results go (default out/bench)\n"
-    "  --docs FILE        also write the report into FILE between the markers\n"
-    "                     <!-- bench:begin --> and <!-- bench:end --> (e.g.\n"
-    "                     docs/benchmark.md), and the plots beside it\n"
-    "  --time-axis A      auto, gpu or wall: the time the plot and the Pareto front\n"
-    "                     use (auto: wall time on a CPU rasteriser such as\n"
-    "                     llvmpipe, whose GPU timestamps do not time the\n"
-    "                     rasterisation; GPU time otherwise)\n"
-    "  --ref-spp N        reference subsamples N x N (default 1)\n"
-    "  --ref-photons N    reference photons per caustic cell (default 36)\n"
-    "  --ref-caustic-res N  reference caustic grid (default 256)\n"
-    "  --heat-max E       heat-map scale, linear RGB error (default 0.25)\n"
-    "  --no-images        do not write the frames and heat maps\n"
-    "  --quiet            no progress bar\n"
-    "  --root DIR         the tree whose packs/ is used (default: tarn's source tree)\n"
-    "\n"
-    "exit codes: 0 ok, 1 a scene, pack or output failed (the rest is measured),\n"
-    "2 bad usage, 3 no OpenGL\n";
-
-const char *bench_usage(void) { return usage; }
 
 /* ---- the run's state ---- */
 
@@ -319,113 +278,46 @@ static void machine(bench *b) {
     strftime(b->started, sizeof b->started, "%Y-%m-%d %H:%M UTC", &tmv);
 }
 
-/* ---- command line ---- */
+/* ---- the desc, resolved ---- */
 
-static bool parse_size(const char *s, int *w, int *h) {
-    char x, extra;
-    return s && sscanf(s, "%d%c%d%c", w, &x, h, &extra) == 3 && (x == 'x' || x == 'X') && *w >= 8 && *h >= 8 &&
-           *w <= 8192 && *h <= 8192;
-}
-
-static bool parse_num(const char *s, double lo, double hi, double *out) {
-    char *end;
-    if (!s) return false;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end || errno || !isfinite(v) || v < lo || v > hi) return false;
-    *out = v;
-    return true;
-}
-
-static int bad_usage(const char *fmt, ...) {
+/* A desc the run cannot use (no such scene or pack): the reason in why,
+ * for the command line to show with its usage. */
+static int unusable(char *why, size_t whylen, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "tarn bench: ");
-    vfprintf(stderr, fmt, ap);
+    vsnprintf(why, whylen, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "\n\n%s", usage);
     return TARN_EXIT_USAGE;
 }
 
-static int parse_args(bench *b, int argc, char **argv) {
-    bench_opts *o = &b->o;
-    o->w = 480;
-    o->h = 270;
-    o->times[0] = 1.0;
-    o->times[1] = 4.0;
-    o->ntimes = 2;
-    o->frames = 30;
-    o->warmup = 1;
-    o->frame_budget = 1.5;
-    o->out = "out/bench";
-    o->heat_max = 0.25;
-    o->images = true;
-    const char *packs = NULL;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        double v;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage, stdout); return -1; }
-        if (strcmp(a, "--packs") == 0 && next) { packs = next; i++; }
-        else if (strcmp(a, "--root") == 0 && next) {
-            if (!realpath(next, b->root)) return bad_usage("--root: no directory '%s'", next);
-            i++;
-        }
-        else if (strcmp(a, "--size") == 0) {
-            if (!parse_size(next, &o->w, &o->h)) return bad_usage("--size wants WxH, e.g. 480x270");
-            i++;
-        } else if (strcmp(a, "--times") == 0) {
-            if (!next) return bad_usage("--times wants seconds, e.g. 1,4");
-            char buf[512];
-            snprintf(buf, sizeof buf, "%s", next);
-            o->ntimes = 0;
-            char *save = NULL;
-            for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-                if (o->ntimes >= MAX_TIMES || !parse_num(t, -1e6, 1e6, &o->times[o->ntimes]))
-                    return bad_usage("--times wants up to %d numbers, e.g. 1,4", MAX_TIMES);
-                o->ntimes++;
-            }
-            if (!o->ntimes) return bad_usage("--times wants seconds, e.g. 1,4");
-            i++;
-        } else if (strcmp(a, "--frames") == 0) {
-            if (!parse_num(next, 1, 100000, &v)) return bad_usage("--frames wants 1..100000");
-            o->frames = (int)v;
-            i++;
-        } else if (strcmp(a, "--warmup") == 0) {
-            if (!parse_num(next, 0, 1000, &v)) return bad_usage("--warmup wants 0..1000");
-            o->warmup = (int)v;
-            i++;
-        } else if (strcmp(a, "--frame-budget") == 0) {
-            if (!parse_num(next, 0, 1e5, &o->frame_budget)) return bad_usage("--frame-budget wants seconds");
-            i++;
-        } else if (strcmp(a, "--out") == 0 && next) { o->out = next; i++; }
-        else if (strcmp(a, "--docs") == 0 && next) { o->docs = next; i++; }
-        else if (strcmp(a, "--time-axis") == 0 && next) {
-            if (strcmp(next, "auto") == 0) o->time_axis = 0;
-            else if (strcmp(next, "gpu") == 0) o->time_axis = 1;
-            else if (strcmp(next, "wall") == 0) o->time_axis = 2;
-            else return bad_usage("--time-axis wants auto, gpu or wall");
-            i++;
-        } else if (strcmp(a, "--ref-spp") == 0) {
-            if (!parse_num(next, 1, 16, &v)) return bad_usage("--ref-spp wants 1..16");
-            o->ref.spp = (int)v;
-            i++;
-        } else if (strcmp(a, "--ref-photons") == 0) {
-            if (!parse_num(next, 1, 1 << 20, &v)) return bad_usage("--ref-photons wants 1..1048576");
-            o->ref.photons_per_cell = (int)v;
-            i++;
-        } else if (strcmp(a, "--ref-caustic-res") == 0) {
-            if (!parse_num(next, 1, 8192, &v)) return bad_usage("--ref-caustic-res wants 1..8192");
-            o->ref.caustic_res = (int)v;
-            i++;
-        } else if (strcmp(a, "--heat-max") == 0) {
-            if (!parse_num(next, 1e-9, 1e9, &o->heat_max)) return bad_usage("--heat-max wants a positive error");
-            i++;
-        } else if (strcmp(a, "--no-images") == 0) o->images = false;
-        else if (strcmp(a, "--quiet") == 0) o->quiet = true;
-        else if (a[0] == '-') return bad_usage("unknown option '%s'", a);
-        else if (o->nscenes < MAX_SCENES) o->scenes[o->nscenes++] = a;
-        else return bad_usage("at most %d scenes", MAX_SCENES);
+/* The defaults, in one place (zero in the desc means these). */
+static void fill_opts(bench_opts *o, const bench_desc *d) {
+    for (int i = 0; i < d->nscenes && i < MAX_SCENES; i++) o->scenes[o->nscenes++] = d->scenes[i];
+    o->w = d->width > 0 ? d->width : 480;
+    o->h = d->height > 0 ? d->height : 270;
+    if (d->ntimes > 0) {
+        for (int i = 0; i < d->ntimes && i < MAX_TIMES; i++) o->times[o->ntimes++] = d->times[i];
+    } else {
+        o->times[0] = 1.0;
+        o->times[1] = 4.0;
+        o->ntimes = 2;
     }
+    o->frames = d->frames > 0 ? d->frames : 30;
+    o->warmup = d->warmup_set ? d->warmup : 1;
+    o->frame_budget = d->frame_budget_set ? d->frame_budget : 1.5;
+    o->out = d->out ? d->out : "out/bench";
+    o->docs = d->docs;
+    o->time_axis = d->time_axis;
+    o->ref = d->ref;
+    o->heat_max = d->heat_max > 0 ? d->heat_max : 0.25;
+    o->images = !d->no_images;
+    o->quiet = d->quiet;
+}
+
+static int resolve(bench *b, const bench_desc *d, char *why, size_t whylen) {
+    bench_opts *o = &b->o;
+    fill_opts(o, d);
+    if (d->root && !realpath(d->root, b->root)) return unusable(why, whylen, "--root: no directory '%s'", d->root);
     if (!o->nscenes) {
         static char lake[4096];
         snprintf(lake, sizeof lake, "%s/scenes/lake.glib", tarn_root());
@@ -436,10 +328,10 @@ static int parse_args(bench *b, int argc, char **argv) {
         const char *p = o->scenes[s];
         if (!is_file(p)) {
             fmt(alt, sizeof alt, "%s/%s", b->root, p);
-            if (!is_file(alt)) return bad_usage("no scene '%s'", p);
+            if (!is_file(alt)) return unusable(why, whylen, "no scene '%s'", p);
             p = alt;
         }
-        if (!realpath(p, b->scene_abs[s])) return bad_usage("cannot resolve '%s'", p);
+        if (!realpath(p, b->scene_abs[s])) return unusable(why, whylen, "cannot resolve '%s'", p);
     }
     packset_name all[PACKSET_MAX];
     int nall = packset_list(b->root, all, PACKSET_MAX);
@@ -448,21 +340,17 @@ static int parse_args(bench *b, int argc, char **argv) {
         strcat(list, i ? ", " : "");
         strcat(list, all[i]);
     }
-    if (packs) {
-        char buf[1024];
-        snprintf(buf, sizeof buf, "%s", packs);
-        char *save = NULL;
-        for (char *p = strtok_r(buf, ",", &save); p; p = strtok_r(NULL, ",", &save)) {
-            if (!packset_exists(b->root, p))
-                return bad_usage("no pack '%s' (no %s/packs/%s/pack.glib); the packs are: %s", p, b->root, p,
-                                 nall ? list : "none");
-            if (o->npacks >= PACKSET_MAX) return bad_usage("at most %d packs", PACKSET_MAX);
-            snprintf(o->packs[o->npacks++], PACKSET_NAME_MAX, "%s", p);
-        }
-    } else {
-        for (int i = 0; i < nall; i++) memcpy(o->packs[o->npacks++], all[i], sizeof all[i]);
+    for (int i = 0; i < d->npacks; i++) {
+        const char *p = d->packs[i];
+        if (!packset_exists(b->root, p))
+            return unusable(why, whylen, "no pack '%s' (no %s/packs/%s/pack.glib); the packs are: %s", p, b->root,
+                            p, nall ? list : "none");
+        if (o->npacks >= PACKSET_MAX) return unusable(why, whylen, "at most %d packs", PACKSET_MAX);
+        snprintf(o->packs[o->npacks++], PACKSET_NAME_MAX, "%s", p);
     }
-    if (!o->npacks) return bad_usage("no packs in %s/packs", b->root);
+    if (!d->npacks)
+        for (int i = 0; i < nall; i++) memcpy(o->packs[o->npacks++], all[i], sizeof all[i]);
+    if (!o->npacks) return unusable(why, whylen, "no packs in %s/packs", b->root);
     return 0;
 }
 
@@ -1605,14 +1493,14 @@ static bool write_docs(bench *b, const char *path) {
 
 /* ---- the command ---- */
 
-int cli_bench(int argc, char **argv) {
+int bench_run(const bench_desc *d, char *why, size_t whylen) {
     bench *b = calloc(1, sizeof *b);
     if (!b) return TARN_EXIT_INPUT;
     snprintf(b->root, sizeof b->root, "%s", tarn_root());
-    int rc = parse_args(b, argc, argv);
+    int rc = resolve(b, d, why, whylen);
     if (rc != 0) {
         free(b);
-        return rc < 0 ? TARN_EXIT_OK : rc;
+        return rc;
     }
     double t_start = clock_now_s();
     char err[4096] = "";

@@ -11,12 +11,43 @@
 #ifndef TARN_BENCH_H
 #define TARN_BENCH_H
 
-/* argv holds the arguments after "bench". Exit codes: 0 ok, 1 a scene,
- * pack or output failed (the rest is still measured and written), 2 bad
- * usage, 3 no OpenGL context. */
-int cli_bench(int argc, char **argv);
+#include <stdbool.h>
+#include <stddef.h>
 
-const char *bench_usage(void);
+#include "packset.h"
+#include "refcache.h"
+
+#define BENCH_MAX_SCENES 16
+#define BENCH_MAX_TIMES 16
+
+/* What to measure. Zero means default in every field but the two whose
+ * zero is a real value (warmup, frame_budget: say so with *_set). */
+typedef struct bench_desc {
+    const char *scenes[BENCH_MAX_SCENES];  /* a path, or relative to root */
+    int nscenes;                           /* 0: scenes/lake.glib */
+    const char *packs[PACKSET_MAX];
+    int npacks;                            /* 0: every pack under root */
+    const char *root;                      /* NULL: tarn_root() */
+    int width, height;                     /* 0: 480x270 */
+    double times[BENCH_MAX_TIMES];
+    int ntimes;                            /* 0: 1 s and 4 s */
+    int frames;                            /* timed frames a time; 0: 30 */
+    int warmup;                            /* untimed frames first (default 1) */
+    bool warmup_set;
+    double frame_budget;                   /* seconds a time (default 1.5) */
+    bool frame_budget_set;
+    const char *out;                       /* NULL: out/bench */
+    const char *docs;                      /* NULL: no docs section */
+    int time_axis;                         /* 0 auto, 1 gpu, 2 wall */
+    refcache_opts ref;                     /* the references' quality */
+    double heat_max;                       /* 0: 0.25 */
+    bool no_images, quiet;
+} bench_desc;
+
+/* Measures and writes. Exit codes: 0 ok, 1 a scene, pack or output failed
+ * (the rest is still measured and written), 2 the desc names a root,
+ * scene or pack that is not there (the reason in why), 3 no OpenGL. */
+int bench_run(const bench_desc *d, char *why, size_t whylen);
 
 /* The `Define` a pack declares to expose its per-pixel buffers; what each
  * of its values writes is reference/ref_buffers.h's ref_output. */

@@ -5,7 +5,6 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -16,47 +15,6 @@
 #include "ref_buffers.h"
 #include "ref_render.h"
 
-static const char usage_text[] =
-    "usage: tarn compare A B [--out HEATMAP.png] [--threshold T] [--max E]\n"
-    "                        [--mask M] [--json FILE|-] [--csv FILE|-]\n"
-    "                        [--buffers] [--texel W] [--linear]\n"
-    "\n"
-    "Measures the error of image A (under test) against image B (the reference),\n"
-    "in linear RGB: RMSE and MAE over all channel values, PSNR (peak 1.0), the\n"
-    "largest error and its pixel, the share of pixels whose error (the largest\n"
-    "of the R, G, B errors) exceeds a threshold, and NaN/Inf pixels of each side\n"
-    "(left out of the statistics and counted). A and B are any format\n"
-    "OpenImageIO reads, of the same size. PNG, JPEG, BMP, GIF, TGA, WebP and\n"
-    "PNM inputs are sRGB-decoded to linear first; EXR, HDR and TIFF are read\n"
-    "as linear. Alpha is ignored; a grey image stands for R = G = B.\n"
-    "\n"
-    "  -o, --out HEATMAP.png\n"
-    "                     write the per-pixel error as an inferno heat map\n"
-    "                     (black = 0, pale yellow = the scale or more,\n"
-    "                     cyan = NaN/Inf in A or B, grey = outside the mask)\n"
-    "  --max E            heat-map scale (default: the 99th percentile of the\n"
-    "                     per-pixel error)\n"
-    "  --threshold T      error counted as 'over' when > T (default 0.05)\n"
-    "  --mask M           compare only where image M's first channel is > 0.5\n"
-    "  --json FILE|-      write every metric as JSON (- : stdout)\n"
-    "  --csv FILE|-       write every metric as CSV, a header row and a value\n"
-    "                     row (- : stdout); with either on stdout the table\n"
-    "                     goes to stderr\n"
-    "  --buffers          also compare the reference buffers beside A and B:\n"
-    "                     for X.exr, X.refract_hit.exr, X.reflect.exr and\n"
-    "                     X.surface.exr (hit points: distance in world units;\n"
-    "                     a 4th channel is what the ray met), X.fresnel.exr,\n"
-    "                     X.depth.exr and X.irradiance.exr (scalars: absolute\n"
-    "                     and relative error), each pair that exists on both\n"
-    "                     sides; with --out, one heat map per buffer too\n"
-    "                     (HEATMAP.NAME.png)\n"
-    "  --texel W          world units per texel: hit-point errors in texels too\n"
-    "  --linear           take every input as linear (no sRGB decoding)\n"
-    "\n"
-    "exit codes: 0 compared, 1 a file could not be read, compared or written,\n"
-    "2 bad usage\n";
-
-const char *compare_usage(void) { return usage_text; }
 
 /* ---- files -------------------------------------------------------------------- */
 
@@ -337,35 +295,11 @@ static void write_table(FILE *f, const kvlist *l) {
 
 /* ---- the command ------------------------------------------------------------------ */
 
-typedef struct compare_opts {
-    const char *a, *b, *out, *json, *csv, *mask;
-    double threshold, max_err, texel;
-    bool buffers, linear;
-} compare_opts;
-
 /* The buffers are reference/ref_buffers.h's. Point buffers may carry a flag
  * in channel 3 (what the ray met, ref_render.h); where it is the buffer's
  * direction_flag on either side, xyz is a direction, not a point, and the
  * pixel is left out. */
 typedef ref_buffer_info buffer_kind;
-
-static bool parse_pos(const char *s, double *v) {
-    char *end;
-    if (!s) return false;
-    errno = 0;
-    *v = strtod(s, &end);
-    return end != s && *end == '\0' && errno == 0 && isfinite(*v) && *v > 0;
-}
-
-static int usage_error(FILE *err, const char *fmt, ...) {
-    va_list ap;
-    fputs("tarn compare: ", err);
-    va_start(ap, fmt);
-    vfprintf(err, fmt, ap);
-    va_end(ap);
-    fprintf(err, "\n\n%s", usage_text);
-    return TARN_EXIT_USAGE;
-}
 
 /* Writes field's heat map to path; returns the scale (NaN on failure). */
 static double write_heatmap(const char *path, const float *field, int w, int h, double scale, FILE *err) {
@@ -448,7 +382,7 @@ static unsigned char *load_mask(const char *path, int w, int h, FILE *err) {
 }
 
 /* Compares one buffer pair into l (group = its name). False on failure. */
-static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb, const compare_opts *o,
+static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb, const compare_desc *o,
                            const unsigned char *mask, int mw, int mh, kvlist *l, FILE *err) {
     img a = {0}, b = {0};
     char msg[1024];
@@ -594,37 +528,8 @@ static bool close_out(FILE *f, const char *path, FILE *out, FILE *err) {
     return ok;
 }
 
-int compare_run(int argc, char **argv, FILE *out, FILE *err) {
-    compare_opts o = {0};
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage_text, out); return TARN_EXIT_OK; }
-        if (strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) {
-            if (!next) return usage_error(err, "%s wants a file name, e.g. heat.png", a);
-            o.out = next; i++;
-        } else if (strcmp(a, "--json") == 0 || strcmp(a, "--csv") == 0 || strcmp(a, "--mask") == 0) {
-            if (!next) return usage_error(err, "%s wants a file name%s", a, a[2] == 'm' ? "" : " or -");
-            if (a[2] == 'j') o.json = next; else if (a[2] == 'c') o.csv = next; else o.mask = next;
-            i++;
-        } else if (strcmp(a, "--threshold") == 0) {
-            if (!parse_pos(next, &o.threshold)) return usage_error(err, "--threshold wants a number > 0, e.g. 0.05");
-            i++;
-        } else if (strcmp(a, "--max") == 0) {
-            if (!parse_pos(next, &o.max_err)) return usage_error(err, "--max wants a number > 0, e.g. 0.1");
-            i++;
-        } else if (strcmp(a, "--texel") == 0) {
-            if (!parse_pos(next, &o.texel)) return usage_error(err, "--texel wants world units per texel > 0, e.g. 0.05");
-            i++;
-        } else if (strcmp(a, "--buffers") == 0) o.buffers = true;
-        else if (strcmp(a, "--linear") == 0) o.linear = true;
-        else if (a[0] == '-' && a[1] != '\0') return usage_error(err, "unknown option '%s'", a);
-        else if (!o.a) o.a = a;
-        else if (!o.b) o.b = a;
-        else return usage_error(err, "two images at a time (got a third: '%s')", a);
-    }
-    if (!o.a || !o.b) return usage_error(err, "which images? give A and B");
-    if (o.json && o.csv && strcmp(o.json, "-") == 0 && strcmp(o.csv, "-") == 0)
-        return usage_error(err, "--json - and --csv - cannot both go to stdout");
+int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
+    const compare_desc o = *cd;
     FILE *table = (o.json && strcmp(o.json, "-") == 0) || (o.csv && strcmp(o.csv, "-") == 0) ? err : out;
 
     img ia = {0}, ib = {0};
@@ -774,4 +679,3 @@ done:
     return rc;
 }
 
-int cli_compare(int argc, char **argv) { return compare_run(argc, argv, stdout, stderr); }

@@ -11,18 +11,19 @@
 
 #include "image_io.h"
 
-/* The command: argv holds the arguments after "compare" (argv[0] is A or
- * an option, not "compare"). Prints to stdout/stderr. Returns 0 when
- * compared, 1 when a file could not be read, compared or written, 2 on bad
- * usage (the usage text goes to stderr; --help prints it to stdout, 0). */
-int cli_compare(int argc, char **argv);
+/* What to compare and what to write (zero means default: no heat map, no
+ * JSON/CSV/mask, automatic --max). Paths "-" for json or csv mean `out`;
+ * not both (the caller checks). */
+typedef struct compare_desc {
+    const char *a, *b;                 /* A under test, B the reference */
+    const char *out, *json, *csv, *mask;
+    double threshold, max_err, texel;  /* 0: defaults (docs/metrics.md) */
+    bool buffers, linear;
+} compare_desc;
 
-/* The same with the streams given (tests): the table and "-" outputs go to
- * out, messages to err. */
-int compare_run(int argc, char **argv, FILE *out, FILE *err);
-
-/* The --help text. */
-const char *compare_usage(void);
+/* Compares: the table and "-" outputs go to out, messages to err. Returns
+ * 0 when compared, 1 when a file could not be read, compared or written. */
+int compare_run(const compare_desc *d, FILE *out, FILE *err);
 
 /* True when the file's extension is one of the 8-bit display formats that
  * store sRGB-encoded values (png, jpg, jpeg, bmp, gif, tga, webp, ppm, pgm,

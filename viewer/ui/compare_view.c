@@ -29,33 +29,6 @@
 #define PANEL_WIDTH 440
 #define DIVIDER_GRAB 8    /* pixels either side of the wipe's divider that grab it */
 
-static const char *usage =
-    "usage: tarn compare-view SCENE.glib --packs a,b[,c,d] [--size WxH] [--time SECONDS]\n"
-    "                         [--script FILE] [--ref-caustic-res N] [--ref-photons N]\n"
-    "\n"
-    "Two to four packs side by side in one window, sharing one camera, one clock\n"
-    "and the scene's world; each pack keeps its own sliders in the panel. The\n"
-    "same pack may be named twice (compare two of its settings).\n"
-    "\n"
-    "  --packs a,b,...      the packs (2 to 4)\n"
-    "  --size WxH           the scene area beside the panel (default: the glib's WindowSize)\n"
-    "  --time SECONDS       start at this simulated time\n"
-    "  --script FILE        scripted actions (see `tarn help view`, and pack N, layout\n"
-    "                       grid|wipe, wipe A B, divider X, heat, heat-show on|off,\n"
-    "                       heat-max E, orbit DX DY, timings, expect-heat), then exit\n"
-    "  --ref-caustic-res N  the heat maps' reference: caustic grid (default 128)\n"
-    "  --ref-photons N      ...and photons per cell (default 16)\n"
-    "\n"
-    "layouts: grid (two in a row, three or four in 2 x 2) and wipe (two packs over\n"
-    "one view, the divider dragged with the left mouse button)\n"
-    "heat maps: each pack's error against the CPU reference of this frame at the\n"
-    "viewport size, computed on request (time pauses), one inferno scale for all\n"
-    "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
-    "keys:  H heat maps (compute / show / hide)   G grid   W wipe   Tab wipe's right pack\n"
-    "       Space pause   R reload   P or F12 screenshot   F or Home reset camera   Esc or Q quit\n";
-
-const char *compare_view_usage(void) { return usage; }
-
 typedef struct cv_pack {
     char name[64], label[80];
     render *r;

@@ -43,6 +43,4 @@ typedef struct cli_compare_view_desc {
 
 int cli_compare_view(const cli_compare_view_desc *d);
 
-const char *compare_view_usage(void);
-
 #endif

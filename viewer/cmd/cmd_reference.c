@@ -1,5 +1,9 @@
-/* cli_reference: the `tarn reference` command (see cli_reference.h). */
-#include "cli_reference.h"
+/* cmd_reference: `tarn reference SCENE.glib -o ref.exr [options]`, the CPU
+ * ground truth of a scene (reference/ref_render.h) written as a linear EXR,
+ * an sRGB PNG and per-pixel buffers. See docs/reference.md, "The renderer".
+ * Exit codes: TARN_EXIT_OK, TARN_EXIT_INPUT (scene errors, render or write
+ * failure), TARN_EXIT_USAGE. */
+#include "cmd.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -8,13 +12,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "util.h"
 #include "image_io.h"
 #include "ref_render.h"
 #include "scene.h"
 #include "ref_buffers.h"
 
-static const char *usage =
+static const char usage[] =
     "usage: tarn reference SCENE.glib -o OUT.exr [--size WxH] [--time SECONDS]\n"
     "                      [--threads N] [--spp N] [--photons N] [--caustic-res N]\n"
     "                      [--flat-caustics] [--radiance-n2] [--quiet]\n"
@@ -49,33 +53,9 @@ static const char *usage =
     "exit codes: 0 ok, 1 the scene has errors or an output could not be written,\n"
     "2 bad usage\n";
 
-const char *cli_reference_usage(void) { return usage; }
+const char *cmd_reference_usage(void) { return usage; }
 
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int bad_usage(const char *what) {
-    fprintf(stderr, "tarn reference: %s\n\n%s", what, usage);
-    return TARN_EXIT_USAGE;
-}
-
-static int parse_int(const char *s, int lo, int hi, int *out) {
-    char *end;
-    if (!s) return 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || v < lo || v > hi) return 0;
-    *out = (int)v;
-    return 1;
-}
-
-static int parse_size(const char *s, int *w, int *h) {
-    char x, extra;
-    return s && sscanf(s, "%d%c%d%c", w, &x, h, &extra) == 3 && (x == 'x' || x == 'X') && *w > 0 &&
-           *h > 0 && *w <= 16384 && *h <= 16384;
-}
+static int bad_usage(const char *what) { return cmd_bad_usage(stderr, "tarn reference", usage, "%s", what); }
 
 /* ---- the progress bar ------------------------------------------------- */
 
@@ -91,7 +71,7 @@ static void fmt_time(double s, char *buf, size_t n) {
 
 static void bar_progress(void *user, double f) {
     bar *b = user;
-    double t = now_s();
+    double t = clock_now_s();
     if ((f < 1.0 && t - b->last < 0.1) || (b->drawn && f == b->last_f)) return;
     b->last = t;
     b->last_f = f;
@@ -178,60 +158,69 @@ static int write_outputs(const char *out, const ref_render_result *r, int quiet)
 
 /* ---- the command -------------------------------------------------------- */
 
-int cli_reference(int argc, char **argv) {
-    const char *glib = NULL, *out = NULL;
-    int width = 0, height = 0, quiet = 0;
+/* The command line: the scene, where to write, the image size (0: the
+ * scene's) and the reference's own desc (zero means its defaults). */
+typedef struct reference_opts {
+    const char *glib, *out;
+    int width, height;
+    bool quiet;
     ref_render_desc d;
-    memset(&d, 0, sizeof d);
+} reference_opts;
+
+static int parse(int argc, char **argv, reference_opts *o) {
+    ref_render_desc *d = &o->d;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(usage, stdout); return TARN_EXIT_OK; }
         if (strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) {
             if (!next) return bad_usage("-o wants a path, e.g. -o out/ref.exr");
-            out = next;
+            o->out = next;
             i++;
         } else if (strcmp(a, "--size") == 0) {
-            if (!parse_size(next, &width, &height)) return bad_usage("--size wants WxH, e.g. 640x360");
+            if (!opt_size(next, &o->width, &o->height)) return bad_usage("--size wants WxH, e.g. 640x360");
             i++;
         } else if (strcmp(a, "--time") == 0) {
-            char *end;
-            if (!next || (d.time = strtod(next, &end), end == next || *end || !isfinite(d.time)))
-                return bad_usage("--time wants seconds, e.g. 2.5");
+            if (!opt_double(next, &d->time) || !isfinite(d->time)) return bad_usage("--time wants seconds, e.g. 2.5");
             i++;
         } else if (strcmp(a, "--threads") == 0) {
-            if (!parse_int(next, 1, 256, &d.threads)) return bad_usage("--threads wants 1..256");
+            if (!cmd_opt_int(next, 1, 256, &d->threads)) return bad_usage("--threads wants 1..256");
             i++;
         } else if (strcmp(a, "--spp") == 0) {
-            if (!parse_int(next, 1, 16, &d.spp)) return bad_usage("--spp wants 1..16 (N x N subsamples)");
+            if (!cmd_opt_int(next, 1, 16, &d->spp)) return bad_usage("--spp wants 1..16 (N x N subsamples)");
             i++;
         } else if (strcmp(a, "--photons") == 0) {
-            if (!parse_int(next, 1, 1 << 20, &d.photons_per_cell)) return bad_usage("--photons wants 1..1048576 per cell");
+            if (!cmd_opt_int(next, 1, 1 << 20, &d->photons_per_cell)) return bad_usage("--photons wants 1..1048576 per cell");
             i++;
         } else if (strcmp(a, "--caustic-res") == 0) {
-            if (!parse_int(next, 1, 8192, &d.caustic_res)) return bad_usage("--caustic-res wants 1..8192");
+            if (!cmd_opt_int(next, 1, 8192, &d->caustic_res)) return bad_usage("--caustic-res wants 1..8192");
             i++;
         } else if (strcmp(a, "--flat-caustics") == 0) {
-            d.caustics = REF_CAUSTICS_FLAT;
+            d->caustics = REF_CAUSTICS_FLAT;
         } else if (strcmp(a, "--radiance-n2") == 0) {
-            d.radiance_n2 = 1;
+            d->radiance_n2 = 1;
         } else if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
+            o->quiet = true;
         } else if (a[0] == '-') {
             char what[160];
             snprintf(what, sizeof what, "unknown option '%.100s'", a);
             return bad_usage(what);
-        } else if (!glib) {
-            glib = a;
+        } else if (!o->glib) {
+            o->glib = a;
         } else {
             return bad_usage("one scene at a time");
         }
     }
-    if (!glib) return bad_usage("which scene? give SCENE.glib");
-    if (!out) return bad_usage("where to? give -o OUT.exr");
-    size_t ol = strlen(out);
-    if (ol < 5 || strcmp(out + ol - 4, ".exr") != 0)
+    if (!o->glib) return bad_usage("which scene? give SCENE.glib");
+    if (!o->out) return bad_usage("where to? give -o OUT.exr");
+    size_t ol = strlen(o->out);
+    if (ol < 5 || strcmp(o->out + ol - 4, ".exr") != 0)
         return bad_usage("-o wants a .exr path (the PNG and the buffers go beside it)");
+    return TARN_EXIT_OK;
+}
 
+static int run(reference_opts *o) {
+    const char *glib = o->glib, *out = o->out;
+    int width = o->width, height = o->height, quiet = o->quiet;
+    ref_render_desc d = o->d;
     ref_world_desc wd;
     scene_camera cam;
     bool has_world = false;
@@ -258,7 +247,7 @@ int cli_reference(int argc, char **argv) {
     d.camera.fov_deg = cam.fov_deg;
     d.camera.width = width ? width : cam.width;
     d.camera.height = height ? height : cam.height;
-    bar b = { .start = now_s() };
+    bar b = { .start = clock_now_s() };
     if (!quiet && isatty(STDERR_FILENO)) {
         d.progress = bar_progress;
         d.progress_user = &b;
@@ -271,9 +260,9 @@ int cli_reference(int argc, char **argv) {
 
     ref_render_result r;
     char rerr[512] = "";
-    double t0 = now_s();
+    double t0 = clock_now_s();
     int rc = ref_render(&d, &r, rerr, sizeof rerr);
-    double total = now_s() - t0;
+    double total = clock_now_s() - t0;
     if (b.drawn) fputc('\n', stderr);
     if (rc != 0) {
         fprintf(stderr, "tarn reference: %s\n", rerr);
@@ -291,4 +280,12 @@ int cli_reference(int argc, char **argv) {
     int ok = write_outputs(out, &r, quiet);
     ref_render_free(&r);
     return ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
+}
+
+int cmd_reference(int argc, char **argv) {
+    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
+    reference_opts o;
+    memset(&o, 0, sizeof o);
+    int rc = parse(argc, argv, &o);
+    return rc == TARN_EXIT_OK ? run(&o) : rc;
 }

@@ -1,5 +1,6 @@
-/* `tarn render`: draws a glib without any display through EGL and writes
- * the image through OpenImageIO. Deterministic for a fixed --time. */
+/* cmd_render: `tarn render FILE.glib -o OUT`, draws a glib without any
+ * display through EGL and writes the image through OpenImageIO.
+ * Deterministic for a fixed --time. */
 #include <GL/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -7,8 +8,10 @@
 #include <string.h>
 #include <time.h>
 
+#include "strbuf.h"
 #include "util.h"
 #include "cli.h"
+#include "cmd.h"
 #include "gl_ctx.h"
 #include "image_io.h"
 #include "packset.h"
@@ -57,26 +60,30 @@ static double now_ms(void) {
 }
 
 /* --set: what moving a slider or ticking a Define would do, written as
- * bench.txt assignments (PROGRAM.NAME=V, or NAME=V for every Program). */
-static bool apply_sets(render *r, const cli_render_desc *d) {
-    if (d->nsets == 0) return true;
-    char text[4096] = "cli";
-    size_t n = strlen(text);
-    for (int i = 0; i < d->nsets && n < sizeof text; i++) {
-        const char *eq = strchr(d->sets[i], '='), *dot = strchr(d->sets[i], '.');
-        bool bare = !dot || (eq && dot > eq);
-        n += (size_t)snprintf(text + n, sizeof text - n, " %s%s", bare ? "*." : "", d->sets[i]);
-    }
-    packset_bench b;
+ * bench.txt assignments (PROGRAM.NAME=V, or NAME=V for every Program).
+ * One assignment at a time, in order, so there is no cap on how many and
+ * a later one wins as on the panel. */
+static bool apply_set(render *r, const char *set, bool *defines) {
+    const char *eq = strchr(set, '='), *dot = strchr(set, '.');
+    bool bare = !dot || (eq && dot > eq);
+    char *text = NULL;
+    str_appendf(&text, "cli %s%s", bare ? "*." : "", set);
+    packset_bench b = {0};
     char err[2048] = "";
-    bool ok = packset_bench_parse(text, "--set", &b, err, sizeof err) && b.n > 0;
-    bool defines = false;
+    bool ok = text && packset_bench_parse(text, "--set", &b, err, sizeof err) && b.n > 0;
     int nsets;
     unif_set *sets = render_uniforms(r, &nsets);
-    if (ok) ok = packset_apply(sets, nsets, &b.settings[0], &defines, err, sizeof err);
-    if (defines) render_rebuild_programs(r);
+    if (ok) ok = packset_apply(sets, nsets, &b.settings[0], defines, err, sizeof err);
     if (err[0]) fprintf(stderr, "tarn: --set: %s\n", err);
     packset_bench_free(&b);
+    free(text);
+    return ok;
+}
+
+static bool apply_sets(render *r, const cli_render_desc *d) {
+    bool ok = true, defines = false;
+    for (int i = 0; i < d->nsets; i++) ok = apply_set(r, d->sets[i], &defines) && ok;
+    if (defines) render_rebuild_programs(r);
     return ok;
 }
 
@@ -138,5 +145,70 @@ int cli_render(const cli_render_desc *d) {
     render_target_destroy(&t);
     render_destroy(r);
     gl_ctx_destroy(ctx);
+    return rc;
+}
+
+/* ---- the command line ---- */
+
+static const char usage[] =
+    "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
+    "                   [--set PROGRAM.NAME=VALUE]...\n"
+    "\n"
+    "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
+    "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
+    "\n"
+    "  -o, --out OUT    output image: .png (8-bit) or .exr (float), any format\n"
+    "                   OpenImageIO writes; a %d in the name writes every frame\n"
+    "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
+    "  --size WxH       image size (default: the glib's WindowSize)\n"
+    "  --time SECONDS   simulated time of the first frame (default 0)\n"
+    "  --frames N       render N frames, 1/60 s apart; prints the median GPU time\n"
+    "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
+    "                   as the panel would (NAME=V: of every Program); repeatable\n"
+    "  --quiet          print only errors\n"
+    "\n"
+    "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
+
+const char *cmd_render_usage(void) { return usage; }
+
+static int bad(const char *what) { return cmd_bad_usage(stderr, "tarn", usage, "%s", what); }
+
+/* Fills d from argv; sets has room for argc entries (every --set kept). */
+static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
+    d->sets = sets;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
+        double f;
+        if ((strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) && next) { d->out = next; i++; }
+        else if (strcmp(a, "--size") == 0) {
+            if (!opt_size(next, &d->width, &d->height)) return bad("--size wants WxH, e.g. 640x360");
+            i++;
+        } else if (strcmp(a, "--time") == 0) {
+            if (!opt_double(next, &d->time_s)) return bad("--time wants seconds, e.g. 2.5");
+            i++;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (!cmd_opt_range(next, 1, 100000, &f)) return bad("--frames wants 1..100000");
+            d->frames = (int)f;
+            i++;
+        } else if (strcmp(a, "--pack") == 0 && next) { d->pack = next; i++; }
+        else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }
+        else if (strcmp(a, "--quiet") == 0) d->quiet = true;
+        else if (a[0] == '-') return bad("unknown option");
+        else if (!d->glib) d->glib = a;
+        else return bad("one scene at a time");
+    }
+    if (!d->glib) return bad("which scene? give FILE.glib");
+    if (!d->out) return bad("where to? give -o OUT.png");
+    return TARN_EXIT_OK;
+}
+
+int cmd_render(int argc, char **argv) {
+    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
+    const char **sets = calloc((size_t)argc + 1, sizeof *sets);
+    if (!sets) { fprintf(stderr, "tarn: out of memory\n"); return TARN_EXIT_INPUT; }
+    cli_render_desc d = {0};
+    int rc = parse(argc, argv, &d, sets);
+    if (rc == TARN_EXIT_OK) rc = cli_render(&d);
+    free(sets);
     return rc;
 }

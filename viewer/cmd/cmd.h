@@ -1,0 +1,56 @@
+/* cmd: the commands of the tarn program, one file each (cmd_NAME.c). Each
+ * parses the arguments after its command word (argv[0] is the first of
+ * them) into its lower layer's desc struct and calls it; main.c's table
+ * names them. Only this layer reads argv. Every command returns an exit
+ * code (exit_code.h) and prints its usage for -h/--help. */
+#ifndef TARN_CMD_H
+#define TARN_CMD_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "exit_code.h"
+
+int cmd_view(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+int cmd_validate(int argc, char **argv);
+int cmd_reference(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
+int cmd_compare_view(int argc, char **argv);
+int cmd_bench(int argc, char **argv);
+int cmd_assets(int argc, char **argv);
+
+/* compare with the streams given (tests): the table and "-" outputs and
+ * --help go to out, messages to err. */
+int cmd_compare_io(int argc, char **argv, FILE *out, FILE *err);
+
+/* The usage texts (`tarn help NAME`, `tarn NAME --help`). */
+const char *cmd_view_usage(void);
+const char *cmd_render_usage(void);
+const char *cmd_validate_usage(void);
+const char *cmd_reference_usage(void);
+const char *cmd_compare_usage(void);
+const char *cmd_compare_view_usage(void);
+const char *cmd_bench_usage(void);
+const char *cmd_assets_usage(void);
+
+/* ---- shared by the command files (cmd_opts.c) ---- */
+
+/* "PREFIX: WHAT\n\nUSAGE" on err; returns TARN_EXIT_USAGE. prefix is
+ * "tarn" or "tarn NAME", as each command has always said it. */
+int cmd_bad_usage(FILE *err, const char *prefix, const char *usage, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* True when any argument is -h or --help. */
+bool cmd_wants_help(int argc, char **argv);
+
+/* A number in lo..hi (NaN and trailing text rejected); a whole number in
+ * lo..hi. */
+bool cmd_opt_range(const char *s, double lo, double hi, double *out);
+bool cmd_opt_int(const char *s, int lo, int hi, int *out);
+
+/* Splits a copy of list (in buf) at commas into at most max parts; the
+ * number of parts, or -1 when there are more than max. */
+int cmd_split(const char *list, char *buf, size_t buflen, const char **parts, int max);
+
+#endif

@@ -1,0 +1,54 @@
+/* cmd_opts: what every command's parser needs once (see cmd.h). */
+#include "cmd.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util.h"
+
+int cmd_bad_usage(FILE *err, const char *prefix, const char *usage, const char *fmt, ...) {
+    va_list ap;
+    fprintf(err, "%s: ", prefix);
+    va_start(ap, fmt);
+    vfprintf(err, fmt, ap);
+    va_end(ap);
+    fprintf(err, "\n\n%s", usage);
+    return TARN_EXIT_USAGE;
+}
+
+bool cmd_wants_help(int argc, char **argv) {
+    for (int i = 0; i < argc; i++)
+        if (opt_is_help(argv[i])) return true;
+    return false;
+}
+
+bool cmd_opt_range(const char *s, double lo, double hi, double *out) {
+    double v;
+    errno = 0;
+    if (!opt_double(s, &v) || errno || !(v >= lo && v <= hi)) return false;
+    *out = v;
+    return true;
+}
+
+bool cmd_opt_int(const char *s, int lo, int hi, int *out) {
+    char *end;
+    if (!s) return false;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || errno || v < lo || v > hi) return false;
+    *out = (int)v;
+    return true;
+}
+
+int cmd_split(const char *list, char *buf, size_t buflen, const char **parts, int max) {
+    snprintf(buf, buflen, "%s", list);
+    int n = 0;
+    char *save = NULL;
+    for (char *p = strtok_r(buf, ",", &save); p; p = strtok_r(NULL, ",", &save)) {
+        if (n >= max) return -1;
+        parts[n++] = p;
+    }
+    return n;
+}

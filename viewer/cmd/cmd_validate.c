@@ -1,0 +1,22 @@
+/* cmd_validate: `tarn validate [PATH...]`, glslang over packs and scenes
+ * (check/validate.h). */
+#include "cmd.h"
+
+#include "util.h"
+#include "validate.h"
+
+static const char usage[] =
+    "usage: tarn validate [PATH...]\n"
+    "\n"
+    "Validates shaders with glslang, for every combination of each Program's\n"
+    "Define toggles, and prints file:line: message for each error.\n"
+    "A PATH is a .glib, a pack directory, a shader file or a directory of them.\n"
+    "With no PATH: every pack under packs/ and every scene under scenes/.\n"
+    "exit codes: 0 no errors, 1 errors\n";
+
+const char *cmd_validate_usage(void) { return usage; }
+
+int cmd_validate(int argc, char **argv) {
+    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
+    return validate_run((const char *const *)argv, argc, tarn_root(), stdout);
+}
