@@ -21,6 +21,7 @@
 #include "ref_trace.h"
 #include "scene.h"
 #include "vec3.h"
+#include "file.h"
 
 #define PI 3.14159265358979323846
 
@@ -342,33 +343,6 @@ bool assets_bake_caustics(int res, float *out, char *err, int errlen)
 /* ------------------------------------------------------------------ */
 /* tarn assets                                                         */
 
-/* mkdir -p */
-static bool make_dirs(const char *path, char *err, int errlen)
-{
-    char buf[1024];
-    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
-        snprintf(err, (size_t)errlen, "%.400s: path too long", path);
-        return false;
-    }
-    for (char *p = buf + 1;; p++) {
-        if (*p != '/' && *p != '\0')
-            continue;
-        char c = *p;
-        *p = '\0';
-        struct stat st;
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
-            snprintf(err, (size_t)errlen, "cannot make directory %.400s: %s", buf, strerror(errno));
-            return false;
-        }
-        if (stat(buf, &st) != 0 || !S_ISDIR(st.st_mode)) {
-            snprintf(err, (size_t)errlen, "%.400s is not a directory", buf);
-            return false;
-        }
-        if (c == '\0')
-            return true;
-        *p = c;
-    }
-}
 
 typedef struct out_dir {
     const char *dir;
@@ -445,7 +419,7 @@ int assets_run(const assets_desc *d)
         return TARN_EXIT_INPUT;
     }
     char err[512];
-    if (!make_dirs(dir, err, sizeof err)) {
+    if (!file_mkdir_p(dir, err, sizeof err)) {
         fprintf(stderr, "tarn assets: %s\n", err);
         free(w);
         return TARN_EXIT_INPUT;

@@ -23,6 +23,8 @@
 #include "refcache.h"
 #include "render.h"
 #include "ref_buffers.h"
+#include "file.h"
+#include "strbuf.h"
 
 #define MAX_SCENES BENCH_MAX_SCENES
 #define MAX_TIMES BENCH_MAX_TIMES
@@ -137,17 +139,9 @@ static void fmt(char *out, size_t len, const char *f, ...) {
     va_end(ap);
 }
 
-static bool mkdirs(const char *dir) {
-    char path[PATH_LEN];
-    snprintf(path, sizeof path, "%s", dir);
-    for (char *p = path + 1; *p; p++) {
-        if (*p != '/') continue;
-        *p = '\0';
-        if (mkdir(path, 0755) != 0 && errno != EEXIST) return false;
-        *p = '/';
-    }
-    return mkdir(path, 0755) == 0 || errno == EEXIST;
-}
+/* mkdir -p, quietly: a folder that cannot be made shows up as a file
+ * that cannot be written, with its path. */
+static bool mkdirs(const char *dir) { return file_mkdir_p(dir, NULL, 0); }
 
 static bool is_file(const char *p) {
     struct stat st;
@@ -170,29 +164,6 @@ static bool write_text(const char *path, const char *text) {
 }
 
 /* A growing string. */
-typedef struct sbuf { char *s; size_t len, cap; } sbuf;
-
-static void sb_printf(sbuf *b, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    va_list ap2;
-    va_copy(ap2, ap);
-    int n = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (n < 0) { va_end(ap2); return; }
-    if (b->len + (size_t)n + 1 > b->cap) {
-        size_t cap = (b->cap ? b->cap * 2 : 4096);
-        while (cap < b->len + (size_t)n + 1) cap *= 2;
-        char *s = realloc(b->s, cap);
-        if (!s) { va_end(ap2); return; }
-        b->s = s;
-        b->cap = cap;
-    }
-    vsnprintf(b->s + b->len, b->cap - b->len, fmt, ap2);
-    va_end(ap2);
-    b->len += (size_t)n;
-}
-
 /* ---- the progress bar ---- */
 
 static void fmt_dur(double s, char *buf, size_t n) {
@@ -998,45 +969,45 @@ static void summarise(bench *b) {
 
 /* ---- writing ---- */
 
-static void json_num(sbuf *o, double v) {
-    if (isnan(v)) sb_printf(o, "null");
-    else if (isinf(v)) sb_printf(o, v > 0 ? "\"inf\"" : "\"-inf\"");
-    else sb_printf(o, "%.9g", v);
+static void json_num(strbuf *o, double v) {
+    if (isnan(v)) strbuf_printf(o, "null");
+    else if (isinf(v)) strbuf_printf(o, v > 0 ? "\"inf\"" : "\"-inf\"");
+    else strbuf_printf(o, "%.9g", v);
 }
 
-static void json_str(sbuf *o, const char *s) {
-    sb_printf(o, "\"");
+static void json_str(strbuf *o, const char *s) {
+    strbuf_printf(o, "\"");
     for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
-        if (*c == '"' || *c == '\\') sb_printf(o, "\\%c", *c);
-        else if (*c < 0x20) sb_printf(o, "\\u%04x", *c);
-        else sb_printf(o, "%c", *c);
+        if (*c == '"' || *c == '\\') strbuf_printf(o, "\\%c", *c);
+        else if (*c < 0x20) strbuf_printf(o, "\\u%04x", *c);
+        else strbuf_printf(o, "%c", *c);
     }
-    sb_printf(o, "\"");
+    strbuf_printf(o, "\"");
 }
 
-static void csv_num(sbuf *o, double v) {
-    if (isnan(v)) sb_printf(o, ",");
-    else if (isinf(v)) sb_printf(o, ",%s", v > 0 ? "inf" : "-inf");
-    else sb_printf(o, ",%.9g", v);
+static void csv_num(strbuf *o, double v) {
+    if (isnan(v)) strbuf_printf(o, ",");
+    else if (isinf(v)) strbuf_printf(o, ",%s", v > 0 ? "inf" : "-inf");
+    else strbuf_printf(o, ",%.9g", v);
 }
 
-static void csv_str(sbuf *o, const char *s, bool first) {
-    sb_printf(o, first ? "\"" : ",\"");
-    for (const char *c = s; *c; c++) sb_printf(o, *c == '"' ? "\"\"" : "%c", *c);
-    sb_printf(o, "\"");
+static void csv_str(strbuf *o, const char *s, bool first) {
+    strbuf_printf(o, first ? "\"" : ",\"");
+    for (const char *c = s; *c; c++) strbuf_printf(o, *c == '"' ? "\"\"" : "%c", *c);
+    strbuf_printf(o, "\"");
 }
 
 
 static bool write_csv(bench *b, const char *path) {
-    sbuf o = { 0 };
-    sb_printf(&o, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms,first_frame_wall_ms,"
+    strbuf o = { 0 };
+    strbuf_printf(&o, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms,first_frame_wall_ms,"
                   "floor_gpu_ms,floor_wall_ms,x_floor_gpu,x_floor_wall,water_rmse,water_psnr_db,water_pixels,"
                   "off_water_rmse,march_capped_share,rmse,psnr_db,mae,error_p95,error_p99,"
                   "max_abs,over_threshold_share,nan_pixels,inf_pixels,gl_error");
     for (int m = 1; m < REF_OUTPUT_COUNT; m++)
-        sb_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean,%s.rel_median", ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name,
+        strbuf_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean,%s.rel_median", ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name,
                   ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name);
-    sb_printf(&o, ",error,note\n");
+    strbuf_printf(&o, ",error,note\n");
     for (int i = 0; i < b->nrows; i++) {
         const row *r = &b->rows[i];
         char sc[256];
@@ -1045,7 +1016,7 @@ static bool write_csv(bench *b, const char *path) {
         csv_str(&o, b->o.packs[r->pack], false);
         csv_str(&o, b->pb[r->pack].settings[r->setting].name, false);
         csv_num(&o, b->o.times[r->ti]);
-        sb_printf(&o, ",%d,%d,%d", b->o.w, b->o.h, r->frames);
+        strbuf_printf(&o, ",%d,%d,%d", b->o.w, b->o.h, r->frames);
         csv_num(&o, r->gpu_ms);
         csv_num(&o, r->wall_ms);
         csv_num(&o, r->first_wall_ms);
@@ -1055,7 +1026,7 @@ static bool write_csv(bench *b, const char *path) {
         csv_num(&o, r->wall_ms / b->floor_wall);
         csv_num(&o, r->water_rmse);
         csv_num(&o, r->water_psnr);
-        sb_printf(&o, ",%ld", r->water_px);
+        strbuf_printf(&o, ",%ld", r->water_px);
         csv_num(&o, r->off_rmse);
         csv_num(&o, r->capped_share);
         csv_num(&o, r->rmse);
@@ -1065,7 +1036,7 @@ static bool write_csv(bench *b, const char *path) {
         csv_num(&o, r->p99);
         csv_num(&o, r->max_abs);
         csv_num(&o, r->over_share);
-        sb_printf(&o, ",%ld,%ld,%u", r->nan_px, r->inf_px, r->gl_error);
+        strbuf_printf(&o, ",%ld,%ld,%u", r->nan_px, r->inf_px, r->gl_error);
         for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
             csv_num(&o, r->has[m] ? r->comp_median[m] : NAN);
             csv_num(&o, r->has[m] ? r->comp_p95[m] : NAN);
@@ -1075,7 +1046,7 @@ static bool write_csv(bench *b, const char *path) {
         }
         csv_str(&o, r->error, false);
         csv_str(&o, r->note, false);
-        sb_printf(&o, "\n");
+        strbuf_printf(&o, "\n");
     }
     bool ok = o.s && write_text(path, o.s);
     free(o.s);
@@ -1084,8 +1055,8 @@ static bool write_csv(bench *b, const char *path) {
 
 /* One row per pass: scene, pack, setting, time, pass, its median GPU time. */
 static bool write_passes_csv(bench *b, const char *path) {
-    sbuf o = { 0 };
-    sb_printf(&o, "scene,pack,setting,time_s,pass,gpu_ms\n");
+    strbuf o = { 0 };
+    strbuf_printf(&o, "scene,pack,setting,time_s,pass,gpu_ms\n");
     for (int i = 0; i < b->nrows; i++) {
         const row *r = &b->rows[i];
         char sc[256];
@@ -1097,7 +1068,7 @@ static bool write_passes_csv(bench *b, const char *path) {
             csv_num(&o, b->o.times[r->ti]);
             csv_str(&o, r->pass_name[k], false);
             csv_num(&o, r->pass_ms[k]);
-            sb_printf(&o, "\n");
+            strbuf_printf(&o, "\n");
         }
     }
     bool ok = o.s && write_text(path, o.s);
@@ -1106,173 +1077,173 @@ static bool write_passes_csv(bench *b, const char *path) {
 }
 
 static bool write_json(bench *b, const char *path) {
-    sbuf o = { 0 };
-    sb_printf(&o, "{\n  \"machine\": {\"cpu\": ");
+    strbuf o = { 0 };
+    strbuf_printf(&o, "{\n  \"machine\": {\"cpu\": ");
     json_str(&o, b->cpu);
-    sb_printf(&o, ", \"cores\": %d, \"gl_renderer\": ", b->cores);
+    strbuf_printf(&o, ", \"cores\": %d, \"gl_renderer\": ", b->cores);
     json_str(&o, b->gl_renderer);
-    sb_printf(&o, ", \"gl_version\": ");
+    strbuf_printf(&o, ", \"gl_version\": ");
     json_str(&o, b->gl_version);
-    sb_printf(&o, ", \"cpu_rasteriser\": %s},\n", b->cpu_raster ? "true" : "false");
-    sb_printf(&o, "  \"run\": {\"started\": \"%s\", \"seconds\": %.1f, \"width\": %d, \"height\": %d, \"times\": [",
+    strbuf_printf(&o, ", \"cpu_rasteriser\": %s},\n", b->cpu_raster ? "true" : "false");
+    strbuf_printf(&o, "  \"run\": {\"started\": \"%s\", \"seconds\": %.1f, \"width\": %d, \"height\": %d, \"times\": [",
               b->started, b->seconds, b->o.w, b->o.h);
-    for (int i = 0; i < b->o.ntimes; i++) sb_printf(&o, "%s%.9g", i ? ", " : "", b->o.times[i]);
-    sb_printf(&o, "], \"max_frames\": %d, \"frame_budget_s\": %g, \"warmup\": %d, \"time_axis\": \"%s\", "
+    for (int i = 0; i < b->o.ntimes; i++) strbuf_printf(&o, "%s%.9g", i ? ", " : "", b->o.times[i]);
+    strbuf_printf(&o, "], \"max_frames\": %d, \"frame_budget_s\": %g, \"warmup\": %d, \"time_axis\": \"%s\", "
                   "\"references_rendered\": %d, \"references_cached\": %d},\n",
               b->o.frames, b->o.frame_budget, b->o.warmup, b->axis == 1 ? "gpu" : "wall", b->refs_rendered,
               b->refs_cached);
-    sb_printf(&o, "  \"floor\": {\"gpu_ms\": ");
+    strbuf_printf(&o, "  \"floor\": {\"gpu_ms\": ");
     json_num(&o, b->floor_gpu);
-    sb_printf(&o, ", \"wall_ms\": ");
+    strbuf_printf(&o, ", \"wall_ms\": ");
     json_num(&o, b->floor_wall);
-    sb_printf(&o, "},\n  \"summary\": [\n");
+    strbuf_printf(&o, "},\n  \"summary\": [\n");
     for (int i = 0; i < b->nsums; i++) {
         const summary *s = &b->sums[i];
         char sc[256];
         stem(b->scene_abs[s->scene], sc, sizeof sc);
-        sb_printf(&o, "    {\"scene\": ");
+        strbuf_printf(&o, "    {\"scene\": ");
         json_str(&o, sc);
-        sb_printf(&o, ", \"pack\": ");
+        strbuf_printf(&o, ", \"pack\": ");
         json_str(&o, b->o.packs[s->pack]);
-        sb_printf(&o, ", \"setting\": ");
+        strbuf_printf(&o, ", \"setting\": ");
         json_str(&o, b->pb[s->pack].settings[s->setting].name);
-        sb_printf(&o, ", \"ok\": %s, \"gpu_ms\": ", s->ok ? "true" : "false");
+        strbuf_printf(&o, ", \"ok\": %s, \"gpu_ms\": ", s->ok ? "true" : "false");
         json_num(&o, s->gpu_ms);
-        sb_printf(&o, ", \"wall_ms\": ");
+        strbuf_printf(&o, ", \"wall_ms\": ");
         json_num(&o, s->wall_ms);
-        sb_printf(&o, ", \"x_floor_gpu\": ");
+        strbuf_printf(&o, ", \"x_floor_gpu\": ");
         json_num(&o, s->gpu_ms / b->floor_gpu);
-        sb_printf(&o, ", \"x_floor_wall\": ");
+        strbuf_printf(&o, ", \"x_floor_wall\": ");
         json_num(&o, s->wall_ms / b->floor_wall);
-        sb_printf(&o, ", \"water_rmse\": ");
+        strbuf_printf(&o, ", \"water_rmse\": ");
         json_num(&o, s->water_rmse);
-        sb_printf(&o, ", \"water_psnr_db\": ");
+        strbuf_printf(&o, ", \"water_psnr_db\": ");
         json_num(&o, s->water_psnr);
-        sb_printf(&o, ", \"off_water_rmse\": ");
+        strbuf_printf(&o, ", \"off_water_rmse\": ");
         json_num(&o, s->off_rmse);
-        sb_printf(&o, ", \"march_capped_share\": ");
+        strbuf_printf(&o, ", \"march_capped_share\": ");
         json_num(&o, s->capped_share);
-        sb_printf(&o, ", \"rmse\": ");
+        strbuf_printf(&o, ", \"rmse\": ");
         json_num(&o, s->rmse);
-        sb_printf(&o, ", \"psnr_db\": ");
+        strbuf_printf(&o, ", \"psnr_db\": ");
         json_num(&o, s->psnr);
-        sb_printf(&o, ", \"error_p95\": ");
+        strbuf_printf(&o, ", \"error_p95\": ");
         json_num(&o, s->p95);
-        sb_printf(&o, ", \"over_threshold_share\": ");
+        strbuf_printf(&o, ", \"over_threshold_share\": ");
         json_num(&o, s->over_share);
-        sb_printf(&o, ", \"refract_hit_p95_m\": ");
+        strbuf_printf(&o, ", \"refract_hit_p95_m\": ");
         json_num(&o, s->has[1] ? s->comp[1] : NAN);
-        sb_printf(&o, ", \"fresnel_mae\": ");
+        strbuf_printf(&o, ", \"fresnel_mae\": ");
         json_num(&o, s->has[2] ? s->comp[2] : NAN);
-        sb_printf(&o, ", \"irradiance_rel_median\": ");
+        strbuf_printf(&o, ", \"irradiance_rel_median\": ");
         json_num(&o, s->has[3] ? s->comp[3] : NAN);
-        sb_printf(&o, ", \"depth_mae\": ");
+        strbuf_printf(&o, ", \"depth_mae\": ");
         json_num(&o, s->has[4] ? s->comp[4] : NAN);
-        sb_printf(&o, ", \"nonfinite_pixels\": %ld, \"pareto\": %s}%s\n", s->nan_px, s->pareto ? "true" : "false",
+        strbuf_printf(&o, ", \"nonfinite_pixels\": %ld, \"pareto\": %s}%s\n", s->nan_px, s->pareto ? "true" : "false",
                   i + 1 < b->nsums ? "," : "");
     }
-    sb_printf(&o, "  ],\n  \"rows\": [\n");
+    strbuf_printf(&o, "  ],\n  \"rows\": [\n");
     for (int i = 0; i < b->nrows; i++) {
         const row *r = &b->rows[i];
         char sc[256];
         stem(b->scene_abs[r->scene], sc, sizeof sc);
-        sb_printf(&o, "    {\"scene\": ");
+        strbuf_printf(&o, "    {\"scene\": ");
         json_str(&o, sc);
-        sb_printf(&o, ", \"pack\": ");
+        strbuf_printf(&o, ", \"pack\": ");
         json_str(&o, b->o.packs[r->pack]);
-        sb_printf(&o, ", \"setting\": ");
+        strbuf_printf(&o, ", \"setting\": ");
         json_str(&o, b->pb[r->pack].settings[r->setting].name);
-        sb_printf(&o, ", \"time_s\": %.9g, \"ok\": %s, \"frames\": %d, \"gpu_ms\": ", b->o.times[r->ti],
+        strbuf_printf(&o, ", \"time_s\": %.9g, \"ok\": %s, \"frames\": %d, \"gpu_ms\": ", b->o.times[r->ti],
                   r->ok ? "true" : "false", r->frames);
         json_num(&o, r->gpu_ms);
-        sb_printf(&o, ", \"wall_ms\": ");
+        strbuf_printf(&o, ", \"wall_ms\": ");
         json_num(&o, r->wall_ms);
-        sb_printf(&o, ", \"first_frame_wall_ms\": ");
+        strbuf_printf(&o, ", \"first_frame_wall_ms\": ");
         json_num(&o, r->first_wall_ms);
-        sb_printf(&o, ", \"water_rmse\": ");
+        strbuf_printf(&o, ", \"water_rmse\": ");
         json_num(&o, r->water_rmse);
-        sb_printf(&o, ", \"water_psnr_db\": ");
+        strbuf_printf(&o, ", \"water_psnr_db\": ");
         json_num(&o, r->water_psnr);
-        sb_printf(&o, ", \"water_pixels\": %ld", r->water_px);
-        sb_printf(&o, ", \"off_water_rmse\": ");
+        strbuf_printf(&o, ", \"water_pixels\": %ld", r->water_px);
+        strbuf_printf(&o, ", \"off_water_rmse\": ");
         json_num(&o, r->off_rmse);
-        sb_printf(&o, ", \"march_capped_share\": ");
+        strbuf_printf(&o, ", \"march_capped_share\": ");
         json_num(&o, r->capped_share);
-        sb_printf(&o, ", \"rmse\": ");
+        strbuf_printf(&o, ", \"rmse\": ");
         json_num(&o, r->rmse);
-        sb_printf(&o, ", \"psnr_db\": ");
+        strbuf_printf(&o, ", \"psnr_db\": ");
         json_num(&o, r->psnr);
-        sb_printf(&o, ", \"mae\": ");
+        strbuf_printf(&o, ", \"mae\": ");
         json_num(&o, r->mae);
-        sb_printf(&o, ", \"error_p95\": ");
+        strbuf_printf(&o, ", \"error_p95\": ");
         json_num(&o, r->p95);
-        sb_printf(&o, ", \"error_p99\": ");
+        strbuf_printf(&o, ", \"error_p99\": ");
         json_num(&o, r->p99);
-        sb_printf(&o, ", \"max_abs\": ");
+        strbuf_printf(&o, ", \"max_abs\": ");
         json_num(&o, r->max_abs);
-        sb_printf(&o, ", \"over_threshold_share\": ");
+        strbuf_printf(&o, ", \"over_threshold_share\": ");
         json_num(&o, r->over_share);
-        sb_printf(&o, ", \"nan_pixels\": %ld, \"inf_pixels\": %ld, \"gl_error\": %u, \"buffers\": {", r->nan_px,
+        strbuf_printf(&o, ", \"nan_pixels\": %ld, \"inf_pixels\": %ld, \"gl_error\": %u, \"buffers\": {", r->nan_px,
                   r->inf_px, r->gl_error);
         bool first = true;
         for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
             if (!r->has[m]) continue;
-            sb_printf(&o, "%s\"%s\": {\"median\": ", first ? "" : ", ", ref_buffer_for_output(m)->name);
+            strbuf_printf(&o, "%s\"%s\": {\"median\": ", first ? "" : ", ", ref_buffer_for_output(m)->name);
             json_num(&o, r->comp_median[m]);
-            sb_printf(&o, ", \"p95\": ");
+            strbuf_printf(&o, ", \"p95\": ");
             json_num(&o, r->comp_p95[m]);
-            sb_printf(&o, ", \"mean\": ");
+            strbuf_printf(&o, ", \"mean\": ");
             json_num(&o, r->comp_mean[m]);
-            sb_printf(&o, ", \"rel_mean\": ");
+            strbuf_printf(&o, ", \"rel_mean\": ");
             json_num(&o, r->comp_rel_mean[m]);
-            sb_printf(&o, ", \"rel_median\": ");
+            strbuf_printf(&o, ", \"rel_median\": ");
             json_num(&o, r->comp_rel_median[m]);
-            sb_printf(&o, "}");
+            strbuf_printf(&o, "}");
             first = false;
         }
-        sb_printf(&o, "}, \"passes\": [");
+        strbuf_printf(&o, "}, \"passes\": [");
         for (int k = 0; k < r->npasses; k++) {
-            sb_printf(&o, "%s{\"pass\": ", k ? ", " : "");
+            strbuf_printf(&o, "%s{\"pass\": ", k ? ", " : "");
             json_str(&o, r->pass_name[k]);
-            sb_printf(&o, ", \"gpu_ms\": ");
+            strbuf_printf(&o, ", \"gpu_ms\": ");
             json_num(&o, r->pass_ms[k]);
-            sb_printf(&o, "}");
+            strbuf_printf(&o, "}");
         }
-        sb_printf(&o, "], \"error\": ");
+        strbuf_printf(&o, "], \"error\": ");
         json_str(&o, r->error);
-        sb_printf(&o, ", \"note\": ");
+        strbuf_printf(&o, ", \"note\": ");
         json_str(&o, r->note);
-        sb_printf(&o, "}%s\n", i + 1 < b->nrows ? "," : "");
+        strbuf_printf(&o, "}%s\n", i + 1 < b->nrows ? "," : "");
     }
-    sb_printf(&o, "  ]\n}\n");
+    strbuf_printf(&o, "  ]\n}\n");
     bool ok = o.s && write_text(path, o.s);
     free(o.s);
     return ok;
 }
 
-static void md_num(sbuf *o, const char *fmt, double v) {
-    if (isnan(v)) sb_printf(o, " – |");
-    else if (isinf(v)) sb_printf(o, " ∞ |");
+static void md_num(strbuf *o, const char *fmt, double v) {
+    if (isnan(v)) strbuf_printf(o, " – |");
+    else if (isinf(v)) strbuf_printf(o, " ∞ |");
     else {
-        sb_printf(o, " ");
-        sb_printf(o, fmt, v);
-        sb_printf(o, " |");
+        strbuf_printf(o, " ");
+        strbuf_printf(o, fmt, v);
+        strbuf_printf(o, " |");
     }
 }
 
 /* The report: machine, run, floor, a table per scene, the plot. plot_dir is
  * how the Markdown names the plots' directory ("" for beside it). */
-static void report_md(bench *b, sbuf *o, const char *plot_prefix) {
-    sb_printf(o, "Measured %s by `tarn bench` in %.0f s (%d:%02d; references: %d rendered, %d read from "
+static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
+    strbuf_printf(o, "Measured %s by `tarn bench` in %.0f s (%d:%02d; references: %d rendered, %d read from "
                  "the cache).\n\n",
               b->started, b->seconds, (int)(b->seconds / 60), (int)fmod(b->seconds, 60), b->refs_rendered,
               b->refs_cached);
-    sb_printf(o, "| machine | |\n|---|---|\n| CPU | %s (%d cores online) |\n| GL renderer | %s |\n"
+    strbuf_printf(o, "| machine | |\n|---|---|\n| CPU | %s (%d cores online) |\n| GL renderer | %s |\n"
                  "| GL version | %s |\n\n",
               b->cpu, b->cores, b->gl_renderer, b->gl_version);
-    sb_printf(o, "Images %dx%d at t =", b->o.w, b->o.h);
-    for (int i = 0; i < b->o.ntimes; i++) sb_printf(o, "%s %g", i ? "," : "", b->o.times[i]);
-    sb_printf(o, " s; per setting and time %d warm-up frame(s), then up to %d timed frames (at least 3, "
+    strbuf_printf(o, "Images %dx%d at t =", b->o.w, b->o.h);
+    for (int i = 0; i < b->o.ntimes; i++) strbuf_printf(o, "%s %g", i ? "," : "", b->o.times[i]);
+    strbuf_printf(o, " s; per setting and time %d warm-up frame(s), then up to %d timed frames (at least 3, "
                  "stopping after %.3g s); medians. Error: the mean over the times of the colour error against "
                  "the CPU reference of the same frame (linear RGB), first over the pixels where the reference "
                  "sees water (what ranks the techniques and decides the Pareto front), then off the water "
@@ -1281,31 +1252,31 @@ static void report_md(bench *b, sbuf *o, const char *plot_prefix) {
                  "stay on the front.\n\n",
               b->o.warmup, b->o.frames, b->o.frame_budget, 100 * BENCH_TIME_NOISE, 100 * BENCH_ERROR_TIE);
     if (b->cpu_raster)
-        sb_printf(o, "**%s is a CPU rasteriser**: its GPU timestamps are taken when commands are issued, "
+        strbuf_printf(o, "**%s is a CPU rasteriser**: its GPU timestamps are taken when commands are issued, "
                      "not when pixels are drawn, so the GPU column is not meaningful here. The wall time "
                      "(after `glFinish`) is what the plot and the Pareto front use.\n\n",
                   b->gl_renderer);
-    sb_printf(o, "Cost floor (a full-screen pass with one texture fetch): %.3f ms GPU, %.3f ms wall. "
+    strbuf_printf(o, "Cost floor (a full-screen pass with one texture fetch): %.3f ms GPU, %.3f ms wall. "
                  "\"× floor\" is a setting's %s time over the floor's.\n\n",
               b->floor_gpu, b->floor_wall, b->axis == 1 ? "GPU" : "wall");
     for (int sc = 0; sc < b->o.nscenes; sc++) {
         char st[256];
         stem(b->scene_abs[sc], st, sizeof st);
-        sb_printf(o, "### %s\n\n", st);
-        sb_printf(o, "| pack | setting | GPU ms | wall ms | × floor | water RMSE | water PSNR dB | off-water RMSE | "
+        strbuf_printf(o, "### %s\n\n", st);
+        strbuf_printf(o, "| pack | setting | GPU ms | wall ms | × floor | water RMSE | water PSNR dB | off-water RMSE | "
                      "frame RMSE | p95 error | > 0.05 | hit p95 m | march capped | Fresnel MAE | irradiance rel. median | "
                      "depth MAE m | Pareto |\n"
                      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
         for (int i = 0; i < b->nsums; i++) {
             const summary *s = &b->sums[i];
             if (s->scene != sc) continue;
-            sb_printf(o, "| %s | %s |", b->o.packs[s->pack], b->pb[s->pack].settings[s->setting].name);
+            strbuf_printf(o, "| %s | %s |", b->o.packs[s->pack], b->pb[s->pack].settings[s->setting].name);
             if (!s->ok) {
                 const row *r = NULL;
                 for (int j = 0; j < b->nrows; j++)
                     if (b->rows[j].scene == sc && b->rows[j].pack == s->pack && b->rows[j].setting == s->setting)
                         r = &b->rows[j];
-                sb_printf(o, " failed: %s | | | | | | | | | | | | | | | |\n", r && r->error[0] ? r->error : "?");
+                strbuf_printf(o, " failed: %s | | | | | | | | | | | | | | | |\n", r && r->error[0] ? r->error : "?");
                 continue;
             }
             md_num(o, "%.2f", s->gpu_ms);
@@ -1322,22 +1293,22 @@ static void report_md(bench *b, sbuf *o, const char *plot_prefix) {
             md_num(o, "%.4f", s->has[2] ? s->comp[2] : NAN);
             md_num(o, "%.3f", s->has[3] ? s->comp[3] : NAN);
             md_num(o, "%.3f", s->has[4] ? s->comp[4] : NAN);
-            sb_printf(o, " %s |\n", s->pareto ? "●" : "");
-            if (s->nan_px) sb_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | |\n", s->nan_px);
+            strbuf_printf(o, " %s |\n", s->pareto ? "●" : "");
+            if (s->nan_px) strbuf_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | |\n", s->nan_px);
         }
-        sb_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
+        strbuf_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
                      "RenderToTexture that begins it, `screen:LINE` what is drawn to the screen):\n\n");
         for (int i = 0; i < b->nrows; i++) {
             const row *r = &b->rows[i];
             if (r->scene != sc || r->ti != 0 || !r->npasses) continue;
-            sb_printf(o, "- %s / %s:", b->o.packs[r->pack], b->pb[r->pack].settings[r->setting].name);
+            strbuf_printf(o, "- %s / %s:", b->o.packs[r->pack], b->pb[r->pack].settings[r->setting].name);
             for (int k = 0; k < r->npasses; k++)
-                sb_printf(o, "%s `%s` %.2f ms", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
-            sb_printf(o, "\n");
+                strbuf_printf(o, "%s `%s` %.2f ms", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
+            strbuf_printf(o, "\n");
         }
-        sb_printf(o, "\n![speed against error, %s](%splot-%s.png)\n\n", st, plot_prefix, st);
+        strbuf_printf(o, "\n![speed against error, %s](%splot-%s.png)\n\n", st, plot_prefix, st);
     }
-    sb_printf(o, "– : not measured: the pack shows no such buffer (a `buffer` line in its bench.txt, or "
+    strbuf_printf(o, "– : not measured: the pack shows no such buffer (a `buffer` line in its bench.txt, or "
                  "`Define %s`; docs/benchmark.md).\n",
               BENCH_OUTPUT_DEFINE);
 }
@@ -1386,17 +1357,17 @@ static bool write_plot(bench *b, int sc, const char *path) {
  * its end). A new string. */
 static char *replace_section(const char *text, const char *begin, const char *end, const char *heading,
                              const char *content) {
-    sbuf o = { 0 };
+    strbuf o = { 0 };
     const char *bp = strstr(text, begin), *ep = bp ? strstr(bp, end) : NULL;
-    if (bp && ep) sb_printf(&o, "%.*s%s\n%s%s", (int)(bp - text), text, begin, content, ep);
-    else sb_printf(&o, "%s\n%s\n\n%s\n%s%s\n", text, heading, begin, content, end);
+    if (bp && ep) strbuf_printf(&o, "%.*s%s\n%s%s", (int)(bp - text), text, begin, content, ep);
+    else strbuf_printf(&o, "%s\n%s\n\n%s\n%s%s\n", text, heading, begin, content, end);
     return o.s;
 }
 
 
 /* The hard-case bounds of every pack (bounds.txt, else the built-in table),
  * a row per scenes/hard case, with the reasons where a pack has none. */
-static void bounds_md(bench *b, sbuf *o) {
+static void bounds_md(bench *b, strbuf *o) {
     char dir[PATH_LEN + 16];
     fmt(dir, sizeof dir, "%s/scenes/hard", b->root);
     char *cases[128];
@@ -1413,35 +1384,35 @@ static void bounds_md(bench *b, sbuf *o) {
     int np = packset_list(b->root, packs, PACKSET_MAX);
     packset_bounds pb[PACKSET_MAX];
     for (int p = 0; p < np; p++) packset_bounds_load(b->root, packs[p], &pb[p], NULL, 0);
-    sb_printf(o, "RMSE (linear RGB) that tests/test_hard_cases.c allows, 96x54 at t = 1 s: from each pack's "
+    strbuf_printf(o, "RMSE (linear RGB) that tests/test_hard_cases.c allows, 96x54 at t = 1 s: from each pack's "
                  "bounds.txt, else (*in italics*) the built-in table of viewer/scene/packset.c. Written by `tarn bench "
                  "--docs` from the files as they were then.\n\n| case |");
-    for (int p = 0; p < np; p++) sb_printf(o, " %s |", packs[p]);
-    sb_printf(o, "\n|---|");
-    for (int p = 0; p < np; p++) sb_printf(o, "---:|");
-    sb_printf(o, "\n");
-    sbuf notes = { 0 };
+    for (int p = 0; p < np; p++) strbuf_printf(o, " %s |", packs[p]);
+    strbuf_printf(o, "\n|---|");
+    for (int p = 0; p < np; p++) strbuf_printf(o, "---:|");
+    strbuf_printf(o, "\n");
+    strbuf notes = { 0 };
     int nnotes = 0;
     for (int c = 0; c < nc; c++) {
-        sb_printf(o, "| %s |", cases[c]);
+        strbuf_printf(o, "| %s |", cases[c]);
         for (int p = 0; p < np; p++) {
             const char *from = NULL;
             const packset_bound *bd = packset_bound_resolve(&pb[p], cases[c], &from);
             bool builtin = from && strcmp(from, "built-in") == 0;
             if (!bd) {
-                sb_printf(o, " – |");
+                strbuf_printf(o, " – |");
             } else if (bd->max_rmse >= 0) {
-                sb_printf(o, builtin ? " *%.3g* |" : " %.3g |", bd->max_rmse);
+                strbuf_printf(o, builtin ? " *%.3g* |" : " %.3g |", bd->max_rmse);
             } else {
                 nnotes++;
-                sb_printf(o, builtin ? " *none* (%d) |" : " none (%d) |", nnotes);
-                sb_printf(&notes, "%d. %s, %s: %s\n", nnotes, packs[p], cases[c],
+                strbuf_printf(o, builtin ? " *none* (%d) |" : " none (%d) |", nnotes);
+                strbuf_printf(&notes, "%d. %s, %s: %s\n", nnotes, packs[p], cases[c],
                           bd->why[0] ? bd->why : "(no reason given)");
             }
         }
-        sb_printf(o, "\n");
+        strbuf_printf(o, "\n");
     }
-    if (notes.s) sb_printf(o, "\nWhere a pack holds no bound:\n\n%s", notes.s);
+    if (notes.s) strbuf_printf(o, "\nWhere a pack holds no bound:\n\n%s", notes.s);
     free(notes.s);
     for (int p = 0; p < np; p++) packset_bounds_free(&pb[p]);
     for (int c = 0; c < nc; c++) free(cases[c]);
@@ -1450,7 +1421,7 @@ static void bounds_md(bench *b, sbuf *o) {
 /* Writes the report and the bounds between their markers in the docs page
  * (adding the sections when the page has no markers), the plots beside it. */
 static bool write_docs(bench *b, const char *path) {
-    sbuf gen = { 0 };
+    strbuf gen = { 0 };
     char dir[PATH_LEN];
     snprintf(dir, sizeof dir, "%s", path);
     char *slash = strrchr(dir, '/');
@@ -1475,7 +1446,7 @@ static bool write_docs(bench *b, const char *path) {
         if (old) old[n] = '\0';
         fclose(f);
     }
-    sbuf bounds = { 0 };
+    strbuf bounds = { 0 };
     bounds_md(b, &bounds);
     char *mid = replace_section(old ? old : "# Benchmark\n", "<!-- bench:begin -->", "<!-- bench:end -->",
                                 "## Latest results", gen.s ? gen.s : "");
@@ -1557,8 +1528,8 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
     ok &= write_passes_csv(b, path);
     snprintf(path, sizeof path, "%s/bench.json", b->o.out);
     ok &= write_json(b, path);
-    sbuf md = { 0 };
-    sb_printf(&md, "# tarn bench\n\n");
+    strbuf md = { 0 };
+    strbuf_printf(&md, "# tarn bench\n\n");
     report_md(b, &md, "");
     snprintf(path, sizeof path, "%s/report.md", b->o.out);
     ok &= md.s && write_text(path, md.s);
