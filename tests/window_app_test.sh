@@ -10,10 +10,11 @@ set -u
 bin=$1; src=$2
 command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
 fail() { echo "FAIL: $*"; exit 1; }
-xvfb() { xvfb-run -a -s "-screen 0 1280x800x24" "$@"; }
-
 scratch=$PWD/window-app-test
 rm -rf "$scratch" && mkdir -p "$scratch" || fail "no scratch directory"
+# our own X authority file: xvfb-run's temporary folder for one sometimes
+# fails to be removed here (its exit 5 hides the program's exit status)
+xvfb() { xvfb-run -a -f "$scratch/Xauthority" -s "-screen 0 1280x800x24" "$@"; }
 cp "$src/tests/data/window/grey.vert" "$scratch/" || fail "no fixture"
 sed 's#^Fragment grey.frag#Fragment later/grey.frag#' "$src/tests/data/window/scene.glib" > "$scratch/scene.glib"
 grep -q "^Fragment later/grey.frag" "$scratch/scene.glib" || fail "the scene does not name later/grey.frag"
