@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "exit_code.h"
+#include "file.h"
 #include "util.h"
 #include "watch.h"
 
@@ -35,12 +35,8 @@ struct app {
 
 static bool dir_exists(const char *path) {
     char dir[4096];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (!slash) return true;
-    *slash = '\0';
-    struct stat st;
-    return stat(dir[0] ? dir : "/", &st) == 0 && S_ISDIR(st.st_mode);
+    file_dirname(path, dir, sizeof dir);
+    return file_is_dir(dir);
 }
 
 /* Every scene's dependencies (the watcher merges duplicates); the caller

@@ -21,6 +21,7 @@
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
+#include "strbuf.h"
 #include "util.h"
 #include "view_script.h"
 #include "view_util.h"
@@ -316,14 +317,14 @@ static void to_window(const cview *v, int x, int y, float *wx, float *wy) {
 
 static void label_pack(cview *v, int i, int x, int ytop, bool heat, bool right) {
     cv_pack *p = &v->packs[i];
-    char text[1024];
-    int len = snprintf(text, sizeof text, "%s\n%.2f ms GPU  %.1f ms wall", p->label, p->gpu_ms, p->wall_ms);
-    if (heat && p->have_heat && len < (int)sizeof text)
-        len += snprintf(text + len, sizeof text - (size_t)len, "\nRMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
-    if (p->passes[0] && len < (int)sizeof text) snprintf(text + len, sizeof text - (size_t)len, "\n%s", p->passes);
+    strbuf text = { 0 };
+    strbuf_printf(&text, "%s\n%.2f ms GPU  %.1f ms wall", p->label, p->gpu_ms, p->wall_ms);
+    if (heat && p->have_heat) strbuf_printf(&text, "\nRMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
+    if (p->passes[0]) strbuf_printf(&text, "\n%s", p->passes);
     float wx, wy;
     to_window(v, x, ytop, &wx, &wy);
-    panel_label(v->panel, right ? wx - 6 : wx + 6, wy + 6, text, right);
+    panel_label(v->panel, right ? wx - 6 : wx + 6, wy + 6, text.s, right);
+    strbuf_free(&text);
 }
 
 static void compose(cview *v, bool heat) {

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "strbuf.h"
 #include "util.h"
 
 #define SCRIPT_LINE_MAX 512
@@ -20,7 +21,7 @@ struct view_script {
 
 view_script *view_script_load(const char *path, char *err, int errlen) {
     FILE *f = fopen(path, "r");
-    if (!f) { snprintf(err, errlen, "%s: cannot open the script", path); return NULL; }
+    if (!f) { msg_set(err, (size_t)errlen, "%s: cannot open the script", path); return NULL; }
     view_script *s = calloc(1, sizeof *s);
     if (!s) { fclose(f); return NULL; }
     snprintf(s->path, sizeof s->path, "%s", path);
