@@ -44,7 +44,8 @@ missing_dir() {
     # the script's expects hold; a failed expect also exits 1, hence the log
     [ "$rc" -eq 1 ] || fail "$name exited $rc"
     grep -q "watching files" "$log" && fail "$name: the watcher refused the files"
-    [ "$(grep -c 'Flat.uGrey holds the expected value' "$log")" -eq 1 ] || fail "$name: no reload after the folder appeared"
+    [ "$(grep -c 'Flat.uGrey holds the expected value' "$log")" -eq 1 ] ||
+        fail "$name: no reload after the folder appeared"
 }
 missing_dir view "$bin" view scene.glib
 missing_dir compare-view "$bin" compare-view scene.glib --packs basic,basic --size 320x240

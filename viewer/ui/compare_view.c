@@ -5,7 +5,8 @@
  * frame at the cell size, each pack's error field against it coloured by
  * ref_heatmap into a texture blitted in place of the pack's image, and
  * recoloured every frame while the camera, time and size stay those of the
- * reference (so a slider's effect on the error shows live). */
+ * reference (so a slider's effect on the error shows live). The window,
+ * its loop, hot reload and scripts are app.h's; this file is its hooks. */
 #include "compare_view.h"
 
 #include <GL/gl.h>
@@ -17,6 +18,7 @@
 
 #include "app.h"
 #include "exit_code.h"
+#include "gl_ctx.h"
 #include "panel.h"
 #include "ref_metrics.h"
 #include "refcache.h"
