@@ -181,10 +181,7 @@ void draw_sets(unif_set *sets, int nsets, panel_actions *out) {
                     defines_open = false;
                 }
                 ImGui::PushID(i);
-                if (entry_widget(e)) {
-                    out->changed = true;
-                    if (e->is_define) out->recompile = true;
-                }
+                if (entry_widget(e) && e->is_define) out->recompile = true;
                 ImGui::PopID();
             }
             if (set->n == 0) ImGui::TextColored(kGrey, "no uniforms");
@@ -263,7 +260,7 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
         if (ImGui::Button("Reset all")) {
             for (int s = 0; s < nsets; s++)
                 if (unif_reset_all_ex(&sets[s])) out->recompile = true;
-            out->reset_all = out->changed = true;
+            out->reset_all = true;
         }
         ImGui::SameLine();
         out->save_preset = ImGui::Button("Save preset");
@@ -298,7 +295,6 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
     panel_compare_actions none;
     if (!out) out = &none;
     std::memset(out, 0, sizeof *out);
-    out->changed_pack = -1;
     if (!p || !p->in_frame || !c) return;
     ImGui::SetCurrentContext(p->ctx);
     ImGuiIO &io = ImGui::GetIO();
@@ -324,9 +320,9 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
         }
         if (c->layout && *c->layout == PANEL_LAYOUT_WIPE && c->wipe_a && c->wipe_b && c->npacks > 0) {
             ImGui::PushItemWidth(ImGui::GetFontSize() * 8.0f);
-            const char *names[8];
-            char labels[8][80];
-            int n = c->npacks < 8 ? c->npacks : 8;
+            const char *names[PANEL_COMPARE_MAX_PACKS];
+            char labels[PANEL_COMPARE_MAX_PACKS][80];
+            int n = c->npacks < PANEL_COMPARE_MAX_PACKS ? c->npacks : PANEL_COMPARE_MAX_PACKS;
             for (int i = 0; i < n; i++) {
                 std::snprintf(labels[i], sizeof labels[i], "%d %s", i + 1, c->packs[i].name);
                 names[i] = labels[i];
@@ -375,7 +371,7 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
         ImGui::Separator();
 
         ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
-        for (int i = 0; i < c->npacks && i < 8; i++) {
+        for (int i = 0; i < c->npacks && i < PANEL_COMPARE_MAX_PACKS; i++) {
             panel_compare_pack *pk = &c->packs[i];
             ImGui::PushID(1000 + i);
             char header[160];
@@ -385,14 +381,11 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
                 if (ImGui::SmallButton("Reset all")) {
                     for (int s = 0; s < pk->nsets; s++)
                         if (unif_reset_all_ex(&pk->sets[s])) out->recompile[i] = true;
-                    out->reset_all[i] = true;
-                    out->changed_pack = i;
                 }
                 ImGui::Indent();
                 panel_actions a;
                 std::memset(&a, 0, sizeof a);
                 draw_sets(pk->sets, pk->nsets, &a);
-                if (a.changed) out->changed_pack = i;
                 if (a.recompile) out->recompile[i] = true;
                 ImGui::Unindent();
             }

@@ -11,7 +11,8 @@
  *     ... render the scene to the default framebuffer ...
  *     panel_render(p);
  *     glfwSwapBuffers(window);
- * then act on `actions` (upload when changed, recompile, save/load ...).
+ * then act on `actions` (recompile, save/load ...); values the widgets
+ * change are in the sets already, and the renderer uploads them.
  */
 #ifndef TARN_PANEL_H
 #define TARN_PANEL_H
@@ -46,7 +47,6 @@ typedef struct panel_info {
 } panel_info;
 
 typedef struct panel_actions {
-    bool changed;                /* a uniform value changed: upload */
     bool recompile;              /* a define changed (also by a reset): recompile */
     bool reset_all;              /* "Reset all" pressed (already applied to the sets) */
     bool save_preset;            /* the app calls unif_preset_save */
@@ -79,12 +79,14 @@ typedef struct panel_compare_pack {
 
 enum { PANEL_LAYOUT_GRID = 0, PANEL_LAYOUT_WIPE = 1 };
 
+#define PANEL_COMPARE_MAX_PACKS 4   /* compare-view's most packs (COMPARE_VIEW_MAX_PACKS) */
+
 typedef struct panel_compare {
     const char *scene_path;
     double fps, time_s;
     bool paused;
     panel_compare_pack *packs;
-    int npacks;
+    int npacks;                  /* at most PANEL_COMPARE_MAX_PACKS are shown */
     /* in and out: the widgets edit these */
     int *layout;                 /* PANEL_LAYOUT_* */
     int *wipe_a, *wipe_b;        /* the two packs of the wipe */
@@ -97,9 +99,7 @@ typedef struct panel_compare {
 
 typedef struct panel_compare_actions {
     panel_actions common;        /* reload, pause, screenshot, save/load preset */
-    int changed_pack;            /* a pack whose values changed (-1: none) */
-    bool recompile[8];           /* per pack: a define changed */
-    bool reset_all[8];           /* per pack: its "Reset all" (already applied) */
+    bool recompile[PANEL_COMPARE_MAX_PACKS];   /* per pack: a define changed (also by its "Reset all") */
     bool compute_heat;           /* "Compute heat maps" */
     bool reset_camera;
 } panel_compare_actions;

@@ -5,7 +5,8 @@
  * frame at the cell size, each pack's error field against it coloured by
  * ref_heatmap into a texture blitted in place of the pack's image, and
  * recoloured every frame while the camera, time and size stay those of the
- * reference (so a slider's effect on the error shows live). */
+ * reference (so a slider's effect on the error shows live). The window,
+ * its loop, hot reload and scripts are app.h's; this file is its hooks. */
 #include "compare_view.h"
 
 #include <GL/gl.h>
@@ -14,19 +15,21 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "app.h"
 #include "exit_code.h"
 #include "gl_ctx.h"
 #include "panel.h"
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
+#include "strbuf.h"
+#include "util.h"
 #include "view_script.h"
 #include "view_util.h"
-#include "watch.h"
 
-#define PANEL_WIDTH 440
+_Static_assert(COMPARE_VIEW_MAX_PACKS <= PANEL_COMPARE_MAX_PACKS, "the panel has a row for every pack");
+
 #define DIVIDER_GRAB 8    /* pixels either side of the wipe's divider that grab it */
 
 typedef struct cv_pack {
@@ -43,17 +46,14 @@ typedef struct cv_pack {
 } cv_pack;
 
 typedef struct cview {
-    gl_ctx *ctx;
-    GLFWwindow *win;
-    panel *panel;
-    watch *watch;
+    app *app;
+    app_state *s;                /* the app's camera, mouse and clock */
+    GLFWwindow *win;             /* the app's */
+    panel *panel;                /* the app's */
     const char *scene;
     cv_pack packs[COMPARE_VIEW_MAX_PACKS];
+    render *scenes[COMPARE_VIEW_MAX_PACKS];   /* the packs' renderers, for the app */
     int n;
-    orbit cam, cam_home;
-    view_mouse mouse;
-    double t, last_wall, fps;
-    bool paused;
     int layout, wipe_a, wipe_b;
     float wipe;
     bool dragging_wipe;
@@ -67,24 +67,16 @@ typedef struct cview {
     int ref_w, ref_h;
     refcache_opts ref_opts;
     char heat_status[256];
-    int shots;
+    panel_compare_actions pending;   /* the panel's buttons of this frame, applied after it */
     /* the scene area and the cells, framebuffer pixels (GL: y from the bottom) */
     int fb_w, fb_h, area_x, area_w, area_h, cell_w, cell_h;
-    view_script_ctx *sc;         /* while a script step runs */
-    int script_pack;
 } cview;
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* ---- layout ---- */
 
 static void layout_cells(cview *v) {
     glfwGetFramebufferSize(v->win, &v->fb_w, &v->fb_h);
-    v->area_x = v->fb_w > PANEL_WIDTH + 160 ? PANEL_WIDTH : 0;
+    v->area_x = app_scene_x(v->fb_w);
     v->area_w = v->fb_w - v->area_x;
     v->area_h = v->fb_h;
     if (v->layout == PANEL_LAYOUT_WIPE) {
@@ -123,7 +115,7 @@ static void ensure_targets(cview *v) {
 /* ---- heat maps ---- */
 
 static bool ref_valid(const cview *v) {
-    return v->have_ref && v->t == v->ref_t && orbit_equal(&v->cam, &v->ref_cam) && v->ref_w == v->cell_w &&
+    return v->have_ref && v->s->t == v->ref_t && orbit_equal(&v->s->cam, &v->ref_cam) && v->ref_w == v->cell_w &&
            v->ref_h == v->cell_h;
 }
 
@@ -137,8 +129,8 @@ static void on_ref_progress(void *user, double f) {
 /* The CPU reference of this frame at the cell size; time pauses. */
 static bool compute_reference(cview *v) {
     layout_cells(v);
-    v->paused = true;
-    render_view rv = orbit_view(&v->cam);
+    v->s->paused = true;
+    render_view rv = orbit_view(&v->s->cam);
     refcache_view view;
     for (int k = 0; k < 3; k++) {
         view.eye[k] = rv.eye[k];
@@ -148,10 +140,10 @@ static bool compute_reference(cview *v) {
     refcache_free(&v->ref);
     v->have_ref = false;
     char err[4096] = "";
-    double t0 = now_s();
+    double t0 = clock_now_s();
     fprintf(stderr, "tarn compare-view: computing the reference at %dx%d, t = %.3f s ...\n", v->cell_w, v->cell_h,
-            v->t);
-    bool ok = refcache_get(NULL, v->scene, NULL, v->cell_w, v->cell_h, v->t, &view, &v->ref_opts,
+            v->s->t);
+    bool ok = refcache_get(NULL, v->scene, NULL, v->cell_w, v->cell_h, v->s->t, &view, &v->ref_opts,
                            on_ref_progress, v, &v->ref, err, sizeof err);
     char title[1200];
     snprintf(title, sizeof title, "tarn compare-view — %s", v->scene);
@@ -162,14 +154,14 @@ static bool compute_reference(cview *v) {
         return false;
     }
     v->have_ref = true;
-    v->ref_t = v->t;
-    v->ref_cam = v->cam;
+    v->ref_t = v->s->t;
+    v->ref_cam = v->s->cam;
     v->ref_w = v->cell_w;
     v->ref_h = v->cell_h;
     v->show_heat = true;
     v->reported = false;
     snprintf(v->heat_status, sizeof v->heat_status, "reference %dx%d at t = %.3f s, computed in %.1f s",
-             v->cell_w, v->cell_h, v->t, now_s() - t0);
+             v->cell_w, v->cell_h, v->s->t, clock_now_s() - t0);
     fprintf(stderr, "tarn compare-view: %s\n", v->heat_status);
     return true;
 }
@@ -245,10 +237,10 @@ static void draw_packs(cview *v, const render_view *view) {
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
         if (!pack_drawn(v, i) || !p->tg.fbo) continue;
-        double t0 = now_s();
-        render_frame(p->r, v->t, p->tg.fbo, p->tg.w, p->tg.h, view);
+        double t0 = clock_now_s();
+        render_frame(p->r, v->s->t, p->tg.fbo, p->tg.w, p->tg.h, view);
         glFinish();   /* one pack at a time, so each has its own wall time */
-        double wall = (now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);
+        double wall = (clock_now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);
         p->wall_ms = p->wall_ms > 0 ? 0.9 * p->wall_ms + 0.1 * wall : wall;
         if (gpu >= 0) p->gpu_ms = p->gpu_ms > 0 ? 0.9 * p->gpu_ms + 0.1 * gpu : gpu;
         render_pass_summary(p->r, p->passes, sizeof p->passes);
@@ -300,14 +292,14 @@ static void to_window(const cview *v, int x, int y, float *wx, float *wy) {
 
 static void label_pack(cview *v, int i, int x, int ytop, bool heat, bool right) {
     cv_pack *p = &v->packs[i];
-    char text[1024];
-    int len = snprintf(text, sizeof text, "%s\n%.2f ms GPU  %.1f ms wall", p->label, p->gpu_ms, p->wall_ms);
-    if (heat && p->have_heat && len < (int)sizeof text)
-        len += snprintf(text + len, sizeof text - (size_t)len, "\nRMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
-    if (p->passes[0] && len < (int)sizeof text) snprintf(text + len, sizeof text - (size_t)len, "\n%s", p->passes);
+    strbuf text = { 0 };
+    strbuf_printf(&text, "%s\n%.2f ms GPU  %.1f ms wall", p->label, p->gpu_ms, p->wall_ms);
+    if (heat && p->have_heat) strbuf_printf(&text, "\nRMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
+    if (p->passes[0]) strbuf_printf(&text, "\n%s", p->passes);
     float wx, wy;
     to_window(v, x, ytop, &wx, &wy);
-    panel_label(v->panel, right ? wx - 6 : wx + 6, wy + 6, text, right);
+    panel_label(v->panel, right ? wx - 6 : wx + 6, wy + 6, text.s, right);
+    strbuf_free(&text);
 }
 
 static void compose(cview *v, bool heat) {
@@ -346,67 +338,28 @@ static void labels(cview *v, bool heat) {
 
 /* ---- loading, reloading ---- */
 
-static void rewatch(cview *v) {
-    if (!v->watch) return;
-    const char **all = NULL;
-    int n = 0;
-    for (int i = 0; i < v->n; i++) {
-        const char *const *paths;
-        int k = render_deps(v->packs[i].r, &paths);
-        const char **grown = realloc(all, (size_t)(n + k + 1) * sizeof *grown);
-        if (!grown) break;
-        all = grown;
-        for (int j = 0; j < k; j++) {
-            bool dup = false;
-            for (int m = 0; m < n && !dup; m++) dup = strcmp(all[m], paths[j]) == 0;
-            if (!dup) all[n++] = paths[j];
-        }
-    }
-    char err[512];
-    if (!watch_set_files(v->watch, all, n, err, sizeof err)) fprintf(stderr, "tarn compare-view: watching: %s\n", err);
-    free(all);
-}
-
 static void report(cv_pack *p) {
     const char *m = render_messages(p->r);
     if (m[0]) fprintf(stderr, "%s: %s", p->label, m);
 }
 
-static void reload_all(cview *v) {
+static void on_reload(void *user, app *a) {
+    cview *v = user;
     for (int i = 0; i < v->n; i++) {
         render_load(v->packs[i].r, NULL);
         report(&v->packs[i]);
     }
-    rewatch(v);
 }
 
 /* ---- input ---- */
 
-static void on_scroll(GLFWwindow *w, double dx, double dy) {
-    cview *v = glfwGetWindowUserPointer(w);
-    if (!v->panel || !panel_wants_mouse(v->panel)) v->mouse.scroll += dy;
-}
-
-static void heat_key(cview *v) {
-    if (ref_valid(v)) v->show_heat = !v->show_heat;
-    else compute_reference(v);
-}
-
-static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
-    cview *v = glfwGetWindowUserPointer(w);
-    if (action != GLFW_PRESS || !v->panel || panel_wants_keyboard(v->panel)) return;
+static void on_key(void *user, app *a, int key) {
+    cview *v = user;
     switch (key) {
-    case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
-    case GLFW_KEY_R: reload_all(v); break;
-    case GLFW_KEY_SPACE: v->paused = !v->paused; break;
-    case GLFW_KEY_P: case GLFW_KEY_F12: {
-        char path[128];
-        view_shot_path(v->shots++, path, sizeof path);
-        view_screenshot(v->win, path);
+    case GLFW_KEY_H:
+        if (ref_valid(v)) v->show_heat = !v->show_heat;
+        else compute_reference(v);
         break;
-    }
-    case GLFW_KEY_HOME: case GLFW_KEY_F: v->cam = v->cam_home; break;
-    case GLFW_KEY_H: heat_key(v); break;
     case GLFW_KEY_G: v->layout = PANEL_LAYOUT_GRID; break;
     case GLFW_KEY_W: v->layout = PANEL_LAYOUT_WIPE; break;
     case GLFW_KEY_TAB:
@@ -417,8 +370,12 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     }
 }
 
-/* A left press within DIVIDER_GRAB pixels of the wipe's divider drags it. */
-static void handle_mouse(cview *v) {
+/* The cells for this frame's size, then the mouse: a left press within
+ * DIVIDER_GRAB pixels of the wipe's divider drags it, other drags move
+ * the camera. */
+static void on_mouse(void *user, app *a) {
+    cview *v = user;
+    layout_cells(v);
     double mx, my;
     glfwGetCursorPos(v->win, &mx, &my);
     int ww, wh;
@@ -426,7 +383,7 @@ static void handle_mouse(cview *v) {
     double fx = ww > 0 ? mx * v->fb_w / ww : mx;
     bool left = glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     bool ui = panel_wants_mouse(v->panel);
-    if (v->layout == PANEL_LAYOUT_WIPE && left && !ui && !v->mouse.dragging_orbit && !v->dragging_wipe) {
+    if (v->layout == PANEL_LAYOUT_WIPE && left && !ui && !v->s->mouse.dragging_orbit && !v->dragging_wipe) {
         double divider = v->area_x + wipe_px(v);
         if (fabs(fx - divider) <= DIVIDER_GRAB) v->dragging_wipe = true;
     }
@@ -434,51 +391,47 @@ static void handle_mouse(cview *v) {
     if (v->dragging_wipe) {
         v->wipe = (float)((fx - v->area_x) / (v->cell_w > 0 ? v->cell_w : 1));
         v->wipe = fmaxf(0.0f, fminf(1.0f, v->wipe));
-        v->mouse.last_x = mx;
-        v->mouse.last_y = my;
+        v->s->mouse.last_x = mx;
+        v->s->mouse.last_y = my;
         return;
     }
-    view_mouse_update(&v->mouse, v->win, ui, &v->cam);
+    view_mouse_update(&v->s->mouse, v->win, ui, &v->s->cam);
 }
 
-static void apply_panel(cview *v, const panel_compare_actions *a) {
+/* What the panel asked for besides reload, pause and screenshot (the app's). */
+static void on_apply(void *user, app *a) {
+    cview *v = user;
+    const panel_compare_actions *p = &v->pending;
     for (int i = 0; i < v->n; i++)
-        if (a->recompile[i]) {
+        if (p->recompile[i]) {
             render_rebuild_programs(v->packs[i].r);
             report(&v->packs[i]);
         }
-    if (a->common.toggle_pause) v->paused = !v->paused;
-    if (a->common.reload) reload_all(v);
-    if (a->common.screenshot) {
-        char path[128];
-        view_shot_path(v->shots++, path, sizeof path);
-        view_screenshot(v->win, path);
-    }
-    if (a->reset_camera) v->cam = v->cam_home;
-    if (a->compute_heat) compute_reference(v);
+    if (p->reset_camera) v->s->cam = v->s->cam_home;
+    if (p->compute_heat) compute_reference(v);
 }
 
-/* ---- the loop ---- */
+/* ---- the frame ---- */
 
-static void frame(cview *v, bool scripted) {
-    double now = glfwGetTime(), dt = now - v->last_wall;
-    v->last_wall = now;
-    if (dt > 0) v->fps = v->fps * 0.9 + 0.1 / dt;
-    if (!v->paused && !scripted) v->t += dt;
-    if (v->watch && watch_poll(v->watch, 0) > 0) reload_all(v);
-    layout_cells(v);
-    handle_mouse(v);
+static bool heat_shown(const cview *v) { return v->show_heat && ref_valid(v); }
+
+static void on_draw(void *user, app *a) {
+    cview *v = user;
     if (v->wipe_a == v->wipe_b) v->wipe_b = (v->wipe_a + 1) % v->n;
     ensure_targets(v);
-    render_view view = orbit_view(&v->cam);
+    render_view view = orbit_view(&v->s->cam);
     draw_packs(v, &view);
-    bool valid = ref_valid(v), heat = v->show_heat && valid;
+    bool heat = heat_shown(v);
     if (heat) update_heat(v);
-    if (v->have_ref && !valid)
+    if (v->have_ref && !ref_valid(v))
         snprintf(v->heat_status, sizeof v->heat_status,
                  "heat maps are stale: the camera, time or size changed since the reference (H recomputes)");
     compose(v, heat);
+}
 
+static void on_panel(void *user, app *a, panel_actions *common) {
+    cview *v = user;
+    bool heat = heat_shown(v);
     panel_compare_pack pp[COMPARE_VIEW_MAX_PACKS];
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
@@ -490,20 +443,17 @@ static void frame(cview *v, bool scripted) {
         pp[i].sets = render_uniforms(p->r, &pp[i].nsets);
     }
     const char *status = v->heat_status[0] ? v->heat_status : "no heat maps yet: H computes them";
-    bool cpu_raster = strstr(gl_ctx_describe(v->ctx), "llvmpipe") != NULL;
-    panel_compare pc = { .scene_path = v->scene, .fps = v->fps, .time_s = v->t, .paused = v->paused,
+    bool cpu_raster = strstr(gl_ctx_describe(app_gl(a)), "llvmpipe") != NULL;
+    panel_compare pc = { .scene_path = v->scene, .fps = v->s->fps, .time_s = v->s->t, .paused = v->s->paused,
                          .packs = pp, .npacks = v->n, .layout = &v->layout, .wipe_a = &v->wipe_a,
                          .wipe_b = &v->wipe_b, .wipe = &v->wipe, .show_heat = &v->show_heat,
                          .heat_max = &v->heat_max, .heat_status = status,
                          .note = cpu_raster ? "llvmpipe: GPU timestamps do not time the rasterisation; "
                                               "wall time (after glFinish) does"
                                             : "per pass GPU times in each pack's corner" };
-    panel_compare_actions a;
-    panel_begin_frame(v->panel);
-    panel_draw_compare(v->panel, &pc, &a);
+    panel_draw_compare(v->panel, &pc, &v->pending);
     labels(v, heat);
-    panel_render(v->panel);
-    apply_panel(v, &a);
+    *common = v->pending.common;
 }
 
 /* ---- script actions of our own ---- */
@@ -518,8 +468,7 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
             fprintf(stderr, "%s:%d: pack wants 1..%d\n", file, line, v->n);
             return VIEW_SCRIPT_FAILED;
         }
-        v->script_pack = k - 1;
-        if (v->sc) v->sc->r = v->packs[k - 1].r;
+        app_script_use(v->app, k - 1);
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "layout") == 0) {
@@ -553,7 +502,7 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "orbit") == 0) {
-        orbit_rotate(&v->cam, (float)atof(a), (float)atof(b));
+        orbit_rotate(&v->s->cam, (float)atof(a), (float)atof(b));
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "timings") == 0) {
@@ -578,37 +527,34 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
     return VIEW_SCRIPT_FAILED;
 }
 
-static int run(cview *v, const cli_compare_view_desc *d) {
-    view_script *script = NULL;
-    if (d->script) {
-        char err[512];
-        script = view_script_load(d->script, err, sizeof err);
-        if (!script) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_USAGE; }
+/* ---- the command ---- */
+
+static void load_packs(cview *v, const cli_compare_view_desc *d, bool *ok) {
+    for (int i = 0; i < v->n; i++) {
+        cv_pack *p = &v->packs[i];
+        snprintf(p->name, sizeof p->name, "%s", d->packs[i]);
+        int copy = 1;
+        for (int j = 0; j < i; j++) copy += strcmp(d->packs[j], d->packs[i]) == 0;
+        if (copy > 1) snprintf(p->label, sizeof p->label, "%d %s #%d", i + 1, p->name, copy);
+        else snprintf(p->label, sizeof p->label, "%d %s", i + 1, p->name);
+        render_desc rd = { .pack = p->name };
+        p->r = v->scenes[i] = render_create(&rd);
+        if (!render_load(p->r, d->glib)) *ok = false;
+        report(p);
+        p->rmse = p->psnr = NAN;
     }
-    int rc = TARN_EXIT_OK;
-    while (!glfwWindowShouldClose(v->win)) {
-        glfwPollEvents();
-        frame(v, script != NULL);
-        if (script) {
-            view_script_ctx sc = { .r = v->packs[v->script_pack].r, .time_s = &v->t, .custom = script_action,
-                                   .user = v };
-            v->sc = &sc;
-            int st = view_script_step(script, &sc);
-            v->sc = NULL;
-            if (st == VIEW_SCRIPT_SCREENSHOT) {
-                /* the frame as it is now, drawn again with what the step changed */
-                frame(v, true);
-                view_screenshot(v->win, view_script_arg(script));
-            }
-            if (st == VIEW_SCRIPT_RELOAD) reload_all(v);
-            if (st == VIEW_SCRIPT_REBUILD) render_rebuild_programs(v->packs[v->script_pack].r);
-            if (st == VIEW_SCRIPT_FAILED) rc = TARN_EXIT_INPUT;
-            if (st == VIEW_SCRIPT_DONE || st == VIEW_SCRIPT_FAILED) glfwSetWindowShouldClose(v->win, 1);
-        }
-        glfwSwapBuffers(v->win);
+}
+
+static void free_packs(cview *v) {
+    for (int i = 0; i < v->n; i++) {
+        cv_pack *p = &v->packs[i];
+        render_target_destroy(&p->tg);
+        if (p->heat_fbo) glDeleteFramebuffers(1, &p->heat_fbo);
+        if (p->heat_tex) glDeleteTextures(1, &p->heat_tex);
+        free(p->field);
+        render_destroy(p->r);
     }
-    view_script_free(script);
-    return rc;
+    refcache_free(&v->ref);
 }
 
 int cli_compare_view(const cli_compare_view_desc *d) {
@@ -624,61 +570,31 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     v->wipe_b = 1;
     v->ref_opts.caustic_res = d->ref_caustic_res > 0 ? d->ref_caustic_res : 128;
     v->ref_opts.photons_per_cell = d->ref_photons > 0 ? d->ref_photons : 16;
-    char err[1024];
-    v->ctx = gl_ctx_create_window(d->width > 0 ? d->width + PANEL_WIDTH : 1400, d->height > 0 ? d->height : 800,
-                                  "tarn compare-view", err, sizeof err);
-    if (!v->ctx) {
-        fprintf(stderr, "tarn compare-view: %s\n", err);
+    app_desc ad = { .name = "tarn compare-view", .scene_path = d->glib,
+                    .width = d->width > 0 ? d->width + APP_PANEL_WIDTH : 1400,
+                    .height = d->height > 0 ? d->height : 800, .time_s = d->time_s, .script = d->script,
+                    .user = v, .draw = on_draw, .panel = on_panel, .apply = on_apply, .reload = on_reload,
+                    .mouse = on_mouse, .key = on_key, .script_action = script_action };
+    v->app = app_create(&ad);
+    if (!v->app) {
         free(v);
         return TARN_EXIT_NO_GL;
     }
-    v->win = gl_ctx_window(v->ctx);
-    glfwSetWindowUserPointer(v->win, v);
+    v->s = app_get_state(v->app);
+    v->win = app_window(v->app);
+    v->panel = app_panel(v->app);
     bool ok = true;
-    for (int i = 0; i < v->n; i++) {
-        cv_pack *p = &v->packs[i];
-        snprintf(p->name, sizeof p->name, "%s", d->packs[i]);
-        int copy = 1;
-        for (int j = 0; j < i; j++) copy += strcmp(d->packs[j], d->packs[i]) == 0;
-        if (copy > 1) snprintf(p->label, sizeof p->label, "%d %s #%d", i + 1, p->name, copy);
-        else snprintf(p->label, sizeof p->label, "%d %s", i + 1, p->name);
-        render_desc rd = { .pack = p->name };
-        p->r = render_create(&rd);
-        if (!render_load(p->r, d->glib)) ok = false;
-        report(p);
-        p->rmse = p->psnr = NAN;
-    }
+    load_packs(v, d, &ok);
     if (d->width <= 0 || d->height <= 0) {
         int w, h;
         render_window_size(v->packs[0].r, &w, &h);
-        glfwSetWindowSize(v->win, w + PANEL_WIDTH, h);
+        app_fit_window(v->app, w, h);
     }
-    char title[1200];
-    snprintf(title, sizeof title, "tarn compare-view — %s", d->glib);
-    glfwSetWindowTitle(v->win, title);
-    glfwSetScrollCallback(v->win, on_scroll);
-    glfwSetKeyCallback(v->win, on_key);
-    v->panel = panel_create(v->win, "#version 130");
-    v->watch = watch_create(err, sizeof err);
-    if (!v->watch) fprintf(stderr, "tarn compare-view: hot reload is off: %s\n", err);
-    rewatch(v);
-    v->cam = v->cam_home = orbit_from_view(render_default_view(v->packs[0].r));
-    v->t = d->time_s;
-    v->last_wall = glfwGetTime();
-    int rc = run(v, d);
+    app_home(v->app, render_default_view(v->packs[0].r));
+    int rc = app_run(v->app, v->scenes, v->n);
     if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
-    watch_destroy(v->watch);
-    panel_destroy(v->panel);
-    for (int i = 0; i < v->n; i++) {
-        cv_pack *p = &v->packs[i];
-        render_target_destroy(&p->tg);
-        if (p->heat_fbo) glDeleteFramebuffers(1, &p->heat_fbo);
-        if (p->heat_tex) glDeleteTextures(1, &p->heat_tex);
-        free(p->field);
-        render_destroy(p->r);
-    }
-    refcache_free(&v->ref);
-    gl_ctx_destroy(v->ctx);
+    free_packs(v);
+    app_destroy(v->app);
     free(v);
     return rc;
 }

@@ -1,42 +1,23 @@
-/* `tarn view`: the interactive window. Draws the scene, the generated slider
- * panel and any error overlay; watches every file the scene reads and
- * reloads within a frame or two of a save; orbit/pan/zoom camera. */
+/* `tarn view`: the interactive window, a client of app.h. Draws the scene,
+ * the generated slider panel and any error overlay; the app watches every
+ * file the scene reads and reloads within a frame or two of a save; orbit,
+ * pan and zoom camera. */
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
-#include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
 
+#include "app.h"
 #include "exit_code.h"
-#include "view.h"
-#include "gl_ctx.h"
-#include "image_io.h"
 #include "panel.h"
 #include "render.h"
-#include "view_script.h"
-#include "view_util.h"
-#include "watch.h"
-
-#define PANEL_WIDTH 440   /* the slider panel's column, left of the scene */
+#include "view.h"
 
 typedef struct viewer {
-    gl_ctx *ctx;
-    GLFWwindow *win;
+    app *app;
     render *r;
-    panel *panel;
-    watch *watch;
-    orbit cam, cam_home;
-    double t, last_wall;
-    bool paused;
-    view_mouse mouse;
-    int shots;
-    double fps;
+    panel_actions pending;       /* the panel's buttons of this frame, applied after it */
 } viewer;
-
-/* ---- actions ---- */
 
 static void report_load(viewer *v) {
     const char *m = render_messages(v->r);
@@ -44,40 +25,13 @@ static void report_load(viewer *v) {
     else fprintf(stderr, "tarn: loaded %s\n", render_scene_path(v->r));
 }
 
-/* A dependency in a directory that does not exist (a typo in the glib)
- * cannot be watched; watch the rest rather than nothing. */
-static bool dir_exists(const char *path) {
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (!slash) return true;
-    *slash = '\0';
-    struct stat st;
-    return stat(dir[0] ? dir : "/", &st) == 0 && S_ISDIR(st.st_mode);
-}
+/* ---- hooks ---- */
 
-static void rewatch(viewer *v) {
-    if (!v->watch) return;
-    const char *const *paths;
-    int n = render_deps(v->r, &paths);
-    char err[512];
-    if (watch_set_files(v->watch, paths, n, err, sizeof err)) return;
-    const char **ok = calloc((size_t)n + 1, sizeof *ok);
-    int nok = 0;
-    for (int i = 0; ok && i < n; i++)
-        if (dir_exists(paths[i])) ok[nok++] = paths[i];
-    if (!ok || !watch_set_files(v->watch, ok, nok, err, sizeof err))
-        fprintf(stderr, "tarn: watching files: %s\n", err);
-    free(ok);
-}
-
-static void reload(viewer *v) {
+static void on_reload(void *user, app *a) {
+    viewer *v = user;
     render_load(v->r, NULL);
     report_load(v);
-    rewatch(v);
 }
-
-static bool screenshot(viewer *v, const char *path) { return view_screenshot(v->win, path); }
 
 static void preset(viewer *v, bool save) {
     char path[1100], err[512] = "";
@@ -90,130 +44,65 @@ static void preset(viewer *v, bool save) {
     fprintf(stderr, "tarn: %s preset %s%s%s\n", save ? "save" : "load", path, ok ? "" : ": ", ok ? "" : err);
 }
 
-static void apply_actions(viewer *v, const panel_actions *a) {
+/* What the panel asked for besides reload, pause and screenshot (the app's). */
+static void on_apply(void *user, app *a) {
+    viewer *v = user;
+    const panel_actions *p = &v->pending;
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
-    if (a->reset_all)
+    if (p->reset_all)
         for (int i = 0; i < n; i++) unif_reset_all(&sets[i]);
-    if (a->recompile || a->reset_all) {
+    if (p->recompile || p->reset_all) {
         render_rebuild_programs(v->r);
         report_load(v);
-        rewatch(v);
+        app_rewatch(a);
     }
-    if (a->save_preset) preset(v, true);
-    if (a->load_preset) preset(v, false);
-    if (a->reload) reload(v);
-    if (a->toggle_pause) v->paused = !v->paused;
-    if (a->screenshot) {
-        char path[128];
-        view_shot_path(v->shots++, path, sizeof path);
-        screenshot(v, path);
-    }
+    if (p->save_preset) preset(v, true);
+    if (p->load_preset) preset(v, false);
 }
 
-/* ---- input ---- */
-
-static void on_scroll(GLFWwindow *w, double dx, double dy) {
-    viewer *v = glfwGetWindowUserPointer(w);
-    if (!v->panel || !panel_wants_mouse(v->panel)) v->mouse.scroll += dy;
-}
-
-static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
-    viewer *v = glfwGetWindowUserPointer(w);
-    if (action != GLFW_PRESS || !v->panel || panel_wants_keyboard(v->panel)) return;
-    panel_actions a;
-    memset(&a, 0, sizeof a);
-    switch (key) {
-    case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
-    case GLFW_KEY_R: a.reload = true; break;
-    case GLFW_KEY_SPACE: a.toggle_pause = true; break;
-    case GLFW_KEY_P: case GLFW_KEY_F12: a.screenshot = true; break;
-    case GLFW_KEY_HOME: case GLFW_KEY_F: v->cam = v->cam_home; break;
-    default: break;
-    }
-    apply_actions(v, &a);
-}
-
-static void handle_mouse(viewer *v) {
-    view_mouse_update(&v->mouse, v->win, panel_wants_mouse(v->panel), &v->cam);
-}
-
-/* ---- the loop ---- */
-
-static void frame(viewer *v, view_script *script) {
-    double now = glfwGetTime();
-    double dt = now - v->last_wall;
-    v->last_wall = now;
-    if (dt > 0) v->fps = v->fps * 0.9 + 0.1 / dt;
-    if (!v->paused && !script) v->t += dt;
-    if (v->watch && watch_poll(v->watch, 0) > 0) reload(v);
-    handle_mouse(v);
+static void on_draw(void *user, app *a) {
+    viewer *v = user;
+    app_state *s = app_get_state(a);
     int w, h;
-    glfwGetFramebufferSize(v->win, &w, &h);
-    render_view view = orbit_view(&v->cam);
-    /* the scene sits right of the panel when the window has room for both */
-    int x0 = w > PANEL_WIDTH + 160 ? PANEL_WIDTH : 0;
+    glfwGetFramebufferSize(app_window(a), &w, &h);
+    render_view view = orbit_view(&s->cam);
+    int x0 = app_scene_x(w);
     glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     /* a world is lit in linear radiance: the window encodes sRGB, as the
      * reference's PNG does; glman scenes are shown as drawn */
     if (render_has_world(v->r)) glEnable(GL_FRAMEBUFFER_SRGB);
-    render_frame_at(v->r, v->t, 0, x0, 0, w - x0, h, &view);
+    render_frame_at(v->r, s->t, 0, x0, 0, w - x0, h, &view);
     glDisable(GL_FRAMEBUFFER_SRGB);
+}
+
+static void on_panel(void *user, app *a, panel_actions *common) {
+    viewer *v = user;
+    app_state *s = app_get_state(a);
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
     char passes[1024];
     render_pass_summary(v->r, passes, sizeof passes);
     panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
-                        .fps = v->fps, .paused = v->paused, .time_s = v->t,
+                        .fps = s->fps, .paused = s->paused, .time_s = s->t,
                         .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL, .passes = passes };
-    panel_actions a;
-    memset(&a, 0, sizeof a);
-    panel_begin_frame(v->panel);
-    panel_draw(v->panel, sets, n, &info, &a);
-    panel_render(v->panel);
-    apply_actions(v, &a);
+    panel_draw(app_panel(a), sets, n, &info, &v->pending);
+    *common = v->pending;
 }
 
-static int run(viewer *v, const view_desc *d) {
-    view_script *script = NULL;
-    if (d->script) {
-        char err[512];
-        script = view_script_load(d->script, err, sizeof err);
-        if (!script) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_USAGE; }
-    }
-    int rc = TARN_EXIT_OK;
-    while (!glfwWindowShouldClose(v->win)) {
-        glfwPollEvents();
-        frame(v, script);
-        char lost[1024];
-        if (gl_ctx_lost(v->ctx, lost, sizeof lost)) { fprintf(stderr, "tarn: %s\n", lost); rc = TARN_EXIT_NO_GL; break; }
-        if (script) {
-            view_script_ctx sc = { .r = v->r, .time_s = &v->t };
-            int st = view_script_step(script, &sc);
-            if (st == VIEW_SCRIPT_SCREENSHOT) screenshot(v, view_script_arg(script));
-            if (st == VIEW_SCRIPT_RELOAD) reload(v);
-            if (st == VIEW_SCRIPT_REBUILD) render_rebuild_programs(v->r);
-            if (st == VIEW_SCRIPT_FAILED) rc = TARN_EXIT_INPUT;
-            if (st == VIEW_SCRIPT_DONE || st == VIEW_SCRIPT_FAILED) glfwSetWindowShouldClose(v->win, 1);
-        }
-        glfwSwapBuffers(v->win);
-    }
-    view_script_free(script);
-    return rc;
-}
+/* ---- the command ---- */
 
 int view_run(const view_desc *d) {
     viewer v;
     memset(&v, 0, sizeof v);
-    char err[1024];
     /* GL objects need the context first, so the glib's WindowSize is
      * applied by resizing once the scene is loaded */
-    v.ctx = gl_ctx_create_window(d->width > 0 ? d->width : 1000, d->height > 0 ? d->height : 700,
-                                 "tarn", err, sizeof err);
-    if (!v.ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
-    v.win = gl_ctx_window(v.ctx);
-    glfwSetWindowUserPointer(v.win, &v);
+    app_desc ad = { .name = "tarn", .scene_path = d->glib, .width = d->width, .height = d->height,
+                    .time_s = d->time_s, .script = d->script, .user = &v,
+                    .draw = on_draw, .panel = on_panel, .apply = on_apply, .reload = on_reload };
+    v.app = app_create(&ad);
+    if (!v.app) return TARN_EXIT_NO_GL;
     render_desc rd = { .pack = d->pack };
     v.r = render_create(&rd);
     bool ok = render_load(v.r, d->glib);
@@ -221,26 +110,12 @@ int view_run(const view_desc *d) {
     if (d->width <= 0 || d->height <= 0) {
         int w, h;
         render_window_size(v.r, &w, &h);
-        glfwSetWindowSize(v.win, w + PANEL_WIDTH, h);   /* room for the panel beside the scene */
+        app_fit_window(v.app, w, h);   /* room for the panel beside the scene */
     }
-    char title[1200];
-    snprintf(title, sizeof title, "tarn — %s", d->glib);
-    glfwSetWindowTitle(v.win, title);
-    /* ours first: the ImGui backend chains to callbacks installed before it */
-    glfwSetScrollCallback(v.win, on_scroll);
-    glfwSetKeyCallback(v.win, on_key);
-    v.panel = panel_create(v.win, "#version 130");
-    v.watch = watch_create(err, sizeof err);
-    if (!v.watch) fprintf(stderr, "tarn: hot reload is off: %s\n", err);
-    rewatch(&v);
-    v.cam = v.cam_home = orbit_from_view(render_default_view(v.r));
-    v.t = d->time_s;
-    v.last_wall = glfwGetTime();
-    int rc = run(&v, d);
+    app_home(v.app, render_default_view(v.r));
+    int rc = app_run(v.app, &v.r, 1);
     if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
-    watch_destroy(v.watch);
-    panel_destroy(v.panel);
     render_destroy(v.r);
-    gl_ctx_destroy(v.ctx);
+    app_destroy(v.app);
     return rc;
 }

@@ -1,5 +1,6 @@
 /* view: `tarn view SCENE.glib`, the live window: the scene with hot reload,
- * the generated slider panel, orbit camera, screenshots and scripts. */
+ * the generated slider panel, orbit camera, screenshots and scripts. The
+ * window loop is app.h's, shared with compare-view. */
 #ifndef TARN_VIEW_H
 #define TARN_VIEW_H
 

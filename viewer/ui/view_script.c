@@ -5,6 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "strbuf.h"
+#include "util.h"
+
 #define SCRIPT_LINE_MAX 512
 
 struct view_script {
@@ -12,12 +15,13 @@ struct view_script {
     char (*lines)[SCRIPT_LINE_MAX];
     int nlines, next;
     int wait_frames;
+    double wait_until;          /* clock_now_s() until which frames are drawn (0: none) */
     char arg[SCRIPT_LINE_MAX];
 };
 
 view_script *view_script_load(const char *path, char *err, int errlen) {
     FILE *f = fopen(path, "r");
-    if (!f) { snprintf(err, errlen, "%s: cannot open the script", path); return NULL; }
+    if (!f) { msg_set(err, (size_t)errlen, "%s: cannot open the script", path); return NULL; }
     view_script *s = calloc(1, sizeof *s);
     if (!s) { fclose(f); return NULL; }
     snprintf(s->path, sizeof s->path, "%s", path);
@@ -105,6 +109,7 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
     if (sscanf(text, "%31s %n", cmd, &used) < 1) return VIEW_SCRIPT_CONTINUE;   /* blank */
     char *rest = text + used;
     if (strcmp(cmd, "frames") == 0) { s->wait_frames = atoi(rest); return VIEW_SCRIPT_CONTINUE; }
+    if (strcmp(cmd, "wait") == 0) { s->wait_until = clock_now_s() + atof(rest); return VIEW_SCRIPT_CONTINUE; }
     if (strcmp(cmd, "time") == 0) { *c->time_s = atof(rest); return VIEW_SCRIPT_CONTINUE; }
     if (strcmp(cmd, "set") == 0) return value_action(s, c, false, rest, line);
     if (strcmp(cmd, "expect") == 0) return value_action(s, c, true, rest, line);
@@ -122,12 +127,16 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
 
 view_script_status view_script_step(view_script *s, view_script_ctx *c) {
     if (s->wait_frames > 0) { s->wait_frames--; return VIEW_SCRIPT_CONTINUE; }
+    if (s->wait_until > 0) {
+        if (clock_now_s() < s->wait_until) return VIEW_SCRIPT_CONTINUE;
+        s->wait_until = 0;
+    }
     while (s->next < s->nlines) {
         int line = s->next + 1;
         char text[SCRIPT_LINE_MAX];
         memcpy(text, s->lines[s->next++], sizeof text);
         view_script_status st = run_line(s, c, text, line);
-        if (st != VIEW_SCRIPT_CONTINUE || s->wait_frames > 0) return st;
+        if (st != VIEW_SCRIPT_CONTINUE || s->wait_frames > 0 || s->wait_until > 0) return st;
     }
     return VIEW_SCRIPT_DONE;
 }

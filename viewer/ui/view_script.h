@@ -1,6 +1,8 @@
 /* view_script: scripted actions for the interactive window, so tests and
  * demos can drive `tarn view --script FILE` under Xvfb. One action a line:
  *   frames N                      draw N frames
+ *   wait SECONDS                  draw frames for this long (wall time: a test
+ *                                 changes files meanwhile)
  *   time T                        set the simulated time (seconds)
  *   set PROGRAM UNIFORM v...      what moving that slider does
  *   expect PROGRAM UNIFORM v...   the linked GL program holds these values (±1e-5)

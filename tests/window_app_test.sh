@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# The one window loop (viewer/ui/app.c) behind `tarn view` and `tarn
+# compare-view`, under Xvfb, through both commands:
+#   - hot reload survives a dependency in a directory that does not exist
+#     yet: the scene names later/grey.frag, the test makes the folder and
+#     the file while the window runs, and the program links (the script's
+#     expects hold) without a restart;
+#   - a lost context ends the window with exit 3 and the message.
+set -u
+bin=$1; src=$2
+command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
+fail() { echo "FAIL: $*"; exit 1; }
+scratch=$PWD/window-app-test
+rm -rf "$scratch" && mkdir -p "$scratch" || fail "no scratch directory"
+# our own X authority file: xvfb-run's temporary folder for one sometimes
+# fails to be removed here (its exit 5 hides the program's exit status)
+xvfb() { xvfb-run -a -f "$scratch/Xauthority" -s "-screen 0 1280x800x24" "$@"; }
+cp "$src/tests/data/window/grey.vert" "$scratch/" || fail "no fixture"
+sed 's#^Fragment grey.frag#Fragment later/grey.frag#' "$src/tests/data/window/scene.glib" > "$scratch/scene.glib"
+grep -q "^Fragment later/grey.frag" "$scratch/scene.glib" || fail "the scene does not name later/grey.frag"
+cat > "$scratch/rewatch.script" <<'SCRIPT'
+frames 2
+wait 5                     # the test makes later/grey.frag meanwhile
+expect Flat uGrey 0.25     # the program linked: the new file was loaded
+quit
+SCRIPT
+
+# $1: the name in messages; the rest: the command line.
+missing_dir() {
+    local name=$1; shift
+    local log=$scratch/$name.log
+    rm -rf "$scratch/later" "$log"
+    # once the window has reported the missing file and started watching
+    # (a second later; the script waits 5), make the folder and the file
+    (for _ in $(seq 300); do grep -q "cannot open 'later/grey.frag'" "$log" 2>/dev/null && break; sleep 0.1; done
+     sleep 1
+     mkdir "$scratch/later" && cp "$src/tests/data/window/grey.frag" "$scratch/later/") &
+    local maker=$!
+    (cd "$scratch" && xvfb "$@" --script rewatch.script >"$log" 2>&1)
+    local rc=$?
+    wait "$maker"
+    cat "$log"
+    # the first load failed, so a scripted run ends with exit 1 even when
+    # the script's expects hold; a failed expect also exits 1, hence the log
+    [ "$rc" -eq 1 ] || fail "$name exited $rc"
+    grep -q "watching files" "$log" && fail "$name: the watcher refused the files"
+    [ "$(grep -c 'Flat.uGrey holds the expected value' "$log")" -eq 1 ] ||
+        fail "$name: no reload after the folder appeared"
+}
+missing_dir view "$bin" view scene.glib
+missing_dir compare-view "$bin" compare-view scene.glib --packs basic,basic --size 320x240
+
+printf 'frames 20\nquit\n' > "$scratch/frames.script"
+# $1: the name in messages; the rest: the command line.
+lost_context() {
+    local name=$1; shift
+    local log=$scratch/$name-lost.log
+    (cd "$scratch" && TARN_SIMULATE_CONTEXT_LOSS=2 xvfb "$@" --script frames.script >"$log" 2>&1)
+    local rc=$?
+    cat "$log"
+    [ "$rc" -eq 3 ] || fail "$name: a lost context exited $rc, not 3"
+    grep -q "the OpenGL context was lost" "$log" || fail "$name: no message for the lost context"
+}
+cp "$src/tests/data/window/grey.frag" "$scratch/grey.frag"
+sed 's#^Fragment later/grey.frag#Fragment grey.frag#' "$scratch/scene.glib" > "$scratch/lost.glib"
+lost_context view "$bin" view lost.glib
+lost_context compare-view "$bin" compare-view lost.glib --packs basic,basic --size 320x240
+echo "window app test: ok"

@@ -1,0 +1,268 @@
+/* app: the window app loop shared by `tarn view` and `tarn compare-view`
+ * (see app.h). */
+#include "app.h"
+
+#include <GL/gl.h>
+#include <GLFW/glfw3.h>
+#include <assert.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "exit_code.h"
+#include "file.h"
+#include "util.h"
+#include "watch.h"
+
+struct app {
+    app_desc d;                  /* defaults filled in */
+    gl_ctx *ctx;
+    GLFWwindow *win;
+    panel *panel;
+    watch *watch;
+    app_state s;
+    double last_wall;
+    int shots;
+    render *const *scenes;
+    int nscenes;
+    int unwatched;               /* dependencies skipped: their directory is missing */
+    double next_retry;           /* clock_now_s() when to look for them again */
+    view_script_ctx *sc;         /* while a script step runs */
+    int script_scene;
+};
+
+/* ---- watching ---- */
+
+static bool dir_exists(const char *path) {
+    char dir[4096];
+    file_dirname(path, dir, sizeof dir);
+    return file_is_dir(dir);
+}
+
+/* Every scene's dependencies (the watcher merges duplicates); the caller
+ * frees the array, not the paths. */
+static const char **all_deps(const app *a, int *n) {
+    const char **all = NULL;
+    *n = 0;
+    for (int i = 0; i < a->nscenes; i++) {
+        const char *const *paths;
+        int k = render_deps(a->scenes[i], &paths);
+        const char **grown = realloc(all, (size_t)(*n + k + 1) * sizeof *grown);
+        if (!grown) break;
+        all = grown;
+        for (int j = 0; j < k; j++) all[(*n)++] = paths[j];
+    }
+    return all;
+}
+
+static int count_missing_dirs(const char **paths, int n) {
+    int missing = 0;
+    for (int i = 0; i < n; i++) missing += !dir_exists(paths[i]);
+    return missing;
+}
+
+void app_rewatch(app *a) {
+    if (!a->watch) return;
+    int n;
+    const char **all = all_deps(a, &n);
+    char err[512];
+    a->unwatched = 0;
+    if (!all || !watch_set_files(a->watch, all, n, err, sizeof err)) {
+        /* one path in a missing directory fails the whole set: watch the rest */
+        int nok = 0;
+        for (int i = 0; all && i < n; i++)
+            if (dir_exists(all[i])) all[nok++] = all[i];
+        a->unwatched = n - nok;
+        if (!all || !watch_set_files(a->watch, all, nok, err, sizeof err))
+            fprintf(stderr, "%s: watching files: %s\n", a->d.name, err);
+    }
+    a->next_retry = clock_now_s() + APP_RETRY_S;
+    free(all);
+}
+
+static void reload(app *a) {
+    a->d.reload(a->d.user, a);
+    app_rewatch(a);
+}
+
+/* A skipped dependency whose directory has appeared: its file may be
+ * there now, and from now it can be watched. */
+static bool missing_dir_appeared(app *a) {
+    if (a->unwatched == 0 || clock_now_s() < a->next_retry) return false;
+    a->next_retry = clock_now_s() + APP_RETRY_S;
+    int n;
+    const char **all = all_deps(a, &n);
+    bool appeared = all && count_missing_dirs(all, n) < a->unwatched;
+    free(all);
+    return appeared;
+}
+
+/* ---- actions, input ---- */
+
+void app_screenshot(app *a) {
+    char path[128];
+    view_shot_path(a->shots++, path, sizeof path);
+    view_screenshot(a->win, path);
+}
+
+static void apply_common(app *a, const panel_actions *c) {
+    if (c->reload) reload(a);
+    if (c->toggle_pause) a->s.paused = !a->s.paused;
+    if (c->screenshot) app_screenshot(a);
+}
+
+static void on_scroll(GLFWwindow *w, double dx, double dy) {
+    app *a = glfwGetWindowUserPointer(w);
+    if (!a->panel || !panel_wants_mouse(a->panel)) a->s.mouse.scroll += dy;
+}
+
+static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
+    app *a = glfwGetWindowUserPointer(w);
+    if (action != GLFW_PRESS || !a->panel || panel_wants_keyboard(a->panel)) return;
+    switch (key) {
+    case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
+    case GLFW_KEY_R: reload(a); break;
+    case GLFW_KEY_SPACE: a->s.paused = !a->s.paused; break;
+    case GLFW_KEY_P: case GLFW_KEY_F12: app_screenshot(a); break;
+    case GLFW_KEY_HOME: case GLFW_KEY_F: a->s.cam = a->s.cam_home; break;
+    default:
+        if (a->d.key) a->d.key(a->d.user, a, key);
+        break;
+    }
+}
+
+/* ---- the loop ---- */
+
+static void frame(app *a, bool scripted) {
+    double now = glfwGetTime(), dt = now - a->last_wall;
+    a->last_wall = now;
+    if (dt > 0) a->s.fps = a->s.fps * 0.9 + 0.1 / dt;
+    if (!a->s.paused && !scripted) a->s.t += dt;
+    if (a->watch && (watch_poll(a->watch, 0) > 0 || missing_dir_appeared(a))) reload(a);
+    if (a->d.mouse) a->d.mouse(a->d.user, a);
+    else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel), &a->s.cam);
+    a->d.draw(a->d.user, a);
+    panel_actions common;
+    memset(&common, 0, sizeof common);
+    panel_begin_frame(a->panel);
+    a->d.panel(a->d.user, a, &common);
+    panel_render(a->panel);
+    if (a->d.apply) a->d.apply(a->d.user, a);
+    apply_common(a, &common);
+}
+
+/* One script step after a frame; returns the exit code it calls for. */
+static int script_step(app *a, view_script *script) {
+    view_script_ctx sc = { .r = a->scenes[a->script_scene], .time_s = &a->s.t,
+                           .custom = a->d.script_action, .user = a->d.user };
+    a->sc = &sc;
+    view_script_status st = view_script_step(script, &sc);
+    a->sc = NULL;
+    if (st == VIEW_SCRIPT_SCREENSHOT) {
+        /* the frame as it is now, drawn again with what the step changed */
+        frame(a, true);
+        view_screenshot(a->win, view_script_arg(script));
+    }
+    if (st == VIEW_SCRIPT_RELOAD) reload(a);
+    if (st == VIEW_SCRIPT_REBUILD) render_rebuild_programs(a->scenes[a->script_scene]);
+    if (st == VIEW_SCRIPT_DONE || st == VIEW_SCRIPT_FAILED) glfwSetWindowShouldClose(a->win, 1);
+    return st == VIEW_SCRIPT_FAILED ? TARN_EXIT_INPUT : TARN_EXIT_OK;
+}
+
+static void start_watching(app *a) {
+    char err[512];
+    a->watch = watch_create(err, sizeof err);
+    if (!a->watch) fprintf(stderr, "%s: hot reload is off: %s\n", a->d.name, err);
+    app_rewatch(a);
+}
+
+int app_run(app *a, render *const *scenes, int n) {
+    assert(n > 0 && a->d.draw && a->d.panel && a->d.reload);
+    a->scenes = scenes;
+    a->nscenes = n;
+    view_script *script = NULL;
+    if (a->d.script) {
+        char err[512];
+        script = view_script_load(a->d.script, err, sizeof err);
+        if (!script) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_USAGE; }
+    }
+    start_watching(a);
+    a->s.t = a->d.time_s;
+    a->last_wall = glfwGetTime();
+    int rc = TARN_EXIT_OK;
+    while (!glfwWindowShouldClose(a->win)) {
+        glfwPollEvents();
+        frame(a, script != NULL);
+        char lost[1024];
+        if (gl_ctx_lost(a->ctx, lost, sizeof lost)) {
+            fprintf(stderr, "%s: %s\n", a->d.name, lost);
+            rc = TARN_EXIT_NO_GL;
+            break;
+        }
+        if (script && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
+        glfwSwapBuffers(a->win);
+    }
+    view_script_free(script);
+    return rc;
+}
+
+/* ---- creating ---- */
+
+static app_desc with_defaults(const app_desc *d) {
+    app_desc r = *d;
+    if (!r.name) r.name = "tarn";
+    if (r.width <= 0) r.width = 1000;
+    if (r.height <= 0) r.height = 700;
+    return r;
+}
+
+app *app_create(const app_desc *desc) {
+    app *a = calloc(1, sizeof *a);
+    if (!a) return NULL;
+    a->d = with_defaults(desc);
+    char err[1024];
+    a->ctx = gl_ctx_create_window(a->d.width, a->d.height, a->d.name, err, sizeof err);
+    if (!a->ctx) {
+        fprintf(stderr, "%s: %s\n", a->d.name, err);
+        free(a);
+        return NULL;
+    }
+    a->win = gl_ctx_window(a->ctx);
+    glfwSetWindowUserPointer(a->win, a);
+    char title[1200];
+    if (a->d.scene_path) snprintf(title, sizeof title, "%s — %s", a->d.name, a->d.scene_path);
+    else snprintf(title, sizeof title, "%s", a->d.name);
+    glfwSetWindowTitle(a->win, title);
+    /* ours first: the ImGui backend chains to callbacks installed before it */
+    glfwSetScrollCallback(a->win, on_scroll);
+    glfwSetKeyCallback(a->win, on_key);
+    a->panel = panel_create(a->win, "#version 130");
+    return a;
+}
+
+void app_destroy(app *a) {
+    if (!a) return;
+    watch_destroy(a->watch);
+    panel_destroy(a->panel);
+    gl_ctx_destroy(a->ctx);
+    free(a);
+}
+
+/* ---- small things ---- */
+
+void app_fit_window(app *a, int w, int h) { glfwSetWindowSize(a->win, w + APP_PANEL_WIDTH, h); }
+
+void app_home(app *a, render_view v) { a->s.cam = a->s.cam_home = orbit_from_view(v); }
+
+void app_script_use(app *a, int i) {
+    assert(i >= 0 && i < a->nscenes);
+    a->script_scene = i;
+    if (a->sc) a->sc->r = a->scenes[i];
+}
+
+app_state *app_get_state(app *a) { return &a->s; }
+void *app_window(app *a) { return a->win; }
+gl_ctx *app_gl(app *a) { return a->ctx; }
+panel *app_panel(app *a) { return a->panel; }
+
+int app_scene_x(int fb_w) { return fb_w > APP_PANEL_WIDTH + 160 ? APP_PANEL_WIDTH : 0; }

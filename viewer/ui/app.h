@@ -1,0 +1,116 @@
+/* app: the one window app loop behind `tarn view` and `tarn compare-view`.
+ *
+ * The app owns the window (gl_ctx + GLFW), the slider panel's frame, the
+ * file watcher, the orbit camera and its mouse, the simulated clock, the
+ * screenshot key, the --script stepping and the lost-context check. A
+ * client (view.c, compare_view.c) owns its scenes and says what differs
+ * through the hooks of app_desc. Use:
+ *
+ *     app *a = app_create(&desc);        the window, its callbacks, the panel
+ *     ... create and load the scenes (they need the context) ...
+ *     app_fit_window(a, w, h);           optional: a scene area of w x h
+ *     app_home(a, render_default_view(r));
+ *     int rc = app_run(a, scenes, n);    until closed, the script quits or
+ *                                        the context is lost
+ *     ... free the scenes ...
+ *     app_destroy(a);
+ *
+ * Each frame: poll events; advance the clock (not while paused or
+ * scripted); reload on a watched file's change (hooks.reload, then
+ * rewatch); the mouse (hooks.mouse, or the orbit camera's); hooks.draw;
+ * the panel frame around hooks.panel; the panel's common actions, then
+ * hooks.apply; the lost-context check (exit TARN_EXIT_NO_GL with the
+ * message); one script step; swap.
+ *
+ * Watching: the union of the scenes' render_deps. A dependency in a
+ * directory that does not exist (a typo, a folder not made yet) cannot be
+ * watched; the rest are watched rather than nothing, and every
+ * APP_RETRY_S the app looks whether such a directory has appeared, and if
+ * so reloads (which watches it from then on).
+ *
+ * Keys the app handles (unless the panel has the keyboard): Esc/Q quit,
+ * R reload, Space pause, P/F12 screenshot, F/Home reset the camera; others
+ * go to hooks.key. */
+#ifndef TARN_APP_H
+#define TARN_APP_H
+
+#include <stdbool.h>
+
+#include "gl_ctx.h"
+#include "panel.h"
+#include "render.h"
+#include "view_script.h"
+#include "view_util.h"
+
+#define APP_PANEL_WIDTH 440   /* the slider panel's column, left of the scene */
+#define APP_RETRY_S 0.25      /* how often a missing directory is looked for again */
+
+typedef struct app app;
+
+/* What clients read and change between frames. */
+typedef struct app_state {
+    orbit cam, cam_home;         /* the camera, and where F/Home puts it back */
+    view_mouse mouse;            /* a client's own mouse hook drives it too */
+    double t;                    /* simulated time, seconds */
+    double fps;                  /* smoothed */
+    bool paused;
+} app_state;
+
+/* Zero means default in every field; user is passed to every hook. */
+typedef struct app_desc {
+    const char *name;            /* message prefix and title: 0: "tarn" */
+    const char *scene_path;      /* the title's "name — scene_path"; 0: the name alone */
+    int width, height;           /* the window at creation (0: 1000 x 700) */
+    double time_s;               /* the clock's start */
+    const char *script;          /* a view_script file (0: interactive) */
+    void *user;
+    /* Draws the scene(s) into the default framebuffer. Required. */
+    void (*draw)(void *user, app *a);
+    /* The panel's widgets (inside the panel frame); the buttons the app
+     * acts on go in *common, the client keeps its own. Required. */
+    void (*panel)(void *user, app *a, panel_actions *common);
+    /* After the panel is drawn: the client's own panel actions. */
+    void (*apply)(void *user, app *a);
+    /* Loads every scene again from disk and reports; the app rewatches
+     * after. Required. */
+    void (*reload)(void *user, app *a);
+    /* This frame's mouse (0: the orbit camera's, outside the panel). */
+    void (*mouse)(void *user, app *a);
+    /* A key press the app does not handle (GLFW_KEY_*). */
+    void (*key)(void *user, app *a, int key);
+    /* Script actions of the client's own (view_script_ctx.custom). */
+    view_script_status (*script_action)(void *user, const char *cmd, char *rest, const char *file, int line);
+} app_desc;
+
+/* The window, its key and scroll callbacks and the panel; NULL, with the
+ * message on stderr, when there is no window (exit TARN_EXIT_NO_GL). */
+app *app_create(const app_desc *d);
+void app_destroy(app *a);        /* NULL is fine */
+
+/* Runs the loop over scenes[0..n-1] (watched; script set/expect/rebuild
+ * act on scenes[0] until app_script_use). Returns a tarn_exit_code:
+ * TARN_EXIT_USAGE for an unreadable script, TARN_EXIT_INPUT when it
+ * fails, TARN_EXIT_NO_GL when the context was lost. */
+int app_run(app *a, render *const *scenes, int n);
+
+/* The window's size for a scene area of w x h with the panel beside it. */
+void app_fit_window(app *a, int w, int h);
+/* The camera and F/Home's camera. */
+void app_home(app *a, render_view v);
+/* The scene that script set/expect/rebuild act on from now (compare-view's `pack N`). */
+void app_script_use(app *a, int i);
+/* Watches the scenes' files again (after a rebuild that may read others). */
+void app_rewatch(app *a);
+/* Writes the window's image to the next tarn-DATE-N.png. */
+void app_screenshot(app *a);
+
+app_state *app_get_state(app *a);
+void *app_window(app *a);        /* the GLFWwindow* */
+gl_ctx *app_gl(app *a);
+panel *app_panel(app *a);
+
+/* The scene area's left edge in a framebuffer w pixels wide: right of the
+ * panel when the window has room for both, else 0. */
+int app_scene_x(int fb_w);
+
+#endif
