@@ -18,7 +18,7 @@ static const char usage[] =
     "  --size WxH       window size of the scene (default: the glib's WindowSize)\n"
     "  --time SECONDS   start at this simulated time\n"
     "  --script FILE    run scripted actions (frames N, set P U v, expect P U v,\n"
-    "                   screenshot PATH, reload, quit), then exit\n"
+    "                   wait SECONDS, screenshot PATH, reload, quit), then exit\n"
     "\n"
     "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
     "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
