@@ -19,15 +19,14 @@
 
 #define MATRIX_STACK_MAX 30   /* GL guarantees 32 modelview entries */
 
-/* What a glib says about viewing and time (the last command of each wins). */
+/* What a glib says about viewing and time (the last command of each wins);
+ * the viewing commands are read by the scene layer (scene_camera_from_glib),
+ * the one reader the reference uses too. */
 typedef struct scene_settings {
-    int win_w, win_h;
+    scene_camera cam;
     double timer_s;
     float background[4];
-    bool ortho;
-    double fov, near_z, far_z;
-    double ortho_lrbt[4];
-    render_view view;
+    render_view view;        /* cam's LookAt, as the renderer takes it */
 } scene_settings;
 
 /* Everything built from one parse of the glib. */
@@ -111,49 +110,32 @@ void render_destroy(render *r) {
 
 /* ---- settings ---- */
 
+static render_view view_of(const scene_camera *cam) {
+    render_view v;
+    for (int k = 0; k < 3; k++) {
+        v.eye[k] = (float)cam->eye[k];
+        v.center[k] = (float)cam->center[k];
+        v.up[k] = (float)cam->up[k];
+    }
+    return v;
+}
+
 static void settings_default(scene_settings *s) {
     memset(s, 0, sizeof *s);
-    s->win_w = 800;
-    s->win_h = 600;
+    scene_camera_from_glib(NULL, &s->cam);
     s->timer_s = 10.0;
     s->background[3] = 1.0f;
-    s->fov = 50.0;
-    s->near_z = 0.1;
-    s->far_z = 1000.0;
-    s->view = (render_view){ {0, 0, 3}, {0, 0, 0}, {0, 1, 0} };
+    s->view = view_of(&s->cam);
 }
 
 static void settings_from_glib(scene_settings *s, const glib_scene *g) {
     settings_default(s);
+    scene_camera_from_glib(g, &s->cam);
+    s->view = view_of(&s->cam);
     bool have_background = false;
     for (int i = 0; i < g->ncmds; i++) {
         const glib_cmd *c = &g->cmds[i];
         switch (c->kind) {
-        case GLIB_CMD_WINDOW_SIZE:
-            if (c->nnum >= 2 && c->num[0] >= 16 && c->num[1] >= 16 && c->num[0] <= 8192 && c->num[1] <= 8192) {
-                s->win_w = (int)c->num[0];
-                s->win_h = (int)c->num[1];
-            }
-            break;
-        case GLIB_CMD_PERSPECTIVE:
-            s->ortho = false;
-            if (c->nnum >= 1 && c->num[0] > 0 && c->num[0] < 180) s->fov = c->num[0];
-            if (c->nnum >= 3 && c->num[1] > 0 && c->num[2] > c->num[1]) { s->near_z = c->num[1]; s->far_z = c->num[2]; }
-            break;
-        case GLIB_CMD_ORTHO:
-            if (c->nnum >= 4) {
-                s->ortho = true;
-                memcpy(s->ortho_lrbt, c->num, sizeof s->ortho_lrbt);
-            }
-            break;
-        case GLIB_CMD_LOOKAT:
-            if (c->nnum >= 9)
-                for (int k = 0; k < 3; k++) {
-                    s->view.eye[k] = (float)c->num[k];
-                    s->view.center[k] = (float)c->num[3 + k];
-                    s->view.up[k] = (float)c->num[6 + k];
-                }
-            break;
         case GLIB_CMD_TIMER:
             if (c->nnum >= 1 && c->num[0] > 0) s->timer_s = c->num[0];
             break;
@@ -524,8 +506,10 @@ unif_set *render_uniforms(render *r, int *nsets) {
 
 void render_window_size(const render *r, int *w, int *h) {
     const scene_settings *s = &r->cur.set;
-    *w = r->cur.glib ? s->win_w : 800;
-    *h = r->cur.glib ? s->win_h : 600;
+    scene_camera def;
+    scene_camera_from_glib(NULL, &def);
+    *w = r->cur.glib ? s->cam.width : def.width;
+    *h = r->cur.glib ? s->cam.height : def.height;
 }
 
 render_view render_default_view(const render *r) {
@@ -570,10 +554,11 @@ static float camera_scale(const scene_state *s, int ci) {
 static void camera_inputs(const render *r, const render_view *v, int w, int h, cam_inputs *out) {
     const scene_state *s = &r->cur;
     const scene_settings *set = &s->set;
-    cam_inputs in = { .view = *v, .fov_deg = set->fov, .near_z = set->near_z, .far_z = set->far_z,
-                      .ortho = set->ortho, .aspect = h > 0 ? (float)w / (float)h : 1.0f,
+    const scene_camera *sc = &set->cam;
+    cam_inputs in = { .view = *v, .fov_deg = sc->fov_deg, .near_z = sc->near_z, .far_z = sc->far_z,
+                      .ortho = sc->ortho, .aspect = h > 0 ? (float)w / (float)h : 1.0f,
                       .level = 0, .half_size = 12, .depth = 3, .sun_dir = { 0, 1, 0 } };
-    memcpy(in.ortho_lrbt, set->ortho_lrbt, sizeof in.ortho_lrbt);
+    memcpy(in.ortho_lrbt, sc->ortho_lrbt, sizeof in.ortho_lrbt);
     for (int k = 0; k < CAM_COUNT; k++) in.fov_scale[k] = 1.0f;
     if (r->world.active) {
         const ref_world_desc *d = &r->world.w.d;
