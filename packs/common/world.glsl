@@ -12,7 +12,8 @@ uniform vec3 uSunIrradiance;
 uniform vec3 uAmbient;         // sky ambient radiance
 uniform vec3 uAbsorption;      // Beer-Lambert sigma per metre
 uniform float uIOR;
-#ifndef WAVES_GLSL   // waves.glsl declares it too; include either first
+#ifndef TARN_UWATERLEVEL   // waves.glsl declares it too: either may be included first
+#define TARN_UWATERLEVEL
 uniform float uWaterLevel;
 #endif
 
