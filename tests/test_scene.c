@@ -1,6 +1,7 @@
 /* test_scene: the world and camera a .glib describes (viewer/scene/scene.c), and
  * scenes/lake.glib against ref_world_desc_lake(). */
 #include "check.h"
+#include "program.h"
 #include "scene.h"
 
 #include <stdbool.h>
@@ -417,6 +418,39 @@ static void test_viewing_reader(void)
     CHECK(cam.width == 800 && cam.height == 600 && !cam.ortho && cam.fov_deg == 50);
 }
 
+/* The stage state each Program takes (program.h, shared by the renderer
+ * and validate): the stages named so far, a bare stage command unsets one,
+ * GSTAP stays on. */
+static void test_program_stages(void)
+{
+    glib_scene *g = parse("##OpenGL GLIB\nVertex a.vert\nFragment b.frag\nProgram A\n"
+                          "Vertex\nGSTAP\nGeometry g.geom\nProgram B\n");
+    program_stages st;
+    program_stages_init(&st);
+    int seen = 0;
+    for (int i = 0; i < g->ncmds; i++) {
+        const glib_cmd *c = &g->cmds[i];
+        if (c->kind != GLIB_CMD_PROGRAM) {
+            program_stages_step(&st, c);
+            continue;
+        }
+        shader_stage list[SHADER_STAGE_COUNT];
+        int n = program_stage_list(&st, list);
+        if (seen++ == 0) {
+            CHECK(n == 2 && list[0] == SHADER_VERTEX && list[1] == SHADER_FRAGMENT && !st.gstap);
+            CHECK_STR_CONTAINS(program_stage_path(&st, SHADER_VERTEX), "a.vert");
+        } else {
+            CHECK(n == 2 && list[0] == SHADER_GEOMETRY && list[1] == SHADER_FRAGMENT && st.gstap);
+            CHECK(program_stage_path(&st, SHADER_VERTEX)[0] == '\0');
+            shader_src_desc d = program_stage_desc(&st, SHADER_GEOMETRY, NULL, 0, NULL, 0);
+            CHECK(d.gstap && d.stage == SHADER_GEOMETRY && strstr(d.path, "g.geom"));
+        }
+    }
+    CHECK(seen == 2);
+    CHECK(program_stage_of(GLIB_CMD_PROGRAM) == SHADER_STAGE_COUNT);
+    glib_free(g);
+}
+
 int main(void)
 {
     RUN(test_each_command);
@@ -426,6 +460,7 @@ int main(void)
     RUN(test_camera);
     RUN(test_plain_glman_scene_has_no_world);
     RUN(test_viewing_reader);
+    RUN(test_program_stages);
     RUN(test_lake_matches_reference);
     RUN(test_scene_load);
     return check_summary();

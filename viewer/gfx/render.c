@@ -11,6 +11,7 @@
 
 #include "glib.h"
 #include "gpu_timer.h"
+#include "program.h"
 #include "render_camera.h"
 #include "render_prog.h"
 #include "render_res.h"
@@ -241,13 +242,8 @@ static prog *find_old_prog(scene_state *old, const char *name) {
     return NULL;
 }
 
-typedef struct stage_state {
-    char path[SHADER_STAGE_COUNT][GLIB_PATH_MAX];
-    bool gstap;
-} stage_state;
-
 static void build_prog(render *r, scene_state *s, scene_state *old, const glib_cmd *c,
-                       const stage_state *st, int ci, char **log) {
+                       const program_stages *st, int ci, char **log) {
     prog *p = &s->progs[s->nprogs];
     memset(p, 0, sizeof *p);
     p->unifs = &s->unifs[s->nprogs];
@@ -256,7 +252,8 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->gstap = st->gstap;
     p->world_uniforms = r->world.active;
     p->scene = s->glib;
-    memcpy(p->stage_path, st->path, sizeof p->stage_path);
+    for (int k = 0; k < SHADER_STAGE_COUNT; k++)
+        snprintf(p->stage_path[k], sizeof p->stage_path[k], "%s", program_stage_path(st, (shader_stage)k));
     char err[512] = "";
     if (!glib_unif_set(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
     snprintf(p->unifs->program, sizeof p->unifs->program, "%s", c->name);
@@ -273,18 +270,6 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     prog_introspect(p, log);
     if (o) unif_merge(p->unifs, o->unifs);   /* now both carry shader types */
     s->cmd_res[ci] = s->nprogs++;
-}
-
-static void stage_set(stage_state *st, const glib_cmd *c) {
-    shader_stage which = SHADER_VERTEX;
-    switch (c->kind) {
-    case GLIB_CMD_VERTEX: which = SHADER_VERTEX; break;
-    case GLIB_CMD_TESS_CONTROL: which = SHADER_TESS_CONTROL; break;
-    case GLIB_CMD_TESS_EVALUATION: which = SHADER_TESS_EVALUATION; break;
-    case GLIB_CMD_GEOMETRY: which = SHADER_GEOMETRY; break;
-    default: which = SHADER_FRAGMENT; break;
-    }
-    snprintf(st->path[which], sizeof st->path[which], "%s", c->path);
 }
 
 /* If/EndIf must pair up; an unmatched one is reported and the renderer
@@ -382,16 +367,15 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs || !s->once_done) return false;
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
-    stage_state st;
-    memset(&st, 0, sizeof st);
+    program_stages st;
+    program_stages_init(&st);
     for (int i = 0; i < n; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
         s->cmd_res[i] = -1;
         if (res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
         else if (res_is_texture(c->kind)) build_tex(s, old, c, i, log);
         else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log);
-        else if (c->kind == GLIB_CMD_GSTAP) st.gstap = true;
-        else if (c->kind >= GLIB_CMD_VERTEX && c->kind <= GLIB_CMD_FRAGMENT) stage_set(&st, c);
+        else program_stages_step(&st, c);
     }
     settings_from_glib(&s->set, s->glib);
     check_if_nesting(s->glib, log);
