@@ -17,6 +17,7 @@
 #include "render_res.h"
 #include "render_world.h"
 #include "scene.h"
+#include "strbuf.h"
 
 #define MATRIX_STACK_MAX 30   /* GL guarantees 32 modelview entries */
 
@@ -156,8 +157,8 @@ static void settings_from_glib(scene_settings *s, const glib_scene *g) {
 static void diags_to_log(const glib_scene *g, char **log) {
     for (int i = 0; i < g->ndiags; i++) {
         const glib_diag *d = &g->diags[i];
-        log_append(log, "%s:%d: %s: %s\n", d->file ? d->file : "?", d->line,
-                   d->severity == GLIB_ERROR ? "error" : "warning", d->message);
+        str_appendf(log, "%s:%d: %s: %s\n", d->file ? d->file : "?", d->line,
+                    d->severity == GLIB_ERROR ? "error" : "warning", d->message);
     }
 }
 
@@ -183,7 +184,7 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
                 continue;   /* the key without its file stamp: same command, same file */
             *m = old->meshes[i];   /* with its own key: the next reload retries the file */
             memset(&old->meshes[i], 0, sizeof old->meshes[i]);
-            log_append(log, "%s:%d: note: keeping the last good mesh of '%s'\n", c->file, c->line, c->path);
+            str_appendf(log, "%s:%d: note: keeping the last good mesh of '%s'\n", c->file, c->line, c->path);
             break;
         }
     }
@@ -211,7 +212,7 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
             if (old->texs[i].tex && want[0] && strcmp(old->texs[i].path, want) == 0) {
                 *t = old->texs[i];
                 memset(&old->texs[i], 0, sizeof old->texs[i]);
-                log_append(log, "%s:%d: note: keeping the last good image of '%s'\n", c->file, c->line, want);
+                str_appendf(log, "%s:%d: note: keeping the last good image of '%s'\n", c->file, c->line, want);
                 break;
             }
         }
@@ -221,8 +222,8 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
         for (int i = 0; !t->tex && i < old->ntexs; i++) {
             const gpu_tex *o = &old->texs[i];
             if (!o->tex || o->render_target || o->unit != unit || o->target != target) continue;
-            log_append(log, "%s:%d: note: keeping the last good image of unit %d ('%s')\n", c->file, c->line,
-                       unit, o->path);
+            str_appendf(log, "%s:%d: note: keeping the last good image of unit %d ('%s')\n", c->file, c->line,
+                        unit, o->path);
             *t = old->texs[i];
             memset(&old->texs[i], 0, sizeof old->texs[i]);
         }
@@ -255,7 +256,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     for (int k = 0; k < SHADER_STAGE_COUNT; k++)
         snprintf(p->stage_path[k], sizeof p->stage_path[k], "%s", program_stage_path(st, (shader_stage)k));
     char err[512] = "";
-    if (!glib_unif_set(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
+    if (!glib_unif_set(p->unifs, c, err, sizeof err)) str_appendf(log, "%s\n", err);
     snprintf(p->unifs->program, sizeof p->unifs->program, "%s", c->name);
     prog *o = find_old_prog(old, p->name);
     if (o) {   /* the last good build and the user's values (defines first) */
@@ -281,12 +282,12 @@ static void check_if_nesting(const glib_scene *g, char **log) {
         const glib_cmd *c = &g->cmds[i];
         if (c->kind == GLIB_CMD_IF) { if (depth++ == 0) open_if = c; }
         else if (c->kind == GLIB_CMD_END_IF && --depth < 0) {
-            log_append(log, "%s:%d: error: EndIf without an If\n", c->file, c->line);
+            str_appendf(log, "%s:%d: error: EndIf without an If\n", c->file, c->line);
             depth = 0;
         }
     }
     if (depth > 0 && open_if)
-        log_append(log, "%s:%d: error: If without an EndIf (the block runs to the end)\n", open_if->file, open_if->line);
+        str_appendf(log, "%s:%d: error: If without an EndIf (the block runs to the end)\n", open_if->file, open_if->line);
 }
 
 /* The current value of the uniform `name` of the first Program that has
@@ -349,9 +350,9 @@ static void check_named_counts(const scene_state *s, char **log) {
             float v;
             if (!names[k] || !names[k][0] || (k == 1 && strcmp(names[1], names[0]) == 0)) continue;
             if (!program_value(s, names[k], &v))
-                log_append(log, "%s:%d: warning: %s: no Program of this glib has a uniform '%s' to give "
-                           "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)\n",
-                           c->file, c->line, glib_cmd_name(c->kind), names[k], NAMED_SIZE_FALLBACK, names[k]);
+                str_appendf(log, "%s:%d: warning: %s: no Program of this glib has a uniform '%s' to give "
+                            "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)\n",
+                            c->file, c->line, glib_cmd_name(c->kind), names[k], NAMED_SIZE_FALLBACK, names[k]);
         }
     }
 }
@@ -418,7 +419,7 @@ static void build_world(render *r, const glib_scene *g, char **log) {
     scene_camera cam;
     bool has_world = false;
     char err[1024] = "";
-    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) log_append(log, "%s\n", err);
+    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) str_appendf(log, "%s\n", err);
     if (has_world) world_build(&r->world, &desc, (const char *const *)r->include_dirs, r->common_dir, log);
     else world_free(&r->world);
 }
@@ -431,7 +432,7 @@ bool render_load(render *r, const char *glib_path) {
     diags_to_log(g, &log);
     if (g->nerrors > 0 && r->cur.glib) {
         /* a half-written glib: keep everything that is on screen */
-        log_append(&log, "%s: the scene has errors; keeping the last good scene\n", r->path);
+        str_appendf(&log, "%s: the scene has errors; keeping the last good scene\n", r->path);
         collect_deps(r, g, &r->cur);
         glib_free(g);
         free(r->messages);
