@@ -12,6 +12,7 @@
 #include "support.h"
 #include "gl_ctx.h"
 #include "render.h"
+#include "scene.h"
 #include "watch.h"
 #include <time.h>
 
@@ -432,6 +433,30 @@ static void test_no_gl_errors(void) {
     render_destroy(r);
 }
 
+/* A plain glman scene: an If block does not make it a world (no terrain,
+ * no sky, no sRGB output), and its WindowSize is what `render` writes by
+ * default and what `reference` reads (one reader, scene_camera_from_glib;
+ * render.c once refused sizes under 16 and drew 800x600). */
+static void test_plain_scene_viewing_and_no_world(void) {
+    scratch_write("plain.glib", "##OpenGL GLIB\nWindowSize 12 10\nOrtho -1 1 -1 1\n"
+                  "Define FOO <false>\nVertex flat.vert\nFragment flat.frag\n"
+                  "Program F uColor {0 1 0 1}\nIf FOO\nQuadXY 0 1\nEndIf\nQuadXY 0 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, scratch_path("plain.glib")), "%s", render_messages(r));
+    int w = 0, h = 0;
+    render_window_size(r, &w, &h);
+    CHECK_MSG(w == 12 && h == 10, "render's size %dx%d", w, h);
+    CHECK(!render_has_world(r));
+    render_destroy(r);
+    ref_world_desc d;
+    scene_camera cam;
+    bool has = true;
+    char err[512];
+    CHECK_MSG(scene_load(scratch_path("plain.glib"), NULL, &d, &cam, &has, err, sizeof err), "%s", err);
+    CHECK_MSG(cam.width == 12 && cam.height == 10, "the reference's size %dx%d", cam.width, cam.height);
+    CHECK(!has);
+}
+
 int main(void) {
     char err[512];
     ctx = gl_ctx_create_headless(err, sizeof err);
@@ -457,6 +482,7 @@ int main(void) {
     RUN(test_obj_geometry);
     RUN(test_save_is_seen_and_reloaded);
     RUN(test_no_gl_errors);
+    RUN(test_plain_scene_viewing_and_no_world);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

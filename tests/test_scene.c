@@ -1,6 +1,7 @@
 /* test_scene: the world and camera a .glib describes (viewer/scene/scene.c), and
  * scenes/lake.glib against ref_world_desc_lake(). */
 #include "check.h"
+#include "program.h"
 #include "scene.h"
 
 #include <stdbool.h>
@@ -132,8 +133,9 @@ static void test_defaults(void)
     CHECK(w.d.sun_dir[1] == 1);
     CHECK(w.waves.desc.level == 0.5 && w.waves.noctaves == REF_NOISE_DEFAULT_OCTAVES);
 
-    /* the drawing commands and Pack also say the glib has a world */
-    CHECK(world_of("##OpenGL GLIB\nWaterSurface\n", &d, &cam, &has, err, sizeof err) && has);
+    /* Pack says the glib has a world; the drawing commands do not (a pack
+     * draws with them; issue 12: an If block made a plain scene a world) */
+    CHECK(world_of("##OpenGL GLIB\nWaterSurface\n", &d, &cam, &has, err, sizeof err) && !has);
     CHECK(world_of("##OpenGL GLIB\nPack basic\n", &d, &cam, &has, err, sizeof err) && has);
     CHECK(zero_bytes(&d, sizeof d));
 
@@ -384,6 +386,71 @@ static void test_scene_load(void)
     CHECK(!has && cam.fov_deg == 50);
 }
 
+/* Only the commands that describe the world make one: an If block, a
+ * Camera, World or WaterSurface (what a pack draws with) do not. */
+static void test_plain_glman_scene_has_no_world(void)
+{
+    ref_world_desc d;
+    scene_camera cam;
+    bool has = true;
+    char err[256];
+    CHECK(world_of("##OpenGL GLIB\nDefine FOO <true>\nIf FOO\nSphere 1\nEndIf\n"
+                   "Camera main\nWorld all\nWaterSurface\nRenderToTextureOnce 5\nRenderToTexture\n",
+                   &d, &cam, &has, err, sizeof err));
+    CHECK(!has);
+    CHECK(world_of("##OpenGL GLIB\nIf FOO\nEndIf\nWaveSine 0 2 0.1\n", &d, &cam, &has, err, sizeof err));
+    CHECK(has);
+    CHECK(glib_cmd_describes_world(GLIB_CMD_SUN) && glib_cmd_describes_world(GLIB_CMD_PACK));
+    CHECK(!glib_cmd_describes_world(GLIB_CMD_IF) && !glib_cmd_describes_world(GLIB_CMD_SPLAT));
+}
+
+/* WindowSize, Perspective, Ortho and LookAt: the reader keeps small sizes
+ * and takes Ortho (render and reference use it both). */
+static void test_viewing_reader(void)
+{
+    glib_scene *g = parse("##OpenGL GLIB\nWindowSize 12 10\nPerspective 40\nOrtho -2 2 -1 1\n");
+    scene_camera cam;
+    scene_camera_from_glib(g, &cam);
+    glib_free(g);
+    CHECK(cam.width == 12 && cam.height == 10);
+    CHECK(cam.ortho && cam.ortho_lrbt[0] == -2 && cam.ortho_lrbt[3] == 1 && cam.fov_deg == 40);
+    scene_camera_from_glib(NULL, &cam);
+    CHECK(cam.width == 800 && cam.height == 600 && !cam.ortho && cam.fov_deg == 50);
+}
+
+/* The stage state each Program takes (program.h, shared by the renderer
+ * and validate): the stages named so far, a bare stage command unsets one,
+ * GSTAP stays on. */
+static void test_program_stages(void)
+{
+    glib_scene *g = parse("##OpenGL GLIB\nVertex a.vert\nFragment b.frag\nProgram A\n"
+                          "Vertex\nGSTAP\nGeometry g.geom\nProgram B\n");
+    program_stages st;
+    program_stages_init(&st);
+    int seen = 0;
+    for (int i = 0; i < g->ncmds; i++) {
+        const glib_cmd *c = &g->cmds[i];
+        if (c->kind != GLIB_CMD_PROGRAM) {
+            program_stages_step(&st, c);
+            continue;
+        }
+        shader_stage list[SHADER_STAGE_COUNT];
+        int n = program_stage_list(&st, list);
+        if (seen++ == 0) {
+            CHECK(n == 2 && list[0] == SHADER_VERTEX && list[1] == SHADER_FRAGMENT && !st.gstap);
+            CHECK_STR_CONTAINS(program_stage_path(&st, SHADER_VERTEX), "a.vert");
+        } else {
+            CHECK(n == 2 && list[0] == SHADER_GEOMETRY && list[1] == SHADER_FRAGMENT && st.gstap);
+            CHECK(program_stage_path(&st, SHADER_VERTEX)[0] == '\0');
+            shader_src_desc d = program_stage_desc(&st, SHADER_GEOMETRY, NULL, 0, NULL, 0);
+            CHECK(d.gstap && d.stage == SHADER_GEOMETRY && strstr(d.path, "g.geom"));
+        }
+    }
+    CHECK(seen == 2);
+    CHECK(program_stage_of(GLIB_CMD_PROGRAM) == SHADER_STAGE_COUNT);
+    glib_free(g);
+}
+
 int main(void)
 {
     RUN(test_each_command);
@@ -391,6 +458,9 @@ int main(void)
     RUN(test_repairs);
     RUN(test_limits);
     RUN(test_camera);
+    RUN(test_plain_glman_scene_has_no_world);
+    RUN(test_viewing_reader);
+    RUN(test_program_stages);
     RUN(test_lake_matches_reference);
     RUN(test_scene_load);
     return check_summary();

@@ -289,6 +289,20 @@ static void test_validate_stage_without_text(void) {
     shader_src_free(&s);
 }
 
+/* packs/common's world.glsl and waves.glsl both declare uWaterLevel: each
+ * may be included first (world then waves once failed with a redefinition). */
+static void test_world_and_waves_in_either_order(void) {
+    const char *orders[2] = { "world_then_waves.frag", "waves_then_world.frag" };
+    for (int i = 0; i < 2; i++) {
+        const char *paths[] = { shader_data(orders[i]) };
+        int rc = -1;
+        validate_result res;
+        char *out = run_validate(paths, 1, TARN_SOURCE_DIR, &rc, &res);
+        CHECK_MSG(rc == 0 && res.nerrors == 0, "%s: %s", orders[i], out ? out : "");
+        free(out);
+    }
+}
+
 int main(void) {
     snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_validate_XXXXXX");
     if (!mkdtemp(g_tmp)) { perror("mkdtemp"); return 1; }
@@ -306,6 +320,7 @@ int main(void) {
     RUN(test_too_many_toggles_are_capped);
     RUN(test_define_slider_values_are_validated);
     RUN(test_validate_stage_without_text);
+    RUN(test_world_and_waves_in_either_order);
     char cmd[320];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmp);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_tmp);

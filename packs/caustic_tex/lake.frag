@@ -123,17 +123,6 @@ vec2 firstWaveScroll(bool gerstner, float tilesPerUnit, float t) {
     return 0.25 * S * tilesPerUnit * t * vec2(cos(ang), sin(ang));
 }
 
-// The sun's irradiance on a floor point (normal nf) under flat water:
-// worldShadeAt's E (world.glsl).
-vec3 flatSun(vec3 p, vec3 nf) {
-    float depth = max(uWaterLevel - p.y, 0.0);
-    float cosI = max(uSunDir.y, 1e-4);
-    vec3 lt = refract(-uSunDir, vec3(0.0, 1.0, 0.0), 1.0 / uIOR);
-    float cosT = max(-lt.y, 1e-4);
-    vec3 trans = (1.0 - worldFresnel(cosI, 1.0, uIOR)) * exp(-uAbsorption * depth / cosT);
-    return uSunIrradiance * trans * max(dot(nf, -lt), 0.0) * cosI / cosT;
-}
-
 // The caustic factor at floor point p.
 vec3 causticFactor(vec3 p, float t) {
     float depth = uWaterLevel - p.y;
@@ -185,7 +174,7 @@ void main() {
     vec3 under = vec3(0.0);         // nothing seen: all absorbed
     vec3 E = vec3(0.0), K = vec3(1.0);
     if (hit && !below) {
-        E = flatSun(F, refractNormal(uvF, F, uCameraPos));
+        E = worldSunBelow(refractNormal(uvF, F, uCameraPos), F);   // world.glsl
         K = causticFactor(F, t);
         vec3 ambient = WORLD_PI * uAmbient;
         under = texture(uRefractColor, uvF).rgb * (E * K + ambient) / max(E + ambient, vec3(1e-6));

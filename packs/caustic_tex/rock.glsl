@@ -4,17 +4,10 @@
 #ifndef XING_ROCK_GLSL
 #define XING_ROCK_GLSL
 
-uint rockHash(uint x) {             // "lowbias32"
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
+#include "hash.glsl"   // packs/common: the hash waves.glsl's noise uses
 
 float rockLattice(vec2 i) {
-    uint h = rockHash(uint(int(i.x)) + rockHash(uint(int(i.y)) + 0x9e3779b9u));
+    uint h = tarnHash(uint(int(i.x)) + tarnHash(uint(int(i.y)) + 0x9e3779b9u));
     return float(h >> 8) / 16777216.0;
 }
 

@@ -34,6 +34,8 @@
 #ifndef WAVES_GLSL
 #define WAVES_GLSL
 
+#include "hash.glsl"
+
 #define WAVES_MAX 8
 #define WAVES_NOISE_OCTAVES_MAX 8
 #define WAVES_GRAVITY 9.81
@@ -43,7 +45,10 @@
 #define WAVES_NEWTON_ITERATIONS 4       // for wavesRestPoint / wavesHeightAt
 #endif
 
+#ifndef TARN_UWATERLEVEL                // world.glsl declares it too: either may come first
+#define TARN_UWATERLEVEL
 uniform float uWaterLevel;              // mean water height
+#endif
 uniform float uSteepness;               // Q = sum Q_i k_i A_i (loop-free while <= 1)
 
 uniform int   uSineCount;               // 0..WAVES_MAX
@@ -75,14 +80,8 @@ float wavesPhaseSpeed(float speed, float L) {
 
 // ---- noise ------------------------------------------------------------
 
-uint wavesHash(uint x) {                // "lowbias32", as in ref_waves.c
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
+// wavesHash is hash.glsl's "lowbias32", as in ref_waves.c
+uint wavesHash(uint x) { return tarnHash(x); }
 
 vec2 wavesLatticeGrad(uint seed, float i, float j) {
     uint h = wavesHash(uint(i) + wavesHash(uint(j) + seed));

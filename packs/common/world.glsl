@@ -12,7 +12,8 @@ uniform vec3 uSunIrradiance;
 uniform vec3 uAmbient;         // sky ambient radiance
 uniform vec3 uAbsorption;      // Beer-Lambert sigma per metre
 uniform float uIOR;
-#ifndef WAVES_GLSL   // waves.glsl declares it too; include either first
+#ifndef TARN_UWATERLEVEL   // waves.glsl declares it too: either may be included first
+#define TARN_UWATERLEVEL
 uniform float uWaterLevel;
 #endif
 
@@ -35,11 +36,11 @@ float worldFresnel(float cosI, float n1, float n2) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
-// Sunlight reaching a point below flat water: the refracted direction's
-// cosine replaces n.l's light, scaled by transmittance and attenuation.
-vec3 worldShadeAt(vec3 albedo, vec3 n, vec3 pos) {
-    float depth = uWaterLevel - pos.y;
-    if (depth <= 0.0) return worldLambert(albedo, n, vec3(1.0));
+// The sun's irradiance on a surface (normal n) at pos below flat water:
+// the refracted beam, scaled by transmittance and attenuation. (Packs that
+// light a floor themselves, like caustic_tex, use it too.)
+vec3 worldSunBelow(vec3 n, vec3 pos) {
+    float depth = max(uWaterLevel - pos.y, 0.0);
     float cosI = max(uSunDir.y, 1e-4);
     vec3 lt = refract(-uSunDir, vec3(0.0, 1.0, 0.0), 1.0 / uIOR);   // downward
     float cosT = max(-lt.y, 1e-4);
@@ -48,8 +49,15 @@ vec3 worldShadeAt(vec3 albedo, vec3 n, vec3 pos) {
     // E_sun cosI (1 - R) / cosT per unit of its own cross-section; a
     // surface with normal n receives that times n.(-lt). On a flat floor
     // this is E_sun cosI (1 - R) attenuated, the photon tracer's figure.
-    float c = max(dot(n, -lt), 0.0);
-    vec3 e = uSunIrradiance * trans * c * cosI / cosT;
+    return uSunIrradiance * trans * max(dot(n, -lt), 0.0) * cosI / cosT;
+}
+
+// Sunlight reaching a point below flat water: the refracted direction's
+// cosine replaces n.l's light, scaled by transmittance and attenuation.
+vec3 worldShadeAt(vec3 albedo, vec3 n, vec3 pos) {
+    float depth = uWaterLevel - pos.y;
+    if (depth <= 0.0) return worldLambert(albedo, n, vec3(1.0));
+    vec3 e = worldSunBelow(n, pos);
     // the sky's ambient reaches down through the surface like the reference
     // has it: ambient (1 - R0) exp(-sigma depth)
     float r0 = (uIOR - 1.0) / (uIOR + 1.0);

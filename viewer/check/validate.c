@@ -2,6 +2,7 @@
 #include "validate.h"
 
 #include "glib.h"
+#include "program.h"
 
 #include <glslang/Include/glslang_c_interface.h>
 #include <glslang/Public/resource_limits_c.h>
@@ -698,10 +699,6 @@ static void report(run *r, sev s, const char *fmt, ...) {
     else r->res.nwarnings++;
 }
 
-static const char *const stage_cmd_names[SHADER_STAGE_COUNT] = {
-    "Vertex", "TessControl", "TessEvaluation", "Geometry", "Fragment",
-};
-
 typedef struct toggle {
     const char *name;
     bool deflt;
@@ -753,13 +750,10 @@ static bool glib_reported(const glib_scene *sc, const glib_cmd *c) {
     return false;
 }
 
-static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cmd,
-                             const glib_cmd *const *stage_cmd, bool gstap) {
+static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cmd, const program_stages *ps) {
     r->res.nprograms++;
     shader_stage stages[SHADER_STAGE_COUNT];
-    int nst = 0;
-    for (int s = 0; s < SHADER_STAGE_COUNT; s++)
-        if (stage_cmd[s]) stages[nst++] = (shader_stage)s;
+    int nst = program_stage_list(ps, stages);
     if (nst == 0) {
         report(r, SEV_ERROR, "%s:%d: error: Program %s has no shader stages: name files with "
                "Vertex and Fragment before the Program line", cmd->file, cmd->line, cmd->name);
@@ -768,13 +762,13 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
     r->res.nstages += nst;
     bool missing = false;
     for (int i = 0; i < nst; i++) {
-        const glib_cmd *sc = stage_cmd[stages[i]];
+        const glib_cmd *sc = ps->stage[stages[i]];
         if (!is_regular_file(sc->path)) {
             int err = errno;
             missing = true;
             if (glib_reported(scene, sc)) continue;
             report(r, SEV_ERROR, "%s:%d: error: %s %s: %s (Program %s)", sc->file, sc->line,
-                   stage_cmd_names[stages[i]], sc->path, is_dir(sc->path) ? "is a directory" : strerror(err),
+                   glib_cmd_name(sc->kind), sc->path, is_dir(sc->path) ? "is a directory" : strerror(err),
                    cmd->name);
         }
     }
@@ -838,9 +832,7 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
         bool ok = true;
         for (int i = 0; i < nst; i++) {
             shader_stage st = stages[i];
-            shader_src_desc d = { .path = stage_cmd[st]->path, .stage = st, .gstap = gstap,
-                                  .defines = defs, .ndefines = nd, .include_dirs = r->include_dirs,
-                                  .ninclude_dirs = 1 };
+            shader_src_desc d = program_stage_desc(ps, st, defs, nd, r->include_dirs, 1);
             if (!shader_src_load(&d, &src[st])) {
                 msgs_add(&m, SEV_ERROR, src[st].error);
                 ok = false;
@@ -907,22 +899,12 @@ static void validate_glib(run *r, const char *path) {
     glib_print_diags(sc, r->out);
     r->res.nerrors += sc->nerrors;
     r->res.nwarnings += sc->ndiags - sc->nerrors;
-    const glib_cmd *stage_cmd[SHADER_STAGE_COUNT] = { NULL };
-    bool gstap = false;
+    program_stages ps;
+    program_stages_init(&ps);
     for (int i = 0; i < sc->ncmds; i++) {
         const glib_cmd *c = &sc->cmds[i];
-        int st = -1;
-        switch (c->kind) {
-        case GLIB_CMD_VERTEX: st = SHADER_VERTEX; break;
-        case GLIB_CMD_TESS_CONTROL: st = SHADER_TESS_CONTROL; break;
-        case GLIB_CMD_TESS_EVALUATION: st = SHADER_TESS_EVALUATION; break;
-        case GLIB_CMD_GEOMETRY: st = SHADER_GEOMETRY; break;
-        case GLIB_CMD_FRAGMENT: st = SHADER_FRAGMENT; break;
-        case GLIB_CMD_GSTAP: gstap = true; break;
-        case GLIB_CMD_PROGRAM: validate_program(r, sc, c, stage_cmd, gstap); break;
-        default: break;
-        }
-        if (st >= 0) stage_cmd[st] = c->path[0] ? c : NULL;
+        if (c->kind == GLIB_CMD_PROGRAM) validate_program(r, sc, c, &ps);
+        else program_stages_step(&ps, c);
     }
     glib_free(sc);
 }

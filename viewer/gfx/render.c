@@ -11,23 +11,24 @@
 
 #include "glib.h"
 #include "gpu_timer.h"
+#include "program.h"
 #include "render_camera.h"
 #include "render_prog.h"
 #include "render_res.h"
 #include "render_world.h"
 #include "scene.h"
+#include "strbuf.h"
 
 #define MATRIX_STACK_MAX 30   /* GL guarantees 32 modelview entries */
 
-/* What a glib says about viewing and time (the last command of each wins). */
+/* What a glib says about viewing and time (the last command of each wins);
+ * the viewing commands are read by the scene layer (scene_camera_from_glib),
+ * the one reader the reference uses too. */
 typedef struct scene_settings {
-    int win_w, win_h;
+    scene_camera cam;
     double timer_s;
     float background[4];
-    bool ortho;
-    double fov, near_z, far_z;
-    double ortho_lrbt[4];
-    render_view view;
+    render_view view;        /* cam's LookAt, as the renderer takes it */
 } scene_settings;
 
 /* Everything built from one parse of the glib. */
@@ -111,49 +112,32 @@ void render_destroy(render *r) {
 
 /* ---- settings ---- */
 
+static render_view view_of(const scene_camera *cam) {
+    render_view v;
+    for (int k = 0; k < 3; k++) {
+        v.eye[k] = (float)cam->eye[k];
+        v.center[k] = (float)cam->center[k];
+        v.up[k] = (float)cam->up[k];
+    }
+    return v;
+}
+
 static void settings_default(scene_settings *s) {
     memset(s, 0, sizeof *s);
-    s->win_w = 800;
-    s->win_h = 600;
+    scene_camera_from_glib(NULL, &s->cam);
     s->timer_s = 10.0;
     s->background[3] = 1.0f;
-    s->fov = 50.0;
-    s->near_z = 0.1;
-    s->far_z = 1000.0;
-    s->view = (render_view){ {0, 0, 3}, {0, 0, 0}, {0, 1, 0} };
+    s->view = view_of(&s->cam);
 }
 
 static void settings_from_glib(scene_settings *s, const glib_scene *g) {
     settings_default(s);
+    scene_camera_from_glib(g, &s->cam);
+    s->view = view_of(&s->cam);
     bool have_background = false;
     for (int i = 0; i < g->ncmds; i++) {
         const glib_cmd *c = &g->cmds[i];
         switch (c->kind) {
-        case GLIB_CMD_WINDOW_SIZE:
-            if (c->nnum >= 2 && c->num[0] >= 16 && c->num[1] >= 16 && c->num[0] <= 8192 && c->num[1] <= 8192) {
-                s->win_w = (int)c->num[0];
-                s->win_h = (int)c->num[1];
-            }
-            break;
-        case GLIB_CMD_PERSPECTIVE:
-            s->ortho = false;
-            if (c->nnum >= 1 && c->num[0] > 0 && c->num[0] < 180) s->fov = c->num[0];
-            if (c->nnum >= 3 && c->num[1] > 0 && c->num[2] > c->num[1]) { s->near_z = c->num[1]; s->far_z = c->num[2]; }
-            break;
-        case GLIB_CMD_ORTHO:
-            if (c->nnum >= 4) {
-                s->ortho = true;
-                memcpy(s->ortho_lrbt, c->num, sizeof s->ortho_lrbt);
-            }
-            break;
-        case GLIB_CMD_LOOKAT:
-            if (c->nnum >= 9)
-                for (int k = 0; k < 3; k++) {
-                    s->view.eye[k] = (float)c->num[k];
-                    s->view.center[k] = (float)c->num[3 + k];
-                    s->view.up[k] = (float)c->num[6 + k];
-                }
-            break;
         case GLIB_CMD_TIMER:
             if (c->nnum >= 1 && c->num[0] > 0) s->timer_s = c->num[0];
             break;
@@ -172,9 +156,9 @@ static void settings_from_glib(scene_settings *s, const glib_scene *g) {
 
 static void diags_to_log(const glib_scene *g, char **log) {
     for (int i = 0; i < g->ndiags; i++) {
-        const diag *d = &g->diags[i];
-        log_append(log, "%s:%d: %s: %s\n", d->file, d->line,
-                   d->severity == DIAG_ERROR ? "error" : "warning", d->text);
+        char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
+        diag_format(&g->diags[i], line, sizeof line);
+        str_appendf(log, "%s\n", line);
     }
 }
 
@@ -200,7 +184,7 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
                 continue;   /* the key without its file stamp: same command, same file */
             *m = old->meshes[i];   /* with its own key: the next reload retries the file */
             memset(&old->meshes[i], 0, sizeof old->meshes[i]);
-            log_append(log, "%s:%d: note: keeping the last good mesh of '%s'\n", c->file, c->line, c->path);
+            str_appendf(log, "%s:%d: note: keeping the last good mesh of '%s'\n", c->file, c->line, c->path);
             break;
         }
     }
@@ -228,7 +212,7 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
             if (old->texs[i].tex && want[0] && strcmp(old->texs[i].path, want) == 0) {
                 *t = old->texs[i];
                 memset(&old->texs[i], 0, sizeof old->texs[i]);
-                log_append(log, "%s:%d: note: keeping the last good image of '%s'\n", c->file, c->line, want);
+                str_appendf(log, "%s:%d: note: keeping the last good image of '%s'\n", c->file, c->line, want);
                 break;
             }
         }
@@ -238,8 +222,8 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
         for (int i = 0; !t->tex && i < old->ntexs; i++) {
             const gpu_tex *o = &old->texs[i];
             if (!o->tex || o->render_target || o->unit != unit || o->target != target) continue;
-            log_append(log, "%s:%d: note: keeping the last good image of unit %d ('%s')\n", c->file, c->line,
-                       unit, o->path);
+            str_appendf(log, "%s:%d: note: keeping the last good image of unit %d ('%s')\n", c->file, c->line,
+                        unit, o->path);
             *t = old->texs[i];
             memset(&old->texs[i], 0, sizeof old->texs[i]);
         }
@@ -259,13 +243,8 @@ static prog *find_old_prog(scene_state *old, const char *name) {
     return NULL;
 }
 
-typedef struct stage_state {
-    char path[SHADER_STAGE_COUNT][GLIB_PATH_MAX];
-    bool gstap;
-} stage_state;
-
 static void build_prog(render *r, scene_state *s, scene_state *old, const glib_cmd *c,
-                       const stage_state *st, int ci, char **log) {
+                       const program_stages *st, int ci, char **log) {
     prog *p = &s->progs[s->nprogs];
     memset(p, 0, sizeof *p);
     p->unifs = &s->unifs[s->nprogs];
@@ -274,9 +253,10 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->gstap = st->gstap;
     p->world_uniforms = r->world.active;
     p->scene = s->glib;
-    memcpy(p->stage_path, st->path, sizeof p->stage_path);
+    for (int k = 0; k < SHADER_STAGE_COUNT; k++)
+        snprintf(p->stage_path[k], sizeof p->stage_path[k], "%s", program_stage_path(st, (shader_stage)k));
     char err[512] = "";
-    if (!glib_unif_set(p->unifs, c, err, sizeof err)) log_append(log, "%s\n", err);
+    if (!glib_unif_set(p->unifs, c, err, sizeof err)) str_appendf(log, "%s\n", err);
     snprintf(p->unifs->program, sizeof p->unifs->program, "%s", c->name);
     prog *o = find_old_prog(old, p->name);
     if (o) {   /* the last good build and the user's values (defines first) */
@@ -293,18 +273,6 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     s->cmd_res[ci] = s->nprogs++;
 }
 
-static void stage_set(stage_state *st, const glib_cmd *c) {
-    shader_stage which = SHADER_VERTEX;
-    switch (c->kind) {
-    case GLIB_CMD_VERTEX: which = SHADER_VERTEX; break;
-    case GLIB_CMD_TESS_CONTROL: which = SHADER_TESS_CONTROL; break;
-    case GLIB_CMD_TESS_EVALUATION: which = SHADER_TESS_EVALUATION; break;
-    case GLIB_CMD_GEOMETRY: which = SHADER_GEOMETRY; break;
-    default: which = SHADER_FRAGMENT; break;
-    }
-    snprintf(st->path[which], sizeof st->path[which], "%s", c->path);
-}
-
 /* If/EndIf must pair up; an unmatched one is reported and the renderer
  * treats a missing EndIf as the end of the scene. */
 static void check_if_nesting(const glib_scene *g, char **log) {
@@ -314,12 +282,12 @@ static void check_if_nesting(const glib_scene *g, char **log) {
         const glib_cmd *c = &g->cmds[i];
         if (c->kind == GLIB_CMD_IF) { if (depth++ == 0) open_if = c; }
         else if (c->kind == GLIB_CMD_END_IF && --depth < 0) {
-            log_append(log, "%s:%d: error: EndIf without an If\n", c->file, c->line);
+            str_appendf(log, "%s:%d: error: EndIf without an If\n", c->file, c->line);
             depth = 0;
         }
     }
     if (depth > 0 && open_if)
-        log_append(log, "%s:%d: error: If without an EndIf (the block runs to the end)\n", open_if->file, open_if->line);
+        str_appendf(log, "%s:%d: error: If without an EndIf (the block runs to the end)\n", open_if->file, open_if->line);
 }
 
 /* The current value of the uniform `name` of the first Program that has
@@ -382,9 +350,9 @@ static void check_named_counts(const scene_state *s, char **log) {
             float v;
             if (!names[k] || !names[k][0] || (k == 1 && strcmp(names[1], names[0]) == 0)) continue;
             if (!program_value(s, names[k], &v))
-                log_append(log, "%s:%d: warning: %s: no Program of this glib has a uniform '%s' to give "
-                           "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)\n",
-                           c->file, c->line, glib_cmd_name(c->kind), names[k], NAMED_SIZE_FALLBACK, names[k]);
+                str_appendf(log, "%s:%d: warning: %s: no Program of this glib has a uniform '%s' to give "
+                            "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)\n",
+                            c->file, c->line, glib_cmd_name(c->kind), names[k], NAMED_SIZE_FALLBACK, names[k]);
         }
     }
 }
@@ -400,16 +368,15 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs || !s->once_done) return false;
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
-    stage_state st;
-    memset(&st, 0, sizeof st);
+    program_stages st;
+    program_stages_init(&st);
     for (int i = 0; i < n; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
         s->cmd_res[i] = -1;
         if (res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
         else if (res_is_texture(c->kind)) build_tex(s, old, c, i, log);
         else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log);
-        else if (c->kind == GLIB_CMD_GSTAP) st.gstap = true;
-        else if (c->kind >= GLIB_CMD_VERTEX && c->kind <= GLIB_CMD_FRAGMENT) stage_set(&st, c);
+        else program_stages_step(&st, c);
     }
     settings_from_glib(&s->set, s->glib);
     check_if_nesting(s->glib, log);
@@ -452,7 +419,7 @@ static void build_world(render *r, const glib_scene *g, char **log) {
     scene_camera cam;
     bool has_world = false;
     char err[1024] = "";
-    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) log_append(log, "%s\n", err);
+    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) str_appendf(log, "%s\n", err);
     if (has_world) world_build(&r->world, &desc, (const char *const *)r->include_dirs, r->common_dir, log);
     else world_free(&r->world);
 }
@@ -465,7 +432,7 @@ bool render_load(render *r, const char *glib_path) {
     diags_to_log(g, &log);
     if (g->nerrors > 0 && r->cur.glib) {
         /* a half-written glib: keep everything that is on screen */
-        log_append(&log, "%s: the scene has errors; keeping the last good scene\n", r->path);
+        str_appendf(&log, "%s: the scene has errors; keeping the last good scene\n", r->path);
         collect_deps(r, g, &r->cur);
         glib_free(g);
         free(r->messages);
@@ -524,8 +491,10 @@ unif_set *render_uniforms(render *r, int *nsets) {
 
 void render_window_size(const render *r, int *w, int *h) {
     const scene_settings *s = &r->cur.set;
-    *w = r->cur.glib ? s->win_w : 800;
-    *h = r->cur.glib ? s->win_h : 600;
+    scene_camera def;
+    scene_camera_from_glib(NULL, &def);
+    *w = r->cur.glib ? s->cam.width : def.width;
+    *h = r->cur.glib ? s->cam.height : def.height;
 }
 
 render_view render_default_view(const render *r) {
@@ -570,10 +539,11 @@ static float camera_scale(const scene_state *s, int ci) {
 static void camera_inputs(const render *r, const render_view *v, int w, int h, cam_inputs *out) {
     const scene_state *s = &r->cur;
     const scene_settings *set = &s->set;
-    cam_inputs in = { .view = *v, .fov_deg = set->fov, .near_z = set->near_z, .far_z = set->far_z,
-                      .ortho = set->ortho, .aspect = h > 0 ? (float)w / (float)h : 1.0f,
+    const scene_camera *sc = &set->cam;
+    cam_inputs in = { .view = *v, .fov_deg = sc->fov_deg, .near_z = sc->near_z, .far_z = sc->far_z,
+                      .ortho = sc->ortho, .aspect = h > 0 ? (float)w / (float)h : 1.0f,
                       .level = 0, .half_size = 12, .depth = 3, .sun_dir = { 0, 1, 0 } };
-    memcpy(in.ortho_lrbt, set->ortho_lrbt, sizeof in.ortho_lrbt);
+    memcpy(in.ortho_lrbt, sc->ortho_lrbt, sizeof in.ortho_lrbt);
     for (int k = 0; k < CAM_COUNT; k++) in.fov_scale[k] = 1.0f;
     if (r->world.active) {
         const ref_world_desc *d = &r->world.w.d;

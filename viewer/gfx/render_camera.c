@@ -18,14 +18,6 @@ int cam_kind_from_name(const char *name) {
     return -1;
 }
 
-bool cam_is_uniform(const char *name) {
-    for (int k = 0; k < CAM_COUNT; k++)
-        if (strcmp(name, vp_uniforms[k]) == 0 || strcmp(name, inv_uniforms[k]) == 0) return true;
-    /* and the pass's (render.c): the target's size, a point grid's N */
-    return strcmp(name, "uCamTopHalfSize") == 0 || strcmp(name, "uCamLightHalfSize") == 0 ||
-           strcmp(name, "uTargetSize") == 0 || strcmp(name, "uPointGrid") == 0;
-}
-
 static void lookat(const render_view *v, mat4 out) {
     vec3 eye, center, up;
     memcpy(eye, v->eye, sizeof eye);

@@ -44,6 +44,6 @@ void cam_eye(const cam_inputs *in, int kind, float eye[3]);
  * declared. */
 void cam_upload(const cam_set *c, unsigned program);
 
-bool cam_is_uniform(const char *name);
+/* Which names these are: contract_is_camera_uniform (scene/contract.h). */
 
 #endif

@@ -1,12 +1,11 @@
 #include "render_prog.h"
-#include "render_camera.h"
-#include "render_world.h"
+#include "contract.h"
+#include "strbuf.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <ctype.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,21 +13,6 @@
 static const GLenum stage_gl[SHADER_STAGE_COUNT] = {
     GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
     GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER };
-
-void log_append(char **log, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    int add = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (add <= 0) return;
-    size_t old = *log ? strlen(*log) : 0;
-    char *s = realloc(*log, old + (size_t)add + 1);
-    if (!s) return;
-    va_start(ap, fmt);
-    vsnprintf(s + old, (size_t)add + 1, fmt, ap);
-    va_end(ap);
-    *log = s;
-}
 
 static char *gl_info_log(GLuint obj, bool is_program) {
     GLint len = 0;
@@ -83,9 +67,9 @@ static GLuint compile_stage(const shader_src *src, shader_stage st, char **log) 
     if (!ok) {
         char *raw = gl_info_log(sh, false);
         char *mapped = shader_src_map_log(src, raw ? raw : "");
-        log_append(log, "%s", mapped ? mapped : (raw ? raw : "compile failed\n"));
+        str_appendf(log, "%s", mapped ? mapped : (raw ? raw : "compile failed\n"));
         size_t l = mapped ? strlen(mapped) : 0;
-        if (l && mapped[l - 1] != '\n') log_append(log, "\n");
+        if (l && mapped[l - 1] != '\n') str_appendf(log, "\n");
         free(mapped);
         free(raw);
         glDeleteShader(sh);
@@ -105,9 +89,9 @@ static GLuint link_program(const prog *p, const GLuint *shaders, char **log) {
     glGetProgramiv(prg, GL_LINK_STATUS, &ok);
     if (!ok) {
         char *raw = gl_info_log(prg, true);
-        log_append(log, "%s:%d: error: program '%s' failed to link: %s\n",
-                   p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name,
-                   raw ? raw : "");
+        str_appendf(log, "%s:%d: error: program '%s' failed to link: %s\n",
+                    p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name,
+                    raw ? raw : "");
         free(raw);
         glDeleteProgram(prg);
         return 0;
@@ -119,7 +103,7 @@ static void keep_source(prog *p, const shader_src *src) {
     free(p->source);
     p->source = NULL;
     for (int s = 0; s < SHADER_STAGE_COUNT; s++)
-        if (src[s].text) log_append(&p->source, "%s\n", src[s].text);
+        if (src[s].text) str_appendf(&p->source, "%s\n", src[s].text);
 }
 
 /* Is name a whole word of the program's source (declared, maybe compiled
@@ -148,7 +132,7 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
             .gstap = p->gstap, .defines = defines, .ndefines = ndefines,
             .include_dirs = include_dirs, .ninclude_dirs = ninclude_dirs };
         if (!shader_src_load(&d, &src[s])) {
-            log_append(log, "%s\n", src[s].error);
+            str_appendf(log, "%s\n", src[s].error);
             ok = false;
             /* still watch the stage file so fixing it triggers a reload */
             if (!src[s].nfiles) {
@@ -161,9 +145,9 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
     }
     set_deps(p, src, SHADER_STAGE_COUNT);
     if (!any) {
-        log_append(log, "%s:%d: error: Program '%s' has no shader stage: name files with "
-                   "Vertex and Fragment before the Program line\n",
-                   p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name);
+        str_appendf(log, "%s:%d: error: Program '%s' has no shader stage: name files with "
+                    "Vertex and Fragment before the Program line\n",
+                    p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name);
         ok = false;
     }
     if (ok && p->good && p->gl && hash == p->hash) {   /* same text: keep the build */
@@ -229,7 +213,8 @@ void prog_introspect(prog *p, char **log) {
         if (strchr(name, '.') || strchr(name, '[')) continue;  /* struct members: not ours */
         GLint loc = glGetUniformLocation(p->gl, name);
         if (strcmp(name, "Timer") == 0) { p->timer_loc = loc; continue; }
-        if (cam_is_uniform(name) || (p->world_uniforms && world_is_uniform(name))) continue;   /* set by tarn */
+        /* set by tarn (the pack contract's table): no slider */
+        if (contract_is_camera_uniform(name) || (p->world_uniforms && contract_is_world_uniform(name))) continue;
         unif_entry *e = unif_set_shader_type(p->unifs, name, map_gl_type(type), size, loc);
         if (!e || e->from_glib) continue;
         /* glman's noise samplers live at fixed units */
@@ -252,21 +237,21 @@ void prog_introspect(prog *p, char **log) {
         const unif_entry *e = &p->unifs->entries[i];
         if (e->is_define || !e->from_glib || e->in_shader) continue;
         if (in_source(p, e->name))   /* compiled out by a Define, or unused: say so quietly */
-            log_append(log, "%s:%d: note: uniform '%s' is inactive in program '%s' as built "
-                       "(compiled out by a Define, or unused and optimised out)\n",
-                       e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
+            str_appendf(log, "%s:%d: note: uniform '%s' is inactive in program '%s' as built "
+                        "(compiled out by a Define, or unused and optimised out)\n",
+                        e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
         else
-            log_append(log, "%s:%d: warning: uniform '%s' is not declared in program '%s' "
-                       "(a typo in the glib or the shader?)\n",
-                       e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
+            str_appendf(log, "%s:%d: warning: uniform '%s' is not declared in program '%s' "
+                        "(a typo in the glib or the shader?)\n",
+                        e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
     }
     for (int i = 0; i < p->unifs->n; i++) {   /* written as another type than declared: not uploaded */
         const unif_entry *e = &p->unifs->entries[i];
         char why[512];
         if (e->is_define || !e->from_glib || !e->in_shader || !unif_describe_mismatch(e, why, sizeof why)) continue;
         const char *rest = strstr(why, ": uniform '");   /* "file:line: uniform ..." -> add "warning:" */
-        log_append(log, "%.*s: warning:%s; it is not set\n", rest ? (int)(rest - why) : 0, why,
-                   rest ? rest + 1 : why);
+        str_appendf(log, "%.*s: warning:%s; it is not set\n", rest ? (int)(rest - why) : 0, why,
+                    rest ? rest + 1 : why);
     }
     p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
 }

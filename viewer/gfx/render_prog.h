@@ -41,7 +41,4 @@ void prog_upload(const prog *p, double t, double timer_s);
 
 void prog_free(prog *p);
 
-/* Appends printf-style text to a heap string (NULL starts one). */
-void log_append(char **log, const char *fmt, ...);
-
 #endif

@@ -12,7 +12,7 @@
 #include "geom.h"
 #include "image_io.h"
 #include "noise.h"
-#include "render_prog.h"
+#include "strbuf.h"
 
 bool res_is_geometry(glib_cmd_kind k) {
     return k == GLIB_CMD_QUAD_XY || k == GLIB_CMD_QUAD_XZ || k == GLIB_CMD_QUAD_YZ ||
@@ -107,8 +107,8 @@ bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
     memset(&g, 0, sizeof g);
     char err[512] = "";
     if (!make_mesh(c, &g, err, sizeof err) || !res_mesh_upload(&g, m)) {
-        log_append(log, "%s:%d: error: cannot build %s: %s\n", c->file, c->line,
-                   glib_cmd_name(c->kind), err[0] ? err : "bad arguments");
+        str_appendf(log, "%s:%d: error: cannot build %s: %s\n", c->file, c->line,
+                    glib_cmd_name(c->kind), err[0] ? err : "bad arguments");
         geom_free(&g);
         return false;
     }
@@ -187,7 +187,7 @@ static bool load_image(const char *path, img *im, const glib_cmd *c, char **log)
     char err[512] = "";
     memset(im, 0, sizeof *im);
     if (img_read(path, im, err, sizeof err)) return true;
-    log_append(log, "%s:%d: error: %s: %s\n", c->file, c->line, glib_cmd_name(c->kind), err);
+    str_appendf(log, "%s:%d: error: %s: %s\n", c->file, c->line, glib_cmd_name(c->kind), err);
     return false;
 }
 
@@ -210,7 +210,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
         ok = assets_bake_terrain_normal(&w, res, px);
     }
     if (!ok) {
-        log_append(log, "%s:%d: error: Texture2D %s: %s\n", c->file, c->line, c->path, err[0] ? err : "cannot generate");
+        str_appendf(log, "%s:%d: error: Texture2D %s: %s\n", c->file, c->line, c->path, err[0] ? err : "cannot generate");
         free(px);
         return false;
     }
@@ -257,7 +257,7 @@ static bool tex_2d_empty(const glib_cmd *c, gpu_tex *t, char **log) {
     t->w = c->name[0] ? 1 : arg_i(c, 1, 0);
     t->h = c->arg[0] ? 1 : arg_i(c, 2, 0);
     if (t->w < 1 || t->h < 1 || t->w > 16384 || t->h > 16384) {
-        log_append(log, "%s:%d: error: Texture2D size %dx%d: use 1..16384\n", c->file, c->line, t->w, t->h);
+        str_appendf(log, "%s:%d: error: Texture2D size %dx%d: use 1..16384\n", c->file, c->line, t->w, t->h);
         return false;
     }
     t->render_target = true;
@@ -280,7 +280,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
     if (!c->path[0]) {                       /* Texture3D unit w h d: empty */
         int w = arg_i(c, 1, 0), h = arg_i(c, 2, 0), d = arg_i(c, 3, 0);
         if (w < 1 || h < 1 || d < 1 || (long)w * h * d > (1L << 26)) {
-            log_append(log, "%s:%d: error: Texture3D size %dx%dx%d is out of range\n", c->file, c->line, w, h, d);
+            str_appendf(log, "%s:%d: error: Texture3D size %dx%dx%d is out of range\n", c->file, c->line, w, h, d);
             return false;
         }
         glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, w, h, d, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
@@ -322,8 +322,8 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
     int res = arg_i(c, 0, is3d ? 64 : 128);
     int maxres = is3d ? 256 : 4096;
     if (res < 4 || res > maxres) {
-        log_append(log, "%s:%d: error: %s resolution %d: use 4..%d\n", c->file, c->line,
-                   glib_cmd_name(c->kind), res, maxres);
+        str_appendf(log, "%s:%d: error: %s resolution %d: use 4..%d\n", c->file, c->line,
+                    glib_cmd_name(c->kind), res, maxres);
         return false;
     }
     long n = (long)res * res * (is3d ? res : 1) * 4;
@@ -340,7 +340,7 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
 bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log) {
     t->unit = c->kind == GLIB_CMD_NOISE2D ? 2 : c->kind == GLIB_CMD_NOISE3D ? 3 : arg_i(c, 0, 0);
     if (t->unit < 0 || t->unit > 31) {
-        log_append(log, "%s:%d: error: texture unit %d: use 0..31\n", c->file, c->line, t->unit);
+        str_appendf(log, "%s:%d: error: texture unit %d: use 0..31\n", c->file, c->line, t->unit);
         return false;
     }
     t->target = GL_TEXTURE_2D;

@@ -10,27 +10,7 @@
 #include "assets.h"
 #include "geom.h"
 #include "render_camera.h"
-
-/* The world uniforms besides the wave set (ref_waves_uniforms names those). */
-static const char *const world_names[] = {
-    "uSunDir", "uSunIrradiance", "uSkyZenith", "uSkyHorizon", "uAmbient", "uIOR",
-    "uAbsorption", "uTerrainHalfSize", "uCameraPos", "uTime", "uSky", "uTerrainAlbedo",
-    "uWorldAlbedo", "uWorldMode", "uWorldClip" };
-
-bool world_is_uniform(const char *name) {
-    if (cam_is_uniform(name)) return true;
-    for (size_t i = 0; i < sizeof world_names / sizeof *world_names; i++)
-        if (strcmp(name, world_names[i]) == 0) return true;
-    /* the wave set of packs/common/waves.glsl: exactly the names
-     * ref_waves_uniforms gives (a pack's own uSineWave is not one of them) */
-    ref_waves calm;
-    ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
-    ref_waves_init(&calm, NULL, NULL, 0);
-    int n = ref_waves_uniforms(&calm, u, REF_WAVES_UNIFORMS_MAX);
-    for (int i = 0; i < n; i++)
-        if (strcmp(name, u[i].name) == 0) return true;
-    return false;
-}
+#include "strbuf.h"
 
 /* ---- baking ---- */
 
@@ -264,7 +244,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
         gw->nobjects++;
     }
     gw->has_above_water = above_water(&gw->w);
-    if (!ok) log_append(log, "tarn: error: could not build the scene's world (out of memory?)\n");
+    if (!ok) str_appendf(log, "tarn: error: could not build the scene's world (out of memory?)\n");
     ok = build_program(gw, include_dirs, common_dir, log) && ok;
     gw->active = true;
     return ok;

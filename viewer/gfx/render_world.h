@@ -45,9 +45,6 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
                  const char *common_dir, char **log);
 void world_free(gpu_world *gw);
 
-/* True for the names world_upload sets (they get no slider). */
-bool world_is_uniform(const char *name);
-
 /* Sets every world uniform the bound program declares. */
 void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);
 

@@ -210,6 +210,8 @@ struct cmd_spec {
     int nreq, nmax;             /* numbers, for h_nums */
     arg_rule args[10];
     const char *usage;          /* NULL: built from args */
+    bool world;                 /* describes the world (docs/glib.md, "Describing the
+                                 * world"): a scene with one is drawn lit, with tarn's world */
 };
 
 static const arg_rule unit_rule = { "unit", "a texture unit", 'i', 0, LIM_UNIT, 0 };
@@ -2053,31 +2055,31 @@ static const cmd_spec specs[] = {
     /* describing the world */
     { "Sun", GLIB_CMD_SUN, false, h_world_nums, false, 3, 6,
       { ARG_R("dx", NULL), ARG_R("dy", NULL), ARG_R("dz", "a direction z"), ARG_RD("r", 0),
-        ARG_RD("g", 0), ARG_RD("b", 0) }, NULL },
+        ARG_RD("g", 0), ARG_RD("b", 0) }, NULL, true },
     { "Sky", GLIB_CMD_SKY, false, h_world_nums, false, 6, 6,
       { ARG_R("zr", NULL), ARG_R("zg", NULL), ARG_R("zb", NULL), ARG_R("hr", NULL),
-        ARG_R("hg", NULL), ARG_R("hb", "a horizon blue") }, NULL },
+        ARG_R("hg", NULL), ARG_R("hb", "a horizon blue") }, NULL, true },
     { "Water", GLIB_CMD_WATER, false, h_world_nums, false, 1, 5,
       { ARG_R("level", "a water level"), ARG_RD("ior", 0), ARG_RD("ar", 0), ARG_RD("ag", 0),
-        ARG_RD("ab", 0) }, "Water level [ior [ar ag ab]]" },
+        ARG_RD("ab", 0) }, "Water level [ior [ar ag ab]]", true },
     { "WaterMesh", GLIB_CMD_WATER_MESH, false, h_world_nums, false, 1, 1,
-      { { "res", "a resolution (grid cells per side)", 'i', 0, 65536, 0 } }, NULL },
+      { { "res", "a resolution (grid cells per side)", 'i', 0, 65536, 0 } }, NULL, true },
     { "Terrain", GLIB_CMD_TERRAIN, false, h_terrain, false, 0, 0, { { 0 } },
-      "Terrain flat|lake|slope [half_size [depth [shore_height_or_slope [seed [res]]]]]" },
+      "Terrain flat|lake|slope [half_size [depth [shore_height_or_slope [seed [res]]]]]", true },
     { "WaveSine", GLIB_CMD_WAVE_SINE, false, h_world_nums, false, 3, 5, WAVE_ARGS,
-      "WaveSine angle_deg wavelength amplitude [speed [phase]]" },
+      "WaveSine angle_deg wavelength amplitude [speed [phase]]", true },
     { "WaveGerstner", GLIB_CMD_WAVE_GERSTNER, false, h_world_nums, false, 3, 5, WAVE_ARGS,
-      "WaveGerstner angle_deg wavelength amplitude [speed [phase]]" },
+      "WaveGerstner angle_deg wavelength amplitude [speed [phase]]", true },
     { "WaveSteepness", GLIB_CMD_WAVE_STEEPNESS, false, h_world_nums, false, 1, 1,
-      { ARG_R("Q", "a steepness Q") }, NULL },
+      { ARG_R("Q", "a steepness Q") }, NULL, true },
     { "WaveNoise", GLIB_CMD_WAVE_NOISE, false, h_world_nums, false, 1, 8,
       { ARG_R("amplitude", "an amplitude"), ARG_RD("cell", 0), { "octaves", NULL, 'i', 0, 64, 0 },
         ARG_RD("speed", 0), ARG_RD("angle_deg", 0), SEED_RULE("seed"),
         { "period", NULL, 'i', 0, 65536, 0 }, ARG_RD("gain", 0) },
-      "WaveNoise amplitude [cell [octaves [speed [angle_deg [seed [period [gain]]]]]]]" },
+      "WaveNoise amplitude [cell [octaves [speed [angle_deg [seed [period [gain]]]]]]]", true },
     { "Object", GLIB_CMD_OBJECT, false, h_object, false, 0, 0, { { 0 } },
-      "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B" },
-    { "Pack", GLIB_CMD_PACK, false, h_pack, false, 0, 0, { { 0 } }, "Pack name" },
+      "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B", true },
+    { "Pack", GLIB_CMD_PACK, false, h_pack, false, 0, 0, { { 0 } }, "Pack name", true },
     /* drawing the world (packs) */
     { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below [offset|uniform]]" },
     { "WaterSurface", GLIB_CMD_WATER_SURFACE, false, h_water_surface, false, 0, 0, { { 0 } },
@@ -2094,6 +2096,15 @@ static const cmd_spec specs[] = {
 };
 
 #define NSPECS (sizeof specs / sizeof specs[0])
+
+bool glib_cmd_describes_world(glib_cmd_kind kind)
+{
+    /* every spelling of a kind shares the row's flag */
+    for (size_t i = 0; i < NSPECS; i++)
+        if (specs[i].kind == kind)
+            return specs[i].world;
+    return false;
+}
 
 static const cmd_spec *find_spec(const char *name)
 {

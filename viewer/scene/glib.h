@@ -210,6 +210,13 @@ unif_program_decl glib_program_decl(const glib_cmd *program);
 struct unif_set;
 bool glib_unif_set(struct unif_set *set, const glib_cmd *program, char *err, int errlen);
 
+/* Whether a command of this kind describes the world (Sun, Sky, Water,
+ * WaterMesh, Terrain, Wave*, Object, Pack: docs/glib.md, "Describing the
+ * world"), a flag of its row in the command table. The commands packs draw
+ * the world with (World, WaterSurface, Camera, If, ...) do not: a plain
+ * glman scene may use them and still has no world. */
+bool glib_cmd_describes_world(glib_cmd_kind kind);
+
 /* The command's name as written in docs ("QuadXZ"), for messages. */
 const char *glib_cmd_name(glib_cmd_kind kind);
 

@@ -306,10 +306,8 @@ static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_t
     w->objects[w->nobjects++] = o;
 }
 
-static bool is_world_kind(glib_cmd_kind k)
-{
-    return k >= GLIB_CMD_SUN && k <= GLIB_CMD_WATER_SURFACE;
-}
+/* WindowSize's range, as docs/glib.md gives it (the parser's too). */
+enum { WINDOW_MIN = 1, WINDOW_MAX = 16384 };
 
 static void camera_default(scene_camera *cam)
 {
@@ -323,6 +321,50 @@ static void camera_default(scene_camera *cam)
     cam->height = 600;
 }
 
+static void camera_cmd(scene_camera *cm, const glib_cmd *c)
+{
+    const double *n = c->num;
+    switch (c->kind) {
+    case GLIB_CMD_WINDOW_SIZE:
+        if (c->nnum >= 2 && n[0] >= WINDOW_MIN && n[1] >= WINDOW_MIN && n[0] <= WINDOW_MAX &&
+            n[1] <= WINDOW_MAX) {
+            cm->width = (int)n[0];
+            cm->height = (int)n[1];
+        }
+        break;
+    case GLIB_CMD_PERSPECTIVE:
+        cm->ortho = false;
+        if (c->nnum >= 1 && n[0] > 0 && n[0] < 180)
+            cm->fov_deg = n[0];
+        if (c->nnum >= 3 && n[1] > 0 && n[2] > n[1]) {
+            cm->near_z = n[1];
+            cm->far_z = n[2];
+        }
+        break;
+    case GLIB_CMD_ORTHO:
+        if (c->nnum >= 4) {
+            cm->ortho = true;
+            memcpy(cm->ortho_lrbt, n, sizeof cm->ortho_lrbt);
+        }
+        break;
+    case GLIB_CMD_LOOKAT:
+        if (c->nnum >= 9) {
+            memcpy(cm->eye, n, sizeof cm->eye);
+            memcpy(cm->center, n + 3, sizeof cm->center);
+            memcpy(cm->up, n + 6, sizeof cm->up);
+        }
+        break;
+    default: break;
+    }
+}
+
+void scene_camera_from_glib(const glib_scene *g, scene_camera *cam)
+{
+    camera_default(cam);
+    for (int i = 0; g && i < g->ncmds; i++)
+        camera_cmd(cam, &g->cmds[i]);
+}
+
 bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *cam,
                      bool *has_world, char *err, int errlen)
 {
@@ -331,29 +373,13 @@ bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *c
         err[0] = '\0';
     ref_world_init(&x.def, NULL);
     ref_world_desc w;
-    scene_camera cm;
     memset(&w, 0, sizeof w);
-    camera_default(&cm);
     bool any = false, full_told = false;
     for (int i = 0; g && i < g->ncmds; i++) {
         const glib_cmd *c = &g->cmds[i];
         const double *n = c->num;
-        any |= is_world_kind(c->kind);
+        any |= glib_cmd_describes_world(c->kind);
         switch (c->kind) {
-        case GLIB_CMD_WINDOW_SIZE:
-            cm.width = (int)n[0];
-            cm.height = (int)n[1];
-            break;
-        case GLIB_CMD_PERSPECTIVE:
-            cm.fov_deg = n[0];
-            cm.near_z = n[1];
-            cm.far_z = n[2];
-            break;
-        case GLIB_CMD_LOOKAT:
-            memcpy(cm.eye, n, sizeof cm.eye);
-            memcpy(cm.center, n + 3, sizeof cm.center);
-            memcpy(cm.up, n + 6, sizeof cm.up);
-            break;
         case GLIB_CMD_SUN: do_sun(&x, c, &w); break;
         case GLIB_CMD_SKY:
             set_rgb(&x, c, n, w.sky_zenith, "the zenith radiance");
@@ -374,7 +400,7 @@ bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *c
     if (world)
         *world = w;
     if (cam)
-        *cam = cm;
+        scene_camera_from_glib(g, cam);
     if (has_world)
         *has_world = any;
     return x.nmsgs == 0;

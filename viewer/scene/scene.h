@@ -9,12 +9,21 @@
 #include "glib.h"
 #include "ref_scene.h"
 
+/* What the viewing commands say (the last of each wins). */
 typedef struct scene_camera {
     double eye[3], center[3], up[3];   /* LookAt; default (0 0 3) (0 0 0) (0 1 0) */
     double fov_deg;                    /* Perspective; default 50 */
     double near_z, far_z;              /* default 0.1, 1000 */
+    bool ortho;                        /* the last of Perspective / Ortho was Ortho */
+    double ortho_lrbt[4];              /* Ortho l r b t */
     int width, height;                 /* WindowSize; default 800 x 600 */
 } scene_camera;
+
+/* The one reader of the viewing commands (WindowSize, Perspective, Ortho,
+ * LookAt), used by the renderer and the reference alike, so both see the
+ * same camera and size. A value out of range (which the parser already
+ * refuses) leaves the default. */
+void scene_camera_from_glib(const glib_scene *g, scene_camera *cam);
 
 /* Fills world (zeroed first; the defaults are ref_world_init's) and cam from
  * the glib's commands. has_world tells whether the glib has any world

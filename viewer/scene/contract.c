@@ -1,0 +1,95 @@
+/* contract.c: the table of uniforms tarn sets (contract.h). The names must
+ * match what the gfx layer uploads (gfx/render_world.c, render_camera.c,
+ * render.c) and, for the wave set, ref_waves_uniforms (test_contract
+ * checks both this and docs/packs/contract.md). */
+#include "contract.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#define CAM(n, t, by, m) { n, t, CONTRACT_CAMERA, by, m }
+#define PASS(n, t, by, m) { n, t, CONTRACT_PASS, by, m }
+#define WORLD(n, t, by, m) { n, t, CONTRACT_WORLD, by, m }
+#define WAVES(n, t, by, m) { n, t, CONTRACT_WAVES, by, m }
+
+static const contract_uniform table[] = {
+    CAM("uCamMainVP", "mat4", "Camera main", "world to clip of the viewer's camera"),
+    CAM("uCamWideVP", "mat4", "Camera wide", "world to clip of the main camera, field of view widened"),
+    CAM("uCamMirrorVP", "mat4", "Camera mirror", "world to clip of the main camera mirrored about the water plane"),
+    CAM("uCamTopVP", "mat4", "Camera top", "world to clip of the orthographic top-down camera"),
+    CAM("uCamLightVP", "mat4", "Camera light", "world to clip of the orthographic camera along the sun"),
+    CAM("uCamMainInvVP", "mat4", "Camera main", "clip to world of the main camera"),
+    CAM("uCamWideInvVP", "mat4", "Camera wide", "clip to world of the wide camera"),
+    CAM("uCamMirrorInvVP", "mat4", "Camera mirror", "clip to world of the mirror camera"),
+    CAM("uCamTopInvVP", "mat4", "Camera top", "clip to world of the top-down camera"),
+    CAM("uCamLightInvVP", "mat4", "Camera light", "clip to world of the light camera"),
+    CAM("uCamTopHalfSize", "float", "Camera top", "half the side of the top-down camera's square"),
+    CAM("uCamLightHalfSize", "float", "Camera light", "half the side of the light camera's square"),
+    PASS("uTargetSize", "vec2", "RenderToTexture", "the size in texels of what the program draws into"),
+    PASS("uPointGrid", "int", "WaterSurface points", "N of the N x N points drawn"),
+    WORLD("uSunDir", "vec3", "Sun", "towards the sun, unit"),
+    WORLD("uSunIrradiance", "vec3", "Sun", "the sun's irradiance"),
+    WORLD("uSkyZenith", "vec3", "Sky", "sky radiance at the zenith"),
+    WORLD("uSkyHorizon", "vec3", "Sky", "sky radiance at the horizon"),
+    WORLD("uAmbient", "vec3", "Sky", "ambient radiance of the sky"),
+    WORLD("uIOR", "float", "Water", "the water's index of refraction"),
+    WORLD("uAbsorption", "vec3", "Water", "Beer-Lambert sigma per metre"),
+    WORLD("uTerrainHalfSize", "float", "Terrain", "the world is the square |x|, |z| <= this"),
+    WORLD("uCameraPos", "vec3", "LookAt", "the current camera's eye, world space"),
+    WORLD("uTime", "float", "(the clock)", "simulated seconds"),
+    WORLD("uSky", "samplerCube", "Sky", "unit 15: the sky, baked from ref_sky_radiance"),
+    WORLD("uTerrainAlbedo", "sampler2D", "Terrain", "unit 14: terrain albedo, s = x, t = z over the world square"),
+    WORLD("uWorldAlbedo", "vec3", "Object", "tarn's world program: an object's albedo"),
+    WORLD("uWorldMode", "int", "World", "tarn's world program: 0 terrain, 1 object, 2 sky"),
+    WORLD("uWorldClip", "vec4", "World above|below", "tarn's world program: the clip plane (n, d)"),
+    WAVES("uWaterLevel", "float", "Water", "mean water height"),
+    WAVES("uSteepness", "float", "WaveSteepness", "Q = sum Q_i k_i A_i of the Gerstner waves"),
+    WAVES("uSineCount", "int", "WaveSine", "how many sine waves"),
+    WAVES("uSineAngle", "float[8]", "WaveSine", "direction of travel, degrees from +x towards +z"),
+    WAVES("uSineLength", "float[8]", "WaveSine", "wavelength"),
+    WAVES("uSineAmp", "float[8]", "WaveSine", "amplitude"),
+    WAVES("uSineSpeed", "float[8]", "WaveSine", "phase speed (0: deep water)"),
+    WAVES("uSinePhase", "float[8]", "WaveSine", "phase, radians"),
+    WAVES("uGerstnerCount", "int", "WaveGerstner", "how many Gerstner waves"),
+    WAVES("uGerstnerAngle", "float[8]", "WaveGerstner", "direction of travel, degrees"),
+    WAVES("uGerstnerLength", "float[8]", "WaveGerstner", "wavelength"),
+    WAVES("uGerstnerAmp", "float[8]", "WaveGerstner", "amplitude"),
+    WAVES("uGerstnerSpeed", "float[8]", "WaveGerstner", "phase speed (0: deep water)"),
+    WAVES("uGerstnerPhase", "float[8]", "WaveGerstner", "phase, radians"),
+    WAVES("uNoiseAmp", "float", "WaveNoise", "amplitude of octave 0 (0: no noise)"),
+    WAVES("uNoiseCell", "float", "WaveNoise", "lattice cell of octave 0"),
+    WAVES("uNoiseOctaves", "int", "WaveNoise", "octaves"),
+    WAVES("uNoisePeriod", "int", "WaveNoise", "cells per tile at octave 0"),
+    WAVES("uNoiseGain", "float", "WaveNoise", "amplitude ratio between octaves"),
+    WAVES("uNoiseAngle", "float", "WaveNoise", "drift direction of octave 0, degrees"),
+    WAVES("uNoiseSpeed", "float", "WaveNoise", "drift speed of octave 0"),
+    WAVES("uNoiseSeed", "int", "WaveNoise", "the seed's 32 bits, read as uint"),
+};
+
+#define NTABLE ((int)(sizeof table / sizeof table[0]))
+
+const contract_uniform *contract_uniforms(int *n)
+{
+    if (n)
+        *n = NTABLE;
+    return table;
+}
+
+const contract_uniform *contract_find(const char *name)
+{
+    for (int i = 0; name && i < NTABLE; i++)
+        if (strcmp(name, table[i].name) == 0)
+            return &table[i];
+    return NULL;
+}
+
+bool contract_is_camera_uniform(const char *name)
+{
+    const contract_uniform *u = contract_find(name);
+    return u && (u->source == CONTRACT_CAMERA || u->source == CONTRACT_PASS);
+}
+
+bool contract_is_world_uniform(const char *name)
+{
+    return contract_find(name) != NULL;
+}
