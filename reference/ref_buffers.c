@@ -15,8 +15,7 @@ const ref_buffer_info ref_buffers[REF_BUF_COUNT] = {
       "sun irradiance at the refraction hit" },
     { REF_BUF_SURFACE, "surface", ".surface.exr", 3, REF_ERR_POINT, true, 0, 0,
       "where the primary ray meets the water surface" },
-    { REF_BUF_MASK, "mask", ".mask.exr", 1, REF_ERR_SCALAR, false, 0, 0,
-      "what the pixel-centre ray met (REF_MASK_*)" },
+    { REF_BUF_MASK, "mask", ".mask.exr", 1, REF_ERR_SCALAR, false, 0, 0, "what the pixel-centre ray met (REF_MASK_*)" },
 };
 
 const ref_buffer_info *ref_buffer_named(const char *name) {

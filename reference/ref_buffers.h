@@ -10,7 +10,7 @@
 #include "ref_render.h"
 
 typedef enum ref_buffer_id {
-    REF_BUF_COLOR = 0,          /* linear RGB: the image itself */
+    REF_BUF_COLOR = 0, /* linear RGB: the image itself */
     REF_BUF_REFRACT_HIT,
     REF_BUF_REFLECT,
     REF_BUF_FRESNEL,
@@ -34,13 +34,13 @@ typedef enum ref_output {
 
 typedef struct ref_buffer_info {
     ref_buffer_id id;
-    const char *name;           /* "refract_hit" (bench.txt, compare's output, JSON keys) */
-    const char *suffix;         /* file name after the stem: ".refract_hit.exr" (".exr": the image) */
-    int channels;               /* in the reference's result and its file */
-    ref_err_kind err;           /* how an error against it is measured */
-    bool measured;              /* compare --buffers measures it (not the image or the mask) */
-    int direction_flag;         /* channel 3 value meaning "xyz is a direction": left out (0: none) */
-    ref_output tarn_output;     /* the TARN_OUTPUT value a pack writes it with (0: a pack cannot) */
+    const char *name;       /* "refract_hit" (bench.txt, compare's output, JSON keys) */
+    const char *suffix;     /* file name after the stem: ".refract_hit.exr" (".exr": the image) */
+    int channels;           /* in the reference's result and its file */
+    ref_err_kind err;       /* how an error against it is measured */
+    bool measured;          /* compare --buffers measures it (not the image or the mask) */
+    int direction_flag;     /* channel 3 value meaning "xyz is a direction": left out (0: none) */
+    ref_output tarn_output; /* the TARN_OUTPUT value a pack writes it with (0: a pack cannot) */
     const char *meaning;
 } ref_buffer_info;
 

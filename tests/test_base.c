@@ -13,7 +13,7 @@
 #include "util.h"
 
 static void test_strbuf_grows_and_formats(void) {
-    strbuf b = {0};
+    strbuf b = { 0 };
     for (int i = 0; i < 1000; i++) strbuf_printf(&b, "%d,", i % 10);
     CHECK(b.len == 2000);
     CHECK(strncmp(b.s, "0,1,2,", 6) == 0);
@@ -23,7 +23,7 @@ static void test_strbuf_grows_and_formats(void) {
     CHECK(b.s == NULL && b.len == 0);
     CHECK(strlen(s) == 2002);
     free(s);
-    s = strbuf_take(&b);                   /* empty: "" not NULL */
+    s = strbuf_take(&b); /* empty: "" not NULL */
     CHECK(s && s[0] == '\0');
     free(s);
 }
@@ -42,35 +42,38 @@ static void test_messages_never_overrun(void) {
     CHECK(strcmp(err, "0123456") == 0);
     msg_set(err, sizeof err, "ab");
     msg_add(err, sizeof err, "cd");
-    CHECK(strcmp(err, "ab\ncd") == 0);     /* a line each */
+    CHECK(strcmp(err, "ab\ncd") == 0); /* a line each */
     msg_add(err, sizeof err, "efghij");
     CHECK(strlen(err) == 7);
-    msg_set(NULL, 0, "nothing");           /* no buffer: fine */
+    msg_set(NULL, 0, "nothing"); /* no buffer: fine */
     msg_add(err, 0, "nothing");
 }
 
 static void test_files(void) {
     char dir[512], sub[1200], path[1300], err[512];
-    if (!scratch_create("base")) { CHECK(false); return; }
+    if (!scratch_create("base")) {
+        CHECK(false);
+        return;
+    }
     snprintf(dir, sizeof dir, "%s", scratch_dir);
     snprintf(sub, sizeof sub, "%s/a/b/c", dir);
     CHECK_MSG(file_mkdir_p(sub, err, sizeof err), "%s", err);
     CHECK(file_is_dir(sub));
-    CHECK(file_mkdir_p(sub, err, sizeof err));      /* again: fine */
+    CHECK(file_mkdir_p(sub, err, sizeof err)); /* again: fine */
     snprintf(path, sizeof path, "%s/x.txt", sub);
     CHECK_MSG(file_write(path, "hello\0there", 11, err, sizeof err), "%s", err);
     size_t n = 0;
     char *s = file_read(path, 0, &n, err, sizeof err);
     CHECK(s && n == 11 && memcmp(s, "hello\0there", 11) == 0 && s[11] == '\0');
     free(s);
-    CHECK(file_read(path, 10, &n, err, sizeof err) == NULL);   /* over the limit */
+    CHECK(file_read(path, 10, &n, err, sizeof err) == NULL); /* over the limit */
     CHECK_STR_CONTAINS(err, "larger than 10 bytes");
-    CHECK(file_read(sub, 0, &n, err, sizeof err) == NULL);     /* a folder */
+    CHECK(file_read(sub, 0, &n, err, sizeof err) == NULL); /* a folder */
     CHECK_STR_CONTAINS(err, "not a regular file");
     snprintf(path, sizeof path, "%s/missing", dir);
     CHECK(file_read(path, 0, &n, err, sizeof err) == NULL);
     CHECK_STR_CONTAINS(err, "cannot open");
-    snprintf(path, sizeof path, "%s/a/b/c/x.txt/d", dir);      /* under a file */
+    snprintf(path, sizeof path, "%s/a/b/c/x.txt/d", dir); /* under a file */
     CHECK(!file_mkdir_p(path, err, sizeof err));
     char d[64];
     file_dirname("a/b.glib", d, sizeof d);
@@ -113,13 +116,13 @@ static void test_root_follows_environment(void) {
     CHECK(strcmp(tarn_root(), "/some/where") == 0);
     unsetenv("TARN_ROOT");
     char packs[4200];
-    snprintf(packs, sizeof packs, "%s/packs", tarn_root());   /* this build's tree */
+    snprintf(packs, sizeof packs, "%s/packs", tarn_root()); /* this build's tree */
     CHECK_MSG(file_is_dir(packs), "%s", packs);
     if (keep[0]) setenv("TARN_ROOT", keep, 1);
 }
 
 static void test_diagnostics(void) {
-    diag_list l = {0};
+    diag_list l = { 0 };
     diag_add(&l, DIAG_WARNING, "a.glib", 3, "unknown command '%s'", "Foo");
     diag_add_text(&l, DIAG_ERROR, "water.frag:12: error: 'x' undeclared\nplain words\n\nb.glsl:1: warning: w\n");
     CHECK(l.n == 4 && l.nerrors == 2 && l.nwarnings == 2);

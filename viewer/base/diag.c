@@ -42,7 +42,10 @@ static bool parse_line(const char *s, size_t n, diag_severity *sev, char *file, 
         snprintf(pat, sizeof pat, ": %s: ", names[k]);
         const char *m = NULL;
         for (const char *p = s; p + strlen(pat) <= s + n; p++)
-            if (strncmp(p, pat, strlen(pat)) == 0) { m = p; break; }
+            if (strncmp(p, pat, strlen(pat)) == 0) {
+                m = p;
+                break;
+            }
         if (!m) continue;
         const char *colon = m - 1;
         while (colon > s && *colon >= '0' && *colon <= '9') colon--;

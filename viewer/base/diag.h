@@ -15,8 +15,8 @@ typedef enum diag_severity { DIAG_NOTE = 0, DIAG_WARNING = 1, DIAG_ERROR = 2 } d
 
 typedef struct diag {
     diag_severity severity;
-    char file[DIAG_FILE_MAX];   /* "" when no file is concerned */
-    int line;                   /* 1-based; 0 when no line is concerned */
+    char file[DIAG_FILE_MAX]; /* "" when no file is concerned */
+    int line;                 /* 1-based; 0 when no line is concerned */
     char text[DIAG_TEXT_MAX];
 } diag;
 

@@ -12,11 +12,20 @@
 char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
     if (len) *len = 0;
     struct stat st;
-    if (stat(path, &st) != 0) { msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno)); return NULL; }
-    if (!S_ISREG(st.st_mode)) { msg_set(err, errlen, "'%s' is not a regular file", path); return NULL; }
+    if (stat(path, &st) != 0) {
+        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+        return NULL;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        msg_set(err, errlen, "'%s' is not a regular file", path);
+        return NULL;
+    }
     FILE *f = fopen(path, "rb");
-    if (!f) { msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno)); return NULL; }
-    strbuf b = {0};
+    if (!f) {
+        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+        return NULL;
+    }
+    strbuf b = { 0 };
     char chunk[65536];
     size_t n;
     while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) {
@@ -30,14 +39,21 @@ char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size
     }
     bool bad = ferror(f);
     fclose(f);
-    if (bad) { strbuf_free(&b); msg_set(err, errlen, "cannot read '%s'", path); return NULL; }
+    if (bad) {
+        strbuf_free(&b);
+        msg_set(err, errlen, "cannot read '%s'", path);
+        return NULL;
+    }
     if (len) *len = b.len;
     return strbuf_take(&b);
 }
 
 bool file_write(const char *path, const void *data, size_t n, char *err, size_t errlen) {
     FILE *f = fopen(path, "wb");
-    if (!f) { msg_set(err, errlen, "cannot write '%s': %s", path, strerror(errno)); return false; }
+    if (!f) {
+        msg_set(err, errlen, "cannot write '%s': %s", path, strerror(errno));
+        return false;
+    }
     bool ok = fwrite(data, 1, n, f) == n;
     ok = fclose(f) == 0 && ok;
     if (!ok) msg_set(err, errlen, "cannot write '%s' (disk full?)", path);
@@ -46,7 +62,10 @@ bool file_write(const char *path, const void *data, size_t n, char *err, size_t 
 
 bool file_mkdir_p(const char *path, char *err, size_t errlen) {
     char p[4096];
-    if (!path || !path[0] || strlen(path) >= sizeof p) { msg_set(err, errlen, "bad folder name"); return false; }
+    if (!path || !path[0] || strlen(path) >= sizeof p) {
+        msg_set(err, errlen, "bad folder name");
+        return false;
+    }
     snprintf(p, sizeof p, "%s", path);
     for (char *s = p + 1;; s++) {
         bool end = *s == '\0';
@@ -56,7 +75,10 @@ bool file_mkdir_p(const char *path, char *err, size_t errlen) {
                 msg_set(err, errlen, "cannot make folder '%s': %s", p, strerror(errno));
                 return false;
             }
-            if (!file_is_dir(p)) { msg_set(err, errlen, "'%s' exists and is not a folder", p); return false; }
+            if (!file_is_dir(p)) {
+                msg_set(err, errlen, "'%s' exists and is not a folder", p);
+                return false;
+            }
             if (end) break;
             *s = '/';
         }
@@ -66,9 +88,12 @@ bool file_mkdir_p(const char *path, char *err, size_t errlen) {
 
 void file_dirname(const char *path, char *out, size_t outlen) {
     const char *slash = strrchr(path, '/');
-    if (!slash) snprintf(out, outlen, ".");
-    else if (slash == path) snprintf(out, outlen, "/");
-    else snprintf(out, outlen, "%.*s", (int)(slash - path), path);
+    if (!slash)
+        snprintf(out, outlen, ".");
+    else if (slash == path)
+        snprintf(out, outlen, "/");
+    else
+        snprintf(out, outlen, "%.*s", (int)(slash - path), path);
 }
 
 bool file_exists(const char *path) {

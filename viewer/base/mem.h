@@ -9,8 +9,8 @@
 
 #include <stddef.h>
 
-void *mem_alloc(size_t n);              /* malloc */
-void *mem_zalloc(size_t n);             /* calloc(1, n) */
+void *mem_alloc(size_t n);  /* malloc */
+void *mem_zalloc(size_t n); /* calloc(1, n) */
 void *mem_realloc(void *p, size_t n);
 char *mem_strdup(const char *s);
 char *mem_strndup(const char *s, size_t n);

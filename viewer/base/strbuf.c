@@ -28,7 +28,10 @@ void strbuf_vprintf(strbuf *b, const char *fmt, va_list ap) {
     va_copy(ap2, ap);
     int n = vsnprintf(NULL, 0, fmt, ap2);
     va_end(ap2);
-    if (n <= 0) { reserve(b, 0); return; }
+    if (n <= 0) {
+        reserve(b, 0);
+        return;
+    }
     reserve(b, (size_t)n);
     vsnprintf(b->s + b->len, (size_t)n + 1, fmt, ap);
     b->len += (size_t)n;
@@ -86,7 +89,10 @@ void msg_add(char *err, size_t errlen, const char *fmt, ...) {
     if (!err || errlen == 0) return;
     size_t len = strnlen(err, errlen - 1);
     err[len] = '\0';
-    if (len > 0 && len + 1 < errlen) { err[len++] = '\n'; err[len] = '\0'; }
+    if (len > 0 && len + 1 < errlen) {
+        err[len++] = '\n';
+        err[len] = '\0';
+    }
     if (len + 1 >= errlen) return;
     va_list ap;
     va_start(ap, fmt);

@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 typedef struct strbuf {
-    char *s;                    /* NUL-terminated; NULL until the first append */
+    char *s; /* NUL-terminated; NULL until the first append */
     size_t len, cap;
 } strbuf;
 

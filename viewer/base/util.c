@@ -34,7 +34,7 @@ double median_double(double *v, size_t n) {
 }
 
 bool opt_size(const char *s, int *w, int *h) {
-    char x, extra;   /* extra: "640x360junk" is not a size */
+    char x, extra; /* extra: "640x360junk" is not a size */
     return s && sscanf(s, "%d%c%d%c", w, &x, h, &extra) == 3 && (x == 'x' || x == 'X') && *w > 0 && *h > 0 &&
            *w <= 16384 && *h <= 16384;
 }

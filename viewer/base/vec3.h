@@ -5,15 +5,14 @@
 
 #include <math.h>
 
-static inline double vec3_dot(const double a[3], const double b[3]) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+static inline double vec3_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* Scales v to unit length and returns the length it had; a zero vector
  * stays zero. */
 static inline double vec3_normalize(double v[3]) {
     double l = sqrt(vec3_dot(v, v));
-    if (l > 0) for (int i = 0; i < 3; i++) v[i] /= l;
+    if (l > 0)
+        for (int i = 0; i < 3; i++) v[i] /= l;
     return l;
 }
 

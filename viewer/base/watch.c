@@ -18,33 +18,34 @@
 #include <time.h>
 #include <unistd.h>
 
-#define MS ((int64_t)1000000)
+#define MS    ((int64_t)1000000)
 #define NEVER INT64_MAX
 
 /* What a watched directory reports. IN_ONLYDIR makes a path that is not a
  * directory fail instead of watching a file. */
-#define DIR_MASK (IN_CLOSE_WRITE | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MODIFY | \
-                  IN_MOVED_FROM | IN_ATTRIB | IN_DELETE_SELF | IN_MOVE_SELF | IN_ONLYDIR)
+#define DIR_MASK                                                                                                       \
+    (IN_CLOSE_WRITE | IN_MOVED_TO | IN_CREATE | IN_DELETE | IN_MODIFY | IN_MOVED_FROM | IN_ATTRIB | IN_DELETE_SELF |   \
+     IN_MOVE_SELF | IN_ONLYDIR)
 
 typedef struct watch_dir {
     char *path;
-    int wd;                     /* -1: not watched now (deleted or moved away) */
+    int wd; /* -1: not watched now (deleted or moved away) */
 } watch_dir;
 
-typedef struct watch_key {      /* where events for a file arrive */
-    int dir;                    /* index into dirs */
-    char *base;                 /* the name in that directory */
+typedef struct watch_key { /* where events for a file arrive */
+    int dir;               /* index into dirs */
+    char *base;            /* the name in that directory */
 } watch_key;
 
 typedef struct watch_file {
-    char *path;                 /* normalised absolute */
-    watch_key key[2];           /* [0] the path itself; [1] a symlink's target */
+    char *path;       /* normalised absolute */
+    watch_key key[2]; /* [0] the path itself; [1] a symlink's target */
     int nkeys;
-    bool present;               /* recorded: the file existed */
-    uint64_t hash;              /* recorded content hash, when present */
-    bool dirty;                 /* an event came since it was last decided */
-    bool writing;               /* modified or created, no close seen yet */
-    int64_t last_ns;            /* time of its last event */
+    bool present;    /* recorded: the file existed */
+    uint64_t hash;   /* recorded content hash, when present */
+    bool dirty;      /* an event came since it was last decided */
+    bool writing;    /* modified or created, no close seen yet */
+    int64_t last_ns; /* time of its last event */
 } watch_file;
 
 struct watch {
@@ -53,11 +54,11 @@ struct watch {
     int ndirs;
     watch_file *files;
     int nfiles;
-    int *changed;               /* indices into files, capacity nfiles */
+    int *changed; /* indices into files, capacity nfiles */
     int nchanged;
-    int64_t retry_ns;           /* last re-watch attempt of a lost directory */
-    int64_t next_ns;            /* when a pending file is next due (NEVER: none) */
-    char *evbuf;                /* inotify read buffer */
+    int64_t retry_ns; /* last re-watch attempt of a lost directory */
+    int64_t next_ns;  /* when a pending file is next due (NEVER: none) */
+    char *evbuf;      /* inotify read buffer */
 };
 
 enum { EVBUF_SIZE = 64 * 1024 };
@@ -126,8 +127,8 @@ static char *normalise(const char *path) {
         size_t n = (size_t)(p - start);
         if (n == 0 || (n == 1 && start[0] == '.')) continue;
         if (n == 2 && start[0] == '.' && start[1] == '.') {
-            while (out > 0 && res[out - 1] != '/') out--;   /* drop the last component */
-            if (out > 0) out--;                             /* and its '/' */
+            while (out > 0 && res[out - 1] != '/') out--; /* drop the last component */
+            if (out > 0) out--;                           /* and its '/' */
             continue;
         }
         res[out++] = '/';
@@ -267,7 +268,7 @@ static void mark_dir_dirty(watch *w, int dir, int64_t t) {
 }
 
 static void handle_event(watch *w, const struct inotify_event *ev, int64_t t) {
-    if (ev->mask & IN_Q_OVERFLOW) {     /* events were lost: look at everything */
+    if (ev->mask & IN_Q_OVERFLOW) { /* events were lost: look at everything */
         for (int i = 0; i < w->nfiles; i++) {
             mark_dirty(&w->files[i], t);
             w->files[i].writing = false;
@@ -294,8 +295,7 @@ static void handle_event(watch *w, const struct inotify_event *ev, int64_t t) {
                 mark_dirty(f, t);
                 if (ev->mask & (IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE | IN_MOVED_FROM))
                     f->writing = false;
-                else if ((ev->mask & IN_MODIFY) ||
-                         ((ev->mask & IN_CREATE) && !(ev->mask & IN_ISDIR)))
+                else if ((ev->mask & IN_MODIFY) || ((ev->mask & IN_CREATE) && !(ev->mask & IN_ISDIR)))
                     f->writing = true;
             }
         }
@@ -307,7 +307,7 @@ static void drain(watch *w) {
     for (;;) {
         ssize_t got = read(w->fd, w->evbuf, EVBUF_SIZE);
         if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) return;           /* EAGAIN: empty */
+        if (got <= 0) return; /* EAGAIN: empty */
         int64_t t = now_ns();
         for (char *p = w->evbuf; p < w->evbuf + got;) {
             const struct inotify_event *ev = (const struct inotify_event *)(void *)p;
@@ -350,19 +350,19 @@ static int64_t decide(watch *w, int64_t t) {
         if (!f->dirty) continue;
         int64_t quiet_at = f->last_ns + WATCH_QUIET_MS * MS;
         int64_t ready_at = quiet_at;
-        if (t < quiet_at) {                         /* still in a burst */
+        if (t < quiet_at) { /* still in a burst */
             busy = true;
             if (quiet_at < next) next = quiet_at;
             continue;
         }
-        if (f->writing) {                           /* wait for the close */
+        if (f->writing) { /* wait for the close */
             int64_t until = f->last_ns + WATCH_WRITE_GRACE_MS * MS;
             if (t < until) {
                 if (until < next) next = until;
                 continue;
             }
             ready_at = until;
-        } else if (f->present && !is_regular(f->path)) {  /* wait for it to come back */
+        } else if (f->present && !is_regular(f->path)) { /* wait for it to come back */
             int64_t until = f->last_ns + WATCH_MISSING_GRACE_MS * MS;
             if (t < until) {
                 if (until < next) next = until;
@@ -385,10 +385,9 @@ static int64_t decide(watch *w, int64_t t) {
         if (f->writing && t < f->last_ns + WATCH_WRITE_GRACE_MS * MS) continue;
         uint64_t h = 0;
         bool present = hash_file(f->path, &h);
-        if (!present && f->present && !f->writing &&
-            t < f->last_ns + WATCH_MISSING_GRACE_MS * MS) {
+        if (!present && f->present && !f->writing && t < f->last_ns + WATCH_MISSING_GRACE_MS * MS) {
             next = min64(next, f->last_ns + WATCH_MISSING_GRACE_MS * MS);
-            continue;                               /* gone just now: wait for it */
+            continue; /* gone just now: wait for it */
         }
         f->dirty = false;
         f->writing = false;
@@ -445,7 +444,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
 
     assert(w && (paths || n <= 0));
     if (n < 0) n = 0;
-    drain(w);   /* keep the old set's directory states current */
+    drain(w); /* keep the old set's directory states current */
     if (n > 0) {
         files = calloc((size_t)n, sizeof *files);
         changed = calloc((size_t)n, sizeof *changed);
@@ -479,8 +478,8 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
         int d = add_dir(w, &dirs, &ndirs, &dcap, dpath);
         if (d < 0) {
             int e = errno;
-            msg_set(err, (size_t)errlen, "watch: cannot watch directory '%s' of '%s': %s%s", dpath, p,
-                    strerror(e), e == ENOSPC ? " (raise fs.inotify.max_user_watches)" : "");
+            msg_set(err, (size_t)errlen, "watch: cannot watch directory '%s' of '%s': %s%s", dpath, p, strerror(e),
+                    e == ENOSPC ? " (raise fs.inotify.max_user_watches)" : "");
             goto fail;
         }
         watch_file *f = &files[nfiles++];
@@ -512,8 +511,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
 
     /* Success: drop the watches the new set no longer needs. */
     for (int d = 0; d < w->ndirs; d++)
-        if (w->dirs[d].wd >= 0 && !dirs_have_wd(dirs, ndirs, w->dirs[d].wd))
-            inotify_rm_watch(w->fd, w->dirs[d].wd);
+        if (w->dirs[d].wd >= 0 && !dirs_have_wd(dirs, ndirs, w->dirs[d].wd)) inotify_rm_watch(w->fd, w->dirs[d].wd);
     free_tables(w->dirs, w->ndirs, w->files, w->nfiles);
     free(w->changed);
     w->dirs = dirs;

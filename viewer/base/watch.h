@@ -40,17 +40,17 @@
 
 #include <stdbool.h>
 
-#define WATCH_QUIET_MS 40           /* no events for this long: the save is over */
-#define WATCH_WRITE_GRACE_MS 150    /* most to wait for the close of a file being written */
-#define WATCH_MISSING_GRACE_MS 200  /* most to wait for a deleted file to come back */
-#define WATCH_BATCH_MS 100          /* most a settled file waits for others still busy */
-#define WATCH_RETRY_MS 100          /* re-watch a deleted directory at least this often */
+#define WATCH_QUIET_MS         40  /* no events for this long: the save is over */
+#define WATCH_WRITE_GRACE_MS   150 /* most to wait for the close of a file being written */
+#define WATCH_MISSING_GRACE_MS 200 /* most to wait for a deleted file to come back */
+#define WATCH_BATCH_MS         100 /* most a settled file waits for others still busy */
+#define WATCH_RETRY_MS         100 /* re-watch a deleted directory at least this often */
 
 typedef struct watch watch;
 
 /* Opens an inotify instance. NULL, with a message in err, on failure. */
 watch *watch_create(char *err, int errlen);
-void watch_destroy(watch *w);   /* NULL is fine */
+void watch_destroy(watch *w); /* NULL is fine */
 
 /* Replaces the set of watched files with paths[0..n-1] (duplicates are
  * merged). Watches their directories, and records each file's current
