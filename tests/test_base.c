@@ -126,6 +126,10 @@ static void test_diagnostics(void) {
     diag_add(&l, DIAG_WARNING, "a.glib", 3, "unknown command '%s'", "Foo");
     diag_add_text(&l, DIAG_ERROR, "water.frag:12: error: 'x' undeclared\nplain words\n\nb.glsl:1: warning: w\n");
     CHECK(l.n == 4 && l.nerrors == 2 && l.nwarnings == 2);
+    diag_add_text(&l, DIAG_NOTE, "tarn: error: no context\nscene.glib: warning: no commands\n");
+    CHECK(l.n == 6 && l.nerrors == 3 && l.nwarnings == 3);
+    CHECK(l.d[4].file[0] == '\0' && l.d[4].line == 0 && strcmp(l.d[4].text, "no context") == 0);
+    CHECK(strcmp(l.d[5].file, "scene.glib") == 0 && l.d[5].line == 0);
     CHECK(strcmp(l.d[1].file, "water.frag") == 0 && l.d[1].line == 12 && l.d[1].severity == DIAG_ERROR);
     CHECK(strcmp(l.d[1].text, "'x' undeclared") == 0);
     CHECK(l.d[2].file[0] == '\0' && l.d[2].severity == DIAG_ERROR && strcmp(l.d[2].text, "plain words") == 0);

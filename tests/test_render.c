@@ -209,6 +209,36 @@ static void test_shader_error_keeps_last_good_then_fix_applies(void) {
     render_destroy(r);
 }
 
+/* An error in a file two programs include is one message, not one per
+ * program, and it is an error diagnostic with its file and line. */
+static void test_included_error_reported_once(void) {
+    scratch_write("inc_bad.glsl", "vec4 shade() { return vec4(1.0) + nope; }\n");
+    scratch_write("inc.frag", "#version 330 compatibility\n#include \"inc_bad.glsl\"\nout vec4 c;\n"
+                              "void main() { c = shade(); }\n");
+    scratch_write("inc.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment inc.frag\n"
+                              "Program A\nQuadXY 0 1 1 1\nProgram B\nQuadXY 0 0.5 1 1\n");
+    render *r = render_create(NULL);
+    CHECK(!render_load(r, scratch_path("inc.glib")));
+    /* the compiler's first message for the line, as both programs got it */
+    char want[600];
+    snprintf(want, sizeof want, "%s:1: error:", scratch_path("inc_bad.glsl"));
+    const char *m = render_messages(r), *first = strstr(m, want);
+    CHECK_MSG(first, "%s", m);
+    if (first) {
+        char line[800];
+        snprintf(line, sizeof line, "%.*s", (int)strcspn(first, "\n"), first);
+        const char *again = strstr(first + strlen(line), line);
+        CHECK_MSG(!again, "printed twice: %s", line);
+    }
+    const diag_list *dl = render_diags(r);
+    bool found = false;
+    for (int i = 0; i < dl->n; i++)
+        found |= dl->d[i].severity == DIAG_ERROR && dl->d[i].line == 1 &&
+                 strcmp(dl->d[i].file, scratch_path("inc_bad.glsl")) == 0;
+    CHECK_MSG(found, "%s", m);
+    render_destroy(r);
+}
+
 /* A glib with an error keeps the whole last good scene. */
 static void test_glib_error_keeps_last_good_scene(void) {
     scratch_write("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
@@ -473,6 +503,7 @@ int main(void) {
     RUN(test_texture_from_bmp);
     RUN(test_render_to_texture);
     RUN(test_shader_error_keeps_last_good_then_fix_applies);
+    RUN(test_included_error_reported_once);
     RUN(test_glib_error_keeps_last_good_scene);
     RUN(test_slider_values_survive_reload);
     RUN(test_define_toggle_recompiles);

@@ -49,9 +49,16 @@ static bool parse_line(const char *s, size_t n, diag_severity *sev, char *file, 
         if (!m) continue;
         const char *colon = m - 1;
         while (colon > s && *colon >= '0' && *colon <= '9') colon--;
-        if (colon == s || *colon != ':' || colon == m - 1) continue;
-        snprintf(file, filelen, "%.*s", (int)(colon - s), s);
-        *line = atoi(colon + 1);
+        if (colon > s && *colon == ':' && colon != m - 1) {
+            snprintf(file, filelen, "%.*s", (int)(colon - s), s);
+            *line = atoi(colon + 1);
+        } else if (m - s == 4 && strncmp(s, "tarn", 4) == 0) {
+            file[0] = '\0';            /* `tarn: error: text`: no file concerned */
+            *line = 0;
+        } else {
+            snprintf(file, filelen, "%.*s", (int)(m - s), s);   /* `file: error: text` */
+            *line = 0;
+        }
         *sev = (diag_severity)k;
         *text = m + strlen(pat);
         return true;

@@ -28,9 +28,10 @@ typedef struct diag_list {
 
 void diag_add(diag_list *l, diag_severity sev, const char *file, int line, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
-/* Reads `file:line: error: text` lines (a compiler's log, a legacy
- * message buffer) into l, one diag a line; lines of another shape become
- * diags of severity sev with no file. */
+/* Reads `file:line: error: text` lines (a compiler's log, a message
+ * buffer) into l, one diag a line: `file: warning: text` has line 0,
+ * `tarn: error: text` no file; lines of another shape become diags of
+ * severity sev with no file. */
 void diag_add_text(diag_list *l, diag_severity sev, const char *text);
 void diag_list_free(diag_list *l);
 

@@ -56,6 +56,7 @@ struct render {
     char path[GLIB_PATH_MAX];
     scene_state cur;
     char *messages;
+    diag_list diags;            /* the messages' diagnostics */
     bool errors;
     const char **deps;
     int ndeps;
@@ -104,6 +105,7 @@ void render_destroy(render *r) {
     world_free(&r->world);
     free_deps(r);
     free(r->messages);
+    diag_list_free(&r->diags);
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
     gpu_timer_free(&r->timer);
@@ -424,6 +426,31 @@ static void build_world(render *r, const glib_scene *g, char **log) {
     else world_free(&r->world);
 }
 
+/* The latest load's messages: each line once (an error in a file that
+ * several programs include is reported by each), and their diagnostics,
+ * from which errors are told apart from warnings. */
+static void set_messages(render *r, char *log) {
+    strbuf out = { 0 };
+    for (const char *s = log; s && *s;) {
+        const char *e = strchr(s, '\n');
+        size_t n = e ? (size_t)(e - s) + 1 : strlen(s);
+        bool seen = false;
+        for (const char *q = out.s; q && *q && !seen;) {
+            const char *qe = strchr(q, '\n');
+            size_t qn = qe ? (size_t)(qe - q) + 1 : strlen(q);
+            seen = qn == n && memcmp(q, s, n) == 0;
+            q += qn;
+        }
+        if (!seen) strbuf_put(&out, s, n);
+        s += n;
+    }
+    free(log);
+    free(r->messages);
+    r->messages = out.s;
+    diag_list_free(&r->diags);
+    diag_add_text(&r->diags, DIAG_NOTE, r->messages);
+}
+
 bool render_load(render *r, const char *glib_path) {
     if (glib_path && glib_path != r->path) snprintf(r->path, sizeof r->path, "%s", glib_path);
     char *log = NULL;
@@ -435,8 +462,7 @@ bool render_load(render *r, const char *glib_path) {
         str_appendf(&log, "%s: the scene has errors; keeping the last good scene\n", r->path);
         collect_deps(r, g, &r->cur);
         glib_free(g);
-        free(r->messages);
-        r->messages = log;
+        set_messages(r, log);
         r->errors = true;
         return false;
     }
@@ -448,9 +474,8 @@ bool render_load(render *r, const char *glib_path) {
     scene_free(&r->cur);
     r->cur = fresh;
     collect_deps(r, g, &r->cur);
-    free(r->messages);
-    r->messages = log;
-    r->errors = g->nerrors > 0 || (log && strstr(log, ": error"));
+    set_messages(r, log);
+    r->errors = g->nerrors > 0 || r->diags.nerrors > 0;
     return !r->errors;
 }
 
@@ -467,13 +492,13 @@ bool render_rebuild_programs(render *r) {
         prog_introspect(&r->world.prog, &log);
     }
     collect_deps(r, r->cur.glib, &r->cur);
-    free(r->messages);
-    r->messages = log;
+    set_messages(r, log);
     r->errors = !ok;
     return ok;
 }
 
 const char *render_messages(const render *r) { return r->messages ? r->messages : ""; }
+const diag_list *render_diags(const render *r) { return &r->diags; }
 bool render_has_errors(const render *r) { return r->errors; }
 bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
 bool render_has_world(const render *r) { return r->world.active; }

@@ -11,6 +11,7 @@
 #define TARN_RENDER_H
 
 #include <stdbool.h>
+#include "diag.h"
 #include "unif.h"
 
 typedef struct render render;
@@ -34,7 +35,9 @@ bool render_load(render *r, const char *glib_path);
 /* Rebuilds programs whose `Define` toggles changed in the panel. */
 bool render_rebuild_programs(render *r);
 
-const char *render_messages(const render *r);   /* "" when the last load was clean */
+const char *render_messages(const render *r);   /* "" when the last load was clean; each line once */
+/* The same as diagnostics (severity, file, line, text). */
+const diag_list *render_diags(const render *r);
 bool render_has_errors(const render *r);
 bool render_has_scene(const render *r);
 /* The scene describes a world (lit in linear radiance, like the reference). */

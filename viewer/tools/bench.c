@@ -807,8 +807,9 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
     if (!loaded || !have_target) {
         char why[600];
         first_line(render_messages(r)[0] ? render_messages(r) : "cannot create the framebuffer", why, sizeof why);
-        for (const char *m = render_messages(r); m && *m; m = strchr(m, '\n') ? strchr(m, '\n') + 1 : NULL)
-            if (strstr(m, ": error")) { first_line(m, why, sizeof why); break; }
+        const diag_list *dl = render_diags(r);
+        for (int j = 0; j < dl->n; j++)
+            if (dl->d[j].severity == DIAG_ERROR) { diag_format(&dl->d[j], why, sizeof why); break; }
         for (int ti = 0; ti < b->o.ntimes; ti++) snprintf(b->rows[first_row + ti].error, sizeof why, "%s", why);
         fprintf(stderr, "%starn bench: %s with %s, setting %s: %s\n", b->pr.tty ? "\n" : "", sc, b->o.packs[p],
                 st->name, why);
