@@ -30,6 +30,12 @@ fi
 if command -v xmllint >/dev/null; then
     xmllint --noout "$tmp/prefix/share/mime/packages/tarn-glib.xml" || fail "tarn-glib.xml is not XML"
 fi
+if command -v update-mime-database >/dev/null; then   # the database shared-mime-info builds from it
+    cp -r "$tmp/prefix/share/mime" "$tmp/mime"
+    update-mime-database "$tmp/mime" >/dev/null 2>&1 || fail "update-mime-database rejects tarn-glib.xml"
+    grep -q 'text/x-glib:\*\.glib' "$tmp/mime/globs2" || fail "mime: no *.glib glob"
+    grep -q 'text/x-glib' "$tmp/mime/magic" || fail "mime: no magic"
+fi
 
 # which data: the prefix's
 tarn=$tmp/prefix/bin/tarn
