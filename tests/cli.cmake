@@ -16,3 +16,10 @@ add_test(NAME window_app_xvfb
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_app_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_app_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")
+
+# `cmake --install` into a temporary prefix; the installed tarn, from outside
+# the source tree, renders an installed scene with the prefix's packs
+# (tests/install_test.sh says how it proves that).
+add_test(NAME install_prefix
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/install_test.sh ${CMAKE_COMMAND} ${CMAKE_BINARY_DIR} ${CMAKE_SOURCE_DIR})
+set_tests_properties(install_prefix PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS gl)

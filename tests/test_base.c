@@ -121,6 +121,29 @@ static void test_root_follows_environment(void) {
     if (keep[0]) setenv("TARN_ROOT", keep, 1);
 }
 
+/* The XDG rule: an absolute $XDG_CACHE_HOME, else $HOME/.cache; neither: none. */
+static void test_cache_dir_follows_xdg(void) {
+    char keep_xdg[4096] = "", keep_home[4096] = "", dir[256];
+    const char *x = getenv("XDG_CACHE_HOME"), *h = getenv("HOME");
+    if (x) snprintf(keep_xdg, sizeof keep_xdg, "%s", x);
+    if (h) snprintf(keep_home, sizeof keep_home, "%s", h);
+    setenv("XDG_CACHE_HOME", "/c", 1);
+    setenv("HOME", "/h", 1);
+    CHECK(tarn_cache_dir(dir, sizeof dir) && strcmp(dir, "/c/tarn") == 0);
+    setenv("XDG_CACHE_HOME", "relative", 1);   /* the spec says to ignore it */
+    CHECK(tarn_cache_dir(dir, sizeof dir) && strcmp(dir, "/h/.cache/tarn") == 0);
+    unsetenv("XDG_CACHE_HOME");
+    CHECK(tarn_cache_dir(dir, sizeof dir) && strcmp(dir, "/h/.cache/tarn") == 0);
+    unsetenv("HOME");
+    CHECK(!tarn_cache_dir(dir, sizeof dir));
+    setenv("HOME", "/h", 1);
+    CHECK(!tarn_cache_dir(dir, 4));   /* too small is no answer, not a cut one */
+    if (keep_xdg[0]) setenv("XDG_CACHE_HOME", keep_xdg, 1);
+    else unsetenv("XDG_CACHE_HOME");
+    if (keep_home[0]) setenv("HOME", keep_home, 1);
+    else unsetenv("HOME");
+}
+
 static void test_diagnostics(void) {
     diag_list l = { 0 };
     diag_add(&l, DIAG_WARNING, "a.glib", 3, "unknown command '%s'", "Foo");
@@ -150,6 +173,7 @@ int main(void) {
     RUN(test_median_and_sort);
     RUN(test_options);
     RUN(test_root_follows_environment);
+    RUN(test_cache_dir_follows_xdg);
     RUN(test_diagnostics);
     return check_summary();
 }

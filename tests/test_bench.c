@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -302,14 +303,33 @@ static void test_pack_list(void) {
     CHECK(basic);
 }
 
-static int bench(const char *out, bool docs) {
-    char docs_path[768];
+/* ref_cache NULL: the default cache, $XDG_CACHE_HOME/tarn/ref (main points
+ * XDG_CACHE_HOME into the test's folder, never the user's cache). */
+static int bench(const char *out, bool docs, const char *ref_cache) {
+    char docs_path[768], cache[768];
     snprintf(docs_path, sizeof docs_path, "%s", tmp("docs/benchmark.md"));
-    const char *argv[] = { TARN_SOURCE_DIR "/scenes/lake.glib", "--root", tmp("root"), "--size", "64x36",
-                           "--times", "0.5,2", "--frames", "3", "--ref-caustic-res", "16", "--ref-photons", "1",
-                           "--out", out, "--quiet", "--docs", docs_path };
-    int argc = (int)(sizeof argv / sizeof *argv) - (docs ? 0 : 2);
+    snprintf(cache, sizeof cache, "%s", ref_cache ? ref_cache : "");
+    const char *argv[24] = { TARN_SOURCE_DIR "/scenes/lake.glib", "--root", tmp("root"), "--size", "64x36",
+                             "--times", "0.5,2", "--frames", "3", "--ref-caustic-res", "16", "--ref-photons", "1",
+                             "--out", out, "--quiet" };
+    int argc = 16;
+    if (ref_cache) { argv[argc++] = "--ref-cache"; argv[argc++] = cache; }
+    if (docs) { argv[argc++] = "--docs"; argv[argc++] = docs_path; }
     return cmd_bench(argc, (char **)argv);
+}
+
+/* Files in dir whose name ends in suffix. */
+static int count_files(const char *dir, const char *suffix) {
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    int n = 0;
+    size_t ls = strlen(suffix);
+    for (struct dirent *e; (e = readdir(d));) {
+        size_t l = strlen(e->d_name);
+        n += l > ls && strcmp(e->d_name + l - ls, suffix) == 0;
+    }
+    closedir(d);
+    return n;
 }
 
 static void test_bench_end_to_end(void) {
@@ -317,7 +337,7 @@ static void test_bench_end_to_end(void) {
     snprintf(cmd, sizeof cmd, "mkdir -p %s/docs", tmpdir);
     CHECK(system(cmd) == 0);
     write_file(tmp("docs/benchmark.md"), "# Benchmark\n\nkept\n\n<!-- bench:begin -->\nold\n<!-- bench:end -->\n\ntail\n");
-    int rc = bench(tmp("out"), true);
+    int rc = bench(tmp("out"), true, NULL);
     if (rc == TARN_EXIT_NO_GL) SKIP("no OpenGL context");
     CHECK(rc == TARN_EXIT_OK);
 
@@ -373,11 +393,22 @@ static void test_bench_end_to_end(void) {
         img_free(&plot);
     }
 
+    /* the references went to the XDG cache, not the output folder */
+    CHECK(count_files(tmp("cache/tarn/ref"), ".exr") > 0);
+    CHECK(stat(tmp("out/ref"), &st) != 0);
+
     /* again: the references come from the cache */
-    CHECK(bench(tmp("out"), false) == TARN_EXIT_OK);
+    CHECK(bench(tmp("out"), false, NULL) == TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 0, \"references_cached\": 2");
     free(json);
+
+    /* --ref-cache DIR: an empty cache there, so rendered again, into DIR */
+    CHECK(bench(tmp("out"), false, tmp("alt-cache")) == TARN_EXIT_OK);
+    json = read_file(tmp("out/bench.json"));
+    if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
+    free(json);
+    CHECK(count_files(tmp("alt-cache"), ".exr") > 0);
 }
 
 static void test_usage(void) {
@@ -396,6 +427,8 @@ static void test_usage(void) {
 int main(void) {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/tarn-test-bench-XXXXXX");
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
+    /* bench caches references in $XDG_CACHE_HOME/tarn: the test's own, not the user's */
+    setenv("XDG_CACHE_HOME", tmp("cache"), 1);
     make_probe_root();
     RUN(test_bench_txt);
     RUN(test_apply);

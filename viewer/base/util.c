@@ -1,9 +1,12 @@
 #include "util.h"
 
+#include <limits.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "file.h"
 
@@ -12,6 +15,9 @@
 #endif
 #ifndef TARN_DATA_DIR
 #define TARN_DATA_DIR ""
+#endif
+#ifndef TARN_DATA_REL
+#define TARN_DATA_REL ""   /* the data folder relative to the executable's folder */
 #endif
 
 double clock_now_s(void) {
@@ -48,15 +54,54 @@ bool opt_double(const char *s, double *out) {
 
 bool opt_is_help(const char *a) { return a && (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0); }
 
+static bool has_packs(const char *dir) {
+    char probe[PATH_MAX + 128];
+    snprintf(probe, sizeof probe, "%s/packs", dir);
+    return file_is_dir(probe);
+}
+
+/* The data folder beside the running executable (e.g. PREFIX/bin/tarn ->
+ * PREFIX/share/tarn): the install's own, wherever its prefix is. */
+static bool exe_data_dir(char *out) {
+    char exe[PATH_MAX], dir[PATH_MAX + 64];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0 || !TARN_DATA_REL[0]) return false;
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (!slash) return false;
+    *slash = '\0';
+    snprintf(dir, sizeof dir, "%s/%s", exe, TARN_DATA_REL);
+    return has_packs(dir) && realpath(dir, out) != NULL;
+}
+
+/* The one answer, found once: tarn_root is called from any thread, and
+ * readlink/realpath are not worth repeating for every scene load. The one
+ * file-scope state of this module. */
+static struct {
+    pthread_once_t once;
+    char dir[PATH_MAX];
+} root_ctx = { PTHREAD_ONCE_INIT, "" };
+
+static void root_find(void) {
+    if (exe_data_dir(root_ctx.dir)) return;
+    /* a build-tree tarn: the configured install when it is there, else the sources */
+    const char *dir = TARN_DATA_DIR[0] && has_packs(TARN_DATA_DIR) ? TARN_DATA_DIR : TARN_SOURCE_DIR;
+    snprintf(root_ctx.dir, sizeof root_ctx.dir, "%s", dir);
+}
+
 const char *tarn_root(void) {
     const char *env = getenv("TARN_ROOT");
     if (env && env[0]) return env;
-    /* an installed tarn: TARN_DATA_DIR holds packs/ (the source tree may be gone) */
-    static const char data[] = TARN_DATA_DIR;
-    char probe[4096];
-    if (data[0]) {
-        snprintf(probe, sizeof probe, "%s/packs", data);
-        if (file_is_dir(probe)) return data;
-    }
-    return TARN_SOURCE_DIR;
+    pthread_once(&root_ctx.once, root_find);
+    return root_ctx.dir;
+}
+
+bool tarn_cache_dir(char *out, size_t len) {
+    const char *xdg = getenv("XDG_CACHE_HOME");
+    const char *home = getenv("HOME");
+    int n;
+    if (xdg && xdg[0] == '/') n = snprintf(out, len, "%s/tarn", xdg);   /* the spec: a relative one is ignored */
+    else if (home && home[0]) n = snprintf(out, len, "%s/.cache/tarn", home);
+    else return false;
+    return n > 0 && (size_t)n < len;
 }

@@ -23,8 +23,16 @@ bool opt_double(const char *s, double *out);
 bool opt_is_help(const char *a);
 
 /* Where tarn's packs/ and scenes/ are: $TARN_ROOT when set, else the
- * installed data folder when tarn runs from an install, else the source
- * tree it was built from. One place decides. */
+ * data folder of the install tarn runs from (BINDIR/../share/tarn beside
+ * the executable, so an install made with `cmake --install --prefix P` or
+ * moved elsewhere still finds its own), else the configured install data
+ * folder, else the source tree it was built from. One place decides; the
+ * answer does not change while tarn runs. */
 const char *tarn_root(void);
+
+/* tarn's cache folder, per the XDG base directory spec: $XDG_CACHE_HOME/tarn
+ * when that is an absolute path, else $HOME/.cache/tarn. False when neither
+ * is set (nowhere to cache). Not created here. */
+bool tarn_cache_dir(char *out, size_t len);
 
 #endif

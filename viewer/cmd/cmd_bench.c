@@ -16,8 +16,8 @@ static const char usage[] =
     "packs/NAME/bench.txt declares, at fixed simulated times, timed and compared\n"
     "with the CPU reference of the same frame. Writes DIR/bench.csv, bench.json,\n"
     "passes.csv (GPU time per pass), report.md, plot-SCENE.png, the frames and\n"
-    "their heat maps (DIR/img), and\n"
-    "caches the reference images in DIR/ref (reruns reuse them).\n"
+    "their heat maps (DIR/img). The reference images are cached in\n"
+    "$XDG_CACHE_HOME/tarn/ref (default ~/.cache/tarn/ref): reruns reuse them.\n"
     "\n"
     "  SCENE.glib         scenes to measure (default: scenes/lake.glib)\n"
     "  --packs a,b        packs to measure (default: every packs/NAME/pack.glib)\n"
@@ -39,10 +39,13 @@ static const char usage[] =
     "  --ref-spp N        reference subsamples N x N (default 1)\n"
     "  --ref-photons N    reference photons per caustic cell (default 36)\n"
     "  --ref-caustic-res N  reference caustic grid (default 256)\n"
+    "  --ref-cache DIR    where the reference images are cached (default\n"
+    "                     $XDG_CACHE_HOME/tarn/ref, else ~/.cache/tarn/ref)\n"
     "  --heat-max E       heat-map scale, linear RGB error (default 0.25)\n"
     "  --no-images        do not write the frames and heat maps\n"
     "  --quiet            no progress bar\n"
-    "  --root DIR         the tree whose packs/ is used (default: tarn's source tree)\n"
+    "  --root DIR         the tree whose packs/ is used (default: $TARN_ROOT, else\n"
+    "                     the installed data, else tarn's source tree)\n"
     "\n"
     "exit codes: 0 ok, 1 a scene, pack or output failed (the rest is measured),\n"
     "2 bad usage, 3 no OpenGL\n";
@@ -125,6 +128,7 @@ static int parse(int argc, char **argv, bench_desc *d, char *packs, size_t packs
             i++;
         } else if (strcmp(a, "--out") == 0 && next) { d->out = next; i++; }
         else if (strcmp(a, "--docs") == 0 && next) { d->docs = next; i++; }
+        else if (strcmp(a, "--ref-cache") == 0 && next) { d->ref_cache = next; i++; }
         else if (strcmp(a, "--time-axis") == 0 && next) {
             if (!parse_axis(next, &d->time_axis)) return BAD("--time-axis wants auto, gpu or wall");
             i++;

@@ -67,7 +67,16 @@ static void print_usage(FILE *f) {
     fputs("\n"
           "With no command, tarn opens the default scene (scenes/pond.glib) in a window,\n"
           "or, when there is no display, renders it to out/default.png.\n"
-          "`tarn COMMAND --help` lists a command's options; `tarn --version` says which tarn.\n", f);
+          "`tarn COMMAND --help` lists a command's options; `tarn --version` says which tarn\n"
+          "and where its packs and scenes are. `man tarn` documents it all.\n", f);
+}
+
+/* The version, and which packs and scenes this tarn uses (tarn_root: an
+ * install's own, $TARN_ROOT or the source tree): "which tarn" answered
+ * whole, and what the install test checks. */
+static int print_version(void) {
+    printf("tarn %s\ndata: %s\n", TARN_VERSION, tarn_root());
+    return TARN_EXIT_OK;
 }
 
 static int unknown(const char *name) {
@@ -109,7 +118,7 @@ int main(int argc, char **argv) {
     if (argc < 2) return main_default();
     const char *name = argv[1];
     if (opt_is_help(name)) { print_usage(stdout); return TARN_EXIT_OK; }
-    if (strcmp(name, "--version") == 0) { printf("tarn %s\n", TARN_VERSION); return TARN_EXIT_OK; }
+    if (strcmp(name, "--version") == 0) return print_version();
     const command *c = find(name);
     if (c && cmd_wants_help(argc - 2, argv + 2)) { fputs(c->usage(), stdout); return TARN_EXIT_OK; }
     if (c) return c->run(argc - 2, argv + 2);

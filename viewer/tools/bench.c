@@ -105,6 +105,7 @@ typedef struct progress {
 typedef struct bench {
     bench_opts o;
     char root[PATH_LEN];
+    char ref_dir[PATH_LEN];      /* the reference cache (ref_cache_dir) */
     char scene_abs[MAX_SCENES][PATH_LEN];
     packset_bench pb[PACKSET_MAX];
     row *rows;
@@ -285,9 +286,20 @@ static void fill_opts(bench_opts *o, const bench_desc *d) {
     o->quiet = d->quiet;
 }
 
+/* Where the references are cached: --ref-cache, else $XDG_CACHE_HOME/tarn/ref
+ * (shared by every output folder: the same frame is the same reference),
+ * else, with no home to cache in, the output folder's ref/. */
+static void ref_cache_dir(bench *b, const bench_desc *d) {
+    char cache[PATH_LEN - 8];
+    if (d->ref_cache) snprintf(b->ref_dir, sizeof b->ref_dir, "%s", d->ref_cache);
+    else if (tarn_cache_dir(cache, sizeof cache)) snprintf(b->ref_dir, sizeof b->ref_dir, "%s/ref", cache);
+    else snprintf(b->ref_dir, sizeof b->ref_dir, "%s/ref", b->o.out);
+}
+
 static int resolve(bench *b, const bench_desc *d, char *why, size_t whylen) {
     bench_opts *o = &b->o;
     fill_opts(o, d);
+    ref_cache_dir(b, d);
     if (d->root && !realpath(d->root, b->root)) return unusable(why, whylen, "--root: no directory '%s'", d->root);
     if (!o->nscenes) {
         static char lake[4096];
@@ -358,8 +370,7 @@ static double ref_weight(const bench *b) {
 
 /* Keys of every reference the run needs; renders or reads each once. */
 static void prepare_refs(bench *b) {
-    char dir[PATH_LEN];
-    snprintf(dir, sizeof dir, "%s/ref", b->o.out);
+    const char *dir = b->ref_dir;
     for (int s = 0; s < b->o.nscenes; s++)
         for (int p = 0; p < b->o.npacks; p++)
             for (int k = 0; k < b->pb[p].n; k++) {
@@ -404,8 +415,8 @@ static ref_entry *get_ref(bench *b, int s, const char *scene, int ti) {
     if (!e) return NULL;
     if (e->tried) return e->ok ? e : NULL;
     e->tried = true;
-    char dir[PATH_LEN], sc[256];
-    snprintf(dir, sizeof dir, "%s/ref", b->o.out);
+    const char *dir = b->ref_dir;
+    char sc[256];
     stem(b->scene_abs[s], sc, sizeof sc);
     ref_progress_ctx pc = { &b->pr, b->pr.done, e->weight };
     progress_set(&b->pr, b->pr.done, true, "reference %s t=%g", sc, b->o.times[ti]);

@@ -37,6 +37,7 @@ typedef struct bench_desc {
     double frame_budget;                   /* seconds a time (default 1.5) */
     bool frame_budget_set;
     const char *out;                       /* NULL: out/bench */
+    const char *ref_cache;                 /* NULL: $XDG_CACHE_HOME/tarn/ref */
     const char *docs;                      /* NULL: no docs section */
     int time_axis;                         /* 0 auto, 1 gpu, 2 wall */
     refcache_opts ref;                     /* the references' quality */
