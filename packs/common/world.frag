@@ -1,4 +1,5 @@
 #version 330 compatibility
+#include "waves.glsl"
 #include "world.glsl"
 
 uniform sampler2D uTerrainAlbedo;
@@ -82,6 +83,31 @@ vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
     return c * (1.0 + stripes);
 }
 
+// Is p under the water surface at this time? Below the mean level is not
+// enough: where a trough uncovers the shore, the reference's ray meets the
+// land in air and lights it dry (its shading follows the path, not the
+// mean level). The surface is looked up only within the waves' height
+// bound of the level (waves.glsl's sum of amplitudes; gradient noise stays
+// within 0.75 of its amplitude), so the deep floor costs nothing.
+uniform float uTime;
+bool worldUnderWater(vec3 p) {
+    if (p.y >= uWaterLevel) return false;
+    float bound = 0.0;
+    for (int i = 0; i < WAVES_MAX; i++) {
+        if (i < uSineCount) bound += abs(uSineAmp[i]);
+        if (i < uGerstnerCount) bound += abs(uGerstnerAmp[i]);
+    }
+    int octaves = uNoiseOctaves > 0 ? uNoiseOctaves : 4;
+    float gain = uNoiseGain > 0.0 ? uNoiseGain : 0.5, a = abs(uNoiseAmp);
+    for (int o = 0; o < WAVES_NOISE_OCTAVES_MAX; o++) {
+        if (o >= octaves) break;
+        bound += 0.75 * a;
+        a *= gain;
+    }
+    if (p.y < uWaterLevel - bound) return true;
+    return p.y < wavesHeightAt(p.xz, uTime);
+}
+
 void main() {
     vec3 c;
     if (uWorldMode == 2) {
@@ -89,9 +115,12 @@ void main() {
     } else if (uWorldMode == 0) {
         vec3 hg = terrainHeightGrad(vWorldPos.xz);
         vec3 n = normalize(vec3(-hg.y, 1.0, -hg.z));
-        c = worldShadeAt(terrainAlbedo(vWorldPos.xz, hg.x, n), n, vWorldPos);
+        vec3 albedo = terrainAlbedo(vWorldPos.xz, hg.x, n);
+        c = worldUnderWater(vWorldPos) ? worldShadeAt(albedo, n, vWorldPos) : worldLambert(albedo, n, vec3(1.0));
     } else {
-        c = worldShadeAt(uWorldAlbedo, normalize(vWorldNormal), vWorldPos);
+        vec3 n = normalize(vWorldNormal);
+        c = worldUnderWater(vWorldPos) ? worldShadeAt(uWorldAlbedo, n, vWorldPos)
+                                       : worldLambert(uWorldAlbedo, n, vec3(1.0));
     }
     if (uWorldEyePath) c *= exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos));
     fragColor = vec4(c, 1.0);
