@@ -112,9 +112,10 @@ static void test_sky_pixels_are_the_sky(void) {
     CHECK(checked > 50);
 }
 
-/* Tolerance 0.04: GL interpolates a 256-cell mesh with vertex normals and a
- * 256^2 albedo texture; on this shore that departs from the exact surface
- * by about 1% in normal and albedo; plus 8-bit rounding. */
+/* Tolerance 0.04: GL interpolates a 256-cell mesh, so a pixel shows a point
+ * a little off the exact surface (world.frag evaluates the terrain's
+ * normal and albedo there from its model, no longer from vertex normals
+ * and a texture); plus 8-bit rounding. */
 static void test_dry_shore_pixels_are_lambert(void) {
     render_lake(1.0);
     int hits = 0;
@@ -210,10 +211,10 @@ static void test_under_water_eye_path_is_attenuated(void) {
     fprintf(stderr, "  %d pixels: worst |GL - reference| %.4f (%.4f without the eye's path)\n", checked, worst,
             worst_unfaded);
     CHECK(checked > 300);
-    /* 0.005: a float target, so what remains is the albedo texture's
-     * bilinear sampling of the terrain's pattern and the sphere mesh's
-     * facets away from its silhouette (observed 0.0018); the fade itself is
-     * far larger (the last check) */
+    /* 0.005: a float target, so what remains is the sphere mesh's facets
+     * away from its silhouette (observed 0.0004 since world.frag evaluates
+     * the terrain's albedo per fragment; 0.0018 with the albedo texture);
+     * the fade itself is far larger (the last check) */
     CHECK(worst < 0.005);
     CHECK(worst_unfaded > 0.1);
     remove(path);
