@@ -25,7 +25,7 @@
 #define DEFAULT_PHOTONS_PER_CELL 36
 #define DEFAULT_MAX_DEPTH 5
 #define DEFAULT_T_TOL 1e-9
-#define RAY_T_MAX 1e4
+#define RAY_T_MAX REF_WORLD_HORIZON   /* the GL world's land ends there too */
 
 #define MAX_THREADS 256
 #define MAX_SPP 16

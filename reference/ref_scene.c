@@ -56,14 +56,19 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
         calm.level = s->water_level;
         ref_waves_init(&w->waves, &calm, err, sizeof err);
     }
-    /* the lake's bottom detail: deterministic from the seed */
+    /* the lake's bottom detail: deterministic from the seed, its
+     * wavelengths (like its amplitudes, which follow the depth) in
+     * proportion to the world: a lake of half size 1200 is the 12 m lake
+     * scaled, not one with 0.8 m ripples on 9 m mesh cells that neither a
+     * mesh nor a pixel resolves */
     uint64_t state = 0x9e3779b97f4a7c15ull ^ (uint64_t)s->seed;
+    double k_scale = REF_WORLD_UNIT / s->half_size;
     double bound = 0;
     for (int i = 0; i < REF_TERRAIN_DETAIL; i++) {
         double u1 = (double)(ref_splitmix64(&state) >> 11) / 9007199254740992.0;
         double u2 = (double)(ref_splitmix64(&state) >> 11) / 9007199254740992.0;
         double u3 = (double)(ref_splitmix64(&state) >> 11) / 9007199254740992.0;
-        double angle = 2 * PI * u1, k = 0.35 * pow(1.8, i) * (0.8 + 0.4 * u2);
+        double angle = 2 * PI * u1, k = 0.35 * pow(1.8, i) * (0.8 + 0.4 * u2) * k_scale;
         w->detail_k[i][0] = k * cos(angle);
         w->detail_k[i][1] = k * sin(angle);
         w->detail_a[i] = 0.12 * s->depth / pow(1.9, i) / 3.0;
@@ -156,7 +161,11 @@ static void mix3(const double a[3], const double b[3], double t, double out[3]) 
 void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]) {
     static const double silt[3] = { 0.30, 0.28, 0.20 }, sand[3] = { 0.76, 0.68, 0.50 },
                         grass[3] = { 0.22, 0.40, 0.14 }, rock[3] = { 0.42, 0.40, 0.37 };
-    double h = ref_terrain_height(w, x, z) - w->d.water_level;
+    /* heights and the pattern in the lake's units (half size 12), so a
+     * scaled world has the scaled colours: its bands and stripes stay as
+     * many pixels wide, and a pixel never spans many stripes */
+    double unit = w->d.half_size / REF_WORLD_UNIT;
+    double h = (ref_terrain_height(w, x, z) - w->d.water_level) / unit;
     double n[3];
     ref_terrain_normal_at(w, x, z, n);
     double c[3];
@@ -164,6 +173,8 @@ void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]) {
     mix3(c, grass, smoothstep(0.15, 0.35, h), c);            /* grass above the beach */
     mix3(c, rock, smoothstep(0.80, 0.65, n[1]), c);          /* rock where it is steep */
     /* a faint pattern so perturbed lookups show: ripples of the detail */
+    x /= unit;
+    z /= unit;
     double stripes = 0.06 * sin(3.1 * x + 1.7 * sin(0.9 * z)) * sin(2.3 * z + 1.3 * sin(0.7 * x));
     for (int i = 0; i < 3; i++) rgb[i] = c[i] * (1.0 + stripes);
 }

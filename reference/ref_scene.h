@@ -17,6 +17,15 @@
 #include "ref_waves.h"
 
 #define REF_MAX_OBJECTS 32
+/* How far the land reaches (m): the reference's rays end at this distance
+ * from their origin, and the GL world draws its land out to it (the skirt
+ * around the world square) under a far plane beyond it, so both sides show
+ * the same land to the same horizon. At 1e4 m land ends within a pixel of
+ * the true horizon for any eye a few metres up. */
+#define REF_WORLD_HORIZON 1e4
+/* The half size the terrain's detail and colours are drawn for: a world of
+ * another half size has them scaled in proportion (the lake's 12 m). */
+#define REF_WORLD_UNIT 12.0
 #define REF_TERRAIN_DETAIL 6       /* sine terms of the terrain's detail */
 
 typedef enum ref_object_kind {

@@ -8,6 +8,7 @@
 
 #include "check.h"
 #include "support.h"
+#include "exr_header.h"
 #include "image_io.h"
 
 static const char *bin, *src;
@@ -100,6 +101,9 @@ static void test_frames_write_every_frame(void) {
     snprintf(p2, sizeof p2, "%s/f0002.exr", dir);
     CHECK(access(p0, R_OK) == 0);
     CHECK(access(p2, R_OK) == 0);
+    /* 32-bit float, as the help says: half would quantise what a float
+     * target holds (hit points: 4-8 mm at the lake's coordinates) */
+    CHECK_MSG(exr_pixel_type(p0) == EXR_TYPE_FLOAT, "%s: pixel type %d, want float (2)", p0, exr_pixel_type(p0));
     img i0, i2;
     char err[256];
     memset(&i0, 0, sizeof i0);

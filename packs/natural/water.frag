@@ -52,7 +52,8 @@ uniform float uCausticStrength;  // 1: the photons' ratio as computed; 0: flat-w
 #endif
 
 // A depth at or beyond this is the sky (tarn draws it at the far plane)
-// or nothing: with near 0.1 and far 200, beyond about 196 m.
+// or nothing: with near 0.1 and a world's far plane of 4e4 (at least), beyond
+// about 8 km; the land ends at 1e4 m (REF_WORLD_HORIZON).
 #define NAT_SKY_DEPTH 0.99999
 
 in vec2 vRest;

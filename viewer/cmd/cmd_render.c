@@ -41,7 +41,10 @@ static bool write_target(const render_target *t, const char *path, bool encode_s
     if (ok && encode_srgb && !wants_float(path))
         for (long i = 0; i < (long)t->w * t->h; i++)
             for (int k = 0; k < 3; k++) im.px[i * 4 + k] = (float)ref_linear_to_srgb(im.px[i * 4 + k]);
-    if (ok) ok = img_write(path, &im, err, errlen);
+    /* 32-bit float .exr, as the help says and as the reference writes: a
+     * half's 11 bits quantise hit-point buffers to 4-8 mm at the lake's
+     * coordinates, coarser than the errors worth measuring */
+    if (ok) ok = img_write_float(path, &im, err, errlen);
     img_free(&im);
     return ok;
 }

@@ -576,6 +576,11 @@ static void camera_inputs(const render *r, const render_view *v, int w, int h, c
         in.half_size = d->half_size;
         in.depth = d->depth;
         memcpy(in.sun_dir, d->sun_dir, sizeof in.sun_dir);
+        /* the land reaches REF_WORLD_HORIZON, as in the reference (a glib's
+         * far plane of 200 m cut off land it draws); the skirt's corners lie
+         * up to sqrt 2 times that away, so 4 times clears them. Depth
+         * precision hardly changes: it is set by the near plane. */
+        if (in.far_z < 4.0 * REF_WORLD_HORIZON) in.far_z = 4.0 * REF_WORLD_HORIZON;
     }
     for (int i = 0; i < s->glib->ncmds; i++) {
         const glib_cmd *c = &s->glib->cmds[i];

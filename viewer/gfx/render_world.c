@@ -43,12 +43,35 @@ static bool build_sky_box(gpu_world *gw) {
     return ok;
 }
 
-/* The land beyond the world square, out to SKIRT_SCALE times its size: the
- * reference's terrain goes on there (a plain at shore height), so the GL
- * view of the far shore shows it too. Rings of squares, the first on the
- * square's border with the terrain mesh's own vertices, so no crack. */
-#define SKIRT_RINGS 8
-#define SKIRT_SCALE 8.0
+/* The land beyond the world square, out to REF_WORLD_HORIZON, where the
+ * reference's rays end: its terrain goes on there (the lake: its rim rises
+ * to shore height by r = 1.25, then a plain), so the GL view shows the same
+ * land to the same horizon. Rings of squares, the first on the square's
+ * border with the terrain mesh's own vertices, so no crack. Out to
+ * SKIRT_NEAR times the square's half size (past the lake's rim, where the
+ * terrain still bends) the rings are as far apart as the terrain mesh's
+ * cells; beyond, where the land is a plane (or the slope's plane), each is
+ * SKIRT_GROWTH times the last: a plane needs no vertices inside it. The
+ * colour and normal come from the terrain's model per fragment
+ * (world.frag), so the vertices carry only positions. */
+#define SKIRT_NEAR 1.3
+#define SKIRT_GROWTH 1.3
+#define SKIRT_MAX_RINGS 512
+
+/* The half sizes of the skirt's rings, ring 0 the square's border; returns
+ * how many (at least 2, the last at the horizon or further). */
+static int skirt_rings(const ref_world *w, double *h) {
+    double hs = w->d.half_size, step = 2 * hs / w->d.terrain_res;
+    double horizon = REF_WORLD_HORIZON > SKIRT_NEAR * hs ? REF_WORLD_HORIZON : 2 * SKIRT_NEAR * hs;
+    int n = 0;
+    h[n++] = hs;
+    while (n < SKIRT_MAX_RINGS - 1 && h[n - 1] < horizon) {
+        double next = h[n - 1] < SKIRT_NEAR * hs ? h[n - 1] + step : h[n - 1] * SKIRT_GROWTH;
+        h[n++] = next < horizon ? next : horizon;
+    }
+    if (h[n - 1] < horizon) h[n++] = horizon;
+    return n;
+}
 
 static void skirt_vertex(const ref_world *w, double x, double z, float *pos, float *nrm, float *tc) {
     double n[3], hs = w->d.half_size;
@@ -57,7 +80,7 @@ static void skirt_vertex(const ref_world *w, double x, double z, float *pos, flo
     pos[2] = (float)z;
     ref_terrain_normal_at(w, x, z, n);
     for (int k = 0; k < 3; k++) nrm[k] = (float)n[k];
-    tc[0] = (float)((x + hs) / (2 * hs));   /* outside [0, 1]: the texture's clamped edge */
+    tc[0] = (float)((x + hs) / (2 * hs));   /* outside [0, 1]: for packs; world.frag does not sample it */
     tc[1] = (float)((z + hs) / (2 * hs));
 }
 
@@ -75,29 +98,30 @@ static void perimeter(double h, int res, int p, double *x, double *z) {
 
 static bool build_skirt(gpu_world *gw) {
     const ref_world *w = &gw->w;
-    int res = w->d.terrain_res, per = 4 * res, nv = per * (SKIRT_RINGS + 1);
+    double ring[SKIRT_MAX_RINGS];
+    int nrings = skirt_rings(w, ring) - 1;   /* the bands between rings */
+    int res = w->d.terrain_res, per = 4 * res, nv = per * (nrings + 1);
     geom_mesh g;
     memset(&g, 0, sizeof g);
     g.nvert = nv;
-    g.nidx = per * SKIRT_RINGS * 6;
+    g.nidx = per * nrings * 6;
     g.pos = malloc((size_t)nv * 3 * sizeof(float));
     g.nrm = malloc((size_t)nv * 3 * sizeof(float));
     g.tan = calloc((size_t)nv * 3, sizeof(float));
     g.tc = malloc((size_t)nv * 2 * sizeof(float));
     g.idx = malloc((size_t)g.nidx * sizeof(unsigned));
     bool ok = g.pos && g.nrm && g.tan && g.tc && g.idx;
-    for (int k = 0; ok && k <= SKIRT_RINGS; k++) {
-        double h = w->d.half_size * pow(SKIRT_SCALE, (double)k / SKIRT_RINGS);
+    for (int k = 0; ok && k <= nrings; k++) {
         for (int p = 0; p < per; p++) {
             double x, z;
-            perimeter(h, res, p, &x, &z);
+            perimeter(ring[k], res, p, &x, &z);
             int v = k * per + p;
             skirt_vertex(w, x, z, g.pos + v * 3, g.nrm + v * 3, g.tc + v * 2);
             g.tan[v * 3] = 1.0f;
         }
     }
     int n = 0;
-    for (int k = 0; ok && k < SKIRT_RINGS; k++)
+    for (int k = 0; ok && k < nrings; k++)
         for (int p = 0; p < per; p++) {
             unsigned a = (unsigned)(k * per + p), b = (unsigned)(k * per + (p + 1) % per);
             unsigned c = a + (unsigned)per, d = b + (unsigned)per;
@@ -314,10 +338,26 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
     set3(p, "uAbsorption", d->absorption);
     set1(p, "uIOR", (float)d->ior);
     set1(p, "uTerrainHalfSize", (float)d->half_size);
+    /* the terrain's model (ref_scene.c), so world.frag evaluates its height,
+     * normal and albedo where the reference does, beyond the square too */
+    seti(p, "uTerrainKind", (int)d->terrain);
+    GLint loc = glGetUniformLocation(p, "uTerrainShape");
+    if (loc >= 0) glUniform4f(loc, (float)d->depth, (float)d->shore_height, (float)d->slope, 0.0f);
+    loc = glGetUniformLocation(p, "uTerrainDetail");
+    if (loc >= 0) {
+        float det[REF_TERRAIN_DETAIL][4];
+        for (int i = 0; i < REF_TERRAIN_DETAIL; i++) {
+            det[i][0] = (float)gw->w.detail_k[i][0];
+            det[i][1] = (float)gw->w.detail_k[i][1];
+            det[i][2] = (float)gw->w.detail_a[i];
+            det[i][3] = (float)gw->w.detail_phi[i];
+        }
+        glUniform4fv(loc, REF_TERRAIN_DETAIL, &det[0][0]);
+    }
     set1(p, "uTime", (float)t);
     seti(p, "uSky", WORLD_UNIT_SKY);
     seti(p, "uTerrainAlbedo", WORLD_UNIT_ALBEDO);
-    GLint loc = glGetUniformLocation(p, "uCameraPos");
+    loc = glGetUniformLocation(p, "uCameraPos");
     if (loc >= 0) glUniform3fv(loc, 1, eye);
     for (int i = 0; i < gw->nwaves; i++) {
         const ref_waves_uniform *u = &gw->waves[i];

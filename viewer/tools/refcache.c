@@ -92,7 +92,8 @@ static uint64_t key_of(const loaded *l, const ref_render_desc *d) {
     h = fnv(h, r.camera.up, sizeof r.camera.up);
     h = fnv(h, &r.camera.fov_deg, sizeof r.camera.fov_deg);
     int ints[] = { r.camera.width, r.camera.height, r.spp, r.caustics, r.caustic_res, r.photons_per_cell,
-                   r.max_depth, r.radiance_n2, 1 /* file layout version */ };
+                   r.max_depth, r.radiance_n2,
+                   2 /* file layout and world model version: 2, a scaled lake's detail and colours scale */ };
     h = fnv(h, ints, sizeof ints);
     h = fnv(h, &r.time, sizeof r.time);
     h = fnv(h, &r.t_tol, sizeof r.t_tol);
