@@ -338,3 +338,5 @@ void ref_world_desc_lake(ref_world_desc *d) {
     d->nobjects = (int)(sizeof objs / sizeof objs[0]);
     memcpy(d->objects, objs, sizeof objs);
 }
+
+double ref_world_scale(const ref_world *w) { return w->d.half_size / REF_WORLD_UNIT; }

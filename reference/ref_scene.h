@@ -115,4 +115,10 @@ int ref_objects_hit(const ref_world *w, const double o[3], const double d[3], do
 /* The lake scene's world (what scenes/lake.glib describes). */
 void ref_world_desc_lake(ref_world_desc *d);
 
+/* The scene's length unit relative to the lake's (terrain half size
+ * REF_WORLD_UNIT): what a pack's lengths, written for the lake, are
+ * multiplied by (uWorldScale), so a scaled scene gets scaled steps,
+ * offsets and reaches. */
+double ref_world_scale(const ref_world *w);
+
 #endif

@@ -127,7 +127,7 @@ vec2 firstWaveScroll(bool gerstner, float tilesPerUnit, float t) {
 vec3 causticFactor(vec3 p, float t) {
     float depth = uWaterLevel - p.y;
     if (depth <= 0.0) return vec3(1.0);
-    float contrast = uCausticVisible * clamp(depth / max(uCausticDepth, 1e-3), 0.0, 1.0);
+    float contrast = uCausticVisible * clamp(depth / max(uCausticDepth * uWorldScale, 1e-9), 0.0, 1.0);
 #ifdef BACKWARD_CAUSTICS
     vec3 n = wavesNormal(wavesRestPoint(p.xz, t), t);
     return xingCausticBackward(n, uSunDir, uIOR, contrast);

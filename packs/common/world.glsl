@@ -12,6 +12,8 @@ uniform vec3 uSunIrradiance;
 uniform vec3 uAmbient;         // sky ambient radiance
 uniform vec3 uAbsorption;      // Beer-Lambert sigma per metre
 uniform float uIOR;
+uniform float uWorldScale;     // the scene's length unit: 1 on the lake (terrain half size 12 m);
+                               // a pack's lengths in lake metres are multiplied by it
 #ifndef TARN_UWATERLEVEL   // waves.glsl declares it too: either may be included first
 #define TARN_UWATERLEVEL
 uniform float uWaterLevel;

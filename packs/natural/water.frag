@@ -33,7 +33,7 @@ uniform sampler2D uCaustics;          // caustic ratio over refracted-sun space 
 
 uniform float uFovScale;         // the reflection pass's field of view over the camera's
 uniform float uReflectDist;      // c: reflection lookup distance
-uniform float uAttenuation;      // k: attenuation per metre (the paper's model)
+uniform float uAttenuation;      // k: attenuation per lake metre (the paper's model; per uWorldScale)
 uniform vec3  uWaterColor;       // C_w: what deep water shows (the paper's model)
 uniform float uFresnelPower;     // q of (1 - E.N)^q
 uniform float uDepthClamp;       // dv clamp (paper: 2)
@@ -66,7 +66,7 @@ vec3 attenuate(vec3 c, float d) {
 #ifdef BEER_LAMBERT
     return c * exp(-uAbsorption * d);
 #else
-    return uWaterColor + exp(-d * uAttenuation) * (c - uWaterColor);
+    return uWaterColor + exp(-d / uWorldScale * uAttenuation) * (c - uWaterColor);
 #endif
 }
 
@@ -178,7 +178,7 @@ void main() {
         bool ok0;
         vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
         float dv = ok0 ? distance(U, b0) : 1e4;          // the view ray's path in water
-        vec3 c = lookThrough(U, R, clamp(dv, 0.0, uDepthClamp) * uDepthScale, min(1.5 * dv + 0.5, 50.0), -dv,
+        vec3 c = lookThrough(U, R, clamp(dv, 0.0, uDepthClamp * uWorldScale) * uDepthScale, min(1.5 * dv + 0.5 * uWorldScale, 50.0 * uWorldScale), -dv,
                              true, path, sky);
         hit = gRefractHit;
 #ifdef BEER_LAMBERT
@@ -193,7 +193,7 @@ void main() {
         // Where the target shows the sky or nothing (no reflection pass: only
         // sky above the water), the cube map along Rr.
         float w;
-        vec2 uv = natProject(uCamMirrorVP, U + uReflectDist * Rr, w);
+        vec2 uv = natProject(uCamMirrorVP, U + uReflectDist * uWorldScale * Rr, w);
         float band = 0.5 * (1.0 - 1.0 / max(uFovScale, 1.0));
         float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
         float keep = w <= 0.0 ? 0.0 : band > 0.0 ? clamp(inside / (0.5 * band), 0.0, 1.0) : float(inside >= 0.0);
@@ -221,7 +221,7 @@ void main() {
             bool ok0;
             vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
             float d0 = ok0 ? distance(U, b0) : 1e4;      // what lies behind U, seen from the eye
-            vec3 c = lookThrough(U, T, uReflectDist, min(1.5 * d0 + 0.5, 50.0), -d0, false, path, sky);
+            vec3 c = lookThrough(U, T, uReflectDist * uWorldScale, min(1.5 * d0 + 0.5 * uWorldScale, 50.0 * uWorldScale), -d0, false, path, sky);
             hit = gRefractHit;
             refr = sky ? texture(uSky, T).rgb : c;
         }
@@ -230,7 +230,7 @@ void main() {
         vec3 mirrorEye = vec3(uCameraPos.x, 2.0 * uWaterLevel - uCameraPos.y, uCameraPos.z);
         vec2 uv;
         bool ok;
-        vec3 shown = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U + uReflectDist * Rr, uv, ok);
+        vec3 shown = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U + uReflectDist * uWorldScale * Rr, uv, ok);
         refl = ok ? attenuate(applyCaustics(texture(uReflection, uv).rgb, shown), distance(U, shown))
                   : attenuate(vec3(0.0), 1e4);
 #ifdef EXACT_FRESNEL

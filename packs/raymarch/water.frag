@@ -41,10 +41,10 @@ uniform sampler2D uWaterNormal;      // @water_normal
 uniform float uStepsGrazing;   // steps across the depth for a horizontal ray (source: 10)
 uniform float uStepsSteep;     // ... for a vertical ray (source: 3)
 uniform int uMaxIter;          // march steps at most (source: 40)
-uniform float uMinDepth;       // smallest depth the steps are laid over (m)
-uniform float uMaxStep;        // longest step (m)
+uniform float uMinDepth;       // smallest depth the steps are laid over (lake m: times uWorldScale)
+uniform float uMaxStep;        // longest step (lake m: times uWorldScale)
 uniform int uRefineSteps;      // regula falsi / bisection steps after the search
-uniform float uReflectHeight;  // height of the above-water geometry (m)
+uniform float uReflectHeight;  // height of the above-water geometry (lake m: times uWorldScale)
 uniform float uAttenLinear;    // linear attenuation per metre (source: 1/7.5)
 uniform vec3 uWaterColor;      // what the water fades to
 uniform float uSpecular;       // Phong highlight scale
@@ -130,8 +130,8 @@ vec3 solidColor(vec3 hit, bool underside) {
 // path s in water, the point and the march's status.
 vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     vec3 d = marchClampDir(dir, true);
-    March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth, uStepsGrazing,
-                               uStepsSteep, uMaxStep, -1e30, 1e30, uMaxIter, REFINE_COUNT);
+    March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth * uWorldScale, uStepsGrazing,
+                               uStepsSteep, uMaxStep * uWorldScale, -1e30, 1e30, uMaxIter, REFINE_COUNT);
     gFetches += m.fetches;
     s = m.t;
     // no bracket: on down to the ground height of the last column
@@ -149,9 +149,10 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
     status = MARCH_LEFT;
 #ifndef NOREFLECTION
     vec3 d = marchClampDir(dir, false);
-    float step = marchStep(uReflectHeight, d.y, uStepsGrazing, uStepsSteep, uMaxStep);
+    float reach = uReflectHeight * uWorldScale;
+    float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uMaxStep * uWorldScale);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
-                               uMaxStep, -1e30, uWaterLevel + uReflectHeight, uMaxIter, REFINE_COUNT);
+                               uMaxStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT);
     status = m.status;
     gFetches += m.fetches;
     if (m.status == MARCH_HIT || m.status == MARCH_INSIDE) {

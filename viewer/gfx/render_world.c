@@ -338,6 +338,7 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
     set3(p, "uAbsorption", d->absorption);
     set1(p, "uIOR", (float)d->ior);
     set1(p, "uTerrainHalfSize", (float)d->half_size);
+    set1(p, "uWorldScale", (float)ref_world_scale(&gw->w));
     /* the terrain's model (ref_scene.c), so world.frag evaluates its height,
      * normal and albedo where the reference does, beyond the square too */
     seti(p, "uTerrainKind", (int)d->terrain);
@@ -386,7 +387,8 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
     GLint eye_path = glGetUniformLocation(p, "uWorldEyePath");
     if (eye_path >= 0) glUniform1i(eye_path, to_screen ? 1 : 0);
     /* clip at the water plane: "above" keeps y > level, "below" y < level */
-    float level = (float)(gw->w.d.water_level + offset), plane[4] = { 0, 0, 0, 1 };
+    /* the offset is in lake metres, like every length a pack writes */
+    float level = (float)(gw->w.d.water_level + offset * ref_world_scale(&gw->w)), plane[4] = { 0, 0, 0, 1 };
     if (strcmp(which, "above") == 0) { plane[1] = 1; plane[3] = -level; }
     if (strcmp(which, "below") == 0) { plane[1] = -1; plane[3] = level; }
     GLint clip = glGetUniformLocation(p, "uWorldClip");
