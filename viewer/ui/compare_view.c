@@ -443,8 +443,8 @@ static void on_panel(void *user, app *a, panel_actions *common) {
         pp[i].sets = render_uniforms(p->r, &pp[i].nsets);
     }
     const char *status = v->heat_status[0] ? v->heat_status : "no heat maps yet: H computes them";
-    bool cpu_raster = strstr(gl_ctx_describe(app_gl(a)), "llvmpipe") != NULL;
-    panel_compare pc = { .scene_path = v->scene, .fps = v->s->fps, .time_s = v->s->t, .paused = v->s->paused,
+    bool cpu_raster = v->s->cpu_raster;
+    panel_compare pc = { .scene_path = v->scene, .frame_ms = v->s->frame_ms, .fps = v->s->fps, .time_s = v->s->t, .paused = v->s->paused,
                          .packs = pp, .npacks = v->n, .layout = &v->layout, .wipe_a = &v->wipe_a,
                          .wipe_b = &v->wipe_b, .wipe = &v->wipe, .show_heat = &v->show_heat,
                          .heat_max = &v->heat_max, .heat_status = status,
