@@ -42,7 +42,7 @@ typedef struct cv_pack {
     bool have_heat;
     double gpu_ms, wall_ms;      /* smoothed */
     double rmse, psnr;
-    char passes[512];            /* "pass:12 6 7 1.20  screen:30 3.40" */
+    char passes[512];            /* "RenderToTexture 6 7 (line 12)  1.20 ms", a pass a line */
 } cv_pack;
 
 typedef struct cview {
@@ -243,7 +243,7 @@ static void draw_packs(cview *v, const render_view *view) {
         double wall = (clock_now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);
         p->wall_ms = p->wall_ms > 0 ? 0.9 * p->wall_ms + 0.1 * wall : wall;
         if (gpu >= 0) p->gpu_ms = p->gpu_ms > 0 ? 0.9 * p->gpu_ms + 0.1 * gpu : gpu;
-        render_pass_summary(p->r, p->passes, sizeof p->passes);
+        view_pass_summary(p->r, p->passes, sizeof p->passes);
     }
 }
 

@@ -86,7 +86,7 @@ static void on_panel(void *user, app *a, panel_actions *common) {
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
     char passes[1024];
-    render_pass_summary(v->r, passes, sizeof passes);
+    view_pass_summary(v->r, passes, sizeof passes);
     panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
                         .cpu_raster = s->cpu_raster, .frame_ms = s->frame_ms, .fps = s->fps,
                         .paused = s->paused, .time_s = s->t,

@@ -113,6 +113,31 @@ bool view_screenshot(void *glfw_window, const char *path, char *said, size_t len
     return ok;
 }
 
+void view_pass_name(const char *timer_name, char *out, size_t len) {
+    int line = 0, used = 0;
+    if (sscanf(timer_name, "pass:%d%n", &line, &used) == 1)
+        snprintf(out, len, "RenderToTexture%s (line %d)", timer_name + used, line);
+    else if (sscanf(timer_name, "screen:%d", &line) == 1)
+        snprintf(out, len, "to the screen (line %d)", line);
+    else
+        snprintf(out, len, "%s", timer_name);
+}
+
+void view_pass_summary(render *r, char *out, size_t len) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, false, &names, &ms);
+    size_t used = 0;
+    if (len > 0) out[0] = '\0';
+    for (int i = 0; i < n && used + 80 < len; i++) {
+        char name[GPU_TIMER_NAME + 32];
+        view_pass_name(names[i], name, sizeof name);
+        int k = snprintf(out + used, len - used, "%s%s  %.2f ms", i ? "\n" : "", name, ms[i]);
+        if (k < 0) break;
+        used += (size_t)k;
+    }
+}
+
 void view_shot_path(int n, char *out, size_t len) {
     time_t now = time(NULL);
     struct tm tmv;
