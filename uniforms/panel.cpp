@@ -398,7 +398,11 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
             }
             ImGui::EndTable();
         }
-        if (c->note) ImGui::TextColored(kGrey, "%s", c->note);
+        if (c->note) {   // wrapped: the llvmpipe note is longer than the panel is wide
+            ImGui::PushStyleColor(ImGuiCol_Text, kGrey);
+            ImGui::TextWrapped("%s", c->note);
+            ImGui::PopStyleColor();
+        }
         ImGui::Separator();
 
         ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
