@@ -26,6 +26,7 @@ struct app {
     double last_wall;
     frame_meter meter;
     int shots;
+    bool shot_pending;           /* P/F12 pressed: shoot once this frame is drawn */
     char toast[1200];
     double toast_until;          /* glfwGetTime() when the toast goes */
     render *const *scenes;
@@ -126,9 +127,10 @@ void app_screenshot(app *a) {
     shoot(a, path);
 }
 
-/* Over the top of the scene area, above the panel and the scene's labels. */
+/* Over the top of the scene area, above the panel and the scene's labels;
+ * not into a screenshot asked for by key. */
 static void draw_toast(app *a) {
-    if (!a->toast[0] || glfwGetTime() > a->toast_until) return;
+    if (!a->toast[0] || glfwGetTime() > a->toast_until || a->shot_pending) return;
     int ww, wh;
     glfwGetWindowSize(a->win, &ww, &wh);
     panel_toast(a->panel, (app_scene_x_window(a) + (float)ww) * 0.5f, 40.0f, a->toast);
@@ -137,7 +139,8 @@ static void draw_toast(app *a) {
 static void apply_common(app *a, const panel_actions *c) {
     if (c->reload) reload(a);
     if (c->toggle_pause) a->s.paused = !a->s.paused;
-    if (c->screenshot) app_screenshot(a);
+    if (c->screenshot || a->shot_pending) app_screenshot(a);
+    a->shot_pending = false;
 }
 
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
@@ -152,7 +155,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
     case GLFW_KEY_R: reload(a); break;
     case GLFW_KEY_SPACE: a->s.paused = !a->s.paused; break;
-    case GLFW_KEY_P: case GLFW_KEY_F12: app_screenshot(a); break;
+    /* not now: between swap and draw the back buffer holds no frame */
+    case GLFW_KEY_P: case GLFW_KEY_F12: a->shot_pending = true; break;
     case GLFW_KEY_HOME: case GLFW_KEY_F: a->s.cam = a->s.cam_home; break;
     default:
         if (a->d.key) a->d.key(a->d.user, a, key);
@@ -291,7 +295,9 @@ app *app_create(const app_desc *desc) {
     glfwSetScrollCallback(a->win, on_scroll);
     glfwSetKeyCallback(a->win, on_key);
     a->panel = panel_create(a->win, "#version 130");
-    a->s.cpu_raster = strstr(gl_ctx_describe(a->ctx), "llvmpipe") || strstr(gl_ctx_describe(a->ctx), "softpipe");
+    /* GL_RENDERER (in the description) names Mesa's CPU rasterisers */
+    const char *gl = gl_ctx_describe(a->ctx);
+    a->s.cpu_raster = strstr(gl, "llvmpipe") || strstr(gl, "softpipe");
     return a;
 }
 
