@@ -9,6 +9,7 @@
 #include <new>
 
 #include "imgui.h"
+#include "imgui_internal.h"   // BringWindowToDisplayFront: the overlay stays over the panel
 #include "imgui_impl_glfw.h"
 #include "imgui_impl_opengl3.h"
 
@@ -16,6 +17,8 @@ struct panel {
     ImGuiContext *ctx;
     GLFWwindow *window;
     bool glfw_up, gl_up, in_frame;
+    float display_h;            // the window height the panel was last sized to
+    float width;                // the panel's width as the user left it
 };
 
 namespace {
@@ -139,19 +142,26 @@ bool entry_widget(unif_entry *e) {
     return changed;
 }
 
-void error_overlay(const char *text) {
+// Red, at the bottom of the scene area (right of scene_x) and in front of
+// the panel every frame, even when the panel was clicked last: it must not
+// hide the file name the message starts with.
+void error_overlay(const char *text, float scene_x) {
     ImGuiIO &io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y - 10.0f), ImGuiCond_Always,
-                            ImVec2(0.5f, 1.0f));
-    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(io.DisplaySize.x - 20.0f, io.DisplaySize.y * 0.6f));
+    float x0 = scene_x > 0 && scene_x < io.DisplaySize.x - 100.0f ? scene_x : 0.0f;
+    float w = io.DisplaySize.x - x0;
+    ImGui::SetNextWindowPos(ImVec2(x0 + w * 0.5f, io.DisplaySize.y - 10.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(w - 20.0f, io.DisplaySize.y * 0.6f));
     ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.25f, 0.02f, 0.02f, 0.92f));
     ImGui::PushStyleColor(ImGuiCol_TitleBg, ImVec4(0.55f, 0.05f, 0.05f, 1.0f));
     ImGui::PushStyleColor(ImGuiCol_TitleBgActive, ImVec4(0.65f, 0.08f, 0.08f, 1.0f));
     ImGui::PushStyleColor(ImGuiCol_Border, ImVec4(0.9f, 0.2f, 0.2f, 1.0f));
     ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
-                             ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
+                             ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                             ImGuiWindowFlags_NoMove;
     if (ImGui::Begin("Errors", nullptr, flags)) {
-        ImGui::PushTextWrapPos(io.DisplaySize.x * 0.8f);
+        // in front without taking the keyboard focus from a slider being typed into
+        ImGui::BringWindowToDisplayFront(ImGui::GetCurrentWindow());
+        ImGui::PushTextWrapPos(w - 40.0f);
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.55f, 1.0f));
         ImGui::TextUnformatted(text);
         ImGui::PopStyleColor();
@@ -159,6 +169,37 @@ void error_overlay(const char *text) {
     }
     ImGui::End();
     ImGui::PopStyleColor(4);
+}
+
+// The panel's column at the top left, as tall as the window: sized on the
+// first frame and again whenever the window's height changes (a user's drag
+// of its edge holds until then).
+void place_panel(panel *p) {
+    ImGuiIO &io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    if (io.DisplaySize.y == p->display_h) return;
+    p->display_h = io.DisplaySize.y;
+    ImGui::SetNextWindowSize(ImVec2(p->width > 0 ? p->width : 420.0f,
+                                    io.DisplaySize.y > 40 ? io.DisplaySize.y - 20 : 400),
+                             ImGuiCond_Always);
+}
+
+// The frame time (the window's wall time; fps from it), then the GPU's,
+// which on a CPU rasteriser does not time the drawing and says so.
+void timings(const panel_info *info) {
+    ImGui::Text("%.1f ms/frame  %.1f fps", info->frame_ms, info->fps);
+    ImGui::SameLine();
+    ImGui::Text("  t = %.2f s%s", info->time_s, info->paused ? " (paused)" : "");
+    if (info->gpu_ms >= 0 && info->cpu_raster)
+        ImGui::TextColored(kGrey, "%.2f ms GPU: not meaningful on a CPU rasteriser", info->gpu_ms);
+    else if (info->gpu_ms >= 0)
+        ImGui::Text("%.2f ms GPU", info->gpu_ms);
+    const char *title = info->cpu_raster ? "GPU time per pass (not meaningful here)###passes"
+                                         : "GPU time per pass###passes";
+    if (info->passes && info->passes[0] && ImGui::TreeNode(title)) {
+        ImGui::TextUnformatted(info->passes);
+        ImGui::TreePop();
+    }
 }
 
 // One collapsing header per set with a widget per entry; changes go to out.
@@ -241,21 +282,12 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
     if (!p || !p->in_frame) return;
     ImGui::SetCurrentContext(p->ctx);
 
-    ImGuiIO &io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(420, io.DisplaySize.y > 40 ? io.DisplaySize.y - 20 : 400),
-                             ImGuiCond_FirstUseEver);
+    place_panel(p);
     if (ImGui::Begin("tarn")) {
+        p->width = ImGui::GetWindowWidth();
         if (info) {
             if (info->scene_path) ImGui::TextUnformatted(info->scene_path);
-            if (info->gpu_ms >= 0) ImGui::Text("%.2f ms GPU   %.0f fps", info->gpu_ms, info->fps);
-            else ImGui::Text("%.0f fps", info->fps);
-            ImGui::SameLine();
-            ImGui::Text("  t = %.2f s%s", info->time_s, info->paused ? " (paused)" : "");
-            if (info->passes && info->passes[0] && ImGui::TreeNode("GPU time per pass")) {
-                ImGui::TextUnformatted(info->passes);
-                ImGui::TreePop();
-            }
+            timings(info);
         }
         if (ImGui::Button("Reset all")) {
             for (int s = 0; s < nsets; s++)
@@ -279,7 +311,7 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
     }
     ImGui::End();
 
-    if (info && info->error_text && info->error_text[0]) error_overlay(info->error_text);
+    if (info && info->error_text && info->error_text[0]) error_overlay(info->error_text, info->scene_x);
 }
 
 void panel_render(panel *p) {
@@ -297,13 +329,12 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
     std::memset(out, 0, sizeof *out);
     if (!p || !p->in_frame || !c) return;
     ImGui::SetCurrentContext(p->ctx);
-    ImGuiIO &io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(420, io.DisplaySize.y > 40 ? io.DisplaySize.y - 20 : 400),
-                             ImGuiCond_FirstUseEver);
+    place_panel(p);
     if (ImGui::Begin("tarn compare")) {
+        p->width = ImGui::GetWindowWidth();
         if (c->scene_path) ImGui::TextUnformatted(c->scene_path);
-        ImGui::Text("t = %.2f s%s   %.0f fps", c->time_s, c->paused ? " (paused)" : "", c->fps);
+        ImGui::Text("t = %.2f s%s   %.1f ms/frame  %.1f fps", c->time_s, c->paused ? " (paused)" : "",
+                    c->frame_ms, c->fps);
         out->common.toggle_pause = ImGui::Button(c->paused ? "Play" : "Pause");
         ImGui::SameLine();
         out->common.reload = ImGui::Button("Reload");
@@ -367,7 +398,11 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
             }
             ImGui::EndTable();
         }
-        if (c->note) ImGui::TextColored(kGrey, "%s", c->note);
+        if (c->note) {   // wrapped: the llvmpipe note is longer than the panel is wide
+            ImGui::PushStyleColor(ImGuiCol_Text, kGrey);
+            ImGui::TextWrapped("%s", c->note);
+            ImGui::PopStyleColor();
+        }
         ImGui::Separator();
 
         ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);
@@ -404,6 +439,17 @@ void panel_label(panel *p, float x, float y, const char *text, bool right_align)
     if (right_align) x -= size.x + 8;
     dl->AddRectFilled(ImVec2(x, y), ImVec2(x + size.x + 8, y + size.y + 4), IM_COL32(0, 0, 0, 170), 3.0f);
     dl->AddText(ImVec2(x + 4, y + 2), IM_COL32(255, 255, 255, 255), text);
+}
+
+void panel_toast(panel *p, float x, float y, const char *text) {
+    if (!p || !p->in_frame || !text || !text[0]) return;
+    ImGui::SetCurrentContext(p->ctx);
+    ImDrawList *dl = ImGui::GetForegroundDrawList();
+    ImVec2 size = ImGui::CalcTextSize(text);
+    float x0 = x - size.x * 0.5f - 8;
+    if (x0 < 4) x0 = 4;
+    dl->AddRectFilled(ImVec2(x0, y), ImVec2(x0 + size.x + 16, y + size.y + 10), IM_COL32(20, 70, 35, 230), 4.0f);
+    dl->AddText(ImVec2(x0 + 8, y + 5), IM_COL32(255, 255, 255, 255), text);
 }
 
 bool panel_wants_mouse(const panel *p) {

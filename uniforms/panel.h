@@ -39,10 +39,12 @@ void panel_begin_frame(panel *p);
 typedef struct panel_info {
     const char *scene_path;
     double gpu_ms;               /* GPU time of the frame; < 0 when not measured */
-    double fps;
+    bool cpu_raster;             /* llvmpipe & co: gpu_ms is labelled as not meaningful */
+    double frame_ms, fps;        /* wall time per frame, recent average */
     bool paused;
     double time_s;               /* simulated time */
     const char *error_text;      /* shown in a red overlay window; NULL if none */
+    float scene_x;               /* the scene area's left edge, window pixels: the overlay stays right of it */
     const char *passes;          /* GPU time per pass, a line each; NULL or "" if none */
 } panel_info;
 
@@ -61,7 +63,9 @@ typedef struct panel_actions {
  * text), a small reset button per changeable entry, a row of Reset all /
  * Save preset / Load preset / Reload, Pause and Screenshot buttons, and the
  * frame time, fps and time. A type mismatch shows in red under its entry; a
- * uniform the linked program lacks is greyed. out is cleared first. */
+ * uniform the linked program lacks is greyed. out is cleared first.
+ * The panel's height follows the window's; the error overlay is kept in
+ * front of it, in the scene area. */
 void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, panel_actions *out);
 
 void panel_render(panel *p);     /* ImGui::Render + the OpenGL3 backend's draw */
@@ -83,7 +87,7 @@ enum { PANEL_LAYOUT_GRID = 0, PANEL_LAYOUT_WIPE = 1 };
 
 typedef struct panel_compare {
     const char *scene_path;
-    double fps, time_s;
+    double frame_ms, fps, time_s;
     bool paused;
     panel_compare_pack *packs;
     int npacks;                  /* at most PANEL_COMPARE_MAX_PACKS are shown */
@@ -114,6 +118,11 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
  * origin), or its top-right corner there when right_align. Call between
  * panel_begin_frame and panel_render. */
 void panel_label(panel *p, float x, float y, const char *text, bool right_align);
+
+/* A short message (a saved file's path) centred on x with its top at y,
+ * window pixels, over everything else. Between panel_begin_frame and
+ * panel_render. */
+void panel_toast(panel *p, float x, float y, const char *text);
 
 /* true while ImGui uses the mouse / keyboard: the camera should not. */
 bool panel_wants_mouse(const panel *p);

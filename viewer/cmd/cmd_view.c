@@ -18,11 +18,15 @@ static const char usage[] =
     "  --size WxH       window size of the scene (default: the glib's WindowSize)\n"
     "  --time SECONDS   start at this simulated time\n"
     "  --script FILE    run scripted actions (frames N, set P U v, expect P U v,\n"
-    "                   wait SECONDS, screenshot PATH, reload, quit), then exit\n"
+    "                   wait SECONDS, screenshot PATH, reload, window W H, quit),\n"
+    "                   then exit\n"
     "\n"
     "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
     "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
-    "       Esc or Q quit\n";
+    "       Esc or Q quit\n"
+    "\n"
+    "Screenshots are opaque PNGs, tarn-DATE-N.png in the current directory; the\n"
+    "path shows over the scene. Frame time is ms per frame over the last second.\n";
 
 const char *cmd_view_usage(void) { return usage; }
 

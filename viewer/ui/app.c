@@ -5,12 +5,14 @@
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
 #include <assert.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "exit_code.h"
 #include "file.h"
+#include "frame_meter.h"
 #include "util.h"
 #include "watch.h"
 
@@ -22,7 +24,11 @@ struct app {
     watch *watch;
     app_state s;
     double last_wall;
+    frame_meter meter;
     int shots;
+    bool shot_pending;           /* P/F12 pressed: shoot once this frame is drawn */
+    char toast[1200];
+    double toast_until;          /* glfwGetTime() when the toast goes */
     render *const *scenes;
     int nscenes;
     int unwatched;               /* dependencies skipped: their directory is missing */
@@ -99,16 +105,42 @@ static bool missing_dir_appeared(app *a) {
 
 /* ---- actions, input ---- */
 
+void app_toast(app *a, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(a->toast, sizeof a->toast, fmt, ap);
+    va_end(ap);
+    a->toast_until = glfwGetTime() + APP_TOAST_S;
+}
+
+/* The window's image to path; the outcome on screen and on stderr. */
+static void shoot(app *a, const char *path) {
+    char said[1100];
+    view_screenshot(a->win, path, said, sizeof said);
+    fprintf(stderr, "%s: %s\n", a->d.name, said);
+    app_toast(a, "%s", said);
+}
+
 void app_screenshot(app *a) {
     char path[128];
     view_shot_path(a->shots++, path, sizeof path);
-    view_screenshot(a->win, path);
+    shoot(a, path);
+}
+
+/* Over the top of the scene area, above the panel and the scene's labels;
+ * not into a screenshot asked for by key. */
+static void draw_toast(app *a) {
+    if (!a->toast[0] || glfwGetTime() > a->toast_until || a->shot_pending) return;
+    int ww, wh;
+    glfwGetWindowSize(a->win, &ww, &wh);
+    panel_toast(a->panel, (app_scene_x_window(a) + (float)ww) * 0.5f, 40.0f, a->toast);
 }
 
 static void apply_common(app *a, const panel_actions *c) {
     if (c->reload) reload(a);
     if (c->toggle_pause) a->s.paused = !a->s.paused;
-    if (c->screenshot) app_screenshot(a);
+    if (c->screenshot || a->shot_pending) app_screenshot(a);
+    a->shot_pending = false;
 }
 
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
@@ -123,7 +155,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
     case GLFW_KEY_R: reload(a); break;
     case GLFW_KEY_SPACE: a->s.paused = !a->s.paused; break;
-    case GLFW_KEY_P: case GLFW_KEY_F12: app_screenshot(a); break;
+    /* not now: between swap and draw the back buffer holds no frame */
+    case GLFW_KEY_P: case GLFW_KEY_F12: a->shot_pending = true; break;
     case GLFW_KEY_HOME: case GLFW_KEY_F: a->s.cam = a->s.cam_home; break;
     default:
         if (a->d.key) a->d.key(a->d.user, a, key);
@@ -136,7 +169,9 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
 static void frame(app *a, bool scripted) {
     double now = glfwGetTime(), dt = now - a->last_wall;
     a->last_wall = now;
-    if (dt > 0) a->s.fps = a->s.fps * 0.9 + 0.1 / dt;
+    frame_meter_add(&a->meter, dt);
+    a->s.frame_ms = frame_meter_ms(&a->meter);
+    a->s.fps = frame_meter_fps(&a->meter);
     if (!a->s.paused && !scripted) a->s.t += dt;
     if (a->watch && (watch_poll(a->watch, 0) > 0 || missing_dir_appeared(a))) reload(a);
     if (a->d.mouse) a->d.mouse(a->d.user, a);
@@ -146,22 +181,45 @@ static void frame(app *a, bool scripted) {
     memset(&common, 0, sizeof common);
     panel_begin_frame(a->panel);
     a->d.panel(a->d.user, a, &common);
+    draw_toast(a);
     panel_render(a->panel);
     if (a->d.apply) a->d.apply(a->d.user, a);
     apply_common(a, &common);
 }
 
+/* The app's own script actions, then the client's: `window W H` resizes
+ * the window, as a user's drag would (what follows the window is tested). */
+static view_script_status script_action(void *user, const char *cmd, char *rest, const char *file, int line) {
+    app *a = user;
+    if (strcmp(cmd, "window") == 0) {
+        int w, h;
+        if (sscanf(rest, "%d %d", &w, &h) != 2 || w <= 0 || h <= 0) {
+            fprintf(stderr, "%s:%d: window wants a width and a height in pixels\n", file, line);
+            return VIEW_SCRIPT_FAILED;
+        }
+        glfwSetWindowSize(a->win, w, h);
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (a->d.script_action) return a->d.script_action(a->d.user, cmd, rest, file, line);
+    fprintf(stderr, "%s:%d: unknown script action '%s'\n", file, line, cmd);
+    return VIEW_SCRIPT_FAILED;
+}
+
 /* One script step after a frame; returns the exit code it calls for. */
 static int script_step(app *a, view_script *script) {
     view_script_ctx sc = { .r = a->scenes[a->script_scene], .time_s = &a->s.t,
-                           .custom = a->d.script_action, .user = a->d.user };
+                           .custom = script_action, .user = a };
     a->sc = &sc;
     view_script_status st = view_script_step(script, &sc);
     a->sc = NULL;
     if (st == VIEW_SCRIPT_SCREENSHOT) {
-        /* the frame as it is now, drawn again with what the step changed */
+        /* the frame as it is now, drawn again with what the step changed;
+         * without the toast of an earlier shot, which is not the scene's */
+        double until = a->toast_until;
+        a->toast_until = 0;
         frame(a, true);
-        view_screenshot(a->win, view_script_arg(script));
+        a->toast_until = until;
+        shoot(a, view_script_arg(script));
     }
     if (st == VIEW_SCRIPT_RELOAD) reload(a);
     if (st == VIEW_SCRIPT_REBUILD) render_rebuild_programs(a->scenes[a->script_scene]);
@@ -237,6 +295,9 @@ app *app_create(const app_desc *desc) {
     glfwSetScrollCallback(a->win, on_scroll);
     glfwSetKeyCallback(a->win, on_key);
     a->panel = panel_create(a->win, "#version 130");
+    /* GL_RENDERER (in the description) names Mesa's CPU rasterisers */
+    const char *gl = gl_ctx_describe(a->ctx);
+    a->s.cpu_raster = strstr(gl, "llvmpipe") || strstr(gl, "softpipe");
     return a;
 }
 
@@ -266,3 +327,10 @@ gl_ctx *app_gl(app *a) { return a->ctx; }
 panel *app_panel(app *a) { return a->panel; }
 
 int app_scene_x(int fb_w) { return fb_w > APP_PANEL_WIDTH + 160 ? APP_PANEL_WIDTH : 0; }
+
+float app_scene_x_window(app *a) {
+    int ww, wh, fw, fh;
+    glfwGetWindowSize(a->win, &ww, &wh);
+    glfwGetFramebufferSize(a->win, &fw, &fh);
+    return fw > 0 ? (float)app_scene_x(fw) * (float)ww / (float)fw : 0;
+}

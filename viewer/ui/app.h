@@ -30,7 +30,12 @@
  *
  * Keys the app handles (unless the panel has the keyboard): Esc/Q quit,
  * R reload, Space pause, P/F12 screenshot, F/Home reset the camera; others
- * go to hooks.key. */
+ * go to hooks.key.
+ *
+ * Screenshots (P/F12, the panel's button, the script's `screenshot`) are
+ * opaque: the window's alpha is what the panel's blending left, meaningless
+ * in an image viewer. P/F12 write tarn-DATE-N.png in the current directory;
+ * the absolute path is shown on screen (app_toast) and on stderr. */
 #ifndef TARN_APP_H
 #define TARN_APP_H
 
@@ -44,6 +49,7 @@
 
 #define APP_PANEL_WIDTH 440   /* the slider panel's column, left of the scene */
 #define APP_RETRY_S 0.25      /* how often a missing directory is looked for again */
+#define APP_TOAST_S 4.0       /* how long an app_toast message stays on screen */
 
 typedef struct app app;
 
@@ -52,7 +58,8 @@ typedef struct app_state {
     orbit cam, cam_home;         /* the camera, and where F/Home puts it back */
     view_mouse mouse;            /* a client's own mouse hook drives it too */
     double t;                    /* simulated time, seconds */
-    double fps;                  /* smoothed */
+    double frame_ms, fps;        /* wall time per frame over the last second (frame_meter) */
+    bool cpu_raster;             /* llvmpipe & co: GPU timestamps do not time the drawing */
     bool paused;
 } app_state;
 
@@ -101,8 +108,12 @@ void app_home(app *a, render_view v);
 void app_script_use(app *a, int i);
 /* Watches the scenes' files again (after a rebuild that may read others). */
 void app_rewatch(app *a);
-/* Writes the window's image to the next tarn-DATE-N.png. */
+/* Writes the window's image, opaque, to the next tarn-DATE-N.png in the
+ * current directory and shows where (app_toast). */
 void app_screenshot(app *a);
+/* A line shown over the scene for APP_TOAST_S seconds (the latest wins):
+ * what the user did landed somewhere, e.g. a saved preset's path. */
+void app_toast(app *a, const char *fmt, ...);
 
 app_state *app_get_state(app *a);
 void *app_window(app *a);        /* the GLFWwindow* */
@@ -112,5 +123,7 @@ panel *app_panel(app *a);
 /* The scene area's left edge in a framebuffer w pixels wide: right of the
  * panel when the window has room for both, else 0. */
 int app_scene_x(int fb_w);
+/* The same edge in window pixels (ImGui's; differs on a HiDPI screen). */
+float app_scene_x_window(app *a);
 
 #endif

@@ -42,7 +42,7 @@ typedef struct cv_pack {
     bool have_heat;
     double gpu_ms, wall_ms;      /* smoothed */
     double rmse, psnr;
-    char passes[512];            /* "pass:12 6 7 1.20  screen:30 3.40" */
+    char passes[512];            /* "RenderToTexture 6 7 (line 12)  1.20 ms", a pass a line */
 } cv_pack;
 
 typedef struct cview {
@@ -243,7 +243,7 @@ static void draw_packs(cview *v, const render_view *view) {
         double wall = (clock_now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);
         p->wall_ms = p->wall_ms > 0 ? 0.9 * p->wall_ms + 0.1 * wall : wall;
         if (gpu >= 0) p->gpu_ms = p->gpu_ms > 0 ? 0.9 * p->gpu_ms + 0.1 * gpu : gpu;
-        render_pass_summary(p->r, p->passes, sizeof p->passes);
+        view_pass_summary(p->r, p->passes, sizeof p->passes);
     }
 }
 
@@ -443,8 +443,8 @@ static void on_panel(void *user, app *a, panel_actions *common) {
         pp[i].sets = render_uniforms(p->r, &pp[i].nsets);
     }
     const char *status = v->heat_status[0] ? v->heat_status : "no heat maps yet: H computes them";
-    bool cpu_raster = strstr(gl_ctx_describe(app_gl(a)), "llvmpipe") != NULL;
-    panel_compare pc = { .scene_path = v->scene, .fps = v->s->fps, .time_s = v->s->t, .paused = v->s->paused,
+    bool cpu_raster = v->s->cpu_raster;
+    panel_compare pc = { .scene_path = v->scene, .frame_ms = v->s->frame_ms, .fps = v->s->fps, .time_s = v->s->t, .paused = v->s->paused,
                          .packs = pp, .npacks = v->n, .layout = &v->layout, .wipe_a = &v->wipe_a,
                          .wipe_b = &v->wipe_b, .wipe = &v->wipe, .show_heat = &v->show_heat,
                          .heat_max = &v->heat_max, .heat_status = status,

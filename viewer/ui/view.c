@@ -33,6 +33,7 @@ static void on_reload(void *user, app *a) {
     report_load(v);
 }
 
+/* On screen as well as on stderr: the student sees where it went. */
 static void preset(viewer *v, bool save) {
     char path[1100], err[512] = "";
     unif_preset_path(render_scene_path(v->r), path, (int)sizeof path);
@@ -42,6 +43,8 @@ static void preset(viewer *v, bool save) {
                    : unif_preset_load(sets, n, path, err, sizeof err);
     if (ok && !save) render_rebuild_programs(v->r);   /* defines may have changed */
     fprintf(stderr, "tarn: %s preset %s%s%s\n", save ? "save" : "load", path, ok ? "" : ": ", ok ? "" : err);
+    if (ok) app_toast(v->app, "preset %s %s", save ? "saved to" : "loaded from", path);
+    else app_toast(v->app, "preset not %s: %s", save ? "saved" : "loaded", err);
 }
 
 /* What the panel asked for besides reload, pause and screenshot (the app's). */
@@ -83,10 +86,12 @@ static void on_panel(void *user, app *a, panel_actions *common) {
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
     char passes[1024];
-    render_pass_summary(v->r, passes, sizeof passes);
+    view_pass_summary(v->r, passes, sizeof passes);
     panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
-                        .fps = s->fps, .paused = s->paused, .time_s = s->t,
-                        .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL, .passes = passes };
+                        .cpu_raster = s->cpu_raster, .frame_ms = s->frame_ms, .fps = s->fps,
+                        .paused = s->paused, .time_s = s->t,
+                        .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL,
+                        .scene_x = app_scene_x_window(a), .passes = passes };
     panel_draw(app_panel(a), sets, n, &info, &v->pending);
     *common = v->pending;
 }

@@ -8,6 +8,7 @@
  *   expect PROGRAM UNIFORM v...   the linked GL program holds these values (±1e-5)
  *   screenshot PATH               write the window's image
  *   reload                        reload the scene, as a save would
+ *   window W H                    resize the window (app.c's; give it a few frames)
  *   quit
  * `#` starts a comment. A window may add actions of its own (ctx.custom):
  * `tarn compare-view` does (compare_view.h). */

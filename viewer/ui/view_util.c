@@ -3,8 +3,10 @@
 
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -83,22 +85,57 @@ void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *c
     m->last_y = my;
 }
 
-bool view_screenshot(void *glfw_window, const char *path) {
+static void make_opaque(img *im) {
+    size_t n = (size_t)im->w * (size_t)im->h;
+    for (size_t i = 0; i < n; i++) im->px[i * 4 + 3] = 1.0f;
+}
+
+bool view_screenshot(void *glfw_window, const char *path, char *said, size_t len) {
     int w, h;
     glfwGetFramebufferSize(glfw_window, &w, &h);
     img im;
     memset(&im, 0, sizeof im);
-    if (!img_alloc(&im, w, h, 4)) return false;
+    if (!img_alloc(&im, w, h, 4)) {
+        snprintf(said, len, "screenshot failed: no memory for %d x %d", w, h);
+        return false;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glReadBuffer(GL_BACK);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, im.px);
     img_flip_rows(&im);
-    char err[512];
+    make_opaque(&im);
+    char err[512], abs[PATH_MAX];
     bool ok = img_write(path, &im, err, sizeof err);
-    fprintf(stderr, ok ? "tarn: screenshot %s\n" : "tarn: screenshot failed: %s\n", ok ? path : err);
+    if (ok) snprintf(said, len, "screenshot %s", realpath(path, abs) ? abs : path);
+    else snprintf(said, len, "screenshot failed: %s", err);
     img_free(&im);
     return ok;
+}
+
+void view_pass_name(const char *timer_name, char *out, size_t len) {
+    int line = 0, used = 0;
+    if (sscanf(timer_name, "pass:%d%n", &line, &used) == 1)
+        snprintf(out, len, "RenderToTexture%s (line %d)", timer_name + used, line);
+    else if (sscanf(timer_name, "screen:%d", &line) == 1)
+        snprintf(out, len, "to the screen (line %d)", line);
+    else
+        snprintf(out, len, "%s", timer_name);
+}
+
+void view_pass_summary(render *r, char *out, size_t len) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, false, &names, &ms);
+    size_t used = 0;
+    if (len > 0) out[0] = '\0';
+    for (int i = 0; i < n && used + 80 < len; i++) {
+        char name[GPU_TIMER_NAME + 32];
+        view_pass_name(names[i], name, sizeof name);
+        int k = snprintf(out + used, len - used, "%s%s  %.2f ms", i ? "\n" : "", name, ms[i]);
+        if (k < 0) break;
+        used += (size_t)k;
+    }
 }
 
 void view_shot_path(int n, char *out, size_t len) {

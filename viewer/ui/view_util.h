@@ -36,8 +36,19 @@ typedef struct view_mouse {
  * while the panel has the mouse (a drag started over it is the panel's). */
 void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *cam);
 
-/* Writes the window's back buffer to path (any img_write format). */
-bool view_screenshot(void *glfw_window, const char *path);
+/* Writes the window's back buffer to path (any img_write format), opaque:
+ * alpha is set to 1, since what the panel's blending leaves there washes the
+ * image out in a viewer. said gets "screenshot ABSOLUTE-PATH" or
+ * "screenshot failed: why". */
+bool view_screenshot(void *glfw_window, const char *path, char *said, size_t len);
+
+/* A pass as a student reads it, from the renderer's timer name (whose
+ * "pass:LINE units" form bench's CSV and tests keep): "pass:65 10" is
+ * "RenderToTexture 10 (line 65)", "screen:24" is "to the screen (line 24)";
+ * other names are kept. */
+void view_pass_name(const char *timer_name, char *out, size_t len);
+/* The last finished frame's GPU time per pass, a line each, by view_pass_name. */
+void view_pass_summary(render *r, char *out, size_t len);
 
 /* "tarn-YYYYmmdd-HHMMSS-N.png" into out. */
 void view_shot_path(int n, char *out, size_t len);

@@ -1,0 +1,47 @@
+#!/usr/bin/env python3
+"""x_keys: presses keys in the X display's window under the pointer (XTEST,
+through ctypes: no xdotool on the test machines), for the window tests.
+
+    x_keys.py KEY_UNTIL_FILE_GLOB QUIT_KEY
+moves the pointer to (100, 100), presses the first key every half second
+until a file matches the glob (10 s at most), then presses QUIT_KEY once.
+Keys are X keysym names of one letter ("p", "q"). Exits 77 when libX11 or
+libXtst is missing, 1 when no file appeared.
+"""
+import ctypes
+import glob
+import sys
+import time
+
+
+def main(argv):
+    try:
+        x, t = ctypes.CDLL("libX11.so.6"), ctypes.CDLL("libXtst.so.6")
+    except OSError as e:
+        print("skip: %s" % e)
+        sys.exit(77)
+    x.XOpenDisplay.restype = ctypes.c_void_p
+    d = ctypes.c_void_p(x.XOpenDisplay(None))
+    if not d.value:
+        sys.exit("x_keys: no display")
+
+    def press(keysym):
+        kc = x.XKeysymToKeycode(d, ord(keysym))   # a letter's keysym is its ASCII code
+        for down in (1, 0):
+            t.XTestFakeKeyEvent(d, kc, down, 0)
+            x.XFlush(d)
+            time.sleep(0.05)
+
+    t.XTestFakeMotionEvent(d, -1, 100, 100, 0)   # the window is at the top left: keys go under the pointer
+    x.XFlush(d)
+    deadline = time.time() + 10
+    while not glob.glob(argv[1]) and time.time() < deadline:
+        press(argv[2])
+        time.sleep(0.5)
+    found = bool(glob.glob(argv[1]))
+    press(argv[3])
+    sys.exit(0 if found else 1)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
