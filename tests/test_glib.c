@@ -1566,6 +1566,30 @@ static void test_glman_defaults(void)
     glib_free(s);
 }
 
+/* Issue 14: the state commands of real glman files are commands, never
+ * "unknown" (and Flat gets no "did you mean 'Splat'?"); MessageBox prints. */
+static void test_glman_state(void)
+{
+    glib_scene *s = load("gl14/state.glib",
+        "##OpenGL GLIB\n"
+        "Flat\nSmooth\nLineWidth 3\nPointSize 4.5\nPointSizeMode 1\nClamp\n"
+        "MessageBox \"Press the T key\"\nLineWidth\n");
+    const char *f = P("gl14/state.glib");
+    CHECK(s->nerrors == 0 && count_sev(s, DIAG_WARNING) == 0);
+    CHECK(has_diag(s, f, 8, DIAG_NOTE, "MessageBox: Press the T key"));
+    static const glib_cmd_kind kinds[] = {
+        GLIB_CMD_FLAT, GLIB_CMD_SMOOTH, GLIB_CMD_LINE_WIDTH, GLIB_CMD_POINT_SIZE,
+        GLIB_CMD_POINT_SIZE_MODE, GLIB_CMD_CLAMP, GLIB_CMD_LINE_WIDTH };
+    CHECK(s->ncmds == 7);
+    for (int i = 0; i < s->ncmds && i < 7; i++)
+        CHECK_MSG(s->cmds[i].kind == kinds[i], "cmd %d", i);
+    if (s->ncmds == 7) {
+        CHECK(s->cmds[2].num[0] == 3 && s->cmds[3].num[0] == 4.5 && s->cmds[4].num[0] == 1);
+        CHECK(s->cmds[6].num[0] == 1);
+    }
+    glib_free(s);
+}
+
 static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
 {
     return remove(path);
@@ -1623,6 +1647,7 @@ int main(void)
     RUN(test_glman_real_file);
     RUN(test_glman_numbers);
     RUN(test_glman_defaults);
+    RUN(test_glman_state);
     nftw(root, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
     return check_summary();
 }

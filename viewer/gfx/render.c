@@ -702,6 +702,14 @@ static void exec_state_cmd(const glib_cmd *c) {
     case GLIB_CMD_DEPTH_TEST:
         if (c->nnum > 0 && c->num[0] == 0) glDisable(GL_DEPTH_TEST); else glEnable(GL_DEPTH_TEST);
         break;
+    /* glman's state commands apply to the draws that follow */
+    case GLIB_CMD_FLAT: glShadeModel(GL_FLAT); break;
+    case GLIB_CMD_SMOOTH: glShadeModel(GL_SMOOTH); break;
+    case GLIB_CMD_LINE_WIDTH: glLineWidth((float)c->num[0]); break;
+    case GLIB_CMD_POINT_SIZE: glPointSize((float)c->num[0]); break;
+    case GLIB_CMD_POINT_SIZE_MODE:
+        if (c->num[0] != 0) glEnable(GL_PROGRAM_POINT_SIZE); else glDisable(GL_PROGRAM_POINT_SIZE);
+        break;
     case GLIB_CMD_BLEND:
         if (strcmp(c->name, "off") == 0) { glDisable(GL_BLEND); break; }
         glEnable(GL_BLEND);
@@ -850,6 +858,12 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glColor4f(1, 1, 1, 1);
+    /* each frame starts from glman's state: Flat, LineWidth, PointSize and
+     * PointSizeMode of the last frame do not leak into the first draws */
+    glShadeModel(GL_SMOOTH);
+    glLineWidth(1);
+    glPointSize(1);
+    glDisable(GL_PROGRAM_POINT_SIZE);
     const float *bg = s->set.background;
     glClearColor(bg[0], bg[1], bg[2], bg[3]);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

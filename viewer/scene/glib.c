@@ -189,6 +189,11 @@ static void cwarn(cmdctx *c, const char *fmt, ...)
     va_end(ap);
 }
 
+static void vdiag_note(cmdctx *c, const char *text)
+{
+    report(c->p, DIAG_NOTE, c->file, c->line, "MessageBox: %.400s", text);
+}
+
 /* A numeric argument: its name in the usage line, what a message calls it
  * when it is missing, and the values it may take. */
 typedef struct arg_rule {
@@ -802,6 +807,30 @@ static bool h_rtt(cmdctx *c, glib_cmd *cmd)
     }
     cmd->nnum = n;
     return true;
+}
+
+/* Clamp: real files write it (with or without words after it) before a
+ * draw; glman took it as a texture wrap state. It is kept as a command
+ * that changes nothing, never an error. */
+static bool h_clamp(cmdctx *c, glib_cmd *cmd)
+{
+    (void)c;
+    (void)cmd;
+    return true;
+}
+
+/* MessageBox text: glman pops the text up; tarn prints it as a note. */
+static bool h_message(cmdctx *c, glib_cmd *cmd)
+{
+    (void)cmd;
+    char *s = skip_space(c->rest);
+    size_t n = strlen(s);
+    if (n >= 2 && s[0] == '"' && s[n - 1] == '"') {
+        s[n - 1] = '\0';
+        s++;
+    }
+    vdiag_note(c, s);
+    return false;               /* nothing to run */
 }
 
 /* ------------------------------------------------------------------ */
@@ -2003,6 +2032,9 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_CAMERA] = "Camera",
     [GLIB_CMD_RENDER_TO_TEXTURE_ONCE] = "RenderToTextureOnce",
     [GLIB_CMD_SPLAT] = "Splat", [GLIB_CMD_IF] = "If", [GLIB_CMD_END_IF] = "EndIf",
+    [GLIB_CMD_FLAT] = "Flat", [GLIB_CMD_SMOOTH] = "Smooth", [GLIB_CMD_LINE_WIDTH] = "LineWidth",
+    [GLIB_CMD_POINT_SIZE] = "PointSize", [GLIB_CMD_POINT_SIZE_MODE] = "PointSizeMode",
+    [GLIB_CMD_CLAMP] = "Clamp",
 };
 
 const char *glib_cmd_name(glib_cmd_kind kind)
@@ -2107,6 +2139,14 @@ static const cmd_spec specs[] = {
     { "Cull", GLIB_CMD_CULL, false, h_cull, false, 0, 0, { { 0 } }, "Cull back|front|none" },
     { "DepthTest", GLIB_CMD_DEPTH_TEST, false, h_depth, false, 0, 0, { { 0 } }, "DepthTest on|off" },
     { "Blend", GLIB_CMD_BLEND, false, h_blend, false, 0, 0, { { 0 } }, "Blend off|alpha|add" },
+    /* glman's state commands and its message box */
+    { "Flat", GLIB_CMD_FLAT, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "Smooth", GLIB_CMD_SMOOTH, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "LineWidth", GLIB_CMD_LINE_WIDTH, false, h_nums, false, 0, 1, { ARG_PD("width", 1) }, NULL },
+    { "PointSize", GLIB_CMD_POINT_SIZE, false, h_nums, false, 0, 1, { ARG_PD("size", 1) }, NULL },
+    { "PointSizeMode", GLIB_CMD_POINT_SIZE_MODE, false, h_nums, false, 0, 1, { ARG_RD("n", 1) }, NULL },
+    { "Clamp", GLIB_CMD_CLAMP, false, h_clamp, false, 0, 0, { { 0 } }, "Clamp" },
+    { "MessageBox", GLIB_CMD_NONE, false, h_message, true, 0, 0, { { 0 } }, "MessageBox text" },
     /* describing the world */
     { "Sun", GLIB_CMD_SUN, false, h_world_nums, false, 3, 6,
       { ARG_R("dx", NULL), ARG_R("dy", NULL), ARG_R("dz", "a direction z"), ARG_RD("r", 0),
