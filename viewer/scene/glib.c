@@ -571,36 +571,61 @@ static bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
     return true;
 }
 
-/* Looks in path's directory for a name that differs only in case: files
- * made on Windows often say Water.BMP for water.bmp. */
-static bool case_match(const char *path, char alt[GLIB_PATH_MAX])
+/* In directory dir (a prefix of a path, "" for the current one) finds the
+ * entry named like name but for case; into out (of size size). */
+static bool case_entry(const char *dir, const char *name, size_t len, char *out, size_t size)
 {
-    const char *slash = strrchr(path, '/');
-    const char *base = slash ? slash + 1 : path;
-    size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
-    char dir[GLIB_PATH_MAX];
-    snprintf(dir, sizeof dir, "%.*s", (int)dirlen, dirlen ? path : "./");
-    DIR *d = opendir(dir);
+    DIR *d = opendir(dir[0] ? dir : ".");
     if (!d)
         return false;
     bool found = false;
     struct dirent *e;
-    while (!found && (e = readdir(d)) != NULL) {
-        size_t n = strlen(e->d_name);
-        found = strcasecmp(e->d_name, base) == 0 && strcmp(e->d_name, base) != 0 &&
-                dirlen + n < GLIB_PATH_MAX;
-        if (found) {
-            memcpy(alt, path, dirlen);
-            memcpy(alt + dirlen, e->d_name, n + 1);
-        }
-    }
+    while (!found && (e = readdir(d)) != NULL)
+        found = strlen(e->d_name) == len && strncasecmp(e->d_name, name, len) == 0 &&
+                strlen(e->d_name) < size;
+    if (found)
+        memcpy(out, e->d_name, len + 1);
     closedir(d);
     return found;
 }
 
+/* glman ran on Windows, where file names ignore case: a project says
+ * TEXTURES/Water.BMP for textures/water.bmp. Finds the real name, one
+ * path component at a time (a component that exists as written is kept). */
+static bool case_match(const char *path, char alt[GLIB_PATH_MAX])
+{
+    size_t n = 0, i = 0;
+    if (path[0] == '/')
+        alt[n++] = path[i++];
+    alt[n] = '\0';
+    while (path[i]) {
+        size_t len = strcspn(path + i, "/");
+        if (n + len + 1 >= GLIB_PATH_MAX)
+            return false;
+        memcpy(alt + n, path + i, len);
+        alt[n + len] = '\0';
+        struct stat st;
+        if (stat(alt, &st) != 0) {
+            char dir[GLIB_PATH_MAX];
+            memcpy(dir, alt, n);
+            dir[n] = '\0';
+            if (!case_entry(dir, path + i, len, alt + n, GLIB_PATH_MAX - n))
+                return false;
+        }
+        n += len;
+        i += len;
+        if (path[i] == '/')
+            alt[n++] = path[i++];
+        alt[n] = '\0';
+    }
+    return strcmp(alt, path) != 0;
+}
+
 /* The renderer reports a missing file too, but only when it gets there;
- * saying it here puts the message next to the line that named it. */
-static void check_readable(cmdctx *c, const char *path)
+ * saying it here puts the message next to the line that named it. A name
+ * that differs from the file on disk only in case is that file (glman's
+ * Windows habit), with a warning naming the real file. */
+static void check_readable(cmdctx *c, char path[GLIB_PATH_MAX])
 {
     char why[128];
     struct stat st;
@@ -611,11 +636,14 @@ static void check_readable(cmdctx *c, const char *path)
     else
         return;
     char alt[GLIB_PATH_MAX];
-    if (case_match(path, alt))
-        cerr(c, "cannot open '%s' (from command %s): %s; did you mean '%s'? (file names are case-sensitive)",
-             path, c->spec->name, why, alt);
-    else
-        cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+    if (case_match(path, alt) && access(alt, R_OK) == 0 && stat(alt, &st) == 0 &&
+        !S_ISDIR(st.st_mode)) {
+        cwarn(c, "%s: '%s' is '%s' on disk; using it (file names are case-sensitive here, "
+                 "not on Windows where glman ran)", c->spec->name, path, alt);
+        memcpy(path, alt, strlen(alt) + 1);
+        return;
+    }
+    cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
 }
 
 /* Resolves and checks a path; false only when it cannot be stored. A file
@@ -1873,11 +1901,16 @@ static void include_file(cmdctx *c, const char *path)
         cerr(c, "more than %d Includes in one scene; '%s' skipped", LIM_INCLUDE_READS, path);
         return;
     }
-    if (!read_file(path, &buf, &len, why, sizeof why)) {
-        if (access(path, R_OK) != 0)
-            check_readable(c, path);        /* says why, with a case hint */
-        else                                /* there, but a directory or huge */
-            cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+    char real[GLIB_PATH_MAX];
+    snprintf(real, sizeof real, "%s", path);
+    if (access(real, R_OK) != 0) {
+        check_readable(c, real);            /* says why, or finds the name in another case */
+        if (access(real, R_OK) != 0)
+            return;
+    }
+    path = real;
+    if (!read_file(path, &buf, &len, why, sizeof why)) {   /* a directory or huge */
+        cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
         return;
     }
     p->nreads++;
