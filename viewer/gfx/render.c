@@ -63,6 +63,9 @@ struct render {
     int rtt_w, rtt_h;
     int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
     gpu_timer timer;           /* per frame and per pass */
+    gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, always bound */
+    char noise_dir[GLIB_PATH_MAX];  /* the project folder they were read for */
+    bool noise_built;
 };
 
 render *render_create(const render_desc *desc) {
@@ -107,6 +110,8 @@ void render_destroy(render *r) {
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
     gpu_timer_free(&r->timer);
+    res_tex_free(&r->noise[0]);
+    res_tex_free(&r->noise[1]);
     free(r);
 }
 
@@ -506,6 +511,31 @@ render_view render_default_view(const render *r) {
 
 /* ---- drawing ---- */
 
+/* glman's Noise2 and Noise3 are there for every shader without any
+ * command: built once per project folder (whose cached .tex files win),
+ * bound to units 2 and 3 before the scene's own textures, so a Noise2D or
+ * a Texture2D on those units still takes over. */
+static void bind_builtin_noise(render *r, const scene_state *s) {
+    char dir[GLIB_PATH_MAX];
+    const char *top = s->glib && s->glib->nfiles ? s->glib->files[0] : "";
+    const char *slash = strrchr(top, '/');
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - top) : 0, top);
+    if (!r->noise_built || strcmp(dir, r->noise_dir) != 0) {
+        res_tex_free(&r->noise[0]);
+        res_tex_free(&r->noise[1]);
+        res_noise_builtin(dir, false, &r->noise[0]);
+        res_noise_builtin(dir, true, &r->noise[1]);
+        snprintf(r->noise_dir, sizeof r->noise_dir, "%s", dir);
+        r->noise_built = true;
+    }
+    for (int k = 0; k < 2; k++) {
+        if (!r->noise[k].tex) continue;
+        glActiveTexture(GL_TEXTURE0 + (GLenum)r->noise[k].unit);
+        glBindTexture(r->noise[k].target, r->noise[k].tex);
+    }
+    glActiveTexture(GL_TEXTURE0);
+}
+
 static void bind_textures(const scene_state *s) {
     for (int i = 0; i < s->ntexs; i++) {
         const gpu_tex *t = &s->texs[i];
@@ -872,6 +902,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         render_view v = view ? *view : s->set.view;
         size_targets(r);
         world_follow_waves(&r->world, t);
+        bind_builtin_noise(r, s);
         bind_textures(s);
         world_bind_textures(&r->world);
         frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };

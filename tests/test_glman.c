@@ -1,0 +1,102 @@
+/* test_glman: small glman-style projects (tests/data/glman/) open and look
+ * as they did in glman (issue 14): its defaults, its built-in noise, its
+ * raw noise cache, and a Texture2D rebinding a unit for the draws after it.
+ * Rendered headless; the pictures are checked by pixels. */
+#include <GL/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "support.h"
+#include "gl_ctx.h"
+#include "render.h"
+
+#define W 64
+#define H 64
+#define TOL (1.5 / 255.0)   /* RGBA8 target: half a step of rounding, plus slack */
+#define DATA TARN_SOURCE_DIR "/tests/data/glman/"
+
+static gl_ctx *ctx;
+static float px[W * H * 4];
+
+/* Loads path into a fresh render and draws it into px (W x H). */
+static bool draw_file(const char *path) {
+    render *r = render_create(NULL);
+    bool ok = render_load(r, path);
+    CHECK_MSG(ok, "%s", render_messages(r));
+    render_target tg;
+    if (!render_target_create(&tg, W, H, false)) { fprintf(stderr, "no target\n"); exit(1); }
+    render_frame(r, 0, tg.fbo, W, H, NULL);
+    CHECK(render_target_read(&tg, px));
+    render_target_destroy(&tg);
+    render_destroy(r);
+    return ok;
+}
+
+/* pixel (x, y), y = 0 the top row */
+static const float *at(int x, int y) { return px + ((size_t)y * W + x) * 4; }
+
+/* No WindowSize, no LookAt: the eye at the origin looking down -Z, so
+ * `Translate 0 0 -4` and a bare Sphere (glman's 1 60 60) land in the middle. */
+static void test_default_view_and_sphere(void) {
+    if (!draw_file(DATA "defaults/defaults.glib")) return;
+    const float *c = at(W / 2, H / 2);
+    CHECK_NEAR(c[0], 1.0, TOL);
+    CHECK_NEAR(c[1], 0.5, TOL);
+    CHECK_NEAR(c[2], 0.0, TOL);
+    const float *e = at(2, 2);   /* radius 1 at 4 under a 50 degree view: the corner is background */
+    CHECK(e[0] < TOL && e[1] < TOL && e[2] < TOL);
+}
+
+/* A shader reading Noise2 and Noise3 with no Noise command and no Program
+ * entry sees glman's noise: not black, about 0.5 and not constant. */
+static void test_noise_always_present(void) {
+    if (!draw_file(DATA "noise/noise.glib")) return;
+    double lo = 1, hi = 0, sum = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const float *p = at(x, y);
+            lo = p[0] < lo ? p[0] : lo;
+            hi = p[0] > hi ? p[0] : hi;
+            sum += p[0] + p[1];
+        }
+    const float *c = at(W / 2, H / 2);
+    CHECK_MSG(!(c[0] == 0 && c[1] == 0 && c[2] == 0), "the centre is black: Noise2/Noise3 not bound");
+    CHECK_MSG(fabs(sum / (2.0 * W * H) - 0.5) < 0.1, "mean %g", sum / (2.0 * W * H));
+    CHECK_MSG(hi - lo > 0.05, "Noise2's red is flat: %g..%g", lo, hi);
+}
+
+/* glman's cached noise2d.064.tex in the project folder is read (raw
+ * format: int32 s t, then s*t RGBA bytes): a constant file gives its value. */
+static void test_noise_cache_file_is_read(void) {
+    FILE *f = fopen(scratch_path("noise2d.064.tex"), "wb");
+    if (!f) { CHECK(f != NULL); return; }
+    unsigned char hdr[8] = { 64, 0, 0, 0, 64, 0, 0, 0 }, texel[4] = { 64, 128, 192, 255 };
+    fwrite(hdr, 1, sizeof hdr, f);
+    for (int i = 0; i < 64 * 64; i++) fwrite(texel, 1, sizeof texel, f);
+    fclose(f);
+    scratch_write("cache.glib",
+                  "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                  "Vertex " DATA "noise/noise.vert\nFragment " DATA "noise/noise.frag\n"
+                  "Program Noisy\nQuadXY 0 2\n");
+    if (!draw_file(scratch_path("cache.glib"))) return;
+    CHECK_NEAR(at(W / 2, H / 2)[0], 64 / 255.0, TOL);
+    CHECK_NEAR(at(5, 50)[0], 64 / 255.0, TOL);
+}
+
+int main(void) {
+    char err[512];
+    ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) {
+        fprintf(stderr, "skip: %s\n", err);
+        return 77;
+    }
+    if (!scratch_create("glman")) return 1;
+    RUN(test_default_view_and_sphere);
+    RUN(test_noise_always_present);
+    RUN(test_noise_cache_file_is_read);
+    gl_ctx_destroy(ctx);
+    scratch_remove();
+    return check_summary();
+}
