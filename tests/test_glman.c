@@ -85,6 +85,43 @@ static void test_noise_cache_file_is_read(void) {
     CHECK_NEAR(at(5, 50)[0], 64 / 255.0, TOL);
 }
 
+/* A w x h 24-bit BMP of one colour (bottom-up rows padded to 4 bytes). */
+static void write_solid_bmp(const char *name, unsigned char r, unsigned char g, unsigned char b) {
+    enum { S = 4, ROW = S * 3, SIZE = 54 + ROW * S };
+    unsigned char h[54] = { 'B', 'M', SIZE, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, 40, 0, 0, 0,
+                            S, 0, 0, 0, S, 0, 0, 0, 1, 0, 24, 0 };
+    FILE *f = fopen(scratch_path(name), "wb");
+    if (!f) { CHECK(f != NULL); return; }
+    fwrite(h, 1, sizeof h, f);
+    for (int i = 0; i < S * S; i++) {
+        unsigned char bgr[3] = { b, g, r };
+        fwrite(bgr, 1, 3, f);
+    }
+    fclose(f);
+}
+
+/* glman runs the file in order: `Texture2D 6 a.bmp`, a quad, `Texture2D 6
+ * b.bmp`, a quad: each quad shows its own image (the course's sky box loads
+ * one image per wall on one unit; binding all at the frame's start showed
+ * the last image on every wall). */
+static void test_texture_rebinds_in_order(void) {
+    write_solid_bmp("a.bmp", 255, 0, 0);
+    write_solid_bmp("b.bmp", 0, 0, 255);
+    scratch_write("tex.vert", "#version 120\nvarying vec2 vST;\n"
+                  "void main() { vST = gl_MultiTexCoord0.st; gl_Position = ftransform(); }\n");
+    scratch_write("tex.frag", "#version 120\nuniform sampler2D uTex;\nvarying vec2 vST;\n"
+                  "void main() { gl_FragColor = texture2D(uTex, vST); }\n");
+    scratch_write("sky.glib",
+                  "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex tex.vert\nFragment tex.frag\n"
+                  "Program Wall uTex 6\n"
+                  "Texture2D 6 a.bmp\nPushMatrix\nTranslate -0.5 0 0\nQuadXY 0 0.5\nPopMatrix\n"
+                  "Texture2D 6 b.bmp\nPushMatrix\nTranslate 0.5 0 0\nQuadXY 0 0.5\nPopMatrix\n");
+    if (!draw_file(scratch_path("sky.glib"))) return;
+    const float *l = at(W / 4, H / 2), *r = at(3 * W / 4, H / 2);
+    CHECK_MSG(l[0] > 1 - TOL && l[2] < TOL, "left quad %g %g %g, want a.bmp's red", l[0], l[1], l[2]);
+    CHECK_MSG(r[2] > 1 - TOL && r[0] < TOL, "right quad %g %g %g, want b.bmp's blue", r[0], r[1], r[2]);
+}
+
 int main(void) {
     char err[512];
     ctx = gl_ctx_create_headless(err, sizeof err);
@@ -96,6 +133,7 @@ int main(void) {
     RUN(test_default_view_and_sphere);
     RUN(test_noise_always_present);
     RUN(test_noise_cache_file_is_read);
+    RUN(test_texture_rebinds_in_order);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

@@ -536,14 +536,17 @@ static void bind_builtin_noise(render *r, const scene_state *s) {
     glActiveTexture(GL_TEXTURE0);
 }
 
-static void bind_textures(const scene_state *s) {
-    for (int i = 0; i < s->ntexs; i++) {
-        const gpu_tex *t = &s->texs[i];
-        if (!t->tex) continue;
-        glActiveTexture(GL_TEXTURE0 + (GLenum)t->unit);
-        glBindTexture(t->target, t->tex);
-    }
+static void bind_tex(const gpu_tex *t) {
+    if (!t->tex) return;
+    glActiveTexture(GL_TEXTURE0 + (GLenum)t->unit);
+    glBindTexture(t->target, t->tex);
     glActiveTexture(GL_TEXTURE0);
+}
+
+/* Every texture at the frame's start (the last at a unit wins), so a draw
+ * before the texture's command sees what glman's previous frame left. */
+static void bind_textures(const scene_state *s) {
+    for (int i = 0; i < s->ntexs; i++) bind_tex(&s->texs[i]);
 }
 
 /* The number a `Camera` (fov scale) or `World` (clip offset) command asks
@@ -866,6 +869,11 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
         upload_target_size(f);
+    } else if (res_is_texture(c->kind)) {
+        /* glman runs the file in order: a Texture2D after a draw rebinds its
+         * unit for the draws after it (the course's sky box: one image per
+         * wall on one unit) */
+        if (res >= 0) bind_tex(&s->texs[res]);
     } else if (c->kind >= GLIB_CMD_TRANSLATE && c->kind <= GLIB_CMD_POP_MATRIX) {
         exec_transform(f, c);
     } else {
