@@ -122,6 +122,29 @@ static void test_texture_rebinds_in_order(void) {
     CHECK_MSG(r[2] > 1 - TOL && r[0] < TOL, "right quad %g %g %g, want b.bmp's blue", r[0], r[1], r[2]);
 }
 
+/* Flat / Smooth: a vertex colour that grows with x over a quad is one colour
+ * per triangle under Flat (the provoking vertex's) and a ramp under Smooth. */
+static void test_flat_and_smooth(void) {
+    scratch_write("ramp.vert", "#version 120\n"
+                  "void main() { gl_FrontColor = vec4(gl_Vertex.x * 0.5 + 0.5, 0., 0., 1.);\n"
+                  "              gl_Position = ftransform(); }\n");
+    scratch_write("ramp.frag", "#version 120\nvoid main() { gl_FragColor = gl_Color; }\n");
+    const char *modes[2] = { "Flat", "Smooth" };
+    float a[2], b[2];
+    for (int m = 0; m < 2; m++) {
+        char text[512];
+        snprintf(text, sizeof text, "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex ramp.vert\n"
+                 "Fragment ramp.frag\nProgram Ramp\n%s\nQuadXY 0 1\n", modes[m]);
+        scratch_write("ramp.glib", text);
+        if (!draw_file(scratch_path("ramp.glib"))) return;
+        /* two pixels on one row near the bottom: one triangle of the quad */
+        a[m] = at(W / 4, H - 4)[0];
+        b[m] = at(3 * W / 4, H - 4)[0];
+    }
+    CHECK_MSG(fabsf(a[0] - b[0]) < TOL, "Flat: %g vs %g, want one colour", a[0], b[0]);
+    CHECK_MSG(b[1] - a[1] > 0.3, "Smooth: %g vs %g, want a ramp", a[1], b[1]);
+}
+
 int main(void) {
     char err[512];
     ctx = gl_ctx_create_headless(err, sizeof err);
@@ -134,6 +157,7 @@ int main(void) {
     RUN(test_noise_always_present);
     RUN(test_noise_cache_file_is_read);
     RUN(test_texture_rebinds_in_order);
+    RUN(test_flat_and_smooth);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();
