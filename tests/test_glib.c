@@ -263,9 +263,11 @@ static void test_case_insensitive(void)
     }
     glib_free(s);
 
-    /* arguments are not case-insensitive: foo.vert is not Foo.vert */
+    /* file names ignore case as on Windows (issue 14; this was an error):
+     * foo.vert is Foo.vert, with a warning naming the real file */
     s = load("ci/case2.glib", "##OpenGL GLIB\nVertex foo.vert\n");
-    CHECK(has_diag(s, P("ci/case2.glib"), 2, DIAG_ERROR, "cannot open"));
+    CHECK(has_diag(s, P("ci/case2.glib"), 2, DIAG_WARNING, "is '"));
+    CHECK(s->nerrors == 0 && s->ncmds == 1 && strcmp(s->cmds[0].path, P("ci/Foo.vert")) == 0);
     glib_free(s);
 }
 
@@ -283,9 +285,10 @@ static void test_continuation(void)
         "Program P2 uA 1 \\\n"          /* 9 */
         "   uB 1.2.3\n"                 /* 10 */
         "Translate 1 2 \\");            /* 11: continued into the end of the file */
-    CHECK(s->ncmds == 3);
-    CHECK(s->nerrors == 2);
-    if (s->ncmds == 3) {
+    /* glman's leniency (issue 14): 1.2.3 reads as 1.2, a missing z is 0 */
+    CHECK(s->ncmds == 4);
+    CHECK(s->nerrors == 0);
+    if (s->ncmds == 4) {
         const glib_cmd *w = &s->cmds[0];
         CHECK(w->kind == GLIB_CMD_PROGRAM && w->line == 2 && w->nuniforms == 2);
         const unif_decl *a = find_uniform(w, "uA"), *b = find_uniform(w, "uB");
@@ -293,11 +296,11 @@ static void test_continuation(void)
         CHECK(b && b->kind == UNIF_DECL_COLOR && b->n == 3 && b->v[2] == 0.25);
         CHECK(s->cmds[1].kind == GLIB_CMD_SPHERE && s->cmds[1].line == 6);
         CHECK(s->cmds[1].num[0] == 1 && s->cmds[1].num[1] == 8 && s->cmds[1].num[2] == 4);
-        CHECK(s->cmds[2].line == 9 && s->cmds[2].nuniforms == 1);
+        CHECK(s->cmds[2].line == 9 && s->cmds[2].nuniforms == 2);
+        CHECK(s->cmds[3].line == 11 && s->cmds[3].num[1] == 2 && s->cmds[3].num[2] == 0);
     }
-    /* errors name the line the command starts on */
-    CHECK(has_diag(s, P("cont.glib"), 9, DIAG_ERROR, "uniform 'uB': bad number '1.2.3'"));
-    CHECK(has_diag(s, P("cont.glib"), 11, DIAG_ERROR, "Translate needs a z: Translate x y z"));
+    /* messages name the line the command starts on */
+    CHECK(has_diag(s, P("cont.glib"), 9, DIAG_WARNING, "'1.2.3' read as 1.2"));
     glib_free(s);
 }
 
@@ -366,7 +369,7 @@ static void test_bad_numbers(void)
         "Scale 1e\n"
         "Program P uA <0 x 2> uB 1..2 uC {1 2 three} uD -\n");
     const char *f = P("badnum.glib");
-    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Sphere: bad number '1.2.3' for r"));
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "Sphere: '1.2.3' read as 1.2"));   /* atof, issue 14 */
     CHECK(has_diag(s, f, 3, DIAG_ERROR, "Translate: bad number 'abc' for x"));
     CHECK(has_diag(s, f, 4, DIAG_ERROR, "bad number 'nan'"));
     CHECK(has_diag(s, f, 5, DIAG_ERROR, "bad number 'inf'"));
@@ -374,12 +377,14 @@ static void test_bad_numbers(void)
     CHECK(has_diag(s, f, 7, DIAG_ERROR, "bad number '0x10'"));
     CHECK(has_diag(s, f, 8, DIAG_ERROR, "bad number '1e'"));
     CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uA': bad number 'x'"));
-    CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uB': bad number '1..2'"));
+    CHECK(has_diag(s, f, 9, DIAG_WARNING, "'1..2' read as 1"));
     CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uC': bad number 'three'"));
     CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uD': bad number '-'"));
-    CHECK(s->nerrors == 11);
+    CHECK(s->nerrors == 9);
     /* the bad commands are skipped; the Program stays, without its bad uniforms */
-    CHECK(s->ncmds == 1 && s->cmds[0].kind == GLIB_CMD_PROGRAM && s->cmds[0].nuniforms == 0);
+    CHECK(s->ncmds == 2 && s->cmds[0].kind == GLIB_CMD_SPHERE && s->cmds[0].num[0] == 1.2);
+    CHECK(s->cmds[1].kind == GLIB_CMD_PROGRAM && s->cmds[1].nuniforms == 1 &&
+          s->cmds[1].uniforms[0].v[0] == 1);
     glib_free(s);
 }
 
@@ -464,24 +469,26 @@ static void test_arg_counts(void)
         "Ortho -1 1 -1\n"
         "Color 1 0\n");
     const char *f = P("args.glib");
-    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Sphere needs a radius: Sphere r [slices stacks]"));
     CHECK(has_diag(s, f, 3, DIAG_ERROR,
                    "LookAt needs 9 numbers, got 3: LookAt ex ey ez cx cy cz ux uy uz"));
     CHECK(has_diag(s, f, 4, DIAG_WARNING,
                    "Sphere takes at most 3 arguments; ignoring '99' and what follows"));
     CHECK(has_diag(s, f, 5, DIAG_ERROR, "Scale takes 1 number or 3, not 2"));
-    CHECK(has_diag(s, f, 6, DIAG_ERROR, "QuadXZ needs a size: QuadXZ y size [nx nz]"));
     CHECK(has_diag(s, f, 7, DIAG_WARNING, "Clear takes no arguments; ignoring 'now'"));
     CHECK(has_diag(s, f, 8, DIAG_ERROR, "WindowSize needs a height"));
-    CHECK(has_diag(s, f, 9, DIAG_ERROR, "Perspective needs a field of view in degrees"));
-    CHECK(has_diag(s, f, 10, DIAG_ERROR, "Ortho needs a top: Ortho l r b t [near far]"));
     CHECK(has_diag(s, f, 11, DIAG_ERROR, "Color needs a blue value"));
-    CHECK(s->nerrors == 8 && count_sev(s, DIAG_WARNING) == 2);
-    CHECK(s->ncmds == 2);
-    if (s->ncmds == 2) {
-        CHECK(s->cmds[0].kind == GLIB_CMD_SPHERE && s->cmds[0].line == 4 && s->cmds[0].nnum == 3);
-        CHECK(s->cmds[0].num[1] == 8 && s->cmds[0].num[2] == 4);
-        CHECK(s->cmds[1].kind == GLIB_CMD_CLEAR && s->cmds[1].nnum == 0);
+    CHECK(s->nerrors == 4 && count_sev(s, DIAG_WARNING) == 2);
+    /* bare Sphere, QuadXZ 0, Perspective and a short Ortho take glman's
+     * defaults (issue 14; they were errors) */
+    CHECK(s->ncmds == 6);
+    if (s->ncmds == 6) {
+        CHECK(s->cmds[0].kind == GLIB_CMD_SPHERE && s->cmds[0].line == 2 && s->cmds[0].num[0] == 1);
+        CHECK(s->cmds[1].kind == GLIB_CMD_SPHERE && s->cmds[1].line == 4 && s->cmds[1].nnum == 3);
+        CHECK(s->cmds[1].num[1] == 8 && s->cmds[1].num[2] == 4);
+        CHECK(s->cmds[2].kind == GLIB_CMD_QUAD_XZ && s->cmds[2].num[1] == 1);
+        CHECK(s->cmds[3].kind == GLIB_CMD_CLEAR && s->cmds[3].nnum == 0);
+        CHECK(s->cmds[4].kind == GLIB_CMD_PERSPECTIVE && s->cmds[4].num[0] == 50);
+        CHECK(s->cmds[5].kind == GLIB_CMD_ORTHO && s->cmds[5].num[2] == -1 && s->cmds[5].num[3] == 3);
     }
     glib_free(s);
 }
@@ -507,16 +514,16 @@ static void test_defaults(void)
     CHECK(s->ncmds == 13);
     if (s->ncmds == 13) {
         const glib_cmd *c = s->cmds;
-        CHECK(c[0].nnum == 3 && c[0].num[1] == 32 && c[0].num[2] == 16);
+        CHECK(c[0].nnum == 3 && c[0].num[1] == 60 && c[0].num[2] == 60);   /* glman's */
         CHECK(c[1].nnum == 3 && c[1].num[0] == 2 && c[1].num[1] == 2 && c[1].num[2] == 2);
         CHECK(c[2].nnum == 3 && c[2].num[1] == 2 && c[2].num[2] == 3);
         CHECK(c[3].nnum == 1 && c[3].num[0] == 2);
         CHECK(c[4].nnum == 4 && c[4].num[3] == 1);
         CHECK(c[5].nnum == 4 && c[5].num[2] == 1 && c[5].num[3] == 1);
-        CHECK(c[6].nnum == 4 && c[6].num[2] == 16 && c[6].num[3] == 32);
+        CHECK(c[6].nnum == 4 && c[6].num[2] == 20 && c[6].num[3] == 40);
         CHECK(c[7].nnum == 4 && c[7].num[2] == 32 && c[7].num[3] == 8);
         CHECK(c[8].kind == GLIB_CMD_TEAPOT && c[8].nnum == 1 && c[8].num[0] == 1);
-        CHECK(c[9].kind == GLIB_CMD_NOISE2D && c[9].nnum == 1 && c[9].num[0] == 256);
+        CHECK(c[9].kind == GLIB_CMD_NOISE2D && c[9].nnum == 1 && c[9].num[0] == 64);
         CHECK(c[10].kind == GLIB_CMD_NOISE3D && c[10].num[0] == 32);
         CHECK(c[11].nnum == 3 && c[11].num[1] == 0.1 && c[11].num[2] == 1000);
         CHECK(c[12].nnum == 6 && c[12].num[3] == 1 && c[12].num[5] == 1000);
@@ -637,9 +644,22 @@ static void test_case_hint(void)
     put("hint/Water.BMP", "x");
     glib_scene *s = load("hint/h.glib", "##OpenGL GLIB\nTexture2D 5 water.bmp\n");
     char want[600];
-    snprintf(want, sizeof want, "did you mean '%s'? (file names are case-sensitive)",
-             P("hint/Water.BMP"));
-    CHECK(has_diag(s, P("hint/h.glib"), 2, DIAG_ERROR, want));
+    /* issue 14: glman ran on Windows, so the name in another case is that
+     * file (it was an error with a hint) */
+    snprintf(want, sizeof want, "is '%s' on disk; using it", P("hint/Water.BMP"));
+    CHECK(has_diag(s, P("hint/h.glib"), 2, DIAG_WARNING, want));
+    CHECK(s->nerrors == 0 && s->ncmds == 1 && strcmp(s->cmds[0].path, P("hint/Water.BMP")) == 0);
+    glib_free(s);
+
+    /* every component, backslashes as separators, and an Include too */
+    put("hint/Tex/Sky24.bmp", "x");
+    put("hint/Parts/Inc.glib", "Sphere 3\n");
+    s = load("hint/h2.glib", "##OpenGL GLIB\nTexture2D 6 TEX\\SKY24.BMP\nInclude parts/inc.GLIB\n");
+    CHECK(s->nerrors == 0 && count_sev(s, DIAG_WARNING) == 2);
+    CHECK(s->ncmds == 2 && strcmp(s->cmds[0].path, P("hint/Tex/Sky24.bmp")) == 0);
+    CHECK(s->ncmds == 2 && s->cmds[1].kind == GLIB_CMD_SPHERE && s->cmds[1].num[0] == 3);
+    snprintf(want, sizeof want, "is '%s' on disk", P("hint/Tex/Sky24.bmp"));
+    CHECK(has_diag(s, P("hint/h2.glib"), 2, DIAG_WARNING, want));
     glib_free(s);
 }
 
@@ -896,7 +916,7 @@ static void test_diag_cap(void)
 
     n = (size_t)snprintf(t, cap, "##OpenGL GLIB\n");
     for (int i = 0; i < 300; i++)
-        n += (size_t)snprintf(t + n, cap - n, "Sphere\n");
+        n += (size_t)snprintf(t + n, cap - n, "Sphere 0\n");
     s = glib_parse(t, n, "cap.glib");
     CHECK(s->ndiags == 200 && s->nerrors == 200);
     CHECK(has_diag(s, "cap.glib", 0, DIAG_ERROR, "101 more diagnostics not shown (101 errors)"));
@@ -1420,7 +1440,7 @@ static void test_pack_override(void)
 
 static void test_print_diags(void)
 {
-    glib_scene *s = load("print.glib", "##OpenGL GLIB\n\nFoo\nSphere\n");
+    glib_scene *s = load("print.glib", "##OpenGL GLIB\n\nFoo\nSphere 0\n");
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
@@ -1429,7 +1449,7 @@ static void test_print_diags(void)
     char want[1200];
     snprintf(want, sizeof want,
              "%s:3: warning: unknown command 'Foo' (skipped)\n"
-             "%s:4: error: Sphere needs a radius: Sphere r [slices stacks]\n",
+             "%s:4: error: Sphere: r must be greater than 0, not '0'\n",
              P("print.glib"), P("print.glib"));
     CHECK_MSG(buf && strcmp(buf, want) == 0, "got:\n%s", buf ? buf : "(null)");
     free(buf);
@@ -1495,9 +1515,93 @@ static void test_glman_real_file(void)
     glib_free(s);
 
     /* old Mac line ends (a lone CR) count lines too */
-    s = load("proj/cr.glib", "##OpenGL GLIB\rSphere 1\r\rSphere\r");
+    s = load("proj/cr.glib", "##OpenGL GLIB\rSphere 1\r\rSphere 0\r");
     CHECK(s->ncmds == 1 && s->cmds[0].line == 2);
-    CHECK(has_diag(s, P("proj/cr.glib"), 4, DIAG_ERROR, "Sphere needs a radius"));
+    CHECK(has_diag(s, P("proj/cr.glib"), 4, DIAG_ERROR, "Sphere: r must be greater than 0"));
+    glib_free(s);
+}
+
+/* Issue 14: numbers as glman's atof read them, brackets and commas around
+ * plain numbers, a header with a version after it, <0>/<1> checkboxes. */
+static void test_glman_numbers(void)
+{
+    glib_scene *s = load("gl14/num.glib",
+        "##OpenGL GLIB 8\n"                    /* 1 */
+        "Translate 0.1. -0.1. 1..\n"           /* 2 */
+        "Color [1 0 0]\n"                      /* 3 */
+        "Background [0 0.5 0]\n"               /* 4 */
+        "Color 1, 0.5, 0\n"                    /* 5 */
+        "Program P uOn <1> uOff <0> uTwo <2> uT <true>\n"); /* 6 */
+    const char *f = P("gl14/num.glib");
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "Translate: '0.1.' read as 0.1"));
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "'-0.1.' read as -0.1"));
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "'1..' read as 1"));
+    CHECK(s->nerrors == 0 && s->ndiags == 3);
+    CHECK(s->ncmds == 5);
+    if (s->ncmds == 5) {
+        const glib_cmd *c = s->cmds;
+        CHECK(c[0].num[0] == 0.1 && c[0].num[1] == -0.1 && c[0].num[2] == 1);
+        CHECK(c[1].kind == GLIB_CMD_COLOR && c[1].num[0] == 1 && c[1].num[1] == 0 && c[1].num[3] == 1);
+        CHECK(c[2].kind == GLIB_CMD_BACKGROUND && c[2].num[1] == 0.5);
+        CHECK(c[3].num[0] == 1 && c[3].num[1] == 0.5 && c[3].num[2] == 0);
+        const unif_decl *u;
+        CHECK((u = find_uniform(&c[4], "uOn")) && u->kind == UNIF_DECL_BOOL && u->v[0] == 1);
+        CHECK((u = find_uniform(&c[4], "uOff")) && u->kind == UNIF_DECL_BOOL && u->v[0] == 0);
+        CHECK((u = find_uniform(&c[4], "uTwo")) && u->kind == UNIF_DECL_BOOL && u->v[0] == 1);
+        CHECK((u = find_uniform(&c[4], "uT")) && u->kind == UNIF_DECL_BOOL && u->v[0] == 1);
+    }
+    glib_free(s);
+}
+
+/* Issue 14: missing arguments take glman's defaults (docs/glib.md). */
+static void test_glman_defaults(void)
+{
+    glib_scene *s = load("gl14/def.glib",
+        "##OpenGL GLIB\n"
+        "Sphere\nSphere 2\nTorus\nQuadXY\nBox\nCone\nCylinder\nPerspective\nOrtho\n"
+        "Translate 1 2\nNoise2D\nNoise3D 300\nWireSphere\n");
+    CHECK_NO_DIAGS(s);
+    CHECK(s->ncmds == 13);
+    if (s->ncmds == 13) {
+        const glib_cmd *c = s->cmds;
+        CHECK(c[0].num[0] == 1 && c[0].num[1] == 60 && c[0].num[2] == 60);
+        CHECK(c[1].num[0] == 2 && c[1].num[1] == 60 && c[1].num[2] == 60);
+        CHECK(c[2].num[0] == 1 && c[2].num[1] == 0.5 && c[2].num[2] == 20 && c[2].num[3] == 40);
+        CHECK(c[3].num[0] == 0 && c[3].num[1] == 1 && c[3].num[2] == 1 && c[3].num[3] == 1);
+        CHECK(c[4].num[0] == 2 && c[4].num[1] == 2 && c[4].num[2] == 2);
+        CHECK(c[5].num[0] == 1 && c[5].num[1] == 1);
+        CHECK(c[6].num[0] == 1 && c[6].num[1] == 1);
+        CHECK(c[7].num[0] == 50);
+        CHECK(c[8].num[0] == -3 && c[8].num[1] == 3 && c[8].num[2] == -3 && c[8].num[3] == 3);
+        CHECK(c[9].num[0] == 1 && c[9].num[1] == 2 && c[9].num[2] == 0);
+        CHECK(c[10].num[0] == 64);
+        CHECK(c[11].num[0] == 300);
+        CHECK(c[12].wire && c[12].num[0] == 1 && c[12].num[1] == 60);
+    }
+    glib_free(s);
+}
+
+/* Issue 14: the state commands of real glman files are commands, never
+ * "unknown" (and Flat gets no "did you mean 'Splat'?"); MessageBox prints. */
+static void test_glman_state(void)
+{
+    glib_scene *s = load("gl14/state.glib",
+        "##OpenGL GLIB\n"
+        "Flat\nSmooth\nLineWidth 3\nPointSize 4.5\nPointSizeMode 1\nClamp\n"
+        "MessageBox \"Press the T key\"\nLineWidth\n");
+    const char *f = P("gl14/state.glib");
+    CHECK(s->nerrors == 0 && count_sev(s, DIAG_WARNING) == 0);
+    CHECK(has_diag(s, f, 8, DIAG_NOTE, "MessageBox: Press the T key"));
+    static const glib_cmd_kind kinds[] = {
+        GLIB_CMD_FLAT, GLIB_CMD_SMOOTH, GLIB_CMD_LINE_WIDTH, GLIB_CMD_POINT_SIZE,
+        GLIB_CMD_POINT_SIZE_MODE, GLIB_CMD_CLAMP, GLIB_CMD_LINE_WIDTH };
+    CHECK(s->ncmds == 7);
+    for (int i = 0; i < s->ncmds && i < 7; i++)
+        CHECK_MSG(s->cmds[i].kind == kinds[i], "cmd %d", i);
+    if (s->ncmds == 7) {
+        CHECK(s->cmds[2].num[0] == 3 && s->cmds[3].num[0] == 4.5 && s->cmds[4].num[0] == 1);
+        CHECK(s->cmds[6].num[0] == 1);
+    }
     glib_free(s);
 }
 
@@ -1556,6 +1660,9 @@ int main(void)
     RUN(test_print_diags);
     RUN(test_cmd_name);
     RUN(test_glman_real_file);
+    RUN(test_glman_numbers);
+    RUN(test_glman_defaults);
+    RUN(test_glman_state);
     nftw(root, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
     return check_summary();
 }

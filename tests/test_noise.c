@@ -2,6 +2,7 @@
 #include "check.h"
 #include "noise.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 /* A deterministic sample sequence of the test's own (not the module's). */
@@ -11,24 +12,34 @@ static double test_rand(unsigned *s)
     return (double)(*s >> 8) / 16777216.0;
 }
 
-static void check_range_and_mean(const float *rgba, size_t n, const char *what)
+/* Each channel's standard deviation against glman's own textures' (issue
+ * 14, measured on noise2d.064.tex / noise3d.064.tex). The tolerance is
+ * +-20%: glman's figures are rounded measurements of one random texture,
+ * and what a shader's look depends on is the size of each octave, not its
+ * third digit. (The amplitudes were 0.5 / 2^c bounds before issue 14.) */
+static void check_range_and_mean(const float *rgba, size_t n, const char *what, const double *std_want)
 {
     for (int c = 0; c < 4; c++) {
-        double sum = 0, lo = 1e9, hi = -1e9, amp = 0.5 / (1 << c);
+        double sum = 0, sq = 0, lo = 1e9, hi = -1e9;
         for (size_t t = 0; t < n; t++) {
             double v = rgba[t * 4 + c];
             sum += v;
             if (v < lo) lo = v;
             if (v > hi) hi = v;
         }
+        double mean = sum / n;
+        for (size_t t = 0; t < n; t++)
+            sq += (rgba[t * 4 + c] - mean) * (rgba[t * 4 + c] - mean);
+        double sd = sqrt(sq / n);
         CHECK_MSG(lo >= 0.0 && hi <= 1.0, "%s channel %d spans %g..%g", what, c, lo, hi);
-        CHECK_MSG(fabs(sum / n - 0.5) <= 0.02, "%s channel %d mean %g", what, c, sum / n);
-        /* each octave within 0.5 +- its amplitude, and using it */
-        CHECK_MSG(lo >= 0.5 - amp - 1e-6 && hi <= 0.5 + amp + 1e-6,
-                  "%s channel %d spans %g..%g, amplitude %g", what, c, lo, hi, amp);
-        CHECK_MSG(hi - lo >= amp, "%s channel %d nearly flat: %g..%g", what, c, lo, hi);
+        CHECK_MSG(fabs(mean - 0.5) <= 0.02, "%s channel %d mean %g", what, c, mean);
+        CHECK_MSG(fabs(sd - std_want[c]) <= 0.2 * std_want[c], "%s channel %d std %g, glman's %g",
+                  what, c, sd, std_want[c]);
     }
 }
+
+static const double glman_std_2d[4] = { 0.074, 0.024, 0.014, 0.0070 };
+static const double glman_std_3d[4] = { 0.066, 0.032, 0.017, 0.0075 };
 
 static void test_2d_range_mean(void)
 {
@@ -37,7 +48,7 @@ static void test_2d_range_mean(void)
         int res = sizes[k];
         float *t = malloc((size_t)res * res * 4 * sizeof *t);
         CHECK(noise_2d(res, t));
-        if (res > 1) check_range_and_mean(t, (size_t)res * res, "2D");
+        if (res > 1) check_range_and_mean(t, (size_t)res * res, "2D", glman_std_2d);
         else for (int c = 0; c < 4; c++) CHECK(t[c] == 0.5f);    /* one texel: its mean */
         free(t);
     }
@@ -45,10 +56,10 @@ static void test_2d_range_mean(void)
 
 static void test_3d_range_mean(void)
 {
-    const int res = 32;
+    const int res = 64;         /* glman's size */
     float *t = malloc((size_t)res * res * res * 4 * sizeof *t);
     CHECK(noise_3d(res, t));
-    check_range_and_mean(t, (size_t)res * res * res, "3D");
+    check_range_and_mean(t, (size_t)res * res * res, "3D", glman_std_3d);
     free(t);
 }
 

@@ -105,11 +105,12 @@ static void test_defaults(void)
     CHECK(world_of("##OpenGL GLIB\nSphere 1\n", &d, &cam, &has, err, sizeof err));
     CHECK(!has);
     CHECK(zero_bytes(&d, sizeof d));
-    CHECK(cam.eye[0] == 0 && cam.eye[1] == 0 && cam.eye[2] == 3);
-    CHECK(cam.center[0] == 0 && cam.center[1] == 0 && cam.center[2] == 0);
+    /* glman's defaults (issue 14): OpenGL's view from the origin down -Z, 600x600 */
+    CHECK(cam.eye[0] == 0 && cam.eye[1] == 0 && cam.eye[2] == 0);
+    CHECK(cam.center[0] == 0 && cam.center[1] == 0 && cam.center[2] == -1);
     CHECK(cam.up[0] == 0 && cam.up[1] == 1 && cam.up[2] == 0);
     CHECK(cam.fov_deg == 50 && cam.near_z == 0.1 && cam.far_z == 1000);
-    CHECK(cam.width == 800 && cam.height == 600);
+    CHECK(cam.width == 600 && cam.height == 600);
 
     /* what a command leaves out stays 0, and ref_world_init fills it in */
     CHECK(world_of("##OpenGL GLIB\nTerrain lake\nSun 0 1 0\nWater 0.5\nWaveNoise 0.02\n",
@@ -280,7 +281,7 @@ static void test_camera(void)
     CHECK(cam.center[0] == -2 && cam.center[1] == -0.6 && cam.center[2] == -1);
     CHECK(cam.up[0] == 0 && cam.up[1] == 1 && cam.up[2] == 0);
     CHECK(world_of("##OpenGL GLIB\nPerspective 30\n", &d, &cam, &has, err, sizeof err));
-    CHECK(cam.fov_deg == 30 && cam.near_z == 0.1 && cam.far_z == 1000 && cam.width == 800);
+    CHECK(cam.fov_deg == 30 && cam.near_z == 0.1 && cam.far_z == 1000 && cam.width == 600);
 }
 
 /* scenes/lake.glib and ref_world_desc_lake() are one world. */
@@ -415,7 +416,7 @@ static void test_viewing_reader(void)
     CHECK(cam.width == 12 && cam.height == 10);
     CHECK(cam.ortho && cam.ortho_lrbt[0] == -2 && cam.ortho_lrbt[3] == 1 && cam.fov_deg == 40);
     scene_camera_from_glib(NULL, &cam);
-    CHECK(cam.width == 800 && cam.height == 600 && !cam.ortho && cam.fov_deg == 50);
+    CHECK(cam.width == 600 && cam.height == 600 && !cam.ortho && cam.fov_deg == 50);   /* glman's */
 }
 
 /* The stage state each Program takes (program.h, shared by the renderer

@@ -96,26 +96,31 @@ double noise_perlin3(double x, double y, double z, int period, unsigned seed)
     return lerp(z0, z1, w) * 1.15470053837925153;
 }
 
-/* Centres each channel on 0.5 (mean exactly 0.5) and scales it so that its
- * largest excursion is the octave's amplitude 0.5 / 2^channel. */
-static void normalise(float *rgba, size_t ntexels)
+/* Centres each channel on 0.5 (mean exactly 0.5) and scales it to the
+ * standard deviation glman's own textures have per channel (noise.h), so
+ * a glman shader's thresholds and sums look as they did in glman. */
+static void normalise(float *rgba, size_t ntexels, const double std_want[NOISE_OCTAVES])
 {
     for (int c = 0; c < NOISE_OCTAVES; c++) {
-        double sum = 0.0;
+        double sum = 0.0, sq = 0.0;
         for (size_t t = 0; t < ntexels; t++) sum += rgba[t * 4 + c];
-        double mean = sum / (double)ntexels, big = 0.0;
+        double mean = sum / (double)ntexels;
         for (size_t t = 0; t < ntexels; t++) {
-            double e = fabs(rgba[t * 4 + c] - mean);
-            if (e > big) big = e;
+            double e = rgba[t * 4 + c] - mean;
+            sq += e * e;
         }
-        double amp = 0.5 / (double)(1 << c);
-        double scale = big > 1e-12 ? amp / big : 0.0;
+        double sd = sqrt(sq / (double)ntexels);
+        double scale = sd > 1e-12 ? std_want[c] / sd : 0.0;
         for (size_t t = 0; t < ntexels; t++) {
             double v = 0.5 + (rgba[t * 4 + c] - mean) * scale;
             rgba[t * 4 + c] = (float)(v < 0.0 ? 0.0 : v > 1.0 ? 1.0 : v);
         }
     }
 }
+
+/* Measured on glman's noise2d.064.tex / noise3d.064.tex (docs/glman.md) */
+static const double std_2d[NOISE_OCTAVES] = { 0.074, 0.024, 0.014, 0.0070 };
+static const double std_3d[NOISE_OCTAVES] = { 0.066, 0.032, 0.017, 0.0075 };
 
 bool noise_2d(int res, float *rgba)
 {
@@ -128,7 +133,7 @@ bool noise_2d(int res, float *rgba)
                 rgba[((size_t)y * res + x) * 4 + c] = (float)noise_perlin2(
                     (x + 0.5) * step, (y + 0.5) * step, period, NOISE_SEED + (unsigned)c);
     }
-    normalise(rgba, (size_t)res * res);
+    normalise(rgba, (size_t)res * res, std_2d);
     return true;
 }
 
@@ -145,6 +150,6 @@ bool noise_3d(int res, float *rgba)
                         (x + 0.5) * step, (y + 0.5) * step, (z + 0.5) * step, period,
                         NOISE_SEED + 101u + (unsigned)c);
     }
-    normalise(rgba, (size_t)res * res * res);
+    normalise(rgba, (size_t)res * res * res, std_3d);
     return true;
 }

@@ -64,6 +64,9 @@ struct render {
     int rtt_w, rtt_h;
     int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
     gpu_timer timer;           /* per frame and per pass */
+    gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, always bound */
+    char noise_dir[GLIB_PATH_MAX];  /* the project folder they were read for */
+    bool noise_built;
 };
 
 render *render_create(const render_desc *desc) {
@@ -109,6 +112,8 @@ void render_destroy(render *r) {
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
     gpu_timer_free(&r->timer);
+    res_tex_free(&r->noise[0]);
+    res_tex_free(&r->noise[1]);
     free(r);
 }
 
@@ -531,14 +536,42 @@ render_view render_default_view(const render *r) {
 
 /* ---- drawing ---- */
 
-static void bind_textures(const scene_state *s) {
-    for (int i = 0; i < s->ntexs; i++) {
-        const gpu_tex *t = &s->texs[i];
-        if (!t->tex) continue;
-        glActiveTexture(GL_TEXTURE0 + (GLenum)t->unit);
-        glBindTexture(t->target, t->tex);
+/* glman's Noise2 and Noise3 are there for every shader without any
+ * command: built once per project folder (whose cached .tex files win),
+ * bound to units 2 and 3 before the scene's own textures, so a Noise2D or
+ * a Texture2D on those units still takes over. */
+static void bind_builtin_noise(render *r, const scene_state *s) {
+    char dir[GLIB_PATH_MAX];
+    const char *top = s->glib && s->glib->nfiles ? s->glib->files[0] : "";
+    const char *slash = strrchr(top, '/');
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - top) : 0, top);
+    if (!r->noise_built || strcmp(dir, r->noise_dir) != 0) {
+        res_tex_free(&r->noise[0]);
+        res_tex_free(&r->noise[1]);
+        res_noise_builtin(dir, false, &r->noise[0]);
+        res_noise_builtin(dir, true, &r->noise[1]);
+        snprintf(r->noise_dir, sizeof r->noise_dir, "%s", dir);
+        r->noise_built = true;
+    }
+    for (int k = 0; k < 2; k++) {
+        if (!r->noise[k].tex) continue;
+        glActiveTexture(GL_TEXTURE0 + (GLenum)r->noise[k].unit);
+        glBindTexture(r->noise[k].target, r->noise[k].tex);
     }
     glActiveTexture(GL_TEXTURE0);
+}
+
+static void bind_tex(const gpu_tex *t) {
+    if (!t->tex) return;
+    glActiveTexture(GL_TEXTURE0 + (GLenum)t->unit);
+    glBindTexture(t->target, t->tex);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+/* Every texture at the frame's start (the last at a unit wins), so a draw
+ * before the texture's command sees what glman's previous frame left. */
+static void bind_textures(const scene_state *s) {
+    for (int i = 0; i < s->ntexs; i++) bind_tex(&s->texs[i]);
 }
 
 /* The number a `Camera` (fov scale) or `World` (clip offset) command asks
@@ -732,6 +765,14 @@ static void exec_state_cmd(const glib_cmd *c) {
     case GLIB_CMD_DEPTH_TEST:
         if (c->nnum > 0 && c->num[0] == 0) glDisable(GL_DEPTH_TEST); else glEnable(GL_DEPTH_TEST);
         break;
+    /* glman's state commands apply to the draws that follow */
+    case GLIB_CMD_FLAT: glShadeModel(GL_FLAT); break;
+    case GLIB_CMD_SMOOTH: glShadeModel(GL_SMOOTH); break;
+    case GLIB_CMD_LINE_WIDTH: glLineWidth((float)c->num[0]); break;
+    case GLIB_CMD_POINT_SIZE: glPointSize((float)c->num[0]); break;
+    case GLIB_CMD_POINT_SIZE_MODE:
+        if (c->num[0] != 0) glEnable(GL_PROGRAM_POINT_SIZE); else glDisable(GL_PROGRAM_POINT_SIZE);
+        break;
     case GLIB_CMD_BLEND:
         if (strcmp(c->name, "off") == 0) { glDisable(GL_BLEND); break; }
         glEnable(GL_BLEND);
@@ -858,6 +899,11 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
         upload_target_size(f);
+    } else if (res_is_texture(c->kind)) {
+        /* glman runs the file in order: a Texture2D after a draw rebinds its
+         * unit for the draws after it (the course's sky box: one image per
+         * wall on one unit) */
+        if (res >= 0) bind_tex(&s->texs[res]);
     } else if (c->kind >= GLIB_CMD_TRANSLATE && c->kind <= GLIB_CMD_POP_MATRIX) {
         exec_transform(f, c);
     } else {
@@ -880,6 +926,12 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glColor4f(1, 1, 1, 1);
+    /* each frame starts from glman's state: Flat, LineWidth, PointSize and
+     * PointSizeMode of the last frame do not leak into the first draws */
+    glShadeModel(GL_SMOOTH);
+    glLineWidth(1);
+    glPointSize(1);
+    glDisable(GL_PROGRAM_POINT_SIZE);
     const float *bg = s->set.background;
     glClearColor(bg[0], bg[1], bg[2], bg[3]);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -888,6 +940,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         render_view v = view ? *view : s->set.view;
         size_targets(r);
         world_follow_waves(&r->world, t);
+        bind_builtin_noise(r, s);
         bind_textures(s);
         world_bind_textures(&r->world);
         frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };

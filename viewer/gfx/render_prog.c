@@ -218,8 +218,14 @@ void prog_introspect(prog *p, char **log) {
         unif_entry *e = unif_set_shader_type(p->unifs, name, map_gl_type(type), size, loc);
         if (!e || e->from_glib) continue;
         /* glman's noise samplers live at fixed units */
-        if (e->type == UNIF_SAMPLER && strcmp(name, "Noise2") == 0) e->value[0] = e->def[0] = 2;
-        if (e->type == UNIF_SAMPLER && strcmp(name, "Noise3") == 0) e->value[0] = e->def[0] = 3;
+        int unit = strcmp(name, "Noise2") == 0 ? 2 : strcmp(name, "Noise3") == 0 ? 3 : -1;
+        if (e->type == UNIF_SAMPLER && unit >= 0) {
+            e->value[0] = e->def[0] = (float)unit;
+            /* an introspected sampler is not uploaded per frame (unif_uploadable):
+             * set it in the program once, so a shader that declares Noise2 or
+             * Noise3 reads glman's built-in noise without naming it anywhere */
+            glProgramUniform1i(p->gl, loc, unit);
+        }
     }
     /* a slider that glib commands read (a target's size, a field-of-view
      * scale) is in use though no shader declares it: an int or a float

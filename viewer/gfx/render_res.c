@@ -319,8 +319,8 @@ static bool tex_cube(const glib_cmd *c, gpu_tex *t, char **log) {
 
 static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
     bool is3d = c->kind == GLIB_CMD_NOISE3D;
-    int res = arg_i(c, 0, is3d ? 64 : 128);
-    int maxres = is3d ? 256 : 4096;
+    int res = arg_i(c, 0, 64);
+    int maxres = is3d ? NOISE_3D_MAX_RES : NOISE_2D_MAX_RES;
     if (res < 4 || res > maxres) {
         str_appendf(log, "%s:%d: error: %s resolution %d: use 4..%d\n", c->file, c->line,
                     glib_cmd_name(c->kind), res, maxres);
@@ -335,6 +335,69 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
     free(px);
     if (ok) res_sampling(t->target, true, GL_REPEAT);
     return ok;
+}
+
+/* glman's raw texture file (docs/glman.md, "Raw texture files"): dims
+ * little-endian int32 sizes, then RGBA texels, all bytes or all floats
+ * (told apart by the file size). A cube of side *res, as RGBA floats, or
+ * NULL when the file is not there or not such a file. */
+static float *read_raw_cube(const char *path, int dims, int *res) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    unsigned char hdr[12];
+    float *px = NULL;
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && fread(hdr, 4, (size_t)dims, f) == (size_t)dims) {
+        int n[3] = { 0, 0, 0 };
+        for (int d = 0; d < dims; d++)
+            n[d] = (int)((unsigned)hdr[d * 4] | (unsigned)hdr[d * 4 + 1] << 8 |
+                         (unsigned)hdr[d * 4 + 2] << 16 | (unsigned)hdr[d * 4 + 3] << 24);
+        long count = n[0] > 0 && n[0] <= 512 && n[1] == n[0] && (dims == 2 || n[2] == n[0])
+                   ? (long)n[0] * n[0] * (dims == 3 ? n[0] : 1) * 4 : 0;
+        long body = (long)st.st_size - 4L * dims;
+        bool floats = count && body == count * 4, bytes = count && body == count;
+        px = floats || bytes ? malloc((size_t)count * sizeof *px) : NULL;
+        unsigned char *raw = px ? malloc((size_t)body) : NULL;
+        if (raw && fread(raw, 1, (size_t)body, f) == (size_t)body) {
+            for (long i = 0; i < count; i++) {
+                if (bytes) px[i] = raw[i] / 255.0f;
+                else memcpy(&px[i], raw + i * 4, 4);   /* little-endian, as written */
+            }
+            *res = n[0];
+        } else {
+            free(px);
+            px = NULL;
+        }
+        free(raw);
+    }
+    fclose(f);
+    return px;
+}
+
+bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
+    char path[GLIB_PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s%snoise%dd.064.tex", dir, dir[0] ? "/" : "", is3d ? 3 : 2);
+    int res = 64;
+    float *px = read_raw_cube(path, is3d ? 3 : 2, &res);   /* the project's own, as glman cached it */
+    if (!px) {
+        res = 64;
+        px = malloc((size_t)res * res * (is3d ? res : 1) * 4 * sizeof *px);
+        if (!px || !(is3d ? noise_3d(res, px) : noise_2d(res, px))) {
+            free(px);
+            return false;
+        }
+    }
+    t->unit = is3d ? 3 : 2;
+    t->target = is3d ? GL_TEXTURE_3D : GL_TEXTURE_2D;
+    glGenTextures(1, &t->tex);
+    glBindTexture(t->target, t->tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, res, res, res, 0, GL_RGBA, GL_FLOAT, px);
+    else glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
+    res_sampling(t->target, true, GL_REPEAT);
+    glBindTexture(t->target, 0);
+    free(px);
+    return true;
 }
 
 bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log) {

@@ -44,6 +44,10 @@ bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
 /* Filtering and wrapping of the bound texture; mipmaps are generated. */
 void res_sampling(unsigned target, bool mipmaps, unsigned wrap);
 void res_tex_free(gpu_tex *t);
+/* glman's Noise2 (unit 2) or Noise3 (unit 3), there without any command:
+ * dir's noise2d.064.tex / noise3d.064.tex when present (glman's cache,
+ * shipped with real projects), else tarn's 64-texel noise (noise.h). */
+bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t);
 
 bool res_is_geometry(glib_cmd_kind k);
 bool res_is_texture(glib_cmd_kind k);

@@ -189,6 +189,11 @@ static void cwarn(cmdctx *c, const char *fmt, ...)
     va_end(ap);
 }
 
+static void vdiag_note(cmdctx *c, const char *text)
+{
+    report(c->p, DIAG_NOTE, c->file, c->line, "MessageBox: %.400s", text);
+}
+
 /* A numeric argument: its name in the usage line, what a message calls it
  * when it is missing, and the values it may take. */
 typedef struct arg_rule {
@@ -336,6 +341,32 @@ static bool parse_number(const char *s, double *out)
     return true;
 }
 
+/* glman read numbers with atof: the longest valid prefix counts. Real
+ * files hold doubled decimal points (0.1., -0.1., 1..), so a number
+ * followed by dots and digits is read as its prefix; letters or other signs
+ * after a number (0x10, 1e, 3#x) stay errors, being other mistakes. The
+ * length of the prefix read, or 0. */
+static size_t dotted_prefix(const char *s, double *out)
+{
+    size_t k = 0;
+    if (s[k] == '+' || s[k] == '-')
+        k++;
+    while (isdigit((unsigned char)s[k]))
+        k++;
+    if (s[k] == '.')
+        for (k++; isdigit((unsigned char)s[k]); k++)
+            ;
+    if (s[k] != '.' || k > 64)      /* the greedy number must end at a second dot */
+        return 0;
+    for (const char *r = s + k; *r; r++)
+        if (*r != '.' && !isdigit((unsigned char)*r))
+            return 0;
+    char buf[66];
+    memcpy(buf, s, k);
+    buf[k] = '\0';
+    return parse_number(buf, out) ? k : 0;
+}
+
 static bool is_bool_word(const char *s, double *v)
 {
     if (strcasecmp(s, "true") == 0)
@@ -347,6 +378,19 @@ static bool is_bool_word(const char *s, double *v)
 
 /* ------------------------------------------------------------------ */
 /* numeric arguments                                                   */
+
+/* A number as glman's atof read it: exact, or its prefix with a warning
+ * that says what was read. */
+static bool read_number(cmdctx *c, const char *tok, double *out)
+{
+    if (parse_number(tok, out))
+        return true;
+    size_t k = dotted_prefix(tok, out);
+    if (k)
+        cwarn(c, "%s: '%.60s' read as %.*s (the rest is ignored, as glman's atof did)",
+              c->spec->name, tok, (int)k, tok);
+    return k > 0;
+}
 
 static void build_usage(const cmd_spec *s, char *out, size_t size)
 {
@@ -366,7 +410,7 @@ static bool parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out
 {
     const char *cmd = c->spec->name;
     double v;
-    if (!parse_number(tok, &v)) {
+    if (!read_number(c, tok, &v)) {
         cerr(c, "%s: bad number '%.60s' for %s (write e.g. 2, -0.5, .25 or 1e-3): %s",
              cmd, tok, a->sym, c->usage);
         return false;
@@ -527,36 +571,61 @@ static bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
     return true;
 }
 
-/* Looks in path's directory for a name that differs only in case: files
- * made on Windows often say Water.BMP for water.bmp. */
-static bool case_match(const char *path, char alt[GLIB_PATH_MAX])
+/* In directory dir (a prefix of a path, "" for the current one) finds the
+ * entry named like name but for case; into out (of size size). */
+static bool case_entry(const char *dir, const char *name, size_t len, char *out, size_t size)
 {
-    const char *slash = strrchr(path, '/');
-    const char *base = slash ? slash + 1 : path;
-    size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
-    char dir[GLIB_PATH_MAX];
-    snprintf(dir, sizeof dir, "%.*s", (int)dirlen, dirlen ? path : "./");
-    DIR *d = opendir(dir);
+    DIR *d = opendir(dir[0] ? dir : ".");
     if (!d)
         return false;
     bool found = false;
     struct dirent *e;
-    while (!found && (e = readdir(d)) != NULL) {
-        size_t n = strlen(e->d_name);
-        found = strcasecmp(e->d_name, base) == 0 && strcmp(e->d_name, base) != 0 &&
-                dirlen + n < GLIB_PATH_MAX;
-        if (found) {
-            memcpy(alt, path, dirlen);
-            memcpy(alt + dirlen, e->d_name, n + 1);
-        }
-    }
+    while (!found && (e = readdir(d)) != NULL)
+        found = strlen(e->d_name) == len && strncasecmp(e->d_name, name, len) == 0 &&
+                strlen(e->d_name) < size;
+    if (found)
+        memcpy(out, e->d_name, len + 1);
     closedir(d);
     return found;
 }
 
+/* glman ran on Windows, where file names ignore case: a project says
+ * TEXTURES/Water.BMP for textures/water.bmp. Finds the real name, one
+ * path component at a time (a component that exists as written is kept). */
+static bool case_match(const char *path, char alt[GLIB_PATH_MAX])
+{
+    size_t n = 0, i = 0;
+    if (path[0] == '/')
+        alt[n++] = path[i++];
+    alt[n] = '\0';
+    while (path[i]) {
+        size_t len = strcspn(path + i, "/");
+        if (n + len + 1 >= GLIB_PATH_MAX)
+            return false;
+        memcpy(alt + n, path + i, len);
+        alt[n + len] = '\0';
+        struct stat st;
+        if (stat(alt, &st) != 0) {
+            char dir[GLIB_PATH_MAX];
+            memcpy(dir, alt, n);
+            dir[n] = '\0';
+            if (!case_entry(dir, path + i, len, alt + n, GLIB_PATH_MAX - n))
+                return false;
+        }
+        n += len;
+        i += len;
+        if (path[i] == '/')
+            alt[n++] = path[i++];
+        alt[n] = '\0';
+    }
+    return strcmp(alt, path) != 0;
+}
+
 /* The renderer reports a missing file too, but only when it gets there;
- * saying it here puts the message next to the line that named it. */
-static void check_readable(cmdctx *c, const char *path)
+ * saying it here puts the message next to the line that named it. A name
+ * that differs from the file on disk only in case is that file (glman's
+ * Windows habit), with a warning naming the real file. */
+static void check_readable(cmdctx *c, char path[GLIB_PATH_MAX])
 {
     char why[128];
     struct stat st;
@@ -567,11 +636,14 @@ static void check_readable(cmdctx *c, const char *path)
     else
         return;
     char alt[GLIB_PATH_MAX];
-    if (case_match(path, alt))
-        cerr(c, "cannot open '%s' (from command %s): %s; did you mean '%s'? (file names are case-sensitive)",
-             path, c->spec->name, why, alt);
-    else
-        cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+    if (case_match(path, alt) && access(alt, R_OK) == 0 && stat(alt, &st) == 0 &&
+        !S_ISDIR(st.st_mode)) {
+        cwarn(c, "%s: '%s' is '%s' on disk; using it (file names are case-sensitive here, "
+                 "not on Windows where glman ran)", c->spec->name, path, alt);
+        memcpy(path, alt, strlen(alt) + 1);
+        return;
+    }
+    cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
 }
 
 /* Resolves and checks a path; false only when it cannot be stored. A file
@@ -763,6 +835,30 @@ static bool h_rtt(cmdctx *c, glib_cmd *cmd)
     }
     cmd->nnum = n;
     return true;
+}
+
+/* Clamp: real files write it (with or without words after it) before a
+ * draw; glman took it as a texture wrap state. It is kept as a command
+ * that changes nothing, never an error. */
+static bool h_clamp(cmdctx *c, glib_cmd *cmd)
+{
+    (void)c;
+    (void)cmd;
+    return true;
+}
+
+/* MessageBox text: glman pops the text up; tarn prints it as a note. */
+static bool h_message(cmdctx *c, glib_cmd *cmd)
+{
+    (void)cmd;
+    char *s = skip_space(c->rest);
+    size_t n = strlen(s);
+    if (n >= 2 && s[0] == '"' && s[n - 1] == '"') {
+        s[n - 1] = '\0';
+        s++;
+    }
+    vdiag_note(c, s);
+    return false;               /* nothing to run */
 }
 
 /* ------------------------------------------------------------------ */
@@ -1165,7 +1261,7 @@ static val_result bracket_numbers(cmdctx *c, char **items, int n, unif_decl *u,
                                   const char *owner)
 {
     for (int i = 0; i < n; i++)
-        if (!parse_number(items[i], &u->v[i])) {
+        if (!read_number(c, items[i], &u->v[i])) {
             cerr(c, "%s: bad number '%.60s' (write e.g. 2, -0.5, .25 or 1e-3)", owner, items[i]);
             return VAL_BAD;
         }
@@ -1192,7 +1288,10 @@ static val_result slider_value(cmdctx *c, unif_decl *u, const char *owner)
 static val_result typed_bracket(cmdctx *c, char open, char **items, int n,
                                 unif_decl *u, const char *owner)
 {
-    if (open == '<' && n == 1 && is_bool_word(items[0], &u->v[0])) {
+    /* <true>, <false>, and glman's <0> / <1> (nonzero: checked) */
+    if (open == '<' && n == 1 &&
+        (is_bool_word(items[0], &u->v[0]) || read_number(c, items[0], &u->v[0]))) {
+        u->v[0] = u->v[0] != 0;
         u->kind = UNIF_DECL_BOOL;
         u->n = 1;
         return VAL_OK;
@@ -1259,7 +1358,7 @@ static val_result read_value(cmdctx *c, char **sp, unif_decl *u, const char *own
         cerr(c, "%s: write <%s> (with the angle brackets) for a checkbox", owner, s);
         return VAL_BAD;
     }
-    if (!parse_number(s, &u->v[0])) {
+    if (!read_number(c, s, &u->v[0])) {
         cerr(c, "%s: bad number '%.60s' (write e.g. 2, -0.5, .25 or 1e-3)", owner, s);
         return VAL_BAD;
     }
@@ -1620,6 +1719,16 @@ static void unknown_command(parser *p, const char *name, char *rest, const char 
     report(p, DIAG_WARNING, file, line, "unknown command '%.60s' (skipped)%s", name, hint);
 }
 
+/* glman tolerated brackets around plain numbers and commas between them
+ * (`Color [1 0 0]`, `Color 1, 0, 0`): on a command of numbers only they
+ * are blanks. */
+static void blank_brackets(char *s)
+{
+    for (; *s; s++)
+        if (*s == '[' || *s == ']' || *s == ',')
+            *s = ' ';
+}
+
 static void process_line(parser *p, char *s, const char *file, int line)
 {
     s = skip_space(s);
@@ -1637,6 +1746,8 @@ static void process_line(parser *p, char *s, const char *file, int line)
     }
     cmdctx c = { .p = p, .file = file, .line = line, .spec = spec, .rest = s };
     build_usage(spec, c.usage, sizeof c.usage);
+    if (spec->fn == h_nums || spec->fn == h_world_nums)
+        blank_brackets(s);
     if (!spec->raw && (c.nwords = split_words(s, c.words, LIM_WORDS)) < 0) {
         cerr(&c, "%s: unclosed '\"': add the closing quote", spec->name);
         return;
@@ -1790,11 +1901,16 @@ static void include_file(cmdctx *c, const char *path)
         cerr(c, "more than %d Includes in one scene; '%s' skipped", LIM_INCLUDE_READS, path);
         return;
     }
-    if (!read_file(path, &buf, &len, why, sizeof why)) {
-        if (access(path, R_OK) != 0)
-            check_readable(c, path);        /* says why, with a case hint */
-        else                                /* there, but a directory or huge */
-            cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+    char real[GLIB_PATH_MAX];
+    snprintf(real, sizeof real, "%s", path);
+    if (access(real, R_OK) != 0) {
+        check_readable(c, real);            /* says why, or finds the name in another case */
+        if (access(real, R_OK) != 0)
+            return;
+    }
+    path = real;
+    if (!read_file(path, &buf, &len, why, sizeof why)) {   /* a directory or huge */
+        cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
         return;
     }
     p->nreads++;
@@ -1949,6 +2065,9 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_CAMERA] = "Camera",
     [GLIB_CMD_RENDER_TO_TEXTURE_ONCE] = "RenderToTextureOnce",
     [GLIB_CMD_SPLAT] = "Splat", [GLIB_CMD_IF] = "If", [GLIB_CMD_END_IF] = "EndIf",
+    [GLIB_CMD_FLAT] = "Flat", [GLIB_CMD_SMOOTH] = "Smooth", [GLIB_CMD_LINE_WIDTH] = "LineWidth",
+    [GLIB_CMD_POINT_SIZE] = "PointSize", [GLIB_CMD_POINT_SIZE_MODE] = "PointSizeMode",
+    [GLIB_CMD_CLAMP] = "Clamp",
 };
 
 const char *glib_cmd_name(glib_cmd_kind kind)
@@ -1968,14 +2087,15 @@ const char *glib_cmd_name(glib_cmd_kind kind)
 #define ARG_ID(s, lo, hi, d)    { s, NULL, 'i', lo, hi, d }
 #define ARG_I(s, w, lo, hi)     { s, w, 'i', lo, hi, 0 }
 
-#define QUAD_ARGS(a, b, c) { ARG_R(a, "a position"), ARG_P("size", "a size"), \
+/* Missing arguments take glman's defaults (docs/glib.md) */
+#define QUAD_ARGS(a, b, c) { ARG_RD(a, 0), ARG_PD("size", 1), \
     ARG_ID(b, 1, 4096, 1), ARG_ID(c, 1, 4096, 1) }
-#define SPHERE_ARGS { ARG_P("r", "a radius"), ARG_ID("slices", 3, 1024, 32), \
-    ARG_ID("stacks", 2, 1024, 16) }
-#define TORUS_ARGS { ARG_P("r_major", "the major radius"), ARG_P("r_minor", "the minor radius"), \
-    ARG_ID("sides", 3, 1024, 16), ARG_ID("rings", 3, 1024, 32) }
-#define BOX_ARGS { ARG_P("dx", "a size"), ARG_PD("dy", 0), ARG_PD("dz", 0) }
-#define ROUND_ARGS { ARG_P("r", "a radius"), ARG_P("h", "a height"), \
+#define SPHERE_ARGS { ARG_PD("r", 1), ARG_ID("slices", 3, 1024, 60), \
+    ARG_ID("stacks", 2, 1024, 60) }
+#define TORUS_ARGS { ARG_PD("r_major", 1), ARG_PD("r_minor", 0.5), \
+    ARG_ID("sides", 3, 1024, 20), ARG_ID("rings", 3, 1024, 40) }
+#define BOX_ARGS { ARG_PD("dx", 2), ARG_PD("dy", 2), ARG_PD("dz", 2) }
+#define ROUND_ARGS { ARG_PD("r", 1), ARG_PD("h", 1), \
     ARG_ID("slices", 3, 1024, 32), ARG_ID("stacks", 1, 1024, 8) }
 #define WAVE_ARGS { ARG_R("angle_deg", NULL), ARG_R("wavelength", NULL), \
     ARG_R("amplitude", "an amplitude"), ARG_RD("speed", 0), ARG_RD("phase", 0) }
@@ -1984,18 +2104,18 @@ const char *glib_cmd_name(glib_cmd_kind kind)
 static const cmd_spec specs[] = {
     { "WindowSize", GLIB_CMD_WINDOW_SIZE, false, h_nums, false, 2, 2,
       { ARG_I("w", NULL, 1, 16384), ARG_I("h", "a height", 1, 16384) }, NULL },
-    { "Perspective", GLIB_CMD_PERSPECTIVE, false, h_nums, false, 1, 3,
-      { { "fov", "a field of view in degrees", 'a', 0, 0, 0 }, ARG_PD("near", 0.1),
+    { "Perspective", GLIB_CMD_PERSPECTIVE, false, h_nums, false, 0, 3,
+      { { "fov", "a field of view in degrees", 'a', 0, 0, 50 }, ARG_PD("near", 0.1),
         ARG_PD("far", 1000) }, NULL },
-    { "Ortho", GLIB_CMD_ORTHO, false, h_nums, false, 4, 6,
-      { ARG_R("l", NULL), ARG_R("r", NULL), ARG_R("b", NULL), ARG_R("t", "a top"),
+    { "Ortho", GLIB_CMD_ORTHO, false, h_nums, false, 0, 6,
+      { ARG_RD("l", -3), ARG_RD("r", 3), ARG_RD("b", -3), ARG_RD("t", 3),
         ARG_RD("near", 0.1), ARG_RD("far", 1000) }, NULL },
     { "LookAt", GLIB_CMD_LOOKAT, false, h_nums, false, 9, 9,
       { ARG_R("ex", NULL), ARG_R("ey", NULL), ARG_R("ez", NULL), ARG_R("cx", NULL),
         ARG_R("cy", NULL), ARG_R("cz", NULL), ARG_R("ux", NULL), ARG_R("uy", NULL),
         ARG_R("uz", "an up vector") }, NULL },
-    { "Translate", GLIB_CMD_TRANSLATE, false, h_nums, false, 3, 3,
-      { ARG_R("x", NULL), ARG_R("y", NULL), ARG_R("z", "a z") }, NULL },
+    { "Translate", GLIB_CMD_TRANSLATE, false, h_nums, false, 0, 3,
+      { ARG_RD("x", 0), ARG_RD("y", 0), ARG_RD("z", 0) }, NULL },
     { "Rotate", GLIB_CMD_ROTATE, false, h_nums, false, 4, 4,
       { ARG_R("deg", NULL), ARG_R("ax", NULL), ARG_R("ay", NULL), ARG_R("az", "an axis z") }, NULL },
     { "Scale", GLIB_CMD_SCALE, false, h_nums, false, 1, 3,
@@ -2004,23 +2124,23 @@ static const cmd_spec specs[] = {
     { "TransformBegin", GLIB_CMD_PUSH_MATRIX, false, h_nums, false, 0, 0, { { 0 } }, NULL },
     { "PopMatrix", GLIB_CMD_POP_MATRIX, false, h_nums, false, 0, 0, { { 0 } }, NULL },
     { "TransformEnd", GLIB_CMD_POP_MATRIX, false, h_nums, false, 0, 0, { { 0 } }, NULL },
-    { "QuadXY", GLIB_CMD_QUAD_XY, false, h_nums, false, 2, 4, QUAD_ARGS("z", "nx", "ny"), NULL },
-    { "QuadXZ", GLIB_CMD_QUAD_XZ, false, h_nums, false, 2, 4, QUAD_ARGS("y", "nx", "nz"), NULL },
-    { "QuadYZ", GLIB_CMD_QUAD_YZ, false, h_nums, false, 2, 4, QUAD_ARGS("x", "ny", "nz"), NULL },
-    { "Sphere", GLIB_CMD_SPHERE, false, h_nums, false, 1, 3, SPHERE_ARGS, NULL },
-    { "Torus", GLIB_CMD_TORUS, false, h_nums, false, 2, 4, TORUS_ARGS, NULL },
-    { "Box", GLIB_CMD_BOX, false, h_nums, false, 1, 3, BOX_ARGS, "Box dx | Box dx dy dz" },
-    { "Cylinder", GLIB_CMD_CYLINDER, false, h_nums, false, 2, 4, ROUND_ARGS, NULL },
-    { "Cone", GLIB_CMD_CONE, false, h_nums, false, 2, 4, ROUND_ARGS, NULL },
+    { "QuadXY", GLIB_CMD_QUAD_XY, false, h_nums, false, 0, 4, QUAD_ARGS("z", "nx", "ny"), NULL },
+    { "QuadXZ", GLIB_CMD_QUAD_XZ, false, h_nums, false, 0, 4, QUAD_ARGS("y", "nx", "nz"), NULL },
+    { "QuadYZ", GLIB_CMD_QUAD_YZ, false, h_nums, false, 0, 4, QUAD_ARGS("x", "ny", "nz"), NULL },
+    { "Sphere", GLIB_CMD_SPHERE, false, h_nums, false, 0, 3, SPHERE_ARGS, NULL },
+    { "Torus", GLIB_CMD_TORUS, false, h_nums, false, 0, 4, TORUS_ARGS, NULL },
+    { "Box", GLIB_CMD_BOX, false, h_nums, false, 0, 3, BOX_ARGS, "Box dx | Box dx dy dz" },
+    { "Cylinder", GLIB_CMD_CYLINDER, false, h_nums, false, 0, 4, ROUND_ARGS, NULL },
+    { "Cone", GLIB_CMD_CONE, false, h_nums, false, 0, 4, ROUND_ARGS, NULL },
     { "Teapot", GLIB_CMD_TEAPOT, false, h_nums, false, 0, 1, { ARG_PD("size", 1) }, NULL },
-    { "WireQuadXY", GLIB_CMD_QUAD_XY, true, h_nums, false, 2, 4, QUAD_ARGS("z", "nx", "ny"), NULL },
-    { "WireQuadXZ", GLIB_CMD_QUAD_XZ, true, h_nums, false, 2, 4, QUAD_ARGS("y", "nx", "nz"), NULL },
-    { "WireQuadYZ", GLIB_CMD_QUAD_YZ, true, h_nums, false, 2, 4, QUAD_ARGS("x", "ny", "nz"), NULL },
-    { "WireSphere", GLIB_CMD_SPHERE, true, h_nums, false, 1, 3, SPHERE_ARGS, NULL },
-    { "WireTorus", GLIB_CMD_TORUS, true, h_nums, false, 2, 4, TORUS_ARGS, NULL },
-    { "WireBox", GLIB_CMD_BOX, true, h_nums, false, 1, 3, BOX_ARGS, "WireBox dx | WireBox dx dy dz" },
-    { "WireCylinder", GLIB_CMD_CYLINDER, true, h_nums, false, 2, 4, ROUND_ARGS, NULL },
-    { "WireCone", GLIB_CMD_CONE, true, h_nums, false, 2, 4, ROUND_ARGS, NULL },
+    { "WireQuadXY", GLIB_CMD_QUAD_XY, true, h_nums, false, 0, 4, QUAD_ARGS("z", "nx", "ny"), NULL },
+    { "WireQuadXZ", GLIB_CMD_QUAD_XZ, true, h_nums, false, 0, 4, QUAD_ARGS("y", "nx", "nz"), NULL },
+    { "WireQuadYZ", GLIB_CMD_QUAD_YZ, true, h_nums, false, 0, 4, QUAD_ARGS("x", "ny", "nz"), NULL },
+    { "WireSphere", GLIB_CMD_SPHERE, true, h_nums, false, 0, 3, SPHERE_ARGS, NULL },
+    { "WireTorus", GLIB_CMD_TORUS, true, h_nums, false, 0, 4, TORUS_ARGS, NULL },
+    { "WireBox", GLIB_CMD_BOX, true, h_nums, false, 0, 3, BOX_ARGS, "WireBox dx | WireBox dx dy dz" },
+    { "WireCylinder", GLIB_CMD_CYLINDER, true, h_nums, false, 0, 4, ROUND_ARGS, NULL },
+    { "WireCone", GLIB_CMD_CONE, true, h_nums, false, 0, 4, ROUND_ARGS, NULL },
     { "WireTeapot", GLIB_CMD_TEAPOT, true, h_nums, false, 0, 1, { ARG_PD("size", 1) }, NULL },
     { "Obj", GLIB_CMD_OBJ, false, h_obj, false, 0, 0, { { 0 } }, "Obj file.obj" },
     { "Color", GLIB_CMD_COLOR, false, h_nums, false, 3, 4, RGBA_ARGS, NULL },
@@ -2030,8 +2150,8 @@ static const cmd_spec specs[] = {
       "Texture3D unit file | Texture3D unit w h d" },
     { "CubeMap", GLIB_CMD_CUBEMAP, false, h_cube, false, 0, 0, { { 0 } },
       "CubeMap unit +x -x +y -y +z -z" },
-    { "Noise2D", GLIB_CMD_NOISE2D, false, h_nums, false, 0, 1, { ARG_ID("res", 1, 4096, 256) }, NULL },
-    { "Noise3D", GLIB_CMD_NOISE3D, false, h_nums, false, 0, 1, { ARG_ID("res", 1, 256, 64) }, NULL },
+    { "Noise2D", GLIB_CMD_NOISE2D, false, h_nums, false, 0, 1, { ARG_ID("res", 1, 4096, 64) }, NULL },
+    { "Noise3D", GLIB_CMD_NOISE3D, false, h_nums, false, 0, 1, { ARG_ID("res", 1, 400, 64) }, NULL },
     { "RenderToTexture", GLIB_CMD_RENDER_TO_TEXTURE, false, h_rtt, false, 0, 0, { { 0 } },
       "RenderToTexture [unit ...]" },
     { "Clear", GLIB_CMD_CLEAR, false, h_nums, false, 0, 0, { { 0 } }, NULL },
@@ -2052,6 +2172,14 @@ static const cmd_spec specs[] = {
     { "Cull", GLIB_CMD_CULL, false, h_cull, false, 0, 0, { { 0 } }, "Cull back|front|none" },
     { "DepthTest", GLIB_CMD_DEPTH_TEST, false, h_depth, false, 0, 0, { { 0 } }, "DepthTest on|off" },
     { "Blend", GLIB_CMD_BLEND, false, h_blend, false, 0, 0, { { 0 } }, "Blend off|alpha|add" },
+    /* glman's state commands and its message box */
+    { "Flat", GLIB_CMD_FLAT, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "Smooth", GLIB_CMD_SMOOTH, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "LineWidth", GLIB_CMD_LINE_WIDTH, false, h_nums, false, 0, 1, { ARG_PD("width", 1) }, NULL },
+    { "PointSize", GLIB_CMD_POINT_SIZE, false, h_nums, false, 0, 1, { ARG_PD("size", 1) }, NULL },
+    { "PointSizeMode", GLIB_CMD_POINT_SIZE_MODE, false, h_nums, false, 0, 1, { ARG_RD("n", 1) }, NULL },
+    { "Clamp", GLIB_CMD_CLAMP, false, h_clamp, false, 0, 0, { { 0 } }, "Clamp" },
+    { "MessageBox", GLIB_CMD_NONE, false, h_message, true, 0, 0, { { 0 } }, "MessageBox text" },
     /* describing the world */
     { "Sun", GLIB_CMD_SUN, false, h_world_nums, false, 3, 6,
       { ARG_R("dx", NULL), ARG_R("dy", NULL), ARG_R("dz", "a direction z"), ARG_RD("r", 0),

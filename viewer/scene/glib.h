@@ -104,6 +104,13 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_WORLD,             /* name: "all" | "above" | "below" (default "all") */
     GLIB_CMD_WATER_SURFACE,     /* the water grid, with the current program; name "points":
                                  * N x N points, num[0] = N or arg = the slider giving N */
+    /* glman's state commands (seen in real course files) */
+    GLIB_CMD_FLAT,              /* shading model flat: the provoking vertex's colour */
+    GLIB_CMD_SMOOTH,            /* shading model smooth (the default) */
+    GLIB_CMD_LINE_WIDTH,        /* num: width [1] */
+    GLIB_CMD_POINT_SIZE,        /* num: size [1] */
+    GLIB_CMD_POINT_SIZE_MODE,   /* num: n [1]; nonzero lets the shader set gl_PointSize */
+    GLIB_CMD_CLAMP,             /* texture wrap clamp: accepted as state, draws nothing */
     GLIB_CMD_KIND_COUNT
 } glib_cmd_kind;
 

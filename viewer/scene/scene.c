@@ -311,13 +311,16 @@ enum { WINDOW_MIN = 1, WINDOW_MAX = 16384 };
 
 static void camera_default(scene_camera *cam)
 {
+    /* glman's defaults: a 600x600 window, and with no LookAt OpenGL's own
+     * view (the eye at the origin looking down -Z; glman files push the
+     * scene back with Translate 0 0 -4) */
     memset(cam, 0, sizeof *cam);
-    cam->eye[2] = 3;
+    cam->center[2] = -1;
     cam->up[1] = 1;
     cam->fov_deg = 50;
     cam->near_z = 0.1;
     cam->far_z = 1000;
-    cam->width = 800;
+    cam->width = 600;
     cam->height = 600;
 }
 

@@ -11,12 +11,12 @@
 
 /* What the viewing commands say (the last of each wins). */
 typedef struct scene_camera {
-    double eye[3], center[3], up[3];   /* LookAt; default (0 0 3) (0 0 0) (0 1 0) */
+    double eye[3], center[3], up[3];   /* LookAt; default (0 0 0) (0 0 -1) (0 1 0), OpenGL's */
     double fov_deg;                    /* Perspective; default 50 */
     double near_z, far_z;              /* default 0.1, 1000 */
     bool ortho;                        /* the last of Perspective / Ortho was Ortho */
     double ortho_lrbt[4];              /* Ortho l r b t */
-    int width, height;                 /* WindowSize; default 800 x 600 */
+    int width, height;                 /* WindowSize; default 600 x 600, glman's */
 } scene_camera;
 
 /* The one reader of the viewing commands (WindowSize, Perspective, Ortho,
