@@ -19,8 +19,7 @@
 
 static char root[64];
 
-static ref_world *lake(void)
-{
+static ref_world *lake(void) {
     static ref_world w;
     static bool done;
     if (!done) {
@@ -37,8 +36,7 @@ static float *fbuf(int res, int ch) { return calloc((size_t)res * res * ch, size
 /* Mean absolute jump across the wrap (last column to column 0, last row
  * to row 0) against the mean jump between interior neighbours, channel c
  * of ch: a tileable image jumps no more at its edges than inside. */
-static void wrap_vs_inside(const float *px, int res, int ch, int c, double *edge, double *inside)
-{
+static void wrap_vs_inside(const float *px, int res, int ch, int c, double *edge, double *inside) {
     double e = 0, in = 0;
     long ne = 0, ni = 0;
     for (int j = 0; j < res; j++)
@@ -53,16 +51,14 @@ static void wrap_vs_inside(const float *px, int res, int ch, int c, double *edge
     *inside = in / ni;
 }
 
-static void check_tiles(const float *px, int res, int ch, int c, const char *what)
-{
+static void check_tiles(const float *px, int res, int ch, int c, const char *what) {
     double e, in;
     wrap_vs_inside(px, res, ch, c, &e, &in);
     CHECK_MSG(in > 0, "%s: flat", what);
     CHECK_MSG(e <= 1.5 * in, "%s channel %d: jumps %.4f at the wrap, %.4f inside", what, c, e, in);
 }
 
-static void test_determinism(void)
-{
+static void test_determinism(void) {
     enum { R = 24 };
     const ref_world *w = lake();
     float *a = fbuf(R, 3), *b = fbuf(R, 3);
@@ -85,8 +81,7 @@ static void test_determinism(void)
     free(b);
 }
 
-static void test_bad_args(void)
-{
+static void test_bad_args(void) {
     float px[3 * 16];
     char err[256] = "";
     CHECK(!assets_bake_albedo(NULL, 4, px));
@@ -100,8 +95,7 @@ static void test_bad_args(void)
     CHECK(strcmp(assets_face_name(ASSETS_FACE_NZ), "nz") == 0 && strcmp(assets_face_name(6), "?") == 0);
 }
 
-static void test_albedo_and_normal_texels(void)
-{
+static void test_albedo_and_normal_texels(void) {
     enum { R = 40 };
     const ref_world *w = lake();
     float *a = fbuf(R, 3), *n = fbuf(R, 3);
@@ -128,8 +122,7 @@ static void test_albedo_and_normal_texels(void)
 
 /* The GL spec's face selection (OpenGL 4.6, table 8.19), written out
  * independently: direction -> face, s, t. */
-static void gl_select(const double d[3], int *face, double *s, double *t)
-{
+static void gl_select(const double d[3], int *face, double *s, double *t) {
     double ax = fabs(d[0]), ay = fabs(d[1]), az = fabs(d[2]), sc, tc, ma;
     if (ax >= ay && ax >= az) {
         ma = ax;
@@ -148,8 +141,7 @@ static void gl_select(const double d[3], int *face, double *s, double *t)
     *t = 0.5 * (tc / ma + 1);
 }
 
-static void test_cube_faces(void)
-{
+static void test_cube_faces(void) {
     enum { R = 9 };             /* odd: texel (4, 4) is the face's centre */
     static const double axis[6][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 },
                                        { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
@@ -184,8 +176,7 @@ static void test_cube_faces(void)
     free(px);
 }
 
-static void test_tileable(void)
-{
+static void test_tileable(void) {
     enum { R = 64 };
     float *px = fbuf(R, 3);
     CHECK(assets_bake_water_normal(R, px));
@@ -222,8 +213,7 @@ static void test_tileable(void)
     free(px);
 }
 
-static void test_caustics(void)
-{
+static void test_caustics(void) {
     enum { R = 32 };
     float *c = fbuf(R, 1);
     char err[256] = "";
@@ -242,14 +232,12 @@ static void test_caustics(void)
     free(c);
 }
 
-static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
-{
+static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
     (void)sb; (void)flag; (void)ftw;
     return remove(path);
 }
 
-static bool read_file(const char *path, char **buf, long *len)
-{
+static bool read_file(const char *path, char **buf, long *len) {
     FILE *f = fopen(path, "rb");
     if (!f)
         return false;
@@ -269,14 +257,12 @@ static const char *const files[] = {
     "caustics.png",
 };
 
-static int run_cli(int argc, const char *const *argv)
-{
+static int run_cli(int argc, const char *const *argv) {
     fflush(stdout);
     return cmd_assets(argc, (char **)argv);
 }
 
-static void test_cli(void)
-{
+static void test_cli(void) {
     enum { R = 16 };
     char a[128], b[128];
     snprintf(a, sizeof a, "%s/one/deeper", root);
@@ -376,8 +362,7 @@ static void test_cli(void)
     CHECK(run_cli(4, args_file) == TARN_EXIT_INPUT);
 }
 
-int main(void)
-{
+int main(void) {
     snprintf(root, sizeof root, "/tmp/test_assets_XXXXXX");
     if (!mkdtemp(root)) {
         perror("mkdtemp");

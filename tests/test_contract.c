@@ -11,8 +11,7 @@
 #include <string.h>
 
 /* The wave rows are exactly the names ref_waves_uniforms gives. */
-static void test_wave_rows_are_ref_waves_uniforms(void)
-{
+static void test_wave_rows_are_ref_waves_uniforms(void) {
     ref_waves calm;
     ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
     ref_waves_init(&calm, NULL, NULL, 0);
@@ -29,8 +28,7 @@ static void test_wave_rows_are_ref_waves_uniforms(void)
 }
 
 /* Every row has a type, a setter and a meaning, and a name used once. */
-static void test_rows_are_complete(void)
-{
+static void test_rows_are_complete(void) {
     int rows = 0;
     const contract_uniform *t = contract_uniforms(&rows);
     CHECK(rows > 40);
@@ -41,8 +39,7 @@ static void test_rows_are_complete(void)
     }
 }
 
-static void test_lookups(void)
-{
+static void test_lookups(void) {
     CHECK(contract_is_camera_uniform("uCamMainVP") && contract_is_camera_uniform("uTargetSize"));
     CHECK(contract_is_camera_uniform("uPointGrid") && contract_is_camera_uniform("uCamLightHalfSize"));
     CHECK(!contract_is_camera_uniform("uSunDir") && !contract_is_camera_uniform("uSineAmp"));
@@ -54,8 +51,7 @@ static void test_lookups(void)
 }
 
 /* docs/packs/contract.md names every uniform of the table, as `name`. */
-static void test_docs_name_every_uniform(void)
-{
+static void test_docs_name_every_uniform(void) {
     char err[256];
     size_t len = 0;
     char *doc = file_read(TARN_SOURCE_DIR "/docs/packs/contract.md", 1 << 20, &len, err, sizeof err);
@@ -72,8 +68,7 @@ static void test_docs_name_every_uniform(void)
     free(doc);
 }
 
-int main(void)
-{
+int main(void) {
     RUN(test_wave_rows_are_ref_waves_uniforms);
     RUN(test_rows_are_complete);
     RUN(test_lookups);

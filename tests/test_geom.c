@@ -24,8 +24,7 @@ static const float *T(const geom_mesh *m, unsigned k) { return m->tan + 3 * k; }
 static double dot3(const float *a, const float *b) { return (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]; }
 static double len3(const float *a) { return sqrt(dot3(a, a)); }
 
-static void face_normal(const geom_mesh *m, const unsigned *t, double out[3])
-{
+static void face_normal(const geom_mesh *m, const unsigned *t, double out[3]) {
     const float *a = P(m, t[0]), *b = P(m, t[1]), *c = P(m, t[2]);
     double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     out[0] = e1[1] * e2[2] - e1[2] * e2[1];
@@ -34,8 +33,7 @@ static void face_normal(const geom_mesh *m, const unsigned *t, double out[3])
 }
 
 /* Finite, unit normals and tangents, tangent perpendicular, indices valid. */
-static void check_sane(const geom_mesh *m, const char *what)
-{
+static void check_sane(const geom_mesh *m, const char *what) {
     CHECK_MSG(m->nvert > 0 && m->nidx > 0 && m->pos && m->nrm && m->tc && m->tan && m->idx, "%s empty", what);
     CHECK_MSG(m->nidx % (m->lines ? 2 : 3) == 0, "%s: %d indices", what, m->nidx);
     int bad = 0;
@@ -55,8 +53,7 @@ static void check_sane(const geom_mesh *m, const char *what)
 
 /* Every non-degenerate triangle faces the way its vertex normals say, and
  * its texture +u runs along the vertex tangents. */
-static void check_winding_and_tangents(const geom_mesh *m, const char *what)
-{
+static void check_winding_and_tangents(const geom_mesh *m, const char *what) {
     int wrong_side = 0, wrong_tan = 0, counted = 0;
     for (int f = 0; f + 2 < m->nidx; f += 3) {
         const unsigned *t = m->idx + f;
@@ -86,8 +83,7 @@ static void check_winding_and_tangents(const geom_mesh *m, const char *what)
 }
 
 /* Signed volume (divergence theorem): positive when triangles wind outward. */
-static double volume(const geom_mesh *m)
-{
+static double volume(const geom_mesh *m) {
     double v = 0;
     for (int f = 0; f + 2 < m->nidx; f += 3) {
         const float *a = P(m, m->idx[f]), *b = P(m, m->idx[f + 1]), *c = P(m, m->idx[f + 2]);
@@ -97,8 +93,7 @@ static double volume(const geom_mesh *m)
     return v;
 }
 
-static void bbox(const geom_mesh *m, double lo[3], double hi[3])
-{
+static void bbox(const geom_mesh *m, double lo[3], double hi[3]) {
     for (int c = 0; c < 3; c++) { lo[c] = 1e30; hi[c] = -1e30; }
     for (int k = 0; k < m->nvert; k++)
         for (int c = 0; c < 3; c++) {
@@ -107,8 +102,7 @@ static void bbox(const geom_mesh *m, double lo[3], double hi[3])
         }
 }
 
-static int count_distinct(const geom_mesh *m, int axis)
-{
+static int count_distinct(const geom_mesh *m, int axis) {
     float *seen = malloc(sizeof *seen * (size_t)m->nvert);
     int n = 0;
     for (int k = 0; k < m->nvert; k++) {
@@ -123,8 +117,7 @@ static int count_distinct(const geom_mesh *m, int axis)
 
 /* ---- quads ---- */
 
-static void test_quad(void)
-{
+static void test_quad(void) {
     const char *names[3] = {"QuadYZ", "QuadXZ", "QuadXY"};
     for (int axis = 0; axis < 3; axis++) {
         geom_mesh m;
@@ -197,8 +190,7 @@ static void test_quad(void)
 
 /* ---- sphere ---- */
 
-static void test_sphere(void)
-{
+static void test_sphere(void) {
     const float r = 1.7f;
     geom_mesh m;
     CHECK(geom_sphere(&m, r, 24, 12, false));
@@ -258,8 +250,7 @@ static void test_sphere(void)
 
 /* ---- torus ---- */
 
-static void test_torus(void)
-{
+static void test_torus(void) {
     const double R = 2.0, r = 0.5;
     geom_mesh m;
     CHECK(geom_torus(&m, (float)R, (float)r, 24, 48, false));
@@ -290,8 +281,7 @@ static void test_torus(void)
 
 /* ---- box ---- */
 
-static void test_box(void)
-{
+static void test_box(void) {
     geom_mesh m;
     CHECK(geom_box(&m, 2, 3, 4, false));
     check_sane(&m, "box");
@@ -331,8 +321,7 @@ static void test_box(void)
 
 /* ---- cylinder and cone ---- */
 
-static void test_cylinder_cone(void)
-{
+static void test_cylinder_cone(void) {
     const double r = 0.8, h = 3.0;
     geom_mesh m;
     CHECK(geom_cylinder(&m, (float)r, (float)h, 64, 4, false));
@@ -397,8 +386,7 @@ static void test_cylinder_cone(void)
 
 /* ---- teapot ---- */
 
-static void test_teapot(void)
-{
+static void test_teapot(void) {
     const double s = 2.0;
     geom_mesh m;
     CHECK(geom_teapot(&m, (float)s, 12, false));
@@ -460,8 +448,7 @@ static void test_teapot(void)
 
 /* ---- OBJ ---- */
 
-static const char *write_file(const char *name, const char *text, size_t len)
-{
+static const char *write_file(const char *name, const char *text, size_t len) {
     static char path[4][512];
     static int next;
     char *p = path[next++ % 4];
@@ -474,8 +461,7 @@ static const char *write_file(const char *name, const char *text, size_t len)
 static const char *write_text(const char *name, const char *text) { return write_file(name, text, strlen(text)); }
 
 /* The triangle with corners at these positions, or -1. */
-static int find_tri(const geom_mesh *m, const float a[3], const float b[3], const float c[3])
-{
+static int find_tri(const geom_mesh *m, const float a[3], const float b[3], const float c[3]) {
     for (int f = 0; f + 2 < m->nidx; f += 3)
         for (int rot = 0; rot < 3; rot++) {
             const float *p0 = P(m, m->idx[f + rot]), *p1 = P(m, m->idx[f + (rot + 1) % 3]),
@@ -485,8 +471,7 @@ static int find_tri(const geom_mesh *m, const float a[3], const float b[3], cons
     return -1;
 }
 
-static void test_obj_face_forms(void)
-{
+static void test_obj_face_forms(void) {
     const char *good =
         "# four squares, one per face form, plus negative indices\n"
         "mtllib none.mtl\n"
@@ -538,8 +523,7 @@ static void test_obj_face_forms(void)
 }
 
 /* Corners without vn get the area-weighted normal of the faces around. */
-static void test_obj_computed_normals(void)
-{
+static void test_obj_computed_normals(void) {
     /* a 2x2 floor (area 4, +z) and a 1x2 wall (area 2, +x) sharing the edge
      * x = 1, z = 0; on that edge the normal is (2, 0, 4) normalised */
     const char *path = write_text("roof.obj",
@@ -576,8 +560,7 @@ static void test_obj_computed_normals(void)
     geom_free(&m);
 }
 
-static void expect_obj_error(const char *name, const char *text, int line, const char *phrase)
-{
+static void expect_obj_error(const char *name, const char *text, int line, const char *phrase) {
     const char *path = write_text(name, text);
     geom_mesh m;
     char err[512] = "";
@@ -590,8 +573,7 @@ static void expect_obj_error(const char *name, const char *text, int line, const
     if (phrase) CHECK_STR_CONTAINS(err, phrase);
 }
 
-static void test_obj_errors(void)
-{
+static void test_obj_errors(void) {
     const char *tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     char buf[600];
     snprintf(buf, sizeof buf, "%s# ok so far\nf 0 1 2\n", tri);
@@ -661,8 +643,7 @@ static void test_obj_errors(void)
     free(big);
 }
 
-int main(void)
-{
+int main(void) {
     const char *base = getenv("TMPDIR");
     snprintf(tmpdir, sizeof tmpdir, "%s/tarn_test_geom_XXXXXX", base && *base ? base : "/tmp");
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }

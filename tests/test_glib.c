@@ -20,8 +20,7 @@
 static char root[64];           /* the temporary directory of this run */
 
 /* root/name in one of a few rotating buffers, so a check can use several. */
-static const char *P(const char *name)
-{
+static const char *P(const char *name) {
     static char bufs[8][512];
     static int next;
     char *b = bufs[next++ % 8];
@@ -30,8 +29,7 @@ static const char *P(const char *name)
 }
 
 /* Writes root/name (making its directories) with len bytes of text. */
-static void put_bytes(const char *name, const char *text, size_t len)
-{
+static void put_bytes(const char *name, const char *text, size_t len) {
     char path[512];
     snprintf(path, sizeof path, "%s/%s", root, name);
     for (char *s = path + strlen(root) + 1; (s = strchr(s, '/')) != NULL; s++) {
@@ -50,14 +48,12 @@ static void put_bytes(const char *name, const char *text, size_t len)
 
 static void put(const char *name, const char *text) { put_bytes(name, text, strlen(text)); }
 
-static glib_scene *load(const char *name, const char *text)
-{
+static glib_scene *load(const char *name, const char *text) {
     put(name, text);
     return glib_load(P(name));
 }
 
-static void dump(const glib_scene *s)
-{
+static void dump(const glib_scene *s) {
     fprintf(stderr, "  diagnostics (%d):\n", s->ndiags);
     for (int i = 0; i < s->ndiags; i++)
         fprintf(stderr, "    %s:%d: %s: %s\n", s->diags[i].file, s->diags[i].line,
@@ -67,8 +63,7 @@ static void dump(const glib_scene *s)
 /* A diagnostic at exactly file:line with that severity whose message
  * contains msg; prints all of them when there is none. */
 static bool has_diag(const glib_scene *s, const char *file, int line, diag_severity sev,
-                     const char *msg)
-{
+                     const char *msg) {
     for (int i = 0; i < s->ndiags; i++) {
         const diag *d = &s->diags[i];
         if (d->line == line && d->severity == sev && strcmp(d->file, file) == 0 &&
@@ -81,16 +76,14 @@ static bool has_diag(const glib_scene *s, const char *file, int line, diag_sever
     return false;
 }
 
-static int count_sev(const glib_scene *s, diag_severity sev)
-{
+static int count_sev(const glib_scene *s, diag_severity sev) {
     int n = 0;
     for (int i = 0; i < s->ndiags; i++)
         n += s->diags[i].severity == sev;
     return n;
 }
 
-static const unif_decl *find_uniform(const glib_cmd *c, const char *name)
-{
+static const unif_decl *find_uniform(const glib_cmd *c, const char *name) {
     for (int i = 0; i < c->nuniforms; i++)
         if (strcmp(c->uniforms[i].name, name) == 0)
             return &c->uniforms[i];
@@ -101,8 +94,7 @@ static const unif_decl *find_uniform(const glib_cmd *c, const char *name)
 
 /* ------------------------------------------------------------------ */
 
-static void test_basic_scene(void)
-{
+static void test_basic_scene(void) {
     glib_scene *s = load("basic.glib",
         "##OpenGL GLIB\n"
         "WindowSize 800 600\n"
@@ -149,8 +141,7 @@ static void test_basic_scene(void)
     glib_free(s);
 }
 
-static void test_header(void)
-{
+static void test_header(void) {
     glib_scene *s = load("nohead.glib", "Sphere 1\n");
     CHECK(has_diag(s, P("nohead.glib"), 1, DIAG_WARNING, "first line is not '##OpenGL GLIB'"));
     CHECK(s->nerrors == 0 && s->ncmds == 1 && s->cmds[0].kind == GLIB_CMD_SPHERE);
@@ -163,8 +154,7 @@ static void test_header(void)
     glib_free(s);
 }
 
-static void test_empty_file(void)
-{
+static void test_empty_file(void) {
     const char *texts[] = { "", "  \n\n \t\r\n" };
     for (int i = 0; i < 2; i++) {
         glib_scene *s = load("empty.glib", texts[i]);
@@ -185,8 +175,7 @@ static void test_empty_file(void)
     glib_free(s);
 }
 
-static void test_cannot_open(void)
-{
+static void test_cannot_open(void) {
     glib_scene *s = glib_load(P("nope.glib"));
     CHECK(s && s->ncmds == 0 && s->nerrors == 1 && s->ndiags == 1);
     CHECK(has_diag(s, P("nope.glib"), 0, DIAG_ERROR, "No such file or directory"));
@@ -203,8 +192,7 @@ static void test_cannot_open(void)
     glib_free(NULL);
 }
 
-static void test_comments(void)
-{
+static void test_comments(void) {
     put("c/sub/t.bmp", "x");
     put("c/a#b.bmp", "x");
     glib_scene *s = load("c/comments.glib",
@@ -233,8 +221,7 @@ static void test_comments(void)
     glib_free(s);
 }
 
-static void test_case_insensitive(void)
-{
+static void test_case_insensitive(void) {
     put("ci/Foo.vert", "x");
     glib_scene *s = load("ci/case.glib",
         "##OpenGL GLIB\n"
@@ -271,8 +258,7 @@ static void test_case_insensitive(void)
     glib_free(s);
 }
 
-static void test_continuation(void)
-{
+static void test_continuation(void) {
     glib_scene *s = load("cont.glib",
         "##OpenGL GLIB\n"               /* 1 */
         "Program Water \\\n"            /* 2 */
@@ -304,8 +290,7 @@ static void test_continuation(void)
     glib_free(s);
 }
 
-static void test_uniform_kinds(void)
-{
+static void test_uniform_kinds(void) {
     glib_scene *s = load("uni.glib",
         "##OpenGL GLIB\n"
         "Program Ocean uKa <0. 0.1 1.0> uColor {0.40, 1.0, 0.95, 1.} uLo < -2. 0.5 3.> "
@@ -334,8 +319,7 @@ static void test_uniform_kinds(void)
     glib_free(s);
 }
 
-static void test_number_forms(void)
-{
+static void test_number_forms(void) {
     glib_scene *s = load("nums.glib",
         "##OpenGL GLIB\n"
         "Translate 1. .5 -2.\n"
@@ -356,8 +340,7 @@ static void test_number_forms(void)
     glib_free(s);
 }
 
-static void test_bad_numbers(void)
-{
+static void test_bad_numbers(void) {
     glib_scene *s = load("badnum.glib",
         "##OpenGL GLIB\n"
         "Sphere 1.2.3\n"
@@ -388,8 +371,7 @@ static void test_bad_numbers(void)
     glib_free(s);
 }
 
-static void test_unclosed_brackets(void)
-{
+static void test_unclosed_brackets(void) {
     glib_scene *s = load("unclosed.glib",
         "##OpenGL GLIB\n"
         "Program A uA <0 1 2\n"
@@ -420,8 +402,7 @@ static void test_unclosed_brackets(void)
     glib_free(s);
 }
 
-static void test_slider_checks(void)
-{
+static void test_slider_checks(void) {
     glib_scene *s = load("slider.glib",
         "##OpenGL GLIB\n"
         "Program P uA <3 1 0> uB <0 5 1> uC <0 -1 1> uD <0 1> uE <maybe> uF <> uG {1 2} "
@@ -444,8 +425,7 @@ static void test_slider_checks(void)
     glib_free(s);
 }
 
-static void test_duplicate_uniform(void)
-{
+static void test_duplicate_uniform(void) {
     glib_scene *s = load("dup.glib", "##OpenGL GLIB\nProgram P uA 1 uB 2 uA <0 3 5>\n");
     CHECK(has_diag(s, P("dup.glib"), 2, DIAG_WARNING, "Program P: uniform 'uA' is given twice; the later value wins"));
     CHECK(s->nerrors == 0 && s->ncmds == 1 && s->cmds[0].nuniforms == 2);
@@ -454,8 +434,7 @@ static void test_duplicate_uniform(void)
     glib_free(s);
 }
 
-static void test_arg_counts(void)
-{
+static void test_arg_counts(void) {
     glib_scene *s = load("args.glib",
         "##OpenGL GLIB\n"
         "Sphere\n"
@@ -493,8 +472,7 @@ static void test_arg_counts(void)
     glib_free(s);
 }
 
-static void test_defaults(void)
-{
+static void test_defaults(void) {
     glib_scene *s = load("defaults.glib",
         "##OpenGL GLIB\n"
         "Sphere 1\n"
@@ -531,8 +509,7 @@ static void test_defaults(void)
     glib_free(s);
 }
 
-static void test_range_checks(void)
-{
+static void test_range_checks(void) {
     glib_scene *s = load("range.glib",
         "##OpenGL GLIB\n"
         "Sphere 0\n"
@@ -562,8 +539,7 @@ static void test_range_checks(void)
     glib_free(s);
 }
 
-static void test_paths_relative(void)
-{
+static void test_paths_relative(void) {
     put("rel/sub/water.vert", "x");
     put("rel/tex/w.bmp", "x");
     put("rel/sub/tex/w2.bmp", "x");
@@ -596,8 +572,7 @@ static void test_paths_relative(void)
     glib_free(s);
 }
 
-static void test_missing_files(void)
-{
+static void test_missing_files(void) {
     put("miss/have.bmp", "x");
     glib_scene *s = load("miss/m.glib",
         "##OpenGL GLIB\n"
@@ -639,8 +614,7 @@ static void test_missing_files(void)
     glib_free(s);
 }
 
-static void test_case_hint(void)
-{
+static void test_case_hint(void) {
     put("hint/Water.BMP", "x");
     glib_scene *s = load("hint/h.glib", "##OpenGL GLIB\nTexture2D 5 water.bmp\n");
     char want[600];
@@ -663,8 +637,7 @@ static void test_case_hint(void)
     glib_free(s);
 }
 
-static void test_include(void)
-{
+static void test_include(void) {
     put("inc/parts/w.vert", "x");
     put("inc/parts/part.glib", "# no header needed here\nSphere 2\nVertex w.vert\n");
     glib_scene *s = load("inc/main.glib",
@@ -694,8 +667,7 @@ static void test_include(void)
     glib_free(s);
 }
 
-static void test_include_missing(void)
-{
+static void test_include_missing(void) {
     glib_scene *s = load("incm/main.glib",
         "##OpenGL GLIB\n\nInclude nope.glib\nInclude\nSphere 1\n");
     char want[600];
@@ -712,8 +684,7 @@ static void test_include_missing(void)
     glib_free(s);
 }
 
-static void test_include_cycle(void)
-{
+static void test_include_cycle(void) {
     put("cyc/b.glib", "Sphere 2\nInclude a.glib\nSphere 3\n");
     glib_scene *s = load("cyc/a.glib", "##OpenGL GLIB\nSphere 1\nInclude b.glib\nSphere 4\n");
     char want[600];
@@ -732,8 +703,7 @@ static void test_include_cycle(void)
     glib_free(s);
 }
 
-static void test_include_depth(void)
-{
+static void test_include_depth(void) {
     char name[64], text[128];
     for (int i = 0; i < 40; i++) {
         snprintf(name, sizeof name, "deep/d%d.glib", i);
@@ -749,8 +719,7 @@ static void test_include_depth(void)
     glib_free(s);
 }
 
-static void test_unknown_command(void)
-{
+static void test_unknown_command(void) {
     glib_scene *s = load("unk.glib",
         "##OpenGL GLIB\n"
         "Foo 1 2\n"
@@ -768,8 +737,7 @@ static void test_unknown_command(void)
     glib_free(s);
 }
 
-static void test_binary_junk(void)
-{
+static void test_binary_junk(void) {
     static const char t1[] = "##OpenGL GLIB\nSph\0ere 1\nSphere 2\n# caf\xe9 latin-1 comment is fine\n"
                              "Sphere \xff\nSphere 3 # \x01\n";
     put_bytes("bin/nul.glib", t1, sizeof t1 - 1);
@@ -814,8 +782,7 @@ static void test_binary_junk(void)
 
 /* Random text built from the pieces the grammar uses, plus random bytes:
  * whatever comes in, no crash (ASan watches), bounded diagnostics. */
-static void test_fuzz(void)
-{
+static void test_fuzz(void) {
     static const char *const pieces[] = {
         "Sphere", "Program", "Define", "Include", "Texture2D", "CubeMap", "LookAt", "QuadXZ",
         "RenderToTexture", "Scale", "Box", "Cull", "Blend", "DepthTest", "Vertex", "Obj",
@@ -855,8 +822,7 @@ static void test_fuzz(void)
     }
 }
 
-static void test_long_inputs(void)
-{
+static void test_long_inputs(void) {
     size_t big = 20000;
     char *t = malloc(big + 256);
     /* a path longer than GLIB_PATH_MAX */
@@ -901,8 +867,7 @@ static void test_long_inputs(void)
     free(t);
 }
 
-static void test_diag_cap(void)
-{
+static void test_diag_cap(void) {
     size_t n = 0, cap = 16 + 500 * 8;
     char *t = malloc(cap);
     n += (size_t)snprintf(t, cap, "##OpenGL GLIB\nClear\n");
@@ -924,8 +889,7 @@ static void test_diag_cap(void)
     free(t);
 }
 
-static void test_command_cap(void)
-{
+static void test_command_cap(void) {
     size_t cap = 20 + 17000 * 6, n = 0;
     char *t = malloc(cap);
     n += (size_t)snprintf(t, cap, "##OpenGL GLIB\n");
@@ -941,8 +905,7 @@ static void test_command_cap(void)
 /* Sizes and point counts a slider gives: `Texture2D 4 uRes uRes` names the
  * uniforms (kept in name and arg, num 0), a file stays a file, and
  * glib_uniform_consumed finds every uniform a command reads. */
-static void test_sizes_from_sliders(void)
-{
+static void test_sizes_from_sliders(void) {
     glib_scene *s = load("named/n.glib",
         "##OpenGL GLIB\n"
         "Texture2D 4 uRes uRes float16\n"               /* 2 */
@@ -977,8 +940,7 @@ static void test_sizes_from_sliders(void)
     glib_free(s);
 }
 
-static void test_textures(void)
-{
+static void test_textures(void) {
     put("tex/w.bmp", "x");
     put("tex/vol.tif", "x");
     put("tex/my water.png", "x");
@@ -1041,8 +1003,7 @@ static void test_textures(void)
     glib_free(s);
 }
 
-static void test_define(void)
-{
+static void test_define(void) {
     glib_scene *s = load("def.glib",
         "##OpenGL GLIB\n"
         "Define WAVES <true>\n"         /* 2 */
@@ -1097,8 +1058,7 @@ static void test_define(void)
     glib_free(s);
 }
 
-static void test_extensions(void)
-{
+static void test_extensions(void) {
     glib_scene *s = load("ext.glib",
         "##OpenGL GLIB\n"
         "Cull back\n" "Cull FRONT\n" "Cull none\n" "Cull off\n" "Cull sideways\n" "Cull\n"
@@ -1124,8 +1084,7 @@ static void test_extensions(void)
     glib_free(s);
 }
 
-static void test_program_errors(void)
-{
+static void test_program_errors(void) {
     glib_scene *s = load("prog.glib",
         "##OpenGL GLIB\n"
         "Program\n"                     /* 2 */
@@ -1152,8 +1111,7 @@ static void test_program_errors(void)
 /* ------------------------------------------------------------------ */
 /* describing the world                                                */
 
-static void test_world_commands(void)
-{
+static void test_world_commands(void) {
     glib_scene *s = load("world.glib",
         "##OpenGL GLIB\n"
         "Sun 0.4 0.8 -0.45\n"                                   /* 2 */
@@ -1218,8 +1176,7 @@ static void test_world_commands(void)
     glib_free(s);
 }
 
-static void test_world_errors(void)
-{
+static void test_world_errors(void) {
     glib_scene *s = load("world_bad.glib",
         "##OpenGL GLIB\n"
         "Sun 1 2\n"                             /* 2 */
@@ -1273,8 +1230,7 @@ static void test_world_errors(void)
 }
 
 /* The pack contract's drawing commands (docs/packs/contract.md). */
-static void test_pack_contract_commands(void)
-{
+static void test_pack_contract_commands(void) {
     glib_scene *s = load("contract.glib",
         "##OpenGL GLIB\n"
         "Camera mirror 1.5\n"                  /* 2 */
@@ -1315,15 +1271,13 @@ static void test_pack_contract_commands(void)
 }
 
 static glib_scene *load_opts(const char *name, const char *text, const char *packs,
-                             const char *override)
-{
+                             const char *override) {
     put(name, text);
     glib_options o = { .packs_dir = packs, .pack_override = override };
     return glib_load_opts(P(name), &o);
 }
 
-static void test_pack_include(void)
-{
+static void test_pack_include(void) {
     put("pk/packs/calm/water.vert", "x");
     put("pk/packs/calm/pack.glib", "##OpenGL GLIB\n# the calm pack\nWorld\nVertex water.vert\nSphere -1\nWaterSurface\n");
     put("pk/packs/rough/pack.glib", "World above\n");
@@ -1372,8 +1326,7 @@ static void test_pack_include(void)
     glib_free(s);
 }
 
-static void test_pack_missing(void)
-{
+static void test_pack_missing(void) {
     put("pm/packs/basic/pack.glib", "World\n");
     put("pm/packs/natural/pack.glib", "World\n");
     put("pm/packs/common/waves.glsl", "x");
@@ -1393,8 +1346,7 @@ static void test_pack_missing(void)
     glib_free(s);
 }
 
-static void test_pack_override(void)
-{
+static void test_pack_override(void) {
     put("po/packs/basic/pack.glib", "World\n");
     put("po/packs/natural/pack.glib", "World above\nWorld below\n");
     /* the override replaces the scene's pack */
@@ -1438,8 +1390,7 @@ static void test_pack_override(void)
     glib_free(s);
 }
 
-static void test_print_diags(void)
-{
+static void test_print_diags(void) {
     glib_scene *s = load("print.glib", "##OpenGL GLIB\n\nFoo\nSphere 0\n");
     char *buf = NULL;
     size_t len = 0;
@@ -1456,8 +1407,7 @@ static void test_print_diags(void)
     glib_free(s);
 }
 
-static void test_cmd_name(void)
-{
+static void test_cmd_name(void) {
     CHECK(strcmp(glib_cmd_name(GLIB_CMD_QUAD_XZ), "QuadXZ") == 0);
     CHECK(strcmp(glib_cmd_name(GLIB_CMD_TEXTURE2D_EMPTY), "Texture2D") == 0);
     CHECK(strcmp(glib_cmd_name(GLIB_CMD_DEPTH_TEST), "DepthTest") == 0);
@@ -1471,8 +1421,7 @@ static void test_cmd_name(void)
 
 /* The way glman projects are written: CRLF, tabs, Windows paths, padded
  * brackets, wire shapes, comments everywhere. */
-static void test_glman_real_file(void)
-{
+static void test_glman_real_file(void) {
     put("proj/ocean.vert", "x");
     put("proj/ocean.frag", "x");
     put("proj/textures/sky.bmp", "x");
@@ -1523,8 +1472,7 @@ static void test_glman_real_file(void)
 
 /* Issue 14: numbers as glman's atof read them, brackets and commas around
  * plain numbers, a header with a version after it, <0>/<1> checkboxes. */
-static void test_glman_numbers(void)
-{
+static void test_glman_numbers(void) {
     glib_scene *s = load("gl14/num.glib",
         "##OpenGL GLIB 8\n"                    /* 1 */
         "Translate 0.1. -0.1. 1..\n"           /* 2 */
@@ -1554,8 +1502,7 @@ static void test_glman_numbers(void)
 }
 
 /* Issue 14: missing arguments take glman's defaults (docs/glib.md). */
-static void test_glman_defaults(void)
-{
+static void test_glman_defaults(void) {
     glib_scene *s = load("gl14/def.glib",
         "##OpenGL GLIB\n"
         "Sphere\nSphere 2\nTorus\nQuadXY\nBox\nCone\nCylinder\nPerspective\nOrtho\n"
@@ -1583,8 +1530,7 @@ static void test_glman_defaults(void)
 
 /* Issue 14: the state commands of real glman files are commands, never
  * "unknown" (and Flat gets no "did you mean 'Splat'?"); MessageBox prints. */
-static void test_glman_state(void)
-{
+static void test_glman_state(void) {
     glib_scene *s = load("gl14/state.glib",
         "##OpenGL GLIB\n"
         "Flat\nSmooth\nLineWidth 3\nPointSize 4.5\nPointSizeMode 1\nClamp\n"
@@ -1605,13 +1551,11 @@ static void test_glman_state(void)
     glib_free(s);
 }
 
-static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
-{
+static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
     return remove(path);
 }
 
-int main(void)
-{
+int main(void) {
     snprintf(root, sizeof root, "/tmp/test_glib_XXXXXX");
     if (!mkdtemp(root)) {
         perror("mkdtemp");

@@ -11,8 +11,7 @@
 
 static char tmpdir[256];
 
-static const char *tmp_path(const char *name)
-{
+static const char *tmp_path(const char *name) {
     static char buf[4][512];
     static int next;
     char *p = buf[next++ % 4];
@@ -27,8 +26,7 @@ static float pattern(int x, int y, int c) {
     return -0.25f + (float)((x * 37 + y * 101 + c * 59) % 151) / 100.0f;
 }
 
-static void fill_pattern(img *im)
-{
+static void fill_pattern(img *im) {
     for (int y = 0; y < im->h; y++)
         for (int x = 0; x < im->w; x++)
             for (int c = 0; c < im->channels; c++)
@@ -42,8 +40,7 @@ static void le32(unsigned char *p, uint32_t v) {
 
 /* Writes a 24-bit BI_RGB BMP; rgb is w*h*3 bytes in top-down order.
  * height_sign < 0 stores a top-down file (negative height). */
-static int write_bmp24(const char *path, int w, int h, const unsigned char *rgb, int height_sign)
-{
+static int write_bmp24(const char *path, int w, int h, const unsigned char *rgb, int height_sign) {
     int stride = (w * 3 + 3) & ~3;
     uint32_t size = 54u + (uint32_t)(stride * h);
     unsigned char hdr[54] = {0};
@@ -74,8 +71,7 @@ static int write_bmp24(const char *path, int w, int h, const unsigned char *rgb,
     return fclose(f) == 0;
 }
 
-static void test_alloc_free_flip(void)
-{
+static void test_alloc_free_flip(void) {
     img im;
     CHECK(img_alloc(&im, 3, 4, 2));
     CHECK(im.w == 3 && im.h == 4 && im.d == 1 && im.channels == 2 && im.px);
@@ -98,8 +94,7 @@ static void test_alloc_free_flip(void)
     CHECK(im.px == NULL);
 }
 
-static void test_png_round_trip(void)
-{
+static void test_png_round_trip(void) {
     const char *path = tmp_path("rt.png");
     for (int ch = 1; ch <= 4; ch++) {
         img im, back;
@@ -125,8 +120,7 @@ static void test_png_round_trip(void)
     }
 }
 
-static void test_exr_round_trip(void)
-{
+static void test_exr_round_trip(void) {
     const char *path = tmp_path("rt.exr");
     img im, back;
     CHECK(img_alloc(&im, 6, 4, 4));
@@ -144,8 +138,7 @@ static void test_exr_round_trip(void)
     img_free(&back);
 }
 
-static void test_other_formats_round_trip(void)
-{
+static void test_other_formats_round_trip(void) {
     struct { const char *name; int ch; double abs_tol, rel_tol; } fmts[] = {
         {"rt.tif", 4, 0.0, 0.0},            /* 32-bit float: exact */
         {"rt.hdr", 3, 0.0, 1.0 / 128.0},    /* RGBE: 8-bit mantissa on the largest */
@@ -205,8 +198,7 @@ static void test_other_formats_round_trip(void)
 }
 
 /* 24-bit BMP as glman reads it: bottom-up rows, BGR, rows padded to 4. */
-static void test_bmp24_hand_made(void)
-{
+static void test_bmp24_hand_made(void) {
     enum { W = 3, H = 2 };          /* 9 bytes a row: padding exercised */
     const unsigned char rgb[H][W][3] = {
         {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}},        /* top row */
@@ -234,8 +226,7 @@ static void test_bmp24_hand_made(void)
     }
 }
 
-static void test_errors(void)
-{
+static void test_errors(void) {
     img im = {1, 1, 1, 1, NULL};
     char err[512] = "";
     const char *missing = tmp_path("no_such_file.png");
@@ -311,8 +302,7 @@ static void test_errors(void)
     CHECK(!img_read(missing, &im, NULL, 0));
 }
 
-int main(void)
-{
+int main(void) {
     const char *base = getenv("TMPDIR");
     snprintf(tmpdir, sizeof tmpdir, "%s/tarn_test_image_XXXXXX", base && *base ? base : "/tmp");
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }

@@ -6,8 +6,7 @@
 #include <stdlib.h>
 
 /* A deterministic sample sequence of the test's own (not the module's). */
-static double test_rand(unsigned *s)
-{
+static double test_rand(unsigned *s) {
     *s = *s * 1664525u + 1013904223u;
     return (double)(*s >> 8) / 16777216.0;
 }
@@ -17,8 +16,7 @@ static double test_rand(unsigned *s)
  * +-20%: glman's figures are rounded measurements of one random texture,
  * and what a shader's look depends on is the size of each octave, not its
  * third digit. (The amplitudes were 0.5 / 2^c bounds before issue 14.) */
-static void check_range_and_mean(const float *rgba, size_t n, const char *what, const double *std_want)
-{
+static void check_range_and_mean(const float *rgba, size_t n, const char *what, const double *std_want) {
     for (int c = 0; c < 4; c++) {
         double sum = 0, sq = 0, lo = 1e9, hi = -1e9;
         for (size_t t = 0; t < n; t++) {
@@ -41,8 +39,7 @@ static void check_range_and_mean(const float *rgba, size_t n, const char *what, 
 static const double glman_std_2d[4] = { 0.074, 0.024, 0.014, 0.0070 };
 static const double glman_std_3d[4] = { 0.066, 0.032, 0.017, 0.0075 };
 
-static void test_2d_range_mean(void)
-{
+static void test_2d_range_mean(void) {
     const int sizes[] = {128, 64, 37, 1};
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
         int res = sizes[k];
@@ -54,8 +51,7 @@ static void test_2d_range_mean(void)
     }
 }
 
-static void test_3d_range_mean(void)
-{
+static void test_3d_range_mean(void) {
     const int res = 64;         /* glman's size */
     float *t = malloc((size_t)res * res * res * 4 * sizeof *t);
     CHECK(noise_3d(res, t));
@@ -64,8 +60,7 @@ static void test_3d_range_mean(void)
 }
 
 /* The function itself: f(p + period) == f(p) on every axis, 0 on lattice points. */
-static void test_function_periodic(void)
-{
+static void test_function_periodic(void) {
     unsigned s = 12345;
     double biggest = 0;
     for (int i = 0; i < 2000; i++) {
@@ -105,8 +100,7 @@ static void test_function_periodic(void)
 
 /* The texture wraps: across the seam (last texel -> first) it changes no
  * more than between any two neighbours inside. */
-static void test_texture_tiles(void)
-{
+static void test_texture_tiles(void) {
     const int res = 64;
     float *t = malloc((size_t)res * res * 4 * sizeof *t);
     CHECK(noise_2d(res, t));
@@ -146,8 +140,7 @@ static void test_texture_tiles(void)
 }
 
 /* Each channel is an octave: twice the frequency of the one before. */
-static void test_octaves(void)
-{
+static void test_octaves(void) {
     const int res = 256;
     float *t = malloc((size_t)res * res * 4 * sizeof *t);
     CHECK(noise_2d(res, t));
@@ -168,8 +161,7 @@ static void test_octaves(void)
     free(t);
 }
 
-static void test_deterministic(void)
-{
+static void test_deterministic(void) {
     const int res = 48;
     float *a = malloc((size_t)res * res * 4 * sizeof *a), *b = malloc((size_t)res * res * 4 * sizeof *b);
     CHECK(noise_2d(res, a));
@@ -187,8 +179,7 @@ static void test_deterministic(void)
     free(a); free(b);
 }
 
-static void test_bad_args(void)
-{
+static void test_bad_args(void) {
     float one[4] = {9, 9, 9, 9};
     CHECK(!noise_2d(0, one));
     CHECK(!noise_2d(-5, one));
@@ -200,8 +191,7 @@ static void test_bad_args(void)
     CHECK(one[0] == 9 && one[3] == 9);      /* untouched on failure */
 }
 
-int main(void)
-{
+int main(void) {
     RUN(test_2d_range_mean);
     RUN(test_3d_range_mean);
     RUN(test_function_periodic);

@@ -11,15 +11,13 @@
 
 #define PI 3.14159265358979323846
 
-static glib_scene *parse(const char *text)
-{
+static glib_scene *parse(const char *text) {
     return glib_parse(text, strlen(text), "mem.glib");
 }
 
 /* Parses text (which must parse cleanly) and fills the world. */
 static bool world_of(const char *text, ref_world_desc *d, scene_camera *cam, bool *has, char *err,
-                     int errlen)
-{
+                     int errlen) {
     glib_scene *g = parse(text);
     CHECK_MSG(g->nerrors == 0, "the test's glib has %d errors: %s", g->nerrors,
               g->ndiags ? g->diags[0].text : "");
@@ -28,8 +26,7 @@ static bool world_of(const char *text, ref_world_desc *d, scene_camera *cam, boo
     return ok;
 }
 
-static bool zero_bytes(const void *p, size_t n)
-{
+static bool zero_bytes(const void *p, size_t n) {
     const unsigned char *b = p;
     for (size_t i = 0; i < n; i++)
         if (b[i])
@@ -37,8 +34,7 @@ static bool zero_bytes(const void *p, size_t n)
     return true;
 }
 
-static void test_each_command(void)
-{
+static void test_each_command(void) {
     ref_world_desc d;
     scene_camera cam;
     bool has = false;
@@ -95,8 +91,7 @@ static void test_each_command(void)
           o[2].size[1] == 3.2 && o[2].albedo[1] == 0.32);
 }
 
-static void test_defaults(void)
-{
+static void test_defaults(void) {
     ref_world_desc d;
     scene_camera cam;
     bool has = true;
@@ -148,8 +143,7 @@ static void test_defaults(void)
     CHECK(w.d.absorption[0] < 1e-9 && w.d.absorption[1] < 1e-9);
 }
 
-static void test_repairs(void)
-{
+static void test_repairs(void) {
     ref_world_desc d;
     scene_camera cam;
     bool has;
@@ -232,8 +226,7 @@ static void test_repairs(void)
     CHECK(w.waves.noctaves == 8);
 }
 
-static void test_limits(void)
-{
+static void test_limits(void) {
     char text[8192] = "##OpenGL GLIB\n";
     size_t n = strlen(text);
     for (int i = 0; i < REF_WAVES_MAX + 1; i++)
@@ -264,8 +257,7 @@ static void test_limits(void)
     glib_free(g);
 }
 
-static void test_camera(void)
-{
+static void test_camera(void) {
     ref_world_desc d;
     scene_camera cam;
     bool has;
@@ -285,8 +277,7 @@ static void test_camera(void)
 }
 
 /* scenes/lake.glib and ref_world_desc_lake() are one world. */
-static void test_lake_matches_reference(void)
-{
+static void test_lake_matches_reference(void) {
     glib_scene *g = glib_load(TARN_SOURCE_DIR "/scenes/lake.glib");
     CHECK_MSG(g->nerrors == 0 && g->ndiags == 0, "%s", g->ndiags ? g->diags[0].text : "");
     ref_world_desc dg, dr;
@@ -363,8 +354,7 @@ static void test_lake_matches_reference(void)
     free(b);
 }
 
-static void test_scene_load(void)
-{
+static void test_scene_load(void) {
     ref_world_desc d;
     scene_camera cam;
     bool has = false;
@@ -389,8 +379,7 @@ static void test_scene_load(void)
 
 /* Only the commands that describe the world make one: an If block, a
  * Camera, World or WaterSurface (what a pack draws with) do not. */
-static void test_plain_glman_scene_has_no_world(void)
-{
+static void test_plain_glman_scene_has_no_world(void) {
     ref_world_desc d;
     scene_camera cam;
     bool has = true;
@@ -407,8 +396,7 @@ static void test_plain_glman_scene_has_no_world(void)
 
 /* WindowSize, Perspective, Ortho and LookAt: the reader keeps small sizes
  * and takes Ortho (render and reference use it both). */
-static void test_viewing_reader(void)
-{
+static void test_viewing_reader(void) {
     glib_scene *g = parse("##OpenGL GLIB\nWindowSize 12 10\nPerspective 40\nOrtho -2 2 -1 1\n");
     scene_camera cam;
     scene_camera_from_glib(g, &cam);
@@ -422,8 +410,7 @@ static void test_viewing_reader(void)
 /* The stage state each Program takes (program.h, shared by the renderer
  * and validate): the stages named so far, a bare stage command unsets one,
  * GSTAP stays on. */
-static void test_program_stages(void)
-{
+static void test_program_stages(void) {
     glib_scene *g = parse("##OpenGL GLIB\nVertex a.vert\nFragment b.frag\nProgram A\n"
                           "Vertex\nGSTAP\nGeometry g.geom\nProgram B\n");
     program_stages st;
@@ -452,8 +439,7 @@ static void test_program_stages(void)
     glib_free(g);
 }
 
-int main(void)
-{
+int main(void) {
     RUN(test_each_command);
     RUN(test_defaults);
     RUN(test_repairs);

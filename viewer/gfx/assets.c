@@ -30,8 +30,7 @@ static bool res_ok(int res) { return res >= 1 && res <= ASSETS_MAX_RES; }
 /* ------------------------------------------------------------------ */
 /* encodings                                                           */
 
-static void put_normal(float *px, const double n[3])
-{
+static void put_normal(float *px, const double n[3]) {
     px[0] = (float)(0.5 + 0.5 * n[0]);
     px[1] = (float)(0.5 + 0.5 * n[2]);
     px[2] = (float)(0.5 + 0.5 * n[1]);
@@ -40,14 +39,12 @@ static void put_normal(float *px, const double n[3])
 /* ------------------------------------------------------------------ */
 /* terrain and sky                                                     */
 
-static double world_coord(const ref_world *w, int i, int res)
-{
+static double world_coord(const ref_world *w, int i, int res) {
     double h = w->d.half_size;
     return -h + (i + 0.5) * (2.0 * h / res);
 }
 
-bool assets_bake_albedo(const ref_world *w, int res, float *rgb)
-{
+bool assets_bake_albedo(const ref_world *w, int res, float *rgb) {
     if (!w || !rgb || !res_ok(res))
         return false;
     for (int j = 0; j < res; j++)
@@ -61,8 +58,7 @@ bool assets_bake_albedo(const ref_world *w, int res, float *rgb)
     return true;
 }
 
-bool assets_bake_terrain_normal(const ref_world *w, int res, float *rgb)
-{
+bool assets_bake_terrain_normal(const ref_world *w, int res, float *rgb) {
     if (!w || !rgb || !res_ok(res))
         return false;
     for (int j = 0; j < res; j++)
@@ -74,14 +70,12 @@ bool assets_bake_terrain_normal(const ref_world *w, int res, float *rgb)
     return true;
 }
 
-const char *assets_face_name(int face)
-{
+const char *assets_face_name(int face) {
     static const char *const names[ASSETS_FACES] = { "px", "nx", "py", "ny", "pz", "nz" };
     return face >= 0 && face < ASSETS_FACES ? names[face] : "?";
 }
 
-void assets_face_dir(int face, double s, double t, double dir[3])
-{
+void assets_face_dir(int face, double s, double t, double dir[3]) {
     double sc = 2.0 * s - 1.0, tc = 2.0 * t - 1.0;
     switch (face) {
     case ASSETS_FACE_PX: dir[0] = 1;   dir[1] = -tc; dir[2] = -sc; break;
@@ -94,8 +88,7 @@ void assets_face_dir(int face, double s, double t, double dir[3])
     vec3_normalize(dir);
 }
 
-bool assets_bake_sky_face(const ref_world *w, int face, int res, float *rgb)
-{
+bool assets_bake_sky_face(const ref_world *w, int face, int res, float *rgb) {
     if (!w || !rgb || !res_ok(res) || face < 0 || face >= ASSETS_FACES)
         return false;
     for (int j = 0; j < res; j++)
@@ -118,8 +111,7 @@ enum { RIPPLE_OCTAVES = 4, RIPPLE_BASE_PERIODS = 4 };
 #define RIPPLE_RMS_SLOPE 0.25
 
 /* Ripple height at tile coordinates (u, v) in [0, 1): periodic in both. */
-static double ripple(double u, double v)
-{
+static double ripple(double u, double v) {
     double h = 0, amp = 1;
     int per = RIPPLE_BASE_PERIODS;
     for (int o = 0; o < RIPPLE_OCTAVES; o++) {
@@ -130,8 +122,7 @@ static double ripple(double u, double v)
     return h;
 }
 
-bool assets_bake_water_normal(int res, float *rgb)
-{
+bool assets_bake_water_normal(int res, float *rgb) {
     if (!rgb || !res_ok(res))
         return false;
     size_t n = (size_t)res * res;
@@ -162,21 +153,18 @@ bool assets_bake_water_normal(int res, float *rgb)
 enum { FOAM_DISCS = 40 };
 #define FOAM_SEED 0x666f616d666f616dull     /* "foamfoam" */
 
-static double rand01(uint64_t *s)
-{
+static double rand01(uint64_t *s) {
     return (double)(ref_splitmix64(s) >> 11) / 9007199254740992.0;
 }
 
 /* Distance along one axis on the unit torus. */
-static double wrap_d(double a)
-{
+static double wrap_d(double a) {
     a = fabs(a);
     a -= floor(a);
     return a > 0.5 ? 1.0 - a : a;
 }
 
-bool assets_bake_foam(int res, float *rgb)
-{
+bool assets_bake_foam(int res, float *rgb) {
     if (!rgb || !res_ok(res))
         return false;
     double disc[2][FOAM_DISCS][3];
@@ -223,8 +211,7 @@ static const struct { int m, n; double amp, phase; } caustic_waves[] = {
     { 1, 3, 0.022, 2.6 }, { -3, -2, 0.016, 5.3 }, { 4, 3, 0.010, 0.8 },
 };
 
-static void caustic_waves_desc(ref_waves_desc *d)
-{
+static void caustic_waves_desc(ref_waves_desc *d) {
     memset(d, 0, sizeof *d);
     d->sine_count = (int)(sizeof caustic_waves / sizeof caustic_waves[0]);
     for (int i = 0; i < d->sine_count; i++) {
@@ -245,8 +232,7 @@ typedef struct caustic_job {
     pthread_mutex_t lock;
 } caustic_job;
 
-static void *caustic_worker(void *arg)
-{
+static void *caustic_worker(void *arg) {
     caustic_job *job = arg;
     const ref_caustics_plan *p = job->plan;
     for (;;) {
@@ -261,14 +247,12 @@ static void *caustic_worker(void *arg)
     }
 }
 
-static int thread_count(void)
-{
+static int thread_count(void) {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > 16 ? 16 : (int)n;
 }
 
-bool assets_bake_caustics(int res, float *out, char *err, int errlen)
-{
+bool assets_bake_caustics(int res, float *out, char *err, int errlen) {
     if (err && errlen > 0)
         err[0] = '\0';
     if (!out || res < CAUSTIC_MIN_RES || res > CAUSTIC_MAX_RES) {
@@ -353,8 +337,7 @@ typedef struct out_dir {
 /* Writes res x res x 3 floats (GL order) as DIR/name (EXR as 32-bit
  * float, exactly the baked values); flip: 2D textures (files are top row
  * first), not cube faces. */
-static void save(out_dir *o, const char *name, const float *rgb, int res, bool flip, double scale)
-{
+static void save(out_dir *o, const char *name, const float *rgb, int res, bool flip, double scale) {
     if (o->failed)
         return;
     char path[1200], err[512];
@@ -381,8 +364,7 @@ static void save(out_dir *o, const char *name, const float *rgb, int res, bool f
     img_free(&im);
 }
 
-static bool world_for(const char *scene, ref_world *w)
-{
+static bool world_for(const char *scene, ref_world *w) {
     ref_world_desc d;
     if (!scene) {
         ref_world_desc_lake(&d);
@@ -405,8 +387,7 @@ static bool world_for(const char *scene, ref_world *w)
     return true;
 }
 
-int assets_run(const assets_desc *d)
-{
+int assets_run(const assets_desc *d) {
     const char *dir = d->dir ? d->dir : "assets", *scene = d->scene;
     int size = d->size;
     if (size && (size < CAUSTIC_MIN_RES || size > CAUSTIC_MAX_RES)) {

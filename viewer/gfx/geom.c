@@ -16,16 +16,14 @@
 
 static void v3set(double r[3], double x, double y, double z) { r[0] = x; r[1] = y; r[2] = z; }
 static double v3dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void v3cross(double r[3], const double a[3], const double b[3])
-{
+static void v3cross(double r[3], const double a[3], const double b[3]) {
     double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
     v3set(r, x, y, z);
 }
 static double v3len(const double a[3]) { return sqrt(v3dot(a, a)); }
 
 /* Normalises a in place; false (a untouched) when it has no direction. */
-static bool v3normalize(double a[3])
-{
+static bool v3normalize(double a[3]) {
     double l = v3len(a);
     if (!(l > 1e-30) || !isfinite(l)) return false;
     a[0] /= l; a[1] /= l; a[2] /= l;
@@ -40,15 +38,13 @@ typedef struct mb {
     bool ok;
 } mb;
 
-static void mb_init(mb *b, bool lines)
-{
+static void mb_init(mb *b, bool lines) {
     memset(b, 0, sizeof *b);
     b->ok = true;
     b->m.lines = lines;
 }
 
-static bool grow(void **p, size_t elem, int cap)
-{
+static bool grow(void **p, size_t elem, int cap) {
     void *q = realloc(*p, elem * (size_t)cap);
     if (!q) return false;
     *p = q;
@@ -56,8 +52,7 @@ static bool grow(void **p, size_t elem, int cap)
 }
 
 /* Makes room for `nv` more vertices and `ni` more indices. */
-static bool mb_reserve(mb *b, long nv, long ni)
-{
+static bool mb_reserve(mb *b, long nv, long ni) {
     if (!b->ok) return false;
     long need_v = b->m.nvert + nv, need_i = b->m.nidx + ni;
     if (need_v > INT_MAX / 4 || need_i > INT_MAX / 4) { b->ok = false; return false; }
@@ -79,8 +74,7 @@ static bool mb_reserve(mb *b, long nv, long ni)
     return true;
 }
 
-static int mb_vert(mb *b, const double p[3], const double n[3], double u, double v, const double t[3])
-{
+static int mb_vert(mb *b, const double p[3], const double n[3], double u, double v, const double t[3]) {
     if (!mb_reserve(b, 1, 0)) return 0;
     int k = b->m.nvert++;
     for (int c = 0; c < 3; c++) {
@@ -93,8 +87,7 @@ static int mb_vert(mb *b, const double p[3], const double n[3], double u, double
     return k;
 }
 
-static void mb_index(mb *b, int a)
-{
+static void mb_index(mb *b, int a) {
     if (!mb_reserve(b, 0, 1)) return;
     b->m.idx[b->m.nidx++] = (unsigned)a;
 }
@@ -102,16 +95,14 @@ static void mb_index(mb *b, int a)
 static void mb_tri(mb *b, int a, int c, int d) { mb_index(b, a); mb_index(b, c); mb_index(b, d); }
 static void mb_line(mb *b, int a, int c) { mb_index(b, a); mb_index(b, c); }
 
-void geom_free(geom_mesh *m)
-{
+void geom_free(geom_mesh *m) {
     if (!m) return;
     free(m->pos); free(m->nrm); free(m->tc); free(m->tan); free(m->idx);
     memset(m, 0, sizeof *m);
 }
 
 /* Any unit vector perpendicular to the unit vector n. */
-static void any_perpendicular(double t[3], const double n[3])
-{
+static void any_perpendicular(double t[3], const double n[3]) {
     double a[3];
     if (fabs(n[0]) < 0.9) v3set(a, 1, 0, 0); else v3set(a, 0, 1, 0);
     double d = v3dot(a, n);
@@ -121,8 +112,7 @@ static void any_perpendicular(double t[3], const double n[3])
 
 /* Unit normals (fallback +y) and unit tangents made perpendicular to them
  * (Gram-Schmidt; fallback any perpendicular): never NaN. */
-static void fix_frames(geom_mesh *m)
-{
+static void fix_frames(geom_mesh *m) {
     for (int k = 0; k < m->nvert; k++) {
         double n[3] = {m->nrm[3 * k], m->nrm[3 * k + 1], m->nrm[3 * k + 2]};
         double t[3] = {m->tan[3 * k], m->tan[3 * k + 1], m->tan[3 * k + 2]};
@@ -135,8 +125,7 @@ static void fix_frames(geom_mesh *m)
     }
 }
 
-static bool mb_finish(mb *b, geom_mesh *out)
-{
+static bool mb_finish(mb *b, geom_mesh *out) {
     if (!b->ok) {
         geom_free(&b->m);
         memset(out, 0, sizeof *out);
@@ -160,8 +149,7 @@ enum {
 
 /* (nu+1) x (nv+1) vertices; f must make dP/du x dP/dv point along the
  * normal so that the triangles wind counter-clockwise from outside. */
-static void grid(mb *b, int nu, int nv, grid_fn f, const void *ctx, int flags)
-{
+static void grid(mb *b, int nu, int nv, grid_fn f, const void *ctx, int flags) {
     long nvert = (long)(nu + 1) * (nv + 1);
     long nidx = b->m.lines ? 2L * ((long)nu * (nv + 1) + (long)(nu + 1) * nv) : 6L * nu * nv;
     if (!mb_reserve(b, nvert, nidx)) return;
@@ -194,16 +182,14 @@ static void grid(mb *b, int nu, int nv, grid_fn f, const void *ctx, int flags)
 #undef GV
 }
 
-static int clamp_div(int n, int dflt, int lo, int hi)
-{
+static int clamp_div(int n, int dflt, int lo, int hi) {
     if (n <= 0) n = dflt;
     if (n < lo) n = lo;
     if (n > hi) n = hi;
     return n;
 }
 
-static bool finite_args(int count, ...)
-{
+static bool finite_args(int count, ...) {
     va_list ap;
     va_start(ap, count);
     bool ok = true;
@@ -213,8 +199,7 @@ static bool finite_args(int count, ...)
 }
 
 /* sin/cos of 2pi i/n, exact at the seam (i == n gives the same as i == 0). */
-static void angle(int i, int n, double *s, double *c)
-{
+static void angle(int i, int n, double *s, double *c) {
     double a = 2.0 * GEOM_PI * (double)(i % n) / (double)n;
     *s = sin(a);
     *c = cos(a);
@@ -228,8 +213,7 @@ typedef struct plane_ctx {
     int nu, nv;
 } plane_ctx;
 
-static void plane_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2])
-{
+static void plane_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
     const plane_ctx *q = vctx;
     double s = -1.0 + 2.0 * i / q->nu, r = -1.0 + 2.0 * j / q->nv;
     for (int c = 0; c < 3; c++) {
@@ -242,8 +226,7 @@ static void plane_eval(const void *vctx, int i, int j, double p[3], double n[3],
 }
 
 /* The (N, U, V) frame of each face, U x V = N. */
-static void face_frame(plane_ctx *q, int axis, bool negative)
-{
+static void face_frame(plane_ctx *q, int axis, bool negative) {
     static const double frames[6][3][3] = {
         /*  N            U            V  */
         {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},     /* +x: upright seen from +x */
@@ -259,8 +242,7 @@ static void face_frame(plane_ctx *q, int axis, bool negative)
     memcpy(q->V, f[2], sizeof q->V);
 }
 
-bool geom_quad(geom_mesh *m, int axis, float offset, float size, int n1, int n2, bool wire)
-{
+bool geom_quad(geom_mesh *m, int axis, float offset, float size, int n1, int n2, bool wire) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (axis < 0 || axis > 2 || !finite_args(2, (double)offset, (double)size)) return false;
@@ -279,8 +261,7 @@ bool geom_quad(geom_mesh *m, int axis, float offset, float size, int n1, int n2,
     return mb_finish(&b, m);
 }
 
-bool geom_box(geom_mesh *m, float dx, float dy, float dz, bool wire)
-{
+bool geom_box(geom_mesh *m, float dx, float dy, float dz, bool wire) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (!finite_args(3, (double)dx, (double)dy, (double)dz)) return false;
@@ -311,8 +292,7 @@ typedef struct round_ctx {
     int nu, nv;
 } round_ctx;
 
-static void sphere_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2])
-{
+static void sphere_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
     const round_ctx *q = vctx;
     double st, ct, sp, cp;
     angle(i, q->nu, &st, &ct);
@@ -330,8 +310,7 @@ static void sphere_eval(const void *vctx, int i, int j, double p[3], double n[3]
     tc[1] = (double)j / q->nv;
 }
 
-bool geom_sphere(geom_mesh *m, float r, int slices, int stacks, bool wire)
-{
+bool geom_sphere(geom_mesh *m, float r, int slices, int stacks, bool wire) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (!finite_args(1, (double)r)) return false;
@@ -345,8 +324,7 @@ bool geom_sphere(geom_mesh *m, float r, int slices, int stacks, bool wire)
 
 /* ---- torus ---- */
 
-static void torus_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2])
-{
+static void torus_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
     const round_ctx *q = vctx;     /* r: major, r2: minor; nu rings, nv sides */
     double st, ct, sp, cp;
     angle(i, q->nu, &st, &ct);
@@ -359,8 +337,7 @@ static void torus_eval(const void *vctx, int i, int j, double p[3], double n[3],
     tc[1] = (double)j / q->nv;
 }
 
-bool geom_torus(geom_mesh *m, float r_major, float r_minor, int sides, int rings, bool wire)
-{
+bool geom_torus(geom_mesh *m, float r_major, float r_minor, int sides, int rings, bool wire) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (!finite_args(2, (double)r_major, (double)r_minor)) return false;
@@ -375,8 +352,7 @@ bool geom_torus(geom_mesh *m, float r_major, float r_minor, int sides, int rings
 /* ---- cylinder and cone ---- */
 
 /* r: base radius, r2: top radius (cylinder r, cone 0), h: height */
-static void side_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2])
-{
+static void side_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
     const round_ctx *q = vctx;
     double st, ct;
     angle(i, q->nu, &st, &ct);
@@ -393,8 +369,7 @@ static void side_eval(const void *vctx, int i, int j, double p[3], double n[3], 
 }
 
 /* A disc at height y, facing +y (top) or -y; fan of `slices` triangles. */
-static void disc(mb *b, double y, double r, int slices, bool top)
-{
+static void disc(mb *b, double y, double r, int slices, bool top) {
     if (!mb_reserve(b, slices + 1, 3L * slices)) return;
     double ny = top ? 1 : -1, vs = top ? -1 : 1;     /* v along -z on top, +z below */
     double p[3] = {0, y, 0}, n[3] = {0, ny, 0}, t[3] = {1, 0, 0};
@@ -413,8 +388,7 @@ static void disc(mb *b, double y, double r, int slices, bool top)
     }
 }
 
-static bool round_solid(geom_mesh *m, float r, float h, int slices, int stacks, bool wire, bool cone)
-{
+static bool round_solid(geom_mesh *m, float r, float h, int slices, int stacks, bool wire, bool cone) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (!finite_args(2, (double)r, (double)h)) return false;
@@ -429,13 +403,11 @@ static bool round_solid(geom_mesh *m, float r, float h, int slices, int stacks, 
     return mb_finish(&b, m);
 }
 
-bool geom_cylinder(geom_mesh *m, float r, float h, int slices, int stacks, bool wire)
-{
+bool geom_cylinder(geom_mesh *m, float r, float h, int slices, int stacks, bool wire) {
     return round_solid(m, r, h, slices, stacks, wire, false);
 }
 
-bool geom_cone(geom_mesh *m, float r, float h, int slices, int stacks, bool wire)
-{
+bool geom_cone(geom_mesh *m, float r, float h, int slices, int stacks, bool wire) {
     return round_solid(m, r, h, slices, stacks, wire, true);
 }
 
@@ -503,15 +475,13 @@ typedef struct patch_ctx {
     int n;
 } patch_ctx;
 
-static void bernstein(double t, double b[4], double db[4])
-{
+static void bernstein(double t, double b[4], double db[4]) {
     double s = 1 - t;
     b[0] = s * s * s; b[1] = 3 * t * s * s; b[2] = 3 * t * t * s; b[3] = t * t * t;
     db[0] = -3 * s * s; db[1] = 3 * s * s - 6 * t * s; db[2] = 6 * t * s - 3 * t * t; db[3] = 3 * t * t;
 }
 
-static void patch_point(const patch_ctx *q, double u, double v, double p[3], double pu[3], double pv[3])
-{
+static void patch_point(const patch_ctx *q, double u, double v, double p[3], double pu[3], double pv[3]) {
     double bu[4], dbu[4], bv[4], dbv[4];
     bernstein(u, bu, dbu);
     bernstein(v, bv, dbv);
@@ -527,8 +497,7 @@ static void patch_point(const patch_ctx *q, double u, double v, double p[3], dou
     }
 }
 
-static void patch_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2])
-{
+static void patch_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
     const patch_ctx *q = vctx;
     double u = (double)i / q->n, v = (double)j / q->n, pu[3], pv[3], zp[3];
     patch_point(q, u, v, zp, pu, pv);
@@ -551,16 +520,14 @@ static void patch_eval(const void *vctx, int i, int j, double p[3], double n[3],
     tc[1] = v;
 }
 
-static bool row_collapsed(const patch_ctx *q, int row)
-{
+static bool row_collapsed(const patch_ctx *q, int row) {
     for (int k = 1; k < 4; k++)
         for (int c = 0; c < 3; c++)
             if (q->cp[row][k][c] != q->cp[row][0][c]) return false;
     return true;
 }
 
-bool geom_teapot(geom_mesh *m, float size, int grid_n, bool wire)
-{
+bool geom_teapot(geom_mesh *m, float size, int grid_n, bool wire) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (!finite_args(1, (double)size)) return false;
@@ -590,8 +557,7 @@ bool geom_teapot(geom_mesh *m, float size, int grid_n, bool wire)
 
 /* ---- tangents from texture coordinates (OBJ) ---- */
 
-static bool tangents_from_tc(geom_mesh *m)
-{
+static bool tangents_from_tc(geom_mesh *m) {
     double *acc = calloc((size_t)m->nvert * 3, sizeof *acc);
     if (!acc) return false;
     for (int f = 0; f + 2 < m->nidx; f += 3) {
@@ -639,8 +605,7 @@ typedef struct obj_ctx {
     mb b;
 } obj_ctx;
 
-static bool obj_error(obj_ctx *o, const char *fmt, ...)
-{
+static bool obj_error(obj_ctx *o, const char *fmt, ...) {
     if (o->failed) return false;
     o->failed = true;
     if (o->err && o->errlen > 0) {
@@ -656,8 +621,7 @@ static bool obj_error(obj_ctx *o, const char *fmt, ...)
 }
 
 /* A token shown in a message: printable, short. */
-static void show_token(char *dst, size_t n, const char *tok)
-{
+static void show_token(char *dst, size_t n, const char *tok) {
     size_t k = 0;
     for (; tok[k] && k + 4 < n && k < 24; k++) {
         unsigned char c = (unsigned char)tok[k];
@@ -667,8 +631,7 @@ static void show_token(char *dst, size_t n, const char *tok)
     dst[k] = 0;
 }
 
-static bool parse_double(obj_ctx *o, const char *tok, double *out)
-{
+static bool parse_double(obj_ctx *o, const char *tok, double *out) {
     char *end;
     errno = 0;
     double d = strtod(tok, &end);
@@ -682,8 +645,7 @@ static bool parse_double(obj_ctx *o, const char *tok, double *out)
 }
 
 static bool push_record(obj_ctx *o, double **arr, int *count, int *cap, int width,
-                        char **tok, int ntok, int need_min, int need_max, const char *what)
-{
+                        char **tok, int ntok, int need_min, int need_max, const char *what) {
     if (ntok < need_min || ntok > need_max) {
         if (need_min == need_max)
             return obj_error(o, "'%s' needs %d numbers, got %d", what, need_min, ntok);
@@ -712,8 +674,7 @@ static bool push_record(obj_ctx *o, double **arr, int *count, int *cap, int widt
 }
 
 /* One index of a corner: 1-based, negative from the end; -1 when absent. */
-static bool parse_index(obj_ctx *o, const char *s, size_t len, int count, const char *what, int *out)
-{
+static bool parse_index(obj_ctx *o, const char *s, size_t len, int count, const char *what, int *out) {
     char buf[32];
     if (len == 0 || len >= sizeof buf) {
         if (len == 0) return obj_error(o, "empty %s index", what);
@@ -737,16 +698,14 @@ static bool parse_index(obj_ctx *o, const char *s, size_t len, int count, const 
     return true;
 }
 
-static uint64_t corner_hash(int v, int t, int n)
-{
+static uint64_t corner_hash(int v, int t, int n) {
     uint64_t h = (uint64_t)(uint32_t)v * 0x9E3779B97F4A7C15ULL;
     h ^= (uint64_t)(uint32_t)t * 0xC2B2AE3D27D4EB4FULL + (h << 6) + (h >> 2);
     h ^= (uint64_t)(uint32_t)n * 0x165667B19E3779F9ULL + (h << 6) + (h >> 2);
     return h ^ (h >> 29);
 }
 
-static bool table_grow(obj_ctx *o)
-{
+static bool table_grow(obj_ctx *o) {
     size_t ncap = o->hcap ? o->hcap * 2 : 1024;
     int *nk = malloc(ncap * 3 * sizeof *nk), *nv = malloc(ncap * sizeof *nv);
     if (!nk || !nv) { free(nk); free(nv); return false; }
@@ -765,8 +724,7 @@ static bool table_grow(obj_ctx *o)
 }
 
 /* The mesh vertex of a corner, made on first use. */
-static int corner_vertex(obj_ctx *o, int v, int t, int n)
-{
+static int corner_vertex(obj_ctx *o, int v, int t, int n) {
     if ((o->hcount + 1) * 2 > o->hcap && !table_grow(o)) { obj_error(o, "out of memory"); return -1; }
     size_t at = corner_hash(v, t, n) & (o->hcap - 1);
     while (o->hval[at] >= 0) {
@@ -794,8 +752,7 @@ static int corner_vertex(obj_ctx *o, int v, int t, int n)
     return k;
 }
 
-static bool parse_face(obj_ctx *o, char **tok, int ntok)
-{
+static bool parse_face(obj_ctx *o, char **tok, int ntok) {
     if (ntok < 3) return obj_error(o, "a face needs at least 3 vertices, got %d", ntok);
     double area[3] = {0, 0, 0};
     int *vis = malloc((size_t)ntok * 2 * sizeof *vis);
@@ -851,8 +808,7 @@ static bool parse_face(obj_ctx *o, char **tok, int ntok)
     return true;
 }
 
-static bool is_ignored_statement(const char *kw)
-{
+static bool is_ignored_statement(const char *kw) {
     static const char *const ignored[] = {
         "o", "g", "s", "mg", "usemtl", "mtllib", "l", "p", "vp", "cstype", "deg", "bmat",
         "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end", "con",
@@ -865,8 +821,7 @@ static bool is_ignored_statement(const char *kw)
 
 #define OBJ_MAX_TOKENS_PREALLOC 64
 
-static bool parse_statement(obj_ctx *o, char *text)
-{
+static bool parse_statement(obj_ctx *o, char *text) {
     char *hash = strchr(text, '#');
     if (hash) *hash = 0;
     /* split on whitespace; a face may have many corners */
@@ -911,8 +866,7 @@ static bool parse_statement(obj_ctx *o, char *text)
     return ok;
 }
 
-static char *read_file(obj_ctx *o, size_t *len)
-{
+static char *read_file(obj_ctx *o, size_t *len) {
     FILE *f = fopen(o->path, "rb");
     if (!f) { obj_error(o, "%s", strerror(errno)); return NULL; }
     size_t cap = 1 << 16, n = 0;
@@ -938,8 +892,7 @@ static char *read_file(obj_ctx *o, size_t *len)
     return buf;
 }
 
-bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen)
-{
+bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (err && errlen > 0) err[0] = 0;

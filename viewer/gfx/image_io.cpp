@@ -17,8 +17,7 @@ using namespace OIIO;
 
 namespace {
 
-void set_err(char *err, int errlen, const char *path, const std::string &why)
-{
+void set_err(char *err, int errlen, const char *path, const std::string &why) {
     if (!err || errlen <= 0) return;
     std::string msg = why;
     while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
@@ -26,21 +25,18 @@ void set_err(char *err, int errlen, const char *path, const std::string &why)
     std::snprintf(err, (size_t)errlen, "%s: %s", path ? path : "(null)", msg.c_str());
 }
 
-bool size_ok(long w, long h, long d, long channels)
-{
+bool size_ok(long w, long h, long d, long channels) {
     return w >= 1 && h >= 1 && d >= 1 && channels >= 1 && channels <= IMG_MAX_CHANNELS &&
            w <= IMG_MAX_SIDE && h <= IMG_MAX_SIDE && d <= IMG_MAX_SIDE &&
            w * h <= IMG_MAX_TEXELS && w * h * d <= IMG_MAX_TEXELS;
 }
 
-float *alloc_px(long w, long h, long d, long channels)
-{
+float *alloc_px(long w, long h, long d, long channels) {
     return (float *)std::calloc((size_t)(w * h * d), (size_t)channels * sizeof(float));
 }
 
 /* The file type an extension asks for: 8-bit unless the format keeps more. */
-TypeDesc format_for(const char *path, bool *rgb_only)
-{
+TypeDesc format_for(const char *path, bool *rgb_only) {
     const char *dot = std::strrchr(path, '.');
     const char *slash = std::strrchr(path, '/');
     std::string ext = (dot && (!slash || dot > slash)) ? dot + 1 : "";
@@ -55,8 +51,7 @@ TypeDesc format_for(const char *path, bool *rgb_only)
 
 } // namespace
 
-extern "C" bool img_alloc(img *im, int w, int h, int channels)
-{
+extern "C" bool img_alloc(img *im, int w, int h, int channels) {
     if (!im) return false;
     *im = img{0, 0, 0, 0, nullptr};
     if (!size_ok(w, h, 1, channels)) return false;
@@ -66,15 +61,13 @@ extern "C" bool img_alloc(img *im, int w, int h, int channels)
     return true;
 }
 
-extern "C" void img_free(img *im)
-{
+extern "C" void img_free(img *im) {
     if (!im) return;
     std::free(im->px);
     *im = img{0, 0, 0, 0, nullptr};
 }
 
-extern "C" void img_flip_rows(img *im)
-{
+extern "C" void img_flip_rows(img *im) {
     if (!im || !im->px || im->h < 2) return;
     size_t row = (size_t)im->w * (size_t)im->channels;
     for (int z = 0; z < im->d; z++) {
@@ -88,8 +81,7 @@ extern "C" void img_flip_rows(img *im)
     }
 }
 
-extern "C" bool img_read(const char *path, img *out, char *err, int errlen)
-{
+extern "C" bool img_read(const char *path, img *out, char *err, int errlen) {
     if (!out) return false;
     *out = img{0, 0, 0, 0, nullptr};
     if (!path || !*path) { set_err(err, errlen, path, "no file name"); return false; }
@@ -133,8 +125,7 @@ extern "C" bool img_read(const char *path, img *out, char *err, int errlen)
     }
 }
 
-static bool write_image(const char *path, const img *im, bool full_float, char *err, int errlen)
-{
+static bool write_image(const char *path, const img *im, bool full_float, char *err, int errlen) {
     if (!path || !*path) { set_err(err, errlen, path, "no file name"); return false; }
     if (!im || !im->px || !size_ok(im->w, im->h, im->d, im->channels)) {
         set_err(err, errlen, path, "no image or bad image size");
@@ -177,12 +168,10 @@ static bool write_image(const char *path, const img *im, bool full_float, char *
     }
 }
 
-extern "C" bool img_write(const char *path, const img *im, char *err, int errlen)
-{
+extern "C" bool img_write(const char *path, const img *im, char *err, int errlen) {
     return write_image(path, im, false, err, errlen);
 }
 
-extern "C" bool img_write_float(const char *path, const img *im, char *err, int errlen)
-{
+extern "C" bool img_write_float(const char *path, const img *im, char *err, int errlen) {
     return write_image(path, im, true, err, errlen);
 }

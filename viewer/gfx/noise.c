@@ -9,16 +9,14 @@
 #define NOISE_SEED 0x7a726eu    /* fixed: the texture never changes */
 
 /* A well-mixed 32-bit integer hash (lowbias32). */
-static uint32_t hash32(uint32_t x)
-{
+static uint32_t hash32(uint32_t x) {
     x ^= x >> 16; x *= 0x7feb352dU;
     x ^= x >> 15; x *= 0x846ca68bU;
     x ^= x >> 16;
     return x;
 }
 
-static uint32_t lattice_hash(int64_t i, int64_t j, int64_t k, int period, unsigned seed)
-{
+static uint32_t lattice_hash(int64_t i, int64_t j, int64_t k, int period, unsigned seed) {
     if (period > 0) {           /* wrap the lattice: this is what makes it tile */
         i %= period; if (i < 0) i += period;
         j %= period; if (j < 0) j += period;
@@ -32,8 +30,7 @@ static uint32_t lattice_hash(int64_t i, int64_t j, int64_t k, int period, unsign
 
 /* Brings a coordinate into the range where its floor fits an integer:
  * exactly (fmod) for periodic noise; far-away coordinates give 0 otherwise. */
-static bool reduce(double *x, int period)
-{
+static bool reduce(double *x, int period) {
     if (!isfinite(*x)) return false;
     if (period > 0) *x = fmod(*x, (double)period);
     return fabs(*x) < 1e15;
@@ -43,8 +40,7 @@ static double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
 static double lerp(double a, double b, double t) { return a + (b - a) * t; }
 
 /* 2D: 16 unit gradients evenly around the circle. */
-static double grad2(uint32_t h, double dx, double dy)
-{
+static double grad2(uint32_t h, double dx, double dy) {
     static const double c[16] = {
         1.0, 0.92387953, 0.70710678, 0.38268343, 0.0, -0.38268343, -0.70710678, -0.92387953,
         -1.0, -0.92387953, -0.70710678, -0.38268343, 0.0, 0.38268343, 0.70710678, 0.92387953};
@@ -53,8 +49,7 @@ static double grad2(uint32_t h, double dx, double dy)
 }
 
 /* 3D: Perlin's 12 cube-edge directions, unit length. */
-static double grad3(uint32_t h, double dx, double dy, double dz)
-{
+static double grad3(uint32_t h, double dx, double dy, double dz) {
     static const signed char g[12][3] = {
         {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1},
         {1, 0, -1}, {-1, 0, -1}, {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}};
@@ -62,8 +57,7 @@ static double grad3(uint32_t h, double dx, double dy, double dz)
     return (v[0] * dx + v[1] * dy + v[2] * dz) * 0.70710678118654752;
 }
 
-double noise_perlin2(double x, double y, int period, unsigned seed)
-{
+double noise_perlin2(double x, double y, int period, unsigned seed) {
     if (!reduce(&x, period) || !reduce(&y, period)) return 0.0;
     double fx0 = floor(x), fy0 = floor(y);
     int64_t i = (int64_t)fx0, j = (int64_t)fy0;
@@ -77,8 +71,7 @@ double noise_perlin2(double x, double y, int period, unsigned seed)
     return lerp(lerp(n00, n10, u), lerp(n01, n11, u), v) * 1.41421356237309505;
 }
 
-double noise_perlin3(double x, double y, double z, int period, unsigned seed)
-{
+double noise_perlin3(double x, double y, double z, int period, unsigned seed) {
     if (!reduce(&x, period) || !reduce(&y, period) || !reduce(&z, period)) return 0.0;
     double fx0 = floor(x), fy0 = floor(y), fz0 = floor(z);
     int64_t i = (int64_t)fx0, j = (int64_t)fy0, k = (int64_t)fz0;
@@ -99,8 +92,7 @@ double noise_perlin3(double x, double y, double z, int period, unsigned seed)
 /* Centres each channel on 0.5 (mean exactly 0.5) and scales it to the
  * standard deviation glman's own textures have per channel (noise.h), so
  * a glman shader's thresholds and sums look as they did in glman. */
-static void normalise(float *rgba, size_t ntexels, const double std_want[NOISE_OCTAVES])
-{
+static void normalise(float *rgba, size_t ntexels, const double std_want[NOISE_OCTAVES]) {
     for (int c = 0; c < NOISE_OCTAVES; c++) {
         double sum = 0.0, sq = 0.0;
         for (size_t t = 0; t < ntexels; t++) sum += rgba[t * 4 + c];
@@ -122,8 +114,7 @@ static void normalise(float *rgba, size_t ntexels, const double std_want[NOISE_O
 static const double std_2d[NOISE_OCTAVES] = { 0.074, 0.024, 0.014, 0.0070 };
 static const double std_3d[NOISE_OCTAVES] = { 0.066, 0.032, 0.017, 0.0075 };
 
-bool noise_2d(int res, float *rgba)
-{
+bool noise_2d(int res, float *rgba) {
     if (!rgba || res < 1 || res > NOISE_2D_MAX_RES) return false;
     for (int c = 0; c < NOISE_OCTAVES; c++) {
         int period = NOISE_BASE_PERIODS << c;
@@ -137,8 +128,7 @@ bool noise_2d(int res, float *rgba)
     return true;
 }
 
-bool noise_3d(int res, float *rgba)
-{
+bool noise_3d(int res, float *rgba) {
     if (!rgba || res < 1 || res > NOISE_3D_MAX_RES) return false;
     for (int c = 0; c < NOISE_OCTAVES; c++) {
         int period = NOISE_BASE_PERIODS << c;

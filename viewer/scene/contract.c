@@ -72,28 +72,24 @@ static const contract_uniform table[] = {
 
 #define NTABLE ((int)(sizeof table / sizeof table[0]))
 
-const contract_uniform *contract_uniforms(int *n)
-{
+const contract_uniform *contract_uniforms(int *n) {
     if (n)
         *n = NTABLE;
     return table;
 }
 
-const contract_uniform *contract_find(const char *name)
-{
+const contract_uniform *contract_find(const char *name) {
     for (int i = 0; name && i < NTABLE; i++)
         if (strcmp(name, table[i].name) == 0)
             return &table[i];
     return NULL;
 }
 
-bool contract_is_camera_uniform(const char *name)
-{
+bool contract_is_camera_uniform(const char *name) {
     const contract_uniform *u = contract_find(name);
     return u && (u->source == CONTRACT_CAMERA || u->source == CONTRACT_PASS);
 }
 
-bool contract_is_world_uniform(const char *name)
-{
+bool contract_is_world_uniform(const char *name) {
     return contract_find(name) != NULL;
 }

@@ -49,8 +49,7 @@ enum {
 
 /* Allocations here are bounded by the limits above, so running out of
  * memory is not bad input but a broken machine: stop loudly. */
-static void *xrealloc(void *ptr, size_t n)
-{
+static void *xrealloc(void *ptr, size_t n) {
     void *q = ptr ? realloc(ptr, n ? n : 1) : malloc(n ? n : 1);
     if (!q) {
         fputs("tarn: out of memory in the .glib parser\n", stderr);
@@ -59,15 +58,13 @@ static void *xrealloc(void *ptr, size_t n)
     return q;
 }
 
-static char *xstrdup(const char *s)
-{
+static char *xstrdup(const char *s) {
     size_t n = strlen(s) + 1;
     return memcpy(xrealloc(NULL, n), s, n);
 }
 
 /* Makes room for need elements in *arr (capacity *cap). */
-static void *grow(void *arr, int *cap, int need, size_t elem)
-{
+static void *grow(void *arr, int *cap, int need, size_t elem) {
     if (need <= *cap)
         return arr;
     int c = *cap ? *cap : 8;
@@ -104,8 +101,7 @@ typedef struct parser {
 } parser;
 
 static void add_diag(parser *p, diag_severity sev, const char *file, int line,
-                     const char *msg)
-{
+                     const char *msg) {
     glib_scene *sc = p->sc;
     sc->diags = grow(sc->diags, &p->diag_cap, sc->ndiags + 1, sizeof *sc->diags);
     diag *d = &sc->diags[sc->ndiags++];
@@ -120,8 +116,7 @@ static void add_diag(parser *p, diag_severity sev, const char *file, int line,
 
 __attribute__((format(printf, 5, 0)))
 static void vdiag(parser *p, diag_severity sev, const char *file, int line,
-                  const char *fmt, va_list ap)
-{
+                  const char *fmt, va_list ap) {
     if (p->sc->ndiags >= LIM_DIAGS - 1) {
         p->dropped++;
         p->dropped_errors += sev == DIAG_ERROR;
@@ -134,8 +129,7 @@ static void vdiag(parser *p, diag_severity sev, const char *file, int line,
 
 __attribute__((format(printf, 5, 6)))
 static void report(parser *p, diag_severity sev, const char *file, int line,
-                 const char *fmt, ...)
-{
+                 const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     vdiag(p, sev, file, line, fmt, ap);
@@ -144,8 +138,7 @@ static void report(parser *p, diag_severity sev, const char *file, int line,
 
 /* Records a file name in scene->files (once) and returns the stored copy,
  * which commands and diagnostics point at. */
-static const char *add_file(parser *p, const char *name)
-{
+static const char *add_file(parser *p, const char *name) {
     glib_scene *sc = p->sc;
     for (int i = 0; i < sc->nfiles; i++)
         if (strcmp(sc->files[i], name) == 0)
@@ -172,8 +165,7 @@ typedef struct cmdctx {
 } cmdctx;
 
 __attribute__((format(printf, 2, 3)))
-static void cerr(cmdctx *c, const char *fmt, ...)
-{
+static void cerr(cmdctx *c, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     vdiag(c->p, DIAG_ERROR, c->file, c->line, fmt, ap);
@@ -181,16 +173,14 @@ static void cerr(cmdctx *c, const char *fmt, ...)
 }
 
 __attribute__((format(printf, 2, 3)))
-static void cwarn(cmdctx *c, const char *fmt, ...)
-{
+static void cwarn(cmdctx *c, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     vdiag(c->p, DIAG_WARNING, c->file, c->line, fmt, ap);
     va_end(ap);
 }
 
-static void vdiag_note(cmdctx *c, const char *text)
-{
+static void vdiag_note(cmdctx *c, const char *text) {
     report(c->p, DIAG_NOTE, c->file, c->line, "MessageBox: %.400s", text);
 }
 
@@ -224,13 +214,11 @@ static const arg_rule unit_rule = { "unit", "a texture unit", 'i', 0, LIM_UNIT, 
 /* ------------------------------------------------------------------ */
 /* characters and words                                                */
 
-static bool is_space(int c)
-{
+static bool is_space(int c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
 
-static char *skip_space(char *s)
-{
+static char *skip_space(char *s) {
     while (is_space((unsigned char)*s))
         s++;
     return s;
@@ -239,13 +227,11 @@ static char *skip_space(char *s)
 static bool is_opener(int c) { return c == '<' || c == '{' || c == '['; }
 static bool is_closer(int c) { return c == '>' || c == '}' || c == ']'; }
 
-static char closer_of(char open)
-{
+static char closer_of(char open) {
     return open == '<' ? '>' : open == '{' ? '}' : ']';
 }
 
-static bool is_ident(const char *s)
-{
+static bool is_ident(const char *s) {
     if (!isalpha((unsigned char)*s) && *s != '_')
         return false;
     for (s++; *s; s++)
@@ -257,8 +243,7 @@ static bool is_ident(const char *s)
 /* Splits s in place at whitespace; a "quoted word" keeps its spaces.
  * Stores at most max words and returns how many there are in all, or -1
  * for an unclosed quote. */
-static int split_words(char *s, char **w, int max)
-{
+static int split_words(char *s, char **w, int max) {
     int n = 0;
     for (;;) {
         s = skip_space(s);
@@ -284,8 +269,7 @@ static int split_words(char *s, char **w, int max)
 
 /* Splits bracket contents in place at whitespace and commas, since real
  * files write both: {0.40, 1.0, 0.95, 1.}. Returns the count of items. */
-static int split_items(char *s, char **w, int max)
-{
+static int split_items(char *s, char **w, int max) {
     int n = 0;
     for (;;) {
         while (is_space((unsigned char)*s) || *s == ',')
@@ -305,8 +289,7 @@ static int split_items(char *s, char **w, int max)
 
 /* The decimal forms people write: 1  -2.  .5  1e-3  +3.25E+2. strtod alone
  * would also take hex, "nan" and "inf", which are typos in a scene file. */
-static bool is_decimal(const char *s)
-{
+static bool is_decimal(const char *s) {
     int digits = 0;
     if (*s == '+' || *s == '-')
         s++;
@@ -329,8 +312,7 @@ static bool is_decimal(const char *s)
     return *s == '\0';
 }
 
-static bool parse_number(const char *s, double *out)
-{
+static bool parse_number(const char *s, double *out) {
     if (!is_decimal(s))
         return false;
     char *end;
@@ -346,8 +328,7 @@ static bool parse_number(const char *s, double *out)
  * followed by dots and digits is read as its prefix; letters or other signs
  * after a number (0x10, 1e, 3#x) stay errors, being other mistakes. The
  * length of the prefix read, or 0. */
-static size_t dotted_prefix(const char *s, double *out)
-{
+static size_t dotted_prefix(const char *s, double *out) {
     size_t k = 0;
     if (s[k] == '+' || s[k] == '-')
         k++;
@@ -367,8 +348,7 @@ static size_t dotted_prefix(const char *s, double *out)
     return parse_number(buf, out) ? k : 0;
 }
 
-static bool is_bool_word(const char *s, double *v)
-{
+static bool is_bool_word(const char *s, double *v) {
     if (strcasecmp(s, "true") == 0)
         return *v = 1, true;
     if (strcasecmp(s, "false") == 0)
@@ -381,8 +361,7 @@ static bool is_bool_word(const char *s, double *v)
 
 /* A number as glman's atof read it: exact, or its prefix with a warning
  * that says what was read. */
-static bool read_number(cmdctx *c, const char *tok, double *out)
-{
+static bool read_number(cmdctx *c, const char *tok, double *out) {
     if (parse_number(tok, out))
         return true;
     size_t k = dotted_prefix(tok, out);
@@ -392,8 +371,7 @@ static bool read_number(cmdctx *c, const char *tok, double *out)
     return k > 0;
 }
 
-static void build_usage(const cmd_spec *s, char *out, size_t size)
-{
+static void build_usage(const cmd_spec *s, char *out, size_t size) {
     if (s->usage) {
         snprintf(out, size, "%s", s->usage);
         return;
@@ -406,8 +384,7 @@ static void build_usage(const cmd_spec *s, char *out, size_t size)
     }
 }
 
-static bool parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out)
-{
+static bool parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out) {
     const char *cmd = c->spec->name;
     double v;
     if (!read_number(c, tok, &v)) {
@@ -433,8 +410,7 @@ static bool parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out
     return true;
 }
 
-static void missing_args(cmdctx *c, int have)
-{
+static void missing_args(cmdctx *c, int have) {
     const cmd_spec *s = c->spec;
     const arg_rule *a = &s->args[have];
     if (s->nreq - have == 1 && a->what)
@@ -446,8 +422,7 @@ static void missing_args(cmdctx *c, int have)
 
 /* Extra words are ignored with a warning: the command still does what the
  * first words say, which is what glman did. */
-static void warn_extra(cmdctx *c, int max, const char *hint)
-{
+static void warn_extra(cmdctx *c, int max, const char *hint) {
     if (c->nwords <= max)
         return;
     const char *more = c->nwords > max + 1 ? " and what follows" : "";
@@ -460,15 +435,13 @@ static void warn_extra(cmdctx *c, int max, const char *hint)
               hint, c->usage);
 }
 
-static bool same3(const double *a, const double *b)
-{
+static bool same3(const double *a, const double *b) {
     return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }
 
 /* Arguments that are each fine but together make a singular matrix: these
  * would draw nothing (NaN) with no hint why. */
-static bool check_degenerate(cmdctx *c, glib_cmd *cmd)
-{
+static bool check_degenerate(cmdctx *c, glib_cmd *cmd) {
     const double *n = cmd->num;
     switch (cmd->kind) {
     case GLIB_CMD_PERSPECTIVE:
@@ -509,8 +482,7 @@ static bool check_degenerate(cmdctx *c, glib_cmd *cmd)
 }
 
 /* Scale and Box take one number for all three axes or all three. */
-static bool one_or_three(cmdctx *c, glib_cmd *cmd, int given)
-{
+static bool one_or_three(cmdctx *c, glib_cmd *cmd, int given) {
     if (given == 2) {
         cerr(c, "%s takes 1 number or 3, not 2: %s", c->spec->name, c->usage);
         return false;
@@ -524,8 +496,7 @@ static bool one_or_three(cmdctx *c, glib_cmd *cmd, int given)
 
 /* Commands whose arguments are numbers only. Optional ones get their
  * defaults, so nnum is always the full count (but Scale, see above). */
-static bool h_nums(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_nums(cmdctx *c, glib_cmd *cmd) {
     const cmd_spec *s = c->spec;
     if (c->nwords < s->nreq) {
         missing_args(c, c->nwords);
@@ -550,8 +521,7 @@ static bool h_nums(cmdctx *c, glib_cmd *cmd)
 /* Paths are relative to the file that names them, so a scene and its
  * shaders move together. Backslashes become slashes: glman ran on Windows
  * and student files say textures\water.bmp. */
-static bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
-{
+static bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]) {
     size_t dirlen = 0;
     if (word[0] != '/' && word[0] != '\\') {
         const char *slash = strrchr(c->file, '/');
@@ -573,8 +543,7 @@ static bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
 
 /* In directory dir (a prefix of a path, "" for the current one) finds the
  * entry named like name but for case; into out (of size size). */
-static bool case_entry(const char *dir, const char *name, size_t len, char *out, size_t size)
-{
+static bool case_entry(const char *dir, const char *name, size_t len, char *out, size_t size) {
     DIR *d = opendir(dir[0] ? dir : ".");
     if (!d)
         return false;
@@ -592,8 +561,7 @@ static bool case_entry(const char *dir, const char *name, size_t len, char *out,
 /* glman ran on Windows, where file names ignore case: a project says
  * TEXTURES/Water.BMP for textures/water.bmp. Finds the real name, one
  * path component at a time (a component that exists as written is kept). */
-static bool case_match(const char *path, char alt[GLIB_PATH_MAX])
-{
+static bool case_match(const char *path, char alt[GLIB_PATH_MAX]) {
     size_t n = 0, i = 0;
     if (path[0] == '/')
         alt[n++] = path[i++];
@@ -625,8 +593,7 @@ static bool case_match(const char *path, char alt[GLIB_PATH_MAX])
  * saying it here puts the message next to the line that named it. A name
  * that differs from the file on disk only in case is that file (glman's
  * Windows habit), with a warning naming the real file. */
-static void check_readable(cmdctx *c, char path[GLIB_PATH_MAX])
-{
+static void check_readable(cmdctx *c, char path[GLIB_PATH_MAX]) {
     char why[128];
     struct stat st;
     if (access(path, R_OK) != 0)
@@ -648,8 +615,7 @@ static void check_readable(cmdctx *c, char path[GLIB_PATH_MAX])
 
 /* Resolves and checks a path; false only when it cannot be stored. A file
  * that is missing now keeps its command: it may appear before the render. */
-static bool take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
-{
+static bool take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]) {
     if (!resolve_path(c, word, out))
         return false;
     check_readable(c, out);
@@ -661,16 +627,14 @@ static bool take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX])
 
 static const char path_hint[] = " (quote a path that has spaces: \"my file.png\")";
 
-static bool h_stage(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_stage(cmdctx *c, glib_cmd *cmd) {
     warn_extra(c, 1, path_hint);
     if (c->nwords == 0)
         return true;            /* no file: unset the stage */
     return take_path(c, c->words[0], cmd->path);
 }
 
-static bool h_obj(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_obj(cmdctx *c, glib_cmd *cmd) {
     if (c->nwords < 1) {
         cerr(c, "Obj needs a file: %s", c->usage);
         return false;
@@ -679,8 +643,7 @@ static bool h_obj(cmdctx *c, glib_cmd *cmd)
     return take_path(c, c->words[0], cmd->path);
 }
 
-static bool parse_format(cmdctx *c, const char *w, glib_target_format *f)
-{
+static bool parse_format(cmdctx *c, const char *w, glib_target_format *f) {
     static const struct { const char *word; glib_target_format f; } formats[] = {
         { "float", GLIB_TARGET_RGBA32F }, { "float32", GLIB_TARGET_RGBA32F },
         { "float16", GLIB_TARGET_RGBA16F }, { "half", GLIB_TARGET_RGBA16F },
@@ -694,8 +657,7 @@ static bool parse_format(cmdctx *c, const char *w, glib_target_format *f)
     return false;
 }
 
-static bool parse_sizes(cmdctx *c, glib_cmd *cmd, int count, double max)
-{
+static bool parse_sizes(cmdctx *c, glib_cmd *cmd, int count, double max) {
     static const char *const syms[] = { "w", "h", "d" };
     for (int i = 0; i < count; i++) {
         arg_rule r = { syms[i], NULL, 'i', 1, max, 0 };
@@ -708,8 +670,7 @@ static bool parse_sizes(cmdctx *c, glib_cmd *cmd, int count, double max)
 
 /* A name where a number may stand (a uniform whose value the renderer
  * reads): into dst, with an error if it does not fit. */
-static bool take_uniform_name(cmdctx *c, const char *what, const char *w, char *dst, size_t size)
-{
+static bool take_uniform_name(cmdctx *c, const char *what, const char *w, char *dst, size_t size) {
     if (strlen(w) >= size) {
         cerr(c, "%s: the uniform name '%.40s...' is too long", what, w);
         return false;
@@ -721,8 +682,7 @@ static bool take_uniform_name(cmdctx *c, const char *what, const char *w, char *
 /* The w and h of an empty Texture2D: each a number, or the name of a
  * slider of a Program of this glib (kept in cmd->name and cmd->arg; the
  * renderer sizes the target from the slider's value, num 0 until then). */
-static bool parse_target_size(cmdctx *c, glib_cmd *cmd)
-{
+static bool parse_target_size(cmdctx *c, glib_cmd *cmd) {
     static const char *const syms[] = { "w", "h" };
     char *names[] = { cmd->name, cmd->arg };
     for (int i = 0; i < 2; i++) {
@@ -743,8 +703,7 @@ static bool parse_target_size(cmdctx *c, glib_cmd *cmd)
 
 /* Texture2D unit file | Texture2D unit w h [format]: a size after the
  * unit means an empty render target. */
-static bool h_tex2d(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_tex2d(cmdctx *c, glib_cmd *cmd) {
     if (c->nwords < 2) {
         cerr(c, "Texture2D needs a unit and a file, or a unit and a size: %s", c->usage);
         return false;
@@ -783,8 +742,7 @@ static bool h_tex2d(cmdctx *c, glib_cmd *cmd)
     return c->nwords < 4 || parse_format(c, c->words[3], &cmd->format);
 }
 
-static bool h_tex3d(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_tex3d(cmdctx *c, glib_cmd *cmd) {
     if (c->nwords < 2) {
         cerr(c, "Texture3D needs a unit and a file, or a unit and a size: %s", c->usage);
         return false;
@@ -804,8 +762,7 @@ static bool h_tex3d(cmdctx *c, glib_cmd *cmd)
     return parse_sizes(c, cmd, 3, 2048);
 }
 
-static bool h_cube(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_cube(cmdctx *c, glib_cmd *cmd) {
     if (c->nwords < 7) {
         cerr(c, "CubeMap needs a unit and 6 files, got %d file%s: %s",
              c->nwords ? c->nwords - 1 : 0, c->nwords == 2 ? "" : "s", c->usage);
@@ -822,8 +779,7 @@ static bool h_cube(cmdctx *c, glib_cmd *cmd)
     return true;
 }
 
-static bool h_rtt(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_rtt(cmdctx *c, glib_cmd *cmd) {
     warn_extra(c, GLIB_MAX_UNITS, "");
     int n = c->nwords < GLIB_MAX_UNITS ? c->nwords : GLIB_MAX_UNITS;
     for (int i = 0; i < n; i++) {
@@ -840,16 +796,14 @@ static bool h_rtt(cmdctx *c, glib_cmd *cmd)
 /* Clamp: real files write it (with or without words after it) before a
  * draw; glman took it as a texture wrap state. It is kept as a command
  * that changes nothing, never an error. */
-static bool h_clamp(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_clamp(cmdctx *c, glib_cmd *cmd) {
     (void)c;
     (void)cmd;
     return true;
 }
 
 /* MessageBox text: glman pops the text up; tarn prints it as a note. */
-static bool h_message(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_message(cmdctx *c, glib_cmd *cmd) {
     (void)cmd;
     char *s = skip_space(c->rest);
     size_t n = strlen(s);
@@ -866,8 +820,7 @@ static bool h_message(cmdctx *c, glib_cmd *cmd)
 
 typedef struct keyword { const char *word; const char *canon; double value; } keyword;
 
-static const keyword *find_keyword(cmdctx *c, const keyword *k, size_t n, const char *choices)
-{
+static const keyword *find_keyword(cmdctx *c, const keyword *k, size_t n, const char *choices) {
     if (c->nwords < 1) {
         cerr(c, "%s needs one of %s: %s", c->spec->name, choices, c->usage);
         return NULL;
@@ -880,8 +833,7 @@ static const keyword *find_keyword(cmdctx *c, const keyword *k, size_t n, const 
     return NULL;
 }
 
-static bool h_cull(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_cull(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = {
         { "back", "back", 0 }, { "front", "front", 0 }, { "none", "none", 0 }, { "off", "none", 0 },
     };
@@ -891,8 +843,7 @@ static bool h_cull(cmdctx *c, glib_cmd *cmd)
     return m != NULL;
 }
 
-static bool h_blend(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_blend(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = {
         { "off", "off", 0 }, { "none", "off", 0 }, { "alpha", "alpha", 0 }, { "add", "add", 0 },
         { "premultiplied", "premultiplied", 0 },
@@ -903,8 +854,7 @@ static bool h_blend(cmdctx *c, glib_cmd *cmd)
     return m != NULL;
 }
 
-static bool h_depth(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_depth(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = {
         { "on", "on", 1 }, { "off", "off", 0 }, { "1", "on", 1 }, { "0", "off", 0 },
         { "true", "on", 1 }, { "false", "off", 0 },
@@ -929,8 +879,7 @@ static bool h_depth(cmdctx *c, glib_cmd *cmd)
 
 /* Reads the numbers words[w0..] by rules[0..]; nreq..nmax of them. */
 static bool nums_from(cmdctx *c, glib_cmd *cmd, int w0, const arg_rule *rules, int nreq,
-                      int nmax, const char *what)
-{
+                      int nmax, const char *what) {
     int have = c->nwords - w0;
     if (have < nreq) {
         if (nreq - have == 1 && rules[have].what)
@@ -950,8 +899,7 @@ static bool nums_from(cmdctx *c, glib_cmd *cmd, int w0, const arg_rule *rules, i
 }
 
 /* Sun, Sky, Water, WaterMesh, Wave*: numbers only, nnum as written. */
-static bool h_world_nums(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_world_nums(cmdctx *c, glib_cmd *cmd) {
     const cmd_spec *s = c->spec;
     if (!nums_from(c, cmd, 0, s->args, s->nreq, s->nmax, s->name))
         return false;
@@ -973,8 +921,7 @@ static bool h_world_nums(cmdctx *c, glib_cmd *cmd)
 }
 
 /* The first word is a mode from k; its canonical word goes to cmd->name. */
-static const keyword *mode_word(cmdctx *c, const keyword *k, size_t n, const char *choices)
-{
+static const keyword *mode_word(cmdctx *c, const keyword *k, size_t n, const char *choices) {
     if (c->nwords < 1) {
         cerr(c, "%s needs one of %s: %s", c->spec->name, choices, c->usage);
         return NULL;
@@ -989,8 +936,7 @@ static const keyword *mode_word(cmdctx *c, const keyword *k, size_t n, const cha
 #define SEED_RULE(s) { s, NULL, 'i', 0, 4294967295.0, 0 }
 #define RES_RULE(s) { s, NULL, 'i', 0, 65536, 0 }
 
-static bool h_terrain(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_terrain(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "flat", "flat", 0 }, { "lake", "lake", 1 }, { "slope", "slope", 2 } };
     static const arg_rule rules[] = {
         { "half_size", NULL, 'r', 0, 0, 0 }, { "depth", NULL, 'r', 0, 0, 0 },
@@ -1003,8 +949,7 @@ static bool h_terrain(cmdctx *c, glib_cmd *cmd)
     return nums_from(c, cmd, 1, rules, 0, 5, "Terrain");
 }
 
-static bool h_object(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_object(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "sphere", "sphere", 7 }, { "box", "box", 9 },
                                  { "cylinder", "cylinder", 8 } };
     static const char *const syms[3][9] = {
@@ -1029,8 +974,7 @@ static bool h_object(cmdctx *c, glib_cmd *cmd)
     return nums_from(c, cmd, 1, rules, n, n, what);
 }
 
-static bool h_world(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_world(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule offset_rule = { "offset", "a clip offset", 'r', 0, 0, 0 };
     static const char *const modes[] = { "all", "above", "below" };
     snprintf(cmd->name, sizeof cmd->name, "all");
@@ -1058,8 +1002,7 @@ static bool h_world(cmdctx *c, glib_cmd *cmd)
 }
 
 /* Camera main|mirror|top|light [fov_scale | uniform] */
-static bool h_camera(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_camera(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule scale_rule = { "fov_scale", "a field-of-view scale", 'p', 0, 0, 0 };
     static const char *const kinds[] = { "main", "wide", "mirror", "top", "light" };
     if (c->nwords < 1) {
@@ -1088,8 +1031,7 @@ static bool h_camera(cmdctx *c, glib_cmd *cmd)
 }
 
 /* If [not] NAME: a block the renderer skips while NAME is false */
-static bool h_if(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_if(cmdctx *c, glib_cmd *cmd) {
     int w = 0;
     if (c->nwords >= 1 && strcasecmp(c->words[0], "not") == 0) {
         cmd->num[0] = 1;
@@ -1111,8 +1053,7 @@ static bool h_if(cmdctx *c, glib_cmd *cmd)
 }
 
 /* WaterSurface [points N|uniform] */
-static bool h_water_surface(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_water_surface(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule n_rule = { "N", "a point count per side", 'i', 1, 4096, 0 };
     if (c->nwords == 0)
         return true;
@@ -1138,8 +1079,7 @@ static void append_cut(char *buf, size_t size, size_t *n, const char *s);
 static int edit_distance(const char *a, const char *b);
 
 /* A directory name under packs/: no path separators, no leading dot. */
-static bool is_pack_name(const char *s)
-{
+static bool is_pack_name(const char *s) {
     if (!*s || *s == '.' || strlen(s) >= GLIB_NAME_MAX)
         return false;
     for (; *s; s++)
@@ -1148,16 +1088,14 @@ static bool is_pack_name(const char *s)
     return true;
 }
 
-static int cmp_str(const void *a, const void *b)
-{
+static int cmp_str(const void *a, const void *b) {
     return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
 /* "basic, natural, raymarch" (the directories of dir holding a pack.glib)
  * into out, and the one closest to name into near (or ""). */
 static void list_packs(const char *dir, const char *name, char *out, size_t outlen,
-                       char near[GLIB_NAME_MAX])
-{
+                       char near[GLIB_NAME_MAX]) {
     enum { MAXP = 64 };
     char *names[MAXP];
     int n = 0;
@@ -1192,8 +1130,7 @@ static void list_packs(const char *dir, const char *name, char *out, size_t outl
 
 /* The scene's pack is `name` (or the override): records the command and,
  * with a packs directory, reads the pack's pack.glib in place. */
-static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written)
-{
+static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written) {
     parser *p = c->p;
     const char *name = p->pack_override ? p->pack_override : written;
     if (!is_pack_name(name)) {
@@ -1229,8 +1166,7 @@ static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written)
     include_file(c, path);
 }
 
-static bool h_pack(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_pack(cmdctx *c, glib_cmd *cmd) {
     parser *p = c->p;
     if (c->nwords < 1) {
         cerr(c, "Pack needs a name: %s", c->usage);
@@ -1251,15 +1187,13 @@ static bool h_pack(cmdctx *c, glib_cmd *cmd)
 
 typedef enum { VAL_OK, VAL_BAD, VAL_STOP } val_result;
 
-static const char *bracket_example(char open)
-{
+static const char *bracket_example(char open) {
     return open == '<' ? "<min default max> or <true>"
          : open == '{' ? "{r g b} or {r g b a}" : "[a b c]";
 }
 
 static val_result bracket_numbers(cmdctx *c, char **items, int n, unif_decl *u,
-                                  const char *owner)
-{
+                                  const char *owner) {
     for (int i = 0; i < n; i++)
         if (!read_number(c, items[i], &u->v[i])) {
             cerr(c, "%s: bad number '%.60s' (write e.g. 2, -0.5, .25 or 1e-3)", owner, items[i]);
@@ -1269,8 +1203,7 @@ static val_result bracket_numbers(cmdctx *c, char **items, int n, unif_decl *u,
     return VAL_OK;
 }
 
-static val_result slider_value(cmdctx *c, unif_decl *u, const char *owner)
-{
+static val_result slider_value(cmdctx *c, unif_decl *u, const char *owner) {
     double *v = u->v;
     if (v[0] > v[2]) {
         cerr(c, "%s: slider minimum %g is greater than its maximum %g: write <min default max>",
@@ -1286,8 +1219,7 @@ static val_result slider_value(cmdctx *c, unif_decl *u, const char *owner)
 }
 
 static val_result typed_bracket(cmdctx *c, char open, char **items, int n,
-                                unif_decl *u, const char *owner)
-{
+                                unif_decl *u, const char *owner) {
     /* <true>, <false>, and glman's <0> / <1> (nonzero: checked) */
     if (open == '<' && n == 1 &&
         (is_bool_word(items[0], &u->v[0]) || read_number(c, items[0], &u->v[0]))) {
@@ -1314,8 +1246,7 @@ static val_result typed_bracket(cmdctx *c, char open, char **items, int n,
 
 /* A bracketed value at *sp. An unclosed bracket ends the line: nothing
  * after it can be told apart from the bracket's contents. */
-static val_result read_bracket(cmdctx *c, char **sp, unif_decl *u, const char *owner)
-{
+static val_result read_bracket(cmdctx *c, char **sp, unif_decl *u, const char *owner) {
     char *s = *sp;
     char open = *s, close = closer_of(open);
     char *e = s + 1;
@@ -1337,8 +1268,7 @@ static val_result read_bracket(cmdctx *c, char **sp, unif_decl *u, const char *o
     return typed_bracket(c, open, items, n, u, owner);
 }
 
-static val_result read_value(cmdctx *c, char **sp, unif_decl *u, const char *owner)
-{
+static val_result read_value(cmdctx *c, char **sp, unif_decl *u, const char *owner) {
     char *s = skip_space(*sp);
     if (is_opener(*s)) {
         *sp = s;
@@ -1369,8 +1299,7 @@ static val_result read_value(cmdctx *c, char **sp, unif_decl *u, const char *own
 
 /* Copies a name at *sp (up to whitespace or a bracket, which may follow
  * with no space: uKa<0 1 2>) into out and checks it is a GLSL identifier. */
-static bool take_name(cmdctx *c, char **sp, char out[GLIB_NAME_MAX], const char *what)
-{
+static bool take_name(cmdctx *c, char **sp, char out[GLIB_NAME_MAX], const char *what) {
     char *s = *sp, *e = s;
     while (*e && !is_space((unsigned char)*e) && !is_opener(*e))
         e++;
@@ -1391,8 +1320,7 @@ static bool take_name(cmdctx *c, char **sp, char out[GLIB_NAME_MAX], const char 
     return true;
 }
 
-static void add_uniform(cmdctx *c, glib_cmd *cmd, const unif_decl *u, int *cap)
-{
+static void add_uniform(cmdctx *c, glib_cmd *cmd, const unif_decl *u, int *cap) {
     for (int i = 0; i < cmd->nuniforms; i++)
         if (strcmp(cmd->uniforms[i].name, u->name) == 0) {
             cwarn(c, "Program %s: uniform '%s' is given twice; the later value wins",
@@ -1410,8 +1338,7 @@ static void add_uniform(cmdctx *c, glib_cmd *cmd, const unif_decl *u, int *cap)
     c->p->scene_uniforms++;
 }
 
-static void take_pending_defines(parser *p, glib_cmd *cmd)
-{
+static void take_pending_defines(parser *p, glib_cmd *cmd) {
     cmd->defines = p->pending;
     cmd->ndefines = p->npending;
     p->pending = NULL;
@@ -1420,8 +1347,7 @@ static void take_pending_defines(parser *p, glib_cmd *cmd)
 
 /* Reads one `name value` pair of a Program line into u; false when the
  * rest of the line cannot be read. *ok says whether u is usable. */
-static bool program_uniform(cmdctx *c, glib_cmd *cmd, char **sp, unif_decl *u, bool *ok)
-{
+static bool program_uniform(cmdctx *c, glib_cmd *cmd, char **sp, unif_decl *u, bool *ok) {
     char *s = *sp;
     bool named = !is_opener(*s);
     if (!named)
@@ -1444,8 +1370,7 @@ static bool program_uniform(cmdctx *c, glib_cmd *cmd, char **sp, unif_decl *u, b
     return r != VAL_STOP;
 }
 
-static bool h_program(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_program(cmdctx *c, glib_cmd *cmd) {
     char *s = skip_space(c->rest), *e = s;
     while (*e && !is_space((unsigned char)*e) && !is_opener(*e))
         e++;
@@ -1472,8 +1397,7 @@ static bool h_program(cmdctx *c, glib_cmd *cmd)
     return true;
 }
 
-static void add_pending(cmdctx *c, const unif_decl *u)
-{
+static void add_pending(cmdctx *c, const unif_decl *u) {
     parser *p = c->p;
     for (int i = 0; i < p->npending; i++)
         if (strcmp(p->pending[i].name, u->name) == 0) {
@@ -1487,8 +1411,7 @@ static void add_pending(cmdctx *c, const unif_decl *u)
 
 /* Define NAME [<true>|<false>|value|<min default max>]: a #define the
  * shaders of the next Program are compiled with (a bare name is <true>). */
-static bool h_define(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_define(cmdctx *c, glib_cmd *cmd) {
     unif_decl u = { .file = c->file, .line = c->line, .kind = UNIF_DECL_BOOL,
                        .v = { 1 }, .n = 1 };
     char *s = skip_space(c->rest);
@@ -1526,8 +1449,7 @@ static bool h_define(cmdctx *c, glib_cmd *cmd)
 
 /* Reads a whole regular file of at most LIM_FILE_BYTES into *out (NUL
  * terminated, freed by the caller); on failure *why says why. */
-static bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen)
-{
+static bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen) {
     int fd = open(path, O_RDONLY | O_CLOEXEC);
     if (fd < 0) {
         snprintf(why, whylen, "%s", strerror(errno));
@@ -1572,8 +1494,7 @@ typedef struct reader {
 } reader;
 
 /* The next physical line, without its end (\n, \r\n or a lone \r). */
-static bool next_phys(reader *r, const char **b, size_t *n)
-{
+static bool next_phys(reader *r, const char **b, size_t *n) {
     if (r->pos >= r->len)
         return false;
     size_t i = r->pos;
@@ -1590,8 +1511,7 @@ static bool next_phys(reader *r, const char **b, size_t *n)
 
 /* Where a comment starts in a physical line: `#` or `//` at the start of a
  * word (so a/b//c.png stays a path), not inside "quotes". */
-static size_t comment_start(const char *s, size_t n)
-{
+static size_t comment_start(const char *s, size_t n) {
     bool quoted = false;
     for (size_t i = 0; i < n; i++) {
         if (s[i] == '"')
@@ -1607,8 +1527,7 @@ static size_t comment_start(const char *s, size_t n)
 
 /* Index of the first byte that cannot be in a text line: a control code
  * (NUL, ...) or broken UTF-8; n when there is none. */
-static size_t first_bad_byte(const unsigned char *s, size_t n)
-{
+static size_t first_bad_byte(const unsigned char *s, size_t n) {
     size_t i = 0;
     while (i < n) {
         unsigned c = s[i];
@@ -1638,8 +1557,7 @@ typedef struct logical {
     int bad_byte, bad_col;      /* bad_byte -1: none */
 } logical;
 
-static void append_phys(logical *lg, const char *b, size_t n, bool cont)
-{
+static void append_phys(logical *lg, const char *b, size_t n, bool cont) {
     if (lg->bad_byte < 0) {
         size_t bad = first_bad_byte((const unsigned char *)b, n);
         if (bad < n) {
@@ -1658,8 +1576,7 @@ static void append_phys(logical *lg, const char *b, size_t n, bool cont)
 }
 
 /* Joins physical lines ending in `\` into one logical line, comments cut. */
-static bool next_logical(reader *r, logical *lg)
-{
+static bool next_logical(reader *r, logical *lg) {
     const char *b;
     size_t n;
     lg->n = 0;
@@ -1684,15 +1601,13 @@ static bool next_logical(reader *r, logical *lg)
 /* ------------------------------------------------------------------ */
 /* commands                                                            */
 
-static void free_cmd_parts(glib_cmd *cmd)
-{
+static void free_cmd_parts(glib_cmd *cmd) {
     free(cmd->cube_paths);
     free(cmd->uniforms);
     free(cmd->defines);
 }
 
-static void push_cmd(parser *p, glib_cmd *cmd)
-{
+static void push_cmd(parser *p, glib_cmd *cmd) {
     glib_scene *sc = p->sc;
     if (sc->ncmds >= LIM_CMDS) {
         report(p, DIAG_ERROR, cmd->file, cmd->line,
@@ -1708,8 +1623,7 @@ static void push_cmd(parser *p, glib_cmd *cmd)
 static const cmd_spec *find_spec(const char *name);
 static const char *suggest(const char *name);
 
-static void unknown_command(parser *p, const char *name, char *rest, const char *file, int line)
-{
+static void unknown_command(parser *p, const char *name, char *rest, const char *file, int line) {
     const char *near = suggest(name);
     char hint[96] = "";
     if (near)
@@ -1722,15 +1636,13 @@ static void unknown_command(parser *p, const char *name, char *rest, const char 
 /* glman tolerated brackets around plain numbers and commas between them
  * (`Color [1 0 0]`, `Color 1, 0, 0`): on a command of numbers only they
  * are blanks. */
-static void blank_brackets(char *s)
-{
+static void blank_brackets(char *s) {
     for (; *s; s++)
         if (*s == '[' || *s == ']' || *s == ',')
             *s = ' ';
 }
 
-static void process_line(parser *p, char *s, const char *file, int line)
-{
+static void process_line(parser *p, char *s, const char *file, int line) {
     s = skip_space(s);
     if (!*s)
         return;
@@ -1766,8 +1678,7 @@ static void process_line(parser *p, char *s, const char *file, int line)
 
 /* glman demands the header; we only remind (a header with a trailing
  * comment or odd spacing still counts). */
-static bool is_header(const char *b, size_t n)
-{
+static bool is_header(const char *b, size_t n) {
     static const char want[] = "##openglglib";
     size_t k = 0;
     for (size_t i = 0; i < n && want[k]; i++) {
@@ -1779,8 +1690,7 @@ static bool is_header(const char *b, size_t n)
     return want[k] == '\0';
 }
 
-static bool all_space(const char *s, size_t n)
-{
+static bool all_space(const char *s, size_t n) {
     for (size_t i = 0; i < n; i++)
         if (!is_space((unsigned char)s[i]) && s[i] != '\n')
             return false;
@@ -1788,8 +1698,7 @@ static bool all_space(const char *s, size_t n)
 }
 
 /* The top file must say what it is; an included file need not. */
-static bool check_top(parser *p, const reader *r, const char *file)
-{
+static bool check_top(parser *p, const reader *r, const char *file) {
     if (all_space(r->text + r->pos, r->len - r->pos)) {
         report(p, DIAG_ERROR, file, 1, "empty file: expected '##OpenGL GLIB' and commands");
         return false;
@@ -1806,8 +1715,7 @@ static bool check_top(parser *p, const reader *r, const char *file)
 
 /* A pack chosen from outside for a scene that names none: as if the top
  * file ended with `Pack name` (at its line 0). */
-static void override_pack_at_end(parser *p, const char *file)
-{
+static void override_pack_at_end(parser *p, const char *file) {
     cmdctx c = { .p = p, .file = file, .line = 0, .spec = find_spec("Pack") };
     build_usage(c.spec, c.usage, sizeof c.usage);
     glib_cmd cmd;
@@ -1817,8 +1725,7 @@ static void override_pack_at_end(parser *p, const char *file)
     use_pack(&c, &cmd, p->pack_override);
 }
 
-static void parse_text(parser *p, const char *text, size_t len, const char *file, bool top)
-{
+static void parse_text(parser *p, const char *text, size_t len, const char *file, bool top) {
     reader r = { text ? text : "", text ? len : 0, 0, 0 };
     if (r.len >= 3 && memcmp(r.text, "\xEF\xBB\xBF", 3) == 0)
         r.pos = 3;              /* a UTF-8 byte order mark from a Windows editor */
@@ -1851,8 +1758,7 @@ static void parse_text(parser *p, const char *text, size_t len, const char *file
 
 /* Reads text as the file `name` with the include stack pushed; takes canon. */
 static void parse_nested(parser *p, const char *text, size_t len, const char *name,
-                         char *canon, bool top)
-{
+                         char *canon, bool top) {
     p->stack_name[p->depth] = name;
     p->stack_canon[p->depth] = canon;
     p->depth++;
@@ -1862,15 +1768,13 @@ static void parse_nested(parser *p, const char *text, size_t len, const char *na
 }
 
 /* A path that names the same file however it is spelled, for cycles. */
-static char *canonical(const char *path)
-{
+static char *canonical(const char *path) {
     char *real = realpath(path, NULL);
     return real ? real : xstrdup(path);
 }
 
 /* Appends s to buf (size bytes, *n used), cutting what does not fit. */
-static void append_cut(char *buf, size_t size, size_t *n, const char *s)
-{
+static void append_cut(char *buf, size_t size, size_t *n, const char *s) {
     size_t l = strlen(s);
     if (*n + l >= size)
         l = size - 1 - *n;
@@ -1879,8 +1783,7 @@ static void append_cut(char *buf, size_t size, size_t *n, const char *s)
     buf[*n] = '\0';
 }
 
-static void report_cycle(cmdctx *c, int at, const char *path)
-{
+static void report_cycle(cmdctx *c, int at, const char *path) {
     char chain[256] = "";
     size_t n = 0;
     for (int i = at; i < c->p->depth; i++) {
@@ -1892,8 +1795,7 @@ static void report_cycle(cmdctx *c, int at, const char *path)
 }
 
 /* Reads the file at path in place of the current line (Include, Pack). */
-static void include_file(cmdctx *c, const char *path)
-{
+static void include_file(cmdctx *c, const char *path) {
     parser *p = c->p;
     char why[128], *buf;
     size_t len;
@@ -1934,8 +1836,7 @@ static void include_file(cmdctx *c, const char *path)
 }
 
 /* Include file: its commands are read in place of this line. */
-static bool h_include(cmdctx *c, glib_cmd *cmd)
-{
+static bool h_include(cmdctx *c, glib_cmd *cmd) {
     char path[GLIB_PATH_MAX];
     if (c->nwords < 1) {
         cerr(c, "Include needs a file: %s", c->usage);
@@ -1950,8 +1851,7 @@ static bool h_include(cmdctx *c, glib_cmd *cmd)
 /* ------------------------------------------------------------------ */
 /* the public functions                                                */
 
-static void finish(parser *p)
-{
+static void finish(parser *p) {
     glib_scene *sc = p->sc;
     for (int i = 0; i < p->npending; i++)
         report(p, DIAG_WARNING, p->pending[i].file, p->pending[i].line,
@@ -1970,16 +1870,14 @@ static void finish(parser *p)
     }
 }
 
-static glib_scene *new_scene(parser *p)
-{
+static glib_scene *new_scene(parser *p) {
     memset(p, 0, sizeof *p);
     p->sc = xrealloc(NULL, sizeof *p->sc);
     memset(p->sc, 0, sizeof *p->sc);
     return p->sc;
 }
 
-glib_scene *glib_parse(const char *text, size_t len, const char *virtual_path)
-{
+glib_scene *glib_parse(const char *text, size_t len, const char *virtual_path) {
     parser p;
     glib_scene *sc = new_scene(&p);
     const char *name = add_file(&p, virtual_path ? virtual_path : "<memory>");
@@ -1988,13 +1886,11 @@ glib_scene *glib_parse(const char *text, size_t len, const char *virtual_path)
     return sc;
 }
 
-glib_scene *glib_load(const char *path)
-{
+glib_scene *glib_load(const char *path) {
     return glib_load_opts(path, NULL);
 }
 
-glib_scene *glib_load_opts(const char *path, const glib_options *opt)
-{
+glib_scene *glib_load_opts(const char *path, const glib_options *opt) {
     parser p;
     glib_scene *sc = new_scene(&p);
     if (opt) {
@@ -2014,8 +1910,7 @@ glib_scene *glib_load_opts(const char *path, const glib_options *opt)
     return sc;
 }
 
-void glib_free(glib_scene *scene)
-{
+void glib_free(glib_scene *scene) {
     if (!scene)
         return;
     for (int i = 0; i < scene->ncmds; i++)
@@ -2028,8 +1923,7 @@ void glib_free(glib_scene *scene)
     free(scene);
 }
 
-void glib_print_diags(const glib_scene *scene, void *stream)
-{
+void glib_print_diags(const glib_scene *scene, void *stream) {
     diag_list l = { .d = scene ? scene->diags : NULL, .n = scene ? scene->ndiags : 0 };
     diag_print(&l, stream);
 }
@@ -2070,8 +1964,7 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_CLAMP] = "Clamp",
 };
 
-const char *glib_cmd_name(glib_cmd_kind kind)
-{
+const char *glib_cmd_name(glib_cmd_kind kind) {
     if ((int)kind < 0 || kind >= GLIB_CMD_KIND_COUNT || !kind_names[kind])
         return "?";
     return kind_names[kind];
@@ -2225,8 +2118,7 @@ static const cmd_spec specs[] = {
 
 #define NSPECS (sizeof specs / sizeof specs[0])
 
-bool glib_cmd_describes_world(glib_cmd_kind kind)
-{
+bool glib_cmd_describes_world(glib_cmd_kind kind) {
     /* every spelling of a kind shares the row's flag */
     for (size_t i = 0; i < NSPECS; i++)
         if (specs[i].kind == kind)
@@ -2234,8 +2126,7 @@ bool glib_cmd_describes_world(glib_cmd_kind kind)
     return false;
 }
 
-static const cmd_spec *find_spec(const char *name)
-{
+static const cmd_spec *find_spec(const char *name) {
     for (size_t i = 0; i < NSPECS; i++)
         if (strcasecmp(specs[i].name, name) == 0)
             return &specs[i];
@@ -2244,8 +2135,7 @@ static const cmd_spec *find_spec(const char *name)
 
 /* Case-insensitive edit distance, for "did you mean"; long words don't
  * get a suggestion. */
-static int edit_distance(const char *a, const char *b)
-{
+static int edit_distance(const char *a, const char *b) {
     enum { MAXW = 32 };
     size_t la = strlen(a), lb = strlen(b);
     if (la >= MAXW || lb >= MAXW)
@@ -2265,8 +2155,7 @@ static int edit_distance(const char *a, const char *b)
     return d[la][lb];
 }
 
-static const char *suggest(const char *name)
-{
+static const char *suggest(const char *name) {
     const char *best = NULL;
     int best_d = 3;             /* at most 2 edits */
     for (size_t i = 0; i < NSPECS; i++) {
@@ -2279,8 +2168,7 @@ static const char *suggest(const char *name)
     return best;
 }
 
-bool glib_uniform_consumed(const glib_scene *scene, const char *name, bool *is_count)
-{
+bool glib_uniform_consumed(const glib_scene *scene, const char *name, bool *is_count) {
     for (int i = 0; scene && i < scene->ncmds; i++) {
         const glib_cmd *c = &scene->cmds[i];
         bool count = c->kind == GLIB_CMD_WATER_SURFACE || c->kind == GLIB_CMD_TEXTURE2D_EMPTY;

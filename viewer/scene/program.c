@@ -3,13 +3,11 @@
 
 #include <string.h>
 
-void program_stages_init(program_stages *st)
-{
+void program_stages_init(program_stages *st) {
     memset(st, 0, sizeof *st);
 }
 
-shader_stage program_stage_of(glib_cmd_kind kind)
-{
+shader_stage program_stage_of(glib_cmd_kind kind) {
     switch (kind) {
     case GLIB_CMD_VERTEX: return SHADER_VERTEX;
     case GLIB_CMD_TESS_CONTROL: return SHADER_TESS_CONTROL;
@@ -20,8 +18,7 @@ shader_stage program_stage_of(glib_cmd_kind kind)
     }
 }
 
-void program_stages_step(program_stages *st, const glib_cmd *c)
-{
+void program_stages_step(program_stages *st, const glib_cmd *c) {
     if (c->kind == GLIB_CMD_GSTAP) {
         st->gstap = true;
         return;
@@ -31,8 +28,7 @@ void program_stages_step(program_stages *st, const glib_cmd *c)
         st->stage[s] = c->path[0] ? c : NULL;   /* `Vertex` alone unsets the stage */
 }
 
-int program_stage_list(const program_stages *st, shader_stage out[SHADER_STAGE_COUNT])
-{
+int program_stage_list(const program_stages *st, shader_stage out[SHADER_STAGE_COUNT]) {
     int n = 0;
     for (int s = 0; s < SHADER_STAGE_COUNT; s++)
         if (st->stage[s])
@@ -40,14 +36,12 @@ int program_stage_list(const program_stages *st, shader_stage out[SHADER_STAGE_C
     return n;
 }
 
-const char *program_stage_path(const program_stages *st, shader_stage s)
-{
+const char *program_stage_path(const program_stages *st, shader_stage s) {
     return (unsigned)s < SHADER_STAGE_COUNT && st->stage[s] ? st->stage[s]->path : "";
 }
 
 shader_src_desc program_stage_desc(const program_stages *st, shader_stage s, const shader_define *defines,
-                                   int ndefines, const char *const *include_dirs, int ninclude_dirs)
-{
+                                   int ndefines, const char *const *include_dirs, int ninclude_dirs) {
     shader_src_desc d = { .path = program_stage_path(st, s), .stage = s, .gstap = st->gstap,
                           .defines = defines, .ndefines = ndefines, .include_dirs = include_dirs,
                           .ninclude_dirs = ninclude_dirs };

@@ -35,8 +35,7 @@ typedef struct ctx {
 } ctx;
 
 __attribute__((format(printf, 3, 4)))
-static void msg(ctx *x, const glib_cmd *c, const char *fmt, ...)
-{
+static void msg(ctx *x, const glib_cmd *c, const char *fmt, ...) {
     x->nmsgs++;
     if (!x->err || x->errlen <= 0 || x->used + 1 >= (size_t)x->errlen)
         return;
@@ -60,8 +59,7 @@ static void msg(ctx *x, const glib_cmd *c, const char *fmt, ...)
 }
 
 /* r g b that may not be negative; an explicit 0 0 0 stays zero. */
-static void set_rgb(ctx *x, const glib_cmd *c, const double *v, double out[3], const char *what)
-{
+static void set_rgb(ctx *x, const glib_cmd *c, const double *v, double out[3], const char *what) {
     bool neg = false;
     for (int i = 0; i < 3; i++) {
         out[i] = v[i] < 0 ? 0 : v[i];
@@ -74,8 +72,7 @@ static void set_rgb(ctx *x, const glib_cmd *c, const double *v, double out[3], c
         out[0] = out[1] = out[2] = SCENE_ZERO;
 }
 
-static int clamp_res(ctx *x, const glib_cmd *c, double v, const char *what)
-{
+static int clamp_res(ctx *x, const glib_cmd *c, double v, const char *what) {
     if (v >= MESH_RES_MIN && v <= MESH_RES_MAX)
         return (int)v;
     int r = v < MESH_RES_MIN ? MESH_RES_MIN : MESH_RES_MAX;
@@ -83,8 +80,7 @@ static int clamp_res(ctx *x, const glib_cmd *c, double v, const char *what)
     return r;
 }
 
-static void do_sun(ctx *x, const glib_cmd *c, ref_world_desc *w)
-{
+static void do_sun(ctx *x, const glib_cmd *c, ref_world_desc *w) {
     memcpy(w->sun_dir, c->num, sizeof w->sun_dir);   /* the parser refused zero */
     if (c->nnum >= 6)
         set_rgb(x, c, c->num + 3, w->sun_irradiance, "the irradiance");
@@ -92,8 +88,7 @@ static void do_sun(ctx *x, const glib_cmd *c, ref_world_desc *w)
         memset(w->sun_irradiance, 0, sizeof w->sun_irradiance);
 }
 
-static void do_water(ctx *x, const glib_cmd *c, ref_world_desc *w)
-{
+static void do_water(ctx *x, const glib_cmd *c, ref_world_desc *w) {
     w->water_level = c->num[0];
     w->ior = 0;
     if (c->nnum >= 2) {
@@ -108,8 +103,7 @@ static void do_water(ctx *x, const glib_cmd *c, ref_world_desc *w)
         set_rgb(x, c, c->num + 2, w->absorption, "the absorption");
 }
 
-static void do_terrain(ctx *x, const glib_cmd *c, ref_world_desc *w)
-{
+static void do_terrain(ctx *x, const glib_cmd *c, ref_world_desc *w) {
     const double *n = c->num;
     w->terrain = strcmp(c->name, "lake") == 0 ? REF_TERRAIN_LAKE
                : strcmp(c->name, "slope") == 0 ? REF_TERRAIN_SLOPE : REF_TERRAIN_FLAT;
@@ -156,8 +150,7 @@ static void do_terrain(ctx *x, const glib_cmd *c, ref_world_desc *w)
         w->terrain_res = clamp_res(x, c, n[4], "res");
 }
 
-static void do_wave(ctx *x, const glib_cmd *c, ref_waves_desc *wd)
-{
+static void do_wave(ctx *x, const glib_cmd *c, ref_waves_desc *wd) {
     bool sine = c->kind == GLIB_CMD_WAVE_SINE;
     int *count = sine ? &wd->sine_count : &wd->gerstner_count;
     if (*count >= REF_WAVES_MAX) {
@@ -185,8 +178,7 @@ static void do_wave(ctx *x, const glib_cmd *c, ref_waves_desc *wd)
     (sine ? wd->sine : wd->gerstner)[(*count)++] = v;
 }
 
-static void do_steepness(ctx *x, const glib_cmd *c, ref_waves_desc *wd)
-{
+static void do_steepness(ctx *x, const glib_cmd *c, ref_waves_desc *wd) {
     double q = c->num[0];
     if (q < 0) {
         msg(x, c, "Q %g is negative; using 0 (the Gerstner waves become sines)", q);
@@ -198,8 +190,7 @@ static void do_steepness(ctx *x, const glib_cmd *c, ref_waves_desc *wd)
     wd->steepness = q;
 }
 
-static void do_noise(ctx *x, const glib_cmd *c, ref_noise_desc *nd)
-{
+static void do_noise(ctx *x, const glib_cmd *c, ref_noise_desc *nd) {
     const double *n = c->num;
     memset(nd, 0, sizeof *nd);
     nd->amplitude = n[0];
@@ -244,8 +235,7 @@ static void do_noise(ctx *x, const glib_cmd *c, ref_noise_desc *nd)
 }
 
 /* A size that must be positive: |v| for a negative one; false for 0. */
-static bool positive(ctx *x, const glib_cmd *c, double *v, const char *what)
-{
+static bool positive(ctx *x, const glib_cmd *c, double *v, const char *what) {
     if (*v > 0)
         return true;
     if (*v == 0) {
@@ -257,8 +247,7 @@ static bool positive(ctx *x, const glib_cmd *c, double *v, const char *what)
     return true;
 }
 
-static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_told)
-{
+static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_told) {
     if (w->nobjects >= REF_MAX_OBJECTS) {
         if (!*full_told)
             msg(x, c, "more than %d objects; this one and the ones after it are dropped",
@@ -309,8 +298,7 @@ static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_t
 /* WindowSize's range, as docs/glib.md gives it (the parser's too). */
 enum { WINDOW_MIN = 1, WINDOW_MAX = 16384 };
 
-static void camera_default(scene_camera *cam)
-{
+static void camera_default(scene_camera *cam) {
     /* glman's defaults: a 600x600 window, and with no LookAt OpenGL's own
      * view (the eye at the origin looking down -Z; glman files push the
      * scene back with Translate 0 0 -4) */
@@ -324,8 +312,7 @@ static void camera_default(scene_camera *cam)
     cam->height = 600;
 }
 
-static void camera_cmd(scene_camera *cm, const glib_cmd *c)
-{
+static void camera_cmd(scene_camera *cm, const glib_cmd *c) {
     const double *n = c->num;
     switch (c->kind) {
     case GLIB_CMD_WINDOW_SIZE:
@@ -361,16 +348,14 @@ static void camera_cmd(scene_camera *cm, const glib_cmd *c)
     }
 }
 
-void scene_camera_from_glib(const glib_scene *g, scene_camera *cam)
-{
+void scene_camera_from_glib(const glib_scene *g, scene_camera *cam) {
     camera_default(cam);
     for (int i = 0; g && i < g->ncmds; i++)
         camera_cmd(cam, &g->cmds[i]);
 }
 
 bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *cam,
-                     bool *has_world, char *err, int errlen)
-{
+                     bool *has_world, char *err, int errlen) {
     ctx x = { .err = err, .errlen = errlen };
     if (err && errlen > 0)
         err[0] = '\0';
@@ -410,8 +395,7 @@ bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *c
 }
 
 /* The parser's errors, as `file:line: error: message` lines, as many as fit. */
-static void parser_errors(const glib_scene *g, char *err, int errlen)
-{
+static void parser_errors(const glib_scene *g, char *err, int errlen) {
     size_t used = 0;
     for (int i = 0; i < g->ndiags && used + 1 < (size_t)errlen; i++) {
         const diag *d = &g->diags[i];
@@ -430,8 +414,7 @@ static void parser_errors(const glib_scene *g, char *err, int errlen)
 }
 
 bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,
-                scene_camera *cam, bool *has_world, char *err, int errlen)
-{
+                scene_camera *cam, bool *has_world, char *err, int errlen) {
     char packs[4096];
     snprintf(packs, sizeof packs, "%s/packs", tarn_root());
     glib_options opt = { .packs_dir = packs, .pack_override = pack_override };
