@@ -140,6 +140,11 @@ static void make_terrain(const ref_world *w, ref_terrain *t) {
         t->ymax = s->water_level + s->shore_height + det + 1e-9;
         break;
     }
+    case REF_TERRAIN_POOL:   /* the floor to the deck */
+        t->bounded = 1;
+        t->ymin = s->water_level - s->depth - 1e-9 * (1.0 + fabs(s->depth));
+        t->ymax = s->water_level + s->shore_height + 1e-9 * (1.0 + fabs(s->shore_height));
+        break;
     case REF_TERRAIN_SLOPE:
         break;   /* a plane: unbounded */
     default: {   /* a plane: pad the slab so a ray is clipped to just above it */

@@ -8,6 +8,12 @@
 #include "vec3.h"
 
 #define PI 3.14159265358979323846
+/* the pool (world.frag has the same numbers): its walls between these
+ * radii (units of the half size), tiles and grout in the lake's metres */
+#define POOL_WALL_IN 0.70
+#define POOL_WALL_OUT 0.85
+#define POOL_TILE 0.5
+#define POOL_GROUT 0.04
 
 static double smoothstep(double e0, double e1, double x) {
     double t = (x - e0) / (e1 - e0);
@@ -80,6 +86,10 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
     double r_scale = 1.3 / s->half_size;
     bound += (s->depth * 1.5 / 0.6 + s->shore_height * 1.5 / 0.3) * r_scale;
     if (s->terrain == REF_TERRAIN_SLOPE) bound = fabs(s->slope);
+    /* the pool's walls: (depth + rim) * max smoothstep' over the wall's
+     * width, |grad r| <= 1 / half_size (pool_radius) */
+    if (s->terrain == REF_TERRAIN_POOL)
+        bound = (s->depth + s->shore_height) * 1.5 / (POOL_WALL_OUT - POOL_WALL_IN) / s->half_size;
     if (s->terrain == REF_TERRAIN_FLAT) bound = 0;
     w->terrain_slope_bound = bound;
 }
@@ -129,9 +139,34 @@ static double lake_height(const ref_world *w, double x, double z, double grad[2]
     return h;
 }
 
+/* The pool: r = (ex^4 + ez^4)^(1/4), a rounded square in units of the half
+ * size, so the floor is flat (r < POOL_WALL_IN), the walls rise with a
+ * smoothstep to the deck at level + shore_height (r > POOL_WALL_OUT), and the
+ * whole is C1 (r is C1 away from 0, and the floor is flat there). Its
+ * gradient (ex^3, ez^3) / (r^3 hs) has length <= 1 / hs. */
+static double pool_height(const ref_world *w, double x, double z, double grad[2]) {
+    const ref_world_desc *s = &w->d;
+    double hs = s->half_size, ex = x / hs, ez = z / hs;
+    double r4 = ex * ex * ex * ex + ez * ez * ez * ez, r = sqrt(sqrt(r4));
+    double span = s->depth + s->shore_height;
+    double h = s->water_level - s->depth + span * smoothstep(POOL_WALL_IN, POOL_WALL_OUT, r);
+    if (grad) {
+        double dh = span * smoothstep_d(POOL_WALL_IN, POOL_WALL_OUT, r);
+        double r3 = r * r * r;
+        if (dh != 0 && r3 > 1e-30) {
+            grad[0] = dh * ex * ex * ex / (r3 * hs);
+            grad[1] = dh * ez * ez * ez / (r3 * hs);
+        } else {
+            grad[0] = grad[1] = 0;
+        }
+    }
+    return h;
+}
+
 double ref_terrain_height(const ref_world *w, double x, double z) {
     switch (w->d.terrain) {
     case REF_TERRAIN_LAKE: return lake_height(w, x, z, NULL);
+    case REF_TERRAIN_POOL: return pool_height(w, x, z, NULL);
     case REF_TERRAIN_SLOPE: return w->d.water_level - w->d.depth + w->d.slope * (x + w->d.half_size);
     default: return w->d.water_level - w->d.depth;
     }
@@ -140,6 +175,7 @@ double ref_terrain_height(const ref_world *w, double x, double z) {
 void ref_terrain_gradient(const ref_world *w, double x, double z, double grad[2]) {
     switch (w->d.terrain) {
     case REF_TERRAIN_LAKE: lake_height(w, x, z, grad); break;
+    case REF_TERRAIN_POOL: pool_height(w, x, z, grad); break;
     case REF_TERRAIN_SLOPE: grad[0] = w->d.slope; grad[1] = 0; break;
     default: grad[0] = grad[1] = 0; break;
     }
@@ -158,7 +194,36 @@ static void mix3(const double a[3], const double b[3], double t, double out[3]) 
     for (int i = 0; i < 3; i++) out[i] = a[i] + (b[i] - a[i]) * t;
 }
 
+/* The pool's tiles: light and dark squares of POOL_TILE m (lake units) in a
+ * checker, with dark grout lines POOL_GROUT wide, under the deck; the deck
+ * plain stone. Strong contrast at the scale of a refraction hit's error (cm
+ * to dm), so an error in where the refracted ray meets the floor becomes an
+ * error in colour. The edges are hard: the GL world (world.frag, the same
+ * formula in float) and the reference both sample one point per pixel
+ * centre, so a pixel's colour flips only where the two points straddle an
+ * edge; the comparison masks nothing there. */
+static void pool_albedo(const ref_world *w, double x, double z, double rgb[3]) {
+    static const double light[3] = { 0.80, 0.84, 0.86 }, dark[3] = { 0.08, 0.22, 0.42 },
+                        grout[3] = { 0.05, 0.05, 0.06 }, deck[3] = { 0.55, 0.52, 0.47 };
+    double unit = w->d.half_size / REF_WORLD_UNIT;
+    const double *c;
+    if (ref_terrain_height(w, x, z) > w->d.water_level + 0.5 * w->d.shore_height) {
+        c = deck;
+    } else {
+        double u = x / (unit * POOL_TILE), v = z / (unit * POOL_TILE);
+        double fu = u - floor(u), fv = v - floor(v), g = 0.5 * POOL_GROUT / POOL_TILE;
+        double sum = floor(u) + floor(v), odd = sum - 2.0 * floor(0.5 * sum);
+        if (fu < g || fu > 1.0 - g || fv < g || fv > 1.0 - g) c = grout;
+        else c = odd > 0.5 ? dark : light;
+    }
+    for (int i = 0; i < 3; i++) rgb[i] = c[i];
+}
+
 void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]) {
+    if (w->d.terrain == REF_TERRAIN_POOL) {
+        pool_albedo(w, x, z, rgb);
+        return;
+    }
     static const double silt[3] = { 0.30, 0.28, 0.20 }, sand[3] = { 0.76, 0.68, 0.50 },
                         grass[3] = { 0.22, 0.40, 0.14 }, rock[3] = { 0.42, 0.40, 0.37 };
     /* heights and the pattern in the lake's units (half size 12), so a

@@ -44,7 +44,8 @@ typedef struct ref_object {
 typedef enum ref_terrain_kind {
     REF_TERRAIN_FLAT = 0,          /* y = -depth everywhere (tests) */
     REF_TERRAIN_LAKE,              /* a bowl with a shore rising above the water */
-    REF_TERRAIN_SLOPE              /* a plane rising along +x (tests, the shore) */
+    REF_TERRAIN_SLOPE,             /* a plane rising along +x (tests, the shore) */
+    REF_TERRAIN_POOL               /* a tiled pool: a flat floor, walls up to a deck */
 } ref_terrain_kind;
 
 typedef struct ref_world_desc {
@@ -63,7 +64,7 @@ typedef struct ref_world_desc {
     ref_terrain_kind terrain;
     double half_size;              /* 0: 12 */
     double depth;                  /* deepest point below the water; 0: 3 */
-    double shore_height;           /* rim above the water; 0: 0.6 */
+    double shore_height;           /* rim (lake shore, pool deck) above the water; 0: 0.6 */
     double slope;                  /* REF_TERRAIN_SLOPE: dy/dx; 0: 0.25 */
     unsigned seed;                 /* detail of the lake's bottom */
     int terrain_res;               /* GL mesh / albedo texture cells per side; 0: 256 */
@@ -93,7 +94,8 @@ void ref_terrain_normal_at(const ref_world *w, double x, double z, double n[3]);
 
 /* Ground colour (linear RGB reflectance) by height over the water, depth
  * and slope: silt in the deep, sand at the shore, grass above, rock on
- * steep slopes. */
+ * steep slopes. The pool: light and dark tiles of 0.5 m (in the lake's
+ * units) with dark grout under its rim, a plain stone deck above. */
 void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]);
 
 /* Sky radiance along unit direction dir (linear RGB): a zenith-horizon

@@ -1208,8 +1208,8 @@ static void test_world_errors(void) {
     CHECK(has_diag(s, f, 5, DIAG_ERROR, "Water: the absorption needs 3 numbers (ar ag ab), got 1: Water level [ior [ar ag ab]]"));
     CHECK(has_diag(s, f, 6, DIAG_ERROR, "Water needs a water level"));
     CHECK(has_diag(s, f, 7, DIAG_ERROR, "WaterMesh: res must be a whole number from 0 to 65536, not '1.5'"));
-    CHECK(has_diag(s, f, 8, DIAG_ERROR, "Terrain needs one of flat, lake or slope"));
-    CHECK(has_diag(s, f, 9, DIAG_ERROR, "Terrain: unknown kind 'pond': write flat, lake or slope"));
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "Terrain needs one of flat, lake, slope or pool"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "Terrain: unknown kind 'pond': write flat, lake, slope or pool"));
     CHECK(has_diag(s, f, 10, DIAG_ERROR, "Terrain: bad number 'x' for depth"));
     CHECK(has_diag(s, f, 11, DIAG_ERROR, "Terrain: seed must be a whole number from 0 to 4294967295, not '-1'"));
     CHECK(has_diag(s, f, 12, DIAG_ERROR, "WaveSine needs an amplitude: WaveSine angle_deg wavelength amplitude [speed [phase]]"));

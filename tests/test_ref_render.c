@@ -395,6 +395,58 @@ static void test_sky_exact(void) {
     ref_render_free(&r);
 }
 
+/* Luminance of an albedo. */
+static double luma(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+/* The spread of the terrain's albedo (luminance, max - min) over one tile
+ * period (1 m: a light and a dark tile) on the floor near (x0, z0). */
+static double albedo_spread(const ref_world *w, double x0, double z0) {
+    double lo = 1e9, hi = -1e9;
+    for (int j = 0; j < 40; j++)
+        for (int i = 0; i < 40; i++) {
+            double c[3];
+            ref_terrain_albedo(w, x0 + (i + 0.5) / 40.0, z0 + (j + 0.5) / 40.0, c);
+            lo = fmin(lo, luma(c));
+            hi = fmax(hi, luma(c));
+        }
+    return hi - lo;
+}
+
+/* The pool (scenes/pool.glib's world) exists so that an error in the
+ * refraction hit shows as a colour error: its floor must have strong
+ * contrast over a tile period where the lake's has almost none; its floor
+ * is flat at -depth, its deck at +shore, its gradient is the height's and
+ * within the bound the tracer marches with. */
+static void test_pool_contrast(void) {
+    ref_world_desc d;
+    memset(&d, 0, sizeof d);
+    d.terrain = REF_TERRAIN_POOL;
+    d.depth = 1.5;
+    d.shore_height = 0.4;
+    ref_world pool, lake;
+    ref_world_init(&pool, &d);
+    lake_world(&lake);
+    double sp = albedo_spread(&pool, -2.3, 1.1), sl = albedo_spread(&lake, -2.3, 1.1);
+    fprintf(stderr, "  albedo spread over 1 m: pool %.3f, lake %.3f\n", sp, sl);
+    CHECK_MSG(sp > 0.4, "pool albedo spread %.3f (want > 0.4)", sp);
+    CHECK_MSG(sl < 0.1, "lake albedo spread %.3f (the pool is the high-contrast one)", sl);
+    CHECK_NEAR(ref_terrain_height(&pool, 0.3, -2.0), -1.5, 1e-12);
+    CHECK_NEAR(ref_terrain_height(&pool, 11.0, -11.0), 0.4, 1e-12);
+    double worst = 0, gmax = 0;
+    for (int k = 0; k < 2000; k++) {
+        double x = -12 + 24 * ((k * 37) % 2000) / 2000.0, z = -12 + 24 * ((k * 91) % 2000) / 2000.0;
+        double g[2], e = 1e-6;
+        ref_terrain_gradient(&pool, x, z, g);
+        double fx = (ref_terrain_height(&pool, x + e, z) - ref_terrain_height(&pool, x - e, z)) / (2 * e);
+        double fz = (ref_terrain_height(&pool, x, z + e) - ref_terrain_height(&pool, x, z - e)) / (2 * e);
+        worst = fmax(worst, fmax(fabs(fx - g[0]), fabs(fz - g[1])));
+        gmax = fmax(gmax, hypot(g[0], g[1]));
+    }
+    CHECK_MSG(worst < 1e-5, "pool gradient off its height's by %g", worst);
+    CHECK_MSG(gmax > 0.5 && gmax <= pool.terrain_slope_bound,
+              "pool slope %g against its bound %g", gmax, pool.terrain_slope_bound);
+}
+
 static void test_bad_input(void) {
     ref_world w;
     flat_world(&w, 1.0);
@@ -428,6 +480,7 @@ int main(void) {
     RUN(test_lake_finite);
     RUN(test_lake_snell);
     RUN(test_sky_exact);
+    RUN(test_pool_contrast);
     RUN(test_bad_input);
     return check_summary();
 }

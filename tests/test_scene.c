@@ -363,6 +363,11 @@ static void test_scene_load(void) {
     bool ok = scene_load(TARN_SOURCE_DIR "/scenes/lake.glib", NULL, &d, &cam, &has, err, sizeof err);
     CHECK_MSG(ok, "%s", err);
     CHECK(has && d.terrain == REF_TERRAIN_LAKE && d.nobjects == 7 && cam.width == 960);
+    /* the pool: Terrain pool maps to REF_TERRAIN_POOL, its third number the deck's height */
+    ok = scene_load(TARN_SOURCE_DIR "/scenes/pool.glib", NULL, &d, &cam, &has, err, sizeof err);
+    CHECK_MSG(ok && err[0] == '\0', "%s", err);
+    CHECK(has && d.terrain == REF_TERRAIN_POOL && d.half_size == 12 && d.depth == 1.5 &&
+          d.shore_height == 0.4 && d.nobjects == 0 && cam.width == 960);
     /* a pack that is not there: the parser's error, and still the world */
     ok = scene_load(TARN_SOURCE_DIR "/scenes/lake.glib", "no_such_pack", &d, &cam, &has, err, sizeof err);
     CHECK(!ok);

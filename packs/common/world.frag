@@ -9,7 +9,7 @@ uniform vec3 uWorldAlbedo;      // objects: one albedo each
 uniform vec3 uCameraPos;        // the eye of the current camera
 uniform bool uWorldEyePath;     // drawn to the screen: attenuate along the eye's path in water
 // The terrain's model, reference/ref_scene.c's (lake_height, ref_terrain_albedo):
-uniform int uTerrainKind;       // REF_TERRAIN_*: 0 flat, 1 lake, 2 slope
+uniform int uTerrainKind;       // REF_TERRAIN_*: 0 flat, 1 lake, 2 slope, 3 pool
 uniform vec4 uTerrainShape;     // depth, shore height, slope, -
 uniform vec4 uTerrainDetail[6]; // the lake's detail: k.x, k.z, amplitude, phase (REF_TERRAIN_DETAIL)
 uniform float uTerrainHalfSize;
@@ -47,6 +47,13 @@ float refSmoothD(float e0, float e1, float x) {
 vec3 terrainHeightGrad(vec2 p) {
     float depth = uTerrainShape.x, shore = uTerrainShape.y, slope = uTerrainShape.z;
     if (uTerrainKind == 2) return vec3(uWaterLevel - depth + slope * (p.x + uTerrainHalfSize), slope, 0.0);
+    if (uTerrainKind == 3) {   // pool_height: a rounded square, walls from r 0.70 to 0.85 (POOL_WALL_*)
+        vec2 e = p / uTerrainHalfSize;
+        float r = sqrt(sqrt(e.x * e.x * e.x * e.x + e.y * e.y * e.y * e.y));
+        float span = depth + shore, dh = span * refSmoothD(0.70, 0.85, r), r3 = r * r * r;
+        vec2 g = dh != 0.0 && r3 > 1e-30 ? dh * e * e * e / (r3 * uTerrainHalfSize) : vec2(0.0);
+        return vec3(uWaterLevel - depth + span * refSmooth(0.70, 0.85, r), g);
+    }
     if (uTerrainKind != 1) return vec3(uWaterLevel - depth, 0.0, 0.0);
     float hs = uTerrainHalfSize;
     vec2 e = vec2(p.x / hs, 1.3 * p.y / hs);
@@ -72,6 +79,13 @@ vec3 terrainHeightGrad(vec2 p) {
 // rock where steep, and a faint pattern.
 vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
     float unit = uTerrainHalfSize / 12.0;   // REF_WORLD_UNIT: a scaled world's colours scale with it
+    if (uTerrainKind == 3) {   // pool_albedo: 0.5 m tiles in a checker, 0.04 m grout, a stone deck
+        if (h > uWaterLevel + 0.5 * uTerrainShape.y) return vec3(0.55, 0.52, 0.47);
+        vec2 t = p / (unit * 0.5), f = t - floor(t);
+        float g = 0.5 * 0.04 / 0.5, sum = floor(t.x) + floor(t.y), odd = sum - 2.0 * floor(0.5 * sum);
+        if (f.x < g || f.x > 1.0 - g || f.y < g || f.y > 1.0 - g) return vec3(0.05, 0.05, 0.06);
+        return odd > 0.5 ? vec3(0.08, 0.22, 0.42) : vec3(0.80, 0.84, 0.86);
+    }
     p /= unit;
     const vec3 silt = vec3(0.30, 0.28, 0.20), sand = vec3(0.76, 0.68, 0.50);
     const vec3 grass = vec3(0.22, 0.40, 0.14), rock = vec3(0.42, 0.40, 0.37);

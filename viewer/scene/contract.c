@@ -40,7 +40,7 @@ static const contract_uniform table[] = {
     WORLD("uSky", "samplerCube", "Sky", "unit 15: the sky, baked from ref_sky_radiance"),
     WORLD("uTerrainAlbedo", "sampler2D", "Terrain", "unit 14: terrain albedo, s = x, t = z over the world square"),
     WORLD("uWorldScale", "float", "Terrain", "the scene's length unit: terrain half size / 12 m (1 on the lake)"),
-    WORLD("uTerrainKind", "int", "Terrain", "the terrain's model: 0 flat, 1 lake, 2 slope (REF_TERRAIN_*)"),
+    WORLD("uTerrainKind", "int", "Terrain", "the terrain's model: 0 flat, 1 lake, 2 slope, 3 pool (REF_TERRAIN_*)"),
     WORLD("uTerrainShape", "vec4", "Terrain", "the model's depth, shore height and slope"),
     WORLD("uTerrainDetail", "vec4[6]", "Terrain", "the lake's detail waves: k.x, k.z, amplitude, phase"),
     WORLD("uWorldAlbedo", "vec3", "Object", "tarn's world program: an object's albedo"),

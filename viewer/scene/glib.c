@@ -937,12 +937,13 @@ static const keyword *mode_word(cmdctx *c, const keyword *k, size_t n, const cha
 #define RES_RULE(s) { s, NULL, 'i', 0, 65536, 0 }
 
 static bool h_terrain(cmdctx *c, glib_cmd *cmd) {
-    static const keyword k[] = { { "flat", "flat", 0 }, { "lake", "lake", 1 }, { "slope", "slope", 2 } };
+    static const keyword k[] = { { "flat", "flat", 0 }, { "lake", "lake", 1 }, { "slope", "slope", 2 },
+                                 { "pool", "pool", 3 } };
     static const arg_rule rules[] = {
         { "half_size", NULL, 'r', 0, 0, 0 }, { "depth", NULL, 'r', 0, 0, 0 },
         { "shore_height_or_slope", NULL, 'r', 0, 0, 0 }, SEED_RULE("seed"), RES_RULE("res"),
     };
-    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "flat, lake or slope");
+    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "flat, lake, slope or pool");
     if (!m)
         return false;
     snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
@@ -2086,7 +2087,7 @@ static const cmd_spec specs[] = {
     { "WaterMesh", GLIB_CMD_WATER_MESH, false, h_world_nums, false, 1, 1,
       { { "res", "a resolution (grid cells per side)", 'i', 0, 65536, 0 } }, NULL, true },
     { "Terrain", GLIB_CMD_TERRAIN, false, h_terrain, false, 0, 0, { { 0 } },
-      "Terrain flat|lake|slope [half_size [depth [shore_height_or_slope [seed [res]]]]]", true },
+      "Terrain flat|lake|slope|pool [half_size [depth [shore_height_or_slope [seed [res]]]]]", true },
     { "WaveSine", GLIB_CMD_WAVE_SINE, false, h_world_nums, false, 3, 5, WAVE_ARGS,
       "WaveSine angle_deg wavelength amplitude [speed [phase]]", true },
     { "WaveGerstner", GLIB_CMD_WAVE_GERSTNER, false, h_world_nums, false, 3, 5, WAVE_ARGS,

@@ -106,7 +106,8 @@ static void do_water(ctx *x, const glib_cmd *c, ref_world_desc *w) {
 static void do_terrain(ctx *x, const glib_cmd *c, ref_world_desc *w) {
     const double *n = c->num;
     w->terrain = strcmp(c->name, "lake") == 0 ? REF_TERRAIN_LAKE
-               : strcmp(c->name, "slope") == 0 ? REF_TERRAIN_SLOPE : REF_TERRAIN_FLAT;
+               : strcmp(c->name, "slope") == 0 ? REF_TERRAIN_SLOPE
+               : strcmp(c->name, "pool") == 0 ? REF_TERRAIN_POOL : REF_TERRAIN_FLAT;
     w->half_size = w->depth = w->shore_height = w->slope = 0;
     w->seed = 0;
     w->terrain_res = 0;
@@ -128,7 +129,7 @@ static void do_terrain(ctx *x, const glib_cmd *c, ref_world_desc *w) {
             msg(x, c, "depth %g must be greater than 0; using %g", n[1], x->def.d.depth);
     }
     if (c->nnum >= 3) {
-        if (w->terrain == REF_TERRAIN_LAKE) {
+        if (w->terrain == REF_TERRAIN_LAKE || w->terrain == REF_TERRAIN_POOL) {
             if (n[2] > 0)
                 w->shore_height = n[2];
             else

@@ -302,9 +302,13 @@ static int resolve(bench *b, const bench_desc *d, char *why, size_t whylen) {
     ref_cache_dir(b, d);
     if (d->root && !realpath(d->root, b->root)) return unusable(why, whylen, "--root: no directory '%s'", d->root);
     if (!o->nscenes) {
-        static char lake[4096];
+        /* the lake, and the pool, whose tiled floor turns an error in the
+         * refraction hit into a colour error (the lake's floor hides it) */
+        static char lake[4096], pool[4096];
         snprintf(lake, sizeof lake, "%s/scenes/lake.glib", tarn_root());
+        snprintf(pool, sizeof pool, "%s/scenes/pool.glib", tarn_root());
         o->scenes[o->nscenes++] = lake;
+        o->scenes[o->nscenes++] = pool;
     }
     for (int s = 0; s < o->nscenes; s++) {
         char alt[PATH_LEN];
