@@ -382,7 +382,7 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
             ImGui::TableSetupColumn("pack");
             ImGui::TableSetupColumn("GPU ms");
             ImGui::TableSetupColumn("wall ms");
-            ImGui::TableSetupColumn("RMSE");
+            ImGui::TableSetupColumn("water RMSE");
             ImGui::TableHeadersRow();
             for (int i = 0; i < c->npacks; i++) {
                 const panel_compare_pack *pk = &c->packs[i];

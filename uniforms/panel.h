@@ -77,7 +77,7 @@ typedef struct panel_compare_pack {
     unif_set *sets;              /* its Programs' entries */
     int nsets;
     double gpu_ms, wall_ms;      /* this pack's frame; < 0 when not measured */
-    double rmse, psnr_db;        /* against the reference (NaN: no heat map yet) */
+    double rmse, psnr_db;        /* over the reference's water pixels (NaN: no heat map yet) */
     const char *error_text;      /* its load or build errors, NULL if none */
 } panel_compare_pack;
 

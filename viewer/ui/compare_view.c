@@ -41,7 +41,8 @@ typedef struct cv_pack {
     float *field;                /* its error field against the reference */
     bool have_heat;
     double gpu_ms, wall_ms;      /* smoothed */
-    double rmse, psnr;
+    double rmse, psnr;          /* over the reference's water pixels: what ranks the packs */
+    double frame_rmse;          /* the whole frame, second */
     char passes[512];            /* "RenderToTexture 6 7 (line 12)  1.20 ms", a pass a line */
 } cv_pack;
 
@@ -206,8 +207,17 @@ static void update_heat(cview *v) {
         if (!ref_metrics_error_field(&A, &B, REF_ERR_COLOR, NULL, p->field, err, sizeof err) ||
             !ref_metrics_image(&A, &B, NULL, &m, err, sizeof err))
             continue;
-        p->rmse = m.rmse;
-        p->psnr = m.psnr_db;
+        p->frame_rmse = m.rmse;
+        /* water first: the error of the water technique, where the
+         * reference sees water (the rest of the frame is one world) */
+        unsigned char *water = malloc(n);
+        ref_image_metrics wm;
+        if (water) ref_mask_water(v->ref.mask, (long)n, 1, NULL, water);
+        ref_metrics_desc wd = { .mask = water };
+        bool have_water = water && ref_metrics_image(&A, &B, &wd, &wm, err, sizeof err) && wm.count.compared > 0;
+        free(water);
+        p->rmse = have_water ? wm.rmse : m.rmse;
+        p->psnr = have_water ? wm.psnr_db : m.psnr_db;
         p->have_heat = true;
         double s = ref_heatmap_auto_scale(p->field, (long)n);
         if (s > scale) scale = s;
@@ -223,8 +233,9 @@ static void update_heat(cview *v) {
     if (!v->reported) {
         for (int i = 0; i < v->n; i++)
             if (v->packs[i].have_heat)
-                fprintf(stderr, "tarn compare-view: heat map %s: RMSE %.4f, PSNR %.2f dB (scale %.4f)\n",
-                        v->packs[i].label, v->packs[i].rmse, v->packs[i].psnr, v->heat_scale);
+                fprintf(stderr, "tarn compare-view: heat map %s: water RMSE %.4f, PSNR %.2f dB; whole frame %.4f "
+                        "(scale %.4f)\n",
+                        v->packs[i].label, v->packs[i].rmse, v->packs[i].psnr, v->packs[i].frame_rmse, v->heat_scale);
         v->reported = true;
     }
     free(rgba);
@@ -294,7 +305,8 @@ static void label_pack(cview *v, int i, int x, int ytop, bool heat, bool right) 
     cv_pack *p = &v->packs[i];
     strbuf text = { 0 };
     strbuf_printf(&text, "%s\n%.2f ms GPU  %.1f ms wall", p->label, p->gpu_ms, p->wall_ms);
-    if (heat && p->have_heat) strbuf_printf(&text, "\nRMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
+    if (heat && p->have_heat)
+        strbuf_printf(&text, "\nwater RMSE %.4f  PSNR %.1f dB\nframe RMSE %.4f", p->rmse, p->psnr, p->frame_rmse);
     if (p->passes[0]) strbuf_printf(&text, "\n%s", p->passes);
     float wx, wy;
     to_window(v, x, ytop, &wx, &wy);
@@ -541,7 +553,7 @@ static void load_packs(cview *v, const cli_compare_view_desc *d, bool *ok) {
         p->r = v->scenes[i] = render_create(&rd);
         if (!render_load(p->r, d->glib)) *ok = false;
         report(p);
-        p->rmse = p->psnr = NAN;
+        p->rmse = p->psnr = p->frame_rmse = NAN;
     }
 }
 
