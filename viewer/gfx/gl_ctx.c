@@ -111,6 +111,9 @@ static bool try_egl_platform(gl_ctx *c, EGLenum platform, void *native, egl_diag
     if (d == EGL_NO_DISPLAY) { note(g, EGL_STAGE_NO_DISPLAY); return false; }
     EGLint major, minor;
     if (!eglInitialize(d, &major, &minor)) { note(g, EGL_STAGE_INIT); return false; }
+    /* the driver is loaded now: keep it mapped even when no context can be
+     * made (a driver too old), so what it leaks is named (sanitizer builds) */
+    keep_driver_loaded();
     const char *vendor = eglQueryString(d, EGL_VENDOR);
     if (vendor) snprintf(g->vendor, sizeof g->vendor, "%s", vendor);
     if (!eglBindAPI(EGL_OPENGL_API)) { note(g, EGL_STAGE_API); eglTerminate(d); return false; }
