@@ -114,6 +114,20 @@ static void test_frames_write_every_frame(void) {
     img_free(&i2);
 }
 
+/* The pond rendered at 160x90 with Floor.uSandColor=1,0,0: the floor seen
+ * through the water near the bottom (pixel 80, 80) is red. */
+static void check_floor_red(const char *png, const char *what) {
+    img im;
+    char err[256];
+    memset(&im, 0, sizeof im);
+    CHECK_MSG(img_read(png, &im, err, sizeof err), "%s", err);
+    if (im.px) {
+        const float *p = im.px + ((size_t)80 * im.w + 80) * im.channels;
+        CHECK_MSG(p[0] > p[1] + 0.1f && p[0] > p[2] + 0.1f, "%spixel %g %g %g", what, p[0], p[1], p[2]);
+    }
+    img_free(&im);
+}
+
 /* --set does what the panel does: the sand colour set to pure red makes a
  * floor pixel red-dominant; a name the scene lacks is an error naming it. */
 static void test_set_changes_uniforms(void) {
@@ -124,15 +138,7 @@ static void test_set_changes_uniforms(void) {
     int rc = run_command(cmd, out, sizeof out);
     if (rc == 3) SKIP("no OpenGL");
     CHECK_MSG(rc == 0, "%s", out);
-    img im;
-    char err[256];
-    memset(&im, 0, sizeof im);
-    CHECK_MSG(img_read(a, &im, err, sizeof err), "%s", err);
-    if (im.px) {
-        const float *p = im.px + ((size_t)80 * im.w + 80) * im.channels;   /* near the bottom: floor through water */
-        CHECK_MSG(p[0] > p[1] + 0.1f && p[0] > p[2] + 0.1f, "pixel %g %g %g", p[0], p[1], p[2]);
-    }
-    img_free(&im);
+    check_floor_red(a, "");
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 32x18 --quiet "
              "--set Water.uNope=1 2>&1", bin, src, a);
     CHECK(run_command(cmd, out, sizeof out) == 1);
@@ -151,16 +157,7 @@ static void test_many_sets_all_applied(void) {
     int rc = run_command(cmd, out, sizeof out);
     if (rc == 3) SKIP("no OpenGL");
     CHECK_MSG(rc == 0, "%s", out);
-    img im;
-    char err[256];
-    memset(&im, 0, sizeof im);
-    CHECK_MSG(img_read(a, &im, err, sizeof err), "%s", err);
-    if (im.px) {
-        const float *p = im.px + ((size_t)80 * im.w + 80) * im.channels;   /* the floor, as in test_set_changes_uniforms */
-        CHECK_MSG(p[0] > p[1] + 0.1f && p[0] > p[2] + 0.1f, "the 70th --set was lost: pixel %g %g %g", p[0], p[1],
-                  p[2]);
-    }
-    img_free(&im);
+    check_floor_red(a, "the 70th --set was lost: ");
 }
 
 /* No arguments and no display: the default scene goes to out/default.png. */
