@@ -35,7 +35,7 @@ static void face_normal(const geom_mesh *m, const unsigned *t, double out[3]) {
 /* Finite, unit normals and tangents, tangent perpendicular, indices valid. */
 static void check_sane(const geom_mesh *m, const char *what) {
     CHECK_MSG(m->nvert > 0 && m->nidx > 0 && m->pos && m->nrm && m->tc && m->tan && m->idx, "%s empty", what);
-    CHECK_MSG(m->nidx % (m->lines ? 2 : 3) == 0, "%s: %d indices", what, m->nidx);
+    CHECK_MSG(m->nidx % ((m->prim == GEOM_LINES) ? 2 : 3) == 0, "%s: %d indices", what, m->nidx);
     int bad = 0;
     for (int k = 0; k < m->nvert; k++) {
         for (int c = 0; c < 3; c++)
@@ -52,8 +52,9 @@ static void check_sane(const geom_mesh *m, const char *what) {
 }
 
 /* Every non-degenerate triangle faces the way its vertex normals say, and
- * its texture +u runs along the vertex tangents. */
-static void check_winding_and_tangents(const geom_mesh *m, const char *what) {
+ * its texture +u (along = 0) or +v (along = 1: the sphere's) runs along the
+ * vertex tangents. */
+static void check_winding_and_tangent_along(const geom_mesh *m, const char *what, int along) {
     int wrong_side = 0, wrong_tan = 0, counted = 0;
     for (int f = 0; f + 2 < m->nidx; f += 3) {
         const unsigned *t = m->idx + f;
@@ -72,14 +73,21 @@ static void check_winding_and_tangents(const geom_mesh *m, const char *what) {
         double det = du1 * dv2 - du2 * dv1;
         if (fabs(det) < 1e-12) continue;
         double dpdu[3];
-        for (int k = 0; k < 3; k++) dpdu[k] = ((b[k] - a[k]) * dv2 - (c[k] - a[k]) * dv1) / det;
+        for (int k = 0; k < 3; k++)
+            dpdu[k] = along ? ((c[k] - a[k]) * du1 - (b[k] - a[k]) * du2) / det
+                            : ((b[k] - a[k]) * dv2 - (c[k] - a[k]) * dv1) / det;
         double s = 0;
         for (int v = 0; v < 3; v++) s += dpdu[0] * T(m, t[v])[0] + dpdu[1] * T(m, t[v])[1] + dpdu[2] * T(m, t[v])[2];
         wrong_tan += s <= 0;
     }
     CHECK_MSG(counted > 0, "%s: no triangles", what);
     CHECK_MSG(wrong_side == 0, "%s: %d of %d triangles wind against their normals", what, wrong_side, counted);
-    CHECK_MSG(wrong_tan == 0, "%s: %d of %d triangles have tangents against +u", what, wrong_tan, counted);
+    CHECK_MSG(wrong_tan == 0, "%s: %d of %d triangles have tangents against +%c", what, wrong_tan, counted,
+              along ? 'v' : 'u');
+}
+
+static void check_winding_and_tangents(const geom_mesh *m, const char *what) {
+    check_winding_and_tangent_along(m, what, 0);
 }
 
 /* Signed volume (divergence theorem): positive when triangles wind outward. */
@@ -124,7 +132,7 @@ static void test_quad(void) {
         CHECK(geom_quad(&m, axis, 0.7f, 2.5f, 3, 5, false));
         check_sane(&m, names[axis]);
         check_winding_and_tangents(&m, names[axis]);
-        CHECK(!m.lines && m.nvert == 4 * 6 && m.nidx == 6 * 15);
+        CHECK(!(m.prim == GEOM_LINES) && m.nvert == 4 * 6 && m.nidx == 6 * 15);
         double lo[3], hi[3];
         bbox(&m, lo, hi);
         for (int c = 0; c < 3; c++) {
@@ -144,7 +152,7 @@ static void test_quad(void) {
 
         /* wire: grid lines, each along one axis */
         CHECK(geom_quad(&m, axis, 0.7f, 2.5f, 3, 5, true));
-        CHECK(m.lines && m.nidx == 2 * (3 * 6 + 4 * 5));
+        CHECK((m.prim == GEOM_LINES) && m.nidx == 2 * (3 * 6 + 4 * 5));
         int diag = 0;
         for (int i = 0; i + 1 < m.nidx; i += 2) {
             const float *a = P(&m, m.idx[i]), *b = P(&m, m.idx[i + 1]);
@@ -195,15 +203,18 @@ static void test_sphere(void) {
     geom_mesh m;
     CHECK(geom_sphere(&m, r, 24, 12, false));
     check_sane(&m, "sphere");
-    check_winding_and_tangents(&m, "sphere");
+    check_winding_and_tangent_along(&m, "sphere", 1);
     int off = 0, offn = 0, offt = 0, offtc = 0;
     for (int k = 0; k < m.nvert; k++) {
         const float *p = P(&m, k), *n = N(&m, k), *t = T(&m, k);
         off += fabs(len3(p) - r) > 1e-6 * r;
         for (int c = 0; c < 3; c++) offn += fabs(n[c] - p[c] / r) > 1e-6;
-        /* Tangent = d/d(longitude) about +y: along y x n, where defined */
-        double yxn[3] = {n[2], 0, -n[0]}, l = sqrt(yxn[0] * yxn[0] + yxn[2] * yxn[2]);
-        if (l > 1e-3) offt += fabs(t[0] - yxn[0] / l) > 1e-5 || fabs(t[1]) > 1e-5 || fabs(t[2] - yxn[2] / l) > 1e-5;
+        /* Tangent = d/d(latitude), towards the north pole (glman's): the
+         * unit y - (y.n) n, where defined */
+        double north[3] = {-n[1] * n[0], 1 - n[1] * n[1], -n[1] * n[2]};
+        double l = sqrt(north[0] * north[0] + north[1] * north[1] + north[2] * north[2]);
+        if (l > 1e-3) offt += fabs(t[0] - north[0] / l) > 1e-5 || fabs(t[1] - north[1] / l) > 1e-5 ||
+                              fabs(t[2] - north[2] / l) > 1e-5;
         /* tc = (longitude / 2pi from +z towards +x, latitude 0..1) */
         double v = asin(fmax(-1, fmin(1, p[1] / r))) / PI + 0.5;
         offtc += fabs(m.tc[2 * k + 1] - v) > 1e-5;
@@ -215,7 +226,7 @@ static void test_sphere(void) {
         }
     }
     CHECK_MSG(off == 0 && offn == 0, "%d positions off the sphere, %d normals not pos/r", off, offn);
-    CHECK_MSG(offt == 0, "%d tangents not d/d(longitude)", offt);
+    CHECK_MSG(offt == 0, "%d tangents not d/d(latitude) (towards the north pole)", offt);
     CHECK_MSG(offtc == 0, "%d texture coordinates off", offtc);
     double vol = volume(&m), exact = 4.0 / 3.0 * PI * r * r * r;
     CHECK_MSG(vol > 0.95 * exact && vol < exact, "volume %g of %g", vol, exact);
@@ -227,7 +238,7 @@ static void test_sphere(void) {
     geom_free(&m);
 
     CHECK(geom_sphere(&m, r, 24, 12, true));
-    CHECK(m.lines);
+    CHECK((m.prim == GEOM_LINES));
     check_sane(&m, "wire sphere");
     int zero = 0;
     for (int i = 0; i + 1 < m.nidx; i += 2) {
@@ -306,7 +317,7 @@ static void test_box(void) {
     geom_free(&m);
 
     CHECK(geom_box(&m, 2, 3, 4, true));
-    CHECK(m.lines && m.nidx == 2 * 24);         /* 4 edges a face */
+    CHECK((m.prim == GEOM_LINES) && m.nidx == 2 * 24);         /* 4 edges a face */
     for (int i = 0; i + 1 < m.nidx; i += 2) {
         const float *a = P(&m, m.idx[i]), *b = P(&m, m.idx[i + 1]);
         double d = sqrt(((double)a[0] - b[0]) * (a[0] - b[0]) + ((double)a[1] - b[1]) * (a[1] - b[1]) +
@@ -368,7 +379,7 @@ static void test_cylinder_cone(void) {
     geom_free(&m);
 
     CHECK(geom_cone(&m, (float)r, (float)h, 8, 2, true));
-    CHECK(m.lines);
+    CHECK((m.prim == GEOM_LINES));
     check_sane(&m, "wire cone");
     geom_free(&m);
     CHECK(geom_cylinder(&m, 0, 0, 0, 0, false));
@@ -433,7 +444,7 @@ static void test_teapot(void) {
     geom_free(&m);
 
     CHECK(geom_teapot(&m, 1, 0, true));          /* default grid, wire */
-    CHECK(m.lines);
+    CHECK((m.prim == GEOM_LINES));
     check_sane(&m, "wire teapot");
     CHECK(m.nvert == 32 * 11 * 11);
     geom_free(&m);
@@ -495,7 +506,7 @@ static void test_obj_face_forms(void) {
     CHECK_MSG(geom_obj_load(&m, path, err, sizeof err), "%s", err);
     check_sane(&m, "obj forms");
     check_winding_and_tangents(&m, "obj forms");
-    CHECK_MSG(!m.lines && m.nidx == 3 * (2 + 1 + 1 + 2 + 2), "%d indices", m.nidx);
+    CHECK_MSG(!(m.prim == GEOM_LINES) && m.nidx == 3 * (2 + 1 + 1 + 2 + 2), "%d indices", m.nidx);
     for (int z = 0; z <= 3; z++) {
         float a[3] = {0, 0, (float)z}, b[3] = {1, 0, (float)z}, c[3] = {1, 1, (float)z}, d[3] = {0, 1, (float)z};
         int t1 = find_tri(&m, a, b, c);
@@ -643,6 +654,181 @@ static void test_obj_errors(void) {
     free(big);
 }
 
+/* ---- glman's other geometry ---- */
+
+/* A closed tetrahedron: each triangle's adjacency corners are all the one
+ * vertex it lacks (its three neighbours share that far corner). */
+static void test_obj_variants(void) {
+    const char *tet = write_text("tet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                 "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n");
+    geom_mesh m;
+    char err[256];
+    CHECK_MSG(geom_obj_load_adjacency(&m, tet, err, sizeof err), "%s", err);
+    CHECK(m.prim == GEOM_TRIANGLES_ADJACENCY && m.nidx == 4 * 6);
+    for (int t = 0; t < 4 && m.nidx == 24; t++) {
+        const unsigned *a = m.idx + 6 * t;
+        double sum[3] = {0, 0, 0};   /* the lacking vertex is 1,1,1 minus the other three (as positions sum) */
+        for (int k = 0; k < 3; k++)
+            for (int c = 0; c < 3; c++) sum[c] += P(&m, a[2 * k])[c];
+        for (int k = 0; k < 3; k++) {
+            const float *q = P(&m, a[2 * k + 1]);
+            CHECK_MSG(fabs(q[0] + sum[0] - 1) < 1e-6 && fabs(q[1] + sum[1] - 1) < 1e-6 && fabs(q[2] + sum[2] - 1) < 1e-6,
+                      "triangle %d edge %d: adjacent corner (%g %g %g) is not the vertex it lacks", t, k, q[0], q[1], q[2]);
+        }
+    }
+    geom_free(&m);
+    /* an open mesh (one triangle): no neighbour, the corner across is its own */
+    const char *tri = write_text("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    CHECK(geom_obj_load_adjacency(&m, tri, err, sizeof err));
+    CHECK(m.nidx == 6 && m.idx[1] == m.idx[4] && m.idx[3] == m.idx[0] && m.idx[5] == m.idx[2]);
+    geom_free(&m);
+
+    CHECK_MSG(geom_obj_load_wire(&m, tet, err, sizeof err), "%s", err);   /* 6 edges, each once */
+    CHECK(m.prim == GEOM_LINES && m.nidx == 2 * 6);
+    check_sane(&m, "wire obj");
+    geom_free(&m);
+
+    /* patches: quads stay quads (patch_size 4, the file's corner order) */
+    const char *quads = write_text("quads.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+                                   "f 1 2 3 4\nf 2 5 6 3\n");
+    CHECK_MSG(geom_obj_load_patches(&m, quads, err, sizeof err), "%s", err);
+    CHECK(m.prim == GEOM_PATCHES && m.patch_size == 4 && m.nidx == 8);
+    if (m.nidx == 8) CHECK(P(&m, m.idx[2])[0] == 1 && P(&m, m.idx[2])[1] == 1 && P(&m, m.idx[6])[0] == 2);
+    geom_free(&m);
+    const char *mixed = write_text("mixed.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
+                                   "f 1 2 3 4\nf 2 5 3\n");
+    CHECK(geom_obj_load_patches(&m, mixed, err, sizeof err));
+    CHECK(m.prim == GEOM_PATCHES && m.patch_size == 3 && m.nidx == 9);   /* fanned: 2 + 1 triangles */
+    geom_free(&m);
+    CHECK(!geom_obj_load_adjacency(&m, "/nonexistent/x.obj", err, sizeof err) && m.pos == NULL);
+}
+
+static void test_points_disk_box(void) {
+    geom_mesh m;
+    const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    CHECK(geom_points(&m, tri, 3, GEOM_TRIANGLES));
+    CHECK(m.nidx == 3 && fabs(N(&m, 0)[2] - 1) < 1e-6);   /* counter-clockwise seen from +z */
+    check_sane(&m, "Triangles");
+    geom_free(&m);
+    const float adj[12] = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0};
+    CHECK(geom_points(&m, adj, 4, GEOM_LINES_ADJACENCY) && m.prim == GEOM_LINES_ADJACENCY && m.nidx == 4);
+    geom_free(&m);
+    const float bad[3] = {NAN, 0, 0};
+    CHECK(!geom_points(&m, bad, 1, GEOM_POINTS));
+
+    CHECK(geom_disk_xy(&m, 0));   /* area pi, unit radius, z = 0, facing +z */
+    check_sane(&m, "disk");
+    check_winding_and_tangents(&m, "disk");
+    double area = 0, rmax = 0;
+    for (int f = 0; f < m.nidx; f += 3) {
+        double fn[3];
+        face_normal(&m, m.idx + f, fn);
+        area += fn[2] / 2;
+    }
+    for (int k = 0; k < m.nvert; k++) {
+        rmax = fmax(rmax, hypot(P(&m, k)[0], P(&m, k)[1]));
+        CHECK(P(&m, k)[2] == 0);
+    }
+    CHECK_MSG(area > 0.99 * PI && area < PI && fabs(rmax - 1) < 1e-6, "disk area %g, radius %g", area, rmax);
+    geom_free(&m);
+
+    CHECK(geom_quad_box(&m, 5));   /* 5 quads, z = -1 .. 1 back to front, p = (z + 1) / 2 */
+    check_sane(&m, "QuadBox");
+    CHECK(m.tcp != NULL && m.nidx == 5 * 6 && m.nvert == 5 * 4);
+    for (int k = 0; m.tcp && k < m.nvert; k++) {
+        const float *p = P(&m, k);
+        CHECK(fabs(m.tcp[k] - (p[2] + 1) / 2) < 1e-6 && fabs(m.tc[2 * k] - (p[0] + 1) / 2) < 1e-6 &&
+              fabs(m.tc[2 * k + 1] - (p[1] + 1) / 2) < 1e-6);
+    }
+    CHECK(P(&m, 0)[2] == -1 && P(&m, m.nvert - 1)[2] == 1);
+    geom_free(&m);
+}
+
+static void test_clouds_and_arrow(void) {
+    geom_mesh m, j;
+    CHECK(geom_point_cloud(&m, 4, 3, 2, false));
+    CHECK(m.prim == GEOM_POINTS && m.nvert == 24 && m.nidx == 24 && m.tcp);
+    CHECK(fabs(P(&m, 0)[0] + 0.75) < 1e-6 && fabs(P(&m, 0)[1] + 2.0 / 3) < 1e-6 && fabs(P(&m, 0)[2] + 0.5) < 1e-6);
+    CHECK(geom_point_cloud(&j, 4, 3, 2, true));
+    int moved = 0, outside = 0;
+    for (int k = 0; k < j.nvert && j.nvert == m.nvert; k++)
+        for (int c = 0; c < 3; c++) {
+            double cell = 2.0 / (c == 0 ? 4 : c == 1 ? 3 : 2);   /* each point stays in its own cell */
+            moved += fabs(P(&j, k)[c] - P(&m, k)[c]) > 1e-6;
+            outside += fabs(P(&j, k)[c] - P(&m, k)[c]) > cell / 2 + 1e-6;
+        }
+    CHECK_MSG(moved > 30 && outside == 0, "jitter: %d coordinates moved, %d left their cell", moved, outside);
+    geom_free(&j);
+    CHECK(geom_point_cloud(&j, 4, 3, 2, true));   /* the same cloud every time */
+    geom_mesh j2;
+    CHECK(geom_point_cloud(&j2, 4, 3, 2, true));
+    CHECK(memcmp(j.pos, j2.pos, sizeof(float) * 3 * 24) == 0);
+    geom_free(&j);
+    geom_free(&j2);
+    geom_free(&m);
+    CHECK(!geom_point_cloud(&m, 2048, 2048, 2048, false));
+
+    CHECK(geom_xarrow(&m, 0));   /* closed: its volume is the shaft's and the head's */
+    check_sane(&m, "Xarrow");
+    check_winding_and_tangents(&m, "Xarrow");
+    double lo[3], hi[3];
+    bbox(&m, lo, hi);
+    CHECK(fabs(lo[0]) < 1e-6 && fabs(hi[0] - 1) < 1e-6 && hi[1] <= 0.0600001 && lo[2] >= -0.0600001);
+    double vol = volume(&m), exact = PI * (0.02 * 0.02 * 0.8 + 0.06 * 0.06 * 0.2 / 3);
+    CHECK_MSG(vol > 0.99 * exact && vol < exact, "arrow volume %g of %g", vol, exact);
+    geom_free(&m);
+}
+
+/* The soccer ball: 32 faces on the sphere, pentagons at the icosahedron's
+ * vertices (their centres 63.4 degrees apart, cos = 1/sqrt 5), every face
+ * with p from 0 at its centre to 1 at its corners. */
+static void test_soccerball(void) {
+    const float r = 1.5f;
+    geom_mesh m;
+    CHECK(geom_soccerball(&m, r));
+    check_sane(&m, "Soccerball");
+    CHECK(m.nparts == 32 && m.part_first && m.tcp);
+    if (m.nparts != 32 || !m.part_first || !m.tcp) { geom_free(&m); return; }
+    CHECK(m.part_first[0] == 0 && m.part_first[32] == m.nidx);
+    int off = 0, north = 0;
+    for (int k = 0; k < m.nvert; k++) {
+        off += fabs(len3(P(&m, k)) - r) > 1e-5 || fabs(dot3(N(&m, k), P(&m, k)) - r) > 1e-5;
+        double nn[3] = {-N(&m, k)[1] * N(&m, k)[0], 1 - N(&m, k)[1] * N(&m, k)[1], -N(&m, k)[1] * N(&m, k)[2]};
+        double l = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+        if (l > 1e-3) north += (nn[0] * T(&m, k)[0] + nn[1] * T(&m, k)[1] + nn[2] * T(&m, k)[2]) / l < 0.9999;
+    }
+    CHECK_MSG(off == 0 && north == 0, "%d vertices off the sphere, %d tangents not towards the pole", off, north);
+    double centre[32][3];
+    for (int f = 0; f < 32; f++) {
+        int tris = (m.part_first[f + 1] - m.part_first[f]) / 3;
+        CHECK_MSG(tris == (f < 12 ? 5 : 6) * 16, "face %d has %d triangles", f, tris);
+        double pmin = 1, pmax = 0, smin = 1, smax = 0, c[3] = {0, 0, 0};
+        for (int i = m.part_first[f]; i < m.part_first[f + 1]; i++) {
+            unsigned v = m.idx[i];
+            pmin = fmin(pmin, m.tcp[v]);
+            pmax = fmax(pmax, m.tcp[v]);
+            smin = fmin(smin, fmin(m.tc[2 * v], m.tc[2 * v + 1]));
+            smax = fmax(smax, fmax(m.tc[2 * v], m.tc[2 * v + 1]));
+            for (int k = 0; k < 3; k++) c[k] += P(&m, v)[k];
+        }
+        CHECK_MSG(pmin < 1e-6 && fabs(pmax - 1) < 1e-5 && smin >= -1e-6 && smax <= 1 + 1e-6,
+                  "face %d: p %g..%g, s/t %g..%g", f, pmin, pmax, smin, smax);
+        double l = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        for (int k = 0; k < 3; k++) centre[f][k] = c[k] / l;
+    }
+    int bad = 0;
+    for (int a = 0; a < 12; a++)
+        for (int b = a + 1; b < 12; b++) {
+            double d = centre[a][0] * centre[b][0] + centre[a][1] * centre[b][1] + centre[a][2] * centre[b][2];
+            bad += fabs(fabs(d) - 1 / sqrt(5.0)) > 1e-3 && fabs(d + 1) > 1e-3;
+        }
+    CHECK_MSG(bad == 0, "%d pentagon pairs not at the icosahedron's angles", bad);
+    double vol = volume(&m), exact = 4.0 / 3.0 * PI * r * r * r;
+    CHECK_MSG(vol > 0.97 * exact && vol < exact, "volume %g of %g (outward winding)", vol, exact);
+    geom_free(&m);
+    CHECK(!geom_soccerball(&m, NAN));
+}
+
 int main(void) {
     const char *base = getenv("TMPDIR");
     snprintf(tmpdir, sizeof tmpdir, "%s/tarn_test_geom_XXXXXX", base && *base ? base : "/tmp");
@@ -657,6 +843,10 @@ int main(void) {
     RUN(test_obj_face_forms);
     RUN(test_obj_computed_normals);
     RUN(test_obj_errors);
+    RUN(test_obj_variants);
+    RUN(test_points_disk_box);
+    RUN(test_clouds_and_arrow);
+    RUN(test_soccerball);
 
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);

@@ -137,6 +137,10 @@ int cli_render(const cli_render_desc *d) {
                 printf("tarn: wrote %s (%dx%d, t=%.3f s)\n", path, w, h, d->time_s + f / 60.0);
         }
     }
+    if (render_draw_messages(r)[0]) {   /* a draw that failed: the picture has the rest */
+        fputs(render_draw_messages(r), stderr);
+        if (rc == TARN_EXIT_OK && render_has_errors(r)) rc = TARN_EXIT_INPUT;
+    }
     if (ms && wall && !d->quiet && rc != TARN_EXIT_NO_GL) {
         qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
         qsort(wall, (size_t)frames, sizeof *wall, cmp_double);

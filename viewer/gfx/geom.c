@@ -36,13 +36,17 @@ typedef struct mb {
     geom_mesh m;
     int vcap, icap;
     bool ok;
+    bool with_p;                /* the mesh has tcp: mb_vert stores p_next */
+    double p_next;
 } mb;
 
-static void mb_init(mb *b, bool lines) {
+static void mb_init_prim(mb *b, geom_prim prim) {
     memset(b, 0, sizeof *b);
     b->ok = true;
-    b->m.lines = lines;
+    b->m.prim = prim;
 }
+
+static void mb_init(mb *b, bool lines) { mb_init_prim(b, lines ? GEOM_LINES : GEOM_TRIANGLES); }
 
 static bool grow(void **p, size_t elem, int cap) {
     void *q = realloc(*p, elem * (size_t)cap);
@@ -62,7 +66,8 @@ static bool mb_reserve(mb *b, long nv, long ni) {
         if (!grow((void **)&b->m.pos, 3 * sizeof(float), cap) ||
             !grow((void **)&b->m.nrm, 3 * sizeof(float), cap) ||
             !grow((void **)&b->m.tc, 2 * sizeof(float), cap) ||
-            !grow((void **)&b->m.tan, 3 * sizeof(float), cap)) { b->ok = false; return false; }
+            !grow((void **)&b->m.tan, 3 * sizeof(float), cap) ||
+            (b->with_p && !grow((void **)&b->m.tcp, sizeof(float), cap))) { b->ok = false; return false; }
         b->vcap = cap;
     }
     if (need_i > b->icap) {
@@ -84,6 +89,7 @@ static int mb_vert(mb *b, const double p[3], const double n[3], double u, double
     }
     b->m.tc[2 * k] = (float)u;
     b->m.tc[2 * k + 1] = (float)v;
+    if (b->with_p) b->m.tcp[k] = (float)b->p_next;
     return k;
 }
 
@@ -98,6 +104,7 @@ static void mb_line(mb *b, int a, int c) { mb_index(b, a); mb_index(b, c); }
 void geom_free(geom_mesh *m) {
     if (!m) return;
     free(m->pos); free(m->nrm); free(m->tc); free(m->tan); free(m->idx);
+    free(m->tcp); free(m->part_first);
     memset(m, 0, sizeof *m);
 }
 
@@ -151,7 +158,7 @@ enum {
  * normal so that the triangles wind counter-clockwise from outside. */
 static void grid(mb *b, int nu, int nv, grid_fn f, const void *ctx, int flags) {
     long nvert = (long)(nu + 1) * (nv + 1);
-    long nidx = b->m.lines ? 2L * ((long)nu * (nv + 1) + (long)(nu + 1) * nv) : 6L * nu * nv;
+    long nidx = b->m.prim == GEOM_LINES ? 2L * ((long)nu * (nv + 1) + (long)(nu + 1) * nv) : 6L * nu * nv;
     if (!mb_reserve(b, nvert, nidx)) return;
     int base = b->m.nvert;
     for (int j = 0; j <= nv; j++)
@@ -161,7 +168,7 @@ static void grid(mb *b, int nu, int nv, grid_fn f, const void *ctx, int flags) {
             mb_vert(b, p, n, tc[0], tc[1], t);
         }
 #define GV(i, j) (base + (j) * (nu + 1) + (i))
-    if (!b->m.lines) {
+    if (b->m.prim != GEOM_LINES) {
         for (int j = 0; j < nv; j++)
             for (int i = 0; i < nu; i++) {
                 int a = GV(i, j), c = GV(i + 1, j), d = GV(i + 1, j + 1), e = GV(i, j + 1);
@@ -305,7 +312,7 @@ static void sphere_eval(const void *vctx, int i, int j, double p[3], double n[3]
     }
     v3set(n, st * cp, sp, ct * cp);
     v3set(p, q->r * n[0], q->r * n[1], q->r * n[2]);
-    v3set(t, ct, 0, -st);
+    v3set(t, -st * sp, cp, -ct * sp);   /* d/d(latitude): towards the north pole, as glman's */
     tc[0] = (double)i / q->nu;
     tc[1] = (double)j / q->nv;
 }
@@ -382,7 +389,7 @@ static void disc(mb *b, double y, double r, int slices, bool top) {
     }
     for (int i = 0; i < slices; i++) {
         int a = centre + 1 + i, c = centre + 1 + (i + 1) % slices;
-        if (b->m.lines) mb_line(b, centre, a);
+        if (b->m.prim == GEOM_LINES) mb_line(b, centre, a);
         else if (top) mb_tri(b, centre, a, c);
         else mb_tri(b, centre, c, a);
     }
@@ -603,6 +610,11 @@ typedef struct obj_ctx {
     int *hkey, *hval;
     size_t hcap, hcount;
     mb b;
+    /* ObjPatch: every face's corners in the file's order, and their count
+     * if all faces have the same (else -1) */
+    bool keep_polys;
+    unsigned *poly;
+    int npoly, poly_cap, face_n;
 } obj_ctx;
 
 static bool obj_error(obj_ctx *o, const char *fmt, ...) {
@@ -752,6 +764,20 @@ static int corner_vertex(obj_ctx *o, int v, int t, int n) {
     return k;
 }
 
+/* ObjPatch: the face's corners as they are (vis: mesh vertex, position). */
+static bool keep_polygon(obj_ctx *o, const int *vis, int ntok) {
+    if (o->npoly > INT_MAX / 4 - ntok) return obj_error(o, "too many faces");
+    if (o->npoly + ntok > o->poly_cap) {
+        int cap = o->poly_cap ? o->poly_cap : 256;
+        while (cap < o->npoly + ntok) cap *= 2;
+        if (!grow((void **)&o->poly, sizeof *o->poly, cap)) return obj_error(o, "out of memory");
+        o->poly_cap = cap;
+    }
+    for (int c = 0; c < ntok; c++) o->poly[o->npoly++] = (unsigned)vis[2 * c];
+    o->face_n = o->face_n == 0 ? ntok : o->face_n == ntok ? ntok : -1;
+    return true;
+}
+
 static bool parse_face(obj_ctx *o, char **tok, int ntok) {
     if (ntok < 3) return obj_error(o, "a face needs at least 3 vertices, got %d", ntok);
     double area[3] = {0, 0, 0};
@@ -786,6 +812,7 @@ static bool parse_face(obj_ctx *o, char **tok, int ntok) {
         vis[2 * c] = k;
         vis[2 * c + 1] = vi;
     }
+    if (o->keep_polys && !keep_polygon(o, vis, ntok)) { free(vis); return false; }
     /* fan triangles, and the polygon's area vector (sum of the fan's) */
     for (int c = 1; c + 1 < ntok; c++) {
         mb_tri(&o->b, vis[0], vis[2 * c], vis[2 * c + 2]);
@@ -892,12 +919,29 @@ static char *read_file(obj_ctx *o, size_t *len) {
     return buf;
 }
 
+/* What the OBJ variants need beyond the mesh: each mesh vertex's OBJ
+ * position (edges are shared by position, not by split corner), and for
+ * ObjPatch the faces as written. Owned by the caller when given. */
+typedef struct obj_extra {
+    int *pos_of;                /* nvert entries */
+    bool keep_polys;
+    unsigned *poly;
+    int npoly, face_n;
+} obj_extra;
+
+static bool obj_load(geom_mesh *m, const char *path, char *err, int errlen, obj_extra *x);
+
 bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
+    return obj_load(m, path, err, errlen, NULL);
+}
+
+static bool obj_load(geom_mesh *m, const char *path, char *err, int errlen, obj_extra *x) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (err && errlen > 0) err[0] = 0;
     obj_ctx o;
     memset(&o, 0, sizeof o);
+    o.keep_polys = x && x->keep_polys;
     o.path = path ? path : "(null)";
     o.err = err;
     o.errlen = errlen;
@@ -957,7 +1001,15 @@ bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
         }
         if (!tangents_from_tc(&o.b.m)) ok = obj_error(&o, "out of memory");
     }
-    free(o.v); free(o.vt); free(o.vn); free(o.acc);
+    if (ok && x) {   /* hand over what the variant needs */
+        x->pos_of = o.corner_v;
+        o.corner_v = NULL;
+        x->poly = o.poly;
+        x->npoly = o.npoly;
+        x->face_n = o.face_n;
+        o.poly = NULL;
+    }
+    free(o.v); free(o.vt); free(o.vn); free(o.acc); free(o.poly);
     free(o.corner_v); free(o.corner_n); free(o.hkey); free(o.hval);
     if (!ok) {
         o.b.ok = false;
@@ -965,4 +1017,410 @@ bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
         return false;
     }
     return mb_finish(&o.b, m);
+}
+
+/* ---- OBJ variants: edges, adjacency, patches ---- */
+
+/* One edge of one triangle: its ends by OBJ position (a < b), the mesh
+ * vertices at those ends, and the triangle's corner across from it. */
+typedef struct edge_rec {
+    int a, b;
+    unsigned va, vb, opp;
+    int tri, slot;
+} edge_rec;
+
+static int edge_cmp(const void *pa, const void *pb) {
+    const edge_rec *x = pa, *y = pb;
+    if (x->a != y->a) return x->a < y->a ? -1 : 1;
+    if (x->b != y->b) return x->b < y->b ? -1 : 1;
+    return x->tri < y->tri ? -1 : x->tri > y->tri;
+}
+
+/* The 3 edges of every triangle, sorted so shared ones are neighbours. */
+static edge_rec *sorted_edges(const geom_mesh *m, const int *pos_of, int *count) {
+    int ntri = m->nidx / 3;
+    edge_rec *e = malloc(sizeof *e * (size_t)(ntri > 0 ? ntri : 1) * 3);
+    if (!e) return NULL;
+    for (int t = 0; t < ntri; t++)
+        for (int k = 0; k < 3; k++) {
+            unsigned v0 = m->idx[3 * t + k], v1 = m->idx[3 * t + (k + 1) % 3], v2 = m->idx[3 * t + (k + 2) % 3];
+            int p0 = pos_of[v0], p1 = pos_of[v1];
+            edge_rec *r = &e[3 * t + k];
+            r->a = p0 < p1 ? p0 : p1;
+            r->b = p0 < p1 ? p1 : p0;
+            r->va = p0 < p1 ? v0 : v1;
+            r->vb = p0 < p1 ? v1 : v0;
+            r->opp = v2;
+            r->tri = t;
+            r->slot = k;
+        }
+    qsort(e, (size_t)ntri * 3, sizeof *e, edge_cmp);
+    *count = ntri * 3;
+    return e;
+}
+
+static bool obj_variant_fail(geom_mesh *m, obj_extra *x, char *err, int errlen) {
+    if (err && errlen > 0 && !err[0]) snprintf(err, (size_t)errlen, "out of memory");
+    geom_free(m);
+    free(x->pos_of);
+    free(x->poly);
+    return false;
+}
+
+bool geom_obj_load_wire(geom_mesh *m, const char *path, char *err, int errlen) {
+    obj_extra x = {0};
+    if (!obj_load(m, path, err, errlen, &x)) return false;
+    int n = 0;
+    edge_rec *e = sorted_edges(m, x.pos_of, &n);
+    unsigned *idx = e ? malloc(sizeof *idx * (size_t)(2 * n)) : NULL;
+    if (!idx) { free(e); return obj_variant_fail(m, &x, err, errlen); }
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+        if (i > 0 && e[i].a == e[i - 1].a && e[i].b == e[i - 1].b) continue;   /* drawn once */
+        idx[k++] = e[i].va;
+        idx[k++] = e[i].vb;
+    }
+    free(e);
+    free(x.pos_of);
+    free(x.poly);
+    free(m->idx);
+    m->idx = idx;
+    m->nidx = k;
+    m->prim = GEOM_LINES;
+    return true;
+}
+
+bool geom_obj_load_adjacency(geom_mesh *m, const char *path, char *err, int errlen) {
+    obj_extra x = {0};
+    if (!obj_load(m, path, err, errlen, &x)) return false;
+    int n = 0, ntri = m->nidx / 3;
+    edge_rec *e = sorted_edges(m, x.pos_of, &n);
+    unsigned *idx = e ? malloc(sizeof *idx * (size_t)(6 * (ntri > 0 ? ntri : 1))) : NULL;
+    if (!idx) { free(e); return obj_variant_fail(m, &x, err, errlen); }
+    for (int t = 0; t < ntri; t++)
+        for (int k = 0; k < 3; k++) {
+            idx[6 * t + 2 * k] = m->idx[3 * t + k];
+            idx[6 * t + 2 * k + 1] = m->idx[3 * t + (k + 2) % 3];   /* no neighbour: its own third corner */
+        }
+    for (int i = 0; i < n;) {
+        int j = i + 1;
+        while (j < n && e[j].a == e[i].a && e[j].b == e[i].b) j++;
+        if (j - i == 2)   /* a manifold edge: each triangle sees the other's far corner */
+            for (int s = 0; s < 2; s++) {
+                const edge_rec *me = &e[i + s], *other = &e[i + 1 - s];
+                idx[6 * me->tri + 2 * me->slot + 1] = other->opp;
+            }
+        i = j;
+    }
+    free(e);
+    free(x.pos_of);
+    free(x.poly);
+    free(m->idx);
+    m->idx = idx;
+    m->nidx = 6 * ntri;
+    m->prim = GEOM_TRIANGLES_ADJACENCY;
+    return true;
+}
+
+#define GEOM_MAX_PATCH 32   /* GL's least GL_MAX_PATCH_VERTICES */
+
+bool geom_obj_load_patches(geom_mesh *m, const char *path, char *err, int errlen) {
+    obj_extra x = {.keep_polys = true};
+    if (!obj_load(m, path, err, errlen, &x)) return false;
+    m->prim = GEOM_PATCHES;
+    m->patch_size = 3;
+    if (x.face_n >= 3 && x.face_n <= GEOM_MAX_PATCH && x.poly) {   /* each face one patch */
+        free(m->idx);
+        m->idx = x.poly;
+        m->nidx = x.npoly;
+        m->patch_size = x.face_n;
+        x.poly = NULL;
+    }
+    free(x.pos_of);
+    free(x.poly);
+    return true;
+}
+
+/* ---- points given in the glib ---- */
+
+bool geom_points(geom_mesh *m, const float *xyz, int n, geom_prim prim) {
+    if (!m) return false;
+    memset(m, 0, sizeof *m);
+    if (!xyz || n < 1 || n > (1 << 20)) return false;
+    for (int k = 0; k < 3 * n; k++)
+        if (!isfinite(xyz[k])) return false;
+    double nrm[3] = {0, 0, 1};
+    if (n >= 3) {   /* the winding's normal: a triangle faces where it winds CCW */
+        double e1[3], e2[3];
+        for (int c = 0; c < 3; c++) { e1[c] = xyz[3 + c] - xyz[c]; e2[c] = xyz[6 + c] - xyz[c]; }
+        v3cross(nrm, e1, e2);
+        if (!v3normalize(nrm)) v3set(nrm, 0, 0, 1);
+    }
+    mb b;
+    mb_init_prim(&b, prim);
+    double t[3];
+    any_perpendicular(t, nrm);
+    for (int k = 0; k < n; k++) {
+        double p[3] = {xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]};
+        mb_index(&b, mb_vert(&b, p, nrm, p[0], p[1], t));
+    }
+    return mb_finish(&b, m);
+}
+
+/* ---- DiskXY, QuadBox, PointCloud ---- */
+
+bool geom_disk_xy(geom_mesh *m, int slices) {
+    if (!m) return false;
+    memset(m, 0, sizeof *m);
+    slices = clamp_div(slices, 64, 3, GEOM_MAX_DIV);
+    mb b;
+    mb_init(&b, false);
+    const double n[3] = {0, 0, 1}, t[3] = {1, 0, 0}, o[3] = {0, 0, 0};
+    int centre = mb_vert(&b, o, n, 0.5, 0.5, t);
+    for (int i = 0; i <= slices; i++) {
+        double s, c;
+        angle(i, slices, &s, &c);
+        double p[3] = {c, s, 0};
+        mb_vert(&b, p, n, 0.5 + 0.5 * c, 0.5 + 0.5 * s, t);
+    }
+    for (int i = 0; i < slices; i++) mb_tri(&b, centre, centre + 1 + i, centre + 2 + i);
+    return mb_finish(&b, m);
+}
+
+bool geom_quad_box(geom_mesh *m, int n) {
+    if (!m) return false;
+    memset(m, 0, sizeof *m);
+    n = clamp_div(n, 10, 1, GEOM_MAX_DIV);
+    mb b;
+    mb_init(&b, false);
+    b.with_p = true;
+    const double nz[3] = {0, 0, 1}, tx[3] = {1, 0, 0};
+    for (int k = 0; k < n; k++) {   /* from z = -1 up: back to front seen from +z, for blending */
+        double z = n == 1 ? 0 : -1 + 2.0 * k / (n - 1);
+        b.p_next = (z + 1) / 2;
+        int v0 = b.m.nvert;
+        for (int j = 0; j < 2; j++)
+            for (int i = 0; i < 2; i++) {
+                double p[3] = {2.0 * i - 1, 2.0 * j - 1, z};
+                mb_vert(&b, p, nz, i, j, tx);
+            }
+        mb_tri(&b, v0, v0 + 1, v0 + 3);
+        mb_tri(&b, v0, v0 + 3, v0 + 2);
+    }
+    return mb_finish(&b, m);
+}
+
+#define GEOM_MAX_POINTS (1L << 24)
+
+bool geom_point_cloud(geom_mesh *m, int nx, int ny, int nz, bool jitter) {
+    if (!m) return false;
+    memset(m, 0, sizeof *m);
+    nx = clamp_div(nx, 10, 1, GEOM_MAX_DIV);
+    ny = clamp_div(ny, 10, 1, GEOM_MAX_DIV);
+    nz = clamp_div(nz, 10, 1, GEOM_MAX_DIV);
+    if ((long)nx * ny * nz > GEOM_MAX_POINTS) return false;
+    mb b;
+    mb_init_prim(&b, GEOM_POINTS);
+    b.with_p = true;
+    uint64_t rng = 0x2545F4914F6CDD1DULL;   /* a fixed seed: the same cloud on every load */
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++) {
+                double f[3] = {0.5, 0.5, 0.5};
+                for (int c = 0; jitter && c < 3; c++) {   /* xorshift64: a place in the cell */
+                    rng ^= rng << 13; rng ^= rng >> 7; rng ^= rng << 17;
+                    f[c] = (double)(rng >> 11) / 9007199254740992.0;
+                }
+                double u[3] = {(i + f[0]) / nx, (j + f[1]) / ny, (k + f[2]) / nz};
+                double p[3] = {2 * u[0] - 1, 2 * u[1] - 1, 2 * u[2] - 1}, n[3] = {p[0], p[1], p[2]}, t[3];
+                if (!v3normalize(n)) v3set(n, 0, 0, 1);
+                any_perpendicular(t, n);
+                b.p_next = u[2];
+                mb_index(&b, mb_vert(&b, p, n, u[0], u[1], t));
+            }
+    return mb_finish(&b, m);
+}
+
+/* ---- Xarrow: a surface of revolution about +x ---- */
+
+typedef struct lathe_ctx {
+    double x0, r0, x1, r1;      /* one segment of the profile */
+    int slices;
+} lathe_ctx;
+
+static void lathe_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
+    const lathe_ctx *q = vctx;
+    double s, c;
+    angle(i, q->slices, &s, &c);
+    double x = j ? q->x1 : q->x0, r = j ? q->r1 : q->r0;
+    double dx = q->x1 - q->x0, dr = q->r1 - q->r0;
+    v3set(p, x, r * c, r * s);
+    v3set(n, -dr, dx * c, dx * s);   /* the profile's normal (-dr, dx) turned about x */
+    v3set(t, 0, -s, c);
+    tc[0] = (double)i / q->slices;
+    tc[1] = x;
+}
+
+bool geom_xarrow(geom_mesh *m, int slices) {
+    if (!m) return false;
+    memset(m, 0, sizeof *m);
+    /* base disk, shaft, the head's back, the head's cone: (x, r) */
+    static const double prof[5][2] = {{0, 0}, {0, 0.02}, {0.8, 0.02}, {0.8, 0.06}, {1, 0}};
+    mb b;
+    mb_init(&b, false);
+    for (int k = 0; k < 4; k++) {
+        lathe_ctx q = {prof[k][0], prof[k][1], prof[k + 1][0], prof[k + 1][1],
+                       clamp_div(slices, 100, 3, GEOM_MAX_DIV)};
+        int flags = GRID_CLOSED_U | (q.r0 == 0 ? GRID_COLLAPSED_V0 : 0) | (q.r1 == 0 ? GRID_COLLAPSED_V1 : 0);
+        grid(&b, q.slices, 1, lathe_eval, &q, flags);
+    }
+    return mb_finish(&b, m);
+}
+
+/* ---- Soccerball: the truncated icosahedron on a sphere ---- */
+
+#define BALL_SUB 4   /* each fan triangle of a face cut in 4 x 4, so the face bulges with the sphere */
+
+/* The icosahedron (edge 2): its 12 vertices, 20 faces wound outward. */
+static int icosahedron(double v[12][3], int f[20][3]) {
+    const double g = (1 + sqrt(5.0)) / 2;
+    int k = 0;
+    for (int a = -1; a <= 1; a += 2)
+        for (int b = -1; b <= 1; b += 2) {
+            v3set(v[k++], 0, a, b * g);
+            v3set(v[k++], a, b * g, 0);
+            v3set(v[k++], b * g, 0, a);
+        }
+    int nf = 0;
+    for (int i = 0; i < 12; i++)
+        for (int j = i + 1; j < 12; j++)
+            for (int l = j + 1; l < 12; l++) {
+                double d1[3], d2[3], d3[3];
+                for (int c = 0; c < 3; c++) { d1[c] = v[j][c] - v[i][c]; d2[c] = v[l][c] - v[i][c]; d3[c] = v[l][c] - v[j][c]; }
+                if (fabs(v3len(d1) - 2) > 1e-9 || fabs(v3len(d2) - 2) > 1e-9 || fabs(v3len(d3) - 2) > 1e-9 || nf >= 20)
+                    continue;
+                double cr[3], ctr[3] = {v[i][0] + v[j][0] + v[l][0], v[i][1] + v[j][1] + v[l][1],
+                                         v[i][2] + v[j][2] + v[l][2]};
+                v3cross(cr, d1, d2);
+                bool out = v3dot(cr, ctr) > 0;
+                f[nf][0] = i;
+                f[nf][1] = out ? j : l;
+                f[nf][2] = out ? l : j;
+                nf++;
+            }
+    return nf;
+}
+
+/* The point a third of the way from a to b. */
+static void third(double r[3], const double a[3], const double b[3]) {
+    for (int c = 0; c < 3; c++) r[c] = a[c] + (b[c] - a[c]) / 3;
+}
+
+/* A unit vector towards the north pole (+y) in the plane normal to n. */
+static void north_of(double t[3], const double n[3]) {
+    v3set(t, -n[0] * n[1], 1 - n[1] * n[1], -n[2] * n[1]);
+    if (!v3normalize(t)) any_perpendicular(t, n);
+}
+
+/* One flat face (corners cw[0..nc-1], wound outward) as part of the mesh:
+ * fans from its centre, subdivided, pushed out to radius r. */
+static void ball_face(mb *b, const double (*cw)[3], int nc, double r) {
+    double o[3] = {0, 0, 0};
+    for (int k = 0; k < nc; k++)
+        for (int c = 0; c < 3; c++) o[c] += cw[k][c] / nc;
+    double d0[3] = {cw[0][0] - o[0], cw[0][1] - o[1], cw[0][2] - o[2]};
+    double radius = v3len(d0), fn[3] = {o[0], o[1], o[2]}, e1[3], e2[3];
+    v3normalize(fn);
+    north_of(e2, fn);               /* t runs up the face, s across */
+    v3cross(e1, e2, fn);
+    for (int k = 0; k < nc; k++) {
+        const double *a = cw[k], *c2 = cw[(k + 1) % nc];
+        int base = b->m.nvert;
+        for (int i = 0; i <= BALL_SUB; i++)
+            for (int j = 0; j <= i; j++) {
+                double q[3], d[3];
+                for (int c = 0; c < 3; c++) {
+                    q[c] = o[c] + (a[c] - o[c]) * i / BALL_SUB + (c2[c] - a[c]) * j / BALL_SUB;
+                    d[c] = q[c] - o[c];
+                }
+                double n[3] = {q[0], q[1], q[2]}, p[3], t[3];
+                v3normalize(n);
+                v3set(p, r * n[0], r * n[1], r * n[2]);
+                north_of(t, n);
+                b->p_next = v3len(d) / radius;
+                mb_vert(b, p, n, 0.5 + 0.5 * v3dot(d, e1) / radius, 0.5 + 0.5 * v3dot(d, e2) / radius, t);
+            }
+#define BV(i, j) (base + (i) * ((i) + 1) / 2 + (j))
+        for (int i = 0; i < BALL_SUB; i++)
+            for (int j = 0; j <= i; j++) {
+                mb_tri(b, BV(i, j), BV(i + 1, j), BV(i + 1, j + 1));
+                if (j < i) mb_tri(b, BV(i, j), BV(i + 1, j + 1), BV(i, j + 1));
+            }
+#undef BV
+    }
+}
+
+/* The 5 points a third of the way from vertex i to its neighbours, in
+ * order around it (counter-clockwise seen from outside). */
+static void pentagon(const double v[12][3], int i, double out[5][3]) {
+    double n[3] = {v[i][0], v[i][1], v[i][2]}, e1[3], e2[3], ang[5];
+    v3normalize(n);
+    any_perpendicular(e1, n);
+    v3cross(e2, n, e1);
+    int k = 0;
+    for (int j = 0; j < 12 && k < 5; j++) {
+        double d[3] = {v[j][0] - v[i][0], v[j][1] - v[i][1], v[j][2] - v[i][2]};
+        if (j == i || fabs(v3len(d) - 2) > 1e-9) continue;
+        third(out[k], v[i], v[j]);
+        ang[k++] = atan2(v3dot(d, e2), v3dot(d, e1));
+    }
+    for (int a = 1; a < 5; a++)     /* insertion sort by angle */
+        for (int c = a; c > 0 && ang[c] < ang[c - 1]; c--) {
+            double t = ang[c]; ang[c] = ang[c - 1]; ang[c - 1] = t;
+            double tmp[3];
+            memcpy(tmp, out[c], sizeof tmp);
+            memcpy(out[c], out[c - 1], sizeof tmp);
+            memcpy(out[c - 1], tmp, sizeof tmp);
+        }
+}
+
+static bool ball_parts(mb *b, int face, int **first) {
+    if (face == 0) {
+        *first = malloc(sizeof **first * 33);
+        if (!*first) return b->ok = false;
+    }
+    (*first)[face] = b->m.nidx;
+    return true;
+}
+
+bool geom_soccerball(geom_mesh *m, float r) {
+    if (!m) return false;
+    memset(m, 0, sizeof *m);
+    if (!finite_args(1, (double)r)) return false;
+    double v[12][3];
+    int f[20][3];
+    if (icosahedron(v, f) != 20) return false;
+    mb b;
+    mb_init(&b, false);
+    b.with_p = true;
+    int *first = NULL;
+    double rr = fabs((double)r);
+    for (int i = 0; i < 12 && ball_parts(&b, i, &first); i++) {   /* FaceIndex 0-11: pentagons */
+        double pent[5][3];
+        pentagon(v, i, pent);
+        ball_face(&b, (const double (*)[3])pent, 5, rr);
+    }
+    for (int t = 0; t < 20 && b.ok && ball_parts(&b, 12 + t, &first); t++) {   /* 12-31: hexagons */
+        const double *a = v[f[t][0]], *c = v[f[t][1]], *d = v[f[t][2]];
+        double hex[6][3];
+        third(hex[0], a, c); third(hex[1], c, a);
+        third(hex[2], c, d); third(hex[3], d, c);
+        third(hex[4], d, a); third(hex[5], a, d);
+        ball_face(&b, (const double (*)[3])hex, 6, rr);
+    }
+    if (first) first[32] = b.m.nidx;
+    if (!mb_finish(&b, m)) { free(first); return false; }
+    m->part_first = first;
+    m->nparts = 32;
+    return true;
 }

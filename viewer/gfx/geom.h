@@ -19,7 +19,8 @@
  *    QuadXZ (+x, -z: upright seen from above), QuadYZ (-z, +y: upright seen
  *    from +x).
  *  - Sphere: centred; longitude around +y, 0 at +z, increasing towards +x;
- *    tc = (lon / 2pi, (lat + pi/2) / pi); Tangent = d/d(longitude).
+ *    tc = (lon / 2pi, (lat + pi/2) / pi); Tangent = d/d(latitude), towards
+ *    the north pole (+y), as glman's (the one mesh whose tangent is +v).
  *  - Torus: as GLUT's, in the xy plane around the z axis; r_major is the
  *    distance from the centre to the tube's centre, r_minor the tube radius;
  *    `rings` segments around z, `sides` around the tube; tc = (ring angle /
@@ -43,15 +44,36 @@
 #define GEOM_MAX_DIV 2048       /* most segments on one side of a grid */
 #define GEOM_MAX_TEAPOT_GRID 128
 
+/* How the indices are read: as GL's primitive of the same name. */
+typedef enum geom_prim {
+    GEOM_TRIANGLES = 0,
+    GEOM_LINES,                 /* wire variants: index pairs */
+    GEOM_POINTS,
+    GEOM_LINES_ADJACENCY,       /* 4 indices a primitive */
+    GEOM_TRIANGLES_ADJACENCY,   /* 6: v0 a01 v1 a12 v2 a20 */
+    GEOM_PATCHES,               /* patch_size indices a patch (tessellation) */
+    /* what glBegin may also draw */
+    GEOM_LINE_STRIP, GEOM_LINE_LOOP, GEOM_TRIANGLE_STRIP, GEOM_TRIANGLE_FAN, GEOM_QUADS
+} geom_prim;
+
 typedef struct geom_mesh {
     float *pos;                 /* 3 floats a vertex */
     float *nrm;                 /* 3, unit */
     float *tc;                  /* 2 */
     float *tan;                 /* 3, unit, perpendicular to nrm */
+    float *tcp;                 /* NULL, or 1 a vertex: the third texture
+                                 * coordinate p (QuadBox, PointCloud, Soccerball) */
     int nvert;
-    unsigned *idx;              /* triangles, or index pairs when lines */
+    unsigned *idx;              /* read as prim says */
     int nidx;
-    bool lines;                 /* GL_LINES (wire variants) instead of GL_TRIANGLES */
+    geom_prim prim;
+    int patch_size;             /* GEOM_PATCHES: indices a patch; 0: the scene's
+                                 * NumPatchVertices decides */
+    /* Parts drawn one at a time with a uniform telling which (Soccerball's
+     * FaceIndex): part k is idx[part_first[k] .. part_first[k + 1]); NULL
+     * and 0 when the mesh is one draw. part_first has nparts + 1 entries. */
+    int *part_first;
+    int nparts;
 } geom_mesh;
 
 /* axis 0: QuadYZ (x = offset), 1: QuadXZ (y = offset), 2: QuadXY (z = offset).
@@ -83,6 +105,57 @@ bool geom_teapot(geom_mesh *m, float size, int grid, bool wire);
  * indices (0, out of range), bad numbers, malformed or unknown statements,
  * and "path: reason" for a missing/unreadable file or one with no faces. */
 bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen);
+
+/* Wire variant of an OBJ (WireObj): the same vertices, GL_LINES over each
+ * edge of its triangles once. */
+bool geom_obj_load_wire(geom_mesh *m, const char *path, char *err, int errlen);
+
+/* ObjAdj: the OBJ's triangles as GL_TRIANGLES_ADJACENCY (v0 a01 v1 a12 v2
+ * a20), a_ij the far corner of the triangle across edge ij (edges matched by
+ * position); an edge with no other triangle (a boundary, or one shared by
+ * more than two) takes the triangle's own third corner, so a geometry
+ * shader sees a folded, not a missing, neighbour. */
+bool geom_obj_load_adjacency(geom_mesh *m, const char *path, char *err, int errlen);
+
+/* ObjPatch: the OBJ's faces as GL_PATCHES. When every face has the same
+ * number n of corners (3 to 32) each face is one patch of n vertices in
+ * the file's order (patch_size n); otherwise faces are fanned into
+ * triangles, patches of 3. */
+bool geom_obj_load_patches(geom_mesh *m, const char *path, char *err, int errlen);
+
+/* n points given (3 floats each) as one primitive: Triangles (3 points,
+ * GEOM_TRIANGLES, normal from the winding), LinesAdjacency (4 points,
+ * GEOM_LINES_ADJACENCY), glBegin..glEnd (any count and prim). tc is (x, y)
+ * of each point; tangent any perpendicular. */
+bool geom_points(geom_mesh *m, const float *xyz, int n, geom_prim prim);
+
+/* DiskXY: the unit disk in z = 0 facing +z, `slices` sectors (default 64,
+ * at least 3); tc = (x + 1, y + 1) / 2, tangent +x. */
+bool geom_disk_xy(geom_mesh *m, int slices);
+
+/* QuadBox n: n quads parallel to XY spanning the cube [-1, 1]^3, evenly
+ * from z = -1 to z = 1 (one at z = 0 when n is 1), drawn back to front
+ * seen from +z; 3D texture coordinates (tc, tcp) = (x + 1, y + 1, z + 1) / 2. */
+bool geom_quad_box(geom_mesh *m, int n);
+
+/* PointCloud / JitterCloud nx ny nz: nx*ny*nz points over the cube
+ * [-1, 1]^3, at cell centres, or (jitter) at a random place in each cell
+ * (a fixed seed: the same cloud every time); (tc, tcp) = the point mapped
+ * to 0..1, normal the unit vector from the centre (+z at the centre). */
+bool geom_point_cloud(geom_mesh *m, int nx, int ny, int nz, bool jitter);
+
+/* Xarrow: an arrow along +x from 0 to 1 (a shaft of radius 0.02 to x =
+ * 0.8, a head of radius 0.06), `slices` around (default 100, at least 3). */
+bool geom_xarrow(geom_mesh *m, int slices);
+
+/* Soccerball r: a truncated icosahedron's 12 pentagons and 20 hexagons on
+ * the sphere of radius r (each face a fan from its centre, subdivided and
+ * pushed out to the sphere; normals radial). Part k is face k: 0-11 the
+ * pentagons, 12-31 the hexagons (glman's FaceIndex). Per face, (s, t) maps
+ * the face's circumscribed square to 0..1 (t up, towards +y), tcp the
+ * distance from the face centre over the face's radius (0 centre, 1
+ * corners); Tangent as the sphere's (towards the north pole). */
+bool geom_soccerball(geom_mesh *m, float r);
 
 /* Frees the arrays and empties the mesh; safe on an empty mesh. */
 void geom_free(geom_mesh *m);

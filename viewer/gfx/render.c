@@ -5,10 +5,12 @@
 #include <GL/glext.h>
 #include <cglm/cglm.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom.h"
 #include "glib.h"
 #include "gpu_timer.h"
 #include "program.h"
@@ -42,6 +44,7 @@ typedef struct scene_state {
     prog *progs;
     unif_set *unifs;         /* progs[i].unifs == &unifs[i] */
     bool *once_done;         /* per command: a RenderToTextureOnce block already drawn */
+    bool *draw_warned;       /* per command: a problem drawing it was reported */
     int nprogs;
     scene_settings set;
 } scene_state;
@@ -56,6 +59,7 @@ struct render {
     char path[GLIB_PATH_MAX];
     scene_state cur;
     char *messages;
+    char *draw_messages;        /* problems met drawing (also in messages), since the load */
     diag_list diags;            /* the messages' diagnostics */
     bool errors;
     const char **deps;
@@ -90,6 +94,7 @@ static void scene_free(scene_state *s) {
     free(s->progs);
     free(s->unifs);
     free(s->once_done);
+    free(s->draw_warned);
     free(s->cmd_res);
     if (s->glib) glib_free(s->glib);
     memset(s, 0, sizeof *s);
@@ -108,6 +113,7 @@ void render_destroy(render *r) {
     world_free(&r->world);
     free_deps(r);
     free(r->messages);
+    free(r->draw_messages);
     diag_list_free(&r->diags);
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
@@ -364,6 +370,46 @@ static void check_named_counts(const scene_state *s, char **log) {
     }
 }
 
+static geom_prim begin_prim(const char *mode) {
+    static const struct { const char *name; geom_prim prim; } modes[] = {
+        { "gl_points", GEOM_POINTS }, { "gl_lines", GEOM_LINES }, { "gl_line_strip", GEOM_LINE_STRIP },
+        { "gl_line_loop", GEOM_LINE_LOOP }, { "gl_triangles", GEOM_TRIANGLES },
+        { "gl_triangle_strip", GEOM_TRIANGLE_STRIP }, { "gl_triangle_fan", GEOM_TRIANGLE_FAN },
+        { "gl_quads", GEOM_QUADS }, { "gl_lines_adjacency", GEOM_LINES_ADJACENCY },
+        { "gl_triangles_adjacency", GEOM_TRIANGLES_ADJACENCY }, { "gl_patches", GEOM_PATCHES },
+    };
+    for (size_t i = 0; i < sizeof modes / sizeof modes[0]; i++)
+        if (strcmp(mode, modes[i].name) == 0) return modes[i].prim;
+    return GEOM_POINTS;
+}
+
+/* glBegin MODE, glVertex ..., glEnd: one mesh of the vertices up to the
+ * glEnd (the parser pairs them), drawn where the glBegin stands. Built on
+ * every load: a handful of vertices. */
+static void build_begin(scene_state *s, int ci, char **log) {
+    const glib_scene *g = s->glib;
+    int n = 0;
+    for (int k = ci + 1; k < g->ncmds && g->cmds[k].kind != GLIB_CMD_GL_END; k++) n += g->cmds[k].kind == GLIB_CMD_GL_VERTEX;
+    if (n == 0) return;
+    float *xyz = malloc(sizeof *xyz * 3 * (size_t)n);
+    if (!xyz) return;
+    n = 0;
+    for (int k = ci + 1; k < g->ncmds && g->cmds[k].kind != GLIB_CMD_GL_END; k++) {
+        if (g->cmds[k].kind != GLIB_CMD_GL_VERTEX) continue;
+        for (int c = 0; c < 3; c++) xyz[3 * n + c] = (float)g->cmds[k].num[c];
+        n++;
+    }
+    gpu_mesh *m = &s->meshes[s->nmeshes];
+    memset(m, 0, sizeof *m);
+    geom_mesh gm;
+    if (geom_points(&gm, xyz, n, begin_prim(g->cmds[ci].name)) && res_mesh_upload(&gm, m))
+        s->cmd_res[ci] = s->nmeshes++;
+    else
+        str_appendf(log, "%s:%d: error: glBegin: cannot build its %d vertices\n", g->cmds[ci].file, g->cmds[ci].line, n);
+    geom_free(&gm);
+    free(xyz);
+}
+
 static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
     int n = s->glib->ncmds;
     s->cmd_res = malloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
@@ -372,7 +418,9 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     s->progs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->progs);
     s->unifs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->unifs);
     s->once_done = calloc((size_t)(n > 0 ? n : 1), sizeof *s->once_done);
-    if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs || !s->once_done) return false;
+    s->draw_warned = calloc((size_t)(n > 0 ? n : 1), sizeof *s->draw_warned);
+    if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs || !s->once_done || !s->draw_warned)
+        return false;
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
     program_stages st;
@@ -381,6 +429,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
         const glib_cmd *c = &s->glib->cmds[i];
         s->cmd_res[i] = -1;
         if (res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
+        else if (c->kind == GLIB_CMD_GL_BEGIN) build_begin(s, i, log);
         else if (res_is_texture(c->kind)) build_tex(s, old, c, i, log);
         else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log);
         else program_stages_step(&st, c);
@@ -452,6 +501,10 @@ static void set_messages(render *r, char *log) {
     free(log);
     free(r->messages);
     r->messages = out.s;
+    free(r->draw_messages);   /* problems drawing are found afresh */
+    r->draw_messages = NULL;
+    if (r->cur.draw_warned && r->cur.glib)
+        memset(r->cur.draw_warned, 0, (size_t)r->cur.glib->ncmds * sizeof *r->cur.draw_warned);
     diag_list_free(&r->diags);
     diag_add_text(&r->diags, DIAG_NOTE, r->messages);
 }
@@ -503,6 +556,7 @@ bool render_rebuild_programs(render *r) {
 }
 
 const char *render_messages(const render *r) { return r->messages ? r->messages : ""; }
+const char *render_draw_messages(const render *r) { return r->draw_messages ? r->draw_messages : ""; }
 const diag_list *render_diags(const render *r) { return &r->diags; }
 bool render_has_errors(const render *r) { return r->errors; }
 bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
@@ -679,6 +733,7 @@ typedef struct frame_state {
     const prog *cur;
     double t;
     float eye[3];
+    int patch_vertices;      /* NumPatchVertices: the size of the patches drawn next */
 } frame_state;
 
 static void mark_pass(render *r, const glib_cmd *c) {
@@ -854,6 +909,93 @@ static void draw_points(render *r, const frame_state *f, const glib_cmd *c) {
     world_draw_points(&r->world, n);
 }
 
+/* A problem met drawing command ci: said once a load, with its glib line,
+ * in the messages (and the draw messages, for `tarn render`). */
+__attribute__((format(printf, 4, 5)))
+static void draw_problem(render *r, int ci, bool error, const char *fmt, ...) {
+    scene_state *s = &r->cur;
+    if (s->draw_warned[ci]) return;
+    s->draw_warned[ci] = true;
+    const glib_cmd *c = &s->glib->cmds[ci];
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    char *line = NULL;
+    str_appendf(&line, "%s:%d: %s: %s\n", c->file, c->line, error ? "error" : "warning", msg);
+    str_appendf(&r->draw_messages, "%s", line);
+    str_appendf(&r->messages, "%s", line);
+    diag_add_text(&r->diags, DIAG_NOTE, line);
+    free(line);
+    if (error) r->errors = true;
+}
+
+static const char *gl_error_name(GLenum e) {
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    default: return "an unknown GL error";
+    }
+}
+
+/* What a geometry shader's input layout is called, and a command drawing it. */
+static const char *gs_input_word(unsigned in, const char **draw_with) {
+    switch (in) {
+    case GL_POINTS: *draw_with = "PointCloud or glBegin gl_points"; return "points";
+    case GL_LINES: *draw_with = "a Wire command (WireSphere, WireObj, ...)"; return "lines";
+    case GL_LINES_ADJACENCY: *draw_with = "LinesAdjacency"; return "lines_adjacency";
+    case GL_TRIANGLES_ADJACENCY: *draw_with = "ObjAdj"; return "triangles_adjacency";
+    default: *draw_with = "a solid (Sphere, Obj, QuadXY, ...)"; return "triangles";
+    }
+}
+
+/* After command ci: a GL error it caused is reported (once) with its line
+ * and what to do, and cleared, so the rest of the frame draws and the
+ * picture can be read back. m, d: the mesh it drew, or NULL. */
+static void check_gl(render *r, const frame_state *f, int ci, const gpu_mesh *m, const res_draw *d) {
+    GLenum e = glGetError();
+    if (e == GL_NO_ERROR) return;
+    for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {}
+    const glib_cmd *c = &r->cur.glib->cmds[ci];
+    const char *name = glib_cmd_name(c->kind);
+    if (!m) {
+        draw_problem(r, ci, true, "%s: OpenGL failed here (%s); the rest of the scene is drawn", name, gl_error_name(e));
+        return;
+    }
+    const char *prim = res_mesh_prim_name(m, d), *with = "";
+    const prog *p = f->cur;
+    if (p && p->gl && p->gs_input && !p->tess) {
+        const char *want = gs_input_word(p->gs_input, &with);
+        draw_problem(r, ci, true, "%s drew nothing (%s): it draws %s but program '%s' has a geometry shader "
+                     "that takes %s (layout(%s) in); draw %s with it, or change the shader's layout; the rest "
+                     "of the scene is drawn", name, gl_error_name(e), prim, p->name, want, want, with);
+        return;
+    }
+    draw_problem(r, ci, true, "%s drew nothing (%s) as %s with program '%s': check that the program's stages "
+                 "fit what is drawn (a geometry shader's layout, tessellation stages); the rest of the scene is drawn",
+                 name, gl_error_name(e), prim, p ? p->name : "(none)");
+}
+
+/* A mesh of command ci, drawn for the current program. */
+static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m) {
+    const prog *p = f->cur && f->cur->gl ? f->cur : NULL;
+    res_draw d = { .tangent_loc = p ? p->tangent_loc : -1, .face_index_loc = p ? p->face_index_loc : -1,
+                   .face_index_int = p && p->face_index_int, .tess = p && p->tess,
+                   .patch_vertices = f->patch_vertices };
+    char why[512];
+    bool drawn = res_mesh_draw_with(m, &d, why, sizeof why);
+    if (why[0])
+        draw_problem(r, ci, !drawn, "%s %s%s", glib_cmd_name(r->cur.glib->cmds[ci].kind),
+                     drawn ? "" : "drew nothing: ", why);
+    check_gl(r, f, ci, m, &d);
+}
+
 static void exec_cmd(render *r, frame_state *f, int i) {
     scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
@@ -877,8 +1019,10 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         }
     } else if (c->kind == GLIB_CMD_SPLAT) {
         splat(r, (int)c->num[0], (int)c->num[1]);
-    } else if (res_is_geometry(c->kind)) {
-        if (res >= 0) res_mesh_draw(&s->meshes[res], f->cur ? f->cur->tangent_loc : -1);
+    } else if (res_is_geometry(c->kind) || c->kind == GLIB_CMD_GL_BEGIN) {
+        if (res >= 0) draw_mesh(r, f, i, &s->meshes[res]);
+    } else if (c->kind == GLIB_CMD_NUM_PATCH_VERTICES) {
+        f->patch_vertices = (int)c->num[0];
     } else if (c->kind == GLIB_CMD_PROGRAM) {
         f->cur = res >= 0 ? &s->progs[res] : NULL;
         glUseProgram(f->cur ? f->cur->gl : 0);
@@ -950,7 +1094,12 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         cam_load(&f.cams, CAM_MAIN);
         memcpy(f.cam_eye, v.eye, sizeof f.cam_eye);
         glPushMatrix();
-        for (int i = 0; i < s->glib->ncmds; i++) exec_cmd(r, &f, i);
+        f.patch_vertices = 3;   /* GL's default patch size */
+        for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {}   /* not ours: the caller's */
+        for (int i = 0; i < s->glib->ncmds; i++) {
+            exec_cmd(r, &f, i);
+            check_gl(r, &f, i, NULL, NULL);   /* after a draw, draw_mesh has checked already */
+        }
         for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */
             if (f.depth <= MATRIX_STACK_MAX) glPopMatrix();
         glPopMatrix();

@@ -36,6 +36,11 @@ bool render_load(render *r, const char *glib_path);
 bool render_rebuild_programs(render *r);
 
 const char *render_messages(const render *r);   /* "" when the last load was clean; each line once */
+/* Problems met drawing since the last load (each command's once, with its
+ * glib line: a GL error, patches without a tessellation program); they
+ * are in render_messages too. "" when every draw worked. A failed draw
+ * draws nothing; the rest of the frame is drawn. */
+const char *render_draw_messages(const render *r);
 /* The same as diagnostics (severity, file, line, text). */
 const diag_list *render_diags(const render *r);
 bool render_has_errors(const render *r);

@@ -192,6 +192,25 @@ static unif_type map_gl_type(GLenum t) {
     }
 }
 
+/* Which stages the linked build has (shaders stay attached after their
+ * deletion), for the draws: tessellation takes patches, a geometry
+ * shader its declared input. */
+static void stages_of(prog *p) {
+    GLuint sh[SHADER_STAGE_COUNT];
+    GLsizei n = 0;
+    glGetAttachedShaders(p->gl, SHADER_STAGE_COUNT, &n, sh);
+    bool geom = false;
+    for (GLsizei i = 0; i < n; i++) {
+        GLint type = 0;
+        glGetShaderiv(sh[i], GL_SHADER_TYPE, &type);
+        p->tess = p->tess || type == GL_TESS_EVALUATION_SHADER;
+        geom = geom || type == GL_GEOMETRY_SHADER;
+    }
+    GLint in = 0;
+    if (geom) glGetProgramiv(p->gl, GL_GEOMETRY_INPUT_TYPE, &in);
+    p->gs_input = (unsigned)in;
+}
+
 void prog_introspect(prog *p, char **log) {
     for (int i = 0; i < p->unifs->n; i++) {
         p->unifs->entries[i].in_shader = false;
@@ -199,7 +218,11 @@ void prog_introspect(prog *p, char **log) {
     }
     p->timer_loc = -1;
     p->tangent_loc = -1;
+    p->face_index_loc = -1;
+    p->tess = false;
+    p->gs_input = 0;
     if (!p->gl) return;
+    stages_of(p);
     GLint count = 0;
     glGetProgramiv(p->gl, GL_ACTIVE_UNIFORMS, &count);
     for (GLint i = 0; i < count; i++) {
@@ -213,6 +236,11 @@ void prog_introspect(prog *p, char **log) {
         if (strchr(name, '.') || strchr(name, '[')) continue;  /* struct members: not ours */
         GLint loc = glGetUniformLocation(p->gl, name);
         if (strcmp(name, "Timer") == 0) { p->timer_loc = loc; continue; }
+        if (strcmp(name, "FaceIndex") == 0) {   /* set by the Soccerball, face by face */
+            p->face_index_loc = loc;
+            p->face_index_int = type == GL_INT;
+            continue;
+        }
         /* set by tarn (the pack contract's table): no slider */
         if (contract_is_camera_uniform(name) || (p->world_uniforms && contract_is_world_uniform(name))) continue;
         unif_entry *e = unif_set_shader_type(p->unifs, name, map_gl_type(type), size, loc);

@@ -21,6 +21,10 @@ typedef struct prog {
     char **deps;                             /* shader files read, incl. #includes */
     int ndeps;
     int timer_loc, tangent_loc;
+    int face_index_loc;                      /* glman's FaceIndex (Soccerball), set per face */
+    bool face_index_int;
+    bool tess;                               /* the build has a TessEvaluation stage */
+    unsigned gs_input;                       /* its geometry shader's input primitive (GL enum), 0: none */
     bool world_uniforms;                     /* the scene has a world: its uniforms get no slider */
     char *source;                            /* all stage texts as compiled (for messages) */
     const glib_scene *scene;                 /* its glib: sliders that glib commands read */

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "assets.h"
@@ -18,7 +19,10 @@ bool res_is_geometry(glib_cmd_kind k) {
     return k == GLIB_CMD_QUAD_XY || k == GLIB_CMD_QUAD_XZ || k == GLIB_CMD_QUAD_YZ ||
            k == GLIB_CMD_SPHERE || k == GLIB_CMD_TORUS || k == GLIB_CMD_BOX ||
            k == GLIB_CMD_CYLINDER || k == GLIB_CMD_CONE || k == GLIB_CMD_TEAPOT ||
-           k == GLIB_CMD_OBJ;
+           k == GLIB_CMD_OBJ || k == GLIB_CMD_OBJ_ADJ || k == GLIB_CMD_OBJ_PATCH ||
+           k == GLIB_CMD_DISK_XY || k == GLIB_CMD_QUAD_BOX || k == GLIB_CMD_POINT_CLOUD ||
+           k == GLIB_CMD_JITTER_CLOUD || k == GLIB_CMD_SOCCERBALL || k == GLIB_CMD_XARROW ||
+           k == GLIB_CMD_LINES_ADJACENCY || k == GLIB_CMD_TRIANGLES;
 }
 
 bool res_is_texture(glib_cmd_kind k) {
@@ -73,7 +77,22 @@ static bool make_mesh(const glib_cmd *c, geom_mesh *g, char *err, int errlen) {
     case GLIB_CMD_CYLINDER: return geom_cylinder(g, arg_f(c, 0, 1), arg_f(c, 1, 1), arg_i(c, 2, 32), arg_i(c, 3, 1), w);
     case GLIB_CMD_CONE: return geom_cone(g, arg_f(c, 0, 1), arg_f(c, 1, 1), arg_i(c, 2, 32), arg_i(c, 3, 1), w);
     case GLIB_CMD_TEAPOT: return geom_teapot(g, arg_f(c, 0, 1), 10, w);
-    case GLIB_CMD_OBJ: return geom_obj_load(g, c->path, err, errlen);
+    case GLIB_CMD_OBJ:
+        return w ? geom_obj_load_wire(g, c->path, err, errlen) : geom_obj_load(g, c->path, err, errlen);
+    case GLIB_CMD_OBJ_ADJ: return geom_obj_load_adjacency(g, c->path, err, errlen);
+    case GLIB_CMD_OBJ_PATCH: return geom_obj_load_patches(g, c->path, err, errlen);
+    case GLIB_CMD_DISK_XY: return geom_disk_xy(g, 0);
+    case GLIB_CMD_QUAD_BOX: return geom_quad_box(g, arg_i(c, 0, 10));
+    case GLIB_CMD_POINT_CLOUD: case GLIB_CMD_JITTER_CLOUD:
+        return geom_point_cloud(g, arg_i(c, 0, 10), arg_i(c, 1, 10), arg_i(c, 2, 10), c->kind == GLIB_CMD_JITTER_CLOUD);
+    case GLIB_CMD_SOCCERBALL: return geom_soccerball(g, arg_f(c, 0, 1));
+    case GLIB_CMD_XARROW: return geom_xarrow(g, arg_i(c, 0, 100));
+    case GLIB_CMD_LINES_ADJACENCY: case GLIB_CMD_TRIANGLES: {
+        float xyz[12];
+        int n = c->kind == GLIB_CMD_TRIANGLES ? 3 : 4;
+        for (int k = 0; k < 3 * n; k++) xyz[k] = arg_f(c, k, 0);
+        return geom_points(g, xyz, n, n == 3 ? GEOM_TRIANGLES : GEOM_LINES_ADJACENCY);
+    }
     default: return false;
     }
 }
@@ -81,24 +100,42 @@ static bool make_mesh(const glib_cmd *c, geom_mesh *g, char *err, int errlen) {
 bool res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
     if (g->nvert <= 0 || g->nidx <= 0) return false;
     long nv = g->nvert;
-    long sz_pos = nv * 3 * (long)sizeof(float), sz_tc = nv * 2 * (long)sizeof(float);
+    long sz_pos = nv * 3 * (long)sizeof(float);
+    float *tc = malloc((size_t)sz_pos);   /* s t p: p 0 where the mesh has none */
+    if (!tc) return false;
+    for (long k = 0; k < nv; k++) {
+        tc[3 * k] = g->tc[2 * k];
+        tc[3 * k + 1] = g->tc[2 * k + 1];
+        tc[3 * k + 2] = g->tcp ? g->tcp[k] : 0.0f;
+    }
     m->off_nrm = sz_pos;
     m->off_tc = 2 * sz_pos;
-    m->off_tan = 2 * sz_pos + sz_tc;
+    m->off_tan = 3 * sz_pos;
     glGenBuffers(1, &m->vbo);
     glBindBuffer(GL_ARRAY_BUFFER, m->vbo);
-    glBufferData(GL_ARRAY_BUFFER, 3 * sz_pos + sz_tc, NULL, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, 4 * sz_pos, NULL, GL_STATIC_DRAW);
     glBufferSubData(GL_ARRAY_BUFFER, 0, sz_pos, g->pos);
     glBufferSubData(GL_ARRAY_BUFFER, m->off_nrm, sz_pos, g->nrm);
-    glBufferSubData(GL_ARRAY_BUFFER, m->off_tc, sz_tc, g->tc);
+    glBufferSubData(GL_ARRAY_BUFFER, m->off_tc, sz_pos, tc);
     glBufferSubData(GL_ARRAY_BUFFER, m->off_tan, sz_pos, g->tan);
+    free(tc);
     glGenBuffers(1, &m->ibo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (long)g->nidx * (long)sizeof(unsigned), g->idx, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     m->nidx = g->nidx;
-    m->lines = g->lines;
+    m->prim = (int)g->prim;
+    m->patch_size = g->patch_size;
+    m->nparts = 0;
+    m->part_first = NULL;
+    if (g->part_first && g->nparts > 0) {
+        m->part_first = malloc(sizeof *m->part_first * (size_t)(g->nparts + 1));
+        if (m->part_first) {
+            memcpy(m->part_first, g->part_first, sizeof *m->part_first * (size_t)(g->nparts + 1));
+            m->nparts = g->nparts;
+        }
+    }
     return true;
 }
 
@@ -116,9 +153,81 @@ bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
     return true;
 }
 
-/* glman's attributes: gl_Vertex, gl_Normal, gl_MultiTexCoord0, Tangent. */
-void res_mesh_draw(const gpu_mesh *m, int tangent_loc) {
-    if (!m->vbo) return;
+/* geom_prim -> GL, and the vertices one primitive takes (0: a strip or a
+ * patch, which has no fixed size). */
+static const struct { GLenum mode; int verts; const char *name; } prims[] = {
+    [GEOM_TRIANGLES] = { GL_TRIANGLES, 3, "GL_TRIANGLES" },
+    [GEOM_LINES] = { GL_LINES, 2, "GL_LINES" },
+    [GEOM_POINTS] = { GL_POINTS, 1, "GL_POINTS" },
+    [GEOM_LINES_ADJACENCY] = { GL_LINES_ADJACENCY, 4, "GL_LINES_ADJACENCY" },
+    [GEOM_TRIANGLES_ADJACENCY] = { GL_TRIANGLES_ADJACENCY, 6, "GL_TRIANGLES_ADJACENCY" },
+    [GEOM_PATCHES] = { GL_PATCHES, 0, "GL_PATCHES" },
+    [GEOM_LINE_STRIP] = { GL_LINE_STRIP, 0, "GL_LINE_STRIP" },
+    [GEOM_LINE_LOOP] = { GL_LINE_LOOP, 0, "GL_LINE_LOOP" },
+    [GEOM_TRIANGLE_STRIP] = { GL_TRIANGLE_STRIP, 0, "GL_TRIANGLE_STRIP" },
+    [GEOM_TRIANGLE_FAN] = { GL_TRIANGLE_FAN, 0, "GL_TRIANGLE_FAN" },
+    [GEOM_QUADS] = { GL_QUADS, 4, "GL_QUADS" },
+};
+#define NPRIMS ((int)(sizeof prims / sizeof prims[0]))
+
+/* The mode and patch size of m drawn under d: a tessellating program takes
+ * every list primitive as patches of its own size (a triangle list is
+ * patches of 3), so a Sphere feeds a tessellation shader as glman's did;
+ * patches are of the mesh's own size or the scene's NumPatchVertices. */
+static GLenum draw_mode(const gpu_mesh *m, const res_draw *d, int *patch) {
+    int p = m->prim >= 0 && m->prim < NPRIMS ? m->prim : GEOM_TRIANGLES;
+    *patch = 0;
+    if (p == GEOM_PATCHES) {
+        *patch = m->patch_size > 0 ? m->patch_size : d->patch_vertices > 0 ? d->patch_vertices : 3;
+        return GL_PATCHES;
+    }
+    if (d->tess && prims[p].verts > 0 && p != GEOM_QUADS) {
+        *patch = prims[p].verts;
+        return GL_PATCHES;
+    }
+    return prims[p].mode;
+}
+
+const char *res_mesh_prim_name(const gpu_mesh *m, const res_draw *d) {
+    int patch;
+    GLenum mode = draw_mode(m, d, &patch);
+    for (int i = 0; i < NPRIMS; i++)
+        if (prims[i].mode == mode) return prims[i].name;
+    return "?";
+}
+
+/* One glDrawElements a part, with FaceIndex telling the shader which. */
+static void draw_parts(const gpu_mesh *m, const res_draw *d, GLenum mode) {
+    if (!m->part_first || m->nparts <= 0) {
+        glDrawElements(mode, m->nidx, GL_UNSIGNED_INT, (const void *)0);
+        return;
+    }
+    for (int k = 0; k < m->nparts; k++) {
+        if (d->face_index_loc >= 0) {
+            if (d->face_index_int) glUniform1i(d->face_index_loc, k);
+            else glUniform1f(d->face_index_loc, (float)k);
+        }
+        long first = m->part_first[k], n = m->part_first[k + 1] - first;
+        if (n > 0) glDrawElements(mode, (GLsizei)n, GL_UNSIGNED_INT, (const void *)(first * (long)sizeof(unsigned)));
+    }
+}
+
+bool res_mesh_draw_with(const gpu_mesh *m, const res_draw *d, char *why, int whylen) {
+    if (why && whylen > 0) why[0] = '\0';
+    if (!m->vbo) return true;
+    int patch = 0;
+    GLenum mode = draw_mode(m, d, &patch);
+    if (mode == GL_PATCHES && !d->tess) {
+        snprintf(why, (size_t)whylen, "it draws GL_PATCHES (patches of %d), which need a Program with a "
+                 "TessEvaluation stage (and usually TessControl); name them before the Program line, "
+                 "or draw with Obj instead of ObjPatch", patch);
+        return false;
+    }
+    if (mode == GL_PATCHES && m->nidx % patch != 0)
+        snprintf(why, (size_t)whylen, "its %d vertices are not whole patches of %d: the last %d are "
+                 "dropped (set NumPatchVertices to the patch size)", m->nidx, patch, m->nidx % patch);
+    if (mode == GL_PATCHES) glPatchParameteri(GL_PATCH_VERTICES, patch);
+    int tangent_loc = d->tangent_loc;
     glBindBuffer(GL_ARRAY_BUFFER, m->vbo);
     glEnableClientState(GL_VERTEX_ARRAY);
     glVertexPointer(3, GL_FLOAT, 0, (const void *)0);
@@ -126,25 +235,35 @@ void res_mesh_draw(const gpu_mesh *m, int tangent_loc) {
     glNormalPointer(GL_FLOAT, 0, (const void *)m->off_nrm);
     glClientActiveTexture(GL_TEXTURE0);
     glEnableClientState(GL_TEXTURE_COORD_ARRAY);
-    glTexCoordPointer(2, GL_FLOAT, 0, (const void *)m->off_tc);
+    glTexCoordPointer(3, GL_FLOAT, 0, (const void *)m->off_tc);
     if (tangent_loc >= 0) {
         glEnableVertexAttribArray((GLuint)tangent_loc);
         glVertexAttribPointer((GLuint)tangent_loc, 3, GL_FLOAT, GL_FALSE, 0, (const void *)m->off_tan);
     }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
-    glDrawElements(m->lines ? GL_LINES : GL_TRIANGLES, m->nidx, GL_UNSIGNED_INT, (const void *)0);
+    draw_parts(m, d, mode);
     if (tangent_loc >= 0) glDisableVertexAttribArray((GLuint)tangent_loc);
     glDisableClientState(GL_TEXTURE_COORD_ARRAY);
     glDisableClientState(GL_NORMAL_ARRAY);
     glDisableClientState(GL_VERTEX_ARRAY);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
+    return true;
+}
+
+/* glman's attributes: gl_Vertex, gl_Normal, gl_MultiTexCoord0, Tangent. */
+void res_mesh_draw(const gpu_mesh *m, int tangent_loc) {
+    res_draw d = { .tangent_loc = tangent_loc, .face_index_loc = -1, .patch_vertices = 3 };
+    res_mesh_draw_with(m, &d, NULL, 0);
 }
 
 void res_mesh_free(gpu_mesh *m) {
     if (m->vbo) glDeleteBuffers(1, &m->vbo);
     if (m->ibo) glDeleteBuffers(1, &m->ibo);
     m->vbo = m->ibo = 0;
+    free(m->part_first);
+    m->part_first = NULL;
+    m->nparts = 0;
 }
 
 /* ---- textures ---- */
@@ -181,6 +300,98 @@ void res_sampling(unsigned target, bool mipmaps, unsigned wrap) {
     glTexParameteri(target, GL_TEXTURE_WRAP_T, (GLint)wrap);
     glTexParameteri(target, GL_TEXTURE_WRAP_R, (GLint)wrap);
     if (mipmaps) glGenerateMipmap(target);
+}
+
+/* ---- glman's raw textures ---- */
+
+/* A raw texture as read: sizes (s, t, p; p 1 for 2D) and RGBA floats. */
+typedef struct raw_tex {
+    int n[3];
+    float *px;
+    bool bytes;                 /* the file held bytes (else floats) */
+} raw_tex;
+
+#define RAW_MAX_TEXELS (1L << 25)
+
+/* glman's raw texture file (docs/glman.md, "Raw texture files"): dims
+ * little-endian int32 sizes, then RGBA texels, s fastest, all bytes or all
+ * 32-bit floats, told apart by the file size. False with why (a sentence)
+ * when the file is not such a file. */
+static bool read_raw(const char *path, int dims, raw_tex *out, char *why, size_t whylen) {
+    memset(out, 0, sizeof *out);
+    out->n[2] = 1;
+    FILE *f = fopen(path, "rb");
+    if (!f) { snprintf(why, whylen, "cannot open '%s'", path); return false; }
+    unsigned char hdr[12];
+    struct stat st;
+    bool ok = fstat(fileno(f), &st) == 0 && fread(hdr, 4, (size_t)dims, f) == (size_t)dims;
+    long texels = 1;
+    for (int d = 0; ok && d < dims; d++) {
+        out->n[d] = (int)((unsigned)hdr[d * 4] | (unsigned)hdr[d * 4 + 1] << 8 |
+                          (unsigned)hdr[d * 4 + 2] << 16 | (unsigned)hdr[d * 4 + 3] << 24);
+        if (out->n[d] < 1 || out->n[d] > 16384) {
+            snprintf(why, whylen, "'%s' is not a glman raw texture: size %d in its header (use 1..16384)",
+                     path, out->n[d]);
+            fclose(f);
+            return false;
+        }
+        texels *= out->n[d];
+        ok = texels <= RAW_MAX_TEXELS;
+    }
+    if (!ok) {
+        snprintf(why, whylen, "'%s' is not a glman raw texture: its header is cut short or asks for more "
+                 "than %ld texels", path, RAW_MAX_TEXELS);
+        fclose(f);
+        return false;
+    }
+    long body = (long)st.st_size - 4L * dims, count = texels * 4;
+    out->bytes = body == count;
+    if (!out->bytes && body != count * 4) {
+        char sizes[48];
+        if (dims == 3) snprintf(sizes, sizeof sizes, "%d x %d x %d", out->n[0], out->n[1], out->n[2]);
+        else snprintf(sizes, sizeof sizes, "%d x %d", out->n[0], out->n[1]);
+        snprintf(why, whylen, "'%s' has %ld bytes after its %d-number header, but %s RGBA texels take %ld "
+                 "(bytes) or %ld (floats): the sizes in its header are wrong or the file is cut short",
+                 path, body, dims, sizes, count, count * 4);
+        fclose(f);
+        return false;
+    }
+    out->px = malloc((size_t)count * sizeof *out->px);
+    unsigned char *raw = out->px ? malloc((size_t)body) : NULL;
+    ok = raw && fread(raw, 1, (size_t)body, f) == (size_t)body;
+    for (long i = 0; ok && i < count; i++) {
+        if (out->bytes) out->px[i] = raw[i] / 255.0f;
+        else memcpy(&out->px[i], raw + i * 4, 4);   /* little-endian, as written */
+        if (!isfinite(out->px[i])) out->px[i] = 0;  /* a NaN texel would spread through filtering */
+    }
+    free(raw);
+    fclose(f);
+    if (!ok) {
+        snprintf(why, whylen, "cannot read '%s'", path);
+        free(out->px);
+        out->px = NULL;
+    }
+    return ok;
+}
+
+/* Whether a texture file is glman's raw format: its .tex name. */
+static bool is_raw_name(const char *path) {
+    size_t n = strlen(path);
+    return n > 4 && strcasecmp(path + n - 4, ".tex") == 0;
+}
+
+/* Reads a raw file for command c into rt, or says why in the log. */
+static bool raw_read_into(const char *path, int dims, raw_tex *rt, const glib_cmd *c, char **log) {
+    char why[768];
+    if (read_raw(path, dims, rt, why, sizeof why)) return true;
+    str_appendf(log, "%s:%d: error: %s: %s\n", c->file, c->line, glib_cmd_name(c->kind), why);
+    return false;
+}
+
+/* Uploads a raw image to the bound 2D target (a face of a cube map too):
+ * raw rows run from t = 0, GL's bottom row, as glman uploaded them. */
+static void raw_upload_2d(GLenum target, const raw_tex *rt) {
+    glTexImage2D(target, 0, rt->bytes ? GL_RGBA8 : GL_RGBA32F, rt->n[0], rt->n[1], 0, GL_RGBA, GL_FLOAT, rt->px);
 }
 
 static bool load_image(const char *path, img *im, const glib_cmd *c, char **log) {
@@ -228,6 +439,16 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
 
 static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
     if (c->path[0] == '@') return tex_2d_generated(c, t, log);
+    if (is_raw_name(c->path)) {
+        raw_tex rt;
+        if (!raw_read_into(c->path, 2, &rt, c, log)) return false;
+        t->w = rt.n[0];
+        t->h = rt.n[1];
+        raw_upload_2d(GL_TEXTURE_2D, &rt);
+        free(rt.px);
+        res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
+        return true;
+    }
     img im;
     if (!load_image(c->path, &im, c, log)) return false;
     img_flip_rows(&im);            /* files store the top row first, GL the bottom */
@@ -287,6 +508,15 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
         res_sampling(GL_TEXTURE_3D, false, GL_REPEAT);
         return true;
     }
+    if (is_raw_name(c->path)) {
+        raw_tex rt;
+        if (!raw_read_into(c->path, 3, &rt, c, log)) return false;
+        glTexImage3D(GL_TEXTURE_3D, 0, rt.bytes ? GL_RGBA8 : GL_RGBA32F, rt.n[0], rt.n[1], rt.n[2], 0, GL_RGBA,
+                     GL_FLOAT, rt.px);
+        free(rt.px);
+        res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
+        return true;
+    }
     img im;
     if (!load_image(c->path, &im, c, log)) return false;
     float *rgba = to_rgba(&im);
@@ -302,6 +532,13 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
 static bool tex_cube(const glib_cmd *c, gpu_tex *t, char **log) {
     if (!c->cube_paths) return false;
     for (int f = 0; f < 6; f++) {
+        if (is_raw_name(c->cube_paths[f])) {
+            raw_tex rt;
+            if (!raw_read_into(c->cube_paths[f], 2, &rt, c, log)) return false;
+            raw_upload_2d(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, &rt);
+            free(rt.px);
+            continue;
+        }
         img im;
         if (!load_image(c->cube_paths[f], &im, c, log)) return false;
         float *rgba = to_rgba(&im);
@@ -337,53 +574,16 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
     return ok;
 }
 
-/* glman's raw texture file (docs/glman.md, "Raw texture files"): dims
- * little-endian int32 sizes, then RGBA texels, all bytes or all floats
- * (told apart by the file size). A cube of side *res, as RGBA floats, or
- * NULL when the file is not there or not such a file. */
-static float *read_raw_cube(const char *path, int dims, int *res) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    unsigned char hdr[12];
-    float *px = NULL;
-    struct stat st;
-    if (fstat(fileno(f), &st) == 0 && fread(hdr, 4, (size_t)dims, f) == (size_t)dims) {
-        int n[3] = { 0, 0, 0 };
-        for (int d = 0; d < dims; d++)
-            n[d] = (int)((unsigned)hdr[d * 4] | (unsigned)hdr[d * 4 + 1] << 8 |
-                         (unsigned)hdr[d * 4 + 2] << 16 | (unsigned)hdr[d * 4 + 3] << 24);
-        long count = n[0] > 0 && n[0] <= 512 && n[1] == n[0] && (dims == 2 || n[2] == n[0])
-                   ? (long)n[0] * n[0] * (dims == 3 ? n[0] : 1) * 4 : 0;
-        long body = (long)st.st_size - 4L * dims;
-        bool floats = count && body == count * 4, bytes = count && body == count;
-        px = floats || bytes ? malloc((size_t)count * sizeof *px) : NULL;
-        unsigned char *raw = px ? malloc((size_t)body) : NULL;
-        if (raw && fread(raw, 1, (size_t)body, f) == (size_t)body) {
-            for (long i = 0; i < count; i++) {
-                if (bytes) px[i] = raw[i] / 255.0f;
-                else memcpy(&px[i], raw + i * 4, 4);   /* little-endian, as written */
-            }
-            *res = n[0];
-        } else {
-            free(px);
-            px = NULL;
-        }
-        free(raw);
-    }
-    fclose(f);
-    return px;
-}
-
 bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
-    char path[GLIB_PATH_MAX + 32];
+    char path[GLIB_PATH_MAX + 32], why[768];
     snprintf(path, sizeof path, "%s%snoise%dd.064.tex", dir, dir[0] ? "/" : "", is3d ? 3 : 2);
-    int res = 64;
-    float *px = read_raw_cube(path, is3d ? 3 : 2, &res);   /* the project's own, as glman cached it */
-    if (!px) {
-        res = 64;
-        px = malloc((size_t)res * res * (is3d ? res : 1) * 4 * sizeof *px);
-        if (!px || !(is3d ? noise_3d(res, px) : noise_2d(res, px))) {
-            free(px);
+    raw_tex rt;
+    if (!read_raw(path, is3d ? 3 : 2, &rt, why, sizeof why)) {   /* else the project's own, as glman cached it */
+        rt.n[0] = rt.n[1] = 64;
+        rt.n[2] = is3d ? 64 : 1;
+        rt.px = malloc((size_t)64 * 64 * rt.n[2] * 4 * sizeof *rt.px);
+        if (!rt.px || !(is3d ? noise_3d(64, rt.px) : noise_2d(64, rt.px))) {
+            free(rt.px);
             return false;
         }
     }
@@ -392,11 +592,11 @@ bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
     glGenTextures(1, &t->tex);
     glBindTexture(t->target, t->tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, res, res, res, 0, GL_RGBA, GL_FLOAT, px);
-    else glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
+    if (is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, rt.n[0], rt.n[1], rt.n[2], 0, GL_RGBA, GL_FLOAT, rt.px);
+    else glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, rt.n[0], rt.n[1], 0, GL_RGBA, GL_FLOAT, rt.px);
     res_sampling(t->target, true, GL_REPEAT);
     glBindTexture(t->target, 0);
-    free(px);
+    free(rt.px);
     return true;
 }
 

@@ -12,9 +12,21 @@ typedef struct gpu_mesh {
     char key[RES_KEY_MAX];
     unsigned vbo, ibo;
     int nidx;
-    bool lines;
-    long off_nrm, off_tc, off_tan;
+    int prim;                   /* geom_prim */
+    int patch_size;             /* GEOM_PATCHES: vertices a patch; 0: NumPatchVertices */
+    long off_nrm, off_tc, off_tan;   /* tc: 3 floats a vertex (s t p) */
+    int *part_first;            /* parts drawn one by one (geom.h); NULL: one draw */
+    int nparts;
 } gpu_mesh;
+
+/* What a draw needs to know of the current program and state. */
+typedef struct res_draw {
+    int tangent_loc;            /* the Tangent attribute, or -1 */
+    int face_index_loc;         /* the FaceIndex uniform, or -1 */
+    bool face_index_int;        /* declared int (else float) */
+    bool tess;                  /* the program tessellates: draws become GL_PATCHES */
+    int patch_vertices;         /* NumPatchVertices now */
+} res_draw;
 
 typedef struct gpu_tex {
     char key[RES_KEY_MAX];      /* command + file stamps: equal key, same texture */
@@ -38,6 +50,13 @@ bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
 struct geom_mesh;
 bool res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);
 void res_mesh_draw(const gpu_mesh *m, int tangent_loc);
+/* Draws m for the current program as d says. A draw that cannot work
+ * (patches without a tessellating program) is not made: false, with the
+ * reason in why (a sentence saying what to do). A draw made with a
+ * problem (vertices left over from whole patches) is true with why set. */
+bool res_mesh_draw_with(const gpu_mesh *m, const res_draw *d, char *why, int whylen);
+/* The primitive OpenGL gets for m under d, as GL names it ("GL_PATCHES"). */
+const char *res_mesh_prim_name(const gpu_mesh *m, const res_draw *d);
 void res_mesh_free(gpu_mesh *m);
 
 bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);

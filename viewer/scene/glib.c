@@ -98,6 +98,9 @@ typedef struct parser {
     const char *pack_file;          /* where, for the message about a second one */
     int pack_line;
     char pack_name[GLIB_NAME_MAX];
+    /* an open glBegin (its file and line; NULL when none) */
+    const char *begin_file;
+    int begin_line, begin_nverts;
 } parser;
 
 static void add_diag(parser *p, diag_severity sev, const char *file, int line,
@@ -203,7 +206,7 @@ struct cmd_spec {
     cmd_fn fn;
     bool raw;                   /* the handler reads c->rest itself (brackets) */
     int nreq, nmax;             /* numbers, for h_nums */
-    arg_rule args[10];
+    arg_rule args[12];         /* LinesAdjacency: 4 points */
     const char *usage;          /* NULL: built from args */
     bool world;                 /* describes the world (docs/glib.md, "Describing the
                                  * world"): a scene with one is drawn lit, with tarn's world */
@@ -636,7 +639,7 @@ static bool h_stage(cmdctx *c, glib_cmd *cmd) {
 
 static bool h_obj(cmdctx *c, glib_cmd *cmd) {
     if (c->nwords < 1) {
-        cerr(c, "Obj needs a file: %s", c->usage);
+        cerr(c, "%s needs a file: %s", c->spec->name, c->usage);
         return false;
     }
     warn_extra(c, 1, path_hint);
@@ -813,6 +816,68 @@ static bool h_message(cmdctx *c, glib_cmd *cmd) {
     }
     vdiag_note(c, s);
     return false;               /* nothing to run */
+}
+
+/* ------------------------------------------------------------------ */
+/* immediate mode: glBegin mode, glVertex x y z [w] ..., glEnd          */
+
+/* The primitives glBegin takes, as glman passed them to OpenGL. */
+static const char *const begin_modes[] = {
+    "gl_points", "gl_lines", "gl_line_strip", "gl_line_loop", "gl_triangles",
+    "gl_triangle_strip", "gl_triangle_fan", "gl_quads", "gl_lines_adjacency",
+    "gl_triangles_adjacency", "gl_patches",
+};
+
+static bool h_begin(cmdctx *c, glib_cmd *cmd) {
+    parser *p = c->p;
+    if (p->begin_file) {
+        cerr(c, "glBegin inside the glBegin of %s:%d: end that one with glEnd first", p->begin_file,
+             p->begin_line);
+        return false;
+    }
+    if (c->nwords < 1) {
+        cerr(c, "glBegin needs a primitive, e.g. glBegin gl_patches: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, 1, "");
+    for (size_t i = 0; i < sizeof begin_modes / sizeof begin_modes[0]; i++)
+        if (strcasecmp(c->words[0], begin_modes[i]) == 0) {
+            snprintf(cmd->name, sizeof cmd->name, "%s", begin_modes[i]);
+            p->begin_file = c->file;
+            p->begin_line = c->line;
+            p->begin_nverts = 0;
+            return true;
+        }
+    cerr(c, "glBegin: unknown primitive '%.40s': write gl_patches, gl_triangles, gl_lines, gl_points, "
+            "gl_lines_adjacency, gl_triangles_adjacency, gl_line_strip, gl_triangle_strip, ...", c->words[0]);
+    return false;
+}
+
+static bool h_vertex(cmdctx *c, glib_cmd *cmd) {
+    if (!c->p->begin_file) {
+        cwarn(c, "glVertex outside glBegin ... glEnd draws nothing (skipped): put it after a glBegin line");
+        return false;
+    }
+    if (!h_nums(c, cmd))
+        return false;
+    if (cmd->num[3] != 1)
+        cwarn(c, "glVertex: w = %g is not passed on; tarn draws the point x y z with w = 1", cmd->num[3]);
+    c->p->begin_nverts++;
+    return true;
+}
+
+static bool h_end(cmdctx *c, glib_cmd *cmd) {
+    (void)cmd;
+    parser *p = c->p;
+    warn_extra(c, 0, "");
+    if (!p->begin_file) {
+        cwarn(c, "glEnd without a glBegin (skipped)");
+        return false;
+    }
+    if (p->begin_nverts == 0)
+        cwarn(c, "glBegin (line %d) ... glEnd has no glVertex: it draws nothing", p->begin_line);
+    p->begin_file = NULL;
+    return true;
 }
 
 /* ------------------------------------------------------------------ */
@@ -1659,7 +1724,7 @@ static void process_line(parser *p, char *s, const char *file, int line) {
     }
     cmdctx c = { .p = p, .file = file, .line = line, .spec = spec, .rest = s };
     build_usage(spec, c.usage, sizeof c.usage);
-    if (spec->fn == h_nums || spec->fn == h_world_nums)
+    if (spec->fn == h_nums || spec->fn == h_world_nums || spec->fn == h_vertex)
         blank_brackets(s);
     if (!spec->raw && (c.nwords = split_words(s, c.words, LIM_WORDS)) < 0) {
         cerr(&c, "%s: unclosed '\"': add the closing quote", spec->name);
@@ -1854,6 +1919,9 @@ static bool h_include(cmdctx *c, glib_cmd *cmd) {
 
 static void finish(parser *p) {
     glib_scene *sc = p->sc;
+    if (p->begin_file)
+        report(p, DIAG_ERROR, p->begin_file, p->begin_line,
+               "glBegin without a glEnd: its vertices draw nothing; add glEnd after the last glVertex");
     for (int i = 0; i < p->npending; i++)
         report(p, DIAG_WARNING, p->pending[i].file, p->pending[i].line,
              "Define %s comes after the last Program, so no shader sees it; move it above a Program",
@@ -1963,6 +2031,13 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_FLAT] = "Flat", [GLIB_CMD_SMOOTH] = "Smooth", [GLIB_CMD_LINE_WIDTH] = "LineWidth",
     [GLIB_CMD_POINT_SIZE] = "PointSize", [GLIB_CMD_POINT_SIZE_MODE] = "PointSizeMode",
     [GLIB_CMD_CLAMP] = "Clamp",
+    [GLIB_CMD_DISK_XY] = "DiskXY", [GLIB_CMD_QUAD_BOX] = "QuadBox",
+    [GLIB_CMD_POINT_CLOUD] = "PointCloud", [GLIB_CMD_JITTER_CLOUD] = "JitterCloud",
+    [GLIB_CMD_SOCCERBALL] = "Soccerball", [GLIB_CMD_XARROW] = "Xarrow",
+    [GLIB_CMD_LINES_ADJACENCY] = "LinesAdjacency", [GLIB_CMD_TRIANGLES] = "Triangles",
+    [GLIB_CMD_OBJ_ADJ] = "ObjAdj", [GLIB_CMD_OBJ_PATCH] = "ObjPatch",
+    [GLIB_CMD_NUM_PATCH_VERTICES] = "NumPatchVertices", [GLIB_CMD_GL_BEGIN] = "glBegin",
+    [GLIB_CMD_GL_VERTEX] = "glVertex", [GLIB_CMD_GL_END] = "glEnd",
 };
 
 const char *glib_cmd_name(glib_cmd_kind kind) {
@@ -1993,6 +2068,8 @@ const char *glib_cmd_name(glib_cmd_kind kind) {
     ARG_ID("slices", 3, 1024, 32), ARG_ID("stacks", 1, 1024, 8) }
 #define WAVE_ARGS { ARG_R("angle_deg", NULL), ARG_R("wavelength", NULL), \
     ARG_R("amplitude", "an amplitude"), ARG_RD("speed", 0), ARG_RD("phase", 0) }
+#define XYZ_ARGS(i) ARG_R("x" #i, NULL), ARG_R("y" #i, NULL), ARG_R("z" #i, NULL)
+#define CLOUD_ARGS { ARG_ID("nx", 1, 1024, 10), ARG_ID("ny", 1, 1024, 10), ARG_ID("nz", 1, 1024, 10) }
 #define RGBA_ARGS { ARG_R("r", NULL), ARG_R("g", NULL), ARG_R("b", "a blue value"), ARG_RD("a", 1) }
 
 static const cmd_spec specs[] = {
@@ -2037,6 +2114,25 @@ static const cmd_spec specs[] = {
     { "WireCone", GLIB_CMD_CONE, true, h_nums, false, 0, 4, ROUND_ARGS, NULL },
     { "WireTeapot", GLIB_CMD_TEAPOT, true, h_nums, false, 0, 1, { ARG_PD("size", 1) }, NULL },
     { "Obj", GLIB_CMD_OBJ, false, h_obj, false, 0, 0, { { 0 } }, "Obj file.obj" },
+    { "WireObj", GLIB_CMD_OBJ, true, h_obj, false, 0, 0, { { 0 } }, "WireObj file.obj" },
+    { "ObjAdj", GLIB_CMD_OBJ_ADJ, false, h_obj, false, 0, 0, { { 0 } }, "ObjAdj file.obj" },
+    { "ObjPatch", GLIB_CMD_OBJ_PATCH, false, h_obj, false, 0, 0, { { 0 } }, "ObjPatch file.obj" },
+    { "DiskXY", GLIB_CMD_DISK_XY, false, h_nums, false, 0, 0, { { 0 } }, NULL },
+    { "QuadBox", GLIB_CMD_QUAD_BOX, false, h_nums, false, 0, 1, { ARG_ID("n", 1, 2048, 10) }, NULL },
+    { "PointCloud", GLIB_CMD_POINT_CLOUD, false, h_nums, false, 0, 3, CLOUD_ARGS, NULL },
+    { "JitterCloud", GLIB_CMD_JITTER_CLOUD, false, h_nums, false, 0, 3, CLOUD_ARGS, NULL },
+    { "Soccerball", GLIB_CMD_SOCCERBALL, false, h_nums, false, 0, 1, { ARG_PD("r", 1) }, NULL },
+    { "Xarrow", GLIB_CMD_XARROW, false, h_nums, false, 0, 1, { ARG_ID("slices", 3, 2048, 100) }, NULL },
+    { "LinesAdjacency", GLIB_CMD_LINES_ADJACENCY, false, h_nums, false, 12, 12,
+      { XYZ_ARGS(0), XYZ_ARGS(1), XYZ_ARGS(2), XYZ_ARGS(3) }, "LinesAdjacency x0 y0 z0 x1 y1 z1 x2 y2 z2 x3 y3 z3" },
+    { "Triangles", GLIB_CMD_TRIANGLES, false, h_nums, false, 9, 9,
+      { XYZ_ARGS(0), XYZ_ARGS(1), XYZ_ARGS(2) }, "Triangles x0 y0 z0 x1 y1 z1 x2 y2 z2" },
+    { "NumPatchVertices", GLIB_CMD_NUM_PATCH_VERTICES, false, h_nums, false, 1, 1,
+      { ARG_I("n", "a patch size (vertices a patch)", 1, 32) }, NULL },
+    { "glBegin", GLIB_CMD_GL_BEGIN, false, h_begin, false, 0, 0, { { 0 } }, "glBegin gl_patches" },
+    { "glVertex", GLIB_CMD_GL_VERTEX, false, h_vertex, false, 3, 4,
+      { ARG_R("x", NULL), ARG_R("y", NULL), ARG_R("z", "a z"), ARG_RD("w", 1) }, NULL },
+    { "glEnd", GLIB_CMD_GL_END, false, h_end, false, 0, 0, { { 0 } }, "glEnd" },
     { "Color", GLIB_CMD_COLOR, false, h_nums, false, 3, 4, RGBA_ARGS, NULL },
     { "Texture2D", GLIB_CMD_TEXTURE2D_FILE, false, h_tex2d, false, 0, 0, { { 0 } },
       "Texture2D unit file | Texture2D unit w h [float|float16|depth]" },

@@ -46,7 +46,7 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_CYLINDER,          /* num: r h [slices stacks] */
     GLIB_CMD_CONE,              /* num: r h [slices stacks] */
     GLIB_CMD_TEAPOT,            /* num: [size] */
-    GLIB_CMD_OBJ,               /* path */
+    GLIB_CMD_OBJ,               /* path; wire: WireObj (its edges) */
     GLIB_CMD_COLOR,             /* num: r g b [a] -> gl_Color for what follows */
     /* textures; num[0] is the texture unit */
     GLIB_CMD_TEXTURE2D_FILE,    /* num: unit; path */
@@ -111,6 +111,22 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_POINT_SIZE,        /* num: size [1] */
     GLIB_CMD_POINT_SIZE_MODE,   /* num: n [1]; nonzero lets the shader set gl_PointSize */
     GLIB_CMD_CLAMP,             /* texture wrap clamp: accepted as state, draws nothing */
+    /* glman's other geometry (docs/glib.md, "Geometry") */
+    GLIB_CMD_DISK_XY,           /* the unit disk in z = 0 */
+    GLIB_CMD_QUAD_BOX,          /* num: n [10] */
+    GLIB_CMD_POINT_CLOUD,       /* num: nx ny nz [10 10 10] */
+    GLIB_CMD_JITTER_CLOUD,      /* num: nx ny nz [10 10 10] */
+    GLIB_CMD_SOCCERBALL,        /* num: r [1] */
+    GLIB_CMD_XARROW,            /* num: slices [100] */
+    GLIB_CMD_LINES_ADJACENCY,   /* num: 4 points x y z (12) */
+    GLIB_CMD_TRIANGLES,         /* num: 3 points x y z (9) */
+    GLIB_CMD_OBJ_ADJ,           /* path: drawn as GL_TRIANGLES_ADJACENCY */
+    GLIB_CMD_OBJ_PATCH,         /* path: drawn as GL_PATCHES */
+    /* tessellation */
+    GLIB_CMD_NUM_PATCH_VERTICES, /* num: n, the patch size for the draws that follow */
+    GLIB_CMD_GL_BEGIN,          /* name: the primitive, lower case ("gl_patches") */
+    GLIB_CMD_GL_VERTEX,         /* num: x y z [w] (nnum 4, w 1 when not written) */
+    GLIB_CMD_GL_END,
     GLIB_CMD_KIND_COUNT
 } glib_cmd_kind;
 
