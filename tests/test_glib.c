@@ -1551,6 +1551,67 @@ static void test_glman_state(void) {
     glib_free(s);
 }
 
+/* Issue 14: glman's other geometry and its immediate-mode patches parse,
+ * with glman's defaults; glBegin/glVertex/glEnd pair up or say why not. */
+static void test_glman_geometry(void) {
+    put("gl14/m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    glib_scene *s = load("gl14/geom.glib",
+        "##OpenGL GLIB\n"
+        "DiskXY\nQuadBox\nPointCloud\nJitterCloud 2 3 4\nSoccerball\nXarrow\n"
+        "LinesAdjacency [0 0 0] [1 0 0] [2 0 0] [3 0 0]\nTriangles 0 0 0, 1 0 0, 0 1 0\n"
+        "WireObj m.obj\nObjAdj m.obj\nObjPatch m.obj\nNumPatchVertices 4\n"
+        "GLBEGIN GL_PATCHES\nglVertex 0 0 0\nglvertex [1 0 0]\nglVertex 1 1 0 1\nglVertex 0 1 0\nglend\n");
+    CHECK_NO_DIAGS(s);
+    static const glib_cmd_kind kinds[] = {
+        GLIB_CMD_DISK_XY, GLIB_CMD_QUAD_BOX, GLIB_CMD_POINT_CLOUD, GLIB_CMD_JITTER_CLOUD,
+        GLIB_CMD_SOCCERBALL, GLIB_CMD_XARROW, GLIB_CMD_LINES_ADJACENCY, GLIB_CMD_TRIANGLES,
+        GLIB_CMD_OBJ, GLIB_CMD_OBJ_ADJ, GLIB_CMD_OBJ_PATCH, GLIB_CMD_NUM_PATCH_VERTICES,
+        GLIB_CMD_GL_BEGIN, GLIB_CMD_GL_VERTEX, GLIB_CMD_GL_VERTEX, GLIB_CMD_GL_VERTEX,
+        GLIB_CMD_GL_VERTEX, GLIB_CMD_GL_END };
+    int n = (int)(sizeof kinds / sizeof kinds[0]);
+    CHECK(s->ncmds == n);
+    for (int i = 0; i < s->ncmds && i < n; i++)
+        CHECK_MSG(s->cmds[i].kind == kinds[i], "cmd %d is %s", i, glib_cmd_name(s->cmds[i].kind));
+    if (s->ncmds == n) {
+        const glib_cmd *c = s->cmds;
+        CHECK(c[1].num[0] == 10);                                   /* QuadBox [10] */
+        CHECK(c[2].num[0] == 10 && c[2].num[1] == 10 && c[2].num[2] == 10);
+        CHECK(c[3].num[0] == 2 && c[3].num[1] == 3 && c[3].num[2] == 4);
+        CHECK(c[4].num[0] == 1 && c[5].num[0] == 100);              /* Soccerball [1], Xarrow [100] */
+        CHECK(c[6].nnum == 12 && c[6].num[9] == 3 && c[7].nnum == 9 && c[7].num[7] == 1);
+        CHECK(c[8].wire && !c[9].wire && c[9].path[0] && c[10].path[0]);
+        CHECK(c[11].num[0] == 4);
+        CHECK(strcmp(c[12].name, "gl_patches") == 0);
+        CHECK(c[14].num[0] == 1 && c[14].num[3] == 1 && c[15].num[3] == 1);   /* w defaults to 1 */
+        CHECK(strcmp(glib_cmd_name(c[12].kind), "glBegin") == 0);
+    }
+    glib_free(s);
+
+    s = load("gl14/begin_bad.glib",
+        "##OpenGL GLIB\n"
+        "glVertex 0 0 0\nglEnd\nglBegin gl_polygon_x\nglBegin gl_lines\nglBegin gl_points\n"
+        "glVertex 1 2\nglVertex 1 2 3 2\nNumPatchVertices 0\nNumPatchVertices 33\n");
+    const char *f = P("gl14/begin_bad.glib");
+    CHECK(has_diag(s, f, 2, DIAG_WARNING, "glVertex outside glBegin"));
+    CHECK(has_diag(s, f, 3, DIAG_WARNING, "glEnd without a glBegin"));
+    CHECK(has_diag(s, f, 4, DIAG_ERROR, "unknown primitive 'gl_polygon_x'"));
+    CHECK(has_diag(s, f, 6, DIAG_ERROR, "glBegin inside the glBegin of"));
+    CHECK(has_diag(s, f, 7, DIAG_ERROR, "glVertex needs"));
+    CHECK(has_diag(s, f, 8, DIAG_WARNING, "w = 2 is not passed on"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "n must be a whole number from 1 to 32"));
+    CHECK(has_diag(s, f, 10, DIAG_ERROR, "n must be a whole number from 1 to 32"));
+    CHECK(has_diag(s, f, 5, DIAG_ERROR, "glBegin without a glEnd"));
+    glib_free(s);
+
+    s = load("gl14/tri_bad.glib", "##OpenGL GLIB\nTriangles 0 0 0 1 0 0\nLinesAdjacency\nObjAdj\n");
+    f = P("gl14/tri_bad.glib");
+    CHECK(has_diag(s, f, 2, DIAG_ERROR, "Triangles needs 9 numbers, got 6"));
+    CHECK(has_diag(s, f, 3, DIAG_ERROR, "LinesAdjacency needs 12 numbers, got 0"));
+    CHECK(has_diag(s, f, 4, DIAG_ERROR, "ObjAdj needs a file"));
+    CHECK(s->ncmds == 0);
+    glib_free(s);
+}
+
 static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
     return remove(path);
 }
@@ -1607,6 +1668,7 @@ int main(void) {
     RUN(test_glman_numbers);
     RUN(test_glman_defaults);
     RUN(test_glman_state);
+    RUN(test_glman_geometry);
     nftw(root, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
     return check_summary();
 }

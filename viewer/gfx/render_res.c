@@ -219,8 +219,7 @@ bool res_mesh_draw_with(const gpu_mesh *m, const res_draw *d, char *why, int why
     GLenum mode = draw_mode(m, d, &patch);
     if (mode == GL_PATCHES && !d->tess) {
         snprintf(why, (size_t)whylen, "it draws GL_PATCHES (patches of %d), which need a Program with a "
-                 "TessEvaluation stage (and usually TessControl); name them before the Program line, "
-                 "or draw with Obj instead of ObjPatch", patch);
+                 "TessEvaluation stage (and usually TessControl): name their files before the Program line", patch);
         return false;
     }
     if (mode == GL_PATCHES && m->nidx % patch != 0)
