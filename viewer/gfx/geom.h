@@ -1,5 +1,7 @@
 /* geom: meshes for glman's geometry commands (QuadXY/XZ/YZ, Sphere, Torus,
- * Box, Cylinder, Cone, Teapot, Obj and their Wire* variants).
+ * Box, Cylinder, Cone, Teapot, Obj and their Wire* variants; ObjAdj,
+ * ObjPatch, DiskXY, QuadBox, PointCloud, JitterCloud, Soccerball, Xarrow,
+ * Triangles, LinesAdjacency and glBegin's vertices).
  *
  * Every mesh carries per vertex a position, a unit normal, a texture
  * coordinate and a unit tangent perpendicular to the normal pointing along
