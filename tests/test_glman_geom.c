@@ -244,6 +244,16 @@ static void test_tessellation(void) {
     EXPECT(0.5, 0.5, 1, 1, 0, TOL);
     EXPECT(-0.5, -0.5, 1, 1, 0, TOL);
     BACKGROUND(1.5, 1.5);
+
+    /* ObjPatch keeps its faces' size (triangles: 3) over a NumPatchVertices
+     * meant for glBegin, and says so */
+    scratch_write("tri3.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\n");
+    ok = draw_scene("tri3.glib", HEAD "Vertex tess.vert\nTessControl tri.tcs\nTessEvaluation tri.tes\n"
+                    "Fragment uv.frag\nProgram Tri\nTranslate 0 0 -4\nNumPatchVertices 4\nObjPatch tri3.obj\n");
+    CHECK_MSG(ok, "%s", msgs);
+    CHECK_STR_CONTAINS(msgs, "tri3.glib:10: warning: ObjPatch draws patches of its faces' 3 corners; NumPatchVertices 4 (line 9)");
+    EXPECT(0.5, -0.5, 1, 1, 0, TOL);
+    BACKGROUND(-0.5, 0.5);
 }
 
 /* ---- raw textures ---- */

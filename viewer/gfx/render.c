@@ -734,6 +734,7 @@ typedef struct frame_state {
     double t;
     float eye[3];
     int patch_vertices;      /* NumPatchVertices: the size of the patches drawn next */
+    int patch_cmd;           /* the NumPatchVertices command that set it, or -1 */
 } frame_state;
 
 static void mark_pass(render *r, const glib_cmd *c) {
@@ -989,6 +990,10 @@ static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
                    .face_index_int = p && p->face_index_int, .tess = p && p->tess,
                    .patch_vertices = f->patch_vertices };
     char why[512];
+    if (m->prim == GEOM_PATCHES && m->patch_size > 0 && f->patch_cmd >= 0 && m->patch_size != f->patch_vertices)
+        draw_problem(r, ci, false, "ObjPatch draws patches of its faces' %d corners; NumPatchVertices %d "
+                     "(line %d) is for glBegin gl_patches and not used here", m->patch_size,
+                     f->patch_vertices, r->cur.glib->cmds[f->patch_cmd].line);
     bool drawn = res_mesh_draw_with(m, &d, why, sizeof why);
     if (why[0])
         draw_problem(r, ci, !drawn, "%s %s%s", glib_cmd_name(r->cur.glib->cmds[ci].kind),
@@ -1023,6 +1028,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         if (res >= 0) draw_mesh(r, f, i, &s->meshes[res]);
     } else if (c->kind == GLIB_CMD_NUM_PATCH_VERTICES) {
         f->patch_vertices = (int)c->num[0];
+        f->patch_cmd = i;
     } else if (c->kind == GLIB_CMD_PROGRAM) {
         f->cur = res >= 0 ? &s->progs[res] : NULL;
         glUseProgram(f->cur ? f->cur->gl : 0);
@@ -1095,6 +1101,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         memcpy(f.cam_eye, v.eye, sizeof f.cam_eye);
         glPushMatrix();
         f.patch_vertices = 3;   /* GL's default patch size */
+        f.patch_cmd = -1;
         for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {}   /* not ours: the caller's */
         for (int i = 0; i < s->glib->ncmds; i++) {
             exec_cmd(r, &f, i);
