@@ -172,7 +172,7 @@ static const struct { GLenum mode; int verts; const char *name; } prims[] = {
 
 /* The mode and patch size of m drawn under d: a tessellating program takes
  * every list primitive as patches of its own size (a triangle list is
- * patches of 3), so a Sphere feeds a tessellation shader as glman's did;
+ * patches of 3), so a Sphere can feed a triangle tessellation shader;
  * patches are of the mesh's own size or the scene's NumPatchVertices. */
 static GLenum draw_mode(const gpu_mesh *m, const res_draw *d, int *patch) {
     int p = m->prim >= 0 && m->prim < NPRIMS ? m->prim : GEOM_TRIANGLES;
