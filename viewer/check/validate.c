@@ -833,6 +833,7 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
         for (int i = 0; i < nst; i++) {
             shader_stage st = stages[i];
             shader_src_desc d = program_stage_desc(ps, st, defs, nd, r->include_dirs, 1);
+            d.gs_input = program_gs_input(scene, cmd);
             if (!shader_src_load(&d, &src[st])) {
                 msgs_add(&m, SEV_ERROR, src[st].error);
                 ok = false;
