@@ -2,6 +2,7 @@
 #include "validate.h"
 
 #include "glib.h"
+#include "glsl_hint.h"
 #include "program.h"
 
 #include <glslang/Include/glslang_c_interface.h>
@@ -179,8 +180,11 @@ static bool is_noise(const char *line) {
  * error nor a warning continue the message before them. */
 static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m) {
     if (!log || !log[0]) return;
-    char *mapped = shader_src_map_log(src, log);
-    if (!mapped) return;
+    char *raw_mapped = shader_src_map_log(src, log);
+    if (!raw_mapped) return;
+    /* tarn's notes on what NVIDIA let through (glsl_hint): kept with their error */
+    char *mapped = glsl_hint_annotate(raw_mapped, src->text);
+    free(raw_mapped);
     char *pending = NULL;
     sev pending_sev = SEV_ERROR;
     for (char *p = mapped; p && *p;) {
@@ -188,7 +192,11 @@ static void add_compile_log(const shader_src *src, const char *log, bool compile
         if (e) *e = '\0';
         size_t n = strlen(p);
         while (n > 0 && isspace((unsigned char)p[n - 1])) p[--n] = '\0';
-        if (n > 0 && !is_noise(p)) {
+        if (n > 0 && pending && strstr(p, ": note: ")) {
+            char *joined = xprintf("%s\n%s", pending, p);
+            free(pending);
+            pending = joined;
+        } else if (n > 0 && !is_noise(p)) {
             sev s;
             char *text = NULL;
             if (starts_with(p, "ERROR: ")) {

@@ -139,6 +139,20 @@ static bool is_scalar(const char *t) {
            strcmp(t, "double") == 0 || strcmp(t, "bool") == 0;
 }
 
+/* The call's vector and scalar arguments and a portable rewrite. */
+static void call_text(const char *fn, char args[][32], int na, const char *vec, strbuf *o) {
+    strbuf_printf(o, "%s(", fn);
+    for (int i = 0; i < na; i++) strbuf_printf(o, "%s%s", i ? ", " : "", args[i]);
+    strbuf_printf(o, ") mixes a %s with a scalar; GLSL's %s takes arguments of one type (NVIDIA widens "
+                  "the scalar, the spec and Mesa do not). Widen it yourself: %s(", vec, fn, fn);
+    for (int i = 0; i < na; i++) {
+        char letter = (char)('a' + i);
+        if (is_scalar(args[i])) strbuf_printf(o, "%s%s(%c)", i ? ", " : "", vec, letter);
+        else strbuf_printf(o, "%s%c", i ? ", " : "", letter);
+    }
+    strbuf_puts(o, ")");
+}
+
 /* Mesa: "no matching function for call to `pow(vec2, float)'; candidates are:" */
 static bool hint_call(const char *msg, const char *source, strbuf *o) {
     (void)source;
@@ -152,7 +166,7 @@ static bool hint_call(const char *msg, const char *source, strbuf *o) {
     int na = 0;
     const char *vec = NULL;
     bool scalar = false;
-    for (char *a = strtok(open + 1, ", "); a && na < 6; a = strtok(NULL, ", ")) {
+    for (char *save = NULL, *a = strtok_r(open + 1, ", ", &save); a && na < 6; a = strtok_r(NULL, ", ", &save)) {
         snprintf(args[na], sizeof args[na], "%s", a);
         if (is_vector(args[na])) {
             if (vec && strcmp(vec, args[na]) != 0) return false;   /* vec2 with vec3: another mistake */
@@ -165,17 +179,26 @@ static bool hint_call(const char *msg, const char *source, strbuf *o) {
         na++;
     }
     if (!vec || !scalar) return false;
-    strbuf_printf(o, "%s(", call);
-    for (int i = 0; i < na; i++) strbuf_printf(o, "%s%s", i ? ", " : "", args[i]);
-    strbuf_printf(o, ") mixes a %s with a scalar; GLSL's %s takes arguments of one type (NVIDIA widens "
-                  "the scalar, the spec and Mesa do not). Widen it yourself: %s(", vec, call, call);
-    for (int i = 0; i < na; i++) {
-        char letter = (char)('a' + i);
-        if (is_scalar(args[i])) strbuf_printf(o, "%s%s(%c)", i ? ", " : "", vec, letter);
-        else strbuf_printf(o, "%s%c", i ? ", " : "", letter);
-    }
-    strbuf_puts(o, ")");
+    call_text(call, args, na, vec, o);
     return true;
+}
+
+/* glslang names the function but not the types: "'pow' : no matching
+ * overloaded function found". Only built-ins that have no (genType, float)
+ * form, where NVIDIA's widening is the likely cause. */
+static bool hint_call_glslang(const char *msg, const char *source, strbuf *o) {
+    (void)source;
+    static const char *const fns[] = { "pow", "atan", "dot", "distance", "reflect", "cross", "faceforward" };
+    char fn[32];
+    if (sscanf(msg, "'%31[^']'", fn) != 1) return false;
+    for (size_t i = 0; i < sizeof fns / sizeof fns[0]; i++) {
+        if (strcmp(fn, fns[i]) != 0) continue;
+        strbuf_printf(o, "if a scalar stands where %s wants a vector: GLSL's %s takes arguments of one type "
+                      "(NVIDIA widens the scalar, the spec does not). Widen it yourself: %s(v, vec3(s)), "
+                      "not %s(v, s)", fn, fn, fn, fn);
+        return true;
+    }
+    return false;
 }
 
 /* Mesa: "`return' with wrong type int, in function `f' returning float" */
@@ -193,24 +216,34 @@ static bool hint_return(const char *msg, const char *source, strbuf *o) {
     return true;
 }
 
+static void const_text(const char *name, const char *source, strbuf *o) {
+    decl_info d = name ? find_decl(source, name) : (decl_info){0};
+    if (name) strbuf_printf(o, "'%s' is declared const but its", name);
+    else strbuf_puts(o, "this const's");
+    strbuf_puts(o, " value is only known when the shader runs (it reads a uniform, an input, a texture or a "
+                "variable); GLSL wants a const fixed when compiling (NVIDIA relaxes this). Drop the word const");
+    if (d.found && d.global)
+        strbuf_printf(o, " and give '%s' its value at the start of main() (a global's initialiser must be "
+                      "constant too)", name);
+}
+
 /* Mesa: "initializer of const variable `K' must be a constant expression" */
 static bool hint_const(const char *msg, const char *source, strbuf *o) {
     char name[64];
     if (sscanf(msg, "initializer of const variable `%63[^']'", name) != 1) return false;
-    decl_info d = find_decl(source, name);
-    strbuf_printf(o, "'%s' is declared const but its value is only known when the shader runs (it reads a "
-                  "uniform, an input, a texture or a variable); GLSL wants a const fixed when compiling "
-                  "(NVIDIA relaxes this). Drop the word const", name);
-    if (d.found && d.global)
-        strbuf_printf(o, " and give '%s' its value at the start of main() (a global's initialiser must be "
-                      "constant too)", name);
+    const_text(name, source, o);
     return true;
 }
 
-/* Mesa: "assignment to read-only variable 'vN'" */
-static bool hint_readonly(const char *msg, const char *source, strbuf *o) {
-    char name[64];
-    if (sscanf(msg, "assignment to read-only variable '%63[^']'", name) != 1) return false;
+/* glslang: "'=' : global const initializers must be constant ..." and
+ * "'non-constant initializer' : not supported for this version ..." (no name) */
+static bool hint_const_glslang(const char *msg, const char *source, strbuf *o) {
+    (void)msg;
+    const_text(NULL, source, o);
+    return true;
+}
+
+static void readonly_text(const char *name, const char *source, strbuf *o) {
     decl_info d = find_decl(source, name);
     const char *type = d.found ? d.type : "vec3";
     if (d.found && (has_word(d.quals, "in") || has_word(d.quals, "varying") || has_word(d.quals, "attribute")))
@@ -224,13 +257,30 @@ static bool hint_readonly(const char *msg, const char *source, strbuf *o) {
         strbuf_printf(o, "'%s' is declared const; drop the word const to change it", name);
     else
         strbuf_printf(o, "GLSL forbids writing '%s' here; copy it into a local variable and change that", name);
+}
+
+/* Mesa: "assignment to read-only variable 'vN'" */
+static bool hint_readonly(const char *msg, const char *source, strbuf *o) {
+    char name[64];
+    if (sscanf(msg, "assignment to read-only variable '%63[^']'", name) != 1) return false;
+    readonly_text(name, source, o);
     return true;
 }
 
-/* Mesa: "`gl_ModelViewMatrix' undeclared" under a core #version */
+/* glslang: "'assign' :  l-value required "vN" (can't modify shader input)" */
+static bool hint_readonly_glslang(const char *msg, const char *source, strbuf *o) {
+    char name[64];
+    const char *q = strstr(msg, "l-value required \"");
+    if (!q || sscanf(q, "l-value required \"%63[^\"]\"", name) != 1) return false;
+    readonly_text(name, source, o);
+    return true;
+}
+
+/* "`gl_ModelViewMatrix' undeclared" (Mesa), "'gl_ModelViewMatrix' :
+ * undeclared identifier" (glslang), under a core #version */
 static bool hint_core_builtin(const char *msg, const char *source, strbuf *o) {
     char name[64];
-    if (!source || sscanf(msg, "`%63[^']' undeclared", name) != 1 || strncmp(name, "gl_", 3) != 0) return false;
+    if (!source || sscanf(msg + 1, "%63[A-Za-z0-9_]", name) != 1 || strncmp(name, "gl_", 3) != 0) return false;
     int version = 0;
     char profile[32] = "";
     if (sscanf(source, "#version %d %31s", &version, profile) < 1 || version < 140) return false;
@@ -243,13 +293,20 @@ static bool hint_core_builtin(const char *msg, const char *source, strbuf *o) {
 
 typedef bool (*hint_fn)(const char *msg, const char *source, strbuf *o);
 
-/* Mesa's message (its start) -> the hint */
-static const struct { const char *start; hint_fn fn; } hints[] = {
-    { "no matching function for call to `", hint_call },
-    { "`return' with wrong type ", hint_return },
-    { "initializer of const variable `", hint_const },
-    { "assignment to read-only variable '", hint_readonly },
-    { "`gl_", hint_core_builtin },
+/* A message (after "error: ") that starts with `start` and holds `has`
+ * (NULL: anything) -> its hint. Mesa's wording first, then glslang's (for
+ * `tarn validate`). */
+static const struct { const char *start, *has; hint_fn fn; } hints[] = {
+    { "no matching function for call to `", NULL, hint_call },
+    { "`return' with wrong type ", NULL, hint_return },
+    { "initializer of const variable `", NULL, hint_const },
+    { "assignment to read-only variable '", NULL, hint_readonly },
+    { "`gl_", "' undeclared", hint_core_builtin },
+    { "'", "no matching overloaded function found", hint_call_glslang },
+    { "'=' : ", "global const initializers must be constant", hint_const_glslang },
+    { "'non-constant initializer' : ", NULL, hint_const_glslang },
+    { "'", "l-value required \"", hint_readonly_glslang },
+    { "'gl_", "undeclared identifier", hint_core_builtin },
 };
 
 /* ---- the log ------------------------------------------------------------------- */
@@ -277,6 +334,7 @@ char *glsl_hint_annotate(const char *log, const char *source) {
         if (e) strbuf_puts(&o, "\n");
         for (size_t i = 0; msg && msg[0] != ' ' && i < sizeof hints / sizeof hints[0]; i++) {
             if (strncmp(msg, hints[i].start, strlen(hints[i].start)) != 0) continue;
+            if (hints[i].has && !strstr(msg, hints[i].has)) continue;
             strbuf_printf(&pending, "%.*s: note: ", (int)(sep - line), line);
             size_t mark = pending.len;
             if (hints[i].fn(msg, source, &pending) && pending.len > mark) break;
