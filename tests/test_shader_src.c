@@ -487,6 +487,15 @@ static void test_ext_geometry_shader_rewritten(void) {
     CHECK(ok && strncmp(s.text, "#version 400\n", 13) == 0 && !strstr(s.text, "tarn: glman's output"));
     shader_src_free(&s);
 
+    /* layouts from an include count too */
+    write_file("lay.glsl", "layout(triangles) in;\nlayout(triangle_strip, max_vertices = 3) out;\n");
+    write_file("inc.geom", "#include \"lay.glsl\"\nvoid main() { gl_Position = gl_in[0].gl_Position; }\n");
+    shader_src_desc d5 = { .path = tmp("inc.geom"), .stage = SHADER_GEOMETRY };
+    ok = shader_src_load(&d5, &s);
+    CHECK_MSG(ok && !strstr(s.text, "tarn: the input primitive") && !strstr(s.text, "tarn: glman's output"),
+              "%s", ok ? s.text : s.error);
+    shader_src_free(&s);
+
     /* only geometry shaders are rewritten */
     write_file("v.vert", "#version 120\nvarying vec3 gl_PositionInX;\nvoid main() { }\n");
     shader_src_desc d4 = { .path = tmp("v.vert"), .stage = SHADER_VERTEX };

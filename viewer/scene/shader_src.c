@@ -204,8 +204,10 @@ typedef struct asm_ctx {
     int stack[SHADER_SRC_MAX_INCLUDE_DEPTH + 2];
     int depth;
     bool old_line_rule; /* desktop GLSL < 3.30: `#line N` numbers the next line N + 1 */
-    bool gs_add_in, gs_add_out; /* a geometry shader lacking these layouts gets them */
-    bool gs_layout_pending;     /* ... before its first line of code, still to come */
+    /* a geometry shader's first line of code, where the layouts it lacks go */
+    bool gs_marked;
+    size_t gs_mark;             /* offset in text */
+    int gs_mark_file, gs_mark_line;
     bool failed;
 } asm_ctx;
 
@@ -242,9 +244,13 @@ static int file_index(asm_ctx *c, const char *path) {
     return c->nfiles++;
 }
 
+static void line_directive(strbuf *b, bool old_line_rule, int fidx, int line) {
+    long v = (long)fidx * SHADER_SRC_LINE_BASE + line - (old_line_rule ? 1 : 0);
+    strbuf_printf(b, "#line %ld %d\n", v, fidx);
+}
+
 static void emit_line_directive(asm_ctx *c, int fidx, int line) {
-    long v = (long)fidx * SHADER_SRC_LINE_BASE + line - (c->old_line_rule ? 1 : 0);
-    strbuf_printf(&c->text, "#line %ld %d\n", v, fidx);
+    line_directive(&c->text, c->old_line_rule, fidx, line);
 }
 
 static bool line_is_pragma_once(line_view l) {
@@ -362,20 +368,6 @@ static const char *const gs_input_names[] = {
     [SHADER_GS_IN_LINES] = "lines", [SHADER_GS_IN_LINES_ADJACENCY] = "lines_adjacency",
     [SHADER_GS_IN_POINTS] = "points",
 };
-
-/* The layouts a glman-era geometry shader lacks, then `#line` so the line
- * they stand before keeps its number. */
-static void emit_gs_layouts(asm_ctx *c, int fidx, int line) {
-    unsigned in = (unsigned)c->desc->gs_input;
-    if (c->gs_add_in)
-        strbuf_printf(&c->text, "layout(%s) in;  // tarn: the input primitive of the draw\n",
-                      gs_input_names[in < sizeof gs_input_names / sizeof gs_input_names[0] ? in : 0]);
-    if (c->gs_add_out)
-        strbuf_printf(&c->text, "layout(triangle_strip, max_vertices = %d) out;  // tarn: glman's output\n",
-                      SHADER_SRC_GS_MAX_VERTICES);
-    emit_line_directive(c, fidx, line);
-    c->gs_layout_pending = false;
-}
 
 /* What a text's layout qualifiers say (comments blanked first). */
 typedef struct layout_scan {
@@ -562,9 +554,14 @@ static bool emit_file(asm_ctx *c, int fidx, const char *text, int first_line, bo
                 } else if (c->desc->stage == SHADER_GEOMETRY && is_gs4_extension(l)) {
                     strbuf_puts(&c->text, "// tarn: GL_EXT_geometry_shader4 dropped; its names become GLSL 1.50's\n");
                     handled = true;
-                } else if (!rest && c->gs_layout_pending) {
+                } else if (!rest && c->desc->stage == SHADER_GEOMETRY && !c->gs_marked) {
                     bool ic = false;
-                    if (line_has_code(l, &ic)) emit_gs_layouts(c, fidx, line);
+                    if (line_has_code(l, &ic)) {
+                        c->gs_marked = true;
+                        c->gs_mark = c->text.len;
+                        c->gs_mark_file = fidx;
+                        c->gs_mark_line = line;
+                    }
                 }
             }
             if (!handled && c->desc->stage == SHADER_GEOMETRY) {
@@ -672,6 +669,29 @@ static version_info find_version(const char *text) {
     return v;
 }
 
+/* The layouts a glman-era geometry shader lacks (in the whole text, its
+ * includes too), spliced in before its first line of code, then `#line`
+ * so that line keeps its number. After the file's #extension lines, which
+ * must come before any code; before any use of gl_in.length(), which
+ * needs the input layout. */
+static void add_gs_layouts(asm_ctx *c) {
+    layout_scan ls = scan_layouts(c->text.s ? c->text.s : "");
+    if (ls.in && ls.out) return;
+    strbuf b = {0};
+    strbuf_put(&b, c->text.s, c->gs_mark);
+    unsigned in = (unsigned)c->desc->gs_input;
+    if (!ls.in)
+        strbuf_printf(&b, "layout(%s) in;  // tarn: the input primitive of the draw\n",
+                      gs_input_names[in < sizeof gs_input_names / sizeof gs_input_names[0] ? in : 0]);
+    if (!ls.out)
+        strbuf_printf(&b, "layout(triangle_strip, max_vertices = %d) out;  // tarn: glman's output\n",
+                      SHADER_SRC_GS_MAX_VERTICES);
+    line_directive(&b, c->old_line_rule, c->gs_mark_file, c->gs_mark_line);
+    strbuf_puts(&b, c->text.s + c->gs_mark);
+    strbuf_free(&c->text);
+    c->text = b;
+}
+
 /* NVIDIA allowed layout(binding = N) from GLSL 3.30 on (glman's manual says
  * so); Mesa wants GL_ARB_shading_language_420pack before 4.20. Enabled
  * right after the #version line (the prologue is all directives, so it is
@@ -730,12 +750,6 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     }
 
     v = find_version(main_text);
-    if (desc->stage == SHADER_GEOMETRY) {
-        layout_scan ls = scan_layouts(main_text);
-        c.gs_add_in = !ls.in;
-        c.gs_add_out = !ls.out;
-        c.gs_layout_pending = c.gs_add_in || c.gs_add_out;
-    }
     /* geometry shaders came with GLSL 1.50; glman's were 1.20 + GL_EXT_geometry_shader4 */
     bool gs_bump = desc->stage == SHADER_GEOMETRY && v.line && !v.es && v.number < 150;
     version = gs_bump ? 150 : v.line ? v.number : 330;
@@ -796,6 +810,7 @@ done:
         if (!out->error[0]) snprintf(out->error, sizeof out->error, "%s:0: error: cannot assemble shader", path);
         return false;
     }
+    if (c.gs_marked) add_gs_layouts(&c);
     out->text = c.text.s ? c.text.s : strdup("");
     if (out->text && !v.es && version < 420) enable_420pack(&out->text);
     unsigned long long h = 14695981039346656037ull;
