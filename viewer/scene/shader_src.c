@@ -751,7 +751,7 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
 
     v = find_version(main_text);
     /* geometry shaders came with GLSL 1.50; glman's were 1.20 + GL_EXT_geometry_shader4 */
-    bool gs_bump = desc->stage == SHADER_GEOMETRY && v.line && !v.es && v.number < 150;
+    bool gs_bump = desc->stage == SHADER_GEOMETRY && v.line && !v.es && v.number > 0 && v.number < 150;
     version = gs_bump ? 150 : v.line ? v.number : 330;
     if (v.line) {
         /* the file's #version first, then ours, then the file from there on */
