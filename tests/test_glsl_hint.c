@@ -61,7 +61,7 @@ static void test_mesa_messages(void) {
                "'uL' is a uniform");
     check_note("p.frag:9: error: assignment to read-only variable 'q'\n", src_frag, "'q'",
                "GLSL forbids writing 'q'");
-    check_note("p.frag:2: error: `gl_ModelViewMatrix' undeclared\n", "#version 330\nvoid main() {}\n",
+    check_note("p.frag:2: error: `gl_ModelViewMatrix' undeclared\n", "#version 330\ncompatibility = 1;\n",
                "undeclared", "Write `#version 330 compatibility`");
 }
 

@@ -282,8 +282,9 @@ static bool hint_core_builtin(const char *msg, const char *source, strbuf *o) {
     char name[64];
     if (!source || sscanf(msg + 1, "%63[A-Za-z0-9_]", name) != 1 || strncmp(name, "gl_", 3) != 0) return false;
     int version = 0;
-    char profile[32] = "";
-    if (sscanf(source, "#version %d %31s", &version, profile) < 1 || version < 140) return false;
+    char first[128] = "", profile[32] = "";
+    snprintf(first, sizeof first, "%.*s", (int)strcspn(source, "\n"), source);   /* the #version line */
+    if (sscanf(first, "#version %d %31s", &version, profile) < 1 || version < 140) return false;
     if (strcmp(profile, "compatibility") == 0 || strcmp(profile, "es") == 0) return false;
     strbuf_printf(o, "'%s' is a compatibility-profile built-in, and `#version %d` without a profile means the "
                   "core profile, which lacks it (NVIDIA lets it through). Write `#version %d compatibility`",
