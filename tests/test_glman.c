@@ -242,18 +242,22 @@ static void test_geometry_input_follows_draw(void) {
 
 /* `layout(binding = 6)` on a sampler under #version 330, no unit on the
  * Program line: the sampler reads unit 6 (NVIDIA took this; Mesa needs
- * GL_ARB_shading_language_420pack, which tarn enables). */
+ * GL_ARB_shading_language_420pack, which tarn enables). A uniform with
+ * `layout(location = 3)` likewise (GL_ARB_explicit_uniform_location), set
+ * from the Program line. */
 static void test_layout_binding_under_330(void) {
     write_solid_bmp("bind.bmp", 255, 0, 0);
     scratch_write("bind.vert", "#version 120\nvoid main() { gl_TexCoord[0] = gl_MultiTexCoord0; "
                   "gl_Position = ftransform(); }\n");
     scratch_write("bind.frag", "#version 330 compatibility\nlayout(binding = 6) uniform sampler2D uTex;\n"
-                  "void main() { gl_FragColor = texture(uTex, gl_TexCoord[0].st); }\n");
+                  "layout(location = 3) uniform float uG;\n"
+                  "void main() { gl_FragColor = texture(uTex, gl_TexCoord[0].st) + vec4(0., uG, 0., 0.); }\n");
     scratch_write("bind.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex bind.vert\nFragment bind.frag\n"
-                  "Program Bind\nTexture2D 6 bind.bmp\nQuadXY 0 1\n");
+                  "Program Bind uG 0.5\nTexture2D 6 bind.bmp\nQuadXY 0 1\n");
     if (!draw_file(scratch_path("bind.glib"))) return;
     const float *c = at(W / 2, H / 2);
-    CHECK_MSG(c[0] > 1 - TOL && c[1] < TOL && c[2] < TOL, "centre %g %g %g, want bind.bmp's red", c[0], c[1], c[2]);
+    CHECK_MSG(c[0] > 1 - TOL && fabsf(c[1] - 0.5f) < TOL && c[2] < TOL,
+              "centre %g %g %g, want bind.bmp's red and uG's 0.5 green", c[0], c[1], c[2]);
 }
 
 /* GSTAP's aColor in a fragment shader is gl_Color, the interpolated colour

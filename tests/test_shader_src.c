@@ -506,7 +506,7 @@ static void test_ext_geometry_shader_rewritten(void) {
 
 /* layout(binding = N) before GLSL 4.20 enables GL_ARB_shading_language_420pack
  * (before any code, the lines still the user's); not from 4.20 on, not for
- * a binding in a comment, not twice. */
+ * a binding in a comment, not twice. Likewise a uniform's layout(location). */
 static void test_binding_enables_420pack(void) {
     static const struct { const char *text; bool want; } cases[] = {
         { "#version 330 compatibility\nlayout(binding = 3) uniform sampler2D t;\n"
@@ -526,16 +526,34 @@ static void test_binding_enables_420pack(void) {
         if (!ok) { shader_src_free(&s); continue; }
         const char *ext = strstr(s.text, "#extension GL_ARB_shading_language_420pack : enable");
         CHECK_MSG((ext != NULL) == cases[i].want, "case %zu:\n%s", i, s.text);
-        if (ext) {
-            const char *nl = strchr(s.text, '\n');
-            CHECK(nl && nl + 1 == ext);     /* right after #version */
-        }
+        if (ext) CHECK(before(s.text, "#version", "#extension") && before(s.text, "#extension", "#line"));
         if (i == 0) {
             char *log = fake_compile(s.text, 'm', false);
             char *mapped = shader_src_map_log(&s, log);
             CHECK_MSG(mapped_has(mapped, "b.frag", 3, "undefined_b"), "%s", mapped);
             free(mapped);
             free(log);
+        }
+        shader_src_free(&s);
+    }
+    /* a uniform's layout(location) before 4.30: GL_ARB_explicit_uniform_location;
+     * an input's needs nothing */
+    static const struct { const char *text; bool want; } loc[] = {
+        { "#version 330 compatibility\nlayout(location = 3) uniform float uK;\nvoid main() { }\n", true },
+        { "#version 330\nlayout(location = 0) in vec3 p;\nlayout(location=0) out vec4 c;\nvoid main() { }\n",
+          false },
+        { "#version 430\nlayout(location = 3) uniform float uK;\nvoid main() { }\n", false },
+    };
+    for (size_t i = 0; i < sizeof loc / sizeof loc[0]; i++) {
+        write_file("l.frag", loc[i].text);
+        shader_src_desc d = { .path = tmp("l.frag"), .stage = SHADER_FRAGMENT };
+        shader_src s;
+        bool ok = shader_src_load(&d, &s);
+        CHECK(ok);
+        if (ok) {
+            const char *ext = strstr(s.text, "#extension GL_ARB_explicit_uniform_location : enable");
+            CHECK_MSG((ext != NULL) == loc[i].want, "case %zu:\n%s", i, s.text);
+            CHECK(!strstr(s.text, "420pack"));
         }
         shader_src_free(&s);
     }

@@ -373,6 +373,7 @@ static const char *const gs_input_names[] = {
 typedef struct layout_scan {
     bool in, out;       /* `layout(...) in;` / `layout(...) out;`: a primitive declaration */
     bool binding;       /* some layout(...) holds `binding` */
+    bool uniform_location;  /* `layout(... location ...) uniform` */
 } layout_scan;
 
 static char *blank_comments(const char *text) {
@@ -411,11 +412,15 @@ static layout_scan scan_layouts(const char *text) {
         if (*q != '(') continue;
         const char *close = strchr(q, ')');
         if (!close) break;
+        bool location = false;
         for (const char *b = q; (b = strstr(b, "binding")) != NULL && b < close; b += 7)
             if (!is_ident_char(b[-1]) && !is_ident_char(b[7])) r.binding = true;
+        for (const char *b = q; (b = strstr(b, "location")) != NULL && b < close; b += 8)
+            if (!is_ident_char(b[-1]) && !is_ident_char(b[8])) location = true;
         q = skip_space(close + 1);
         size_t n = 0;
         while (is_ident_char(q[n])) n++;
+        if (location && word_is(q, n, "uniform")) r.uniform_location = true;
         bool in = word_is(q, n, "in"), out = word_is(q, n, "out");
         if ((in || out) && *skip_space(q + n) == ';') {
             r.in |= in;
@@ -692,21 +697,31 @@ static void add_gs_layouts(asm_ctx *c) {
     c->text = b;
 }
 
-/* NVIDIA allowed layout(binding = N) from GLSL 3.30 on (glman's manual says
- * so); Mesa wants GL_ARB_shading_language_420pack before 4.20. Enabled
- * right after the #version line (the prologue is all directives, so it is
- * still before any code), unless the text enables it itself. */
-static void enable_420pack(char **text) {
-    static const char ext[] = "GL_ARB_shading_language_420pack";
-    if (strstr(*text, ext) || !scan_layouts(*text).binding) return;
+/* Inserts `#extension NAME : enable` right after the #version line (the
+ * prologue is all directives, so it is still before any code), unless the
+ * text names the extension itself. */
+static void enable_extension(char **text, const char *name, const char *why) {
+    if (strstr(*text, name)) return;
     char *nl = strchr(*text, '\n');
     if (!nl) return;
     strbuf b = {0};
     strbuf_put(&b, *text, (size_t)(nl + 1 - *text));
-    strbuf_printf(&b, "#extension %s : enable  // tarn: for layout(binding) before GLSL 4.20\n", ext);
+    strbuf_printf(&b, "#extension %s : enable  // tarn: %s\n", name, why);
     strbuf_puts(&b, nl + 1);
     free(*text);
     *text = strbuf_take(&b);
+}
+
+/* NVIDIA allowed layout(binding = N) from GLSL 3.30 on (glman's manual says
+ * so), and layout(location = N) on a uniform; Mesa wants
+ * GL_ARB_shading_language_420pack before 4.20 and
+ * GL_ARB_explicit_uniform_location before 4.30. */
+static void enable_layout_extensions(char **text, int version) {
+    layout_scan ls = scan_layouts(*text);
+    if (ls.binding && version < 420)
+        enable_extension(text, "GL_ARB_shading_language_420pack", "for layout(binding) before GLSL 4.20");
+    if (ls.uniform_location && version < 430)
+        enable_extension(text, "GL_ARB_explicit_uniform_location", "for a uniform's layout(location) before GLSL 4.30");
 }
 
 bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
@@ -812,7 +827,7 @@ done:
     }
     if (c.gs_marked) add_gs_layouts(&c);
     out->text = c.text.s ? c.text.s : strdup("");
-    if (out->text && !v.es && version < 420) enable_420pack(&out->text);
+    if (out->text && !v.es) enable_layout_extensions(&out->text, version);
     unsigned long long h = 14695981039346656037ull;
     for (const unsigned char *q = (const unsigned char *)out->text; *q; q++) {
         h ^= *q;

@@ -46,7 +46,9 @@
  *   SHADER_SRC_GS_MAX_VERTICES, inserted before the first line of code
  *   (after the file's #extension lines), then `#line` to renumber;
  * - `layout(binding = N)` before GLSL 4.20 enables
- *   GL_ARB_shading_language_420pack (NVIDIA allowed it from 3.30);
+ *   GL_ARB_shading_language_420pack (NVIDIA allowed it from 3.30), and
+ *   `layout(location = N) uniform` before 4.30
+ *   GL_ARB_explicit_uniform_location;
  * - GSTAP's aColor exists in the fragment stage too (gl_Color).
  */
 #ifndef TARN_SHADER_SRC_H
