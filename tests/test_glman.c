@@ -145,6 +145,163 @@ static void test_flat_and_smooth(void) {
     CHECK_MSG(b[1] - a[1] > 0.3, "Smooth: %g vs %g, want a ramp", a[1], b[1]);
 }
 
+/* Loads path; its messages (the compiler's, mapped, with tarn's notes)
+ * into msgs. Returns whether it loaded cleanly. */
+static bool load_messages(const char *path, char *msgs, size_t len) {
+    render *r = render_create(NULL);
+    bool ok = render_load(r, path);
+    snprintf(msgs, len, "%s", render_messages(r));
+    render_destroy(r);
+    return ok;
+}
+
+/* The fraction of pixels that are not the black background. */
+static double coverage(void) {
+    int n = 0;
+    for (int i = 0; i < W * H; i++)
+        if (px[i * 4] > TOL || px[i * 4 + 1] > TOL || px[i * 4 + 2] > TOL) n++;
+    return (double)n / (W * H);
+}
+
+/* A geometry shader written for GL_EXT_geometry_shader4, as glman's course
+ * ones are (#version 120, gl_PositionIn, gl_VerticesIn, gl_FrontColorIn,
+ * `varying out`, no layouts): it shrinks each triangle to half its size
+ * about its centroid, so the full-screen quad covers a quarter of the
+ * picture, and its colour says gl_VerticesIn was 3 and gl_FrontColorIn
+ * carried Color's green. */
+static void test_ext_geometry_shader(void) {
+    scratch_write("pass.vert", "#version 120\n"
+                  "void main() { gl_FrontColor = gl_Color; gl_Position = gl_ModelViewMatrix * gl_Vertex; }\n");
+    scratch_write("shrink.geom", "#version 120\n#extension GL_EXT_geometry_shader4 : enable\n"
+                  "varying out float gK;\n"
+                  "void main() {\n"
+                  "  vec4 c = (gl_PositionIn[0] + gl_PositionIn[1] + gl_PositionIn[2]) / 3.;\n"
+                  "  for (int i = 0; i < gl_VerticesIn; i++) {\n"
+                  "    gl_FrontColor = gl_FrontColorIn[i];\n"
+                  "    gK = float(gl_VerticesIn) / 3.;\n"
+                  "    gl_Position = gl_ProjectionMatrix * mix(c, gl_PositionIn[i], 0.5);\n"
+                  "    EmitVertex();\n"
+                  "  }\n"
+                  "  EndPrimitive();\n"
+                  "}\n");
+    scratch_write("shrink.frag", "#version 120\nvarying float gK;\n"
+                  "void main() { gl_FragColor = vec4(gK, gl_Color.g, 0., 1.); }\n");
+    scratch_write("shrink.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex pass.vert\nGeometry shrink.geom\n"
+                  "Fragment shrink.frag\nProgram Shrink\nColor 0 1 0\nQuadXY 0 1\n");
+    if (!draw_file(scratch_path("shrink.glib"))) return;
+    double cov = coverage();
+    CHECK_MSG(fabs(cov - 0.25) < 0.03, "coverage %g, want a quarter (each triangle at half size)", cov);
+    const float *corner = at(1, 1);
+    CHECK(corner[0] < TOL && corner[1] < TOL);
+    int lit = 0;
+    for (int i = 0; i < W * H; i++) {
+        if (px[i * 4] <= TOL && px[i * 4 + 1] <= TOL) continue;
+        lit++;
+        if (px[i * 4] < 1 - TOL || px[i * 4 + 1] < 1 - TOL) {
+            CHECK_MSG(false, "pixel %d: %g %g, want 1 1 (gl_VerticesIn 3, Color's green)", i, px[i * 4],
+                      px[i * 4 + 1]);
+            break;
+        }
+    }
+    CHECK(lit > 0);
+
+    /* an error in it is still on the user's line */
+    scratch_write("shrink_bad.geom", "#version 120\n#extension GL_EXT_geometry_shader4 : enable\n"
+                  "void main() {\n  gl_Position = gl_PositionIn[0] * undefined_here;\n  EmitVertex();\n}\n");
+    scratch_write("shrink_bad.glib", "##OpenGL GLIB\nVertex pass.vert\nGeometry shrink_bad.geom\n"
+                  "Fragment shrink.frag\nProgram Bad\nQuadXY 0 1\n");
+    char msgs[4096];
+    CHECK(!load_messages(scratch_path("shrink_bad.glib"), msgs, sizeof msgs));
+    CHECK_MSG(strstr(msgs, "shrink_bad.geom:4: error:") && strstr(msgs, "undefined_here"), "%s", msgs);
+}
+
+/* A layout-less geometry shader used with a Wire draw gets `lines` in (a
+ * triangles one would fail at every draw, GL_INVALID_OPERATION): it turns
+ * each edge of the square into a band 0.2 wide, so the edges are lit and
+ * the middle is not. */
+static void test_geometry_input_follows_draw(void) {
+    scratch_write("band.geom", "#version 120\n#extension GL_EXT_geometry_shader4 : enable\n"
+                  "void main() {\n"
+                  "  vec4 p0 = gl_ProjectionMatrix * gl_PositionIn[0], p1 = gl_ProjectionMatrix * gl_PositionIn[1];\n"
+                  "  vec2 t = normalize(p1.xy - p0.xy), n = vec2(-t.y, t.x) * 0.1;\n"
+                  "  gl_FrontColor = vec4(float(gl_VerticesIn) / 2., 0., 0., 1.);\n"
+                  "  gl_Position = p0 - vec4(n, 0., 0.); EmitVertex();\n"
+                  "  gl_Position = p0 + vec4(n, 0., 0.); EmitVertex();\n"
+                  "  gl_Position = p1 - vec4(n, 0., 0.); EmitVertex();\n"
+                  "  gl_Position = p1 + vec4(n, 0., 0.); EmitVertex();\n"
+                  "  EndPrimitive();\n"
+                  "}\n");
+    scratch_write("band.frag", "#version 120\nvoid main() { gl_FragColor = gl_Color; }\n");
+    scratch_write("band.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex pass.vert\nGeometry band.geom\n"
+                  "Fragment band.frag\nProgram Band\nWireQuadXY 0 0.5\n");
+    if (!draw_file(scratch_path("band.glib"))) return;
+    const float *top = at(W / 2, H / 4), *left = at(W / 4, H / 2), *mid = at(W / 2, H / 2);
+    CHECK_MSG(top[0] > 1 - TOL && left[0] > 1 - TOL, "edges %g %g, want 1 (gl_VerticesIn 2)", top[0], left[0]);
+    CHECK_MSG(mid[0] < TOL, "middle %g, want background", mid[0]);
+}
+
+/* `layout(binding = 6)` on a sampler under #version 330, no unit on the
+ * Program line: the sampler reads unit 6 (NVIDIA took this; Mesa needs
+ * GL_ARB_shading_language_420pack, which tarn enables). A uniform with
+ * `layout(location = 3)` likewise (GL_ARB_explicit_uniform_location), set
+ * from the Program line. */
+static void test_layout_binding_under_330(void) {
+    write_solid_bmp("bind.bmp", 255, 0, 0);
+    scratch_write("bind.vert", "#version 120\nvoid main() { gl_TexCoord[0] = gl_MultiTexCoord0; "
+                  "gl_Position = ftransform(); }\n");
+    scratch_write("bind.frag", "#version 330 compatibility\nlayout(binding = 6) uniform sampler2D uTex;\n"
+                  "layout(location = 3) uniform float uG;\n"
+                  "void main() { gl_FragColor = texture(uTex, gl_TexCoord[0].st) + vec4(0., uG, 0., 0.); }\n");
+    scratch_write("bind.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex bind.vert\nFragment bind.frag\n"
+                  "Program Bind uG 0.5\nTexture2D 6 bind.bmp\nQuadXY 0 1\n");
+    if (!draw_file(scratch_path("bind.glib"))) return;
+    const float *c = at(W / 2, H / 2);
+    CHECK_MSG(c[0] > 1 - TOL && fabsf(c[1] - 0.5f) < TOL && c[2] < TOL,
+              "centre %g %g %g, want bind.bmp's red and uG's 0.5 green", c[0], c[1], c[2]);
+}
+
+/* GSTAP's aColor in a fragment shader is gl_Color, the interpolated colour
+ * (the issue's project failed to compile there). */
+static void test_gstap_color_in_fragment(void) {
+    scratch_write("gs.vert", "#version 330 compatibility\nout vec4 vColor;\n"
+                  "void main() { gl_FrontColor = aColor; gl_Position = uModelViewProjectionMatrix * aVertex; }\n");
+    scratch_write("gs.frag", "#version 330 compatibility\nvoid main() { gl_FragColor = aColor; }\n");
+    scratch_write("gs.glib", "##OpenGL GLIB\nGSTAP\nOrtho -1 1 -1 1\nVertex gs.vert\nFragment gs.frag\n"
+                  "Program Gs\nColor 0 0 1\nQuadXY 0 1\n");
+    if (!draw_file(scratch_path("gs.glib"))) return;
+    const float *c = at(W / 2, H / 2);
+    CHECK_MSG(c[2] > 1 - TOL && c[0] < TOL && c[1] < TOL, "centre %g %g %g, want Color's blue", c[0], c[1], c[2]);
+}
+
+/* What NVIDIA accepted and Mesa rejects: the messages keep the compiler's
+ * error on the user's file:line and add a note that says what GLSL forbids
+ * and how to write it. */
+static void test_hints_for_nvidia_leniency(void) {
+    static const struct { const char *body; int line; const char *hint; } cases[] = {
+        { "void main() {\n  vec2 a = pow(vec2(0.5), 2.);\n  gl_FragColor = vec4(a, vN.x, 1.);\n}\n", 5,
+          "pow(a, vec2(b))" },
+        { "void main() {\n  vN = vec3(1.);\n  gl_FragColor = vec4(vN, 1.);\n}\n", 5,
+          "'vN' is an input of this shader (declared varying); GLSL makes inputs read-only" },
+        { "float f() { return 1; }\nvoid main() { gl_FragColor = vec4(f()); }\n", 4,
+          "`return 1.0;` rather than `return 1;`" },
+        { "void main() {\n  const float K = uK * 2.;\n  gl_FragColor = vec4(K);\n}\n", 5,
+          "'K' is declared const but its value is only known when the shader runs" },
+    };
+    scratch_write("h.vert", "#version 120\nvarying vec3 vN;\n"
+                  "void main() { vN = gl_Normal; gl_Position = ftransform(); }\n");
+    scratch_write("h.glib", "##OpenGL GLIB\nVertex h.vert\nFragment h.frag\nProgram H\nQuadXY 0 1\n");
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[1024], msgs[8192], error[64], note[64];
+        snprintf(text, sizeof text, "#version 120\nvarying vec3 vN;\nuniform float uK;\n%s", cases[i].body);
+        scratch_write("h.frag", text);
+        CHECK(!load_messages(scratch_path("h.glib"), msgs, sizeof msgs));
+        snprintf(error, sizeof error, "h.frag:%d: error: ", cases[i].line);
+        snprintf(note, sizeof note, "h.frag:%d: note: ", cases[i].line);
+        const char *n = strstr(msgs, note);
+        CHECK_MSG(strstr(msgs, error) && n && strstr(n, cases[i].hint), "case %zu:\n%s", i, msgs);
+    }
+}
+
 int main(void) {
     char err[512];
     ctx = gl_ctx_create_headless(err, sizeof err);
@@ -158,6 +315,11 @@ int main(void) {
     RUN(test_noise_cache_file_is_read);
     RUN(test_texture_rebinds_in_order);
     RUN(test_flat_and_smooth);
+    RUN(test_ext_geometry_shader);
+    RUN(test_geometry_input_follows_draw);
+    RUN(test_layout_binding_under_330);
+    RUN(test_gstap_color_in_fragment);
+    RUN(test_hints_for_nvidia_leniency);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

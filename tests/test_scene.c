@@ -444,6 +444,27 @@ static void test_program_stages(void) {
     glib_free(g);
 }
 
+/* A geometry shader without `layout(...) in;` gets the primitive of the
+ * first draw after its Program: a Wire draw hands it lines, WaterSurface
+ * points points, a solid or no draw at all triangles; the next Program's
+ * draws are not this one's. */
+static void test_program_gs_input(void) {
+    glib_scene *g = parse("##OpenGL GLIB\nGeometry g.geom\nProgram A\nTranslate 0 0 1\nWireSphere\nSphere\n"
+                          "Program B\nColor 1 0 0\nBox\nWireBox\nProgram C\nProgram D\nWireTorus\n");
+    const shader_gs_input want[] = { SHADER_GS_IN_LINES, SHADER_GS_IN_TRIANGLES, SHADER_GS_IN_TRIANGLES,
+                                     SHADER_GS_IN_LINES };
+    int k = 0;
+    for (int i = 0; i < g->ncmds; i++) {
+        if (g->cmds[i].kind != GLIB_CMD_PROGRAM || k >= 4) continue;
+        CHECK_MSG(program_gs_input(g, &g->cmds[i]) == want[k], "Program %s: %d", g->cmds[i].name,
+                  (int)program_gs_input(g, &g->cmds[i]));
+        k++;
+    }
+    CHECK(k == 4);
+    CHECK(program_gs_input(NULL, NULL) == SHADER_GS_IN_TRIANGLES);
+    glib_free(g);
+}
+
 int main(void) {
     RUN(test_each_command);
     RUN(test_defaults);
@@ -453,6 +474,7 @@ int main(void) {
     RUN(test_plain_glman_scene_has_no_world);
     RUN(test_viewing_reader);
     RUN(test_program_stages);
+    RUN(test_program_gs_input);
     RUN(test_lake_matches_reference);
     RUN(test_scene_load);
     return check_summary();

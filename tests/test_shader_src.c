@@ -180,13 +180,24 @@ static void test_defines_and_gstap_follow_version(void) {
     CHECK(strstr(s.text, "gstap.vert: glman's GSTAP") > line);
     shader_src_free(&s);
 
-    /* fragment: matrices only, no attributes */
+    /* fragment: matrices and aColor (gl_Color, the interpolated colour), no attributes */
     ok = load(&s, "gstap.frag", SHADER_FRAGMENT, NULL, 0, true);
     CHECK_MSG(ok, "%s", s.error);
     if (ok) {
         CHECK_STR_CONTAINS(s.text, "#define uNormalMatrix gl_NormalMatrix\n");
+        CHECK_STR_CONTAINS(s.text, "#define aColor gl_Color\n");
         CHECK(strstr(s.text, "aVertex") == NULL);
         CHECK(strstr(s.text, "aTexCoord0") == NULL);
+    }
+    shader_src_free(&s);
+
+    /* geometry: matrices only (its colours are gl_in[i].gl_FrontColor) */
+    shader_src_desc gd = { .path = shader_data("gstap.frag"), .stage = SHADER_GEOMETRY, .gstap = true };
+    ok = shader_src_load(&gd, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) {
+        CHECK_STR_CONTAINS(s.text, "#define uNormalMatrix gl_NormalMatrix\n");
+        CHECK(strstr(s.text, "aColor") == NULL);
     }
     shader_src_free(&s);
 
@@ -390,6 +401,164 @@ static void test_version_line_with_comment_tail(void) {
     shader_src_free(&s);
 }
 
+/* The text between the first occurrence of a and of b comes in that order. */
+static bool before(const char *text, const char *a, const char *b) {
+    const char *pa = strstr(text, a), *pb = strstr(text, b);
+    return pa && pb && pa < pb;
+}
+
+/* A geometry shader written for GL_EXT_geometry_shader4 (glman's): GLSL
+ * 1.50's names, its #extension line gone, #version 150 compatibility, the
+ * layouts it lacks after the file's own #extension lines, and messages
+ * still on the user's lines. */
+static void test_ext_geometry_shader_rewritten(void) {
+    write_file("ext.geom", "#version 120\n"
+               "#extension GL_EXT_geometry_shader4 : enable\n"
+               "#extension GL_ARB_gpu_shader5 : enable\n"
+               "\n"
+               "varying in vec3 vN[gl_VerticesIn];\n"                       /* 5 */
+               "varying out vec3 gN;\n"
+               "varying  float gF;  // gl_PositionIn in a comment\n"
+               "void main() {\n"
+               "  for (int i = 0; i < gl_VerticesIn; i++) {\n"
+               "    gl_FrontColor = gl_FrontColorIn[i]; gl_TexCoord[0] = gl_TexCoordIn[ i ][0];\n"   /* 10 */
+               "    gl_Position = gl_PositionIn [idx[i]] + undefined_gs;\n"
+               "    EmitVertex();\n"
+               "  }\n"
+               "}\n");
+    shader_src_desc d = { .path = tmp("ext.geom"), .stage = SHADER_GEOMETRY };
+    shader_src s;
+    bool ok = shader_src_load(&d, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) {
+        CHECK(strncmp(s.text, "#version 150 compatibility", 26) == 0);
+        CHECK_STR_CONTAINS(s.text, "in vec3 vN[gl_in.length()];\n");
+        CHECK_STR_CONTAINS(s.text, "\nout vec3 gN;\n");
+        CHECK_STR_CONTAINS(s.text, "\nout  float gF;");   /* the blanks after `varying` stay */
+        CHECK_STR_CONTAINS(s.text, "i < gl_in.length();");
+        CHECK_STR_CONTAINS(s.text, "gl_FrontColor = gl_in[i].gl_FrontColor;");
+        CHECK_STR_CONTAINS(s.text, "gl_TexCoord[0] = gl_in[ i ].gl_TexCoord[0];");
+        CHECK_STR_CONTAINS(s.text, "gl_Position = gl_in[idx[i]].gl_Position + undefined_gs;");
+        CHECK(strstr(s.text, "varying") == NULL);
+        CHECK(strstr(s.text, "#extension GL_EXT_geometry_shader4") == NULL);
+        CHECK(before(s.text, "#extension GL_ARB_gpu_shader5", "layout(triangles) in;"));
+        CHECK(before(s.text, "layout(triangles) in;", "layout(triangle_strip, max_vertices = 64) out;"));
+        CHECK(before(s.text, "max_vertices = 64) out;", "in vec3 vN["));
+        char *log = fake_compile(s.text, 'm', false);
+        char *mapped = shader_src_map_log(&s, log);
+        CHECK_MSG(mapped_has(mapped, "ext.geom", 11, "undefined_gs"), "%s\n---\n%s", mapped, s.text);
+        free(mapped);
+        free(log);
+    }
+    shader_src_free(&s);
+
+    /* the draw decides the input primitive */
+    d.gs_input = SHADER_GS_IN_TRIANGLES_ADJACENCY;
+    ok = shader_src_load(&d, &s);
+    CHECK(ok && strstr(s.text, "layout(triangles_adjacency) in;"));
+    shader_src_free(&s);
+    d.gs_input = SHADER_GS_IN_LINES_ADJACENCY;
+    ok = shader_src_load(&d, &s);
+    CHECK(ok && strstr(s.text, "layout(lines_adjacency) in;"));
+    shader_src_free(&s);
+
+    /* a file's own layouts stay alone; only the missing one is added; no
+     * #version: glman's 330 compatibility already has geometry shaders */
+    write_file("own.geom", "layout( points )  in ;\n"
+               "void main() { gl_Position = gl_in[0].gl_Position + undefined_own; EmitVertex(); }\n");
+    shader_src_desc d2 = { .path = tmp("own.geom"), .stage = SHADER_GEOMETRY };
+    ok = shader_src_load(&d2, &s);
+    CHECK_MSG(ok, "%s", s.error);
+    if (ok) {
+        CHECK(strncmp(s.text, "#version 330 compatibility", 26) == 0);
+        CHECK(strstr(s.text, "layout(triangles)") == NULL);
+        CHECK(before(s.text, "layout(triangle_strip, max_vertices = 64) out;", "layout( points )"));
+        char *log = fake_compile(s.text, 'g', false);
+        char *mapped = shader_src_map_log(&s, log);
+        CHECK_MSG(mapped_has(mapped, "own.geom", 2, "undefined_own"), "%s\n---\n%s", mapped, s.text);
+        free(mapped);
+        free(log);
+    }
+    shader_src_free(&s);
+    write_file("both.geom", "#version 400\nlayout(triangles) in;\n/* layout(x) out; */\n"
+               "layout(line_strip, max_vertices = 2) out;\nvoid main() { }\n");
+    shader_src_desc d3 = { .path = tmp("both.geom"), .stage = SHADER_GEOMETRY };
+    ok = shader_src_load(&d3, &s);
+    CHECK(ok && strncmp(s.text, "#version 400\n", 13) == 0 && !strstr(s.text, "tarn: glman's output"));
+    shader_src_free(&s);
+
+    /* layouts from an include count too */
+    write_file("lay.glsl", "layout(triangles) in;\nlayout(triangle_strip, max_vertices = 3) out;\n");
+    write_file("inc.geom", "#include \"lay.glsl\"\nvoid main() { gl_Position = gl_in[0].gl_Position; }\n");
+    shader_src_desc d5 = { .path = tmp("inc.geom"), .stage = SHADER_GEOMETRY };
+    ok = shader_src_load(&d5, &s);
+    CHECK_MSG(ok && !strstr(s.text, "tarn: the input primitive") && !strstr(s.text, "tarn: glman's output"),
+              "%s", ok ? s.text : s.error);
+    shader_src_free(&s);
+
+    /* only geometry shaders are rewritten */
+    write_file("v.vert", "#version 120\nvarying vec3 gl_PositionInX;\nvoid main() { }\n");
+    shader_src_desc d4 = { .path = tmp("v.vert"), .stage = SHADER_VERTEX };
+    ok = shader_src_load(&d4, &s);
+    CHECK(ok && strstr(s.text, "varying vec3 gl_PositionInX;") && !strstr(s.text, "layout"));
+    shader_src_free(&s);
+}
+
+/* layout(binding = N) before GLSL 4.20 enables GL_ARB_shading_language_420pack
+ * (before any code, the lines still the user's); not from 4.20 on, not for
+ * a binding in a comment, not twice. Likewise a uniform's layout(location). */
+static void test_binding_enables_420pack(void) {
+    static const struct { const char *text; bool want; } cases[] = {
+        { "#version 330 compatibility\nlayout(binding = 3) uniform sampler2D t;\n"
+          "void main() { gl_FragColor = undefined_b; }\n", true },
+        { "layout(location = 0, binding=3) uniform sampler2D t;\nvoid main() { }\n", true },
+        { "#version 420\nlayout(binding = 3) uniform sampler2D t;\nvoid main() { }\n", false },
+        { "#version 330\n// layout(binding = 3)\nuniform sampler2D t;\nvoid main() { }\n", false },
+        { "#version 330\n#extension GL_ARB_shading_language_420pack : require\n"
+          "layout(binding = 3) uniform sampler2D t;\nvoid main() { }\n", false },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        write_file("b.frag", cases[i].text);
+        shader_src_desc d = { .path = tmp("b.frag"), .stage = SHADER_FRAGMENT, .gstap = true };
+        shader_src s;
+        bool ok = shader_src_load(&d, &s);
+        CHECK_MSG(ok, "%s", s.error);
+        if (!ok) { shader_src_free(&s); continue; }
+        const char *ext = strstr(s.text, "#extension GL_ARB_shading_language_420pack : enable");
+        CHECK_MSG((ext != NULL) == cases[i].want, "case %zu:\n%s", i, s.text);
+        if (ext) CHECK(before(s.text, "#version", "#extension") && before(s.text, "#extension", "#line"));
+        if (i == 0) {
+            char *log = fake_compile(s.text, 'm', false);
+            char *mapped = shader_src_map_log(&s, log);
+            CHECK_MSG(mapped_has(mapped, "b.frag", 3, "undefined_b"), "%s", mapped);
+            free(mapped);
+            free(log);
+        }
+        shader_src_free(&s);
+    }
+    /* a uniform's layout(location) before 4.30: GL_ARB_explicit_uniform_location;
+     * an input's needs nothing */
+    static const struct { const char *text; bool want; } loc[] = {
+        { "#version 330 compatibility\nlayout(location = 3) uniform float uK;\nvoid main() { }\n", true },
+        { "#version 330\nlayout(location = 0) in vec3 p;\nlayout(location=0) out vec4 c;\nvoid main() { }\n",
+          false },
+        { "#version 430\nlayout(location = 3) uniform float uK;\nvoid main() { }\n", false },
+    };
+    for (size_t i = 0; i < sizeof loc / sizeof loc[0]; i++) {
+        write_file("l.frag", loc[i].text);
+        shader_src_desc d = { .path = tmp("l.frag"), .stage = SHADER_FRAGMENT };
+        shader_src s;
+        bool ok = shader_src_load(&d, &s);
+        CHECK(ok);
+        if (ok) {
+            const char *ext = strstr(s.text, "#extension GL_ARB_explicit_uniform_location : enable");
+            CHECK_MSG((ext != NULL) == loc[i].want, "case %zu:\n%s", i, s.text);
+            CHECK(!strstr(s.text, "420pack"));
+        }
+        shader_src_free(&s);
+    }
+}
+
 static void test_include_quirks(void) {
     /* an include's own #version is dropped; an #include in a comment is not one */
     write_file("inc_v.glsl", "#version 330 compatibility\nfloat a() { return 1.0; }\n");
@@ -518,6 +687,8 @@ int main(void) {
     RUN(test_include_search_order_and_once);
     RUN(test_version_line_with_comment_tail);
     RUN(test_include_quirks);
+    RUN(test_ext_geometry_shader_rewritten);
+    RUN(test_binding_enables_420pack);
     RUN(test_map_log_passthrough);
     RUN(test_stage_names_and_paths);
     RUN(test_file_size_limit);

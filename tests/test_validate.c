@@ -303,6 +303,50 @@ static void test_world_and_waves_in_either_order(void) {
     }
 }
 
+static void write_tmp(const char *name, const char *text) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", g_tmp, name);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs(text, f);
+    fclose(f);
+}
+
+/* glman-era GLSL under glslang as under Mesa: an EXT_geometry_shader4
+ * geometry shader (rewritten by shader_src) that passes gl_FrontColor on
+ * validates clean, an error in one is on its line; writing a
+ * fragment shader's input is glslang's error on its line, with tarn's note
+ * after it, counted once. */
+static void test_glman_era_glsl(void) {
+    write_tmp("ext.vert", "#version 120\nvoid main() { gl_Position = gl_ModelViewMatrix * gl_Vertex; }\n");
+    write_tmp("ext.geom", "#version 120\n#extension GL_EXT_geometry_shader4 : enable\nvarying out float gK;\n"
+              "void main() {\n  for (int i = 0; i < gl_VerticesIn; i++) {\n    gK = 1.;\n"
+              "    gl_FrontColor = gl_FrontColorIn[i];\n"
+              "    gl_Position = gl_ProjectionMatrix * gl_PositionIn[i];\n    EmitVertex();\n  }\n}\n");
+    /* the same with no #version (glman's 330 compatibility) and an error on line 6 */
+    write_tmp("bad.geom", "#extension GL_EXT_geometry_shader4 : enable\nvarying out float gK;\n"
+              "void main() {\n  for (int i = 0; i < gl_VerticesIn; i++) {\n    gl_FrontColor = gl_FrontColorIn[i];\n"
+              "    gK = undefined_gk;\n    gl_Position = gl_PositionIn[i];\n    EmitVertex();\n  }\n}\n");
+    write_tmp("ext.frag", "#version 120\nvarying float gK;\nvoid main() { gl_FragColor = vec4(gK); }\n");
+    write_tmp("in.frag", "#version 120\nvarying float gK;\nvoid main() {\n  gK = 2.;\n  gl_FragColor = vec4(gK);\n}\n");
+    write_tmp("ext.glib", "##OpenGL GLIB\nVertex ext.vert\nGeometry ext.geom\nFragment ext.frag\nProgram Ext\n"
+              "QuadXY 0 1\nFragment in.frag\nProgram In\nQuadXY 0 1\n"
+              "Geometry bad.geom\nFragment ext.frag\nProgram Bad\nQuadXY 0 1\n");
+    char path[512];
+    snprintf(path, sizeof path, "%s/ext.glib", g_tmp);
+    const char *paths[] = { path };
+    int rc = -1;
+    validate_result res;
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
+    CHECK_MSG(rc == 1 && res.nerrors == 2, "%s", out ? out : "");
+    CHECK(out && !strstr(out, "ext.geom"));     /* gl_FrontColor written: glslang checks it as 4.00 */
+    CHECK_STR_CONTAINS(out, "bad.geom:6: error: 'undefined_gk'");
+    CHECK_STR_CONTAINS(out, "in.frag:4: error: ");
+    CHECK_STR_CONTAINS(out, "in.frag:4: note: 'gK' is an input of this shader (declared varying)");
+    free(out);
+}
+
 int main(void) {
     snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_validate_XXXXXX");
     if (!mkdtemp(g_tmp)) { perror("mkdtemp"); return 1; }
@@ -321,6 +365,7 @@ int main(void) {
     RUN(test_define_slider_values_are_validated);
     RUN(test_validate_stage_without_text);
     RUN(test_world_and_waves_in_either_order);
+    RUN(test_glman_era_glsl);
     char cmd[320];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmp);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_tmp);

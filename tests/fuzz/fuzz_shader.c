@@ -1,7 +1,10 @@
 /* fuzz_shader: libFuzzer target for shader assembly (shader_src_load:
  * #include resolution, #version / #define / GSTAP placement, #pragma once,
  * cycles, depth) and for mapping compiler logs back to files
- * (shader_src_map_log).
+ * (shader_src_map_log), then for the hints added to such a log
+ * (glsl_hint_annotate, reading the assembled text for declarations). A
+ * geometry stage also runs the GL_EXT_geometry_shader4 rewrite, with the
+ * input primitive taken from the size.
  *
  * The input is a small file tree: its parts, split at NUL bytes, are
  *   0: the stage file main.frag
@@ -23,6 +26,7 @@
 #include <unistd.h>
 
 #include "fuzz_util.h"
+#include "glsl_hint.h"
 #include "shader_src.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv) {
@@ -77,6 +81,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         .ndefines = (int)(size % 4),
         .include_dirs = dirs,
         .ninclude_dirs = 3,
+        .gs_input = (shader_gs_input)((size / 10) % 5),
     };
     shader_src s;
     bool ok = shader_src_load(&d, &s);
@@ -112,6 +117,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
                                      "ERROR: 0:99999999999999999999: overflow\nplain text\n");
     }
     check(log != NULL, "map_log returns text");
+    char *hinted = glsl_hint_annotate(log, s.text);
+    check(hinted != NULL && strlen(hinted) >= strlen(log), "hints only add lines");
+    free(hinted);
     free(log);
     (void)shader_stage_name(d.stage);
     (void)shader_stage_from_path(s.nfiles ? s.files[s.nfiles - 1] : "x.frag.glsl");

@@ -2,7 +2,9 @@
 #include "validate.h"
 
 #include "glib.h"
+#include "glsl_hint.h"
 #include "program.h"
+#include "strbuf.h"
 
 #include <glslang/Include/glslang_c_interface.h>
 #include <glslang/Public/resource_limits_c.h>
@@ -179,8 +181,11 @@ static bool is_noise(const char *line) {
  * error nor a warning continue the message before them. */
 static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m) {
     if (!log || !log[0]) return;
-    char *mapped = shader_src_map_log(src, log);
-    if (!mapped) return;
+    char *raw_mapped = shader_src_map_log(src, log);
+    if (!raw_mapped) return;
+    /* tarn's notes on what NVIDIA let through (glsl_hint): kept with their error */
+    char *mapped = glsl_hint_annotate(raw_mapped, src->text);
+    free(raw_mapped);
     char *pending = NULL;
     sev pending_sev = SEV_ERROR;
     for (char *p = mapped; p && *p;) {
@@ -188,7 +193,11 @@ static void add_compile_log(const shader_src *src, const char *log, bool compile
         if (e) *e = '\0';
         size_t n = strlen(p);
         while (n > 0 && isspace((unsigned char)p[n - 1])) p[--n] = '\0';
-        if (n > 0 && !is_noise(p)) {
+        if (n > 0 && pending && strstr(p, ": note: ")) {
+            char *joined = xprintf("%s\n%s", pending, p);
+            free(pending);
+            pending = joined;
+        } else if (n > 0 && !is_noise(p)) {
             sev s;
             char *text = NULL;
             if (starts_with(p, "ERROR: ")) {
@@ -253,6 +262,47 @@ static glslang_input_t make_input(const char *code, shader_stage st) {
     return in;
 }
 
+/* glslang (12) gives a compatibility geometry shader its colour and
+ * texture-coordinate outputs (gl_FrontColor, gl_TexCoord, ...) only from
+ * GLSL 4.00 on, where GLSL 1.50 compatibility has them and Mesa agrees; a
+ * glman geometry shader (#version 150 compatibility after shader_src's
+ * rewrite, or glman's 330 default) that writes them would fail here and
+ * work in the renderer. Such a text is checked as 4.00 compatibility: a
+ * heap copy with the #version line replaced and, when the text counted
+ * lines by the pre-3.30 `#line` rule, each `#line N` raised by one so
+ * messages keep their lines. NULL when the text needs none of this. */
+static char *gs_compat_text(const char *text) {
+    static const char *const outs[] = { "gl_FrontColor", "gl_BackColor", "gl_FrontSecondaryColor",
+                                        "gl_BackSecondaryColor", "gl_TexCoord", "gl_FogFragCoord" };
+    int version = 0;
+    char profile[32] = "";
+    const char *nl = strchr(text, '\n');
+    if (!nl || sscanf(text, "#version %d %31s", &version, profile) != 2 || version >= 400 ||
+        strcmp(profile, "compatibility") != 0)
+        return NULL;
+    bool writes = false;
+    for (size_t i = 0; i < sizeof outs / sizeof outs[0] && !writes; i++) {
+        size_t n = strlen(outs[i]);
+        for (const char *p = text; (p = strstr(p, outs[i])) != NULL && !writes; p += n)
+            writes = p[-1] != '.' && !isalnum((unsigned char)p[n]) && p[n] != '_';   /* gl_in[i].gl_X is an input */
+    }
+    if (!writes) return NULL;
+    bool old_rule = version < 330;
+    strbuf out = {0};
+    strbuf_puts(&out, "#version 400 compatibility\n");
+    for (const char *p = nl + 1; *p;) {
+        const char *e = strchr(p, '\n');
+        size_t n = e ? (size_t)(e - p) + 1 : strlen(p);
+        long line, file;
+        if (old_rule && sscanf(p, "#line %ld %ld", &line, &file) == 2)
+            strbuf_printf(&out, "#line %ld %ld\n", line + 1, file);
+        else
+            strbuf_put(&out, p, n);
+        p += n;
+    }
+    return strbuf_take(&out);
+}
+
 /* Compiles src; its messages go to m. Returns the shader (the caller
  * deletes it) and sets *ok; *preprocessed (if wanted) gets a heap copy of
  * the preprocessed text.
@@ -265,9 +315,11 @@ static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *
                                  char **preprocessed) {
     ensure_glslang();
     if (preprocessed) *preprocessed = NULL;
-    glslang_input_t in = make_input(src->text, st);
+    char *gs_text = st == SHADER_GEOMETRY ? gs_compat_text(src->text) : NULL;
+    glslang_input_t in = make_input(gs_text ? gs_text : src->text, st);
     glslang_shader_t *sh = glslang_shader_create(&in);
     if (!sh) {
+        free(gs_text);
         char *t = xprintf("%s:0: error: glslang could not create a %s shader", src->files[0],
                           shader_stage_name(st));
         msgs_add(m, SEV_ERROR, t);
@@ -283,6 +335,7 @@ static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *
         *ok = glslang_shader_parse(sh, &in) != 0;
     }
     add_compile_log(src, glslang_shader_get_info_log(sh), *ok, m);
+    free(gs_text);
     if (!*ok) {
         /* a failure glslang explained nowhere still counts */
         bool any = false;
@@ -833,6 +886,7 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
         for (int i = 0; i < nst; i++) {
             shader_stage st = stages[i];
             shader_src_desc d = program_stage_desc(ps, st, defs, nd, r->include_dirs, 1);
+            d.gs_input = program_gs_input(scene, cmd);
             if (!shader_src_load(&d, &src[st])) {
                 msgs_add(&m, SEV_ERROR, src[st].error);
                 ok = false;

@@ -17,7 +17,12 @@
  * in Mesa; an error for GLSL before 1.30, as in Mesa). It drops glslang's
  * spurious "Anonymous member name used for global variable" link error for
  * the compatibility built-ins (gl_TexCoord, gl_Color, ...) that glslang 12
- * reports whenever a 3.30 compatibility fragment shader reads them.
+ * reports whenever a 3.30 compatibility fragment shader reads them. A
+ * compatibility geometry shader before 4.00 that writes gl_FrontColor,
+ * gl_TexCoord and the like is checked as 4.00 compatibility, where glslang
+ * first declares those outputs (GLSL 1.50 compatibility and Mesa have
+ * them), its lines kept. Errors of GLSL that NVIDIA let through carry
+ * glsl_hint's note, as in the renderer.
  */
 #ifndef TARN_VALIDATE_H
 #define TARN_VALIDATE_H

@@ -1,5 +1,7 @@
 #include "render_prog.h"
 #include "contract.h"
+#include "glsl_hint.h"
+#include "program.h"
 #include "strbuf.h"
 
 #include <GL/gl.h>
@@ -67,9 +69,12 @@ static GLuint compile_stage(const shader_src *src, shader_stage st, char **log) 
     if (!ok) {
         char *raw = gl_info_log(sh, false);
         char *mapped = shader_src_map_log(src, raw ? raw : "");
-        str_appendf(log, "%s", mapped ? mapped : (raw ? raw : "compile failed\n"));
-        size_t l = mapped ? strlen(mapped) : 0;
-        if (l && mapped[l - 1] != '\n') str_appendf(log, "\n");
+        /* what NVIDIA let through and Mesa does not, in plain words */
+        char *hinted = mapped ? glsl_hint_annotate(mapped, src->text) : NULL;
+        str_appendf(log, "%s", hinted ? hinted : (raw ? raw : "compile failed\n"));
+        size_t l = hinted ? strlen(hinted) : 0;
+        if (l && hinted[l - 1] != '\n') str_appendf(log, "\n");
+        free(hinted);
         free(mapped);
         free(raw);
         glDeleteShader(sh);
@@ -130,7 +135,8 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
         any = true;
         shader_src_desc d = { .path = p->stage_path[s], .stage = (shader_stage)s,
             .gstap = p->gstap, .defines = defines, .ndefines = ndefines,
-            .include_dirs = include_dirs, .ninclude_dirs = ninclude_dirs };
+            .include_dirs = include_dirs, .ninclude_dirs = ninclude_dirs,
+            .gs_input = program_gs_input(p->scene, p->cmd) };
         if (!shader_src_load(&d, &src[s])) {
             str_appendf(log, "%s\n", src[s].error);
             ok = false;

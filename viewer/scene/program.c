@@ -2,6 +2,7 @@
 #include "program.h"
 
 #include <string.h>
+#include <strings.h>
 
 void program_stages_init(program_stages *st) {
     memset(st, 0, sizeof *st);
@@ -46,4 +47,32 @@ shader_src_desc program_stage_desc(const program_stages *st, shader_stage s, con
                           .defines = defines, .ndefines = ndefines, .include_dirs = include_dirs,
                           .ninclude_dirs = ninclude_dirs };
     return d;
+}
+
+shader_gs_input program_gs_input(const glib_scene *g, const glib_cmd *program) {
+    /* glman's draws and what they hand a geometry shader (a Wire variant:
+     * lines); by name, so draws added to glib's table later need a row here
+     * only when they are not triangles */
+    static const struct { const char *name; shader_gs_input in; } draws[] = {
+        { "ObjAdj", SHADER_GS_IN_TRIANGLES_ADJACENCY }, { "LinesAdjacency", SHADER_GS_IN_LINES_ADJACENCY },
+        { "PointCloud", SHADER_GS_IN_POINTS }, { "JitterCloud", SHADER_GS_IN_POINTS },
+        { "QuadXY", SHADER_GS_IN_TRIANGLES }, { "QuadXZ", SHADER_GS_IN_TRIANGLES },
+        { "QuadYZ", SHADER_GS_IN_TRIANGLES }, { "Sphere", SHADER_GS_IN_TRIANGLES },
+        { "Torus", SHADER_GS_IN_TRIANGLES }, { "Box", SHADER_GS_IN_TRIANGLES },
+        { "Cylinder", SHADER_GS_IN_TRIANGLES }, { "Cone", SHADER_GS_IN_TRIANGLES },
+        { "Teapot", SHADER_GS_IN_TRIANGLES }, { "Obj", SHADER_GS_IN_TRIANGLES },
+        { "Triangles", SHADER_GS_IN_TRIANGLES }, { "DiskXY", SHADER_GS_IN_TRIANGLES },
+        { "QuadBox", SHADER_GS_IN_TRIANGLES }, { "Soccerball", SHADER_GS_IN_TRIANGLES },
+        { "WaterSurface", SHADER_GS_IN_TRIANGLES },
+    };
+    if (!g || !program || program < g->cmds || program >= g->cmds + g->ncmds) return SHADER_GS_IN_TRIANGLES;
+    for (const glib_cmd *c = program + 1; c < g->cmds + g->ncmds && c->kind != GLIB_CMD_PROGRAM; c++) {
+        const char *name = glib_cmd_name(c->kind);
+        for (size_t i = 0; i < sizeof draws / sizeof draws[0]; i++) {
+            if (strcasecmp(name, draws[i].name) != 0) continue;
+            if (c->kind == GLIB_CMD_WATER_SURFACE && strcmp(c->name, "points") == 0) return SHADER_GS_IN_POINTS;
+            return c->wire && draws[i].in == SHADER_GS_IN_TRIANGLES ? SHADER_GS_IN_LINES : draws[i].in;
+        }
+    }
+    return SHADER_GS_IN_TRIANGLES;
 }

@@ -37,4 +37,14 @@ const char *program_stage_path(const program_stages *st, shader_stage s);
 shader_src_desc program_stage_desc(const program_stages *st, shader_stage s, const shader_define *defines,
                                    int ndefines, const char *const *include_dirs, int ninclude_dirs);
 
+/* The input primitive a geometry shader of `program` (a Program command of
+ * g) must declare for the draw it is used with, when its file does not: the
+ * first draw after the Program, before the next Program. ObjAdj gives
+ * triangles_adjacency, LinesAdjacency lines_adjacency, PointCloud and
+ * JitterCloud points, a Wire* draw lines; anything else, or no draw,
+ * triangles (glman set the primitive per program too, so one program
+ * serves one kind of draw). The draw commands are matched by name so that
+ * new ones need only a row in glib's table. */
+shader_gs_input program_gs_input(const glib_scene *g, const glib_cmd *program);
+
 #endif

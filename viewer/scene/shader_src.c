@@ -204,6 +204,10 @@ typedef struct asm_ctx {
     int stack[SHADER_SRC_MAX_INCLUDE_DEPTH + 2];
     int depth;
     bool old_line_rule; /* desktop GLSL < 3.30: `#line N` numbers the next line N + 1 */
+    /* a geometry shader's first line of code, where the layouts it lacks go */
+    bool gs_marked;
+    size_t gs_mark;             /* offset in text */
+    int gs_mark_file, gs_mark_line;
     bool failed;
 } asm_ctx;
 
@@ -240,9 +244,13 @@ static int file_index(asm_ctx *c, const char *path) {
     return c->nfiles++;
 }
 
+static void line_directive(strbuf *b, bool old_line_rule, int fidx, int line) {
+    long v = (long)fidx * SHADER_SRC_LINE_BASE + line - (old_line_rule ? 1 : 0);
+    strbuf_printf(b, "#line %ld %d\n", v, fidx);
+}
+
 static void emit_line_directive(asm_ctx *c, int fidx, int line) {
-    long v = (long)fidx * SHADER_SRC_LINE_BASE + line - (c->old_line_rule ? 1 : 0);
-    strbuf_printf(&c->text, "#line %ld %d\n", v, fidx);
+    line_directive(&c->text, c->old_line_rule, fidx, line);
 }
 
 static bool line_is_pragma_once(line_view l) {
@@ -271,6 +279,157 @@ static bool has_pragma_once(const char *text) {
 }
 
 static bool emit_file(asm_ctx *c, int fidx, const char *text, int first_line, bool in_comment);
+
+/* ---- glman-era GLSL ------------------------------------------------------------ */
+
+static bool is_ident_char(char ch) { return isalnum((unsigned char)ch) || ch == '_'; }
+
+/* GL_EXT_geometry_shader4's per-vertex input arrays -> GLSL 1.50's gl_in member */
+static const char *const gs_ext_inputs[][2] = {
+    { "gl_PositionIn", "gl_Position" }, { "gl_PointSizeIn", "gl_PointSize" },
+    { "gl_ClipVertexIn", "gl_ClipVertex" }, { "gl_FrontColorIn", "gl_FrontColor" },
+    { "gl_BackColorIn", "gl_BackColor" }, { "gl_FrontSecondaryColorIn", "gl_FrontSecondaryColor" },
+    { "gl_BackSecondaryColorIn", "gl_BackSecondaryColor" }, { "gl_TexCoordIn", "gl_TexCoord" },
+    { "gl_FogFragCoordIn", "gl_FogFragCoord" },
+};
+
+static const char *gs_ext_member(const char *w, size_t n) {
+    for (size_t i = 0; i < sizeof gs_ext_inputs / sizeof gs_ext_inputs[0]; i++)
+        if (word_is(w, n, gs_ext_inputs[i][0])) return gs_ext_inputs[i][1];
+    return NULL;
+}
+
+/* Index just past the ']' matching the '[' at l.p[open]; 0 when the line
+ * does not close it. */
+static size_t bracket_end(line_view l, size_t open) {
+    int depth = 0;
+    for (size_t i = open; i < l.n; i++) {
+        if (l.p[i] == '[') depth++;
+        else if (l.p[i] == ']' && --depth == 0) return i + 1;
+    }
+    return 0;
+}
+
+/* Emits one line of a geometry shader with GL_EXT_geometry_shader4's names
+ * in GLSL 1.50's: gl_PositionIn[i] -> gl_in[i].gl_Position,
+ * gl_VerticesIn -> gl_in.length(), `varying in` -> `in`, `varying out` ->
+ * `out`, and a plain `varying` (EXT_geometry_shader4's `varying out`;
+ * Mesa agrees, glslang would read an input) -> `out`. */
+static void emit_gs_line(strbuf *o, line_view l) {
+    size_t i = 0;
+    while (i < l.n) {
+        if (!is_ident_char(l.p[i])) { strbuf_put(o, l.p + i++, 1); continue; }
+        size_t s = i;
+        while (i < l.n && is_ident_char(l.p[i])) i++;
+        const char *w = l.p + s;
+        size_t n = i - s;
+        if (word_is(w, n, "gl_VerticesIn")) { strbuf_puts(o, "gl_in.length()"); continue; }
+        size_t j = i;
+        while (j < l.n && (l.p[j] == ' ' || l.p[j] == '\t')) j++;
+        if (word_is(w, n, "varying")) {
+            size_t k = j;
+            while (k < l.n && is_ident_char(l.p[k])) k++;
+            bool io = j > i && (word_is(l.p + j, k - j, "in") || word_is(l.p + j, k - j, "out"));
+            strbuf_put(o, io ? l.p + j : "out", io ? k - j : 3);
+            if (io) i = k;
+            continue;
+        }
+        const char *member = gs_ext_member(w, n);
+        size_t close = member && j < l.n && l.p[j] == '[' ? bracket_end(l, j) : 0;
+        if (close) {
+            strbuf_puts(o, "gl_in");
+            strbuf_put(o, l.p + j, close - j);
+            strbuf_printf(o, ".%s", member);
+            i = close;
+            continue;
+        }
+        strbuf_put(o, w, n);
+    }
+    strbuf_puts(o, "\n");
+}
+
+static bool is_gs4_extension(line_view l) {
+    const char *name;
+    size_t nn;
+    const char *rest = directive(l, &name, &nn);
+    if (!rest || !word_is(name, nn, "extension")) return false;
+    const char *end = l.p + l.n;
+    for (const char *q = rest; q < end; q++) {
+        if (!is_ident_char(*q) || (q > rest && is_ident_char(q[-1]))) continue;
+        const char *e = q;
+        while (e < end && is_ident_char(*e)) e++;
+        if (word_is(q, (size_t)(e - q), "GL_EXT_geometry_shader4")) return true;
+    }
+    return false;
+}
+
+static const char *const gs_input_names[] = {
+    [SHADER_GS_IN_TRIANGLES] = "triangles", [SHADER_GS_IN_TRIANGLES_ADJACENCY] = "triangles_adjacency",
+    [SHADER_GS_IN_LINES] = "lines", [SHADER_GS_IN_LINES_ADJACENCY] = "lines_adjacency",
+    [SHADER_GS_IN_POINTS] = "points",
+};
+
+/* What a text's layout qualifiers say (comments blanked first). */
+typedef struct layout_scan {
+    bool in, out;       /* `layout(...) in;` / `layout(...) out;`: a primitive declaration */
+    bool binding;       /* some layout(...) holds `binding` */
+    bool uniform_location;  /* `layout(... location ...) uniform` */
+} layout_scan;
+
+static char *blank_comments(const char *text) {
+    char *t = strdup(text);
+    if (!t) return NULL;
+    bool block = false, line = false;
+    for (char *p = t; *p; p++) {
+        if (block) {
+            if (p[0] == '*' && p[1] == '/') { p[0] = p[1] = ' '; p++; block = false; }
+            else if (*p != '\n') *p = ' ';
+        } else if (line) {
+            if (*p == '\n') line = false;
+            else *p = ' ';
+        } else if (p[0] == '/' && (p[1] == '/' || p[1] == '*')) {
+            block = p[1] == '*';
+            line = !block;
+            p[0] = p[1] = ' ';
+            p++;
+        }
+    }
+    return t;
+}
+
+static const char *skip_space(const char *p) {
+    while (isspace((unsigned char)*p)) p++;
+    return p;
+}
+
+static layout_scan scan_layouts(const char *text) {
+    layout_scan r = {0};
+    char *t = blank_comments(text);
+    if (!t) return r;
+    for (const char *p = t; (p = strstr(p, "layout")) != NULL; p += 6) {
+        if ((p > t && is_ident_char(p[-1])) || is_ident_char(p[6])) continue;
+        const char *q = skip_space(p + 6);
+        if (*q != '(') continue;
+        const char *close = strchr(q, ')');
+        if (!close) break;
+        bool location = false;
+        for (const char *b = q; (b = strstr(b, "binding")) != NULL && b < close; b += 7)
+            if (!is_ident_char(b[-1]) && !is_ident_char(b[7])) r.binding = true;
+        for (const char *b = q; (b = strstr(b, "location")) != NULL && b < close; b += 8)
+            if (!is_ident_char(b[-1]) && !is_ident_char(b[8])) location = true;
+        q = skip_space(close + 1);
+        size_t n = 0;
+        while (is_ident_char(q[n])) n++;
+        if (location && word_is(q, n, "uniform")) r.uniform_location = true;
+        bool in = word_is(q, n, "in"), out = word_is(q, n, "out");
+        if ((in || out) && *skip_space(q + n) == ';') {
+            r.in |= in;
+            r.out |= out;
+        }
+    }
+    free(t);
+    return r;
+}
 
 /* Handles `#include` on line `line` of file fidx; `rest` points past "include". */
 static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const char *end) {
@@ -397,9 +556,22 @@ static bool emit_file(asm_ctx *c, int fidx, const char *text, int first_line, bo
                 } else if (rest && word_is(name, nn, "version") && !seen_code) {
                     strbuf_puts(&c->text, "\n");
                     handled = true;
+                } else if (c->desc->stage == SHADER_GEOMETRY && is_gs4_extension(l)) {
+                    strbuf_puts(&c->text, "// tarn: GL_EXT_geometry_shader4 dropped; its names become GLSL 1.50's\n");
+                    handled = true;
+                } else if (!rest && c->desc->stage == SHADER_GEOMETRY && !c->gs_marked) {
+                    bool ic = false;
+                    if (line_has_code(l, &ic)) {
+                        c->gs_marked = true;
+                        c->gs_mark = c->text.len;
+                        c->gs_mark_file = fidx;
+                        c->gs_mark_line = line;
+                    }
                 }
             }
-            if (!handled) {
+            if (!handled && c->desc->stage == SHADER_GEOMETRY) {
+                emit_gs_line(&c->text, l);
+            } else if (!handled) {
                 strbuf_put(&c->text, l.p, l.n);
                 strbuf_puts(&c->text, "\n");
             }
@@ -442,6 +614,10 @@ static void emit_prologue(asm_ctx *c) {
                               "#define aColor gl_Color\n");
             for (int i = 0; i < 8; i++) strbuf_printf(&c->text, "#define aTexCoord%d gl_MultiTexCoord%d\n", i, i);
         }
+        /* a compatibility fragment shader reads the interpolated colour as
+         * gl_Color; the vertex attributes (aVertex, aNormal, aTexCoordN)
+         * have no fragment built-in, nor has any stage in between */
+        if (d->stage == SHADER_FRAGMENT) strbuf_puts(&c->text, "#define aColor gl_Color\n");
         for (size_t i = 0; i < sizeof gstap_matrices / sizeof gstap_matrices[0]; i++)
             strbuf_printf(&c->text, "#define %s %s\n", gstap_matrices[i][0], gstap_matrices[i][1]);
     }
@@ -498,6 +674,56 @@ static version_info find_version(const char *text) {
     return v;
 }
 
+/* The layouts a glman-era geometry shader lacks (in the whole text, its
+ * includes too), spliced in before its first line of code, then `#line`
+ * so that line keeps its number. After the file's #extension lines, which
+ * must come before any code; before any use of gl_in.length(), which
+ * needs the input layout. */
+static void add_gs_layouts(asm_ctx *c) {
+    layout_scan ls = scan_layouts(c->text.s ? c->text.s : "");
+    if (ls.in && ls.out) return;
+    strbuf b = {0};
+    strbuf_put(&b, c->text.s, c->gs_mark);
+    unsigned in = (unsigned)c->desc->gs_input;
+    if (!ls.in)
+        strbuf_printf(&b, "layout(%s) in;  // tarn: the input primitive of the draw\n",
+                      gs_input_names[in < sizeof gs_input_names / sizeof gs_input_names[0] ? in : 0]);
+    if (!ls.out)
+        strbuf_printf(&b, "layout(triangle_strip, max_vertices = %d) out;  // tarn: glman's output\n",
+                      SHADER_SRC_GS_MAX_VERTICES);
+    line_directive(&b, c->old_line_rule, c->gs_mark_file, c->gs_mark_line);
+    strbuf_puts(&b, c->text.s + c->gs_mark);
+    strbuf_free(&c->text);
+    c->text = b;
+}
+
+/* Inserts `#extension NAME : enable` right after the #version line (the
+ * prologue is all directives, so it is still before any code), unless the
+ * text names the extension itself. */
+static void enable_extension(char **text, const char *name, const char *why) {
+    if (strstr(*text, name)) return;
+    char *nl = strchr(*text, '\n');
+    if (!nl) return;
+    strbuf b = {0};
+    strbuf_put(&b, *text, (size_t)(nl + 1 - *text));
+    strbuf_printf(&b, "#extension %s : enable  // tarn: %s\n", name, why);
+    strbuf_puts(&b, nl + 1);
+    free(*text);
+    *text = strbuf_take(&b);
+}
+
+/* NVIDIA allowed layout(binding = N) from GLSL 3.30 on (glman's manual says
+ * so), and layout(location = N) on a uniform; Mesa wants
+ * GL_ARB_shading_language_420pack before 4.20 and
+ * GL_ARB_explicit_uniform_location before 4.30. */
+static void enable_layout_extensions(char **text, int version) {
+    layout_scan ls = scan_layouts(*text);
+    if (ls.binding && version < 420)
+        enable_extension(text, "GL_ARB_shading_language_420pack", "for layout(binding) before GLSL 4.20");
+    if (ls.uniform_location && version < 430)
+        enable_extension(text, "GL_ARB_explicit_uniform_location", "for a uniform's layout(location) before GLSL 4.30");
+}
+
 bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     assert(desc && out);
     memset(out, 0, sizeof *out);
@@ -505,6 +731,8 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     const char *path = desc->path ? desc->path : "";
     char *main_text = NULL;
     bool ok = false;
+    version_info v = {0};
+    int version = 330;          /* the one the compiler sees */
 
     if (!path[0]) { fail(&c, "(none)", 0, "no shader file named"); goto done; }
     if ((unsigned)desc->stage >= SHADER_STAGE_COUNT) {
@@ -536,16 +764,24 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
         goto done;
     }
 
-    version_info v = find_version(main_text);
+    v = find_version(main_text);
+    /* geometry shaders came with GLSL 1.50; glman's were 1.20 + GL_EXT_geometry_shader4 */
+    bool gs_bump = desc->stage == SHADER_GEOMETRY && v.line && !v.es && v.number > 0 && v.number < 150;
+    version = gs_bump ? 150 : v.line ? v.number : 330;
     if (v.line) {
         /* the file's #version first, then ours, then the file from there on */
         const char *lp = main_text;
         for (int i = 1; i < v.line; i++) lp = strchr(lp, '\n') + 1;
         const char *le = strchr(lp, '\n');
         size_t ln = le ? (size_t)(le - lp) : strlen(lp);
-        strbuf_put(&c.text, lp + v.start, v.len);
-        strbuf_puts(&c.text, "\n");
-        c.old_line_rule = !v.es && v.number < 330;
+        if (gs_bump) {
+            strbuf_printf(&c.text, "#version 150 compatibility  // tarn: was '%.*s'; geometry shaders need 1.50\n",
+                          (int)v.len, lp + v.start);
+        } else {
+            strbuf_put(&c.text, lp + v.start, v.len);
+            strbuf_puts(&c.text, "\n");
+        }
+        c.old_line_rule = !v.es && version < 330;
         emit_prologue(&c);
         /* what followed the directive on its line (a comment, maybe opening a block) */
         line_view tail = { lp + v.start + v.len, ln - v.start - v.len };
@@ -589,7 +825,9 @@ done:
         if (!out->error[0]) snprintf(out->error, sizeof out->error, "%s:0: error: cannot assemble shader", path);
         return false;
     }
+    if (c.gs_marked) add_gs_layouts(&c);
     out->text = c.text.s ? c.text.s : strdup("");
+    if (out->text && !v.es) enable_layout_extensions(&out->text, version);
     unsigned long long h = 14695981039346656037ull;
     for (const unsigned char *q = (const unsigned char *)out->text; *q; q++) {
         h ^= *q;

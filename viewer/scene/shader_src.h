@@ -32,6 +32,24 @@
  *
  * A file with no #version gets glman's default, `#version 330
  * compatibility`, with a comment saying so.
+ *
+ * glman-era GLSL that NVIDIA took and Mesa does not is rewritten, line for
+ * line (messages keep the user's line numbers):
+ * - a geometry shader written for GL_EXT_geometry_shader4: its `#extension`
+ *   line goes; `gl_PositionIn[i]` becomes `gl_in[i].gl_Position` (and
+ *   gl_TexCoordIn, gl_FrontColorIn, ... likewise), `gl_VerticesIn`
+ *   `gl_in.length()`, `varying in` / `varying out` / `varying` `in` / `out` /
+ *   `out`; a
+ *   #version before 1.50 becomes `#version 150 compatibility`; without
+ *   `layout(...) in;` / `layout(...) out;` the input primitive is
+ *   desc->gs_input and the output a triangle_strip of
+ *   SHADER_SRC_GS_MAX_VERTICES, inserted before the first line of code
+ *   (after the file's #extension lines), then `#line` to renumber;
+ * - `layout(binding = N)` before GLSL 4.20 enables
+ *   GL_ARB_shading_language_420pack (NVIDIA allowed it from 3.30), and
+ *   `layout(location = N) uniform` before 4.30
+ *   GL_ARB_explicit_uniform_location;
+ * - GSTAP's aColor exists in the fragment stage too (gl_Color).
  */
 #ifndef TARN_SHADER_SRC_H
 #define TARN_SHADER_SRC_H
@@ -46,6 +64,25 @@ typedef enum shader_stage {
     SHADER_FRAGMENT,
     SHADER_STAGE_COUNT
 } shader_stage;
+
+/* The input primitive of a geometry shader, for one that does not say
+ * (glman-era files set it from the program, not with `layout(...) in;`):
+ * the draw the Program is used with decides it (program_gs_input). */
+typedef enum shader_gs_input {
+    SHADER_GS_IN_TRIANGLES = 0,         /* the default: glman's solids */
+    SHADER_GS_IN_TRIANGLES_ADJACENCY,   /* ObjAdj */
+    SHADER_GS_IN_LINES,                 /* the Wire variants */
+    SHADER_GS_IN_LINES_ADJACENCY,       /* LinesAdjacency */
+    SHADER_GS_IN_POINTS                 /* PointCloud, JitterCloud */
+} shader_gs_input;
+
+/* The output a geometry shader without `layout(...) out;` gets: glman set
+ * it with glProgramParameteri, which GLSL 1.50 replaced by the layout.
+ * 64 vertices: a vertex of gl_Position and three vec4 outputs (16
+ * components) times 64 is 1024, GL's guaranteed minimum of
+ * GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, so the program links on every
+ * driver; course shaders emit 3 to a few dozen vertices per primitive. */
+#define SHADER_SRC_GS_MAX_VERTICES 64
 
 /* One `#define NAME VALUE` line. value "" gives `#define NAME`; a true bool
  * toggle is best passed as "1" (so both `#ifdef FOO` and `#if FOO` work);
@@ -63,6 +100,7 @@ typedef struct shader_src_desc {
     int ndefines;
     const char *const *include_dirs;    /* searched after the including file's dir */
     int ninclude_dirs;
+    shader_gs_input gs_input;           /* SHADER_GEOMETRY only: when the file has no input layout */
 } shader_src_desc;
 
 typedef struct shader_src {
