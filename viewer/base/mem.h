@@ -9,10 +9,19 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 void *mem_alloc(size_t n);  /* malloc */
 void *mem_zalloc(size_t n); /* calloc(1, n) */
 void *mem_realloc(void *p, size_t n);
 char *mem_strdup(const char *s);
 char *mem_strndup(const char *s, size_t n);
+
+#ifdef __cplusplus
+}
+#endif
+
 
 #endif

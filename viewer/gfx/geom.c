@@ -1,5 +1,7 @@
 /* geom.c: meshes for glman's geometry commands (see geom.h). */
 #include "geom.h"
+#include "file.h"
+#include "mem.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -44,11 +46,8 @@ static void mb_init(mb *b, bool lines) {
     b->m.lines = lines;
 }
 
-static bool grow(void **p, size_t elem, int cap) {
-    void *q = realloc(*p, elem * (size_t)cap);
-    if (!q) return false;
-    *p = q;
-    return true;
+static void grow(void **p, size_t elem, int cap) {
+    *p = mem_realloc(*p, elem * (size_t)cap);
 }
 
 /* Makes room for `nv` more vertices and `ni` more indices. */
@@ -59,16 +58,16 @@ static bool mb_reserve(mb *b, long nv, long ni) {
     if (need_v > b->vcap) {
         int cap = b->vcap ? b->vcap : 64;
         while (cap < need_v) cap = cap > INT_MAX / 8 ? (int)need_v : cap * 2;
-        if (!grow((void **)&b->m.pos, 3 * sizeof(float), cap) ||
-            !grow((void **)&b->m.nrm, 3 * sizeof(float), cap) ||
-            !grow((void **)&b->m.tc, 2 * sizeof(float), cap) ||
-            !grow((void **)&b->m.tan, 3 * sizeof(float), cap)) { b->ok = false; return false; }
+        grow((void **)&b->m.pos, 3 * sizeof(float), cap);
+        grow((void **)&b->m.nrm, 3 * sizeof(float), cap);
+        grow((void **)&b->m.tc, 2 * sizeof(float), cap);
+        grow((void **)&b->m.tan, 3 * sizeof(float), cap);
         b->vcap = cap;
     }
     if (need_i > b->icap) {
         int cap = b->icap ? b->icap : 64;
         while (cap < need_i) cap = cap > INT_MAX / 8 ? (int)need_i : cap * 2;
-        if (!grow((void **)&b->m.idx, sizeof(unsigned), cap)) { b->ok = false; return false; }
+        grow((void **)&b->m.idx, sizeof(unsigned), cap);
         b->icap = cap;
     }
     return true;
@@ -557,9 +556,8 @@ bool geom_teapot(geom_mesh *m, float size, int grid_n, bool wire) {
 
 /* ---- tangents from texture coordinates (OBJ) ---- */
 
-static bool tangents_from_tc(geom_mesh *m) {
-    double *acc = calloc((size_t)m->nvert * 3, sizeof *acc);
-    if (!acc) return false;
+static void tangents_from_tc(geom_mesh *m) {
+    double *acc = mem_zalloc((size_t)m->nvert * 3 * sizeof *acc);
     for (int f = 0; f + 2 < m->nidx; f += 3) {
         unsigned i0 = m->idx[f], i1 = m->idx[f + 1], i2 = m->idx[f + 2];
         const float *p0 = m->pos + 3 * i0, *p1 = m->pos + 3 * i1, *p2 = m->pos + 3 * i2;
@@ -583,7 +581,6 @@ static bool tangents_from_tc(geom_mesh *m) {
     }
     for (long k = 0; k < 3L * m->nvert; k++) m->tan[k] = (float)acc[k];
     free(acc);
-    return true;
 }
 
 /* ---- Wavefront OBJ ---- */
@@ -654,10 +651,9 @@ static bool push_record(obj_ctx *o, double **arr, int *count, int *cap, int widt
     if (*count >= *cap) {
         if (*cap > INT_MAX / 4) return obj_error(o, "too many '%s' records", what);
         int ncap = *cap ? *cap * 2 : 256;
-        if (!grow((void **)arr, (size_t)width * sizeof(double), ncap)) return obj_error(o, "out of memory");
-        if (arr == &o->v) {     /* the normal sums follow the positions */
-            if (!grow((void **)&o->acc, 3 * sizeof(double), ncap)) return obj_error(o, "out of memory");
-        }
+        grow((void **)arr, (size_t)width * sizeof(double), ncap);
+        if (arr == &o->v)       /* the normal sums follow the positions */
+            grow((void **)&o->acc, 3 * sizeof(double), ncap);
         *cap = ncap;
     }
     double *r = *arr + (size_t)*count * width;
@@ -705,10 +701,9 @@ static uint64_t corner_hash(int v, int t, int n) {
     return h ^ (h >> 29);
 }
 
-static bool table_grow(obj_ctx *o) {
+static void table_grow(obj_ctx *o) {
     size_t ncap = o->hcap ? o->hcap * 2 : 1024;
-    int *nk = malloc(ncap * 3 * sizeof *nk), *nv = malloc(ncap * sizeof *nv);
-    if (!nk || !nv) { free(nk); free(nv); return false; }
+    int *nk = mem_alloc(ncap * 3 * sizeof *nk), *nv = mem_alloc(ncap * sizeof *nv);
     for (size_t s = 0; s < ncap; s++) nv[s] = -1;
     for (size_t s = 0; s < o->hcap; s++) {
         if (o->hval[s] < 0) continue;
@@ -720,12 +715,11 @@ static bool table_grow(obj_ctx *o) {
     }
     free(o->hkey); free(o->hval);
     o->hkey = nk; o->hval = nv; o->hcap = ncap;
-    return true;
 }
 
 /* The mesh vertex of a corner, made on first use. */
 static int corner_vertex(obj_ctx *o, int v, int t, int n) {
-    if ((o->hcount + 1) * 2 > o->hcap && !table_grow(o)) { obj_error(o, "out of memory"); return -1; }
+    if ((o->hcount + 1) * 2 > o->hcap) table_grow(o);
     size_t at = corner_hash(v, t, n) & (o->hcap - 1);
     while (o->hval[at] >= 0) {
         const int *k = o->hkey + 3 * at;
@@ -737,11 +731,11 @@ static int corner_vertex(obj_ctx *o, int v, int t, int n) {
     if (n >= 0) memcpy(nn, o->vn + 3 * (size_t)n, sizeof nn);
     double u = t >= 0 ? o->vt[2 * (size_t)t] : 0, w = t >= 0 ? o->vt[2 * (size_t)t + 1] : 0;
     int k = mb_vert(&o->b, p, nn, u, w, tan);
-    if (!o->b.ok) { obj_error(o, "out of memory"); return -1; }
+    if (!o->b.ok) { obj_error(o, "too many vertices"); return -1; }
     if (k >= o->ncorner_cap) {
         int ncap = o->ncorner_cap ? o->ncorner_cap * 2 : 1024;
-        if (!grow((void **)&o->corner_v, sizeof(int), ncap) ||
-            !grow((void **)&o->corner_n, sizeof(int), ncap)) { obj_error(o, "out of memory"); return -1; }
+        grow((void **)&o->corner_v, sizeof(int), ncap);
+        grow((void **)&o->corner_n, sizeof(int), ncap);
         o->ncorner_cap = ncap;
     }
     o->corner_v[k] = v;
@@ -755,8 +749,7 @@ static int corner_vertex(obj_ctx *o, int v, int t, int n) {
 static bool parse_face(obj_ctx *o, char **tok, int ntok) {
     if (ntok < 3) return obj_error(o, "a face needs at least 3 vertices, got %d", ntok);
     double area[3] = {0, 0, 0};
-    int *vis = malloc((size_t)ntok * 2 * sizeof *vis);
-    if (!vis) return obj_error(o, "out of memory");
+    int *vis = mem_alloc((size_t)ntok * 2 * sizeof *vis);
     for (int c = 0; c < ntok; c++) {
         const char *s = tok[c];
         const char *s1 = strchr(s, '/');
@@ -804,7 +797,7 @@ static bool parse_face(obj_ctx *o, char **tok, int ntok) {
         for (int k = 0; k < 3; k++) o->acc[3 * (size_t)vis[2 * c + 1] + k] += area[k];
     }
     free(vis);
-    if (!o->b.ok) return obj_error(o, "out of memory");
+    if (!o->b.ok) return obj_error(o, "too many faces");
     return true;
 }
 
@@ -832,8 +825,7 @@ static bool parse_statement(obj_ctx *o, char *text) {
         while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\v' || *s == '\f') s++;
         if (!*s) break;
         if (ntok == cap) {
-            char **bigger = malloc(sizeof *bigger * (size_t)cap * 2);
-            if (!bigger) { if (tok != stack_tok) free(tok); return obj_error(o, "out of memory"); }
+            char **bigger = mem_alloc(sizeof *bigger * (size_t)cap * 2);
             memcpy(bigger, tok, sizeof *tok * (size_t)ntok);
             if (tok != stack_tok) free(tok);
             tok = bigger;
@@ -866,30 +858,15 @@ static bool parse_statement(obj_ctx *o, char *text) {
     return ok;
 }
 
+/* The OBJ text (a BOM dropped, CRLF as LF), or NULL with the error set:
+ * binary (a NUL byte), a directory, too large. */
 static char *read_file(obj_ctx *o, size_t *len) {
-    FILE *f = fopen(o->path, "rb");
-    if (!f) { obj_error(o, "%s", strerror(errno)); return NULL; }
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        if (n + 1 >= cap) {
-            char *nb = cap < ((size_t)1 << 40) ? realloc(buf, cap * 2) : NULL;
-            if (!nb) { free(buf); buf = NULL; break; }
-            buf = nb;
-            cap *= 2;
-        }
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0) break;
-    }
-    bool bad = ferror(f);
-    int e = errno;
-    fclose(f);
-    if (!buf) { obj_error(o, "out of memory"); return NULL; }
-    if (bad) { free(buf); obj_error(o, "%s", strerror(e ? e : EIO)); return NULL; }
-    buf[n] = 0;
-    *len = n;
-    return buf;
+    file_text_opts opts = { .max_bytes = GEOM_OBJ_MAX_FILE_BYTES, .strip_bom = true, .crlf_to_lf = true,
+                            .reject_nul = true };
+    char why[256];
+    char *text = file_read_text(o->path, &opts, len, why, sizeof why);
+    if (!text) obj_error(o, "%s", why);
+    return text;
 }
 
 bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
@@ -919,9 +896,7 @@ bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
         for (;;) {
             char *nl = memchr(r, '\n', (size_t)(end - r));
             char *stop = nl ? nl : end;
-            char *last = stop;
-            if (last > r && last[-1] == '\r') last--;
-            size_t n = (size_t)(last - r);
+            size_t n = (size_t)(stop - r);
             bool cont = n > 0 && r[n - 1] == '\\';
             if (cont) n--;
             memmove(out, r, n);
@@ -932,11 +907,8 @@ bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
             break;
         }
         *out = 0;
-        if (memchr(s, 0, (size_t)(out - s))) {
-            obj_error(&o, "binary data (not an OBJ text file)");
-            break;
-        }
         parse_statement(&o, s);
+
         s = r;
     }
     free(text);
@@ -955,7 +927,8 @@ bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
             const double *a = o.acc + 3 * (size_t)o.corner_v[k];
             for (int c = 0; c < 3; c++) n[c] = (float)a[c];
         }
-        if (!tangents_from_tc(&o.b.m)) ok = obj_error(&o, "out of memory");
+        tangents_from_tc(&o.b.m);
+
     }
     free(o.v); free(o.vt); free(o.vn); free(o.acc);
     free(o.corner_v); free(o.corner_n); free(o.hkey); free(o.hval);

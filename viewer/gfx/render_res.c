@@ -11,6 +11,7 @@
 #include "assets.h"
 #include "geom.h"
 #include "image_io.h"
+#include "mem.h"
 #include "noise.h"
 #include "strbuf.h"
 
@@ -159,8 +160,7 @@ static bool is_hdr(const img *im) {
 /* Expands any channel count to RGBA (grey -> rgb, alpha 1). */
 static float *to_rgba(const img *im) {
     long n = (long)im->w * im->h * (im->d > 0 ? im->d : 1);
-    float *out = malloc((size_t)n * 4 * sizeof(float));
-    if (!out) return NULL;
+    float *out = mem_alloc((size_t)n * 4 * sizeof(float));
     for (long i = 0; i < n; i++) {
         const float *s = im->px + i * im->channels;
         float *d = out + i * 4;
@@ -195,8 +195,7 @@ static bool load_image(const char *path, img *im, const glib_cmd *c, char **log)
 static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
     const char *name = c->path + 1;
     int res = strcmp(name, "caustics") == 0 ? 128 : 256;   /* caustics: photon tracing, ~1 s */
-    float *px = malloc((size_t)res * res * 3 * sizeof(float));
-    if (!px) return false;
+    float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
     char err[256] = "";
     bool ok = false, one_channel = false;
     if (strcmp(name, "caustics") == 0) { ok = assets_bake_caustics(res, px, err, sizeof err); one_channel = true; }
@@ -236,7 +235,6 @@ static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
     t->w = im.w;
     t->h = im.h;
     img_free(&im);
-    if (!rgba) return false;
     glTexImage2D(GL_TEXTURE_2D, 0, hdr ? GL_RGBA16F : GL_RGBA8, t->w, t->h, 0, GL_RGBA, GL_FLOAT, rgba);
     free(rgba);
     res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
@@ -291,10 +289,9 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
     if (!load_image(c->path, &im, c, log)) return false;
     float *rgba = to_rgba(&im);
     int d = im.d > 0 ? im.d : 1;
-    if (rgba) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, im.w, im.h, d, 0, GL_RGBA, GL_FLOAT, rgba);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, im.w, im.h, d, 0, GL_RGBA, GL_FLOAT, rgba);
     img_free(&im);
     free(rgba);
-    if (!rgba) return false;
     res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
     return true;
 }
@@ -305,12 +302,11 @@ static bool tex_cube(const glib_cmd *c, gpu_tex *t, char **log) {
         img im;
         if (!load_image(c->cube_paths[f], &im, c, log)) return false;
         float *rgba = to_rgba(&im);
-        if (rgba)   /* cube faces keep the file's row order (the cube map convention) */
-            glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_hdr(&im) ? GL_RGBA16F : GL_RGBA8,
-                         im.w, im.h, 0, GL_RGBA, GL_FLOAT, rgba);
+        /* cube faces keep the file's row order (the cube map convention) */
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_hdr(&im) ? GL_RGBA16F : GL_RGBA8,
+                     im.w, im.h, 0, GL_RGBA, GL_FLOAT, rgba);
         img_free(&im);
         free(rgba);
-        if (!rgba) return false;
     }
     res_sampling(GL_TEXTURE_CUBE_MAP, true, GL_CLAMP_TO_EDGE);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -327,8 +323,7 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
         return false;
     }
     long n = (long)res * res * (is3d ? res : 1) * 4;
-    float *px = malloc((size_t)n * sizeof(float));
-    if (!px) return false;
+    float *px = mem_alloc((size_t)n * sizeof(float));
     bool ok = is3d ? noise_3d(res, px) : noise_2d(res, px);
     if (ok && is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, res, res, res, 0, GL_RGBA, GL_FLOAT, px);
     if (ok && !is3d) glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
@@ -356,8 +351,8 @@ static float *read_raw_cube(const char *path, int dims, int *res) {
                    ? (long)n[0] * n[0] * (dims == 3 ? n[0] : 1) * 4 : 0;
         long body = (long)st.st_size - 4L * dims;
         bool floats = count && body == count * 4, bytes = count && body == count;
-        px = floats || bytes ? malloc((size_t)count * sizeof *px) : NULL;
-        unsigned char *raw = px ? malloc((size_t)body) : NULL;
+        px = floats || bytes ? mem_alloc((size_t)count * sizeof *px) : NULL;
+        unsigned char *raw = px ? mem_alloc((size_t)body) : NULL;
         if (raw && fread(raw, 1, (size_t)body, f) == (size_t)body) {
             for (long i = 0; i < count; i++) {
                 if (bytes) px[i] = raw[i] / 255.0f;
@@ -381,8 +376,9 @@ bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
     float *px = read_raw_cube(path, is3d ? 3 : 2, &res);   /* the project's own, as glman cached it */
     if (!px) {
         res = 64;
-        px = malloc((size_t)res * res * (is3d ? res : 1) * 4 * sizeof *px);
-        if (!px || !(is3d ? noise_3d(res, px) : noise_2d(res, px))) {
+        px = mem_alloc((size_t)res * res * (is3d ? res : 1) * 4 * sizeof *px);
+        if (!(is3d ? noise_3d(res, px) : noise_2d(res, px))) {
+
             free(px);
             return false;
         }

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mem.h"
 #include "strbuf.h"
 #include "util.h"
 
@@ -22,14 +23,12 @@ struct view_script {
 view_script *view_script_load(const char *path, char *err, int errlen) {
     FILE *f = fopen(path, "r");
     if (!f) { msg_set(err, (size_t)errlen, "%s: cannot open the script", path); return NULL; }
-    view_script *s = calloc(1, sizeof *s);
-    if (!s) { fclose(f); return NULL; }
+    view_script *s = mem_zalloc(sizeof *s);
     snprintf(s->path, sizeof s->path, "%s", path);
     char buf[SCRIPT_LINE_MAX];
     while (fgets(buf, sizeof buf, f)) {
-        void *grown = realloc(s->lines, (size_t)(s->nlines + 1) * sizeof *s->lines);
-        if (!grown) break;
-        s->lines = grown;
+        s->lines = mem_realloc(s->lines, (size_t)(s->nlines + 1) * sizeof *s->lines);
+
         buf[strcspn(buf, "\r\n")] = '\0';
         char *hash = strchr(buf, '#');
         if (hash) *hash = '\0';
