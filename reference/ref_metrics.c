@@ -403,7 +403,6 @@ double ref_heatmap_auto_scale(const float *field, long n) {
     double *v = mem_alloc((size_t)(n > 0 ? n : 1) * sizeof *v);
     long k = 0;
     double scale = 1;
-
     for (long i = 0; i < n; i++)
         if (field[i] >= 0) v[k++] = field[i];   /* not NaN, not masked out */
     if (k > 0) {

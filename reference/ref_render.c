@@ -730,7 +730,6 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     out->irradiance = mem_alloc(np * 3 * sizeof *out->irradiance);
     int rc = 0;
 
-
     double eh = ref_waves_height(&d.world->waves, d.camera.eye[0], d.camera.eye[2], d.time);
     c->eye_in_water = d.camera.eye[1] - eh < 0;
 

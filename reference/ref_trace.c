@@ -525,7 +525,6 @@ int ref_caustics_trace(const ref_caustics_desc *d, ref_caustics *out, char *err,
     out->x0 = p->d.x0; out->z0 = p->d.z0; out->x1 = p->d.x1; out->z1 = p->d.z1;
     out->irradiance = mem_zalloc((size_t)nx * nz * 3 * sizeof *out->irradiance);
     out->area = mem_zalloc((size_t)nx * nz * sizeof *out->area);
-
     ref_caustics_trace_rows(p, 0, p->mz, out->irradiance, &out->stats);
     ref_caustics_cell_areas(p, out->area);
     for (size_t c = 0; c < (size_t)nx * nz; c++)

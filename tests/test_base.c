@@ -217,6 +217,10 @@ static void test_diagnostics(void) {
     CHECK(strcmp(line, "a.glib:3: warning: unknown command 'Foo'") == 0);
     diag_format(&l.d[2], line, sizeof line);
     CHECK(strcmp(line, "tarn: error: plain words") == 0);
+    /* the first severity of a line is its own, whatever its text says later */
+    diag_add_text(&l, DIAG_NOTE, "a.frag:7: error: 'w' : no such field: warning: x\n");
+    CHECK(l.n == 7 && l.d[6].severity == DIAG_ERROR && l.d[6].line == 7 && strcmp(l.d[6].file, "a.frag") == 0);
+    CHECK(strcmp(l.d[6].text, "'w' : no such field: warning: x") == 0);
     diag_list_free(&l);
     CHECK(l.n == 0 && l.d == NULL);
 }
@@ -227,7 +231,6 @@ int main(void) {
     RUN(test_messages_never_overrun);
     RUN(test_files);
     RUN(test_read_text_options);
-
     RUN(test_median_and_sort);
     RUN(test_options);
     RUN(test_root_follows_environment);

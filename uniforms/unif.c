@@ -683,7 +683,6 @@ bool unif_preset_load_ex(unif_set *sets, int nsets, const char *path, char *err,
         }
     }
 
-
     bool header = false;
     int lineno = 0;
     char *p = text, *end = text + len;

@@ -100,7 +100,6 @@ char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size
     file_text_opts o = { .max_bytes = max_bytes };
     char *s = file_read_text(path, &o, len, why, sizeof why);
     if (!s) msg_set(err, errlen, "cannot open '%s': %s", path, why);
-
     return s;
 }
 

@@ -27,7 +27,6 @@ typedef struct file_text_opts {
  * byte at line 3), not text". o may be NULL: no options. */
 char *file_read_text(const char *path, const file_text_opts *o, size_t *len, char *why, size_t whylen);
 
-
 /* Writes n bytes to path (replacing it). False with the reason in err. */
 bool file_write(const char *path, const void *data, size_t n, char *err, size_t errlen);
 

@@ -23,5 +23,4 @@ char *mem_strndup(const char *s, size_t n);
 }
 #endif
 
-
 #endif

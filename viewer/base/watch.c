@@ -450,7 +450,6 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
         if (lstat(f->path, &st) == 0 && S_ISLNK(st.st_mode) && (real = realpath(f->path, NULL))) {
             split_path(real, &rdir, &rbase);
             int d2 = add_dir(w, &dirs, &ndirs, &dcap, rdir);
-
             if (d2 >= 0 && !(dirs[d2].wd == dirs[d].wd && strcmp(rbase, f->key[0].base) == 0)) {
                 f->key[1] = (watch_key){ .dir = d2, .base = rbase };
                 f->nkeys = 2;

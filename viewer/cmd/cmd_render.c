@@ -209,7 +209,6 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
 int cmd_render(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
     const char **sets = mem_zalloc(((size_t)argc + 1) * sizeof *sets);
-
     cli_render_desc d = {0};
     int rc = parse(argc, argv, &d, sets);
     if (rc == TARN_EXIT_OK) rc = cli_render(&d);

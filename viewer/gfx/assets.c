@@ -426,7 +426,6 @@ int assets_run(const assets_desc *d) {
     float *rgb = mem_alloc((size_t)r_caustic * r_caustic * 3 * sizeof *rgb);
     if (!assets_bake_caustics(r_caustic, c, err, sizeof err)) {
         fprintf(stderr, "tarn assets: %s\n", err);
-
         o.failed = true;
     } else {
         for (size_t k = 0; k < (size_t)r_caustic * r_caustic; k++)

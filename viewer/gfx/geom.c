@@ -908,7 +908,6 @@ bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
         }
         *out = 0;
         parse_statement(&o, s);
-
         s = r;
     }
     free(text);
@@ -928,7 +927,6 @@ bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
             for (int c = 0; c < 3; c++) n[c] = (float)a[c];
         }
         tangents_from_tc(&o.b.m);
-
     }
     free(o.v); free(o.vt); free(o.vn); free(o.acc);
     free(o.corner_v); free(o.corner_n); free(o.hkey); free(o.hval);

@@ -85,7 +85,6 @@ bool geom_teapot(geom_mesh *m, float size, int grid, bool wire);
  * and "path: reason" for a missing/unreadable file, a binary one (a NUL
  * byte), one over GEOM_OBJ_MAX_FILE_BYTES or one with no faces. A UTF-8
  * byte order mark and CRLF line ends are read as text. */
-
 bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen);
 
 /* Frees the arrays and empties the mesh; safe on an empty mesh. */

@@ -11,8 +11,7 @@
 
 #include "mem.h"
 
-/* Under AddressSanitizer
-: the OpenGL driver (Mesa's swrast_dri.so and
+/* Under AddressSanitizer: the OpenGL driver (Mesa's swrast_dri.so and
  * libLLVM, loaded by EGL at run time) is unloaded again by eglTerminate, so
  * what the driver itself leaks is reported at exit with frames of no
  * module, and a suppression (tests/lsan.supp) cannot name it. Once the
@@ -267,7 +266,6 @@ gl_ctx *gl_ctx_create_window(int w, int h, const char *title, char *err, int err
         return NULL;
     }
     gl_ctx *c = mem_zalloc(sizeof *c);
-
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_COMPAT_PROFILE);

@@ -109,7 +109,6 @@ extern "C" bool img_read(const char *path, img *out, char *err, int errlen) {
             return false;
         }
         float *px = alloc_px(spec.width, spec.height, spec.depth, spec.nchannels);
-
         if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px)) {
             std::free(px);
             set_err(err, errlen, path, in->geterror());

@@ -1050,7 +1050,6 @@ bool render_target_read(const render_target *t, float *rgba) {
     /* GL's row 0 is the bottom; files start at the top */
     size_t row = (size_t)t->w * 4;
     float *tmp = mem_alloc(row * sizeof(float));
-
     for (int y = 0; y < t->h / 2; y++) {
         float *a = rgba + (size_t)y * row, *b = rgba + (size_t)(t->h - 1 - y) * row;
         memcpy(tmp, a, row * sizeof(float));

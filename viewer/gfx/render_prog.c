@@ -137,7 +137,6 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
                 src[s].files = mem_alloc(sizeof *src[s].files);
                 src[s].files[0] = mem_strdup(p->stage_path[s]);
                 src[s].nfiles = 1;
-
             }
             continue;
         }

@@ -378,7 +378,6 @@ bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
         res = 64;
         px = mem_alloc((size_t)res * res * (is3d ? res : 1) * 4 * sizeof *px);
         if (!(is3d ? noise_3d(res, px) : noise_2d(res, px))) {
-
             free(px);
             return false;
         }

@@ -422,7 +422,6 @@ void world_draw_points(gpu_world *gw, int n) {
     if (gw->points_n != n) {
         if (!gw->points_vbo) glGenBuffers(1, &gw->points_vbo);
         float *p = mem_alloc((size_t)n * n * 3 * sizeof(float));
-
         double hs = gw->w.d.half_size;
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {

@@ -1829,7 +1829,6 @@ static void finish(parser *p) {
 static glib_scene *new_scene(parser *p) {
     memset(p, 0, sizeof *p);
     p->sc = mem_alloc(sizeof *p->sc);
-
     memset(p->sc, 0, sizeof *p->sc);
     return p->sc;
 }

@@ -392,7 +392,6 @@ bool packset_bounds_parse(const char *text, const char *path, packset_bounds *ou
         if (used > 0) snprintf(b.why, sizeof b.why, "%s", line + used);
         out->b = mem_realloc(out->b, (size_t)(out->n + 1) * sizeof *out->b);
         out->b[out->n++] = b;
-
     }
     return ok;
 }

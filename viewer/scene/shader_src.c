@@ -547,7 +547,6 @@ done:
         return false;
     }
     out->text = c.text.s ? c.text.s : mem_strdup("");
-
     unsigned long long h = 14695981039346656037ull;
     for (const unsigned char *q = (const unsigned char *)out->text; *q; q++) {
         h ^= *q;

@@ -1379,7 +1379,7 @@ static void bounds_md(bench *b, strbuf *o) {
     struct dirent *e;
     while (d && (e = readdir(d)) && nc < 128) {
         size_t len = strlen(e->d_name);
-        if (len > 5 && strcmp(e->d_name + len - 5, ".glib") == 0) cases[nc++] = strndup(e->d_name, len - 5);
+        if (len > 5 && strcmp(e->d_name + len - 5, ".glib") == 0) cases[nc++] = mem_strndup(e->d_name, len - 5);
     }
     if (d) closedir(d);
     qsort(cases, (size_t)nc, sizeof *cases, cmp_str_ptr);
@@ -1469,7 +1469,6 @@ static bool write_docs(bench *b, const char *path) {
 
 int bench_run(const bench_desc *d, char *why, size_t whylen) {
     bench *b = mem_zalloc(sizeof *b);
-
     snprintf(b->root, sizeof b->root, "%s", tarn_root());
     int rc = resolve(b, d, why, whylen);
     if (rc != 0) {

@@ -349,7 +349,6 @@ bool plot_speed_error(const plot_chart *c, img *out) {
     double (*rects)[4] = mem_alloc((size_t)(nplaced > 0 ? nplaced : 1) * sizeof *rects);
     int nrects = 0;
     for (int i = 0; i < nplaced; i++) {
-
         if (!labels[i]) continue;
         double tw = plot_text_width(labels[i], 1), th = PLOT_GLYPH_H;
         const double off[8][2] = { { 12, -12 }, { 12, 4 }, { -12 - tw, -12 }, { -12 - tw, 4 },

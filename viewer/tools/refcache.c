@@ -246,7 +246,6 @@ bool refcache_get(const char *dir, const char *scene, const char *name, int w, i
     out->seconds = r.seconds_photons + r.seconds_pixels;
     ref_render_free(&r);
     if (dir) {
-
         if (!mkdirs(dir)) {
             snprintf(err, (size_t)errlen, "cannot create %s: %s", dir, strerror(errno));
             return true;   /* the image is good; only the cache failed */

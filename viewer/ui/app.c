@@ -275,7 +275,6 @@ static app_desc with_defaults(const app_desc *d) {
 
 app *app_create(const app_desc *desc) {
     app *a = mem_zalloc(sizeof *a);
-
     a->d = with_defaults(desc);
     char err[1024];
     a->ctx = gl_ctx_create_window(a->d.width, a->d.height, a->d.name, err, sizeof err);

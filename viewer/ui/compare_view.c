@@ -576,7 +576,6 @@ int cli_compare_view(const cli_compare_view_desc *d) {
         return TARN_EXIT_USAGE;
     }
     cview *v = mem_zalloc(sizeof *v);
-
     v->scene = d->glib;
     v->n = d->npacks;
     v->wipe = 0.5f;

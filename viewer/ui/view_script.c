@@ -28,7 +28,6 @@ view_script *view_script_load(const char *path, char *err, int errlen) {
     char buf[SCRIPT_LINE_MAX];
     while (fgets(buf, sizeof buf, f)) {
         s->lines = mem_realloc(s->lines, (size_t)(s->nlines + 1) * sizeof *s->lines);
-
         buf[strcspn(buf, "\r\n")] = '\0';
         char *hash = strchr(buf, '#');
         if (hash) *hash = '\0';
