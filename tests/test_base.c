@@ -8,6 +8,7 @@
 #include "check.h"
 #include "diag.h"
 #include "file.h"
+#include "mem.h"
 #include "strbuf.h"
 #include "support.h"
 #include "util.h"
@@ -141,6 +142,23 @@ static void test_read_text_options(void) {
     scratch_remove();
 }
 
+/* mem_grow: room for what is asked, capacity doubling from 8, contents kept. */
+static void test_mem_grow(void) {
+    int *v = NULL, cap = 0;
+    v = mem_grow(v, &cap, 1, sizeof *v);
+    CHECK(v && cap == 8);
+    for (int i = 0; i < 8; i++) v[i] = i;
+    int *same = mem_grow(v, &cap, 8, sizeof *v);   /* it fits: nothing moves */
+    CHECK(same == v && cap == 8);
+    v = mem_grow(v, &cap, 100, sizeof *v);
+    CHECK(cap == 128);
+    v[99] = 99;
+    bool kept = true;
+    for (int i = 0; i < 8; i++) kept &= v[i] == i;
+    CHECK(kept && v[99] == 99);
+    free(v);
+}
+
 static void test_median_and_sort(void) {
     double v[] = { 5, 1, 4, 2, 3 };
     CHECK(median_double(v, 5) == 3);
@@ -231,6 +249,7 @@ int main(void) {
     RUN(test_messages_never_overrun);
     RUN(test_files);
     RUN(test_read_text_options);
+    RUN(test_mem_grow);
     RUN(test_median_and_sort);
     RUN(test_options);
     RUN(test_root_follows_environment);

@@ -96,11 +96,7 @@ static void bool_values(unif_entry *e) {
 /* ---- the set ----------------------------------------------------------- */
 
 static unif_entry *set_push(unif_set *set) {
-    if (set->n >= set->cap) {
-        int cap = set->cap > 0 ? set->cap * 2 : 16;
-        set->entries = mem_realloc(set->entries, (size_t)cap * sizeof *set->entries);
-        set->cap = cap;
-    }
+    set->entries = mem_grow(set->entries, &set->cap, set->n + 1, sizeof *set->entries);
     unif_entry *e = &set->entries[set->n++];
     memset(e, 0, sizeof *e);
     e->array_len = 1;

@@ -11,10 +11,7 @@ const char *diag_severity_name(diag_severity s) {
 }
 
 static diag *push(diag_list *l, diag_severity sev, const char *file, int line) {
-    if (l->n == l->cap) {
-        l->cap = l->cap ? l->cap * 2 : 8;
-        l->d = mem_realloc(l->d, (size_t)l->cap * sizeof *l->d);
-    }
+    l->d = mem_grow(l->d, &l->cap, l->n + 1, sizeof *l->d);
     diag *d = &l->d[l->n++];
     memset(d, 0, sizeof *d);
     d->severity = sev;

@@ -214,10 +214,7 @@ static int add_dir(watch *w, watch_dir **dirs, int *ndirs, int *cap, const char 
     if (wd < 0) return -1;
     for (int i = 0; i < *ndirs; i++)
         if ((*dirs)[i].wd == wd) return i;
-    if (*ndirs == *cap) {
-        *cap = *cap ? *cap * 2 : 8;
-        *dirs = mem_realloc(*dirs, (size_t)*cap * sizeof **dirs);
-    }
+    *dirs = mem_grow(*dirs, cap, *ndirs + 1, sizeof **dirs);
     (*dirs)[*ndirs] = (watch_dir){ .path = mem_strdup(path), .wd = wd };
     return (*ndirs)++;
 }

@@ -72,11 +72,7 @@ typedef struct strlist {
 } strlist;
 
 static void strlist_add(strlist *l, char *owned) {
-    if (l->n == l->cap) {
-        int cap = l->cap ? l->cap * 2 : 16;
-        l->v = mem_realloc(l->v, (size_t)cap * sizeof *l->v);
-        l->cap = cap;
-    }
+    l->v = mem_grow(l->v, &l->cap, l->n + 1, sizeof *l->v);
     l->v[l->n++] = owned;
 }
 
@@ -120,10 +116,7 @@ static int msgs_add(vmsgs *m, const diag *d) {
     x.text[w] = '\0';
     for (int i = 0; i < m->n; i++)
         if (same_diag(&m->v[i].d, &x)) return i;
-    if (m->n == m->cap) {
-        m->cap = m->cap ? m->cap * 2 : 8;
-        m->v = mem_realloc(m->v, (size_t)m->cap * sizeof *m->v);
-    }
+    m->v = mem_grow(m->v, &m->cap, m->n + 1, sizeof *m->v);
     m->v[m->n] = (vmsg){ x, 0, 0 };
     return m->n++;
 }
@@ -407,11 +400,7 @@ typedef struct toks {
 } toks;
 
 static void toks_add(toks *t, tok k) {
-    if (t->n == t->cap) {
-        int cap = t->cap ? t->cap * 2 : 256;
-        t->v = mem_realloc(t->v, (size_t)cap * sizeof *t->v);
-        t->cap = cap;
-    }
+    t->v = mem_grow(t->v, &t->cap, t->n + 1, sizeof *t->v);
     t->v[t->n++] = k;
 }
 
@@ -490,11 +479,7 @@ typedef struct iface {
 
 static void iface_add(iface *f, const tok *name, bool block, bool in) {
     if (name->n >= 64 || (name->n >= 3 && memcmp(name->p, "gl_", 3) == 0)) return;
-    if (f->n == f->cap) {
-        int cap = f->cap ? f->cap * 2 : 16;
-        f->v = mem_realloc(f->v, (size_t)cap * sizeof *f->v);
-        f->cap = cap;
-    }
+    f->v = mem_grow(f->v, &f->cap, f->n + 1, sizeof *f->v);
     ivar *x = &f->v[f->n++];
     memset(x, 0, sizeof *x);
     memcpy(x->name, name->p, (size_t)name->n);

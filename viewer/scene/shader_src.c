@@ -189,11 +189,7 @@ static int file_index(asm_ctx *c, const char *path) {
     if (!id) id = path_normalize(path);
     for (int i = 0; i < c->nfiles; i++)
         if (strcmp(c->files[i].id, id) == 0) { free(id); return i; }
-    if (c->nfiles == c->capfiles) {
-        int cap = c->capfiles ? c->capfiles * 2 : 8;
-        c->files = mem_realloc(c->files, (size_t)cap * sizeof *c->files);
-        c->capfiles = cap;
-    }
+    c->files = mem_grow(c->files, &c->capfiles, c->nfiles + 1, sizeof *c->files);
     src_file *f = &c->files[c->nfiles];
     memset(f, 0, sizeof *f);
     f->path = path_normalize(path);

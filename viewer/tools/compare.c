@@ -89,11 +89,7 @@ typedef struct kvlist {
 } kvlist;
 
 static kv *kv_add(kvlist *l, const char *group, const char *key, const char *label, kv_type t) {
-    if (l->n == l->cap) {
-        int cap = l->cap ? 2 * l->cap : 64;
-        l->v = mem_realloc(l->v, (size_t)cap * sizeof *l->v);
-        l->cap = cap;
-    }
+    l->v = mem_grow(l->v, &l->cap, l->n + 1, sizeof *l->v);
     kv *e = &l->v[l->n++];
     memset(e, 0, sizeof *e);
     e->group = group;
@@ -114,6 +110,13 @@ static void add_num(kvlist *l, const char *g, const char *key, const char *label
     kv *e = kv_add(l, g, key, label, KV_NUM);
     e->num = v;
     e->unit = unit;
+}
+
+/* A count, or null and no table line when it does not apply (v < 0). */
+static void add_count_or_null(kvlist *l, const char *g, const char *key, const char *label, long v) {
+    kv *e = kv_add(l, g, key, v >= 0 ? label : NULL, v >= 0 ? KV_INT : KV_NUM);
+    e->inum = v;
+    e->num = NAN;
 }
 
 static void add_share(kvlist *l, const char *g, const char *key, const char *label, double v) {
@@ -426,14 +429,8 @@ static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb
         add_int(l, g, "width", NULL, m.width);
         add_int(l, g, "height", NULL, m.height);
         add_counts(l, g, &m.count);
-        kv *e = kv_add(l, g, "flag_mismatch_pixels", flag_mismatch >= 0 ? "pixels whose flags differ" : NULL,
-                       flag_mismatch >= 0 ? KV_INT : KV_NUM);
-        e->inum = flag_mismatch;
-        e->num = NAN;
-        e = kv_add(l, g, "direction_pixels", directions >= 0 ? "pixels left out: a direction" : NULL,
-                   directions >= 0 ? KV_INT : KV_NUM);
-        e->inum = directions;
-        e->num = NAN;
+        add_count_or_null(l, g, "flag_mismatch_pixels", "pixels whose flags differ", flag_mismatch);
+        add_count_or_null(l, g, "direction_pixels", "pixels left out: a direction", directions);
         add_num(l, g, "dist_mean", "hit point error, mean", m.world.mean, "world units");
         add_num(l, g, "dist_rms", NULL, m.world.rms, NULL);
         add_num(l, g, "dist_median", "hit point error, median", m.world.median, "world units");
