@@ -29,6 +29,7 @@
 #define RAY_T_MAX REF_WORLD_HORIZON   /* the GL world's land ends there too */
 
 #define MAX_THREADS 256
+#define MAX_CAUSTIC_BYTES (8.0 * (1 << 30))   /* the photon grids: one per thread and the result */
 #define MAX_SPP 16
 #define PHOTON_CHUNK_ROWS 8      /* strata rows per photon work item (fixed: the
                                     flux is summed chunk by chunk in order) */
@@ -674,6 +675,15 @@ static int check_desc(const ref_render_desc *d, char *err, size_t errlen) {
     }
     if (d->caustics != REF_CAUSTICS_PHOTONS && d->caustics != REF_CAUSTICS_FLAT) {
         msg_set(err, errlen, "reference: unknown caustics mode %d", d->caustics);
+        return -1;
+    }
+    /* at most caustic_res^2 cells, 3 doubles each per thread, plus the
+     * irradiance and area of the result */
+    double grid = (double)d->caustic_res * d->caustic_res * 3 * sizeof(double) * (d->threads + 2);
+    if (d->caustics == REF_CAUSTICS_PHOTONS && grid > MAX_CAUSTIC_BYTES) {
+        msg_set(err, errlen, "reference: a %d x %d caustic grid on %d threads needs %.0f GiB (at most %.0f); "
+                "lower the caustic resolution or the threads", d->caustic_res, d->caustic_res, d->threads,
+                grid / (1 << 30), MAX_CAUSTIC_BYTES / (1 << 30));
         return -1;
     }
     double f[3] = { c->center[0] - c->eye[0], c->center[1] - c->eye[1], c->center[2] - c->eye[2] }, s[3];
