@@ -2,6 +2,7 @@
 #include "validate.h"
 
 #include "diag.h"
+#include "file.h"
 #include "glib.h"
 #include "mem.h"
 #include "program.h"
@@ -870,25 +871,17 @@ static void validate_glib(run *r, const char *path) {
 
 /* Does a .glsl without a stage suffix look like a stage (it has main)? */
 static bool has_main(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return false;
-    char buf[4096];
+    file_text_opts o = { .max_bytes = SHADER_SRC_MAX_FILE_BYTES };
+    char why[256];
+    char *text = file_read_text(path, &o, NULL, why, sizeof why);
     bool found = false;
-    size_t keep = 0;
-    size_t n;
-    while (!found && (n = fread(buf + keep, 1, sizeof buf - 1 - keep, f)) > 0) {
-        size_t len = keep + n;
-        buf[len] = '\0';
-        for (char *p = buf; (p = strstr(p, "main")) != NULL; p += 4) {
-            bool left = p == buf || !is_ident_char(p[-1]);
-            char *q = p + 4;
-            while (*q == ' ' || *q == '\t' || *q == '\n' || *q == '\r') q++;
-            if (left && *q == '(') { found = true; break; }
-        }
-        keep = len < 16 ? len : 16;
-        memmove(buf, buf + len - keep, keep);
+    for (char *p = text; p && !found && (p = strstr(p, "main")) != NULL; p += 4) {
+        bool left = p == text || !is_ident_char(p[-1]);
+        const char *q = p + 4;
+        while (*q == ' ' || *q == '\t' || *q == '\n' || *q == '\r') q++;
+        found = left && *q == '(';
     }
-    fclose(f);
+    free(text);
     return found;
 }
 
