@@ -1,6 +1,7 @@
 /* ref_metrics: error metrics between float images and buffers, heat maps.
  * See ref_metrics.h and docs/metrics.md. */
 #include "ref_metrics.h"
+#include "mem.h"
 #include "ref_render.h"
 #include "strbuf.h"
 #include "util.h"
@@ -97,12 +98,11 @@ typedef struct sampler {
     int max_c;
 } sampler;
 
-static bool sampler_init(sampler *s, long capacity) {
+static void sampler_init(sampler *s, long capacity) {
     memset(s, 0, sizeof *s);
     s->max_i = -1;
     s->max_c = -1;
-    s->v = malloc((size_t)(capacity > 0 ? capacity : 1) * sizeof *s->v);
-    return s->v != NULL;
+    s->v = mem_alloc((size_t)(capacity > 0 ? capacity : 1) * sizeof *s->v);
 }
 
 static void sampler_add(sampler *s, double e, long pixel, int channel) {
@@ -259,7 +259,7 @@ bool ref_metrics_image(const ref_fimage *a, const ref_fimage *b, const ref_metri
     if (!pair_init(&p, a, b, REF_ERR_COLOR, d, err, errlen)) return false;
     long npx = (long)p.w * p.h;
     sampler s;
-    if (!sampler_init(&s, npx)) { msg_set(err, (size_t)errlen, "out of memory"); return false; }
+    sampler_init(&s, npx);
     out->width = p.w;
     out->height = p.h;
     out->channels = p.nc;
@@ -322,11 +322,8 @@ bool ref_metrics_points(const ref_fimage *a, const ref_fimage *b, const ref_metr
     out->threshold = d && d->threshold > 0 ? d->threshold : 0;
     sampler sw, st;
     bool texels = out->texel_size > 0;
-    if (!sampler_init(&sw, npx) || !sampler_init(&st, texels ? npx : 1)) {
-        free(sw.v);
-        msg_set(err, (size_t)errlen, "out of memory");
-        return false;
-    }
+    sampler_init(&sw, npx);
+    sampler_init(&st, texels ? npx : 1);
     out->width = p.w;
     out->height = p.h;
     out->count.pixels = npx;
@@ -355,11 +352,8 @@ bool ref_metrics_scalar(const ref_fimage *a, const ref_fimage *b, const ref_metr
     out->rel_floor = d && d->rel_floor > 0 ? d->rel_floor : REF_METRICS_REL_FLOOR;
     out->threshold = d && d->threshold > 0 ? d->threshold : 0;
     sampler sa, sr;
-    if (!sampler_init(&sa, npx * p.nc) || !sampler_init(&sr, npx * p.nc)) {
-        free(sa.v);
-        msg_set(err, (size_t)errlen, "out of memory");
-        return false;
-    }
+    sampler_init(&sa, npx * p.nc);
+    sampler_init(&sr, npx * p.nc);
     out->width = p.w;
     out->height = p.h;
     out->channels = p.nc;
@@ -406,10 +400,9 @@ bool ref_metrics_error_field(const ref_fimage *a, const ref_fimage *b, ref_err_k
 }
 
 double ref_heatmap_auto_scale(const float *field, long n) {
-    double *v = malloc((size_t)(n > 0 ? n : 1) * sizeof *v);
+    double *v = mem_alloc((size_t)(n > 0 ? n : 1) * sizeof *v);
     long k = 0;
     double scale = 1;
-    if (!v) return scale;
     for (long i = 0; i < n; i++)
         if (field[i] >= 0) v[k++] = field[i];   /* not NaN, not masked out */
     if (k > 0) {

@@ -1,6 +1,7 @@
 /* ref_render: the CPU ground-truth renderer (see ref_render.h and
  * docs/reference.md, "The renderer"). */
 #include "ref_render.h"
+#include "mem.h"
 #include "strbuf.h"
 #include "util.h"
 #include "vec3.h"
@@ -28,6 +29,7 @@
 #define RAY_T_MAX REF_WORLD_HORIZON   /* the GL world's land ends there too */
 
 #define MAX_THREADS 256
+#define MAX_CAUSTIC_BYTES (8.0 * (1 << 30))   /* the photon grids: one per thread and the result */
 #define MAX_SPP 16
 #define PHOTON_CHUNK_ROWS 8      /* strata rows per photon work item (fixed: the
                                     flux is summed chunk by chunk in order) */
@@ -615,14 +617,9 @@ static int plan_caustics(rctx *c, worker *wk, char *err, size_t errlen) {
     size_t n = (size_t)nx * nz;
     g->nx = nx; g->nz = nz;
     g->x0 = cd.x0; g->z0 = cd.z0; g->x1 = cd.x1; g->z1 = cd.z1;
-    g->irradiance = calloc(n * 3, sizeof *g->irradiance);
-    g->area = calloc(n, sizeof *g->area);
-    int ok = g->irradiance && g->area;
-    for (int i = 0; ok && i < c->nthreads; i++) ok = (wk[i].buf = malloc(n * 3 * sizeof *wk[i].buf)) != NULL;
-    if (!ok) {
-        msg_set(err, errlen, "reference: out of memory for a %d x %d caustic grid", nx, nz);
-        return -1;
-    }
+    g->irradiance = mem_zalloc(n * 3 * sizeof *g->irradiance);
+    g->area = mem_zalloc(n * sizeof *g->area);
+    for (int i = 0; i < c->nthreads; i++) wk[i].buf = mem_alloc(n * 3 * sizeof *wk[i].buf);
     r->have_caustics = 1;
     return 0;
 }
@@ -680,6 +677,15 @@ static int check_desc(const ref_render_desc *d, char *err, size_t errlen) {
         msg_set(err, errlen, "reference: unknown caustics mode %d", d->caustics);
         return -1;
     }
+    /* at most caustic_res^2 cells, 3 doubles each per thread, plus the
+     * irradiance and area of the result */
+    double grid = (double)d->caustic_res * d->caustic_res * 3 * sizeof(double) * (d->threads + 2);
+    if (d->caustics == REF_CAUSTICS_PHOTONS && grid > MAX_CAUSTIC_BYTES) {
+        msg_set(err, errlen, "reference: a %d x %d caustic grid on %d threads needs %.0f GiB (at most %.0f); "
+                "lower the caustic resolution or the threads", d->caustic_res, d->caustic_res, d->threads,
+                grid / (1 << 30), MAX_CAUSTIC_BYTES / (1 << 30));
+        return -1;
+    }
     double f[3] = { c->center[0] - c->eye[0], c->center[1] - c->eye[1], c->center[2] - c->eye[2] }, s[3];
     for (int i = 0; i < 3; i++)
         if (!isfinite(c->eye[i]) || !isfinite(c->center[i]) || !isfinite(c->up[i])) {
@@ -701,14 +707,8 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     ref_render_desc d = ref_render_resolve(din);
     if (check_desc(&d, err, errlen) != 0) return -1;
 
-    rctx *c = calloc(1, sizeof *c);
-    worker *wk = calloc((size_t)d.threads, sizeof *wk);
-    if (!c || !wk) {
-        free(c);
-        free(wk);
-        msg_set(err, errlen, "reference: out of memory");
-        return -1;
-    }
+    rctx *c = mem_zalloc(sizeof *c);
+    worker *wk = mem_zalloc((size_t)d.threads * sizeof *wk);
     c->w = d.world;
     c->d = d;
     c->level = d.world->d.water_level;
@@ -730,20 +730,15 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     out->height = h;
     out->spp = d.spp;
     out->threads = d.threads;
-    out->color = malloc(np * 3 * sizeof *out->color);
-    out->mask = malloc(np);
-    out->surface = malloc(np * 3 * sizeof *out->surface);
-    out->refract_hit = malloc(np * 4 * sizeof *out->refract_hit);
-    out->reflect = malloc(np * 4 * sizeof *out->reflect);
-    out->fresnel = malloc(np * sizeof *out->fresnel);
-    out->depth = malloc(np * sizeof *out->depth);
-    out->irradiance = malloc(np * 3 * sizeof *out->irradiance);
+    out->color = mem_alloc(np * 3 * sizeof *out->color);
+    out->mask = mem_alloc(np);
+    out->surface = mem_alloc(np * 3 * sizeof *out->surface);
+    out->refract_hit = mem_alloc(np * 4 * sizeof *out->refract_hit);
+    out->reflect = mem_alloc(np * 4 * sizeof *out->reflect);
+    out->fresnel = mem_alloc(np * sizeof *out->fresnel);
+    out->depth = mem_alloc(np * sizeof *out->depth);
+    out->irradiance = mem_alloc(np * 3 * sizeof *out->irradiance);
     int rc = 0;
-    if (!out->color || !out->mask || !out->surface || !out->refract_hit || !out->reflect ||
-        !out->fresnel || !out->depth || !out->irradiance) {
-        msg_set(err, errlen, "reference: out of memory for a %dx%d image", w, h);
-        rc = -1;
-    }
 
     double eh = ref_waves_height(&d.world->waves, d.camera.eye[0], d.camera.eye[2], d.time);
     c->eye_in_water = d.camera.eye[1] - eh < 0;

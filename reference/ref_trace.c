@@ -1,6 +1,7 @@
 /* ref_trace: ray casting against water and terrain, attenuation, photons
  * (see ref_trace.h). */
 #include "ref_trace.h"
+#include "mem.h"
 #include "strbuf.h"
 
 #include <float.h>
@@ -522,13 +523,8 @@ int ref_caustics_trace(const ref_caustics_desc *d, ref_caustics *out, char *err,
     int nx = p->d.nx, nz = p->d.nz;
     out->nx = nx; out->nz = nz;
     out->x0 = p->d.x0; out->z0 = p->d.z0; out->x1 = p->d.x1; out->z1 = p->d.z1;
-    out->irradiance = calloc((size_t)nx * nz * 3, sizeof *out->irradiance);
-    out->area = calloc((size_t)nx * nz, sizeof *out->area);
-    if (!out->irradiance || !out->area) {
-        ref_caustics_free(out);
-        msg_set(err, errlen, "caustics: out of memory for a %d x %d grid", nx, nz);
-        return -1;
-    }
+    out->irradiance = mem_zalloc((size_t)nx * nz * 3 * sizeof *out->irradiance);
+    out->area = mem_zalloc((size_t)nx * nz * sizeof *out->area);
     ref_caustics_trace_rows(p, 0, p->mz, out->irradiance, &out->stats);
     ref_caustics_cell_areas(p, out->area);
     for (size_t c = 0; c < (size_t)nx * nz; c++)

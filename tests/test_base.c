@@ -8,6 +8,7 @@
 #include "check.h"
 #include "diag.h"
 #include "file.h"
+#include "mem.h"
 #include "strbuf.h"
 #include "support.h"
 #include "util.h"
@@ -69,6 +70,8 @@ static void test_files(void) {
     CHECK(file_read(path, 10, &n, err, sizeof err) == NULL); /* over the limit */
     CHECK_STR_CONTAINS(err, "larger than 10 bytes");
     CHECK(file_read(sub, 0, &n, err, sizeof err) == NULL); /* a folder */
+    CHECK_STR_CONTAINS(err, "it is a directory");
+    CHECK(file_read("/dev/null", 0, &n, err, sizeof err) == NULL); /* a device */
     CHECK_STR_CONTAINS(err, "not a regular file");
     snprintf(path, sizeof path, "%s/missing", dir);
     CHECK(file_read(path, 0, &n, err, sizeof err) == NULL);
@@ -83,6 +86,77 @@ static void test_files(void) {
     file_dirname("/b.glib", d, sizeof d);
     CHECK(strcmp(d, "/") == 0);
     scratch_remove();
+}
+
+/* Reads text through file_read_text with o; the text's length in *n. */
+static char *read_text_as(const char *text, size_t len, const file_text_opts *o, size_t *n, char *why) {
+    const char *path = scratch_path("t.txt");
+    CHECK(file_write(path, text, len, why, 256));
+    return file_read_text(path, o, n, why, 256);
+}
+
+/* Each option of the one text reader alone, and all of them at once. */
+static void test_read_text_options(void) {
+    if (!scratch_create("text")) {
+        CHECK(false);
+        return;
+    }
+    static const char bom_crlf[] = "\xEF\xBB\xBFone\r\ntwo\r\n\rthree\r";
+    size_t n = 0, len = sizeof bom_crlf - 1;
+    char why[256];
+    char *s = read_text_as(bom_crlf, len, NULL, &n, why);   /* no options: the bytes as they are */
+    CHECK(s && n == len && memcmp(s, bom_crlf, len + 1) == 0);
+    free(s);
+    s = read_text_as(bom_crlf, len, &(file_text_opts){ .strip_bom = true }, &n, why);
+    CHECK(s && n == len - 3 && strcmp(s, "one\r\ntwo\r\n\rthree\r") == 0);
+    free(s);
+    /* a lone \r (old Mac line end) and a \r at the end stay */
+    s = read_text_as(bom_crlf, len, &(file_text_opts){ .crlf_to_lf = true }, &n, why);
+    CHECK(s && n == len - 2 && strcmp(s, "\xEF\xBB\xBFone\ntwo\n\rthree\r") == 0);
+    free(s);
+    s = read_text_as("\xEF\xBB", 2, &(file_text_opts){ .strip_bom = true }, &n, why);   /* half a BOM */
+    CHECK(s && n == 2 && strcmp(s, "\xEF\xBB") == 0);
+    free(s);
+    s = read_text_as("", 0, &(file_text_opts){ .strip_bom = true, .crlf_to_lf = true, .reject_nul = true }, &n, why);
+    CHECK(s && n == 0 && s[0] == '\0');
+    free(s);
+    /* a NUL byte: binary, and the reason says at which line */
+    static const char nul[] = "a\nb\r\nc\0d\n";
+    s = read_text_as(nul, sizeof nul - 1, &(file_text_opts){ .reject_nul = true }, &n, why);
+    CHECK(s == NULL && n == 0);
+    CHECK_STR_CONTAINS(why, "NUL byte at line 3");
+    s = read_text_as(nul, sizeof nul - 1, NULL, &n, why);   /* kept without the option */
+    CHECK(s && n == sizeof nul - 1 && memcmp(s, nul, sizeof nul) == 0);
+    free(s);
+    /* the limit counts the bytes in the file, checked before the options */
+    s = read_text_as("ab\r\n", 4, &(file_text_opts){ .max_bytes = 3, .crlf_to_lf = true }, &n, why);
+    CHECK(s == NULL);
+    CHECK_STR_CONTAINS(why, "it is larger than 3 bytes");
+    s = read_text_as("ab\r\n", 4, &(file_text_opts){ .max_bytes = 4, .crlf_to_lf = true }, &n, why);
+    CHECK(s && n == 3 && strcmp(s, "ab\n") == 0);
+    free(s);
+    CHECK(file_read_text(scratch_path("missing"), NULL, &n, why, sizeof why) == NULL);
+    CHECK(strcmp(why, "No such file or directory") == 0);   /* the reason alone: the caller names the file */
+    CHECK(file_read_text(scratch_dir, NULL, &n, why, sizeof why) == NULL);
+    CHECK(strcmp(why, "it is a directory") == 0);
+    scratch_remove();
+}
+
+/* mem_grow: room for what is asked, capacity doubling from 8, contents kept. */
+static void test_mem_grow(void) {
+    int *v = NULL, cap = 0;
+    v = mem_grow(v, &cap, 1, sizeof *v);
+    CHECK(v && cap == 8);
+    for (int i = 0; i < 8; i++) v[i] = i;
+    int *same = mem_grow(v, &cap, 8, sizeof *v);   /* it fits: nothing moves */
+    CHECK(same == v && cap == 8);
+    v = mem_grow(v, &cap, 100, sizeof *v);
+    CHECK(cap == 128);
+    v[99] = 99;
+    bool kept = true;
+    for (int i = 0; i < 8; i++) kept &= v[i] == i;
+    CHECK(kept && v[99] == 99);
+    free(v);
 }
 
 static void test_median_and_sort(void) {
@@ -161,6 +235,10 @@ static void test_diagnostics(void) {
     CHECK(strcmp(line, "a.glib:3: warning: unknown command 'Foo'") == 0);
     diag_format(&l.d[2], line, sizeof line);
     CHECK(strcmp(line, "tarn: error: plain words") == 0);
+    /* the first severity of a line is its own, whatever its text says later */
+    diag_add_text(&l, DIAG_NOTE, "a.frag:7: error: 'w' : no such field: warning: x\n");
+    CHECK(l.n == 7 && l.d[6].severity == DIAG_ERROR && l.d[6].line == 7 && strcmp(l.d[6].file, "a.frag") == 0);
+    CHECK(strcmp(l.d[6].text, "'w' : no such field: warning: x") == 0);
     diag_list_free(&l);
     CHECK(l.n == 0 && l.d == NULL);
 }
@@ -170,6 +248,8 @@ int main(void) {
     RUN(test_str_appendf);
     RUN(test_messages_never_overrun);
     RUN(test_files);
+    RUN(test_read_text_options);
+    RUN(test_mem_grow);
     RUN(test_median_and_sort);
     RUN(test_options);
     RUN(test_root_follows_environment);

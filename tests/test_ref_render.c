@@ -466,6 +466,13 @@ static void test_bad_input(void) {
     d.spp = 100;
     CHECK(ref_render(&d, &r, err, sizeof err) == -1);
     CHECK(r.color == NULL);
+    /* photon grids past the memory budget: refused before any is allocated */
+    d.spp = 1;
+    d.caustic_res = 8192;
+    d.threads = 64;
+    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "a 8192 x 8192 caustic grid on 64 threads needs 99 GiB");
+    CHECK(r.color == NULL);
     ref_render_desc z = ref_render_resolve(NULL);
     CHECK(z.camera.width == 640 && z.camera.height == 360 && z.camera.fov_deg == 50);
     CHECK(z.spp == 1 && z.threads >= 1 && z.max_depth == 5 && z.t_tol == 1e-9);

@@ -246,6 +246,32 @@ static void test_define_slider_values_are_validated(void) {
     free(out);
 }
 
+/* In a folder, a .glsl without a stage suffix is an include unless it has
+ * a main() (however it is spaced); only that one gets the warning. */
+static void test_unnamed_glsl_with_main_is_reported(void) {
+    char dir[300], path[400];
+    snprintf(dir, sizeof dir, "%s/glsl", g_tmp);
+    CHECK(mkdir(dir, 0777) == 0);
+    const char *files[2][2] = { { "x.glsl", "vec3 f();\nvoid main\n ()\n{}\n" },
+                                { "y.glsl", "float mainly() { return 1.0; }\nfloat domain(float x);\n" } };
+    for (int i = 0; i < 2; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, files[i][0]);
+        FILE *f = fopen(path, "w");
+        CHECK(f != NULL);
+        if (!f) return;
+        fputs(files[i][1], f);
+        fclose(f);
+    }
+    int rc = -1;
+    validate_result res;
+    const char *paths[] = { dir };
+    char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
+    CHECK(rc == 0 && res.nwarnings == 1);
+    CHECK_STR_CONTAINS(out, "glsl/x.glsl:0: warning: cannot tell the stage");
+    CHECK(out && strstr(out, "y.glsl") == NULL);
+    free(out);
+}
+
 static void test_too_many_toggles_are_capped(void) {
     /* 12 toggles: 2^10 combinations, the last two at their defaults */
     char path[512], frag[512];
@@ -362,6 +388,7 @@ int main(void) {
     RUN(test_no_paths_means_packs_and_scenes);
     RUN(test_stage_files_and_directories);
     RUN(test_too_many_toggles_are_capped);
+    RUN(test_unnamed_glsl_with_main_is_reported);
     RUN(test_define_slider_values_are_validated);
     RUN(test_validate_stage_without_text);
     RUN(test_world_and_waves_in_either_order);

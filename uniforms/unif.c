@@ -2,6 +2,7 @@
 #include "unif.h"
 
 #include "file.h"
+#include "mem.h"
 #include "strbuf.h"
 
 #include <ctype.h>
@@ -95,13 +96,7 @@ static void bool_values(unif_entry *e) {
 /* ---- the set ----------------------------------------------------------- */
 
 static unif_entry *set_push(unif_set *set) {
-    if (set->n >= set->cap) {
-        int cap = set->cap > 0 ? set->cap * 2 : 16;
-        unif_entry *grown = realloc(set->entries, (size_t)cap * sizeof *grown);
-        if (!grown) return NULL;
-        set->entries = grown;
-        set->cap = cap;
-    }
+    set->entries = mem_grow(set->entries, &set->cap, set->n + 1, sizeof *set->entries);
     unif_entry *e = &set->entries[set->n++];
     memset(e, 0, sizeof *e);
     e->array_len = 1;
@@ -284,7 +279,6 @@ static void add_decl(unif_set *set, const unif_decl *u, bool is_define,
         problem(&w, "written twice (first at line %d); the last one is used", e->glib_line);
     } else {
         e = set_push(set);
-        if (!e) { problem(&w, "out of memory; ignored"); *ok = false; return; }
     }
     unif_entry fresh;
     memset(&fresh, 0, sizeof fresh);
@@ -442,7 +436,6 @@ unif_entry *unif_set_shader_type(unif_set *set, const char *name, unif_type type
     unif_entry *e = find_kind(set, base, false);
     if (!e) {
         e = set_push(set);
-        if (!e) return NULL;
         fill_introspected(e, base, type, array_len);
     } else if (e->from_glib) {
         unif_type prev = e->type;
@@ -576,8 +569,7 @@ bool unif_preset_save(const unif_set *sets, int nsets, const char *path, char *e
     msg_clear(err, errlen);
     if (!path || !path[0]) { msg_add(err, errlen, "preset: no path to save to"); return false; }
     size_t plen = strlen(path);
-    char *tmp = malloc(plen + 5);
-    if (!tmp) { msg_add(err, errlen, "%s: out of memory", path); return false; }
+    char *tmp = mem_alloc(plen + 5);
     memcpy(tmp, path, plen);
     memcpy(tmp + plen, ".tmp", 5);
 
@@ -619,11 +611,11 @@ bool unif_preset_save(const unif_set *sets, int nsets, const char *path, char *e
 }
 
 static char *read_file(const char *path, long *len_out, char *err, int errlen) {
-    char why[1200];
+    char why[256];
     size_t len = 0;
-    char *buf = file_read(path, PRESET_MAX_BYTES, &len, why, sizeof why);
+    file_text_opts o = { .max_bytes = PRESET_MAX_BYTES, .reject_nul = true };
+    char *buf = file_read_text(path, &o, &len, why, sizeof why);
     if (!buf) { msg_add(err, errlen, "%s: cannot read the preset: %s", path, why); return NULL; }
-    if (memchr(buf, '\0', len)) { msg_add(err, errlen, "%s: not a tarn preset (binary data)", path); free(buf); return NULL; }
     *len_out = (long)len;
     return buf;
 }
@@ -675,19 +667,17 @@ bool unif_preset_load_ex(unif_set *sets, int nsets, const char *path, char *err,
     if (!text) return false;
 
     /* stage: copies of every entry; the sets change only when all parsed */
-    unif_set *stage = calloc(nsets > 0 ? (size_t)nsets : 1, sizeof *stage);
-    bool ok = stage != NULL;
-    for (int s = 0; ok && s < nsets; s++) {
+    unif_set *stage = mem_zalloc((nsets > 0 ? (size_t)nsets : 1) * sizeof *stage);
+    bool ok = true;
+    for (int s = 0; s < nsets; s++) {
         stage[s] = sets[s];
         stage[s].entries = NULL;
         stage[s].cap = stage[s].n;
         if (sets[s].n > 0) {
-            stage[s].entries = malloc((size_t)sets[s].n * sizeof *stage[s].entries);
-            if (!stage[s].entries) { ok = false; break; }
+            stage[s].entries = mem_alloc((size_t)sets[s].n * sizeof *stage[s].entries);
             memcpy(stage[s].entries, sets[s].entries, (size_t)sets[s].n * sizeof *stage[s].entries);
         }
     }
-    if (!ok) msg_add(err, errlen, "%s: out of memory", path);
 
     bool header = false;
     int lineno = 0;

@@ -11,10 +11,7 @@ const char *diag_severity_name(diag_severity s) {
 }
 
 static diag *push(diag_list *l, diag_severity sev, const char *file, int line) {
-    if (l->n == l->cap) {
-        l->cap = l->cap ? l->cap * 2 : 8;
-        l->d = mem_realloc(l->d, (size_t)l->cap * sizeof *l->d);
-    }
+    l->d = mem_grow(l->d, &l->cap, l->n + 1, sizeof *l->d);
     diag *d = &l->d[l->n++];
     memset(d, 0, sizeof *d);
     d->severity = sev;
@@ -33,20 +30,26 @@ void diag_add(diag_list *l, diag_severity sev, const char *file, int line, const
     va_end(ap);
 }
 
+/* Where the first ": note: ", ": warning: " or ": error: " of s (n bytes)
+ * starts, and which; NULL when none: the text of a message may name
+ * another severity after its own ("error: ... : warning: ..."). */
+static const char *find_severity(const char *s, size_t n, int *k, size_t *patlen) {
+    static const char *const pats[] = { ": note: ", ": warning: ", ": error: " };
+    for (const char *p = s; p < s + n; p++)
+        for (*k = 0; *k < 3; (*k)++) {
+            *patlen = strlen(pats[*k]);
+            if ((size_t)(s + n - p) >= *patlen && strncmp(p, pats[*k], *patlen) == 0) return p;
+        }
+    return NULL;
+}
+
 /* `file:line: severity: text`, the shape tarn and most compilers print. */
 static bool parse_line(const char *s, size_t n, diag_severity *sev, char *file, size_t filelen, int *line,
                        const char **text) {
-    static const char *const names[] = { "note", "warning", "error" };
-    for (int k = 0; k < 3; k++) {
-        char pat[16];
-        snprintf(pat, sizeof pat, ": %s: ", names[k]);
-        const char *m = NULL;
-        for (const char *p = s; p + strlen(pat) <= s + n; p++)
-            if (strncmp(p, pat, strlen(pat)) == 0) {
-                m = p;
-                break;
-            }
-        if (!m) continue;
+    int k;
+    size_t patlen;
+    const char *m = find_severity(s, n, &k, &patlen);
+    if (m) {
         const char *colon = m - 1;
         while (colon > s && *colon >= '0' && *colon <= '9') colon--;
         if (colon > s && *colon == ':' && colon != m - 1) {
@@ -60,7 +63,7 @@ static bool parse_line(const char *s, size_t n, diag_severity *sev, char *file, 
             *line = 0;
         }
         *sev = (diag_severity)k;
-        *text = m + strlen(pat);
+        *text = m + patlen;
         return true;
     }
     return false;

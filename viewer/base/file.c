@@ -9,43 +9,98 @@
 #include "mem.h"
 #include "strbuf.h"
 
-char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
-    if (len) *len = 0;
+/* "8 MiB" for a whole number of MiB, else "N bytes". */
+static void size_text(size_t n, char *out, size_t outlen) {
+    if (n % ((size_t)1 << 20) == 0)
+        msg_set(out, outlen, "%zu MiB", n >> 20);
+    else
+        msg_set(out, outlen, "%zu bytes", n);
+}
+
+/* Appends the regular file at path to b, at most max_bytes of it (0: no
+ * limit: a "regular" file such as /proc/self/pagemap would otherwise be
+ * read for ever); false with the reason in why. */
+static bool read_all(const char *path, size_t max_bytes, strbuf *b, char *why, size_t whylen) {
     struct stat st;
     if (stat(path, &st) != 0) {
-        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno));
-        return NULL;
+        msg_set(why, whylen, "%s", strerror(errno));
+        return false;
     }
     if (!S_ISREG(st.st_mode)) {
-        msg_set(err, errlen, "'%s' is not a regular file", path);
-        return NULL;
+        msg_set(why, whylen, S_ISDIR(st.st_mode) ? "it is a directory" : "it is not a regular file");
+        return false;
     }
     FILE *f = fopen(path, "rb");
     if (!f) {
-        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno));
-        return NULL;
+        msg_set(why, whylen, "%s", strerror(errno));
+        return false;
     }
-    strbuf b = { 0 };
     char chunk[65536];
     size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) {
-        if (max_bytes && b.len + n > max_bytes) {
-            fclose(f);
-            strbuf_free(&b);
-            msg_set(err, errlen, "'%s' is larger than %zu bytes", path, max_bytes);
-            return NULL;
-        }
-        strbuf_put(&b, chunk, n);
+    bool big = false;
+    while (!big && (n = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        big = max_bytes && b->len + n > max_bytes;
+        if (!big) strbuf_put(b, chunk, n);
     }
-    bool bad = ferror(f);
+    int bad = ferror(f) ? (errno ? errno : EIO) : 0;
     fclose(f);
-    if (bad) {
+    if (big) {
+        char lim[32];
+        size_text(max_bytes, lim, sizeof lim);
+        msg_set(why, whylen, "it is larger than %s", lim);
+    } else if (bad) {
+        msg_set(why, whylen, "%s", strerror(bad));
+    }
+    return !big && !bad;
+}
+
+/* The line (from 1) of the first NUL byte in s, 0 when there is none. */
+static int nul_line(const char *s, size_t n) {
+    const char *z = memchr(s, '\0', n);
+    int line = 1;
+    for (const char *p = s; z && p < z; p++) line += *p == '\n';
+    return z ? line : 0;
+}
+
+/* Drops the \r of every \r\n in b (NUL-terminated). */
+static void crlf_to_lf(strbuf *b) {
+    size_t w = 0;
+    for (size_t r = 0; r < b->len; r++)
+        if (b->s[r] != '\r' || r + 1 == b->len || b->s[r + 1] != '\n') b->s[w++] = b->s[r];
+    b->len = w;
+    b->s[w] = '\0';
+}
+
+char *file_read_text(const char *path, const file_text_opts *o, size_t *len, char *why, size_t whylen) {
+    static const file_text_opts none = { 0 };
+    if (!o) o = &none;
+    if (len) *len = 0;
+    strbuf b = { 0 };
+    if (!read_all(path, o->max_bytes, &b, why, whylen)) {
         strbuf_free(&b);
-        msg_set(err, errlen, "cannot read '%s'", path);
         return NULL;
     }
+    int nul = o->reject_nul && b.s ? nul_line(b.s, b.len) : 0;
+    if (nul) {
+        strbuf_free(&b);
+        msg_set(why, whylen, "binary data (a NUL byte at line %d), not text", nul);
+        return NULL;
+    }
+    if (o->strip_bom && b.len >= 3 && memcmp(b.s, "\xEF\xBB\xBF", 3) == 0) {
+        memmove(b.s, b.s + 3, b.len - 2);   /* the NUL too */
+        b.len -= 3;
+    }
+    if (o->crlf_to_lf && b.s) crlf_to_lf(&b);
     if (len) *len = b.len;
     return strbuf_take(&b);
+}
+
+char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
+    char why[256];
+    file_text_opts o = { .max_bytes = max_bytes };
+    char *s = file_read_text(path, &o, len, why, sizeof why);
+    if (!s) msg_set(err, errlen, "cannot open '%s': %s", path, why);
+    return s;
 }
 
 bool file_write(const char *path, const void *data, size_t n, char *err, size_t errlen) {

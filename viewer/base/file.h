@@ -10,6 +10,23 @@
  * file, or is larger than max_bytes (0: no limit). */
 char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen);
 
+/* How file_read_text reads a text file; zero means no limit and the bytes
+ * as they are. The one reader of the text formats (scenes, shaders, OBJ,
+ * presets), so they all read a file written on Windows alike. */
+typedef struct file_text_opts {
+    size_t max_bytes; /* 0: no limit */
+    bool strip_bom;   /* drop a leading UTF-8 byte order mark (Windows editors write one) */
+    bool crlf_to_lf;  /* "\r\n" becomes "\n" (a lone \r stays) */
+    bool reject_nul;  /* a NUL byte means binary, not text: NULL, and why names its line */
+} file_text_opts;
+
+/* The file as text, NUL-terminated (len, may be NULL, excludes the NUL;
+ * counted after the options), or NULL with the reason alone in why, for the
+ * caller's own message: "No such file or directory", "it is a directory",
+ * "it is not a regular file", "it is larger than 8 MiB", "binary data (a NUL
+ * byte at line 3), not text". o may be NULL: no options. */
+char *file_read_text(const char *path, const file_text_opts *o, size_t *len, char *why, size_t whylen);
+
 /* Writes n bytes to path (replacing it). False with the reason in err. */
 bool file_write(const char *path, const void *data, size_t n, char *err, size_t errlen);
 

@@ -24,3 +24,11 @@ char *mem_strndup(const char *s, size_t n) {
 }
 
 char *mem_strdup(const char *s) { return mem_strndup(s, strlen(s)); }
+
+void *mem_grow(void *p, int *cap, int need, size_t elem) {
+    if (need <= *cap) return p;
+    int c = *cap > 0 ? *cap : 8;
+    while (c < need) c *= 2;
+    *cap = c;
+    return mem_realloc(p, (size_t)c * elem);
+}

@@ -9,10 +9,21 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 void *mem_alloc(size_t n);  /* malloc */
 void *mem_zalloc(size_t n); /* calloc(1, n) */
 void *mem_realloc(void *p, size_t n);
 char *mem_strdup(const char *s);
 char *mem_strndup(const char *s, size_t n);
+/* Room for need elements of elem bytes in p, whose capacity *cap grows by
+ * doubling (from 8): the one growing array. Returns p, moved perhaps. */
+void *mem_grow(void *p, int *cap, int need, size_t elem);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -1,6 +1,7 @@
 /* watch: see watch.h. */
 #include "watch.h"
 
+#include "mem.h"
 #include "strbuf.h"
 
 #include <assert.h>
@@ -76,8 +77,7 @@ static int64_t now_ns(void) {
 static char *dup_cwd(void) {
     size_t cap = 256;
     for (;;) {
-        char *buf = malloc(cap);
-        if (!buf) return NULL;
+        char *buf = mem_alloc(cap);
         if (getcwd(buf, cap)) return buf;
         free(buf);
         if (errno != ERANGE) return NULL;
@@ -96,24 +96,21 @@ static bool names_a_file(const char *path) {
 }
 
 /* Absolute, with `//`, `.` and `..` removed lexically. NULL (errno set) when
- * out of memory or the current directory is gone. */
+ * the current directory is gone. */
 static char *normalise(const char *path) {
     char *joined;
     if (path[0] == '/') {
-        joined = strdup(path);
+        joined = mem_strdup(path);
     } else {
         char *cwd = dup_cwd();
         if (!cwd) return NULL;
         size_t a = strlen(cwd), b = strlen(path);
-        joined = malloc(a + b + 2);
-        if (joined) {
-            memcpy(joined, cwd, a);
-            joined[a] = '/';
-            memcpy(joined + a + 1, path, b + 1);
-        }
+        joined = mem_alloc(a + b + 2);
+        memcpy(joined, cwd, a);
+        joined[a] = '/';
+        memcpy(joined + a + 1, path, b + 1);
         free(cwd);
     }
-    if (!joined) return NULL;
 
     /* Rewrite in place as "/name/name": every name written was preceded by
      * at least one '/' in the input, so the output never overtakes it. */
@@ -142,24 +139,11 @@ static char *normalise(const char *path) {
 
 /* Splits a normalised absolute path into freshly allocated directory and
  * base name. */
-static bool split_path(const char *path, char **dir, char **base) {
+static void split_path(const char *path, char **dir, char **base) {
     const char *slash = strrchr(path, '/');
     size_t dlen = (size_t)(slash - path);
-    *dir = malloc(dlen ? dlen + 1 : 2);
-    *base = strdup(slash + 1);
-    if (!*dir || !*base) {
-        free(*dir);
-        free(*base);
-        *dir = *base = NULL;
-        return false;
-    }
-    if (dlen) {
-        memcpy(*dir, path, dlen);
-        (*dir)[dlen] = '\0';
-    } else {
-        strcpy(*dir, "/");
-    }
-    return true;
+    *dir = dlen ? mem_strndup(path, dlen) : mem_strdup("/");
+    *base = mem_strdup(slash + 1);
 }
 
 /* ---- content ------------------------------------------------------------ */
@@ -221,8 +205,8 @@ static bool dirs_have_wd(const watch_dir *dirs, int ndirs, int wd) {
 
 /* Watches `path` (a directory) for the new table *dirs and returns its
  * index, reusing an entry with the same path or the same watch (the same
- * directory reached by another path). -1 with errno set on failure; a watch
- * it added and could not record is removed unless the old set `w` holds it. */
+ * directory reached by another path). -1 with errno set when inotify refuses
+ * it. */
 static int add_dir(watch *w, watch_dir **dirs, int *ndirs, int *cap, const char *path) {
     for (int i = 0; i < *ndirs; i++)
         if (strcmp((*dirs)[i].path, path) == 0) return i;
@@ -230,24 +214,8 @@ static int add_dir(watch *w, watch_dir **dirs, int *ndirs, int *cap, const char 
     if (wd < 0) return -1;
     for (int i = 0; i < *ndirs; i++)
         if ((*dirs)[i].wd == wd) return i;
-    char *copy = strdup(path);
-    if (copy && *ndirs == *cap) {
-        int ncap = *cap ? *cap * 2 : 8;
-        watch_dir *grown = realloc(*dirs, (size_t)ncap * sizeof *grown);
-        if (grown) {
-            *dirs = grown;
-            *cap = ncap;
-        } else {
-            free(copy);
-            copy = NULL;
-        }
-    }
-    if (!copy) {
-        if (!dirs_have_wd(w->dirs, w->ndirs, wd)) inotify_rm_watch(w->fd, wd);
-        errno = ENOMEM;
-        return -1;
-    }
-    (*dirs)[*ndirs] = (watch_dir){ .path = copy, .wd = wd };
+    *dirs = mem_grow(*dirs, cap, *ndirs + 1, sizeof **dirs);
+    (*dirs)[*ndirs] = (watch_dir){ .path = mem_strdup(path), .wd = wd };
     return (*ndirs)++;
 }
 
@@ -402,17 +370,8 @@ static int64_t decide(watch *w, int64_t t) {
 /* ---- API ---------------------------------------------------------------- */
 
 watch *watch_create(char *err, int errlen) {
-    watch *w = calloc(1, sizeof *w);
-    if (!w) {
-        msg_set(err, (size_t)errlen, "watch: out of memory");
-        return NULL;
-    }
-    w->evbuf = malloc(EVBUF_SIZE);
-    if (!w->evbuf) {
-        free(w);
-        msg_set(err, (size_t)errlen, "watch: out of memory");
-        return NULL;
-    }
+    watch *w = mem_zalloc(sizeof *w);
+    w->evbuf = mem_alloc(EVBUF_SIZE);
     w->next_ns = NEVER;
     w->fd = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
     if (w->fd < 0) {
@@ -446,12 +405,8 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
     if (n < 0) n = 0;
     drain(w); /* keep the old set's directory states current */
     if (n > 0) {
-        files = calloc((size_t)n, sizeof *files);
-        changed = calloc((size_t)n, sizeof *changed);
-        if (!files || !changed) {
-            msg_set(err, (size_t)errlen, "watch: out of memory");
-            goto fail;
-        }
+        files = mem_zalloc((size_t)n * sizeof *files);
+        changed = mem_zalloc((size_t)n * sizeof *changed);
     }
     for (int i = 0; i < n; i++) {
         const char *p = paths[i];
@@ -471,10 +426,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
             norm = NULL;
             continue;
         }
-        if (!split_path(norm, &dpath, &base)) {
-            msg_set(err, (size_t)errlen, "watch: out of memory");
-            goto fail;
-        }
+        split_path(norm, &dpath, &base);
         int d = add_dir(w, &dirs, &ndirs, &dcap, dpath);
         if (d < 0) {
             int e = errno;
@@ -492,8 +444,8 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
 
         /* A symlink: watch its target's directory too (best effort). */
         struct stat st;
-        if (lstat(f->path, &st) == 0 && S_ISLNK(st.st_mode) && (real = realpath(f->path, NULL)) &&
-            split_path(real, &rdir, &rbase)) {
+        if (lstat(f->path, &st) == 0 && S_ISLNK(st.st_mode) && (real = realpath(f->path, NULL))) {
+            split_path(real, &rdir, &rbase);
             int d2 = add_dir(w, &dirs, &ndirs, &dcap, rdir);
             if (d2 >= 0 && !(dirs[d2].wd == dirs[d].wd && strcmp(rbase, f->key[0].base) == 0)) {
                 f->key[1] = (watch_key){ .dir = d2, .base = rbase };

@@ -1,8 +1,11 @@
 /* validate: glslang validation of shader stages and .glib Programs (see validate.h). */
 #include "validate.h"
 
+#include "diag.h"
+#include "file.h"
 #include "glib.h"
 #include "glsl_hint.h"
+#include "mem.h"
 #include "program.h"
 #include "strbuf.h"
 
@@ -38,34 +41,14 @@ static void ensure_glslang(void) {
 
 /* ---- small helpers ---------------------------------------------------------- */
 
-static char *xstrdup(const char *s) {
-    char *d = strdup(s ? s : "");
-    if (!d) { fputs("tarn: out of memory\n", stderr); abort(); }
-    return d;
-}
-
+static char *xprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 static char *xprintf(const char *fmt, ...) {
+    strbuf b = { 0 };
     va_list ap;
     va_start(ap, fmt);
-    int n = vsnprintf(NULL, 0, fmt, ap);
+    strbuf_vprintf(&b, fmt, ap);
     va_end(ap);
-    char *s = malloc(n > 0 ? (size_t)n + 1 : 1);
-    if (!s) { fputs("tarn: out of memory\n", stderr); abort(); }
-    s[0] = '\0';
-    if (n > 0) {
-        va_start(ap, fmt);
-        vsnprintf(s, (size_t)n + 1, fmt, ap);
-        va_end(ap);
-    }
-    return s;
-}
-
-static void append(char **log, const char *text) {
-    size_t old = *log ? strlen(*log) : 0, add = strlen(text);
-    char *s = realloc(*log, old + add + 1);
-    if (!s) return;
-    memcpy(s + old, text, add + 1);
-    *log = s;
+    return strbuf_take(&b);
 }
 
 static bool is_regular_file(const char *path) {
@@ -91,13 +74,7 @@ typedef struct strlist {
 } strlist;
 
 static void strlist_add(strlist *l, char *owned) {
-    if (l->n == l->cap) {
-        int cap = l->cap ? l->cap * 2 : 16;
-        char **v = realloc(l->v, (size_t)cap * sizeof *v);
-        if (!v) { free(owned); return; }
-        l->v = v;
-        l->cap = cap;
-    }
+    l->v = mem_grow(l->v, &l->cap, l->n + 1, sizeof *l->v);
     l->v[l->n++] = owned;
 }
 
@@ -113,11 +90,9 @@ static int cmp_str(const void *a, const void *b) {
 
 /* ---- messages ---------------------------------------------------------------- */
 
-typedef enum sev { SEV_WARNING = 1, SEV_ERROR = 2 } sev;
-
+/* A diagnostic, and the combinations of a Program it appeared in. */
 typedef struct vmsg {
-    sev severity;
-    char *text;             /* `file:line: error|warning: message` */
+    diag d;
     int count;              /* combinations it appeared in */
     int first_combo;
 } vmsg;
@@ -127,27 +102,49 @@ typedef struct vmsgs {
     int n, cap;
 } vmsgs;
 
-static void msgs_add(vmsgs *m, sev s, const char *text_in) {
+static bool same_diag(const diag *a, const diag *b) {
+    return a->severity == b->severity && a->line == b->line && strcmp(a->file, b->file) == 0 &&
+           strcmp(a->text, b->text) == 0;
+}
+
+/* Adds d unless it is there (a message can come twice from one compile);
+ * returns its index. */
+static int msgs_add(vmsgs *m, const diag *d) {
+    diag x = *d;
     /* glslang likes double spaces ("'=' :  cannot convert") */
-    char text[2048];
     size_t w = 0;
-    for (const char *p = text_in; *p && w + 1 < sizeof text; p++)
-        if (!(*p == ' ' && w > 0 && text[w - 1] == ' ')) text[w++] = *p;
-    text[w] = '\0';
+    for (const char *p = d->text; *p; p++)
+        if (!(*p == ' ' && w > 0 && x.text[w - 1] == ' ')) x.text[w++] = *p;
+    x.text[w] = '\0';
     for (int i = 0; i < m->n; i++)
-        if (strcmp(m->v[i].text, text) == 0) return;      /* once per compile */
-    if (m->n == m->cap) {
-        int cap = m->cap ? m->cap * 2 : 8;
-        vmsg *v = realloc(m->v, (size_t)cap * sizeof *v);
-        if (!v) return;
-        m->v = v;
-        m->cap = cap;
-    }
-    m->v[m->n++] = (vmsg){ s, xstrdup(text), 0, 0 };
+        if (same_diag(&m->v[i].d, &x)) return i;
+    m->v = mem_grow(m->v, &m->cap, m->n + 1, sizeof *m->v);
+    m->v[m->n] = (vmsg){ x, 0, 0 };
+    return m->n++;
+}
+
+static void msgs_addf(vmsgs *m, diag_severity s, const char *file, int line, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+static void msgs_addf(vmsgs *m, diag_severity s, const char *file, int line, const char *fmt, ...) {
+    diag d = { .severity = s, .line = line };
+    snprintf(d.file, sizeof d.file, "%s", file ? file : "");
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d.text, sizeof d.text, fmt, ap);
+    va_end(ap);
+    msgs_add(m, &d);
+}
+
+/* A compiler's `file:line: error: text` line (or an assembly error) as a
+ * message; s when it names no severity. */
+static void msgs_add_text(vmsgs *m, diag_severity s, const char *text) {
+    diag_list l = { 0 };
+    diag_add_text(&l, s, text);
+    for (int i = 0; i < l.n; i++) msgs_add(m, &l.d[i]);
+    diag_list_free(&l);
 }
 
 static void msgs_free(vmsgs *m) {
-    for (int i = 0; i < m->n; i++) free(m->v[i].text);
     free(m->v);
     memset(m, 0, sizeof *m);
 }
@@ -155,13 +152,8 @@ static void msgs_free(vmsgs *m) {
 /* Adds one combination's messages to a Program's table. */
 static void msgs_merge(vmsgs *table, const vmsgs *m, int combo) {
     for (int i = 0; i < m->n; i++) {
-        int j = 0;
-        while (j < table->n && strcmp(table->v[j].text, m->v[i].text) != 0) j++;
-        if (j == table->n) {
-            msgs_add(table, m->v[i].severity, m->v[i].text);
-            if (j == table->n) continue;            /* out of memory */
-            table->v[j].first_combo = combo;
-        }
+        int n = table->n, j = msgs_add(table, &m->v[i].d);
+        if (j == n) table->v[j].first_combo = combo;
         table->v[j].count++;
     }
 }
@@ -182,12 +174,11 @@ static bool is_noise(const char *line) {
 static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m) {
     if (!log || !log[0]) return;
     char *raw_mapped = shader_src_map_log(src, log);
-    if (!raw_mapped) return;
     /* tarn's notes on what NVIDIA let through (glsl_hint): kept with their error */
     char *mapped = glsl_hint_annotate(raw_mapped, src->text);
     free(raw_mapped);
     char *pending = NULL;
-    sev pending_sev = SEV_ERROR;
+    diag_severity pending_sev = DIAG_ERROR;
     for (char *p = mapped; p && *p;) {
         char *e = strchr(p, '\n');
         if (e) *e = '\0';
@@ -198,21 +189,21 @@ static void add_compile_log(const shader_src *src, const char *log, bool compile
             free(pending);
             pending = joined;
         } else if (n > 0 && !is_noise(p)) {
-            sev s;
+            diag_severity s;
             char *text = NULL;
             if (starts_with(p, "ERROR: ")) {
-                s = SEV_ERROR;
+                s = DIAG_ERROR;
                 text = xprintf("%s:0: error: %s", src->files[0], p + 7);
             } else if (starts_with(p, "WARNING: ")) {
-                s = SEV_WARNING;
+                s = DIAG_WARNING;
                 text = xprintf("%s:0: warning: %s", src->files[0], p + 9);
             } else if (strstr(p, ": error") || strstr(p, ": warning")) {
                 const char *er = strstr(p, ": error"), *wa = strstr(p, ": warning");
-                s = er && (!wa || er < wa) ? SEV_ERROR : SEV_WARNING;
-                text = xstrdup(p);
+                s = er && (!wa || er < wa) ? DIAG_ERROR : DIAG_WARNING;
+                text = mem_strdup(p);
             }
             if (text) {
-                if (pending) msgs_add(m, pending_sev, pending);
+                if (pending) msgs_add_text(m, pending_sev, pending);
                 free(pending);
                 pending = text;
                 pending_sev = s;
@@ -225,13 +216,13 @@ static void add_compile_log(const shader_src *src, const char *log, bool compile
                     pending = joined;
                 } else {
                     pending = xprintf("%s:0: %s: %s", src->files[0], compiled ? "warning" : "error", t);
-                    pending_sev = compiled ? SEV_WARNING : SEV_ERROR;
+                    pending_sev = compiled ? DIAG_WARNING : DIAG_ERROR;
                 }
             }
         }
         p = e ? e + 1 : NULL;
     }
-    if (pending) msgs_add(m, pending_sev, pending);
+    if (pending) msgs_add_text(m, pending_sev, pending);
     free(pending);
     free(mapped);
 }
@@ -320,10 +311,7 @@ static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *
     glslang_shader_t *sh = glslang_shader_create(&in);
     if (!sh) {
         free(gs_text);
-        char *t = xprintf("%s:0: error: glslang could not create a %s shader", src->files[0],
-                          shader_stage_name(st));
-        msgs_add(m, SEV_ERROR, t);
-        free(t);
+        msgs_addf(m, DIAG_ERROR, src->files[0], 0, "glslang could not create a %s shader", shader_stage_name(st));
         *ok = false;
         return NULL;
     }
@@ -331,7 +319,7 @@ static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *
     *ok = glslang_shader_preprocess(sh, &in) != 0;
     if (*ok) {
         const char *code = glslang_shader_get_preprocessed_code(sh);
-        if (preprocessed && code) *preprocessed = xstrdup(code);
+        if (preprocessed && code) *preprocessed = mem_strdup(code);
         *ok = glslang_shader_parse(sh, &in) != 0;
     }
     add_compile_log(src, glslang_shader_get_info_log(sh), *ok, m);
@@ -339,29 +327,26 @@ static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *
     if (!*ok) {
         /* a failure glslang explained nowhere still counts */
         bool any = false;
-        for (int i = before; i < m->n; i++) any |= m->v[i].severity == SEV_ERROR;
-        if (!any) {
-            char *t = xprintf("%s:0: error: the %s shader does not compile", src->files[0],
-                              shader_stage_name(st));
-            msgs_add(m, SEV_ERROR, t);
-            free(t);
-        }
+        for (int i = before; i < m->n; i++) any |= m->v[i].d.severity == DIAG_ERROR;
+        if (!any) msgs_addf(m, DIAG_ERROR, src->files[0], 0, "the %s shader does not compile", shader_stage_name(st));
     }
     return sh;
 }
 
 bool validate_stage(const shader_src *src, shader_stage stage, char **log) {
     if (!src || !src->text || (unsigned)stage >= SHADER_STAGE_COUNT) {
-        if (log) append(log, src && src->error[0] ? src->error : "error: no shader text");
-        if (log) append(log, "\n");
+        if (log) str_appendf(log, "%s\n", src && src->error[0] ? src->error : "error: no shader text");
         return false;
     }
     vmsgs m = {0};
     bool ok = false;
     glslang_shader_t *sh = compile(src, stage, &m, &ok, NULL);
     if (sh) glslang_shader_delete(sh);
-    if (log)
-        for (int i = 0; i < m.n; i++) { append(log, m.v[i].text); append(log, "\n"); }
+    char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
+    for (int i = 0; log && i < m.n; i++) {
+        diag_format(&m.v[i].d, line, sizeof line);
+        str_appendf(log, "%s\n", line);
+    }
     msgs_free(&m);
     return ok;
 }
@@ -394,32 +379,29 @@ static void replace_all(char *s, const char *from, const char *to) {
 }
 
 typedef struct link_log {
-    const char *where, *prog;
+    const glib_cmd *prog;
     vmsgs *m;
     int reported, spurious;
 } link_log;
 
-static void link_message(link_log *l, sev s, const char *text) {
+static void link_message(link_log *l, diag_severity s, const char *text) {
     if (is_spurious_link_error(text)) { l->spurious++; return; }
-    char *msg = xprintf("%s %s: program %s: %s", l->where, s == SEV_ERROR ? "error" : "warning",
-                        l->prog, text);
-    msgs_add(l->m, s, msg);
-    free(msg);
-    l->reported += s == SEV_ERROR;
+    msgs_addf(l->m, s, l->prog->file, l->prog->line, "program %s: %s", l->prog->name, text);
+    l->reported += s == DIAG_ERROR;
 }
 
 /* Links the compiled stages; messages are placed at the Program's line. */
-static void link_stages(glslang_shader_t *const *sh, int n, const char *where, const char *prog, vmsgs *m) {
+static void link_stages(glslang_shader_t *const *sh, int n, const glib_cmd *prog, vmsgs *m) {
     glslang_program_t *p = glslang_program_create();
     if (!p) return;
     for (int i = 0; i < n; i++) glslang_program_add_shader(p, sh[i]);
     int ok = glslang_program_link(p, GLSLANG_MSG_DEFAULT_BIT);
     const char *log = glslang_program_get_info_log(p);
     /* messages start with ERROR: or WARNING:, continuation lines are indented */
-    char *copy = xstrdup(log);
+    char *copy = mem_strdup(log);
     char *pending = NULL;
-    sev pending_sev = SEV_ERROR;
-    link_log l = { where, prog, m, 0, 0 };
+    diag_severity pending_sev = DIAG_ERROR;
+    link_log l = { prog, m, 0, 0 };
     for (char *q = copy; q && *q;) {
         char *e = strchr(q, '\n');
         if (e) *e = '\0';
@@ -436,8 +418,8 @@ static void link_stages(glslang_shader_t *const *sh, int n, const char *where, c
             free(pending);
             pending = NULL;
             if (*t) {
-                pending_sev = starts_with(q, "WARNING: ") ? SEV_WARNING : SEV_ERROR;
-                pending = xstrdup(head ? q + (pending_sev == SEV_WARNING ? 9 : 7) : t);
+                pending_sev = starts_with(q, "WARNING: ") ? DIAG_WARNING : DIAG_ERROR;
+                pending = mem_strdup(head ? q + (pending_sev == DIAG_WARNING ? 9 : 7) : t);
             }
         } else if (*t) {
             char *joined = xprintf("%s %s", pending, t);
@@ -450,11 +432,8 @@ static void link_stages(glslang_shader_t *const *sh, int n, const char *where, c
     free(pending);
     free(copy);
     /* a failed link whose only errors were spurious passes */
-    if (!ok && l.reported == 0 && l.spurious == 0) {
-        char *msg = xprintf("%s error: program %s: glslang could not link it", where, prog);
-        msgs_add(m, SEV_ERROR, msg);
-        free(msg);
-    }
+    if (!ok && l.reported == 0 && l.spurious == 0)
+        msgs_addf(m, DIAG_ERROR, prog->file, prog->line, "program %s: glslang could not link it", prog->name);
     glslang_program_delete(p);
 }
 
@@ -474,13 +453,7 @@ typedef struct toks {
 } toks;
 
 static void toks_add(toks *t, tok k) {
-    if (t->n == t->cap) {
-        int cap = t->cap ? t->cap * 2 : 256;
-        tok *v = realloc(t->v, (size_t)cap * sizeof *v);
-        if (!v) return;
-        t->v = v;
-        t->cap = cap;
-    }
+    t->v = mem_grow(t->v, &t->cap, t->n + 1, sizeof *t->v);
     t->v[t->n++] = k;
 }
 
@@ -559,13 +532,7 @@ typedef struct iface {
 
 static void iface_add(iface *f, const tok *name, bool block, bool in) {
     if (name->n >= 64 || (name->n >= 3 && memcmp(name->p, "gl_", 3) == 0)) return;
-    if (f->n == f->cap) {
-        int cap = f->cap ? f->cap * 2 : 16;
-        ivar *v = realloc(f->v, (size_t)cap * sizeof *v);
-        if (!v) return;
-        f->v = v;
-        f->cap = cap;
-    }
+    f->v = mem_grow(f->v, &f->cap, f->n + 1, sizeof *f->v);
     ivar *x = &f->v[f->n++];
     memset(x, 0, sizeof *x);
     memcpy(x->name, name->p, (size_t)name->n);
@@ -733,23 +700,21 @@ typedef struct run {
     FILE *out;
     const char *include_dirs[1];
     char common_dir[4096];
+    diag_list diags;        /* what the current file showed; flush() prints them */
     validate_result res;
 } run;
 
-static void print_msg(run *r, const vmsg *v, const char *suffix) {
-    fprintf(r->out, "%s%s\n", v->text, suffix ? suffix : "");
-    if (v->severity == SEV_ERROR) r->res.nerrors++;
-    else r->res.nwarnings++;
+/* Prints the diagnostics so far (diag_print, as every command does) and
+ * counts them: each file's as soon as it is done. */
+static void flush(run *r) {
+    diag_print(&r->diags, r->out);
+    r->res.nerrors += r->diags.nerrors;
+    r->res.nwarnings += r->diags.nwarnings;
+    diag_list_free(&r->diags);
 }
 
-static void report(run *r, sev s, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vfprintf(r->out, fmt, ap);
-    va_end(ap);
-    fputc('\n', r->out);
-    if (s == SEV_ERROR) r->res.nerrors++;
-    else r->res.nwarnings++;
+static void add_msg(run *r, const vmsg *v, const char *suffix) {
+    diag_add(&r->diags, v->d.severity, v->d.file, v->d.line, "%s%s", v->d.text, suffix ? suffix : "");
 }
 
 typedef struct toggle {
@@ -808,8 +773,8 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
     shader_stage stages[SHADER_STAGE_COUNT];
     int nst = program_stage_list(ps, stages);
     if (nst == 0) {
-        report(r, SEV_ERROR, "%s:%d: error: Program %s has no shader stages: name files with "
-               "Vertex and Fragment before the Program line", cmd->file, cmd->line, cmd->name);
+        diag_add(&r->diags, DIAG_ERROR, cmd->file, cmd->line, "Program %s has no shader stages: name files with "
+                 "Vertex and Fragment before the Program line", cmd->name);
         return;
     }
     r->res.nstages += nst;
@@ -820,9 +785,8 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             int err = errno;
             missing = true;
             if (glib_reported(scene, sc)) continue;
-            report(r, SEV_ERROR, "%s:%d: error: %s %s: %s (Program %s)", sc->file, sc->line,
-                   glib_cmd_name(sc->kind), sc->path, is_dir(sc->path) ? "is a directory" : strerror(err),
-                   cmd->name);
+            diag_add(&r->diags, DIAG_ERROR, sc->file, sc->line, "%s %s: %s (Program %s)", glib_cmd_name(sc->kind),
+                     sc->path, is_dir(sc->path) ? "is a directory" : strerror(err), cmd->name);
         }
     }
     if (missing) return;
@@ -851,9 +815,9 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
         size_t w = 0;
         for (int i = nvary; i < nt && w < sizeof names; i++)
             w += (size_t)snprintf(names + w, sizeof names - w, "%s%s", i > nvary ? " " : "", toggles[i].name);
-        report(r, SEV_WARNING, "%s:%d: warning: Program %s has %d Define toggles; validating the %d "
-               "combinations of the first %d, with %s at their defaults", cmd->file, cmd->line,
-               cmd->name, nt, ncombo, nvary, names);
+        diag_add(&r->diags, DIAG_WARNING, cmd->file, cmd->line, "Program %s has %d Define toggles; validating "
+                 "the %d combinations of the first %d, with %s at their defaults", cmd->name, nt, ncombo, nvary,
+                 names);
     }
     slider_value extra[MAX_SLIDER_VALUES];
     int nextra = slider_values(cmd, fixed, nfixed, extra), total = ncombo + nextra;
@@ -888,7 +852,7 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             shader_src_desc d = program_stage_desc(ps, st, defs, nd, r->include_dirs, 1);
             d.gs_input = program_gs_input(scene, cmd);
             if (!shader_src_load(&d, &src[st])) {
-                msgs_add(&m, SEV_ERROR, src[st].error);
+                msgs_add_text(&m, DIAG_ERROR, src[st].error);
                 ok = false;
             }
         }
@@ -906,9 +870,7 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             }
         }
         if (ok) {
-            char where[GLIB_PATH_MAX + 32];
-            snprintf(where, sizeof where, "%s:%d:", cmd->file, cmd->line);
-            link_stages(sh, nsh, where, cmd->name, &m);
+            link_stages(sh, nsh, cmd, &m);
             check_interfaces(src, pp, stages, nst, &m);
         }
         for (int i = 0; i < nsh; i++) glslang_shader_delete(sh[i]);
@@ -939,20 +901,17 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             if (v->count == total) snprintf(suffix + w, sizeof suffix - w, " (all %d combinations)", total);
             else snprintf(suffix + w, sizeof suffix - w, " (%d of %d combinations)", v->count, total);
         }
-        print_msg(r, v, suffix);
+        add_msg(r, v, suffix);
     }
     msgs_free(&table);
 }
 
 static void validate_glib(run *r, const char *path) {
     glib_scene *sc = glib_load(path);
-    if (!sc) {
-        report(r, SEV_ERROR, "%s:0: error: cannot read the scene", path);
-        return;
+    for (int i = 0; i < sc->ndiags; i++) {
+        const diag *d = &sc->diags[i];
+        diag_add(&r->diags, d->severity, d->file, d->line, "%s", d->text);
     }
-    glib_print_diags(sc, r->out);
-    r->res.nerrors += sc->nerrors;
-    r->res.nwarnings += sc->ndiags - sc->nerrors;
     program_stages ps;
     program_stages_init(&ps);
     for (int i = 0; i < sc->ncmds; i++) {
@@ -965,25 +924,17 @@ static void validate_glib(run *r, const char *path) {
 
 /* Does a .glsl without a stage suffix look like a stage (it has main)? */
 static bool has_main(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return false;
-    char buf[4096];
+    file_text_opts o = { .max_bytes = SHADER_SRC_MAX_FILE_BYTES };
+    char why[256];
+    char *text = file_read_text(path, &o, NULL, why, sizeof why);
     bool found = false;
-    size_t keep = 0;
-    size_t n;
-    while (!found && (n = fread(buf + keep, 1, sizeof buf - 1 - keep, f)) > 0) {
-        size_t len = keep + n;
-        buf[len] = '\0';
-        for (char *p = buf; (p = strstr(p, "main")) != NULL; p += 4) {
-            bool left = p == buf || !is_ident_char(p[-1]);
-            char *q = p + 4;
-            while (*q == ' ' || *q == '\t' || *q == '\n' || *q == '\r') q++;
-            if (left && *q == '(') { found = true; break; }
-        }
-        keep = len < 16 ? len : 16;
-        memmove(buf, buf + len - keep, keep);
+    for (char *p = text; p && !found && (p = strstr(p, "main")) != NULL; p += 4) {
+        bool left = p == text || !is_ident_char(p[-1]);
+        const char *q = p + 4;
+        while (*q == ' ' || *q == '\t' || *q == '\n' || *q == '\r') q++;
+        found = left && *q == '(';
     }
-    fclose(f);
+    free(text);
     return found;
 }
 
@@ -993,14 +944,14 @@ static void validate_stage_file(run *r, const char *path, shader_stage st) {
     shader_src_desc d = { .path = path, .stage = st, .include_dirs = r->include_dirs, .ninclude_dirs = 1 };
     vmsgs m = {0};
     if (!shader_src_load(&d, &src)) {
-        msgs_add(&m, SEV_ERROR, src.error);
+        msgs_add_text(&m, DIAG_ERROR, src.error);
     } else {
         bool ok = false;
         glslang_shader_t *sh = compile(&src, st, &m, &ok, NULL);
         if (sh) glslang_shader_delete(sh);
     }
     shader_src_free(&src);
-    for (int i = 0; i < m.n; i++) print_msg(r, &m.v[i], NULL);
+    for (int i = 0; i < m.n; i++) add_msg(r, &m.v[i], NULL);
     msgs_free(&m);
 }
 
@@ -1028,7 +979,7 @@ static void collect(const char *dir, bool glibs, strlist *out) {
         if (is_dir(p)) { collect(p, glibs, out); continue; }
         if (!is_regular_file(p)) continue;
         const char *ext = path_ext(p);
-        if (glibs ? strcasecmp(ext, "glib") == 0 : is_stage_ext(ext)) strlist_add(out, xstrdup(p));
+        if (glibs ? strcasecmp(ext, "glib") == 0 : is_stage_ext(ext)) strlist_add(out, mem_strdup(p));
     }
     strlist_free(&names);
 }
@@ -1042,18 +993,18 @@ static void validate_file(run *r, const char *path, bool named) {
         /* a .glsl without a stage suffix is usually an include: say so only
          * when it was named, or when it has a main() */
         if (named || has_main(path))
-            report(r, SEV_WARNING, "%s:0: warning: cannot tell the stage of this .glsl; name it "
-                   "like water.frag.glsl (or .vert .tesc .tese .geom .frag); skipped", path);
+            diag_add(&r->diags, DIAG_WARNING, path, 0, "cannot tell the stage of this .glsl; name it "
+                     "like water.frag.glsl (or .vert .tesc .tese .geom .frag); skipped");
         return;
     }
-    report(r, SEV_WARNING, "%s:0: warning: not a .glib or a shader stage file "
-           "(.vert .tesc .tese .geom .frag .glsl); skipped", path);
+    diag_add(&r->diags, DIAG_WARNING, path, 0, "not a .glib or a shader stage file "
+             "(.vert .tesc .tese .geom .frag .glsl); skipped");
 }
 
 static void validate_path(run *r, const char *path) {
     struct stat st;
     if (stat(path, &st) != 0) {
-        report(r, SEV_ERROR, "%s:0: error: %s", path, strerror(errno));
+        diag_add(&r->diags, DIAG_ERROR, path, 0, "%s", strerror(errno));
         return;
     }
     if (!S_ISDIR(st.st_mode)) { validate_file(r, path, true); return; }
@@ -1061,8 +1012,11 @@ static void validate_path(run *r, const char *path) {
     collect(path, true, &files);
     if (files.n == 0) collect(path, false, &files);
     if (files.n == 0)
-        report(r, SEV_WARNING, "%s:0: warning: no .glib or shader stage files here", path);
-    for (int i = 0; i < files.n; i++) validate_file(r, files.v[i], false);
+        diag_add(&r->diags, DIAG_WARNING, path, 0, "no .glib or shader stage files here");
+    for (int i = 0; i < files.n; i++) {
+        validate_file(r, files.v[i], false);
+        flush(r);
+    }
     strlist_free(&files);
 }
 
@@ -1076,7 +1030,10 @@ int validate_run_ex(const char *const *paths, int npaths, const char *repo_root,
     r.include_dirs[0] = r.common_dir;
 
     if (npaths > 0) {
-        for (int i = 0; i < npaths; i++) validate_path(&r, paths[i]);
+        for (int i = 0; i < npaths; i++) {
+            validate_path(&r, paths[i]);
+            flush(&r);
+        }
     } else {
         strlist files = {0};
         char *packs = xprintf("%s/packs", repo_root);
@@ -1097,10 +1054,14 @@ int validate_run_ex(const char *const *paths, int npaths, const char *repo_root,
         collect(scenes, true, &files);
         free(scenes);
         if (files.n == 0)
-            report(&r, SEV_WARNING, "%s:0: warning: no .glib files under packs/*/ or scenes/", repo_root);
-        for (int i = 0; i < files.n; i++) validate_glib(&r, files.v[i]);
+            diag_add(&r.diags, DIAG_WARNING, repo_root, 0, "no .glib files under packs/*/ or scenes/");
+        for (int i = 0; i < files.n; i++) {
+            validate_glib(&r, files.v[i]);
+            flush(&r);
+        }
         strlist_free(&files);
     }
+    flush(&r);
     fprintf(r.out, "validate: %d programs, %d stages, %d combinations: %d errors\n", r.res.nprograms,
             r.res.nstages, r.res.ncombinations, r.res.nerrors);
     fflush(r.out);

@@ -14,6 +14,7 @@
 
 #include "util.h"
 #include "image_io.h"
+#include "mem.h"
 #include "ref_render.h"
 #include "scene.h"
 #include "ref_buffers.h"
@@ -121,8 +122,7 @@ static int write_buffer(const char *path, const double *src, const unsigned char
 static int write_outputs(const char *out, const ref_render_result *r, int quiet) {
     size_t stem_len = strlen(out) - 4;   /* without ".exr" */
     size_t cap = stem_len + 32;
-    char *path = malloc(cap), err[512];
-    if (!path) { fprintf(stderr, "tarn reference: out of memory\n"); return 0; }
+    char *path = mem_alloc(cap), err[512];
     /* every buffer of ref_buffers.h, and the image once more as sRGB PNG */
     struct { const char *suffix; const double *px; const unsigned char *bytes; int n, srgb; } files[REF_BUF_COUNT + 1];
     int nfiles = 0;

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "mem.h"
 #include "strbuf.h"
 #include "util.h"
 #include "cli.h"
@@ -110,8 +111,8 @@ int cli_render(const cli_render_desc *d) {
         return TARN_EXIT_NO_GL;
     }
     int frames = d->frames > 0 ? d->frames : 1;
-    double *ms = calloc((size_t)frames, sizeof *ms);
-    double *wall = calloc((size_t)frames, sizeof *wall);
+    double *ms = mem_zalloc((size_t)frames * sizeof *ms);
+    double *wall = mem_zalloc((size_t)frames * sizeof *wall);
     bool per_frame = strstr(d->out, "%d") != NULL;
     int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
     for (int f = 0; f < frames; f++) {
@@ -123,8 +124,8 @@ int cli_render(const cli_render_desc *d) {
             rc = TARN_EXIT_NO_GL;
             break;
         }
-        if (wall) wall[f] = now_ms() - t0;
-        if (ms) ms[f] = render_gpu_ms(r, true);
+        wall[f] = now_ms() - t0;
+        ms[f] = render_gpu_ms(r, true);
         if (per_frame || f == frames - 1) {
             char path[2048];
             frame_path(path, sizeof path, d->out, per_frame ? f : -1);
@@ -141,7 +142,7 @@ int cli_render(const cli_render_desc *d) {
         fputs(render_draw_messages(r), stderr);
         if (rc == TARN_EXIT_OK && render_has_errors(r)) rc = TARN_EXIT_INPUT;
     }
-    if (ms && wall && !d->quiet && rc != TARN_EXIT_NO_GL) {
+    if (!d->quiet && rc != TARN_EXIT_NO_GL) {
         qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
         qsort(wall, (size_t)frames, sizeof *wall, cmp_double);
         printf("tarn: %d frame(s) at %dx%d: median GPU time %.3f ms, wall %.3f ms, on %s\n", frames, w, h,
@@ -211,8 +212,7 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
 
 int cmd_render(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
-    const char **sets = calloc((size_t)argc + 1, sizeof *sets);
-    if (!sets) { fprintf(stderr, "tarn: out of memory\n"); return TARN_EXIT_INPUT; }
+    const char **sets = mem_zalloc(((size_t)argc + 1) * sizeof *sets);
     cli_render_desc d = {0};
     int rc = parse(argc, argv, &d, sets);
     if (rc == TARN_EXIT_OK) rc = cli_render(&d);

@@ -17,6 +17,7 @@
 #include "exit_code.h"
 #include "glib.h"
 #include "image_io.h"
+#include "mem.h"
 #include "noise.h"
 #include "ref_trace.h"
 #include "scene.h"
@@ -126,9 +127,7 @@ bool assets_bake_water_normal(int res, float *rgb) {
     if (!rgb || !res_ok(res))
         return false;
     size_t n = (size_t)res * res;
-    double *g = malloc(n * 2 * sizeof *g);
-    if (!g)
-        return false;
+    double *g = mem_alloc(n * 2 * sizeof *g);
     /* gradient by central differences of the continuous (periodic) noise */
     double e = 0.25 / res, sum2 = 0;
     for (int j = 0; j < res; j++)
@@ -288,36 +287,32 @@ bool assets_bake_caustics(int res, float *out, char *err, int errlen) {
     pthread_mutex_init(&job.lock, NULL);
     bool ok = true;
     for (int c = 0; c < CAUSTIC_CHUNKS; c++)
-        ok &= (job.flux[c] = calloc((size_t)job.ncells * 3, sizeof(double))) != NULL;
-    if (ok) {
-        int nt = thread_count();
-        pthread_t th[16];
-        int started = 0;
-        for (int t = 0; t < nt; t++)
-            started += pthread_create(&th[started], NULL, caustic_worker, &job) == 0;
-        if (started == 0)
-            caustic_worker(&job);
-        for (int t = 0; t < started; t++)
-            pthread_join(th[t], NULL);
-        /* the floor is flat: every cell has the same area, so flux over
-         * the mean flux is irradiance over the mean irradiance */
-        double *sum = job.flux[0], total = 0;
-        for (int c = 1; c < CAUSTIC_CHUNKS; c++)
-            for (int k = 0; k < job.ncells * 3; k++)
-                sum[k] += job.flux[c][k];
-        for (int k = 0; k < job.ncells; k++)
-            total += sum[3 * k];
-        double mean = total / job.ncells;
-        if (!(mean > 0)) {
-            ok = false;
-            if (err && errlen > 0)
-                snprintf(err, (size_t)errlen, "caustics: no light reached the floor");
-        }
-        for (int k = 0; ok && k < job.ncells; k++)
-            out[k] = (float)(sum[3 * k] / mean);
-    } else if (err && errlen > 0) {
-        snprintf(err, (size_t)errlen, "caustics: out of memory");
+        job.flux[c] = mem_zalloc((size_t)job.ncells * 3 * sizeof(double));
+    int nt = thread_count();
+    pthread_t th[16];
+    int started = 0;
+    for (int t = 0; t < nt; t++)
+        started += pthread_create(&th[started], NULL, caustic_worker, &job) == 0;
+    if (started == 0)
+        caustic_worker(&job);
+    for (int t = 0; t < started; t++)
+        pthread_join(th[t], NULL);
+    /* the floor is flat: every cell has the same area, so flux over
+     * the mean flux is irradiance over the mean irradiance */
+    double *sum = job.flux[0], total = 0;
+    for (int c = 1; c < CAUSTIC_CHUNKS; c++)
+        for (int k = 0; k < job.ncells * 3; k++)
+            sum[k] += job.flux[c][k];
+    for (int k = 0; k < job.ncells; k++)
+        total += sum[3 * k];
+    double mean = total / job.ncells;
+    if (!(mean > 0)) {
+        ok = false;
+        if (err && errlen > 0)
+            snprintf(err, (size_t)errlen, "caustics: no light reached the floor");
     }
+    for (int k = 0; ok && k < job.ncells; k++)
+        out[k] = (float)(sum[3 * k] / mean);
     for (int c = 0; c < CAUSTIC_CHUNKS; c++)
         free(job.flux[c]);
     pthread_mutex_destroy(&job.lock);
@@ -394,8 +389,8 @@ int assets_run(const assets_desc *d) {
         fprintf(stderr, "tarn assets: size %d is out of %d..%d\n", size, CAUSTIC_MIN_RES, CAUSTIC_MAX_RES);
         return TARN_EXIT_USAGE;
     }
-    ref_world *w = malloc(sizeof *w);
-    if (!w || !world_for(scene, w)) {
+    ref_world *w = mem_alloc(sizeof *w);
+    if (!world_for(scene, w)) {
         free(w);
         return TARN_EXIT_INPUT;
     }
@@ -409,13 +404,8 @@ int assets_run(const assets_desc *d) {
     int r_sky = size ? size : 256, r_tile = size ? size : 512, r_caustic = size ? size : 256;
     int rmax = r_terrain > r_tile ? r_terrain : r_tile;
     rmax = rmax > r_sky ? rmax : r_sky;
-    float *buf = malloc((size_t)rmax * rmax * 3 * sizeof *buf);
+    float *buf = mem_alloc((size_t)rmax * rmax * 3 * sizeof *buf);
     out_dir o = { .dir = dir };
-    if (!buf) {
-        fprintf(stderr, "tarn assets: out of memory\n");
-        free(w);
-        return TARN_EXIT_INPUT;
-    }
     assets_bake_albedo(w, r_terrain, buf);
     save(&o, "terrain_albedo.png", buf, r_terrain, true, 1.0);
     assets_bake_terrain_normal(w, r_terrain, buf);
@@ -432,10 +422,10 @@ int assets_run(const assets_desc *d) {
     save(&o, "water_normal.png", buf, r_tile, true, 1.0);
     assets_bake_foam(r_tile, buf);
     save(&o, "foam.png", buf, r_tile, true, 1.0);
-    float *c = malloc((size_t)r_caustic * r_caustic * sizeof *c);
-    float *rgb = malloc((size_t)r_caustic * r_caustic * 3 * sizeof *rgb);
-    if (!c || !rgb || !assets_bake_caustics(r_caustic, c, err, sizeof err)) {
-        fprintf(stderr, "tarn assets: %s\n", c && rgb ? err : "out of memory");
+    float *c = mem_alloc((size_t)r_caustic * r_caustic * sizeof *c);
+    float *rgb = mem_alloc((size_t)r_caustic * r_caustic * 3 * sizeof *rgb);
+    if (!assets_bake_caustics(r_caustic, c, err, sizeof err)) {
+        fprintf(stderr, "tarn assets: %s\n", err);
         o.failed = true;
     } else {
         for (size_t k = 0; k < (size_t)r_caustic * r_caustic; k++)

@@ -1,5 +1,7 @@
 /* geom.c: meshes for glman's geometry commands (see geom.h). */
 #include "geom.h"
+#include "file.h"
+#include "mem.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -48,11 +50,8 @@ static void mb_init_prim(mb *b, geom_prim prim) {
 
 static void mb_init(mb *b, bool lines) { mb_init_prim(b, lines ? GEOM_LINES : GEOM_TRIANGLES); }
 
-static bool grow(void **p, size_t elem, int cap) {
-    void *q = realloc(*p, elem * (size_t)cap);
-    if (!q) return false;
-    *p = q;
-    return true;
+static void grow(void **p, size_t elem, int cap) {
+    *p = mem_realloc(*p, elem * (size_t)cap);
 }
 
 /* Makes room for `nv` more vertices and `ni` more indices. */
@@ -63,17 +62,17 @@ static bool mb_reserve(mb *b, long nv, long ni) {
     if (need_v > b->vcap) {
         int cap = b->vcap ? b->vcap : 64;
         while (cap < need_v) cap = cap > INT_MAX / 8 ? (int)need_v : cap * 2;
-        if (!grow((void **)&b->m.pos, 3 * sizeof(float), cap) ||
-            !grow((void **)&b->m.nrm, 3 * sizeof(float), cap) ||
-            !grow((void **)&b->m.tc, 2 * sizeof(float), cap) ||
-            !grow((void **)&b->m.tan, 3 * sizeof(float), cap) ||
-            (b->with_p && !grow((void **)&b->m.tcp, sizeof(float), cap))) { b->ok = false; return false; }
+        grow((void **)&b->m.pos, 3 * sizeof(float), cap);
+        grow((void **)&b->m.nrm, 3 * sizeof(float), cap);
+        grow((void **)&b->m.tc, 2 * sizeof(float), cap);
+        grow((void **)&b->m.tan, 3 * sizeof(float), cap);
+        if (b->with_p) grow((void **)&b->m.tcp, sizeof(float), cap);
         b->vcap = cap;
     }
     if (need_i > b->icap) {
         int cap = b->icap ? b->icap : 64;
         while (cap < need_i) cap = cap > INT_MAX / 8 ? (int)need_i : cap * 2;
-        if (!grow((void **)&b->m.idx, sizeof(unsigned), cap)) { b->ok = false; return false; }
+        grow((void **)&b->m.idx, sizeof(unsigned), cap);
         b->icap = cap;
     }
     return true;
@@ -564,9 +563,8 @@ bool geom_teapot(geom_mesh *m, float size, int grid_n, bool wire) {
 
 /* ---- tangents from texture coordinates (OBJ) ---- */
 
-static bool tangents_from_tc(geom_mesh *m) {
-    double *acc = calloc((size_t)m->nvert * 3, sizeof *acc);
-    if (!acc) return false;
+static void tangents_from_tc(geom_mesh *m) {
+    double *acc = mem_zalloc((size_t)m->nvert * 3 * sizeof *acc);
     for (int f = 0; f + 2 < m->nidx; f += 3) {
         unsigned i0 = m->idx[f], i1 = m->idx[f + 1], i2 = m->idx[f + 2];
         const float *p0 = m->pos + 3 * i0, *p1 = m->pos + 3 * i1, *p2 = m->pos + 3 * i2;
@@ -590,7 +588,6 @@ static bool tangents_from_tc(geom_mesh *m) {
     }
     for (long k = 0; k < 3L * m->nvert; k++) m->tan[k] = (float)acc[k];
     free(acc);
-    return true;
 }
 
 /* ---- Wavefront OBJ ---- */
@@ -666,10 +663,9 @@ static bool push_record(obj_ctx *o, double **arr, int *count, int *cap, int widt
     if (*count >= *cap) {
         if (*cap > INT_MAX / 4) return obj_error(o, "too many '%s' records", what);
         int ncap = *cap ? *cap * 2 : 256;
-        if (!grow((void **)arr, (size_t)width * sizeof(double), ncap)) return obj_error(o, "out of memory");
-        if (arr == &o->v) {     /* the normal sums follow the positions */
-            if (!grow((void **)&o->acc, 3 * sizeof(double), ncap)) return obj_error(o, "out of memory");
-        }
+        grow((void **)arr, (size_t)width * sizeof(double), ncap);
+        if (arr == &o->v)       /* the normal sums follow the positions */
+            grow((void **)&o->acc, 3 * sizeof(double), ncap);
         *cap = ncap;
     }
     double *r = *arr + (size_t)*count * width;
@@ -717,10 +713,9 @@ static uint64_t corner_hash(int v, int t, int n) {
     return h ^ (h >> 29);
 }
 
-static bool table_grow(obj_ctx *o) {
+static void table_grow(obj_ctx *o) {
     size_t ncap = o->hcap ? o->hcap * 2 : 1024;
-    int *nk = malloc(ncap * 3 * sizeof *nk), *nv = malloc(ncap * sizeof *nv);
-    if (!nk || !nv) { free(nk); free(nv); return false; }
+    int *nk = mem_alloc(ncap * 3 * sizeof *nk), *nv = mem_alloc(ncap * sizeof *nv);
     for (size_t s = 0; s < ncap; s++) nv[s] = -1;
     for (size_t s = 0; s < o->hcap; s++) {
         if (o->hval[s] < 0) continue;
@@ -732,12 +727,11 @@ static bool table_grow(obj_ctx *o) {
     }
     free(o->hkey); free(o->hval);
     o->hkey = nk; o->hval = nv; o->hcap = ncap;
-    return true;
 }
 
 /* The mesh vertex of a corner, made on first use. */
 static int corner_vertex(obj_ctx *o, int v, int t, int n) {
-    if ((o->hcount + 1) * 2 > o->hcap && !table_grow(o)) { obj_error(o, "out of memory"); return -1; }
+    if ((o->hcount + 1) * 2 > o->hcap) table_grow(o);
     size_t at = corner_hash(v, t, n) & (o->hcap - 1);
     while (o->hval[at] >= 0) {
         const int *k = o->hkey + 3 * at;
@@ -749,11 +743,11 @@ static int corner_vertex(obj_ctx *o, int v, int t, int n) {
     if (n >= 0) memcpy(nn, o->vn + 3 * (size_t)n, sizeof nn);
     double u = t >= 0 ? o->vt[2 * (size_t)t] : 0, w = t >= 0 ? o->vt[2 * (size_t)t + 1] : 0;
     int k = mb_vert(&o->b, p, nn, u, w, tan);
-    if (!o->b.ok) { obj_error(o, "out of memory"); return -1; }
+    if (!o->b.ok) { obj_error(o, "too many vertices"); return -1; }
     if (k >= o->ncorner_cap) {
         int ncap = o->ncorner_cap ? o->ncorner_cap * 2 : 1024;
-        if (!grow((void **)&o->corner_v, sizeof(int), ncap) ||
-            !grow((void **)&o->corner_n, sizeof(int), ncap)) { obj_error(o, "out of memory"); return -1; }
+        grow((void **)&o->corner_v, sizeof(int), ncap);
+        grow((void **)&o->corner_n, sizeof(int), ncap);
         o->ncorner_cap = ncap;
     }
     o->corner_v[k] = v;
@@ -770,7 +764,7 @@ static bool keep_polygon(obj_ctx *o, const int *vis, int ntok) {
     if (o->npoly + ntok > o->poly_cap) {
         int cap = o->poly_cap ? o->poly_cap : 256;
         while (cap < o->npoly + ntok) cap *= 2;
-        if (!grow((void **)&o->poly, sizeof *o->poly, cap)) return obj_error(o, "out of memory");
+        grow((void **)&o->poly, sizeof *o->poly, cap);
         o->poly_cap = cap;
     }
     for (int c = 0; c < ntok; c++) o->poly[o->npoly++] = (unsigned)vis[2 * c];
@@ -781,8 +775,7 @@ static bool keep_polygon(obj_ctx *o, const int *vis, int ntok) {
 static bool parse_face(obj_ctx *o, char **tok, int ntok) {
     if (ntok < 3) return obj_error(o, "a face needs at least 3 vertices, got %d", ntok);
     double area[3] = {0, 0, 0};
-    int *vis = malloc((size_t)ntok * 2 * sizeof *vis);
-    if (!vis) return obj_error(o, "out of memory");
+    int *vis = mem_alloc((size_t)ntok * 2 * sizeof *vis);
     for (int c = 0; c < ntok; c++) {
         const char *s = tok[c];
         const char *s1 = strchr(s, '/');
@@ -831,7 +824,7 @@ static bool parse_face(obj_ctx *o, char **tok, int ntok) {
         for (int k = 0; k < 3; k++) o->acc[3 * (size_t)vis[2 * c + 1] + k] += area[k];
     }
     free(vis);
-    if (!o->b.ok) return obj_error(o, "out of memory");
+    if (!o->b.ok) return obj_error(o, "too many faces");
     return true;
 }
 
@@ -859,8 +852,7 @@ static bool parse_statement(obj_ctx *o, char *text) {
         while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\v' || *s == '\f') s++;
         if (!*s) break;
         if (ntok == cap) {
-            char **bigger = malloc(sizeof *bigger * (size_t)cap * 2);
-            if (!bigger) { if (tok != stack_tok) free(tok); return obj_error(o, "out of memory"); }
+            char **bigger = mem_alloc(sizeof *bigger * (size_t)cap * 2);
             memcpy(bigger, tok, sizeof *tok * (size_t)ntok);
             if (tok != stack_tok) free(tok);
             tok = bigger;
@@ -893,30 +885,15 @@ static bool parse_statement(obj_ctx *o, char *text) {
     return ok;
 }
 
+/* The OBJ text (a BOM dropped, CRLF as LF), or NULL with the error set:
+ * binary (a NUL byte), a directory, too large. */
 static char *read_file(obj_ctx *o, size_t *len) {
-    FILE *f = fopen(o->path, "rb");
-    if (!f) { obj_error(o, "%s", strerror(errno)); return NULL; }
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        if (n + 1 >= cap) {
-            char *nb = cap < ((size_t)1 << 40) ? realloc(buf, cap * 2) : NULL;
-            if (!nb) { free(buf); buf = NULL; break; }
-            buf = nb;
-            cap *= 2;
-        }
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0) break;
-    }
-    bool bad = ferror(f);
-    int e = errno;
-    fclose(f);
-    if (!buf) { obj_error(o, "out of memory"); return NULL; }
-    if (bad) { free(buf); obj_error(o, "%s", strerror(e ? e : EIO)); return NULL; }
-    buf[n] = 0;
-    *len = n;
-    return buf;
+    file_text_opts opts = { .max_bytes = GEOM_OBJ_MAX_FILE_BYTES, .strip_bom = true, .crlf_to_lf = true,
+                            .reject_nul = true };
+    char why[256];
+    char *text = file_read_text(o->path, &opts, len, why, sizeof why);
+    if (!text) obj_error(o, "%s", why);
+    return text;
 }
 
 /* What the OBJ variants need beyond the mesh: each mesh vertex's OBJ
@@ -963,9 +940,7 @@ static bool obj_load(geom_mesh *m, const char *path, char *err, int errlen, obj_
         for (;;) {
             char *nl = memchr(r, '\n', (size_t)(end - r));
             char *stop = nl ? nl : end;
-            char *last = stop;
-            if (last > r && last[-1] == '\r') last--;
-            size_t n = (size_t)(last - r);
+            size_t n = (size_t)(stop - r);
             bool cont = n > 0 && r[n - 1] == '\\';
             if (cont) n--;
             memmove(out, r, n);
@@ -976,10 +951,6 @@ static bool obj_load(geom_mesh *m, const char *path, char *err, int errlen, obj_
             break;
         }
         *out = 0;
-        if (memchr(s, 0, (size_t)(out - s))) {
-            obj_error(&o, "binary data (not an OBJ text file)");
-            break;
-        }
         parse_statement(&o, s);
         s = r;
     }
@@ -999,7 +970,7 @@ static bool obj_load(geom_mesh *m, const char *path, char *err, int errlen, obj_
             const double *a = o.acc + 3 * (size_t)o.corner_v[k];
             for (int c = 0; c < 3; c++) n[c] = (float)a[c];
         }
-        if (!tangents_from_tc(&o.b.m)) ok = obj_error(&o, "out of memory");
+        tangents_from_tc(&o.b.m);
     }
     if (ok && x) {   /* hand over what the variant needs */
         x->pos_of = o.corner_v;
@@ -1039,8 +1010,7 @@ static int edge_cmp(const void *pa, const void *pb) {
 /* The 3 edges of every triangle, sorted so shared ones are neighbours. */
 static edge_rec *sorted_edges(const geom_mesh *m, const int *pos_of, int *count) {
     int ntri = m->nidx / 3;
-    edge_rec *e = malloc(sizeof *e * (size_t)(ntri > 0 ? ntri : 1) * 3);
-    if (!e) return NULL;
+    edge_rec *e = mem_alloc(sizeof *e * (size_t)(ntri > 0 ? ntri : 1) * 3);
     for (int t = 0; t < ntri; t++)
         for (int k = 0; k < 3; k++) {
             unsigned v0 = m->idx[3 * t + k], v1 = m->idx[3 * t + (k + 1) % 3], v2 = m->idx[3 * t + (k + 2) % 3];
@@ -1059,21 +1029,12 @@ static edge_rec *sorted_edges(const geom_mesh *m, const int *pos_of, int *count)
     return e;
 }
 
-static bool obj_variant_fail(geom_mesh *m, obj_extra *x, char *err, int errlen) {
-    if (err && errlen > 0 && !err[0]) snprintf(err, (size_t)errlen, "out of memory");
-    geom_free(m);
-    free(x->pos_of);
-    free(x->poly);
-    return false;
-}
-
 bool geom_obj_load_wire(geom_mesh *m, const char *path, char *err, int errlen) {
     obj_extra x = {0};
     if (!obj_load(m, path, err, errlen, &x)) return false;
     int n = 0;
     edge_rec *e = sorted_edges(m, x.pos_of, &n);
-    unsigned *idx = e ? malloc(sizeof *idx * (size_t)(2 * n)) : NULL;
-    if (!idx) { free(e); return obj_variant_fail(m, &x, err, errlen); }
+    unsigned *idx = mem_alloc(sizeof *idx * (size_t)(2 * (n > 0 ? n : 1)));
     int k = 0;
     for (int i = 0; i < n; i++) {
         if (i > 0 && e[i].a == e[i - 1].a && e[i].b == e[i - 1].b) continue;   /* drawn once */
@@ -1095,8 +1056,7 @@ bool geom_obj_load_adjacency(geom_mesh *m, const char *path, char *err, int errl
     if (!obj_load(m, path, err, errlen, &x)) return false;
     int n = 0, ntri = m->nidx / 3;
     edge_rec *e = sorted_edges(m, x.pos_of, &n);
-    unsigned *idx = e ? malloc(sizeof *idx * (size_t)(6 * (ntri > 0 ? ntri : 1))) : NULL;
-    if (!idx) { free(e); return obj_variant_fail(m, &x, err, errlen); }
+    unsigned *idx = mem_alloc(sizeof *idx * (size_t)(6 * (ntri > 0 ? ntri : 1)));
     for (int t = 0; t < ntri; t++)
         for (int k = 0; k < 3; k++) {
             idx[6 * t + 2 * k] = m->idx[3 * t + k];
@@ -1386,8 +1346,7 @@ static void pentagon(const double v[12][3], int i, double out[5][3]) {
 
 static bool ball_parts(mb *b, int face, int **first) {
     if (face == 0) {
-        *first = malloc(sizeof **first * 33);
-        if (!*first) return b->ok = false;
+        *first = mem_alloc(sizeof **first * 33);
     }
     (*first)[face] = b->m.nidx;
     return true;

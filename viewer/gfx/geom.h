@@ -45,6 +45,7 @@
 
 #define GEOM_MAX_DIV 2048       /* most segments on one side of a grid */
 #define GEOM_MAX_TEAPOT_GRID 128
+#define GEOM_OBJ_MAX_FILE_BYTES (256L << 20)   /* an OBJ file: what a wrong path can cost */
 
 /* How the indices are read: as GL's primitive of the same name. */
 typedef enum geom_prim {
@@ -105,7 +106,9 @@ bool geom_teapot(geom_mesh *m, float size, int grid, bool wire);
  * without vt, tc is (0, 0). Grouping, material and other OBJ statements are
  * ignored. Errors (false, mesh empty) are "path:line: message" for bad
  * indices (0, out of range), bad numbers, malformed or unknown statements,
- * and "path: reason" for a missing/unreadable file or one with no faces. */
+ * and "path: reason" for a missing/unreadable file, a binary one (a NUL
+ * byte), one over GEOM_OBJ_MAX_FILE_BYTES or one with no faces. A UTF-8
+ * byte order mark and CRLF line ends are read as text. */
 bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen);
 
 /* Wire variant of an OBJ (WireObj): the same vertices, GL_LINES over each

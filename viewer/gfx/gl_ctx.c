@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mem.h"
+
 /* Under AddressSanitizer: the OpenGL driver (Mesa's swrast_dri.so and
  * libLLVM, loaded by EGL at run time) is unloaded again by eglTerminate, so
  * what the driver itself leaks is reported at exit with frames of no
@@ -214,8 +216,7 @@ static void loss_setup(gl_ctx *c) {
 }
 
 gl_ctx *gl_ctx_create_headless(char *err, int errlen) {
-    gl_ctx *c = calloc(1, sizeof *c);
-    if (!c) { snprintf(err, errlen, "out of memory"); return NULL; }
+    gl_ctx *c = mem_zalloc(sizeof *c);
     egl_diag g = { EGL_STAGE_NONE, EGL_SUCCESS, "" };
     /* TARN_EGL_PLATFORM=device forces the device platform (GPU machines). */
     const char *want = getenv("TARN_EGL_PLATFORM");
@@ -264,8 +265,7 @@ gl_ctx *gl_ctx_create_window(int w, int h, const char *title, char *err, int err
                  "(no display? set DISPLAY, or use `tarn render` for headless)");
         return NULL;
     }
-    gl_ctx *c = calloc(1, sizeof *c);
-    if (!c) { glfwTerminate(); snprintf(err, errlen, "out of memory"); return NULL; }
+    gl_ctx *c = mem_zalloc(sizeof *c);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_COMPAT_PROFILE);

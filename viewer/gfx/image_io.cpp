@@ -3,6 +3,7 @@
  * Only OpenImageIO calls and the little glue the C API needs live here;
  * nothing throws across the C boundary. */
 #include "image_io.h"
+#include "mem.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -32,7 +33,7 @@ bool size_ok(long w, long h, long d, long channels) {
 }
 
 float *alloc_px(long w, long h, long d, long channels) {
-    return (float *)std::calloc((size_t)(w * h * d), (size_t)channels * sizeof(float));
+    return (float *)mem_zalloc((size_t)(w * h * d) * (size_t)channels * sizeof(float));
 }
 
 /* The file type an extension asks for: 8-bit unless the format keeps more. */
@@ -56,7 +57,6 @@ extern "C" bool img_alloc(img *im, int w, int h, int channels) {
     *im = img{0, 0, 0, 0, nullptr};
     if (!size_ok(w, h, 1, channels)) return false;
     im->px = alloc_px(w, h, 1, channels);
-    if (!im->px) return false;
     im->w = w; im->h = h; im->d = 1; im->channels = channels;
     return true;
 }
@@ -109,7 +109,6 @@ extern "C" bool img_read(const char *path, img *out, char *err, int errlen) {
             return false;
         }
         float *px = alloc_px(spec.width, spec.height, spec.depth, spec.nchannels);
-        if (!px) { set_err(err, errlen, path, "out of memory"); return false; }
         if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px)) {
             std::free(px);
             set_err(err, errlen, path, in->geterror());

@@ -13,6 +13,7 @@
 #include "geom.h"
 #include "glib.h"
 #include "gpu_timer.h"
+#include "mem.h"
 #include "program.h"
 #include "render_camera.h"
 #include "render_prog.h"
@@ -74,8 +75,7 @@ struct render {
 };
 
 render *render_create(const render_desc *desc) {
-    render *r = calloc(1, sizeof *r);
-    if (!r) return NULL;
+    render *r = mem_zalloc(sizeof *r);
     snprintf(r->root, sizeof r->root, "%s", desc && desc->repo_root ? desc->repo_root : tarn_root());
     snprintf(r->common_dir, sizeof r->common_dir, "%s/packs/common", r->root);
     r->include_dirs[0] = r->common_dir;
@@ -391,8 +391,7 @@ static void build_begin(scene_state *s, int ci, char **log) {
     int n = 0;
     for (int k = ci + 1; k < g->ncmds && g->cmds[k].kind != GLIB_CMD_GL_END; k++) n += g->cmds[k].kind == GLIB_CMD_GL_VERTEX;
     if (n == 0) return;
-    float *xyz = malloc(sizeof *xyz * 3 * (size_t)n);
-    if (!xyz) return;
+    float *xyz = mem_alloc(sizeof *xyz * 3 * (size_t)n);
     n = 0;
     for (int k = ci + 1; k < g->ncmds && g->cmds[k].kind != GLIB_CMD_GL_END; k++) {
         if (g->cmds[k].kind != GLIB_CMD_GL_VERTEX) continue;
@@ -412,15 +411,13 @@ static void build_begin(scene_state *s, int ci, char **log) {
 
 static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
     int n = s->glib->ncmds;
-    s->cmd_res = malloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
-    s->meshes = calloc((size_t)(n > 0 ? n : 1), sizeof *s->meshes);
-    s->texs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->texs);
-    s->progs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->progs);
-    s->unifs = calloc((size_t)(n > 0 ? n : 1), sizeof *s->unifs);
-    s->once_done = calloc((size_t)(n > 0 ? n : 1), sizeof *s->once_done);
-    s->draw_warned = calloc((size_t)(n > 0 ? n : 1), sizeof *s->draw_warned);
-    if (!s->cmd_res || !s->meshes || !s->texs || !s->progs || !s->unifs || !s->once_done || !s->draw_warned)
-        return false;
+    s->cmd_res = mem_alloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
+    s->meshes = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->meshes);
+    s->texs = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->texs);
+    s->progs = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->progs);
+    s->unifs = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->unifs);
+    s->once_done = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->once_done);
+    s->draw_warned = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->draw_warned);
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
     program_stages st;
@@ -444,10 +441,8 @@ static void add_dep(render *r, const char *path) {
     if (!path || !path[0]) return;
     for (int i = 0; i < r->ndeps; i++)
         if (strcmp(r->deps[i], path) == 0) return;
-    const char **d = realloc(r->deps, (size_t)(r->ndeps + 1) * sizeof *d);
-    if (!d) return;
-    r->deps = d;
-    r->deps[r->ndeps++] = strdup(path);
+    r->deps = mem_realloc(r->deps, (size_t)(r->ndeps + 1) * sizeof *r->deps);
+    r->deps[r->ndeps++] = mem_strdup(path);
 }
 
 static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
@@ -790,17 +785,15 @@ static void splat(const render *r, int src_unit, int dst_unit) {
     const scene_state *s = &r->cur;
     const gpu_tex *src = tex_at_unit(s, src_unit), *dst = tex_at_unit(s, dst_unit);
     if (!src || !dst || src->target != GL_TEXTURE_2D || dst->target != GL_TEXTURE_2D) return;
-    float *in = malloc((size_t)src->w * src->h * 4 * sizeof(float));
-    float *out = calloc((size_t)dst->w * dst->h * 4, sizeof(float));
-    if (in && out) {
-        glBindTexture(GL_TEXTURE_2D, src->tex);
-        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, in);
-        double hs = r->world.active ? r->world.w.d.half_size : 12.0;
-        splat_photons(in, (long)src->w * src->h, out, dst->w, dst->h, hs);
-        glBindTexture(GL_TEXTURE_2D, dst->tex);
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, dst->w, dst->h, GL_RGBA, GL_FLOAT, out);
-        glBindTexture(GL_TEXTURE_2D, 0);
-    }
+    float *in = mem_alloc((size_t)src->w * src->h * 4 * sizeof(float));
+    float *out = mem_zalloc((size_t)dst->w * dst->h * 4 * sizeof(float));
+    glBindTexture(GL_TEXTURE_2D, src->tex);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, in);
+    double hs = r->world.active ? r->world.w.d.half_size : 12.0;
+    splat_photons(in, (long)src->w * src->h, out, dst->w, dst->h, hs);
+    glBindTexture(GL_TEXTURE_2D, dst->tex);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, dst->w, dst->h, GL_RGBA, GL_FLOAT, out);
+    glBindTexture(GL_TEXTURE_2D, 0);
     free(in);
     free(out);
 }
@@ -1210,8 +1203,7 @@ bool render_target_read(const render_target *t, float *rgba) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     /* GL's row 0 is the bottom; files start at the top */
     size_t row = (size_t)t->w * 4;
-    float *tmp = malloc(row * sizeof(float));
-    if (!tmp) return false;
+    float *tmp = mem_alloc(row * sizeof(float));
     for (int y = 0; y < t->h / 2; y++) {
         float *a = rgba + (size_t)y * row, *b = rgba + (size_t)(t->h - 1 - y) * row;
         memcpy(tmp, a, row * sizeof(float));

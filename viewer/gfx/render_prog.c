@@ -1,6 +1,7 @@
 #include "render_prog.h"
 #include "contract.h"
 #include "glsl_hint.h"
+#include "mem.h"
 #include "program.h"
 #include "strbuf.h"
 
@@ -20,8 +21,7 @@ static char *gl_info_log(GLuint obj, bool is_program) {
     GLint len = 0;
     if (is_program) glGetProgramiv(obj, GL_INFO_LOG_LENGTH, &len);
     else glGetShaderiv(obj, GL_INFO_LOG_LENGTH, &len);
-    char *s = calloc(1, (size_t)(len > 0 ? len : 1) + 1);
-    if (!s) return NULL;
+    char *s = mem_zalloc((size_t)(len > 0 ? len : 1) + 1);
     if (len > 0) {
         if (is_program) glGetProgramInfoLog(obj, len, NULL, s);
         else glGetShaderInfoLog(obj, len, NULL, s);
@@ -52,10 +52,9 @@ static void set_deps(prog *p, shader_src *src, int nsrc) {
     int total = 0;
     for (int s = 0; s < nsrc; s++) total += src[s].nfiles;
     if (total == 0) return;
-    p->deps = calloc((size_t)total, sizeof *p->deps);
-    if (!p->deps) return;
+    p->deps = mem_zalloc((size_t)total * sizeof *p->deps);
     for (int s = 0; s < nsrc; s++)
-        for (int f = 0; f < src[s].nfiles; f++) p->deps[p->ndeps++] = strdup(src[s].files[f]);
+        for (int f = 0; f < src[s].nfiles; f++) p->deps[p->ndeps++] = mem_strdup(src[s].files[f]);
 }
 
 /* Compiles one stage; on failure appends the mapped log. */
@@ -68,11 +67,11 @@ static GLuint compile_stage(const shader_src *src, shader_stage st, char **log) 
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (!ok) {
         char *raw = gl_info_log(sh, false);
-        char *mapped = shader_src_map_log(src, raw ? raw : "");
+        char *mapped = shader_src_map_log(src, raw);
         /* what NVIDIA let through and Mesa does not, in plain words */
-        char *hinted = mapped ? glsl_hint_annotate(mapped, src->text) : NULL;
-        str_appendf(log, "%s", hinted ? hinted : (raw ? raw : "compile failed\n"));
-        size_t l = hinted ? strlen(hinted) : 0;
+        char *hinted = glsl_hint_annotate(mapped, src->text);
+        str_appendf(log, "%s", hinted);
+        size_t l = strlen(hinted);
         if (l && hinted[l - 1] != '\n') str_appendf(log, "\n");
         free(hinted);
         free(mapped);
@@ -95,8 +94,7 @@ static GLuint link_program(const prog *p, const GLuint *shaders, char **log) {
     if (!ok) {
         char *raw = gl_info_log(prg, true);
         str_appendf(log, "%s:%d: error: program '%s' failed to link: %s\n",
-                    p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name,
-                    raw ? raw : "");
+                    p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name, raw);
         free(raw);
         glDeleteProgram(prg);
         return 0;
@@ -142,8 +140,9 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
             ok = false;
             /* still watch the stage file so fixing it triggers a reload */
             if (!src[s].nfiles) {
-                src[s].files = calloc(1, sizeof *src[s].files);
-                if (src[s].files) { src[s].files[0] = strdup(p->stage_path[s]); src[s].nfiles = 1; }
+                src[s].files = mem_alloc(sizeof *src[s].files);
+                src[s].files[0] = mem_strdup(p->stage_path[s]);
+                src[s].nfiles = 1;
             }
             continue;
         }

@@ -12,6 +12,7 @@
 #include "assets.h"
 #include "geom.h"
 #include "image_io.h"
+#include "mem.h"
 #include "noise.h"
 #include "strbuf.h"
 
@@ -101,8 +102,7 @@ bool res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
     if (g->nvert <= 0 || g->nidx <= 0) return false;
     long nv = g->nvert;
     long sz_pos = nv * 3 * (long)sizeof(float);
-    float *tc = malloc((size_t)sz_pos);   /* s t p: p 0 where the mesh has none */
-    if (!tc) return false;
+    float *tc = mem_alloc((size_t)sz_pos);   /* s t p: p 0 where the mesh has none */
     for (long k = 0; k < nv; k++) {
         tc[3 * k] = g->tc[2 * k];
         tc[3 * k + 1] = g->tc[2 * k + 1];
@@ -130,11 +130,9 @@ bool res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
     m->nparts = 0;
     m->part_first = NULL;
     if (g->part_first && g->nparts > 0) {
-        m->part_first = malloc(sizeof *m->part_first * (size_t)(g->nparts + 1));
-        if (m->part_first) {
-            memcpy(m->part_first, g->part_first, sizeof *m->part_first * (size_t)(g->nparts + 1));
-            m->nparts = g->nparts;
-        }
+        m->part_first = mem_alloc(sizeof *m->part_first * (size_t)(g->nparts + 1));
+        memcpy(m->part_first, g->part_first, sizeof *m->part_first * (size_t)(g->nparts + 1));
+        m->nparts = g->nparts;
     }
     return true;
 }
@@ -277,8 +275,7 @@ static bool is_hdr(const img *im) {
 /* Expands any channel count to RGBA (grey -> rgb, alpha 1). */
 static float *to_rgba(const img *im) {
     long n = (long)im->w * im->h * (im->d > 0 ? im->d : 1);
-    float *out = malloc((size_t)n * 4 * sizeof(float));
-    if (!out) return NULL;
+    float *out = mem_alloc((size_t)n * 4 * sizeof(float));
     for (long i = 0; i < n; i++) {
         const float *s = im->px + i * im->channels;
         float *d = out + i * 4;
@@ -355,9 +352,9 @@ static bool read_raw(const char *path, int dims, raw_tex *out, char *why, size_t
         fclose(f);
         return false;
     }
-    out->px = malloc((size_t)count * sizeof *out->px);
-    unsigned char *raw = out->px ? malloc((size_t)body) : NULL;
-    ok = raw && fread(raw, 1, (size_t)body, f) == (size_t)body;
+    out->px = mem_alloc((size_t)count * sizeof *out->px);
+    unsigned char *raw = mem_alloc((size_t)body);
+    ok = fread(raw, 1, (size_t)body, f) == (size_t)body;
     for (long i = 0; ok && i < count; i++) {
         if (out->bytes) out->px[i] = raw[i] / 255.0f;
         else memcpy(&out->px[i], raw + i * 4, 4);   /* little-endian, as written */
@@ -405,8 +402,7 @@ static bool load_image(const char *path, img *im, const glib_cmd *c, char **log)
 static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
     const char *name = c->path + 1;
     int res = strcmp(name, "caustics") == 0 ? 128 : 256;   /* caustics: photon tracing, ~1 s */
-    float *px = malloc((size_t)res * res * 3 * sizeof(float));
-    if (!px) return false;
+    float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
     char err[256] = "";
     bool ok = false, one_channel = false;
     if (strcmp(name, "caustics") == 0) { ok = assets_bake_caustics(res, px, err, sizeof err); one_channel = true; }
@@ -456,7 +452,6 @@ static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
     t->w = im.w;
     t->h = im.h;
     img_free(&im);
-    if (!rgba) return false;
     glTexImage2D(GL_TEXTURE_2D, 0, hdr ? GL_RGBA16F : GL_RGBA8, t->w, t->h, 0, GL_RGBA, GL_FLOAT, rgba);
     free(rgba);
     res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
@@ -520,10 +515,9 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
     if (!load_image(c->path, &im, c, log)) return false;
     float *rgba = to_rgba(&im);
     int d = im.d > 0 ? im.d : 1;
-    if (rgba) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, im.w, im.h, d, 0, GL_RGBA, GL_FLOAT, rgba);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, im.w, im.h, d, 0, GL_RGBA, GL_FLOAT, rgba);
     img_free(&im);
     free(rgba);
-    if (!rgba) return false;
     res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
     return true;
 }
@@ -541,12 +535,11 @@ static bool tex_cube(const glib_cmd *c, gpu_tex *t, char **log) {
         img im;
         if (!load_image(c->cube_paths[f], &im, c, log)) return false;
         float *rgba = to_rgba(&im);
-        if (rgba)   /* cube faces keep the file's row order (the cube map convention) */
-            glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_hdr(&im) ? GL_RGBA16F : GL_RGBA8,
-                         im.w, im.h, 0, GL_RGBA, GL_FLOAT, rgba);
+        /* cube faces keep the file's row order (the cube map convention) */
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_hdr(&im) ? GL_RGBA16F : GL_RGBA8,
+                     im.w, im.h, 0, GL_RGBA, GL_FLOAT, rgba);
         img_free(&im);
         free(rgba);
-        if (!rgba) return false;
     }
     res_sampling(GL_TEXTURE_CUBE_MAP, true, GL_CLAMP_TO_EDGE);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -563,8 +556,7 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
         return false;
     }
     long n = (long)res * res * (is3d ? res : 1) * 4;
-    float *px = malloc((size_t)n * sizeof(float));
-    if (!px) return false;
+    float *px = mem_alloc((size_t)n * sizeof(float));
     bool ok = is3d ? noise_3d(res, px) : noise_2d(res, px);
     if (ok && is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, res, res, res, 0, GL_RGBA, GL_FLOAT, px);
     if (ok && !is3d) glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
@@ -580,8 +572,8 @@ bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
     if (!read_raw(path, is3d ? 3 : 2, &rt, why, sizeof why)) {   /* else the project's own, as glman cached it */
         rt.n[0] = rt.n[1] = 64;
         rt.n[2] = is3d ? 64 : 1;
-        rt.px = malloc((size_t)64 * 64 * rt.n[2] * 4 * sizeof *rt.px);
-        if (!rt.px || !(is3d ? noise_3d(64, rt.px) : noise_2d(64, rt.px))) {
+        rt.px = mem_alloc((size_t)64 * 64 * rt.n[2] * 4 * sizeof *rt.px);
+        if (!(is3d ? noise_3d(64, rt.px) : noise_2d(64, rt.px))) {
             free(rt.px);
             return false;
         }

@@ -9,6 +9,7 @@
 
 #include "assets.h"
 #include "geom.h"
+#include "mem.h"
 #include "render_camera.h"
 #include "strbuf.h"
 
@@ -105,13 +106,12 @@ static bool build_skirt(gpu_world *gw) {
     memset(&g, 0, sizeof g);
     g.nvert = nv;
     g.nidx = per * nrings * 6;
-    g.pos = malloc((size_t)nv * 3 * sizeof(float));
-    g.nrm = malloc((size_t)nv * 3 * sizeof(float));
-    g.tan = calloc((size_t)nv * 3, sizeof(float));
-    g.tc = malloc((size_t)nv * 2 * sizeof(float));
-    g.idx = malloc((size_t)g.nidx * sizeof(unsigned));
-    bool ok = g.pos && g.nrm && g.tan && g.tc && g.idx;
-    for (int k = 0; ok && k <= nrings; k++) {
+    g.pos = mem_alloc((size_t)nv * 3 * sizeof(float));
+    g.nrm = mem_alloc((size_t)nv * 3 * sizeof(float));
+    g.tan = mem_zalloc((size_t)nv * 3 * sizeof(float));
+    g.tc = mem_alloc((size_t)nv * 2 * sizeof(float));
+    g.idx = mem_alloc((size_t)g.nidx * sizeof(unsigned));
+    for (int k = 0; k <= nrings; k++) {
         for (int p = 0; p < per; p++) {
             double x, z;
             perimeter(ring[k], res, p, &x, &z);
@@ -121,7 +121,7 @@ static bool build_skirt(gpu_world *gw) {
         }
     }
     int n = 0;
-    for (int k = 0; ok && k < nrings; k++)
+    for (int k = 0; k < nrings; k++)
         for (int p = 0; p < per; p++) {
             unsigned a = (unsigned)(k * per + p), b = (unsigned)(k * per + (p + 1) % per);
             unsigned c = a + (unsigned)per, d = b + (unsigned)per;
@@ -129,7 +129,7 @@ static bool build_skirt(gpu_world *gw) {
             memcpy(g.idx + n, quad, sizeof quad);
             n += 6;
         }
-    ok = ok && res_mesh_upload(&g, &gw->skirt);
+    bool ok = res_mesh_upload(&g, &gw->skirt);
     geom_free(&g);
     return ok;
 }
@@ -177,8 +177,8 @@ static bool build_object(gpu_world *gw, const ref_object *ob, gpu_mesh *m) {
  * world x and t with z, matching build_terrain's texture coordinates. */
 static bool bake_albedo(gpu_world *gw) {
     int res = gw->w.d.terrain_res;
-    float *px = malloc((size_t)res * res * 3 * sizeof(float));
-    if (!px || !assets_bake_albedo(&gw->w, res, px)) { free(px); return false; }
+    float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
+    if (!assets_bake_albedo(&gw->w, res, px)) { free(px); return false; }
     glGenTextures(1, &gw->albedo_tex);
     glBindTexture(GL_TEXTURE_2D, gw->albedo_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
@@ -190,8 +190,7 @@ static bool bake_albedo(gpu_world *gw) {
 
 static bool bake_sky(gpu_world *gw) {
     int res = WORLD_SKY_RES;
-    float *px = malloc((size_t)res * res * 3 * sizeof(float));
-    if (!px) return false;
+    float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
     glGenTextures(1, &gw->sky_tex);
     glBindTexture(GL_TEXTURE_CUBE_MAP, gw->sky_tex);
     for (int f = 0; f < 6; f++) {
@@ -422,8 +421,7 @@ void world_draw_points(gpu_world *gw, int n) {
     if (!gw->active || n < 1) return;
     if (gw->points_n != n) {
         if (!gw->points_vbo) glGenBuffers(1, &gw->points_vbo);
-        float *p = malloc((size_t)n * n * 3 * sizeof(float));
-        if (!p) return;
+        float *p = mem_alloc((size_t)n * n * 3 * sizeof(float));
         double hs = gw->w.d.half_size;
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {

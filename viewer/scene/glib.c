@@ -14,12 +14,13 @@
 #define _DEFAULT_SOURCE         /* realpath(), which is XSI, not plain POSIX */
 #endif
 #include "glib.h"
+#include "file.h"
+#include "mem.h"
 #include "unif.h"
 
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -45,23 +46,7 @@ enum {
 };
 
 /* ------------------------------------------------------------------ */
-/* memory                                                              */
-
-/* Allocations here are bounded by the limits above, so running out of
- * memory is not bad input but a broken machine: stop loudly. */
-static void *xrealloc(void *ptr, size_t n) {
-    void *q = ptr ? realloc(ptr, n ? n : 1) : malloc(n ? n : 1);
-    if (!q) {
-        fputs("tarn: out of memory in the .glib parser\n", stderr);
-        abort();
-    }
-    return q;
-}
-
-static char *xstrdup(const char *s) {
-    size_t n = strlen(s) + 1;
-    return memcpy(xrealloc(NULL, n), s, n);
-}
+/* memory: bounded by the limits above (mem.h: out of memory aborts)   */
 
 /* Makes room for need elements in *arr (capacity *cap). */
 static void *grow(void *arr, int *cap, int need, size_t elem) {
@@ -71,7 +56,7 @@ static void *grow(void *arr, int *cap, int need, size_t elem) {
     while (c < need)
         c *= 2;
     *cap = c;
-    return xrealloc(arr, (size_t)c * elem);
+    return mem_realloc(arr, (size_t)c * elem);
 }
 
 /* ------------------------------------------------------------------ */
@@ -147,7 +132,7 @@ static const char *add_file(parser *p, const char *name) {
         if (strcmp(sc->files[i], name) == 0)
             return sc->files[i];
     sc->files = grow(sc->files, &p->file_cap, sc->nfiles + 1, sizeof *sc->files);
-    sc->files[sc->nfiles] = xstrdup(name);
+    sc->files[sc->nfiles] = mem_strdup(name);
     return sc->files[sc->nfiles++];
 }
 
@@ -775,7 +760,7 @@ static bool h_cube(cmdctx *c, glib_cmd *cmd) {
     if (!parse_arg(c, &unit_rule, c->words[0], &cmd->num[0]))
         return false;
     cmd->nnum = 1;
-    cmd->cube_paths = xrealloc(NULL, 6 * sizeof *cmd->cube_paths);
+    cmd->cube_paths = mem_alloc(6 * sizeof *cmd->cube_paths);
     for (int i = 0; i < 6; i++)
         if (!take_path(c, c->words[1 + i], cmd->cube_paths[i]))
             return false;
@@ -1175,7 +1160,7 @@ static void list_packs(const char *dir, const char *name, char *out, size_t outl
             snprintf(path, sizeof path, "%s/%s/pack.glib", dir, e->d_name) >= (int)sizeof path)
             continue;
         if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
-            names[n++] = xstrdup(e->d_name);
+            names[n++] = mem_strdup(e->d_name);
     }
     if (d)
         closedir(d);
@@ -1503,7 +1488,7 @@ static bool h_define(cmdctx *c, glib_cmd *cmd) {
             cwarn(c, "Define %s: ignoring '%.40s' after the value", u.name, s);
     }
     memcpy(cmd->name, u.name, sizeof cmd->name);
-    cmd->uniforms = xrealloc(NULL, sizeof u);
+    cmd->uniforms = mem_alloc(sizeof u);
     cmd->uniforms[0] = u;
     cmd->nuniforms = 1;
     add_pending(c, &u);
@@ -1514,43 +1499,13 @@ static bool h_define(cmdctx *c, glib_cmd *cmd) {
 /* reading files and lines                                             */
 
 /* Reads a whole regular file of at most LIM_FILE_BYTES into *out (NUL
- * terminated, freed by the caller); on failure *why says why. */
+ * terminated, freed by the caller); on failure *why says why. Its lines, a
+ * byte order mark and binary bytes are parse_text's: glib_parse reads text
+ * from memory too. */
 static bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen) {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        snprintf(why, whylen, "%s", strerror(errno));
-        return false;
-    }
-    struct stat st;
-    const char *bad = fstat(fd, &st) != 0 ? "cannot stat it"
-                    : S_ISDIR(st.st_mode) ? "it is a directory"
-                    : !S_ISREG(st.st_mode) ? "it is not a regular file"
-                    : st.st_size > LIM_FILE_BYTES ? "it is larger than 1 MiB; a .glib is a short text file"
-                    : NULL;
-    size_t n = 0, cap = bad ? 0 : (size_t)st.st_size + 1;
-    char *buf = bad ? NULL : xrealloc(NULL, cap);
-    ssize_t got = 0;
-    while (buf && (got = read(fd, buf + n, cap - n)) > 0) {
-        n += (size_t)got;
-        if (n == cap && n <= LIM_FILE_BYTES)     /* it grew since fstat */
-            buf = xrealloc(buf, cap = cap * 2 < LIM_FILE_BYTES + 1 ? cap * 2 : LIM_FILE_BYTES + 1);
-        else if (n == cap)
-            break;
-    }
-    if (!bad && got < 0)
-        bad = strerror(errno);
-    else if (!bad && n > LIM_FILE_BYTES)
-        bad = "it is larger than 1 MiB; a .glib is a short text file";
-    close(fd);
-    if (bad) {
-        snprintf(why, whylen, "%s", bad);
-        free(buf);
-        return false;
-    }
-    buf[n] = '\0';
-    *out = buf;
-    *len = n;
-    return true;
+    file_text_opts o = { .max_bytes = LIM_FILE_BYTES };
+    *out = file_read_text(path, &o, len, why, whylen);
+    return *out != NULL;
 }
 
 typedef struct reader {
@@ -1797,7 +1752,7 @@ static void parse_text(parser *p, const char *text, size_t len, const char *file
         r.pos = 3;              /* a UTF-8 byte order mark from a Windows editor */
     if (top && !check_top(p, &r, file))
         return;
-    logical lg = { .buf = xrealloc(NULL, LIM_LINE_CHARS + 1) };
+    logical lg = { .buf = mem_alloc(LIM_LINE_CHARS + 1) };
     int binary = 0;
     while (!p->stop && next_logical(&r, &lg)) {
         if (lg.too_long) {
@@ -1836,7 +1791,7 @@ static void parse_nested(parser *p, const char *text, size_t len, const char *na
 /* A path that names the same file however it is spelled, for cycles. */
 static char *canonical(const char *path) {
     char *real = realpath(path, NULL);
-    return real ? real : xstrdup(path);
+    return real ? real : mem_strdup(path);
 }
 
 /* Appends s to buf (size bytes, *n used), cutting what does not fit. */
@@ -1941,7 +1896,7 @@ static void finish(parser *p) {
 
 static glib_scene *new_scene(parser *p) {
     memset(p, 0, sizeof *p);
-    p->sc = xrealloc(NULL, sizeof *p->sc);
+    p->sc = mem_alloc(sizeof *p->sc);
     memset(p->sc, 0, sizeof *p->sc);
     return p->sc;
 }

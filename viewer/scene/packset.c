@@ -165,12 +165,10 @@ static bool parse_hex_colour(const char *s, float rgb[3]) {
 }
 
 
-static bool add_default(packset_bench *b) {
-    b->settings = calloc(1, sizeof *b->settings);
-    if (!b->settings) return false;
+static void add_default(packset_bench *b) {
+    b->settings = mem_zalloc(sizeof *b->settings);
     snprintf(b->settings[0].name, PACKSET_NAME_MAX, "default");
     b->n = 1;
-    return true;
 }
 
 bool packset_bench_parse(const char *text, const char *path, packset_bench *out, char *err, int errlen) {
@@ -237,9 +235,7 @@ bool packset_bench_parse(const char *text, const char *path, packset_bench *out,
                 line_ok = false;
                 break;
             }
-            packset_assign *grown = realloc(s.assign, (size_t)(s.nassign + 1) * sizeof *grown);
-            if (!grown) { line_ok = false; break; }
-            s.assign = grown;
+            s.assign = mem_realloc(s.assign, (size_t)(s.nassign + 1) * sizeof *s.assign);
             s.assign[s.nassign++] = a;
         }
         if (!line_ok) {
@@ -248,16 +244,13 @@ bool packset_bench_parse(const char *text, const char *path, packset_bench *out,
             continue;
         }
         if (is_buffer) {
-            packset_buffer *bg = realloc(out->buffers, (size_t)(out->nbuffers + 1) * sizeof *bg);
-            if (!bg) { free(s.assign); ok = false; break; }
-            out->buffers = bg;
+            packset_buffer *bg = out->buffers =
+                mem_realloc(out->buffers, (size_t)(out->nbuffers + 1) * sizeof *out->buffers);
             snprintf(bg[out->nbuffers].name, PACKSET_NAME_MAX, "%s", s.name);
             bg[out->nbuffers++].how = s;
             continue;
         }
-        packset_setting *grown = realloc(out->settings, (size_t)(out->n + 1) * sizeof *grown);
-        if (!grown) { free(s.assign); ok = false; break; }
-        out->settings = grown;
+        out->settings = mem_realloc(out->settings, (size_t)(out->n + 1) * sizeof *out->settings);
         out->settings[out->n++] = s;
     }
     if (out->n == 0) add_default(out);
@@ -270,7 +263,8 @@ bool packset_bench_load(const char *root, const char *pack, packset_bench *out, 
     char *text = read_text(path);
     if (!text) {
         memset(out, 0, sizeof *out);
-        return add_default(out);
+        add_default(out);
+        return true;
     }
     bool ok = packset_bench_parse(text, path, out, err, errlen);
     free(text);
@@ -396,9 +390,7 @@ bool packset_bounds_parse(const char *text, const char *path, packset_bounds *ou
             continue;
         }
         if (used > 0) snprintf(b.why, sizeof b.why, "%s", line + used);
-        packset_bound *grown = realloc(out->b, (size_t)(out->n + 1) * sizeof *grown);
-        if (!grown) { ok = false; break; }
-        out->b = grown;
+        out->b = mem_realloc(out->b, (size_t)(out->n + 1) * sizeof *out->b);
         out->b[out->n++] = b;
     }
     return ok;

@@ -1,11 +1,12 @@
 /* shader_src: assembles a shader stage's source text (see shader_src.h). */
 #include "shader_src.h"
 
+#include "file.h"
+#include "mem.h"
 #include "strbuf.h"
 
 #include <assert.h>
 #include <ctype.h>
-#include <errno.h>
 #include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -19,12 +20,10 @@
 /* Lexically simplified path: "a/./b/../c" -> "a/c". Heap. */
 static char *path_normalize(const char *path) {
     size_t len = strlen(path);
-    char *out = malloc(len + 2);
-    if (!out) return NULL;
+    char *out = mem_alloc(len + 2);
     bool abs = path[0] == '/';
     /* component start offsets in out, to pop on ".." */
-    size_t *starts = malloc((len / 2 + 2) * sizeof *starts);
-    if (!starts) { free(out); return NULL; }
+    size_t *starts = mem_alloc((len / 2 + 2) * sizeof *starts);
     int ncomp = 0, nup = 0;   /* nup: leading ".." kept in a relative path */
     size_t o = 0;
     if (abs) out[o++] = '/';
@@ -64,21 +63,15 @@ static char *path_normalize(const char *path) {
 
 static char *path_dirname(const char *path) {
     const char *slash = strrchr(path, '/');
-    if (!slash) return strdup(".");
-    if (slash == path) return strdup("/");
-    size_t n = (size_t)(slash - path);
-    char *d = malloc(n + 1);
-    if (!d) return NULL;
-    memcpy(d, path, n);
-    d[n] = '\0';
-    return d;
+    if (!slash) return mem_strdup(".");
+    if (slash == path) return mem_strdup("/");
+    return mem_strndup(path, (size_t)(slash - path));
 }
 
 static char *path_join(const char *dir, const char *name) {
     if (name[0] == '/' || !dir || !dir[0] || strcmp(dir, ".") == 0) return path_normalize(name);
     size_t n = strlen(dir) + strlen(name) + 2;
-    char *j = malloc(n);
-    if (!j) return NULL;
+    char *j = mem_alloc(n);
     snprintf(j, n, "%s/%s", dir, name);
     char *r = path_normalize(j);
     free(j);
@@ -90,41 +83,13 @@ static bool is_regular_file(const char *path) {
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-/* Reads a whole file; CRLF becomes LF. On failure returns NULL and errno
- * describes why (EISDIR for a directory, EILSEQ for a NUL byte, EFBIG past
- * SHADER_SRC_MAX_FILE_BYTES: a "regular" file such as /proc/self/pagemap
- * would otherwise be read for ever). */
-static char *read_text(const char *path) {
-    struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) { errno = EISDIR; return NULL; }
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    strbuf b = {0};
-    char chunk[8192];
-    size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0 && b.len <= SHADER_SRC_MAX_FILE_BYTES) strbuf_put(&b, chunk, n);
-    int err = ferror(f) ? errno : b.len > SHADER_SRC_MAX_FILE_BYTES ? EFBIG : 0;
-    fclose(f);
-    if (err) { free(b.s); errno = err; return NULL; }
-    if (!b.s) return strdup("");
-    if (memchr(b.s, '\0', b.len)) { free(b.s); errno = EILSEQ; return NULL; }
-    if (b.len >= 3 && memcmp(b.s, "\xEF\xBB\xBF", 3) == 0) {     /* a UTF-8 byte order mark */
-        memmove(b.s, b.s + 3, b.len - 2);
-        b.len -= 3;
-    }
-    size_t w = 0;
-    for (size_t r = 0; r < b.len; r++) {
-        if (b.s[r] == '\r' && r + 1 < b.len && b.s[r + 1] == '\n') continue;
-        b.s[w++] = b.s[r];
-    }
-    b.s[w] = '\0';
-    return b.s;
-}
-
-static const char *errno_text(int err) {
-    if (err == EILSEQ) return "contains a NUL byte (not a text file?)";
-    if (err == EFBIG) return "larger than 8 MiB (not a shader?)";
-    return strerror(err);
+/* A stage file or include as text (a BOM dropped, CRLF as LF), or NULL
+ * with the reason in why: binary (a NUL byte), a directory, or larger than
+ * SHADER_SRC_MAX_FILE_BYTES. */
+static char *read_text(const char *path, char *why, size_t whylen) {
+    file_text_opts o = { .max_bytes = SHADER_SRC_MAX_FILE_BYTES, .strip_bom = true, .crlf_to_lf = true,
+                         .reject_nul = true };
+    return file_read_text(path, &o, NULL, why, whylen);
 }
 
 /* ---- scanning GLSL lines -------------------------------------------------- */
@@ -222,25 +187,17 @@ static void fail(asm_ctx *c, const char *file, int line, const char *fmt, ...) {
     va_end(ap);
 }
 
-/* Index of the file with this identity, adding it when new; -1 when out of memory. */
+/* Index of the file with this identity, adding it when new. */
 static int file_index(asm_ctx *c, const char *path) {
     char *id = realpath(path, NULL);
     if (!id) id = path_normalize(path);
-    if (!id) return -1;
     for (int i = 0; i < c->nfiles; i++)
         if (strcmp(c->files[i].id, id) == 0) { free(id); return i; }
-    if (c->nfiles == c->capfiles) {
-        int cap = c->capfiles ? c->capfiles * 2 : 8;
-        src_file *f = realloc(c->files, (size_t)cap * sizeof *f);
-        if (!f) { free(id); return -1; }
-        c->files = f;
-        c->capfiles = cap;
-    }
+    c->files = mem_grow(c->files, &c->capfiles, c->nfiles + 1, sizeof *c->files);
     src_file *f = &c->files[c->nfiles];
     memset(f, 0, sizeof *f);
     f->path = path_normalize(path);
     f->id = id;
-    if (!f->path) { free(id); return -1; }
     return c->nfiles++;
 }
 
@@ -377,8 +334,7 @@ typedef struct layout_scan {
 } layout_scan;
 
 static char *blank_comments(const char *text) {
-    char *t = strdup(text);
-    if (!t) return NULL;
+    char *t = mem_strdup(text);
     bool block = false, line = false;
     for (char *p = t; *p; p++) {
         if (block) {
@@ -405,7 +361,6 @@ static const char *skip_space(const char *p) {
 static layout_scan scan_layouts(const char *text) {
     layout_scan r = {0};
     char *t = blank_comments(text);
-    if (!t) return r;
     for (const char *p = t; (p = strstr(p, "layout")) != NULL; p += 6) {
         if ((p > t && is_ident_char(p[-1])) || is_ident_char(p[6])) continue;
         const char *q = skip_space(p + 6);
@@ -459,15 +414,15 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
         if (is_regular_file(name)) found = path_normalize(name);
     } else {
         char *dir = path_dirname(from);
-        char *cand = dir ? path_join(dir, name) : NULL;
+        char *cand = path_join(dir, name);
         free(dir);
-        if (cand && is_regular_file(cand)) found = cand;
+        if (is_regular_file(cand)) found = cand;
         else free(cand);
         for (int i = 0; !found && i < c->desc->ninclude_dirs; i++) {
             const char *idir = c->desc->include_dirs[i];
             if (!idir || !idir[0]) continue;
             cand = path_join(idir, name);
-            if (cand && is_regular_file(cand)) found = cand;
+            if (is_regular_file(cand)) found = cand;
             else free(cand);
         }
     }
@@ -475,7 +430,7 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
         char where[400] = "";
         size_t w = 0;
         char *dir = path_dirname(from);
-        w += (size_t)snprintf(where, sizeof where, "%s", dir ? dir : ".");
+        w += (size_t)snprintf(where, sizeof where, "%s", dir);
         free(dir);
         for (int i = 0; i < c->desc->ninclude_dirs && w < sizeof where; i++)
             if (c->desc->include_dirs[i] && c->desc->include_dirs[i][0])
@@ -485,7 +440,6 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
     }
 
     int k = file_index(c, found);
-    if (k < 0) { free(found); fail(c, from, line, "out of memory"); return false; }
     /* a cycle: k is already being read */
     for (int d = 0; d <= c->depth; d++) {
         if (c->stack[d] != k) continue;
@@ -504,10 +458,10 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
              SHADER_SRC_MAX_INCLUDE_DEPTH, name);
         return false;
     }
-    char *text = read_text(found);
+    char why[256];
+    char *text = read_text(found, why, sizeof why);
     if (!text) {
-        int err = errno;
-        fail(c, from, line, "cannot read include \"%s\": %s", found, errno_text(err));
+        fail(c, from, line, "cannot read include \"%s\": %s", found, why);
         free(found);
         return false;
     }
@@ -753,14 +707,13 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
             goto done;
         }
     }
-    int k0 = file_index(&c, path);
-    if (k0 != 0) { fail(&c, path, 0, "out of memory"); goto done; }
+    file_index(&c, path);   /* the stage file: file 0 */
     c.stack[0] = 0;
     c.files[0].times = 1;
-    main_text = read_text(path);
+    char why[256];
+    main_text = read_text(path, why, sizeof why);
     if (!main_text) {
-        int err = errno;
-        fail(&c, path, 0, "cannot read shader: %s", errno_text(err));
+        fail(&c, path, 0, "cannot read shader: %s", why);
         goto done;
     }
 
@@ -811,11 +764,9 @@ done:
     free(main_text);
     /* the files found so far go to the caller even on failure (to watch them) */
     if (c.nfiles > 0) {
-        out->files = calloc((size_t)c.nfiles, sizeof *out->files);
-        if (out->files) {
-            for (int i = 0; i < c.nfiles; i++) { out->files[i] = c.files[i].path; c.files[i].path = NULL; }
-            out->nfiles = c.nfiles;
-        }
+        out->files = mem_zalloc((size_t)c.nfiles * sizeof *out->files);
+        for (int i = 0; i < c.nfiles; i++) { out->files[i] = c.files[i].path; c.files[i].path = NULL; }
+        out->nfiles = c.nfiles;
     }
     for (int i = 0; i < c.nfiles; i++) { free(c.files[i].path); free(c.files[i].id); }
     free(c.files);
@@ -826,8 +777,8 @@ done:
         return false;
     }
     if (c.gs_marked) add_gs_layouts(&c);
-    out->text = c.text.s ? c.text.s : strdup("");
-    if (out->text && !v.es) enable_layout_extensions(&out->text, version);
+    out->text = c.text.s ? c.text.s : mem_strdup("");
+    if (!v.es) enable_layout_extensions(&out->text, version);
     unsigned long long h = 14695981039346656037ull;
     for (const unsigned char *q = (const unsigned char *)out->text; *q; q++) {
         h ^= *q;

@@ -24,6 +24,7 @@
 #include "render.h"
 #include "ref_buffers.h"
 #include "file.h"
+#include "mem.h"
 #include "strbuf.h"
 
 #define MAX_SCENES BENCH_MAX_SCENES
@@ -392,9 +393,7 @@ static void prepare_refs(bench *b) {
                     stem(b->scene_abs[s], sc, sizeof sc);
                     fmt(named, sizeof named, "%s/%s.glib", dir, sc);
                     bool cached = refcache_cached(dir, scene, named, b->o.w, b->o.h, b->o.times[ti], &b->o.ref);
-                    ref_entry *grown = realloc(b->refs, (size_t)(b->nrefs + 1) * sizeof *grown);
-                    if (!grown) return;
-                    b->refs = grown;
+                    b->refs = mem_realloc(b->refs, (size_t)(b->nrefs + 1) * sizeof *b->refs);
                     ref_entry *e = &b->refs[b->nrefs++];
                     memset(e, 0, sizeof *e);
                     e->key = key;
@@ -486,11 +485,11 @@ static void pass_collect(pass_samples *ps, render *r, int max) {
         if (k == ps->n) {
             if (ps->n >= GPU_TIMER_MARKS) continue;
             memcpy(ps->name[k], names[i], GPU_TIMER_NAME);
-            ps->ms[k] = calloc((size_t)max, sizeof(double));
+            ps->ms[k] = mem_zalloc((size_t)max * sizeof(double));
             ps->count[k] = 0;
             ps->n++;
         }
-        if (ps->ms[k] && ps->count[k] < max && ms[i] >= 0) ps->ms[k][ps->count[k]++] = ms[i];
+        if (ps->count[k] < max && ms[i] >= 0) ps->ms[k][ps->count[k]++] = ms[i];
     }
 }
 
@@ -506,8 +505,7 @@ static timing time_frames(bench *b, render *r, const render_target *tg, double t
         render_gpu_ms(r, true);
     }
     int max = b->o.frames;
-    double *gpu = calloc((size_t)max, sizeof *gpu), *wall = calloc((size_t)max, sizeof *wall);
-    if (!gpu || !wall) { free(gpu); free(wall); return out; }
+    double *gpu = mem_zalloc((size_t)max * sizeof *gpu), *wall = mem_zalloc((size_t)max * sizeof *wall);
     double start = clock_now_s();
     int n = 0;
     pass_samples ps;
@@ -617,9 +615,9 @@ static void write_images(bench *b, const row *rw, const float *rgba, const ref_e
              b->pb[rw->pack].settings[rw->setting].name, b->o.times[rw->ti]);
     img_write(path, &im, err, sizeof err);
     if (ref) {
-        float *field = malloc((size_t)w * h * sizeof *field);
+        float *field = mem_alloc((size_t)w * h * sizeof *field);
         ref_fimage A = { rgba, w, h, 4 }, B = { ref->im.color, w, h, 3 };
-        if (field && ref_metrics_error_field(&A, &B, REF_ERR_COLOR, NULL, field, err, sizeof err)) {
+        if (ref_metrics_error_field(&A, &B, REF_ERR_COLOR, NULL, field, err, sizeof err)) {
             ref_heatmap(field, w, h, b->o.heat_max, im.px);
             fmt(path, sizeof path, "%s/%s.%s.%s.t%g.heat.png", dir, sc, b->o.packs[rw->pack],
                      b->pb[rw->pack].settings[rw->setting].name, b->o.times[rw->ti]);
@@ -635,8 +633,7 @@ static void write_images(bench *b, const row *rw, const float *rgba, const ref_e
  * the world around it agrees (it should, nearly: one world on both sides). */
 static void measure_water(bench *b, row *rw, const ref_fimage *A, const ref_fimage *B, const float *classes) {
     long n = (long)b->o.w * b->o.h;
-    unsigned char *m = malloc((size_t)n);
-    if (!m) return;
+    unsigned char *m = mem_alloc((size_t)n);
     char err[256];
     ref_image_metrics r;
     for (int water = 1; water >= 0; water--) {
@@ -659,8 +656,7 @@ static void measure_water(bench *b, row *rw, const ref_fimage *A, const ref_fima
 static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const ref_entry *ref) {
     int w = b->o.w, h = b->o.h;
     long n = (long)w * h;
-    unsigned char *mask = malloc((size_t)n);
-    if (!mask) return;
+    unsigned char *mask = mem_alloc((size_t)n);
     for (long i = 0; i < n; i++) mask[i] = ref->im.mask[i] == REF_MASK_WATER;
     ref_metrics_desc d = { .mask = mask };
     ref_fimage A = { rgba, w, h, 4 };
@@ -676,24 +672,22 @@ static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const
         ref_fimage A3 = A;
         ref_point_metrics m;
         /* the pack's alpha is not a flag: compare xyz only */
-        float *xyz = malloc((size_t)n * 3 * sizeof *xyz);
-        float *bxyz = malloc((size_t)n * 3 * sizeof *bxyz);
-        if (xyz && bxyz) {
-            for (long i = 0; i < n; i++)
-                for (int k = 0; k < 3; k++) {
-                    xyz[i * 3 + k] = rgba[i * 4 + k];
-                    bxyz[i * 3 + k] = ref->im.refract_hit[i * 4 + k];
-                }
-            A3 = (ref_fimage){ xyz, w, h, 3 };
-            B = (ref_fimage){ bxyz, w, h, 3 };
-            if (ref_metrics_points(&A3, &B, &d, &m, err, sizeof err)) {
-                rw->has[mode] = true;
-                rw->comp_median[mode] = m.world.median;
-                rw->comp_p95[mode] = m.world.p95;
-                rw->comp_mean[mode] = m.world.mean;
-                rw->comp_rel_mean[mode] = NAN;
-                rw->comp_rel_median[mode] = NAN;
+        float *xyz = mem_alloc((size_t)n * 3 * sizeof *xyz);
+        float *bxyz = mem_alloc((size_t)n * 3 * sizeof *bxyz);
+        for (long i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++) {
+                xyz[i * 3 + k] = rgba[i * 4 + k];
+                bxyz[i * 3 + k] = ref->im.refract_hit[i * 4 + k];
             }
+        A3 = (ref_fimage){ xyz, w, h, 3 };
+        B = (ref_fimage){ bxyz, w, h, 3 };
+        if (ref_metrics_points(&A3, &B, &d, &m, err, sizeof err)) {
+            rw->has[mode] = true;
+            rw->comp_median[mode] = m.world.median;
+            rw->comp_p95[mode] = m.world.p95;
+            rw->comp_mean[mode] = m.world.mean;
+            rw->comp_rel_mean[mode] = NAN;
+            rw->comp_rel_median[mode] = NAN;
         }
         free(xyz);
         free(bxyz);
@@ -702,20 +696,18 @@ static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const
                            : mode == REF_OUTPUT_IRRADIANCE ? ref->im.irradiance : ref->im.depth;
         int ch = mode == REF_OUTPUT_IRRADIANCE ? 3 : 1;
         /* the pack's side: R (or RGB) of its output */
-        float *a = malloc((size_t)n * ch * sizeof *a);
-        if (a) {
-            for (long i = 0; i < n; i++)
-                for (int k = 0; k < ch; k++) a[i * ch + k] = rgba[i * 4 + k];
-            ref_fimage A1 = { a, w, h, ch }, B = { src, w, h, ch };
-            ref_scalar_metrics m;
-            if (ref_metrics_scalar(&A1, &B, &d, &m, err, sizeof err)) {
-                rw->has[mode] = true;
-                rw->comp_median[mode] = m.abs.median;
-                rw->comp_p95[mode] = m.abs.p95;
-                rw->comp_mean[mode] = m.abs.mean;
-                rw->comp_rel_mean[mode] = m.rel.mean;
-                rw->comp_rel_median[mode] = m.rel.median;
-            }
+        float *a = mem_alloc((size_t)n * ch * sizeof *a);
+        for (long i = 0; i < n; i++)
+            for (int k = 0; k < ch; k++) a[i * ch + k] = rgba[i * 4 + k];
+        ref_fimage A1 = { a, w, h, ch }, B = { src, w, h, ch };
+        ref_scalar_metrics m;
+        if (ref_metrics_scalar(&A1, &B, &d, &m, err, sizeof err)) {
+            rw->has[mode] = true;
+            rw->comp_median[mode] = m.abs.median;
+            rw->comp_p95[mode] = m.abs.p95;
+            rw->comp_mean[mode] = m.abs.mean;
+            rw->comp_rel_mean[mode] = m.rel.mean;
+            rw->comp_rel_median[mode] = m.rel.median;
         }
         free(a);
     }
@@ -728,8 +720,7 @@ static float *snapshot(render *r, bool restore, float *snap) {
     unif_set *sets = render_uniforms(r, &n);
     size_t total = 0;
     for (int i = 0; i < n; i++) total += (size_t)sets[i].n;
-    if (!restore) snap = malloc((total ? total : 1) * UNIF_MAX_COMPONENTS * sizeof *snap);
-    if (!snap) return NULL;
+    if (!restore) snap = mem_alloc((total ? total : 1) * UNIF_MAX_COMPONENTS * sizeof *snap);
     size_t k = 0;
     for (int i = 0; i < n; i++)
         for (int j = 0; j < sets[i].n; j++, k++) {
@@ -788,9 +779,7 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
     const char *scene = wrapper_path(b, s, p, k, wp, sizeof wp);
     stem(b->scene_abs[s], sc, sizeof sc);
     int first_row = b->nrows;
-    row *grown = realloc(b->rows, (size_t)(b->nrows + b->o.ntimes) * sizeof *grown);
-    if (!grown) return;
-    b->rows = grown;
+    b->rows = mem_realloc(b->rows, (size_t)(b->nrows + b->o.ntimes) * sizeof *b->rows);
     for (int ti = 0; ti < b->o.ntimes; ti++) {
         row *rw = &b->rows[b->nrows++];
         memset(rw, 0, sizeof *rw);
@@ -834,8 +823,8 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
         return;
     }
     progress_set(&b->pr, base + LOAD_WEIGHT, false, NULL);
-    float *rgba = malloc((size_t)b->o.w * b->o.h * 4 * sizeof *rgba);
-    for (int ti = 0; ti < b->o.ntimes && rgba; ti++) {
+    float *rgba = mem_alloc((size_t)b->o.w * b->o.h * 4 * sizeof *rgba);
+    for (int ti = 0; ti < b->o.ntimes; ti++) {
         row *rw = &b->rows[first_row + ti];
         double t = b->o.times[ti];
         progress_set(&b->pr, b->pr.done, true, "%s %s %s t=%g", sc, b->o.packs[p], st->name, t);
@@ -900,8 +889,7 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
 static double axis_time(const bench *b, const summary *s) { return b->axis == 1 ? s->gpu_ms : s->wall_ms; }
 
 static void summarise(bench *b) {
-    b->sums = calloc((size_t)(b->nrows > 0 ? b->nrows : 1), sizeof *b->sums);
-    if (!b->sums) return;
+    b->sums = mem_zalloc((size_t)(b->nrows > 0 ? b->nrows : 1) * sizeof *b->sums);
     for (int i = 0; i < b->nrows; i++) {
         const row *r0 = &b->rows[i];
         if (r0->ti != 0) continue;
@@ -1331,8 +1319,7 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
 
 static bool write_plot(bench *b, int sc, const char *path) {
     plot_series series[PACKSET_MAX];
-    plot_point *pts = calloc((size_t)(b->nsums > 0 ? b->nsums : 1), sizeof *pts);
-    if (!pts) return false;
+    plot_point *pts = mem_zalloc((size_t)(b->nsums > 0 ? b->nsums : 1) * sizeof *pts);
     int np = 0, ns = 0;
     for (int p = 0; p < b->o.npacks; p++) {
         plot_series *se = &series[ns];
@@ -1392,7 +1379,7 @@ static void bounds_md(bench *b, strbuf *o) {
     struct dirent *e;
     while (d && (e = readdir(d)) && nc < 128) {
         size_t len = strlen(e->d_name);
-        if (len > 5 && strcmp(e->d_name + len - 5, ".glib") == 0) cases[nc++] = strndup(e->d_name, len - 5);
+        if (len > 5 && strcmp(e->d_name + len - 5, ".glib") == 0) cases[nc++] = mem_strndup(e->d_name, len - 5);
     }
     if (d) closedir(d);
     qsort(cases, (size_t)nc, sizeof *cases, cmp_str_ptr);
@@ -1457,9 +1444,9 @@ static bool write_docs(bench *b, const char *path) {
     FILE *f = fopen(path, "r");
     char *old = NULL;
     if (f) {
-        old = malloc(1 << 20);
-        size_t n = old ? fread(old, 1, (1 << 20) - 1, f) : 0;
-        if (old) old[n] = '\0';
+        old = mem_alloc(1 << 20);
+        size_t n = fread(old, 1, (1 << 20) - 1, f);
+        old[n] = '\0';
         fclose(f);
     }
     strbuf bounds = { 0 };
@@ -1481,8 +1468,7 @@ static bool write_docs(bench *b, const char *path) {
 /* ---- the command ---- */
 
 int bench_run(const bench_desc *d, char *why, size_t whylen) {
-    bench *b = calloc(1, sizeof *b);
-    if (!b) return TARN_EXIT_INPUT;
+    bench *b = mem_zalloc(sizeof *b);
     snprintf(b->root, sizeof b->root, "%s", tarn_root());
     int rc = resolve(b, d, why, whylen);
     if (rc != 0) {

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "exit_code.h"
+#include "mem.h"
 #include "ref_metrics.h"
 #include "ref_render.h"
 #include "ref_buffers.h"
@@ -85,17 +86,10 @@ typedef struct kv {
 typedef struct kvlist {
     kv *v;
     int n, cap;
-    bool oom;
 } kvlist;
 
 static kv *kv_add(kvlist *l, const char *group, const char *key, const char *label, kv_type t) {
-    if (l->n == l->cap) {
-        int cap = l->cap ? 2 * l->cap : 64;
-        kv *nv = realloc(l->v, (size_t)cap * sizeof *nv);
-        if (!nv) { l->oom = true; return NULL; }
-        l->v = nv;
-        l->cap = cap;
-    }
+    l->v = mem_grow(l->v, &l->cap, l->n + 1, sizeof *l->v);
     kv *e = &l->v[l->n++];
     memset(e, 0, sizeof *e);
     e->group = group;
@@ -105,12 +99,6 @@ static kv *kv_add(kvlist *l, const char *group, const char *key, const char *lab
     return e;
 }
 
-static void kv_set_str(kvlist *l, kv *e, const char *s) {
-    size_t n = strlen(s) + 1;
-    e->str = malloc(n);
-    if (e->str) memcpy(e->str, s, n);
-    else { l->oom = true; e->type = KV_NUM; e->num = NAN; }
-}
 
 static void kvlist_free(kvlist *l) {
     for (int i = 0; i < l->n; i++) free(l->v[i].str);
@@ -120,37 +108,40 @@ static void kvlist_free(kvlist *l) {
 
 static void add_num(kvlist *l, const char *g, const char *key, const char *label, double v, const char *unit) {
     kv *e = kv_add(l, g, key, label, KV_NUM);
-    if (e) { e->num = v; e->unit = unit; }
+    e->num = v;
+    e->unit = unit;
+}
+
+/* A count, or null and no table line when it does not apply (v < 0). */
+static void add_count_or_null(kvlist *l, const char *g, const char *key, const char *label, long v) {
+    kv *e = kv_add(l, g, key, v >= 0 ? label : NULL, v >= 0 ? KV_INT : KV_NUM);
+    e->inum = v;
+    e->num = NAN;
 }
 
 static void add_share(kvlist *l, const char *g, const char *key, const char *label, double v) {
-    kv *e = kv_add(l, g, key, label, KV_SHARE);
-    if (e) e->num = v;
+    kv_add(l, g, key, label, KV_SHARE)->num = v;
 }
 
 static void add_int(kvlist *l, const char *g, const char *key, const char *label, long v) {
-    kv *e = kv_add(l, g, key, label, KV_INT);
-    if (e) e->inum = v;
+    kv_add(l, g, key, label, KV_INT)->inum = v;
 }
 
 static void add_str(kvlist *l, const char *g, const char *key, const char *label, const char *s) {
     kv *e = kv_add(l, g, key, label, s ? KV_STR : KV_NUM);
-    if (!e) return;
-    if (s) kv_set_str(l, e, s);
+    if (s) e->str = mem_strdup(s);
     else e->num = NAN;     /* null */
 }
 
 /* A line of the table only. */
 static void add_note(kvlist *l, const char *g, const char *label, const char *s) {
     kv *e = kv_add(l, g, "", label, KV_STR);
-    if (!e) return;
     e->table_only = true;
-    kv_set_str(l, e, s);
+    e->str = mem_strdup(s);
 }
 
 static void add_bool(kvlist *l, const char *g, const char *key, const char *label, bool b) {
-    kv *e = kv_add(l, g, key, label, KV_BOOL);
-    if (e) e->inum = b;
+    kv_add(l, g, key, label, KV_BOOL)->inum = b;
 }
 
 static void add_counts(kvlist *l, const char *g, const ref_pixel_counts *c) {
@@ -327,9 +318,8 @@ static float *load_classes(const char *b, int w, int h, char *why, size_t whylen
         img_free(&m);
         return NULL;
     }
-    float *cls = malloc((size_t)w * (size_t)h * sizeof *cls);
-    if (cls)
-        for (long i = 0; i < (long)w * h; i++) cls[i] = m.px[(size_t)i * (size_t)m.channels];
+    float *cls = mem_alloc((size_t)w * (size_t)h * sizeof *cls);
+    for (long i = 0; i < (long)w * h; i++) cls[i] = m.px[(size_t)i * (size_t)m.channels];
     img_free(&m);
     return cls;
 }
@@ -350,8 +340,7 @@ static void add_region(kvlist *l, bool water, const ref_fimage *fa, const ref_fi
           "water pixels" },
     };
     long n = (long)fa->w * fa->h;
-    unsigned char *m = malloc((size_t)n);
-    if (!m) { l->oom = true; return; }
+    unsigned char *m = mem_alloc((size_t)n);
     ref_mask_water(cls, n, water, user_mask, m);
     ref_metrics_desc d = { .threshold = threshold, .mask = m };
     ref_image_metrics r;
@@ -373,10 +362,10 @@ static unsigned char *load_mask(const char *path, int w, int h, FILE *err) {
     unsigned char *mask = NULL;
     if (m.w != w || m.h != h || m.d != 1)
         fprintf(err, "tarn compare: the mask %s is %dx%d, the images are %dx%d\n", path, m.w, m.h, w, h);
-    else if (!(mask = malloc((size_t)w * (size_t)h)))
-        fprintf(err, "tarn compare: out of memory\n");
-    else
+    else {
+        mask = mem_alloc((size_t)w * (size_t)h);
         for (long i = 0; i < (long)w * h; i++) mask[i] = m.px[(size_t)i * (size_t)m.channels] > 0.5f;
+    }
     img_free(&m);
     return mask;
 }
@@ -414,7 +403,7 @@ static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb
         flag_mismatch = 0;
         if (bk->direction_flag) {
             directions = 0;
-            if (!(own_mask = malloc((size_t)n))) { fprintf(err, "tarn compare: out of memory\n"); goto done; }
+            own_mask = mem_alloc((size_t)n);
         }
         for (long i = 0; i < n; i++) {
             bool in = !d.mask || d.mask[i];
@@ -440,12 +429,8 @@ static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb
         add_int(l, g, "width", NULL, m.width);
         add_int(l, g, "height", NULL, m.height);
         add_counts(l, g, &m.count);
-        kv *e = kv_add(l, g, "flag_mismatch_pixels", flag_mismatch >= 0 ? "pixels whose flags differ" : NULL,
-                       flag_mismatch >= 0 ? KV_INT : KV_NUM);
-        if (e) { e->inum = flag_mismatch; e->num = NAN; }
-        e = kv_add(l, g, "direction_pixels", directions >= 0 ? "pixels left out: a direction" : NULL,
-                   directions >= 0 ? KV_INT : KV_NUM);
-        if (e) { e->inum = directions; e->num = NAN; }
+        add_count_or_null(l, g, "flag_mismatch_pixels", "pixels whose flags differ", flag_mismatch);
+        add_count_or_null(l, g, "direction_pixels", "pixels left out: a direction", directions);
         add_num(l, g, "dist_mean", "hit point error, mean", m.world.mean, "world units");
         add_num(l, g, "dist_rms", NULL, m.world.rms, NULL);
         add_num(l, g, "dist_median", "hit point error, median", m.world.median, "world units");
@@ -493,9 +478,9 @@ static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb
         char hp[4096];
         const char *dot = strrchr(o->out, '.'), *slash = strrchr(o->out, '/');
         sibling_path(hp, sizeof hp, o->out, g, dot && (!slash || dot > slash) ? dot : ".png");
-        if (!(field = malloc((size_t)a.w * (size_t)a.h * sizeof *field)) ||
-            !ref_metrics_error_field(&fa, &fb, kind, &d, field, msg, sizeof msg)) {
-            fprintf(err, "tarn compare: buffer %s: heat map: %s\n", g, field ? msg : "out of memory");
+        field = mem_alloc((size_t)a.w * (size_t)a.h * sizeof *field);
+        if (!ref_metrics_error_field(&fa, &fb, kind, &d, field, msg, sizeof msg)) {
+            fprintf(err, "tarn compare: buffer %s: heat map: %s\n", g, msg);
             goto done;
         }
         double s = write_heatmap(hp, field, a.w, a.h, 0, err);
@@ -618,9 +603,9 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
     add_num(&l, NULL, "error_p99", "pixel error, 99th percentile", m.pixel_err.p99, NULL);
 
     if (o.out) {
-        if (!(field = malloc((size_t)ia.w * (size_t)ia.h * sizeof *field)) ||
-            !ref_metrics_error_field(&fa, &fb, REF_ERR_COLOR, &d, field, msg, sizeof msg)) {
-            fprintf(err, "tarn compare: heat map: %s\n", field ? msg : "out of memory");
+        field = mem_alloc((size_t)ia.w * (size_t)ia.h * sizeof *field);
+        if (!ref_metrics_error_field(&fa, &fb, REF_ERR_COLOR, &d, field, msg, sizeof msg)) {
+            fprintf(err, "tarn compare: heat map: %s\n", msg);
             goto done;
         }
         double s = write_heatmap(o.out, field, ia.w, ia.h, o.max_err, err);
@@ -656,7 +641,6 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
                     "refract_hit, reflect, fresnel, depth, irradiance)\n", pa);
         }
     }
-    if (l.oom) { fprintf(err, "tarn compare: out of memory\n"); goto done; }
 
     write_table(table, &l);
     if (o.json) {

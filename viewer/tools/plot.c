@@ -1,5 +1,6 @@
 /* plot: raster primitives, a 5x7 font and the speed-against-error chart. */
 #include "plot.h"
+#include "mem.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -318,13 +319,12 @@ bool plot_speed_error(const plot_chart *c, img *out) {
     /* each series: its curve, then its points */
     int total = 0;
     for (int s = 0; s < c->nseries; s++) total += c->series[s].n;
-    double *px = malloc((size_t)(total > 0 ? total : 1) * 2 * sizeof *px);
-    const char **labels = malloc((size_t)(total > 0 ? total : 1) * sizeof *labels);
+    double *px = mem_alloc((size_t)(total > 0 ? total : 1) * 2 * sizeof *px);
+    const char **labels = mem_alloc((size_t)(total > 0 ? total : 1) * sizeof *labels);
     int nplaced = 0;
     for (int s = 0; s < c->nseries; s++) {
         const plot_series *se = &c->series[s];
-        plot_point *sorted = malloc((size_t)(se->n > 0 ? se->n : 1) * sizeof *sorted);
-        if (!sorted) continue;
+        plot_point *sorted = mem_alloc((size_t)(se->n > 0 ? se->n : 1) * sizeof *sorted);
         int n = 0;
         for (int i = 0; i < se->n; i++)
             if (se->pts[i].x > 0 && se->pts[i].y > 0 && isfinite(se->pts[i].x) && isfinite(se->pts[i].y))
@@ -338,19 +338,17 @@ bool plot_speed_error(const plot_chart *c, img *out) {
             plot_disc(out, x, y, 6, black);
             plot_disc(out, x, y, 4.8, se->rgb);
             if (sorted[i].pareto) plot_ring(out, x, y, 10, 2, black);
-            if (px && labels) {
-                px[nplaced * 2] = x;
-                px[nplaced * 2 + 1] = y;
-                labels[nplaced++] = sorted[i].label;
-            }
+            px[nplaced * 2] = x;
+            px[nplaced * 2 + 1] = y;
+            labels[nplaced++] = sorted[i].label;
         }
         free(sorted);
     }
     /* labels: the first of eight places around the point that overlaps no
      * label placed before and no point */
-    double (*rects)[4] = malloc((size_t)(nplaced > 0 ? nplaced : 1) * sizeof *rects);
+    double (*rects)[4] = mem_alloc((size_t)(nplaced > 0 ? nplaced : 1) * sizeof *rects);
     int nrects = 0;
-    for (int i = 0; rects && i < nplaced; i++) {
+    for (int i = 0; i < nplaced; i++) {
         if (!labels[i]) continue;
         double tw = plot_text_width(labels[i], 1), th = PLOT_GLYPH_H;
         const double off[8][2] = { { 12, -12 }, { 12, 4 }, { -12 - tw, -12 }, { -12 - tw, 4 },

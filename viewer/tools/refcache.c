@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "image_io.h"
+#include "mem.h"
 #include "ref_metrics.h"
 #include "glib.h"
 #include "scene.h"
@@ -172,9 +173,8 @@ static bool write_buf(const char *path, const float *px, int w, int h, int c, bo
 }
 
 static float *to_float(const double *src, size_t n) {
-    float *f = malloc((n ? n : 1) * sizeof *f);
-    if (f)
-        for (size_t i = 0; i < n; i++) f[i] = (float)src[i];
+    float *f = mem_alloc((n ? n : 1) * sizeof *f);
+    for (size_t i = 0; i < n; i++) f[i] = (float)src[i];
     return f;
 }
 
@@ -241,17 +241,10 @@ bool refcache_get(const char *dir, const char *scene, const char *name, int w, i
     for (int i = 0; i < NBUFS; i++)
         if (cached[i] != REF_BUF_MASK)
             *slot(out, i) = to_float(ref_buffer_data(&r, cached[i]), n * (size_t)ref_buffers[cached[i]].channels);
-    out->mask = malloc(n * sizeof *out->mask);
-    if (out->mask)
-        for (size_t i = 0; i < n; i++) out->mask[i] = (float)r.mask[i];
+    out->mask = mem_alloc(n * sizeof *out->mask);
+    for (size_t i = 0; i < n; i++) out->mask[i] = (float)r.mask[i];
     out->seconds = r.seconds_photons + r.seconds_pixels;
     ref_render_free(&r);
-    for (int i = 0; i < NBUFS; i++)
-        if (!*slot(out, i)) {
-            refcache_free(out);
-            snprintf(err, (size_t)errlen, "out of memory");
-            return false;
-        }
     if (dir) {
         if (!mkdirs(dir)) {
             snprintf(err, (size_t)errlen, "cannot create %s: %s", dir, strerror(errno));

@@ -13,6 +13,7 @@
 #include "exit_code.h"
 #include "file.h"
 #include "frame_meter.h"
+#include "mem.h"
 #include "util.h"
 #include "watch.h"
 
@@ -53,9 +54,7 @@ static const char **all_deps(const app *a, int *n) {
     for (int i = 0; i < a->nscenes; i++) {
         const char *const *paths;
         int k = render_deps(a->scenes[i], &paths);
-        const char **grown = realloc(all, (size_t)(*n + k + 1) * sizeof *grown);
-        if (!grown) break;
-        all = grown;
+        all = mem_realloc(all, (size_t)(*n + k + 1) * sizeof *all);
         for (int j = 0; j < k; j++) all[(*n)++] = paths[j];
     }
     return all;
@@ -275,8 +274,7 @@ static app_desc with_defaults(const app_desc *d) {
 }
 
 app *app_create(const app_desc *desc) {
-    app *a = calloc(1, sizeof *a);
-    if (!a) return NULL;
+    app *a = mem_zalloc(sizeof *a);
     a->d = with_defaults(desc);
     char err[1024];
     a->ctx = gl_ctx_create_window(a->d.width, a->d.height, a->d.name, err, sizeof err);

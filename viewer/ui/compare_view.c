@@ -19,6 +19,7 @@
 #include "app.h"
 #include "exit_code.h"
 #include "gl_ctx.h"
+#include "mem.h"
 #include "panel.h"
 #include "ref_metrics.h"
 #include "refcache.h"
@@ -192,15 +193,15 @@ static void upload_heat(cv_pack *p, const float *rgb, int w, int h) {
 static void update_heat(cview *v) {
     int w = v->cell_w, h = v->cell_h;
     size_t n = (size_t)w * h;
-    float *rgba = malloc(n * 4 * sizeof *rgba), *rgb = malloc(n * 3 * sizeof *rgb);
+    float *rgba = mem_alloc(n * 4 * sizeof *rgba), *rgb = mem_alloc(n * 3 * sizeof *rgb);
     double scale = 0;
-    for (int i = 0; rgba && rgb && i < v->n; i++) {
+    for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
         p->have_heat = false;
         if (!pack_drawn(v, i) || !p->tg.fbo) continue;
         free(p->field);
-        p->field = malloc(n * sizeof *p->field);
-        if (!p->field || !render_target_read(&p->tg, rgba)) continue;
+        p->field = mem_alloc(n * sizeof *p->field);
+        if (!render_target_read(&p->tg, rgba)) continue;
         ref_fimage A = { rgba, w, h, 4 }, B = { v->ref.color, w, h, 3 };
         ref_image_metrics m;
         char err[256];
@@ -210,11 +211,11 @@ static void update_heat(cview *v) {
         p->frame_rmse = m.rmse;
         /* water first: the error of the water technique, where the
          * reference sees water (the rest of the frame is one world) */
-        unsigned char *water = malloc(n);
+        unsigned char *water = mem_alloc(n);
         ref_image_metrics wm;
-        if (water) ref_mask_water(v->ref.mask, (long)n, 1, NULL, water);
+        ref_mask_water(v->ref.mask, (long)n, 1, NULL, water);
         ref_metrics_desc wd = { .mask = water };
-        bool have_water = water && ref_metrics_image(&A, &B, &wd, &wm, err, sizeof err) && wm.count.compared > 0;
+        bool have_water = ref_metrics_image(&A, &B, &wd, &wm, err, sizeof err) && wm.count.compared > 0;
         free(water);
         p->rmse = have_water ? wm.rmse : m.rmse;
         p->psnr = have_water ? wm.psnr_db : m.psnr_db;
@@ -224,7 +225,7 @@ static void update_heat(cview *v) {
     }
     if (v->heat_max > 0) scale = v->heat_max;
     v->heat_scale = scale;
-    for (int i = 0; rgb && i < v->n; i++) {
+    for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
         if (!p->have_heat) continue;
         ref_heatmap(p->field, w, h, scale, rgb);
@@ -574,8 +575,7 @@ int cli_compare_view(const cli_compare_view_desc *d) {
         fprintf(stderr, "tarn compare-view: give 2 to 4 packs (--packs a,b)\n");
         return TARN_EXIT_USAGE;
     }
-    cview *v = calloc(1, sizeof *v);
-    if (!v) return TARN_EXIT_INPUT;
+    cview *v = mem_zalloc(sizeof *v);
     v->scene = d->glib;
     v->n = d->npacks;
     v->wipe = 0.5f;

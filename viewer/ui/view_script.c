@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mem.h"
 #include "strbuf.h"
 #include "util.h"
 
@@ -13,7 +14,7 @@
 struct view_script {
     char path[1024];
     char (*lines)[SCRIPT_LINE_MAX];
-    int nlines, next;
+    int nlines, cap, next;
     int wait_frames;
     double wait_until;          /* clock_now_s() until which frames are drawn (0: none) */
     char arg[SCRIPT_LINE_MAX];
@@ -22,14 +23,17 @@ struct view_script {
 view_script *view_script_load(const char *path, char *err, int errlen) {
     FILE *f = fopen(path, "r");
     if (!f) { msg_set(err, (size_t)errlen, "%s: cannot open the script", path); return NULL; }
-    view_script *s = calloc(1, sizeof *s);
-    if (!s) { fclose(f); return NULL; }
+    view_script *s = mem_zalloc(sizeof *s);
     snprintf(s->path, sizeof s->path, "%s", path);
     char buf[SCRIPT_LINE_MAX];
     while (fgets(buf, sizeof buf, f)) {
-        void *grown = realloc(s->lines, (size_t)(s->nlines + 1) * sizeof *s->lines);
-        if (!grown) break;
-        s->lines = grown;
+        if (s->nlines == VIEW_SCRIPT_MAX_LINES) {
+            msg_set(err, (size_t)errlen, "%s: more than %d lines; not a script?", path, VIEW_SCRIPT_MAX_LINES);
+            fclose(f);
+            view_script_free(s);
+            return NULL;
+        }
+        s->lines = mem_grow(s->lines, &s->cap, s->nlines + 1, sizeof *s->lines);
         buf[strcspn(buf, "\r\n")] = '\0';
         char *hash = strchr(buf, '#');
         if (hash) *hash = '\0';

@@ -38,6 +38,10 @@ typedef struct view_script_ctx {
     void *user;
 } view_script_ctx;
 
+#define VIEW_SCRIPT_MAX_LINES 65536   /* 32 MiB of lines: a script is a few dozen */
+
+/* The script at path, or NULL with the reason in err (not there, or more
+ * than VIEW_SCRIPT_MAX_LINES lines). */
 view_script *view_script_load(const char *path, char *err, int errlen);
 /* Runs actions up to the next frame boundary; returns what the caller must do. */
 view_script_status view_script_step(view_script *s, view_script_ctx *ctx);
