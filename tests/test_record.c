@@ -126,6 +126,29 @@ static void test_bad_lines_are_named_and_the_rest_plays(void) {
     CHECK_STR_CONTAINS(out, "nope.glib");
 }
 
+/* A Define event rebuilds the program: the frame after it is drawn with
+ * the new #define (LEVEL is the grey level, 0.25 -> 0.75). */
+static void test_define_event_rebuilds(void) {
+    scratch_write("level.vert", "#version 330 compatibility\n"
+                                "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
+    scratch_write("level.frag", "#version 330 compatibility\nout vec4 c;\n"
+                                "void main() { c = vec4(vec3(LEVEL), 1.); }\n");
+    scratch_write("level.glib", "##OpenGL GLIB\nWindowSize 16 12\nOrtho -1 1 -1 1\n"
+                                "Define LEVEL <0. 0.25 1.>\nVertex level.vert\nFragment level.frag\n"
+                                "Program Level\nQuadXY 0 1 1 1\n");
+    scratch_write("level.session", "tarn-session 1\nscene level.glib\n"
+                                   "t=0.5 define Level LEVEL 0.75\nt=1 end\n");
+    char out[8192];
+    CHECK(tarn("record level.session -o lv/ --fps 4", out, sizeof out) == 0);
+    const int want[4] = { 64, 64, 191, 191 };
+    for (int i = 0; i < 4; i++) {
+        img a = {0};
+        CHECK(read_frame("lv", i, &a));
+        if (a.px) CHECK_MSG(centre_grey(&a) == want[i], "frame %d: grey %d", i, centre_grey(&a));
+        img_free(&a);
+    }
+}
+
 static void test_usage(void) {
     char out[8192];
     CHECK(tarn("record", out, sizeof out) == 2);
@@ -153,6 +176,7 @@ int main(void) {
     RUN(test_session_size_and_fps);
     RUN(test_no_ffmpeg_writes_pngs_and_says_so);
     RUN(test_bad_lines_are_named_and_the_rest_plays);
+    RUN(test_define_event_rebuilds);
     RUN(test_usage);
     scratch_remove();
     return check_summary();
