@@ -156,6 +156,8 @@ static void test_usage(void) {
     CHECK_STR_CONTAINS(out, "-o out.mp4");
     CHECK(tarn("record s.session -o x/ --fps 0", out, sizeof out) == 2);
     CHECK(tarn("record s.session -o x/ --fps 2.5", out, sizeof out) == 2);
+    CHECK(tarn("record s.session -o video", out, sizeof out) == 2);   /* ffmpeg could not tell the format */
+    CHECK_STR_CONTAINS(out, "extension");
     CHECK(tarn("record --help", out, sizeof out) == 0);
     CHECK_STR_CONTAINS(out, "usage: tarn record SESSION");
 }

@@ -179,5 +179,9 @@ int cmd_record(int argc, char **argv) {
     }
     if (!d.session) return bad("which session? give the file `tarn view --record` wrote");
     if (!d.out) return bad("where to? give -o out.mp4 or -o frames/");
+    /* ffmpeg picks the format by the extension: without one it can only fail, after the replay */
+    const char *base = strrchr(d.out, '/') ? strrchr(d.out, '/') + 1 : d.out;
+    if (base[0] && !strchr(base, '.') && !file_is_dir(d.out))
+        return bad("-o wants a video with its extension (out.mp4) or a folder ending in / (frames/)");
     return record(&d);
 }
