@@ -39,6 +39,8 @@ struct app {
     session_rec *rec;            /* recording, or NULL */
     int recordings;              /* Shift+R's file names so far */
     bool bare_frame;             /* a script's screenshot: no toast, no REC label */
+    int fit_w, fit_h;            /* app_fit_window's scene area (0: none asked for) */
+    long frames;                 /* drawn so far */
 };
 
 /* ---- watching ---- */
@@ -154,8 +156,11 @@ static void record_start(app *a, const char *path) {
     int n, w, h;
     unif_set *sets = render_uniforms(r, &n);
     glfwGetFramebufferSize(a->win, &w, &h);
-    session_header hd = { .scene = render_scene_path(r), .pack = a->d.pack, .width = w - app_scene_x(w),
-                          .height = h, .time_s = a->s.t };
+    w -= app_scene_x(w);
+    /* before the first frame the window may not have its fitted size yet */
+    if (a->frames == 0 && a->fit_w > 0) { w = a->fit_w; h = a->fit_h; }
+    session_header hd = { .scene = render_scene_path(r), .pack = a->d.pack, .width = w, .height = h,
+                          .time_s = a->s.t };
     char err[1200];
     a->rec = session_rec_start(path, &hd, sets, n, &a->s.cam, a->s.paused, glfwGetTime(), err, sizeof err);
     if (!a->rec) {
@@ -244,6 +249,7 @@ static void frame(app *a, bool scripted) {
     panel_render(a->panel);
     if (a->d.apply) a->d.apply(a->d.user, a);
     apply_common(a, &common);
+    a->frames++;
     if (a->rec) {
         int n;
         unif_set *sets = render_uniforms(a->scenes[0], &n);
@@ -376,7 +382,11 @@ void app_destroy(app *a) {
 
 /* ---- small things ---- */
 
-void app_fit_window(app *a, int w, int h) { glfwSetWindowSize(a->win, w + APP_PANEL_WIDTH, h); }
+void app_fit_window(app *a, int w, int h) {
+    a->fit_w = w;
+    a->fit_h = h;
+    glfwSetWindowSize(a->win, w + APP_PANEL_WIDTH, h);
+}
 
 void app_home(app *a, render_view v) { a->s.cam = a->s.cam_home = orbit_from_view(v); }
 
