@@ -15,21 +15,22 @@ rm -rf "$scratch" && mkdir -p "$scratch" || fail "no scratch directory"
 xvfb() { xvfb-run -a -f "$scratch/Xauthority" -s "-screen 0 1280x800x24" "$@"; }
 # the keys come meanwhile: Shift+R until a session file appears, then Space
 cat > "$scratch/keys.script" <<'SCRIPT'
-wait 5
+wait 8
 set Flat uGrey 0.6
 camera 0 0 0 3 0.5 0.2
 frames 5
 quit
 SCRIPT
-# Shift+R toggles: a press while the first frames are slow to come would
-# be pressed again, so the keys start once the scene has loaded
+# Shift+R toggles: a second press before a slow window answered the first
+# would stop the recording, so the keys start once the scene has loaded
+# and x_keys waits 3 s for the file before pressing again
 keys_run='
     cd "$3" || exit 1
     "$1" view "$2/tests/data/window/scene.glib" --size 320x240 --script keys.script 2>view.log &
     view=$!
     for _ in $(seq 100); do grep -q "^tarn: loaded" view.log && break; sleep 0.1; done
     sleep 1
-    python3 "$2/tests/x_keys.py" "tarn-*.session" shift+r space
+    python3 "$2/tests/x_keys.py" "tarn-*.session" shift+r space 3
     keys=$?
     wait $view
     view_rc=$?
