@@ -149,6 +149,33 @@ static void test_define_event_rebuilds(void) {
     }
 }
 
+/* Independent truth for the replay's camera, clock and colour encoding:
+ * with no events its first frame is `tarn render` of the scene at the
+ * session's start time from the glib's LookAt (the pond: a world, sRGB). */
+static void test_first_frame_is_tarn_render(void) {
+    char text[1024], out[8192], args[1200];
+    snprintf(text, sizeof text, "tarn-session 1\nscene %s/scenes/pond.glib\ntime 2\nt=0.1 end\n", src);
+    scratch_write("pond.session", text);
+    CHECK(tarn("record pond.session -o pond/ --size 64x36 --fps 10", out, sizeof out) == 0);
+    snprintf(args, sizeof args, "render %s/scenes/pond.glib --time 2 --size 64x36 -o pond.png --quiet", src);
+    CHECK(tarn(args, out, sizeof out) == 0);
+    img a = {0}, b = {0};
+    char path[600], err[512];
+    snprintf(path, sizeof path, "%s/pond.png", scratch_dir);
+    CHECK(read_frame("pond", 0, &a) && img_read(path, &b, err, sizeof err));
+    if (a.px && b.px && a.w == b.w && a.h == b.h) {
+        float worst = 0;
+        for (long i = 0; i < (long)a.w * a.h; i++)
+            for (int k = 0; k < 3; k++) {
+                float d = fabsf(a.px[i * a.channels + k] - b.px[i * b.channels + k]);
+                if (d > worst) worst = d;
+            }
+        CHECK_MSG(worst == 0, "the replay's first frame differs from tarn render by %g", worst);
+    } else CHECK(0);
+    img_free(&a);
+    img_free(&b);
+}
+
 static void test_usage(void) {
     char out[8192];
     CHECK(tarn("record", out, sizeof out) == 2);
@@ -179,6 +206,7 @@ int main(void) {
     RUN(test_no_ffmpeg_writes_pngs_and_says_so);
     RUN(test_bad_lines_are_named_and_the_rest_plays);
     RUN(test_define_event_rebuilds);
+    RUN(test_first_frame_is_tarn_render);
     RUN(test_usage);
     scratch_remove();
     return check_summary();
