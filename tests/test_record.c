@@ -2,7 +2,9 @@
  * the grey scene's slider (tests/data/window: the quad's colour is uGrey *
  * uTint while uOn) and then unticks uOn; the PNG frames are those values,
  * exactly, on either side of each event's time, and a second replay gives
- * the same bytes. Without ffmpeg the frames become PNGs with a message; a
+ * the same bytes; a Define event rebuilds. On the pond, the replay's
+ * frames are `tarn render`'s at the session's simulated time, which stops
+ * while paused. Without ffmpeg the frames become PNGs with a message; a
  * bad session line is named by file:line and the rest still plays. */
 #include <stdio.h>
 #include <stdlib.h>
