@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what tarn needs to build, run and test, from Debian's packages only.
 # Idempotent: it asks dpkg first and prints nothing when everything is there.
+# ffmpeg is a program tarn runs, not a library it links: `tarn record` pipes
+# raw frames to it (any codec it has; PNG frames when it is missing).
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,7 @@ packages=(
   libopenimageio-dev libimgui-dev
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   xvfb xauth
+  ffmpeg
   clang libclang-rt-14-dev
 )
 

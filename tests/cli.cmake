@@ -29,3 +29,15 @@ set_tests_properties(window_app_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 
 add_test(NAME install_prefix
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/install_test.sh ${CMAKE_COMMAND} ${CMAKE_BINARY_DIR} ${CMAKE_SOURCE_DIR})
 set_tests_properties(install_prefix PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS gl)
+
+# Recording a session in the window (Shift+R, --record) and replaying it.
+add_test(NAME window_record_xvfb
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_record_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(window_record_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl;slow")
+
+# `tarn record` to an mp4 through ffmpeg: the frame count (ffprobe).
+add_test(NAME record_mp4
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/record_mp4_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(record_mp4 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS gl)

@@ -20,7 +20,7 @@ static const struct { const char *name; const char *(*usage)(void); } expected[]
     { "validate", cmd_validate_usage },   { "reference", cmd_reference_usage },
     { "compare", cmd_compare_usage },     { "compare-view", cmd_compare_view_usage },
     { "bench", cmd_bench_usage },         { "assets", cmd_assets_usage },
-    { "help", NULL },
+    { "record", cmd_record_usage },       { "help", NULL },
 };
 enum { NEXPECTED = sizeof expected / sizeof expected[0] };
 

@@ -2,11 +2,14 @@
 """x_keys: presses keys in the X display's window under the pointer (XTEST,
 through ctypes: no xdotool on the test machines), for the window tests.
 
-    x_keys.py KEY_UNTIL_FILE_GLOB QUIT_KEY
-moves the pointer to (100, 100), presses the first key every half second
-until a file matches the glob (10 s at most), then presses QUIT_KEY once.
-Keys are X keysym names of one letter ("p", "q"). Exits 77 when libX11 or
-libXtst is missing, 1 when no file appeared.
+    x_keys.py FILE_GLOB KEY QUIT_KEY [SECONDS]
+moves the pointer to (100, 100), presses KEY every SECONDS (default half a
+second) until a file matches the glob (10 s at most), then presses QUIT_KEY
+once. A key that toggles wants SECONDS long enough for a slow window to
+have answered the first press.
+Keys are X keysym names ("p", "q", "space"), a modifier first if any
+("shift+r", "ctrl+s"). Exits 77 when libX11 or libXtst is missing, 1 when
+no file appeared.
 """
 import ctypes
 import glob
@@ -21,23 +24,40 @@ def main(argv):
         print("skip: %s" % e)
         sys.exit(77)
     x.XOpenDisplay.restype = ctypes.c_void_p
+    x.XStringToKeysym.restype = ctypes.c_ulong
+    x.XStringToKeysym.argtypes = [ctypes.c_char_p]
+    x.XKeysymToKeycode.argtypes = [ctypes.c_void_p, ctypes.c_ulong]
     d = ctypes.c_void_p(x.XOpenDisplay(None))
     if not d.value:
         sys.exit("x_keys: no display")
 
-    def press(keysym):
-        kc = x.XKeysymToKeycode(d, ord(keysym))   # a letter's keysym is its ASCII code
+    modifiers = {"shift": "Shift_L", "ctrl": "Control_L", "alt": "Alt_L"}
+
+    def keycode(name):
+        return x.XKeysymToKeycode(d, x.XStringToKeysym(name.encode()))
+
+    def press(spec):
+        *mods, key = spec.split("+")
+        held = [keycode(modifiers[m]) for m in mods]
+        for kc in held:
+            t.XTestFakeKeyEvent(d, kc, 1, 0)
         for down in (1, 0):
-            t.XTestFakeKeyEvent(d, kc, down, 0)
+            t.XTestFakeKeyEvent(d, keycode(key), down, 0)
             x.XFlush(d)
             time.sleep(0.05)
+        for kc in reversed(held):
+            t.XTestFakeKeyEvent(d, kc, 0, 0)
+        x.XFlush(d)
 
     t.XTestFakeMotionEvent(d, -1, 100, 100, 0)   # the window is at the top left: keys go under the pointer
     x.XFlush(d)
     deadline = time.time() + 10
+    interval = float(argv[4]) if len(argv) > 4 else 0.5
     while not glob.glob(argv[1]) and time.time() < deadline:
         press(argv[2])
-        time.sleep(0.5)
+        until = time.time() + interval
+        while not glob.glob(argv[1]) and time.time() < until:
+            time.sleep(0.05)
     found = bool(glob.glob(argv[1]))
     press(argv[3])
     sys.exit(0 if found else 1)

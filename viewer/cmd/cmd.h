@@ -19,6 +19,7 @@ int cmd_compare(int argc, char **argv);
 int cmd_compare_view(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_assets(int argc, char **argv);
+int cmd_record(int argc, char **argv);
 
 /* compare with the streams given (tests): the table and "-" outputs and
  * --help go to out, messages to err. */
@@ -33,6 +34,7 @@ const char *cmd_compare_usage(void);
 const char *cmd_compare_view_usage(void);
 const char *cmd_bench_usage(void);
 const char *cmd_assets_usage(void);
+const char *cmd_record_usage(void);
 
 /* ---- shared by the command files (cmd_opts.c) ---- */
 

@@ -8,6 +8,7 @@
 
 static const char usage[] =
     "usage: tarn view FILE.glib [--pack NAME] [--size WxH] [--time SECONDS] [--script FILE]\n"
+    "                 [--record FILE]\n"
     "\n"
     "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
     "generated sliders (one section per Program). Every file the scene reads is\n"
@@ -18,12 +19,14 @@ static const char usage[] =
     "  --size WxH       window size of the scene (default: the glib's WindowSize)\n"
     "  --time SECONDS   start at this simulated time\n"
     "  --script FILE    run scripted actions (frames N, set P U v, expect P U v,\n"
-    "                   wait SECONDS, screenshot PATH, reload, window W H, quit),\n"
-    "                   then exit\n"
+    "                   wait SECONDS, screenshot PATH, camera CX CY CZ DIST YAW PITCH,\n"
+    "                   pause 1|0, reload, window W H, quit), then exit\n"
+    "  --record FILE    record what you do (sliders, camera, pause) into the session\n"
+    "                   FILE from the start; `tarn record FILE -o out.mp4` replays it\n"
     "\n"
     "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
     "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
-    "       Esc or Q quit\n"
+    "       Shift+R start/stop recording a session (tarn-DATE-N.session)   Esc or Q quit\n"
     "\n"
     "Screenshots are opaque PNGs, tarn-DATE-N.png in the current directory; the\n"
     "path shows over the scene. Frame time is ms per frame over the last second.\n";
@@ -43,6 +46,7 @@ int cmd_view(int argc, char **argv) {
             i++;
         } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
         else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }
+        else if (strcmp(a, "--record") == 0 && next) { d.record = next; i++; }
         else if (a[0] == '-') return cmd_bad_usage(stderr, "tarn", usage, "unknown option");
         else if (!d.glib) d.glib = a;
         else return cmd_bad_usage(stderr, "tarn", usage, "one scene at a time");

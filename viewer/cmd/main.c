@@ -30,6 +30,8 @@ static const command commands[] = {
     { "view", "FILE.glib", "open a window; edits to any file the scene reads reload it",
       cmd_view_usage, cmd_view },
     { "render", "FILE.glib", "render without a display (EGL) to an image", cmd_render_usage, cmd_render },
+    { "record", "SESSION -o OUT", "replay a session recorded in the window to a video (ffmpeg) or PNGs",
+      cmd_record_usage, cmd_record },
     { "validate", "[PATH...]", "check every shader of every pack with glslang", cmd_validate_usage,
       cmd_validate },
     { "reference", "FILE.glib", "the CPU ground truth: image and per-pixel buffers (double precision)",

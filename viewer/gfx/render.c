@@ -558,6 +558,8 @@ bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
 bool render_has_world(const render *r) { return r->world.active; }
 const char *render_scene_path(const render *r) { return r->path; }
 
+void render_set_pack(render *r, const char *pack) { snprintf(r->pack, sizeof r->pack, "%s", pack ? pack : ""); }
+
 int render_deps(const render *r, const char *const **paths) {
     *paths = (const char *const *)r->deps;
     return r->ndeps;

@@ -76,6 +76,9 @@ unif_set *render_uniforms(render *r, int *nsets);
 void render_window_size(const render *r, int *w, int *h);   /* WindowSize, default 800x600 */
 render_view render_default_view(const render *r);          /* the glib's LookAt */
 const char *render_scene_path(const render *r);
+/* The pack the next render_load draws the water with (NULL or "": the
+ * scene's own `Pack`), as render_desc.pack; a session replay's pack switch. */
+void render_set_pack(render *r, const char *pack);
 
 /* Reads a uniform's current value from the linked GL program (tests). */
 /* A render target of the loaded scene (an empty `Texture2D`), as it is

@@ -14,6 +14,7 @@
 #include "file.h"
 #include "frame_meter.h"
 #include "mem.h"
+#include "session.h"
 #include "util.h"
 #include "watch.h"
 
@@ -36,6 +37,11 @@ struct app {
     double next_retry;           /* clock_now_s() when to look for them again */
     view_script_ctx *sc;         /* while a script step runs */
     int script_scene;
+    session_rec *rec;            /* recording, or NULL */
+    int recordings;              /* Shift+R's file names so far */
+    bool bare_frame;             /* a script's screenshot: no toast, no REC label */
+    int fit_w, fit_h;            /* app_fit_window's scene area (0: none asked for) */
+    long frames;                 /* drawn so far */
 };
 
 /* ---- watching ---- */
@@ -129,10 +135,65 @@ void app_screenshot(app *a) {
 /* Over the top of the scene area, above the panel and the scene's labels;
  * not into a screenshot asked for by key. */
 static void draw_toast(app *a) {
-    if (!a->toast[0] || glfwGetTime() > a->toast_until || a->shot_pending) return;
+    if (a->shot_pending || a->bare_frame) return;
     int ww, wh;
     glfwGetWindowSize(a->win, &ww, &wh);
+    if (a->rec) {
+        char label[1200];
+        snprintf(label, sizeof label, "REC %.1f s  %s", session_rec_seconds(a->rec, glfwGetTime()),
+                 session_rec_path(a->rec));
+        panel_label(a->panel, (float)ww - 10.0f, 10.0f, label, true);
+    }
+    if (!a->toast[0] || glfwGetTime() > a->toast_until) return;
     panel_toast(a->panel, (app_scene_x_window(a) + (float)ww) * 0.5f, 40.0f, a->toast);
+}
+
+/* ---- recording ---- */
+
+static void record_start(app *a, const char *path) {
+    render *r = a->scenes[0];
+    int n, w, h;
+    unif_set *sets = render_uniforms(r, &n);
+    glfwGetFramebufferSize(a->win, &w, &h);
+    w -= app_scene_x(w);
+    /* before the first frame the window may not have its fitted size yet */
+    if (a->frames == 0 && a->fit_w > 0) { w = a->fit_w; h = a->fit_h; }
+    session_header hd = { .scene = render_scene_path(r), .pack = a->d.pack, .width = w, .height = h,
+                          .time_s = a->s.t };
+    char err[1200];
+    a->rec = session_rec_start(path, &hd, sets, n, &a->s.cam, a->s.paused, glfwGetTime(), err, sizeof err);
+    if (!a->rec) {
+        fprintf(stderr, "%s: not recording: %s\n", a->d.name, err);
+        app_toast(a, "not recording: %s", err);
+        return;
+    }
+    fprintf(stderr, "%s: recording to %s\n", a->d.name, path);
+    app_toast(a, "recording to %s (Shift+R stops)", path);
+}
+
+static void record_stop(app *a) {
+    char path[1024], err[1200];
+    snprintf(path, sizeof path, "%s", session_rec_path(a->rec));
+    double secs = session_rec_seconds(a->rec, glfwGetTime());
+    int n;
+    bool ok = session_rec_stop(a->rec, glfwGetTime(), &n, err, sizeof err);
+    a->rec = NULL;
+    if (!ok) {
+        fprintf(stderr, "%s: recording: %s\n", a->d.name, err);
+        app_toast(a, "recording failed: %s", err);
+        return;
+    }
+    fprintf(stderr, "%s: recorded %d events in %.1f s to %s; `tarn record %s -o out.mp4` makes the video\n",
+            a->d.name, n, secs, path, path);
+    app_toast(a, "recorded %.1f s to %s", secs, path);
+}
+
+static void record_toggle(app *a) {
+    if (a->rec) { record_stop(a); return; }
+    char path[128];
+    view_shot_path(a->recordings++, path, sizeof path);
+    snprintf(strrchr(path, '.'), sizeof path - (size_t)(strrchr(path, '.') - path), ".session");
+    record_start(a, path);
 }
 
 static void apply_common(app *a, const panel_actions *c) {
@@ -152,7 +213,10 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     if (action != GLFW_PRESS || !a->panel || panel_wants_keyboard(a->panel)) return;
     switch (key) {
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
-    case GLFW_KEY_R: reload(a); break;
+    case GLFW_KEY_R:
+        if ((mods & GLFW_MOD_SHIFT) && a->d.recordable && a->scenes) record_toggle(a);
+        else reload(a);
+        break;
     case GLFW_KEY_SPACE: a->s.paused = !a->s.paused; break;
     /* not now: between swap and draw the back buffer holds no frame */
     case GLFW_KEY_P: case GLFW_KEY_F12: a->shot_pending = true; break;
@@ -184,6 +248,12 @@ static void frame(app *a, bool scripted) {
     panel_render(a->panel);
     if (a->d.apply) a->d.apply(a->d.user, a);
     apply_common(a, &common);
+    a->frames++;
+    if (a->rec) {
+        int n;
+        unif_set *sets = render_uniforms(a->scenes[0], &n);
+        session_rec_frame(a->rec, sets, n, &a->s.cam, a->s.paused, glfwGetTime());
+    }
 }
 
 /* The app's own script actions, then the client's: `window W H` resizes
@@ -206,18 +276,17 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
 
 /* One script step after a frame; returns the exit code it calls for. */
 static int script_step(app *a, view_script *script) {
-    view_script_ctx sc = { .r = a->scenes[a->script_scene], .time_s = &a->s.t,
-                           .custom = script_action, .user = a };
+    view_script_ctx sc = { .r = a->scenes[a->script_scene], .time_s = &a->s.t, .cam = &a->s.cam,
+                           .paused = &a->s.paused, .custom = script_action, .user = a };
     a->sc = &sc;
     view_script_status st = view_script_step(script, &sc);
     a->sc = NULL;
     if (st == VIEW_SCRIPT_SCREENSHOT) {
         /* the frame as it is now, drawn again with what the step changed;
          * without the toast of an earlier shot, which is not the scene's */
-        double until = a->toast_until;
-        a->toast_until = 0;
+        a->bare_frame = true;
         frame(a, true);
-        a->toast_until = until;
+        a->bare_frame = false;
         shoot(a, view_script_arg(script));
     }
     if (st == VIEW_SCRIPT_RELOAD) reload(a);
@@ -246,6 +315,7 @@ int app_run(app *a, render *const *scenes, int n) {
     start_watching(a);
     a->s.t = a->d.time_s;
     a->last_wall = glfwGetTime();
+    if (a->d.recordable && a->d.record) record_start(a, a->d.record);
     int rc = TARN_EXIT_OK;
     while (!glfwWindowShouldClose(a->win)) {
         glfwPollEvents();
@@ -259,6 +329,7 @@ int app_run(app *a, render *const *scenes, int n) {
         if (script && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
         glfwSwapBuffers(a->win);
     }
+    if (a->rec) record_stop(a);
     view_script_free(script);
     return rc;
 }
@@ -309,7 +380,11 @@ void app_destroy(app *a) {
 
 /* ---- small things ---- */
 
-void app_fit_window(app *a, int w, int h) { glfwSetWindowSize(a->win, w + APP_PANEL_WIDTH, h); }
+void app_fit_window(app *a, int w, int h) {
+    a->fit_w = w;
+    a->fit_h = h;
+    glfwSetWindowSize(a->win, w + APP_PANEL_WIDTH, h);
+}
 
 void app_home(app *a, render_view v) { a->s.cam = a->s.cam_home = orbit_from_view(v); }
 

@@ -29,8 +29,16 @@
  * so reloads (which watches it from then on).
  *
  * Keys the app handles (unless the panel has the keyboard): Esc/Q quit,
- * R reload, Space pause, P/F12 screenshot, F/Home reset the camera; others
- * go to hooks.key.
+ * R reload, Shift+R start/stop recording a session (a recordable client),
+ * Space pause, P/F12 screenshot, F/Home reset the camera; others go to
+ * hooks.key.
+ *
+ * Recording (session.h): what the user does to scenes[0] (panel values,
+ * camera, pause) goes to a session file, a line an event, checked once a
+ * frame; "REC" and the file show over the scene meanwhile. desc.record
+ * records from the start; Shift+R stops, and starts a new file,
+ * tarn-DATE-N.session in the current directory. Closing the window ends
+ * the file properly.
  *
  * Screenshots (P/F12, the panel's button, the script's `screenshot`) are
  * opaque: the window's alpha is what the panel's blending left, meaningless
@@ -70,6 +78,9 @@ typedef struct app_desc {
     int width, height;           /* the window at creation (0: 1000 x 700) */
     double time_s;               /* the clock's start */
     const char *script;          /* a view_script file (0: interactive) */
+    bool recordable;             /* Shift+R records scenes[0] (one scene: view, not compare-view) */
+    const char *record;          /* recordable: record into this session file from the start */
+    const char *pack;            /* the --pack drawn, for a session's header (0: the scene's own) */
     void *user;
     /* Draws the scene(s) into the default framebuffer. Required. */
     void (*draw)(void *user, app *a);

@@ -105,6 +105,7 @@ int view_run(const view_desc *d) {
      * applied by resizing once the scene is loaded */
     app_desc ad = { .name = "tarn", .scene_path = d->glib, .width = d->width, .height = d->height,
                     .time_s = d->time_s, .script = d->script, .user = &v,
+                    .recordable = true, .record = d->record, .pack = d->pack,
                     .draw = on_draw, .panel = on_panel, .apply = on_apply, .reload = on_reload };
     v.app = app_create(&ad);
     if (!v.app) return TARN_EXIT_NO_GL;

@@ -10,6 +10,7 @@ typedef struct view_desc {
     const char *script;         /* a file of scripted actions (tests, demos) */
     double time_s;
     const char *pack;           /* replaces the scene's `Pack` */
+    const char *record;         /* record a session (session.h) into this file from the start */
 } view_desc;
 
 /* Runs the window until it is closed (or the script quits). Returns a

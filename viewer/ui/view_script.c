@@ -71,23 +71,23 @@ static unif_entry *find_entry(render *r, const char *program, const char *name) 
 }
 
 /* set/expect PROGRAM UNIFORM v... */
-static view_script_status value_action(view_script *s, view_script_ctx *c, bool expect, char *rest, int line) {
+static view_script_status value_action(const char *path, view_script_ctx *c, bool expect, char *rest, int line) {
     char program[64], name[64];
     int used = 0;
     if (sscanf(rest, "%63s %63s %n", program, name, &used) < 2) {
-        fprintf(stderr, "%s:%d: expected PROGRAM UNIFORM values\n", s->path, line);
+        fprintf(stderr, "%s:%d: expected PROGRAM UNIFORM values\n", path, line);
         return VIEW_SCRIPT_FAILED;
     }
     float v[16];
     int n = parse_floats(rest + used, v, 16);
     if (n <= 0) {
-        fprintf(stderr, "%s:%d: expected numbers\n", s->path, line);
+        fprintf(stderr, "%s:%d: expected numbers\n", path, line);
         return VIEW_SCRIPT_FAILED;
     }
     if (!expect) {
         unif_entry *e = find_entry(c->r, program, name);
         if (!e) {
-            fprintf(stderr, "%s:%d: no uniform '%s' in program '%s'\n", s->path, line, name, program);
+            fprintf(stderr, "%s:%d: no uniform '%s' in program '%s'\n", path, line, name, program);
             return VIEW_SCRIPT_FAILED;
         }
         for (int i = 0; i < n && i < e->ncomp; i++) e->value[i] = v[i];
@@ -95,18 +95,69 @@ static view_script_status value_action(view_script *s, view_script_ctx *c, bool 
     }
     float got[16];
     if (!render_read_uniform(c->r, program, name, got, n)) {
-        fprintf(stderr, "%s:%d: expect: program '%s' has no active uniform '%s'\n", s->path, line, program, name);
+        fprintf(stderr, "%s:%d: expect: program '%s' has no active uniform '%s'\n", path, line, program, name);
         return VIEW_SCRIPT_FAILED;
     }
     for (int i = 0; i < n; i++)
         if (fabsf(got[i] - v[i]) > 1e-5f) {
-            fprintf(stderr, "%s:%d: expect: %s.%s[%d] is %g, expected %g\n", s->path, line, program, name, i, got[i], v[i]);
+            fprintf(stderr, "%s:%d: expect: %s.%s[%d] is %g, expected %g\n", path, line, program, name, i, got[i], v[i]);
             return VIEW_SCRIPT_FAILED;
         }
     fprintf(stderr, "tarn: script: %s.%s holds the expected value\n", program, name);
     return VIEW_SCRIPT_CONTINUE;
 }
 
+/* camera CX CY CZ DIST YAW PITCH: the orbit as a drag leaves it (up stays). */
+static view_script_status camera_action(const char *path, view_script_ctx *c, char *rest, int line) {
+    float v[7];
+    int n = parse_floats(rest, v, 7);
+    bool finite = n == 6;
+    for (int i = 0; finite && i < 6; i++) finite = isfinite(v[i]);
+    if (!finite || v[3] <= 0) {
+        fprintf(stderr, "%s:%d: camera wants CX CY CZ DISTANCE YAW PITCH (finite, distance > 0)\n", path, line);
+        return VIEW_SCRIPT_FAILED;
+    }
+    if (!c->cam) {
+        fprintf(stderr, "%s:%d: no camera to move here\n", path, line);
+        return VIEW_SCRIPT_FAILED;
+    }
+    for (int i = 0; i < 3; i++) c->cam->center[i] = v[i];
+    c->cam->distance = v[3];
+    c->cam->yaw = v[4];
+    c->cam->pitch = v[5];
+    return VIEW_SCRIPT_CONTINUE;
+}
+
+static view_script_status pause_action(const char *path, view_script_ctx *c, char *rest, int line) {
+    char word[8] = "";
+    if (sscanf(rest, "%7s", word) != 1 || (strcmp(word, "0") != 0 && strcmp(word, "1") != 0)) {
+        fprintf(stderr, "%s:%d: pause wants 1 (stop the clock) or 0 (run it)\n", path, line);
+        return VIEW_SCRIPT_FAILED;
+    }
+    if (!c->paused) {
+        fprintf(stderr, "%s:%d: no clock to pause here\n", path, line);
+        return VIEW_SCRIPT_FAILED;
+    }
+    *c->paused = word[0] == '1';
+    return VIEW_SCRIPT_CONTINUE;
+}
+
+view_script_status view_script_action(view_script_ctx *c, char *text, const char *file, int line) {
+    char cmd[32];
+    int used = 0;
+    if (sscanf(text, "%31s %n", cmd, &used) < 1) return VIEW_SCRIPT_CONTINUE;   /* blank */
+    char *rest = text + used;
+    if (strcmp(cmd, "time") == 0) { *c->time_s = atof(rest); return VIEW_SCRIPT_CONTINUE; }
+    if (strcmp(cmd, "set") == 0) return value_action(file, c, false, rest, line);
+    if (strcmp(cmd, "expect") == 0) return value_action(file, c, true, rest, line);
+    if (strcmp(cmd, "camera") == 0) return camera_action(file, c, rest, line);
+    if (strcmp(cmd, "pause") == 0) return pause_action(file, c, rest, line);
+    if (c->custom) return c->custom(c->user, cmd, rest, file, line);
+    fprintf(stderr, "%s:%d: unknown script action '%s'\n", file, line, cmd);
+    return VIEW_SCRIPT_FAILED;
+}
+
+/* The actions that pace the script, then view_script_action's. */
 static view_script_status run_line(view_script *s, view_script_ctx *c, char *text, int line) {
     char cmd[32];
     int used = 0;
@@ -114,9 +165,6 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
     char *rest = text + used;
     if (strcmp(cmd, "frames") == 0) { s->wait_frames = atoi(rest); return VIEW_SCRIPT_CONTINUE; }
     if (strcmp(cmd, "wait") == 0) { s->wait_until = clock_now_s() + atof(rest); return VIEW_SCRIPT_CONTINUE; }
-    if (strcmp(cmd, "time") == 0) { *c->time_s = atof(rest); return VIEW_SCRIPT_CONTINUE; }
-    if (strcmp(cmd, "set") == 0) return value_action(s, c, false, rest, line);
-    if (strcmp(cmd, "expect") == 0) return value_action(s, c, true, rest, line);
     if (strcmp(cmd, "reload") == 0) return VIEW_SCRIPT_RELOAD;
     if (strcmp(cmd, "quit") == 0) return VIEW_SCRIPT_DONE;
     if (strcmp(cmd, "screenshot") == 0) {
@@ -124,9 +172,7 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
         s->arg[strcspn(s->arg, " \t")] = '\0';
         return VIEW_SCRIPT_SCREENSHOT;
     }
-    if (c->custom) return c->custom(c->user, cmd, rest, s->path, line);
-    fprintf(stderr, "%s:%d: unknown script action '%s'\n", s->path, line, cmd);
-    return VIEW_SCRIPT_FAILED;
+    return view_script_action(c, text, s->path, line);
 }
 
 view_script_status view_script_step(view_script *s, view_script_ctx *c) {

@@ -8,6 +8,9 @@
  *   expect PROGRAM UNIFORM v...   the linked GL program holds these values (±1e-5)
  *   screenshot PATH               write the window's image
  *   reload                        reload the scene, as a save would
+ *   camera CX CY CZ DIST YAW PITCH  the orbit camera (centre, distance, radians),
+ *                                 as a drag leaves it
+ *   pause 0|1                     stop or run the simulated clock
  *   window W H                    resize the window (app.c's; give it a few frames)
  *   quit
  * `#` starts a comment. A window may add actions of its own (ctx.custom):
@@ -15,7 +18,10 @@
 #ifndef TARN_VIEW_SCRIPT_H
 #define TARN_VIEW_SCRIPT_H
 
+#include <stdbool.h>
+
 #include "render.h"
+#include "view_util.h"
 
 typedef struct view_script view_script;
 
@@ -31,6 +37,8 @@ typedef enum view_script_status {
 typedef struct view_script_ctx {
     render *r;
     double *time_s;
+    orbit *cam;                 /* `camera` moves it (NULL: the action fails) */
+    bool *paused;               /* `pause` sets it (NULL: the action fails) */
     /* An action this module does not know goes here (NULL: unknown actions
      * fail). cmd is its first word, rest the words after it; return what
      * the caller must do, VIEW_SCRIPT_FAILED with a message on stderr. */
@@ -46,6 +54,12 @@ view_script *view_script_load(const char *path, char *err, int errlen);
 /* Runs actions up to the next frame boundary; returns what the caller must do. */
 view_script_status view_script_step(view_script *s, view_script_ctx *ctx);
 const char *view_script_arg(const view_script *s);
+/* One action that needs no frame boundary (set, expect, time, camera,
+ * pause, or ctx->custom's), text as a script line; file and line name it
+ * in messages. The one path scripts and session replays (session.h) change
+ * a running scene by. frames/wait/screenshot/reload/quit are the script's
+ * own and fail here. text is changed. */
+view_script_status view_script_action(view_script_ctx *ctx, char *text, const char *file, int line);
 void view_script_free(view_script *s);
 
 #endif
