@@ -42,6 +42,13 @@ bool render_has_errors(const render *r);
 bool render_has_scene(const render *r);
 /* The scene describes a world (lit in linear radiance, like the reference). */
 bool render_has_world(const render *r);
+/* The pack the next render_load draws the scene with, as render_desc.pack
+ * (NULL or "": the scene's own `Pack`). What is on screen stays until that
+ * load; a load that fails (a glman scene has no world for a pack) keeps it. */
+void render_set_pack(render *r, const char *pack);
+/* The pack the current scene is drawn by (its Pack command, after any
+ * override), "" when it has none. */
+const char *render_pack(const render *r);
 
 /* Every file the scene depends on (glib, includes, shader stages and their
  * #includes, textures, OBJs): what the watcher watches. */
