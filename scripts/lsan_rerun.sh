@@ -4,7 +4,7 @@
 # Mesa llvmpipe's threads it sometimes crashes itself ("Tracer caught
 # signal 11" then "LeakSanitizer has encountered a fatal error"): seen once
 # in test_soak in CI, after the test's own checks all passed; the same test
-# then passed three runs in a row. That is the tool failing, not a finding:
+# passed when run again. That is the tool failing, not a finding:
 # a test that failed only so runs once more, whole, and must pass then.
 # Any other failure stands, and this script exits 1.
 #
