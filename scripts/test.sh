@@ -22,7 +22,7 @@ if [ "${TARN_TEST_SANITIZE:-1}" != 0 ]; then
     stage "build-asan: every test under AddressSanitizer and UndefinedBehaviorSanitizer"
     cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTARN_SANITIZE=ON >/dev/null
     cmake --build build-asan -j"$jobs"
-    (cd build-asan && ctest --output-on-failure -j"$jobs" "$@")
+    (cd build-asan && ctest --output-on-failure -j"$jobs" "$@") || scripts/lsan_rerun.sh build-asan
 fi
 
 if [ "${TARN_TEST_FUZZ:-1}" != 0 ]; then

@@ -16,6 +16,12 @@ add_test(NAME window_shot_xvfb
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_shot_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")
 
+# The view window switches packs live; a glman scene refuses one.
+add_test(NAME window_pack_xvfb
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_pack_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(window_pack_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")
+
 # The one window loop (ui/app.c) through view and compare-view: hot reload
 # with a dependency in a directory made later, and a lost context.
 add_test(NAME window_app_xvfb

@@ -160,16 +160,33 @@ static void test_many_sets_all_applied(void) {
     check_floor_red(a, "the 70th --set was lost: ");
 }
 
-/* No arguments and no display: the default scene goes to out/default.png. */
+/* No arguments and no display: the default scene (the lake, a world
+ * scene, drawn by the raymarch pack) goes to out/default.png at the lake's
+ * WindowSize, the same picture as `render scenes/lake.glib --pack raymarch`. */
 static void test_no_arguments_renders_default_scene(void) {
-    char cmd[2048], out[8192], png[512];
+    char cmd[2048], out[8192], png[512], same[512];
     snprintf(cmd, sizeof cmd, "cd %s && env -u DISPLAY -u WAYLAND_DISPLAY %s 2>&1", dir, bin);
     int rc = run_command(cmd, out, sizeof out);
     if (rc == 3) SKIP("no OpenGL");
     CHECK_MSG(rc == 0, "%s", out);
     CHECK_STR_CONTAINS(out, "out/default.png");
+    CHECK_STR_CONTAINS(out, "scenes/lake.glib, pack raymarch");
     snprintf(png, sizeof png, "%s/out/default.png", dir);
-    CHECK(access(png, R_OK) == 0);
+    snprintf(same, sizeof same, "%s/lake-raymarch.png", dir);
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/lake.glib --pack raymarch --time 2 -o %s --quiet 2>&1",
+             bin, src, same);
+    CHECK_MSG(run_command(cmd, out, sizeof out) == 0, "%s", out);
+    img a, b;
+    char err[512];
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    CHECK_MSG(img_read(png, &a, err, sizeof err), "%s", err);
+    CHECK_MSG(img_read(same, &b, err, sizeof err), "%s", err);
+    CHECK(a.w == 960 && a.h == 540);
+    CHECK(a.w == b.w && a.h == b.h && a.px && b.px &&
+          a.channels == b.channels && memcmp(a.px, b.px, (size_t)a.w * a.h * a.channels * sizeof *a.px) == 0);
+    img_free(&a);
+    img_free(&b);
 }
 
 int main(void) {

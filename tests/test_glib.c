@@ -1361,21 +1361,30 @@ static void test_pack_override(void) {
     }
     glib_free(s);
 
-    /* a scene with no Pack gets the override's at the end of the top file */
+    /* a world scene with no Pack gets the override's at the end of the top file */
     put("po/inc.glib", "Sphere 2\n");
-    s = load_opts("po/b.glib", "##OpenGL GLIB\nInclude inc.glib\nSphere 1\n", P("po/packs"), "basic");
+    s = load_opts("po/b.glib", "##OpenGL GLIB\nInclude inc.glib\nSphere 1\nSun 0 1 0\n", P("po/packs"), "basic");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 4);
-    if (s->ncmds == 4) {
+    CHECK(s->ncmds == 5);
+    if (s->ncmds == 5) {
         CHECK(s->cmds[0].num[0] == 2 && s->cmds[1].num[0] == 1);
-        CHECK(s->cmds[2].kind == GLIB_CMD_PACK && strcmp(s->cmds[2].name, "basic") == 0 &&
-              s->cmds[2].file == s->files[0] && s->cmds[2].line == 0);
-        CHECK(s->cmds[3].kind == GLIB_CMD_WORLD && strcmp(s->cmds[3].file, P("po/packs/basic/pack.glib")) == 0);
+        CHECK(s->cmds[3].kind == GLIB_CMD_PACK && strcmp(s->cmds[3].name, "basic") == 0 &&
+              s->cmds[3].file == s->files[0] && s->cmds[3].line == 0);
+        CHECK(s->cmds[4].kind == GLIB_CMD_WORLD && strcmp(s->cmds[4].file, P("po/packs/basic/pack.glib")) == 0);
     }
     glib_free(s);
 
+    /* a plain glman scene (no world command) given a pack is refused: the
+     * pack would draw its world and water over the scene's own */
+    s = load_opts("po/glman.glib", "##OpenGL GLIB\nInclude inc.glib\nSphere 1\n", P("po/packs"), "basic");
+    CHECK(has_diag(s, P("po/glman.glib"), 0, DIAG_ERROR, "--pack basic: this scene describes no world"));
+    CHECK(has_diag(s, P("po/glman.glib"), 0, DIAG_ERROR, "Give --pack a world scene (scenes/lake.glib"));
+    CHECK(s->nerrors == 1);
+    for (int i = 0; i < s->ncmds; i++) CHECK(s->cmds[i].kind != GLIB_CMD_PACK && s->cmds[i].kind != GLIB_CMD_WORLD);
+    glib_free(s);
+
     /* a missing override pack is an error at line 0 of the top file */
-    s = load_opts("po/c.glib", "##OpenGL GLIB\nSphere 1\n", P("po/packs"), "nope");
+    s = load_opts("po/c.glib", "##OpenGL GLIB\nSun 0 1 0\nSphere 1\n", P("po/packs"), "nope");
     CHECK(has_diag(s, P("po/c.glib"), 0, DIAG_ERROR, "no pack 'nope'"));
     CHECK(has_diag(s, P("po/c.glib"), 0, DIAG_ERROR, "the packs are: basic, natural"));
     glib_free(s);
@@ -1384,9 +1393,9 @@ static void test_pack_override(void) {
     glib_free(s);
 
     /* no packs directory: the name is replaced or added, nothing is read */
-    s = load_opts("po/e.glib", "##OpenGL GLIB\nSphere 1\n", NULL, "natural");
+    s = load_opts("po/e.glib", "##OpenGL GLIB\nSphere 1\nSky 0.2 0.4 0.8 0.7 0.8 0.9\n", NULL, "natural");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 2 && s->cmds[1].kind == GLIB_CMD_PACK && strcmp(s->cmds[1].name, "natural") == 0);
+    CHECK(s->ncmds == 3 && s->cmds[2].kind == GLIB_CMD_PACK && strcmp(s->cmds[2].name, "natural") == 0);
     glib_free(s);
 }
 

@@ -11,7 +11,9 @@
  *     packs/NAME/bounds.txt line for the case, else its `*` line, else the
  *     built-in table (packset_bound_resolve, viewer/scene/packset.c). A bound of
  *     `none` says why the pack cannot hold one there; the test prints the
- *     reason and checks the rest.
+ *     reason and checks the rest;
+ *   - a march that ran out of budget (the refraction-hit buffer's alpha
+ *     BENCH_MARCH_CAPPED) on at most 1% of the water pixels.
  *
  * Images are 96x54, the reference at the same size with a coarse caustic
  * grid (48 cells, 9 photons a cell): the bounds are about the pack, not
@@ -34,6 +36,7 @@
 #include "refcache.h"
 #include "render.h"
 #include "ref_buffers.h"
+#include "bench.h"
 
 #define W 96
 #define H 54
@@ -50,6 +53,7 @@ static refcache_image refs[MAX_CASES];
 static bool have_ref[MAX_CASES];
 static float px[W * H * 4];
 static long targets_checked;   /* render targets read back by check_targets */
+static long capped_checked;    /* refraction-hit buffers checked by check_capped_share */
 
 static double wall_s(void) {
     struct timespec ts;
@@ -187,6 +191,27 @@ static void test_every_case_through_every_pack(void) {
     render_target_destroy(&tg);
 }
 
+/* A truncated march is never silent, and never common: in the
+ * refraction-hit buffer a pack writes alpha BENCH_MARCH_CAPPED where its
+ * march ran out of budget before it met the ground (raymarch's MARCH_CAP).
+ * On every hard case at most MAX_CAPPED_SHARE of the water pixels may be
+ * so: the march's lengths follow the scene's scale (uWorldScale), so a
+ * large or small lake must not exhaust it. Issue #13's figure: 1%. */
+#define MAX_CAPPED_SHARE 0.01
+static void check_capped_share(const float *rgba, const float *mask, const char *what) {
+    long water = 0, capped = 0;
+    for (long i = 0; i < (long)W * H; i++)
+        if (mask[i] == 1 /* REF_MASK_WATER */) {
+            water++;
+            capped += rgba[i * 4 + 3] == BENCH_MARCH_CAPPED;
+        }
+    double share = water ? (double)capped / (double)water : 0.0;
+    if (capped) fprintf(stderr, "  %s: march capped on %.2f%% of the water\n", what, 100.0 * share);
+    CHECK_MSG(share <= MAX_CAPPED_SHARE, "%s: the march ran out on %ld of %ld water pixels (%.2f%%, at most %.0f%%)",
+              what, capped, water, 100.0 * share, 100.0 * MAX_CAPPED_SHARE);
+    capped_checked++;
+}
+
 /* The per-pixel buffers a pack shows (its bench.txt `buffer` lines, or
  * `Define TARN_OUTPUT`): finite on every hard case, over the pixels where
  * the reference sees water. */
@@ -235,6 +260,7 @@ static void test_buffers_are_finite(void) {
                         for (int k = 0; k < 3; k++)
                             if (!isfinite(px[i * 4 + k])) { bad++; break; }
                 CHECK_MSG(bad == 0, "%s: %ld water pixels are NaN or Inf", what, bad);
+                if (mode == REF_OUTPUT_REFRACT_HIT) check_capped_share(px, refs[c].mask, what);
                 shown++;
                 for (int i = 0; i < nsets; i++) unif_reset_all(&sets[i]);
             }
@@ -242,7 +268,8 @@ static void test_buffers_are_finite(void) {
         render_destroy(r);
         packset_bench_free(&pb);
     }
-    fprintf(stderr, "  %d buffer images checked\n", shown);
+    fprintf(stderr, "  %d buffer images checked, %ld of them for a capped march\n", shown, capped_checked);
+    CHECK(capped_checked >= ncases);   /* raymarch shows its refraction hits: the check ran */
     render_target_destroy(&tg);
 }
 

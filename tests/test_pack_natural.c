@@ -445,8 +445,8 @@ static void print_hits(const char *what, const ref_point_metrics *m) {
  * Beer-Lambert on the estimated path: bounds as for the reflection. From
  * below, Snell's window shows the sky through the world-above pass. */
 static void test_flat_refraction(render *r) {
-    setting paper[] = { { "DEBUG_PASS", 4 }, { "BEER_LAMBERT", 0 } };
-    apply(r, paper, 2);
+    setting paper[] = { { "DEBUG_PASS", 4 }, { "BEER_LAMBERT", 0 }, { "REFINE_STEPS", 0 } };
+    apply(r, paper, 3);
     draw(r, 0.0, NULL);
     ref_point_metrics hp = hit_error();
     print_hits("refraction hit, paper (dv/3, clamp 2)", &hp);

@@ -47,8 +47,12 @@ missing_dir() {
     [ "$(grep -c 'Flat.uGrey holds the expected value' "$log")" -eq 1 ] ||
         fail "$name: no reload after the folder appeared"
 }
+# compare-view draws packs, and a pack needs a scene that describes a world
+# (a glman scene given packs is refused): the same scene with a Sun
+world() { sed '2a Sun 0.4 0.8 -0.45  2.2 2.1 1.9' "$1" > "$2"; }
+world "$scratch/scene.glib" "$scratch/world.glib"
 missing_dir view "$bin" view scene.glib
-missing_dir compare-view "$bin" compare-view scene.glib --packs basic,basic --size 320x240
+missing_dir compare-view "$bin" compare-view world.glib --packs basic,basic --size 320x240
 
 printf 'frames 20\nquit\n' > "$scratch/frames.script"
 # $1: the name in messages; the rest: the command line.
@@ -64,5 +68,6 @@ lost_context() {
 cp "$src/tests/data/window/grey.frag" "$scratch/grey.frag"
 sed 's#^Fragment later/grey.frag#Fragment grey.frag#' "$scratch/scene.glib" > "$scratch/lost.glib"
 lost_context view "$bin" view lost.glib
-lost_context compare-view "$bin" compare-view lost.glib --packs basic,basic --size 320x240
+world "$scratch/lost.glib" "$scratch/lost-world.glib"
+lost_context compare-view "$bin" compare-view lost-world.glib --packs basic,basic --size 320x240
 echo "window app test: ok"

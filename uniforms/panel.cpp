@@ -275,6 +275,27 @@ void panel_begin_frame(panel *p) {
     p->in_frame = true;
 }
 
+/* The pack drawing the world, as compare-view picks them: a new choice is
+ * an action (the app reloads the scene with it); the combo shows the
+ * current one until then. */
+static void pack_combo(const panel_info *info, panel_actions *out) {
+    if (info->npacks <= 0 || !info->packs) return;
+    const char *now = info->pack >= 0 && info->pack < info->npacks ? info->packs[info->pack] : "(the scene's)";
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
+    if (ImGui::BeginCombo("Pack", now)) {
+        for (int i = 0; i < info->npacks; i++) {
+            bool selected = i == info->pack;
+            if (ImGui::Selectable(info->packs[i], selected) && !selected) {
+                out->switch_pack = true;
+                out->pack = i;
+            }
+            if (selected) ImGui::SetItemDefaultFocus();
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::PopItemWidth();
+}
+
 void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, panel_actions *out) {
     panel_actions none;
     if (!out) out = &none;
@@ -288,6 +309,7 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
         if (info) {
             if (info->scene_path) ImGui::TextUnformatted(info->scene_path);
             timings(info);
+            pack_combo(info, out);
         }
         if (ImGui::Button("Reset all")) {
             for (int s = 0; s < nsets; s++)

@@ -46,6 +46,9 @@ typedef struct panel_info {
     const char *error_text;      /* shown in a red overlay window; NULL if none */
     float scene_x;               /* the scene area's left edge, window pixels: the overlay stays right of it */
     const char *passes;          /* GPU time per pass, a line each; NULL or "" if none */
+    const char *const *packs;    /* the packs a world scene can be drawn by (npacks 0: no choice) */
+    int npacks;
+    int pack;                    /* the one drawing it now, an index into packs; -1 none */
 } panel_info;
 
 typedef struct panel_actions {
@@ -56,9 +59,12 @@ typedef struct panel_actions {
     bool reload;                 /* reload the scene now */
     bool toggle_pause;
     bool screenshot;
+    bool switch_pack;            /* the Pack combo picked another: draw the scene with packs[pack] */
+    int pack;
 } panel_actions;
 
-/* One collapsing header per unif_set with a widget per entry by its widget
+/* A Pack combo first when info lists packs (switching draws the same world
+ * with another pack, live), then one collapsing header per unif_set with a widget per entry by its widget
  * kind (slider, int slider, checkbox, colour, drag, or the fixed value as
  * text), a small reset button per changeable entry, a row of Reset all /
  * Save preset / Load preset / Reload, Pause and Screenshot buttons, and the

@@ -100,7 +100,7 @@ float natBehindFloor(vec3 p) {
 #endif
 
 // Where the ray S + s t (t refracted, downward) meets the floor of the
-// light's depth map: PHOTON_STEPS steps over [0, 2 s0 + 0.25], s0 the
+// light's depth map: PHOTON_STEPS steps over [0, 2 s0 + 0.25 u] (u the scene's unit), s0 the
 // vertical drop to the floor under S along the sun divided by |t.y|, then
 // three regula-falsi steps in the bracket. False when it meets nothing.
 bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
@@ -114,7 +114,7 @@ bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
     vec3 row2 = vec3(uCamLightVP[0][2], uCamLightVP[1][2], uCamLightVP[2][2]);
     float kz = 0.5 * dot(row2, -uSunDir);
     float drop = abs(kz) > 1e-8 ? max(zF - lS.z, 0.0) / kz * uSunDir.y : 1.0;
-    float smax = 2.0 * max(drop, 0.0) / -t.y + 0.25;
+    float smax = 2.0 * max(drop, 0.0) / -t.y + 0.25 * uWorldScale;   // (world.glsl's scene unit)
     float s0 = 0.0, g0 = natBehindFloor(S);
     if (g0 >= 0.0) { hit = S; return true; }   // the floor touches the surface here
     for (int i = 1; i <= PHOTON_STEPS; i++) {

@@ -25,5 +25,9 @@ int cli_render(const cli_render_desc *d);
 
 /* The scene tarn opens with no arguments. */
 const char *cli_default_scene(void);
+/* The pack the default scene is drawn with: the one that looks best and
+ * measures best on the lake (docs/benchmark.md): refraction of the floor,
+ * local reflections of the objects, the lowest water error of any default. */
+const char *cli_default_pack(void);
 
 #endif

@@ -43,6 +43,9 @@ static const char usage[] =
     "                     $XDG_CACHE_HOME/tarn/ref, else ~/.cache/tarn/ref)\n"
     "  --heat-max E       heat-map scale, linear RGB error (default 0.25)\n"
     "  --no-images        do not write the frames and heat maps\n"
+    "  --no-cost-model    skip the cost model: each pack's default timed at three\n"
+    "                     sizes and three water grids on the first scene, fitted\n"
+    "                     as ms = a + b*Mpixels + c*kvertices and reported\n"
     "  --quiet            no progress bar\n"
     "  --root DIR         the tree whose packs/ is used (default: $TARN_ROOT, else\n"
     "                     the installed data, else tarn's source tree)\n"
@@ -133,6 +136,7 @@ static int parse(int argc, char **argv, bench_desc *d, char *packs, size_t packs
             if (!parse_axis(next, &d->time_axis)) return BAD("--time-axis wants auto, gpu or wall");
             i++;
         } else if (strcmp(a, "--no-images") == 0) d->no_images = true;
+        else if (strcmp(a, "--no-cost-model") == 0) d->no_cost_model = true;
         else if (strcmp(a, "--quiet") == 0) d->quiet = true;
         else if (a[0] == '-') return BAD("unknown option '%s'", a);
         else if (d->nscenes < BENCH_MAX_SCENES) d->scenes[d->nscenes++] = a;

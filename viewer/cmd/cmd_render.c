@@ -21,8 +21,12 @@
 
 const char *cli_default_scene(void) {
     static char path[4096];
-    snprintf(path, sizeof path, "%s/scenes/pond.glib", tarn_root());
+    snprintf(path, sizeof path, "%s/scenes/lake.glib", tarn_root());
     return path;
+}
+
+const char *cli_default_pack(void) {
+    return "raymarch";
 }
 
 static bool wants_float(const char *path) {

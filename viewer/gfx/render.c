@@ -556,9 +556,19 @@ const diag_list *render_diags(const render *r) { return &r->diags; }
 bool render_has_errors(const render *r) { return r->errors; }
 bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
 bool render_has_world(const render *r) { return r->world.active; }
+
+void render_set_pack(render *r, const char *pack) {
+    snprintf(r->pack, sizeof r->pack, "%s", pack ? pack : "");
+}
+
+const char *render_pack(const render *r) {
+    const glib_scene *g = r->cur.glib;
+    for (int i = g ? g->ncmds - 1 : -1; i >= 0; i--)
+        if (g->cmds[i].kind == GLIB_CMD_PACK) return g->cmds[i].name;
+    return "";
+}
 const char *render_scene_path(const render *r) { return r->path; }
 
-void render_set_pack(render *r, const char *pack) { snprintf(r->pack, sizeof r->pack, "%s", pack ? pack : ""); }
 
 int render_deps(const render *r, const char *const **paths) {
     *paths = (const char *const *)r->deps;

@@ -47,6 +47,14 @@ bool render_has_errors(const render *r);
 bool render_has_scene(const render *r);
 /* The scene describes a world (lit in linear radiance, like the reference). */
 bool render_has_world(const render *r);
+/* The pack the next render_load draws the scene with, as render_desc.pack
+ * (NULL or "": the scene's own `Pack`). What is on screen stays until that
+ * load; a load that fails (a glman scene has no world for a pack) keeps it.
+ * The view window's Pack combo, and a session replay's pack switch. */
+void render_set_pack(render *r, const char *pack);
+/* The pack the current scene is drawn by (its Pack command, after any
+ * override), "" when it has none. */
+const char *render_pack(const render *r);
 
 /* Every file the scene depends on (glib, includes, shader stages and their
  * #includes, textures, OBJs): what the watcher watches. */
@@ -76,9 +84,6 @@ unif_set *render_uniforms(render *r, int *nsets);
 void render_window_size(const render *r, int *w, int *h);   /* WindowSize, default 800x600 */
 render_view render_default_view(const render *r);          /* the glib's LookAt */
 const char *render_scene_path(const render *r);
-/* The pack the next render_load draws the water with (NULL or "": the
- * scene's own `Pack`), as render_desc.pack; a session replay's pack switch. */
-void render_set_pack(render *r, const char *pack);
 
 /* Reads a uniform's current value from the linked GL program (tests). */
 /* A render target of the loaded scene (an empty `Texture2D`), as it is

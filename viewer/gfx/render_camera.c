@@ -58,13 +58,18 @@ static void top_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) {
     proj[3][3] = 1.0f;
 }
 
+/* The sun's orthographic view of the world: a box of half size h around the
+ * water's centre, the eye h out along the sun, depth over [0, 2h]. Every
+ * length follows the world (h does): fixed metres here put a 2.4 km lake
+ * outside the depth range and spent the depth buffer's precision on 400 m
+ * of nothing over a 24 cm one. */
 static void light_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) {
     const double *s = in->sun_dir;
     render_view v = { { 0, 0, 0 }, { 0, (float)in->level, 0 }, { 0, 1, 0 } };
-    for (int k = 0; k < 3; k++) v.eye[k] = v.center[k] + (float)(s[k] * 200.0);
+    for (int k = 0; k < 3; k++) v.eye[k] = v.center[k] + (float)(s[k] * h);
     if (fabs(s[1]) > 0.99) { v.up[1] = 0; v.up[2] = 1; }   /* sun overhead: any horizontal up */
     lookat(&v, view);
-    glm_ortho(-h, h, -h, h, 1.0f, 400.0f, proj);
+    glm_ortho(-h, h, -h, h, 0.0f, 2.0f * h, proj);
 }
 
 void cam_compute(const cam_inputs *in, cam_set *out) {
@@ -89,7 +94,9 @@ void cam_compute(const cam_inputs *in, cam_set *out) {
     top_matrices(in, out->top_half, view, proj);
     memcpy(out->view[CAM_TOP], view, sizeof view);
     memcpy(out->proj[CAM_TOP], proj, sizeof proj);
-    out->light_half = (float)(in->half_size * 1.5 + in->depth + 2.0);
+    /* the square's corners (1.41 half sizes out), its depth, and what stands
+     * on the shore (the lake's tallest object: 4.5 m of 12) */
+    out->light_half = (float)(in->half_size * (1.5 + 2.0 / 12.0) + in->depth);
     light_matrices(in, out->light_half, view, proj);
     memcpy(out->view[CAM_LIGHT], view, sizeof view);
     memcpy(out->proj[CAM_LIGHT], proj, sizeof proj);

@@ -1737,6 +1737,21 @@ static bool check_top(parser *p, const reader *r, const char *file) {
 /* A pack chosen from outside for a scene that names none: as if the top
  * file ended with `Pack name` (at its line 0). */
 static void override_pack_at_end(parser *p, const char *file) {
+    /* A pack draws the water of a world (Terrain, Water, Sun, Sky...). A
+     * plain glman scene draws its own floor and water: given a pack, it
+     * would get the pack's world and water on top of its own. Refuse, and
+     * say what to do instead. */
+    bool world = false;
+    for (int i = 0; i < p->sc->ncmds && !world; i++)
+        world = p->sc->cmds[i].kind != GLIB_CMD_PACK && glib_cmd_describes_world(p->sc->cmds[i].kind);
+    if (!world) {
+        report(p, DIAG_ERROR, file, 0,
+               "--pack %.60s: this scene describes no world (no Terrain, Water, Sun or Sky command), so a pack "
+               "has no water of its own to draw here: it would draw its world over the scene's. Give --pack a "
+               "world scene (scenes/lake.glib, scenes/pool.glib), or open this one without --pack",
+               p->pack_override);
+        return;
+    }
     cmdctx c = { .p = p, .file = file, .line = 0, .spec = find_spec("Pack") };
     build_usage(c.spec, c.usage, sizeof c.usage);
     glib_cmd cmd;

@@ -1,6 +1,7 @@
 /* bench: `tarn bench`, speed against error (see bench.h, docs/benchmark.md). */
 #include "util.h"
 #include "bench.h"
+#include "costmodel.h"
 
 #include <GL/gl.h>
 #include <dirent.h>
@@ -48,6 +49,7 @@ typedef struct bench_opts {
     refcache_opts ref;
     double heat_max;
     bool images, quiet;
+    bool cost_model;             /* fit each pack's a + b·pixels + c·vertices */
 } bench_opts;
 
 typedef struct row {             /* one scene, pack, setting and time */
@@ -125,6 +127,10 @@ typedef struct bench {
     progress pr;
     int failures;
     int refs_rendered, refs_cached;
+    /* per pack: its default's cost model on the first scene (measure_cost) */
+    cost_model cost[PACKSET_MAX];
+    bool has_cost[PACKSET_MAX];
+    char cost_note[PACKSET_MAX][200];
 } bench;
 
 /* ---- small helpers ---- */
@@ -284,6 +290,7 @@ static void fill_opts(bench_opts *o, const bench_desc *d) {
     o->ref = d->ref;
     o->heat_max = d->heat_max > 0 ? d->heat_max : 0.25;
     o->images = !d->no_images;
+    o->cost_model = !d->no_cost_model;
     o->quiet = d->quiet;
 }
 
@@ -875,6 +882,65 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
     render_destroy(r);
 }
 
+/* ---- the cost model ---- */
+
+/* The sweep a pack's cost model is fitted from: its default setting on the
+ * first scene at three image sizes (half, the run's, 1.5x a side) and
+ * three water grids: 9 timed frames, medians as the run's. */
+static const int COST_MESHES[] = { 64, 128, 256 };
+static const double COST_SCALES[] = { 0.5, 1.0, 1.5 };
+#define COST_SAMPLES 9
+
+/* One mesh: a wrapper glib adding `WaterMesh m` to the scene, loaded once
+ * and timed at each size. Returns the samples added, -1 with why on a
+ * failed load. */
+static int cost_mesh(bench *b, int p, int m, cost_sample *out, char *why, size_t whylen) {
+    char sc[256], path[PATH_LEN + 300];
+    stem(b->scene_abs[0], sc, sizeof sc);
+    packset_assign as = { .program = "scene", .name = "WaterMesh", .value = { (float)m }, .nvalue = 1 };
+    packset_setting st = { .assign = &as, .nassign = 1 };
+    snprintf(st.name, sizeof st.name, "cost-mesh-%d", m);
+    snprintf(path, sizeof path, "%s/scenes/%s.%s.cost-mesh-%d.glib", b->o.out, sc, b->o.packs[p], m);
+    char err[1024] = "";
+    if (!packset_write_wrapper(&st, b->scene_abs[0], path, err, sizeof err)) {
+        snprintf(why, whylen, "%s", err);
+        return -1;
+    }
+    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p] };
+    render *r = render_create(&rd);
+    if (!render_load(r, path)) {
+        first_line(render_messages(r), why, whylen);
+        render_destroy(r);
+        return -1;
+    }
+    int n = 0;
+    for (size_t i = 0; i < sizeof COST_SCALES / sizeof COST_SCALES[0]; i++) {
+        int w = (int)lround(b->o.w * COST_SCALES[i]), h = (int)lround(b->o.h * COST_SCALES[i]);
+        render_target tg;
+        if (w < 1 || h < 1 || !render_target_create(&tg, w, h, true)) continue;
+        timing tm = time_frames(b, r, &tg, b->o.times[0], NULL);
+        render_target_destroy(&tg);
+        out[n++] = (cost_sample){ (double)w * h / 1e6, cost_model_grid_kvertices(m),
+                                  b->axis == 1 ? tm.gpu_ms : tm.wall_ms };
+    }
+    render_destroy(r);
+    return n;
+}
+
+static void measure_cost(bench *b, int p) {
+    char sc[256];
+    stem(b->scene_abs[0], sc, sizeof sc);
+    progress_set(&b->pr, b->pr.done, true, "%s %s: cost model", sc, b->o.packs[p]);
+    cost_sample samples[COST_SAMPLES];
+    int n = 0;
+    for (size_t k = 0; k < sizeof COST_MESHES / sizeof COST_MESHES[0]; k++) {
+        int got = cost_mesh(b, p, COST_MESHES[k], samples + n, b->cost_note[p], sizeof b->cost_note[p]);
+        if (got < 0) return;
+        n += got;
+    }
+    b->has_cost[p] = cost_model_fit(samples, n, &b->cost[p], b->cost_note[p], sizeof b->cost_note[p]);
+}
+
 /* ---- summaries ---- */
 
 /* The Pareto front's tolerances: two settings whose times differ by less
@@ -1219,7 +1285,17 @@ static bool write_json(bench *b, const char *path) {
         json_str(&o, r->note);
         strbuf_printf(&o, "}%s\n", i + 1 < b->nrows ? "," : "");
     }
-    strbuf_printf(&o, "  ]\n}\n");
+    strbuf_printf(&o, "  ],\n  \"cost_models\": [");
+    int nc = 0;
+    for (int p = 0; p < b->o.npacks; p++) {
+        if (!b->has_cost[p]) continue;
+        const cost_model *m = &b->cost[p];
+        strbuf_printf(&o, "%s\n    {\"pack\": ", nc++ ? "," : "");
+        json_str(&o, b->o.packs[p]);
+        strbuf_printf(&o, ", \"a_ms\": %.6g, \"b_ms_per_mpixel\": %.6g, \"c_ms_per_kvertex\": %.6g, \"r2\": %.6g, "
+                      "\"residual_ms\": %.6g, \"samples\": %d}", m->a, m->b, m->c, m->r2, m->rms_residual, m->n);
+    }
+    strbuf_printf(&o, "%s]\n}\n", nc ? "\n  " : "");
     bool ok = o.s && write_text(path, o.s);
     free(o.s);
     return ok;
@@ -1237,6 +1313,30 @@ static void md_num(strbuf *o, const char *fmt, double v) {
 
 /* The report: machine, run, floor, a table per scene, the plot. plot_dir is
  * how the Markdown names the plots' directory ("" for beside it). */
+/* The cost models: a line a pack, and what its default would cost at 1080p. */
+static void cost_md(bench *b, strbuf *o) {
+    char sc[256];
+    stem(b->scene_abs[0], sc, sizeof sc);
+    strbuf_printf(o, "**Cost model** (%s, each pack's default; %s ms a frame = a + b·Mpixels + c·kvertices of the "
+                  "water grid, least squares over %d frames: %dx%d, %dx%d and %dx%d, each with WaterMesh 64, 128 "
+                  "and 256; the last column extrapolates far beyond them, so read it as an order of magnitude):\n\n",
+                  sc, b->axis == 1 ? "GPU" : "wall", COST_SAMPLES, (int)lround(b->o.w * COST_SCALES[0]),
+                  (int)lround(b->o.h * COST_SCALES[0]), b->o.w, b->o.h, (int)lround(b->o.w * COST_SCALES[2]),
+                  (int)lround(b->o.h * COST_SCALES[2]));
+    strbuf_printf(o, "| pack | a ms | b ms/Mpixel | c ms/kvertex | R² | residual ms | 1920x1080, mesh 256 |\n"
+                  "|---|---:|---:|---:|---:|---:|---:|\n");
+    for (int p = 0; p < b->o.npacks; p++) {
+        if (!b->has_cost[p]) {
+            strbuf_printf(o, "| %s | not fitted: %s | | | | | |\n", b->o.packs[p], b->cost_note[p]);
+            continue;
+        }
+        const cost_model *m = &b->cost[p];
+        strbuf_printf(o, "| %s | %.1f | %.1f | %.3f | %.3f | %.1f | %.0f ms |\n", b->o.packs[p], m->a, m->b, m->c,
+                      m->r2, m->rms_residual, cost_model_predict(m, 1920 * 1080 / 1e6, cost_model_grid_kvertices(256)));
+    }
+    strbuf_printf(o, "\n");
+}
+
 static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
     strbuf_printf(o, "Measured %s by `tarn bench` in %.0f s (%d:%02d; references: %d rendered, %d read from "
                  "the cache).\n\n",
@@ -1312,6 +1412,7 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
         }
         strbuf_printf(o, "\n![speed against error, %s](%splot-%s.png)\n\n", st, plot_prefix, st);
     }
+    if (b->o.cost_model) cost_md(b, o);
     strbuf_printf(o, "– : not measured: the pack shows no such buffer (a `buffer` line in its bench.txt, or "
                  "`Define %s`; docs/benchmark.md).\n",
               BENCH_OUTPUT_DEFINE);
@@ -1518,6 +1619,7 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
     for (int s = 0; s < b->o.nscenes; s++)
         for (int p = 0; p < b->o.npacks; p++)
             for (int k = 0; k < b->pb[p].n; k++) measure_setting(b, s, p, k, per_time);
+    for (int p = 0; p < b->o.npacks && b->o.cost_model; p++) measure_cost(b, p);
     b->seconds = clock_now_s() - t_start;
     progress_set(&b->pr, b->pr.total, true, "done");
     if (b->pr.tty && !b->o.quiet) fputc('\n', stderr);

@@ -43,6 +43,7 @@ typedef struct bench_desc {
     refcache_opts ref;                     /* the references' quality */
     double heat_max;                       /* 0: 0.25 */
     bool no_images, quiet;
+    bool no_cost_model;                    /* skip the cost model's sweep (costmodel.h) */
 } bench_desc;
 
 /* Measures and writes. Exit codes: 0 ok, 1 a scene, pack or output failed

@@ -158,7 +158,9 @@ static void record_start(app *a, const char *path) {
     w -= app_scene_x(w);
     /* before the first frame the window may not have its fitted size yet */
     if (a->frames == 0 && a->fit_w > 0) { w = a->fit_w; h = a->fit_h; }
-    session_header hd = { .scene = render_scene_path(r), .pack = a->d.pack, .width = w, .height = h,
+    /* the pack drawing it now: --pack, or one picked in the panel since */
+    const char *pack = render_has_world(r) && render_pack(r)[0] ? render_pack(r) : a->d.pack;
+    session_header hd = { .scene = render_scene_path(r), .pack = pack, .width = w, .height = h,
                           .time_s = a->s.t };
     char err[1200];
     a->rec = session_rec_start(path, &hd, sets, n, &a->s.cam, a->s.paused, glfwGetTime(), err, sizeof err);
@@ -169,6 +171,10 @@ static void record_start(app *a, const char *path) {
     }
     fprintf(stderr, "%s: recording to %s\n", a->d.name, path);
     app_toast(a, "recording to %s (Shift+R stops)", path);
+}
+
+void app_record_pack(app *a, const char *pack) {
+    if (a->rec) session_rec_pack(a->rec, pack, glfwGetTime());
 }
 
 static void record_stop(app *a) {

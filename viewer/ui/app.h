@@ -125,6 +125,8 @@ void app_screenshot(app *a);
 /* A line shown over the scene for APP_TOAST_S seconds (the latest wins):
  * what the user did landed somewhere, e.g. a saved preset's path. */
 void app_toast(app *a, const char *fmt, ...);
+/* The client switched the pack drawing the scene: a recording notes it. */
+void app_record_pack(app *a, const char *pack);
 
 app_state *app_get_state(app *a);
 void *app_window(app *a);        /* the GLFWwindow* */

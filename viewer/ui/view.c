@@ -9,14 +9,19 @@
 
 #include "app.h"
 #include "exit_code.h"
+#include "packset.h"
 #include "panel.h"
 #include "render.h"
+#include "util.h"
 #include "view.h"
 
 typedef struct viewer {
     app *app;
     render *r;
     panel_actions pending;       /* the panel's buttons of this frame, applied after it */
+    packset_name packs[PACKSET_MAX];   /* what the panel's Pack combo offers */
+    const char *pack_names[PACKSET_MAX];
+    int npacks;
 } viewer;
 
 static void report_load(viewer *v) {
@@ -47,6 +52,48 @@ static void preset(viewer *v, bool save) {
     else app_toast(v->app, "preset not %s: %s", save ? "saved" : "loaded", err);
 }
 
+/* The same world drawn by another pack, live: a reload with the pack
+ * overridden (the sliders of programs it shares with the last keep their
+ * values, as on any reload). A failed load keeps the picture and says why. */
+static void switch_pack(viewer *v, app *a, int i) {
+    if (i < 0 || i >= v->npacks) return;
+    render_set_pack(v->r, v->packs[i]);
+    bool ok = render_load(v->r, NULL);
+    report_load(v);
+    app_rewatch(a);
+    if (ok) {
+        app_record_pack(a, v->packs[i]);
+        app_toast(a, "drawn by the %s pack", v->packs[i]);
+    }
+    else app_toast(a, "the %s pack failed to load: see the messages", v->packs[i]);
+}
+
+static int current_pack(const viewer *v) {
+    const char *now = render_pack(v->r);
+    for (int i = 0; i < v->npacks; i++)
+        if (strcmp(v->packs[i], now) == 0) return i;
+    return -1;
+}
+
+/* The window's own script action: `pack NAME` does what picking NAME in
+ * the panel's Pack combo does (tests drive the switch this way). */
+static view_script_status script_action(void *user, const char *cmd, char *rest, const char *file, int line) {
+    viewer *v = user;
+    if (strcmp(cmd, "pack") != 0) {
+        fprintf(stderr, "%s:%d: unknown script action '%s'\n", file, line, cmd);
+        return VIEW_SCRIPT_FAILED;
+    }
+    char name[PACKSET_NAME_MAX] = "";
+    sscanf(rest, "%63s", name);
+    for (int i = 0; i < v->npacks; i++)
+        if (strcmp(v->packs[i], name) == 0) {
+            switch_pack(v, v->app, i);
+            return VIEW_SCRIPT_CONTINUE;
+        }
+    fprintf(stderr, "%s:%d: pack: no pack '%s' under %s/packs\n", file, line, name, tarn_root());
+    return VIEW_SCRIPT_FAILED;
+}
+
 /* What the panel asked for besides reload, pause and screenshot (the app's). */
 static void on_apply(void *user, app *a) {
     viewer *v = user;
@@ -62,6 +109,7 @@ static void on_apply(void *user, app *a) {
     }
     if (p->save_preset) preset(v, true);
     if (p->load_preset) preset(v, false);
+    if (p->switch_pack) switch_pack(v, a, p->pack);
 }
 
 static void on_draw(void *user, app *a) {
@@ -91,7 +139,10 @@ static void on_panel(void *user, app *a, panel_actions *common) {
                         .cpu_raster = s->cpu_raster, .frame_ms = s->frame_ms, .fps = s->fps,
                         .paused = s->paused, .time_s = s->t,
                         .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL,
-                        .scene_x = app_scene_x_window(a), .passes = passes };
+                        .scene_x = app_scene_x_window(a), .passes = passes,
+                        /* a pack draws a world's water; a glman scene has none to switch */
+                        .packs = v->pack_names, .npacks = render_has_world(v->r) ? v->npacks : 0,
+                        .pack = current_pack(v) };
     panel_draw(app_panel(a), sets, n, &info, &v->pending);
     *common = v->pending;
 }
@@ -106,11 +157,14 @@ int view_run(const view_desc *d) {
     app_desc ad = { .name = "tarn", .scene_path = d->glib, .width = d->width, .height = d->height,
                     .time_s = d->time_s, .script = d->script, .user = &v,
                     .recordable = true, .record = d->record, .pack = d->pack,
-                    .draw = on_draw, .panel = on_panel, .apply = on_apply, .reload = on_reload };
+                    .draw = on_draw, .panel = on_panel, .apply = on_apply, .reload = on_reload,
+                    .script_action = script_action };
     v.app = app_create(&ad);
     if (!v.app) return TARN_EXIT_NO_GL;
     render_desc rd = { .pack = d->pack };
     v.r = render_create(&rd);
+    v.npacks = packset_list(tarn_root(), v.packs, PACKSET_MAX);
+    for (int i = 0; i < v.npacks; i++) v.pack_names[i] = v.packs[i];
     bool ok = render_load(v.r, d->glib);
     report_load(&v);
     if (d->width <= 0 || d->height <= 0) {

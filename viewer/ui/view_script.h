@@ -14,7 +14,8 @@
  *   window W H                    resize the window (app.c's; give it a few frames)
  *   quit
  * `#` starts a comment. A window may add actions of its own (ctx.custom):
- * `tarn compare-view` does (compare_view.h). */
+ * `tarn compare-view` does (compare_view.h), and `tarn view` has
+ *   pack NAME                     draw the scene with another pack (the panel's Pack combo) */
 #ifndef TARN_VIEW_SCRIPT_H
 #define TARN_VIEW_SCRIPT_H
 
