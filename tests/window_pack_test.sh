@@ -21,7 +21,7 @@ expect BasicWater uOpacity 0.45
 screenshot $scratch/basic.png
 pack natural
 frames 1
-expect NaturalWater uFresnelPower 4.5
+expect NaturalWater uReflectDist 1
 screenshot $scratch/natural.png
 pack basic
 frames 1
