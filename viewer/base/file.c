@@ -1,28 +1,37 @@
 #include "file.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "mem.h"
 #include "strbuf.h"
 
-char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
-    if (len) *len = 0;
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+/* One read of the whole file, with its stat before (*before) and after
+ * (*after). NULL with err and errno set on failure. */
+static char *read_once(const char *path, size_t max_bytes, size_t *len, struct stat *before,
+                       struct stat *after, char *err, size_t errlen) {
+    *len = 0;
+    if (stat(path, before) != 0) {
+        int e = errno;
+        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(e));
+        errno = e;
         return NULL;
     }
-    if (!S_ISREG(st.st_mode)) {
+    if (!S_ISREG(before->st_mode)) {
         msg_set(err, errlen, "'%s' is not a regular file", path);
+        errno = S_ISDIR(before->st_mode) ? EISDIR : EINVAL;
         return NULL;
     }
     FILE *f = fopen(path, "rb");
     if (!f) {
-        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+        int e = errno;
+        msg_set(err, errlen, "cannot open '%s': %s", path, strerror(e));
+        errno = e;
         return NULL;
     }
     strbuf b = { 0 };
@@ -33,19 +42,79 @@ char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size
             fclose(f);
             strbuf_free(&b);
             msg_set(err, errlen, "'%s' is larger than %zu bytes", path, max_bytes);
+            errno = EFBIG;
             return NULL;
         }
         strbuf_put(&b, chunk, n);
     }
-    bool bad = ferror(f);
+    int bad = ferror(f) ? (errno ? errno : EIO) : 0;
+    if (!bad && fstat(fileno(f), after) != 0) bad = errno;
     fclose(f);
     if (bad) {
         strbuf_free(&b);
         msg_set(err, errlen, "cannot read '%s'", path);
+        errno = bad;
         return NULL;
     }
-    if (len) *len = b.len;
+    *len = b.len;
+    if (!b.s) return mem_strdup("");
     return strbuf_take(&b);
+}
+
+char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
+    struct stat before, after;
+    size_t n = 0;
+    char *s = read_once(path, max_bytes, &n, &before, &after, err, errlen);
+    if (len) *len = n;
+    return s;
+}
+
+static double now_ms(clockid_t clock) {
+    struct timespec ts;
+    clock_gettime(clock, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static void sleep_ms(double ms) {
+    struct timespec ts = { (time_t)(ms / 1e3), (long)(fmod(ms, 1e3) * 1e6) };
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {}
+}
+
+static bool same_stat(const struct stat *a, const struct stat *b) {
+    return a->st_ino == b->st_ino && a->st_dev == b->st_dev && a->st_size == b->st_size &&
+           a->st_mtim.tv_sec == b->st_mtim.tv_sec && a->st_mtim.tv_nsec == b->st_mtim.tv_nsec;
+}
+
+/* How long ago the file was modified, in ms (the file's clock is the wall
+ * clock); a time in the future (another machine's clock) counts as long ago. */
+static double age_ms(const struct stat *st) {
+    double m = (double)st->st_mtim.tv_sec * 1e3 + (double)st->st_mtim.tv_nsec * 1e-6;
+    double age = now_ms(CLOCK_REALTIME) - m;
+    return age < 0 ? 1e9 : age;
+}
+
+char *file_read_settled(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
+    double start = now_ms(CLOCK_MONOTONIC);
+    for (;;) {
+        struct stat before, after;
+        size_t n = 0;
+        char *s = read_once(path, max_bytes, &n, &before, &after, err, errlen);
+        double waited = now_ms(CLOCK_MONOTONIC) - start;
+        if (!s || waited >= FILE_SETTLE_MAX_MS) {   /* a failure is not waited out */
+            if (len) *len = n;
+            return s;
+        }
+        /* (/proc and the like say size 0 whatever they hold) */
+        bool torn = !same_stat(&before, &after) || ((off_t)n != after.st_size && after.st_size != 0);
+        bool young = age_ms(&after) < FILE_SETTLE_MS;
+        bool empty = n == 0 && waited < FILE_EMPTY_WAIT_MS;
+        if (!torn && !young && !empty) {
+            if (len) *len = n;
+            return s;
+        }
+        free(s);
+        sleep_ms(young ? FILE_SETTLE_MS - age_ms(&after) + 1 : 5);
+    }
 }
 
 bool file_write(const char *path, const void *data, size_t n, char *err, size_t errlen) {

@@ -10,6 +10,20 @@
  * file, or is larger than max_bytes (0: no limit). */
 char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen);
 
+/* file_read for a file a user may be saving right now (the viewer's
+ * reload): a read is taken only when the file did not change while it was
+ * read (the same size, modification time and inode before and after, and
+ * the size read) and was last modified at least FILE_SETTLE_MS ago, else
+ * it is read again; an empty file is read again until FILE_EMPTY_WAIT_MS
+ * have passed (`cat > f` truncates first: empty is "still being
+ * written"). After FILE_SETTLE_MAX_MS the latest read is taken as it is.
+ * On failure errno says why as well as err: EISDIR (a folder), EINVAL
+ * (another non-regular file), EFBIG (over max_bytes), or open's. */
+#define FILE_SETTLE_MS 30
+#define FILE_EMPTY_WAIT_MS 100
+#define FILE_SETTLE_MAX_MS 250
+char *file_read_settled(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen);
+
 /* Writes n bytes to path (replacing it). False with the reason in err. */
 bool file_write(const char *path, const void *data, size_t n, char *err, size_t errlen);
 

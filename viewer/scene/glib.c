@@ -14,6 +14,7 @@
 #define _DEFAULT_SOURCE         /* realpath(), which is XSI, not plain POSIX */
 #endif
 #include "glib.h"
+#include "file.h"
 #include "unif.h"
 
 #include <ctype.h>
@@ -1449,42 +1450,20 @@ static bool h_define(cmdctx *c, glib_cmd *cmd) {
 /* reading files and lines                                             */
 
 /* Reads a whole regular file of at most LIM_FILE_BYTES into *out (NUL
- * terminated, freed by the caller); on failure *why says why. */
+ * terminated, freed by the caller); on failure *why says why. Settled: a
+ * reload during a save reads the saved text, not a torn or empty one. */
 static bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen) {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        snprintf(why, whylen, "%s", strerror(errno));
+    char err[8];
+    char *buf = file_read_settled(path, LIM_FILE_BYTES, len, err, sizeof err);
+    if (!buf) {
+        int e = errno;
+        snprintf(why, whylen, "%s", e == EISDIR ? "it is a directory"
+                                  : e == EINVAL ? "it is not a regular file"
+                                  : e == EFBIG ? "it is larger than 1 MiB; a .glib is a short text file"
+                                  : strerror(e));
         return false;
     }
-    struct stat st;
-    const char *bad = fstat(fd, &st) != 0 ? "cannot stat it"
-                    : S_ISDIR(st.st_mode) ? "it is a directory"
-                    : !S_ISREG(st.st_mode) ? "it is not a regular file"
-                    : st.st_size > LIM_FILE_BYTES ? "it is larger than 1 MiB; a .glib is a short text file"
-                    : NULL;
-    size_t n = 0, cap = bad ? 0 : (size_t)st.st_size + 1;
-    char *buf = bad ? NULL : xrealloc(NULL, cap);
-    ssize_t got = 0;
-    while (buf && (got = read(fd, buf + n, cap - n)) > 0) {
-        n += (size_t)got;
-        if (n == cap && n <= LIM_FILE_BYTES)     /* it grew since fstat */
-            buf = xrealloc(buf, cap = cap * 2 < LIM_FILE_BYTES + 1 ? cap * 2 : LIM_FILE_BYTES + 1);
-        else if (n == cap)
-            break;
-    }
-    if (!bad && got < 0)
-        bad = strerror(errno);
-    else if (!bad && n > LIM_FILE_BYTES)
-        bad = "it is larger than 1 MiB; a .glib is a short text file";
-    close(fd);
-    if (bad) {
-        snprintf(why, whylen, "%s", bad);
-        free(buf);
-        return false;
-    }
-    buf[n] = '\0';
     *out = buf;
-    *len = n;
     return true;
 }
 

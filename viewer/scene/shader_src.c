@@ -1,6 +1,7 @@
 /* shader_src: assembles a shader stage's source text (see shader_src.h). */
 #include "shader_src.h"
 
+#include "file.h"
 #include "strbuf.h"
 
 #include <assert.h>
@@ -95,18 +96,11 @@ static bool is_regular_file(const char *path) {
  * SHADER_SRC_MAX_FILE_BYTES: a "regular" file such as /proc/self/pagemap
  * would otherwise be read for ever). */
 static char *read_text(const char *path) {
-    struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) { errno = EISDIR; return NULL; }
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
+    char why[8];
     strbuf b = {0};
-    char chunk[8192];
-    size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0 && b.len <= SHADER_SRC_MAX_FILE_BYTES) strbuf_put(&b, chunk, n);
-    int err = ferror(f) ? errno : b.len > SHADER_SRC_MAX_FILE_BYTES ? EFBIG : 0;
-    fclose(f);
-    if (err) { free(b.s); errno = err; return NULL; }
-    if (!b.s) return strdup("");
+    /* settled: a reload during a save reads the saved text, not a torn one */
+    b.s = file_read_settled(path, SHADER_SRC_MAX_FILE_BYTES, &b.len, why, sizeof why);
+    if (!b.s) return NULL;
     if (memchr(b.s, '\0', b.len)) { free(b.s); errno = EILSEQ; return NULL; }
     if (b.len >= 3 && memcmp(b.s, "\xEF\xBB\xBF", 3) == 0) {     /* a UTF-8 byte order mark */
         memmove(b.s, b.s + 3, b.len - 2);
@@ -124,6 +118,7 @@ static char *read_text(const char *path) {
 static const char *errno_text(int err) {
     if (err == EILSEQ) return "contains a NUL byte (not a text file?)";
     if (err == EFBIG) return "larger than 8 MiB (not a shader?)";
+    if (err == EINVAL) return "not a regular file";
     return strerror(err);
 }
 
