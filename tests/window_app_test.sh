@@ -5,7 +5,8 @@
 #     yet: the scene names later/grey.frag, the test makes the folder and
 #     the file while the window runs, and the program links (the script's
 #     expects hold) without a restart;
-#   - a lost context ends the window with exit 3 and the message.
+#   - a lost context ends the window with exit 3 and the message;
+#   - a save's reload message names the file saved.
 set -u
 bin=$1; src=$2
 command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
@@ -65,4 +66,23 @@ cp "$src/tests/data/window/grey.frag" "$scratch/grey.frag"
 sed 's#^Fragment later/grey.frag#Fragment grey.frag#' "$scratch/scene.glib" > "$scratch/lost.glib"
 lost_context view "$bin" view lost.glib
 lost_context compare-view "$bin" compare-view lost.glib --packs basic,basic --size 320x240
+# a save while the window runs: the reload message names the file saved
+printf 'frames 2\nwait 4\nquit\n' > "$scratch/save.script"
+saved_file_named() {
+    local name=$1; shift
+    local log=$scratch/$name-save.log
+    rm -f "$log"
+    (for _ in $(seq 300); do grep -q "loaded\|reloaded" "$log" 2>/dev/null && break; sleep 0.1; done
+     sleep 1
+     echo "// saved" >> "$scratch/grey.frag") &
+    local saver=$!
+    (cd "$scratch" && xvfb "$@" --script save.script >"$log" 2>&1)
+    local rc=$?
+    wait "$saver"
+    cat "$log"
+    [ "$rc" -eq 0 ] || fail "$name: exited $rc"
+    grep -q "reloaded lost.glib (grey.frag changed)" "$log" || fail "$name: the reload message does not name grey.frag"
+}
+saved_file_named view "$bin" view lost.glib
+saved_file_named compare-view "$bin" compare-view lost.glib --packs basic,basic --size 320x240
 echo "window app test: ok"

@@ -13,6 +13,7 @@
 #include "exit_code.h"
 #include "file.h"
 #include "frame_meter.h"
+#include "mem.h"
 #include "util.h"
 #include "watch.h"
 
@@ -34,6 +35,7 @@ struct app {
     int unwatched;               /* dependencies skipped: their directory is missing */
     double next_retry;           /* clock_now_s() when to look for them again */
     view_script_ctx *sc;         /* while a script step runs */
+    char cause[512];             /* why this reload: "water.frag changed" ("" for R) */
     int script_scene;
 };
 
@@ -88,7 +90,17 @@ void app_rewatch(app *a) {
 
 static void reload(app *a) {
     a->d.reload(a->d.user, a);
+    a->cause[0] = '\0';
     app_rewatch(a);
+}
+
+/* A reload for the files the watcher saw change (watch_changed 0..n-1). */
+static void reload_changed(app *a, int n) {
+    const char **paths = mem_alloc((size_t)n * sizeof *paths);
+    for (int i = 0; i < n; i++) paths[i] = watch_changed(a->watch, i);
+    view_reload_cause(paths, n, a->cause, sizeof a->cause);
+    free(paths);
+    reload(a);
 }
 
 /* A skipped dependency whose directory has appeared: its file may be
@@ -173,7 +185,9 @@ static void frame(app *a, bool scripted) {
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
     if (!a->s.paused && !scripted) a->s.t += dt;
-    if (a->watch && (watch_poll(a->watch, 0) > 0 || missing_dir_appeared(a))) reload(a);
+    int changed = a->watch ? watch_poll(a->watch, 0) : 0;
+    if (changed > 0) reload_changed(a, changed);
+    else if (a->watch && missing_dir_appeared(a)) reload(a);
     if (a->d.mouse) a->d.mouse(a->d.user, a);
     else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel), &a->s.cam);
     a->d.draw(a->d.user, a);
@@ -322,6 +336,7 @@ void app_script_use(app *a, int i) {
 }
 
 app_state *app_get_state(app *a) { return &a->s; }
+const char *app_reload_cause(const app *a) { return a->cause; }
 void *app_window(app *a) { return a->win; }
 gl_ctx *app_gl(app *a) { return a->ctx; }
 panel *app_panel(app *a) { return a->panel; }

@@ -115,6 +115,10 @@ void app_screenshot(app *a);
  * what the user did landed somewhere, e.g. a saved preset's path. */
 void app_toast(app *a, const char *fmt, ...);
 
+/* Inside hooks.reload: why it runs, "water.frag changed" (the files the
+ * watcher saw change), or "" (R, the panel's button, a script). */
+const char *app_reload_cause(const app *a);
+
 app_state *app_get_state(app *a);
 void *app_window(app *a);        /* the GLFWwindow* */
 gl_ctx *app_gl(app *a);

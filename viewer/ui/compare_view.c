@@ -357,6 +357,8 @@ static void report(cv_pack *p) {
 
 static void on_reload(void *user, app *a) {
     cview *v = user;
+    const char *cause = app_reload_cause(a);
+    fprintf(stderr, "tarn compare-view: reloaded %s%s%s%s\n", v->scene, cause[0] ? " (" : "", cause, cause[0] ? ")" : "");
     for (int i = 0; i < v->n; i++) {
         render_load(v->packs[i].r, NULL);
         report(&v->packs[i]);
@@ -597,6 +599,7 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     v->panel = app_panel(v->app);
     bool ok = true;
     load_packs(v, d, &ok);
+    fprintf(stderr, "tarn compare-view: loaded %s\n", d->glib);
     if (d->width <= 0 || d->height <= 0) {
         int w, h;
         render_window_size(v->packs[0].r, &w, &h);

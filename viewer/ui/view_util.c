@@ -146,3 +146,17 @@ void view_shot_path(int n, char *out, size_t len) {
     strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tmv);
     snprintf(out, len, "tarn-%s-%d.png", stamp, n);
 }
+
+void view_reload_cause(const char *const *paths, int n, char *out, size_t len) {
+    if (len == 0) return;
+    out[0] = '\0';
+    int shown = n > 3 ? 2 : n;   /* four and more: two names and a count */
+    size_t used = 0;
+    for (int i = 0; i < shown && used < len; i++) {
+        const char *slash = strrchr(paths[i], '/');
+        const char *sep = i == 0 ? "" : i == shown - 1 && shown == n ? " and " : ", ";
+        used += (size_t)snprintf(out + used, len - used, "%s%s", sep, slash ? slash + 1 : paths[i]);
+    }
+    if (n > shown && used < len) used += (size_t)snprintf(out + used, len - used, " and %d more", n - shown);
+    if (n > 0 && used < len) snprintf(out + used, len - used, " changed");
+}

@@ -50,6 +50,12 @@ void view_pass_name(const char *timer_name, char *out, size_t len);
 /* The last finished frame's GPU time per pass, a line each, by view_pass_name. */
 void view_pass_summary(render *r, char *out, size_t len);
 
+/* Why a reload happened, from the files the watcher saw change (any
+ * form of path; their file names are shown): "water.frag changed",
+ * "water.frag and lake.glib changed", "a.frag, b.frag and 2 more changed";
+ * "" for none (R, the panel's button). */
+void view_reload_cause(const char *const *paths, int n, char *out, size_t len);
+
 /* "tarn-YYYYmmdd-HHMMSS-N.png" into out. */
 void view_shot_path(int n, char *out, size_t len);
 
