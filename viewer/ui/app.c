@@ -160,6 +160,18 @@ static void on_scroll(GLFWwindow *w, double dx, double dy) {
     if (!a->panel || !panel_wants_mouse(a->panel)) a->s.mouse.scroll += dy;
 }
 
+/* Where a press happened, now: by the next frame (a second away on a slow
+ * scene) the cursor may be elsewhere. */
+static void on_button(GLFWwindow *w, int button, int action, int mods) {
+    app *a = glfwGetWindowUserPointer(w);
+    if (action != GLFW_PRESS) return;
+    int which = button == GLFW_MOUSE_BUTTON_LEFT ? VIEW_MOUSE_LEFT
+              : button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE ? VIEW_MOUSE_PAN : 0;
+    double x, y;
+    glfwGetCursorPos(w, &x, &y);
+    if (which) view_mouse_press(&a->s.mouse, which, x, y);
+}
+
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     app *a = glfwGetWindowUserPointer(w);
     if (action != GLFW_PRESS || !a->panel || panel_wants_keyboard(a->panel)) return;
@@ -308,6 +320,7 @@ app *app_create(const app_desc *desc) {
     /* ours first: the ImGui backend chains to callbacks installed before it */
     glfwSetScrollCallback(a->win, on_scroll);
     glfwSetKeyCallback(a->win, on_key);
+    glfwSetMouseButtonCallback(a->win, on_button);
     a->panel = panel_create(a->win, "#version 130");
     /* GL_RENDERER (in the description) names Mesa's CPU rasterisers */
     const char *gl = gl_ctx_describe(a->ctx);
