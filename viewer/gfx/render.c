@@ -479,11 +479,9 @@ static char *merge_lines(const char *log) {
             lines = mem_realloc(lines, (size_t)(n + 1) * sizeof *lines);
             memset(&lines[n], 0, sizeof lines[n]);
             lines[n++].text = line;
-        } else {
-            free(line);
-            line = NULL;
         }
-        if (stage && pname) msg_line_add_prog(&lines[i], stage, pname);
+        if (stage && pname) msg_line_add_prog(&lines[i], stage, pname);   /* (they point into line) */
+        if (lines[i].text != line) free(line);
     }
     strbuf out = { 0 };
     for (int i = 0; i < n; i++) {
