@@ -106,14 +106,15 @@ char *file_read_settled(const char *path, size_t max_bytes, size_t *len, char *e
         }
         /* (/proc and the like say size 0 whatever they hold) */
         bool torn = !same_stat(&before, &after) || ((off_t)n != after.st_size && after.st_size != 0);
-        bool young = age_ms(&after) < FILE_SETTLE_MS;
-        bool empty = n == 0 && waited < FILE_EMPTY_WAIT_MS;
-        if (!torn && !young && !empty) {
+        /* an empty file just truncated (`cat >`) is given longer to fill */
+        double age = age_ms(&after), settle = n == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
+        bool young = age < settle;
+        if (!torn && !young) {
             if (len) *len = n;
             return s;
         }
         free(s);
-        sleep_ms(young ? FILE_SETTLE_MS - age_ms(&after) + 1 : 5);
+        sleep_ms(young && n > 0 ? settle - age + 1 : 5);
     }
 }
 

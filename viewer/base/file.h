@@ -13,10 +13,11 @@ char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size
 /* file_read for a file a user may be saving right now (the viewer's
  * reload): a read is taken only when the file did not change while it was
  * read (the same size, modification time and inode before and after, and
- * the size read) and was last modified at least FILE_SETTLE_MS ago, else
- * it is read again; an empty file is read again until FILE_EMPTY_WAIT_MS
- * have passed (`cat > f` truncates first: empty is "still being
- * written"). After FILE_SETTLE_MAX_MS the latest read is taken as it is.
+ * the size read) and was last modified at least FILE_SETTLE_MS ago
+ * (FILE_EMPTY_WAIT_MS for an empty file: `cat > f` truncates first, and
+ * a file just emptied is "still being written"), else it is read again. A
+ * file that has been quiet that long is read once, without waiting. After
+ * FILE_SETTLE_MAX_MS the latest read is taken as it is.
  * On failure errno says why as well as err: EISDIR (a folder), EINVAL
  * (another non-regular file), EFBIG (over max_bytes), or open's. */
 #define FILE_SETTLE_MS 30
