@@ -47,6 +47,7 @@ missing_dir() {
     grep -q "watching files" "$log" && fail "$name: the watcher refused the files"
     [ "$(grep -c 'Flat.uGrey holds the expected value' "$log")" -eq 1 ] ||
         fail "$name: no reload after the folder appeared"
+    grep -q "reloaded scene.glib (a missing folder appeared)" "$log" || fail "$name: the reload does not say why"
 }
 missing_dir view "$bin" view scene.glib
 missing_dir compare-view "$bin" compare-view scene.glib --packs basic,basic --size 320x240

@@ -199,7 +199,10 @@ static void frame(app *a, bool scripted) {
     if (!a->s.paused && !scripted) a->s.t += dt;
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
     if (changed > 0) reload_changed(a, changed);
-    else if (a->watch && missing_dir_appeared(a)) reload(a);
+    else if (a->watch && missing_dir_appeared(a)) {
+        snprintf(a->cause, sizeof a->cause, "a missing folder appeared");
+        reload(a);
+    }
     if (a->d.mouse) a->d.mouse(a->d.user, a);
     else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel), &a->s.cam);
     a->d.draw(a->d.user, a);

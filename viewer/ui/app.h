@@ -116,7 +116,8 @@ void app_screenshot(app *a);
 void app_toast(app *a, const char *fmt, ...);
 
 /* Inside hooks.reload: why it runs, "water.frag changed" (the files the
- * watcher saw change), or "" (R, the panel's button, a script). */
+ * watcher saw change), "a missing folder appeared", or "" (R, the panel's
+ * button, a script). */
 const char *app_reload_cause(const app *a);
 
 app_state *app_get_state(app *a);
