@@ -59,6 +59,19 @@ static void stamp(const char *name, long serial) {
     if (utimensat(AT_FDCWD, scratch_path(name), ts, 0) != 0) { perror(name); exit(1); }
 }
 
+/* The viewer reloads a save once the watcher has seen WATCH_QUIET_MS of
+ * quiet, so the files a reload reads are older than that; this test
+ * reloads at once. Its text files get a modification time a second back,
+ * as a save the viewer reloads has: a file modified under FILE_SETTLE_MS
+ * ago may still be being written, and each read would wait that out. */
+static void soak_write(const char *name, const char *text) {
+    scratch_write(name, text);
+    struct timespec now, ts[2];
+    clock_gettime(CLOCK_REALTIME, &now);
+    ts[0] = ts[1] = (struct timespec){ now.tv_sec - 1, now.tv_nsec };
+    if (utimensat(AT_FDCWD, scratch_path(name), ts, 0) != 0) { perror(name); exit(1); }
+}
+
 /* A 1x1 24-bit BMP of one colour. */
 static void write_bmp(const char *name, int r, int g, int b, long serial) {
     unsigned char file[58] = { 'B', 'M', 58, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0,
@@ -100,7 +113,7 @@ static void write_shader(int g) {
              "    if (st.x < 0.5) c = vec4(%.6f, %.6f, inc_blue(), 1.) * uTint;\n"
              "    else c = texture(uTex, vec2(0.5));\n"
              "}\n", shader_r(g), shader_g(g));
-    scratch_write("soak.frag", text);
+    soak_write("soak.frag", text);
 }
 
 #define BROKEN_SHADER_LINE 8
@@ -116,13 +129,13 @@ static void write_broken_shader(int g) {
              "void main() {\n"
              "    c = vec4(%.6f, half_typed_name_%d, 0., 1.);\n"
              "}\n", shader_r(g), g);
-    scratch_write("soak.frag", text);
+    soak_write("soak.frag", text);
 }
 
 static void write_inc(int g) {
     char text[256];
     snprintf(text, sizeof text, "// the include\nfloat inc_blue() { return %.6f; }\n", inc_b(g));
-    scratch_write("soak_inc.glsl", text);
+    soak_write("soak_inc.glsl", text);
 }
 
 #define GLIB_PROGRAM_LINE 6
@@ -136,7 +149,7 @@ static void write_glib(int g, bool broken) {
              "Fragment soak.frag\n"
              "Program Soak uTex 5 uTint {1. %.2f 1. 1.%s\n"
              "QuadXY 0 1 %d %d\n", tint_g(g), broken ? "" : "}", 1 + g % 2, 1 + g % 2);
-    scratch_write("soak.glib", text);
+    soak_write("soak.glib", text);
 }
 
 static void write_tex(int g, long serial) { write_bmp("soak.bmp", tex_r(g), tex_g(g), tex_b(g), serial); }
@@ -265,7 +278,7 @@ static void expect_broken(render *r, const gen *G, int i, const char *what, cons
 }
 
 static void test_soak(void) {
-    scratch_write("soak.vert", "#version 330 compatibility\nout vec2 st;\n"
+    soak_write("soak.vert", "#version 330 compatibility\nout vec2 st;\n"
                             "void main() { st = gl_MultiTexCoord0.st; gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
     gen G = { 1, 1, 1, 1 };
     long serial = 0;
@@ -321,10 +334,10 @@ static void test_soak(void) {
             break;
         case 0:   /* an #include that loops, or one that is missing */
             if ((i / 8) % 2) {
-                scratch_write("soak_inc.glsl", "// the include\n#include \"soak_inc.glsl\"\n");
+                soak_write("soak_inc.glsl", "// the include\n#include \"soak_inc.glsl\"\n");
                 expect_broken(r, &G, i, "include cycle", "soak_inc.glsl", 2);
             } else {
-                scratch_write("soak_inc.glsl", "// the include\n#include \"soak_missing.glsl\"\n");
+                soak_write("soak_inc.glsl", "// the include\n#include \"soak_missing.glsl\"\n");
                 expect_broken(r, &G, i, "missing include", "soak_inc.glsl", 2);
             }
             /* the end of a cycle: the same structure every time */

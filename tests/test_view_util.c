@@ -1,5 +1,5 @@
 /* test_view_util: what the windows share that needs no window: pass names
- * as the panel shows them. */
+ * as the panel shows them, why a reload happened. */
 #include "check.h"
 #include "support.h"
 #include "view_script.h"
@@ -42,8 +42,63 @@ static void test_script_line_limit(void) {
     scratch_remove();
 }
 
+static void test_reload_cause_names_the_files(void) {
+    char out[128];
+    const char *one[] = { "/home/s/scenes/water.frag" };
+    view_reload_cause(one, 1, out, sizeof out);
+    CHECK_MSG(strcmp(out, "water.frag changed") == 0, "%s", out);
+    const char *two[] = { "/a/water.frag", "scenes/lake.glib" };
+    view_reload_cause(two, 2, out, sizeof out);
+    CHECK_MSG(strcmp(out, "water.frag and lake.glib changed") == 0, "%s", out);
+    const char *three[] = { "a.frag", "b.frag", "c.glsl" };
+    view_reload_cause(three, 3, out, sizeof out);
+    CHECK_MSG(strcmp(out, "a.frag, b.frag and c.glsl changed") == 0, "%s", out);
+    const char *five[] = { "a.frag", "b.frag", "c.glsl", "d.glsl", "e.glib" };
+    view_reload_cause(five, 5, out, sizeof out);
+    CHECK_MSG(strcmp(out, "a.frag, b.frag and 3 more changed") == 0, "%s", out);
+    view_reload_cause(NULL, 0, out, sizeof out);
+    CHECK(out[0] == '\0');
+    view_reload_cause(five, 5, out, 9);   /* cut, never overrun */
+    CHECK(strlen(out) == 8);
+}
+
+static orbit home(void) {
+    render_view v = { { 0, 2, 10 }, { 0, 0, 0 }, { 0, 1, 0 } };
+    return orbit_from_view(v);
+}
+
+/* A drag pressed at x = 10 and at x = 110 by the next frame (1 fps): the
+ * camera turns by the whole 100 pixels, from the press. */
+static void test_drag_runs_from_its_press(void) {
+    view_mouse m = { .last_x = 400, .last_y = 300 };   /* the cursor's last frame */
+    orbit cam = home(), want = home();
+    view_mouse_press(&m, VIEW_MOUSE_LEFT, 10, 20);
+    view_mouse_press(&m, VIEW_MOUSE_PAN, 50, 50);       /* a second press keeps the first's place */
+    CHECK(m.press_x == 10 && m.press_y == 20);
+    view_mouse_input in = { .x = 110, .y = 20, .left = true, .pressed = VIEW_MOUSE_LEFT, .press_x = 10, .press_y = 20 };
+    view_mouse_step(&m, &in, false, &cam);
+    orbit_rotate(&want, 100, 0);
+    CHECK(orbit_equal(&cam, &want));
+    /* held on: the next frame's move adds */
+    in = (view_mouse_input){ .x = 130, .y = 20, .left = true };
+    view_mouse_step(&m, &in, false, &cam);
+    orbit_rotate(&want, 20, 0);
+    CHECK(orbit_equal(&cam, &want));
+    /* released: nothing more */
+    in = (view_mouse_input){ .x = 300, .y = 20 };
+    view_mouse_step(&m, &in, false, &cam);
+    CHECK(orbit_equal(&cam, &want));
+    /* a press over the panel is the panel's */
+    orbit before = cam;
+    in = (view_mouse_input){ .x = 200, .y = 20, .left = true, .pressed = VIEW_MOUSE_LEFT, .press_x = 100, .press_y = 20 };
+    view_mouse_step(&m, &in, true, &cam);
+    CHECK(orbit_equal(&cam, &before));
+}
+
 int main(void) {
+    RUN(test_drag_runs_from_its_press);
     RUN(test_pass_names_read_as_the_glib);
     RUN(test_script_line_limit);
+    RUN(test_reload_cause_names_the_files);
     return check_summary();
 }

@@ -5,7 +5,8 @@
 #     yet: the scene names later/grey.frag, the test makes the folder and
 #     the file while the window runs, and the program links (the script's
 #     expects hold) without a restart;
-#   - a lost context ends the window with exit 3 and the message.
+#   - a lost context ends the window with exit 3 and the message;
+#   - a save's reload message names the file saved.
 set -u
 bin=$1; src=$2
 command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
@@ -46,6 +47,7 @@ missing_dir() {
     grep -q "watching files" "$log" && fail "$name: the watcher refused the files"
     [ "$(grep -c 'Flat.uGrey holds the expected value' "$log")" -eq 1 ] ||
         fail "$name: no reload after the folder appeared"
+    grep -q "reloaded scene.glib (a missing folder appeared)" "$log" || fail "$name: the reload does not say why"
 }
 # compare-view draws packs, and a pack needs a scene that describes a world
 # (a glman scene given packs is refused): the same scene with a Sun
@@ -70,4 +72,23 @@ sed 's#^Fragment later/grey.frag#Fragment grey.frag#' "$scratch/scene.glib" > "$
 lost_context view "$bin" view lost.glib
 world "$scratch/lost.glib" "$scratch/lost-world.glib"
 lost_context compare-view "$bin" compare-view lost-world.glib --packs basic,basic --size 320x240
+# a save while the window runs: the reload message names the file saved
+printf 'frames 2\nwait 4\nquit\n' > "$scratch/save.script"
+saved_file_named() {
+    local name=$1 glib=$2; shift 2
+    local log=$scratch/$name-save.log
+    rm -f "$log"
+    (for _ in $(seq 300); do grep -q "loaded\|reloaded" "$log" 2>/dev/null && break; sleep 0.1; done
+     sleep 1
+     echo "// saved" >> "$scratch/grey.frag") &
+    local saver=$!
+    (cd "$scratch" && xvfb "$@" --script save.script >"$log" 2>&1)
+    local rc=$?
+    wait "$saver"
+    cat "$log"
+    [ "$rc" -eq 0 ] || fail "$name: exited $rc"
+    grep -q "reloaded $glib (grey.frag changed)" "$log" || fail "$name: the reload message does not name grey.frag"
+}
+saved_file_named view lost.glib "$bin" view lost.glib
+saved_file_named compare-view lost-world.glib "$bin" compare-view lost-world.glib --packs basic,basic --size 320x240
 echo "window app test: ok"

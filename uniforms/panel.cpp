@@ -380,7 +380,7 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
                 std::snprintf(labels[i], sizeof labels[i], "%d %s", i + 1, c->packs[i].name);
                 names[i] = labels[i];
             }
-            ImGui::SameLine();
+            /* a line of their own: after the radio buttons, "right" ran off the panel */
             ImGui::Combo("left", c->wipe_a, names, n);
             ImGui::SameLine();
             ImGui::Combo("right", c->wipe_b, names, n);
@@ -461,6 +461,16 @@ void panel_label(panel *p, float x, float y, const char *text, bool right_align)
     if (right_align) x -= size.x + 8;
     dl->AddRectFilled(ImVec2(x, y), ImVec2(x + size.x + 8, y + size.y + 4), IM_COL32(0, 0, 0, 170), 3.0f);
     dl->AddText(ImVec2(x + 4, y + 2), IM_COL32(255, 255, 255, 255), text);
+}
+
+void panel_label_between(panel *p, float x0, float x1, float y, const char *text) {
+    if (!p || !p->in_frame || !text) return;
+    ImGui::SetCurrentContext(p->ctx);
+    float w = ImGui::CalcTextSize(text).x + 8;
+    float x = (x0 + x1 - w) * 0.5f;
+    if (x + w > x1) x = x1 - w;
+    if (x < x0) x = x0;
+    panel_label(p, x, y, text, false);
 }
 
 void panel_toast(panel *p, float x, float y, const char *text) {

@@ -125,6 +125,11 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
  * panel_begin_frame and panel_render. */
 void panel_label(panel *p, float x, float y, const char *text, bool right_align);
 
+/* The same box centred between x0 and x1 with its top at y, moved
+ * sideways to stay between them (at x0 when it is wider): a label that
+ * belongs to one part of the scene stays over that part. */
+void panel_label_between(panel *p, float x0, float x1, float y, const char *text);
+
 /* A short message (a saved file's path) centred on x with its top at y,
  * window pixels, over everything else. Between panel_begin_frame and
  * panel_render. */

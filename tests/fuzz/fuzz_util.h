@@ -8,7 +8,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 /* A per-process scratch directory, removed at exit. */
@@ -45,6 +47,12 @@ static inline void fuzz_write(const char *name, const void *data, size_t n) {
     if (!f) { perror(path); abort(); }
     if (n && fwrite(data, 1, n, f) != n) { perror(path); abort(); }
     fclose(f);
+    /* a second old: a file modified under FILE_SETTLE_MS ago may be a save
+     * still going on, and the readers wait that out (each run would) */
+    struct timespec now, ts[2];
+    clock_gettime(CLOCK_REALTIME, &now);
+    ts[0] = ts[1] = (struct timespec){ now.tv_sec - 1, now.tv_nsec };
+    if (utimensat(AT_FDCWD, path, ts, 0) != 0) { perror(path); abort(); }
 }
 
 static inline void fuzz_write_text(const char *name, const char *text) { fuzz_write(name, text, strlen(text)); }

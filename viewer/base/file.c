@@ -1,10 +1,12 @@
 #include "file.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "mem.h"
 #include "strbuf.h"
@@ -19,13 +21,16 @@ static void size_text(size_t n, char *out, size_t outlen) {
 
 /* Appends the regular file at path to b, at most max_bytes of it (0: no
  * limit: a "regular" file such as /proc/self/pagemap would otherwise be
- * read for ever); false with the reason in why. */
-static bool read_all(const char *path, size_t max_bytes, strbuf *b, char *why, size_t whylen) {
+ * read for ever); false with the reason in why. *before and *after: the
+ * file's stat before the read and of the open file after it. */
+static bool read_all(const char *path, size_t max_bytes, strbuf *b, struct stat *before, struct stat *after,
+                     char *why, size_t whylen) {
     struct stat st;
     if (stat(path, &st) != 0) {
         msg_set(why, whylen, "%s", strerror(errno));
         return false;
     }
+    *before = *after = st;
     if (!S_ISREG(st.st_mode)) {
         msg_set(why, whylen, S_ISDIR(st.st_mode) ? "it is a directory" : "it is not a regular file");
         return false;
@@ -43,6 +48,7 @@ static bool read_all(const char *path, size_t max_bytes, strbuf *b, char *why, s
         if (!big) strbuf_put(b, chunk, n);
     }
     int bad = ferror(f) ? (errno ? errno : EIO) : 0;
+    if (!bad && fstat(fileno(f), after) != 0) bad = errno;
     fclose(f);
     if (big) {
         char lim[32];
@@ -71,12 +77,55 @@ static void crlf_to_lf(strbuf *b) {
     b->s[w] = '\0';
 }
 
+static double now_ms(clockid_t clock) {
+    struct timespec ts;
+    clock_gettime(clock, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static void sleep_ms(double ms) {
+    struct timespec ts = { (time_t)(ms / 1e3), (long)(fmod(ms, 1e3) * 1e6) };
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {}
+}
+
+static bool same_stat(const struct stat *a, const struct stat *b) {
+    return a->st_ino == b->st_ino && a->st_dev == b->st_dev && a->st_size == b->st_size &&
+           a->st_mtim.tv_sec == b->st_mtim.tv_sec && a->st_mtim.tv_nsec == b->st_mtim.tv_nsec;
+}
+
+/* How long ago the file was modified, in ms (the file's clock is the wall
+ * clock); a time in the future (another machine's clock) counts as long ago. */
+static double age_ms(const struct stat *st) {
+    double m = (double)st->st_mtim.tv_sec * 1e3 + (double)st->st_mtim.tv_nsec * 1e-6;
+    double age = now_ms(CLOCK_REALTIME) - m;
+    return age < 0 ? 1e9 : age;
+}
+
+/* read_all, and with `settle` again until the file holds still (file.h). */
+static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, char *why, size_t whylen) {
+    double start = now_ms(CLOCK_MONOTONIC);
+    for (;;) {
+        struct stat before, after;
+        b->len = 0;
+        if (b->s) b->s[0] = '\0';
+        if (!read_all(path, o->max_bytes, b, &before, &after, why, whylen)) return false;
+        if (!o->settle || now_ms(CLOCK_MONOTONIC) - start >= FILE_SETTLE_MAX_MS) return true;
+        /* (/proc and the like say size 0 whatever they hold) */
+        bool torn = !same_stat(&before, &after) || ((off_t)b->len != after.st_size && after.st_size != 0);
+        /* an empty file just truncated (`cat >`) is given longer to fill */
+        double age = age_ms(&after), settle = b->len == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
+        bool young = age < settle;
+        if (!torn && !young) return true;
+        sleep_ms(young && b->len > 0 ? settle - age + 1 : 5);
+    }
+}
+
 char *file_read_text(const char *path, const file_text_opts *o, size_t *len, char *why, size_t whylen) {
     static const file_text_opts none = { 0 };
     if (!o) o = &none;
     if (len) *len = 0;
     strbuf b = { 0 };
-    if (!read_all(path, o->max_bytes, &b, why, whylen)) {
+    if (!read_settled(path, o, &b, why, whylen)) {
         strbuf_free(&b);
         return NULL;
     }

@@ -18,7 +18,19 @@ typedef struct file_text_opts {
     bool strip_bom;   /* drop a leading UTF-8 byte order mark (Windows editors write one) */
     bool crlf_to_lf;  /* "\r\n" becomes "\n" (a lone \r stays) */
     bool reject_nul;  /* a NUL byte means binary, not text: NULL, and why names its line */
+    bool settle;      /* a file a user may be saving right now (the viewer's reload): below */
 } file_text_opts;
+
+/* With `settle`, a read is taken only when the file did not change while it
+ * was read (the same size, modification time and inode before and after,
+ * and the size read) and was last modified at least FILE_SETTLE_MS ago
+ * (FILE_EMPTY_WAIT_MS for an empty file: `cat > f` truncates first, and a
+ * file just emptied is "still being written"), else it is read again. A
+ * file that has been quiet that long is read once, without waiting. After
+ * FILE_SETTLE_MAX_MS the latest read is taken as it is. */
+#define FILE_SETTLE_MS 30
+#define FILE_EMPTY_WAIT_MS 100
+#define FILE_SETTLE_MAX_MS 250
 
 /* The file as text, NUL-terminated (len, may be NULL, excludes the NUL;
  * counted after the options), or NULL with the reason alone in why, for the

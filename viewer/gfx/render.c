@@ -20,6 +20,7 @@
 #include "render_res.h"
 #include "render_world.h"
 #include "scene.h"
+#include "mem.h"
 #include "strbuf.h"
 
 #define MATRIX_STACK_MAX 30   /* GL guarantees 32 modelview entries */
@@ -475,27 +476,75 @@ static void build_world(render *r, const glib_scene *g, char **log) {
     else world_free(&r->world);
 }
 
+/* One message line and the programs whose build reported it. */
+typedef struct msg_line {
+    char *text;
+    char stage[32];
+    strbuf progs;            /* "'Water', 'Sky'" */
+    int nprogs;
+    bool mixed_stages;
+} msg_line;
+
+static void msg_line_add_prog(msg_line *m, const char *stage, const char *pname) {
+    char quoted[GLIB_NAME_MAX + 4];
+    snprintf(quoted, sizeof quoted, "'%s'", pname);
+    if (m->nprogs == 0) snprintf(m->stage, sizeof m->stage, "%s", stage);
+    else if (strcmp(m->stage, stage) != 0) m->mixed_stages = true;
+    if (m->progs.s && strstr(m->progs.s, quoted)) return;
+    if (m->nprogs++ > 0) strbuf_puts(&m->progs, ", ");
+    strbuf_puts(&m->progs, quoted);
+}
+
+static void msg_line_print(strbuf *out, const msg_line *m) {
+    strbuf_puts(out, m->text);
+    if (m->nprogs > 0 && m->mixed_stages) strbuf_printf(out, " (programs %s)", m->progs.s);
+    else if (m->nprogs > 0)
+        strbuf_printf(out, " (%s shader of program%s %s)", m->stage, m->nprogs > 1 ? "s" : "", m->progs.s);
+    strbuf_puts(out, "\n");
+}
+
+/* The log's lines, each once: a line that several programs report (an
+ * error in a file they all include) names them all; a tagged line
+ * (RENDER_PROG_TAG) names its stage and program. */
+static char *merge_lines(const char *log) {
+    msg_line *lines = NULL;
+    int n = 0;
+    for (const char *s = log; s && *s;) {
+        const char *e = strchr(s, '\n');
+        size_t len = e ? (size_t)(e - s) : strlen(s);
+        char *line = mem_strndup(s, len);
+        s += len + (e ? 1 : 0);
+        char *stage = strchr(line, RENDER_PROG_TAG), *pname = stage ? strchr(stage + 1, RENDER_PROG_TAG) : NULL;
+        if (stage) *stage++ = '\0';
+        if (pname) *pname++ = '\0';
+        int i = 0;
+        while (i < n && strcmp(lines[i].text, line) != 0) i++;
+        if (i == n) {
+            lines = mem_realloc(lines, (size_t)(n + 1) * sizeof *lines);
+            memset(&lines[n], 0, sizeof lines[n]);
+            lines[n++].text = line;
+        }
+        if (stage && pname) msg_line_add_prog(&lines[i], stage, pname);   /* (they point into line) */
+        if (lines[i].text != line) free(line);
+    }
+    strbuf out = { 0 };
+    for (int i = 0; i < n; i++) {
+        msg_line_print(&out, &lines[i]);
+        free(lines[i].text);
+        strbuf_free(&lines[i].progs);
+    }
+    free(lines);
+    return out.s;
+}
+
 /* The latest load's messages: each line once (an error in a file that
  * several programs include is reported by each), and their diagnostics,
  * from which errors are told apart from warnings. */
 static void set_messages(render *r, char *log) {
-    strbuf out = { 0 };
-    for (const char *s = log; s && *s;) {
-        const char *e = strchr(s, '\n');
-        size_t n = e ? (size_t)(e - s) + 1 : strlen(s);
-        bool seen = false;
-        for (const char *q = out.s; q && *q && !seen;) {
-            const char *qe = strchr(q, '\n');
-            size_t qn = qe ? (size_t)(qe - q) + 1 : strlen(q);
-            seen = qn == n && memcmp(q, s, n) == 0;
-            q += qn;
-        }
-        if (!seen) strbuf_put(&out, s, n);
-        s += n;
-    }
+    char *merged = merge_lines(log);
     free(log);
     free(r->messages);
-    r->messages = out.s;
+    r->messages = merged;
     free(r->draw_messages);   /* problems drawing are found afresh */
     r->draw_messages = NULL;
     if (r->cur.draw_warned && r->cur.glib)

@@ -57,8 +57,21 @@ static void set_deps(prog *p, shader_src *src, int nsrc) {
         for (int f = 0; f < src[s].nfiles; f++) p->deps[p->ndeps++] = mem_strdup(src[s].files[f]);
 }
 
+/* Appends text to *log a line at a time, each tagged with the stage and
+ * program it came from (RENDER_PROG_TAG separates them): render.c merges
+ * a line that several programs report into one naming them all. */
+static void append_tagged(char **log, const char *text, shader_stage st, const prog *p) {
+    for (const char *s = text; s && *s;) {
+        const char *e = strchr(s, '\n');
+        int n = e ? (int)(e - s) : (int)strlen(s);
+        if (n > 0)
+            str_appendf(log, "%.*s%c%s%c%s\n", n, s, RENDER_PROG_TAG, shader_stage_name(st), RENDER_PROG_TAG, p->name);
+        s += n + (e ? 1 : 0);
+    }
+}
+
 /* Compiles one stage; on failure appends the mapped log. */
-static GLuint compile_stage(const shader_src *src, shader_stage st, char **log) {
+static GLuint compile_stage(const prog *p, const shader_src *src, shader_stage st, char **log) {
     GLuint sh = glCreateShader(stage_gl[st]);
     const char *text = src->text;
     glShaderSource(sh, 1, &text, NULL);
@@ -70,9 +83,9 @@ static GLuint compile_stage(const shader_src *src, shader_stage st, char **log) 
         char *mapped = shader_src_map_log(src, raw);
         /* what NVIDIA let through and Mesa does not, in plain words */
         char *hinted = glsl_hint_annotate(mapped, src->text);
-        str_appendf(log, "%s", hinted);
-        size_t l = strlen(hinted);
-        if (l && hinted[l - 1] != '\n') str_appendf(log, "\n");
+        char failed[GLIB_PATH_MAX + 64];
+        snprintf(failed, sizeof failed, "%s:0: error: compile failed", src->nfiles ? src->files[0] : "?");
+        append_tagged(log, hinted[0] ? hinted : raw[0] ? raw : failed, st, p);
         free(hinted);
         free(mapped);
         free(raw);
@@ -136,7 +149,7 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
             .include_dirs = include_dirs, .ninclude_dirs = ninclude_dirs,
             .gs_input = program_gs_input(p->scene, p->cmd) };
         if (!shader_src_load(&d, &src[s])) {
-            str_appendf(log, "%s\n", src[s].error);
+            append_tagged(log, src[s].error, (shader_stage)s, p);
             ok = false;
             /* still watch the stage file so fixing it triggers a reload */
             if (!src[s].nfiles) {
@@ -162,7 +175,7 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
     GLuint shaders[SHADER_STAGE_COUNT] = {0};
     for (int s = 0; ok && s < SHADER_STAGE_COUNT; s++) {
         if (!p->stage_path[s][0]) continue;
-        shaders[s] = compile_stage(&src[s], (shader_stage)s, log);
+        shaders[s] = compile_stage(p, &src[s], (shader_stage)s, log);
         if (!shaders[s]) ok = false;
     }
     GLuint prg = ok ? link_program(p, shaders, log) : 0;
@@ -271,6 +284,12 @@ void prog_introspect(prog *p, char **log) {
         char name[UNIF_NAME_MAX];
         snprintf(name, sizeof name, "%s", e->name);
         unif_set_shader_type(p->unifs, name, is_count ? UNIF_INT : UNIF_FLOAT, 1, -1);
+    }
+    /* a program that failed to build runs its last good build: what that
+     * lacks says nothing about the sources on disk, whose errors are the news */
+    if (!p->good) {
+        p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
+        return;
     }
     for (int i = 0; i < p->unifs->n; i++) {
         const unif_entry *e = &p->unifs->entries[i];

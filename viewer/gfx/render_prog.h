@@ -30,6 +30,10 @@ typedef struct prog {
     const glib_scene *scene;                 /* its glib: sliders that glib commands read */
 } prog;
 
+/* Separates a log line from the stage and program it came from:
+ * "LINE\x1fSTAGE\x1fPROGRAM\n" (render.c's messages merge and untag them). */
+#define RENDER_PROG_TAG '\x1f'
+
 /* Builds p from its stage paths, defines (from p->unifs' define entries)
  * and include dirs. On failure p->gl is left as it was (the last good build)
  * and the mapped messages are appended to *log. Returns true on success or

@@ -1503,7 +1503,8 @@ static bool h_define(cmdctx *c, glib_cmd *cmd) {
  * byte order mark and binary bytes are parse_text's: glib_parse reads text
  * from memory too. */
 static bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen) {
-    file_text_opts o = { .max_bytes = LIM_FILE_BYTES };
+    /* settled: a reload during a save reads the saved text, not a torn or empty one */
+    file_text_opts o = { .max_bytes = LIM_FILE_BYTES, .settle = true };
     *out = file_read_text(path, &o, len, why, whylen);
     return *out != NULL;
 }

@@ -88,7 +88,7 @@ static bool is_regular_file(const char *path) {
  * SHADER_SRC_MAX_FILE_BYTES. */
 static char *read_text(const char *path, char *why, size_t whylen) {
     file_text_opts o = { .max_bytes = SHADER_SRC_MAX_FILE_BYTES, .strip_bom = true, .crlf_to_lf = true,
-                         .reject_nul = true };
+                         .reject_nul = true, .settle = true };  /* a reload during a save reads the saved text */
     return file_read_text(path, &o, NULL, why, whylen);
 }
 

@@ -36,6 +36,7 @@ struct app {
     int unwatched;               /* dependencies skipped: their directory is missing */
     double next_retry;           /* clock_now_s() when to look for them again */
     view_script_ctx *sc;         /* while a script step runs */
+    char cause[512];             /* why this reload: "water.frag changed" ("" for R) */
     int script_scene;
     session_rec *rec;            /* recording, or NULL */
     int recordings;              /* Shift+R's file names so far */
@@ -93,7 +94,17 @@ void app_rewatch(app *a) {
 
 static void reload(app *a) {
     a->d.reload(a->d.user, a);
+    a->cause[0] = '\0';
     app_rewatch(a);
+}
+
+/* A reload for the files the watcher saw change (watch_changed 0..n-1). */
+static void reload_changed(app *a, int n) {
+    const char **paths = mem_alloc((size_t)n * sizeof *paths);
+    for (int i = 0; i < n; i++) paths[i] = watch_changed(a->watch, i);
+    view_reload_cause(paths, n, a->cause, sizeof a->cause);
+    free(paths);
+    reload(a);
 }
 
 /* A skipped dependency whose directory has appeared: its file may be
@@ -214,6 +225,18 @@ static void on_scroll(GLFWwindow *w, double dx, double dy) {
     if (!a->panel || !panel_wants_mouse(a->panel)) a->s.mouse.scroll += dy;
 }
 
+/* Where a press happened, now: by the next frame (a second away on a slow
+ * scene) the cursor may be elsewhere. */
+static void on_button(GLFWwindow *w, int button, int action, int mods) {
+    app *a = glfwGetWindowUserPointer(w);
+    if (action != GLFW_PRESS) return;
+    int which = button == GLFW_MOUSE_BUTTON_LEFT ? VIEW_MOUSE_LEFT
+              : button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE ? VIEW_MOUSE_PAN : 0;
+    double x, y;
+    glfwGetCursorPos(w, &x, &y);
+    if (which) view_mouse_press(&a->s.mouse, which, x, y);
+}
+
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     app *a = glfwGetWindowUserPointer(w);
     if (action != GLFW_PRESS || !a->panel || panel_wants_keyboard(a->panel)) return;
@@ -242,7 +265,12 @@ static void frame(app *a, bool scripted) {
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
     if (!a->s.paused && !scripted) a->s.t += dt;
-    if (a->watch && (watch_poll(a->watch, 0) > 0 || missing_dir_appeared(a))) reload(a);
+    int changed = a->watch ? watch_poll(a->watch, 0) : 0;
+    if (changed > 0) reload_changed(a, changed);
+    else if (a->watch && missing_dir_appeared(a)) {
+        snprintf(a->cause, sizeof a->cause, "a missing folder appeared");
+        reload(a);
+    }
     if (a->d.mouse) a->d.mouse(a->d.user, a);
     else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel), &a->s.cam);
     a->d.draw(a->d.user, a);
@@ -369,6 +397,7 @@ app *app_create(const app_desc *desc) {
     /* ours first: the ImGui backend chains to callbacks installed before it */
     glfwSetScrollCallback(a->win, on_scroll);
     glfwSetKeyCallback(a->win, on_key);
+    glfwSetMouseButtonCallback(a->win, on_button);
     a->panel = panel_create(a->win, "#version 130");
     /* GL_RENDERER (in the description) names Mesa's CPU rasterisers */
     const char *gl = gl_ctx_describe(a->ctx);
@@ -401,6 +430,7 @@ void app_script_use(app *a, int i) {
 }
 
 app_state *app_get_state(app *a) { return &a->s; }
+const char *app_reload_cause(const app *a) { return a->cause; }
 void *app_window(app *a) { return a->win; }
 gl_ctx *app_gl(app *a) { return a->ctx; }
 panel *app_panel(app *a) { return a->panel; }

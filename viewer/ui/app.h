@@ -128,6 +128,11 @@ void app_toast(app *a, const char *fmt, ...);
 /* The client switched the pack drawing the scene: a recording notes it. */
 void app_record_pack(app *a, const char *pack);
 
+/* Inside hooks.reload: why it runs, "water.frag changed" (the files the
+ * watcher saw change), "a missing folder appeared", or "" (R, the panel's
+ * button, a script). */
+const char *app_reload_cause(const app *a);
+
 app_state *app_get_state(app *a);
 void *app_window(app *a);        /* the GLFWwindow* */
 gl_ctx *app_gl(app *a);

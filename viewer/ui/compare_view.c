@@ -4,9 +4,13 @@
  * halves of one view for the wipe. Heat maps: the CPU reference of the
  * frame at the cell size, each pack's error field against it coloured by
  * ref_heatmap into a texture blitted in place of the pack's image, and
- * recoloured every frame while the camera, time and size stay those of the
- * reference (so a slider's effect on the error shows live). The window,
- * its loop, hot reload and scripts are app.h's; this file is its hooks. */
+ * recoloured again and again while the camera, time and size stay those of
+ * the reference (so a slider's effect on the error shows live). Both run on
+ * heat_job's worker thread, the window polls it each frame (progress in the
+ * panel); GL stays here: the packs' pixels are read back and the maps
+ * uploaded on this thread. A scripted run waits for each job, so what a
+ * script checks or shoots is the frame's own. The window, its loop, hot
+ * reload and scripts are app.h's; this file is its hooks. */
 #include "compare_view.h"
 
 #include <GL/gl.h>
@@ -19,8 +23,10 @@
 #include "app.h"
 #include "exit_code.h"
 #include "gl_ctx.h"
+#include "heat_job.h"
 #include "mem.h"
 #include "panel.h"
+#include "mem.h"
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
@@ -32,6 +38,9 @@
 _Static_assert(COMPARE_VIEW_MAX_PACKS <= PANEL_COMPARE_MAX_PACKS, "the panel has a row for every pack");
 
 #define DIVIDER_GRAB 8    /* pixels either side of the wipe's divider that grab it */
+#define LEGEND_STEPS 256  /* colours in the heat maps' legend */
+
+_Static_assert(COMPARE_VIEW_MAX_PACKS <= HEAT_JOB_MAX_PACKS, "the worker takes every pack");
 
 typedef struct cv_pack {
     char name[64], label[80];
@@ -39,7 +48,7 @@ typedef struct cv_pack {
     render_target tg;            /* the pack's image, float, a cell's size */
     unsigned heat_tex, heat_fbo; /* its heat map, display values */
     int heat_w, heat_h;
-    float *field;                /* its error field against the reference */
+    float *pixels;               /* its image read back for the worker (RGBA, row 0 at the top) */
     bool have_heat;
     double gpu_ms, wall_ms;      /* smoothed */
     double rmse, psnr;          /* over the reference's water pixels: what ranks the packs */
@@ -68,6 +77,14 @@ typedef struct cview {
     orbit ref_cam;
     int ref_w, ref_h;
     refcache_opts ref_opts;
+    heat_job *job;               /* the reference and the maps, off this thread */
+    bool scripted;               /* wait for each job: a script checks the frame's own */
+    double pend_t;               /* what the running reference is of */
+    orbit pend_cam;
+    int pend_w, pend_h;
+    double pend_started;
+    unsigned legend_tex, legend_fbo;
+    double legend_scale;         /* the scale the legend texture was made for */
     char heat_status[256];
     panel_compare_actions pending;   /* the panel's buttons of this frame, applied after it */
     /* the scene area and the cells, framebuffer pixels (GL: y from the bottom) */
@@ -121,16 +138,12 @@ static bool ref_valid(const cview *v) {
            v->ref_h == v->cell_h;
 }
 
-static void on_ref_progress(void *user, double f) {
-    cview *v = user;
-    char title[160];
-    snprintf(title, sizeof title, "tarn compare-view: computing the reference, %.0f%%", 100 * f);
-    glfwSetWindowTitle(v->win, title);
-}
-
-/* The CPU reference of this frame at the cell size; time pauses. */
-static bool compute_reference(cview *v) {
+/* Starts the CPU reference of this frame at the cell size on the worker;
+ * time pauses (the reference is of this moment). */
+static void start_reference(cview *v) {
     layout_cells(v);
+    if (heat_job_running(v->job) == HEAT_JOB_REFERENCE) return;
+    heat_job_wait(v->job);   /* maps of the old reference: no longer wanted */
     v->s->paused = true;
     render_view rv = orbit_view(&v->s->cam);
     refcache_view view;
@@ -139,98 +152,102 @@ static bool compute_reference(cview *v) {
         view.center[k] = rv.center[k];
         view.up[k] = rv.up[k];
     }
-    refcache_free(&v->ref);
-    v->have_ref = false;
-    char err[4096] = "";
-    double t0 = clock_now_s();
+    v->pend_t = v->s->t;
+    v->pend_cam = v->s->cam;
+    v->pend_w = v->cell_w;
+    v->pend_h = v->cell_h;
+    v->pend_started = clock_now_s();
     fprintf(stderr, "tarn compare-view: computing the reference at %dx%d, t = %.3f s ...\n", v->cell_w, v->cell_h,
             v->s->t);
-    bool ok = refcache_get(NULL, v->scene, NULL, v->cell_w, v->cell_h, v->s->t, &view, &v->ref_opts,
-                           on_ref_progress, v, &v->ref, err, sizeof err);
-    char title[1200];
-    snprintf(title, sizeof title, "tarn compare-view — %s", v->scene);
-    glfwSetWindowTitle(v->win, title);
-    if (!ok) {
+    heat_job_start_reference(v->job, v->scene, v->cell_w, v->cell_h, v->s->t, &view, &v->ref_opts);
+    snprintf(v->heat_status, sizeof v->heat_status, "computing the reference %dx%d: 0%%", v->pend_w, v->pend_h);
+}
+
+/* The finished reference replaces the last one. */
+static bool finish_reference(cview *v) {
+    char err[4096] = "";
+    refcache_image im;
+    if (!heat_job_take_reference(v->job, &im, err, sizeof err)) {
         snprintf(v->heat_status, sizeof v->heat_status, "no reference: %.200s", err);
         fprintf(stderr, "tarn compare-view: %s\n", err);
         return false;
     }
+    refcache_free(&v->ref);
+    v->ref = im;
     v->have_ref = true;
-    v->ref_t = v->s->t;
-    v->ref_cam = v->s->cam;
-    v->ref_w = v->cell_w;
-    v->ref_h = v->cell_h;
+    v->ref_t = v->pend_t;
+    v->ref_cam = v->pend_cam;
+    v->ref_w = v->pend_w;
+    v->ref_h = v->pend_h;
     v->show_heat = true;
     v->reported = false;
+    for (int i = 0; i < v->n; i++) v->packs[i].have_heat = false;
     snprintf(v->heat_status, sizeof v->heat_status, "reference %dx%d at t = %.3f s, computed in %.1f s",
-             v->cell_w, v->cell_h, v->s->t, clock_now_s() - t0);
+             v->ref_w, v->ref_h, v->ref_t, clock_now_s() - v->pend_started);
     fprintf(stderr, "tarn compare-view: %s\n", v->heat_status);
     return true;
 }
 
-static void upload_heat(cv_pack *p, const float *rgb, int w, int h) {
-    if (!p->heat_tex || p->heat_w != w || p->heat_h != h) {
-        if (!p->heat_tex) glGenTextures(1, &p->heat_tex);
-        if (!p->heat_fbo) glGenFramebuffers(1, &p->heat_fbo);
-        glBindTexture(GL_TEXTURE_2D, p->heat_tex);
+/* The script's `heat`: the reference now, before the next step. */
+static bool compute_reference_now(cview *v) {
+    start_reference(v);
+    return heat_job_wait(v->job) == HEAT_JOB_REFERENCE && finish_reference(v);
+}
+
+/* rgb (w x h, row 0 at the top) into a texture with a framebuffer to blit
+ * from, made or resized as needed. */
+static void upload_rgb(unsigned *tex, unsigned *fbo, const float *rgb, int w, int h, bool resize) {
+    if (!*tex || resize) {
+        if (!*tex) glGenTextures(1, tex);
+        if (!*fbo) glGenFramebuffers(1, fbo);
+        glBindTexture(GL_TEXTURE_2D, *tex);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_FLOAT, NULL);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glBindFramebuffer(GL_FRAMEBUFFER, p->heat_fbo);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->heat_tex, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        p->heat_w = w;
-        p->heat_h = h;
     }
-    glBindTexture(GL_TEXTURE_2D, p->heat_tex);
+    glBindTexture(GL_TEXTURE_2D, *tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int y = 0; y < h; y++)   /* ref_heatmap's row 0 is the top; GL's the bottom */
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, h - 1 - y, w, 1, GL_RGB, GL_FLOAT, rgb + (size_t)y * w * 3);
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-/* Each drawn pack's error field against the reference, one scale for all. */
-static void update_heat(cview *v) {
-    int w = v->cell_w, h = v->cell_h;
-    size_t n = (size_t)w * h;
-    float *rgba = mem_alloc(n * 4 * sizeof *rgba), *rgb = mem_alloc(n * 3 * sizeof *rgb);
-    double scale = 0;
-    for (int i = 0; i < v->n; i++) {
+static void upload_heat(cv_pack *p, const float *rgb, int w, int h) {
+    upload_rgb(&p->heat_tex, &p->heat_fbo, rgb, w, h, p->heat_w != w || p->heat_h != h);
+    p->heat_w = w;
+    p->heat_h = h;
+}
+
+/* The legend's bar: the maps' colours from no error (bottom) to the scale
+ * and more (top), made again when the scale changes. */
+static void make_legend(cview *v) {
+    if (v->legend_tex && v->legend_scale == v->heat_scale) return;
+    float field[LEGEND_STEPS], rgb[LEGEND_STEPS * 3];
+    for (int i = 0; i < LEGEND_STEPS; i++)
+        field[i] = (float)(v->heat_scale * (LEGEND_STEPS - 1 - i) / (LEGEND_STEPS - 1));
+    ref_heatmap(field, 1, LEGEND_STEPS, v->heat_scale, rgb);
+    upload_rgb(&v->legend_tex, &v->legend_fbo, rgb, 1, LEGEND_STEPS, false);
+    v->legend_scale = v->heat_scale;
+}
+
+/* The worker's maps (of the frame that was read back) into the packs'
+ * textures and figures. */
+static void take_maps(cview *v) {
+    const heat_maps *m = heat_job_maps(v->job);
+    if (m->w != v->ref_w || m->h != v->ref_h) return;   /* of a reference since replaced */
+    for (int i = 0; i < v->n && i < m->n; i++) {
         cv_pack *p = &v->packs[i];
-        p->have_heat = false;
-        if (!pack_drawn(v, i) || !p->tg.fbo) continue;
-        free(p->field);
-        p->field = mem_alloc(n * sizeof *p->field);
-        if (!render_target_read(&p->tg, rgba)) continue;
-        ref_fimage A = { rgba, w, h, 4 }, B = { v->ref.color, w, h, 3 };
-        ref_image_metrics m;
-        char err[256];
-        if (!ref_metrics_error_field(&A, &B, REF_ERR_COLOR, NULL, p->field, err, sizeof err) ||
-            !ref_metrics_image(&A, &B, NULL, &m, err, sizeof err))
-            continue;
-        p->frame_rmse = m.rmse;
-        /* water first: the error of the water technique, where the
-         * reference sees water (the rest of the frame is one world) */
-        unsigned char *water = mem_alloc(n);
-        ref_image_metrics wm;
-        ref_mask_water(v->ref.mask, (long)n, 1, NULL, water);
-        ref_metrics_desc wd = { .mask = water };
-        bool have_water = ref_metrics_image(&A, &B, &wd, &wm, err, sizeof err) && wm.count.compared > 0;
-        free(water);
-        p->rmse = have_water ? wm.rmse : m.rmse;
-        p->psnr = have_water ? wm.psnr_db : m.psnr_db;
-        p->have_heat = true;
-        double s = ref_heatmap_auto_scale(p->field, (long)n);
-        if (s > scale) scale = s;
-    }
-    if (v->heat_max > 0) scale = v->heat_max;
-    v->heat_scale = scale;
-    for (int i = 0; i < v->n; i++) {
-        cv_pack *p = &v->packs[i];
+        p->have_heat = m->map[i].ok;
         if (!p->have_heat) continue;
-        ref_heatmap(p->field, w, h, scale, rgb);
-        upload_heat(p, rgb, w, h);
+        p->rmse = m->map[i].rmse;
+        p->psnr = m->map[i].psnr;
+        p->frame_rmse = m->map[i].frame_rmse;
+        upload_heat(p, m->map[i].rgb, m->w, m->h);
     }
+    v->heat_scale = m->scale;
     if (!v->reported) {
         for (int i = 0; i < v->n; i++)
             if (v->packs[i].have_heat)
@@ -239,8 +256,31 @@ static void update_heat(cview *v) {
                         v->packs[i].label, v->packs[i].rmse, v->packs[i].psnr, v->packs[i].frame_rmse, v->heat_scale);
         v->reported = true;
     }
-    free(rgba);
-    free(rgb);
+}
+
+/* What the worker finished since the last frame; the reference's progress. */
+static void poll_heat(cview *v) {
+    heat_job_kind done = heat_job_poll(v->job);
+    if (done == HEAT_JOB_REFERENCE) finish_reference(v);
+    else if (done == HEAT_JOB_MAPS) take_maps(v);
+    if (heat_job_running(v->job) == HEAT_JOB_REFERENCE)
+        snprintf(v->heat_status, sizeof v->heat_status, "computing the reference %dx%d: %.0f%%", v->pend_w,
+                 v->pend_h, 100 * heat_job_progress(v->job));
+}
+
+/* Reads the drawn packs back and hands them to the worker, when it is free. */
+static void request_maps(cview *v) {
+    if (heat_job_busy(v->job)) return;
+    const float *rgba[COMPARE_VIEW_MAX_PACKS] = { 0 };
+    size_t n = (size_t)v->cell_w * v->cell_h;
+    for (int i = 0; i < v->n; i++) {
+        cv_pack *p = &v->packs[i];
+        if (!pack_drawn(v, i) || !p->tg.fbo) continue;
+        p->pixels = mem_realloc(p->pixels, n * 4 * sizeof *p->pixels);
+        if (render_target_read(&p->tg, p->pixels)) rgba[i] = p->pixels;
+    }
+    heat_job_start_maps(v->job, rgba, v->n, v->cell_w, v->cell_h, &v->ref, v->heat_max);
+    if (v->scripted && heat_job_wait(v->job) == HEAT_JOB_MAPS) take_maps(v);
 }
 
 /* ---- drawing ---- */
@@ -302,17 +342,71 @@ static void to_window(const cview *v, int x, int y, float *wx, float *wy) {
     *wy = (float)(v->fb_h - y) * sy;
 }
 
-static void label_pack(cview *v, int i, int x, int ytop, bool heat, bool right) {
+/* Pack i's name, times and error over the part of the scene it has
+ * (framebuffer columns x0..x1, top row ytop): centred at the top, clear of
+ * the corners, where what a view shows at its edges is. */
+static void label_pack(cview *v, int i, int x0, int x1, int ytop, bool heat) {
     cv_pack *p = &v->packs[i];
     strbuf text = { 0 };
     strbuf_printf(&text, "%s\n%.2f ms GPU  %.1f ms wall", p->label, p->gpu_ms, p->wall_ms);
     if (heat && p->have_heat)
         strbuf_printf(&text, "\nwater RMSE %.4f  PSNR %.1f dB\nframe RMSE %.4f", p->rmse, p->psnr, p->frame_rmse);
     if (p->passes[0]) strbuf_printf(&text, "\n%s", p->passes);
-    float wx, wy;
-    to_window(v, x, ytop, &wx, &wy);
-    panel_label(v->panel, right ? wx - 6 : wx + 6, wy + 6, text.s, right);
+    float wx0, wx1, wy;
+    to_window(v, x0, ytop, &wx0, &wy);
+    to_window(v, x1, ytop, &wx1, &wy);
+    panel_label_between(v->panel, wx0 + 2, wx1 - 2, wy + 6, text.s);
     strbuf_free(&text);
+}
+
+/* ---- the heat maps' legend ---- */
+
+#define LEGEND_W 14       /* the bar's width, framebuffer pixels */
+
+/* The bar in framebuffer pixels: at the scene area's right edge, half its
+ * height, below the packs' labels at the top (its caption under it). */
+static void legend_rect(const cview *v, int *x, int *y, int *w, int *h) {
+    *w = LEGEND_W;
+    *h = v->area_h / 2;
+    *x = v->area_x + v->area_w - LEGEND_W - 12;
+    *y = v->area_h / 6;
+}
+
+static bool legend_shown(const cview *v, bool heat) {
+    if (!heat || !(v->heat_scale > 0)) return false;
+    for (int i = 0; i < v->n; i++)
+        if (v->packs[i].have_heat) return true;
+    return false;
+}
+
+static void draw_legend(cview *v) {
+    make_legend(v);
+    int x, y, w, h;
+    legend_rect(v, &x, &y, &w, &h);
+    fill(x - 1, y - 1, w + 2, h + 2, 0.9f, 0.9f, 0.9f);
+    glDisable(GL_FRAMEBUFFER_SRGB);   /* display values, as the maps */
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, v->legend_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, 1, LEGEND_STEPS, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+/* The scale's values beside the bar: 0, half, the scale (and more). */
+static void legend_labels(cview *v) {
+    int x, y, w, h;
+    legend_rect(v, &x, &y, &w, &h);
+    for (int k = 0; k <= 2; k++) {
+        char text[48];
+        double value = v->heat_scale * k / 2;
+        if (k == 2) snprintf(text, sizeof text, ">= %.3g", value);
+        else snprintf(text, sizeof text, "%.3g", value);
+        float wx, wy;
+        to_window(v, x - 4, y + h * k / 2, &wx, &wy);
+        panel_label(v->panel, wx, wy - 9, text, true);
+    }
+    float wx, wy;
+    to_window(v, x + w, y - 4, &wx, &wy);
+    panel_label(v->panel, wx, wy, "error (max |RGB|)", true);
 }
 
 static void compose(cview *v, bool heat) {
@@ -334,18 +428,21 @@ static void compose(cview *v, bool heat) {
         for (int i = 1; i < 2; i++) fill(v->area_x + i * v->cell_w - 1, 0, 2, v->area_h, 0.12f, 0.12f, 0.13f);
         if (v->n > 2) fill(v->area_x, v->area_h - v->cell_h - 1, v->area_w, 2, 0.12f, 0.12f, 0.13f);
     }
+    if (legend_shown(v, heat)) draw_legend(v);
 }
 
 static void labels(cview *v, bool heat) {
+    if (legend_shown(v, heat)) legend_labels(v);
     if (v->layout == PANEL_LAYOUT_WIPE) {
-        label_pack(v, v->wipe_a, v->area_x, v->cell_h, heat, false);
-        label_pack(v, v->wipe_b, v->area_x + v->cell_w, v->cell_h, heat, true);
+        int split = v->area_x + wipe_px(v);
+        label_pack(v, v->wipe_a, v->area_x, split, v->cell_h, heat);
+        label_pack(v, v->wipe_b, split, v->area_x + v->cell_w, v->cell_h, heat);
         return;
     }
     for (int i = 0; i < v->n; i++) {
         int x, y;
         cell_rect(v, i, &x, &y);
-        label_pack(v, i, x, y + v->cell_h, heat, false);
+        label_pack(v, i, x, x + v->cell_w, y + v->cell_h, heat);
     }
 }
 
@@ -358,6 +455,8 @@ static void report(cv_pack *p) {
 
 static void on_reload(void *user, app *a) {
     cview *v = user;
+    const char *cause = app_reload_cause(a);
+    fprintf(stderr, "tarn compare-view: reloaded %s%s%s%s\n", v->scene, cause[0] ? " (" : "", cause, cause[0] ? ")" : "");
     for (int i = 0; i < v->n; i++) {
         render_load(v->packs[i].r, NULL);
         report(&v->packs[i]);
@@ -371,7 +470,7 @@ static void on_key(void *user, app *a, int key) {
     switch (key) {
     case GLFW_KEY_H:
         if (ref_valid(v)) v->show_heat = !v->show_heat;
-        else compute_reference(v);
+        else start_reference(v);
         break;
     case GLFW_KEY_G: v->layout = PANEL_LAYOUT_GRID; break;
     case GLFW_KEY_W: v->layout = PANEL_LAYOUT_WIPE; break;
@@ -385,30 +484,35 @@ static void on_key(void *user, app *a, int key) {
 
 /* The cells for this frame's size, then the mouse: a left press within
  * DIVIDER_GRAB pixels of the wipe's divider drags it, other drags move
- * the camera. */
-static void on_mouse(void *user, app *a) {
-    cview *v = user;
+ * the camera. The press is judged where it happened (the button callback's
+ * position), not where the cursor is a slow frame later. */
+static void cv_mouse(cview *v, const view_mouse_input *in) {
     layout_cells(v);
-    double mx, my;
-    glfwGetCursorPos(v->win, &mx, &my);
     int ww, wh;
     glfwGetWindowSize(v->win, &ww, &wh);
-    double fx = ww > 0 ? mx * v->fb_w / ww : mx;
-    bool left = glfwGetMouseButton(v->win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    double sx = ww > 0 ? (double)v->fb_w / ww : 1.0;
     bool ui = panel_wants_mouse(v->panel);
-    if (v->layout == PANEL_LAYOUT_WIPE && left && !ui && !v->s->mouse.dragging_orbit && !v->dragging_wipe) {
+    if (v->layout == PANEL_LAYOUT_WIPE && (in->pressed & VIEW_MOUSE_LEFT) && !ui && !v->s->mouse.dragging_orbit &&
+        !v->dragging_wipe) {
         double divider = v->area_x + wipe_px(v);
-        if (fabs(fx - divider) <= DIVIDER_GRAB) v->dragging_wipe = true;
+        if (fabs(in->press_x * sx - divider) <= DIVIDER_GRAB) v->dragging_wipe = true;
     }
-    if (!left) v->dragging_wipe = false;
     if (v->dragging_wipe) {
-        v->wipe = (float)((fx - v->area_x) / (v->cell_w > 0 ? v->cell_w : 1));
+        v->wipe = (float)((in->x * sx - v->area_x) / (v->cell_w > 0 ? v->cell_w : 1));
         v->wipe = fmaxf(0.0f, fminf(1.0f, v->wipe));
-        v->s->mouse.last_x = mx;
-        v->s->mouse.last_y = my;
+        v->s->mouse.last_x = in->x;
+        v->s->mouse.last_y = in->y;
+        if (!in->left) v->dragging_wipe = false;   /* released: this frame's position was the last */
         return;
     }
-    view_mouse_update(&v->s->mouse, v->win, ui, &v->s->cam);
+    view_mouse_step(&v->s->mouse, in, ui, &v->s->cam);
+}
+
+static void on_mouse(void *user, app *a) {
+    cview *v = user;
+    view_mouse_input in;
+    view_mouse_read(&v->s->mouse, v->win, &in);
+    cv_mouse(v, &in);
 }
 
 /* What the panel asked for besides reload, pause and screenshot (the app's). */
@@ -421,7 +525,7 @@ static void on_apply(void *user, app *a) {
             report(&v->packs[i]);
         }
     if (p->reset_camera) v->s->cam = v->s->cam_home;
-    if (p->compute_heat) compute_reference(v);
+    if (p->compute_heat) start_reference(v);
 }
 
 /* ---- the frame ---- */
@@ -432,11 +536,12 @@ static void on_draw(void *user, app *a) {
     cview *v = user;
     if (v->wipe_a == v->wipe_b) v->wipe_b = (v->wipe_a + 1) % v->n;
     ensure_targets(v);
+    poll_heat(v);
     render_view view = orbit_view(&v->s->cam);
     draw_packs(v, &view);
     bool heat = heat_shown(v);
-    if (heat) update_heat(v);
-    if (v->have_ref && !ref_valid(v))
+    if (heat) request_maps(v);
+    if (v->have_ref && !ref_valid(v) && heat_job_running(v->job) != HEAT_JOB_REFERENCE)
         snprintf(v->heat_status, sizeof v->heat_status,
                  "heat maps are stale: the camera, time or size changed since the reference (H recomputes)");
     compose(v, heat);
@@ -505,7 +610,33 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
         v->wipe = fmaxf(0.0f, fminf(1.0f, (float)atof(a)));
         return VIEW_SCRIPT_CONTINUE;
     }
-    if (strcmp(cmd, "heat") == 0) return compute_reference(v) ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+    if (strcmp(cmd, "drag") == 0) {   /* a press, a move and a release, all between two frames */
+        double x0, y0, x1, y1;
+        if (sscanf(rest, "%lf %lf %lf %lf", &x0, &y0, &x1, &y1) != 4) {
+            fprintf(stderr, "%s:%d: drag wants X0 Y0 X1 Y1 (window pixels)\n", file, line);
+            return VIEW_SCRIPT_FAILED;
+        }
+        view_mouse_input in = { .x = x1, .y = y1, .left = true, .pressed = VIEW_MOUSE_LEFT, .press_x = x0, .press_y = y0 };
+        cv_mouse(v, &in);
+        in = (view_mouse_input){ .x = x1, .y = y1 };
+        cv_mouse(v, &in);
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "expect-divider") == 0) {
+        double want = atof(a);
+        bool ok = fabs(v->wipe - want) <= 0.01;
+        fprintf(stderr, "%s:%d: expect-divider %.3f: the divider is at %.3f%s\n", file, line, want, v->wipe,
+                ok ? "" : " (FAILED)");
+        return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+    }
+    if (strcmp(cmd, "expect-camera") == 0) {   /* home: where F puts it; moved: elsewhere */
+        bool home = orbit_equal(&v->s->cam, &v->s->cam_home);
+        bool ok = strcmp(a, "home") == 0 ? home : strcmp(a, "moved") == 0 ? !home : false;
+        fprintf(stderr, "%s:%d: expect-camera %s: the camera is %s%s\n", file, line, a, home ? "home" : "moved",
+                ok ? "" : " (FAILED)");
+        return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+    }
+    if (strcmp(cmd, "heat") == 0) return compute_reference_now(v) ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
     if (strcmp(cmd, "heat-show") == 0) {
         v->show_heat = strcmp(a, "on") == 0;
         return VIEW_SCRIPT_CONTINUE;
@@ -564,10 +695,13 @@ static void free_packs(cview *v) {
         render_target_destroy(&p->tg);
         if (p->heat_fbo) glDeleteFramebuffers(1, &p->heat_fbo);
         if (p->heat_tex) glDeleteTextures(1, &p->heat_tex);
-        free(p->field);
+        free(p->pixels);
         render_destroy(p->r);
     }
+    heat_job_destroy(v->job);   /* first: its maps borrow the reference */
     refcache_free(&v->ref);
+    if (v->legend_fbo) glDeleteFramebuffers(1, &v->legend_fbo);
+    if (v->legend_tex) glDeleteTextures(1, &v->legend_tex);
 }
 
 int cli_compare_view(const cli_compare_view_desc *d) {
@@ -582,6 +716,8 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     v->wipe_b = 1;
     v->ref_opts.caustic_res = d->ref_caustic_res > 0 ? d->ref_caustic_res : 128;
     v->ref_opts.photons_per_cell = d->ref_photons > 0 ? d->ref_photons : 16;
+    v->job = heat_job_create();
+    v->scripted = d->script != NULL;
     app_desc ad = { .name = "tarn compare-view", .scene_path = d->glib,
                     .width = d->width > 0 ? d->width + APP_PANEL_WIDTH : 1400,
                     .height = d->height > 0 ? d->height : 800, .time_s = d->time_s, .script = d->script,
@@ -589,6 +725,7 @@ int cli_compare_view(const cli_compare_view_desc *d) {
                     .mouse = on_mouse, .key = on_key, .script_action = script_action };
     v->app = app_create(&ad);
     if (!v->app) {
+        heat_job_destroy(v->job);
         free(v);
         return TARN_EXIT_NO_GL;
     }
@@ -597,6 +734,7 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     v->panel = app_panel(v->app);
     bool ok = true;
     load_packs(v, d, &ok);
+    fprintf(stderr, "tarn compare-view: loaded %s\n", d->glib);
     if (d->width <= 0 || d->height <= 0) {
         int w, h;
         render_window_size(v->packs[0].r, &w, &h);

@@ -6,8 +6,9 @@
  *   wipe    two packs over one view, a divider dragged with the mouse
  *   heat    each pack's per-pixel error against the CPU reference of the
  *           same frame (ref_render at the viewport size, computed on
- *           request with H or the panel's button; time pauses), in the
- *           inferno ramp of reference/ref_metrics.h at one scale for all
+ *           request with H or the panel's button on a worker thread, with
+ *           its progress in the panel; time pauses), in the inferno ramp of
+ *           reference/ref_metrics.h at one scale for all, with a legend
  *
  * Each pack's GPU time (timer queries) and wall time (after glFinish) is
  * on screen in its corner and in the panel. Keys: H heat maps (compute, or
@@ -22,8 +23,12 @@
  *   heat                compute the heat maps now (prints each pack's RMSE)
  *   heat-show on|off    heat-max E (0: automatic scale)
  *   orbit DX DY         turn the camera as a left drag of DX, DY pixels
+ *   drag X0 Y0 X1 Y1    a left press at X0 Y0, a move to X1 Y1 and the release, all
+ *                       between two frames (window pixels): a slow frame's drag
  *   timings             print each pack's GPU and wall time
  *   expect-heat         fail unless every pack has a heat map with a finite error
+ *   expect-divider X    fail unless the wipe's divider is at X (within 0.01)
+ *   expect-camera home|moved   fail unless the camera is (not) where F puts it
  */
 #ifndef TARN_COMPARE_VIEW_H
 #define TARN_COMPARE_VIEW_H

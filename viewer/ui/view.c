@@ -32,10 +32,14 @@ static void report_load(viewer *v) {
 
 /* ---- hooks ---- */
 
+/* "tarn: reloaded scenes/lake.glib (water.frag changed)", then what the load said. */
 static void on_reload(void *user, app *a) {
     viewer *v = user;
     render_load(v->r, NULL);
-    report_load(v);
+    const char *cause = app_reload_cause(a);
+    fprintf(stderr, "tarn: reloaded %s%s%s%s\n", render_scene_path(v->r), cause[0] ? " (" : "", cause,
+            cause[0] ? ")" : "");
+    fputs(render_messages(v->r), stderr);
 }
 
 /* On screen as well as on stderr: the student sees where it went. */

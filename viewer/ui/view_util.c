@@ -65,24 +65,56 @@ bool orbit_equal(const orbit *a, const orbit *b) {
            a->distance == b->distance && a->yaw == b->yaw && a->pitch == b->pitch;
 }
 
-void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *cam) {
+void view_mouse_press(view_mouse *m, int button, double x, double y) {
+    if (!m->pressed) {
+        m->press_x = x;
+        m->press_y = y;
+    }
+    m->pressed |= button;
+}
+
+void view_mouse_read(view_mouse *m, void *glfw_window, view_mouse_input *in) {
     GLFWwindow *win = glfw_window;
-    double mx, my;
-    glfwGetCursorPos(win, &mx, &my);
-    bool left = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    bool pan = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
-               glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-    float dx = (float)(mx - m->last_x), dy = (float)(my - m->last_y);
-    if (left && m->dragging_orbit) orbit_rotate(cam, dx, dy);
-    if (pan && m->dragging_pan) orbit_pan(cam, dx, dy);
+    memset(in, 0, sizeof *in);
+    glfwGetCursorPos(win, &in->x, &in->y);
+    in->left = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    in->pan = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+              glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    in->pressed = m->pressed;
+    in->press_x = m->press_x;
+    in->press_y = m->press_y;
+    m->pressed = 0;
+}
+
+void view_mouse_step(view_mouse *m, const view_mouse_input *in, bool ui_wants, orbit *cam) {
+    /* a press since the last frame counts as held this frame (a click
+     * between two frames), and its drag starts where it was */
+    bool left = in->left || (in->pressed & VIEW_MOUSE_LEFT);
+    bool pan = in->pan || (in->pressed & VIEW_MOUSE_PAN);
+    bool new_orbit = left && !m->dragging_orbit && !ui_wants;
+    bool new_pan = pan && !m->dragging_pan && !ui_wants;
+    if (in->pressed && (new_orbit || new_pan)) {
+        m->last_x = in->press_x;
+        m->last_y = in->press_y;
+    }
+    float dx = (float)(in->x - m->last_x), dy = (float)(in->y - m->last_y);
     m->dragging_orbit = left && (m->dragging_orbit || !ui_wants);
     m->dragging_pan = pan && (m->dragging_pan || !ui_wants);
+    bool from_press = in->pressed != 0;   /* a drag begun by a press we saw applies at once */
+    if (m->dragging_orbit && (!new_orbit || from_press)) orbit_rotate(cam, dx, dy);
+    if (m->dragging_pan && (!new_pan || from_press)) orbit_pan(cam, dx, dy);
     if (m->scroll != 0) {
         orbit_zoom(cam, m->scroll);
         m->scroll = 0;
     }
-    m->last_x = mx;
-    m->last_y = my;
+    m->last_x = in->x;
+    m->last_y = in->y;
+}
+
+void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *cam) {
+    view_mouse_input in;
+    view_mouse_read(m, glfw_window, &in);
+    view_mouse_step(m, &in, ui_wants, cam);
 }
 
 static void make_opaque(img *im) {
@@ -145,4 +177,18 @@ void view_shot_path(int n, char *out, size_t len) {
     char stamp[32];
     strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tmv);
     snprintf(out, len, "tarn-%s-%d.png", stamp, n);
+}
+
+void view_reload_cause(const char *const *paths, int n, char *out, size_t len) {
+    if (len == 0) return;
+    out[0] = '\0';
+    int shown = n > 3 ? 2 : n;   /* four and more: two names and a count */
+    size_t used = 0;
+    for (int i = 0; i < shown && used < len; i++) {
+        const char *slash = strrchr(paths[i], '/');
+        const char *sep = i == 0 ? "" : i == shown - 1 && shown == n ? " and " : ", ";
+        used += (size_t)snprintf(out + used, len - used, "%s%s", sep, slash ? slash + 1 : paths[i]);
+    }
+    if (n > shown && used < len) used += (size_t)snprintf(out + used, len - used, " and %d more", n - shown);
+    if (n > 0 && used < len) snprintf(out + used, len - used, " changed");
 }

@@ -30,10 +30,35 @@ typedef struct view_mouse {
     double last_x, last_y;
     bool dragging_orbit, dragging_pan;
     double scroll;                   /* wheel clicks not applied yet */
+    /* buttons pressed since the last frame (VIEW_MOUSE_LEFT | _PAN), and
+     * where the first of them was, from the button callback: at 1 fps the
+     * cursor is far from the press by the next frame */
+    int pressed;
+    double press_x, press_y;
 } view_mouse;
 
-/* Applies this frame's drags and wheel to the camera; ui_wants is true
- * while the panel has the mouse (a drag started over it is the panel's). */
+#define VIEW_MOUSE_LEFT 1
+#define VIEW_MOUSE_PAN 2              /* the right or middle button */
+
+/* One frame's mouse, window pixels (top-left origin). */
+typedef struct view_mouse_input {
+    double x, y;                     /* the cursor now */
+    bool left, pan;                  /* held now */
+    int pressed;                     /* pressed since the last frame (VIEW_MOUSE_*) */
+    double press_x, press_y;         /* where */
+} view_mouse_input;
+
+/* From the button callback: a press of VIEW_MOUSE_LEFT or _PAN at (x, y). */
+void view_mouse_press(view_mouse *m, int button, double x, double y);
+/* This frame's input: the cursor and buttons now, and the presses
+ * recorded since the last call (which it clears). */
+void view_mouse_read(view_mouse *m, void *glfw_window, view_mouse_input *in);
+/* Applies one frame's input to the camera: a drag runs from where its
+ * press was (not from where the cursor was at the next frame); the wheel.
+ * ui_wants is true while the panel has the mouse (a drag started over it
+ * is the panel's). */
+void view_mouse_step(view_mouse *m, const view_mouse_input *in, bool ui_wants, orbit *cam);
+/* view_mouse_read, then view_mouse_step. */
 void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *cam);
 
 /* Writes the window's back buffer to path (any img_write format), opaque:
@@ -49,6 +74,12 @@ bool view_screenshot(void *glfw_window, const char *path, char *said, size_t len
 void view_pass_name(const char *timer_name, char *out, size_t len);
 /* The last finished frame's GPU time per pass, a line each, by view_pass_name. */
 void view_pass_summary(render *r, char *out, size_t len);
+
+/* Why a reload happened, from the files the watcher saw change (any
+ * form of path; their file names are shown): "water.frag changed",
+ * "water.frag and lake.glib changed", "a.frag, b.frag and 2 more changed";
+ * "" for none (R, the panel's button). */
+void view_reload_cause(const char *const *paths, int n, char *out, size_t len);
 
 /* "tarn-YYYYmmdd-HHMMSS-N.png" into out. */
 void view_shot_path(int n, char *out, size_t len);

@@ -1,0 +1,120 @@
+/* What a student reads after a save (issue #17): each error line once,
+ * naming the program and the stage it broke; no uniform warnings about a
+ * program whose sources failed (the warnings were about its last good
+ * build, not the text on disk). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "support.h"
+#include "gl_ctx.h"
+#include "render.h"
+
+static int count_of(const char *hay, const char *needle) {
+    int n = 0;
+    for (const char *s = hay; (s = strstr(s, needle)) != NULL; s += strlen(needle)) n++;
+    return n;
+}
+
+static const char *vert = "#version 330 compatibility\n"
+                          "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n";
+
+static const char *frag_using(const char *extra) {
+    static char buf[1024];
+    snprintf(buf, sizeof buf,
+             "#version 330 compatibility\nuniform vec4 uColor;\n#include \"common.glsl\"\n"
+             "out vec4 fragColor;\nvoid main() { fragColor = uColor * helper(1.0)%s; }\n", extra);
+    return buf;
+}
+
+static void two_programs_scene(void) {
+    scratch_write("a.vert", vert);
+    scratch_write("water.frag", frag_using(""));
+    scratch_write("sky.frag", frag_using(" + vec4(0.1)"));
+    scratch_write("lake.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                               "Vertex a.vert\nFragment water.frag\nProgram Water uColor {0.2 0.4 0.6 1.}\n"
+                               "QuadXY 0 1 1 1\n"
+                               "Vertex a.vert\nFragment sky.frag\nProgram Sky uColor {0.2 0.4 0.6 1.}\n"
+                               "QuadXY 0 1 1 1\n");
+}
+
+/* An error in a file both programs include: one line, naming both. */
+static void test_shared_include_error_once_naming_programs(void) {
+    two_programs_scene();
+    scratch_write("common.glsl", "float helper(float x) { return x * 2.0 }\n");
+    render *r = render_create(NULL);
+    CHECK(!render_load(r, scratch_path("lake.glib")));
+    const char *m = render_messages(r);
+    fprintf(stderr, "%s", m);
+    CHECK_MSG(count_of(m, "common.glsl:1:") == 1, "%s", m);
+    CHECK_STR_CONTAINS(m, "(fragment shader of programs 'Water', 'Sky')");
+    render_destroy(r);
+}
+
+/* An error in one program's own stage file names that program and stage. */
+static void test_stage_error_names_program_and_stage(void) {
+    two_programs_scene();
+    scratch_write("common.glsl", "float helper(float x) { return x * 2.0; }\n");
+    scratch_write("sky.frag", frag_using(" + undefined_thing"));
+    render *r = render_create(NULL);
+    CHECK(!render_load(r, scratch_path("lake.glib")));
+    const char *m = render_messages(r);
+    fprintf(stderr, "%s", m);
+    CHECK_STR_CONTAINS(m, "sky.frag:5:");
+    CHECK_STR_CONTAINS(m, "(fragment shader of program 'Sky')");
+    CHECK(!strstr(m, "'Water'"));
+    CHECK_MSG(count_of(m, "\n") == count_of(m, "(fragment shader of program 'Sky')"), "%s", m);
+    render_destroy(r);
+}
+
+/* A save that both breaks the shader and adds a slider the last good build
+ * lacks: the error, not "uniform 'uTypo' is not declared". */
+static void test_no_uniform_warnings_for_a_failed_program(void) {
+    two_programs_scene();
+    scratch_write("common.glsl", "float helper(float x) { return x * 2.0; }\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, scratch_path("lake.glib")), "%s", render_messages(r));
+    scratch_write("water.frag", frag_using(" + oops("));
+    scratch_write("lake.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                               "Vertex a.vert\nFragment water.frag\n"
+                               "Program Water uColor {0.2 0.4 0.6 1.} uLevel <0. 1. 2.>\n"
+                               "QuadXY 0 1 1 1\n"
+                               "Vertex a.vert\nFragment sky.frag\nProgram Sky uColor {0.2 0.4 0.6 1.}\n"
+                               "QuadXY 0 1 1 1\n");
+    CHECK(!render_load(r, NULL));
+    const char *m = render_messages(r);
+    fprintf(stderr, "%s", m);
+    CHECK_STR_CONTAINS(m, "water.frag:5:");
+    CHECK_MSG(!strstr(m, "uLevel"), "%s", m);
+    /* fixed: the new slider is the shader's, and still no warning */
+    scratch_write("water.frag", "#version 330 compatibility\nuniform vec4 uColor;\nuniform float uLevel;\n"
+                                "#include \"common.glsl\"\nout vec4 fragColor;\n"
+                                "void main() { fragColor = uColor * helper(uLevel); }\n");
+    CHECK_MSG(render_load(r, NULL), "%s", render_messages(r));
+    CHECK_MSG(render_messages(r)[0] == '\0', "%s", render_messages(r));
+    /* and a real typo in a program that builds is still reported */
+    scratch_write("lake.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                               "Vertex a.vert\nFragment water.frag\n"
+                               "Program Water uColor {0.2 0.4 0.6 1.} uLevel <0. 1. 2.> uLevle <0. 1. 2.>\n"
+                               "QuadXY 0 1 1 1\n");
+    render_load(r, NULL);
+    CHECK_STR_CONTAINS(render_messages(r), "uniform 'uLevle' is not declared in program 'Water'");
+    render_destroy(r);
+}
+
+int main(void) {
+    char err[512];
+    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) {
+        fprintf(stderr, "skip: %s\n", err);
+        return 77;
+    }
+    if (!scratch_create("reload-messages")) return 1;
+    RUN(test_shared_include_error_once_naming_programs);
+    RUN(test_stage_error_names_program_and_stage);
+    RUN(test_no_uniform_warnings_for_a_failed_program);
+    gl_ctx_destroy(ctx);
+    scratch_remove();
+    return check_summary();
+}
