@@ -115,7 +115,10 @@ static v3 twin_fetch(twin_hf *hf, v2 uv) {
 
 static float twin_solid(v3 t, float y) {
     float f = y - t.x;
-    if (t.y < t.x) f = gmax(f, t.y - y);
+    if (t.y < t.x) {
+        f = gmax(f, t.y - y);
+        if (t.z >= t.y) return f;
+    }
     return gmin(f, y - t.z);
 }
 
@@ -757,6 +760,12 @@ static void test_solid_floating_box(void) {
     CHECK(twin_solid(V3(2, 1, -2), -2.5f) == -0.5f);
     CHECK(twin_solid(V3(2, 1, -2), 1.5f) == -0.5f);
     CHECK(twin_solid(V3(2, EMPTY_Y, EMPTY_Y), 2.5f) == 0.5f);
+    /* a thing under the water (a boulder: top -1.8, bottom -2.4) is seen by
+     * the floor pass too (floor = top): it is the slab alone, not a column
+     * down from its top (issue #16); 0.2 m under it is free */
+    CHECK_NEAR(twin_solid(V3(-1.8f, -2.4f, -1.8f), -2.6f), 0.2, 1e-6);
+    CHECK_NEAR(twin_solid(V3(-1.8f, -2.4f, -1.8f), -2.0f), -0.2, 1e-6);
+    CHECK_NEAR(twin_solid(V3(-1.8f, -2.4f, -1.8f), -1.5f), 0.3, 1e-6);
     CHECK(twin_solid(V3(EMPTY_Y, EMPTY_Y, EMPTY_Y), 0.0f) == 1e30f);
 }
 

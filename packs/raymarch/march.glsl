@@ -58,6 +58,7 @@ struct March {
     float t;        // ray parameter of the hit (or of the last sample, see above)
     float f;        // f at t for MARCH_CAP / MARCH_LEFT (0 otherwise)
     float ta;       // the last sample above the ground (the bracket's start)
+    float tb;       // the first sample inside (the bracket's end; t for MARCH_INSIDE)
     int status;
     int fetches;    // texels read (the cost; DEBUG_OUTPUT 5)
 };
@@ -81,10 +82,19 @@ vec3 marchFetch(sampler2D hf, ivec2 size, vec2 uv) {
     return texelFetch(hf, ij, 0).xyz;
 }
 
-// f of height y in a texel: > 0 outside the solid, <= 0 inside.
+// f of height y in a texel: > 0 outside the solid, <= 0 inside. A texel
+// with a bottom whose floor is at or above that bottom is one where the
+// floor pass saw the thing itself (an object under the water: its top is
+// below the floor pass's clip), not ground under an overhang: its solid is
+// the slab [bottom, top] alone. With the floor, a boulder would be a
+// column from its top down through the ground (issue #16's striated
+// columns); without it, a ray passes under the slab to the ground beside.
 float marchSolid(vec3 t, float y) {
     float f = y - t.x;
-    if (t.y < t.x) f = max(f, t.y - y);
+    if (t.y < t.x) {
+        f = max(f, t.y - y);
+        if (t.z >= t.y) return f;
+    }
     return min(f, y - t.z);
 }
 
@@ -121,6 +131,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
     m.t = 0.0;
     m.f = 0.0;
     m.ta = 0.0;
+    m.tb = 0.0;
     m.status = MARCH_LEFT;
     m.fetches = 0;
     ivec2 size = textureSize(hf, 0);
@@ -162,6 +173,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
         if (f > 0.0) { ta = t; fa = f; } else { tb = t; fb = f; }
     }
     m.ta = ta;
+    m.tb = tb;
     m.t = marchInterp(ta, fa, tb, fb);
     return m;
 }

@@ -116,13 +116,28 @@ vec3 attenuate(vec3 c, float s) {
 
 // The colour of the solid met at hit: the floor's where the floor makes the
 // texel solid there (World below: what lies under an overhang), else the
-// underside's when the ray came up through a bottom, else the top's.
-vec3 solidColor(vec3 hit, bool underside) {
+// underside's when the ray came up through a bottom or met a slab (a thing
+// under the water, marchSolid) nearer its bottom than its top, else the
+// top's. The texel is hit's, or inside's (the march's first sample in the
+// solid) where hit, interpolated between the bracket's ends, is still
+// outside: else a ray that met a box's side takes the colour of the grass
+// in front of it (issue #16's speckled reflections).
+vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
+    ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
-    vec3 t = marchFetch(uWorldY, textureSize(uWorldY, 0), uv);
+    vec3 t = marchFetch(uWorldY, size, uv);
+    if (marchSolid(t, hit.y) > 0.0) {
+        uv = clamp(marchUV(inside), 0.0, 0.999999);
+        t = marchFetch(uWorldY, size, uv);
+    }
     float slab = hit.y - t.x;
-    if (t.y < t.x) slab = max(slab, t.y - hit.y);
-    if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
+    if (t.y < t.x) {
+        slab = max(slab, t.y - hit.y);
+        if (t.z >= t.y) underside = underside || hit.y - t.y < t.x - hit.y;
+        else if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
+    } else if (hit.y - t.z <= slab) {
+        return texture(uFloorColor, uv).rgb;
+    }
     return underside ? texture(uUnderColor, uv).rgb : texture(uTopColor, uv).rgb;
 }
 
@@ -138,7 +153,7 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     if (m.status == MARCH_CAP || m.status == MARCH_LEFT) s += max(m.f, 0.0) / -d.y;
     hit = p + s * d;
     status = m.status;
-    return solidColor(hit, false);
+    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false);
 }
 
 // What is seen from p along dir (upwards, in air): the above-water geometry
@@ -163,7 +178,7 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
         vec2 uva = clamp(marchUV(a), 0.0, 0.999999);
         vec3 ya = marchFetch(uWorldY, textureSize(uWorldY, 0), uva);
         bool underside = m.status == MARCH_HIT && ya.y < ya.x && a.y < ya.y;
-        return solidColor(hit, underside);
+        return solidColor(hit, p + m.tb * d, underside);
     }
 #endif
     return texture(uSky, dir).rgb;
