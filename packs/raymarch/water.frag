@@ -34,6 +34,7 @@ uniform float uTime;
 uniform sampler2D uTopColor;      // Camera top, World all: colour
 uniform sampler2D uUnderColor;    // the same, undersides only: colour
 uniform sampler2D uFloorColor;    // World below: colour
+uniform sampler2D uLowColor;      // World below 1.5, undersides only: colour
 uniform sampler2D uWorldY;        // pack_y.frag: world Y of top, bottom, floor
 uniform sampler2D uFresnelLut;       // fresnel_lut.frag's table
 uniform sampler2D uWaterNormal;      // @water_normal
@@ -42,7 +43,8 @@ uniform float uStepsGrazing;   // steps across the depth for a horizontal ray (s
 uniform float uStepsSteep;     // ... for a vertical ray (source: 3)
 uniform int uMaxIter;          // march steps at most (source: 40)
 uniform float uMinDepth;       // smallest depth the steps are laid over (lake m: times uWorldScale)
-uniform float uMaxStep;        // longest step (lake m: times uWorldScale)
+uniform float uMaxStep;        // longest refraction step (lake m: times uWorldScale)
+uniform float uReflectStep;    // longest reflection step (lake m: times uWorldScale)
 uniform int uRefineSteps;      // regula falsi / bisection steps after the search
 uniform float uReflectHeight;  // height of the above-water geometry (lake m: times uWorldScale)
 uniform float uAttenLinear;    // linear attenuation per metre (source: 1/7.5)
@@ -138,6 +140,9 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
     } else if (hit.y - t.z <= slab) {
         return texture(uFloorColor, uv).rgb;
     }
+    // under the highest underside (w, pack_y.frag): a trunk under its crown
+    float high = texelFetch(uWorldY, ivec2(uv * vec2(size)), 0).w;
+    if (t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
     return underside ? texture(uUnderColor, uv).rgb : texture(uTopColor, uv).rgb;
 }
 
@@ -165,9 +170,9 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
 #ifndef NOREFLECTION
     vec3 d = marchClampDir(dir, false);
     float reach = uReflectHeight * uWorldScale;
-    float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uMaxStep * uWorldScale);
+    float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uReflectStep * uWorldScale);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
-                               uMaxStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT);
+                               uReflectStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT);
     status = m.status;
     gFetches += m.fetches;
     if (m.status == MARCH_HIT || m.status == MARCH_INSIDE) {
