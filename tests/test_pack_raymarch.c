@@ -122,7 +122,15 @@ static float twin_solid(v3 t, float y) {
     return gmin(f, y - t.z);
 }
 
-static float twin_f(twin_hf *hf, v2 uv, float y) { return twin_solid(twin_fetch(hf, uv), y); }
+static float twin_solid_as(v3 t, float y, float level) {
+    if (level <= MARCH_EMPTY_Y) return twin_solid(t, y);
+    if (t.x < level) return 1e30f;
+    return fmaxf(t.y < t.x ? t.y : t.x, level) - y;
+}
+
+static float twin_f(twin_hf *hf, v2 uv, float y, float level) {
+    return twin_solid_as(twin_fetch(hf, uv), y, level);
+}
 
 static float clampf(float v, float lo, float hi) { return v < lo ? lo : v > hi ? hi : v; }
 static float mixf(float a, float b, float t) { return a * (1.0f - t) + b * t; }
@@ -153,11 +161,13 @@ typedef struct {
     float n_grazing, n_steep, min_range, max_step;
     int max_iter, refine, refine_mode;
     float y_min, y_max;
+    float from_below;   /* the paper's reflection solid: the water level; else -1e30 */
 } twin_params;
 
 static twin_params twin_defaults(void) {
     return (twin_params){ .n_grazing = 10, .n_steep = 3, .min_range = 0.25f, .max_step = 0.5f, .max_iter = 40,
-                          .refine = 0, .refine_mode = REFINE_NONE, .y_min = -1e30f, .y_max = 1e30f };
+                          .refine = 0, .refine_mode = REFINE_NONE, .y_min = -1e30f, .y_max = 1e30f,
+                          .from_below = -1e30f };
 }
 
 static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twin_params *p) {
@@ -166,7 +176,7 @@ static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twi
     if (!twin_in_footprint(uv0)) return m;
     v3 t0 = twin_fetch(hf, uv0);
     if (t0.x <= MARCH_EMPTY_Y) return m;
-    float fa = twin_solid(t0, o.y);
+    float fa = twin_solid_as(t0, o.y, p->from_below);
     if (!(fa > 0.0f)) { m.status = MARCH_INSIDE; return m; }
     if (step <= 0.0f) step = twin_step(fmaxf(fa, p->min_range), dir.y, p->n_grazing, p->n_steep, p->max_step);
     float ta = 0.0f, tb = 0.0f, fb = fa;
@@ -180,7 +190,7 @@ static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twi
         m.steps++;
         v3 tx = twin_fetch(hf, uv);
         if (tx.x <= MARCH_EMPTY_Y) { m.status = MARCH_LEFT; break; }
-        float f = twin_solid(tx, y);
+        float f = twin_solid_as(tx, y, p->from_below);
         if (f <= 0.0f) { tb = t; fb = f; m.status = MARCH_HIT; break; }
         ta = t;
         fa = f;
@@ -192,7 +202,7 @@ static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twi
         if (k >= refine) break;
         float t = p->refine_mode == REFINE_BINARY ? 0.5f * (ta + tb) : twin_interp(ta, fa, tb, fb);
         v2 uv = { uv0.x + t * duv.x, uv0.y + t * duv.y };
-        float f = twin_f(hf, uv, o.y + t * dir.y);
+        float f = twin_f(hf, uv, o.y + t * dir.y, p->from_below);
         if (f > 0.0f) { ta = t; fa = f; } else { tb = t; fb = f; }
     }
     m.ta = ta;
@@ -760,6 +770,14 @@ static void test_solid_floating_box(void) {
     CHECK(twin_solid(V3(2, 1, -2), -2.5f) == -0.5f);
     CHECK(twin_solid(V3(2, 1, -2), 1.5f) == -0.5f);
     CHECK(twin_solid(V3(2, EMPTY_Y, EMPTY_Y), 2.5f) == 0.5f);
+    /* the paper's reflection solid, from below: above the bottom where
+     * there is one, else above the top; nothing over a texel under the
+     * water; a thing crossing the water is solid from the water up */
+    CHECK(twin_solid_as(V3(2, 1, -2), 1.5f, 0.0f) == -0.5f);
+    CHECK(twin_solid_as(V3(2, 1, -2), 2.5f, 0.0f) == -1.5f);   /* over the top: still solid */
+    CHECK(twin_solid_as(V3(0.6f, EMPTY_Y, 0.6f), 0.2f, 0.0f) == 0.6f - 0.2f);
+    CHECK(twin_solid_as(V3(-2, EMPTY_Y, -2), 0.5f, 0.0f) == 1e30f);
+    CHECK(twin_solid_as(V3(0.7f, -1.1f, 0.7f), 0.1f, 0.0f) == -0.1f);
     /* a thing under the water (a boulder: top -1.8, bottom -2.4) is seen by
      * the floor pass too (floor = top): it is the slab alone, not a column
      * down from its top (issue #16); 0.2 m under it is free */

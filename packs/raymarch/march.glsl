@@ -98,8 +98,20 @@ float marchSolid(vec3 t, float y) {
     return min(f, y - t.z);
 }
 
-float marchF(sampler2D hf, ivec2 size, vec2 uv, float y) {
-    return marchSolid(marchFetch(hf, size, uv), y);
+// The paper's reflection solid (PAPER_REFLECTION, level > MARCH_EMPTY_Y):
+// Lipp marches reflected rays through textures of the world over the water
+// rendered from below, a heightfield of its lowest surface: everything above
+// it is solid. Without a camera from below it is the bottom where there is
+// one, else the top, and the water level for a thing that crosses the
+// water; a texel whose top is under the water has nothing over it.
+float marchSolidAs(vec3 t, float y, float level) {
+    if (level <= MARCH_EMPTY_Y) return marchSolid(t, y);
+    if (t.x < level) return 1e30;
+    return max(t.y < t.x ? t.y : t.x, level) - y;
+}
+
+float marchF(sampler2D hf, ivec2 size, vec2 uv, float y, float level) {
+    return marchSolidAs(marchFetch(hf, size, uv), y, level);
 }
 
 // The source's linear interpolation between the last two samples, guarded.
@@ -123,10 +135,11 @@ vec3 marchClampDir(vec3 dir, bool down) {
 }
 
 // The march. step <= 0: the step comes from the depth under the start,
-// marchStep(max(f(0), minRange), ...) (the refraction march).
+// marchStep(max(f(0), minRange), ...) (the refraction march). fromBelow:
+// the water level for the paper's reflection solid, else -1e30.
 March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
                        float step, float minRange, float nGrazing, float nSteep, float maxStep,
-                       float yMin, float yMax, int maxIter, int refine) {
+                       float yMin, float yMax, int maxIter, int refine, float fromBelow) {
     March m;
     m.t = 0.0;
     m.f = 0.0;
@@ -140,7 +153,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
     vec3 t0 = marchFetch(hf, size, uv0);
     m.fetches++;
     if (t0.x <= MARCH_EMPTY_Y) return m;
-    float fa = marchSolid(t0, o.y);
+    float fa = marchSolidAs(t0, o.y, fromBelow);
     if (!(fa > 0.0)) { m.status = MARCH_INSIDE; return m; }
     if (step <= 0.0) step = marchStep(max(fa, minRange), dir.y, nGrazing, nSteep, maxStep);
     float ta = 0.0, tb = 0.0, fb = fa;
@@ -154,7 +167,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
         vec3 tx = marchFetch(hf, size, uv);
         m.fetches++;
         if (tx.x <= MARCH_EMPTY_Y) { m.status = MARCH_LEFT; break; }   // off the world square
-        float f = marchSolid(tx, y);
+        float f = marchSolidAs(tx, y, fromBelow);
         if (f <= 0.0) { tb = t; fb = f; m.status = MARCH_HIT; break; }
         ta = t;
         fa = f;
@@ -168,7 +181,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
 #else
         float t = marchInterp(ta, fa, tb, fb);
 #endif
-        float f = marchF(hf, size, uv0 + t * duv, o.y + t * dir.y);
+        float f = marchF(hf, size, uv0 + t * duv, o.y + t * dir.y, fromBelow);
         m.fetches++;
         if (f > 0.0) { ta = t; fa = f; } else { tb = t; fb = f; }
     }

@@ -132,6 +132,7 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
         uv = clamp(marchUV(inside), 0.0, 0.999999);
         t = marchFetch(uWorldY, size, uv);
     }
+    underside = underside && t.y < t.x;   // no bottom here: no underside colour
     float slab = hit.y - t.x;
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
@@ -151,7 +152,8 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
 vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     vec3 d = marchClampDir(dir, true);
     March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth * uWorldScale, uStepsGrazing,
-                               uStepsSteep, uMaxStep * uWorldScale, -1e30, 1e30, uMaxIter, REFINE_COUNT);
+                               uStepsSteep, uMaxStep * uWorldScale, -1e30, 1e30, uMaxIter, REFINE_COUNT,
+                               -1e30);
     gFetches += m.fetches;
     s = m.t;
     // no bracket: on down to the ground height of the last column
@@ -170,9 +172,19 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
 #ifndef NOREFLECTION
     vec3 d = marchClampDir(dir, false);
     float reach = uReflectHeight * uWorldScale;
+#ifdef PAPER_REFLECTION
+    // Lipp's: steps of mix(0.5, 4, 1 - R.y) m, 60 of them, through the
+    // solid seen from below; rays steeper than R.y = 0.8 are not marched
+    if (d.y > 0.8) return texture(uSky, dir).rgb;
+    float step = mix(0.5, 4.0, 1.0 - d.y) * uWorldScale;
+    March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep, step, -1e30,
+                               uWaterLevel + reach, 60, REFINE_COUNT, uWaterLevel);
+#else
     float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uReflectStep * uWorldScale);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
-                               uReflectStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT);
+                               uReflectStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT,
+                               -1e30);
+#endif
     status = m.status;
     gFetches += m.fetches;
     if (m.status == MARCH_HIT || m.status == MARCH_INSIDE) {
@@ -183,6 +195,9 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
         vec2 uva = clamp(marchUV(a), 0.0, 0.999999);
         vec3 ya = marchFetch(uWorldY, textureSize(uWorldY, 0), uva);
         bool underside = m.status == MARCH_HIT && ya.y < ya.x && a.y < ya.y;
+#ifdef PAPER_REFLECTION
+        underside = true;   // the textures from below: the underside's colour where there is one
+#endif
         return solidColor(hit, p + m.tb * d, underside);
     }
 #endif
