@@ -125,7 +125,7 @@ static float twin_solid(v3 t, float y) {
 static float twin_solid_as(v3 t, float y, float level) {
     if (level <= MARCH_EMPTY_Y) return twin_solid(t, y);
     if (t.x < level) return 1e30f;
-    return fmaxf(t.y < t.x ? t.y : t.x, level) - y;
+    return fmaxf(t.y > MARCH_EMPTY_Y && t.y < t.x ? t.y : t.x, level) - y;
 }
 
 static float twin_f(twin_hf *hf, v2 uv, float y, float level) {

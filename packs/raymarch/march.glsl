@@ -107,7 +107,7 @@ float marchSolid(vec3 t, float y) {
 float marchSolidAs(vec3 t, float y, float level) {
     if (level <= MARCH_EMPTY_Y) return marchSolid(t, y);
     if (t.x < level) return 1e30;
-    return max(t.y < t.x ? t.y : t.x, level) - y;
+    return max(t.y > MARCH_EMPTY_Y && t.y < t.x ? t.y : t.x, level) - y;
 }
 
 float marchF(sampler2D hf, ivec2 size, vec2 uv, float y, float level) {

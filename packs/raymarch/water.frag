@@ -132,7 +132,7 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
         uv = clamp(marchUV(inside), 0.0, 0.999999);
         t = marchFetch(uWorldY, size, uv);
     }
-    underside = underside && t.y < t.x;   // no bottom here: no underside colour
+    underside = underside && t.y > MARCH_EMPTY_Y && t.y < t.x;   // no bottom here: no underside colour
     float slab = hit.y - t.x;
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
