@@ -58,6 +58,7 @@ struct March {
     float t;        // ray parameter of the hit (or of the last sample, see above)
     float f;        // f at t for MARCH_CAP / MARCH_LEFT (0 otherwise)
     float ta;       // the last sample above the ground (the bracket's start)
+    float tb;       // the first sample inside (the bracket's end; t for MARCH_INSIDE)
     int status;
     int fetches;    // texels read (the cost; DEBUG_OUTPUT 5)
 };
@@ -81,15 +82,36 @@ vec3 marchFetch(sampler2D hf, ivec2 size, vec2 uv) {
     return texelFetch(hf, ij, 0).xyz;
 }
 
-// f of height y in a texel: > 0 outside the solid, <= 0 inside.
+// f of height y in a texel: > 0 outside the solid, <= 0 inside. A texel
+// with a bottom whose floor is at or above that bottom is one where the
+// floor pass saw the thing itself (an object under the water: its top is
+// below the floor pass's clip), not ground under an overhang: its solid is
+// the slab [bottom, top] alone. With the floor, a boulder would be a
+// column from its top down through the ground (issue #16's striated
+// columns); without it, a ray passes under the slab to the ground beside.
 float marchSolid(vec3 t, float y) {
     float f = y - t.x;
-    if (t.y < t.x) f = max(f, t.y - y);
+    if (t.y < t.x) {
+        f = max(f, t.y - y);
+        if (t.z >= t.y) return f;
+    }
     return min(f, y - t.z);
 }
 
-float marchF(sampler2D hf, ivec2 size, vec2 uv, float y) {
-    return marchSolid(marchFetch(hf, size, uv), y);
+// The paper's reflection solid (PAPER_REFLECTION, level > MARCH_EMPTY_Y):
+// Lipp marches reflected rays through textures of the world over the water
+// rendered from below, a heightfield of its lowest surface: everything above
+// it is solid. Without a camera from below it is the bottom where there is
+// one, else the top, and the water level for a thing that crosses the
+// water; a texel whose top is under the water has nothing over it.
+float marchSolidAs(vec3 t, float y, float level) {
+    if (level <= MARCH_EMPTY_Y) return marchSolid(t, y);
+    if (t.x < level) return 1e30;
+    return max(t.y > MARCH_EMPTY_Y && t.y < t.x ? t.y : t.x, level) - y;
+}
+
+float marchF(sampler2D hf, ivec2 size, vec2 uv, float y, float level) {
+    return marchSolidAs(marchFetch(hf, size, uv), y, level);
 }
 
 // The source's linear interpolation between the last two samples, guarded.
@@ -113,14 +135,16 @@ vec3 marchClampDir(vec3 dir, bool down) {
 }
 
 // The march. step <= 0: the step comes from the depth under the start,
-// marchStep(max(f(0), minRange), ...) (the refraction march).
+// marchStep(max(f(0), minRange), ...) (the refraction march). fromBelow:
+// the water level for the paper's reflection solid, else -1e30.
 March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
                        float step, float minRange, float nGrazing, float nSteep, float maxStep,
-                       float yMin, float yMax, int maxIter, int refine) {
+                       float yMin, float yMax, int maxIter, int refine, float fromBelow) {
     March m;
     m.t = 0.0;
     m.f = 0.0;
     m.ta = 0.0;
+    m.tb = 0.0;
     m.status = MARCH_LEFT;
     m.fetches = 0;
     ivec2 size = textureSize(hf, 0);
@@ -129,7 +153,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
     vec3 t0 = marchFetch(hf, size, uv0);
     m.fetches++;
     if (t0.x <= MARCH_EMPTY_Y) return m;
-    float fa = marchSolid(t0, o.y);
+    float fa = marchSolidAs(t0, o.y, fromBelow);
     if (!(fa > 0.0)) { m.status = MARCH_INSIDE; return m; }
     if (step <= 0.0) step = marchStep(max(fa, minRange), dir.y, nGrazing, nSteep, maxStep);
     float ta = 0.0, tb = 0.0, fb = fa;
@@ -143,7 +167,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
         vec3 tx = marchFetch(hf, size, uv);
         m.fetches++;
         if (tx.x <= MARCH_EMPTY_Y) { m.status = MARCH_LEFT; break; }   // off the world square
-        float f = marchSolid(tx, y);
+        float f = marchSolidAs(tx, y, fromBelow);
         if (f <= 0.0) { tb = t; fb = f; m.status = MARCH_HIT; break; }
         ta = t;
         fa = f;
@@ -157,11 +181,12 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
 #else
         float t = marchInterp(ta, fa, tb, fb);
 #endif
-        float f = marchF(hf, size, uv0 + t * duv, o.y + t * dir.y);
+        float f = marchF(hf, size, uv0 + t * duv, o.y + t * dir.y, fromBelow);
         m.fetches++;
         if (f > 0.0) { ta = t; fa = f; } else { tb = t; fb = f; }
     }
     m.ta = ta;
+    m.tb = tb;
     m.t = marchInterp(ta, fa, tb, fb);
     return m;
 }

@@ -34,6 +34,7 @@ uniform float uTime;
 uniform sampler2D uTopColor;      // Camera top, World all: colour
 uniform sampler2D uUnderColor;    // the same, undersides only: colour
 uniform sampler2D uFloorColor;    // World below: colour
+uniform sampler2D uLowColor;      // World below 1.5, undersides only: colour
 uniform sampler2D uWorldY;        // pack_y.frag: world Y of top, bottom, floor
 uniform sampler2D uFresnelLut;       // fresnel_lut.frag's table
 uniform sampler2D uWaterNormal;      // @water_normal
@@ -42,7 +43,8 @@ uniform float uStepsGrazing;   // steps across the depth for a horizontal ray (s
 uniform float uStepsSteep;     // ... for a vertical ray (source: 3)
 uniform int uMaxIter;          // march steps at most (source: 40)
 uniform float uMinDepth;       // smallest depth the steps are laid over (lake m: times uWorldScale)
-uniform float uMaxStep;        // longest step (lake m: times uWorldScale)
+uniform float uMaxStep;        // longest refraction step (lake m: times uWorldScale)
+uniform float uReflectStep;    // longest reflection step (lake m: times uWorldScale)
 uniform int uRefineSteps;      // regula falsi / bisection steps after the search
 uniform float uReflectHeight;  // height of the above-water geometry (lake m: times uWorldScale)
 uniform float uAttenLinear;    // linear attenuation per metre (source: 1/7.5)
@@ -116,13 +118,32 @@ vec3 attenuate(vec3 c, float s) {
 
 // The colour of the solid met at hit: the floor's where the floor makes the
 // texel solid there (World below: what lies under an overhang), else the
-// underside's when the ray came up through a bottom, else the top's.
-vec3 solidColor(vec3 hit, bool underside) {
+// underside's when the ray came up through a bottom or met a slab (a thing
+// under the water, marchSolid) nearer its bottom than its top, else the
+// top's. The texel is hit's, or inside's (the march's first sample in the
+// solid) where hit, interpolated between the bracket's ends, is still
+// outside: else a ray that met a box's side takes the colour of the grass
+// in front of it (issue #16's speckled reflections).
+vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
+    ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
-    vec3 t = marchFetch(uWorldY, textureSize(uWorldY, 0), uv);
+    vec3 t = marchFetch(uWorldY, size, uv);
+    if (marchSolid(t, hit.y) > 0.0) {
+        uv = clamp(marchUV(inside), 0.0, 0.999999);
+        t = marchFetch(uWorldY, size, uv);
+    }
+    underside = underside && t.y > MARCH_EMPTY_Y && t.y < t.x;   // no bottom here: no underside colour
     float slab = hit.y - t.x;
-    if (t.y < t.x) slab = max(slab, t.y - hit.y);
-    if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
+    if (t.y < t.x) {
+        slab = max(slab, t.y - hit.y);
+        if (t.z >= t.y) underside = underside || hit.y - t.y < t.x - hit.y;
+        else if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
+    } else if (hit.y - t.z <= slab) {
+        return texture(uFloorColor, uv).rgb;
+    }
+    // under the highest underside (w, pack_y.frag): a trunk under its crown
+    float high = texelFetch(uWorldY, ivec2(uv * vec2(size)), 0).w;
+    if (t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
     return underside ? texture(uUnderColor, uv).rgb : texture(uTopColor, uv).rgb;
 }
 
@@ -131,14 +152,15 @@ vec3 solidColor(vec3 hit, bool underside) {
 vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     vec3 d = marchClampDir(dir, true);
     March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth * uWorldScale, uStepsGrazing,
-                               uStepsSteep, uMaxStep * uWorldScale, -1e30, 1e30, uMaxIter, REFINE_COUNT);
+                               uStepsSteep, uMaxStep * uWorldScale, -1e30, 1e30, uMaxIter, REFINE_COUNT,
+                               -1e30);
     gFetches += m.fetches;
     s = m.t;
     // no bracket: on down to the ground height of the last column
     if (m.status == MARCH_CAP || m.status == MARCH_LEFT) s += max(m.f, 0.0) / -d.y;
     hit = p + s * d;
     status = m.status;
-    return solidColor(hit, false);
+    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false);
 }
 
 // What is seen from p along dir (upwards, in air): the above-water geometry
@@ -150,9 +172,19 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
 #ifndef NOREFLECTION
     vec3 d = marchClampDir(dir, false);
     float reach = uReflectHeight * uWorldScale;
-    float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uMaxStep * uWorldScale);
+#ifdef PAPER_REFLECTION
+    // Lipp's: steps of mix(0.5, 4, 1 - R.y) m, 60 of them, through the
+    // solid seen from below; rays steeper than R.y = 0.8 are not marched
+    if (d.y > 0.8) return texture(uSky, dir).rgb;
+    float step = mix(0.5, 4.0, 1.0 - d.y) * uWorldScale;
+    March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep, step, -1e30,
+                               uWaterLevel + reach, 60, REFINE_COUNT, uWaterLevel);
+#else
+    float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uReflectStep * uWorldScale);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
-                               uMaxStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT);
+                               uReflectStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT,
+                               -1e30);
+#endif
     status = m.status;
     gFetches += m.fetches;
     if (m.status == MARCH_HIT || m.status == MARCH_INSIDE) {
@@ -163,7 +195,10 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
         vec2 uva = clamp(marchUV(a), 0.0, 0.999999);
         vec3 ya = marchFetch(uWorldY, textureSize(uWorldY, 0), uva);
         bool underside = m.status == MARCH_HIT && ya.y < ya.x && a.y < ya.y;
-        return solidColor(hit, underside);
+#ifdef PAPER_REFLECTION
+        underside = true;   // the textures from below: the underside's colour where there is one
+#endif
+        return solidColor(hit, p + m.tb * d, underside);
     }
 #endif
     return texture(uSky, dir).rgb;
