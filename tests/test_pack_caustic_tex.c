@@ -19,6 +19,7 @@
 
 #include "check.h"
 #include "gl_ctx.h"
+#include "packset.h"
 #include "ref_render.h"
 #include "render.h"
 #include "scene.h"
@@ -471,6 +472,109 @@ static void test_lake_no_nan(void) {
     render_destroy(r);
 }
 
+/* ---- the paper's setting, reflections, the view from below ---------------- */
+
+/* bench.txt's `paper` row carries Xing's water.glib slider defaults (issue
+ * #16 quotes them), and every entry it names exists in CausticTex. */
+static void test_paper_setting(void) {
+    static const struct { const char *name; float v[3]; int n; } xing[] = {
+        { "uWaterRefractMix", { 0.65f }, 1 }, { "uCausticVisible", { 0.6f }, 1 },
+        { "uCausticWave", { 0.8f }, 1 },      { "uCausticOffset", { 0.1f }, 1 },
+        { "uChromaticOffset", { 0.005f }, 1 }, { "uKa", { 0.45f }, 1 },
+        { "uKd", { 0.35f }, 1 },              { "uKs", { 0.20f }, 1 },
+        { "uShininess", { 250.f }, 1 },       { "uColor", { 0.40f, 1.0f, 0.95f }, 3 },
+        { "CAUSTIC_FOLLOW", { 0.f }, 1 },     { "XING_FOAM", { 1.f }, 1 },
+        { "uShowFoam", { 0.f }, 1 },          { "SKY_REFLECTION", { 0.f }, 1 },
+        { "BEER_LAMBERT", { 0.f }, 1 },
+    };
+    packset_bench b;
+    char err[512];
+    CHECK_MSG(packset_bench_load(TARN_SOURCE_DIR, "caustic_tex", &b, err, sizeof err), "%s", err);
+    const packset_setting *paper = NULL;
+    for (int i = 0; i < b.n; i++)
+        if (strcmp(b.settings[i].name, "paper") == 0) paper = &b.settings[i];
+    CHECK(paper != NULL);
+    render *r = NULL;
+    if (ctx) {
+        render_desc rd = { .pack = "caustic_tex" };
+        r = render_create(&rd);
+        CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    }
+    for (size_t k = 0; paper && k < sizeof xing / sizeof xing[0]; k++) {
+        const packset_assign *a = NULL;
+        for (int i = 0; i < paper->nassign; i++)
+            if (strcmp(paper->assign[i].name, xing[k].name) == 0) a = &paper->assign[i];
+        CHECK_MSG(a != NULL, "paper: no %s", xing[k].name);
+        if (!a) continue;
+        CHECK_MSG(a->nvalue == xing[k].n, "paper: %s has %d values", xing[k].name, a->nvalue);
+        for (int c = 0; c < xing[k].n && c < a->nvalue; c++)
+            CHECK_MSG(fabsf(a->value[c] - xing[k].v[c]) < 1e-6f, "paper: %s = %g, Xing's %g", xing[k].name,
+                      a->value[c], xing[k].v[c]);
+    }
+    for (int i = 0; r && paper && i < paper->nassign; i++)
+        CHECK_MSG(find_unif(r, "CausticTex", paper->assign[i].name) != NULL, "paper: %s is not in CausticTex",
+                  paper->assign[i].name);
+    if (r) render_destroy(r);
+    packset_bench_free(&b);
+}
+
+#define RW 96
+#define RH 54
+static float refl_on[RW * RH * 4], refl_off[RW * RH * 4];
+
+static const float *px_at(const float *px, double x, double y) {
+    return px + ((size_t)(y * RH) * RW + (size_t)(x * RW)) * 4;
+}
+
+/* The mean over a 3 x 3 patch of what the reflection adds at (x, y). */
+static void reflection_adds(double x, double y, double d[3]) {
+    d[0] = d[1] = d[2] = 0;
+    for (int j = -1; j <= 1; j++)
+        for (int i = -1; i <= 1; i++) {
+            const float *a = px_at(refl_on, x + (double)i / RW, y + (double)j / RH);
+            const float *b = px_at(refl_off, x + (double)i / RW, y + (double)j / RH);
+            for (int c = 0; c < 3; c++) d[c] += (a[c] - b[c]) / 9.0;
+        }
+}
+
+/* The lake's red box on the far shore seen in the water: there the
+ * reflection (the box, darker than the sky in green and blue) takes green
+ * and blue away from the water's colour, where the sky would add them; on
+ * open water it adds the sky's blue. */
+static void test_object_reflection(void) {
+    NEED_GL();
+    render_desc rd = { .pack = "caustic_tex" };
+    render *r = render_create(&rd);
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    draw(r, 1.0, RW, RH, refl_on);
+    set_defines(r, "CausticTex", "SKY_REFLECTION", 0, NULL, 0, NULL, 0);
+    draw(r, 1.0, RW, RH, refl_off);
+    double box[3], open[3];
+    reflection_adds(0.82, 0.53, box);
+    reflection_adds(0.50, 0.45, open);
+    fprintf(stderr, "  reflection adds under the box (%.3f %.3f %.3f), on open water (%.3f %.3f %.3f)\n", box[0],
+            box[1], box[2], open[0], open[1], open[2]);
+    CHECK(box[1] < 0 && box[2] < 0 && box[0] > box[2]);
+    CHECK(open[2] > 0);
+    render_destroy(r);
+}
+
+/* From under the water (scenes/hard/underwater.glib looks up at the
+ * surface): Snell's window shows the sky, brighter than the total internal
+ * reflection around it, which shows the dim world below. */
+static void test_view_from_below(void) {
+    NEED_GL();
+    render_desc rd = { .pack = "caustic_tex" };
+    render *r = render_create(&rd);
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/hard/underwater.glib"), "%s", render_messages(r));
+    draw(r, 1.0, RW, RH, refl_on);
+    const float *w = px_at(refl_on, 0.45, 0.0), *t = px_at(refl_on, 0.05, 0.2);
+    fprintf(stderr, "  from below: window (%.3f %.3f %.3f), total internal reflection (%.3f %.3f %.3f)\n", w[0],
+            w[1], w[2], t[0], t[1], t[2]);
+    CHECK(w[2] > 0.3 && w[2] > 3.0 * t[2]);
+    render_destroy(r);
+}
+
 /* ---- caustics against the reference -------------------------------------- */
 
 /* What tests/data/caustic_tex/flat.glib shows: the lake's sun, water and
@@ -655,6 +759,9 @@ int main(void) {
     RUN(test_water_glib_no_nan);
     RUN(test_lake_no_nan);
     RUN(test_caustics_vs_reference);
+    RUN(test_paper_setting);
+    RUN(test_object_reflection);
+    RUN(test_view_from_below);
     if (have_ref) ref_render_free(&ref_result);
     if (ctx) gl_ctx_destroy(ctx);
     return check_summary();

@@ -8,8 +8,15 @@
 //     C' = C (E K + pi A) / (E + pi A)
 // with E the flat-water sun irradiance there (worldShadeAt's) and A the
 // ambient. Then Beer-Lambert along the view path, Xing's turquoise mix and
-// Phong lighting by the sun, the sky's reflection (exact Fresnel) and foam
-// along the shore.
+// Phong lighting by the sun, the reflection (exact Fresnel: the world above
+// from the mirrored pass on units 10 and 11, else the sky) and foam along
+// the shore and the crests. With the camera under the water pack.glib
+// swaps what the passes hold and fromBelow shows Snell's window and total
+// internal reflection.
+//   CAUSTIC_FOLLOW     (ours) the caustic tile follows the scene's sun
+//                      (read where the refracted sun ray enters) and waves
+//                      (scaled by their wavelength, moving with them)
+//   XING_FOAM          Xing's foam of circles instead of the noise foam
 //   BACKWARD_CAUSTICS  GPU Gems ch. 2 backward caustics instead of the texture
 //   UV_FLIP            swap U and V of the second copy of each two-layer lookup
 //   SKY_REFLECTION     (ours) the sky's reflection, exact Fresnel
@@ -22,6 +29,7 @@
 #ifndef DEBUG_OUTPUT
 #define DEBUG_OUTPUT 0
 #endif
+#include "hash.glsl"
 #include "waves.glsl"
 #include "world.glsl"
 #include "xing_look.glsl"
@@ -36,6 +44,17 @@ uniform float uWaterRefractMix;    // 0: the floor as refracted, 1: all turquois
 uniform vec3  uColor;              // the water's turquoise
 uniform float uKa, uKd, uKs, uShininess;
 uniform float uCausticDepth;       // (ours) depth of full caustic contrast
+uniform sampler2D uReflectColor;   // World above, mirrored camera (under water: World below)
+uniform sampler2D uReflectDepth;   // its depth (1 or the sky: nothing there; cleared when no pass)
+uniform mat4 uCamMirrorVP, uCamMirrorInvVP;
+// The @caustics tile (viewer/gfx/assets.c): 4 m, traced 2.5 m deep through
+// six sines whose curvature-weighted (k^2 A) mean wavelength is this.
+#define TEX_CAUSTIC_WAVELENGTH 1.3038
+// The mirrored camera of pack.glib's reflection pass widens the field of
+// view this much (`Camera mirror 1.3`), so wave-perturbed lookups stay in.
+#define REFLECT_FOV_SCALE 1.3
+// A depth at or beyond this is the sky (drawn at the far plane) or nothing.
+#define SKY_DEPTH 0.99999
 in vec2 vRest;
 in vec3 vWorldPos;
 out vec4 fragColor;
@@ -123,19 +142,159 @@ vec2 firstWaveScroll(bool gerstner, float tilesPerUnit, float t) {
     return 0.25 * S * tilesPerUnit * t * vec2(cos(ang), sin(ang));
 }
 
+// The scene's waves as the caustics see them: the curvature-weighted
+// (k^2 A: what focuses light) mean wavelength, 0 without waves; and each
+// kind's most curved wave's phase velocity (the pattern travels with it).
+float sceneCausticWavelength(out vec2 velS, out vec2 velG) {
+    float W = 0.0, LW = 0.0, bestS = 0.0, bestG = 0.0;
+    velS = velG = vec2(0.0);
+    for (int i = 0; i < WAVES_MAX; i++) {
+        for (int kind = 0; kind < 2; kind++) {
+            bool g = kind == 1;
+            if (i >= (g ? uGerstnerCount : uSineCount)) continue;
+            float L = g ? uGerstnerLength[i] : uSineLength[i];
+            float A = abs(g ? uGerstnerAmp[i] : uSineAmp[i]);
+            if (L <= 0.0 || A == 0.0) continue;
+            float k = WAVES_TWO_PI / L, w = k * k * A;
+            W += w;
+            LW += L * w;
+            float ang = radians(g ? uGerstnerAngle[i] : uSineAngle[i]);
+            vec2 v = wavesPhaseSpeed(g ? uGerstnerSpeed[i] : uSineSpeed[i], L) * vec2(cos(ang), sin(ang));
+            if (g && w > bestG) { bestG = w; velG = v; }
+            if (!g && w > bestS) { bestS = w; velS = v; }
+        }
+    }
+    return W > 0.0 ? LW / W : 0.0;
+}
+
 // The caustic factor at floor point p.
 vec3 causticFactor(vec3 p, float t) {
     float depth = uWaterLevel - p.y;
     if (depth <= 0.0) return vec3(1.0);
-    float contrast = uCausticVisible * clamp(depth / max(uCausticDepth * uWorldScale, 1e-9), 0.0, 1.0);
+    float fullDepth = uCausticDepth * uWorldScale;
 #ifdef BACKWARD_CAUSTICS
+    float contrast = uCausticVisible * clamp(depth / max(fullDepth, 1e-9), 0.0, 1.0);
     vec3 n = wavesNormal(wavesRestPoint(p.xz, t), t);
     return xingCausticBackward(n, uSunDir, uIOR, contrast);
 #else
-    vec2 offS, offG;
-    waveOffsets(p.xz, t, offS, offG);
-    return xingCausticTex(p.xz, offS, offG, xingChromaDir(uSunDir), contrast);
+    vec2 q = p.xz, offS, offG, scroll = vec2(0.0);
+    float scale = uCausticScale * uWorldScale;
+#ifdef CAUSTIC_FOLLOW
+    // the light reaching p entered the surface where the refracted sun ray
+    // through p leaves the mean level: the pattern is the surface's there,
+    // so it slides away from the sun with depth. The tile is the texture's
+    // waves scaled to the scene's: size and depth of focus grow with the
+    // wavelength (a surface scaled by s focuses the same at s times the
+    // depth), and it travels with the waves' phase velocity.
+    vec3 ts = refract(-uSunDir, vec3(0.0, 1.0, 0.0), 1.0 / uIOR);
+    q -= ts.xz * depth / max(-ts.y, 0.05);
+    vec2 velS, velG;
+    float L = sceneCausticWavelength(velS, velG);
+    if (L <= 0.0) return vec3(1.0);            // no waves: no caustics
+    float s = L / TEX_CAUSTIC_WAVELENGTH;
+    scale = uCausticScale * s;
+    fullDepth = uCausticDepth * s;
+    waveOffsets(q, t, offS, offG);
+    offS -= velS * t;
+    offG -= velG * t;
+#else
+    waveOffsets(q, t, offS, offG);
 #endif
+    float contrast = uCausticVisible * clamp(depth / max(fullDepth, 1e-9), 0.0, 1.0);
+    return xingCausticTexScaled(q, offS, offG, xingChromaDir(uSunDir), contrast, scale);
+#endif
+}
+
+// Value noise in [0, 1] on the integer lattice (tarnHash), and four
+// octaves of it.
+float valueNoise(vec2 p) {
+    vec2 i = floor(p), f = p - i;
+    f = f * f * (3.0 - 2.0 * f);
+    uvec2 c = uvec2(ivec2(i));
+    float h00 = float(tarnHash(c.x * 73856093u ^ tarnHash(c.y)));
+    float h10 = float(tarnHash((c.x + 1u) * 73856093u ^ tarnHash(c.y)));
+    float h01 = float(tarnHash(c.x * 73856093u ^ tarnHash(c.y + 1u)));
+    float h11 = float(tarnHash((c.x + 1u) * 73856093u ^ tarnHash(c.y + 1u)));
+    return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y) / 4294967295.0;
+}
+
+float fbm(vec2 p) {
+    float s = 0.0, a = 0.5;
+    for (int o = 0; o < 4; o++) {
+        s += a * valueNoise(p);
+        p = mat2(1.6, 1.2, -1.2, 1.6) * p + 17.0;
+        a *= 0.5;
+    }
+    return s / 0.9375;
+}
+
+// Foam as it forms: along the shore (water shallower than uFoamWidth) and
+// on the highest crests, broken up by drifting noise into streaks and
+// patches; more of it the rougher the water (full at a 0.1 amplitude sum).
+float noiseFoam(vec3 P, float shallow, float ampSum, float t) {
+    if (!uShowFoam || ampSum <= 0.0) return 0.0;
+    float shore = 1.0 - smoothstep(0.0, max(uFoamWidth * uWorldScale, 1e-4), shallow);
+    float crest = smoothstep(0.35, 0.75, (P.y - uWaterLevel) / ampSum);
+    float cover = clamp(max(shore, 0.45 * crest), 0.0, 1.0) * clamp(ampSum / (0.1 * uWorldScale), 0.0, 1.0);
+    vec2 drift = vec2(0.11, 0.07) * t;
+    float n = fbm((P.xz + drift * uWorldScale) / (0.35 * uWorldScale));
+    float threshold = mix(0.85, 0.55, cover);   // the noise (mean 0.5) breaks even full cover
+    return smoothstep(threshold, threshold + 0.1, n) * smoothstep(0.0, 0.3, cover);
+}
+
+// Where a perspective target shows world point x: its uv, the point there
+// (from the depth target; false where nothing or the sky) and w > 0.
+bool targetPoint(mat4 vp, mat4 inv, sampler2D depthTex, vec3 x, out vec2 uv, out vec3 shown) {
+    vec4 c = vp * vec4(x, 1.0);
+    uv = c.xy / c.w * 0.5 + 0.5;
+    shown = x;
+    if (c.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return false;
+    float z = texture(depthTex, uv).r;
+    vec4 h = inv * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
+    shown = h.xyz / h.w;
+    return z < SKY_DEPTH;
+}
+
+// How much of a perturbed lookup into the widened mirror target to keep:
+// fades out over the outer half of the band the camera's own view leaves out.
+float mirrorKeep(vec2 uv) {
+    float band = 0.5 * (1.0 - 1.0 / REFLECT_FOV_SCALE);
+    float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
+    return clamp(inside / (0.5 * band), 0.0, 1.0);
+}
+
+// Above the water: what the surface reflects along r, the world above from
+// the mirrored pass where it shows something, else the sky.
+vec3 reflectionAbove(vec3 P, vec3 r) {
+    vec3 c = texture(uSky, r).rgb;
+    vec2 uv;
+    vec3 shown;
+    if (targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + uWorldScale * r, uv, shown))
+        c = mix(c, texture(uReflectColor, uv).rgb, mirrorKeep(uv));
+    return c;
+}
+
+// Under the water (the passes swapped: the refraction target holds the
+// world above, the mirror target the world below): Snell's window, the
+// world above and the sky along the refracted ray T, and total internal
+// reflection outside it; the eye's own path in water absorbs both.
+vec3 fromBelow(vec3 P, vec3 n, vec3 e) {
+    float cosI = clamp(dot(e, n), 0.0, 1.0);
+    vec3 T = refract(-e, n, uIOR);               // 0 past the critical angle
+    vec3 outside = vec3(0.0);
+    vec2 uv;
+    vec3 shown;
+    if (dot(T, T) > 0.0) {
+        outside = texture(uSky, T).rgb;
+        if (targetPoint(gl_ModelViewProjectionMatrix, gl_ModelViewProjectionMatrixInverse, uRefractDepth,
+                        P + uWorldScale * T, uv, shown))
+            outside = texture(uRefractColor, uv).rgb;
+    }
+    vec3 r = reflect(-e, n), inside = vec3(0.0);  // nothing seen: all absorbed
+    if (targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + uWorldScale * r, uv, shown))
+        inside = texture(uReflectColor, uv).rgb * exp(-uAbsorption * distance(P, shown)) * mirrorKeep(uv);
+    float R = worldFresnel(cosI, uIOR, 1.0);
+    return mix(outside, inside, R) * exp(-uAbsorption * distance(uCameraPos, P));
 }
 
 void main() {
@@ -149,6 +308,10 @@ void main() {
     vec3 e = normalize(uCameraPos - P);
     bool below = dot(e, n) < 0.0;
     if (below) n = -n;
+    if (uCameraPos.y < uWaterLevel) {           // pack.glib's under_water passes
+        fragColor = vec4(fromBelow(P, n, e), 1.0);
+        return;
+    }
     float cosI = clamp(dot(e, n), 0.0, 1.0);
 
     // the floor along the refracted ray: the point seen straight behind
@@ -201,13 +364,17 @@ void main() {
     vec3 turquoise = uColor * (uKa + uKd * diffuse);
     vec3 color = mix(under, turquoise, uWaterRefractMix);
 #ifdef SKY_REFLECTION
-    color = R * texture(uSky, reflect(-e, n)).rgb + (1.0 - R) * color;
+    color = R * reflectionAbove(P, reflect(-e, n)) + (1.0 - R) * color;
 #endif
     color += uKs * pow(max(dot(reflect(-uSunDir, n), e), 0.0), max(uShininess, 1.0)) * uSunIrradiance;
 
     // foam where the water is shallow (the shore is the lake's border)
     float shallow = hit0 ? max(P.y - F0.y, 0.0) : 1e6;
+#ifdef XING_FOAM
     float foam = xingFoam(uv * 4.0, 2.0 * sa, -sb, shallow, waveAmpSum());
+#else
+    float foam = noiseFoam(P, shallow, waveAmpSum(), t);
+#endif
     vec3 white = 0.9 * (uSunIrradiance * diffuse / WORLD_PI + uAmbient);
     color = mix(color, white, foam);
     fragColor = vec4(color, 1.0);

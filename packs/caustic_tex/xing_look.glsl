@@ -57,14 +57,19 @@ vec3 xingCausticLayer(vec2 uv, vec2 dc) {
 // point xz. offA, offB: the displacements of the two wave kinds above it,
 // in floor units; contrast scales the pattern's deviation from 1 (the
 // visibility, times a depth fade on the lake).
-vec3 xingCausticTex(vec2 xz, vec2 offA, vec2 offB, vec2 chromaDir, float contrast) {
-    float scale = max(uCausticScale, 1e-3);
+// scale: floor units per tile (xingCausticTex: uCausticScale).
+vec3 xingCausticTexScaled(vec2 xz, vec2 offA, vec2 offB, vec2 chromaDir, float contrast, float scale) {
+    scale = max(scale, 1e-3);
     vec2 uv = xz / scale;
     vec2 uvA = uv + uCausticWave * offA / scale;
     vec2 uvB = xingFlip(uv + uCausticWave * offB / scale) + vec2(uCausticOffset);
     vec2 dc = uChromaticOffset * chromaDir;
     vec3 k = 0.5 * (xingCausticLayer(uvA, dc) + xingCausticLayer(uvB, dc));
     return max(1.0 + contrast * (k - 1.0), 0.0);
+}
+
+vec3 xingCausticTex(vec2 xz, vec2 offA, vec2 offB, vec2 chromaDir, float contrast) {
+    return xingCausticTexScaled(xz, offA, offB, chromaDir, contrast, uCausticScale);
 }
 
 // GPU Gems 1 ch. 2 (Guardado and Sanchez-Crespo), the backward method:
