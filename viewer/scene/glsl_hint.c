@@ -1,5 +1,6 @@
 /* glsl_hint: hints for GLSL that NVIDIA accepted and the spec forbids (glsl_hint.h). */
 #include "glsl_hint.h"
+#include "shader_src.h"
 
 #include "mem.h"
 #include "strbuf.h"
@@ -38,26 +39,6 @@ static bool is_statement_word(const char *w) {
     return false;
 }
 
-/* The source with comments turned to blanks (newlines kept). Heap. */
-static char *blank_comments(const char *text) {
-    char *t = mem_strdup(text);
-    bool block = false, line = false;
-    for (char *p = t; *p; p++) {
-        if (block) {
-            if (p[0] == '*' && p[1] == '/') { p[0] = p[1] = ' '; p++; block = false; }
-            else if (*p != '\n') *p = ' ';
-        } else if (line) {
-            if (*p == '\n') line = false;
-            else *p = ' ';
-        } else if (p[0] == '/' && (p[1] == '/' || p[1] == '*')) {
-            block = p[1] == '*';
-            line = !block;
-            p[0] = p[1] = ' ';
-            p++;
-        }
-    }
-    return t;
-}
 
 #define DECL_WORDS 12
 
@@ -67,7 +48,7 @@ static char *blank_comments(const char *text) {
 static decl_info find_decl(const char *source, const char *name) {
     decl_info d = {0};
     if (!source) return d;
-    char *t = blank_comments(source);
+    char *t = shader_src_blank_comments(source);
     char words[DECL_WORDS][32];
     int nw = 0, depth = 0;
     bool after_word = false;            /* the token before this one is a word (or a ',') */

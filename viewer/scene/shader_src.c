@@ -333,7 +333,7 @@ typedef struct layout_scan {
     bool uniform_location;  /* `layout(... location ...) uniform` */
 } layout_scan;
 
-static char *blank_comments(const char *text) {
+char *shader_src_blank_comments(const char *text) {
     char *t = mem_strdup(text);
     bool block = false, line = false;
     for (char *p = t; *p; p++) {
@@ -360,7 +360,7 @@ static const char *skip_space(const char *p) {
 
 static layout_scan scan_layouts(const char *text) {
     layout_scan r = {0};
-    char *t = blank_comments(text);
+    char *t = shader_src_blank_comments(text);
     for (const char *p = t; (p = strstr(p, "layout")) != NULL; p += 6) {
         if ((p > t && is_ident_char(p[-1])) || is_ident_char(p[6])) continue;
         const char *q = skip_space(p + 6);

@@ -142,4 +142,8 @@ const char *shader_stage_name(shader_stage st);
  * water-fs.glsl). SHADER_STAGE_COUNT when it implies none. */
 shader_stage shader_stage_from_path(const char *path);
 
+/* text with its comments turned to blanks (newlines kept, so lines and
+ * columns stay), for scanning GLSL without matching inside a comment. Heap. */
+char *shader_src_blank_comments(const char *text);
+
 #endif
