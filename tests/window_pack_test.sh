@@ -6,7 +6,8 @@
 #     changes; switching back links basic's program again; a recording
 #     (--record) notes both switches;
 #   - a plain glman scene (no world) refuses a pack: the load fails with
-#     the reason, and the scene stays on screen (its program still linked).
+#     the reason, the scene stays on screen (its program still linked), and
+#     a later reload loads it as it is (the refused pack is not kept).
 set -u
 bin=$1; src=$2
 command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
@@ -46,6 +47,9 @@ frames 1
 pack natural
 frames 1
 expect Flat uGrey 0.25
+reload
+frames 1
+expect Flat uGrey 0.25
 quit
 SCRIPT
 cp "$src/tests/data/window/grey.vert" "$src/tests/data/window/grey.frag" "$src/tests/data/window/scene.glib" "$scratch/"
@@ -55,5 +59,7 @@ cat "$scratch/glman.log"
 # the failed switch is a failed load: a scripted run then exits 1 (input)
 [ "$rc" -eq 0 ] || [ "$rc" -eq 1 ] || fail "tarn view exited $rc"
 grep -q "this scene describes no world" "$scratch/glman.log" || fail "no reason for refusing the pack"
-grep -q "Flat.uGrey holds the expected value" "$scratch/glman.log" || fail "the glman scene was lost"
+[ "$(grep -c 'Flat.uGrey holds the expected value' "$scratch/glman.log")" -eq 2 ] || fail "the glman scene was lost"
+# the refused pack is not kept: a later reload (a save) loads the scene as it is
+[ "$(grep -c "this scene describes no world" "$scratch/glman.log")" -eq 1 ] || fail "a reload after the refusal tried the pack again"
 echo "window pack test: ok"

@@ -61,8 +61,14 @@ static void preset(viewer *v, bool save) {
  * values, as on any reload). A failed load keeps the picture and says why. */
 static void switch_pack(viewer *v, app *a, int i) {
     if (i < 0 || i >= v->npacks) return;
+    char before[PACKSET_NAME_MAX];
+    snprintf(before, sizeof before, "%s", render_pack(v->r));
     render_set_pack(v->r, v->packs[i]);
     bool ok = render_load(v->r, NULL);
+    /* refused (the scene kept its last good state, a glman scene has no
+     * world for a pack): the scene on screen keeps its pack, so that the
+     * next save reloads it and not the refusal */
+    if (strcmp(render_pack(v->r), v->packs[i]) != 0) render_set_pack(v->r, before[0] ? before : NULL);
     report_load(v);
     app_rewatch(a);
     if (ok) {
