@@ -22,6 +22,19 @@ add_test(NAME window_pack_xvfb
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_pack_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")
 
+# The view window's Setting combo (`setting NAME`, --setting) and its recording.
+add_test(NAME window_setting_xvfb
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_setting_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(window_setting_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 LABELS "window;gl;slow")
+
+# `tarn render --setting NAME` draws the row's `--set`s; a session's
+# `setting NAME` replays as its assignments do.
+add_test(NAME setting_cli
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/setting_cli_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(setting_cli PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "gl;slow")
+
 # The one window loop (ui/app.c) through view and compare-view: hot reload
 # with a dependency in a directory made later, and a lost context.
 add_test(NAME window_app_xvfb

@@ -3,10 +3,14 @@
 standard library only (no PIL on the test machines).
 
     png_probe.py FILE [X Y]...
+    png_probe.py FILE hash X0
 prints "size W H", "alpha_min A" (255 when the PNG has no alpha channel)
-and "pixel X Y R G B A" per point asked for (top-left origin). 8-bit
+and "pixel X Y R G B A" per point asked for (top-left origin); with
+`hash X0`, "hash HEX", a digest of the pixels at x >= X0 (the scene area
+right of the panel, to compare two screenshots' scenes). 8-bit
 greyscale, RGB, grey+alpha and RGBA, not interlaced: what img_write writes.
 """
+import hashlib
 import struct
 import sys
 import zlib
@@ -58,6 +62,10 @@ def main(argv):
     print("size %d %d" % (w, h))
     alpha = 255 if bpp in (1, 3) else min(min(r[bpp - 1::bpp]) for r in rows)
     print("alpha_min %d" % alpha)
+    if len(argv) == 4 and argv[2] == "hash":
+        x0 = int(argv[3]) * bpp
+        print("hash " + hashlib.sha256(b"".join(bytes(r[x0:]) for r in rows)).hexdigest())
+        return
     for x, y in zip(argv[2::2], argv[3::2]):
         x, y = int(x), int(y)
         px = list(rows[y][x * bpp:(x + 1) * bpp])

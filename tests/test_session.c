@@ -25,6 +25,7 @@ static const char good[] =
     "t=2.5 drag Water uWind 1 -1\n"
     "t=3 pause 1\n"
     "t=4 pack basic\n"
+    "t=4.5 setting paper\n"
     "t=5.5 end\n";
 
 static bool has_diag(const diag_list *dl, int line, const char *text) {
@@ -43,10 +44,11 @@ static void test_parses_header_and_every_kind(void) {
     CHECK(strcmp(s.pack, "natural") == 0);
     CHECK(s.width == 640 && s.height == 360);
     CHECK_NEAR(s.time_s, 2.5, 0);
-    CHECK(s.n == 9);
+    CHECK(s.n == 10);
     session_kind kinds[] = { SESSION_CAMERA, SESSION_SLIDER, SESSION_COLOUR, SESSION_CHECKBOX, SESSION_DEFINE,
-                             SESSION_DRAG, SESSION_PAUSE, SESSION_PACK, SESSION_END };
-    for (int i = 0; i < 9 && i < s.n; i++) CHECK(s.events[i].kind == kinds[i]);
+                             SESSION_DRAG, SESSION_PAUSE, SESSION_PACK, SESSION_SETTING, SESSION_END };
+    for (int i = 0; i < 10 && i < s.n; i++) CHECK(s.events[i].kind == kinds[i]);
+    CHECK(s.n < 9 || strcmp(s.events[8].args, "paper") == 0);
     CHECK_NEAR(s.events[1].t, 1.25, 0);
     CHECK(s.events[1].line == 8);
     CHECK(strcmp(s.events[1].args, "Water uWaveAmp 0.4") == 0);
@@ -81,7 +83,8 @@ static void test_bad_lines_are_diags_at_their_line(void) {
         "t=2 pause maybe\n"                      /* 11 */
         "frobnicate\n"                           /* 12 */
         "t=2 camera 0 0 0 -1 0 0\n"              /* 13 */
-        "t=3 end\n";                             /* 14: kept */
+        "t=2 setting a/b\n"                      /* 14 */
+        "t=3 end\n";                             /* 15: kept */
     session s = {0};
     diag_list dl = {0};
     CHECK(!session_parse(&s, bad, "s.session", &dl));
@@ -95,7 +98,8 @@ static void test_bad_lines_are_diags_at_their_line(void) {
     CHECK(has_diag(&dl, 11, "pause wants"));
     CHECK(has_diag(&dl, 12, "unknown line"));
     CHECK(has_diag(&dl, 13, "distance > 0"));
-    CHECK(dl.nerrors == 10);
+    CHECK(has_diag(&dl, 14, "setting wants a setting's name"));
+    CHECK(dl.nerrors == 11);
     CHECK(s.n == 2);
     CHECK(s.n == 2 && s.events[0].line == 4 && s.events[1].kind == SESSION_END);
     session_free(&s);
@@ -209,9 +213,10 @@ static void test_recorder_writes_what_changed(void) {
     cam.yaw = 0.5f;
     session_rec_frame(rec, &set, 1, &cam, true, 102.0);
     session_rec_pack(rec, "natural", 102.5);
+    session_rec_setting(rec, "paper", 102.75);
     int n = 0;
     CHECK(session_rec_stop(rec, 103.0, &n, err, sizeof err));
-    CHECK(n == 9);
+    CHECK(n == 10);
 
     session s = {0};
     diag_list dl = {0};
@@ -229,10 +234,11 @@ static void test_recorder_writes_what_changed(void) {
         { 2, SESSION_CAMERA, "0 0 0 10 0.5 0.200000003" },
         { 2, SESSION_PAUSE, "1" },
         { 2.5, SESSION_PACK, "natural" },
+        { 2.75, SESSION_SETTING, "paper" },
         { 3, SESSION_END, "" },
     };
-    CHECK(s.n == 10);
-    for (int i = 0; i < 10 && i < s.n; i++) {
+    CHECK(s.n == 11);
+    for (int i = 0; i < 11 && i < s.n; i++) {
         CHECK_NEAR(s.events[i].t, want[i].t, 1e-9);
         CHECK(s.events[i].kind == want[i].k);
         CHECK_MSG(strcmp(s.events[i].args, want[i].args) == 0, "event %d: '%s'", i, s.events[i].args);

@@ -296,6 +296,35 @@ static void pack_combo(const panel_info *info, panel_actions *out) {
     ImGui::PopItemWidth();
 }
 
+/* Picking the row already chosen applies it again: the sliders moved since
+ * go back to the setting's values. */
+static void setting_combo(const panel_info *info, panel_actions *out) {
+    if (info->nsettings <= 0 || !info->settings) return;
+    int cur = info->setting;
+    const char *now = cur >= 0 && cur < info->nsettings ? info->settings[cur] : "(choose)";
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
+    if (ImGui::BeginCombo("Setting", now)) {
+        for (int i = 0; i < info->nsettings; i++) {
+            bool selected = i == cur;
+            if (ImGui::Selectable(info->settings[i], selected)) {
+                out->switch_setting = true;
+                out->setting = i;
+            }
+            const char *tip = info->setting_tips ? info->setting_tips[i] : NULL;
+            if (tip && tip[0] && ImGui::IsItemHovered()) {
+                ImGui::BeginTooltip();
+                ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+                ImGui::TextUnformatted(tip);
+                ImGui::PopTextWrapPos();
+                ImGui::EndTooltip();
+            }
+            if (selected) ImGui::SetItemDefaultFocus();
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::PopItemWidth();
+}
+
 void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, panel_actions *out) {
     panel_actions none;
     if (!out) out = &none;
@@ -310,6 +339,7 @@ void panel_draw(panel *p, unif_set *sets, int nsets, const panel_info *info, pan
             if (info->scene_path) ImGui::TextUnformatted(info->scene_path);
             timings(info);
             pack_combo(info, out);
+            setting_combo(info, out);
         }
         if (ImGui::Button("Reset all")) {
             for (int s = 0; s < nsets; s++)

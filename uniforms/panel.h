@@ -49,6 +49,13 @@ typedef struct panel_info {
     const char *const *packs;    /* the packs a world scene can be drawn by (npacks 0: no choice) */
     int npacks;
     int pack;                    /* the one drawing it now, an index into packs; -1 none */
+    /* The pack's named settings (its bench.txt: default, paper, ...) for
+     * the Setting combo (nsettings 0: none shown); tips (may be NULL or
+     * hold NULLs) are their tooltips, a setting's comment */
+    const char *const *settings;
+    const char *const *setting_tips;
+    int nsettings;
+    int setting;                 /* the last one chosen, an index into settings; -1 none */
 } panel_info;
 
 typedef struct panel_actions {
@@ -61,10 +68,13 @@ typedef struct panel_actions {
     bool screenshot;
     bool switch_pack;            /* the Pack combo picked another: draw the scene with packs[pack] */
     int pack;
+    bool switch_setting;         /* the Setting combo picked settings[setting] (the app applies it) */
+    int setting;
 } panel_actions;
 
 /* A Pack combo first when info lists packs (switching draws the same world
- * with another pack, live), then one collapsing header per unif_set with a widget per entry by its widget
+ * with another pack, live), a Setting combo when it lists settings (each
+ * with its tooltip; the app resets the sliders and applies the pick), then one collapsing header per unif_set with a widget per entry by its widget
  * kind (slider, int slider, checkbox, colour, drag, or the fixed value as
  * text), a small reset button per changeable entry, a row of Reset all /
  * Save preset / Load preset / Reload, Pause and Screenshot buttons, and the

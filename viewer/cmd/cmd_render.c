@@ -18,6 +18,7 @@
 #include "packset.h"
 #include "ref_metrics.h"
 #include "render.h"
+#include "render_setting.h"
 
 const char *cli_default_scene(void) {
     static char path[4096];
@@ -68,10 +69,10 @@ static double now_ms(void) {
 }
 
 /* --set: what moving a slider or ticking a Define would do, written as
- * bench.txt assignments (PROGRAM.NAME=V, or NAME=V for every Program).
- * One assignment at a time, in order, so there is no cap on how many and
- * a later one wins as on the panel. */
-static bool apply_set(render *r, const char *set, bool *defines) {
+ * bench.txt assignments (PROGRAM.NAME=V, NAME=V for every Program, or
+ * scene.Command=ARGS as a setting's). One assignment at a time, in order,
+ * so there is no cap on how many and a later one wins as on the panel. */
+static bool apply_set(render *r, const char *set) {
     const char *eq = strchr(set, '='), *dot = strchr(set, '.');
     bool bare = !dot || (eq && dot > eq);
     char *text = NULL;
@@ -79,19 +80,22 @@ static bool apply_set(render *r, const char *set, bool *defines) {
     packset_bench b = {0};
     char err[2048] = "";
     bool ok = text && packset_bench_parse(text, "--set", &b, err, sizeof err) && b.n > 0;
-    int nsets;
-    unif_set *sets = render_uniforms(r, &nsets);
-    if (ok) ok = packset_apply(sets, nsets, &b.settings[0], defines, err, sizeof err);
-    if (err[0]) fprintf(stderr, "tarn: --set: %s\n", err);
+    if (ok) ok = render_setting_assign(r, &b.settings[0], err, sizeof err);
+    if (err[0]) fprintf(stderr, "tarn: --set: %s%s", err, err[strlen(err) - 1] == '\n' ? "" : "\n");
     packset_bench_free(&b);
     free(text);
     return ok;
 }
 
+/* --setting first (the pack's row, from its defaults), then each --set on top. */
 static bool apply_sets(render *r, const cli_render_desc *d) {
-    bool ok = true, defines = false;
-    for (int i = 0; i < d->nsets; i++) ok = apply_set(r, d->sets[i], &defines) && ok;
-    if (defines) render_rebuild_programs(r);
+    bool ok = true;
+    if (d->setting) {
+        char err[4096] = "";
+        ok = render_setting_apply_named(r, NULL, d->setting, err, sizeof err);
+        if (err[0]) fprintf(stderr, "tarn: --setting: %s%s", err, err[strlen(err) - 1] == '\n' ? "" : "\n");
+    }
+    for (int i = 0; i < d->nsets; i++) ok = apply_set(r, d->sets[i]) && ok;
     return ok;
 }
 
@@ -164,7 +168,7 @@ int cli_render(const cli_render_desc *d) {
 
 static const char usage[] =
     "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
-    "                   [--set PROGRAM.NAME=VALUE]...\n"
+    "                   [--setting NAME] [--set PROGRAM.NAME=VALUE]...\n"
     "\n"
     "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
     "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
@@ -175,6 +179,8 @@ static const char usage[] =
     "  --size WxH       image size (default: the glib's WindowSize)\n"
     "  --time SECONDS   simulated time of the first frame (default 0)\n"
     "  --frames N       render N frames, 1/60 s apart; prints the median GPU time\n"
+    "  --setting NAME   start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
+    "                   default, paper, ...), as the panel's Setting combo does\n"
     "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
     "                   as the panel would (NAME=V: of every Program); repeatable\n"
     "  --quiet          print only errors\n"
@@ -204,6 +210,7 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
             i++;
         } else if (strcmp(a, "--pack") == 0 && next) { d->pack = next; i++; }
         else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }
+        else if (strcmp(a, "--setting") == 0 && next) { d->setting = next; i++; }
         else if (strcmp(a, "--quiet") == 0) d->quiet = true;
         else if (a[0] == '-') return bad("unknown option");
         else if (!d->glib) d->glib = a;

@@ -7,8 +7,8 @@
 #include "view.h"
 
 static const char usage[] =
-    "usage: tarn view FILE.glib [--pack NAME] [--size WxH] [--time SECONDS] [--script FILE]\n"
-    "                 [--record FILE]\n"
+    "usage: tarn view FILE.glib [--pack NAME] [--setting NAME] [--size WxH] [--time SECONDS]\n"
+    "                 [--script FILE] [--record FILE]\n"
     "\n"
     "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
     "generated sliders (one section per Program). Every file the scene reads is\n"
@@ -16,11 +16,14 @@ static const char usage[] =
     "compile keeps the last good one running and shows the error.\n"
     "\n"
     "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
+    "  --setting NAME   start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
+    "                   default, paper, ...; the panel's Setting combo)\n"
     "  --size WxH       window size of the scene (default: the glib's WindowSize)\n"
     "  --time SECONDS   start at this simulated time\n"
     "  --script FILE    run scripted actions (frames N, set P U v, expect P U v,\n"
     "                   wait SECONDS, screenshot PATH, camera CX CY CZ DIST YAW PITCH,\n"
-    "                   pause 1|0, reload, window W H, quit), then exit\n"
+    "                   pause 1|0, reload, window W H, pack NAME, setting NAME, quit),\n"
+    "                   then exit\n"
     "  --record FILE    record what you do (sliders, camera, pause) into the session\n"
     "                   FILE from the start; `tarn record FILE -o out.mp4` replays it\n"
     "\n"
@@ -47,6 +50,7 @@ int cmd_view(int argc, char **argv) {
         } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
         else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }
         else if (strcmp(a, "--record") == 0 && next) { d.record = next; i++; }
+        else if (strcmp(a, "--setting") == 0 && next) { d.setting = next; i++; }
         else if (a[0] == '-') return cmd_bad_usage(stderr, "tarn", usage, "unknown option");
         else if (!d.glib) d.glib = a;
         else return cmd_bad_usage(stderr, "tarn", usage, "one scene at a time");

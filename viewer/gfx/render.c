@@ -55,6 +55,8 @@ struct render {
     char root[GLIB_PATH_MAX];
     char packs_dir[GLIB_PATH_MAX + 16];
     char pack[GLIB_NAME_MAX];      /* --pack: replaces the scene's Pack */
+    int water_mesh;                /* a setting's WaterMesh (0: the scene's own) */
+    int water_mesh_loaded;         /* the one the world on screen was built with */
     gpu_world world;               /* kept across reloads while the world is unchanged */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];
@@ -472,6 +474,8 @@ static void build_world(render *r, const glib_scene *g, char **log) {
     bool has_world = false;
     char err[1024] = "";
     if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) str_appendf(log, "%s\n", err);
+    if (has_world && r->water_mesh > 0) desc.water_mesh_res = r->water_mesh;
+    r->water_mesh_loaded = r->water_mesh;
     if (has_world) world_build(&r->world, &desc, (const char *const *)r->include_dirs, r->common_dir, log);
     else world_free(&r->world);
 }
@@ -605,6 +609,17 @@ const diag_list *render_diags(const render *r) { return &r->diags; }
 bool render_has_errors(const render *r) { return r->errors; }
 bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
 bool render_has_world(const render *r) { return r->world.active; }
+
+bool render_set_world_override(render *r, const char *command, const float *v, int n) {
+    if (strcmp(command, "WaterMesh") != 0 || n != 1 || !isfinite(v[0])) return false;
+    double m = v[0] < 8 ? 8 : v[0] > 2048 ? 2048 : v[0];   /* scene.c's MESH_RES_MIN..MAX */
+    r->water_mesh = (int)m;
+    return true;
+}
+
+void render_clear_world_overrides(render *r) { r->water_mesh = 0; }
+
+bool render_world_overrides_pending(const render *r) { return r->water_mesh != r->water_mesh_loaded; }
 
 void render_set_pack(render *r, const char *pack) {
     snprintf(r->pack, sizeof r->pack, "%s", pack ? pack : "");

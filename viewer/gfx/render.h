@@ -52,6 +52,16 @@ bool render_has_world(const render *r);
  * load; a load that fails (a glman scene has no world for a pack) keeps it.
  * The view window's Pack combo, and a session replay's pack switch. */
 void render_set_pack(render *r, const char *pack);
+/* A world command (glib.md) a pack's setting changes (packset.h's
+ * scene.Command=ARGS), set on top of the scene's own for every later
+ * render_load, like render_set_pack: true when the renderer takes that
+ * command at run time (WaterMesh N: N clamped to the glib's 8..2048),
+ * false when not (the caller says it does not apply). */
+bool render_set_world_override(render *r, const char *command, const float *v, int n);
+/* Back to the scene's own world commands (at the next render_load). */
+void render_clear_world_overrides(render *r);
+/* true when an override is set that the scene on screen was not loaded with. */
+bool render_world_overrides_pending(const render *r);
 /* The pack the current scene is drawn by (its Pack command, after any
  * override), "" when it has none. */
 const char *render_pack(const render *r);

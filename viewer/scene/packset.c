@@ -78,8 +78,9 @@ static char *read_text(const char *path) {
     return buf;
 }
 
-/* Next line of text (comments cut, ends trimmed) into line; false at the end. */
-static bool next_line(const char **pos, char *line, int *lineno) {
+/* Next line of text (comments cut, ends trimmed) into line, the comment's
+ * text (after '#', trimmed) into comment; false at the end. */
+static bool next_line(const char **pos, char *line, char *comment, int *lineno) {
     const char *p = *pos;
     if (!*p) return false;
     const char *end = p + strcspn(p, "\r\n");
@@ -87,6 +88,7 @@ static bool next_line(const char **pos, char *line, int *lineno) {
     if (len >= LINE_MAX_LEN) len = LINE_MAX_LEN - 1;
     memcpy(line, p, len);
     line[len] = '\0';
+    comment[0] = '\0';
     if (*end == '\r' && end[1] == '\n') end++;
     *pos = *end ? end + 1 : end;
     (*lineno)++;
@@ -98,8 +100,14 @@ static bool next_line(const char **pos, char *line, int *lineno) {
         bool starts = c == line || isspace((unsigned char)c[-1]);
         if (!starts || isspace((unsigned char)*c)) continue;
         word++;
-        if (*c == '#' && !(colour && word == 2)) { *c = '\0'; break; }
+        if (*c == '#' && !(colour && word == 2)) {
+            snprintf(comment, PACKSET_COMMENT_MAX, "%s", c + 1 + strspn(c + 1, " \t#"));
+            *c = '\0';
+            break;
+        }
     }
+    size_t clen = strlen(comment);
+    while (clen && isspace((unsigned char)comment[clen - 1])) comment[--clen] = '\0';
     len = strlen(line);
     while (len && isspace((unsigned char)line[len - 1])) line[--len] = '\0';
     return true;
@@ -165,6 +173,15 @@ static bool parse_hex_colour(const char *s, float rgb[3]) {
 }
 
 
+/* above += " " + c, cut to fit. */
+static void join_comment(char *above, size_t cap, const char *c) {
+    size_t used = strlen(above), n = strlen(c);
+    if (used && used + 1 < cap) above[used++] = ' ';
+    if (used + n >= cap) n = cap - 1 - used;
+    memcpy(above + used, c, n);
+    above[used + n] = '\0';
+}
+
 static void add_default(packset_bench *b) {
     b->settings = mem_zalloc(sizeof *b->settings);
     snprintf(b->settings[0].name, PACKSET_NAME_MAX, "default");
@@ -176,12 +193,19 @@ bool packset_bench_parse(const char *text, const char *path, packset_bench *out,
     snprintf(out->path, sizeof out->path, "%s", path ? path : "bench.txt");
     bool ok = true;
     const char *pos = text ? text : "";
-    char line[LINE_MAX_LEN];
+    char line[LINE_MAX_LEN], comment[PACKSET_COMMENT_MAX], above[PACKSET_COMMENT_MAX] = "";
     int lineno = 0;
-    while (next_line(&pos, line, &lineno)) {
+    while (next_line(&pos, line, comment, &lineno)) {
         char *save = NULL;
         char *first = strtok_r(line, " \t", &save);
-        if (!first) continue;
+        if (!first) {   /* a comment line joins the block above the next setting; a blank one ends it */
+            if (comment[0]) join_comment(above, sizeof above, comment);
+            else above[0] = '\0';
+            continue;
+        }
+        char tip[PACKSET_COMMENT_MAX];
+        snprintf(tip, sizeof tip, "%s", comment[0] ? comment : above);
+        above[0] = '\0';
         if (strcmp(first, "colour") == 0 || strcmp(first, "color") == 0) {
             char *c = strtok_r(NULL, " \t", &save);
             if (!c || !parse_hex_colour(c, out->colour)) {
@@ -225,6 +249,7 @@ bool packset_bench_parse(const char *text, const char *path, packset_bench *out,
         packset_setting s;
         memset(&s, 0, sizeof s);
         snprintf(s.name, sizeof s.name, "%s", first);
+        snprintf(s.comment, sizeof s.comment, "%s", tip);
         s.line = lineno;
         bool line_ok = true;
         for (char *w = strtok_r(NULL, " \t", &save); w; w = strtok_r(NULL, " \t", &save)) {
@@ -255,6 +280,25 @@ bool packset_bench_parse(const char *text, const char *path, packset_bench *out,
     }
     if (out->n == 0) add_default(out);
     return ok;
+}
+
+const packset_setting *packset_setting_named(const packset_bench *b, const char *name) {
+    for (int i = 0; i < b->n; i++)
+        if (strcmp(b->settings[i].name, name) == 0) return &b->settings[i];
+    return NULL;
+}
+
+int packset_menu(const packset_bench *b, int *order) {
+    const char *first[2] = { "default", "paper" };
+    int n = 0;
+    if (!packset_setting_named(b, "default")) order[n++] = -1;
+    for (int f = 0; f < 2; f++)
+        for (int i = 0; i < b->n; i++)
+            if (strcmp(b->settings[i].name, first[f]) == 0) order[n++] = i;
+    for (int i = 0; i < b->n; i++)
+        if (strcmp(b->settings[i].name, first[0]) != 0 && strcmp(b->settings[i].name, first[1]) != 0)
+            order[n++] = i;
+    return n;
 }
 
 bool packset_bench_load(const char *root, const char *pack, packset_bench *out, char *err, int errlen) {
@@ -360,9 +404,9 @@ bool packset_bounds_parse(const char *text, const char *path, packset_bounds *ou
     out->found = text != NULL;
     bool ok = true;
     const char *pos = text ? text : "";
-    char line[LINE_MAX_LEN];
+    char line[LINE_MAX_LEN], comment[PACKSET_COMMENT_MAX];
     int lineno = 0;
-    while (next_line(&pos, line, &lineno)) {
+    while (next_line(&pos, line, comment, &lineno)) {
         char name[LINE_MAX_LEN], val[LINE_MAX_LEN];
         int used = 0;
         if (sscanf(line, "%2047s %2047s %n", name, val, &used) < 2) {

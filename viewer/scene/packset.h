@@ -46,6 +46,7 @@
 #define PACKSET_MAX 32
 #define PACKSET_NAME_MAX 64
 #define PACKSET_WHY_MAX 256
+#define PACKSET_COMMENT_MAX 512
 
 typedef char packset_name[PACKSET_NAME_MAX];
 
@@ -68,6 +69,8 @@ typedef struct packset_setting {
     packset_assign *assign;
     int nassign;
     int line;                         /* in bench.txt; 0 for the implicit default */
+    char comment[PACKSET_COMMENT_MAX];  /* the line's own comment, else the comment lines
+                                         * right above it ("" none): the panel's tooltip */
 } packset_setting;
 
 typedef struct packset_buffer {
@@ -89,6 +92,16 @@ typedef struct packset_bench {
  * "default". A bad line is skipped with `file:line: message` in err (and
  * false is returned; what was good is kept). */
 bool packset_bench_load(const char *root, const char *pack, packset_bench *out, char *err, int errlen);
+
+/* The setting named name, or NULL. */
+const packset_setting *packset_setting_named(const packset_bench *b, const char *name);
+
+/* The order a menu lists the settings in: `default` first, then `paper`,
+ * then the rest as bench.txt has them. Indices into b->settings, with -1
+ * first when bench.txt has no `default` (the pack's defaults, nothing
+ * assigned, as packset_setting_named(b, "default") == NULL means). Returns
+ * how many (b->n or b->n + 1; order has room for b->n + 1). */
+int packset_menu(const packset_bench *b, int *order);
 
 /* Parses bench.txt text (tests). path names it in messages. */
 bool packset_bench_parse(const char *text, const char *path, packset_bench *out, char *err, int errlen);

@@ -188,6 +188,10 @@ void app_record_pack(app *a, const char *pack) {
     if (a->rec) session_rec_pack(a->rec, pack, glfwGetTime());
 }
 
+void app_record_setting(app *a, const char *setting) {
+    if (a->rec) session_rec_setting(a->rec, setting, glfwGetTime());
+}
+
 static void record_stop(app *a) {
     char path[1024], err[1200];
     snprintf(path, sizeof path, "%s", session_rec_path(a->rec));

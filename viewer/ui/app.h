@@ -127,6 +127,8 @@ void app_screenshot(app *a);
 void app_toast(app *a, const char *fmt, ...);
 /* The client switched the pack drawing the scene: a recording notes it. */
 void app_record_pack(app *a, const char *pack);
+/* The client applied the pack's setting NAME (the panel's Setting combo). */
+void app_record_setting(app *a, const char *setting);
 
 /* Inside hooks.reload: why it runs, "water.frag changed" (the files the
  * watcher saw change), "a missing folder appeared", or "" (R, the panel's

@@ -11,12 +11,14 @@
 
 #include "file.h"
 #include "mem.h"
+#include "render_setting.h"
 #include "view_script.h"
 
 static const char *const kind_names[] = {
     [SESSION_SLIDER] = "slider", [SESSION_COLOUR] = "colour", [SESSION_CHECKBOX] = "checkbox",
     [SESSION_DEFINE] = "define", [SESSION_DRAG] = "drag", [SESSION_CAMERA] = "camera",
-    [SESSION_PAUSE] = "pause", [SESSION_PACK] = "pack", [SESSION_END] = "end",
+    [SESSION_PAUSE] = "pause", [SESSION_PACK] = "pack",
+    [SESSION_SETTING] = "setting", [SESSION_END] = "end",
 };
 enum { NKINDS = sizeof kind_names / sizeof kind_names[0] };
 
@@ -74,6 +76,7 @@ static const char *check_args(session_kind k, const char *args) {
     case SESSION_PAUSE:
         return strcmp(args, "0") == 0 || strcmp(args, "1") == 0 ? NULL : "pause wants 1 or 0";
     case SESSION_PACK: return valid_name(args, 64) ? NULL : "pack wants a pack's name";
+    case SESSION_SETTING: return valid_name(args, 64) ? NULL : "setting wants a setting's name";
     case SESSION_END: return args[0] ? "end takes nothing after it" : NULL;
     default: return "unknown event";
     }
@@ -105,7 +108,8 @@ static void parse_event(session *s, char *text, int line, diag_list *dl) {
     session_kind k;
     if (sscanf(end, " %31s %n", word, &used) < 1 || !find_kind(word, &k)) {
         diag_add(dl, DIAG_ERROR, s->path, line,
-                 "unknown event: expected slider, colour, checkbox, define, drag, camera, pause, pack or end");
+                 "unknown event: expected slider, colour, checkbox, define, drag, camera, pause, pack, setting or "
+                 "end");
         return;
     }
     const char *args = end + used, *why = check_args(k, args);
@@ -250,10 +254,17 @@ void session_player_start(session_player *p, const session *s, render_view home)
     p->cam = orbit_from_view(home);
 }
 
-/* The script action a replay adds: `pack NAME` reloads with that pack
- * (the sliders' values carry over as in any reload). */
+/* The script actions a replay adds: `pack NAME` reloads with that pack
+ * (the sliders' values carry over as in any reload); `setting NAME`
+ * applies the pack's setting as the panel does. */
 static view_script_status pack_action(void *user, const char *cmd, char *rest, const char *file, int line) {
     render *r = user;
+    if (strcmp(cmd, "setting") == 0) {
+        char msg[4096] = "";
+        bool ok = render_setting_apply_named(r, NULL, rest, msg, sizeof msg);
+        if (msg[0]) fprintf(stderr, "%s:%d: %s", file, line, msg);
+        return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+    }
     if (strcmp(cmd, "pack") != 0) {
         fprintf(stderr, "%s:%d: unknown event '%s'\n", file, line, cmd);
         return VIEW_SCRIPT_FAILED;
@@ -402,6 +413,12 @@ void session_rec_frame(session_rec *rec, const unif_set *sets, int nsets, const 
 void session_rec_pack(session_rec *rec, const char *pack, double now) {
     write_t(rec, now);
     fprintf(rec->f, "pack %s\n", pack);
+    fflush(rec->f);
+}
+
+void session_rec_setting(session_rec *rec, const char *setting, double now) {
+    write_t(rec, now);
+    fprintf(rec->f, "setting %s\n", setting);
     fflush(rec->f);
 }
 

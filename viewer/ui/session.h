@@ -16,6 +16,8 @@
  *   camera CX CY CZ DIST YAW PITCH  the orbit camera after a move
  *   pause 1|0                     the clock stopped / runs again
  *   pack NAME                     the window switched to pack NAME
+ *   setting NAME                  the window chose the pack's setting NAME
+ *                                 (its bench.txt row, from the pack's defaults)
  *   end                           recording stopped (the replay's length)
  *
  * Times are wall time: the simulated clock of a replay is `time` plus the
@@ -38,7 +40,7 @@
 
 typedef enum session_kind {
     SESSION_SLIDER, SESSION_COLOUR, SESSION_CHECKBOX, SESSION_DEFINE, SESSION_DRAG,
-    SESSION_CAMERA, SESSION_PAUSE, SESSION_PACK, SESSION_END
+    SESSION_CAMERA, SESSION_PAUSE, SESSION_PACK, SESSION_SETTING, SESSION_END
 } session_kind;
 
 typedef struct session_event {
@@ -87,7 +89,7 @@ typedef struct session_player {
 void session_player_start(session_player *p, const session *s, render_view home);
 /* Applies the events up to session time t (>= the last call's) to r, the
  * camera and the clock, in order; a Define rebuilds r's programs, a pack
- * reloads r with it. Returns the simulated time at t. An event the scene
+ * reloads r with it, a setting is applied as the panel applies it. Returns the simulated time at t. An event the scene
  * cannot take (no such uniform now) is reported and skipped. */
 double session_player_advance(session_player *p, render *r, double t);
 
@@ -111,6 +113,8 @@ session_rec *session_rec_start(const char *path, const session_header *h, const 
  * since the last call (entries new after a reload are taken as they are). */
 void session_rec_frame(session_rec *rec, const unif_set *sets, int nsets, const orbit *cam, bool paused, double now);
 void session_rec_pack(session_rec *rec, const char *pack, double now);
+/* The panel's Setting combo chose the pack's setting NAME (render_setting.h). */
+void session_rec_setting(session_rec *rec, const char *setting, double now);
 const char *session_rec_path(const session_rec *rec);
 double session_rec_seconds(const session_rec *rec, double now);
 /* Writes `end`, closes and frees rec. The events written go to *nevents

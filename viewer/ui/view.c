@@ -5,13 +5,16 @@
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "app.h"
 #include "exit_code.h"
 #include "packset.h"
 #include "panel.h"
+#include "mem.h"
 #include "render.h"
+#include "render_setting.h"
 #include "util.h"
 #include "view.h"
 
@@ -22,12 +25,89 @@ typedef struct viewer {
     packset_name packs[PACKSET_MAX];   /* what the panel's Pack combo offers */
     const char *pack_names[PACKSET_MAX];
     int npacks;
+    /* the Setting combo: the settings of the pack drawing the scene */
+    packset_bench bench;
+    char bench_pack[PACKSET_NAME_MAX];   /* whose bench.txt that is ("" none read) */
+    int *order;                          /* menu row -> bench.settings index, -1 the implicit default */
+    const char **setting_names, **setting_tips;
+    char (*tips)[PACKSET_COMMENT_MAX + 160];
+    int nsettings;
+    int setting;                         /* the menu row chosen last; -1 none since the pack was drawn */
 } viewer;
 
 static void report_load(viewer *v) {
     const char *m = render_messages(v->r);
     if (m[0]) fputs(m, stderr);
     else fprintf(stderr, "tarn: loaded %s\n", render_scene_path(v->r));
+}
+
+/* ---- the Setting combo ---- */
+
+static void settings_free(viewer *v) {
+    packset_bench_free(&v->bench);
+    free(v->order);
+    free(v->setting_names);
+    free(v->setting_tips);
+    free(v->tips);
+    v->order = NULL;
+    v->setting_names = v->setting_tips = NULL;
+    v->tips = NULL;
+    v->nsettings = 0;
+    v->bench_pack[0] = '\0';
+}
+
+/* The menu of the pack drawing the scene, read when that pack changed
+ * (default first, then paper, then bench.txt's order; packset_menu). */
+static void settings_sync(viewer *v) {
+    const char *pack = render_has_world(v->r) ? render_pack(v->r) : "";
+    if (strcmp(pack, v->bench_pack) == 0) return;
+    settings_free(v);
+    v->setting = -1;
+    snprintf(v->bench_pack, sizeof v->bench_pack, "%s", pack);
+    if (!pack[0]) return;
+    char err[2048] = "";
+    if (!packset_bench_load(tarn_root(), pack, &v->bench, err, sizeof err)) fputs(err, stderr);
+    int cap = v->bench.n + 1;
+    v->order = mem_alloc((size_t)cap * sizeof *v->order);
+    v->setting_names = mem_alloc((size_t)cap * sizeof *v->setting_names);
+    v->setting_tips = mem_alloc((size_t)cap * sizeof *v->setting_tips);
+    v->tips = mem_alloc((size_t)cap * sizeof *v->tips);
+    v->nsettings = packset_menu(&v->bench, v->order);
+    for (int i = 0; i < v->nsettings; i++) {
+        const packset_setting *st = v->order[i] < 0 ? NULL : &v->bench.settings[v->order[i]];
+        char na[PACKSET_COMMENT_MAX] = "";
+        bool applies = render_setting_applicable(st, na, sizeof na);
+        snprintf(v->tips[i], sizeof v->tips[i], "%s%s%s%s", st ? st->comment : "the pack's defaults",
+                 applies ? "" : " [not applicable here: ", applies ? "" : na, applies ? "" : "]");
+        v->setting_names[i] = st ? st->name : "default";
+        v->setting_tips[i] = v->tips[i];
+    }
+}
+
+/* What picking row i of the Setting combo does: the pack's defaults, then
+ * the setting (render_setting_apply), said on screen and recorded. */
+static bool choose_setting(viewer *v, app *a, int i) {
+    settings_sync(v);
+    if (i < 0 || i >= v->nsettings) return false;
+    const packset_setting *st = v->order[i] < 0 ? NULL : &v->bench.settings[v->order[i]];
+    const char *name = v->setting_names[i];
+    char msg[4096] = "";
+    bool ok = render_setting_apply(v->r, st, msg, sizeof msg);
+    v->setting = i;
+    if (msg[0]) fputs(msg, stderr);
+    fprintf(stderr, "tarn: setting %s of the %s pack%s\n", name, v->bench_pack, ok ? "" : " (in part: see above)");
+    app_rewatch(a);   /* a scene.WaterMesh reloads the scene */
+    app_record_setting(a, name);
+    if (ok) app_toast(a, "setting %s of the %s pack", name, v->bench_pack);
+    else app_toast(a, "setting %s applied in part: see the messages", name);
+    return ok;
+}
+
+static int setting_row(viewer *v, const char *name) {
+    settings_sync(v);
+    for (int i = 0; i < v->nsettings; i++)
+        if (strcmp(v->setting_names[i], name) == 0) return i;
+    return -1;
 }
 
 /* ---- hooks ---- */
@@ -64,6 +144,7 @@ static void switch_pack(viewer *v, app *a, int i) {
     char before[PACKSET_NAME_MAX];
     snprintf(before, sizeof before, "%s", render_pack(v->r));
     render_set_pack(v->r, v->packs[i]);
+    render_clear_world_overrides(v->r);   /* a setting's WaterMesh belonged to the last pack */
     bool ok = render_load(v->r, NULL);
     /* refused (the scene kept its last good state, a glman scene has no
      * world for a pack): the scene on screen keeps its pack, so that the
@@ -85,10 +166,27 @@ static int current_pack(const viewer *v) {
     return -1;
 }
 
-/* The window's own script action: `pack NAME` does what picking NAME in
- * the panel's Pack combo does (tests drive the switch this way). */
+/* `setting NAME`: what picking NAME in the Setting combo does. */
+static view_script_status setting_action(viewer *v, char *rest, const char *file, int line) {
+    char name[PACKSET_NAME_MAX] = "";
+    sscanf(rest, "%63s", name);
+    int i = setting_row(v, name);
+    if (i < 0) {
+        fprintf(stderr, "%s:%d: setting: %s has no setting '%s'; it has", file, line,
+                v->bench_pack[0] ? v->bench_pack : "the scene (no pack)", name);
+        for (int k = 0; k < v->nsettings; k++) fprintf(stderr, " %s", v->setting_names[k]);
+        fputc('\n', stderr);
+        return VIEW_SCRIPT_FAILED;
+    }
+    return choose_setting(v, v->app, i) ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+}
+
+/* The window's own script actions: `pack NAME` and `setting NAME` do what
+ * picking NAME in the panel's Pack or Setting combo does (tests drive the
+ * switches this way). */
 static view_script_status script_action(void *user, const char *cmd, char *rest, const char *file, int line) {
     viewer *v = user;
+    if (strcmp(cmd, "setting") == 0) return setting_action(v, rest, file, line);
     if (strcmp(cmd, "pack") != 0) {
         fprintf(stderr, "%s:%d: unknown script action '%s'\n", file, line, cmd);
         return VIEW_SCRIPT_FAILED;
@@ -120,6 +218,7 @@ static void on_apply(void *user, app *a) {
     if (p->save_preset) preset(v, true);
     if (p->load_preset) preset(v, false);
     if (p->switch_pack) switch_pack(v, a, p->pack);
+    if (p->switch_setting) choose_setting(v, a, p->setting);
 }
 
 static void on_draw(void *user, app *a) {
@@ -143,6 +242,7 @@ static void on_panel(void *user, app *a, panel_actions *common) {
     app_state *s = app_get_state(a);
     int n;
     unif_set *sets = render_uniforms(v->r, &n);
+    settings_sync(v);
     char passes[1024];
     view_pass_summary(v->r, passes, sizeof passes);
     panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
@@ -152,7 +252,8 @@ static void on_panel(void *user, app *a, panel_actions *common) {
                         .scene_x = app_scene_x_window(a), .passes = passes,
                         /* a pack draws a world's water; a glman scene has none to switch */
                         .packs = v->pack_names, .npacks = render_has_world(v->r) ? v->npacks : 0,
-                        .pack = current_pack(v) };
+                        .pack = current_pack(v), .settings = v->setting_names,
+                        .setting_tips = v->setting_tips, .nsettings = v->nsettings, .setting = v->setting };
     panel_draw(app_panel(a), sets, n, &info, &v->pending);
     *common = v->pending;
 }
@@ -182,9 +283,19 @@ int view_run(const view_desc *d) {
         render_window_size(v.r, &w, &h);
         app_fit_window(v.app, w, h);   /* room for the panel beside the scene */
     }
+    if (ok && d->setting) {
+        int i = setting_row(&v, d->setting);
+        if (i >= 0) ok = choose_setting(&v, v.app, i);
+        else {
+            char msg[2048] = "";
+            ok = render_setting_apply_named(v.r, NULL, d->setting, msg, sizeof msg);   /* says which exist */
+            fputs(msg, stderr);
+        }
+    }
     app_home(v.app, render_default_view(v.r));
     int rc = app_run(v.app, &v.r, 1);
     if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
+    settings_free(&v);
     render_destroy(v.r);
     app_destroy(v.app);
     return rc;

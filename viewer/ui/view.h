@@ -10,6 +10,7 @@ typedef struct view_desc {
     const char *script;         /* a file of scripted actions (tests, demos) */
     double time_s;
     const char *pack;           /* replaces the scene's `Pack` */
+    const char *setting;        /* a row of the pack's bench.txt to start from (the Setting combo) */
     const char *record;         /* record a session (session.h) into this file from the start */
 } view_desc;
 

@@ -15,7 +15,9 @@
  *   quit
  * `#` starts a comment. A window may add actions of its own (ctx.custom):
  * `tarn compare-view` does (compare_view.h), and `tarn view` has
- *   pack NAME                     draw the scene with another pack (the panel's Pack combo) */
+ *   pack NAME                     draw the scene with another pack (the panel's Pack combo)
+ *   setting NAME                  the pack's defaults, then its bench.txt setting NAME
+ *                                 (the panel's Setting combo; render_setting.h) */
 #ifndef TARN_VIEW_SCRIPT_H
 #define TARN_VIEW_SCRIPT_H
 
