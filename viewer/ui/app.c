@@ -420,6 +420,7 @@ static view_script_status budget_action(app *a, const char *cmd, char *rest, con
     if (strcmp(cmd, "stamp") == 0) {
         sscanf(rest, "%31s", word);
         a->stamp = strcmp(word, "off") != 0;
+        fprintf(stderr, "%s: stamp %s\n", a->d.name, a->stamp ? "on" : "off");   /* a benchmark saves after this */
         return VIEW_SCRIPT_CONTINUE;
     }
     return VIEW_SCRIPT_DONE;
