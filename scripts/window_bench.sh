@@ -45,7 +45,7 @@ resolution
 orbit 0 0 1
 wait 2
 stamp on
-wait 4
+wait 8
 quit
 SCRIPT
     log=$scratch/$p.log
