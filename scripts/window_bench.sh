@@ -53,7 +53,7 @@ SCRIPT
         --time 2 --script "$scratch/bench.script" > "$log" 2>&1 &
     pid=$!
     # the save: once the script is stamping, with the full frame kept
-    for _ in $(seq 1 600); do grep -q "stamp on" "$log" 2>/dev/null && break; sleep 0.1; done
+    while kill -0 $pid 2>/dev/null && ! grep -q "stamp on" "$log" 2>/dev/null; do sleep 0.1; done
     sleep 1
     saved=$(date +%s.%N)
     echo "// saved by window_bench ($b)" >> "$scratch/packs/$p/$frag"
