@@ -9,7 +9,8 @@
 #     drawn and kept), the pack's water shader is saved (a comment line
 #     appended, in a scratch copy of packs/ and scenes/ under TARN_ROOT);
 #     the wall clock of the save against the swap of the first frame after
-#     the reload (the script's `stamp on`).
+#     the reload (the script's `stamp on`), and from the reload's start
+#     (what tarn itself spends: loading and compiling, then the frame).
 # Usage: scripts/window_bench.sh [TARN] [BUDGET_MS[,BUDGET_MS...]] [PACK...]
 #   TARN defaults to build/tarn, BUDGET_MS to 50 (0: the budget off; "0,50"
 #   runs both, one after the other for each pack: an A/B in one run).
@@ -28,7 +29,8 @@ cp -r "$here/packs" "$here/scenes" "$scratch/"
 [ -d "$here/data" ] && cp -r "$here/data" "$scratch/"
 echo "window_bench: $(uptime | sed 's/^ *//')"
 echo "window_bench: lake at its WindowSize, $bin"
-printf "%-12s %7s %10s %14s %22s %12s\n" pack budget "orbit fps" "orbit ms/frame" "orbit resolution" "save->frame"
+printf "%-12s %7s %10s %14s %22s %12s %14s\n" pack budget "orbit fps" "orbit ms/frame" "orbit resolution" "save->frame" \
+    "reload->frame"
 for p in "${packs[@]}"; do
   for b in ${budget//,/ }; do
     frag=$(awk '$1 == "Fragment" { f = $2 } END { print f }' "$scratch/packs/$p/pack.glib")
@@ -64,7 +66,9 @@ SCRIPT
     swap=$(awk '/first frame after the reload swapped at/ { print $10; exit }' "$log")
     fps=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (c1 > c0) printf "%.1f", (f1 - f0) * 1000 / (c1 - c0); else print "-" }')
     ms=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (f1 > f0) printf "%.1f", (c1 - c0) / (f1 - f0); else print "-" }')
+    rl=$(awk '/first frame after the reload swapped at/ { sub(/^\(/, "", $11); print $11 " ms"; exit }' "$log")
     lat=$(awk -v s="$saved" -v w="$swap" 'BEGIN { if (w != "") printf "%.0f ms", (w - s) * 1000; else print "-" }')
-    printf "%-12s %7s %10s %14s %22s %12s%s\n" "$p" "$b" "$fps" "$ms" "$res" "$lat" "$([ "$rc" -eq 0 ] || echo "  (tarn exited $rc)")"
+    printf "%-12s %7s %10s %14s %22s %12s %14s%s\n" "$p" "$b" "$fps" "$ms" "$res" "$lat" "${rl:--}" \
+        "$([ "$rc" -eq 0 ] || echo "  (tarn exited $rc)")"
   done
 done
