@@ -60,3 +60,10 @@ add_test(NAME record_mp4
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/record_mp4_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(record_mp4 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS gl)
+
+# The frame budget: reduced resolution while the camera moves, the full
+# frame once it stops (view and compare-view; ui/res_budget).
+add_test(NAME window_budget_xvfb
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_budget_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(window_budget_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")

@@ -184,6 +184,19 @@ void place_panel(panel *p) {
                              ImGuiCond_Always);
 }
 
+// The frame budget: while the picture changes the scene is drawn smaller
+// to keep a frame within it; the size it is drawn at now under it.
+void budget_row(float *budget_ms, const char *resolution) {
+    if (budget_ms) {
+        ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
+        ImGui::SliderFloat("Frame budget ms", budget_ms, 0.0f, 1000.0f,
+                           *budget_ms > 0 ? "%.3g ms" : "off: full resolution", ImGuiSliderFlags_Logarithmic);
+        ImGui::PopItemWidth();
+        if (*budget_ms < 0) *budget_ms = 0;
+    }
+    if (resolution && resolution[0]) ImGui::TextColored(kGrey, "drawn at %s", resolution);
+}
+
 // The frame time (the window's wall time; fps from it), then the GPU's,
 // which on a CPU rasteriser does not time the drawing and says so.
 void timings(const panel_info *info) {
@@ -200,6 +213,7 @@ void timings(const panel_info *info) {
         ImGui::TextUnformatted(info->passes);
         ImGui::TreePop();
     }
+    budget_row(info->budget_ms, info->resolution);
 }
 
 // One collapsing header per set with a widget per entry; changes go to out.
@@ -387,6 +401,7 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
         if (c->scene_path) ImGui::TextUnformatted(c->scene_path);
         ImGui::Text("t = %.2f s%s   %.1f ms/frame  %.1f fps", c->time_s, c->paused ? " (paused)" : "",
                     c->frame_ms, c->fps);
+        budget_row(c->budget_ms, c->resolution);
         out->common.toggle_pause = ImGui::Button(c->paused ? "Play" : "Pause");
         ImGui::SameLine();
         out->common.reload = ImGui::Button("Reload");

@@ -56,6 +56,8 @@ typedef struct panel_info {
     const char *const *setting_tips;
     int nsettings;
     int setting;                 /* the last one chosen, an index into settings; -1 none */
+    float *budget_ms;            /* the frame budget's slider, ms (0: off); NULL: none */
+    const char *resolution;      /* the internal resolution now, "480x270 (50%) of 960x540, ..." */
 } panel_info;
 
 typedef struct panel_actions {
@@ -115,6 +117,8 @@ typedef struct panel_compare {
     float *heat_max;             /* the heat map's full scale (0: automatic) */
     const char *heat_status;     /* what the heat maps show, or why there are none */
     const char *note;            /* a line under the timings (the time axis, ...) */
+    float *budget_ms;            /* as panel_info's */
+    const char *resolution;
 } panel_compare;
 
 typedef struct panel_compare_actions {

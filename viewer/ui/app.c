@@ -9,11 +9,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "exit_code.h"
 #include "file.h"
 #include "frame_meter.h"
 #include "mem.h"
+#include "res_budget.h"
 #include "session.h"
 #include "util.h"
 #include "watch.h"
@@ -43,6 +45,20 @@ struct app {
     bool bare_frame;             /* a script's screenshot: no toast, no REC label */
     int fit_w, fit_h;            /* app_fit_window's scene area (0: none asked for) */
     long frames;                 /* drawn so far */
+    /* the frame budget (res_budget.h) */
+    res_budget budget;
+    float budget_ms;             /* the panel's slider */
+    double last_frame_ms;        /* the previous frame's wall time; 0: not a fair measure */
+    bool frame_fair;             /* this frame did no reload, no second draw: its time measures the scene */
+    unsigned long generation;    /* reloads, rebuilds, pack switches: a new picture each */
+    bool shooting;               /* this frame is a screenshot's: full resolution */
+    bool key_shot;               /* ... asked for by P/F12 or the panel: shot after it is drawn */
+    int drawn_w, drawn_h, area_w, area_h;   /* the internal size last drawn, of the scene area */
+    int orbit_left;              /* the script's `orbit ... N`: frames still to turn */
+    float orbit_dx, orbit_dy;
+    bool stamp;                  /* the script's `stamp on`: time the first frame after a reload */
+    bool stamp_pending;
+    double stamp_seen;           /* glfwGetTime() when that reload began */
 };
 
 /* ---- watching ---- */
@@ -93,7 +109,11 @@ void app_rewatch(app *a) {
 }
 
 static void reload(app *a) {
+    a->stamp_pending = a->stamp;
+    a->stamp_seen = glfwGetTime();
     a->d.reload(a->d.user, a);
+    app_picture_changed(a);
+    a->frame_fair = false;   /* the reload's own time is not the scene's */
     a->cause[0] = '\0';
     app_rewatch(a);
 }
@@ -146,7 +166,7 @@ void app_screenshot(app *a) {
 /* Over the top of the scene area, above the panel and the scene's labels;
  * not into a screenshot asked for by key. */
 static void draw_toast(app *a) {
-    if (a->shot_pending || a->bare_frame) return;
+    if (a->shooting || a->bare_frame) return;
     int ww, wh;
     glfwGetWindowSize(a->win, &ww, &wh);
     if (a->rec) {
@@ -220,8 +240,10 @@ static void record_toggle(app *a) {
 static void apply_common(app *a, const panel_actions *c) {
     if (c->reload) reload(a);
     if (c->toggle_pause) a->s.paused = !a->s.paused;
-    if (c->screenshot || a->shot_pending) app_screenshot(a);
-    a->shot_pending = false;
+    /* the button's frame was drawn before the panel said so: the next one,
+     * drawn at full resolution, is shot */
+    if (c->screenshot) a->shot_pending = true;
+    if (a->key_shot) app_screenshot(a);
 }
 
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
@@ -260,11 +282,78 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     }
 }
 
+/* ---- the frame budget ---- */
+
+void app_picture_changed(app *a) { a->generation++; }
+
+uint64_t app_picture_key(app *a, int w, int h) {
+    uint64_t k = RES_BUDGET_KEY_SEED;
+    k = res_budget_key(k, &a->s.cam, sizeof a->s.cam);
+    k = res_budget_key(k, &a->s.t, sizeof a->s.t);
+    k = res_budget_key(k, &a->generation, sizeof a->generation);
+    int size[2] = { w, h };
+    k = res_budget_key(k, size, sizeof size);
+    /* every slider, checkbox and colour of every scene: what the panel,
+     * a script or a preset changes */
+    for (int i = 0; i < a->nscenes; i++) {
+        int n;
+        unif_set *sets = render_uniforms(a->scenes[i], &n);
+        for (int j = 0; j < n; j++)
+            for (int e = 0; e < sets[j].n; e++)
+                k = res_budget_key(k, sets[j].entries[e].value, sizeof sets[j].entries[e].value);
+    }
+    return k;
+}
+
+bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale) {
+    a->budget.budget_ms = a->budget_ms;
+    return res_budget_plan(&a->budget, key, glfwGetTime(), a->last_frame_ms, force_full || a->shooting, scale);
+}
+
+void app_budget_drawn(app *a, int iw, int ih, int w, int h) {
+    a->drawn_w = iw;
+    a->drawn_h = ih;
+    a->area_w = w;
+    a->area_h = h;
+}
+
+float *app_budget_ms(app *a) { return &a->budget_ms; }
+
+void app_budget_text(const app *a, char *out, int len) {
+    double pct = a->area_w > 0 ? 100.0 * a->drawn_w / a->area_w : 100;
+    if (a->budget_ms <= 0)
+        snprintf(out, (size_t)len, "%dx%d (%.0f%%) of %dx%d, no budget", a->drawn_w, a->drawn_h, pct, a->area_w,
+                 a->area_h);
+    else
+        snprintf(out, (size_t)len, "%dx%d (%.0f%%) of %dx%d, budget %.3g ms", a->drawn_w, a->drawn_h, pct,
+                 a->area_w, a->area_h, a->budget_ms);
+}
+
+/* The first frame after a reload is on screen (the script's `stamp on`):
+ * when, on the wall clock a benchmark compares with a file's save. */
+static void stamp_swap(app *a) {
+    a->stamp_pending = false;
+    struct timespec ts;
+    timespec_get(&ts, TIME_UTC);
+    fprintf(stderr, "%s: stamp: first frame after the reload swapped at %.6f (%.1f ms after the reload began)\n",
+            a->d.name, (double)ts.tv_sec + ts.tv_nsec * 1e-9, (glfwGetTime() - a->stamp_seen) * 1e3);
+}
+
 /* ---- the loop ---- */
 
 static void frame(app *a, bool scripted) {
     double now = glfwGetTime(), dt = now - a->last_wall;
     a->last_wall = now;
+    a->last_frame_ms = a->frame_fair ? dt * 1e3 : 0;
+    a->frame_fair = true;
+    a->key_shot = a->shot_pending;
+    a->shooting = a->key_shot || a->bare_frame;
+    a->shot_pending = false;
+    if (a->shooting) a->frame_fair = false;
+    if (a->orbit_left > 0 && !a->bare_frame) {   /* a screenshot's frame shows the camera as it is */
+        orbit_rotate(&a->s.cam, a->orbit_dx, a->orbit_dy);
+        a->orbit_left--;
+    }
     frame_meter_add(&a->meter, dt);
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
@@ -294,6 +383,53 @@ static void frame(app *a, bool scripted) {
     }
 }
 
+/* The frame budget's script actions (app.h); VIEW_SCRIPT_DONE: not one of them. */
+static view_script_status budget_action(app *a, const char *cmd, char *rest, const char *file, int line) {
+    char word[32] = "";
+    if (strcmp(cmd, "orbit") == 0) {   /* DX DY [N]: a turn now and on each of the next N-1 frames */
+        float dx = 0, dy = 0;
+        int n = 1;
+        if (sscanf(rest, "%f %f %d", &dx, &dy, &n) < 2 || n < 1) {
+            fprintf(stderr, "%s:%d: orbit wants DYAW DPITCH (radians) and optionally FRAMES\n", file, line);
+            return VIEW_SCRIPT_FAILED;
+        }
+        orbit_rotate(&a->s.cam, dx, dy);
+        a->orbit_left = n - 1;
+        a->orbit_dx = dx;
+        a->orbit_dy = dy;
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "budget") == 0) {
+        double ms;
+        if (sscanf(rest, "%lf", &ms) != 1 || !(ms >= 0) || ms > RES_BUDGET_MAX_MS) {
+            fprintf(stderr, "%s:%d: budget wants milliseconds, 0 (off) to %.0f\n", file, line, RES_BUDGET_MAX_MS);
+            return VIEW_SCRIPT_FAILED;
+        }
+        a->budget_ms = (float)ms;
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "resolution") == 0 || strcmp(cmd, "expect-resolution") == 0) {
+        char text[160];
+        app_budget_text(a, text, sizeof text);
+        sscanf(rest, "%31s", word);
+        bool full = a->drawn_w == a->area_w && a->drawn_h == a->area_h;
+        bool ok = cmd[0] == 'r' || (strcmp(word, "full") == 0 ? full : strcmp(word, "reduced") == 0 ? !full : false);
+        fprintf(stderr, "%s: resolution %s%s\n", a->d.name, text, ok ? "" : " (FAILED: want full or reduced)");
+        return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+    }
+    if (strcmp(cmd, "clock") == 0) {   /* for benchmarks: frames so far and the wall clock */
+        fprintf(stderr, "%s: clock %ld frames %.3f ms\n", a->d.name, a->frames, glfwGetTime() * 1e3);
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "stamp") == 0) {
+        sscanf(rest, "%31s", word);
+        a->stamp = strcmp(word, "off") != 0;
+        fprintf(stderr, "%s: stamp %s\n", a->d.name, a->stamp ? "on" : "off");   /* a benchmark saves after this */
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    return VIEW_SCRIPT_DONE;
+}
+
 /* The app's own script actions, then the client's: `window W H` resizes
  * the window, as a user's drag would (what follows the window is tested). */
 static view_script_status script_action(void *user, const char *cmd, char *rest, const char *file, int line) {
@@ -307,6 +443,8 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
         glfwSetWindowSize(a->win, w, h);
         return VIEW_SCRIPT_CONTINUE;
     }
+    view_script_status st = budget_action(a, cmd, rest, file, line);
+    if (st != VIEW_SCRIPT_DONE) return st;
     if (a->d.script_action) return a->d.script_action(a->d.user, cmd, rest, file, line);
     fprintf(stderr, "%s:%d: unknown script action '%s'\n", file, line, cmd);
     return VIEW_SCRIPT_FAILED;
@@ -325,6 +463,7 @@ static int script_step(app *a, view_script *script) {
         a->bare_frame = true;
         frame(a, true);
         a->bare_frame = false;
+        a->shooting = false;
         shoot(a, view_script_arg(script));
     }
     if (st == VIEW_SCRIPT_RELOAD) reload(a);
@@ -366,6 +505,7 @@ int app_run(app *a, render *const *scenes, int n) {
         }
         if (script && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
         glfwSwapBuffers(a->win);
+        if (a->stamp_pending) stamp_swap(a);
     }
     if (a->rec) record_stop(a);
     view_script_free(script);
@@ -393,6 +533,8 @@ app *app_create(const app_desc *desc) {
         return NULL;
     }
     a->win = gl_ctx_window(a->ctx);
+    res_budget_init(&a->budget, RES_BUDGET_DEFAULT_MS);
+    a->budget_ms = (float)RES_BUDGET_DEFAULT_MS;
     glfwSetWindowUserPointer(a->win, a);
     char title[1200];
     if (a->d.scene_path) snprintf(title, sizeof title, "%s — %s", a->d.name, a->d.scene_path);

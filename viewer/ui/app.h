@@ -48,6 +48,7 @@
 #define TARN_APP_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "gl_ctx.h"
 #include "panel.h"
@@ -129,6 +130,29 @@ void app_toast(app *a, const char *fmt, ...);
 void app_record_pack(app *a, const char *pack);
 /* The client applied the pack's setting NAME (the panel's Setting combo). */
 void app_record_setting(app *a, const char *setting);
+
+/* ---- the frame budget (res_budget.h) ----
+ * A client draws its scene(s) into a target of its own and shows it
+ * upscaled: each frame it asks app_budget_plan with the picture's key
+ * whether to draw and at what scale (a screenshot's frame is always full
+ * size), draws at res_budget_size(scale, ...) if so, and tells
+ * app_budget_drawn the size it has on screen. */
+
+/* The picture a w x h scene area shows: the camera, the time, every
+ * scene's uniform values, the reloads (and app_picture_changed's). */
+uint64_t app_picture_key(app *a, int w, int h);
+/* This frame: true to draw the scene at *scale (1: full resolution);
+ * false: the frame drawn last is still the picture. force_full: the
+ * client needs full-resolution pixels (heat maps). */
+bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale);
+/* What the client has on screen: iw x ih drawn for a w x h area. */
+void app_budget_drawn(app *a, int iw, int ih, int w, int h);
+/* A rebuild or pack switch of the client's: the picture is new. */
+void app_picture_changed(app *a);
+/* The panel's "Frame budget ms" (0: off), read and written by its slider. */
+float *app_budget_ms(app *a);
+/* "480x270 (50%) of 960x540, budget 50 ms" for the panel. */
+void app_budget_text(const app *a, char *out, int len);
 
 /* Inside hooks.reload: why it runs, "water.frag changed" (the files the
  * watcher saw change), "a missing folder appeared", or "" (R, the panel's

@@ -30,6 +30,7 @@
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
+#include "res_budget.h"
 #include "strbuf.h"
 #include "util.h"
 #include "view_script.h"
@@ -89,6 +90,7 @@ typedef struct cview {
     panel_compare_actions pending;   /* the panel's buttons of this frame, applied after it */
     /* the scene area and the cells, framebuffer pixels (GL: y from the bottom) */
     int fb_w, fb_h, area_x, area_w, area_h, cell_w, cell_h;
+    int drawn_w, drawn_h;        /* the packs' images: this corner of their targets (the frame budget) */
 } cview;
 
 /* ---- layout ---- */
@@ -290,7 +292,7 @@ static void draw_packs(cview *v, const render_view *view) {
         cv_pack *p = &v->packs[i];
         if (!pack_drawn(v, i) || !p->tg.fbo) continue;
         double t0 = clock_now_s();
-        render_frame(p->r, v->s->t, p->tg.fbo, p->tg.w, p->tg.h, view);
+        render_frame(p->r, v->s->t, p->tg.fbo, v->drawn_w, v->drawn_h, view);
         glFinish();   /* one pack at a time, so each has its own wall time */
         double wall = (clock_now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);
         p->wall_ms = p->wall_ms > 0 ? 0.9 * p->wall_ms + 0.1 * wall : wall;
@@ -305,6 +307,20 @@ static void blit(unsigned fbo, int sx0, int sx1, int sh, int dx, int dy) {
     glBlitFramebuffer(sx0, 0, sx1, sh, dx + sx0, dy, dx + sx1, dy + sh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
+/* A pack's image, drawn at drawn_w x drawn_h, upscaled into columns
+ * [x0, x1) of a cell at (dx, dy). */
+static void blit_image(const cview *v, unsigned fbo, int x0, int x1, int dx, int dy) {
+    if (v->drawn_w == v->cell_w && v->drawn_h == v->cell_h) {
+        blit(fbo, x0, x1, v->cell_h, dx, dy);
+        return;
+    }
+    double sx = (double)v->drawn_w / v->cell_w;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer((int)lround(x0 * sx), 0, (int)lround(x1 * sx), v->drawn_h, dx + x0, dy, dx + x1, dy + v->cell_h,
+                      GL_COLOR_BUFFER_BIT, GL_LINEAR);
+}
+
 /* Blits pack i's image (or heat map) columns [x0, x1) of its cell to (dx, dy). */
 static void show(cview *v, int i, int x0, int x1, int dx, int dy, bool heat) {
     cv_pack *p = &v->packs[i];
@@ -314,7 +330,7 @@ static void show(cview *v, int i, int x0, int x1, int dx, int dy, bool heat) {
     } else if (p->tg.fbo) {
         /* a world is lit in linear radiance: the window encodes sRGB, as `tarn view` does */
         if (render_has_world(p->r)) glEnable(GL_FRAMEBUFFER_SRGB);
-        blit(p->tg.fbo, x0, x1, p->tg.h, dx, dy);
+        blit_image(v, p->tg.fbo, x0, x1, dx, dy);
         glDisable(GL_FRAMEBUFFER_SRGB);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -521,6 +537,7 @@ static void on_apply(void *user, app *a) {
     const panel_compare_actions *p = &v->pending;
     for (int i = 0; i < v->n; i++)
         if (p->recompile[i]) {
+            app_picture_changed(a);
             render_rebuild_programs(v->packs[i].r);
             report(&v->packs[i]);
         }
@@ -537,9 +554,18 @@ static void on_draw(void *user, app *a) {
     if (v->wipe_a == v->wipe_b) v->wipe_b = (v->wipe_a + 1) % v->n;
     ensure_targets(v);
     poll_heat(v);
-    render_view view = orbit_view(&v->s->cam);
-    draw_packs(v, &view);
     bool heat = heat_shown(v);
+    /* heat maps read the packs' images back: those are full size */
+    double scale;
+    int what[4] = { v->layout, v->wipe_a, v->wipe_b, v->layout == PANEL_LAYOUT_WIPE };
+    uint64_t key = res_budget_key(app_picture_key(a, v->cell_w, v->cell_h), what, sizeof what);
+    bool draw = app_budget_plan(a, key, heat, &scale);
+    if (draw || v->drawn_w == 0 || v->drawn_w > v->cell_w || v->drawn_h > v->cell_h) {
+        res_budget_size(draw ? scale : 1.0, v->cell_w, v->cell_h, &v->drawn_w, &v->drawn_h);
+        render_view view = orbit_view(&v->s->cam);
+        draw_packs(v, &view);
+    }
+    app_budget_drawn(a, v->drawn_w, v->drawn_h, v->cell_w, v->cell_h);
     if (heat) request_maps(v);
     if (v->have_ref && !ref_valid(v) && heat_job_running(v->job) != HEAT_JOB_REFERENCE)
         snprintf(v->heat_status, sizeof v->heat_status,
@@ -562,7 +588,9 @@ static void on_panel(void *user, app *a, panel_actions *common) {
     }
     const char *status = v->heat_status[0] ? v->heat_status : "no heat maps yet: H computes them";
     bool cpu_raster = v->s->cpu_raster;
-    panel_compare pc = { .scene_path = v->scene, .frame_ms = v->s->frame_ms, .fps = v->s->fps, .time_s = v->s->t, .paused = v->s->paused,
+    char res[160];
+    app_budget_text(a, res, sizeof res);
+    panel_compare pc = { .budget_ms = app_budget_ms(a), .resolution = res, .scene_path = v->scene, .frame_ms = v->s->frame_ms, .fps = v->s->fps, .time_s = v->s->t, .paused = v->s->paused,
                          .packs = pp, .npacks = v->n, .layout = &v->layout, .wipe_a = &v->wipe_a,
                          .wipe_b = &v->wipe_b, .wipe = &v->wipe, .show_heat = &v->show_heat,
                          .heat_max = &v->heat_max, .heat_status = status,
@@ -643,10 +671,6 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
     }
     if (strcmp(cmd, "heat-max") == 0) {
         v->heat_max = (float)atof(a);
-        return VIEW_SCRIPT_CONTINUE;
-    }
-    if (strcmp(cmd, "orbit") == 0) {
-        orbit_rotate(&v->s->cam, (float)atof(a), (float)atof(b));
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "timings") == 0) {

@@ -15,6 +15,7 @@
 #include "mem.h"
 #include "render.h"
 #include "render_setting.h"
+#include "res_budget.h"
 #include "util.h"
 #include "view.h"
 
@@ -33,7 +34,54 @@ typedef struct viewer {
     char (*tips)[PACKSET_COMMENT_MAX + 160];
     int nsettings;
     int setting;                         /* the menu row chosen last; -1 none since the pack was drawn */
+    /* the scene's image, drawn at the budget's scale into its bottom-left
+     * corner and upscaled into the window: sRGB for a world (the window's
+     * encoding, so the picture is what drawing to the window gave) */
+    unsigned canvas_fbo, canvas_color, canvas_depth;
+    int canvas_w, canvas_h;
+    bool canvas_srgb;
+    int drawn_w, drawn_h;        /* what the canvas holds (0: nothing yet) */
 } viewer;
+
+static void canvas_free(viewer *v) {
+    if (v->canvas_fbo) glDeleteFramebuffers(1, &v->canvas_fbo);
+    if (v->canvas_color) glDeleteTextures(1, &v->canvas_color);
+    if (v->canvas_depth) glDeleteRenderbuffers(1, &v->canvas_depth);
+    v->canvas_fbo = v->canvas_color = v->canvas_depth = 0;
+    v->canvas_w = v->canvas_h = v->drawn_w = v->drawn_h = 0;
+}
+
+/* A w x h canvas of the format the scene needs; false (nothing drawn
+ * this frame) when GL refuses it. */
+static bool canvas_ensure(viewer *v, int w, int h, bool srgb) {
+    if (v->canvas_fbo && v->canvas_w == w && v->canvas_h == h && v->canvas_srgb == srgb) return true;
+    canvas_free(v);
+    glGenTextures(1, &v->canvas_color);
+    glBindTexture(GL_TEXTURE_2D, v->canvas_color);
+    glTexImage2D(GL_TEXTURE_2D, 0, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glGenRenderbuffers(1, &v->canvas_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, v->canvas_depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    glGenFramebuffers(1, &v->canvas_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, v->canvas_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, v->canvas_color, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, v->canvas_depth);
+    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (!ok) {
+        fprintf(stderr, "tarn: cannot make a %dx%d scene canvas\n", w, h);
+        canvas_free(v);
+        return false;
+    }
+    v->canvas_w = w;
+    v->canvas_h = h;
+    v->canvas_srgb = srgb;
+    return true;
+}
 
 static void report_load(viewer *v) {
     const char *m = render_messages(v->r);
@@ -97,6 +145,7 @@ static bool choose_setting(viewer *v, app *a, int i) {
     if (msg[0]) fputs(msg, stderr);
     fprintf(stderr, "tarn: setting %s of the %s pack%s\n", name, v->bench_pack, ok ? "" : " (in part: see above)");
     app_rewatch(a);   /* a scene.WaterMesh reloads the scene */
+    app_picture_changed(a);
     app_record_setting(a, name);
     if (ok) app_toast(a, "setting %s of the %s pack", name, v->bench_pack);
     else app_toast(a, "setting %s applied in part: see the messages", name);
@@ -146,6 +195,7 @@ static void switch_pack(viewer *v, app *a, int i) {
     render_set_pack(v->r, v->packs[i]);
     render_clear_world_overrides(v->r);   /* a setting's WaterMesh belonged to the last pack */
     bool ok = render_load(v->r, NULL);
+    app_picture_changed(a);
     /* refused (the scene kept its last good state, a glman scene has no
      * world for a pack): the scene on screen keeps its pack, so that the
      * next save reloads it and not the refusal */
@@ -210,6 +260,7 @@ static void on_apply(void *user, app *a) {
     unif_set *sets = render_uniforms(v->r, &n);
     if (p->reset_all)
         for (int i = 0; i < n; i++) unif_reset_all(&sets[i]);
+    if (p->recompile || p->reset_all || p->load_preset) app_picture_changed(a);
     if (p->recompile || p->reset_all) {
         render_rebuild_programs(v->r);
         report_load(v);
@@ -221,19 +272,42 @@ static void on_apply(void *user, app *a) {
     if (p->switch_setting) choose_setting(v, a, p->setting);
 }
 
+/* The scene at the budget's scale into the canvas (when the picture
+ * changed, or to bring it to full resolution), then the canvas into the
+ * scene area, upscaled by a linear blit. */
 static void on_draw(void *user, app *a) {
     viewer *v = user;
     app_state *s = app_get_state(a);
     int w, h;
     glfwGetFramebufferSize(app_window(a), &w, &h);
-    render_view view = orbit_view(&s->cam);
-    int x0 = app_scene_x(w);
-    glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
+    int x0 = app_scene_x(w), aw = w - x0 > 0 ? w - x0 : 1, ah = h > 0 ? h : 1;
     /* a world is lit in linear radiance: the window encodes sRGB, as the
      * reference's PNG does; glman scenes are shown as drawn */
-    if (render_has_world(v->r)) glEnable(GL_FRAMEBUFFER_SRGB);
-    render_frame_at(v->r, s->t, 0, x0, 0, w - x0, h, &view);
+    bool world = render_has_world(v->r);
+    double scale;
+    bool draw = app_budget_plan(a, app_picture_key(a, aw, ah), false, &scale);
+    if (!canvas_ensure(v, aw, ah, world)) return;
+    if (draw || v->drawn_w == 0) {
+        if (!draw) scale = 1.0;   /* a new canvas holds nothing yet */
+        res_budget_size(scale, aw, ah, &v->drawn_w, &v->drawn_h);
+        render_view view = orbit_view(&s->cam);
+        if (world) glEnable(GL_FRAMEBUFFER_SRGB);
+        render_frame_at(v->r, s->t, v->canvas_fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
+    }
+    app_budget_drawn(a, v->drawn_w, v->drawn_h, aw, ah);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glViewport(0, 0, w, h);
+    glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    /* sRGB to sRGB: decoded, filtered in linear, encoded again (1:1 exact) */
+    if (world) glEnable(GL_FRAMEBUFFER_SRGB);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, v->canvas_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    bool full = v->drawn_w == aw && v->drawn_h == ah;
+    glBlitFramebuffer(0, 0, v->drawn_w, v->drawn_h, x0, 0, x0 + aw, ah, GL_COLOR_BUFFER_BIT,
+                      full ? GL_NEAREST : GL_LINEAR);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_FRAMEBUFFER_SRGB);
 }
 
@@ -245,7 +319,9 @@ static void on_panel(void *user, app *a, panel_actions *common) {
     settings_sync(v);
     char passes[1024];
     view_pass_summary(v->r, passes, sizeof passes);
-    panel_info info = { .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
+    char res[160];
+    app_budget_text(a, res, sizeof res);
+    panel_info info = { .budget_ms = app_budget_ms(a), .resolution = res, .scene_path = render_scene_path(v->r), .gpu_ms = render_gpu_ms(v->r, false),
                         .cpu_raster = s->cpu_raster, .frame_ms = s->frame_ms, .fps = s->fps,
                         .paused = s->paused, .time_s = s->t,
                         .error_text = render_has_errors(v->r) ? render_messages(v->r) : NULL,
@@ -296,6 +372,7 @@ int view_run(const view_desc *d) {
     int rc = app_run(v.app, &v.r, 1);
     if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
     settings_free(&v);
+    canvas_free(&v);
     render_destroy(v.r);
     app_destroy(v.app);
     return rc;

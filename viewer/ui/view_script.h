@@ -13,6 +13,13 @@
  *   pause 0|1                     stop or run the simulated clock
  *   window W H                    resize the window (app.c's; give it a few frames)
  *   quit
+ * The window loop (app.c) adds, for both windows:
+ *   orbit DYAW DPITCH [N]         turn the camera now and on each of the next N-1 frames
+ *   budget MS                     the frame budget (0: off)
+ *   resolution                    print the internal resolution drawn
+ *   expect-resolution full|reduced
+ *   clock                         print frames drawn and the wall clock (benchmarks)
+ *   stamp on|off                  print when the first frame after a reload is swapped
  * `#` starts a comment. A window may add actions of its own (ctx.custom):
  * `tarn compare-view` does (compare_view.h), and `tarn view` has
  *   pack NAME                     draw the scene with another pack (the panel's Pack combo)

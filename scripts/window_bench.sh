@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# window_bench: the view window's frame budget, measured (issue #15). For
+# each pack, `tarn view` on the lake (its WindowSize, 960x540 beside the
+# panel) under Xvfb, driven by a --script:
+#   - orbiting: the camera turns every frame; after 20 frames for the
+#     budget to settle, the wall time of the next 40 frames gives the fps,
+#     and the internal resolution they ended at;
+#   - save -> first new frame: the picture still (paused, the full frame
+#     drawn and kept), the pack's water shader is saved (a comment line
+#     appended, in a scratch copy of packs/ and scenes/ under TARN_ROOT);
+#     the wall clock of the save against the swap of the first frame after
+#     the reload (the script's `stamp on`), and from the reload's start
+#     (what tarn itself spends: loading and compiling, then the frame).
+# Usage: scripts/window_bench.sh [TARN] [BUDGET_MS[,BUDGET_MS...]] [PACK...]
+#   TARN defaults to build/tarn, BUDGET_MS to 50 (0: the budget off; "0,50"
+#   runs both, one after the other for each pack: an A/B in one run).
+# Timing on a shared machine is noisy: say whether it was idle (uptime).
+set -u
+here=$(cd "$(dirname "$0")/.." && pwd)
+bin=${1:-$here/build/tarn}; shift || true
+budget=${1:-50}; shift || true
+packs=("$@")
+[ ${#packs[@]} -gt 0 ] || packs=(basic raymarch natural caustic_tex)
+command -v xvfb-run >/dev/null || { echo "window_bench: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
+bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
+scratch=$(mktemp -d /tmp/tarn-window-bench.XXXXXX)
+trap '[ -n "${KEEP:-}" ] || rm -rf "$scratch"' EXIT
+cp -r "$here/packs" "$here/scenes" "$scratch/"
+[ -d "$here/data" ] && cp -r "$here/data" "$scratch/"
+echo "window_bench: $(uptime | sed 's/^ *//')"
+echo "window_bench: lake at its WindowSize, $bin"
+printf "%-12s %7s %10s %14s %22s %12s %14s\n" pack budget "orbit fps" "orbit ms/frame" "orbit resolution" "save->frame" \
+    "reload->frame"
+for p in "${packs[@]}"; do
+  for b in ${budget//,/ }; do
+    frag=$(awk '$1 == "Fragment" { f = $2 } END { print f }' "$scratch/packs/$p/pack.glib")
+    cat > "$scratch/bench.script" <<SCRIPT
+pause 1
+budget $b
+frames 3
+orbit 0.01 0 1000
+frames 20
+clock
+frames 40
+clock
+resolution
+orbit 0 0 1
+wait 2
+stamp on
+wait 8
+quit
+SCRIPT
+    log=$scratch/$p.log
+    TARN_ROOT=$scratch xvfb-run -a -s "-screen 0 1600x900x24" "$bin" view "$scratch/scenes/lake.glib" --pack "$p" \
+        --time 2 --script "$scratch/bench.script" > "$log" 2>&1 &
+    pid=$!
+    # the save: once the script is stamping, with the full frame kept
+    while kill -0 $pid 2>/dev/null && ! grep -q "stamp on" "$log" 2>/dev/null; do sleep 0.1; done
+    sleep 1
+    saved=$(date +%s.%N)
+    echo "// saved by window_bench ($b)" >> "$scratch/packs/$p/$frag"
+    wait $pid
+    rc=$?
+    read -r f0 c0 f1 c1 < <(awk '/clock/ { printf "%s %s ", $3, $5 } END { print "" }' "$log")
+    res=$(awk '/resolution/ { print $3 }' "$log" | tail -1)
+    swap=$(awk '/first frame after the reload swapped at/ { print $10; exit }' "$log")
+    fps=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (c1 > c0) printf "%.1f", (f1 - f0) * 1000 / (c1 - c0); else print "-" }')
+    ms=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (f1 > f0) printf "%.1f", (c1 - c0) / (f1 - f0); else print "-" }')
+    rl=$(awk '/first frame after the reload swapped at/ { sub(/^\(/, "", $11); print $11 " ms"; exit }' "$log")
+    lat=$(awk -v s="$saved" -v w="$swap" 'BEGIN { if (w != "") printf "%.0f ms", (w - s) * 1000; else print "-" }')
+    printf "%-12s %7s %10s %14s %22s %12s %14s%s\n" "$p" "$b" "$fps" "$ms" "$res" "$lat" "${rl:--}" \
+        "$([ "$rc" -eq 0 ] || echo "  (tarn exited $rc)")"
+  done
+done

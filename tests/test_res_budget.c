@@ -1,0 +1,154 @@
+/* test_res_budget: the windows' frame budget controller (ui/res_budget)
+ * fed synthetic frame times from a cost model ms = a + b * pixels (the
+ * shape the issue fitted for every pack): the scale converges to the size
+ * whose frame costs the budget, a fixed cost above the budget stays at the
+ * floor, and a still picture gets one full-resolution frame and then none. */
+#include <math.h>
+
+#include "check.h"
+#include "res_budget.h"
+
+/* A frame at scale s of a w x h window under the model, ms. */
+static double model_ms(double a, double b_per_mpix, double s, int w, int h) {
+    int iw, ih;
+    res_budget_size(s, w, h, &iw, &ih);
+    return a + b_per_mpix * (double)iw * ih / 1e6;
+}
+
+/* Moving frames (a new key each) at 60 Hz of clock; returns the last scale. */
+static double run_moving(res_budget *rb, double a, double bm, int frames, double *t, uint64_t *key, double *last_ms) {
+    double s = 1.0;
+    for (int i = 0; i < frames; i++) {
+        (*key)++;
+        CHECK(res_budget_plan(rb, *key, *t, *last_ms, false, &s));
+        *last_ms = model_ms(a, bm, s, 960, 540);
+        *t += *last_ms / 1e3;
+    }
+    return s;
+}
+
+/* The lake's basic pack at 960x540 before the speed-ups: 15 + 249/Mpix. */
+static void test_converges_to_the_budget(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0;
+    uint64_t key = 0;
+    double s = run_moving(&rb, 15, 249, 40, &t, &key, &last);
+    double ms = model_ms(15, 249, s, 960, 540);
+    CHECK(s < 1.0);
+    CHECK(ms <= 50 * (1 + RES_BUDGET_DEADBAND) + 1e-9);
+    CHECK(ms >= 50 * (1 - RES_BUDGET_DEADBAND) - 2);   /* and not needlessly small */
+    /* 40 more frames: it stays (no hunting) */
+    double s2 = run_moving(&rb, 15, 249, 40, &t, &key, &last);
+    CHECK_NEAR(s2, s, 0.05);
+}
+
+/* A cheap scene is never reduced: the scale stays 1. */
+static void test_cheap_scene_stays_full(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0;
+    uint64_t key = 0;
+    CHECK_NEAR(run_moving(&rb, 2, 20, 30, &t, &key, &last), 1.0, 1e-12);
+}
+
+/* natural's photon pass: 257 ms whatever the size. The floor, not below. */
+static void test_fixed_cost_over_budget_stays_at_the_floor(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0;
+    uint64_t key = 0;
+    CHECK_NEAR(run_moving(&rb, 257, 444, 30, &t, &key, &last), RES_BUDGET_FLOOR, 1e-12);
+    int iw, ih;
+    res_budget_size(RES_BUDGET_FLOOR, 960, 540, &iw, &ih);
+    CHECK(iw == 120 && ih == 68);
+}
+
+/* After the camera stops: the reduced frame stays for the settle time, then
+ * one frame at full resolution, then nothing is drawn while it stays still;
+ * a change draws reduced again at once, from what the full frame cost. */
+static void test_still_picture_returns_to_full(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0, s;
+    uint64_t key = 0;
+    double moving = run_moving(&rb, 15, 249, 20, &t, &key, &last);
+    CHECK(moving < 1.0);
+    t += 0.01;
+    CHECK(!res_budget_plan(&rb, key, t, last, false, &s));   /* settling: keep the reduced frame */
+    CHECK_NEAR(s, moving, 1e-12);
+    t += RES_BUDGET_SETTLE_S;
+    CHECK(res_budget_plan(&rb, key, t, 5, false, &s));
+    CHECK(s == 1.0);
+    last = model_ms(15, 249, 1.0, 960, 540);
+    for (int i = 0; i < 10; i++) {
+        t += 0.005;
+        CHECK(!res_budget_plan(&rb, key, t, i == 0 ? last : 5, false, &s));
+        CHECK(s == 1.0);
+    }
+    CHECK(res_budget_plan(&rb, key + 1, t, 5, false, &s));
+    CHECK(s < 1.0 && s >= RES_BUDGET_FLOOR);
+    /* one step from the full frame's time: the fixed cost leaves it a little over */
+    CHECK(model_ms(15, 249, s, 960, 540) <= 50 * 1.3);
+}
+
+/* A screenshot (force_full) of a moving picture is drawn at full size; with
+ * the budget off every changed frame is full and a still one is kept. */
+static void test_force_full_and_off(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0, s;
+    uint64_t key = 0;
+    run_moving(&rb, 15, 249, 20, &t, &key, &last);
+    CHECK(res_budget_plan(&rb, ++key, t, last, true, &s));
+    CHECK(s == 1.0);
+    CHECK(!res_budget_plan(&rb, key, t + 0.001, 500, true, &s));   /* drawn already */
+    res_budget_init(&rb, 0);
+    for (int i = 0; i < 5; i++) {
+        CHECK(res_budget_plan(&rb, ++key, t, 500, false, &s));
+        CHECK(s == 1.0);
+    }
+    CHECK(!res_budget_plan(&rb, key, t, 500, false, &s));
+}
+
+/* Noisy times (+-30%) around a cost: it settles within the deadband's
+ * reach and never leaves [floor, 1]. */
+static void test_noise_stays_bounded(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, s = 1, last = 0;
+    unsigned seed = 12345;
+    for (int i = 0; i < 500; i++) {
+        CHECK(res_budget_plan(&rb, (uint64_t)i, t, last, false, &s));
+        CHECK(s >= RES_BUDGET_FLOOR && s <= 1.0);
+        seed = seed * 1103515245u + 12345u;
+        double noise = 0.7 + 0.6 * ((seed >> 16) & 0x7fff) / 32767.0;
+        last = model_ms(27, 713, s, 960, 540) * noise;
+        t += last / 1e3;
+    }
+    double ms = model_ms(27, 713, s, 960, 540);
+    CHECK(ms > 20 && ms < 90);
+}
+
+static void test_key_changes_with_any_byte(void) {
+    float a[3] = { 1, 2, 3 }, b[3] = { 1, 2, 3.0001f };
+    uint64_t ka = res_budget_key(RES_BUDGET_KEY_SEED, a, sizeof a);
+    CHECK(ka == res_budget_key(RES_BUDGET_KEY_SEED, a, sizeof a));
+    CHECK(ka != res_budget_key(RES_BUDGET_KEY_SEED, b, sizeof b));
+    int iw, ih;
+    res_budget_size(0.5, 961, 541, &iw, &ih);
+    CHECK(iw == 481 && ih == 271);
+    res_budget_size(1e-6, 961, 541, &iw, &ih);
+    CHECK(iw == 1 && ih == 1);
+}
+
+int main(void) {
+    RUN(test_converges_to_the_budget);
+    RUN(test_cheap_scene_stays_full);
+    RUN(test_fixed_cost_over_budget_stays_at_the_floor);
+    RUN(test_still_picture_returns_to_full);
+    RUN(test_force_full_and_off);
+    RUN(test_noise_stays_bounded);
+    RUN(test_key_changes_with_any_byte);
+    return check_summary();
+}

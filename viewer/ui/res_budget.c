@@ -1,0 +1,71 @@
+/* res_budget: the windows' frame budget controller (see res_budget.h). */
+#include "res_budget.h"
+
+#include <math.h>
+
+void res_budget_init(res_budget *b, double budget_ms) {
+    *b = (res_budget){ .budget_ms = budget_ms, .scale = 1.0 };
+}
+
+static double clampd(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
+
+void res_budget_feed(res_budget *b, double ms, double scale) {
+    if (b->budget_ms <= 0 || !(ms > 0) || !(scale > 0)) return;
+    double ratio = b->budget_ms / ms;
+    if (fabs(ratio - 1.0) <= RES_BUDGET_DEADBAND && scale == b->scale) return;
+    /* pixels in proportion to the time left; growing at most twice a step
+     * (a cheap frame may be noise), shrinking at once (a slow one is felt) */
+    double area = scale * scale * (ratio > 2.0 ? 2.0 : ratio);
+    b->scale = clampd(sqrt(area), RES_BUDGET_FLOOR, 1.0);
+}
+
+bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_frame_ms, bool force_full,
+                     double *scale) {
+    if (b->measure && last_frame_ms > 0) res_budget_feed(b, last_frame_ms, b->drawn_scale);
+    b->measure = false;
+    bool changed = !b->have_key || key != b->key;
+    if (changed) {
+        b->key = key;
+        b->have_key = true;
+        b->still_since = now_s;
+        b->full_done = false;
+    }
+    bool off = b->budget_ms <= 0;
+    double s;
+    if (b->full_done) {
+        *scale = b->drawn_scale;
+        return false;                     /* the kept frame is the picture, at full resolution */
+    }
+    if (off || force_full || now_s - b->still_since >= RES_BUDGET_SETTLE_S) s = 1.0;
+    else if (changed) s = b->scale;
+    else {
+        *scale = b->drawn_scale;          /* settling: the reduced frame stays a moment */
+        return false;
+    }
+    b->drawn_scale = s;
+    b->full_done = s >= 1.0;
+    b->measure = true;
+    *scale = s;
+    return true;
+}
+
+void res_budget_size(double scale, int w, int h, int *iw, int *ih) {
+    if (scale >= 1.0) {
+        *iw = w;
+        *ih = h;
+        return;
+    }
+    *iw = (int)lround(w * scale);
+    *ih = (int)lround(h * scale);
+    if (*iw < 1) *iw = 1;
+    if (*ih < 1) *ih = 1;
+}
+
+uint64_t res_budget_key(uint64_t h, const void *data, size_t n) {
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}

@@ -1,0 +1,74 @@
+/* res_budget: the windows' frame budget. While the picture changes (the
+ * camera, a slider, a reload, the clock running) the scene is drawn at a
+ * reduced internal resolution chosen from measured frame times so that a
+ * frame costs about the budget, and upscaled into the window; once the
+ * picture has been still for RES_BUDGET_SETTLE_S one frame is drawn at
+ * full resolution, and from then on nothing is drawn again until the
+ * picture changes (the client shows the frame it keeps).
+ *
+ * The controller: a frame drawn at scale s (of each side) that took m ms
+ * asks for s^2 * budget / m of the pixels next time (the fixed point of a
+ * cost a + b*pixels with a < budget, reached without overshoot), at most
+ * twice the pixels a step, not below RES_BUDGET_FLOOR of each side, and
+ * left alone within RES_BUDGET_DEADBAND of the budget (no flicker between
+ * two near sizes). A cost that stays above the budget at the floor (a
+ * fixed pass slower than the budget) stays at the floor.
+ *
+ * Pure C, no GL: the window hands it a key of the picture (any change of
+ * what is drawn changes the key), the clock and the wall time of the last
+ * frame.
+ *
+ *     res_budget b; res_budget_init(&b, RES_BUDGET_DEFAULT_MS);
+ *     each frame: double s;
+ *         if (res_budget_plan(&b, key, now_s, last_frame_ms, force_full, &s))
+ *             draw at res_budget_size(s, w, h, ...), then upscale
+ *         else show the kept frame
+ */
+#ifndef TARN_RES_BUDGET_H
+#define TARN_RES_BUDGET_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define RES_BUDGET_DEFAULT_MS 50.0
+#define RES_BUDGET_MAX_MS 1000.0    /* the panel slider's end */
+#define RES_BUDGET_FLOOR 0.125      /* each side at least 1/8 of the window's */
+#define RES_BUDGET_SETTLE_S 0.25    /* still this long: the full-resolution frame */
+#define RES_BUDGET_DEADBAND 0.15    /* within 15% of the budget: keep the size */
+#define RES_BUDGET_KEY_SEED 1469598103934665603ull   /* FNV-1a's offset basis */
+
+typedef struct res_budget {
+    double budget_ms;            /* 0 (or less): off, every frame at full resolution */
+    double scale;                /* each side's factor for a changing picture, [FLOOR, 1] */
+    uint64_t key;                /* the picture last planned */
+    bool have_key;
+    double still_since;          /* the clock when the key last changed */
+    bool full_done;              /* this still picture's full-resolution frame is drawn */
+    double drawn_scale;          /* the scale of the frame last drawn (0: none yet) */
+    bool measure;                /* the last frame drew the scene: its time is a measure */
+} res_budget;
+
+void res_budget_init(res_budget *b, double budget_ms);
+
+/* This frame: key is the picture (res_budget_key), now_s a clock in
+ * seconds, last_frame_ms the wall time of the previous frame (0: not a fair
+ * measure, e.g. it reloaded the scene), force_full a frame that must be at
+ * full resolution (a screenshot, heat maps read back). Returns whether the
+ * scene must be drawn, at *scale; false: the frame drawn last (at
+ * b->drawn_scale) is still the picture. */
+bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_frame_ms, bool force_full,
+                     double *scale);
+
+/* One frame drawn at scale took ms: the next changing frame's scale. */
+void res_budget_feed(res_budget *b, double ms, double scale);
+
+/* The internal size for a w x h area at scale: each side rounded, at
+ * least 1 pixel, exactly w x h at scale 1. */
+void res_budget_size(double scale, int w, int h, int *iw, int *ih);
+
+/* The picture's key: FNV-1a over n bytes, continuing from h
+ * (RES_BUDGET_KEY_SEED to start). */
+uint64_t res_budget_key(uint64_t h, const void *data, size_t n);
+
+#endif
