@@ -160,6 +160,32 @@ static unif_entry *uniform_of(render *r, const char *program, const char *name) 
     return NULL;
 }
 
+/* `Texture2D 6 screen screen`: the target is the frame's size and
+ * follows it; screen_half and screen_quarter are a half and a quarter of
+ * it, rounded up; the names are no sliders (no warning). */
+static void test_target_sized_by_the_screen(void) {
+    scratch_write("tsize2.frag", "#version 330 compatibility\nuniform sampler2D uT;\nuniform sampler2D uU;\n"
+                              "out vec4 c;\nvoid main() { c = vec4(vec2(textureSize(uT, 0)), vec2(textureSize(uU, 0))); }\n");
+    scratch_write("screen.glib", "##OpenGL GLIB\nTexture2D 6 screen screen float\n"
+                              "Texture2D 7 screen_half screen_quarter depth\n"
+                              "Vertex flat.vert\nFragment tsize2.frag\nProgram S uT 6 uU 7\nQuadXY 0 1 1 1\n");
+    render *r = NULL;
+    float *a = draw(scratch_path("screen.glib"), 5, 3, 0, &r);
+    CHECK_MSG(!strstr(render_messages(r), "screen"), "%s", render_messages(r));   /* no 'no Program' warning */
+    CHECK_NEAR(a[0], 5, 0);
+    CHECK_NEAR(a[1], 3, 0);
+    CHECK_NEAR(a[2], 3, 0);      /* 5 / 2 rounded up */
+    CHECK_NEAR(a[3], 1, 0);      /* 3 / 4 rounded up */
+    float *b = draw(scratch_path("screen.glib"), 9, 8, 0, &r);   /* the frame resized: the targets follow */
+    CHECK_NEAR(b[0], 9, 0);
+    CHECK_NEAR(b[1], 8, 0);
+    CHECK_NEAR(b[2], 5, 0);
+    CHECK_NEAR(b[3], 2, 0);
+    free(b);
+    free(a);
+    render_destroy(r);
+}
+
 /* `Texture2D 6 uRes uRes`: the target is uRes texels a side and follows
  * the slider; a RenderToTextureOnce block into it draws again after a
  * resize; uTargetSize tells the program drawing into it its size. */
@@ -319,6 +345,7 @@ int main(void) {
     RUN(test_render_to_texture_once);
     RUN(test_points_add_up);
     RUN(test_target_sized_by_a_slider);
+    RUN(test_target_sized_by_the_screen);
     RUN(test_points_from_a_slider);
     RUN(test_water_grid_follows_a_sliding_surface);
     RUN(test_splat_conserves_energy);

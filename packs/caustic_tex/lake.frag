@@ -65,7 +65,8 @@ vec2 screenOf(vec3 p) {
 }
 
 // The world point the refraction pass saw at uv (moved onto the screen's
-// edge when it lies outside); false where it saw nothing.
+// edge when it lies outside); false where it saw nothing or the sky (the
+// pass draws World all: the screen's world is a copy of it).
 bool refractPoint(inout vec2 uv, out vec3 p) {
     ivec2 size = textureSize(uRefractDepth, 0);
     vec2 half_texel = 0.5 / vec2(size);
@@ -73,7 +74,7 @@ bool refractPoint(inout vec2 uv, out vec3 p) {
     float z = texelFetch(uRefractDepth, ivec2(uv * vec2(size)), 0).r;
     vec4 c = gl_ModelViewProjectionMatrixInverse * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
     p = c.xyz / c.w;
-    return z < 1.0;
+    return z < SKY_DEPTH;
 }
 
 // The floor's normal at uv from the depth of two neighbouring texels.
@@ -263,37 +264,47 @@ float mirrorKeep(vec2 uv) {
     return clamp(inside / (0.5 * band), 0.0, 1.0);
 }
 
-// Above the water: what the surface reflects along r, the world above from
-// the mirrored pass where it shows something, else the sky.
-vec3 reflectionAbove(vec3 P, vec3 r) {
-    vec3 c = texture(uSky, r).rgb;
+// The mirrored pass along r: where it shows something (uv, the point
+// there and its colour). Both sides of the surface read it once (main):
+// llvmpipe runs both sides of a per-pixel `if`, masked, so a lookup written
+// in each costs every fragment two.
+struct Mirror {
+    bool hit;
     vec2 uv;
     vec3 shown;
-    if (targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + uWorldScale * r, uv, shown))
-        c = mix(c, texture(uReflectColor, uv).rgb, mirrorKeep(uv));
-    return c;
+    vec3 color;
+};
+
+Mirror mirrorAlong(vec3 P, vec3 r) {
+    Mirror m;
+    m.hit = targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + uWorldScale * r, m.uv, m.shown);
+    m.color = texture(uReflectColor, m.uv).rgb;
+    return m;
+}
+
+// Above the water: what the surface reflects, the world above from the
+// mirrored pass where it shows something, else the sky (along r).
+vec3 reflectionAbove(vec3 sky, Mirror m) {
+    return m.hit ? mix(sky, m.color, mirrorKeep(m.uv)) : sky;
 }
 
 // Under the water (the passes swapped: the refraction target holds the
 // world above, the mirror target the world below): Snell's window, the
-// world above and the sky along the refracted ray T, and total internal
-// reflection outside it; the eye's own path in water absorbs both.
-vec3 fromBelow(vec3 P, vec3 n, vec3 e) {
-    float cosI = clamp(dot(e, n), 0.0, 1.0);
-    vec3 T = refract(-e, n, uIOR);               // 0 past the critical angle
+// world above and the sky (along the refracted ray T) and total internal
+// reflection outside it; the eye's own path in water absorbs both. R: the
+// Fresnel reflectance from the water.
+vec3 fromBelow(vec3 P, vec3 T, vec3 sky, Mirror m, float R) {
     vec3 outside = vec3(0.0);
     vec2 uv;
     vec3 shown;
-    if (dot(T, T) > 0.0) {
-        outside = texture(uSky, T).rgb;
+    if (dot(T, T) > 0.0) {                       // 0 past the critical angle
+        outside = sky;
         if (targetPoint(gl_ModelViewProjectionMatrix, gl_ModelViewProjectionMatrixInverse, uRefractDepth,
                         P + uWorldScale * T, uv, shown))
             outside = texture(uRefractColor, uv).rgb;
     }
-    vec3 r = reflect(-e, n), inside = vec3(0.0);  // nothing seen: all absorbed
-    if (targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + uWorldScale * r, uv, shown))
-        inside = texture(uReflectColor, uv).rgb * exp(-uAbsorption * distance(P, shown)) * mirrorKeep(uv);
-    float R = worldFresnel(cosI, uIOR, 1.0);
+    vec3 inside = vec3(0.0);                     // nothing seen: all absorbed
+    if (m.hit) inside = m.color * exp(-uAbsorption * distance(P, m.shown)) * mirrorKeep(m.uv);
     return mix(outside, inside, R) * exp(-uAbsorption * distance(uCameraPos, P));
 }
 
@@ -308,17 +319,23 @@ void main() {
     vec3 e = normalize(uCameraPos - P);
     bool below = dot(e, n) < 0.0;
     if (below) n = -n;
-    if (uCameraPos.y < uWaterLevel) {           // pack.glib's under_water passes
-        fragColor = vec4(fromBelow(P, n, e), 1.0);
+    bool underCam = uCameraPos.y < uWaterLevel;  // pack.glib's under_water passes
+    bool fromWater = below || underCam;
+    float cosI = clamp(dot(e, n), 0.0, 1.0);
+    vec3 r = reflect(-e, n);
+    vec3 tr = refract(-e, n, fromWater ? uIOR : 1.0 / uIOR);   // 0 past the critical angle
+    Mirror mirror = mirrorAlong(P, r);
+    vec3 sky = texture(uSky, underCam && dot(tr, tr) > 0.0 ? tr : r).rgb;
+    float R = worldFresnel(cosI, fromWater ? uIOR : 1.0, fromWater ? 1.0 : uIOR);
+    if (underCam) {
+        fragColor = vec4(fromBelow(P, tr, sky, mirror, R), 1.0);
         return;
     }
-    float cosI = clamp(dot(e, n), 0.0, 1.0);
 
     // the floor along the refracted ray: the point seen straight behind
     // gives the depth D of a level floor under P; the refracted ray meets
     // that level at P + tr D / -tr.y; the point seen there gives the next
     // D (twice: a fixed-point iteration on the floor's height)
-    vec3 tr = refract(-e, n, below ? uIOR : 1.0 / uIOR);
     vec2 uv0 = screenOf(P), uvF = uv0;
     vec3 F0, F;
     bool hit0 = refractPoint(uv0, F0), hit = hit0;
@@ -349,7 +366,6 @@ void main() {
     fragColor = vec4(E * K, 1.0);
     return;
 #endif
-    float R = below ? worldFresnel(cosI, uIOR, 1.0) : worldFresnel(cosI, 1.0, uIOR);
 #if DEBUG_OUTPUT == 1
     fragColor = vec4(hit ? F : vec3(0.0), 1.0);
     return;
@@ -364,7 +380,7 @@ void main() {
     vec3 turquoise = uColor * (uKa + uKd * diffuse);
     vec3 color = mix(under, turquoise, uWaterRefractMix);
 #ifdef SKY_REFLECTION
-    color = R * reflectionAbove(P, reflect(-e, n)) + (1.0 - R) * color;
+    color = R * reflectionAbove(sky, mirror) + (1.0 - R) * color;
 #endif
     color += uKs * pow(max(dot(reflect(-uSunDir, n), e), 0.0), max(uShininess, 1.0)) * uSunIrradiance;
 

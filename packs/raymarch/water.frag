@@ -209,30 +209,35 @@ void main() {
     vec3 p = vWorldPos;
     vec3 e = normalize(uCameraPos - p);
     bool below = dot(e, n) < 0.0;
-    float F, s;
+    // Each side of the surface marches one ray down (through the ground
+    // solid) and one up (the above-water one): from above, the refracted
+    // ray down and the reflected one up; from below, the reflected ray down
+    // and the refracted one up. The directions are chosen first and each
+    // march is written once: llvmpipe runs both sides of a per-pixel `if`
+    // (masked), so a march in each branch costs every fragment four.
+    vec3 nb = below ? -n : n;
+    float cosI = clamp(dot(e, nb), 0.0, 1.0);
+    vec3 rdir = reflect(-e, nb);
+    vec3 tdir = refract(-e, nb, below ? uIOR : 1.0 / uIOR);   // (0, 0, 0) on TIR (from below only)
+    bool tir = below && dot(tdir, tdir) == 0.0;
+    float F = below ? (tir ? 1.0 : fresnelFromWater(cosI)) : fresnelFromAir(cosI);
+    float s;
+    vec3 hitD, hitU;
+    int stD, stU;
+    vec3 down = attenuate(groundAlong(p, below ? rdir : tdir, s, hitD, stD), s);
+    vec3 up = aboveAlong(p, below ? tdir : rdir, hitU, stU);
     vec3 color, hitT, hitR;
     int stT, stR;
     if (!below) {
-        float cosI = clamp(dot(e, n), 0.0, 1.0);
-        F = fresnelFromAir(cosI);
-        vec3 rdir = reflect(-e, n);
-        vec3 tdir = refract(-e, n, 1.0 / uIOR);   // from the air there is no TIR
-        vec3 refr = attenuate(groundAlong(p, tdir, s, hitT, stT), s);
-        vec3 refl = aboveAlong(p, rdir, hitR, stR);
         vec3 spec = uSpecular * uSunIrradiance * pow(max(dot(rdir, uSunDir), 0.0), uShininess);
-        color = F * (refl + spec) + (1.0 - F) * refr;
+        color = F * (up + spec) + (1.0 - F) * down;
+        hitT = hitD; stT = stD; hitR = hitU; stR = stU;
     } else {
-        n = -n;
-        float cosI = clamp(dot(e, n), 0.0, 1.0);
-        vec3 tdir = refract(-e, n, uIOR);         // (0, 0, 0) on total internal reflection
-        bool tir = dot(tdir, tdir) == 0.0;
-        F = tir ? 1.0 : fresnelFromWater(cosI);
-        vec3 refl = attenuate(groundAlong(p, reflect(-e, n), s, hitR, stR), s);
-        vec3 refr = vec3(0.0);
-        hitT = vec3(0.0);
-        stT = MARCH_LEFT;
-        if (!tir) refr = aboveAlong(p, tdir, hitT, stT);
-        color = F * refl + (1.0 - F) * refr;
+        vec3 refr = tir ? vec3(0.0) : up;
+        color = F * down + (1.0 - F) * refr;
+        hitR = hitD; stR = stD;
+        hitT = tir ? vec3(0.0) : hitU;
+        stT = tir ? MARCH_LEFT : stU;
         // the camera's own path in water (camera under the mean level)
         if (uCameraPos.y < uWaterLevel) color = attenuate(color, length(uCameraPos - p));
     }

@@ -331,9 +331,31 @@ static int slider_count(const scene_state *s, const char *name, int max) {
     return n < 1 ? 1 : n > max ? max : (int)n;
 }
 
-/* Render targets whose size a slider gives follow its value; a resized
- * target loses its contents, so RenderToTextureOnce blocks draw again. */
-static void size_targets(render *r) {
+/* A target side named `screen` is the frame's (a pass whose output is read
+ * pixel for pixel by a screen pass needs no more and no less),
+ * `screen_half` and `screen_quarter` a half and a quarter of it (rounded
+ * up: a pass whose output is blurred or faint anyway); any other name is a
+ * slider's (slider_count). */
+static int screen_divisor(const char *name) {
+    static const struct { const char *name; int div; } sides[] = {
+        { "screen", 1 }, { "screen_half", 2 }, { "screen_quarter", 4 },
+    };
+    for (size_t i = 0; i < sizeof sides / sizeof sides[0]; i++)
+        if (strcmp(name, sides[i].name) == 0) return sides[i].div;
+    return 0;
+}
+
+static int target_side(const scene_state *s, const char *name, int screen, int max) {
+    int div = screen_divisor(name);
+    if (!div) return slider_count(s, name, max);
+    int n = (screen + div - 1) / div;
+    return n < 1 ? 1 : n > max ? max : n;
+}
+
+/* Render targets whose size a slider (or the frame) gives follow it; a
+ * resized target loses its contents, so RenderToTextureOnce blocks draw
+ * again. */
+static void size_targets(render *r, int screen_w, int screen_h) {
     scene_state *s = &r->cur;
     if (!r->max_target) {   /* asked once: the context's limit does not change */
         GLint max = 0;
@@ -347,8 +369,8 @@ static void size_targets(render *r) {
         const glib_cmd *c = &s->glib->cmds[i];
         if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || (!c->name[0] && !c->arg[0]) || s->cmd_res[i] < 0) continue;
         gpu_tex *t = &s->texs[s->cmd_res[i]];
-        int w = c->name[0] ? slider_count(s, c->name, max) : (int)c->num[1];
-        int h = c->arg[0] ? slider_count(s, c->arg, max) : (int)c->num[2];
+        int w = c->name[0] ? target_side(s, c->name, screen_w, max) : (int)c->num[1];
+        int h = c->arg[0] ? target_side(s, c->arg, screen_h, max) : (int)c->num[2];
         if (w == t->w && h == t->h) continue;
         res_target_resize(t, w, h);
         memset(s->once_done, 0, (size_t)s->glib->ncmds * sizeof *s->once_done);
@@ -365,6 +387,7 @@ static void check_named_counts(const scene_state *s, char **log) {
         for (int k = 0; k < 2; k++) {
             float v;
             if (!names[k] || !names[k][0] || (k == 1 && strcmp(names[1], names[0]) == 0)) continue;
+            if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY && screen_divisor(names[k])) continue;
             if (!program_value(s, names[k], &v))
                 str_appendf(log, "%s:%d: warning: %s: no Program of this glib has a uniform '%s' to give "
                             "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)\n",
@@ -1157,7 +1180,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     glDisable(GL_SCISSOR_TEST);
     if (s->glib) {
         render_view v = view ? *view : s->set.view;
-        size_targets(r);
+        size_targets(r, w, h);
         world_follow_waves(&r->world, t);
         bind_builtin_noise(r, s);
         bind_textures(s);
