@@ -286,6 +286,33 @@ static void test_water_grid_follows_a_sliding_surface(void) {
     free(px);
 }
 
+/* uWaterShift is where tarn moved the rest points of a sliding surface:
+ * the one point of `WaterSurface points 1` (the cell centre 0 0 before the
+ * move) writes its rest point into the left pixel, a quad writes
+ * uWaterShift into the right one; they agree, and the move is not 0. */
+static void test_water_shift_uniform(void) {
+    scratch_write("restpt.vert", "#version 330 compatibility\nout vec2 vR;\n"
+                              "void main() { vR = gl_Vertex.xz; gl_Position = vec4(-0.5, 0., 0., 1.); }\n");
+    scratch_write("restpt.frag", "#version 330 compatibility\nin vec2 vR;\nout vec4 c;\n"
+                              "void main() { c = vec4(vR, 0., 1.); }\n");
+    scratch_write("right.vert", "#version 330 compatibility\n"
+                             "void main() { gl_Position = vec4(gl_Vertex.x * 0.5 + 0.5, gl_Vertex.y, 0., 1.); }\n");
+    scratch_write("shift.frag", "#version 330 compatibility\nuniform vec2 uWaterShift;\nout vec4 c;\n"
+                             "void main() { c = vec4(uWaterShift, 0., 1.); }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sWaveGerstner 0 100000 0.1 0.000001 0\nWaveSteepness 0.6\n"
+             "Background 0 0 0 0\nDepthTest off\nVertex restpt.vert\nFragment restpt.frag\nProgram P\n"
+             "WaterSurface points 1\nVertex right.vert\nFragment shift.frag\nProgram S\nQuadXY 0 1 1 1\n", world);
+    scratch_write("shift.glib", text);
+    float *px = draw(scratch_path("shift.glib"), 2, 1, 3.0, NULL);
+    fprintf(stderr, "  rest point of the centre cell %.4f %.4f, uWaterShift %.4f %.4f\n", px[0], px[1], px[4],
+            px[5]);
+    CHECK(fabs(px[0]) > 0.1);              /* the surface slid: the points moved */
+    CHECK_NEAR(px[4], px[0], 1e-5);
+    CHECK_NEAR(px[5], px[1], 1e-5);
+    free(px);
+}
+
 /* @caustics is generated, tileable, with mean 1. */
 static void test_generated_caustics(void) {
     scratch_write("caus.frag", "#version 330 compatibility\nuniform sampler2D uC;\nout vec4 c;\n"
@@ -348,6 +375,7 @@ int main(void) {
     RUN(test_target_sized_by_the_screen);
     RUN(test_points_from_a_slider);
     RUN(test_water_grid_follows_a_sliding_surface);
+    RUN(test_water_shift_uniform);
     RUN(test_splat_conserves_energy);
     RUN(test_generated_caustics);
     RUN(test_if_blocks);

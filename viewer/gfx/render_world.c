@@ -355,6 +355,10 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
         glUniform4fv(loc, REF_TERRAIN_DETAIL, &det[0][0]);
     }
     set1(p, "uTime", (float)t);
+    /* where world_follow_waves moved the rest points: a pass that makes
+     * photons per grid cell without drawing the points needs it */
+    GLint shift = glGetUniformLocation(p, "uWaterShift");
+    if (shift >= 0) glUniform2f(shift, (float)gw->water_shift[0], (float)gw->water_shift[1]);
     seti(p, "uSky", WORLD_UNIT_SKY);
     seti(p, "uTerrainAlbedo", WORLD_UNIT_ALBEDO);
     loc = glGetUniformLocation(p, "uCameraPos");

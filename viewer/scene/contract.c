@@ -37,6 +37,7 @@ static const contract_uniform table[] = {
     WORLD("uTerrainHalfSize", "float", "Terrain", "the world is the square |x|, |z| <= this"),
     WORLD("uCameraPos", "vec3", "LookAt", "the current camera's eye, world space"),
     WORLD("uTime", "float", "(the clock)", "simulated seconds"),
+    WORLD("uWaterShift", "vec2", "WaterSurface", "x, z by which the water grid's rest points (and the photon points) are moved"),
     WORLD("uSky", "samplerCube", "Sky", "unit 15: the sky, baked from ref_sky_radiance"),
     WORLD("uTerrainAlbedo", "sampler2D", "Terrain", "unit 14: terrain albedo, s = x, t = z over the world square"),
     WORLD("uWorldScale", "float", "Terrain", "the scene's length unit: terrain half size / 12 m (1 on the lake)"),
