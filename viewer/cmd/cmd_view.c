@@ -8,7 +8,7 @@
 
 static const char usage[] =
     "usage: tarn view FILE.glib [--pack NAME] [--size WxH] [--time SECONDS] [--script FILE]\n"
-    "                 [--record FILE]\n"
+    "                 [--record FILE] [--msaa N]\n"
     "\n"
     "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
     "generated sliders (one section per Program). Every file the scene reads is\n"
@@ -23,6 +23,7 @@ static const char usage[] =
     "                   pause 1|0, reload, window W H, quit), then exit\n"
     "  --record FILE    record what you do (sliders, camera, pause) into the session\n"
     "                   FILE from the start; `tarn record FILE -o out.mp4` replays it\n"
+    CMD_MSAA_HELP
     "\n"
     "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
     "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
@@ -43,6 +44,9 @@ int cmd_view(int argc, char **argv) {
             i++;
         } else if (strcmp(a, "--time") == 0) {
             if (!opt_double(next, &d.time_s)) return cmd_bad_usage(stderr, "tarn", usage, "--time wants seconds");
+            i++;
+        } else if (strcmp(a, "--msaa") == 0) {
+            if (!cmd_opt_msaa(next, &d.samples)) return cmd_bad_usage(stderr, "tarn", usage, "--msaa wants 0..16 samples");
             i++;
         } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
         else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }
