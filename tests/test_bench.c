@@ -338,7 +338,7 @@ static void test_bench_end_to_end(void) {
     snprintf(cmd, sizeof cmd, "mkdir -p %s/docs", tmpdir);
     CHECK(system(cmd) == 0);
     write_file(tmp("docs/benchmark.md"), "# Benchmark\n\nkept\n\n<!-- bench:begin -->\nold\n<!-- bench:end -->\n\ntail\n");
-    int rc = bench(tmp("out"), true, NULL, NULL);
+    int rc = bench(tmp("out"), true, NULL, "4");
     if (rc == TARN_EXIT_NO_GL) SKIP("no OpenGL context");
     CHECK(rc == TARN_EXIT_OK);
 
@@ -361,7 +361,7 @@ static void test_bench_end_to_end(void) {
         CHECK_STR_CONTAINS(json, "\"setting\": \"light\", \"ok\": true");
         CHECK_STR_CONTAINS(json, "\"fresnel\": {\"median\": ");   /* the buffer line */
         CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
-        /* the default MSAA 4 is compared with a 2 x 2 reference */
+        /* MSAA 4 is compared with a 2 x 2 reference */
         CHECK_STR_CONTAINS(json, "\"msaa\": 4, \"reference_spp\": 2");
         CHECK(!strstr(json, ": nan") && !strstr(json, "NaN") && !strstr(json, "\"rmse\": null"));
     }
@@ -402,13 +402,13 @@ static void test_bench_end_to_end(void) {
     CHECK(stat(tmp("out/ref"), &st) != 0);
 
     /* again: the references come from the cache */
-    CHECK(bench(tmp("out"), false, NULL, NULL) == TARN_EXIT_OK);
+    CHECK(bench(tmp("out"), false, NULL, "4") == TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 0, \"references_cached\": 2");
     free(json);
 
     /* --ref-cache DIR: an empty cache there, so rendered again, into DIR */
-    CHECK(bench(tmp("out"), false, tmp("alt-cache"), NULL) == TARN_EXIT_OK);
+    CHECK(bench(tmp("out"), false, tmp("alt-cache"), "4") == TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
     free(json);

@@ -19,12 +19,13 @@ typedef struct render render;
 typedef struct render_desc {
     const char *repo_root;      /* 0: tarn_root(); packs/common is an include dir */
     const char *pack;           /* 0: the scene's own `Pack`; else this pack instead */
-    int samples;                /* MSAA of the screen passes: 0 RENDER_MSAA_DEFAULT, 1 off, else N */
+    int samples;                /* MSAA of the screen passes: 0 the default, 1 off, else N */
 } render_desc;
 
 /* Anti-aliasing: the screen passes are drawn multisampled and resolved
  * into the caller's framebuffer (render_msaa.h); RenderToTexture passes
- * are single-sample. */
+ * are single-sample. The default is RENDER_MSAA_DEFAULT samples on a GPU
+ * and off on a CPU rasteriser (llvmpipe), where 4x costs 2-3x the frame. */
 #define RENDER_MSAA_DEFAULT 4
 
 typedef struct render_view {

@@ -8,14 +8,22 @@
 
 #include "render.h"
 
+/* A rasteriser on the CPU, where 4x MSAA costs 2-3x the frame (measured
+ * on llvmpipe, docs/benchmark.md): anti-aliasing is asked for there. */
+static bool cpu_rasteriser(void) {
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    return r && (strstr(r, "llvmpipe") || strstr(r, "softpipe") || strstr(r, "SwiftShader") || strstr(r, "lavapipe"));
+}
+
 int render_msaa_effective(render_msaa *m, int requested) {
-    int n = requested > 0 ? requested : RENDER_MSAA_DEFAULT;
-    if (n <= 1) return 1;
     if (!m->max_samples) {
         GLint v = 0;
         glGetIntegerv(GL_MAX_SAMPLES, &v);
         m->max_samples = v > 1 ? v : 1;
+        m->default_samples = cpu_rasteriser() ? 1 : RENDER_MSAA_DEFAULT;
     }
+    int n = requested > 0 ? requested : m->default_samples;
+    if (n <= 1) return 1;
     return n < m->max_samples ? n : m->max_samples;
 }
 
@@ -77,7 +85,8 @@ void render_msaa_free(render_msaa *m) {
     if (m->fbo) glDeleteFramebuffers(1, &m->fbo);
     if (m->color) glDeleteRenderbuffers(1, &m->color);
     if (m->depth) glDeleteRenderbuffers(1, &m->depth);
-    int max = m->max_samples;
+    int max = m->max_samples, def = m->default_samples;
     memset(m, 0, sizeof *m);
     m->max_samples = max;
+    m->default_samples = def;
 }

@@ -17,10 +17,12 @@ typedef struct render_msaa {
     int w, h, samples;
     unsigned format;          /* the colour's GL internal format */
     int max_samples;          /* GL_MAX_SAMPLES (0: not asked yet) */
+    int default_samples;      /* what 0 asks for on this GL: RENDER_MSAA_DEFAULT, 1 on a CPU rasteriser */
 } render_msaa;
 
-/* The samples a request gives on this GL: 0 the default, 1 off, else
- * clamped to what the GL allows. */
+/* The samples a request gives on this GL: 0 the default (RENDER_MSAA_DEFAULT
+ * on a GPU, off on a CPU rasteriser such as llvmpipe, where it costs 2-3x
+ * the frame), 1 off, else clamped to what the GL allows. */
 int render_msaa_effective(render_msaa *m, int requested);
 
 /* Binds the multisampled target for a w x h frame that will be resolved
