@@ -183,8 +183,9 @@ static bool finish_reference(cview *v) {
     v->show_heat = true;
     v->reported = false;
     for (int i = 0; i < v->n; i++) v->packs[i].have_heat = false;
-    snprintf(v->heat_status, sizeof v->heat_status, "reference %dx%d at t = %.3f s, computed in %.1f s",
-             v->ref_w, v->ref_h, v->ref_t, clock_now_s() - v->pend_started);
+    snprintf(v->heat_status, sizeof v->heat_status,
+             "reference %dx%d at t = %.3f s (%dx%d subsamples, as the packs' MSAA), computed in %.1f s", v->ref_w,
+             v->ref_h, v->ref_t, v->ref_opts.spp, v->ref_opts.spp, clock_now_s() - v->pend_started);
     fprintf(stderr, "tarn compare-view: %s\n", v->heat_status);
     return true;
 }
