@@ -67,3 +67,8 @@ add_test(NAME window_budget_xvfb
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_budget_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_budget_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")
+# The window anti-aliases (--msaa) without changing the picture's brightness.
+add_test(NAME window_msaa_xvfb
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_msaa_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(window_msaa_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")

@@ -305,7 +305,7 @@ static void test_pack_list(void) {
 
 /* ref_cache NULL: the default cache, $XDG_CACHE_HOME/tarn/ref (main points
  * XDG_CACHE_HOME into the test's folder, never the user's cache). */
-static int bench(const char *out, bool docs, const char *ref_cache) {
+static int bench(const char *out, bool docs, const char *ref_cache, const char *msaa) {
     char docs_path[768], cache[768];
     snprintf(docs_path, sizeof docs_path, "%s", tmp("docs/benchmark.md"));
     snprintf(cache, sizeof cache, "%s", ref_cache ? ref_cache : "");
@@ -315,6 +315,7 @@ static int bench(const char *out, bool docs, const char *ref_cache) {
     int argc = 16;
     if (ref_cache) { argv[argc++] = "--ref-cache"; argv[argc++] = cache; }
     if (docs) { argv[argc++] = "--docs"; argv[argc++] = docs_path; }
+    if (msaa) { argv[argc++] = "--msaa"; argv[argc++] = msaa; }
     return cmd_bench(argc, (char **)argv);
 }
 
@@ -337,7 +338,7 @@ static void test_bench_end_to_end(void) {
     snprintf(cmd, sizeof cmd, "mkdir -p %s/docs", tmpdir);
     CHECK(system(cmd) == 0);
     write_file(tmp("docs/benchmark.md"), "# Benchmark\n\nkept\n\n<!-- bench:begin -->\nold\n<!-- bench:end -->\n\ntail\n");
-    int rc = bench(tmp("out"), true, NULL);
+    int rc = bench(tmp("out"), true, NULL, "4");
     if (rc == TARN_EXIT_NO_GL) SKIP("no OpenGL context");
     CHECK(rc == TARN_EXIT_OK);
 
@@ -360,6 +361,8 @@ static void test_bench_end_to_end(void) {
         CHECK_STR_CONTAINS(json, "\"setting\": \"light\", \"ok\": true");
         CHECK_STR_CONTAINS(json, "\"fresnel\": {\"median\": ");   /* the buffer line */
         CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
+        /* MSAA 4 is compared with a 2 x 2 reference */
+        CHECK_STR_CONTAINS(json, "\"msaa\": 4, \"reference_spp\": 2");
         CHECK(!strstr(json, ": nan") && !strstr(json, "NaN") && !strstr(json, "\"rmse\": null"));
     }
     free(json);
@@ -368,6 +371,7 @@ static void test_bench_end_to_end(void) {
     if (md) {
         CHECK_STR_CONTAINS(md, "| probe | dark |");
         CHECK_STR_CONTAINS(md, "Cost floor (a full-screen pass with one texture fetch)");
+        CHECK_STR_CONTAINS(md, "Anti-aliasing: MSAA 4x; the reference takes 2 x 2 subsamples per pixel, to match.");
     }
     free(md);
     char *page = read_file(tmp("docs/benchmark.md"));
@@ -398,16 +402,28 @@ static void test_bench_end_to_end(void) {
     CHECK(stat(tmp("out/ref"), &st) != 0);
 
     /* again: the references come from the cache */
-    CHECK(bench(tmp("out"), false, NULL) == TARN_EXIT_OK);
+    CHECK(bench(tmp("out"), false, NULL, "4") == TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 0, \"references_cached\": 2");
     free(json);
 
     /* --ref-cache DIR: an empty cache there, so rendered again, into DIR */
-    CHECK(bench(tmp("out"), false, tmp("alt-cache")) == TARN_EXIT_OK);
+    CHECK(bench(tmp("out"), false, tmp("alt-cache"), "4") == TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
     free(json);
+
+    /* MSAA off: a 1 x 1 reference, which the 2 x 2 ones in the cache are not */
+    CHECK(bench(tmp("out"), false, tmp("alt-cache"), "0") == TARN_EXIT_OK);
+    json = read_file(tmp("out/bench.json"));
+    if (json) {
+        CHECK_STR_CONTAINS(json, "\"msaa\": 1, \"reference_spp\": 1");
+        CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
+    }
+    free(json);
+    md = read_file(tmp("out/report.md"));
+    if (md) CHECK_STR_CONTAINS(md, "Anti-aliasing: off; the reference takes 1 x 1 subsamples per pixel, to match.");
+    free(md);
     CHECK(count_files(tmp("alt-cache"), ".exr") > 0);
 }
 

@@ -20,6 +20,7 @@ typedef struct cli_render_desc {
     const char *setting;        /* --setting NAME: a row of the pack's bench.txt, before the --sets */
     const char *const *sets;    /* --set PROGRAM.NAME=V[,V...] or NAME=V: sliders, checkboxes, Defines */
     int nsets;
+    int samples;                /* MSAA (render_desc.samples): 0 the default, 1 off */
 } cli_render_desc;
 
 int cli_render(const cli_render_desc *d);

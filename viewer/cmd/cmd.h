@@ -51,6 +51,13 @@ bool cmd_wants_help(int argc, char **argv);
 bool cmd_opt_range(const char *s, double lo, double hi, double *out);
 bool cmd_opt_int(const char *s, int lo, int hi, int *out);
 
+/* --msaa N: anti-aliasing samples 0..16 into a render_desc.samples value
+ * (0 and 1: off, which is 1 there; zero there means the default). */
+bool cmd_opt_msaa(const char *s, int *samples);
+#define CMD_MSAA_HELP \
+    "  --msaa N         anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
+    "                   a GPU, off on a CPU rasteriser such as llvmpipe: 2-3x the time)\n"
+
 /* Splits a copy of list (in buf) at commas into at most max parts; the
  * number of parts, or -1 when there are more than max. */
 int cmd_split(const char *list, char *buf, size_t buflen, const char **parts, int max);

@@ -36,7 +36,10 @@ static const char usage[] =
     "                     use (auto: wall time on a CPU rasteriser such as\n"
     "                     llvmpipe, whose GPU timestamps do not time the\n"
     "                     rasterisation; GPU time otherwise)\n"
-    "  --ref-spp N        reference subsamples N x N (default 1)\n"
+    "  --msaa N           anti-aliasing of the packs: N samples per pixel, 0 or 1 off\n"
+    "                     (default 4 on a GPU, off on a CPU rasteriser such as llvmpipe)\n"
+    "  --ref-spp N        reference subsamples N x N (default: matched to --msaa,\n"
+    "                     2 x 2 for 4 samples, 1 x 1 when off)\n"
     "  --ref-photons N    reference photons per caustic cell (default 36)\n"
     "  --ref-caustic-res N  reference caustic grid (default 256)\n"
     "  --ref-cache DIR    where the reference images are cached (default\n"
@@ -93,6 +96,8 @@ static int parse_number(const char *a, const char *next, bench_desc *d, bool *ma
     } else if (strcmp(a, "--ref-spp") == 0) {
         if (!cmd_opt_range(next, 1, 16, &v)) return BAD("--ref-spp wants 1..16");
         d->ref.spp = (int)v;
+    } else if (strcmp(a, "--msaa") == 0) {
+        if (!cmd_opt_msaa(next, &d->samples)) return BAD("--msaa wants 0..16 samples");
     } else if (strcmp(a, "--ref-photons") == 0) {
         if (!cmd_opt_range(next, 1, 1 << 20, &v)) return BAD("--ref-photons wants 1..1048576");
         d->ref.photons_per_cell = (int)v;

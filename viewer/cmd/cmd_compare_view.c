@@ -9,7 +9,7 @@
 
 static const char usage[] =
     "usage: tarn compare-view SCENE.glib --packs a,b[,c,d] [--size WxH] [--time SECONDS]\n"
-    "                         [--script FILE] [--ref-caustic-res N] [--ref-photons N]\n"
+    "                         [--script FILE] [--ref-caustic-res N] [--ref-photons N] [--msaa N]\n"
     "\n"
     "Two to four packs side by side in one window, sharing one camera, one clock\n"
     "and the scene's world; each pack keeps its own sliders in the panel. The\n"
@@ -23,6 +23,10 @@ static const char usage[] =
     "                       heat-max E, orbit DX DY, timings, expect-heat), then exit\n"
     "  --ref-caustic-res N  the heat maps' reference: caustic grid (default 128)\n"
     "  --ref-photons N      ...and photons per cell (default 16)\n"
+    "  --msaa N             anti-aliasing: N samples per pixel, 0 or 1 off (default 4\n"
+    "                       on a GPU, off on a CPU rasteriser such as llvmpipe);\n"
+    "                       the heat maps' reference takes the matching subsamples\n"
+    "                       (2 x 2 for 4, 1 x 1 when off)\n"
     "\n"
     "layouts: grid (two in a row, three or four in 2 x 2) and wipe (two packs over\n"
     "one view, the divider dragged with the left mouse button)\n"
@@ -49,6 +53,9 @@ int cmd_compare_view(int argc, char **argv) {
             i++;
         } else if (strcmp(a, "--time") == 0) {
             if (!opt_double(next, &d.time_s)) return bad("--time wants seconds");
+            i++;
+        } else if (strcmp(a, "--msaa") == 0) {
+            if (!cmd_opt_msaa(next, &d.samples)) return bad("--msaa wants 0..16 samples");
             i++;
         } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
         else if (strcmp(a, "--packs") == 0 && next) {

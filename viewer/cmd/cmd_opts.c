@@ -42,6 +42,13 @@ bool cmd_opt_int(const char *s, int lo, int hi, int *out) {
     return true;
 }
 
+bool cmd_opt_msaa(const char *s, int *samples) {
+    int n;
+    if (!cmd_opt_int(s, 0, 16, &n)) return false;
+    *samples = n < 1 ? 1 : n;
+    return true;
+}
+
 int cmd_split(const char *list, char *buf, size_t buflen, const char **parts, int max) {
     snprintf(buf, buflen, "%s", list);
     int n = 0;

@@ -25,6 +25,7 @@ typedef struct record_desc {
     const char *session, *out;
     int width, height;           /* 0: the session's size, else the glib's WindowSize */
     int fps;                     /* 0: 30 */
+    int samples;                 /* MSAA (render_desc.samples): 0 the default, 1 off */
     bool quiet;
 } record_desc;
 
@@ -75,13 +76,13 @@ static int replay(const session *s, render *r, gl_ctx *ctx, const render_target 
 
 /* The scene, loaded with the session's pack (*ok: without errors; what
  * compiled is still drawn, as `tarn render` does); NULL when there is none. */
-static render *load_scene(const session *s, bool *ok) {
+static render *load_scene(const session *s, int samples, bool *ok) {
     if (!file_exists(s->scene)) {
         fprintf(stderr, "%s: error: the session's scene %s is not there (moved? edit its `scene` line)\n", s->path,
                 s->scene);
         return NULL;
     }
-    render_desc rd = { .pack = s->pack[0] ? s->pack : NULL };
+    render_desc rd = { .pack = s->pack[0] ? s->pack : NULL, .samples = samples };
     render *r = render_create(&rd);
     *ok = render_load(r, s->scene);
     if (render_messages(r)[0]) fputs(render_messages(r), stderr);
@@ -93,7 +94,7 @@ static int record_with(const record_desc *d, const session *s, bool parsed_ok) {
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     bool scene_ok = false;
-    render *r = load_scene(s, &scene_ok);
+    render *r = load_scene(s, d->samples, &scene_ok);
     if (!r) { gl_ctx_destroy(ctx); return TARN_EXIT_INPUT; }
     int w = d->width, h = d->height;
     if (w <= 0 || h <= 0) { w = s->width; h = s->height; }
@@ -139,7 +140,7 @@ static int record(const record_desc *d) {
 /* ---- the command line ---- */
 
 static const char usage[] =
-    "usage: tarn record SESSION -o OUT [--size WxH] [--fps N] [--quiet]\n"
+    "usage: tarn record SESSION -o OUT [--size WxH] [--fps N] [--msaa N] [--quiet]\n"
     "\n"
     "Replays a session recorded by `tarn view` (Shift+R, or --record FILE)\n"
     "without any display (EGL, as `tarn render`): its slider, colour, checkbox\n"
@@ -152,6 +153,7 @@ static const char usage[] =
     "                   without ffmpeg the frames go to OUT-frames/ as PNGs\n"
     "  --size WxH       frame size (default: the window's when recording)\n"
     "  --fps N          frames per second, 1..240 (default 30)\n"
+    CMD_MSAA_HELP
     "  --quiet          print only errors\n"
     "\n"
     "exit codes: 0 ok, 1 the session or scene has errors, 2 bad usage, 3 no OpenGL\n";
@@ -171,6 +173,9 @@ int cmd_record(int argc, char **argv) {
             i++;
         } else if (strcmp(a, "--fps") == 0) {
             if (!cmd_opt_int(next, 1, 240, &d.fps)) return bad("--fps wants a whole number 1..240");
+            i++;
+        } else if (strcmp(a, "--msaa") == 0) {
+            if (!cmd_opt_msaa(next, &d.samples)) return bad("--msaa wants 0..16 samples");
             i++;
         } else if (strcmp(a, "--quiet") == 0) d.quiet = true;
         else if (a[0] == '-') return bad("unknown option");

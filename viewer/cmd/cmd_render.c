@@ -103,7 +103,7 @@ int cli_render(const cli_render_desc *d) {
     char err[1024];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
-    render_desc rd = { .pack = d->pack };
+    render_desc rd = { .pack = d->pack, .samples = d->samples };
     render *r = render_create(&rd);
     bool ok = render_load(r, d->glib);
     if (render_messages(r)[0]) fputs(render_messages(r), stderr);
@@ -168,7 +168,7 @@ int cli_render(const cli_render_desc *d) {
 
 static const char usage[] =
     "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
-    "                   [--setting NAME] [--set PROGRAM.NAME=VALUE]...\n"
+    "                   [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
     "\n"
     "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
     "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
@@ -183,6 +183,7 @@ static const char usage[] =
     "                   default, paper, ...), as the panel's Setting combo does\n"
     "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
     "                   as the panel would (NAME=V: of every Program); repeatable\n"
+    CMD_MSAA_HELP
     "  --quiet          print only errors\n"
     "\n"
     "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
@@ -207,6 +208,9 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
         } else if (strcmp(a, "--frames") == 0) {
             if (!cmd_opt_range(next, 1, 100000, &f)) return bad("--frames wants 1..100000");
             d->frames = (int)f;
+            i++;
+        } else if (strcmp(a, "--msaa") == 0) {
+            if (!cmd_opt_msaa(next, &d->samples)) return bad("--msaa wants 0..16 samples");
             i++;
         } else if (strcmp(a, "--pack") == 0 && next) { d->pack = next; i++; }
         else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }

@@ -8,7 +8,7 @@
 
 static const char usage[] =
     "usage: tarn view FILE.glib [--pack NAME] [--setting NAME] [--size WxH] [--time SECONDS]\n"
-    "                 [--script FILE] [--record FILE]\n"
+    "                 [--script FILE] [--record FILE] [--msaa N]\n"
     "\n"
     "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
     "generated sliders (one section per Program). Every file the scene reads is\n"
@@ -26,6 +26,7 @@ static const char usage[] =
     "                   then exit\n"
     "  --record FILE    record what you do (sliders, camera, pause) into the session\n"
     "                   FILE from the start; `tarn record FILE -o out.mp4` replays it\n"
+    CMD_MSAA_HELP
     "\n"
     "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
     "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
@@ -46,6 +47,9 @@ int cmd_view(int argc, char **argv) {
             i++;
         } else if (strcmp(a, "--time") == 0) {
             if (!opt_double(next, &d.time_s)) return cmd_bad_usage(stderr, "tarn", usage, "--time wants seconds");
+            i++;
+        } else if (strcmp(a, "--msaa") == 0) {
+            if (!cmd_opt_msaa(next, &d.samples)) return cmd_bad_usage(stderr, "tarn", usage, "--msaa wants 0..16 samples");
             i++;
         } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
         else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }

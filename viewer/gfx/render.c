@@ -16,6 +16,7 @@
 #include "mem.h"
 #include "program.h"
 #include "render_camera.h"
+#include "render_msaa.h"
 #include "render_prog.h"
 #include "render_res.h"
 #include "render_world.h"
@@ -70,6 +71,8 @@ struct render {
     int ndeps;
     unsigned rtt_fbo, rtt_depth;
     int rtt_w, rtt_h;
+    int samples;               /* MSAA requested (render_desc.samples) */
+    render_msaa msaa;          /* the screen passes' multisampled target */
     int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
     gpu_timer timer;           /* per frame and per pass */
     gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, always bound */
@@ -84,6 +87,7 @@ render *render_create(const render_desc *desc) {
     r->include_dirs[0] = r->common_dir;
     snprintf(r->packs_dir, sizeof r->packs_dir, "%s/packs", r->root);
     if (desc && desc->pack) snprintf(r->pack, sizeof r->pack, "%s", desc->pack);
+    r->samples = desc ? desc->samples : 0;
     gpu_timer_init(&r->timer);
     return r;
 }
@@ -120,6 +124,7 @@ void render_destroy(render *r) {
     diag_list_free(&r->diags);
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
+    render_msaa_free(&r->msaa);
     gpu_timer_free(&r->timer);
     res_tex_free(&r->noise[0]);
     res_tex_free(&r->noise[1]);
@@ -1157,9 +1162,28 @@ void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_
     render_frame_at(r, t, fbo, 0, 0, w, h, view);
 }
 
+void render_set_samples(render *r, int samples) { r->samples = samples; }
+int render_samples(render *r) { return render_msaa_effective(&r->msaa, r->samples); }
+
+int render_samples_on_this_gl(int requested) {
+    render_msaa m = { 0 };
+    return render_msaa_effective(&m, requested);
+}
+
+int render_ref_spp(int samples) {
+    int n = 1;
+    while ((n + 1) * (n + 1) <= samples || (n + 1) * (n + 1) - samples < samples - n * n) n++;
+    return n;
+}
+
 void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view) {
     gpu_timer_begin_frame(&r->timer);
     const scene_state *s = &r->cur;
+    /* the screen passes go to the multisampled target, resolved at the end */
+    unsigned dest = fbo;
+    int dest_x = x, dest_y = y;
+    bool ms = s->glib && render_msaa_begin(&r->msaa, render_samples(r), fbo, w, h, r->world.active);
+    if (ms) { fbo = r->msaa.fbo; x = 0; y = 0; }
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(x, y, w, h);
     glScissor(x, y, w, h);   /* the clear stays inside the scene's rectangle */
@@ -1206,6 +1230,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         glUseProgram(0);
         glFrontFace(GL_CCW);
     }
+    if (ms) render_msaa_resolve(&r->msaa, dest, dest_x, dest_y);
     gpu_timer_end_frame(&r->timer);
 }
 

@@ -19,7 +19,14 @@ typedef struct render render;
 typedef struct render_desc {
     const char *repo_root;      /* 0: tarn_root(); packs/common is an include dir */
     const char *pack;           /* 0: the scene's own `Pack`; else this pack instead */
+    int samples;                /* MSAA of the screen passes: 0 the default, 1 off, else N */
 } render_desc;
+
+/* Anti-aliasing: the screen passes are drawn multisampled and resolved
+ * into the caller's framebuffer (render_msaa.h); RenderToTexture passes
+ * are single-sample. The default is RENDER_MSAA_DEFAULT samples on a GPU
+ * and off on a CPU rasteriser (llvmpipe), where 4x costs 2-3x the frame. */
+#define RENDER_MSAA_DEFAULT 4
 
 typedef struct render_view {
     float eye[3], center[3], up[3];
@@ -65,6 +72,18 @@ bool render_world_overrides_pending(const render *r);
 /* The pack the current scene is drawn by (its Pack command, after any
  * override), "" when it has none. */
 const char *render_pack(const render *r);
+
+/* MSAA samples of the next frames (as render_desc.samples), and those in
+ * use: 1 when off, else the request clamped to what the GL allows. */
+void render_set_samples(render *r, int samples);
+int render_samples(render *r);
+/* The same for a request, before any render exists (a GL context must be
+ * current). */
+int render_samples_on_this_gl(int requested);
+/* The reference's subsamples a side (N x N, `tarn reference --spp`) that
+ * match MSAA with this many samples (render_samples): the nearest square,
+ * so 4x MSAA is compared with a 2x2 reference and off with 1x1. */
+int render_ref_spp(int samples);
 
 /* Every file the scene depends on (glib, includes, shader stages and their
  * #includes, textures, OBJs): what the watcher watches. */

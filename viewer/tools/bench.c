@@ -50,6 +50,9 @@ typedef struct bench_opts {
     double heat_max;
     bool images, quiet;
     bool cost_model;             /* fit each pack's a + b·pixels + c·vertices */
+    int samples;                 /* MSAA as asked (render_desc.samples) */
+    int samples_used;            /* ...and as this GL gives it (1: off) */
+    bool spp_matched;            /* ref.spp follows samples_used (no --ref-spp) */
 } bench_opts;
 
 typedef struct row {             /* one scene, pack, setting and time */
@@ -288,10 +291,20 @@ static void fill_opts(bench_opts *o, const bench_desc *d) {
     o->docs = d->docs;
     o->time_axis = d->time_axis;
     o->ref = d->ref;
+    o->samples = d->samples;
     o->heat_max = d->heat_max > 0 ? d->heat_max : 0.25;
     o->images = !d->no_images;
     o->cost_model = !d->no_cost_model;
     o->quiet = d->quiet;
+}
+
+/* The reference is subsampled as the frames are multisampled (unless
+ * --ref-spp says otherwise), so anti-aliased edges meet anti-aliased
+ * edges and the error stays comparable (needs the GL context). */
+static void match_reference(bench_opts *o) {
+    o->samples_used = render_samples_on_this_gl(o->samples);
+    o->spp_matched = o->ref.spp <= 0;
+    if (o->spp_matched) o->ref.spp = render_ref_spp(o->samples_used);
 }
 
 /* Where the references are cached: --ref-cache, else $XDG_CACHE_HOME/tarn/ref
@@ -558,7 +571,7 @@ static bool measure_floor(bench *b) {
     snprintf(path, sizeof path, "%s/floor.glib", dir);
     ok = ok && write_text(path, floor_glib);
     if (!ok) return false;
-    render_desc rd = { .repo_root = b->root };
+    render_desc rd = { .repo_root = b->root, .samples = b->o.samples };
     render *r = render_create(&rd);
     ok = render_load(r, path);
     if (!ok) fprintf(stderr, "%s", render_messages(r));
@@ -764,6 +777,9 @@ static void measure_buffers(bench *b, render *r, const render_target *tg, int s,
         } else {
             set_output(r, mode);
         }
+        /* a buffer's pixel is the pixel centre's, as the reference's: a
+         * resolve would average hit points across an edge */
+        render_set_samples(r, 1);
         for (int ti = 0; ti < b->o.ntimes; ti++) {
             ref_entry *ref = get_ref(b, s, scene, ti);
             if (!ref) continue;
@@ -771,6 +787,7 @@ static void measure_buffers(bench *b, render *r, const render_target *tg, int s,
             render_target_read(tg, rgba);
             compare_buffer(b, &b->rows[first_row + ti], mode, rgba, ref);
         }
+        render_set_samples(r, b->o.samples);
     }
     free(snap);
 }
@@ -800,7 +817,7 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
     }
     double base = b->pr.done;
     progress_set(&b->pr, base, true, "%s %s %s: loading", sc, b->o.packs[p], st->name);
-    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p] };
+    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples };
     render *r = render_create(&rd);
     bool loaded = render_load(r, scene);
     char err[4096] = "";
@@ -906,7 +923,7 @@ static int cost_mesh(bench *b, int p, int m, cost_sample *out, char *why, size_t
         snprintf(why, whylen, "%s", err);
         return -1;
     }
-    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p] };
+    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples };
     render *r = render_create(&rd);
     if (!render_load(r, path)) {
         first_line(render_messages(r), why, whylen);
@@ -1162,6 +1179,7 @@ static bool write_json(bench *b, const char *path) {
                   "\"references_rendered\": %d, \"references_cached\": %d},\n",
               b->o.frames, b->o.frame_budget, b->o.warmup, b->axis == 1 ? "gpu" : "wall", b->refs_rendered,
               b->refs_cached);
+    strbuf_printf(&o, "  \"msaa\": %d, \"reference_spp\": %d,\n", b->o.samples_used, b->o.ref.spp);
     strbuf_printf(&o, "  \"floor\": {\"gpu_ms\": ");
     json_num(&o, b->floor_gpu);
     strbuf_printf(&o, ", \"wall_ms\": ");
@@ -1355,6 +1373,12 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
                  "(%.0f%%, or their frames' spread) and whose water errors agree within %.0f%% tie: both "
                  "stay on the front.\n\n",
               b->o.warmup, b->o.frames, b->o.frame_budget, 100 * BENCH_TIME_NOISE, 100 * BENCH_ERROR_TIE);
+    char aa[32] = "off";
+    if (b->o.samples_used > 1) snprintf(aa, sizeof aa, "MSAA %dx", b->o.samples_used);
+    strbuf_printf(o, "Anti-aliasing: %s; the reference takes %d x %d subsamples per pixel%s. Per-pixel "
+                 "buffers (hit point, Fresnel, irradiance, depth) are drawn without MSAA and compared with the "
+                 "reference's pixel-centre buffers.\n\n",
+              aa, b->o.ref.spp, b->o.ref.spp, b->o.spp_matched ? ", to match" : " (--ref-spp)");
     if (b->cpu_raster)
         strbuf_printf(o, "**%s is a CPU rasteriser**: its GPU timestamps are taken when commands are issued, "
                      "not when pixels are drawn, so the GPU column is not meaningful here. The wall time "
@@ -1599,6 +1623,7 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
         return TARN_EXIT_NO_GL;
     }
     machine(b);
+    match_reference(&b->o);
     b->pr = (progress){ .start = t_start, .tty = isatty(STDERR_FILENO), .quiet = b->o.quiet };
     prepare_refs(b);
 

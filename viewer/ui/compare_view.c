@@ -159,7 +159,8 @@ static void start_reference(cview *v) {
     v->pend_w = v->cell_w;
     v->pend_h = v->cell_h;
     v->pend_started = clock_now_s();
-    fprintf(stderr, "tarn compare-view: computing the reference at %dx%d, t = %.3f s ...\n", v->cell_w, v->cell_h,
+    fprintf(stderr, "tarn compare-view: computing the reference at %dx%d (%dx%d subsamples), t = %.3f s ...\n",
+            v->cell_w, v->cell_h, v->ref_opts.spp, v->ref_opts.spp,
             v->s->t);
     heat_job_start_reference(v->job, v->scene, v->cell_w, v->cell_h, v->s->t, &view, &v->ref_opts);
     snprintf(v->heat_status, sizeof v->heat_status, "computing the reference %dx%d: 0%%", v->pend_w, v->pend_h);
@@ -184,8 +185,9 @@ static bool finish_reference(cview *v) {
     v->show_heat = true;
     v->reported = false;
     for (int i = 0; i < v->n; i++) v->packs[i].have_heat = false;
-    snprintf(v->heat_status, sizeof v->heat_status, "reference %dx%d at t = %.3f s, computed in %.1f s",
-             v->ref_w, v->ref_h, v->ref_t, clock_now_s() - v->pend_started);
+    snprintf(v->heat_status, sizeof v->heat_status,
+             "reference %dx%d at t = %.3f s (%dx%d subsamples, as the packs' MSAA), computed in %.1f s", v->ref_w,
+             v->ref_h, v->ref_t, v->ref_opts.spp, v->ref_opts.spp, clock_now_s() - v->pend_started);
     fprintf(stderr, "tarn compare-view: %s\n", v->heat_status);
     return true;
 }
@@ -705,7 +707,7 @@ static void load_packs(cview *v, const cli_compare_view_desc *d, bool *ok) {
         for (int j = 0; j < i; j++) copy += strcmp(d->packs[j], d->packs[i]) == 0;
         if (copy > 1) snprintf(p->label, sizeof p->label, "%d %s #%d", i + 1, p->name, copy);
         else snprintf(p->label, sizeof p->label, "%d %s", i + 1, p->name);
-        render_desc rd = { .pack = p->name };
+        render_desc rd = { .pack = p->name, .samples = d->samples };
         p->r = v->scenes[i] = render_create(&rd);
         if (!render_load(p->r, d->glib)) *ok = false;
         report(p);
@@ -758,6 +760,9 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     v->panel = app_panel(v->app);
     bool ok = true;
     load_packs(v, d, &ok);
+    /* the reference is subsampled as the packs are multisampled, so an
+     * anti-aliased edge is compared with an anti-aliased edge */
+    v->ref_opts.spp = render_ref_spp(render_samples(v->packs[0].r));
     fprintf(stderr, "tarn compare-view: loaded %s\n", d->glib);
     if (d->width <= 0 || d->height <= 0) {
         int w, h;

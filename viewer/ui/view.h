@@ -12,6 +12,7 @@ typedef struct view_desc {
     const char *pack;           /* replaces the scene's `Pack` */
     const char *setting;        /* a row of the pack's bench.txt to start from (the Setting combo) */
     const char *record;         /* record a session (session.h) into this file from the start */
+    int samples;                /* MSAA (render_desc.samples): 0 the default, 1 off */
 } view_desc;
 
 /* Runs the window until it is closed (or the script quits). Returns a

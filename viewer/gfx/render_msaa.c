@@ -1,0 +1,92 @@
+/* render_msaa: the multisampled target of the screen passes (see
+ * render_msaa.h). */
+#include "render_msaa.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <string.h>
+
+#include "render.h"
+
+/* A rasteriser on the CPU, where 4x MSAA costs 2-3x the frame (measured
+ * on llvmpipe, docs/benchmark.md): anti-aliasing is asked for there. */
+static bool cpu_rasteriser(void) {
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    return r && (strstr(r, "llvmpipe") || strstr(r, "softpipe") || strstr(r, "SwiftShader") || strstr(r, "lavapipe"));
+}
+
+int render_msaa_effective(render_msaa *m, int requested) {
+    if (!m->max_samples) {
+        GLint v = 0;
+        glGetIntegerv(GL_MAX_SAMPLES, &v);
+        m->max_samples = v > 1 ? v : 1;
+        m->default_samples = cpu_rasteriser() ? 1 : RENDER_MSAA_DEFAULT;
+    }
+    int n = requested > 0 ? requested : m->default_samples;
+    if (n <= 1) return 1;
+    return n < m->max_samples ? n : m->max_samples;
+}
+
+/* The colour format that keeps what the destination keeps (see the header). */
+static GLenum format_for(unsigned fbo, bool linear) {
+    GLint type = GL_NONE, bits = 8;
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    GLenum att = fbo ? GL_COLOR_ATTACHMENT0 : GL_BACK_LEFT;
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, &bits);
+    while (glGetError() != GL_NO_ERROR) {}   /* a surfaceless default framebuffer has no colour to ask about */
+    if (type == GL_FLOAT) return bits > 16 ? GL_RGBA32F : GL_RGBA16F;
+    return linear ? GL_RGBA16F : GL_RGBA8;
+}
+
+static bool make(render_msaa *m, int samples, int w, int h, GLenum format) {
+    render_msaa_free(m);
+    glGenRenderbuffers(1, &m->color);
+    glBindRenderbuffer(GL_RENDERBUFFER, m->color);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, w, h);
+    glGenRenderbuffers(1, &m->depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, m->depth);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, w, h);
+    glGenFramebuffers(1, &m->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m->color);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m->depth);
+    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE && glGetError() == GL_NO_ERROR;
+    if (!ok) { render_msaa_free(m); return false; }
+    m->w = w;
+    m->h = h;
+    m->samples = samples;
+    m->format = format;
+    return true;
+}
+
+bool render_msaa_begin(render_msaa *m, int samples, unsigned fbo, int w, int h, bool linear) {
+    if (samples <= 1 || w <= 0 || h <= 0) return false;
+    GLenum format = format_for(fbo, linear);
+    bool fits = m->fbo && m->w == w && m->h == h && m->samples == samples && m->format == format;
+    if (!fits && !make(m, samples, w, h, format)) {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        return false;   /* drawn without: a GL that cannot is no reason to draw nothing */
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
+    glViewport(0, 0, w, h);
+    return true;
+}
+
+void render_msaa_resolve(const render_msaa *m, unsigned fbo, int x, int y) {
+    glDisable(GL_SCISSOR_TEST);   /* a blit is scissored */
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m->fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glBlitFramebuffer(0, 0, m->w, m->h, x, y, x + m->w, y + m->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+}
+
+void render_msaa_free(render_msaa *m) {
+    if (m->fbo) glDeleteFramebuffers(1, &m->fbo);
+    if (m->color) glDeleteRenderbuffers(1, &m->color);
+    if (m->depth) glDeleteRenderbuffers(1, &m->depth);
+    int max = m->max_samples, def = m->default_samples;
+    memset(m, 0, sizeof *m);
+    m->max_samples = max;
+    m->default_samples = def;
+}
