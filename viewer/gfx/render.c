@@ -462,7 +462,7 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
     for (int i = 0; i < s->nprogs; i++)
         for (int k = 0; k < s->progs[i].ndeps; k++) add_dep(r, s->progs[i].deps[k]);
     if (r->world.active)
-        for (int k = 0; k < r->world.prog.ndeps; k++) add_dep(r, r->world.prog.deps[k]);
+        for (int k = 0; k < r->world.progs[0].ndeps; k++) add_dep(r, r->world.progs[0].deps[k]);
 }
 
 /* The world the scene describes (if any), rebuilt only when it changed. */
@@ -590,8 +590,7 @@ bool render_rebuild_programs(render *r) {
         prog_introspect(p, &log);
     }
     if (r->world.active) {
-        if (!prog_build(&r->world.prog, (const char *const *)r->include_dirs, 1, &log)) ok = false;
-        prog_introspect(&r->world.prog, &log);
+        if (!world_build_programs(&r->world, (const char *const *)r->include_dirs, &log)) ok = false;
     }
     collect_deps(r, r->cur.glib, &r->cur);
     set_messages(r, log);
