@@ -382,6 +382,9 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
         loc = glGetUniformLocation(p, u->name);
         if (loc < 0) continue;
         if (u->is_int) glUniform1i(loc, u->i);
+        else if (u->is_uint) glUniform1uiv(loc, u->count, u->u);
+        else if (u->comps == 4) glUniform4fv(loc, u->count, u->v);
+        else if (u->comps == 3) glUniform3fv(loc, u->count, u->v);
         else glUniform1fv(loc, u->count, u->v);
     }
 }
