@@ -63,12 +63,14 @@ static void check_pack(const char *pack, bool is_float) {
     rig on, off;
     rig_open(&on, pack, true, is_float);
     rig_open(&off, pack, false, is_float);
-    float *a0 = frame(&on, 2.0, NULL);
+    /* the first frame at a time draws, the second keeps, the third copies */
+    float *a0 = frame(&on, 2.0, NULL), *a0b = frame(&on, 2.0, NULL);
     long h0 = render_world_cache_hits(on.r);
+    CHECK(h0 == 0);
     float *a1 = frame(&on, 2.0, NULL), *b1 = frame(&off, 2.0, NULL);
     CHECK_MSG(render_world_cache_hits(on.r) > h0, "%s: the second frame copied no World", pack);
     CHECK_MSG(render_world_cache_hits(off.r) == 0, "%s: the cache was off", pack);
-    CHECK_MSG(same(a0, b1) && same(a1, b1), "%s: a cached frame differs from a drawn one", pack);
+    CHECK_MSG(same(a0, b1) && same(a0b, b1) && same(a1, b1), "%s: a cached frame differs from a drawn one", pack);
 
     /* the camera moves: drawn again, as a fresh render draws it */
     render_view v = render_default_view(on.r);
@@ -80,6 +82,7 @@ static void check_pack(const char *pack, bool is_float) {
     /* the time changes (the shore wets and dries with the waves) */
     float *a3 = frame(&on, 2.5, &v), *b3 = frame(&off, 2.5, &v);
     CHECK_MSG(same(a3, b3), "%s: a later time", pack);
+    free(frame(&on, 2.5, &v));   /* kept: the uniform below must not copy it */
 
     /* a uniform that moves a pass's camera (natural: Camera wide uFovScale) */
     unif_entry *fov = uniform_of(on.r, "uFovScale"), *fov_off = uniform_of(off.r, "uFovScale");
@@ -98,11 +101,11 @@ static void check_pack(const char *pack, bool is_float) {
     long h1 = render_world_cache_hits(on.r);
     float *a5 = frame(&on, 2.0, NULL);
     CHECK(render_world_cache_hits(on.r) == h1);
-    float *a6 = frame(&on, 2.0, NULL), *b6 = frame(&off, 2.0, NULL);
+    float *a6 = frame(&on, 2.0, NULL), *a7 = frame(&on, 2.0, NULL), *b6 = frame(&off, 2.0, NULL);
     CHECK(render_world_cache_hits(on.r) > h1);
-    CHECK_MSG(same(a5, b6) && same(a6, b6), "%s: after a reload", pack);
+    CHECK_MSG(same(a5, b6) && same(a6, b6) && same(a7, b6), "%s: after a reload", pack);
 
-    float *all[] = { a0, a1, b1, a2, b2, a3, b3, a5, a6, b6 };
+    float *all[] = { a0, a0b, a1, b1, a2, b2, a3, b3, a5, a6, a7, b6 };
     for (size_t i = 0; i < sizeof all / sizeof *all; i++) free(all[i]);
     rig_close(&on);
     rig_close(&off);

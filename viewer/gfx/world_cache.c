@@ -205,6 +205,10 @@ void wcache_store(world_cache *c, int cmd, const wcache_key *k) {
     if (!s) s = find(c, -1);
     if (!s || s->broken) return;   /* more World commands than slots: the rest are drawn */
     s->cmd = cmd;
+    bool same_time = s->seen && s->seen_t == k->t;
+    s->seen = true;
+    s->seen_t = k->t;
+    if (!same_time) return;
     s->valid = false;
     GLint vp[4], db0 = GL_NONE, read_buf = GL_NONE;
     glGetIntegerv(GL_VIEWPORT, vp);

@@ -34,6 +34,8 @@ typedef struct wcache_slot {
     int cmd;                    /* the World command (-1: free) */
     bool valid;                 /* holds the pixels of key */
     bool broken;                /* a copy failed: this command is drawn, not cached */
+    bool seen;                  /* drawn before, at time seen_t */
+    double seen_t;
     wcache_key key;
     unsigned fbo, color_rb, depth_rb;
 } wcache_slot;
@@ -57,6 +59,8 @@ bool wcache_key_gl(wcache_key *k, int albedo_unit, int sky_unit);
 /* Copies command cmd's cached pixels for key k into the bound draw
  * framebuffer's viewport; false (nothing done) on a miss. */
 bool wcache_restore(world_cache *c, int cmd, const wcache_key *k);
-/* Keeps the bound draw framebuffer's viewport as command cmd's pixels for k. */
+/* Keeps the bound draw framebuffer's viewport as command cmd's pixels for
+ * k, once command cmd has been drawn twice in a row at k's time: while the
+ * time runs (an animation) no copy could be used, and each costs. */
 void wcache_store(world_cache *c, int cmd, const wcache_key *k);
 #endif
