@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "gl_ctx.h"
@@ -112,12 +113,46 @@ static void check_pack(const char *pack, bool is_float) {
 }
 
 static void test_basic_rgba8(void) { check_pack("basic", false); }
+
+/* A pass drawn once (RenderToTextureOnce, skipped from the second frame)
+ * before the screen's World: the screen stays clean and is copied. */
+static void test_screen_after_a_once_pass(void) {
+    FILE *in = fopen(LAKE, "r");
+    char path[512], line[1024];
+    const char *tmp = getenv("TMPDIR");
+    snprintf(path, sizeof path, "%s/tarn_world_cache_%d.glib", tmp && *tmp ? tmp : "/tmp", (int)getpid());
+    FILE *out = fopen(path, "w");
+    CHECK(in && out);
+    if (!in || !out) return;
+    while (fgets(line, sizeof line, in))
+        if (strncmp(line, "Pack", 4) != 0) fputs(line, out);
+    fputs("Texture2D 4 32 32 float16\nRenderToTextureOnce 4\nClear\nWorld all\nRenderToTexture\nWorld all\n", out);
+    fclose(in);
+    fclose(out);
+    render *on = render_create(NULL), *off = render_create(NULL);
+    CHECK_MSG(render_load(on, path), "%s", render_messages(on));
+    CHECK(render_load(off, path));
+    render_set_world_cache(off, false);
+    rig g = { .r = on }, h = { .r = off };
+    CHECK(render_target_create(&g.tg, W, H, true) && render_target_create(&h.tg, W, H, true));
+    float *a[3];
+    for (int i = 0; i < 3; i++) a[i] = frame(&g, 1.0, NULL);
+    float *b = frame(&h, 1.0, NULL);
+    CHECK_MSG(render_world_cache_hits(on) >= 1, "the screen's World after a skipped pass was not copied");
+    for (int i = 0; i < 3; i++) CHECK(same(a[i], b));
+    for (int i = 0; i < 3; i++) free(a[i]);
+    free(b);
+    rig_close(&g);
+    rig_close(&h);
+    remove(path);
+}
 static void test_natural_float(void) { check_pack("natural", true); }
 
 int main(void) {
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
+    RUN(test_screen_after_a_once_pass);
     RUN(test_basic_rgba8);
     RUN(test_natural_float);
     gl_ctx_destroy(ctx);

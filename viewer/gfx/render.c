@@ -813,9 +813,11 @@ static void mark_pass(render *r, const glib_cmd *c) {
 static void end_rtt(frame_state *f) {
     glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
     glViewport(f->x, f->y, f->w, f->h);
+    if (f->in_rtt) {   /* back from a pass: the screen as the pass found it */
+        f->clean = f->screen_clean;
+        memcpy(f->clean_rgba, f->screen_rgba, sizeof f->clean_rgba);
+    }
     f->in_rtt = false;
-    f->clean = f->screen_clean;
-    memcpy(f->clean_rgba, f->screen_rgba, sizeof f->clean_rgba);
 }
 
 /* A pass begins: the screen's state is kept; the texture holds whatever
