@@ -390,6 +390,7 @@ void ref_world_desc_lake(ref_world_desc *d) {
     d->terrain = REF_TERRAIN_LAKE;
     d->waves = ref_waves_default();
     d->water_level = 0.0;
+    d->water_mesh_res = 128;   /* scenes/lake.glib's WaterMesh (the GL grid; the reference has the exact surface) */
     d->seed = 7;
     ref_object objs[] = {
         { REF_OBJECT_CYLINDER, { 2.5, -2.0, 1.0 }, { 0.12, 3.2, 0 }, { 0.45, 0.32, 0.20 } },  /* pier post */

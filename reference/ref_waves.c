@@ -462,6 +462,7 @@ static void put_scalar(ref_waves_uniform *u, const char *name, int is_int, doubl
     u->name = name;
     u->is_int = is_int;
     u->count = 1;
+    u->comps = 1;
     if (is_int) u->i = (int)v;
     else u->v[0] = (float)v;
 }
@@ -470,11 +471,68 @@ static void put_array(ref_waves_uniform *u, const char *name, const ref_wave_des
     memset(u, 0, sizeof *u);
     u->name = name;
     u->count = REF_WAVES_MAX;
+    u->comps = 1;
     for (int i = 0; i < n; i++) {
         double x = field == 0 ? w[i].angle_deg : field == 1 ? w[i].wavelength :
                    field == 2 ? w[i].amplitude : field == 3 ? w[i].speed : w[i].phase;
         u->v[i] = (float)x;
     }
+}
+
+static void put_vectors(ref_waves_uniform *u, const char *name, int comps) {
+    memset(u, 0, sizeof *u);
+    u->name = name;
+    u->count = REF_WAVES_MAX;
+    u->comps = comps;
+}
+
+/* One wave's (k D.x, k D.z, omega, phase). */
+static void put_wave(float *v, const ref_wave_comp *c) {
+    v[0] = (float)(c->k * c->dir[0]);
+    v[1] = (float)(c->k * c->dir[1]);
+    v[2] = (float)c->omega;
+    v[3] = (float)c->phase;
+}
+
+/* uWave*: the resolved waves (waves.glsl's wavesSums, wavesNoise and
+ * wavesRestPoint read these); returns how many were put. */
+static int put_resolved(const ref_waves *w, ref_waves_uniform *all) {
+    int n = 0;
+    put_scalar(&all[n++], "uWaveSineN", 1, w->nsine);
+    ref_waves_uniform *sine = &all[n++], *sine_amp = &all[n++];
+    put_vectors(sine, "uWaveSine", 4);
+    put_vectors(sine_amp, "uWaveSineAmp", 1);
+    for (int i = 0; i < w->nsine; i++) {
+        put_wave(sine->v + 4 * i, &w->sine[i]);
+        sine_amp->v[i] = (float)w->sine[i].amp;
+    }
+    put_scalar(&all[n++], "uWaveGerstN", 1, w->ngerstner);
+    ref_waves_uniform *gerst = &all[n++], *gerst_amp = &all[n++];
+    put_vectors(gerst, "uWaveGerst", 4);
+    put_vectors(gerst_amp, "uWaveGerstAmp", 3);
+    for (int i = 0; i < w->ngerstner; i++) {
+        const ref_wave_comp *c = &w->gerstner[i];
+        put_wave(gerst->v + 4 * i, c);
+        gerst_amp->v[3 * i] = (float)c->amp;
+        gerst_amp->v[3 * i + 1] = (float)(c->qa * c->dir[0]);
+        gerst_amp->v[3 * i + 2] = (float)(c->qa * c->dir[1]);
+    }
+    put_scalar(&all[n++], "uWaveNoiseN", 1, w->noctaves);
+    ref_waves_uniform *noise = &all[n++], *period = &all[n++], *seed = &all[n++];
+    put_vectors(noise, "uWaveNoise", 4);
+    put_vectors(period, "uWaveNoisePeriod", 1);
+    put_vectors(seed, "uWaveNoiseSeed", 1);
+    seed->is_uint = 1;
+    for (int o = 0; o < w->noctaves; o++) {
+        const ref_noise_octave *oc = &w->octave[o];
+        noise->v[4 * o] = (float)oc->freq;
+        noise->v[4 * o + 1] = (float)(oc->freq * oc->drift[0]);
+        noise->v[4 * o + 2] = (float)(oc->freq * oc->drift[1]);
+        noise->v[4 * o + 3] = (float)oc->amp;
+        period->v[o] = (float)oc->period;
+        seed->u[o] = oc->seed;
+    }
+    return n;
 }
 
 int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max) {
@@ -507,6 +565,7 @@ int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max) {
     int32_t seed_bits;
     memcpy(&seed_bits, &d->noise.seed, sizeof seed_bits);
     all[n - 1].i = seed_bits;
+    n += put_resolved(w, all + n);
     int k = n < max ? n : max;
     memcpy(out, all, (size_t)k * sizeof *out);
     return k;

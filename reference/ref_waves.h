@@ -157,15 +157,21 @@ int ref_waves_rest_point(const ref_waves *w, double x, double z, double t,
 double ref_waves_height(const ref_waves *w, double x, double z, double t);
 
 /* The GLSL uniforms of packs/common/waves.glsl for a resolved wave set:
- * name, type and float values, in a fixed order. Returns how many were
- * written (at most max; REF_WAVES_UNIFORMS_MAX fits all). */
-#define REF_WAVES_UNIFORMS_MAX 24
+ * name, type and float values, in a fixed order: the waves as described
+ * (uSineAngle, ...), then as resolved here (uWaveSine, ...: inactive
+ * waves dropped, k D, omega, Q_i A_i D and the noise's octaves worked out
+ * once, so no shader does it per vertex). Returns how many were written
+ * (at most max; REF_WAVES_UNIFORMS_MAX fits all). */
+#define REF_WAVES_UNIFORMS_MAX 34
 typedef struct ref_waves_uniform {
     const char *name;        /* e.g. "uGerstnerLength" */
     int is_int;              /* an int uniform: its value is in i */
+    int is_uint;             /* a uint array: its values are in u */
     int count;               /* 1, or the array length REF_WAVES_MAX */
+    int comps;               /* floats an element: 1, 3 (vec3) or 4 (vec4) */
     int i;                   /* value of an int uniform (uNoiseSeed: the seed's bits) */
-    float v[REF_WAVES_MAX];  /* values of a float uniform or array */
+    uint32_t u[REF_WAVES_MAX];
+    float v[REF_WAVES_MAX * 4];  /* values of a float uniform or array, element after element */
 } ref_waves_uniform;
 int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max);
 

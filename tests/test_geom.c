@@ -198,6 +198,79 @@ static void test_quad(void) {
 
 /* ---- sphere ---- */
 
+/* A triangle as its corners' (position, texture coordinate), rotated so
+ * the smallest corner comes first: the same triangle with the same winding
+ * gives the same key whatever the vertex numbers and corner order. */
+typedef struct tri_key { float c[3][5]; } tri_key;
+
+static int cmp_corner(const float *a, const float *b) {
+    for (int k = 0; k < 5; k++)
+        if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+
+static int cmp_tri(const void *a, const void *b) {
+    const tri_key *x = a, *y = b;
+    for (int c = 0; c < 3; c++) {
+        int d = cmp_corner(x->c[c], y->c[c]);
+        if (d) return d;
+    }
+    return 0;
+}
+
+static tri_key *tri_keys(const geom_mesh *m) {
+    int n = m->nidx / 3;
+    tri_key *t = malloc((size_t)n * sizeof *t);
+    for (int i = 0; i < n; i++) {
+        float c[3][5];
+        for (int k = 0; k < 3; k++) {
+            unsigned v = m->idx[i * 3 + k];
+            memcpy(c[k], m->pos + 3 * v, 3 * sizeof(float));
+            memcpy(c[k] + 3, m->tc + 2 * v, 2 * sizeof(float));
+        }
+        int first = 0;
+        for (int k = 1; k < 3; k++)
+            if (cmp_corner(c[k], c[first]) < 0) first = k;
+        for (int k = 0; k < 3; k++) memcpy(t[i].c[k], c[(first + k) % 3], sizeof c[0]);
+    }
+    qsort(t, (size_t)n, sizeof *t, cmp_tri);
+    return t;
+}
+
+/* geom_grid_bands: the same triangles, wound the same way, their vertices
+ * numbered by first use, in bands (a band's rows are consecutive). */
+static void test_grid_bands(void) {
+    geom_mesh a, b;
+    CHECK(geom_quad(&a, 1, 0.5f, 3.0f, 70, 9, false));
+    CHECK(geom_quad(&b, 1, 0.5f, 3.0f, 70, 9, false));
+    CHECK(geom_grid_bands(&b, 70, 9, 32));
+    CHECK(a.nidx == b.nidx && a.nvert == b.nvert);
+    tri_key *ka = tri_keys(&a), *kb = tri_keys(&b);
+    CHECK(memcmp(ka, kb, (size_t)(a.nidx / 3) * sizeof *ka) == 0);
+    free(ka);
+    free(kb);
+    unsigned next = 0;
+    bool first_use = true;
+    for (int k = 0; k < b.nidx; k++) {
+        if (b.idx[k] > next) first_use = false;
+        if (b.idx[k] == next) next++;
+    }
+    CHECK(first_use && next == (unsigned)b.nvert);
+    /* the first band, 32 cells by 9 rows, uses 33 x 10 vertices and no more */
+    unsigned most = 0;
+    for (int k = 0; k < 6 * 32 * 9; k++) most = b.idx[k] > most ? b.idx[k] : most;
+    CHECK(most == 33 * 10 - 1);
+    check_winding_and_tangents(&b, "banded quad");
+    geom_free(&b);
+    /* not a grid of that size: refused, untouched */
+    CHECK(!geom_grid_bands(&a, 71, 9, 32));
+    CHECK(!geom_grid_bands(&a, 70, 9, 0));
+    geom_free(&a);
+    CHECK(geom_sphere(&a, 1, 8, 4, false));
+    CHECK(!geom_grid_bands(&a, 8, 4, 32));
+    geom_free(&a);
+}
+
 static void test_sphere(void) {
     const float r = 1.7f;
     geom_mesh m;
@@ -835,6 +908,7 @@ int main(void) {
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
 
     RUN(test_quad);
+    RUN(test_grid_bands);
     RUN(test_sphere);
     RUN(test_torus);
     RUN(test_box);

@@ -460,7 +460,7 @@ static void test_uniforms(void) {
     if (init(&w, &d)) return;
     ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
     int n = ref_waves_uniforms(&w, u, REF_WAVES_UNIFORMS_MAX);
-    CHECK(n == 22);
+    CHECK(n == 32);
     for (int i = 0; i < n; i++)
         for (int j = i + 1; j < n; j++) CHECK(strcmp(u[i].name, u[j].name) != 0);
     int seen = 0;
@@ -477,8 +477,28 @@ static void test_uniforms(void) {
         if (!strcmp(u[i].name, "uSineCount")) { seen++; CHECK(u[i].is_int && u[i].i == d.sine_count); }
         if (!strcmp(u[i].name, "uNoiseSeed")) { seen++; CHECK(u[i].is_int && (uint32_t)u[i].i == 0xdeadbeefU); }
         if (!strcmp(u[i].name, "uSteepness")) { seen++; CHECK(u[i].v[0] == (float)d.steepness); }
+        if (!strcmp(u[i].name, "uWaveGerst")) {   /* (k D.x, k D.z, omega, phase) of the second */
+            seen++;
+            double k = TWO_PI / d.gerstner[1].wavelength, a = d.gerstner[1].angle_deg * TWO_PI / 360.0;
+            double omega = sqrt(REF_GRAVITY * d.gerstner[1].wavelength / TWO_PI) * k;
+            CHECK(u[i].comps == 4 && u[i].count == REF_WAVES_MAX);
+            CHECK_NEAR(u[i].v[4], k * cos(a), 1e-5);
+            CHECK_NEAR(u[i].v[5], k * sin(a), 1e-5);
+            CHECK_NEAR(u[i].v[6], omega, 1e-5);
+            CHECK(u[i].v[7] == (float)d.gerstner[1].phase);
+        }
+        if (!strcmp(u[i].name, "uWaveGerstAmp")) {   /* (A, Q_i A_i D.x, Q_i A_i D.z), Q_i A_i = Q / (k N) */
+            seen++;
+            double k = TWO_PI / d.gerstner[0].wavelength, a = d.gerstner[0].angle_deg * TWO_PI / 360.0;
+            double qa = d.steepness / (k * w.ngerstner);
+            CHECK(u[i].comps == 3);
+            CHECK(u[i].v[0] == (float)d.gerstner[0].amplitude);
+            CHECK_NEAR(u[i].v[1], qa * cos(a), 1e-6);
+            CHECK_NEAR(u[i].v[2], qa * sin(a), 1e-6);
+        }
+        if (!strcmp(u[i].name, "uWaveNoiseSeed")) { seen++; CHECK(u[i].is_uint && u[i].u[0] == w.octave[0].seed); }
     }
-    CHECK(seen == 5);
+    CHECK(seen == 8);
     CHECK(ref_waves_uniforms(&w, u, 3) == 3);
 }
 

@@ -76,6 +76,9 @@ static void upload_waves(GLuint p, const ref_waves *w) {
         GLint loc = glGetUniformLocation(p, u[i].name);
         if (loc < 0) continue;
         if (u[i].is_int) glUniform1i(loc, u[i].i);
+        else if (u[i].is_uint) glUniform1uiv(loc, u[i].count, u[i].u);
+        else if (u[i].comps == 4) glUniform4fv(loc, u[i].count, u[i].v);
+        else if (u[i].comps == 3) glUniform3fv(loc, u[i].count, u[i].v);
         else glUniform1fv(loc, u[i].count, u[i].v);
     }
     glUniform1f(glGetUniformLocation(p, "uTime"), (float)TIME);

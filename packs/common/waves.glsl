@@ -74,6 +74,23 @@ uniform float uNoiseAngle;              // drift direction of octave 0, degrees
 uniform float uNoiseSpeed;              // drift speed of octave 0 (0: deep water for L = 2 cell)
 uniform int   uNoiseSeed;               // 32 bits, read as uint
 
+// The same waves resolved once on the CPU (tarn's render_world.c, from the
+// reference's ref_waves: inactive waves dropped, defaults filled in): the
+// direction's trig, k, omega, Q_i A_i and the noise's drift would otherwise
+// be worked out again at every vertex and fragment (on llvmpipe that is
+// 1.14-1.17x a frame). wavesSums, wavesNoise and wavesRestPoint read these;
+// the u*Angle, u*Length... above stay for packs with their own loops.
+uniform int   uWaveSineN;                         // active sine waves
+uniform vec4  uWaveSine[WAVES_MAX];               // (k D.x, k D.z, omega, phase)
+uniform float uWaveSineAmp[WAVES_MAX];            // A
+uniform int   uWaveGerstN;                        // active Gerstner waves
+uniform vec4  uWaveGerst[WAVES_MAX];              // (k D.x, k D.z, omega, phase)
+uniform vec3  uWaveGerstAmp[WAVES_MAX];           // (A, Q_i A_i D.x, Q_i A_i D.z)
+uniform int   uWaveNoiseN;                        // noise octaves (0: no noise)
+uniform vec4  uWaveNoise[WAVES_NOISE_OCTAVES_MAX];   // (freq, freq drift.x, freq drift.z, amplitude)
+uniform float uWaveNoisePeriod[WAVES_NOISE_OCTAVES_MAX];  // lattice cells per tile
+uniform uint  uWaveNoiseSeed[WAVES_NOISE_OCTAVES_MAX];    // hashed per octave
+
 float wavesPhaseSpeed(float speed, float L) {
     return speed != 0.0 ? speed : sqrt(WAVES_GRAVITY * L / WAVES_TWO_PI);
 }
@@ -115,23 +132,11 @@ vec3 wavesNoiseOctave(vec2 q, float period, uint seed) {
 
 vec3 wavesNoise(vec2 p0, float t) {
     vec3 r = vec3(0.0);
-    if (uNoiseAmp == 0.0) return r;
-    float cell = uNoiseCell != 0.0 ? uNoiseCell : 4.0;
-    int octaves = uNoiseOctaves != 0 ? uNoiseOctaves : 4;
-    float period = float(uNoisePeriod != 0 ? uNoisePeriod : 16);
-    float gain = uNoiseGain != 0.0 ? uNoiseGain : 0.5;
-    float speed = uNoiseSpeed != 0.0 ? uNoiseSpeed : sqrt(WAVES_GRAVITY * 2.0 * cell / WAVES_TWO_PI);
-    float amp = uNoiseAmp, scale = 1.0;
     for (int o = 0; o < WAVES_NOISE_OCTAVES_MAX; o++) {
-        if (o >= octaves) break;
-        float ang = radians(uNoiseAngle) + float(o) * WAVES_NOISE_TURN;
-        vec2 drift = speed / sqrt(scale) * vec2(cos(ang), sin(ang));
-        float freq = scale / cell;
-        uint seed = wavesHash(uint(uNoiseSeed) + uint(o) * 0x9E3779B9u);
-        vec3 n = wavesNoiseOctave((p0 - drift * t) * freq, period * scale, seed);
-        r += amp * vec3(n.x, freq * n.yz);
-        amp *= gain;
-        scale *= 2.0;
+        if (o >= uWaveNoiseN) break;
+        vec4 w = uWaveNoise[o];
+        vec3 n = wavesNoiseOctave(p0 * w.x - w.yz * t, uWaveNoisePeriod[o], uWaveNoiseSeed[o]);
+        r += w.w * vec3(n.x, w.x * n.yz);
     }
     return r;
 }
@@ -143,35 +148,22 @@ vec3 wavesNoise(vec2 p0, float t) {
 void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
     h = 0.0; dh = vec2(0.0); disp = vec2(0.0); abd = vec3(0.0);
     for (int i = 0; i < WAVES_MAX; i++) {
-        if (i >= uSineCount) break;
-        float L = uSineLength[i], A = uSineAmp[i];
-        if (L <= 0.0 || A == 0.0) continue;
-        float ang = radians(uSineAngle[i]);
-        vec2 D = vec2(cos(ang), sin(ang));
-        float k = WAVES_TWO_PI / L;
-        float th = k * dot(D, p0) + wavesPhaseSpeed(uSineSpeed[i], L) * k * t + uSinePhase[i];
+        if (i >= uWaveSineN) break;
+        vec4 w = uWaveSine[i];                          // th = k D.p0 + omega t + phase
+        float th = dot(w.xy, p0) + w.z * t + w.w, A = uWaveSineAmp[i];
         h += A * sin(th);
-        dh += k * A * cos(th) * D;
-    }
-    int n = 0;
-    for (int i = 0; i < WAVES_MAX; i++) {
-        if (i >= uGerstnerCount) break;
-        if (uGerstnerLength[i] > 0.0 && uGerstnerAmp[i] != 0.0) n++;
+        dh += A * cos(th) * w.xy;
     }
     for (int i = 0; i < WAVES_MAX; i++) {
-        if (i >= uGerstnerCount) break;
-        float L = uGerstnerLength[i], A = uGerstnerAmp[i];
-        if (L <= 0.0 || A == 0.0) continue;
-        float ang = radians(uGerstnerAngle[i]);
-        vec2 D = vec2(cos(ang), sin(ang));
-        float k = WAVES_TWO_PI / L;
-        float qa = uSteepness / (k * float(n)) * sign(A);      // Q_i A_i
-        float th = k * dot(D, p0) + wavesPhaseSpeed(uGerstnerSpeed[i], L) * k * t + uGerstnerPhase[i];
+        if (i >= uWaveGerstN) break;
+        vec4 w = uWaveGerst[i];
+        vec3 a = uWaveGerstAmp[i];
+        float th = dot(w.xy, p0) + w.z * t + w.w;
         float s = sin(th), c = cos(th);
-        h += A * s;
-        dh += k * A * c * D;
-        disp += qa * c * D;
-        abd -= qa * k * s * vec3(D.x * D.x, D.x * D.y, D.y * D.y);
+        h += a.x * s;
+        dh += a.x * c * w.xy;
+        disp += c * a.yz;                               // Q_i A_i D cos th
+        abd -= s * vec3(a.y * w.x, a.y * w.y, a.z * w.y);   // Q_i A_i k sin th (DxDx, DxDz, DzDz)
     }
     vec3 nz = wavesNoise(p0, t);
     h += nz.x;
@@ -229,27 +221,18 @@ void wavesEval(vec2 p0, float t, out vec3 pos, out vec3 normal) {
 // Newton on p0 + D(p0) = xz from p0 = xz (only Gerstner waves move points
 // sideways); WAVES_NEWTON_ITERATIONS steps (the reference iterates to 1e-12).
 vec2 wavesRestPoint(vec2 xz, float t) {
-    int n = 0;
-    for (int i = 0; i < WAVES_MAX; i++) {
-        if (i >= uGerstnerCount) break;
-        if (uGerstnerLength[i] > 0.0 && uGerstnerAmp[i] != 0.0) n++;
-    }
     vec2 p0 = xz;
-    if (n == 0 || uSteepness == 0.0) return p0;
+    if (uWaveGerstN == 0 || uSteepness == 0.0) return p0;
     for (int it = 0; it < WAVES_NEWTON_ITERATIONS; it++) {
         vec2 disp = vec2(0.0);
         vec3 abd = vec3(0.0);
         for (int i = 0; i < WAVES_MAX; i++) {
-            if (i >= uGerstnerCount) break;
-            float L = uGerstnerLength[i], A = uGerstnerAmp[i];
-            if (L <= 0.0 || A == 0.0) continue;
-            float ang = radians(uGerstnerAngle[i]);
-            vec2 D = vec2(cos(ang), sin(ang));
-            float k = WAVES_TWO_PI / L;
-            float qa = uSteepness / (k * float(n)) * sign(A);
-            float th = k * dot(D, p0) + wavesPhaseSpeed(uGerstnerSpeed[i], L) * k * t + uGerstnerPhase[i];
-            disp += qa * cos(th) * D;
-            abd -= qa * k * sin(th) * vec3(D.x * D.x, D.x * D.y, D.y * D.y);
+            if (i >= uWaveGerstN) break;
+            vec4 w = uWaveGerst[i];
+            vec3 a = uWaveGerstAmp[i];
+            float th = dot(w.xy, p0) + w.z * t + w.w;
+            disp += cos(th) * a.yz;
+            abd -= sin(th) * vec3(a.y * w.x, a.y * w.y, a.z * w.y);
         }
         vec2 F = p0 + disp - xz;
         mat2 J = mat2(1.0 + abd.x, abd.y, abd.y, 1.0 + abd.z);

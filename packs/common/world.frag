@@ -4,7 +4,14 @@
 
 uniform sampler2D uTerrainAlbedo;
 uniform samplerCube uSky;
-uniform int uWorldMode;         // 0 terrain (the terrain's model, below), 1 object, 2 sky
+// 0 terrain (the terrain's model, below), 1 object, 2 sky. tarn compiles one
+// program per mode (WORLD_MODE defined), so a pixel runs only its own
+// branch: llvmpipe runs both sides of an `if` on a uniform.
+#ifdef WORLD_MODE
+const int uWorldMode = WORLD_MODE;
+#else
+uniform int uWorldMode;
+#endif
 uniform vec3 uWorldAlbedo;      // objects: one albedo each
 uniform vec3 uCameraPos;        // the eye of the current camera
 uniform bool uWorldEyePath;     // drawn to the screen: attenuate along the eye's path in water

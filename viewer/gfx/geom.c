@@ -267,6 +267,44 @@ bool geom_quad(geom_mesh *m, int axis, float offset, float size, int n1, int n2,
     return mb_finish(&b, m);
 }
 
+/* Moves vertex v of each per-vertex array to remap[v]. */
+static void permute_floats(float **a, int per, const int *remap, int nvert) {
+    if (!*a) return;
+    float *out = mem_alloc((size_t)nvert * per * sizeof(float));
+    for (int v = 0; v < nvert; v++) memcpy(out + (size_t)remap[v] * per, *a + (size_t)v * per, per * sizeof(float));
+    free(*a);
+    *a = out;
+}
+
+bool geom_grid_bands(geom_mesh *m, int nu, int nv, int band) {
+    if (!m || m->prim != GEOM_TRIANGLES || m->part_first || nu < 1 || nv < 1 || band < 1 ||
+        (long)m->nidx != 6L * nu * nv || (long)m->nvert != (long)(nu + 1) * (nv + 1))
+        return false;
+    unsigned *idx = mem_alloc((size_t)m->nidx * sizeof(unsigned));
+    int n = 0;
+    for (int b0 = 0; b0 < nu; b0 += band)
+        for (int j = 0; j < nv; j++)
+            for (int i = b0; i < b0 + band && i < nu; i++, n += 6)
+                memcpy(idx + n, m->idx + 6L * ((long)j * nu + i), 6 * sizeof(unsigned));
+    int *remap = mem_alloc((size_t)m->nvert * sizeof(int)), next = 0;
+    for (int v = 0; v < m->nvert; v++) remap[v] = -1;
+    for (int k = 0; k < n; k++) {
+        if (remap[idx[k]] < 0) remap[idx[k]] = next++;
+        idx[k] = (unsigned)remap[idx[k]];
+    }
+    for (int v = 0; v < m->nvert; v++)   /* none in a whole grid; kept for safety */
+        if (remap[v] < 0) remap[v] = next++;
+    permute_floats(&m->pos, 3, remap, m->nvert);
+    permute_floats(&m->nrm, 3, remap, m->nvert);
+    permute_floats(&m->tan, 3, remap, m->nvert);
+    permute_floats(&m->tc, 2, remap, m->nvert);
+    permute_floats(&m->tcp, 1, remap, m->nvert);
+    free(remap);
+    free(m->idx);
+    m->idx = idx;
+    return true;
+}
+
 bool geom_box(geom_mesh *m, float dx, float dy, float dz, bool wire) {
     if (!m) return false;
     memset(m, 0, sizeof *m);

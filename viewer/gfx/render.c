@@ -20,6 +20,7 @@
 #include "render_prog.h"
 #include "render_res.h"
 #include "render_world.h"
+#include "world_cache.h"
 #include "scene.h"
 #include "mem.h"
 #include "strbuf.h"
@@ -59,6 +60,7 @@ struct render {
     int water_mesh;                /* a setting's WaterMesh (0: the scene's own) */
     int water_mesh_loaded;         /* the one the world on screen was built with */
     gpu_world world;               /* kept across reloads while the world is unchanged */
+    world_cache wcache;            /* World commands drawn after a Clear, kept while their key stays */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];
     char path[GLIB_PATH_MAX];
@@ -89,6 +91,7 @@ render *render_create(const render_desc *desc) {
     if (desc && desc->pack) snprintf(r->pack, sizeof r->pack, "%s", desc->pack);
     r->samples = desc ? desc->samples : 0;
     gpu_timer_init(&r->timer);
+    wcache_init(&r->wcache);
     return r;
 }
 
@@ -118,6 +121,7 @@ void render_destroy(render *r) {
     if (!r) return;
     scene_free(&r->cur);
     world_free(&r->world);
+    wcache_free(&r->wcache);
     free_deps(r);
     free(r->messages);
     free(r->draw_messages);
@@ -492,7 +496,7 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
     for (int i = 0; i < s->nprogs; i++)
         for (int k = 0; k < s->progs[i].ndeps; k++) add_dep(r, s->progs[i].deps[k]);
     if (r->world.active)
-        for (int k = 0; k < r->world.prog.ndeps; k++) add_dep(r, r->world.prog.deps[k]);
+        for (int k = 0; k < r->world.progs[0].ndeps; k++) add_dep(r, r->world.progs[0].deps[k]);
 }
 
 /* The world the scene describes (if any), rebuilt only when it changed. */
@@ -601,6 +605,7 @@ bool render_load(render *r, const char *glib_path) {
         return false;
     }
     build_world(r, g, &log);
+    wcache_free(&r->wcache);   /* the world, its program or the commands may differ */
     scene_state fresh;
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
@@ -621,9 +626,9 @@ bool render_rebuild_programs(render *r) {
         if (!prog_build(p, (const char *const *)r->include_dirs, 1, &log)) ok = false;
         prog_introspect(p, &log);
     }
+    wcache_free(&r->wcache);   /* the world's program may draw differently now */
     if (r->world.active) {
-        if (!prog_build(&r->world.prog, (const char *const *)r->include_dirs, 1, &log)) ok = false;
-        prog_introspect(&r->world.prog, &log);
+        if (!world_build_programs(&r->world, (const char *const *)r->include_dirs, &log)) ok = false;
     }
     collect_deps(r, r->cur.glib, &r->cur);
     set_messages(r, log);
@@ -834,6 +839,11 @@ typedef struct frame_state {
     float eye[3];
     int patch_vertices;      /* NumPatchVertices: the size of the patches drawn next */
     int patch_cmd;           /* the NumPatchVertices command that set it, or -1 */
+    /* The static-world cache: the current target holds only what a Clear
+     * to clean_rgba left (nothing drawn since); the screen's own state
+     * while a pass draws into a texture. */
+    bool clean, screen_clean;
+    float clean_rgba[4], screen_rgba[4];
 } frame_state;
 
 static void mark_pass(render *r, const glib_cmd *c) {
@@ -846,7 +856,33 @@ static void mark_pass(render *r, const glib_cmd *c) {
 static void end_rtt(frame_state *f) {
     glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
     glViewport(f->x, f->y, f->w, f->h);
+    if (f->in_rtt) {   /* back from a pass: the screen as the pass found it */
+        f->clean = f->screen_clean;
+        memcpy(f->clean_rgba, f->screen_rgba, sizeof f->clean_rgba);
+    }
     f->in_rtt = false;
+}
+
+/* A pass begins: the screen's state is kept; the texture holds whatever
+ * it held until a Clear. */
+static void leave_target(frame_state *f) {
+    if (!f->in_rtt) {
+        f->screen_clean = f->clean;
+        memcpy(f->screen_rgba, f->clean_rgba, sizeof f->screen_rgba);
+    }
+    f->clean = false;
+}
+
+/* Command c, about to run: a Clear leaves the current target clean, a draw
+ * does not (World: draw_world, which looks first); other commands leave it. */
+static void track_clean(frame_state *f, const glib_cmd *c) {
+    if (c->kind == GLIB_CMD_CLEAR) {
+        f->clean = true;
+        glGetFloatv(GL_COLOR_CLEAR_VALUE, f->clean_rgba);
+    } else if (res_is_geometry(c->kind) || c->kind == GLIB_CMD_GL_BEGIN || c->kind == GLIB_CMD_WATER_SURFACE ||
+               c->kind == GLIB_CMD_SPLAT) {
+        f->clean = false;
+    }
 }
 
 static const gpu_tex *tex_at_unit(const scene_state *s, int unit) {
@@ -1098,6 +1134,31 @@ static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
     check_gl(r, f, ci, m, &d);
 }
 
+/* `World`: drawn, or, right after a Clear, copied from the static-world
+ * cache when nothing it depends on has changed (world_cache.h). */
+static void draw_world(render *r, frame_state *f, int i) {
+    const scene_state *s = &r->cur;
+    const glib_cmd *c = &s->glib->cmds[i];
+    const char *which = c->name[0] ? c->name : "all";
+    float offset = cmd_number(s, i, 0.0f);
+    wcache_key k;
+    wcache_key_init(&k);
+    k.t = f->t;
+    memcpy(k.eye, f->cam_eye, sizeof k.eye);
+    k.offset = offset;
+    k.which = strcmp(which, "above") == 0 ? 1 : strcmp(which, "below") == 0 ? 2 : 0;
+    k.to_screen = !f->in_rtt;
+    memcpy(k.clear_rgba, f->clean_rgba, sizeof k.clear_rgba);
+    bool cacheable = f->clean && r->world.active && !r->wcache.off &&
+                     wcache_key_gl(&k, WORLD_UNIT_ALBEDO, WORLD_UNIT_SKY);
+    f->clean = false;
+    if (cacheable && wcache_restore(&r->wcache, i, &k)) return;
+    world_draw(&r->world, which, offset, f->t, f->cam_eye, !f->in_rtt, f->cur ? f->cur->gl : 0);
+    if (!cacheable) return;
+    check_gl(r, f, i, NULL, NULL);   /* the world's own errors, reported before the copy looks */
+    wcache_store(&r->wcache, i, &k);
+}
+
 static void exec_cmd(render *r, frame_state *f, int i) {
     scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
@@ -1106,10 +1167,12 @@ static void exec_cmd(render *r, frame_state *f, int i) {
     bool pass_cmd = c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE;
     if (f->skipping && !pass_cmd) return;
     f->skipping = false;
+    track_clean(f, c);
     if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE) {
         if (s->once_done[i] || c->nnum == 0) { f->skipping = true; return; }
         s->once_done[i] = true;
         mark_pass(r, c);
+        leave_target(f);
         begin_rtt(r, c);
         f->in_rtt = true;
         upload_target_size(f);
@@ -1136,14 +1199,13 @@ static void exec_cmd(render *r, frame_state *f, int i) {
             upload_target_size(f);
         }
     } else if (c->kind == GLIB_CMD_WORLD) {
-        world_draw(&r->world, c->name[0] ? c->name : "all", cmd_number(s, i, 0.0f), f->t, f->cam_eye, !f->in_rtt,
-                   f->cur ? f->cur->gl : 0);
+        draw_world(r, f, i);
     } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
         if (strcmp(c->name, "points") == 0) draw_points(r, f, c);
         else world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
         mark_pass(r, c);
-        if (c->nnum > 0) { begin_rtt(r, c); f->in_rtt = true; }
+        if (c->nnum > 0) { leave_target(f); begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
         upload_target_size(f);
     } else if (res_is_texture(c->kind)) {
@@ -1157,6 +1219,13 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         exec_state_cmd(c);
     }
 }
+
+void render_set_world_cache(render *r, bool on) {
+    r->wcache.off = !on;
+    if (!on) wcache_free(&r->wcache);
+}
+
+long render_world_cache_hits(const render *r) { return r->wcache.hits; }
 
 void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_view *view) {
     render_frame_at(r, t, fbo, 0, 0, w, h, view);
@@ -1209,7 +1278,8 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         bind_builtin_noise(r, s);
         bind_textures(s);
         world_bind_textures(&r->world);
-        frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t };
+        frame_state f = { .screen_fbo = fbo, .x = x, .y = y, .w = w, .h = h, .t = t, .clean = true };
+        memcpy(f.clean_rgba, bg, sizeof f.clean_rgba);   /* cleared to it above */
         memcpy(f.eye, v.eye, sizeof f.eye);
         camera_inputs(r, &v, w, h, &f.cam_in);
         cam_compute(&f.cam_in, &f.cams);

@@ -96,6 +96,14 @@ void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_
  * beside the panel). */
 void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view);
 
+/* The static-world cache (on by default): a `World` drawn right after a
+ * Clear is copied from the last frame's pixels while its camera, clip,
+ * target, GL state, time and the world are unchanged (bit for bit what
+ * drawing it gives). Off: always drawn. hits: how many World draws it
+ * saved since render_create. */
+void render_set_world_cache(render *r, bool on);
+long render_world_cache_hits(const render *r);
+
 /* GPU time of the last finished frame in ms (timer query), or -1. When
  * wait is true, blocks until the latest frame's time is known. */
 double render_gpu_ms(render *r, bool wait);

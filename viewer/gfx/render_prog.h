@@ -26,6 +26,7 @@ typedef struct prog {
     bool tess;                               /* the build has a TessEvaluation stage */
     unsigned gs_input;                       /* its geometry shader's input primitive (GL enum), 0: none */
     bool world_uniforms;                     /* the scene has a world: its uniforms get no slider */
+    shader_define fixed;                     /* a define always built with (name "": none): the world's variants */
     char *source;                            /* all stage texts as compiled (for messages) */
     const glib_scene *scene;                 /* its glib: sliders that glib commands read */
 } prog;

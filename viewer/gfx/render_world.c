@@ -134,10 +134,15 @@ static bool build_skirt(gpu_world *gw) {
     return ok;
 }
 
+/* Cells a band of the water grid is wide (geom_grid_bands): its rows' vertices
+ * stay in llvmpipe's vertex cache from one row to the next. */
+#define WORLD_WATER_BAND 32
+
 static bool build_water(gpu_world *gw) {
     geom_mesh g;
     int res = gw->w.d.water_mesh_res;
     if (!geom_quad(&g, 1, (float)gw->w.d.water_level, (float)gw->w.d.half_size, res, res, false)) return false;
+    geom_grid_bands(&g, res, res, WORLD_WATER_BAND);   /* vertex reuse: the water's shaders are heavy */
     for (int i = 0; i < g.nvert; i++) {
         g.pos[i * 3 + 0] += (float)gw->water_shift[0];
         g.pos[i * 3 + 2] += (float)gw->water_shift[1];
@@ -205,15 +210,30 @@ static bool bake_sky(gpu_world *gw) {
 }
 
 static bool build_program(gpu_world *gw, const char *const *include_dirs, const char *common_dir, char **log) {
-    memset(&gw->prog, 0, sizeof gw->prog);
-    memset(&gw->prog_unifs, 0, sizeof gw->prog_unifs);
-    gw->prog.unifs = &gw->prog_unifs;
-    gw->prog.world_uniforms = true;
-    snprintf(gw->prog.name, sizeof gw->prog.name, "World");
-    snprintf(gw->prog.stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world.vert", common_dir);
-    snprintf(gw->prog.stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world.frag", common_dir);
-    bool ok = prog_build(&gw->prog, include_dirs, 1, log);
-    prog_introspect(&gw->prog, log);
+    for (int m = 0; m < WORLD_MODES; m++) {
+        prog *p = &gw->progs[m];
+        memset(p, 0, sizeof *p);
+        memset(&gw->prog_unifs[m], 0, sizeof gw->prog_unifs[m]);
+        p->unifs = &gw->prog_unifs[m];
+        p->world_uniforms = true;
+        snprintf(p->name, sizeof p->name, "World");
+        snprintf(p->fixed.name, sizeof p->fixed.name, "WORLD_MODE");
+        snprintf(p->fixed.value, sizeof p->fixed.value, "%d", m);
+        snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world.vert", common_dir);
+        snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world.frag", common_dir);
+    }
+    return world_build_programs(gw, include_dirs, log);
+}
+
+bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char **log) {
+    bool ok = true;
+    for (int m = 0; m < WORLD_MODES; m++) {
+        /* the variants share their source: one log says what is wrong with it */
+        char *mlog = NULL, **to = m == 0 ? log : &mlog;
+        if (!prog_build(&gw->progs[m], include_dirs, 1, to)) ok = false;
+        prog_introspect(&gw->progs[m], to);
+        free(mlog);
+    }
     return ok;
 }
 
@@ -242,7 +262,7 @@ void world_free(gpu_world *gw) {
     for (int i = 0; i < gw->nobjects; i++) res_mesh_free(&gw->objects[i]);
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
     if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
-    prog_free(&gw->prog);
+    for (int m = 0; m < WORLD_MODES; m++) prog_free(&gw->progs[m]);
     memset(gw, 0, sizeof *gw);
 }
 
@@ -250,9 +270,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
                  const char *common_dir, char **log) {
     if (gw->active && memcmp(&gw->desc, desc, sizeof *desc) == 0) {
         /* same world: only the shaders may have changed */
-        bool ok = prog_build(&gw->prog, include_dirs, 1, log);
-        prog_introspect(&gw->prog, log);
-        return ok;
+        return world_build_programs(gw, include_dirs, log);
     }
     world_free(gw);
     gw->desc = *desc;
@@ -368,6 +386,9 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
         loc = glGetUniformLocation(p, u->name);
         if (loc < 0) continue;
         if (u->is_int) glUniform1i(loc, u->i);
+        else if (u->is_uint) glUniform1uiv(loc, u->count, u->u);
+        else if (u->comps == 4) glUniform4fv(loc, u->count, u->v);
+        else if (u->comps == 3) glUniform3fv(loc, u->count, u->v);
         else glUniform1fv(loc, u->count, u->v);
     }
 }
@@ -381,32 +402,38 @@ void world_bind_textures(const gpu_world *gw) {
     glActiveTexture(GL_TEXTURE0);
 }
 
-void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
-                bool to_screen, unsigned restore_program) {
-    if (!gw->active || !gw->prog.gl) return;
-    unsigned p = gw->prog.gl;
+/* Binds the world's program for a mode with everything it reads set. */
+static void use_mode(const gpu_world *gw, int m, double t, const float eye[3], bool to_screen, const float plane[4]) {
+    unsigned p = gw->progs[m].gl;
     glUseProgram(p);
     world_upload(gw, p, t, eye);
     GLint eye_path = glGetUniformLocation(p, "uWorldEyePath");
     if (eye_path >= 0) glUniform1i(eye_path, to_screen ? 1 : 0);
+    GLint clip = glGetUniformLocation(p, "uWorldClip");
+    if (clip >= 0) glUniform4fv(clip, 1, plane);
+    seti(p, "uWorldMode", m);   /* a world.frag that takes the mode as a uniform */
+}
+
+void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
+                bool to_screen, unsigned restore_program) {
+    if (!gw->active) return;
+    for (int m = 0; m < WORLD_MODES; m++)
+        if (!gw->progs[m].gl) return;
     /* clip at the water plane: "above" keeps y > level, "below" y < level */
     /* the offset is in lake metres, like every length a pack writes */
     float level = (float)(gw->w.d.water_level + offset * ref_world_scale(&gw->w)), plane[4] = { 0, 0, 0, 1 };
     if (strcmp(which, "above") == 0) { plane[1] = 1; plane[3] = -level; }
     if (strcmp(which, "below") == 0) { plane[1] = -1; plane[3] = level; }
-    GLint clip = glGetUniformLocation(p, "uWorldClip");
-    if (clip >= 0) glUniform4fv(clip, 1, plane);
     glEnable(GL_CLIP_DISTANCE0);
-    GLint mode = glGetUniformLocation(p, "uWorldMode");
-    GLint albedo = glGetUniformLocation(p, "uWorldAlbedo");
     if (strcmp(which, "below") != 0) {   /* the sky, behind everything */
-        glUniform1i(mode, 2);
+        use_mode(gw, 2, t, eye, to_screen, plane);
         res_mesh_draw(&gw->sky_box, -1);
     }
-    glUniform1i(mode, 0);
+    use_mode(gw, 0, t, eye, to_screen, plane);
     res_mesh_draw(&gw->terrain, -1);
     res_mesh_draw(&gw->skirt, -1);
-    glUniform1i(mode, 1);
+    use_mode(gw, 1, t, eye, to_screen, plane);
+    GLint albedo = glGetUniformLocation(gw->progs[1].gl, "uWorldAlbedo");
     for (int i = 0; i < gw->nobjects; i++) {
         if (albedo >= 0) glUniform3fv(albedo, 1, gw->object_albedo[i]);
         res_mesh_draw(&gw->objects[i], -1);

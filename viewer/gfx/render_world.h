@@ -17,6 +17,7 @@
 #define WORLD_UNIT_ALBEDO 14
 #define WORLD_UNIT_SKY 15
 #define WORLD_SKY_RES 128
+#define WORLD_MODES 3
 
 typedef struct gpu_world {
     bool active;
@@ -30,8 +31,10 @@ typedef struct gpu_world {
     int nobjects;
     bool has_above_water;         /* terrain or an object rises above the water (If above_water) */
     unsigned albedo_tex, sky_tex;
-    prog prog;                    /* the built-in program: packs/common/world.{vert,frag} */
-    unif_set prog_unifs;
+    /* the built-in program, packs/common/world.{vert,frag}, once per
+     * WORLD_MODE (0 terrain, 1 objects, 2 sky): a pixel runs its own branch */
+    prog progs[WORLD_MODES];
+    unif_set prog_unifs[WORLD_MODES];
     ref_waves_uniform waves[REF_WAVES_UNIFORMS_MAX];
     int nwaves;
     /* the water grid's and the photon points' rest positions are the world
@@ -44,6 +47,8 @@ typedef struct gpu_world {
 bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *include_dirs,
                  const char *common_dir, char **log);
 void world_free(gpu_world *gw);
+/* Builds the world's programs again (a shader file changed); false on errors. */
+bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char **log);
 
 /* Sets every world uniform the bound program declares. */
 void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);

@@ -69,6 +69,18 @@ static const contract_uniform table[] = {
     WAVES("uNoiseAngle", "float", "WaveNoise", "drift direction of octave 0, degrees"),
     WAVES("uNoiseSpeed", "float", "WaveNoise", "drift speed of octave 0"),
     WAVES("uNoiseSeed", "int", "WaveNoise", "the seed's 32 bits, read as uint"),
+    /* the same waves resolved on the CPU (inactive ones dropped, defaults
+     * filled in): what waves.glsl's functions read */
+    WAVES("uWaveSineN", "int", "WaveSine", "active sine waves"),
+    WAVES("uWaveSine", "vec4[8]", "WaveSine", "k D.x, k D.z, omega, phase of each active sine wave"),
+    WAVES("uWaveSineAmp", "float[8]", "WaveSine", "amplitude of each active sine wave"),
+    WAVES("uWaveGerstN", "int", "WaveGerstner", "active Gerstner waves"),
+    WAVES("uWaveGerst", "vec4[8]", "WaveGerstner", "k D.x, k D.z, omega, phase of each active Gerstner wave"),
+    WAVES("uWaveGerstAmp", "vec3[8]", "WaveGerstner", "A, Q_i A_i D.x, Q_i A_i D.z"),
+    WAVES("uWaveNoiseN", "int", "WaveNoise", "noise octaves (0: no noise)"),
+    WAVES("uWaveNoise", "vec4[8]", "WaveNoise", "frequency, frequency times drift (x, z), amplitude per octave"),
+    WAVES("uWaveNoisePeriod", "float[8]", "WaveNoise", "lattice cells per tile per octave"),
+    WAVES("uWaveNoiseSeed", "uint[8]", "WaveNoise", "hashed seed per octave"),
 };
 
 #define NTABLE ((int)(sizeof table / sizeof table[0]))

@@ -1,0 +1,160 @@
+/* The static-world cache (viewer/gfx/world_cache.h): a frame whose World
+ * draws were copied from the cache equals, pixel for pixel, the same frame
+ * drawn with the cache off; a changed camera, time, uniform or reload draws
+ * the world again (the frame equals a fresh render's, and differs from the
+ * cached one). The packs' passes cover a float colour target with a depth
+ * texture (natural's refraction and reflection) and the screen. */
+#include <GL/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "gl_ctx.h"
+#include "render.h"
+#include "unif.h"
+
+#define W 160
+#define H 90
+#define LAKE TARN_SOURCE_DIR "/scenes/lake.glib"
+
+typedef struct rig {
+    render *r;
+    render_target tg;
+} rig;
+
+static void rig_open(rig *g, const char *pack, bool cache, bool is_float) {
+    render_desc rd = { .pack = pack };
+    g->r = render_create(&rd);
+    CHECK_MSG(render_load(g->r, LAKE), "%s", render_messages(g->r));
+    render_set_world_cache(g->r, cache);
+    CHECK(render_target_create(&g->tg, W, H, is_float));
+}
+
+static void rig_close(rig *g) {
+    render_target_destroy(&g->tg);
+    render_destroy(g->r);
+}
+
+/* One frame at t from view v (NULL: the scene's), read back. */
+static float *frame(rig *g, double t, const render_view *v) {
+    float *px = malloc((size_t)W * H * 4 * sizeof(float));
+    render_frame(g->r, t, g->tg.fbo, W, H, v);
+    render_target_read(&g->tg, px);
+    GLenum e = glGetError();
+    CHECK_MSG(e == GL_NO_ERROR, "GL error 0x%x", e);
+    return px;
+}
+
+static bool same(const float *a, const float *b) { return memcmp(a, b, (size_t)W * H * 4 * sizeof(float)) == 0; }
+
+static unif_entry *uniform_of(render *r, const char *name) {
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    for (int i = 0; i < n; i++) {
+        unif_entry *e = unif_find(&sets[i], name);
+        if (e) return e;
+    }
+    return NULL;
+}
+
+/* cached (on) and drawn (off) side by side through the same changes */
+static void check_pack(const char *pack, bool is_float) {
+    rig on, off;
+    rig_open(&on, pack, true, is_float);
+    rig_open(&off, pack, false, is_float);
+    /* the first frame at a time draws, the second keeps, the third copies */
+    float *a0 = frame(&on, 2.0, NULL), *a0b = frame(&on, 2.0, NULL);
+    long h0 = render_world_cache_hits(on.r);
+    CHECK(h0 == 0);
+    float *a1 = frame(&on, 2.0, NULL), *b1 = frame(&off, 2.0, NULL);
+    CHECK_MSG(render_world_cache_hits(on.r) > h0, "%s: the second frame copied no World", pack);
+    CHECK_MSG(render_world_cache_hits(off.r) == 0, "%s: the cache was off", pack);
+    CHECK_MSG(same(a0, b1) && same(a0b, b1) && same(a1, b1), "%s: a cached frame differs from a drawn one", pack);
+
+    /* the camera moves: drawn again, as a fresh render draws it */
+    render_view v = render_default_view(on.r);
+    v.eye[0] -= 1.5f;
+    v.eye[1] += 0.7f;
+    float *a2 = frame(&on, 2.0, &v), *b2 = frame(&off, 2.0, &v);
+    CHECK_MSG(same(a2, b2) && !same(a2, a1), "%s: a moved camera", pack);
+
+    /* the time changes (the shore wets and dries with the waves) */
+    float *a3 = frame(&on, 2.5, &v), *b3 = frame(&off, 2.5, &v);
+    CHECK_MSG(same(a3, b3), "%s: a later time", pack);
+    free(frame(&on, 2.5, &v));   /* kept: the uniform below must not copy it */
+
+    /* a uniform that moves a pass's camera (natural: Camera wide uFovScale) */
+    unif_entry *fov = uniform_of(on.r, "uFovScale"), *fov_off = uniform_of(off.r, "uFovScale");
+    if (fov && fov_off) {
+        unif_set_component(fov, 0, 2.0);
+        unif_set_component(fov_off, 0, 2.0);
+        float *a4 = frame(&on, 2.5, &v), *b4 = frame(&off, 2.5, &v);
+        CHECK_MSG(same(a4, b4) && !same(a4, a3), "%s: a changed uniform", pack);
+        free(a4);
+        free(b4);
+    }
+
+    /* a reload forgets: the next frame draws, then copies again */
+    CHECK(render_load(on.r, LAKE));
+    CHECK(render_load(off.r, LAKE));
+    long h1 = render_world_cache_hits(on.r);
+    float *a5 = frame(&on, 2.0, NULL);
+    CHECK(render_world_cache_hits(on.r) == h1);
+    float *a6 = frame(&on, 2.0, NULL), *a7 = frame(&on, 2.0, NULL), *b6 = frame(&off, 2.0, NULL);
+    CHECK(render_world_cache_hits(on.r) > h1);
+    CHECK_MSG(same(a5, b6) && same(a6, b6) && same(a7, b6), "%s: after a reload", pack);
+
+    float *all[] = { a0, a0b, a1, b1, a2, b2, a3, b3, a5, a6, a7, b6 };
+    for (size_t i = 0; i < sizeof all / sizeof *all; i++) free(all[i]);
+    rig_close(&on);
+    rig_close(&off);
+}
+
+static void test_basic_rgba8(void) { check_pack("basic", false); }
+
+/* A pass drawn once (RenderToTextureOnce, skipped from the second frame)
+ * before the screen's World: the screen stays clean and is copied. */
+static void test_screen_after_a_once_pass(void) {
+    FILE *in = fopen(LAKE, "r");
+    char path[512], line[1024];
+    const char *tmp = getenv("TMPDIR");
+    snprintf(path, sizeof path, "%s/tarn_world_cache_%d.glib", tmp && *tmp ? tmp : "/tmp", (int)getpid());
+    FILE *out = fopen(path, "w");
+    CHECK(in && out);
+    if (!in || !out) return;
+    while (fgets(line, sizeof line, in))
+        if (strncmp(line, "Pack", 4) != 0) fputs(line, out);
+    fputs("Texture2D 4 32 32 float16\nRenderToTextureOnce 4\nClear\nWorld all\nRenderToTexture\nWorld all\n", out);
+    fclose(in);
+    fclose(out);
+    render *on = render_create(NULL), *off = render_create(NULL);
+    CHECK_MSG(render_load(on, path), "%s", render_messages(on));
+    CHECK(render_load(off, path));
+    render_set_world_cache(off, false);
+    rig g = { .r = on }, h = { .r = off };
+    CHECK(render_target_create(&g.tg, W, H, true) && render_target_create(&h.tg, W, H, true));
+    float *a[3];
+    for (int i = 0; i < 3; i++) a[i] = frame(&g, 1.0, NULL);
+    float *b = frame(&h, 1.0, NULL);
+    CHECK_MSG(render_world_cache_hits(on) >= 1, "the screen's World after a skipped pass was not copied");
+    for (int i = 0; i < 3; i++) CHECK(same(a[i], b));
+    for (int i = 0; i < 3; i++) free(a[i]);
+    free(b);
+    rig_close(&g);
+    rig_close(&h);
+    remove(path);
+}
+static void test_natural_float(void) { check_pack("natural", true); }
+
+int main(void) {
+    char err[512];
+    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
+    RUN(test_screen_after_a_once_pass);
+    RUN(test_basic_rgba8);
+    RUN(test_natural_float);
+    gl_ctx_destroy(ctx);
+    return check_summary();
+}
