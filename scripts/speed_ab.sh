@@ -13,7 +13,12 @@
 #     --err-size WxH error size (default 480x270; the reference is cached)
 #     --time T       simulated time (default 2)
 #     --packs a,b    default: basic,raymarch,natural,caustic_tex
-#     --rounds N     default 3;  --frames N  default 4 (the first is warm-up)
+#     --rounds N     default 3;  --frames N  default 6 (the median is
+#                    taken over all, so the first two, which fill caches, are outliers)
+#     --still        every frame at the same time (tarn render --still: what a
+#                    paused window and tarn bench draw, so the static-world
+#                    cache is used); a build without --still, which has no
+#                    cache either, renders its frames 1/60 s apart as before
 #     BEFORE_ROOT / AFTER_ROOT (env): the trees whose scene and packs each
 #     build draws (default: the folder above the binary's build folder,
 #     e.g. /old/checkout for /old/checkout/build/tarn)
@@ -23,7 +28,7 @@
 set -euo pipefail
 [ $# -ge 2 ] || { sed -n 2,19p "$0"; exit 2; }
 before=$1 after=$2; shift 2
-scene=scenes/lake.glib size=960x540 esize=480x270 t=2 rounds=3 frames=4
+scene=scenes/lake.glib size=960x540 esize=480x270 t=2 rounds=3 frames=6 still=0
 packs=basic,raymarch,natural,caustic_tex
 while [ $# -gt 0 ]; do
     case $1 in
@@ -34,6 +39,7 @@ while [ $# -gt 0 ]; do
     --packs) packs=$2; shift ;;
     --rounds) rounds=$2; shift ;;
     --frames) frames=$2; shift ;;
+    --still) still=1 ;;
     *) echo "speed_ab.sh: unknown option $1" >&2; exit 2 ;;
     esac
     shift
@@ -45,20 +51,22 @@ trap 'rm -rf "$tmp"' EXIT
 
 # one build's wall ms per frame for one pack (the median tarn render prints)
 wall() {  # tarn root pack
-    local out
+    local out opt=()
+    if [ "$still" = 1 ] && [[ $("$1" render --help 2>&1) == *--still* ]]; then opt=(--still); fi
     out=$(TARN_ROOT=$2 "$1" render "$2/$scene" --pack "$3" --size "$size" --time "$t" \
-          --frames "$frames" -o "$tmp/f.png" 2>&1) || { echo "$out" >&2; return 1; }
+          --frames "$frames" "${opt[@]}" -o "$tmp/f.png" 2>&1) || { echo "$out" >&2; return 1; }
     sed -n 's/.* wall \([0-9.]*\) ms.*/\1/p' <<<"$out"
 }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 water_rmse() {  # tarn root pack
-    TARN_ROOT=$2 "$1" render "$2/$scene" --pack "$3" --size "$esize" --time "$t" -o "$tmp/e.exr" --quiet
+    TARN_ROOT=$2 "$1" render "$2/$scene" --pack "$3" --size "$esize" --time "$t" -o "$tmp/e.exr" --quiet 2>/dev/null
     "$1" compare "$tmp/e.exr" "$tmp/ref.exr" 2>&1 | awk "/^water RMSE/ {print \$NF}" | head -1
 }
 
 "$after" reference "$aroot/$scene" --time "$t" --size "$esize" -o "$tmp/ref.exr" >/dev/null
 echo "before: $before on $broot; after: $after on $aroot"
 echo "scene $scene, timing at $size, t = $t s, $rounds rounds x $frames frames per build, interleaved;"
+[ "$still" = 1 ] && echo "still frames (--still where the build has it)"
 echo "water RMSE at $esize against the CPU reference"
 echo
 echo "| pack | before ms | after ms | speed-up | water RMSE before | after |"

@@ -15,6 +15,7 @@ typedef struct cli_render_desc {
     int width, height;          /* 0: the glib's WindowSize */
     double time_s;              /* simulated time of the (first) frame */
     int frames;                 /* 0: 1 */
+    bool still;                 /* every frame at time_s (a paused window, tarn bench), not 1/60 s apart */
     bool quiet;
     const char *pack;           /* replaces the scene's `Pack` */
     const char *setting;        /* --setting NAME: a row of the pack's bench.txt, before the --sets */

@@ -99,6 +99,11 @@ static bool apply_sets(render *r, const cli_render_desc *d) {
     return ok;
 }
 
+/* Frame f's simulated time: 1/60 s apart, or all at --time with --still. */
+static double frame_time(const cli_render_desc *d, int f) {
+    return d->time_s + (d->still ? 0.0 : f / 60.0);
+}
+
 int cli_render(const cli_render_desc *d) {
     char err[1024];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
@@ -125,7 +130,7 @@ int cli_render(const cli_render_desc *d) {
     int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
     for (int f = 0; f < frames; f++) {
         double t0 = now_ms();
-        render_frame(r, d->time_s + f / 60.0, t.fbo, w, h, NULL);
+        render_frame(r, frame_time(d, f), t.fbo, w, h, NULL);
         glFinish();   /* wall time of the whole frame, including deferred rasterisation */
         if (gl_ctx_lost(ctx, err, sizeof err)) {   /* a GPU reset: nothing drawn can be trusted */
             fprintf(stderr, "tarn: %s\n", err);
@@ -143,7 +148,7 @@ int cli_render(const cli_render_desc *d) {
                 break;
             }
             if (!d->quiet && (!per_frame || f == frames - 1))
-                printf("tarn: wrote %s (%dx%d, t=%.3f s)\n", path, w, h, d->time_s + f / 60.0);
+                printf("tarn: wrote %s (%dx%d, t=%.3f s)\n", path, w, h, frame_time(d, f));
         }
     }
     if (render_draw_messages(r)[0]) {   /* a draw that failed: the picture has the rest */
@@ -168,7 +173,7 @@ int cli_render(const cli_render_desc *d) {
 
 static const char usage[] =
     "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
-    "                   [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
+    "                   [--still] [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
     "\n"
     "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
     "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
@@ -179,6 +184,9 @@ static const char usage[] =
     "  --size WxH       image size (default: the glib's WindowSize)\n"
     "  --time SECONDS   simulated time of the first frame (default 0)\n"
     "  --frames N       render N frames, 1/60 s apart; prints the median GPU time\n"
+    "                   and wall time per frame\n"
+    "  --still          ...all N at --time, as a paused window and tarn bench draw\n"
+    "                   them (what does not change is reused: the static-world cache)\n"
     "  --setting NAME   start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
     "                   default, paper, ...), as the panel's Setting combo does\n"
     "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
@@ -205,6 +213,8 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
         } else if (strcmp(a, "--time") == 0) {
             if (!opt_double(next, &d->time_s)) return bad("--time wants seconds, e.g. 2.5");
             i++;
+        } else if (strcmp(a, "--still") == 0) {
+            d->still = true;
         } else if (strcmp(a, "--frames") == 0) {
             if (!cmd_opt_range(next, 1, 100000, &f)) return bad("--frames wants 1..100000");
             d->frames = (int)f;
