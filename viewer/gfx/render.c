@@ -1358,21 +1358,18 @@ bool render_read_uniform(render *r, const char *program, const char *name, float
 
 /* ---- offscreen targets ---- */
 
-bool render_target_create(render_target *t, int w, int h, bool is_float) {
-    memset(t, 0, sizeof *t);
-    t->w = w;
-    t->h = h;
-    t->is_float = is_float;
+/* One colour+depth framebuffer, its colour in `internal` (given as `type`). */
+static bool target_create(render_target *t, int w, int h, unsigned internal, unsigned type) {
     glGenTextures(1, &t->color);
     glBindTexture(GL_TEXTURE_2D, t->color);
-    glTexImage2D(GL_TEXTURE_2D, 0, is_float ? GL_RGBA32F : GL_RGBA8, w, h, 0, GL_RGBA,
-                 is_float ? GL_FLOAT : GL_UNSIGNED_BYTE, NULL);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, w, h, 0, GL_RGBA, type, NULL);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glBindTexture(GL_TEXTURE_2D, 0);
     glGenRenderbuffers(1, &t->depth);
     glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
     glGenFramebuffers(1, &t->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->color, 0);
@@ -1381,6 +1378,16 @@ bool render_target_create(render_target *t, int w, int h, bool is_float) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (!ok) render_target_destroy(t);
     return ok;
+}
+
+bool render_target_create(render_target *t, int w, int h, bool is_float) {
+    *t = (render_target){ .w = w, .h = h, .is_float = is_float };
+    return target_create(t, w, h, is_float ? GL_RGBA32F : GL_RGBA8, is_float ? GL_FLOAT : GL_UNSIGNED_BYTE);
+}
+
+bool render_target_create_srgb(render_target *t, int w, int h) {
+    *t = (render_target){ .w = w, .h = h, .is_srgb = true };
+    return target_create(t, w, h, GL_SRGB8_ALPHA8, GL_UNSIGNED_BYTE);
 }
 
 void render_target_destroy(render_target *t) {

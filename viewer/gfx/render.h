@@ -141,8 +141,11 @@ int render_targets(const render *r, render_target_info *out, int max);
 bool render_read_uniform(render *r, const char *program, const char *name, float *out, int n);
 
 /* An offscreen colour+depth framebuffer for headless rendering. */
-typedef struct render_target { unsigned fbo, color, depth; int w, h; bool is_float; } render_target;
+typedef struct render_target { unsigned fbo, color, depth; int w, h; bool is_float, is_srgb; } render_target;
 bool render_target_create(render_target *t, int w, int h, bool is_float);
+/* The same with 8-bit sRGB-encoded colour (the window's encoding): what a
+ * window draws a world into and upscales from. */
+bool render_target_create_srgb(render_target *t, int w, int h);
 void render_target_destroy(render_target *t);
 /* Reads the target back as RGBA floats, row 0 = top (the file order). */
 bool render_target_read(const render_target *t, float *rgba);

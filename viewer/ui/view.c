@@ -37,50 +37,24 @@ typedef struct viewer {
     /* the scene's image, drawn at the budget's scale into its bottom-left
      * corner and upscaled into the window: sRGB for a world (the window's
      * encoding, so the picture is what drawing to the window gave) */
-    unsigned canvas_fbo, canvas_color, canvas_depth;
-    int canvas_w, canvas_h;
-    bool canvas_srgb;
+    render_target canvas;
     int drawn_w, drawn_h;        /* what the canvas holds (0: nothing yet) */
 } viewer;
 
 static void canvas_free(viewer *v) {
-    if (v->canvas_fbo) glDeleteFramebuffers(1, &v->canvas_fbo);
-    if (v->canvas_color) glDeleteTextures(1, &v->canvas_color);
-    if (v->canvas_depth) glDeleteRenderbuffers(1, &v->canvas_depth);
-    v->canvas_fbo = v->canvas_color = v->canvas_depth = 0;
-    v->canvas_w = v->canvas_h = v->drawn_w = v->drawn_h = 0;
+    render_target_destroy(&v->canvas);
+    v->drawn_w = v->drawn_h = 0;
 }
 
 /* A w x h canvas of the format the scene needs; false (nothing drawn
  * this frame) when GL refuses it. */
 static bool canvas_ensure(viewer *v, int w, int h, bool srgb) {
-    if (v->canvas_fbo && v->canvas_w == w && v->canvas_h == h && v->canvas_srgb == srgb) return true;
+    render_target *c = &v->canvas;
+    if (c->fbo && c->w == w && c->h == h && c->is_srgb == srgb) return true;
     canvas_free(v);
-    glGenTextures(1, &v->canvas_color);
-    glBindTexture(GL_TEXTURE_2D, v->canvas_color);
-    glTexImage2D(GL_TEXTURE_2D, 0, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glGenRenderbuffers(1, &v->canvas_depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, v->canvas_depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
-    glBindRenderbuffer(GL_RENDERBUFFER, 0);
-    glGenFramebuffers(1, &v->canvas_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, v->canvas_fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, v->canvas_color, 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, v->canvas_depth);
-    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (!ok) {
-        fprintf(stderr, "tarn: cannot make a %dx%d scene canvas\n", w, h);
-        canvas_free(v);
-        return false;
-    }
-    v->canvas_w = w;
-    v->canvas_h = h;
-    v->canvas_srgb = srgb;
-    return true;
+    if (srgb ? render_target_create_srgb(c, w, h) : render_target_create(c, w, h, false)) return true;
+    fprintf(stderr, "tarn: cannot make a %dx%d scene canvas\n", w, h);
+    return false;
 }
 
 static void report_load(viewer *v) {
@@ -292,7 +266,7 @@ static void on_draw(void *user, app *a) {
         res_budget_size(scale, aw, ah, &v->drawn_w, &v->drawn_h);
         render_view view = orbit_view(&s->cam);
         if (world) glEnable(GL_FRAMEBUFFER_SRGB);
-        render_frame_at(v->r, s->t, v->canvas_fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
+        render_frame_at(v->r, s->t, v->canvas.fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
     }
     app_budget_drawn(a, v->drawn_w, v->drawn_h, aw, ah);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -302,7 +276,7 @@ static void on_draw(void *user, app *a) {
     glClear(GL_COLOR_BUFFER_BIT);
     /* sRGB to sRGB: decoded, filtered in linear, encoded again (1:1 exact) */
     if (world) glEnable(GL_FRAMEBUFFER_SRGB);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, v->canvas_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, v->canvas.fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     bool full = v->drawn_w == aw && v->drawn_h == ah;
     glBlitFramebuffer(0, 0, v->drawn_w, v->drawn_h, x0, 0, x0 + aw, ah, GL_COLOR_BUFFER_BIT,
