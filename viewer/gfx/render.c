@@ -74,6 +74,11 @@ struct render {
     unsigned rtt_fbo, rtt_depth;
     int rtt_w, rtt_h;
     int samples;               /* MSAA requested (render_desc.samples) */
+    /* Ask GL for errors after every command, to name the one at fault:
+     * in the first frame after a load and after a frame that had an
+     * error. Otherwise once a frame: glGetError can stall a GPU's
+     * command stream, and the answer is almost always "none". */
+    bool gl_check_each;
     render_msaa msaa;          /* the screen passes' multisampled target */
     int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
     gpu_timer timer;           /* per frame and per pass */
@@ -615,6 +620,7 @@ bool render_load(render *r, const char *glib_path) {
     collect_deps(r, g, &r->cur);
     set_messages(r, log);
     r->errors = g->nerrors > 0 || r->diags.nerrors > 0;
+    r->gl_check_each = true;
     return !r->errors;
 }
 
@@ -633,6 +639,7 @@ bool render_rebuild_programs(render *r) {
     collect_deps(r, r->cur.glib, &r->cur);
     set_messages(r, log);
     r->errors = !ok;
+    r->gl_check_each = true;
     return ok;
 }
 
@@ -844,6 +851,7 @@ typedef struct frame_state {
      * while a pass draws into a texture. */
     bool clean, screen_clean;
     float clean_rgba[4], screen_rgba[4];
+    bool check_each;         /* render.gl_check_each for this frame */
 } frame_state;
 
 static void mark_pass(render *r, const glib_cmd *c) {
@@ -1131,7 +1139,7 @@ static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
     if (why[0])
         draw_problem(r, ci, !drawn, "%s %s%s", glib_cmd_name(r->cur.glib->cmds[ci].kind),
                      drawn ? "" : "drew nothing: ", why);
-    check_gl(r, f, ci, m, &d);
+    if (f->check_each) check_gl(r, f, ci, m, &d);
 }
 
 /* `World`: drawn, or, right after a Clear, copied from the static-world
@@ -1227,6 +1235,19 @@ void render_set_world_cache(render *r, bool on) {
 
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
 
+/* After a frame checked once at its end: an error sends the next frame
+ * through the checks after each command, which name the command (the
+ * draw drew nothing either way; the rest of the frame is drawn). */
+static void frame_gl_errors(render *r, const frame_state *f) {
+    if (f->check_each) {
+        r->gl_check_each = false;
+        return;
+    }
+    if (glGetError() == GL_NO_ERROR) return;
+    for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {}
+    r->gl_check_each = true;
+}
+
 void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_view *view) {
     render_frame_at(r, t, fbo, 0, 0, w, h, view);
 }
@@ -1289,10 +1310,12 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         f.patch_vertices = 3;   /* GL's default patch size */
         f.patch_cmd = -1;
         for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {}   /* not ours: the caller's */
+        f.check_each = r->gl_check_each;
         for (int i = 0; i < s->glib->ncmds; i++) {
             exec_cmd(r, &f, i);
-            check_gl(r, &f, i, NULL, NULL);   /* after a draw, draw_mesh has checked already */
+            if (f.check_each) check_gl(r, &f, i, NULL, NULL);   /* after a draw, draw_mesh has checked already */
         }
+        frame_gl_errors(r, &f);
         for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */
             if (f.depth <= MATRIX_STACK_MAX) glPopMatrix();
         glPopMatrix();
