@@ -42,6 +42,9 @@ uniform float uSpecular;         // highlight strength (times the sun's irradian
 uniform float uShininess;        // highlight exponent
 uniform float uCausticStrength;  // 1: the photons' ratio as computed; 0: flat-water light
 
+#ifndef REFINE_BISECT
+#define REFINE_BISECT 6          // halvings of the bracket the march found (1/64 of a step)
+#endif
 #ifndef REFINE_STEPS
 #define REFINE_STEPS 0           // march steps finding the refraction hit in the depth target (0: the paper)
 #endif
@@ -115,7 +118,8 @@ vec3 applyCaustics(vec3 c, vec3 p) {
 // point U. The paper: W = U + s0 r. With REFINE_STEPS > 0, a march instead:
 // W = U + s r for s = smax i / REFINE_STEPS until W passes behind what the
 // target shows at W (g(s) = |W - eye| - |shown(W) - eye| > 0; g(0) = g0 =
-// -|shown(U) - U| < 0), then two regula-falsi steps in the bracket; a ray
+// -|shown(U) - U| < 0), then REFINE_BISECT halvings of the bracket and one
+// regula-falsi step; a ray
 // that leaves the target keeps its last point in front. fallback: the
 // unperturbed lookup when W leaves the target or meets nothing. path:
 // |shown - U|. sky: the lookup met the sky (or nothing).
@@ -132,8 +136,12 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
         if (!ok) { s = sa; break; }
         float gb = distance(uCameraPos, U + sb * r) - distance(uCameraPos, b);
         if (gb > 0.0) {
-            for (int k = 0; k < 2; k++) {
-                float sm = sa + (sb - sa) * (-ga) / (gb - ga);
+            // bisection, then one interpolation: two regula-falsi steps
+            // (as before) stalled at one end where g bends (a floor seen at
+            // a slant), so the hits of whole rows of pixels stopped at the
+            // same step's end and showed as bands on the shallow floor
+            for (int k = 0; k < REFINE_BISECT; k++) {
+                float sm = 0.5 * (sa + sb);
                 vec3 bm = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + sm * r, uv, ok);
                 float gm = ok ? distance(uCameraPos, U + sm * r) - distance(uCameraPos, bm) : 1.0;
                 if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
