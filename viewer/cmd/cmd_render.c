@@ -99,6 +99,22 @@ static bool apply_sets(render *r, const cli_render_desc *d) {
     return ok;
 }
 
+/* The load's messages; --quiet keeps the warnings and errors (a pack's
+ * notes, such as uniforms its Defines compile out, are for the panel). */
+static void print_load_messages(render *r, bool quiet) {
+    if (!quiet) {
+        fputs(render_messages(r), stderr);
+        return;
+    }
+    const diag_list *l = render_diags(r);
+    for (int i = 0; i < l->n; i++) {
+        if (l->d[i].severity < DIAG_WARNING) continue;
+        char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 64];
+        diag_format(&l->d[i], line, sizeof line);
+        fprintf(stderr, "%s\n", line);
+    }
+}
+
 /* Frame f's simulated time: 1/60 s apart, or all at --time with --still. */
 static double frame_time(const cli_render_desc *d, int f) {
     return d->time_s + (d->still ? 0.0 : f / 60.0);
@@ -111,7 +127,7 @@ int cli_render(const cli_render_desc *d) {
     render_desc rd = { .pack = d->pack, .samples = d->samples };
     render *r = render_create(&rd);
     bool ok = render_load(r, d->glib);
-    if (render_messages(r)[0]) fputs(render_messages(r), stderr);
+    print_load_messages(r, d->quiet);
     if (!apply_sets(r, d)) ok = false;
     int w = d->width, h = d->height;
     if (w <= 0 || h <= 0) render_window_size(r, &w, &h);
@@ -192,7 +208,7 @@ static const char usage[] =
     "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
     "                   as the panel would (NAME=V: of every Program); repeatable\n"
     CMD_MSAA_HELP
-    "  --quiet          print only errors\n"
+    "  --quiet          print only warnings and errors\n"
     "\n"
     "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
 
