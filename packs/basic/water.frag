@@ -25,6 +25,16 @@ void main() {
     r0 *= r0;
     float f = r0 + (1.0 - r0) * pow(1.0 - cosI, 5.0);
 #endif
+    if (below) {
+        // From under the water: outside Snell's window f = 1 (total
+        // internal reflection), and what it mirrors is the water below,
+        // for which the tint stands (basic traces nothing); inside it the
+        // world above shows through, unrefracted, as the floor does from
+        // above. Both reach the eye through |eye - surface| of water.
+        vec3 t = exp(-uAbsorption * distance(uCameraPos, vWorldPos));
+        fragColor = vec4(t * f * uTint, 1.0 - dot(t, vec3(1.0 / 3.0)) * (1.0 - f));
+        return;
+    }
     vec3 sky = texture(uSky, reflect(-e, n)).rgb;
     vec3 color = f * sky + (1.0 - f) * uTint;
     // Blend premultiplied: out = color + dst * (1 - alpha), the floor seen
