@@ -20,6 +20,7 @@
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "render.h"
 #include "unif.h"
 
@@ -453,12 +454,8 @@ static void test_no_gl_errors_after_all_that(void) {
 }
 
 int main(void) {
-    char err[512];
-    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) {
-        fprintf(stderr, "skip: %s\n", err);
-        return 77;
-    }
+    gl_ctx *ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
     fprintf(stderr, "context: %s\n", gl_ctx_describe(ctx));
     if (!scratch_create("bad")) return 1;
     if (!render_target_create(&target, W, H, false)) { fprintf(stderr, "no target\n"); return 1; }

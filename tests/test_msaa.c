@@ -14,22 +14,13 @@
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "render.h"
 
 #define W 64
 #define H 64
 
 static float px[W * H * 4];
-
-static const char *flat_vert =
-    "#version 330 compatibility\n"
-    "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n";
-
-static const char *flat_frag =
-    "#version 330 compatibility\n"
-    "uniform vec4 uColor;\n"
-    "out vec4 fragColor;\n"
-    "void main() { fragColor = uColor; }\n";
 
 /* A white square of side 1 (NDC), turned 30 degrees, on black: a quarter
  * of the 2 x 2 view. */
@@ -171,12 +162,8 @@ static void test_reference_spp_matches(void) {
 }
 
 int main(void) {
-    char err[512];
-    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) {
-        fprintf(stderr, "skip: %s\n", err);
-        return 77;
-    }
+    gl_ctx *ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
     if (!scratch_create("msaa")) return 1;
     RUN(test_off_has_two_colours);
     RUN(test_four_samples_blend_the_edges);

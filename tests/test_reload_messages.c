@@ -9,6 +9,7 @@
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "render.h"
 
 static int count_of(const char *hay, const char *needle) {
@@ -104,12 +105,8 @@ static void test_no_uniform_warnings_for_a_failed_program(void) {
 }
 
 int main(void) {
-    char err[512];
-    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) {
-        fprintf(stderr, "skip: %s\n", err);
-        return 77;
-    }
+    gl_ctx *ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
     if (!scratch_create("reload-messages")) return 1;
     RUN(test_shared_include_error_once_naming_programs);
     RUN(test_stage_error_names_program_and_stage);

@@ -11,6 +11,7 @@
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "render.h"
 #include "scene.h"
 #include "watch.h"
@@ -37,16 +38,6 @@ static const float *at(int x, int y) { return px + ((size_t)y * W + x) * 4; }
 
 #define CHECK_RGB(p, r_, g_, b_) do { const float *q_ = (p); \
     CHECK_NEAR(q_[0], r_, TOL); CHECK_NEAR(q_[1], g_, TOL); CHECK_NEAR(q_[2], b_, TOL); } while (0)
-
-static const char *flat_vert =
-    "#version 330 compatibility\n"
-    "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n";
-
-static const char *flat_frag =
-    "#version 330 compatibility\n"
-    "uniform vec4 uColor;\n"
-    "out vec4 fragColor;\n"
-    "void main() { fragColor = uColor; }\n";
 
 static void test_uniform_colour_fills_the_screen(void) {
     scratch_write("flat.vert", flat_vert);
@@ -488,12 +479,8 @@ static void test_plain_scene_viewing_and_no_world(void) {
 }
 
 int main(void) {
-    char err[512];
-    ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) {
-        fprintf(stderr, "skip: %s\n", err);
-        return 77;
-    }
+    ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
     fprintf(stderr, "context: %s\n", gl_ctx_describe(ctx));
     if (!scratch_create("render")) return 1;
     RUN(test_uniform_colour_fills_the_screen);

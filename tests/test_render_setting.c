@@ -11,6 +11,7 @@
 
 #include "check.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "packset.h"
 #include "render.h"
 #include "render_setting.h"
@@ -144,9 +145,8 @@ static void test_not_applicable_and_unknown(void) {
 }
 
 int main(void) {
-    char err[512];
-    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
+    gl_ctx *ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
     if (!scratch_create("render-setting")) return 1;
     RUN(test_same_pixels_as_bench);
     RUN(test_water_mesh_shows);

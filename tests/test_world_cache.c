@@ -12,6 +12,7 @@
 
 #include "check.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "render.h"
 #include "unif.h"
 
@@ -149,9 +150,8 @@ static void test_screen_after_a_once_pass(void) {
 static void test_natural_float(void) { check_pack("natural", true); }
 
 int main(void) {
-    char err[512];
-    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) { fprintf(stderr, "skip: %s\n", err); return 77; }
+    gl_ctx *ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
     RUN(test_screen_after_a_once_pass);
     RUN(test_basic_rgba8);
     RUN(test_natural_float);
