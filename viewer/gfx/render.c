@@ -81,6 +81,7 @@ struct render {
     bool gl_check_each;
     render_msaa msaa;          /* the screen passes' multisampled target */
     int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
+    double detail;             /* render_set_detail: 1 (0 before the first call) everything as the scene says */
     gpu_timer timer;           /* per frame and per pass */
     gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, always bound */
     char noise_dir[GLIB_PATH_MAX];  /* the project folder they were read for */
@@ -359,16 +360,45 @@ static int screen_divisor(const char *name) {
     return 0;
 }
 
-static int target_side(const scene_state *s, const char *name, int screen, int max) {
+/* A count the scene fixes (a target's side, points per side) at the
+ * frame's detail (render_set_detail): scaled with the frame's sides, so a
+ * pass costs the same share of a reduced frame as of a full one; never
+ * below DETAIL_MIN_COUNT (nor above the scene's own). */
+#define DETAIL_MIN_COUNT 16
+
+static int detail_count(const render *r, int n) {
+    if (!(r->detail > 0) || r->detail >= 1 || n <= DETAIL_MIN_COUNT) return n;
+    long k = lround(n * r->detail);
+    return k < DETAIL_MIN_COUNT ? DETAIL_MIN_COUNT : (int)k;
+}
+
+/* Is texture unit drawn into by a RenderToTexture of every frame? Only
+ * those cost every frame; one a RenderToTextureOnce fills (raymarch's
+ * top-down views, a lookup table) is drawn once a load, and shrinking it
+ * would draw it again at each change of detail, and worse. */
+static bool drawn_every_frame(const glib_scene *g, int unit) {
+    for (int i = 0; i < g->ncmds; i++) {
+        const glib_cmd *c = &g->cmds[i];
+        if (c->kind != GLIB_CMD_RENDER_TO_TEXTURE) continue;
+        for (int k = 0; k < c->nnum; k++)
+            if ((int)c->num[k] == unit) return true;
+    }
+    return false;
+}
+
+static int target_side(const render *r, const char *name, int screen, int max, bool per_frame) {
     int div = screen_divisor(name);
-    if (!div) return slider_count(s, name, max);
-    int n = (screen + div - 1) / div;
+    if (!div) {
+        int n = slider_count(&r->cur, name, max);
+        return per_frame ? detail_count(r, n) : n;
+    }
+    int n = (screen + div - 1) / div;   /* the frame's size is already the reduced one */
     return n < 1 ? 1 : n > max ? max : n;
 }
 
-/* Render targets whose size a slider (or the frame) gives follow it; a
- * resized target loses its contents, so RenderToTextureOnce blocks draw
- * again. */
+/* Render targets whose size a slider (or the frame) gives follow it, and
+ * those drawn every frame the frame's detail; a resized target loses its
+ * contents, so RenderToTextureOnce blocks draw again. */
 static void size_targets(render *r, int screen_w, int screen_h) {
     scene_state *s = &r->cur;
     if (!r->max_target) {   /* asked once: the context's limit does not change */
@@ -381,10 +411,13 @@ static void size_targets(render *r, int screen_w, int screen_h) {
     int max = r->max_target;
     for (int i = 0; i < s->glib->ncmds; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
-        if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || (!c->name[0] && !c->arg[0]) || s->cmd_res[i] < 0) continue;
+        if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || s->cmd_res[i] < 0) continue;
         gpu_tex *t = &s->texs[s->cmd_res[i]];
-        int w = c->name[0] ? target_side(s, c->name, screen_w, max) : (int)c->num[1];
-        int h = c->arg[0] ? target_side(s, c->arg, screen_h, max) : (int)c->num[2];
+        bool per_frame = drawn_every_frame(s->glib, (int)c->num[0]);
+        int w = c->name[0] ? target_side(r, c->name, screen_w, max, per_frame) : (int)c->num[1];
+        int h = c->arg[0] ? target_side(r, c->arg, screen_h, max, per_frame) : (int)c->num[2];
+        if (per_frame && !c->name[0]) w = detail_count(r, w);
+        if (per_frame && !c->arg[0]) h = detail_count(r, h);
         if (w == t->w && h == t->h) continue;
         res_target_resize(t, w, h);
         memset(s->once_done, 0, (size_t)s->glib->ncmds * sizeof *s->once_done);
@@ -1043,7 +1076,9 @@ static void upload_target_size(const frame_state *f) {
 /* `WaterSurface points N`: N x N points; uPointGrid (contract) tells the
  * current program the N it is drawn with. */
 static void draw_points(render *r, const frame_state *f, const glib_cmd *c) {
-    int n = c->arg[0] ? slider_count(&r->cur, c->arg, 4096) : (int)c->num[0];
+    /* at the frame's detail, as a target sized by the same slider is: a
+     * pass of one photon per texel and the splat of those photons agree */
+    int n = detail_count(r, c->arg[0] ? slider_count(&r->cur, c->arg, 4096) : (int)c->num[0]);
     if (f->cur && f->cur->gl) {
         GLint loc = glGetUniformLocation(f->cur->gl, "uPointGrid");
         if (loc >= 0) glUniform1f(loc, (float)n);
@@ -1156,6 +1191,7 @@ static void draw_world(render *r, frame_state *f, int i) {
     k.offset = offset;
     k.which = strcmp(which, "above") == 0 ? 1 : strcmp(which, "below") == 0 ? 2 : 0;
     k.to_screen = !f->in_rtt;
+    k.lod = r->world.lod;
     memcpy(k.clear_rgba, f->clean_rgba, sizeof k.clear_rgba);
     bool cacheable = f->clean && r->world.active && !r->wcache.off &&
                      wcache_key_gl(&k, WORLD_UNIT_ALBEDO, WORLD_UNIT_SKY);
@@ -1235,6 +1271,10 @@ void render_set_world_cache(render *r, bool on) {
 
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
 
+void render_set_detail(render *r, double detail) {
+    r->detail = detail > 0 && detail < 1 ? detail : 1;
+}
+
 /* After a frame checked once at its end: an error sends the next frame
  * through the checks after each command, which name the command (the
  * draw drew nothing either way; the rest of the frame is drawn). */
@@ -1295,6 +1335,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     if (s->glib) {
         render_view v = view ? *view : s->set.view;
         size_targets(r, w, h);
+        world_set_detail(&r->world, r->detail);
         world_follow_waves(&r->world, t);
         bind_builtin_noise(r, s);
         bind_textures(s);

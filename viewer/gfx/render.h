@@ -104,6 +104,17 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
 void render_set_world_cache(render *r, bool on);
 long render_world_cache_hits(const render *r);
 
+/* Detail of the next frames, for a frame drawn at `detail` (0..1] of
+ * each side of its full resolution (the windows' frame budget): the
+ * scene's fixed-size work shrinks with it, so a reduced frame costs about
+ * detail^2 of a full one, not a fixed floor: RenderToTexture targets of a
+ * fixed or slider-given size and `WaterSurface points N` are scaled by
+ * detail (at least 16 a side), and the world's terrain and water grid are
+ * drawn with about detail^2 of their vertices (coarser meshes, built when
+ * first needed). Targets whose size follows the frame (`screen`) follow
+ * it already. 1 (the default): everything as the scene says. */
+void render_set_detail(render *r, double detail);
+
 /* GPU time of the last finished frame in ms (timer query), or -1. When
  * wait is true, blocks until the latest frame's time is known. */
 double render_gpu_ms(render *r, bool wait);

@@ -15,9 +15,15 @@
 
 /* ---- baking ---- */
 
-static bool build_terrain(gpu_world *gw) {
+/* Cells a side of a mesh of `res` cells at level of detail lod. */
+static int lod_cells(int res, int lod) {
+    int n = res >> lod;
+    return lod == 0 || n >= WORLD_LOD_MIN_CELLS ? n : (res < WORLD_LOD_MIN_CELLS ? res : WORLD_LOD_MIN_CELLS);
+}
+
+static bool build_terrain(gpu_world *gw, int lod) {
     const ref_world *w = &gw->w;
-    int res = w->d.terrain_res;
+    int res = lod_cells(w->d.terrain_res, lod);
     double hs = w->d.half_size;
     geom_mesh g;
     if (!geom_quad(&g, 1, 0.0f, (float)hs, res, res, false)) return false;
@@ -30,7 +36,7 @@ static bool build_terrain(gpu_world *gw) {
         g.tc[i * 2] = (float)((x + hs) / (2 * hs));
         g.tc[i * 2 + 1] = (float)((z + hs) / (2 * hs));
     }
-    bool ok = res_mesh_upload(&g, &gw->terrain);
+    bool ok = res_mesh_upload(&g, &gw->terrain[lod]);
     geom_free(&g);
     return ok;
 }
@@ -61,8 +67,8 @@ static bool build_sky_box(gpu_world *gw) {
 
 /* The half sizes of the skirt's rings, ring 0 the square's border; returns
  * how many (at least 2, the last at the horizon or further). */
-static int skirt_rings(const ref_world *w, double *h) {
-    double hs = w->d.half_size, step = 2 * hs / w->d.terrain_res;
+static int skirt_rings(const ref_world *w, int res, double *h) {
+    double hs = w->d.half_size, step = 2 * hs / res;
     double horizon = REF_WORLD_HORIZON > SKIRT_NEAR * hs ? REF_WORLD_HORIZON : 2 * SKIRT_NEAR * hs;
     int n = 0;
     h[n++] = hs;
@@ -97,11 +103,12 @@ static void perimeter(double h, int res, int p, double *x, double *z) {
     }
 }
 
-static bool build_skirt(gpu_world *gw) {
+static bool build_skirt(gpu_world *gw, int lod) {
     const ref_world *w = &gw->w;
     double ring[SKIRT_MAX_RINGS];
-    int nrings = skirt_rings(w, ring) - 1;   /* the bands between rings */
-    int res = w->d.terrain_res, per = 4 * res, nv = per * (nrings + 1);
+    int res = lod_cells(w->d.terrain_res, lod);
+    int nrings = skirt_rings(w, res, ring) - 1;   /* the bands between rings */
+    int per = 4 * res, nv = per * (nrings + 1);
     geom_mesh g;
     memset(&g, 0, sizeof g);
     g.nvert = nv;
@@ -129,7 +136,7 @@ static bool build_skirt(gpu_world *gw) {
             memcpy(g.idx + n, quad, sizeof quad);
             n += 6;
         }
-    bool ok = res_mesh_upload(&g, &gw->skirt);
+    bool ok = res_mesh_upload(&g, &gw->skirt[lod]);
     geom_free(&g);
     return ok;
 }
@@ -138,16 +145,16 @@ static bool build_skirt(gpu_world *gw) {
  * stay in llvmpipe's vertex cache from one row to the next. */
 #define WORLD_WATER_BAND 32
 
-static bool build_water(gpu_world *gw) {
+static bool build_water(gpu_world *gw, int lod) {
     geom_mesh g;
-    int res = gw->w.d.water_mesh_res;
+    int res = lod_cells(gw->w.d.water_mesh_res, lod);
     if (!geom_quad(&g, 1, (float)gw->w.d.water_level, (float)gw->w.d.half_size, res, res, false)) return false;
     geom_grid_bands(&g, res, res, WORLD_WATER_BAND);   /* vertex reuse: the water's shaders are heavy */
     for (int i = 0; i < g.nvert; i++) {
         g.pos[i * 3 + 0] += (float)gw->water_shift[0];
         g.pos[i * 3 + 2] += (float)gw->water_shift[1];
     }
-    bool ok = res_mesh_upload(&g, &gw->water);
+    bool ok = res_mesh_upload(&g, &gw->water[lod]);
     geom_free(&g);
     return ok;
 }
@@ -254,10 +261,12 @@ static bool above_water(const ref_world *w) {
 }
 
 void world_free(gpu_world *gw) {
-    res_mesh_free(&gw->terrain);
-    res_mesh_free(&gw->water);
+    for (int k = 0; k < WORLD_LODS; k++) {
+        res_mesh_free(&gw->terrain[k]);
+        res_mesh_free(&gw->skirt[k]);
+        res_mesh_free(&gw->water[k]);
+    }
     res_mesh_free(&gw->sky_box);
-    res_mesh_free(&gw->skirt);
     if (gw->points_vbo) glDeleteBuffers(1, &gw->points_vbo);
     for (int i = 0; i < gw->nobjects; i++) res_mesh_free(&gw->objects[i]);
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
@@ -276,7 +285,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
     gw->desc = *desc;
     ref_world_init(&gw->w, desc);
     gw->nwaves = ref_waves_uniforms(&gw->w.waves, gw->waves, REF_WAVES_UNIFORMS_MAX);
-    bool ok = build_terrain(gw) && build_skirt(gw) && build_water(gw) && bake_albedo(gw) && bake_sky(gw) &&
+    bool ok = build_terrain(gw, 0) && build_skirt(gw, 0) && build_water(gw, 0) && bake_albedo(gw) && bake_sky(gw) &&
               build_sky_box(gw);
     for (int i = 0; ok && i < gw->w.d.nobjects; i++) {
         const ref_object *ob = &gw->w.d.objects[i];
@@ -292,6 +301,24 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
 }
 
 /* ---- per frame ---- */
+
+/* The level for a frame at `detail` of each side: the vertices follow the
+ * pixels (a quarter of the pixels, a quarter of the vertices). */
+static int detail_lod(double detail) {
+    if (!(detail > 0) || detail >= 1) return 0;
+    int lod = (int)lround(-log2(detail));
+    return lod < 0 ? 0 : lod >= WORLD_LODS ? WORLD_LODS - 1 : lod;
+}
+
+bool world_set_detail(gpu_world *gw, double detail) {
+    if (!gw->active) return true;
+    int lod = detail_lod(detail);
+    if (lod == gw->lod) return true;
+    if (!gw->terrain[lod].vbo && !build_terrain(gw, lod)) return false;
+    if (!gw->skirt[lod].vbo && !build_skirt(gw, lod)) return false;
+    gw->lod = lod;
+    return true;
+}
 
 /* Where the rest points of the square moved by shift land, on average,
  * relative to the square's own points. */
@@ -324,8 +351,8 @@ void world_follow_waves(gpu_world *gw, double t) {
     if (!isfinite(shift[0]) || !isfinite(shift[1])) return;
     gw->water_shift[0] = shift[0];
     gw->water_shift[1] = shift[1];
-    res_mesh_free(&gw->water);
-    if (!build_water(gw)) memset(&gw->water, 0, sizeof gw->water);
+    for (int k = 0; k < WORLD_LODS; k++) res_mesh_free(&gw->water[k]);   /* coarser levels: rebuilt when drawn */
+    if (!build_water(gw, gw->lod)) memset(&gw->water[gw->lod], 0, sizeof gw->water[gw->lod]);
     gw->points_n = 0;   /* rebuilt with the shift when next drawn */
 }
 
@@ -430,8 +457,8 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
         res_mesh_draw(&gw->sky_box, -1);
     }
     use_mode(gw, 0, t, eye, to_screen, plane);
-    res_mesh_draw(&gw->terrain, -1);
-    res_mesh_draw(&gw->skirt, -1);
+    res_mesh_draw(&gw->terrain[gw->lod], -1);
+    res_mesh_draw(&gw->skirt[gw->lod], -1);
     use_mode(gw, 1, t, eye, to_screen, plane);
     GLint albedo = glGetUniformLocation(gw->progs[1].gl, "uWorldAlbedo");
     for (int i = 0; i < gw->nobjects; i++) {
@@ -442,8 +469,10 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
     glUseProgram(restore_program);
 }
 
-void world_draw_water(const gpu_world *gw, int tangent_loc) {
-    if (gw->active) res_mesh_draw(&gw->water, tangent_loc);
+void world_draw_water(gpu_world *gw, int tangent_loc) {
+    if (!gw->active) return;
+    if (!gw->water[gw->lod].vbo && !build_water(gw, gw->lod)) return;   /* moved by world_follow_waves */
+    res_mesh_draw(&gw->water[gw->lod], tangent_loc);
 }
 
 /* N x N points at the cell centres of the world square, at the mean level;

@@ -18,12 +18,19 @@
 #define WORLD_UNIT_SKY 15
 #define WORLD_SKY_RES 128
 #define WORLD_MODES 3
+/* Levels of detail of the terrain, its skirt and the water grid: level k
+ * has 1/2^k the cells a side (at least WORLD_LOD_MIN_CELLS). Level 0 is
+ * the scene's; the others are built the first time they are drawn. */
+#define WORLD_LODS 4
+#define WORLD_LOD_MIN_CELLS 8
 
 typedef struct gpu_world {
     bool active;
     ref_world_desc desc;          /* what was built: equal desc, nothing rebuilt */
     ref_world w;
-    gpu_mesh terrain, skirt, water, sky_box;   /* skirt: the land beyond the world square */
+    /* skirt: the land beyond the world square; [k]: level of detail k */
+    gpu_mesh terrain[WORLD_LODS], skirt[WORLD_LODS], water[WORLD_LODS], sky_box;
+    int lod;                      /* the level drawn (world_set_detail) */
     unsigned points_vbo;          /* WaterSurface points N */
     int points_n;
     gpu_mesh objects[REF_MAX_OBJECTS];
@@ -42,6 +49,13 @@ typedef struct gpu_world {
      * surface (world_follow_waves) */
     double water_shift[2];
 } gpu_world;
+
+/* The level of detail of the meshes drawn from now on, for a frame drawn
+ * at `detail` of each side of full resolution (render_set_detail): 1 the
+ * scene's meshes, 1/2 a quarter of the vertices, down to 1/8. A coarser
+ * mesh is built the first time it is needed; false when it cannot be
+ * (the level stays as it was). */
+bool world_set_detail(gpu_world *gw, double detail);
 
 /* Builds (or keeps, when desc is unchanged) the world's GPU resources. */
 bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *include_dirs,
@@ -74,8 +88,8 @@ void world_follow_waves(gpu_world *gw, double t);
 void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
                 bool to_screen, unsigned restore_program);
 
-/* `WaterSurface`: the water grid with the bound program. */
-void world_draw_water(const gpu_world *gw, int tangent_loc);
+/* `WaterSurface`: the water grid (at the level of detail) with the bound program. */
+void world_draw_water(gpu_world *gw, int tangent_loc);
 
 /* `WaterSurface points N`: N x N points over the world square. */
 void world_draw_points(gpu_world *gw, int n);

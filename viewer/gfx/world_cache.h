@@ -19,6 +19,7 @@ typedef struct wcache_key {
     float offset;
     int which;                  /* 0 all, 1 above, 2 below */
     int to_screen;
+    int lod;                    /* the world meshes' level of detail */
     float clear_rgba[4];        /* the colour the target was cleared to */
     /* GL state (wcache_key_gl) */
     float modelview[16], projection[16];

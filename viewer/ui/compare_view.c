@@ -289,11 +289,12 @@ static void request_maps(cview *v) {
 
 /* ---- drawing ---- */
 
-static void draw_packs(cview *v, const render_view *view) {
+static void draw_packs(cview *v, const render_view *view, double scale) {
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
         if (!pack_drawn(v, i) || !p->tg.fbo) continue;
         double t0 = clock_now_s();
+        render_set_detail(p->r, scale);   /* the passes and meshes shrink with the frame */
         render_frame(p->r, v->s->t, p->tg.fbo, v->drawn_w, v->drawn_h, view);
         glFinish();   /* one pack at a time, so each has its own wall time */
         double wall = (clock_now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);
@@ -563,9 +564,10 @@ static void on_draw(void *user, app *a) {
     uint64_t key = res_budget_key(app_picture_key(a, v->cell_w, v->cell_h), what, sizeof what);
     bool draw = app_budget_plan(a, key, heat, &scale);
     if (draw || v->drawn_w == 0 || v->drawn_w > v->cell_w || v->drawn_h > v->cell_h) {
-        res_budget_size(draw ? scale : 1.0, v->cell_w, v->cell_h, &v->drawn_w, &v->drawn_h);
+        if (!draw) scale = 1.0;
+        res_budget_size(scale, v->cell_w, v->cell_h, &v->drawn_w, &v->drawn_h);
         render_view view = orbit_view(&v->s->cam);
-        draw_packs(v, &view);
+        draw_packs(v, &view, scale);
     }
     app_budget_drawn(a, v->drawn_w, v->drawn_h, v->cell_w, v->cell_h);
     if (heat) request_maps(v);

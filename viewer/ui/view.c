@@ -266,6 +266,7 @@ static void on_draw(void *user, app *a) {
         res_budget_size(scale, aw, ah, &v->drawn_w, &v->drawn_h);
         render_view view = orbit_view(&s->cam);
         if (world) glEnable(GL_FRAMEBUFFER_SRGB);
+        render_set_detail(v->r, scale);   /* the passes and meshes shrink with the frame */
         render_frame_at(v->r, s->t, v->canvas.fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
     }
     app_budget_drawn(a, v->drawn_w, v->drawn_h, aw, ah);
