@@ -11,7 +11,9 @@ static double clampd(double x, double lo, double hi) { return x < lo ? lo : x > 
 
 void res_budget_feed(res_budget *b, double ms, double scale) {
     if (b->budget_ms <= 0 || !(ms > 0) || !(scale > 0)) return;
-    double ratio = b->budget_ms / ms;
+    /* aim below the budget by the dead band, so a frame the dead band
+     * leaves alone is still within the budget (50 ms: 20 fps or more) */
+    double ratio = b->budget_ms / (1.0 + RES_BUDGET_DEADBAND) / ms;
     if (fabs(ratio - 1.0) <= RES_BUDGET_DEADBAND && scale == b->scale) return;
     /* pixels in proportion to the time left; growing at most twice a step
      * (a cheap frame may be noise), shrinking at once (a slow one is felt) */

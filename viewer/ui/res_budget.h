@@ -6,12 +6,14 @@
  * full resolution, and from then on nothing is drawn again until the
  * picture changes (the client shows the frame it keeps).
  *
- * The controller: a frame drawn at scale s (of each side) that took m ms
- * asks for s^2 * budget / m of the pixels next time (the fixed point of a
- * cost a + b*pixels with a < budget, reached without overshoot), at most
- * twice the pixels a step, not below RES_BUDGET_FLOOR of each side, and
- * left alone within RES_BUDGET_DEADBAND of the budget (no flicker between
- * two near sizes). A cost that stays above the budget at the floor (a
+ * The controller aims at budget / (1 + RES_BUDGET_DEADBAND): a frame drawn
+ * at scale s (of each side) that took m ms asks for s^2 * aim / m of the
+ * pixels next time (the fixed point of a cost a + b*pixels with a < aim,
+ * reached without overshoot), at most twice the pixels a step, not below
+ * RES_BUDGET_FLOOR of each side, and left alone within RES_BUDGET_DEADBAND
+ * of the aim (no flicker between two near sizes), so a settled frame is at
+ * most the budget. The renderer's fixed-size passes and meshes shrink with
+ * the frame (render_set_detail), so a cost stays about a + b*pixels. A cost that stays above the budget at the floor (a
  * fixed pass slower than the budget) stays at the floor.
  *
  * Pure C, no GL: the window hands it a key of the picture (any change of
