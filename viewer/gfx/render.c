@@ -6,6 +6,7 @@
 #include <cglm/cglm.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,6 +49,7 @@ typedef struct scene_state {
     prog *progs;
     unif_set *unifs;         /* progs[i].unifs == &unifs[i] */
     bool *once_done;         /* per command: a RenderToTextureOnce block already drawn */
+    uint64_t *once_sig;      /* per command: what a drawn block drew (once_signature) */
     bool *draw_warned;       /* per command: a problem drawing it was reported */
     int nprogs;
     scene_settings set;
@@ -82,6 +84,12 @@ struct render {
     render_msaa msaa;          /* the screen passes' multisampled target */
     int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
     double detail;             /* render_set_detail: 1 (0 before the first call) everything as the scene says */
+    /* The RenderToTextureOnce blocks the scene before a reload drew, by
+     * their signature: the first frame after the reload skips a block whose
+     * signature is here, its targets holding its pixels already. */
+    uint64_t *kept_once;
+    int nkept_once;
+    long once_reused;          /* blocks so kept since render_create */
     gpu_timer timer;           /* per frame and per pass */
     gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, always bound */
     char noise_dir[GLIB_PATH_MAX];  /* the project folder they were read for */
@@ -110,6 +118,7 @@ static void scene_free(scene_state *s) {
     free(s->progs);
     free(s->unifs);
     free(s->once_done);
+    free(s->once_sig);
     free(s->draw_warned);
     free(s->cmd_res);
     if (s->glib) glib_free(s->glib);
@@ -131,6 +140,7 @@ void render_destroy(render *r) {
     free_deps(r);
     free(r->messages);
     free(r->draw_messages);
+    free(r->kept_once);
     diag_list_free(&r->diags);
     if (r->rtt_fbo) glDeleteFramebuffers(1, &r->rtt_fbo);
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
@@ -396,9 +406,23 @@ static int target_side(const render *r, const char *name, int screen, int max, b
     return n < 1 ? 1 : n > max ? max : n;
 }
 
+/* The RenderToTextureOnce blocks that draw into unit (a target that lost
+ * its pixels) draw again, and those after them; the others keep theirs
+ * (a per-frame target resized with the frame's detail must not redraw a
+ * light's depth). */
+static void once_redraw_unit(scene_state *s, int unit) {
+    bool after = false;   /* a block after one that draws again may read what it draws */
+    for (int i = 0; i < s->glib->ncmds; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        if (c->kind != GLIB_CMD_RENDER_TO_TEXTURE_ONCE) continue;
+        for (int k = 0; k < c->nnum; k++) after = after || (int)c->num[k] == unit;
+        if (after) s->once_done[i] = false;
+    }
+}
+
 /* Render targets whose size a slider (or the frame) gives follow it, and
  * those drawn every frame the frame's detail; a resized target loses its
- * contents, so RenderToTextureOnce blocks draw again. */
+ * contents, so the RenderToTextureOnce blocks that fill it draw again. */
 static void size_targets(render *r, int screen_w, int screen_h) {
     scene_state *s = &r->cur;
     if (!r->max_target) {   /* asked once: the context's limit does not change */
@@ -420,7 +444,8 @@ static void size_targets(render *r, int screen_w, int screen_h) {
         if (per_frame && !c->arg[0]) h = detail_count(r, h);
         if (w == t->w && h == t->h) continue;
         res_target_resize(t, w, h);
-        memset(s->once_done, 0, (size_t)s->glib->ncmds * sizeof *s->once_done);
+        once_redraw_unit(s, (int)c->num[0]);
+        r->nkept_once = 0;   /* its pixels are gone */
     }
 }
 
@@ -490,6 +515,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     s->progs = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->progs);
     s->unifs = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->unifs);
     s->once_done = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->once_done);
+    s->once_sig = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->once_sig);
     s->draw_warned = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->draw_warned);
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
@@ -535,6 +561,16 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
         for (int k = 0; k < s->progs[i].ndeps; k++) add_dep(r, s->progs[i].deps[k]);
     if (r->world.active)
         for (int k = 0; k < r->world.progs[0].ndeps; k++) add_dep(r, r->world.progs[0].deps[k]);
+}
+
+/* The signatures of the RenderToTextureOnce blocks the scene drew, for
+ * the first frame of the next one (exec_once). */
+static void keep_once_blocks(render *r, const scene_state *s) {
+    r->nkept_once = 0;
+    if (!s->glib) return;
+    r->kept_once = mem_realloc(r->kept_once, (size_t)(s->glib->ncmds > 0 ? s->glib->ncmds : 1) * sizeof *r->kept_once);
+    for (int i = 0; i < s->glib->ncmds; i++)
+        if (s->once_done[i] && s->once_sig[i]) r->kept_once[r->nkept_once++] = s->once_sig[i];
 }
 
 /* The world the scene describes (if any), rebuilt only when it changed. */
@@ -648,6 +684,7 @@ bool render_load(render *r, const char *glib_path) {
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
     build_scene(r, &fresh, &r->cur, &log);
+    keep_once_blocks(r, &r->cur);
     scene_free(&r->cur);
     r->cur = fresh;
     collect_deps(r, g, &r->cur);
@@ -879,12 +916,16 @@ typedef struct frame_state {
     float eye[3];
     int patch_vertices;      /* NumPatchVertices: the size of the patches drawn next */
     int patch_cmd;           /* the NumPatchVertices command that set it, or -1 */
+    int cam_kind;            /* the camera loaded last (cam_kind) */
     /* The static-world cache: the current target holds only what a Clear
      * to clean_rgba left (nothing drawn since); the screen's own state
      * while a pass draws into a texture. */
     bool clean, screen_clean;
     float clean_rgba[4], screen_rgba[4];
     bool check_each;         /* render.gl_check_each for this frame */
+    bool once_drawn;         /* a RenderToTextureOnce block was drawn this frame */
+    bool in_once;            /* drawing one: at full detail, whatever the frame's (it is kept) */
+    bool replaying;          /* in one a reload kept: its commands run, but none that writes pixels */
 } frame_state;
 
 static void mark_pass(render *r, const glib_cmd *c) {
@@ -924,6 +965,11 @@ static void track_clean(frame_state *f, const glib_cmd *c) {
                c->kind == GLIB_CMD_SPLAT) {
         f->clean = false;
     }
+}
+
+static bool writes_pixels(glib_cmd_kind k) {
+    return k == GLIB_CMD_CLEAR || res_is_geometry(k) || k == GLIB_CMD_GL_BEGIN || k == GLIB_CMD_WATER_SURFACE ||
+           k == GLIB_CMD_SPLAT || k == GLIB_CMD_WORLD;
 }
 
 static const gpu_tex *tex_at_unit(const scene_state *s, int unit) {
@@ -1078,7 +1124,8 @@ static void upload_target_size(const frame_state *f) {
 static void draw_points(render *r, const frame_state *f, const glib_cmd *c) {
     /* at the frame's detail, as a target sized by the same slider is: a
      * pass of one photon per texel and the splat of those photons agree */
-    int n = detail_count(r, c->arg[0] ? slider_count(&r->cur, c->arg, 4096) : (int)c->num[0]);
+    int n = c->arg[0] ? slider_count(&r->cur, c->arg, 4096) : (int)c->num[0];
+    if (!f->in_once) n = detail_count(r, n);
     if (f->cur && f->cur->gl) {
         GLint loc = glGetUniformLocation(f->cur->gl, "uPointGrid");
         if (loc >= 0) glUniform1f(loc, (float)n);
@@ -1203,6 +1250,93 @@ static void draw_world(render *r, frame_state *f, int i) {
     wcache_store(&r->wcache, i, &k);
 }
 
+/* ---- RenderToTextureOnce across a reload ---- */
+
+static uint64_t sig_add(uint64_t h, const void *data, size_t n) {
+    const unsigned char *b = data;
+    for (size_t k = 0; k < n; k++) h = (h ^ b[k]) * 1099511628211ull;
+    return h;
+}
+
+static uint64_t sig_str(uint64_t h, const char *str) { return sig_add(h, str, strlen(str) + 1); }
+
+/* A program's source and slider values; and the time, when it reads the
+ * clock (glman's Timer, or uTime): such a block shows the time of the
+ * load, so a reload draws it again. */
+static uint64_t sig_prog(uint64_t h, const prog *p, double t) {
+    if (!p) return sig_add(h, "-", 1);
+    h = sig_add(h, &p->hash, sizeof p->hash);
+    if (p->gl && (glGetUniformLocation(p->gl, "Timer") >= 0 || glGetUniformLocation(p->gl, "uTime") >= 0))
+        h = sig_add(h, &t, sizeof t);
+    for (int k = 0; p->unifs && k < p->unifs->n; k++) {
+        const unif_entry *e = &p->unifs->entries[k];
+        h = sig_str(h, e->name);
+        h = sig_add(h, e->value, sizeof e->value);
+    }
+    return h;
+}
+
+/* Everything a RenderToTextureOnce block at command i draws from: its
+ * commands and the programs they use (their source and slider values),
+ * the program it starts with, every texture of the scene (object and
+ * size: a target resized, or an image reloaded, is another object or
+ * size), the world (its description and programs; a block draws it at
+ * full detail) and the cameras it draws with (the one the frame had
+ * loaded, unless the block names its own first). The time only where a
+ * program of the block reads it: the world's own shading near the
+ * waterline moves with the waves, and a kept block keeps it as the load
+ * that drew it saw it. */
+static uint64_t once_signature(const render *r, const frame_state *f, int i) {
+    const scene_state *s = &r->cur;
+    uint64_t h = 1469598103934665603ull;
+    bool own_camera = false;
+    for (int k = i; k < s->glib->ncmds; k++) {
+        const glib_cmd *c = &s->glib->cmds[k];
+        if (k > i && (c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE)) break;
+        h = sig_add(h, &c->kind, sizeof c->kind);
+        h = sig_add(h, c->num, (size_t)c->nnum * sizeof c->num[0]);
+        h = sig_str(sig_str(sig_str(h, c->name), c->arg), c->path);
+        if (c->kind == GLIB_CMD_PROGRAM && s->cmd_res[k] >= 0) h = sig_prog(h, &s->progs[s->cmd_res[k]], f->t);
+        if (c->kind == GLIB_CMD_CAMERA) {
+            int kind = cam_kind_from_name(c->name);
+            own_camera = own_camera || k == i + 1;
+            if (kind >= 0) {
+                h = sig_add(h, f->cams.view[kind], sizeof f->cams.view[kind]);
+                h = sig_add(h, f->cams.proj[kind], sizeof f->cams.proj[kind]);
+            }
+        }
+    }
+    if (!own_camera) {   /* the camera the frame had loaded */
+        h = sig_add(h, f->cams.view[f->cam_kind], sizeof f->cams.view[f->cam_kind]);
+        h = sig_add(h, f->cams.proj[f->cam_kind], sizeof f->cams.proj[f->cam_kind]);
+    }
+    h = sig_add(h, &f->depth, sizeof f->depth);   /* inside a PushMatrix: conservatively, another block */
+    h = sig_prog(h, f->cur, f->t);
+    for (int k = 0; k < s->ntexs; k++) {
+        const gpu_tex *t = &s->texs[k];
+        int v[4] = { (int)t->tex, t->unit, t->w, t->h };
+        h = sig_add(h, v, sizeof v);
+    }
+    if (r->world.active) {
+        h = sig_add(h, &r->world.desc, sizeof r->world.desc);
+        for (int m = 0; m < WORLD_MODES; m++) h = sig_add(h, &r->world.progs[m].hash, sizeof r->world.progs[m].hash);
+    }
+    return h ? h : 1;
+}
+
+/* A block the scene before the reload drew with this signature: its
+ * targets hold its pixels. Only while no block has been drawn this frame
+ * (a later block may read what an earlier one drew). */
+static bool once_kept(render *r, const frame_state *f, uint64_t sig) {
+    if (f->once_drawn) return false;
+    for (int k = 0; k < r->nkept_once; k++)
+        if (r->kept_once[k] == sig) {
+            r->once_reused++;
+            return true;
+        }
+    return false;
+}
+
 static void exec_cmd(render *r, frame_state *f, int i) {
     scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
@@ -1211,10 +1345,18 @@ static void exec_cmd(render *r, frame_state *f, int i) {
     bool pass_cmd = c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE;
     if (f->skipping && !pass_cmd) return;
     f->skipping = false;
+    if (pass_cmd) f->replaying = false;
+    /* a kept block leaves the state (camera, program, transforms) a drawn one does */
+    if (f->replaying && writes_pixels(c->kind)) return;
     track_clean(f, c);
     if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE) {
         if (s->once_done[i] || c->nnum == 0) { f->skipping = true; return; }
         s->once_done[i] = true;
+        s->once_sig[i] = once_signature(r, f, i);
+        f->replaying = once_kept(r, f, s->once_sig[i]);   /* a reload that changed none of it */
+        f->once_drawn = f->once_drawn || !f->replaying;
+        f->in_once = true;
+        world_set_detail(&r->world, 1.0);
         mark_pass(r, c);
         leave_target(f);
         begin_rtt(r, c);
@@ -1224,6 +1366,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         int k = cam_kind_from_name(c->name);
         if (k >= 0) {
             cam_load(&f->cams, k);
+            f->cam_kind = k;
             cam_eye(&f->cam_in, k, f->cam_eye);
         }
     } else if (c->kind == GLIB_CMD_SPLAT) {
@@ -1248,6 +1391,8 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         if (strcmp(c->name, "points") == 0) draw_points(r, f, c);
         else world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
+        if (f->in_once) world_set_detail(&r->world, r->detail);
+        f->in_once = false;
         mark_pass(r, c);
         if (c->nnum > 0) { leave_target(f); begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
@@ -1270,6 +1415,8 @@ void render_set_world_cache(render *r, bool on) {
 }
 
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
+
+long render_once_reused(const render *r) { return r->once_reused; }
 
 void render_set_detail(render *r, double detail) {
     r->detail = detail > 0 && detail < 1 ? detail : 1;
@@ -1346,6 +1493,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         camera_inputs(r, &v, w, h, &f.cam_in);
         cam_compute(&f.cam_in, &f.cams);
         cam_load(&f.cams, CAM_MAIN);
+        f.cam_kind = CAM_MAIN;
         memcpy(f.cam_eye, v.eye, sizeof f.cam_eye);
         glPushMatrix();
         f.patch_vertices = 3;   /* GL's default patch size */
@@ -1361,8 +1509,10 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
             if (f.depth <= MATRIX_STACK_MAX) glPopMatrix();
         glPopMatrix();
         if (f.in_rtt) end_rtt(&f);
+        if (f.in_once) world_set_detail(&r->world, r->detail);
         glUseProgram(0);
         glFrontFace(GL_CCW);
+        r->nkept_once = 0;   /* the first frame after a load has decided every block */
     }
     if (ms) render_msaa_resolve(&r->msaa, dest, dest_x, dest_y);
     gpu_timer_end_frame(&r->timer);

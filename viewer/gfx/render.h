@@ -115,6 +115,16 @@ long render_world_cache_hits(const render *r);
  * it already. 1 (the default): everything as the scene says. */
 void render_set_detail(render *r, double detail);
 
+/* A RenderToTextureOnce block is drawn on the first frame after a load
+ * (glman's rule), except after a reload that changed nothing it draws
+ * from: its commands, the programs it uses (source and slider values),
+ * the program and camera it starts with, the scene's textures and the
+ * world. Its targets then still hold its pixels (a texture is kept across
+ * a reload while its command is unchanged), and drawing it again would
+ * cost the first frame after every save (raymarch's top-down views: half
+ * a second on a CPU). How many blocks were kept so since render_create: */
+long render_once_reused(const render *r);
+
 /* GPU time of the last finished frame in ms (timer query), or -1. When
  * wait is true, blocks until the latest frame's time is known. */
 double render_gpu_ms(render *r, bool wait);
