@@ -84,6 +84,16 @@ int render_samples_on_this_gl(int requested);
  * match MSAA with this many samples (render_samples): the nearest square,
  * so 4x MSAA is compared with a 2x2 reference and off with 1x1. */
 int render_ref_spp(int samples);
+/* Where the reference should subsample to match MSAA with this many
+ * samples (render_samples): where this GL samples (asked of it once; a GL
+ * context must be current), in the reference's form (ref_render_desc.samples:
+ * x right, y DOWN, in [0, 1)^2: GL's y-up (x, y) becomes (x, 1 - y)), into
+ * pos[0..max). Returns how many: 0 when MSAA is off (samples <= 1) or the
+ * GL cannot say (then render_ref_spp's grid is the fallback). */
+int render_ref_positions(int samples, double (*pos)[2], int max);
+/* The same without a GL: the standard positions of 2, 4, 8 or 16 samples
+ * (which GPUs and llvmpipe use); 0 for another count. */
+int render_ref_standard_positions(int samples, double (*pos)[2], int max);
 
 /* Every file the scene depends on (glib, includes, shader stages and their
  * #includes, textures, OBJs): what the watcher watches. */
