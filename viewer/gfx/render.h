@@ -80,9 +80,10 @@ int render_samples(render *r);
 /* The same for a request, before any render exists (a GL context must be
  * current). */
 int render_samples_on_this_gl(int requested);
-/* The reference's subsamples a side (N x N, `tarn reference --spp`) that
- * match MSAA with this many samples (render_samples): the nearest square,
- * so 4x MSAA is compared with a 2x2 reference and off with 1x1. */
+/* The reference's subsamples a side (N x N, `tarn reference --spp`) nearest
+ * to MSAA with this many samples (render_samples): the nearest square, 2x2
+ * for 4x, 1x1 off. Only a fallback: an ordered grid meets edges otherwise
+ * than GL's rotated sample pattern; render_ref_positions matches it. */
 int render_ref_spp(int samples);
 /* Where the reference should subsample to match MSAA with this many
  * samples (render_samples): where this GL samples (asked of it once; a GL
