@@ -89,9 +89,10 @@ static void test_matched_reference_off_water(void) {
          * are anti-aliased alike, where without AA they alias apart).
          * Bounds: 0.6 of the grid's (measured 0.35-0.39) and the no-AA
          * figure (measured 0.69-0.78 of it), margins for another GL's edge
-         * rules. Not at 160x90: there the no-AA error is oddly low
-         * (0.0009, also away from the shore) and the matched 4x error,
-         * 0.0070, stays above it (the grid's 0.0105); not understood. */
+         * rules. Not at 160x90: there the no-AA error is 0.0009 (the
+         * row of pixels along the far horizon, most of it at 320x180,
+         * happens to agree) and the matched 4x error, 0.0070, stays above
+         * it (the grid's 0.0105). */
         CHECK_MSG(e_matched < 0.6 * e_grid, "%s: matched %.4f not well below the grid's %.4f", packs[p],
                   e_matched, e_grid);
         CHECK_MSG(e_matched < e_off, "%s: matched %.4f above the no-AA %.4f", packs[p], e_matched, e_off);
