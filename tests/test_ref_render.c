@@ -349,11 +349,11 @@ static void test_positions_centre_is_spp1(void) {
  * (i, j)'s subsample at ((a + 0.5) / 4, (b + 0.5) / 4) is the same camera
  * ray as the centre of pixel (4i + a, 4j + b) of the 1-spp image 4x the
  * size (ref_camera_ray scales px / w; a factor 4 is exact in binary), so
- * the rotated 4x pattern is the mean of those four centre pixels, and the
- * ordered 2 x 2 grid the mean of its four. Tolerance 1e-12: the same rays
- * give the same radiance; only the sum's order differs. The pattern's
- * mirror (y up taken as y down) is checked to differ, so the test sees
- * which way y runs. */
+ * the rotated 4x pattern is the mean of those four centre pixels.
+ * Tolerance 1e-12: the same rays give the same radiance; only the sum's
+ * order differs. The pattern's mirror (y up taken as y down) is checked to
+ * differ, so the test sees which way y runs; and the spp grid is its cell
+ * centres given as positions, bit for bit. */
 static double lattice_error(const ref_render_result *r, const ref_render_result *big, const double pos[][2],
                             int np) {
     double worst = 0;
