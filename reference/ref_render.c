@@ -7,6 +7,7 @@
 #include "vec3.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -363,26 +364,41 @@ static void trace_path(const rctx *c, const double o[3], const double d[3], int 
     if (fh) *fh = me;
 }
 
+/* Subsample k of n in the pixel (x right, y down, in [0, 1)): the desc's
+ * positions, or the N x N grid's cell centres. */
+static void subsample(const ref_render_desc *d, int k, double *sx, double *sy) {
+    if (d->nsamples > 0) {
+        *sx = d->samples[k][0];
+        *sy = d->samples[k][1];
+        return;
+    }
+    int n = d->spp;
+    *sx = (k % n + 0.5) / n;
+    *sy = (k / n + 0.5) / n;
+}
+
 static void render_pixel(const rctx *c, int px, int py) {
     ref_render_result *r = c->out;
     const ref_camera *cam = &c->d.camera;
-    int n = c->d.spp;
+    int ns = c->d.nsamples > 0 ? c->d.nsamples : c->d.spp * c->d.spp;
     double acc[3] = { 0, 0, 0 }, o[3], d[3], L[3];
     path_info pi;
-    for (int sy = 0; sy < n; sy++)
-        for (int sx = 0; sx < n; sx++) {
-            int centre = (n & 1) && sx == n / 2 && sy == n / 2;
-            ref_camera_ray(cam, px + (sx + 0.5) / n, py + (sy + 0.5) / n, o, d);
-            trace_path(c, o, d, 0, c->eye_in_water, 0, L, centre ? &pi.first : NULL,
-                       centre ? &pi : NULL);
-            for (int i = 0; i < 3; i++) acc[i] += L[i];
-        }
-    if (!(n & 1)) {   /* the buffers come from the pixel centre */
+    bool have_centre = false;
+    for (int k = 0; k < ns; k++) {
+        double sx, sy;
+        subsample(&c->d, k, &sx, &sy);
+        bool centre = !have_centre && sx == 0.5 && sy == 0.5;
+        have_centre |= centre;
+        ref_camera_ray(cam, px + sx, py + sy, o, d);
+        trace_path(c, o, d, 0, c->eye_in_water, 0, L, centre ? &pi.first : NULL, centre ? &pi : NULL);
+        for (int i = 0; i < 3; i++) acc[i] += L[i];
+    }
+    if (!have_centre) {   /* the buffers come from the pixel centre */
         ref_camera_ray(cam, px + 0.5, py + 0.5, o, d);
         trace_path(c, o, d, 0, c->eye_in_water, 0, L, &pi.first, &pi);
     }
     size_t i = (size_t)py * r->width + px;
-    for (int k = 0; k < 3; k++) r->color[i * 3 + k] = acc[k] / ((double)n * n);
+    for (int k = 0; k < 3; k++) r->color[i * 3 + k] = acc[k] / ns;
     r->mask[i] = (unsigned char)pi.first.kind;
 
     double *surf = r->surface + i * 3, *rh = r->refract_hit + i * 4, *rf = r->reflect + i * 4;
@@ -669,6 +685,16 @@ static int check_desc(const ref_render_desc *d, char *err, size_t errlen) {
                 d->spp, MAX_SPP, MAX_SPP);
         return -1;
     }
+    if (d->nsamples < 0 || d->nsamples > REF_MAX_SAMPLES) {
+        msg_set(err, errlen, "reference: %d subsample positions (at most %d)", d->nsamples, REF_MAX_SAMPLES);
+        return -1;
+    }
+    for (int k = 0; k < d->nsamples; k++)
+        if (!(d->samples[k][0] >= 0 && d->samples[k][0] < 1 && d->samples[k][1] >= 0 && d->samples[k][1] < 1)) {
+            msg_set(err, errlen, "reference: subsample position %d (%g, %g) is outside the pixel [0, 1)^2", k,
+                    d->samples[k][0], d->samples[k][1]);
+            return -1;
+        }
     if (d->caustic_res > 8192 || d->photons_per_cell > 1 << 20 || d->max_depth > 64) {
         msg_set(err, errlen, "reference: caustic_res, photons_per_cell or max_depth out of range");
         return -1;
@@ -729,6 +755,7 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     out->width = w;
     out->height = h;
     out->spp = d.spp;
+    out->nsamples = d.nsamples;
     out->threads = d.threads;
     out->color = mem_alloc(np * 3 * sizeof *out->color);
     out->mask = mem_alloc(np);
@@ -745,7 +772,8 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
 
     if (rc == 0 && d.caustics == REF_CAUSTICS_PHOTONS) rc = plan_caustics(c, wk, err, errlen);
     /* progress weights: a photon is one unit, a pixel ray PIXEL_PHOTON_COST */
-    double pixel_work = (double)np * (d.spp * d.spp + (d.spp % 2 == 0)) * PIXEL_PHOTON_COST;
+    int rays = d.nsamples > 0 ? d.nsamples + 1 : d.spp * d.spp + (d.spp % 2 == 0);
+    double pixel_work = (double)np * rays * PIXEL_PHOTON_COST;
     double photon_work = out->have_caustics ? (double)out->caustics.plan.mx * out->caustics.plan.mz : 0.0;
     double f1 = photon_work / (photon_work + pixel_work);
     if (rc == 0 && out->have_caustics) {

@@ -1,5 +1,5 @@
 /* ref_render: the CPU ground-truth renderer. One camera ray per pixel
- * centre (or N x N subsamples) through the world of ref_scene: the exact
+ * centre (or N x N subsamples, or subsamples at given positions) through the world of ref_scene: the exact
  * displaced water surface, exact Fresnel both ways with total internal
  * reflection, exact Snell refraction, the refracted ray traced to the
  * terrain heightfield or an object, Beer-Lambert attenuation per channel,
@@ -48,6 +48,10 @@ enum {
     REF_CAUSTICS_FLAT = 1       /* the sun refracted by the flat mean plane (no photons) */
 };
 
+/* At most this many explicit subsample positions a pixel (GL's MSAA asks
+ * for 16 at most; some GLs give 32). */
+#define REF_MAX_SAMPLES 32
+
 typedef struct ref_camera {
     double eye[3], center[3], up[3];   /* LookAt; up (0,0,0) = (0,1,0) */
     double fov_deg;                    /* vertical field of view (0 = 50) */
@@ -65,6 +69,13 @@ typedef struct ref_render_desc {
     double time;                /* simulated time of the waves */
     int threads;                /* 0 = every online core */
     int spp;                    /* N: N x N subsamples per pixel (0 = 1) */
+    int nsamples;               /* > 0: this many subsamples per pixel at the positions
+                                   below instead of the spp grid (0: the grid) */
+    double samples[REF_MAX_SAMPLES][2];  /* their (x, y) in the pixel, each in [0, 1):
+                                   x to the right, y DOWN (image rows; the caller turns
+                                   GL's y-up sample position (x, y) into (x, 1 - y)).
+                                   The reference knows no GL: MSAA's positions come
+                                   from the caller (render_msaa.h) */
     int caustics;               /* REF_CAUSTICS_PHOTONS (0) or REF_CAUSTICS_FLAT */
     int caustic_res;            /* caustic grid cells along the longer side of
                                    the underwater floor (0 = 256); cells are square */
@@ -81,6 +92,7 @@ typedef struct ref_render_desc {
 
 typedef struct ref_render_result {
     int width, height, spp;
+    int nsamples;         /* the desc's explicit positions (0: the spp grid) */
     /* per pixel, row-major, row 0 at the top; NaN marks "undefined here" */
     double *color;        /* 3: linear RGB radiance (mean of the subsamples) */
     unsigned char *mask;  /* 1: REF_MASK_* of the pixel-centre ray */

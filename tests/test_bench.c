@@ -361,8 +361,8 @@ static void test_bench_end_to_end(void) {
         CHECK_STR_CONTAINS(json, "\"setting\": \"light\", \"ok\": true");
         CHECK_STR_CONTAINS(json, "\"fresnel\": {\"median\": ");   /* the buffer line */
         CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
-        /* MSAA 4 is compared with a 2 x 2 reference */
-        CHECK_STR_CONTAINS(json, "\"msaa\": 4, \"reference_spp\": 2");
+        /* MSAA 4 is compared with a reference subsampled where the GL samples */
+        CHECK_STR_CONTAINS(json, "\"msaa\": 4, \"reference_spp\": 1, \"reference_positions\": [[");
         CHECK(!strstr(json, ": nan") && !strstr(json, "NaN") && !strstr(json, "\"rmse\": null"));
     }
     free(json);
@@ -371,7 +371,8 @@ static void test_bench_end_to_end(void) {
     if (md) {
         CHECK_STR_CONTAINS(md, "| probe | dark |");
         CHECK_STR_CONTAINS(md, "Cost floor (a full-screen pass with one texture fetch)");
-        CHECK_STR_CONTAINS(md, "Anti-aliasing: MSAA 4x; the reference takes 2 x 2 subsamples per pixel, to match.");
+        CHECK_STR_CONTAINS(md, "Anti-aliasing: MSAA 4x; the reference takes 4 subsamples per pixel at the GL's MSAA "
+                                   "sample positions, to match.");
     }
     free(md);
     char *page = read_file(tmp("docs/benchmark.md"));
@@ -413,7 +414,7 @@ static void test_bench_end_to_end(void) {
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
     free(json);
 
-    /* MSAA off: a 1 x 1 reference, which the 2 x 2 ones in the cache are not */
+    /* MSAA off: a 1 x 1 reference, which the 4-position ones in the cache are not */
     CHECK(bench(tmp("out"), false, tmp("alt-cache"), "0") == TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) {

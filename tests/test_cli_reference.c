@@ -1,7 +1,8 @@
 /* test_cli_reference: `tarn reference` end to end (cmd_reference called
  * directly): the files it writes, their channels, 32-bit float precision
  * of the buffers against an in-memory render of the same scene, NaN where
- * a buffer has no value, and usage errors. */
+ * a buffer has no value, --msaa's standard positions without a GL, and
+ * usage errors. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -101,6 +102,56 @@ static void test_writes_everything(void) {
     ref_render_free(&r);
 }
 
+/* --msaa 4 with no GL to ask (libglvnd pointed at no vendor): the
+ * standard 4x positions, GL's (0.375, 0.125), (0.875, 0.375), (0.125,
+ * 0.625), (0.625, 0.875) with y turned down, written out here as the
+ * truth; the image is the in-memory render at them (float precision). A
+ * count with no standard positions and no GL is refused; --spp with it is
+ * bad usage. */
+static void test_msaa_without_gl(void) {
+    if (access(lake(), R_OK) != 0) SKIP("no %s", lake());
+    setenv("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/tarn-test-no-vendor.json", 1);
+    const char *out = tmp_path("msaa.exr");
+    const char *argv[] = { lake(), "-o", out, "--size", "32x18", "--time", "1.5", "--photons", "4",
+                           "--caustic-res", "48", "--msaa", "4", "--quiet" };
+    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == TARN_EXIT_OK);
+    const char *three[] = { lake(), "-o", tmp_path("m3.exr"), "--size", "8x8", "--msaa", "3", "--quiet" };
+    CHECK(run((int)(sizeof three / sizeof *three), three) == TARN_EXIT_INPUT);
+    unsetenv("__EGL_VENDOR_LIBRARY_FILENAMES");
+    const char *both[] = { lake(), "-o", tmp_path("b.exr"), "--msaa", "4", "--spp", "2" };
+    CHECK(run((int)(sizeof both / sizeof *both), both) == TARN_EXIT_USAGE);
+
+    ref_world_desc wd;
+    scene_camera cam;
+    bool has_world;
+    char err[2048];
+    CHECK(scene_load(lake(), NULL, &wd, &cam, &has_world, err, sizeof err) || !strstr(err, ": error:"));
+    ref_world w;
+    ref_world_init(&w, &wd);
+    ref_render_desc d = { .world = &w, .time = 1.5, .threads = 1, .photons_per_cell = 4, .caustic_res = 48,
+                          .nsamples = 4,
+                          .samples = { { 0.375, 0.875 }, { 0.875, 0.625 }, { 0.125, 0.375 }, { 0.625, 0.125 } } };
+    memcpy(d.camera.eye, cam.eye, sizeof cam.eye);
+    memcpy(d.camera.center, cam.center, sizeof cam.center);
+    memcpy(d.camera.up, cam.up, sizeof cam.up);
+    d.camera.fov_deg = cam.fov_deg;
+    d.camera.width = 32;
+    d.camera.height = 18;
+    ref_render_result r;
+    CHECK(ref_render(&d, &r, err, sizeof err) == 0);
+    img im;
+    CHECK_MSG(img_read(out, &im, err, sizeof err), "%s", err);
+    if (r.color && im.px) {
+        CHECK(im.w == 32 && im.h == 18 && im.channels == 3);
+        int off = 0;
+        for (size_t i = 0; i < (size_t)32 * 18 * 3; i++)   /* float: 6e-8 relative, as above */
+            off += !(fabs(im.px[i] - r.color[i]) <= 6e-8 * fabs(r.color[i]) + 1e-30);
+        CHECK_MSG(off == 0, "%d values differ from the render at the standard 4x positions", off);
+    }
+    img_free(&im);
+    ref_render_free(&r);
+}
+
 static void test_usage(void) {
     const char *no_out[] = { "scene.glib" };
     CHECK(run(1, no_out) == TARN_EXIT_USAGE);
@@ -142,6 +193,7 @@ int main(void) {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/tarn_cli_reference_XXXXXX");
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
     RUN(test_writes_everything);
+    RUN(test_msaa_without_gl);
     RUN(test_usage);
     RUN(test_input_errors);
     char cmd[600];

@@ -125,9 +125,10 @@ static void check_targets(render *r, const char *what) {
 
 static void test_references(void) {
     CHECK_MSG(ncases >= 13, "%d hard cases in scenes/hard", ncases);
-    /* subsampled as the packs are multisampled (their default MSAA), as
-     * tarn bench does: edges are compared with edges */
-    refcache_opts o = { .caustic_res = 48, .photons_per_cell = 9, .spp = render_ref_spp(render_samples_on_this_gl(0)) };
+    /* subsampled where the packs' MSAA samples (their default), as tarn
+     * bench does: edges are compared with edges */
+    refcache_opts o = { .caustic_res = 48, .photons_per_cell = 9 };
+    refcache_match_msaa(&o, render_samples_on_this_gl(0));
     for (int c = 0; c < ncases; c++) {
         char err[4096] = "";
         have_ref[c] = refcache_get("hard-ref", cases[c].path, NULL, W, H, T, NULL, &o, NULL, NULL, &refs[c],

@@ -3,8 +3,10 @@
  * colour and the background's (multiples of 1/4: the samples covered) and
  * none without; the covered area is the square's (a closed form) either
  * way. The resolve lands in the caller's rectangle only, keeps a float
- * target's precision and values above 1, and the reference's subsamples
- * that match a sample count are the nearest square. */
+ * target's precision and values above 1, the reference's subsamples
+ * that match a sample count are the nearest square, and the positions the
+ * reference takes for MSAA are where the GL samples (the 4x image of the
+ * square is its coverage at them, not at the ordered grid). */
 #include <GL/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -161,6 +163,77 @@ static void test_reference_spp_matches(void) {
               def, gl ? gl : "?");
 }
 
+/* The square's coverage of pixel (i, j) (row 0 the top) at subsample
+ * positions in the reference's form (x right, y down): the closed form of
+ * tilted_square (turned back by 30 degrees, inside |u|, |v| <= 1/2). */
+static double coverage(int i, int j, const double (*pos)[2], int n) {
+    const double c = cos(30 * M_PI / 180), s = sin(30 * M_PI / 180);
+    int in = 0;
+    for (int k = 0; k < n; k++) {
+        double x = (i + pos[k][0]) / W * 2 - 1, y = 1 - (j + pos[k][1]) / H * 2;
+        double u = c * x + s * y, v = -s * x + c * y;
+        in += fabs(u) <= 0.5 && fabs(v) <= 0.5;
+    }
+    return (double)in / n;
+}
+
+/* RMSE of the drawn image (px) against the coverage at these positions,
+ * over every pixel, and how many pixels differ. */
+static double coverage_rmse(const double (*pos)[2], int n, int *differ) {
+    double se = 0;
+    *differ = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double e = px[(j * W + i) * 4] - coverage(i, j, pos, n);
+            se += e * e;
+            *differ += fabs(e) > 1e-4;
+        }
+    return sqrt(se / (W * H));
+}
+
+/* The reference's positions for 4x MSAA are where this GL samples: the
+ * tilted square's 4x image is its coverage at those positions, pixel for
+ * pixel, and much closer to it than to the ordered 2 x 2 grid's coverage
+ * (what the reference took before: the edges disagree). Tolerance: a
+ * sample exactly on an edge may go either way under GL's fill rules; at
+ * 30 degrees on a 64 x 64 grid that is rare, so at most 1% of the ~180 edge
+ * pixels may differ. The positions are inside the pixel, and on llvmpipe
+ * they are the standard ones. */
+static void test_reference_positions_match(void) {
+    double pos[32][2], std[32][2];
+    int n = render_ref_positions(4, pos, 32);
+    if (n < 4) SKIP("this GL does not say where it samples with 4 samples");
+    render *r = tilted_square(n);
+    CHECK(render_samples(r) == n);
+    draw(r, true);
+    render_destroy(r);
+    for (int k = 0; k < n; k++)
+        CHECK(pos[k][0] >= 0 && pos[k][0] < 1 && pos[k][1] >= 0 && pos[k][1] < 1);
+    int d_matched, d_grid, d_mirror;
+    double e_matched = coverage_rmse((const double (*)[2])pos, n, &d_matched);
+    const double grid[4][2] = { { 0.25, 0.25 }, { 0.75, 0.25 }, { 0.25, 0.75 }, { 0.75, 0.75 } };
+    double e_grid = coverage_rmse(grid, 4, &d_grid);
+    double mirror[32][2];   /* GL's y up taken as y down: the wrong way round */
+    for (int k = 0; k < n; k++) {
+        mirror[k][0] = pos[k][0];
+        mirror[k][1] = 1 - pos[k][1];
+    }
+    double e_mirror = coverage_rmse((const double (*)[2])mirror, n, &d_mirror);
+    fprintf(stderr, "4x edge RMSE: matched %.5f (%d pixels differ), ordered 2x2 %.5f (%d), mirrored %.5f (%d)\n",
+            e_matched, d_matched, e_grid, d_grid, e_mirror, d_mirror);
+    CHECK_MSG(d_matched <= 2, "%d pixels differ from the coverage at GL's positions", d_matched);
+    CHECK(e_matched < 0.25 * e_grid);
+    CHECK(e_matched < 0.25 * e_mirror);
+    const char *gl = (const char *)glGetString(GL_RENDERER);
+    if (n == 4 && gl && strstr(gl, "llvmpipe")) {
+        CHECK(render_ref_standard_positions(4, std, 32) == 4);
+        for (int k = 0; k < 4; k++) CHECK(pos[k][0] == std[k][0] && pos[k][1] == std[k][1]);
+    }
+    CHECK(render_ref_positions(1, pos, 32) == 0);   /* MSAA off: the grid */
+    CHECK(render_ref_standard_positions(3, std, 32) == 0);
+    CHECK(render_ref_standard_positions(16, std, 32) == 16);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -171,6 +244,7 @@ int main(void) {
     RUN(test_float_precision_kept);
     RUN(test_resolve_into_rectangle);
     RUN(test_reference_spp_matches);
+    RUN(test_reference_positions_match);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

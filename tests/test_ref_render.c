@@ -3,7 +3,8 @@
  * internal reflection from below, the shading composition in closed form,
  * flat-water caustic irradiance within the Monte-Carlo bound, bitwise
  * determinism across thread counts, exact sky pixels, finite images of the
- * lake, and wavy-water hits that obey Snell at the exact surface. */
+ * lake, wavy-water hits that obey Snell at the exact surface, and
+ * subsamples at given positions (MSAA's) as the rays of a finer image. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -317,6 +318,104 @@ static void test_lake_finite(void) {
     }
 }
 
+/* ---- explicit subsample positions ---------------------------------- */
+
+/* GL's standard 4x MSAA positions, turned from GL's y up into the image's
+ * y down: (0.375, 0.125) ... become (0.375, 0.875) ... */
+static const double ROTATED4[4][2] = { { 0.375, 0.875 }, { 0.875, 0.625 }, { 0.125, 0.375 }, { 0.625, 0.125 } };
+
+/* One position at the pixel centre is the 1-spp render, bit for bit (the
+ * same rays in the same order), buffers and all. */
+static void test_positions_centre_is_spp1(void) {
+    ref_world w;
+    lake_world(&w);
+    ref_render_desc d1 = lake_desc(&w, 2, 2.0), dp = d1;
+    dp.nsamples = 1;
+    dp.samples[0][0] = dp.samples[0][1] = 0.5;
+    ref_render_result a, b;
+    CHECK(render(&d1, &a) == 0);
+    CHECK(render(&dp, &b) == 0);
+    size_t n = (size_t)a.width * a.height;
+    CHECK(b.nsamples == 1);
+    CHECK(SAME(a.color, b.color, n * 3));
+    CHECK(SAME(a.mask, b.mask, n));
+    CHECK(SAME(a.refract_hit, b.refract_hit, n * 4));
+    CHECK(SAME(a.fresnel, b.fresnel, n));
+    ref_render_free(&a);
+    ref_render_free(&b);
+}
+
+/* Positions on a 1/4-pixel lattice against independent truth: pixel
+ * (i, j)'s subsample at ((a + 0.5) / 4, (b + 0.5) / 4) is the same camera
+ * ray as the centre of pixel (4i + a, 4j + b) of the 1-spp image 4x the
+ * size (ref_camera_ray scales px / w; a factor 4 is exact in binary), so
+ * the rotated 4x pattern is the mean of those four centre pixels.
+ * Tolerance 1e-12: the same rays give the same radiance; only the sum's
+ * order differs. The pattern's mirror (y up taken as y down) is checked to
+ * differ, so the test sees which way y runs; and the spp grid is its cell
+ * centres given as positions, bit for bit. */
+static double lattice_error(const ref_render_result *r, const ref_render_result *big, const double pos[][2],
+                            int np) {
+    double worst = 0;
+    for (int j = 0; j < r->height; j++)
+        for (int i = 0; i < r->width; i++)
+            for (int c = 0; c < 3; c++) {
+                double sum = 0;
+                for (int k = 0; k < np; k++) {
+                    int x = 4 * i + (int)(pos[k][0] * 4), y = 4 * j + (int)(pos[k][1] * 4);
+                    sum += big->color[((size_t)y * big->width + x) * 3 + c];
+                }
+                worst = worse(worst, fabs(r->color[((size_t)j * r->width + i) * 3 + c] - sum / np));
+            }
+    return worst;
+}
+
+static void test_positions_are_subpixel_rays(void) {
+    ref_world w;
+    lake_world(&w);
+    ref_render_desc d = lake_desc(&w, 2, 2.0), big = d, grid = d, mirror = d;
+    d.camera.width = big.camera.width / 4;   /* 16 x 9, and 64 x 36 the lattice */
+    d.camera.height = big.camera.height / 4;
+    grid.camera = mirror.camera = d.camera;
+    d.nsamples = mirror.nsamples = 4;
+    for (int k = 0; k < 4; k++) {
+        d.samples[k][0] = mirror.samples[k][0] = ROTATED4[k][0];
+        d.samples[k][1] = ROTATED4[k][1];
+        mirror.samples[k][1] = 1 - ROTATED4[k][1];
+    }
+    grid.spp = 2;
+    ref_render_result r, b, g, m;
+    CHECK(render(&d, &r) == 0);
+    CHECK(render(&big, &b) == 0);
+    CHECK(render(&grid, &g) == 0);
+    CHECK(render(&mirror, &m) == 0);
+    double e = lattice_error(&r, &b, ROTATED4, 4);
+    CHECK_MSG(e < 1e-12, "rotated 4x: worst %g off the mean of the 4x image's pixels", e);
+    double em = lattice_error(&m, &b, ROTATED4, 4);
+    CHECK_MSG(em > 1e-3, "the mirrored pattern is as close (%g): the scene has no edge to tell", em);
+    /* the spp grid is the same as its cell centres given as positions, in
+       its order (row by row), bit for bit */
+    ref_render_desc gp = grid;
+    gp.spp = 0;
+    gp.nsamples = 4;
+    for (int k = 0; k < 4; k++) {
+        gp.samples[k][0] = 0.25 + 0.5 * (k % 2);
+        gp.samples[k][1] = 0.25 + 0.5 * (k / 2);
+    }
+    ref_render_result q;
+    CHECK(render(&gp, &q) == 0);
+    CHECK(SAME(q.color, g.color, (size_t)g.width * g.height * 3));
+    ref_render_free(&q);
+    /* the centre ray's buffers do not depend on the subsamples */
+    size_t n = (size_t)r.width * r.height;
+    CHECK(SAME(r.mask, g.mask, n));
+    CHECK(SAME(r.fresnel, g.fresnel, n));
+    ref_render_free(&r);
+    ref_render_free(&b);
+    ref_render_free(&g);
+    ref_render_free(&m);
+}
+
 /* Wavy water: every refraction hit lies on the terrain, along the Snell
  * direction at the exact surface normal from a point on the surface. */
 static void test_lake_snell(void) {
@@ -468,6 +567,13 @@ static void test_bad_input(void) {
     CHECK(r.color == NULL);
     /* photon grids past the memory budget: refused before any is allocated */
     d.spp = 1;
+    d.nsamples = 1;
+    d.samples[0][1] = 1.0;   /* a position must lie in the pixel, [0, 1) */
+    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_STR_CONTAINS(err, "outside the pixel");
+    d.nsamples = REF_MAX_SAMPLES + 1;
+    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    d.nsamples = 0;
     d.caustic_res = 8192;
     d.threads = 64;
     CHECK(ref_render(&d, &r, err, sizeof err) == -1);
@@ -485,6 +591,8 @@ int main(void) {
     RUN(test_flat_caustics);
     RUN(test_deterministic);
     RUN(test_lake_finite);
+    RUN(test_positions_centre_is_spp1);
+    RUN(test_positions_are_subpixel_rays);
     RUN(test_lake_snell);
     RUN(test_sky_exact);
     RUN(test_pool_contrast);

@@ -18,10 +18,12 @@
 #include "ref_render.h"
 #include "scene.h"
 #include "ref_buffers.h"
+#include "gl_ctx.h"
+#include "render.h"
 
 static const char usage[] =
     "usage: tarn reference SCENE.glib -o OUT.exr [--size WxH] [--time SECONDS]\n"
-    "                      [--threads N] [--spp N] [--photons N] [--caustic-res N]\n"
+    "                      [--threads N] [--spp N | --msaa N] [--photons N] [--caustic-res N]\n"
     "                      [--flat-caustics] [--radiance-n2] [--quiet]\n"
     "\n"
     "Renders the scene's world on the CPU in double precision: the ground truth\n"
@@ -45,6 +47,10 @@ static const char usage[] =
     "  --threads N          worker threads (default: every core)\n"
     "  --spp N              N x N subsamples per pixel for the colour (default 1);\n"
     "                       the buffers are always the pixel centre's\n"
+    "  --msaa N             match N-sample MSAA (a `tarn render --msaa N` frame):\n"
+    "                       subsample where the GL samples with N (asked of a headless\n"
+    "                       context), or without one at the standard positions of\n"
+    "                       2, 4, 8 or 16 samples; 0 or 1: the pixel centre\n"
     "  --photons N          photons per caustic grid cell (default 36)\n"
     "  --caustic-res N      caustic grid cells along the underwater floor (default 256)\n"
     "  --flat-caustics      no photons: the floor lit through flat water\n"
@@ -156,6 +162,48 @@ static int write_outputs(const char *out, const ref_render_result *r, int quiet)
     return ok;
 }
 
+/* ---- matching MSAA ------------------------------------------------------ */
+
+/* --msaa N: the subsample positions of N-sample MSAA into d. Asked of a
+ * headless GL (the samples it gives for N, as `tarn render --msaa N` gets
+ * them), else the standard positions; says which on stdout (unless quiet).
+ * False, with a message, when neither knows N. */
+static bool match_msaa(int samples, bool quiet, ref_render_desc *d) {
+    if (samples <= 1) return true;   /* off: the pixel centre */
+    char err[1024] = "";
+    const char *from = "this GL's";
+    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
+    bool have_gl = ctx != NULL;
+    int used = samples, n = 0;
+    if (have_gl) {
+        used = render_samples_on_this_gl(samples);
+        n = render_ref_positions(used, d->samples, REF_MAX_SAMPLES);
+        gl_ctx_destroy(ctx);
+        if (used <= 1) {
+            if (!quiet) printf("tarn reference: this GL has no MSAA: one subsample at the pixel centre\n");
+            return true;
+        }
+    }
+    if (n <= 0) {
+        n = render_ref_standard_positions(used, d->samples, REF_MAX_SAMPLES);
+        from = "the standard";
+        if (n <= 0) {
+            fprintf(stderr, "tarn reference: no GL to ask where %d-sample MSAA samples%s, and no standard "
+                            "positions for %d (there are for 2, 4, 8 and 16): give --msaa 2, 4, 8 or 16\n",
+                    used, have_gl ? "" : " (no headless context)", used);
+            return false;
+        }
+    }
+    d->nsamples = n;
+    if (!quiet) {
+        printf("tarn reference: matching %d-sample MSAA at %s sample positions%s:", n, from,
+               have_gl ? "" : " (no GL context to ask)");
+        for (int k = 0; k < n; k++) printf(" (%g, %g)", d->samples[k][0], d->samples[k][1]);
+        printf(" (x right, y down in the pixel)\n");
+    }
+    return true;
+}
+
 /* ---- the command -------------------------------------------------------- */
 
 /* The command line: the scene, where to write, the image size (0: the
@@ -164,6 +212,7 @@ typedef struct reference_opts {
     const char *glib, *out;
     int width, height;
     bool quiet;
+    int msaa;                   /* --msaa N (0: not given) */
     ref_render_desc d;
 } reference_opts;
 
@@ -187,6 +236,9 @@ static int parse(int argc, char **argv, reference_opts *o) {
         } else if (strcmp(a, "--spp") == 0) {
             if (!cmd_opt_int(next, 1, 16, &d->spp)) return bad_usage("--spp wants 1..16 (N x N subsamples)");
             i++;
+        } else if (strcmp(a, "--msaa") == 0) {
+            if (!cmd_opt_msaa(next, &o->msaa)) return bad_usage("--msaa wants 0..16 samples");
+            i++;
         } else if (strcmp(a, "--photons") == 0) {
             if (!cmd_opt_int(next, 1, 1 << 20, &d->photons_per_cell)) return bad_usage("--photons wants 1..1048576 per cell");
             i++;
@@ -209,6 +261,7 @@ static int parse(int argc, char **argv, reference_opts *o) {
             return bad_usage("one scene at a time");
         }
     }
+    if (o->msaa && d->spp) return bad_usage("--spp and --msaa: give one (--spp N is an N x N grid, --msaa N matches MSAA)");
     if (!o->glib) return bad_usage("which scene? give SCENE.glib");
     if (!o->out) return bad_usage("where to? give -o OUT.exr");
     size_t ol = strlen(o->out);
@@ -221,6 +274,7 @@ static int run(reference_opts *o) {
     const char *glib = o->glib, *out = o->out;
     int width = o->width, height = o->height, quiet = o->quiet;
     ref_render_desc d = o->d;
+    if (!match_msaa(o->msaa, quiet, &d)) return TARN_EXIT_INPUT;
     ref_world_desc wd;
     scene_camera cam;
     bool has_world = false;
@@ -253,7 +307,10 @@ static int run(reference_opts *o) {
         d.progress_user = &b;
     }
     ref_render_desc rd = ref_render_resolve(&d);
-    if (!quiet)
+    if (!quiet && rd.nsamples > 0)
+        printf("tarn reference: %s at t = %g s, %dx%d, %d subsamples at those positions, %d threads\n", glib,
+               rd.time, rd.camera.width, rd.camera.height, rd.nsamples, rd.threads);
+    else if (!quiet)
         printf("tarn reference: %s at t = %g s, %dx%d, %d x %d subsamples, %d threads\n", glib,
                rd.time, rd.camera.width, rd.camera.height, rd.spp, rd.spp, rd.threads);
     fflush(stdout);

@@ -80,10 +80,21 @@ int render_samples(render *r);
 /* The same for a request, before any render exists (a GL context must be
  * current). */
 int render_samples_on_this_gl(int requested);
-/* The reference's subsamples a side (N x N, `tarn reference --spp`) that
- * match MSAA with this many samples (render_samples): the nearest square,
- * so 4x MSAA is compared with a 2x2 reference and off with 1x1. */
+/* The reference's subsamples a side (N x N, `tarn reference --spp`) nearest
+ * to MSAA with this many samples (render_samples): the nearest square, 2x2
+ * for 4x, 1x1 off. Only a fallback: an ordered grid meets edges otherwise
+ * than GL's rotated sample pattern; render_ref_positions matches it. */
 int render_ref_spp(int samples);
+/* Where the reference should subsample to match MSAA with this many
+ * samples (render_samples): where this GL samples (asked of it once; a GL
+ * context must be current), in the reference's form (ref_render_desc.samples:
+ * x right, y DOWN, in [0, 1)^2: GL's y-up (x, y) becomes (x, 1 - y)), into
+ * pos[0..max). Returns how many: 0 when MSAA is off (samples <= 1) or the
+ * GL cannot say (then render_ref_spp's grid is the fallback). */
+int render_ref_positions(int samples, double (*pos)[2], int max);
+/* The same without a GL: the standard positions of 2, 4, 8 or 16 samples
+ * (which GPUs and llvmpipe use); 0 for another count. */
+int render_ref_standard_positions(int samples, double (*pos)[2], int max);
 
 /* Every file the scene depends on (glib, includes, shader stages and their
  * #includes, textures, OBJs): what the watcher watches. */

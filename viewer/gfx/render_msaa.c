@@ -90,3 +90,51 @@ void render_msaa_free(render_msaa *m) {
     m->max_samples = max;
     m->default_samples = def;
 }
+
+int render_msaa_positions(int samples, double (*pos)[2], int max) {
+    if (samples <= 1) return 0;
+    while (glGetError() != GL_NO_ERROR) {}
+    GLint prev = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &prev);
+    GLuint rb = 0, fbo = 0;
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, 1, 1);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    GLint n = 0;
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) glGetIntegerv(GL_SAMPLES, &n);
+    for (int i = 0; i < n && i < max; i++) {
+        GLfloat v[2] = { 0.5f, 0.5f };
+        glGetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)i, v);
+        pos[i][0] = v[0];
+        pos[i][1] = v[1];
+    }
+    if (glGetError() != GL_NO_ERROR) n = 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rb);
+    return n > 1 ? n : 0;
+}
+
+/* Direct3D's standard sample patterns in 1/16 pixel from the centre; GL
+ * implementations report them as (0.5 + x / 16, 0.5 + y / 16). */
+static const signed char STD2[2][2] = { { 4, 4 }, { -4, -4 } };
+static const signed char STD4[4][2] = { { -2, -6 }, { 6, -2 }, { -6, 2 }, { 2, 6 } };
+static const signed char STD8[8][2] = { { 1, -3 }, { -1, 3 }, { 5, 1 }, { -3, -5 },
+                                        { -5, 5 }, { -7, -1 }, { 3, 7 }, { 7, -7 } };
+static const signed char STD16[16][2] = { { 1, 1 }, { -1, -3 }, { -3, 2 }, { 4, -1 }, { -5, -2 }, { 2, 5 },
+                                          { 5, 3 }, { 3, -5 }, { -2, 6 }, { 0, -7 }, { -4, -6 }, { -6, 4 },
+                                          { -8, 0 }, { 7, -4 }, { 6, 7 }, { -7, -8 } };
+
+int render_msaa_standard_positions(int samples, double (*pos)[2], int max) {
+    const signed char(*t)[2] = samples == 2 ? STD2 : samples == 4 ? STD4 : samples == 8 ? STD8
+                                : samples == 16 ? STD16 : NULL;
+    if (!t) return 0;
+    for (int i = 0; i < samples && i < max; i++) {
+        pos[i][0] = 0.5 + t[i][0] / 16.0;
+        pos[i][1] = 0.5 + t[i][1] / 16.0;
+    }
+    return samples;
+}

@@ -36,4 +36,16 @@ void render_msaa_resolve(const render_msaa *m, unsigned fbo, int x, int y);
 
 void render_msaa_free(render_msaa *m);
 
+/* Where this GL samples with this many samples, as it reports them
+ * (glGetMultisamplefv on a 1 x 1 multisampled target: x right, y UP in
+ * the pixel), into pos[0..max); returns how many samples the GL gives (it
+ * may give more than asked), 0 when it cannot say. Leaves the framebuffer
+ * binding as it was. */
+int render_msaa_positions(int samples, double (*pos)[2], int max);
+
+/* The standard positions (Direct3D's, which GPUs and Mesa's llvmpipe use)
+ * for 2, 4, 8 and 16 samples in the same y-up form; 0 for another count.
+ * No GL needed. */
+int render_msaa_standard_positions(int samples, double (*pos)[2], int max);
+
 #endif

@@ -298,13 +298,15 @@ static void fill_opts(bench_opts *o, const bench_desc *d) {
     o->quiet = d->quiet;
 }
 
-/* The reference is subsampled as the frames are multisampled (unless
- * --ref-spp says otherwise), so anti-aliased edges meet anti-aliased
- * edges and the error stays comparable (needs the GL context). */
+/* The reference is subsampled as the frames are multisampled, at the
+ * positions the GL samples (unless --ref-spp asks for a grid), so
+ * anti-aliased edges meet edges anti-aliased alike and the error stays
+ * comparable (needs the GL context). */
 static void match_reference(bench_opts *o) {
     o->samples_used = render_samples_on_this_gl(o->samples);
     o->spp_matched = o->ref.spp <= 0;
-    if (o->spp_matched) o->ref.spp = render_ref_spp(o->samples_used);
+    if (o->spp_matched) refcache_match_msaa(&o->ref, o->samples_used);
+    else o->ref.nsamples = 0;   /* --ref-spp: the ordered grid */
 }
 
 /* Where the references are cached: --ref-cache, else $XDG_CACHE_HOME/tarn/ref
@@ -389,8 +391,8 @@ static double ref_weight(const bench *b) {
     ref_render_desc d = ref_render_resolve(&(ref_render_desc){ .caustic_res = b->o.ref.caustic_res,
                                                                 .photons_per_cell = b->o.ref.photons_per_cell,
                                                                 .spp = b->o.ref.spp });
-    double cr = d.caustic_res / 256.0;
-    return 35 * cr * cr * d.photons_per_cell / 36.0 + 5.0 * b->o.w * b->o.h / (480.0 * 270.0) * d.spp * d.spp;
+    double cr = d.caustic_res / 256.0, rays = b->o.ref.nsamples > 0 ? b->o.ref.nsamples : d.spp * d.spp;
+    return 35 * cr * cr * d.photons_per_cell / 36.0 + 5.0 * b->o.w * b->o.h / (480.0 * 270.0) * rays;
 }
 
 /* Keys of every reference the run needs; renders or reads each once. */
@@ -1179,7 +1181,11 @@ static bool write_json(bench *b, const char *path) {
                   "\"references_rendered\": %d, \"references_cached\": %d},\n",
               b->o.frames, b->o.frame_budget, b->o.warmup, b->axis == 1 ? "gpu" : "wall", b->refs_rendered,
               b->refs_cached);
-    strbuf_printf(&o, "  \"msaa\": %d, \"reference_spp\": %d,\n", b->o.samples_used, b->o.ref.spp);
+    strbuf_printf(&o, "  \"msaa\": %d, \"reference_spp\": %d, \"reference_positions\": [", b->o.samples_used,
+                  b->o.ref.spp);
+    for (int k = 0; k < b->o.ref.nsamples; k++)
+        strbuf_printf(&o, "%s[%.9g, %.9g]", k ? ", " : "", b->o.ref.samples[k][0], b->o.ref.samples[k][1]);
+    strbuf_printf(&o, "],\n");
     strbuf_printf(&o, "  \"floor\": {\"gpu_ms\": ");
     json_num(&o, b->floor_gpu);
     strbuf_printf(&o, ", \"wall_ms\": ");
@@ -1375,10 +1381,12 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
               b->o.warmup, b->o.frames, b->o.frame_budget, 100 * BENCH_TIME_NOISE, 100 * BENCH_ERROR_TIE);
     char aa[32] = "off";
     if (b->o.samples_used > 1) snprintf(aa, sizeof aa, "MSAA %dx", b->o.samples_used);
-    strbuf_printf(o, "Anti-aliasing: %s; the reference takes %d x %d subsamples per pixel%s. Per-pixel "
+    char subs[96];
+    refcache_describe_samples(&b->o.ref, subs, (int)sizeof subs);
+    strbuf_printf(o, "Anti-aliasing: %s; the reference takes %s%s. Per-pixel "
                  "buffers (hit point, Fresnel, irradiance, depth) are drawn without MSAA and compared with the "
                  "reference's pixel-centre buffers.\n\n",
-              aa, b->o.ref.spp, b->o.ref.spp, b->o.spp_matched ? ", to match" : " (--ref-spp)");
+              aa, subs, b->o.spp_matched ? ", to match" : " (--ref-spp)");
     if (b->cpu_raster)
         strbuf_printf(o, "**%s is a CPU rasteriser**: its GPU timestamps are taken when commands are issued, "
                      "not when pixels are drawn, so the GPU column is not meaningful here. The wall time "

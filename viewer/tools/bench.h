@@ -41,7 +41,7 @@ typedef struct bench_desc {
     const char *docs;                      /* NULL: no docs section */
     int time_axis;                         /* 0 auto, 1 gpu, 2 wall */
     refcache_opts ref;                     /* the references' quality; ref.spp 0: matched to the
-                                              MSAA (render_ref_spp: 2 x 2 for 4 samples) */
+                                              MSAA (refcache_match_msaa: the GL's positions) */
     int samples;                           /* MSAA of the packs (render_desc.samples): 0 default, 1 off */
     double heat_max;                       /* 0: 0.25 */
     bool no_images, quiet;

@@ -15,6 +15,7 @@
 #include "glib.h"
 #include "scene.h"
 #include "ref_buffers.h"
+#include "render.h"
 
 typedef struct loaded {
     ref_world_desc wd;
@@ -72,7 +73,10 @@ static ref_render_desc make_desc(const loaded *l, const ref_world *world, int w,
     d.camera.height = h;
     d.time = t;
     if (o) {
-        d.spp = o->spp;
+        d.spp = o->nsamples > 0 ? 0 : o->spp;   /* positions replace the grid */
+        d.nsamples = o->nsamples;
+        if (o->nsamples > 0 && o->nsamples <= REF_MAX_SAMPLES)
+            memcpy(d.samples, o->samples, (size_t)o->nsamples * sizeof d.samples[0]);
         d.caustic_res = o->caustic_res;
         d.photons_per_cell = o->photons_per_cell;
         d.threads = o->threads;
@@ -98,6 +102,10 @@ static uint64_t key_of(const loaded *l, const ref_render_desc *d) {
     h = fnv(h, ints, sizeof ints);
     h = fnv(h, &r.time, sizeof r.time);
     h = fnv(h, &r.t_tol, sizeof r.t_tol);
+    if (r.nsamples > 0 && r.nsamples <= REF_MAX_SAMPLES) {   /* absent: the keys of the grid as before */
+        h = fnv(h, &r.nsamples, sizeof r.nsamples);
+        h = fnv(h, r.samples, (size_t)r.nsamples * sizeof r.samples[0]);
+    }
     return h;
 }
 
@@ -259,4 +267,21 @@ bool refcache_get(const char *dir, const char *scene, const char *name, int w, i
         write_buf(path, out->color, w, h, 3, true, err, errlen);
     }
     return true;
+}
+
+void refcache_match_msaa(refcache_opts *o, int samples) {
+    o->nsamples = 0;
+    o->spp = render_ref_spp(samples);
+    if (samples <= 1) return;
+    int n = render_ref_positions(samples, o->samples, REF_MAX_SAMPLES);
+    if (n <= 0) n = render_ref_standard_positions(samples, o->samples, REF_MAX_SAMPLES);
+    if (n <= 0) return;
+    o->nsamples = n;
+    o->spp = 1;   /* not used: the positions replace the grid */
+}
+
+void refcache_describe_samples(const refcache_opts *o, char *buf, int len) {
+    if (o->nsamples > 0) snprintf(buf, (size_t)len, "%d subsamples per pixel at the GL's MSAA sample positions",
+                                   o->nsamples);
+    else snprintf(buf, (size_t)len, "%d x %d subsamples per pixel", o->spp > 0 ? o->spp : 1, o->spp > 0 ? o->spp : 1);
 }

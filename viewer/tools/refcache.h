@@ -2,7 +2,8 @@
  * at a size, time and camera, cached on disk so reruns of `tarn bench` are
  * fast. The key is a hash of everything the image depends on: the world
  * (less the GL-only mesh resolutions), the camera, the size, the time and
- * the reference's quality settings. Files, in DIR:
+ * the reference's quality settings (the subsample positions among them).
+ * Files, in DIR:
  *
  *   STEM-WxH-tT-KEY.exr              linear RGB, 32-bit float
  *   STEM-WxH-tT-KEY.png              the same, sRGB 8-bit, to look at
@@ -21,6 +22,9 @@
 /* Zero means the reference's default in every field. */
 typedef struct refcache_opts {
     int spp;                  /* N x N subsamples */
+    int nsamples;             /* > 0: subsamples at these positions instead (MSAA's, from
+                                 render_ref_positions; ref_render_desc.samples) */
+    double samples[REF_MAX_SAMPLES][2];
     int caustic_res;
     int photons_per_cell;
     int threads;
@@ -61,5 +65,16 @@ bool refcache_cached(const char *dir, const char *scene, const char *name, int w
                      const refcache_opts *o);
 
 void refcache_free(refcache_image *im);
+
+/* Subsamples that match MSAA with this many samples (as render_samples
+ * gives them; a GL context current): the positions this GL samples
+ * (render_ref_positions), else the standard ones of 2, 4, 8, 16
+ * (render_ref_standard_positions), else the nearest square grid
+ * (render_ref_spp). Sets o->spp, o->nsamples and o->samples. */
+void refcache_match_msaa(refcache_opts *o, int samples);
+
+/* What o's subsamples are, for messages and reports: "2 x 2 subsamples
+ * per pixel" or "4 subsamples per pixel at the GL's MSAA sample positions". */
+void refcache_describe_samples(const refcache_opts *o, char *buf, int len);
 
 #endif

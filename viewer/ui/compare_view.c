@@ -159,9 +159,10 @@ static void start_reference(cview *v) {
     v->pend_w = v->cell_w;
     v->pend_h = v->cell_h;
     v->pend_started = clock_now_s();
-    fprintf(stderr, "tarn compare-view: computing the reference at %dx%d (%dx%d subsamples), t = %.3f s ...\n",
-            v->cell_w, v->cell_h, v->ref_opts.spp, v->ref_opts.spp,
-            v->s->t);
+    char subs[96];
+    refcache_describe_samples(&v->ref_opts, subs, (int)sizeof subs);
+    fprintf(stderr, "tarn compare-view: computing the reference at %dx%d (%s), t = %.3f s ...\n", v->cell_w,
+            v->cell_h, subs, v->s->t);
     heat_job_start_reference(v->job, v->scene, v->cell_w, v->cell_h, v->s->t, &view, &v->ref_opts);
     snprintf(v->heat_status, sizeof v->heat_status, "computing the reference %dx%d: 0%%", v->pend_w, v->pend_h);
 }
@@ -185,9 +186,10 @@ static bool finish_reference(cview *v) {
     v->show_heat = true;
     v->reported = false;
     for (int i = 0; i < v->n; i++) v->packs[i].have_heat = false;
-    snprintf(v->heat_status, sizeof v->heat_status,
-             "reference %dx%d at t = %.3f s (%dx%d subsamples, as the packs' MSAA), computed in %.1f s", v->ref_w,
-             v->ref_h, v->ref_t, v->ref_opts.spp, v->ref_opts.spp, clock_now_s() - v->pend_started);
+    char subs[96];
+    refcache_describe_samples(&v->ref_opts, subs, (int)sizeof subs);
+    snprintf(v->heat_status, sizeof v->heat_status, "reference %dx%d at t = %.3f s (%s, as the packs' MSAA), computed in %.1f s",
+             v->ref_w, v->ref_h, v->ref_t, subs, clock_now_s() - v->pend_started);
     fprintf(stderr, "tarn compare-view: %s\n", v->heat_status);
     return true;
 }
@@ -762,9 +764,9 @@ int cli_compare_view(const cli_compare_view_desc *d) {
     v->panel = app_panel(v->app);
     bool ok = true;
     load_packs(v, d, &ok);
-    /* the reference is subsampled as the packs are multisampled, so an
-     * anti-aliased edge is compared with an anti-aliased edge */
-    v->ref_opts.spp = render_ref_spp(render_samples(v->packs[0].r));
+    /* the reference is subsampled where the packs' MSAA samples, so an
+     * anti-aliased edge is compared with an edge anti-aliased alike */
+    refcache_match_msaa(&v->ref_opts, render_samples(v->packs[0].r));
     fprintf(stderr, "tarn compare-view: loaded %s\n", d->glib);
     if (d->width <= 0 || d->height <= 0) {
         int w, h;

@@ -45,7 +45,8 @@ typedef struct cli_compare_view_desc {
     int ref_caustic_res;        /* reference quality for the heat maps (0: 128) */
     int ref_photons;            /* photons per caustic cell (0: 16) */
     int samples;                /* MSAA of every pack (render_desc.samples): 0 the default, 1 off;
-                                   the heat maps' reference is subsampled to match (render_ref_spp) */
+                                   the heat maps' reference subsamples at the GL's positions
+                                   (refcache_match_msaa) */
 } cli_compare_view_desc;
 
 int cli_compare_view(const cli_compare_view_desc *d);
