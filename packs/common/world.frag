@@ -107,10 +107,16 @@ vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
 // Is p under the water surface at this time? Below the mean level is not
 // enough: where a trough uncovers the shore, the reference's ray meets the
 // land in air and lights it dry (its shading follows the path, not the
-// mean level). The surface is looked up only within the waves' height
-// bound of the level (waves.glsl's sum of amplitudes; gradient noise stays
-// within 0.75 of its amplitude), so the deep floor costs nothing.
+// mean level). Within the waves' height bound of the level (waves.glsl's
+// sum of amplitudes; gradient noise stays within 0.75 of its amplitude)
+// the surface's height is read from tarn's map of it this frame
+// (WORLD_HEIGHT_MAP, world_height.frag), or else solved for here: on a
+// CPU rasteriser every pixel pays for that solve, wet or dry.
 uniform float uTime;
+#ifdef WORLD_HEIGHT_MAP
+uniform sampler2D uWaveHeight;     // the surface's height over the world (set by tarn)
+uniform float uWaveHeightHalf;     // it covers x, z in [-half, half]
+#endif
 bool worldUnderWater(vec3 p) {
     if (p.y >= uWaterLevel) return false;
     float bound = 0.0;
@@ -126,7 +132,16 @@ bool worldUnderWater(vec3 p) {
         a *= gain;
     }
     if (p.y < uWaterLevel - bound) return true;
+#ifdef WORLD_HEIGHT_MAP
+    // the surface's height from tarn's map of it this frame (world_height.frag);
+    // beyond the map, the mean level
+    vec2 uv = p.xz / uWaveHeightHalf * 0.5 + 0.5;
+    float h = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)))
+            ? texture(uWaveHeight, uv).r : uWaterLevel;
+    return p.y < h;
+#else
     return p.y < wavesHeightAt(p.xz, uTime);
+#endif
 }
 
 void main() {

@@ -1418,6 +1418,14 @@ long render_world_cache_hits(const render *r) { return r->wcache.hits; }
 
 long render_once_reused(const render *r) { return r->once_reused; }
 
+bool render_set_world_height_map(render *r, bool on) {
+    char *log = NULL;
+    bool ok = world_set_height_map(&r->world, on, (const char *const *)r->include_dirs, &log);
+    free(log);
+    wcache_free(&r->wcache);   /* the world may draw differently now */
+    return ok;
+}
+
 void render_set_detail(render *r, double detail) {
     r->detail = detail > 0 && detail < 1 ? detail : 1;
 }
@@ -1479,6 +1487,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     /* the screen passes go to the multisampled target, resolved at the end */
     unsigned dest = fbo;
     int dest_x = x, dest_y = y;
+    if (s->glib) world_update_height(&r->world, t, r->detail);   /* before the frame binds its target */
     bool ms = s->glib && render_msaa_begin(&r->msaa, render_samples(r), fbo, w, h, r->world.active);
     if (ms) { fbo = r->msaa.fbo; x = 0; y = 0; }
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);

@@ -115,6 +115,13 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
 void render_set_world_cache(render *r, bool on);
 long render_world_cache_hits(const render *r);
 
+/* The world's wet and dry land (where the moving surface is above it)
+ * from a height map of the surface drawn once a frame, bilinear between
+ * samples WORLD_HEIGHT_RES a side over twice the world square (the
+ * default), or solved for at every pixel (off: as exact as the
+ * reference's, and on a CPU rasteriser 40% of a frame of the world). */
+bool render_set_world_height_map(render *r, bool on);
+
 /* Detail of the next frames, for a frame drawn at `detail` (0..1] of
  * each side of its full resolution (the windows' frame budget): the
  * scene's fixed-size work shrinks with it, so a reduced frame costs about

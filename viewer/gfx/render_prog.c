@@ -32,7 +32,8 @@ static char *gl_info_log(GLuint obj, bool is_program) {
 /* The defines to compile with: the current values of the Define entries. */
 static int collect_defines(const prog *p, shader_define *out, int max) {
     int n = 0;
-    if (p->fixed.name[0] && n < max) out[n++] = p->fixed;
+    for (int k = 0; k < PROG_FIXED_MAX; k++)
+        if (p->fixed[k].name[0] && n < max) out[n++] = p->fixed[k];
     for (int i = 0; i < p->unifs->n && n < max; i++) {
         const unif_entry *e = &p->unifs->entries[i];
         if (!e->is_define) continue;

@@ -9,6 +9,8 @@
 #include "shader_src.h"
 #include "unif.h"
 
+#define PROG_FIXED_MAX 2
+
 typedef struct prog {
     char name[GLIB_NAME_MAX];
     const glib_cmd *cmd;                     /* the Program line (for messages) */
@@ -26,7 +28,7 @@ typedef struct prog {
     bool tess;                               /* the build has a TessEvaluation stage */
     unsigned gs_input;                       /* its geometry shader's input primitive (GL enum), 0: none */
     bool world_uniforms;                     /* the scene has a world: its uniforms get no slider */
-    shader_define fixed;                     /* a define always built with (name "": none): the world's variants */
+    shader_define fixed[PROG_FIXED_MAX];     /* defines always built with (name "": none): the world's variants */
     char *source;                            /* all stage texts as compiled (for messages) */
     const glib_scene *scene;                 /* its glib: sliders that glib commands read */
 } prog;

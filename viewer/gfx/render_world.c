@@ -216,6 +216,14 @@ static bool bake_sky(gpu_world *gw) {
     return true;
 }
 
+/* world.frag reads the height map (WORLD_HEIGHT_MAP) unless it is off. */
+static void set_height_define(const gpu_world *gw, prog *p) {
+    memset(&p->fixed[1], 0, sizeof p->fixed[1]);
+    if (gw->height_map_off) return;
+    snprintf(p->fixed[1].name, sizeof p->fixed[1].name, "WORLD_HEIGHT_MAP");
+    snprintf(p->fixed[1].value, sizeof p->fixed[1].value, "1");
+}
+
 static bool build_program(gpu_world *gw, const char *const *include_dirs, const char *common_dir, char **log) {
     for (int m = 0; m < WORLD_MODES; m++) {
         prog *p = &gw->progs[m];
@@ -224,11 +232,20 @@ static bool build_program(gpu_world *gw, const char *const *include_dirs, const 
         p->unifs = &gw->prog_unifs[m];
         p->world_uniforms = true;
         snprintf(p->name, sizeof p->name, "World");
-        snprintf(p->fixed.name, sizeof p->fixed.name, "WORLD_MODE");
-        snprintf(p->fixed.value, sizeof p->fixed.value, "%d", m);
+        snprintf(p->fixed[0].name, sizeof p->fixed[0].name, "WORLD_MODE");
+        snprintf(p->fixed[0].value, sizeof p->fixed[0].value, "%d", m);
+        set_height_define(gw, p);
         snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world.vert", common_dir);
         snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world.frag", common_dir);
     }
+    prog *h = &gw->height_prog;
+    memset(h, 0, sizeof *h);
+    memset(&gw->height_unifs, 0, sizeof gw->height_unifs);
+    h->unifs = &gw->height_unifs;
+    h->world_uniforms = true;
+    snprintf(h->name, sizeof h->name, "WorldHeight");
+    snprintf(h->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", common_dir);
+    snprintf(h->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_height.frag", common_dir);
     return world_build_programs(gw, include_dirs, log);
 }
 
@@ -241,6 +258,8 @@ bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char *
         prog_introspect(&gw->progs[m], to);
         free(mlog);
     }
+    if (!prog_build(&gw->height_prog, include_dirs, 1, log)) ok = false;
+    prog_introspect(&gw->height_prog, log);
     return ok;
 }
 
@@ -272,7 +291,12 @@ void world_free(gpu_world *gw) {
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
     if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
     for (int m = 0; m < WORLD_MODES; m++) prog_free(&gw->progs[m]);
+    prog_free(&gw->height_prog);
+    if (gw->height_fbo) glDeleteFramebuffers(1, &gw->height_fbo);
+    if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
+    bool off = gw->height_map_off;   /* a setting of the renderer's, not of this world */
     memset(gw, 0, sizeof *gw);
+    gw->height_map_off = off;
 }
 
 bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *include_dirs,
@@ -405,6 +429,8 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
     GLint shift = glGetUniformLocation(p, "uWaterShift");
     if (shift >= 0) glUniform2f(shift, (float)gw->water_shift[0], (float)gw->water_shift[1]);
     seti(p, "uSky", WORLD_UNIT_SKY);
+    seti(p, "uWaveHeight", WORLD_UNIT_HEIGHT);
+    set1(p, "uWaveHeightHalf", (float)(WORLD_HEIGHT_MARGIN * d->half_size));
     seti(p, "uTerrainAlbedo", WORLD_UNIT_ALBEDO);
     loc = glGetUniformLocation(p, "uCameraPos");
     if (loc >= 0) glUniform3fv(loc, 1, eye);
@@ -426,6 +452,8 @@ void world_bind_textures(const gpu_world *gw) {
     glBindTexture(GL_TEXTURE_2D, gw->albedo_tex);
     glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_SKY);
     glBindTexture(GL_TEXTURE_CUBE_MAP, gw->sky_tex);
+    glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_HEIGHT);
+    glBindTexture(GL_TEXTURE_2D, gw->height_tex);
     glActiveTexture(GL_TEXTURE0);
 }
 
@@ -502,4 +530,66 @@ void world_draw_points(gpu_world *gw, int n) {
     glDrawArrays(GL_POINTS, 0, n * n);
     glDisableClientState(GL_VERTEX_ARRAY);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+/* ---- the waves' height map ---- */
+
+static int height_res(double detail) {
+    if (!(detail > 0) || detail >= 1) return WORLD_HEIGHT_RES;
+    int n = (int)lround(WORLD_HEIGHT_RES * detail);
+    return n < 32 ? 32 : n;
+}
+
+static void height_target(gpu_world *gw, int res) {
+    if (!gw->height_tex) {
+        glGenTextures(1, &gw->height_tex);
+        glGenFramebuffers(1, &gw->height_fbo);
+    }
+    glBindTexture(GL_TEXTURE_2D, gw->height_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, res, res, 0, GL_RED, GL_FLOAT, NULL);
+    res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gw->height_tex, 0);
+    gw->height_res = res;
+}
+
+void world_update_height(gpu_world *gw, double t, double detail) {
+    if (!gw->active || gw->height_map_off || !gw->height_prog.gl) return;
+    int res = height_res(detail);
+    if (gw->height_tex && res == gw->height_res && t == gw->height_t && gw->height_prog.hash == gw->height_hash)
+        return;   /* drawn for this time already: a still frame, or a second view */
+    if (!gw->height_tex || res != gw->height_res) height_target(gw, res);
+    glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
+    glViewport(0, 0, res, res);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    unsigned p = gw->height_prog.gl;
+    glUseProgram(p);
+    const float eye[3] = { 0, 0, 0 };
+    world_upload(gw, p, t, eye);
+    GLint loc = glGetUniformLocation(p, "uHeightRes");
+    if (loc >= 0) glUniform2f(loc, (float)res, (float)res);
+    /* no vertex arrays: the triangle comes from gl_VertexID */
+    glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    glDisableClientState(GL_NORMAL_ARRAY);
+    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+    glDisableClientState(GL_COLOR_ARRAY);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glPopClientAttrib();
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gw->height_t = t;
+    gw->height_hash = gw->height_prog.hash;
+}
+
+bool world_set_height_map(gpu_world *gw, bool on, const char *const *include_dirs, char **log) {
+    if (gw->height_map_off == !on) return true;
+    gw->height_map_off = !on;
+    if (!gw->active) return true;
+    for (int m = 0; m < WORLD_MODES; m++) set_height_define(gw, &gw->progs[m]);
+    return world_build_programs(gw, include_dirs, log);
 }

@@ -16,6 +16,9 @@
 
 #define WORLD_UNIT_ALBEDO 14
 #define WORLD_UNIT_SKY 15
+#define WORLD_UNIT_HEIGHT 30   /* the waves' height map (world_update_height): above glman's units */
+#define WORLD_HEIGHT_RES 256   /* its texels a side at full detail */
+#define WORLD_HEIGHT_MARGIN 2.0   /* it covers twice the world square's half size */
 #define WORLD_SKY_RES 128
 #define WORLD_MODES 3
 /* Levels of detail of the terrain, its skirt and the water grid: level k
@@ -48,6 +51,16 @@ typedef struct gpu_world {
      * square moved by this (x, z): 0 unless the waves slide the whole
      * surface (world_follow_waves) */
     double water_shift[2];
+    /* The water surface's height over the world, a map drawn once a frame
+     * (packs/common/world_height.frag) that world.frag reads to tell wet
+     * land from dry instead of solving for the surface at every pixel. */
+    bool height_map_off;          /* world.frag solves per pixel (tests compare the two) */
+    prog height_prog;
+    unif_set height_unifs;
+    unsigned height_tex, height_fbo;
+    int height_res;
+    double height_t;
+    unsigned long long height_hash;   /* the program the map was drawn with */
 } gpu_world;
 
 /* The level of detail of the meshes drawn from now on, for a frame drawn
@@ -68,6 +81,16 @@ bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char *
 void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);
 
 void world_bind_textures(const gpu_world *gw);
+
+/* Draws the height map for time t at the detail of the frame (its side
+ * WORLD_HEIGHT_RES times detail, at least 32), unless it is drawn for t
+ * already. Binds framebuffer 0 and leaves the viewport changed: call it
+ * before the frame sets its own. */
+void world_update_height(gpu_world *gw, double t, double detail);
+
+/* The height map on (the default) or off (world.frag solves for the
+ * surface at every pixel, as before); rebuilds the world's programs. */
+bool world_set_height_map(gpu_world *gw, bool on, const char *const *include_dirs, char **log);
 
 /* Keeps the water's rest grid under the surface at time t. A Gerstner wave
  * moves each rest point by Q_i A_i cos(phase) sideways, at most Q L / (2 pi
