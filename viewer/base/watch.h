@@ -40,7 +40,8 @@
 
 #include <stdbool.h>
 
-#define WATCH_QUIET_MS         40  /* no events for this long: the save is over */
+#define WATCH_QUIET_MS         20  /* no events for this long: the save is over (its read then waits
+                                      * for the file to be FILE_SETTLE_MS old; every ms is the user's) */
 #define WATCH_WRITE_GRACE_MS   150 /* most to wait for the close of a file being written */
 #define WATCH_MISSING_GRACE_MS 200 /* most to wait for a deleted file to come back */
 #define WATCH_BATCH_MS         100 /* most a settled file waits for others still busy */
