@@ -35,6 +35,30 @@ static int run(int argc, const char **argv) { return cmd_reference(argc, (char *
 
 static const char *lake(void) { return TARN_SOURCE_DIR "/scenes/lake.glib"; }
 
+/* The lake as the command lines below render it (32x18, t = 1.5 s, 4
+ * photons a cell, a 48^2 caustic grid), in memory: at n subpixel positions
+ * (n 0: the pixel centre). */
+static void lake_in_memory(const double (*at)[2], int n, ref_render_result *r) {
+    ref_world_desc wd;
+    scene_camera cam;
+    bool has_world;
+    char err[2048];
+    CHECK(scene_load(lake(), NULL, &wd, &cam, &has_world, err, sizeof err) || !strstr(err, ": error:"));
+    ref_world w;
+    ref_world_init(&w, &wd);
+    ref_render_desc d = { .world = &w, .time = 1.5, .threads = 1, .photons_per_cell = 4, .caustic_res = 48,
+                          .nsamples = n };
+    for (int i = 0; i < n; i++) memcpy(d.samples[i], at[i], sizeof d.samples[i]);
+    memset(r, 0, sizeof *r);
+    memcpy(d.camera.eye, cam.eye, sizeof cam.eye);
+    memcpy(d.camera.center, cam.center, sizeof cam.center);
+    memcpy(d.camera.up, cam.up, sizeof cam.up);
+    d.camera.fov_deg = cam.fov_deg;
+    d.camera.width = 32;
+    d.camera.height = 18;
+    CHECK(ref_render(&d, r, err, sizeof err) == 0);
+}
+
 static void test_writes_everything(void) {
     if (access(lake(), R_OK) != 0) SKIP("no %s", lake());
     const char *out = tmp_path("ref.exr");
@@ -43,23 +67,10 @@ static void test_writes_everything(void) {
     CHECK(run((int)(sizeof argv / sizeof *argv), argv) == TARN_EXIT_OK);
 
     /* the same render in memory */
-    ref_world_desc wd;
-    scene_camera cam;
-    bool has_world;
-    char err[2048];
-    CHECK(scene_load(lake(), NULL, &wd, &cam, &has_world, err, sizeof err) || !strstr(err, ": error:"));
-    ref_world w;
-    ref_world_init(&w, &wd);
-    ref_render_desc d = { .world = &w, .time = 1.5, .threads = 1, .photons_per_cell = 4, .caustic_res = 48 };
-    memcpy(d.camera.eye, cam.eye, sizeof cam.eye);
-    memcpy(d.camera.center, cam.center, sizeof cam.center);
-    memcpy(d.camera.up, cam.up, sizeof cam.up);
-    d.camera.fov_deg = cam.fov_deg;
-    d.camera.width = 32;
-    d.camera.height = 18;
     ref_render_result r;
-    CHECK(ref_render(&d, &r, err, sizeof err) == 0);
+    lake_in_memory(NULL, 0, &r);
     if (!r.color) return;
+    char err[2048];
 
     struct { const char *name; int channels; const double *ref; } files[] = {
         { "ref.exr", 3, r.color },
@@ -121,24 +132,10 @@ static void test_msaa_without_gl(void) {
     const char *both[] = { lake(), "-o", tmp_path("b.exr"), "--msaa", "4", "--spp", "2" };
     CHECK(run((int)(sizeof both / sizeof *both), both) == TARN_EXIT_USAGE);
 
-    ref_world_desc wd;
-    scene_camera cam;
-    bool has_world;
-    char err[2048];
-    CHECK(scene_load(lake(), NULL, &wd, &cam, &has_world, err, sizeof err) || !strstr(err, ": error:"));
-    ref_world w;
-    ref_world_init(&w, &wd);
-    ref_render_desc d = { .world = &w, .time = 1.5, .threads = 1, .photons_per_cell = 4, .caustic_res = 48,
-                          .nsamples = 4,
-                          .samples = { { 0.375, 0.875 }, { 0.875, 0.625 }, { 0.125, 0.375 }, { 0.625, 0.125 } } };
-    memcpy(d.camera.eye, cam.eye, sizeof cam.eye);
-    memcpy(d.camera.center, cam.center, sizeof cam.center);
-    memcpy(d.camera.up, cam.up, sizeof cam.up);
-    d.camera.fov_deg = cam.fov_deg;
-    d.camera.width = 32;
-    d.camera.height = 18;
+    const double at[4][2] = { { 0.375, 0.875 }, { 0.875, 0.625 }, { 0.125, 0.375 }, { 0.625, 0.125 } };
     ref_render_result r;
-    CHECK(ref_render(&d, &r, err, sizeof err) == 0);
+    lake_in_memory(at, 4, &r);
+    char err[2048];
     img im;
     CHECK_MSG(img_read(out, &im, err, sizeof err), "%s", err);
     if (r.color && im.px) {
