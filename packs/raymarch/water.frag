@@ -134,9 +134,10 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
     }
     underside = underside && t.y > MARCH_EMPTY_Y && t.y < t.x;   // no bottom here: no underside colour
     float slab = hit.y - t.x;
+    float side = -1.0;   // a side met between the column's bottom and top: how far up, 0..1
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
-        if (t.z >= t.y) underside = underside || hit.y - t.y < t.x - hit.y;
+        if (t.z >= t.y) side = clamp((hit.y - t.y) / (t.x - t.y), 0.0, 1.0);
         else if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
     } else if (hit.y - t.z <= slab) {
         return texture(uFloorColor, uv).rgb;
@@ -144,7 +145,13 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
     // under the highest underside (w, pack_y.frag): a trunk under its crown
     float high = texelFetch(uWorldY, ivec2(uv * vec2(size)), 0).w;
     if (t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
-    return underside ? texture(uUnderColor, uv).rgb : texture(uTopColor, uv).rgb;
+    vec3 top = texture(uTopColor, uv).rgb;
+    if (underside) return texture(uUnderColor, uv).rgb;
+    // a side between bottom and top: the two views blended by height, not
+    // whichever end is nearer (that flips from column to column along a
+    // row and striates a thing seen from the side, as total internal
+    // reflection shows the boulder)
+    return side >= 0.0 ? mix(texture(uUnderColor, uv).rgb, top, side) : top;
 }
 
 // The ground seen from p along dir (downwards, in water): its colour, the
