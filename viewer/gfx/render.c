@@ -50,6 +50,7 @@ typedef struct scene_state {
     unif_set *unifs;         /* progs[i].unifs == &unifs[i] */
     bool *once_done;         /* per command: a RenderToTextureOnce block already drawn */
     uint64_t *once_sig;      /* per command: what a drawn block drew (once_signature) */
+    bool *per_frame;         /* per Texture2D target: a RenderToTexture draws it every frame */
     bool *draw_warned;       /* per command: a problem drawing it was reported */
     int nprogs;
     scene_settings set;
@@ -119,6 +120,7 @@ static void scene_free(scene_state *s) {
     free(s->unifs);
     free(s->once_done);
     free(s->once_sig);
+    free(s->per_frame);
     free(s->draw_warned);
     free(s->cmd_res);
     if (s->glib) glib_free(s->glib);
@@ -371,21 +373,16 @@ static int screen_divisor(const char *name) {
 }
 
 /* A count the scene fixes (a target's side, points per side) at the
- * frame's detail (render_set_detail): scaled with the frame's sides, so a
- * pass costs the same share of a reduced frame as of a full one; never
- * below DETAIL_MIN_COUNT (nor above the scene's own). */
+ * frame's detail: at least 16, so a pass still has something to draw. */
 #define DETAIL_MIN_COUNT 16
 
-static int detail_count(const render *r, int n) {
-    if (!(r->detail > 0) || r->detail >= 1 || n <= DETAIL_MIN_COUNT) return n;
-    long k = lround(n * r->detail);
-    return k < DETAIL_MIN_COUNT ? DETAIL_MIN_COUNT : (int)k;
-}
+static int detail_count(const render *r, int n) { return world_detail_count(n, r->detail, DETAIL_MIN_COUNT); }
 
 /* Is texture unit drawn into by a RenderToTexture of every frame? Only
  * those cost every frame; one a RenderToTextureOnce fills (raymarch's
  * top-down views, a lookup table) is drawn once a load, and shrinking it
- * would draw it again at each change of detail, and worse. */
+ * would draw it again at each change of detail, and worse. Asked once a
+ * load (scene_state.per_frame). */
 static bool drawn_every_frame(const glib_scene *g, int unit) {
     for (int i = 0; i < g->ncmds; i++) {
         const glib_cmd *c = &g->cmds[i];
@@ -437,7 +434,7 @@ static void size_targets(render *r, int screen_w, int screen_h) {
         const glib_cmd *c = &s->glib->cmds[i];
         if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || s->cmd_res[i] < 0) continue;
         gpu_tex *t = &s->texs[s->cmd_res[i]];
-        bool per_frame = drawn_every_frame(s->glib, (int)c->num[0]);
+        bool per_frame = s->per_frame[i];
         int w = c->name[0] ? target_side(r, c->name, screen_w, max, per_frame) : (int)c->num[1];
         int h = c->arg[0] ? target_side(r, c->arg, screen_h, max, per_frame) : (int)c->num[2];
         if (per_frame && !c->name[0]) w = detail_count(r, w);
@@ -516,6 +513,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     s->unifs = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->unifs);
     s->once_done = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->once_done);
     s->once_sig = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->once_sig);
+    s->per_frame = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->per_frame);
     s->draw_warned = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->draw_warned);
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
@@ -527,6 +525,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
         if (res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
         else if (c->kind == GLIB_CMD_GL_BEGIN) build_begin(s, i, log);
         else if (res_is_texture(c->kind)) build_tex(s, old, c, i, log);
+        if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY) s->per_frame[i] = drawn_every_frame(s->glib, (int)c->num[0]);
         else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log);
         else program_stages_step(&st, c);
     }

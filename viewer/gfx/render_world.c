@@ -326,6 +326,12 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
 
 /* ---- per frame ---- */
 
+int world_detail_count(int n, double detail, int min) {
+    if (!(detail > 0) || detail >= 1 || n <= min) return n;
+    long k = lround(n * detail);
+    return k < min ? min : (int)k;
+}
+
 /* The level for a frame at `detail` of each side: the vertices follow the
  * pixels (a quarter of the pixels, a quarter of the vertices). */
 static int detail_lod(double detail) {
@@ -534,12 +540,6 @@ void world_draw_points(gpu_world *gw, int n) {
 
 /* ---- the waves' height map ---- */
 
-static int height_res(double detail) {
-    if (!(detail > 0) || detail >= 1) return WORLD_HEIGHT_RES;
-    int n = (int)lround(WORLD_HEIGHT_RES * detail);
-    return n < 32 ? 32 : n;
-}
-
 static void height_target(gpu_world *gw, int res) {
     if (!gw->height_tex) {
         glGenTextures(1, &gw->height_tex);
@@ -556,7 +556,7 @@ static void height_target(gpu_world *gw, int res) {
 
 void world_update_height(gpu_world *gw, double t, double detail) {
     if (!gw->active || gw->height_map_off || !gw->height_prog.gl) return;
-    int res = height_res(detail);
+    int res = world_detail_count(WORLD_HEIGHT_RES, detail, 32);
     if (gw->height_tex && res == gw->height_res && t == gw->height_t && gw->height_prog.hash == gw->height_hash)
         return;   /* drawn for this time already: a still frame, or a second view */
     if (!gw->height_tex || res != gw->height_res) height_target(gw, res);

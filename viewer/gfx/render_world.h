@@ -63,6 +63,13 @@ typedef struct gpu_world {
     unsigned long long height_hash;   /* the program the map was drawn with */
 } gpu_world;
 
+/* A count the scene fixes (a target's side, points or texels per side)
+ * for a frame at `detail` of each side (render_set_detail): scaled with
+ * the frame's sides, so its pass costs the same share of a reduced frame
+ * as of a full one; never below min (nor above n); n itself at detail 1,
+ * or out of (0, 1). */
+int world_detail_count(int n, double detail, int min);
+
 /* The level of detail of the meshes drawn from now on, for a frame drawn
  * at `detail` of each side of full resolution (render_set_detail): 1 the
  * scene's meshes, 1/2 a quarter of the vertices, down to 1/8. A coarser
