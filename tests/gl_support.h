@@ -5,7 +5,10 @@
 #define TARN_TEST_GL_SUPPORT_H
 
 #include <stdio.h>
+#include <string.h>
 #include "gl_ctx.h"
+#include "render.h"
+#include "unif.h"
 
 /* The test's exit code when it cannot run: ctest's SKIP_RETURN_CODE. */
 #define GL_TEST_SKIP 77
@@ -29,5 +32,18 @@ static const char *const flat_frag =
     "uniform vec4 uColor;\n"
     "out vec4 fragColor;\n"
     "void main() { fragColor = uColor; }\n";
+
+/* The entry `name` (a slider, colour, checkbox or Define) of Program
+ * `program` of r's scene (NULL: of the first Program that has it), or NULL. */
+static inline unif_entry *gl_test_uniform(render *r, const char *program, const char *name) {
+    int n;
+    unif_set *sets = render_uniforms(r, &n);
+    for (int i = 0; i < n; i++) {
+        if (program && strcmp(sets[i].program, program) != 0) continue;
+        unif_entry *e = unif_find(&sets[i], name);
+        if (e) return e;
+    }
+    return NULL;
+}
 
 #endif

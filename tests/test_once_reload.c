@@ -80,12 +80,9 @@ static void check_like_fresh(render *r, const char *what) {
 }
 
 static void set_level(render *r, float v) {
-    int n;
-    unif_set *sets = render_uniforms(r, &n);
-    for (int i = 0; i < n; i++) {
-        unif_entry *e = unif_find(&sets[i], "uLevel");
-        if (e) e->value[0] = v;
-    }
+    unif_entry *e = gl_test_uniform(r, "Once", "uLevel");
+    CHECK(e != NULL);
+    if (e) e->value[0] = v;
 }
 
 static void reload(render *r) { CHECK_MSG(render_load(r, NULL), "%s", render_messages(r)); }

@@ -245,14 +245,6 @@ static void test_glib_error_keeps_last_good_scene(void) {
     render_destroy(r);
 }
 
-static unif_entry *entry(render *r, const char *program, const char *name) {
-    int n;
-    unif_set *sets = render_uniforms(r, &n);
-    for (int i = 0; i < n; i++)
-        if (strcmp(sets[i].program, program) == 0) return unif_find(&sets[i], name);
-    return NULL;
-}
-
 /* Slider values survive a reload; a changed default resets that uniform. */
 static void test_slider_values_survive_reload(void) {
     scratch_write("s.frag", "#version 330 compatibility\nuniform float uGrey;\nuniform float uBlue;\nout vec4 c;\n"
@@ -261,7 +253,7 @@ static void test_slider_values_survive_reload(void) {
                          "Program S uGrey <0. 0.2 1.> uBlue <0. 0.1 1.>\nQuadXY 0 1 1 1\n");
     render *r = render_create(NULL);
     CHECK_MSG(render_load(r, scratch_path("s.glib")), "%s", render_messages(r));
-    unif_entry *grey = entry(r, "S", "uGrey"), *blue = entry(r, "S", "uBlue");
+    unif_entry *grey = gl_test_uniform(r, "S", "uGrey"), *blue = gl_test_uniform(r, "S", "uBlue");
     CHECK(grey && blue);
     if (!grey || !blue) { render_destroy(r); return; }
     grey->value[0] = 0.6f;     /* what dragging the slider does */
@@ -272,8 +264,8 @@ static void test_slider_values_survive_reload(void) {
     scratch_write("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
                          "Program S uGrey <0. 0.2 1.> uBlue <0. 0.3 1.>\nQuadXY 0 1 1 1\n");
     CHECK_MSG(render_load(r, NULL), "%s", render_messages(r));
-    grey = entry(r, "S", "uGrey");
-    blue = entry(r, "S", "uBlue");
+    grey = gl_test_uniform(r, "S", "uGrey");
+    blue = gl_test_uniform(r, "S", "uBlue");
     CHECK(grey && fabsf(grey->value[0] - 0.6f) < 1e-6f);
     CHECK(blue && fabsf(blue->value[0] - 0.3f) < 1e-6f);
     draw(r, 0);
@@ -293,7 +285,7 @@ static void test_define_toggle_recompiles(void) {
     CHECK_MSG(render_load(r, scratch_path("d.glib")), "%s", render_messages(r));
     draw(r, 0);
     CHECK_RGB(at(32, 32), 1, 0, 0);
-    unif_entry *red = entry(r, "D", "RED");
+    unif_entry *red = gl_test_uniform(r, "D", "RED");
     CHECK(red && red->is_define);
     if (red) {
         red->value[0] = 0;    /* unticking the checkbox */

@@ -41,14 +41,6 @@ static double max_diff(const float *a, const float *b) {
     return m;
 }
 
-static unif_entry *entry(render *r, const char *program, const char *name) {
-    int n;
-    unif_set *sets = render_uniforms(r, &n);
-    for (int i = 0; i < n; i++)
-        if (strcmp(sets[i].program, program) == 0) return unif_find(&sets[i], name);
-    return NULL;
-}
-
 /* What bench draws for pack's setting name: a fresh render of the scene
  * (with the row's scene lines added), then the row's assignments. */
 static float *bench_way(const char *pack, const char *name) {
@@ -80,7 +72,7 @@ static float *bench_way(const char *pack, const char *name) {
 static void test_same_pixels_as_bench(void) {
     render *r = render_create(&(render_desc){ .repo_root = TARN_SOURCE_DIR, .pack = "natural" });
     CHECK_MSG(render_load(r, LAKE), "%s", render_messages(r));
-    unif_entry *att = entry(r, "NaturalWater", "uAttenuation");
+    unif_entry *att = gl_test_uniform(r, "NaturalWater", "uAttenuation");
     CHECK(att != NULL);
     if (!att) { render_destroy(r); return; }
     float def = att->def[0];
@@ -92,9 +84,9 @@ static void test_same_pixels_as_bench(void) {
         char msg[2048] = "";
         CHECK_MSG(render_setting_apply_named(r, TARN_SOURCE_DIR, order[k], msg, sizeof msg), "%s: %s", order[k],
                   msg);
-        att = entry(r, "NaturalWater", "uAttenuation");
+        att = gl_test_uniform(r, "NaturalWater", "uAttenuation");
         CHECK_MSG(att && att->value[0] == def, "%s: the slider moved before is back at its default", order[k]);
-        unif_entry *gpu = entry(r, "NaturalWater", "CAUSTICS_GPU");
+        unif_entry *gpu = gl_test_uniform(r, "NaturalWater", "CAUSTICS_GPU");
         CHECK(gpu && gpu->value[0] == (strcmp(order[k], "paper") == 0 ? 0.0f : 1.0f));
         float *got = draw(r), *want = bench_way("natural", order[k]);
         double d = max_diff(got, want);
@@ -125,7 +117,7 @@ static void test_not_applicable_and_unknown(void) {
     CHECK_STR_CONTAINS(why, "scene.Sun");
     CHECK(!render_setting_apply(r, &b.settings[0], msg, sizeof msg));
     CHECK_STR_CONTAINS(msg, "scene.Sun does not apply to a running scene");
-    unif_entry *att = entry(r, "NaturalWater", "uAttenuation");
+    unif_entry *att = gl_test_uniform(r, "NaturalWater", "uAttenuation");
     CHECK(att && fabsf(att->value[0] - 0.25f) < 1e-6f);   /* the rest applied */
     packset_bench_free(&b);
 

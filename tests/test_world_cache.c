@@ -50,16 +50,6 @@ static float *frame(rig *g, double t, const render_view *v) {
 
 static bool same(const float *a, const float *b) { return memcmp(a, b, (size_t)W * H * 4 * sizeof(float)) == 0; }
 
-static unif_entry *uniform_of(render *r, const char *name) {
-    int n;
-    unif_set *sets = render_uniforms(r, &n);
-    for (int i = 0; i < n; i++) {
-        unif_entry *e = unif_find(&sets[i], name);
-        if (e) return e;
-    }
-    return NULL;
-}
-
 /* cached (on) and drawn (off) side by side through the same changes */
 static void check_pack(const char *pack, bool is_float) {
     rig on, off;
@@ -87,7 +77,7 @@ static void check_pack(const char *pack, bool is_float) {
     free(frame(&on, 2.5, &v));   /* kept: the uniform below must not copy it */
 
     /* a uniform that moves a pass's camera (natural: Camera wide uFovScale) */
-    unif_entry *fov = uniform_of(on.r, "uFovScale"), *fov_off = uniform_of(off.r, "uFovScale");
+    unif_entry *fov = gl_test_uniform(on.r, NULL, "uFovScale"), *fov_off = gl_test_uniform(off.r, NULL, "uFovScale");
     if (fov && fov_off) {
         unif_set_component(fov, 0, 2.0);
         unif_set_component(fov_off, 0, 2.0);
