@@ -126,6 +126,42 @@ static void test_points_add_up(void) {
     free(px);
 }
 
+/* WaterSurface mesh N with Blend add: the triangles between the points of
+ * `points N` tile their hull (every pixel there is covered exactly once,
+ * none twice: what the mesh splat of packs/natural relies on), and vertex
+ * k is point (k % N, k / N) (gl_VertexID, so a shader can fetch its
+ * photon): the vertex's grid coordinate, interpolated, agrees with its
+ * position's, (x / half size + 1) N / 2 - 1/2, at every pixel. */
+static void test_mesh_tiles_its_points(void) {
+    scratch_write("ij.vert", "#version 330 compatibility\nout vec2 vIJ, vXZ;\n"
+                          "void main() { vIJ = vec2(gl_VertexID % 9, gl_VertexID / 9); vXZ = gl_Vertex.xz;\n"
+                          "  gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
+    scratch_write("ij.frag", "#version 330 compatibility\nin vec2 vIJ, vXZ;\nuniform float uTerrainHalfSize;\nout vec4 c;\n"
+                          "void main() { vec2 g = (vXZ / uTerrainHalfSize + 1.) * 4.5 - 0.5; c = vec4(1., vIJ - g, 0.); }\n");
+    char text[2048];
+    snprintf(text, sizeof text, "%sBackground 0 0 0 0\nCamera top\nDepthTest off\nBlend add\nCull none\n"
+             "Vertex ij.vert\nFragment ij.frag\nProgram P\nWaterSurface mesh 9\n", world);
+    scratch_write("mesh.glib", text);
+    int n = 48, once = 0, gaps = 0, twice = 0;
+    float *px = draw(scratch_path("mesh.glib"), n, n, 0, NULL);
+    double worst = 0;
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++) {
+            const float *p = px + (y * n + x) * 4;
+            bool centre = x >= n / 5 && x < n - n / 5 && y >= n / 5 && y < n - n / 5;
+            if (p[0] > 1.5f) twice++;
+            else if (p[0] > 0.5f) once++;
+            else if (centre) gaps++;
+            worst = fmax(worst, fmax(fabs(p[1]), fabs(p[2])));
+        }
+    CHECK_MSG(twice == 0 && gaps == 0, "%d pixels drawn twice, %d gaps in the middle", twice, gaps);
+    /* the hull, 8/9 of the world square, is (8/9 / 1.05)^2 = 72% of the top
+     * camera's view: all but a border of pixels along its edge */
+    CHECK_MSG(once > 0.6 * n * n && once < 0.8 * n * n, "%d of %d pixels covered", once, n * n);
+    CHECK_MSG(worst < 1e-3, "vertex index and position disagree by %g cells", worst);
+    free(px);
+}
+
 /* Splat: 16 photons of energy 0.25 at world (0.3, -0.7): the irradiance
  * times the texel area sums to 4 and peaks at that point's texel. */
 static void test_splat_conserves_energy(void) {
@@ -374,6 +410,7 @@ int main(void) {
     RUN(test_target_sized_by_a_slider);
     RUN(test_target_sized_by_the_screen);
     RUN(test_points_from_a_slider);
+    RUN(test_mesh_tiles_its_points);
     RUN(test_water_grid_follows_a_sliding_surface);
     RUN(test_water_shift_uniform);
     RUN(test_splat_conserves_energy);

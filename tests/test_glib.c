@@ -1219,7 +1219,7 @@ static void test_world_errors(void) {
     CHECK(has_diag(s, f, 16, DIAG_ERROR, "Object: unknown kind 'cone': write sphere, box or cylinder"));
     CHECK(has_diag(s, f, 17, DIAG_ERROR, "Object needs one of sphere, box or cylinder"));
     CHECK(has_diag(s, f, 18, DIAG_ERROR, "World: unknown mode 'sideways': write World all|above|below [offset]"));
-    CHECK(has_diag(s, f, 19, DIAG_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
+    CHECK(has_diag(s, f, 19, DIAG_ERROR, "WaterSurface: write WaterSurface, WaterSurface points N or WaterSurface mesh N"));
     CHECK(has_diag(s, f, 20, DIAG_WARNING, "Sky takes at most 6 arguments; ignoring '1'"));
     CHECK(has_diag(s, f, 21, DIAG_ERROR, "Pack needs a name: Pack name"));
     CHECK(has_diag(s, f, 22, DIAG_ERROR, "Pack: '../evil' is not a pack name"));
@@ -1245,10 +1245,11 @@ static void test_pack_contract_commands(void) {
         "Camera main 0\n"                      /* 11 */
         "Texture2D 11 @nothing\n"              /* 12 */
         "WaterSurface points\n"                /* 13 */
-        "Splat 1\n");                          /* 14 */
+        "Splat 1\n"                           /* 14 */
+        "WaterSurface mesh uPhotonGrid\n");    /* 15 */
     const char *f = P("contract.glib");
-    CHECK(s->ncmds == 8);
-    if (s->ncmds == 8) {
+    CHECK(s->ncmds == 9);
+    if (s->ncmds == 9) {
         CHECK(s->cmds[0].kind == GLIB_CMD_CAMERA && !strcmp(s->cmds[0].name, "mirror") && s->cmds[0].nnum == 1 &&
               s->cmds[0].num[0] == 1.5 && s->cmds[0].arg[0] == '\0');
         CHECK(s->cmds[1].kind == GLIB_CMD_CAMERA && !strcmp(s->cmds[1].name, "main") && s->cmds[1].nnum == 0 &&
@@ -1261,11 +1262,13 @@ static void test_pack_contract_commands(void) {
         CHECK(s->cmds[5].kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE && s->cmds[5].nnum == 2 && s->cmds[5].num[1] == 7);
         CHECK(s->cmds[6].kind == GLIB_CMD_SPLAT && s->cmds[6].num[0] == 8 && s->cmds[6].num[1] == 9);
         CHECK(s->cmds[7].kind == GLIB_CMD_TEXTURE2D_FILE && !strcmp(s->cmds[7].path, "@caustics"));
+        CHECK(s->cmds[8].kind == GLIB_CMD_WATER_SURFACE && !strcmp(s->cmds[8].name, "mesh") &&
+              !strcmp(s->cmds[8].arg, "uPhotonGrid") && s->cmds[8].nnum == 0);
     }
     CHECK(has_diag(s, f, 10, DIAG_ERROR, "Camera: unknown camera 'sideways'"));
     CHECK(has_diag(s, f, 11, DIAG_ERROR, "Camera: fov_scale must be greater than 0"));
     CHECK(has_diag(s, f, 12, DIAG_ERROR, "unknown generated texture '@nothing'"));
-    CHECK(has_diag(s, f, 13, DIAG_ERROR, "WaterSurface: write WaterSurface, or WaterSurface points N"));
+    CHECK(has_diag(s, f, 13, DIAG_ERROR, "WaterSurface: write WaterSurface, WaterSurface points N or WaterSurface mesh N"));
     CHECK(has_diag(s, f, 14, DIAG_ERROR, "Splat needs"));
     glib_free(s);
 }

@@ -1118,8 +1118,9 @@ static void upload_target_size(const frame_state *f) {
     glUniform2f(loc, (float)vp[2], (float)vp[3]);
 }
 
-/* `WaterSurface points N`: N x N points; uPointGrid (contract) tells the
- * current program the N it is drawn with. */
+/* `WaterSurface points N` / `mesh N`: N x N points, or the triangles
+ * between them; uPointGrid (contract) tells the current program the N it
+ * is drawn with. */
 static void draw_points(render *r, const frame_state *f, const glib_cmd *c) {
     /* at the frame's detail, as a target sized by the same slider is: a
      * pass of one photon per texel and the splat of those photons agree */
@@ -1129,7 +1130,7 @@ static void draw_points(render *r, const frame_state *f, const glib_cmd *c) {
         GLint loc = glGetUniformLocation(f->cur->gl, "uPointGrid");
         if (loc >= 0) glUniform1f(loc, (float)n);
     }
-    world_draw_points(&r->world, n);
+    world_draw_points(&r->world, n, strcmp(c->name, "mesh") == 0);
 }
 
 /* A problem met drawing command ci: said once a load, with its glib line,
@@ -1387,7 +1388,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
     } else if (c->kind == GLIB_CMD_WORLD) {
         draw_world(r, f, i);
     } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
-        if (strcmp(c->name, "points") == 0) draw_points(r, f, c);
+        if (c->name[0]) draw_points(r, f, c);   /* "points" or "mesh" */
         else world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
         if (f->in_once) world_set_detail(&r->world, r->detail);

@@ -126,7 +126,7 @@ bool render_set_world_height_map(render *r, bool on);
  * each side of its full resolution (the windows' frame budget): the
  * scene's fixed-size work shrinks with it, so a reduced frame costs about
  * detail^2 of a full one, not a fixed floor: RenderToTexture targets of a
- * fixed or slider-given size and `WaterSurface points N` are scaled by
+ * fixed or slider-given size and `WaterSurface points|mesh N` are scaled by
  * detail (at least 16 a side), and the world's terrain and water grid are
  * drawn with about detail^2 of their vertices (coarser meshes, built when
  * first needed). Targets whose size follows the frame (`screen`) follow

@@ -287,6 +287,7 @@ void world_free(gpu_world *gw) {
     }
     res_mesh_free(&gw->sky_box);
     if (gw->points_vbo) glDeleteBuffers(1, &gw->points_vbo);
+    if (gw->mesh_ibo) glDeleteBuffers(1, &gw->mesh_ibo);
     for (int i = 0; i < gw->nobjects; i++) res_mesh_free(&gw->objects[i]);
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
     if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
@@ -511,29 +512,57 @@ void world_draw_water(gpu_world *gw, int tangent_loc) {
 
 /* N x N points at the cell centres of the world square, at the mean level;
  * built on first use and kept while N and the world stay the same. */
-void world_draw_points(gpu_world *gw, int n) {
-    if (!gw->active || n < 1) return;
-    if (gw->points_n != n) {
-        if (!gw->points_vbo) glGenBuffers(1, &gw->points_vbo);
-        float *p = mem_alloc((size_t)n * n * 3 * sizeof(float));
-        double hs = gw->w.d.half_size;
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++) {
-                float *v = p + ((size_t)j * n + i) * 3;
-                v[0] = (float)(-hs + (i + 0.5) * 2 * hs / n + gw->water_shift[0]);
-                v[1] = (float)gw->w.d.water_level;
-                v[2] = (float)(-hs + (j + 0.5) * 2 * hs / n + gw->water_shift[1]);
-            }
-        glBindBuffer(GL_ARRAY_BUFFER, gw->points_vbo);
-        glBufferData(GL_ARRAY_BUFFER, (long)n * n * 3 * (long)sizeof(float), p, GL_STATIC_DRAW);
-        free(p);
-        gw->points_n = n;
-    }
+static void build_points(gpu_world *gw, int n) {
+    if (!gw->points_vbo) glGenBuffers(1, &gw->points_vbo);
+    float *p = mem_alloc((size_t)n * n * 3 * sizeof(float));
+    double hs = gw->w.d.half_size;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            float *v = p + ((size_t)j * n + i) * 3;
+            v[0] = (float)(-hs + (i + 0.5) * 2 * hs / n + gw->water_shift[0]);
+            v[1] = (float)gw->w.d.water_level;
+            v[2] = (float)(-hs + (j + 0.5) * 2 * hs / n + gw->water_shift[1]);
+        }
+    glBindBuffer(GL_ARRAY_BUFFER, gw->points_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (long)n * n * 3 * (long)sizeof(float), p, GL_STATIC_DRAW);
+    free(p);
+    gw->points_n = n;
+}
+
+/* The triangles between the N x N points: two per cell of the grid of
+ * points, both wound the same way (a splat draws them unculled). */
+static void build_mesh_indices(gpu_world *gw, int n) {
+    if (!gw->mesh_ibo) glGenBuffers(1, &gw->mesh_ibo);
+    size_t cells = (size_t)(n - 1) * (n - 1);
+    unsigned *idx = mem_alloc(cells * 6 * sizeof(unsigned)), *o = idx;
+    for (int j = 0; j + 1 < n; j++)
+        for (int i = 0; i + 1 < n; i++) {
+            unsigned a = (unsigned)(j * n + i), b = a + 1, c = a + (unsigned)n, d = c + 1;
+            *o++ = a; *o++ = c; *o++ = b;
+            *o++ = b; *o++ = c; *o++ = d;
+        }
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gw->mesh_ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (long)(cells * 6 * sizeof(unsigned)), idx, GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    free(idx);
+    gw->mesh_n = n;
+}
+
+void world_draw_points(gpu_world *gw, int n, bool mesh) {
+    if (!gw->active || n < 1 || (mesh && n < 2)) return;
+    if (gw->points_n != n) build_points(gw, n);
+    if (mesh && gw->mesh_n != n) build_mesh_indices(gw, n);
     glBindBuffer(GL_ARRAY_BUFFER, gw->points_vbo);
     glEnableClientState(GL_VERTEX_ARRAY);
     glVertexPointer(3, GL_FLOAT, 0, (const void *)0);
-    glPointSize(1.0f);
-    glDrawArrays(GL_POINTS, 0, n * n);
+    if (mesh) {
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gw->mesh_ibo);
+        glDrawElements(GL_TRIANGLES, 6 * (n - 1) * (n - 1), GL_UNSIGNED_INT, (const void *)0);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    } else {
+        glPointSize(1.0f);
+        glDrawArrays(GL_POINTS, 0, n * n);
+    }
     glDisableClientState(GL_VERTEX_ARRAY);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }

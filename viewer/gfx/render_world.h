@@ -34,8 +34,10 @@ typedef struct gpu_world {
     /* skirt: the land beyond the world square; [k]: level of detail k */
     gpu_mesh terrain[WORLD_LODS], skirt[WORLD_LODS], water[WORLD_LODS], sky_box;
     int lod;                      /* the level drawn (world_set_detail) */
-    unsigned points_vbo;          /* WaterSurface points N */
+    unsigned points_vbo;          /* WaterSurface points N (and mesh N's vertices) */
     int points_n;
+    unsigned mesh_ibo;            /* WaterSurface mesh N: its triangles' indices */
+    int mesh_n;
     gpu_mesh objects[REF_MAX_OBJECTS];
     float object_albedo[REF_MAX_OBJECTS][3];
     int nobjects;
@@ -121,7 +123,11 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
 /* `WaterSurface`: the water grid (at the level of detail) with the bound program. */
 void world_draw_water(gpu_world *gw, int tangent_loc);
 
-/* `WaterSurface points N`: N x N points over the world square. */
-void world_draw_points(gpu_world *gw, int n);
+/* `WaterSurface points N`: N x N points over the world square, point
+ * (i, j) at cell centre (i, j) of an N x N grid, gl_VertexID j N + i. With
+ * mesh, the 2 (N - 1)^2 triangles between the same points instead (an
+ * indexed draw, so gl_VertexID is still j N + i): a photon grid drawn as a
+ * surface whose triangles a splat can fill. */
+void world_draw_points(gpu_world *gw, int n, bool mesh);
 
 #endif

@@ -1103,17 +1103,18 @@ static bool h_if(cmdctx *c, glib_cmd *cmd) {
     return true;
 }
 
-/* WaterSurface [points N|uniform] */
+/* WaterSurface [points|mesh N|uniform] */
 static bool h_water_surface(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule n_rule = { "N", "a point count per side", 'i', 1, 4096, 0 };
     if (c->nwords == 0)
         return true;
-    if (strcasecmp(c->words[0], "points") != 0 || c->nwords < 2) {
-        cerr(c, "WaterSurface: write WaterSurface, or WaterSurface points N");
+    bool points = strcasecmp(c->words[0], "points") == 0, mesh = strcasecmp(c->words[0], "mesh") == 0;
+    if (!(points || mesh) || c->nwords < 2) {
+        cerr(c, "WaterSurface: write WaterSurface, WaterSurface points N or WaterSurface mesh N");
         return false;
     }
     warn_extra(c, 2, "");
-    snprintf(cmd->name, sizeof cmd->name, "points");
+    snprintf(cmd->name, sizeof cmd->name, "%s", points ? "points" : "mesh");
     if (is_ident(c->words[1]))   /* N from a slider: `WaterSurface points uPhotonGrid` */
         return take_uniform_name(c, "WaterSurface", c->words[1], cmd->arg, sizeof cmd->arg);
     if (!parse_arg(c, &n_rule, c->words[1], &cmd->num[0]))
@@ -2172,7 +2173,7 @@ static const cmd_spec specs[] = {
     /* drawing the world (packs) */
     { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below [offset|uniform]]" },
     { "WaterSurface", GLIB_CMD_WATER_SURFACE, false, h_water_surface, false, 0, 0, { { 0 } },
-      "WaterSurface [points N]" },
+      "WaterSurface [points N|mesh N]" },
     { "Camera", GLIB_CMD_CAMERA, false, h_camera, false, 0, 0, { { 0 } },
       "Camera main|wide|mirror|top|light [fov_scale|uniform]" },
     { "RenderToTextureOnce", GLIB_CMD_RENDER_TO_TEXTURE_ONCE, false, h_rtt, false, 0, 0, { { 0 } },

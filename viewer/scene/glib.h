@@ -103,7 +103,9 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_END_IF,
     GLIB_CMD_WORLD,             /* name: "all" | "above" | "below" (default "all") */
     GLIB_CMD_WATER_SURFACE,     /* the water grid, with the current program; name "points":
-                                 * N x N points, num[0] = N or arg = the slider giving N */
+                                 * N x N points, num[0] = N or arg = the slider giving N;
+                                 * name "mesh": the same points as the corners of
+                                 * 2 (N - 1)^2 triangles (gl_VertexID = j N + i) */
     /* glman's state commands (seen in real course files) */
     GLIB_CMD_FLAT,              /* shading model flat: the provoking vertex's colour */
     GLIB_CMD_SMOOTH,            /* shading model smooth (the default) */
