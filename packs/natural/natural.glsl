@@ -99,40 +99,53 @@ float natBehindFloor(vec3 p) {
 #define PHOTON_STEPS 8
 #endif
 
-// Where the ray S + s t (t refracted, downward) meets the floor of the
-// light's depth map: PHOTON_STEPS steps over [0, 2 s0 + 0.25 u] (u the scene's unit), s0 the
-// vertical drop to the floor under S along the sun divided by |t.y|, then
-// three regula-falsi steps in the bracket. False when it meets nothing.
-bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
-    s = 0.0;
-    hit = S;
-    vec3 lS = natLightTex(S);
-    if (!natInside(lS.xy) || t.y >= 0.0) return false;
-    float zF = texture(uLightDepth, lS.xy).r;
-    if (zF >= 1.0) return false;
+// How far a march leg from P along t (downward) looks for the floor: twice
+// the slant distance of the drop under P along the sun in the light's depth
+// map, plus 0.25 u (u the scene's unit); negative when nothing is below.
+float natLegLength(vec3 P, vec3 t) {
+    vec3 l = natLightTex(P);
+    if (!natInside(l.xy)) return -1.0;
+    float zF = texture(uLightDepth, l.xy).r;
+    if (zF >= 1.0) return -1.0;
     // d(depth)/d(distance) along -sun: the light's ortho depth is linear
     vec3 row2 = vec3(uCamLightVP[0][2], uCamLightVP[1][2], uCamLightVP[2][2]);
     float kz = 0.5 * dot(row2, -uSunDir);
-    float drop = abs(kz) > 1e-8 ? max(zF - lS.z, 0.0) / kz * uSunDir.y : 1.0;
-    float smax = 2.0 * max(drop, 0.0) / -t.y + 0.25 * uWorldScale;   // (world.glsl's scene unit)
+    float drop = abs(kz) > 1e-8 ? max(zF - l.z, 0.0) / kz * uSunDir.y : 1.0;
+    return 2.0 * max(drop, 0.0) / -t.y + 0.25 * uWorldScale;   // (world.glsl's scene unit)
+}
+
+// Where the ray S + s t (t refracted, downward) meets the floor of the
+// light's depth map: PHOTON_STEPS steps over a leg of natLegLength, then
+// three regula-falsi steps in the bracket. A photon that passes beside what
+// stood under its start (an object's edge, a bank, as the sun sees them)
+// has not met the floor by the leg's end: a second leg, as long as the drop
+// under that end asks, follows it down. False when it meets nothing.
+bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
+    s = 0.0;
+    hit = S;
+    if (!natInside(natLightTex(S).xy) || t.y >= 0.0) return false;
     float s0 = 0.0, g0 = natBehindFloor(S);
-    if (g0 >= 0.0) { hit = S; return true; }   // the floor touches the surface here
-    for (int i = 1; i <= PHOTON_STEPS; i++) {
-        float s1 = smax * float(i) / float(PHOTON_STEPS);
-        float g1 = natBehindFloor(S + s1 * t);
-        if (g1 >= 0.0) {
-            for (int k = 0; k < 3; k++) {          // regula falsi in [s0, s1]
-                float sm = s0 + (s1 - s0) * (-g0) / max(g1 - g0, 1e-12);
-                float gm = natBehindFloor(S + sm * t);
-                if (gm >= 0.0) { s1 = sm; g1 = gm; } else { s0 = sm; g0 = gm; }
+    if (g0 >= 0.0) return true;                    // the floor touches the surface here
+    for (int leg = 0; leg < 2; leg++) {
+        float start = s0, len = natLegLength(S + start * t, t);
+        if (len < 0.0) return false;
+        for (int i = 1; i <= PHOTON_STEPS; i++) {
+            float s1 = start + len * float(i) / float(PHOTON_STEPS);
+            float g1 = natBehindFloor(S + s1 * t);
+            if (g1 >= 0.0) {
+                for (int k = 0; k < 3; k++) {      // regula falsi in [s0, s1]
+                    float sm = s0 + (s1 - s0) * (-g0) / max(g1 - g0, 1e-12);
+                    float gm = natBehindFloor(S + sm * t);
+                    if (gm >= 0.0) { s1 = sm; g1 = gm; } else { s0 = sm; g0 = gm; }
+                }
+                s = s0 + (s1 - s0) * (-g0) / max(g1 - g0, 1e-12);
+                hit = S + s * t;
+                return true;
             }
-            s = s0 + (s1 - s0) * (-g0) / max(g1 - g0, 1e-12);
-            hit = S + s * t;
-            return true;
+            if (g1 < -1.5) return false;           // left the map
+            s0 = s1;
+            g0 = g1;
         }
-        if (g1 < -1.5) return false;               // left the map
-        s0 = s1;
-        g0 = g1;
     }
     return false;
 }
@@ -145,7 +158,11 @@ bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
 // (sigma the mean absorption, s its path in water, D the depth of its hit).
 // Summed per unit of refracted-sun-space area, the weights give the ratio.
 bool natPhoton(vec3 S, vec3 N, float area, out vec2 q, out float w) {
-    q = vec2(0.0);
+    vec3 ts = natFlatSun();
+    float cosT = max(-ts.y, 1e-4);
+    // q also where the photon is lost (w = 0): at the point it stopped, so a
+    // mesh splat's triangle with a lost corner stays where its light went
+    q = S.xz;
     w = 0.0;
     float cosS = max(uSunDir.y, 1e-4);
     float cosI = dot(N, uSunDir);
@@ -153,12 +170,10 @@ bool natPhoton(vec3 S, vec3 N, float area, out vec2 q, out float w) {
     vec3 t = refract(-uSunDir, N, 1.0 / uIOR);
     float s;
     vec3 hit;
-    if (!natTraceFloor(S, t, s, hit)) return false;
+    bool met = natTraceFloor(S, t, s, hit);
     float depth = uWaterLevel - hit.y;
-    if (depth <= 0.0) return false;
-    vec3 ts = natFlatSun();
-    float cosT = max(-ts.y, 1e-4);
     q = hit.xz - ts.xz * (depth / cosT);
+    if (!met || depth <= 0.0) return false;
     float sigma = dot(uAbsorption, vec3(1.0 / 3.0));
     w = area * (1.0 - worldFresnel(cosI, 1.0, uIOR)) / (1.0 - worldFresnel(cosS, 1.0, uIOR))
         * exp(-sigma * (s - depth / cosT));

@@ -31,10 +31,9 @@ void main() {
     float area = cell.x * cell.y * max(dot(nu, uSunDir), 0.0) / max(uSunDir.y, 1e-4);
     vec2 q;
     float w;
-    if (!natPhoton(S, normalize(nu), area, q, w)) {
-        fragColor = vec4(0.0);
-        return;
-    }
+    bool valid = natPhoton(S, normalize(nu), area, q, w);
     float s = uTerrainHalfSize / natCausticHalfSize();
-    fragColor = vec4(q * s, w * s * s, 1.0);
+    // a lost photon (A = 0, no weight) keeps the q where it stopped: the
+    // mesh splat places its corner there
+    fragColor = vec4(q * s, w * s * s, valid ? 1.0 : 0.0);
 }

@@ -1,25 +1,30 @@
 #version 330 compatibility
-// packs/natural, caustics on the GPU, pass 2: `WaterSurface points N` draws
-// point k = j N + i for photon (i, j) of photon_pass.frag's target; this
-// only fetches it and puts a 2 x 2 pixel point on its landing texel, whose
-// four pixels are the texels of its bilinear splat (photon_splat.frag
-// weighs them), added with Blend add. No geometry shader: on a CPU
-// rasteriser it would run on one thread.
+// packs/natural, caustics on the GPU, pass 2: `WaterSurface mesh N` draws
+// the triangles between the photons of photon_pass.frag's target (vertex
+// k = j N + i is photon (i, j)), each corner moved to where its photon
+// lands in refracted-sun space. A triangle spreads the light of the rest
+// area it spans over the area it lands on (photon_splat.frag), so a
+// caustic is as sharp as the surface focuses it, and there is no photon
+// noise: the mesh tiles the texture, every texel centre lies in one
+// triangle (or, where the light folds over, in one per layer). Wallace's
+// WebGL Water lights its pool so. No geometry shader: on a CPU rasteriser
+// it would run on one thread.
 uniform sampler2D uPhotons;  // photon_pass.frag's target
 uniform float uPointGrid;    // N (set by tarn)
-uniform vec2 uTargetSize;    // the caustic target's size (set by tarn)
 uniform float uTerrainHalfSize;
-flat out vec2 vTexel;        // landing point in texels (texel centres at i + 0.5)
-flat out float vWeight;      // weight per texel area: the ratio it adds
+out vec2 vCell;              // the photon's rest cell (i, j): area in the mean plane
+out float vWeight;           // its weight per rest cell (scaled as for Splat); 0 if lost
 
 void main() {
     int n = int(uPointGrid + 0.5);
-    vec4 ph = texelFetch(uPhotons, ivec2(gl_VertexID % n, gl_VertexID / n), 0);
-    vec2 uv = ph.rg / uTerrainHalfSize * 0.5 + 0.5;
-    vTexel = uv * uTargetSize;
-    vec2 texel = 2.0 * uTerrainHalfSize / uTargetSize;
-    vWeight = ph.b / (texel.x * texel.y);
-    gl_PointSize = 2.0;
-    bool valid = ph.a > 0.5 && !any(isnan(ph.rgb)) && !any(isinf(ph.rgb));
-    gl_Position = valid ? vec4(uv * 2.0 - 1.0, 0.0, 1.0) : vec4(-4.0, -4.0, 0.0, 1.0);
+    ivec2 ij = ivec2(gl_VertexID % n, gl_VertexID / n);
+    vec4 ph = texelFetch(uPhotons, ij, 0);
+    // a lost photon (A = 0: blocked above the water, or no floor met)
+    // brings no light and keeps the point where it stopped, so the
+    // triangles it corners fade to nothing towards it
+    bool finite = !any(isnan(ph.rgb)) && !any(isinf(ph.rgb));
+    vec2 rest = (-1.0 + (vec2(ij) + 0.5) * (2.0 / float(n))) * uTerrainHalfSize;
+    vCell = vec2(ij);
+    vWeight = finite && ph.a > 0.5 ? ph.b : 0.0;
+    gl_Position = vec4((finite ? ph.rg : rest) / uTerrainHalfSize, 0.0, 1.0);
 }

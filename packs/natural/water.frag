@@ -81,8 +81,9 @@ vec3 gRefractIrradiance = vec3(0.0);   // that of the refraction lookup (DEBUG_P
 // The caustic ratio applied to the sun term of a floor colour that tarn's
 // world program shaded with flat-water sunlight, albedo (E/pi + A_w):
 // the albedo from the terrain's texture at p, the ratio filtered by four
-// bilinear taps half a texel apart (a tent two texels wide, which removes
-// the period-2 beat of a regular photon grid splatted onto the texels).
+// bilinear taps half a texel apart (a tent two texels wide: it removes the
+// period-2 beat of the paper's regular photon grid splatted onto the
+// texels, and of the mesh splat's two triangles a cell sampled by them).
 vec3 applyCaustics(vec3 c, vec3 p) {
 #if defined(CAUSTICS) || DEBUG_PASS == 5
     if (p.y >= uWaterLevel) return c;
