@@ -63,6 +63,11 @@ done
 # natural's caustics on the floor seen through clear water, from caustic_tex's headline camera
 "$tarn" render "$(view_of_lake headline 3 2.2 3  0.5 -1.2 -0.5  0 1 0)" --pack natural --size $size --time 1 \
     --quiet -o "$img/natural_caustics.png"
+# natural's glint against the paper's lobe, looking down into the sun's reflection
+for setting in paper default; do
+    "$tarn" render "$(view_of_lake glint -3 5 3  1.5 -0.6 -1.5  0 1 0)" --pack natural --setting $setting \
+        --size $size --time 1 --quiet -o "$img/natural_glint_$setting.png"
+done
 "$tarn" render "$(view_of_lake reflections 8 1.0 3  2 0.0 -3  0 1 0)" --pack raymarch --size $size --time 1 \
     --quiet -o "$img/raymarch_reflections.png"
 "$tarn" render "$(view_of_lake headline 3 2.2 3  0.5 -1.2 -0.5  0 1 0)" --pack caustic_tex --size $size --time 1 \

@@ -216,8 +216,19 @@ void main() {
 #endif
         color = refr + F * (refl - refr);
 #ifdef SPECULAR
+        // the sun mirrored by the facet: a lobe about the half vector. The
+        // paper's lobe, s (n.H)^m E_sun, is the same at every angle: 20-50
+        // times what a surface that reflects F of the light can send back,
+        // large white blobs on the waves. SPECULAR_FRESNEL weighs it by F
+        // and normalises it, (m + 8) / (8 pi) (Blinn-Phong's energy
+        // conserving factor): a small bright glint, as the sun's own
+        // reflection is, whose light does not grow with m
         vec3 H = normalize(E + uSunDir);
-        color += uSpecular * pow(max(dot(n, H), 0.0), uShininess) * uSunIrradiance;
+        vec3 spec = uSpecular * pow(max(dot(n, H), 0.0), uShininess) * uSunIrradiance;
+#ifdef SPECULAR_FRESNEL
+        spec *= F * (uShininess + 8.0) / (8.0 * 3.14159265);
+#endif
+        color += spec;
 #endif
     } else {
         // ---- from below: the roles swapped ----
