@@ -1142,6 +1142,45 @@ static void test_gl_flat_floor_against_reference(void) { check_floor_scene(DATA 
 
 static void test_gl_sloped_floor_against_reference(void) { check_floor_scene(DATA "slope.glib", 0.75); }
 
+/* A sphere floating across the surface (tests/data/raymarch/sphere.glib):
+ * the floor pass sees the sphere itself between its waterline and its rim,
+ * so no pass saw the ground under that ring; the refracted rays that pass
+ * under the sphere must still meet the floor, 2 m down, as the reference's
+ * do (pack_y.frag takes the terrain's model there). Refraction hits over
+ * the water pixels whose reference hit is the floor: p95 within 2 texels,
+ * and no more than 1 % of them off by more than 0.1 m (a ray that met the
+ * side of the ring's next column instead was off by a metre or more). */
+static void test_gl_floor_under_a_floating_sphere(void) {
+    if (!have_gl) SKIP("no headless OpenGL");
+    ref_scene s;
+    memset(&s, 0, sizeof s);
+    CHECK(reference(DATA "sphere.glib", &s));
+    if (!s.ref.color) return;
+    render *r = load_scene(DATA "sphere.glib");
+    set_value(r, "DEBUG_OUTPUT", 1);
+    draw(r, 0.0, NULL);
+    static double v[W * H];
+    long n = 0, far = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            size_t p = (size_t)j * W + i;
+            if (!interior_water(&s, i, j) || s.ref.refract_hit[p * 4 + 3] != REF_MASK_TERRAIN) continue;
+            double d = 0;
+            for (int k = 0; k < 3; k++) d += pow(px[p * 4 + k] - s.ref.refract_hit[p * 4 + k], 2);
+            d = sqrt(d);
+            far += d > 0.1;
+            v[n++] = d / s.texel;
+        }
+    cmp_stats c = finish(v, n, 0);
+    print_hits("floor hit round a floating sphere", c);
+    fprintf(stderr, "  %ld of %ld px off by more than 0.1 m\n", far, n);
+    CHECK(n > W * H / 4);
+    CHECK_MSG(c.p95 < 2.0, "p95 %.2f texels", c.p95);
+    CHECK_MSG(far <= n / 100, "%ld of %ld px off by more than 0.1 m", far, n);
+    render_destroy(r);
+    ref_render_free(&s.ref);
+}
+
 /* Reflections of a floating box: the reflected ray meets its underside
  * (the solid's bottom) where the reference's does. */
 typedef struct { long n, ref_only, gl_only, sky; cmp_stats c; } refl_cmp;
@@ -1346,6 +1385,7 @@ int main(void) {
     RUN_TIMED(test_gl_flat_floor_against_reference);
     RUN_TIMED(test_gl_sloped_floor_against_reference);
     RUN_TIMED(test_gl_floating_box_reflection);
+    RUN_TIMED(test_gl_floor_under_a_floating_sphere);
     RUN_TIMED(test_gl_lake_against_reference);
     RUN_TIMED(test_gl_timing);
     if (ctx) gl_ctx_destroy(ctx);

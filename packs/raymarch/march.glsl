@@ -46,6 +46,7 @@
 #define MARCH_MIN_DIR_Y 0.02    // |dir.y| is clamped to this (grazing rays)
 
 #define MARCH_EMPTY_Y -1e29     // pack_y.frag writes -1e30 where nothing was drawn
+#define MARCH_GROUND_MODEL 1e30 // w: the floor (z) is the terrain's model, not seen (pack_y.frag)
 
 #define MARCH_HIT 0
 #define MARCH_INSIDE 1
@@ -70,6 +71,12 @@ float marchDepthToY(float d) {
 
 // Texture coordinates of a world point, and their derivative along a direction.
 vec2 marchUV(vec3 p) { return (uCamTopVP * vec4(p, 1.0)).xy * 0.5 + 0.5; }
+// the world (x, z) under texture coordinate uv: marchUV inverted (the
+// camera looks straight down, so y does not move uv)
+vec2 marchWorldXZ(vec2 uv) {
+    mat2 m = mat2(uCamTopVP[0].xy, uCamTopVP[2].xy);
+    return inverse(m) * (uv * 2.0 - 1.0 - uCamTopVP[3].xy);
+}
 vec2 marchUVDir(vec3 d) { return (uCamTopVP * vec4(d, 0.0)).xy * 0.5; }
 
 bool marchInFootprint(vec2 uv) {   // false for NaN too

@@ -16,6 +16,7 @@
 // attenuates the result.
 #include "waves.glsl"
 #include "world.glsl"
+#include "terrain.glsl"
 #include "march.glsl"
 
 #ifndef DEBUG_OUTPUT
@@ -124,6 +125,15 @@ vec3 attenuate(vec3 c, float s) {
 // solid) where hit, interpolated between the bracket's ends, is still
 // outside: else a ray that met a box's side takes the colour of the grass
 // in front of it (issue #16's speckled reflections).
+// The ground under a thing under the water, which no pass saw: tarn's world
+// shading of the terrain's model there (world.frag's, under the water).
+vec3 groundModelColor(vec3 hit) {
+    vec3 hg = terrainHeightGrad(hit.xz);
+    vec3 n = normalize(vec3(-hg.y, 1.0, -hg.z));
+    vec3 p = vec3(hit.x, hg.x, hit.z);
+    return worldShadeAt(terrainAlbedo(hit.xz, hg.x, n), n, p);
+}
+
 vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
     ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
@@ -133,18 +143,21 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
         t = marchFetch(uWorldY, size, uv);
     }
     underside = underside && t.y > MARCH_EMPTY_Y && t.y < t.x;   // no bottom here: no underside colour
+    // w: the highest underside (pack_y.frag), or MARCH_GROUND_MODEL where
+    // the ground under a thing under the water is the terrain's model
+    float high = texelFetch(uWorldY, ivec2(uv * vec2(size)), 0).w;
+    bool model = high >= MARCH_GROUND_MODEL;
     float slab = hit.y - t.x;
     float side = -1.0;   // a side met between the column's bottom and top: how far up, 0..1
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
-        if (t.z >= t.y) side = clamp((hit.y - t.y) / (t.x - t.y), 0.0, 1.0);
-        else if (hit.y - t.z <= slab) return texture(uFloorColor, uv).rgb;
+        if (t.z < t.y && hit.y - t.z <= slab) return model ? groundModelColor(hit) : texture(uFloorColor, uv).rgb;
+        if (t.z >= t.y || model) side = clamp((hit.y - t.y) / (t.x - t.y), 0.0, 1.0);   // a thing under the water
     } else if (hit.y - t.z <= slab) {
         return texture(uFloorColor, uv).rgb;
     }
-    // under the highest underside (w, pack_y.frag): a trunk under its crown
-    float high = texelFetch(uWorldY, ivec2(uv * vec2(size)), 0).w;
-    if (t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
+    // under the highest underside: a trunk under its crown
+    if (!model && t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
     vec3 top = texture(uTopColor, uv).rgb;
     if (underside) return texture(uUnderColor, uv).rgb;
     // a side between bottom and top: the two views blended by height, not

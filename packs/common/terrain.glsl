@@ -1,0 +1,84 @@
+// terrain.glsl: the terrain's model, reference/ref_scene.c's (lake_height,
+// ref_terrain_gradient, ref_terrain_albedo), evaluated in a shader: tarn's
+// world program shades the terrain with it per fragment, and a pack may
+// ask it for the ground where its own passes could not see it (raymarch:
+// under a thing under the water). Needs uWaterLevel (world.glsl or
+// waves.glsl, included first). No #version here.
+#ifndef TERRAIN_GLSL
+#define TERRAIN_GLSL
+
+uniform int uTerrainKind;       // REF_TERRAIN_*: 0 flat, 1 lake, 2 slope, 3 pool
+uniform vec4 uTerrainShape;     // depth, shore height, slope, -
+uniform vec4 uTerrainDetail[6]; // the lake's detail: k.x, k.z, amplitude, phase (REF_TERRAIN_DETAIL)
+uniform float uTerrainHalfSize;
+
+// ref_scene.c's smoothstep, which (unlike GLSL's) allows e0 > e1.
+float refSmooth(float e0, float e1, float x) {
+    float t = clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+float refSmoothD(float e0, float e1, float x) {
+    float t = (x - e0) / (e1 - e0);
+    return t <= 0.0 || t >= 1.0 ? 0.0 : 6.0 * t * (1.0 - t) / (e1 - e0);
+}
+
+// The terrain's height over (x, z) and its gradient: (h, dh/dx, dh/dz),
+// ref_terrain_height and ref_terrain_gradient. Evaluated per fragment
+// rather than interpolated from the mesh, so the albedo and the normal are
+// the reference's at the point the fragment shows (within the square and
+// beyond it), with no texture filtering between.
+vec3 terrainHeightGrad(vec2 p) {
+    float depth = uTerrainShape.x, shore = uTerrainShape.y, slope = uTerrainShape.z;
+    if (uTerrainKind == 2) return vec3(uWaterLevel - depth + slope * (p.x + uTerrainHalfSize), slope, 0.0);
+    if (uTerrainKind == 3) {   // pool_height: a rounded square, walls from r 0.70 to 0.85 (POOL_WALL_*)
+        vec2 e = p / uTerrainHalfSize;
+        float r = sqrt(sqrt(e.x * e.x * e.x * e.x + e.y * e.y * e.y * e.y));
+        float span = depth + shore, dh = span * refSmoothD(0.70, 0.85, r), r3 = r * r * r;
+        vec2 g = dh != 0.0 && r3 > 1e-30 ? dh * e * e * e / (r3 * uTerrainHalfSize) : vec2(0.0);
+        return vec3(uWaterLevel - depth + span * refSmooth(0.70, 0.85, r), g);
+    }
+    if (uTerrainKind != 1) return vec3(uWaterLevel - depth, 0.0, 0.0);
+    float hs = uTerrainHalfSize;
+    vec2 e = vec2(p.x / hs, 1.3 * p.y / hs);
+    float r = length(e);
+    vec2 dr = r > 1e-12 ? vec2(e.x / (r * hs), 1.3 * e.y / (r * hs)) : vec2(0.0);
+    float bowl = refSmooth(0.35, 0.95, r), bowlD = refSmoothD(0.35, 0.95, r);
+    float rim = refSmooth(0.95, 1.25, r), rimD = refSmoothD(0.95, 1.25, r);
+    float fade = 1.0 - rim;
+    float det = 0.0;
+    vec2 dg = vec2(0.0);
+    for (int i = 0; i < 6; i++) {
+        vec4 d = uTerrainDetail[i];
+        float ph = d.x * p.x + d.y * p.y + d.w;
+        det += d.z * sin(ph);
+        dg += d.z * d.xy * cos(ph);
+    }
+    float h = uWaterLevel - depth * (1.0 - bowl) + shore * rim + fade * det;
+    float dhdr = depth * bowlD + shore * rimD - rimD * det;
+    return vec3(h, dhdr * dr + fade * dg);
+}
+
+// ref_terrain_albedo: silt in the deep, sand at the shore, grass above,
+// rock where steep, and a faint pattern.
+vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
+    float unit = uTerrainHalfSize / 12.0;   // REF_WORLD_UNIT: a scaled world's colours scale with it
+    if (uTerrainKind == 3) {   // pool_albedo: 0.5 m tiles in a checker, 0.04 m grout, a stone deck
+        if (h > uWaterLevel + 0.5 * uTerrainShape.y) return vec3(0.55, 0.52, 0.47);
+        vec2 t = p / (unit * 0.5), f = t - floor(t);
+        float g = 0.5 * 0.04 / 0.5, sum = floor(t.x) + floor(t.y), odd = sum - 2.0 * floor(0.5 * sum);
+        if (f.x < g || f.x > 1.0 - g || f.y < g || f.y > 1.0 - g) return vec3(0.05, 0.05, 0.06);
+        return odd > 0.5 ? vec3(0.08, 0.22, 0.42) : vec3(0.80, 0.84, 0.86);
+    }
+    p /= unit;
+    const vec3 silt = vec3(0.30, 0.28, 0.20), sand = vec3(0.76, 0.68, 0.50);
+    const vec3 grass = vec3(0.22, 0.40, 0.14), rock = vec3(0.42, 0.40, 0.37);
+    float y = (h - uWaterLevel) / unit;
+    vec3 c = mix(silt, sand, refSmooth(-1.6, -0.4, y));
+    c = mix(c, grass, refSmooth(0.15, 0.35, y));
+    c = mix(c, rock, refSmooth(0.80, 0.65, n.y));
+    float stripes = 0.06 * sin(3.1 * p.x + 1.7 * sin(0.9 * p.y)) * sin(2.3 * p.y + 1.3 * sin(0.7 * p.x));
+    return c * (1.0 + stripes);
+}
+
+#endif // TERRAIN_GLSL
