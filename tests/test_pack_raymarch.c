@@ -17,6 +17,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "assets.h"
 #include "check.h"
 #include "gl_ctx.h"
 #include "ref_metrics.h"
@@ -1181,6 +1182,78 @@ static void test_gl_floor_under_a_floating_sphere(void) {
     ref_render_free(&s.ref);
 }
 
+/* The normal map's sense (NORMAL_MAP, uBumpMult: Lipp's BumptexMult). Seen
+ * straight down over calm water with the map standing still (uNormalSpeed
+ * 0, so the four taps agree), a pixel's normal is n = (a, 1) normalised
+ * with a = uBumpMult m.xz / m.y, m the map's normal at the pixel's surface
+ * point; the reflected ray goes to the sky, so DEBUG_OUTPUT 2 gives its
+ * direction r, n is the half vector of r and the eye direction e, and
+ * a = (r + e).xz / (r + e).y. Against a from the baked map
+ * itself (assets_bake_water_normal, read bilinearly here), the regression
+ * slope must be 1 within 2 % and the correlation over 0.999 at BumptexMult
+ * 1 and 2: a map added in the opposite sense gives -1, a wrong scale its
+ * factor. GL's 16-bit texels and its 8-bit bilinear weights leave a little
+ * scatter (measured: slope 1.000, correlation 1.0000), hence the bounds. */
+static void test_gl_normal_map_sense(void) {
+    if (!have_gl) SKIP("no headless OpenGL");
+    ref_scene s;
+    memset(&s, 0, sizeof s);
+    CHECK(reference(DATA "normal_map.glib", &s));
+    if (!s.ref.surface) return;
+    enum { RES = 256 };   /* render_res.c's size for a generated texture */
+    static float map[RES * RES * 3];
+    CHECK(assets_bake_water_normal(RES, map));
+    render *r = load_scene(DATA "normal_map.glib");
+    set_value(r, "NORMAL_MAP", 1);
+    set_value(r, "uNormalSpeed", 0);
+    set_value(r, "DEBUG_OUTPUT", 2);
+    unif_entry *tile = find_entry(r, "uNormalTile");
+    for (int bump = 1; bump <= 2; bump++) {
+        set_value(r, "uBumpMult", (float)bump);
+        apply_defines(r);
+        draw(r, 0.0, NULL);
+        double sxy = 0, sxx = 0, syy = 0;
+        long n = 0;
+        for (int p = 0; p < W * H; p++) {
+            const float *g = px + p * 4;
+            const double *q = s.ref.surface + p * 3;
+            if (g[3] != (float)MARCH_LEFT || !isfinite(q[0]) || !tile) continue;
+            /* the map at st = xz / tile, bilinear with wrap, as GL reads it */
+            double u = q[0] / tile->value[0] * RES - 0.5, v = q[2] / tile->value[0] * RES - 0.5;
+            int i0 = (int)floor(u), j0 = (int)floor(v);
+            double fu = u - i0, fv = v - j0, m[3] = { 0, 0, 0 };
+            for (int dj = 0; dj < 2; dj++)
+                for (int di = 0; di < 2; di++) {
+                    int i = ((i0 + di) % RES + RES) % RES, j = ((j0 + dj) % RES + RES) % RES;
+                    double wgt = (di ? fu : 1 - fu) * (dj ? fv : 1 - fv);
+                    for (int k = 0; k < 3; k++) m[k] += wgt * map[((size_t)j * RES + i) * 3 + k];
+                }
+            double mx = 2 * m[0] - 1, mz = 2 * m[1] - 1, my = 2 * m[2] - 1;   /* stored (x, z, y) */
+            double want[2] = { bump * mx / my, bump * mz / my };
+            /* the normal is the half vector of the eye and reflected directions */
+            double e[3], el = 0;
+            for (int k = 0; k < 3; k++) { e[k] = s.cam.eye[k] - q[k]; el += e[k] * e[k]; }
+            el = sqrt(el);
+            double h[3] = { g[0] + e[0] / el, g[1] + e[1] / el, g[2] + e[2] / el };
+            double got[2] = { h[0] / h[1], h[2] / h[1] };
+            for (int k = 0; k < 2; k++) {
+                sxy += got[k] * want[k];
+                sxx += want[k] * want[k];
+                syy += got[k] * got[k];
+            }
+            n++;
+        }
+        double slope = sxx > 0 ? sxy / sxx : 0, corr = sxx > 0 && syy > 0 ? sxy / sqrt(sxx * syy) : 0;
+        fprintf(stderr, "  normal map, BumptexMult %d: %ld px, slope %.3f (want 1), correlation %.4f, rms slope %.4f\n",
+                bump, n, slope, corr, sqrt(sxx / (2.0 * (n > 0 ? n : 1))));
+        CHECK(n > W * H / 3);
+        CHECK_MSG(fabs(slope - 1) < 0.02, "slope %.3f", slope);
+        CHECK_MSG(corr > 0.999, "correlation %.4f", corr);
+    }
+    render_destroy(r);
+    ref_render_free(&s.ref);
+}
+
 /* Reflections of a floating box: the reflected ray meets its underside
  * (the solid's bottom) where the reference's does. */
 typedef struct { long n, ref_only, gl_only, sky; cmp_stats c; } refl_cmp;
@@ -1386,6 +1459,7 @@ int main(void) {
     RUN_TIMED(test_gl_sloped_floor_against_reference);
     RUN_TIMED(test_gl_floating_box_reflection);
     RUN_TIMED(test_gl_floor_under_a_floating_sphere);
+    RUN_TIMED(test_gl_normal_map_sense);
     RUN_TIMED(test_gl_lake_against_reference);
     RUN_TIMED(test_gl_timing);
     if (ctx) gl_ctx_destroy(ctx);
