@@ -77,6 +77,29 @@ vec3 natShownPoint(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out vec2 uv, o
     return eye + (x - eye) * (wv / cx.w);
 }
 
+// The nearest of the four texels a bilinear read of the depth target mixes
+// at x's projection, as a point on the ray eye -> x, and how much farther
+// the farthest of them is (view depth ratio; 1 on a surface, more at a
+// silhouette, where a thing stands in front of what is behind it).
+vec3 natNearestShown(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out float spread) {
+    vec4 cx = vp * vec4(x, 1.0);
+    float B = (vp * vec4(eye, 1.0)).z;
+    float A = (B - cx.z) / cx.w;
+    vec2 uv = cx.xy / cx.w * 0.5 + 0.5;
+    ivec2 size = textureSize(depthTex, 0);
+    ivec2 i0 = clamp(ivec2(floor(uv * vec2(size) - 0.5)), ivec2(0), size - 2);
+    float lo = 1e30, hi = 0.0;
+    for (int k = 0; k < 4; k++) {
+        float z = texelFetch(depthTex, i0 + ivec2(k & 1, k >> 1), 0).r;
+        if (z >= 1.0) continue;                    // nothing drawn there
+        float wv = B / (2.0 * z - 1.0 + A);        // view depth
+        lo = min(lo, wv);
+        hi = max(hi, wv);
+    }
+    spread = hi > 0.0 ? hi / lo : 1.0;
+    return eye + (x - eye) * (min(lo, 1e6) / cx.w);
+}
+
 // ---- photons ----------------------------------------------------------------
 
 uniform sampler2D uLightDepth;   // the light camera's depth of the world below the water

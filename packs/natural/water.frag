@@ -155,7 +155,21 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
     }
 #endif
     vec3 shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
-    if (!ok && fallback)   // the perturbed lookup left the target: the classic fix
+    // The perturbed lookup left the target, or the march closed on the
+    // silhouette of a thing standing out of the water (a floating sphere):
+    // the ray went behind it, where what it meets is hidden from the
+    // camera, and the halvings walked it to the edge, whose colour showed
+    // in arcs beside the thing. The ray runs down from U and cannot meet
+    // what is above U: the classic fix then, the point behind U itself.
+    bool edge = false;
+#if REFINE_STEPS > 0
+    if (ok) {
+        float spread;
+        vec3 near = natNearestShown(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, spread);
+        edge = spread > 1.25 && near.y > U.y + 0.02 * uWorldScale;
+    }
+#endif
+    if ((!ok || edge) && fallback)
         shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv, ok);
     sky = !ok || texture(uRefractionDepth, uv).r >= NAT_SKY_DEPTH;
     path = ok ? distance(U, shown) : 1e4;
