@@ -18,7 +18,9 @@ rc=$?
 [ "$rc" -eq 0 ] || fail "the default render exited $rc"
 render --setting paper -o "$scratch/paper.png" || fail "--setting paper failed"
 render --set NaturalWater.CAUSTICS_GPU=0 --set NaturalWater.EXACT_FRESNEL=0 --set NaturalWater.BEER_LAMBERT=0 \
-    --set NaturalWater.REFINE_STEPS=0 -o "$scratch/paper_sets.png" || fail "the paper --sets failed"
+    --set NaturalWater.REFINE_STEPS=0 --set NaturalWater.uPhotonGrid=512 --set NaturalWater.uCausticRes=256 \
+    --set NaturalWater.SPECULAR_FRESNEL=0 --set NaturalWater.uSpecular=0.5 --set NaturalWater.uShininess=400 \
+    -o "$scratch/paper_sets.png" || fail "the paper --sets failed"
 cmp -s "$scratch/paper.png" "$scratch/paper_sets.png" || fail "--setting paper differs from its --sets"
 cmp -s "$scratch/paper.png" "$scratch/default.png" && fail "--setting paper draws the default"
 render --setting mesh-64 -o "$scratch/mesh.png" || fail "--setting mesh-64 failed"
@@ -43,7 +45,7 @@ size 96 54
 time 1
 t=0 pause 1"
 printf '%s\nt=0.1 setting paper\nt=0.3 end\n' "$header" > "$scratch/setting.session"
-printf '%s\nt=0.1 define NaturalWater CAUSTICS_GPU 0\nt=0.1 define NaturalWater EXACT_FRESNEL 0\nt=0.1 define NaturalWater BEER_LAMBERT 0\nt=0.1 define NaturalWater REFINE_STEPS 0\nt=0.3 end\n' \
+printf '%s\nt=0.1 define NaturalWater CAUSTICS_GPU 0\nt=0.1 define NaturalWater EXACT_FRESNEL 0\nt=0.1 define NaturalWater BEER_LAMBERT 0\nt=0.1 define NaturalWater REFINE_STEPS 0\nt=0.1 slider NaturalWater uPhotonGrid 512\nt=0.1 slider NaturalWater uCausticRes 256\nt=0.1 define NaturalWater SPECULAR_FRESNEL 0\nt=0.1 slider NaturalWater uSpecular 0.5\nt=0.1 slider NaturalWater uShininess 400\nt=0.3 end\n' \
     "$header" > "$scratch/defines.session"
 printf '%s\nt=0.3 end\n' "$header" > "$scratch/none.session"
 for s in setting defines none; do

@@ -49,6 +49,11 @@ set NaturalWater CAUSTICS_GPU 0
 set NaturalWater EXACT_FRESNEL 0
 set NaturalWater BEER_LAMBERT 0
 set NaturalWater REFINE_STEPS 0
+set NaturalWater uPhotonGrid 512
+set NaturalWater uCausticRes 256
+set NaturalWater SPECULAR_FRESNEL 0
+set NaturalWater uSpecular 0.5
+set NaturalWater uShininess 400
 frames 2
 screenshot $scratch/sets.png
 quit
