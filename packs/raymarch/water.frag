@@ -134,24 +134,16 @@ vec3 groundModelColor(vec3 hit) {
     return worldShadeAt(terrainAlbedo(hit.xz, hg.x, n), n, p);
 }
 
-// The undersides' colour at uv, bilinear over the four texels around it
-// that hold an underside (a bottom under their top); `fallback` where none
-// does. A plain bilinear read mixed in the texels beside a thing's rim,
-// where the undersides pass saw nothing of it, and striated the thing's
-// side in dark columns (a floating sphere seen by total internal
-// reflection from below).
-vec3 underColor(vec2 uv, ivec2 size, vec3 fallback) {
-    vec2 f = uv * vec2(size) - 0.5;
-    ivec2 i0 = clamp(ivec2(floor(f)), ivec2(0), size - 2);
-    vec2 w = clamp(f - vec2(i0), 0.0, 1.0);
-    vec4 sum = vec4(0.0);
-    for (int k = 0; k < 4; k++) {
-        ivec2 o = ivec2(k & 1, k >> 1);
-        vec3 t = texelFetch(uWorldY, i0 + o, 0).xyz;
-        float wk = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
-        if (t.y > MARCH_EMPTY_Y && t.y < t.x) sum += wk * vec4(texelFetch(uUnderColor, i0 + o, 0).rgb, 1.0);
-    }
-    return sum.w > 1e-4 ? sum.rgb / sum.w : fallback;
+// The undersides' colour at uv, bilinear over the texels that hold an
+// underside; `fallback` where none does. Their pass clears to alpha 0 and
+// draws alpha 1, so a bilinear read is (coverage-weighted colour,
+// coverage): divided by the coverage it leaves out the texels beside a
+// thing's rim, where the pass saw nothing of it. A plain read mixed those
+// in and striated the thing's side in dark columns (a floating sphere
+// seen by total internal reflection from below).
+vec3 underColor(vec2 uv, vec3 fallback) {
+    vec4 c = texture(uUnderColor, uv);
+    return c.a > 1e-3 ? c.rgb / c.a : fallback;
 }
 
 vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
@@ -179,12 +171,12 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
     // under the highest underside: a trunk under its crown
     if (!model && t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
     vec3 top = texture(uTopColor, uv).rgb;
-    if (underside) return underColor(uv, size, top);
+    if (underside) return underColor(uv, top);
     // a side between bottom and top: the two views blended by height, not
     // whichever end is nearer (that flips from column to column along a
     // row and striates a thing seen from the side, as total internal
     // reflection shows the boulder)
-    return side >= 0.0 ? mix(underColor(uv, size, top), top, side) : top;
+    return side >= 0.0 ? mix(underColor(uv, top), top, side) : top;
 }
 
 // The ground seen from p along dir (downwards, in water): its colour, the
