@@ -27,6 +27,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ref_uniform.h"
+
 #define REF_WAVES_MAX 8            /* sines, and Gerstner waves, each */
 #define REF_NOISE_OCTAVES_MAX 8
 #define REF_GRAVITY 9.81           /* for the deep-water phase speed */
@@ -163,16 +165,6 @@ double ref_waves_height(const ref_waves *w, double x, double z, double t);
  * once, so no shader does it per vertex). Returns how many were written
  * (at most max; REF_WAVES_UNIFORMS_MAX fits all). */
 #define REF_WAVES_UNIFORMS_MAX 34
-typedef struct ref_waves_uniform {
-    const char *name;        /* e.g. "uGerstnerLength" */
-    int is_int;              /* an int uniform: its value is in i */
-    int is_uint;             /* a uint array: its values are in u */
-    int count;               /* 1, or the array length REF_WAVES_MAX */
-    int comps;               /* floats an element: 1, 3 (vec3) or 4 (vec4) */
-    int i;                   /* value of an int uniform (uNoiseSeed: the seed's bits) */
-    uint32_t u[REF_WAVES_MAX];
-    float v[REF_WAVES_MAX * 4];  /* values of a float uniform or array, element after element */
-} ref_waves_uniform;
 int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max);
 
 #endif
