@@ -145,11 +145,87 @@ static bool build_skirt(gpu_world *gw, int lod) {
  * stay in llvmpipe's vertex cache from one row to the next. */
 #define WORLD_WATER_BAND 32
 
+/* Is the water open beyond the world square: the terrain below the lowest
+ * trough on the square's border and beyond it (a sea, Terrain flat)? Then
+ * its surface goes on to the horizon, as the reference's does. */
+static bool water_open(const ref_world *w) {
+    double hs = w->d.half_size, low = w->d.water_level - w->waves.height_bound;
+    const double reach[] = { 1.0, SKIRT_NEAR, 4.0, REF_WORLD_HORIZON / hs };
+    for (int r = 0; r < 4; r++)
+        for (int p = 0; p < 4 * 64; p++) {
+            double x, z;
+            perimeter(hs * reach[r], 64, p, &x, &z);
+            if (ref_terrain_height(w, x, z) > low) return false;
+        }
+    return true;
+}
+
+/* The water beyond the square out to the horizon, as rings the way the
+ * terrain's skirt has them (LOD rings: as fine as the grid near the square,
+ * each SKIRT_GROWTH times the last beyond, where a cell covers ever fewer
+ * pixels), its first ring the grid's own border vertices (no crack). The
+ * rings are fixed in the world, not around the eye: a still camera then
+ * draws the same triangles every frame (no swimming), and the static-world
+ * cache's key stays the eye and time. Appended to the grid's mesh, so every
+ * pack's water program draws it without a pass of its own. */
+static void append_water_rings(geom_mesh *g, const ref_world *w, int res) {
+    double ring[SKIRT_MAX_RINGS];
+    int nrings = skirt_rings(w, res, ring) - 1, per = 4 * res;
+    int base = g->nvert, nv = base + per * nrings, nidx = g->nidx + per * nrings * 6;
+    g->pos = mem_realloc(g->pos, (size_t)nv * 3 * sizeof(float));
+    g->nrm = mem_realloc(g->nrm, (size_t)nv * 3 * sizeof(float));
+    g->tan = mem_realloc(g->tan, (size_t)nv * 3 * sizeof(float));
+    g->tc = mem_realloc(g->tc, (size_t)nv * 2 * sizeof(float));
+    g->idx = mem_realloc(g->idx, (size_t)nidx * sizeof(unsigned));
+    double hs = w->d.half_size;
+    for (int k = 1; k <= nrings; k++)
+        for (int p = 0; p < per; p++) {
+            double x, z;
+            perimeter(ring[k], res, p, &x, &z);
+            int v = base + (k - 1) * per + p;
+            float *pos = g->pos + v * 3, *nrm = g->nrm + v * 3, *tan = g->tan + v * 3, *tc = g->tc + v * 2;
+            pos[0] = (float)x; pos[1] = (float)w->d.water_level; pos[2] = (float)z;
+            nrm[0] = 0; nrm[1] = 1; nrm[2] = 0;
+            tan[0] = 1; tan[1] = 0; tan[2] = 0;
+            tc[0] = (float)((x + hs) / (2 * hs));
+            tc[1] = (float)((z + hs) / (2 * hs));
+        }
+    /* ring 0: the grid's border vertices (geom_grid_bands renumbered them),
+     * found by position: perimeter()'s sides inverted */
+    unsigned *first = mem_zalloc((size_t)per * sizeof(unsigned));
+    double tol = 1e-4 * hs;
+    for (int v = 0; v < base; v++) {
+        double x = g->pos[v * 3], z = g->pos[v * 3 + 2];
+        const double on[4] = { z + hs, x - hs, z - hs, x + hs };      /* side's line: 0 on it */
+        const double along[4] = { x, z, -x, -z };                     /* u of perimeter() */
+        for (int side = 0; side < 4; side++) {
+            if (fabs(on[side]) > tol) continue;
+            long i = lround((along[side] + hs) / (2 * hs) * res);
+            if (i >= 0 && i < res) first[side * res + i] = (unsigned)v;
+        }
+    }
+    int n = g->nidx;
+    for (int k = 0; k < nrings; k++)
+        for (int p = 0; p < per; p++) {
+            int q = (p + 1) % per;
+            unsigned a = k == 0 ? first[p] : (unsigned)(base + (k - 1) * per + p);
+            unsigned b = k == 0 ? first[q] : (unsigned)(base + (k - 1) * per + q);
+            unsigned c = (unsigned)(base + k * per + p), d = (unsigned)(base + k * per + q);
+            unsigned quad[6] = { a, c, b, b, c, d };
+            memcpy(g->idx + n, quad, sizeof quad);
+            n += 6;
+        }
+    free(first);
+    g->nvert = nv;
+    g->nidx = n;
+}
+
 static bool build_water(gpu_world *gw, int lod) {
     geom_mesh g;
     int res = lod_cells(gw->w.d.water_mesh_res, lod);
     if (!geom_quad(&g, 1, (float)gw->w.d.water_level, (float)gw->w.d.half_size, res, res, false)) return false;
     geom_grid_bands(&g, res, res, WORLD_WATER_BAND);   /* vertex reuse: the water's shaders are heavy */
+    if (water_open(&gw->w)) append_water_rings(&g, &gw->w, res);
     for (int i = 0; i < g.nvert; i++) {
         g.pos[i * 3 + 0] += (float)gw->water_shift[0];
         g.pos[i * 3 + 2] += (float)gw->water_shift[1];
