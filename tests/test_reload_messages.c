@@ -104,6 +104,36 @@ static void test_no_uniform_warnings_for_a_failed_program(void) {
     render_destroy(r);
 }
 
+/* A uniform the shader declares but does not use (here compiled out by a
+ * Define) is never called undeclared: not at start-up, not on a reload
+ * that keeps the build (issue #30: R printed "not declared" for each), and
+ * the inactive ones are one summary line a load, the same each time. */
+static void test_inactive_uniforms_one_line_same_on_reload(void) {
+    scratch_write("a.vert", vert);
+    scratch_write("water.frag", "#version 330 compatibility\nuniform vec4 uColor;\nuniform float uLevel;\n"
+                                "uniform float uGlint;\nout vec4 fragColor;\n"
+                                "void main() {\n#ifdef USE_LEVEL\n fragColor = uColor * uLevel * uGlint;\n"
+                                "#else\n fragColor = uColor;\n#endif\n}\n");
+    scratch_write("lake.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                               "Vertex a.vert\nFragment water.frag\n"
+                               "Program Water uColor {0.2 0.4 0.6 1.} uLevel <0. 1. 2.> uGlint <0. 1. 2.>\n"
+                               "QuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, scratch_path("lake.glib")), "%s", render_messages(r));
+    char first[2048];
+    snprintf(first, sizeof first, "%s", render_messages(r));
+    fprintf(stderr, "start-up: %s", first);
+    CHECK_STR_CONTAINS(first, "note: 2 uniforms of the glib are declared but inactive as built");
+    CHECK_STR_CONTAINS(first, "uLevel (Water), uGlint (Water)");
+    CHECK_MSG(count_of(first, "\n") == 1, "one line, not one a uniform: %s", first);
+    CHECK_MSG(!strstr(first, "not declared"), "%s", first);
+    render_load(r, NULL);   /* R: the same text, the build kept */
+    fprintf(stderr, "reload: %s", render_messages(r));
+    CHECK_MSG(strcmp(render_messages(r), first) == 0, "start-up said:\n%sreload said:\n%s", first,
+              render_messages(r));
+    render_destroy(r);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -111,6 +141,7 @@ int main(void) {
     RUN(test_shared_include_error_once_naming_programs);
     RUN(test_stage_error_names_program_and_stage);
     RUN(test_no_uniform_warnings_for_a_failed_program);
+    RUN(test_inactive_uniforms_one_line_same_on_reload);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

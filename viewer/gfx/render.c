@@ -306,6 +306,8 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
         p->gl = o->gl;
         p->hash = o->hash;
         p->good = o->good;
+        p->source = o->source;   /* the kept build's text: says declared-but-inactive from undeclared */
+        o->source = NULL;
         o->gl = 0;
         o->cmd = c;   /* marks it taken */
         unif_merge(p->unifs, o->unifs);
@@ -504,6 +506,28 @@ static void build_begin(scene_state *s, int ci, char **log) {
     free(xyz);
 }
 
+/* The glib's uniforms that shaders declare but do not use, in one line a
+ * load (issue #30: a line each buried the real messages): the same words
+ * at start-up and on every reload. */
+#define INACTIVE_NAMED 8
+static void note_inactive_uniforms(const scene_state *s, char **log) {
+    int total = 0, shown = 0;
+    char *list = NULL;
+    for (int i = 0; i < s->nprogs; i++) {
+        const char *names[INACTIVE_NAMED];
+        int n = prog_inactive_uniforms(&s->progs[i], names, INACTIVE_NAMED);
+        for (int k = 0; k < n && k < INACTIVE_NAMED && shown < INACTIVE_NAMED; k++, shown++)
+            str_appendf(&list, "%s%s (%s)", shown ? ", " : "", names[k], s->progs[i].name);
+        total += n;
+    }
+    if (total > 0)
+        str_appendf(log, "%s: note: %d uniform%s of the glib %s declared but inactive as built "
+                    "(compiled out by a Define, or unused): %s%s\n",
+                    s->glib->nfiles ? s->glib->files[0] : "?", total, total == 1 ? "" : "s", total == 1 ? "is" : "are", list,
+                    total > shown ? ", ..." : "");
+    free(list);
+}
+
 static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
     int n = s->glib->ncmds;
     s->cmd_res = mem_alloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
@@ -530,6 +554,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
         else program_stages_step(&st, c);
     }
     settings_from_glib(&s->set, s->glib);
+    note_inactive_uniforms(s, log);
     check_if_nesting(s->glib, log);
     check_named_counts(s, log);
     return true;

@@ -296,12 +296,9 @@ void prog_introspect(prog *p, char **log) {
     for (int i = 0; i < p->unifs->n; i++) {
         const unif_entry *e = &p->unifs->entries[i];
         if (e->is_define || !e->from_glib || e->in_shader) continue;
-        if (in_source(p, e->name))   /* compiled out by a Define, or unused: say so quietly */
-            str_appendf(log, "%s:%d: note: uniform '%s' is inactive in program '%s' as built "
-                        "(compiled out by a Define, or unused and optimised out)\n",
-                        e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
-        else
-            str_appendf(log, "%s:%d: warning: uniform '%s' is not declared in program '%s' "
+        if (in_source(p, e->name))   /* inactive: one summary line a load (prog_inactive_uniforms) */
+            continue;
+        str_appendf(log, "%s:%d: warning: uniform '%s' is not declared in program '%s' "
                         "(a typo in the glib or the shader?)\n",
                         e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
     }
@@ -314,6 +311,18 @@ void prog_introspect(prog *p, char **log) {
                     rest ? rest + 1 : why);
     }
     p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
+}
+
+int prog_inactive_uniforms(const prog *p, const char **names, int max) {
+    int n = 0;
+    if (!p->good || !p->unifs) return 0;   /* a failed build's slots say nothing of its sources */
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (e->is_define || !e->from_glib || e->in_shader || !in_source(p, e->name)) continue;
+        if (names && n < max) names[n] = e->name;
+        n++;
+    }
+    return n;
 }
 
 static void upload_entry(const unif_entry *e) {
