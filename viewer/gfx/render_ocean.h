@@ -1,0 +1,74 @@
+/* render_ocean: the spectrum ocean (reference/ref_ocean.h) on the GPU:
+ * per frame, per cascade, one spectrum pass and 2 log2 N radix-2 Stockham
+ * inverse-FFT passes, fragment passes into RGBA32F 2D-array textures (one
+ * layer per cascade). The result is the reference's frame layout, FFT-order
+ * texels:
+ *     A = (h, Dx, Dz, Dxz)    B = (hx, hz, Dxx, Dzz)
+ * bound at OCEAN_UNIT_A / OCEAN_UNIT_B, which packs/common/waves_ocean.glsl
+ * reads (uOceanA, uOceanB) with a bilinear blend made by hand. A world
+ * without an ocean never calls ocean_create: no texture, no pass. Private
+ * to render_world.c (and tests). */
+#ifndef TARN_RENDER_OCEAN_H
+#define TARN_RENDER_OCEAN_H
+
+#include <stdbool.h>
+#include "gpu_timer.h"
+#include "ref_ocean.h"
+#include "render_prog.h"
+
+#define OCEAN_UNIT_A 28          /* above glman's units; 30 is the waves' height map */
+#define OCEAN_UNIT_B 29
+
+enum { OCEAN_PROG_SPECTRUM, OCEAN_PROG_FFT_H, OCEAN_PROG_FFT_V, OCEAN_PROGS };
+
+typedef struct gpu_ocean {
+    bool active;
+    int cascades, res, log2res;
+    float tile[REF_OCEAN_CASCADES_MAX];
+    float lambda;                /* choppiness, folded into the D fields */
+    unsigned h0_tex;             /* RGBA32F array: (h0(k), conj(h0(-k))) */
+    unsigned omega_tex;          /* R32F array: w(|k|) */
+    /* ping-pong: [pair][0] the A-side spectra, [pair][1] the B side;
+     * the frame lands in pair 0 (2 log2 N passes after the spectrum's) */
+    unsigned tex[2][2];
+    unsigned fbo[2][REF_OCEAN_CASCADES_MAX];   /* pair p, layer c: MRT (A, B) */
+    prog progs[OCEAN_PROGS];
+    unif_set prog_unifs[OCEAN_PROGS];
+    double t;                    /* the time the textures hold */
+    bool valid;                  /* they hold a frame */
+    unsigned long long hash;     /* of the programs that drew it */
+    int frames;                  /* frames computed (tests: a still frame runs no pass) */
+} gpu_ocean;
+
+/* Creates the textures from raw initial spectra: h0 is cascades * N * N
+ * texels of 4 floats, omega cascades * N * N floats (ref_ocean_gpu_spectrum's
+ * layout, cascade after cascade), and builds the pass programs from
+ * common_dir (packs/common). False with a message in *log on errors. */
+bool ocean_create(gpu_ocean *o, int cascades, int res, const float *tile, float lambda, const float *h0,
+                  const float *omega, const char *const *include_dirs, const char *common_dir, char **log);
+
+/* The same from a built reference ocean (its resolved desc and
+ * ref_ocean_gpu_spectrum): once per world build. */
+bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const char *const *include_dirs,
+                       const char *common_dir, char **log);
+
+void ocean_free(gpu_ocean *o);
+
+/* Rebuilds the pass programs (a shader file changed); false on errors. */
+bool ocean_build_programs(gpu_ocean *o, const char *const *include_dirs, char **log);
+
+/* Computes the frame at time t unless the textures hold it already, naming
+ * the passes in timer (may be NULL), and leaves A and B bound at their
+ * units. Binds framebuffer 0, changes the viewport and the program. */
+void ocean_update(gpu_ocean *o, double t, gpu_timer *timer);
+
+/* Binds the frame's A and B at OCEAN_UNIT_A / OCEAN_UNIT_B (nothing when inactive). */
+void ocean_bind(const gpu_ocean *o);
+
+/* Sets uOceanA / uOceanB of program p to the units (whatever the world). */
+void ocean_upload(unsigned p);
+
+/* Reads the frame back: a and b each N * N * 4 floats of cascade c. */
+void ocean_read(const gpu_ocean *o, int c, float *a, float *b);
+
+#endif
