@@ -1,0 +1,2 @@
+/* test_wavefx_gl: being written. */
+int main(void) { return 77; }
