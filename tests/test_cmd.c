@@ -87,6 +87,21 @@ static void test_unknown_command_exits_2(void) {
     CHECK_STR_CONTAINS(out, "unknown command 'frobnicate'");
 }
 
+/* A pack that does not exist is a usage error naming the packs, before
+ * any window opens or scene loads (issue #30: it was an error at the
+ * scene's Pack line, and the window opened anyway). */
+static void test_unknown_pack_is_a_usage_error(void) {
+    char out[8192];
+    const char *cases[] = { "view scenes/lake.glib --pack nope", "render scenes/lake.glib --pack nope -o x.png",
+                            "compare-view scenes/lake.glib --packs natural,nope" };
+    for (int i = 0; i < 3; i++) {
+        CHECK_MSG(tarn(cases[i], out, sizeof out) == TARN_EXIT_USAGE, "tarn %s: %s", cases[i], out);
+        CHECK_STR_CONTAINS(out, "no pack 'nope': the packs are ");
+        CHECK_STR_CONTAINS(out, "natural");
+        CHECK_STR_CONTAINS(out, "raymarch");
+    }
+}
+
 static void test_version(void) {
     char out[256];
     CHECK(tarn("--version", out, sizeof out) == 0);
@@ -101,6 +116,7 @@ int main(void) {
     RUN(test_help_lists_every_command);
     RUN(test_help_command_prints_its_usage);
     RUN(test_unknown_command_exits_2);
+    RUN(test_unknown_pack_is_a_usage_error);
     RUN(test_version);
     return check_summary();
 }

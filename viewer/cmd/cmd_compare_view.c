@@ -61,6 +61,10 @@ int cmd_compare_view(int argc, char **argv) {
         else if (strcmp(a, "--packs") == 0 && next) {
             d.npacks = cmd_split(next, packs, sizeof packs, d.packs, COMPARE_VIEW_MAX_PACKS);
             if (d.npacks < 0) return bad("--packs takes 2 to 4 packs");
+            for (int k = 0; k < d.npacks; k++) {
+                char why[512];
+                if (!cmd_opt_pack(d.packs[k], why, sizeof why)) return bad(why);
+            }
             i++;
         } else if (strcmp(a, "--ref-caustic-res") == 0) {
             if (!cmd_opt_range(next, 1, 8192, &v)) return bad("--ref-caustic-res wants 1..8192");

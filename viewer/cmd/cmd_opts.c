@@ -3,9 +3,11 @@
 
 #include <errno.h>
 #include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "packset.h"
 #include "util.h"
 
 int cmd_bad_usage(FILE *err, const char *prefix, const char *usage, const char *fmt, ...) {
@@ -58,4 +60,19 @@ int cmd_split(const char *list, char *buf, size_t buflen, const char **parts, in
         parts[n++] = p;
     }
     return n;
+}
+
+bool cmd_opt_pack(const char *name, char *why, size_t whylen) {
+    packset_name all[PACKSET_MAX];
+    int n = packset_list(tarn_root(), all, PACKSET_MAX);
+    for (int i = 0; i < n; i++)
+        if (strcmp(all[i], name) == 0) return true;
+    char list[PACKSET_MAX * (PACKSET_NAME_MAX + 2)] = "";
+    for (int i = 0; i < n; i++) {
+        strcat(list, i ? ", " : "");
+        strcat(list, all[i]);
+    }
+    snprintf(why, whylen, "no pack '%s': the packs are %s (in %s/packs)", name, n ? list : "(none found)",
+             tarn_root());
+    return false;
 }

@@ -238,7 +238,12 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
         } else if (strcmp(a, "--msaa") == 0) {
             if (!cmd_opt_msaa(next, &d->samples)) return bad("--msaa wants 0..16 samples");
             i++;
-        } else if (strcmp(a, "--pack") == 0 && next) { d->pack = next; i++; }
+        } else if (strcmp(a, "--pack") == 0 && next) {
+            char why[512];
+            if (!cmd_opt_pack(next, why, sizeof why)) return bad(why);
+            d->pack = next;
+            i++;
+        }
         else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }
         else if (strcmp(a, "--setting") == 0 && next) { d->setting = next; i++; }
         else if (strcmp(a, "--quiet") == 0) d->quiet = true;

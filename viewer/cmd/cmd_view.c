@@ -52,7 +52,12 @@ int cmd_view(int argc, char **argv) {
             if (!cmd_opt_msaa(next, &d.samples)) return cmd_bad_usage(stderr, "tarn", usage, "--msaa wants 0..16 samples");
             i++;
         } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
-        else if (strcmp(a, "--pack") == 0 && next) { d.pack = next; i++; }
+        else if (strcmp(a, "--pack") == 0 && next) {
+            char why[512];
+            if (!cmd_opt_pack(next, why, sizeof why)) return cmd_bad_usage(stderr, "tarn", usage, "%s", why);
+            d.pack = next;
+            i++;
+        }
         else if (strcmp(a, "--record") == 0 && next) { d.record = next; i++; }
         else if (strcmp(a, "--setting") == 0 && next) { d.setting = next; i++; }
         else if (a[0] == '-') return cmd_bad_usage(stderr, "tarn", usage, "unknown option");
