@@ -73,13 +73,13 @@ static void test_plane_wave_through_the_passes(void) {
     double f[8][2];   /* h, Dx, Dz, Dxz, hx, hz, Dxx, Dzz spectra */
     for (int k = 0; k < 2; k++) {
         f[0][k] = H[k];
-        f[1][k] = -lambda * kx / kl * iH[k];
-        f[2][k] = -lambda * kz / kl * iH[k];
-        f[3][k] = lambda * kx * kz / kl * H[k];
+        f[1][k] = lambda * kx / kl * iH[k];
+        f[2][k] = lambda * kz / kl * iH[k];
+        f[3][k] = -lambda * kx * kz / kl * H[k];
         f[4][k] = kx * iH[k];
         f[5][k] = kz * iH[k];
-        f[6][k] = lambda * kx * kx / kl * H[k];
-        f[7][k] = lambda * kz * kz / kl * H[k];
+        f[6][k] = -lambda * kx * kx / kl * H[k];
+        f[7][k] = -lambda * kz * kz / kl * H[k];
     }
     /* Z = X + i Y pairs: (h, Dx) (Dz, Dxz) (hx, hz) (Dxx, Dzz) */
     double worst = 0, scale = 0;
@@ -109,10 +109,137 @@ static void test_plane_wave_through_the_passes(void) {
     ocean_free(&o);
 }
 
+
+/* ---- (a) the frame against the reference ---- */
+
+static ref_ocean *reference_ocean(int n, int cascades, double chop) {
+    ref_ocean_desc d = { .spectrum = REF_SPECTRUM_JONSWAP, .wind_speed = 12, .wind_angle_deg = 30,
+                         .choppiness = chop, .res = n, .cascades = cascades, .seed = 7 };
+    char err[256];
+    ref_ocean *o = ref_ocean_create(&d, err, sizeof err);
+    if (!o) fprintf(stderr, "ref_ocean_create: %s\n", err);
+    return o;
+}
+
+static bool gpu_from(gpu_ocean *g, const ref_ocean *ro) {
+    const char *inc[1] = { common_dir() };
+    char *log = NULL;
+    memset(g, 0, sizeof *g);
+    bool ok = ocean_create_from(g, ro, inc, common_dir(), &log);
+    if (log) fprintf(stderr, "%s", log);
+    free(log);
+    return ok;
+}
+
+/* The worst error over the texels of each field, relative to the field's
+ * rms; returns the largest of the eight. */
+static double frame_error(const gpu_ocean *g, const ref_ocean *ro, int c, double t) {
+    static const char *const names[8] = { "h", "Dx", "Dz", "Dxz", "hx", "hz", "Dxx", "Dzz" };
+    int n = g->res;
+    size_t nn = (size_t)n * n;
+    float *a = malloc(nn * 4 * sizeof *a), *b = malloc(nn * 4 * sizeof *b);
+    double *ra = malloc(nn * 4 * sizeof *ra), *rb = malloc(nn * 4 * sizeof *rb);
+    ocean_read(g, c, a, b);
+    ref_ocean_frame(ro, c, t, ra, rb);
+    double worst_rel = 0;
+    char line[512];
+    int len = snprintf(line, sizeof line, "  N %d cascade %d t %.1f: max err / rms", n, c, t);
+    for (int q = 0; q < 8; q++) {
+        const float *got = q < 4 ? a : b;
+        const double *want = q < 4 ? ra : rb;
+        double sum2 = 0, worst = 0;
+        for (size_t i = 0; i < nn; i++) {
+            double w = want[i * 4 + q % 4];
+            sum2 += w * w;
+            double d = fabs(got[i * 4 + q % 4] - w);
+            if (!(d <= worst)) worst = d;   /* NaN counts */
+        }
+        double rms = sqrt(sum2 / (double)nn), rel = rms > 0 ? worst / rms : worst;
+        CHECK(rms > 0);
+        if (!(rel <= worst_rel)) worst_rel = rel;
+        len += snprintf(line + len, sizeof line - (size_t)len, " %s %.2g", names[q], rel);
+    }
+    fprintf(stderr, "%s\n", line);
+    free(a); free(b); free(ra); free(rb);
+    return worst_rel;
+}
+
+static void frame_matches(int n, int cascades) {
+    ref_ocean *ro = reference_ocean(n, cascades, 0.8);
+    CHECK(ro != NULL);
+    if (!ro) return;
+    gpu_ocean g;
+    CHECK(gpu_from(&g, ro));
+    int lg = 0;
+    while ((1 << lg) < n) lg++;
+    double bound = lg * 0x1p-23 * n;   /* log2 N eps sqrt(N^2) */
+    static const double times[2] = { 0.0, 3.7 };
+    for (int k = 0; k < 2; k++) {
+        ocean_update(&g, times[k], NULL);
+        for (int c = 0; c < cascades; c++) CHECK(frame_error(&g, ro, c, times[k]) <= bound);
+    }
+    fprintf(stderr, "  bound log2 N eps N = %.2g\n", bound);
+    ocean_free(&g);
+    ref_ocean_destroy(ro);
+}
+
+static void test_frame_64_one_cascade(void) { frame_matches(64, 1); }
+static void test_frame_64_three_cascades(void) { frame_matches(64, 3); }
+static void test_frame_256_one_cascade(void) { frame_matches(256, 1); }
+static void test_frame_256_three_cascades(void) { frame_matches(256, 3); }
+
+/* The passes' cost: wall time of a frame's passes after glFinish (on
+ * llvmpipe GPU timestamps are taken when commands are queued), the median
+ * of a few, per N and per cascade count. Printed, not checked. */
+static double median(double *v, int n) {
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && v[j] < v[j - 1]; j--) { double x = v[j]; v[j] = v[j - 1]; v[j - 1] = x; }
+    return v[n / 2];
+}
+
+static void test_pass_cost(void) {
+    static const int sizes[4] = { 64, 128, 256, 512 };
+    for (int s = 0; s < 4; s++) {
+        double ms[2] = { 0, 0 };
+        for (int nc = 1; nc <= 3; nc += 2) {
+            ref_ocean *ro = reference_ocean(sizes[s], nc, 0.8);
+            if (!ro) { CHECK(0); return; }
+            gpu_ocean g;
+            CHECK(gpu_from(&g, ro));
+            enum { REPS = 7 };
+            double v[REPS];
+            ocean_update(&g, 0.5, NULL);   /* warm: programs compiled, textures touched */
+            glFinish();
+            for (int r = 0; r < REPS; r++) {
+                struct timespec a, b;
+                clock_gettime(CLOCK_MONOTONIC, &a);
+                ocean_update(&g, 1.0 + r, NULL);
+                glFinish();
+                clock_gettime(CLOCK_MONOTONIC, &b);
+                v[r] = (double)(b.tv_sec - a.tv_sec) * 1e3 + (double)(b.tv_nsec - a.tv_nsec) / 1e6;
+            }
+            ms[nc / 2] = median(v, REPS);
+            /* a still frame runs no pass */
+            int frames = g.frames;
+            ocean_update(&g, 1.0 + REPS - 1, NULL);
+            CHECK(g.frames == frames);
+            ocean_free(&g);
+            ref_ocean_destroy(ro);
+        }
+        fprintf(stderr, "  passes at %d^2: 1 cascade %.2f ms, 3 cascades %.2f ms (%.2f ms a cascade)\n", sizes[s],
+                ms[0], ms[1], ms[1] / 3);
+    }
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
     RUN(test_plane_wave_through_the_passes);
+    RUN(test_frame_64_one_cascade);
+    RUN(test_frame_64_three_cascades);
+    RUN(test_frame_256_one_cascade);
+    RUN(test_frame_256_three_cascades);
+    RUN(test_pass_cost);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

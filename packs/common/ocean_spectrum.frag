@@ -6,10 +6,12 @@
 //     h~(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}
 //
 // and from it the spectra of the eight real fields (lambda folded into the
-// D terms, k^ = k / |k|, 0 at k = 0):
-//     h~   Dx~ = -i lambda k^x h~   Dz~ = -i lambda k^z h~
+// D terms, k^ = k / |k|; all 0 at k = 0 and on the Nyquist row and column):
+//     h~   Dx~ = i lambda k^x h~   Dz~ = i lambda k^z h~
 //     hx~ = i kx h~   hz~ = i kz h~
-//     Dxx~ = lambda kx k^x h~   Dzz~ = lambda kz k^z h~   Dxz~ = lambda kz k^x h~
+//     Dxx~ = -lambda kx k^x h~   Dzz~ = -lambda kz k^z h~   Dxz~ = -lambda kz k^x h~
+// (D's sign as ref_ocean.c's: points move towards the crests, as in a
+// Gerstner wave, so lambda > 0 sharpens the crests.)
 // packed as four complex spectra, each X + i Y of two Hermitian ones, so
 // the inverse transform's real and imaginary parts are the two fields:
 //     A = (Z0, Z1) = (h~ + i Dx~, Dz~ + i Dxz~)
@@ -40,15 +42,16 @@ void main() {
     vec2 s = vec2(mn.x < half_n ? mn.x : mn.x - uOceanPassRes, mn.y < half_n ? mn.y : mn.y - uOceanPassRes);
     vec2 k = s * (6.28318530717958647692 / uOceanPassTile);
     float kl = length(k);
-    vec2 kh = kl > 0.0 ? k / kl : vec2(0.0);
+    if (kl == 0.0 || mn.x == half_n || mn.y == half_n) { oA = vec4(0.0); oB = vec4(0.0); return; }
+    vec2 kh = k / kl;
     float ph = w * uTime;
     vec2 e = vec2(cos(ph), sin(ph));
     vec2 H = oceanMul(h0.xy, e) + oceanMul(h0.zw, vec2(e.x, -e.y));
     vec2 iH = oceanI(H);
-    vec2 dx = -uOceanLambda * kh.x * iH, dz = -uOceanLambda * kh.y * iH;
+    vec2 dx = (uOceanLambda * kh.x) * iH, dz = (uOceanLambda * kh.y) * iH;
     vec2 hx = k.x * iH, hz = k.y * iH;
-    vec2 dxx = (uOceanLambda * kh.x * k.x) * H, dzz = (uOceanLambda * kh.y * k.y) * H;
-    vec2 dxz = (uOceanLambda * kh.x * k.y) * H;
+    vec2 dxx = (-uOceanLambda * kh.x * k.x) * H, dzz = (-uOceanLambda * kh.y * k.y) * H;
+    vec2 dxz = (-uOceanLambda * kh.x * k.y) * H;
     oA = vec4(H + oceanI(dx), dz + oceanI(dxz));
     oB = vec4(hx + oceanI(hz), dxx + oceanI(dzz));
 }
