@@ -1,2 +1,668 @@
-/* ref_ocean: see ref_ocean.h (being written). */
+/* ref_ocean: Tessendorf's spectrum ocean in double precision (see
+ * ref_ocean.h for the model, the fields and the layout).
+ *
+ * Sources of the formulas:
+ *   - J. Tessendorf, "Simulating Ocean Water", SIGGRAPH 2001 course notes:
+ *     the FFT ocean, h~(k, t), the choppy displacement D and the Phillips
+ *     spectrum (eq. 40) with its small-wave damping exp(-k^2 l^2) (eq. 41).
+ *   - K. Hasselmann et al., "Measurements of wind-wave growth and swell
+ *     decay during the Joint North Sea Wave Project (JONSWAP)", 1973: the
+ *     fetch-limited spectrum S(omega) with alpha = 0.076 (U^2 / (F g))^0.22,
+ *     omega_p = 22 (g^2 / (U F))^(1/3), gamma = 3.3, sigma = 0.07 / 0.09.
+ *   - C. J. Horvath, "Empirical directional wave spectra for computer
+ *     graphics", DigiPro 2015: the conversion S(omega) -> S(k, theta) with
+ *     the dispersion's Jacobian (d omega / dk) / k (sec. 4), Hasselmann's
+ *     directional spreading cos^(2s)(theta / 2) with s(omega) and its
+ *     normalisation (sec. 5.2.3), the TMA depth factor Phi(omega_h) as
+ *     Kitaigorodskii's approximation (sec. 5.1.6).
+ *   - L. H. Holthuijsen, "Waves in Oceanic and Coastal Waters" (2007) for
+ *     the Pierson-Moskowitz significant wave height Hs = 0.21 U^2 / g the
+ *     Phillips constant is matched to (below).
+ */
 #include "ref_ocean.h"
+#include "ref_trace.h"     /* ref_splitmix64 */
+#include "strbuf.h"
+
+#include <assert.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mem.h"
+
+#define TWO_PI 6.283185307179586476925286766559
+#define PI 3.14159265358979323846
+#define G 9.81                  /* the same g as ref_waves' REF_GRAVITY */
+
+/* JONSWAP's peak enhancement and its widths below / above the peak */
+#define JONSWAP_GAMMA 3.3
+#define JONSWAP_SIGMA_LO 0.07
+#define JONSWAP_SIGMA_HI 0.09
+/* Phillips' small-wave damping length l = PHILLIPS_DAMP * U^2 / g
+ * (Tessendorf: "l << L"); at 10 m/s l = 1 cm */
+#define PHILLIPS_DAMP 1e-3
+/* The Pierson-Moskowitz significant wave height of a fully developed sea,
+ * Hs = PM_HS * U^2 / g: the Phillips constant A is chosen so that the
+ * spectrum (without its small-wave damping) holds the variance Hs^2 / 16. */
+#define PM_HS 0.21
+/* The band edge between cascade c and c + 1 lies at BAND_MULT wavenumber
+ * steps of the finer cascade (gasgiant/FFT-Ocean's choice, 6 dk_(c+1)),
+ * or lower where the coarser grid does not reach that far. */
+#define BAND_MULT 6.0
+/* frames kept (LRU); each holds every cascade's eight fields */
+#define CACHE_SLOTS 4
+
+typedef struct frame_slot {
+    double t;
+    int valid;
+    uint64_t used;              /* LRU stamp */
+    atomic_int refs;            /* samplers reading it now */
+    double *f[REF_OCEAN_CASCADES_MAX];   /* N * N * 8: A then B a texel */
+    ref_ocean_bounds bounds;
+} frame_slot;
+
+struct ref_ocean {
+    ref_ocean_desc d;           /* resolved */
+    int n, nc;
+    double wind[2];
+    double dk[REF_OCEAN_CASCADES_MAX];
+    double band_lo[REF_OCEAN_CASCADES_MAX], band_hi[REF_OCEAN_CASCADES_MAX];
+    double *h0[REF_OCEAN_CASCADES_MAX];      /* N * N complex (re, im): h0(k), FFT order */
+    double *omega[REF_OCEAN_CASCADES_MAX];   /* N * N */
+    /* spectrum constants */
+    double phillips_a, phillips_l, phillips_damp;
+    double alpha, omega_p;
+    /* the FFT's tables */
+    double *tw;                 /* N/2 complex: e^{+2 pi i j / N} */
+    int *rev;                   /* bit reversal of 0..N-1 */
+    ref_ocean_bounds any;
+    /* the frame cache */
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    atomic_int waiters;
+    uint64_t clock;
+    frame_slot slot[CACHE_SLOTS];
+};
+
+/* ------------------------------------------------------------------ */
+/* the desc                                                            */
+
+static const double default_tile[REF_OCEAN_CASCADES_MAX] = { 250.0, 37.0, 5.3 };
+
+int ref_ocean_desc_resolve(ref_ocean_desc *d, char *err, size_t errlen) {
+    if (err && errlen) err[0] = '\0';
+    if (d->spectrum < REF_SPECTRUM_NONE || d->spectrum > REF_SPECTRUM_TMA) {
+        msg_set(err, errlen, "ocean: unknown spectrum %d", (int)d->spectrum);
+        return -1;
+    }
+    double nums[] = { d->wind_speed, d->wind_angle_deg, d->fetch, d->depth, d->spreading,
+                      d->choppiness, d->amplitude, d->tile[0], d->tile[1], d->tile[2] };
+    for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
+        if (!isfinite(nums[i])) { msg_set(err, errlen, "ocean: a parameter is not finite"); return -1; }
+    if (d->wind_speed < 0 || d->fetch < 0 || d->depth < 0 || d->spreading < 0 ||
+        d->choppiness < 0 || d->amplitude < 0) {
+        msg_set(err, errlen, "ocean: wind speed, fetch, depth, spreading, choppiness and "
+                "amplitude must be >= 0");
+        return -1;
+    }
+    if (d->wind_speed == 0) d->wind_speed = 10.0;
+    if (d->fetch == 0) d->fetch = 100e3;
+    if (d->spreading == 0 && d->spectrum == REF_SPECTRUM_PHILLIPS) d->spreading = 2.0;
+    if (d->amplitude == 0) d->amplitude = 1.0;
+    if (d->res == 0) d->res = 128;
+    if (d->cascades == 0) d->cascades = 1;
+    if (d->res < REF_OCEAN_RES_MIN || d->res > REF_OCEAN_RES_MAX || (d->res & (d->res - 1))) {
+        msg_set(err, errlen, "ocean: res %d is not a power of two in %d..%d", d->res,
+                REF_OCEAN_RES_MIN, REF_OCEAN_RES_MAX);
+        return -1;
+    }
+    if (d->cascades < 1 || d->cascades > REF_OCEAN_CASCADES_MAX) {
+        msg_set(err, errlen, "ocean: cascades %d out of range 1..%d", d->cascades,
+                REF_OCEAN_CASCADES_MAX);
+        return -1;
+    }
+    for (int c = 0; c < REF_OCEAN_CASCADES_MAX; c++) {
+        if (d->tile[c] < 0) { msg_set(err, errlen, "ocean: tile %d is negative", c); return -1; }
+        if (c >= d->cascades) { d->tile[c] = 0; continue; }
+        if (d->tile[c] == 0)   /* the default, scaled like the tile before it */
+            d->tile[c] = c == 0 ? default_tile[0] : d->tile[c - 1] * default_tile[c] / default_tile[c - 1];
+        if (c > 0 && !(d->tile[c] < d->tile[c - 1])) {
+            msg_set(err, errlen, "ocean: tiles must decrease (tile %d = %g, tile %d = %g)", c - 1,
+                    d->tile[c - 1], c, d->tile[c]);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* spectra                                                             */
+
+static double dispersion(const ref_ocean *o, double k) {
+    return o->d.depth > 0 ? sqrt(G * k * tanh(k * o->d.depth)) : sqrt(G * k);
+}
+
+/* d omega / dk */
+static double dispersion_d(const ref_ocean *o, double k, double w) {
+    if (w <= 0) return 0;
+    if (o->d.depth <= 0) return G / (2.0 * w);
+    double kh = k * o->d.depth, th = tanh(kh), ch = cosh(kh);
+    double sech2 = isfinite(ch) ? 1.0 / (ch * ch) : 0.0;
+    return G * (th + kh * sech2) / (2.0 * w);
+}
+
+/* JONSWAP S(omega) (Hasselmann 1973), m^2 s */
+static double jonswap_omega(const ref_ocean *o, double w) {
+    if (w <= 0) return 0;
+    double wp = o->omega_p, sigma = w <= wp ? JONSWAP_SIGMA_LO : JONSWAP_SIGMA_HI;
+    double r = exp(-(w - wp) * (w - wp) / (2.0 * sigma * sigma * wp * wp));
+    double q = wp / w, q4 = q * q * q * q;
+    return o->alpha * G * G / pow(w, 5) * exp(-1.25 * q4) * pow(JONSWAP_GAMMA, r);
+}
+
+/* Kitaigorodskii's depth factor, Horvath 2015's approximation in
+ * omega_h = omega sqrt(depth / g) */
+static double tma_phi(double w, double depth) {
+    double wh = w * sqrt(depth / G);
+    if (wh <= 1.0) return 0.5 * wh * wh;
+    if (wh < 2.0) return 1.0 - 0.5 * (2.0 - wh) * (2.0 - wh);
+    return 1.0;
+}
+
+/* Hasselmann's spreading exponent s(omega) (Horvath 2015 eq. 41) */
+static double hasselmann_s(const ref_ocean *o, double w) {
+    double wp = o->omega_p, r = w / wp;
+    if (w <= wp) return 6.97 * pow(r, 4.06);
+    double mu = -2.33 - 1.45 * (o->d.wind_speed * wp / G - 1.17);
+    return 9.77 * pow(r, mu);
+}
+
+/* log of the normalisation of cos^(2s)(theta / 2) over (-pi, pi]:
+ * 2^(2s - 1) Gamma(s + 1)^2 / (pi Gamma(2s + 1)) */
+static double log_norm_half(double s) {
+    return (2.0 * s - 1.0) * log(2.0) + 2.0 * lgamma(s + 1.0) - log(PI) - lgamma(2.0 * s + 1.0);
+}
+
+/* log of the normalisation of cos^(2s)(theta) over |theta| < pi/2 (0 elsewhere):
+ * Gamma(s + 1) / (sqrt(pi) Gamma(s + 1/2)) */
+static double log_norm_pos(double s) {
+    return lgamma(s + 1.0) - 0.5 * log(PI) - lgamma(s + 0.5);
+}
+
+/* The radial part of S at |k| (m^4 rad^-1: S(k, theta) = radial * D(theta))
+ * and the spreading's exponent for that k. */
+static double radial_part(const ref_ocean *o, double k, double *s_out) {
+    double amp2 = o->d.amplitude * o->d.amplitude;
+    *s_out = o->d.spreading;
+    if (k <= 0) return 0;
+    if (o->d.spectrum == REF_SPECTRUM_PHILLIPS) {
+        double kl = k * o->phillips_l, k2 = k * k;
+        return amp2 * o->phillips_a * exp(-1.0 / (kl * kl)) / (k2 * k2) *
+               exp(-k2 * o->phillips_damp * o->phillips_damp);
+    }
+    double w = dispersion(o, k);
+    double s = jonswap_omega(o, w);
+    if (o->d.spectrum == REF_SPECTRUM_TMA && o->d.depth > 0) s *= tma_phi(w, o->d.depth);
+    if (o->d.spreading == 0) *s_out = hasselmann_s(o, w);
+    return amp2 * s * dispersion_d(o, k, w) / k;
+}
+
+/* The directional factor at angle theta from the wind, for exponent s. */
+static double spreading(const ref_ocean *o, double theta, double s, double lognorm) {
+    if (o->d.spectrum == REF_SPECTRUM_PHILLIPS) return pow(fabs(cos(theta)), s);
+    if (o->d.spreading == 0) {
+        double c = fabs(cos(0.5 * theta));
+        return c > 0 ? exp(lognorm + 2.0 * s * log(c)) : 0.0;
+    }
+    double c = cos(theta);
+    return c > 0 ? exp(lognorm + 2.0 * s * log(c)) : 0.0;
+}
+
+static double spreading_lognorm(const ref_ocean *o, double s) {
+    if (o->d.spectrum == REF_SPECTRUM_PHILLIPS) return 0.0;
+    return o->d.spreading == 0 ? log_norm_half(s) : log_norm_pos(s);
+}
+
+double ref_ocean_spectrum(const ref_ocean *o, double kx, double kz) {
+    double k = hypot(kx, kz), s;
+    double r = radial_part(o, k, &s);
+    if (r == 0) return 0;
+    double theta = atan2(kz, kx) - atan2(o->wind[1], o->wind[0]);
+    return r * spreading(o, theta, s, spreading_lognorm(o, s));
+}
+
+/* ------------------------------------------------------------------ */
+/* the FFT                                                             */
+
+/* In-place radix-2 transform of n complex values at stride `stride`
+ * complex elements, `count` interleaved vectors (vector j starts at j):
+ * X(x) = sum_k Z(k) e^{+2 pi i k x / n}, no scaling. With count = N and
+ * stride = N this transforms every column of a row-major N x N array at
+ * once (the inner loop runs along contiguous rows). */
+static void fft_inverse(const ref_ocean *o, double *z, int n, int stride, int count, int vstride) {
+    for (int i = 0; i < n; i++) {
+        int j = o->rev[i];
+        if (j <= i) continue;
+        for (int v = 0; v < count; v++) {
+            double *a = z + 2 * ((size_t)i * stride + (size_t)v * vstride);
+            double *b = z + 2 * ((size_t)j * stride + (size_t)v * vstride);
+            double t0 = a[0], t1 = a[1];
+            a[0] = b[0]; a[1] = b[1];
+            b[0] = t0; b[1] = t1;
+        }
+    }
+    for (int len = 2; len <= n; len <<= 1) {
+        int half = len >> 1, step = n / len;
+        for (int i = 0; i < n; i += len)
+            for (int j = 0; j < half; j++) {
+                double wr = o->tw[2 * (j * step)], wi = o->tw[2 * (j * step) + 1];
+                double *p = z + 2 * (size_t)(i + j) * stride;
+                double *q = z + 2 * (size_t)(i + j + half) * stride;
+                for (int v = 0; v < count; v++) {
+                    double *a = p + 2 * (size_t)v * vstride, *b = q + 2 * (size_t)v * vstride;
+                    double br = b[0] * wr - b[1] * wi, bi = b[0] * wi + b[1] * wr;
+                    b[0] = a[0] - br; b[1] = a[1] - bi;
+                    a[0] += br; a[1] += bi;
+                }
+            }
+    }
+}
+
+/* 2D inverse DFT of an N x N row-major complex array (row n, m fastest) */
+static void fft2_inverse(const ref_ocean *o, double *z) {
+    int n = o->n;
+    for (int r = 0; r < n; r++) fft_inverse(o, z + 2 * (size_t)r * n, n, 1, 1, 0);
+    fft_inverse(o, z, n, n, n, 1);
+}
+
+/* ------------------------------------------------------------------ */
+/* creation                                                            */
+
+static int signed_index(int m, int n) { return m < n / 2 ? m : m - n; }
+
+/* two unit Gaussians from (seed, cascade, m, n), Box-Muller on splitmix64 */
+static void gauss2(uint32_t seed, int c, int m, int n, double *g0, double *g1) {
+    uint64_t st = (uint64_t)seed * 0x9E3779B97F4A7C15ull ^
+                  ((uint64_t)c << 48 | (uint64_t)m << 24 | (uint64_t)n);
+    double u1 = ((double)(ref_splitmix64(&st) >> 11) + 1.0) * 0x1.0p-53;   /* (0, 1] */
+    double u2 = (double)(ref_splitmix64(&st) >> 11) * 0x1.0p-53;
+    double r = sqrt(-2.0 * log(u1));
+    *g0 = r * cos(TWO_PI * u2);
+    *g1 = r * sin(TWO_PI * u2);
+}
+
+ref_ocean *ref_ocean_create(const ref_ocean_desc *desc, char *err, size_t errlen) {
+    ref_ocean_desc d = *desc;
+    if (ref_ocean_desc_resolve(&d, err, errlen) != 0) return NULL;
+    if (d.spectrum == REF_SPECTRUM_NONE) {
+        msg_set(err, errlen, "ocean: no spectrum");
+        return NULL;
+    }
+    ref_ocean *o = mem_zalloc(sizeof *o);
+    o->d = d;
+    int N = o->n = d.res;
+    o->nc = d.cascades;
+    double wa = d.wind_angle_deg * (PI / 180.0);
+    o->wind[0] = cos(wa);
+    o->wind[1] = sin(wa);
+    double U = d.wind_speed;
+    /* Phillips: A matched to the Pierson-Moskowitz variance (Hs / 4)^2 with
+     * Hs = 0.21 U^2 / g: the undamped spectrum integrates to
+     * A (L^2 / 2) int |cos|^s dtheta, L = U^2 / g, and
+     * int_0^2pi |cos|^s = 2 sqrt(pi) Gamma((s+1)/2) / Gamma(s/2 + 1) */
+    o->phillips_l = U * U / G;
+    o->phillips_damp = PHILLIPS_DAMP * o->phillips_l;
+    double ang = 2.0 * sqrt(PI) * exp(lgamma(0.5 * (d.spreading + 1.0)) - lgamma(0.5 * d.spreading + 1.0));
+    o->phillips_a = PM_HS * PM_HS / (8.0 * ang);
+    o->alpha = 0.076 * pow(U * U / (d.fetch * G), 0.22);
+    o->omega_p = 22.0 * cbrt(G * G / (U * d.fetch));
+
+    /* bands: [lo_c, hi_c); hi of the last = its Nyquist radius */
+    for (int c = 0; c < o->nc; c++) o->dk[c] = TWO_PI / d.tile[c];
+    o->band_lo[0] = 0.0;
+    for (int c = 0; c + 1 < o->nc; c++) {
+        double e = fmin(BAND_MULT * o->dk[c + 1], (N / 2 - 1) * o->dk[c]);
+        o->band_hi[c] = e;
+        o->band_lo[c + 1] = e;
+    }
+    o->band_hi[o->nc - 1] = (N / 2) * o->dk[o->nc - 1];
+
+    o->tw = mem_alloc(sizeof(double) * (size_t)N);
+    for (int j = 0; j < N / 2; j++) {
+        o->tw[2 * j] = cos(TWO_PI * j / N);
+        o->tw[2 * j + 1] = sin(TWO_PI * j / N);
+    }
+    o->rev = mem_alloc(sizeof(int) * (size_t)N);
+    int bits = 0;
+    while ((1 << bits) < N) bits++;
+    for (int i = 0; i < N; i++) {
+        int r = 0;
+        for (int b = 0; b < bits; b++) if (i & (1 << b)) r |= 1 << (bits - 1 - b);
+        o->rev[i] = r;
+    }
+
+    /* h0(k) = (xi_r + i xi_i) sqrt(S(-k) dk^2 / 4): see the header */
+    o->any = (ref_ocean_bounds){ 0, 0, 0 };
+    for (int c = 0; c < o->nc; c++) {
+        double *h0 = o->h0[c] = mem_zalloc((size_t)N * N * 2 * sizeof(double));
+        double *om = o->omega[c] = mem_zalloc((size_t)N * N * sizeof(double));
+        double dk = o->dk[c], hsum = 0, ssum = 0, csum = 0;
+        for (int n = 0; n < N; n++)
+            for (int m = 0; m < N; m++) {
+                size_t i = (size_t)n * N + m;
+                double kx = signed_index(m, N) * dk, kz = signed_index(n, N) * dk, k = hypot(kx, kz);
+                om[i] = dispersion(o, k);
+                if (m == N / 2 || n == N / 2 || k == 0 || k < o->band_lo[c] || k >= o->band_hi[c])
+                    continue;
+                double g0, g1;
+                gauss2(d.seed, c, m, n, &g0, &g1);
+                double a = sqrt(ref_ocean_spectrum(o, -kx, -kz) * dk * dk / 4.0);
+                h0[2 * i] = g0 * a;
+                h0[2 * i + 1] = g1 * a;
+                /* |h~(k)| <= |h0(k)| + |h0(-k)|: each |h0| counted twice over k */
+                double m0 = 2.0 * hypot(h0[2 * i], h0[2 * i + 1]);
+                hsum += m0;
+                ssum += k * m0;
+                csum += k * m0 * d.choppiness;
+            }
+        o->any.height += hsum;
+        o->any.slope += ssum;
+        o->any.chop += csum;
+    }
+    pthread_mutex_init(&o->mu, NULL);
+    pthread_cond_init(&o->cv, NULL);
+    return o;
+}
+
+void ref_ocean_destroy(ref_ocean *o) {
+    if (!o) return;
+    for (int c = 0; c < REF_OCEAN_CASCADES_MAX; c++) {
+        free(o->h0[c]);
+        free(o->omega[c]);
+        for (int s = 0; s < CACHE_SLOTS; s++) free(o->slot[s].f[c]);
+    }
+    free(o->tw);
+    free(o->rev);
+    pthread_mutex_destroy(&o->mu);
+    pthread_cond_destroy(&o->cv);
+    free(o);
+}
+
+const ref_ocean_desc *ref_ocean_get_desc(const ref_ocean *o) { return &o->d; }
+
+void ref_ocean_bounds_any(const ref_ocean *o, ref_ocean_bounds *b) { *b = o->any; }
+
+double ref_ocean_min_wavelength(const ref_ocean *o) {
+    return 2.0 * o->d.tile[o->nc - 1] / o->n;
+}
+
+/* ------------------------------------------------------------------ */
+/* frames                                                              */
+
+/* h~(k, t) of texel i (negative index j) */
+static void htilde(const ref_ocean *o, int c, size_t i, size_t j, double t, double out[2]) {
+    const double *h0 = o->h0[c];
+    double w = o->omega[c][i] * t, cw = cos(w), sw = sin(w);
+    double ar = h0[2 * i], ai = h0[2 * i + 1];
+    double br = h0[2 * j], bi = -h0[2 * j + 1];            /* conj(h0(-k)) */
+    out[0] = ar * cw - ai * sw + br * cw + bi * sw;
+    out[1] = ar * sw + ai * cw + bi * cw - br * sw;
+}
+
+/* The eight spectra of one texel, as four complex numbers packing two real
+ * fields each (Z = A~ + i B~; A~, B~ Hermitian, so ifft(Z) = a + i b):
+ * (h, Dx), (Dz, Dxz), (hx, hz), (Dxx, Dzz). */
+static void texel_spectra(const ref_ocean *o, int c, int m, int n, double t, double z[4][2]) {
+    int N = o->n;
+    double dk = o->dk[c], lam = o->d.choppiness;
+    double kx = signed_index(m, N) * dk, kz = signed_index(n, N) * dk, k = hypot(kx, kz);
+    memset(z, 0, sizeof(double) * 8);
+    if (k == 0 || m == N / 2 || n == N / 2) return;
+    size_t i = (size_t)n * N + m, j = (size_t)((N - n) % N) * N + (size_t)((N - m) % N);
+    double h[2];
+    htilde(o, c, i, j, t, h);
+    /* i * h */
+    double ih[2] = { -h[1], h[0] };
+    double dx[2] = { lam * kx / k * ih[0], lam * kx / k * ih[1] };     /* Dx~ = i lam kx/k h~ */
+    double dz[2] = { lam * kz / k * ih[0], lam * kz / k * ih[1] };
+    double dxz[2] = { -lam * kx * kz / k * h[0], -lam * kx * kz / k * h[1] };
+    double hx[2] = { kx * ih[0], kx * ih[1] }, hz[2] = { kz * ih[0], kz * ih[1] };
+    double dxx[2] = { -lam * kx * kx / k * h[0], -lam * kx * kx / k * h[1] };
+    double dzz[2] = { -lam * kz * kz / k * h[0], -lam * kz * kz / k * h[1] };
+    /* A + iB = (Ar - Bi) + i (Ai + Br) */
+    z[0][0] = h[0] - dx[1];   z[0][1] = h[1] + dx[0];
+    z[1][0] = dz[0] - dxz[1]; z[1][1] = dz[1] + dxz[0];
+    z[2][0] = hx[0] - hz[1];  z[2][1] = hx[1] + hz[0];
+    z[3][0] = dxx[0] - dzz[1]; z[3][1] = dxx[1] + dzz[0];
+}
+
+/* Fills f (N * N * 8: h, Dx, Dz, Dxz, hx, hz, Dxx, Dzz a texel). */
+static void compute_cascade(const ref_ocean *o, int c, double t, double *f) {
+    int N = o->n;
+    size_t nn = (size_t)N * N;
+    double *z = mem_alloc(sizeof(double) * 2 * nn * 4);
+    for (int n = 0; n < N; n++)
+        for (int m = 0; m < N; m++) {
+            double s[4][2];
+            texel_spectra(o, c, m, n, t, s);
+            size_t i = (size_t)n * N + m;
+            for (int p = 0; p < 4; p++) {
+                z[2 * (p * nn + i)] = s[p][0];
+                z[2 * (p * nn + i) + 1] = s[p][1];
+            }
+        }
+    for (int p = 0; p < 4; p++) fft2_inverse(o, z + 2 * p * nn);
+    /* A = (h, Dx, Dz, Dxz), B = (hx, hz, Dxx, Dzz) */
+    static const int src[8][2] = { {0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}, {2, 1}, {3, 0}, {3, 1} };
+    for (size_t i = 0; i < nn; i++)
+        for (int q = 0; q < 8; q++) f[8 * i + q] = z[2 * (src[q][0] * nn + i) + src[q][1]];
+    free(z);
+}
+
+/* Exact bounds of the bilinear fields of one cascade: max |h| over nodes;
+ * the bilinear gradient in a cell is a blend of its edges' differences, so
+ * |grad h| <= hypot(max |h(i+1,j) - h(i,j)|, max |h(i,j+1) - h(i,j)|) / texel
+ * over the cell's edges; the same for the 2 x 2 derivative of the bilinear
+ * (Dx, Dz) map, bounded in operator norm by its Frobenius norm of the
+ * entries' maxima over the cell. */
+static void cascade_bounds(const ref_ocean *o, int c, const double *f, ref_ocean_bounds *b) {
+    int N = o->n;
+    double inv = N / o->d.tile[c], hmax = 0, smax = 0, cmax = 0;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            const double *p00 = f + 8 * ((size_t)j * N + i);
+            const double *p10 = f + 8 * ((size_t)j * N + (i + 1) % N);
+            const double *p01 = f + 8 * ((size_t)((j + 1) % N) * N + i);
+            const double *p11 = f + 8 * ((size_t)((j + 1) % N) * N + (i + 1) % N);
+            hmax = fmax(hmax, fabs(p00[0]));
+            double e[4] = { 0, 0, 0, 0 };   /* max over the cell of |d/du|, |d/dv| of h, Dx, Dz */
+            for (int q = 0; q < 3; q++) {
+                double du = fmax(fabs(p10[q] - p00[q]), fabs(p11[q] - p01[q])) * inv;
+                double dv = fmax(fabs(p01[q] - p00[q]), fabs(p11[q] - p10[q])) * inv;
+                if (q == 0) { e[0] = du; e[1] = dv; }
+                else if (q == 1) { e[2] = du; e[3] = dv; }
+                else {
+                    double fro = sqrt(e[2] * e[2] + e[3] * e[3] + du * du + dv * dv);
+                    cmax = fmax(cmax, fro);
+                }
+            }
+            smax = fmax(smax, hypot(e[0], e[1]));
+        }
+    b->height += hmax;
+    b->slope += smax;
+    b->chop += cmax;
+}
+
+/* The slot holding the frame at t, referenced (release with slot_release). */
+static frame_slot *frame_acquire(const ref_ocean *oc, double t) {
+    ref_ocean *o = (ref_ocean *)oc;   /* the cache is the one mutable part */
+    pthread_mutex_lock(&o->mu);
+    for (;;) {
+        for (int s = 0; s < CACHE_SLOTS; s++) {
+            frame_slot *sl = &o->slot[s];
+            if (sl->valid && sl->t == t) {
+                atomic_fetch_add(&sl->refs, 1);
+                sl->used = ++o->clock;
+                pthread_mutex_unlock(&o->mu);
+                return sl;
+            }
+        }
+        atomic_fetch_add(&o->waiters, 1);
+        frame_slot *lru = NULL;
+        for (int s = 0; s < CACHE_SLOTS; s++) {
+            frame_slot *sl = &o->slot[s];
+            if (atomic_load(&sl->refs) != 0) continue;
+            if (!lru || !sl->valid || (lru->valid && sl->used < lru->used)) lru = sl;
+            if (!sl->valid) break;
+        }
+        if (!lru) {
+            pthread_cond_wait(&o->cv, &o->mu);
+            atomic_fetch_sub(&o->waiters, 1);
+            continue;
+        }
+        atomic_fetch_sub(&o->waiters, 1);
+        /* computed under the lock: a thread wanting the same t waits for it */
+        lru->valid = 0;
+        lru->bounds = (ref_ocean_bounds){ 0, 0, 0 };
+        for (int c = 0; c < o->nc; c++) {
+            if (!lru->f[c]) lru->f[c] = mem_alloc(sizeof(double) * 8 * (size_t)o->n * o->n);
+            compute_cascade(o, c, t, lru->f[c]);
+            cascade_bounds(o, c, lru->f[c], &lru->bounds);
+        }
+        lru->t = t;
+        lru->valid = 1;
+        lru->used = ++o->clock;
+        atomic_fetch_add(&lru->refs, 1);
+        pthread_mutex_unlock(&o->mu);
+        return lru;
+    }
+}
+
+static void frame_release(const ref_ocean *oc, frame_slot *sl) {
+    ref_ocean *o = (ref_ocean *)oc;
+    if (atomic_fetch_sub(&sl->refs, 1) == 1 && atomic_load(&o->waiters) > 0) {
+        pthread_mutex_lock(&o->mu);
+        pthread_cond_broadcast(&o->cv);
+        pthread_mutex_unlock(&o->mu);
+    }
+}
+
+void ref_ocean_frame(const ref_ocean *o, int cascade, double t, double *a, double *b) {
+    assert(cascade >= 0 && cascade < o->nc);
+    frame_slot *sl = frame_acquire(o, t);
+    const double *f = sl->f[cascade];
+    size_t nn = (size_t)o->n * o->n;
+    for (size_t i = 0; i < nn; i++) {
+        memcpy(a + 4 * i, f + 8 * i, 4 * sizeof(double));
+        memcpy(b + 4 * i, f + 8 * i + 4, 4 * sizeof(double));
+    }
+    frame_release(o, sl);
+}
+
+void ref_ocean_bounds_at(const ref_ocean *o, double t, ref_ocean_bounds *b) {
+    frame_slot *sl = frame_acquire(o, t);
+    *b = sl->bounds;
+    frame_release(o, sl);
+}
+
+void ref_ocean_sample_at(const ref_ocean *o, double u, double v, double t, ref_ocean_sample *s) {
+    frame_slot *sl = frame_acquire(o, t);
+    int N = o->n;
+    double acc[8] = { 0 };
+    for (int c = 0; c < o->nc; c++) {
+        double inv = N / o->d.tile[c];
+        double fu = u * inv, fv = v * inv, iu = floor(fu), iv = floor(fv);
+        double x = fu - iu, z = fv - iv;
+        long i0 = (long)fmod(iu, (double)N), j0 = (long)fmod(iv, (double)N);
+        if (i0 < 0) i0 += N;
+        if (j0 < 0) j0 += N;
+        long i1 = (i0 + 1) % N, j1 = (j0 + 1) % N;
+        const double *f = sl->f[c];
+        const double *p00 = f + 8 * (j0 * N + i0), *p10 = f + 8 * (j0 * N + i1);
+        const double *p01 = f + 8 * (j1 * N + i0), *p11 = f + 8 * (j1 * N + i1);
+        double w00 = (1 - x) * (1 - z), w10 = x * (1 - z), w01 = (1 - x) * z, w11 = x * z;
+        for (int q = 0; q < 8; q++) acc[q] += w00 * p00[q] + w10 * p10[q] + w01 * p01[q] + w11 * p11[q];
+    }
+    frame_release(o, sl);
+    s->h = acc[0]; s->dx = acc[1]; s->dz = acc[2]; s->dxz = acc[3];
+    s->hx = acc[4]; s->hz = acc[5]; s->dxx = acc[6]; s->dzz = acc[7];
+}
+
+void ref_ocean_direct_sum(const ref_ocean *o, double u, double v, double t, ref_ocean_sample *s) {
+    int N = o->n;
+    double acc[8] = { 0 };
+    for (int c = 0; c < o->nc; c++)
+        for (int n = 0; n < N; n++)
+            for (int m = 0; m < N; m++) {
+                double z[4][2];
+                texel_spectra(o, c, m, n, t, z);
+                double kx = signed_index(m, N) * o->dk[c], kz = signed_index(n, N) * o->dk[c];
+                double ph = kx * u + kz * v, cp = cos(ph), sp = sin(ph);
+                for (int p = 0; p < 4; p++) {
+                    acc[2 * p] += z[p][0] * cp - z[p][1] * sp;       /* Re(Z e^{i ph}) */
+                    acc[2 * p + 1] += z[p][0] * sp + z[p][1] * cp;   /* Im */
+                }
+            }
+    s->h = acc[0]; s->dx = acc[1]; s->dz = acc[2]; s->dxz = acc[3];
+    s->hx = acc[4]; s->hz = acc[5]; s->dxx = acc[6]; s->dzz = acc[7];
+}
+
+void ref_ocean_gpu_spectrum(const ref_ocean *o, int cascade, float *h0, float *omega) {
+    assert(cascade >= 0 && cascade < o->nc);
+    int N = o->n;
+    const double *src = o->h0[cascade];
+    for (int n = 0; n < N; n++)
+        for (int m = 0; m < N; m++) {
+            size_t i = (size_t)n * N + m, j = (size_t)((N - n) % N) * N + (size_t)((N - m) % N);
+            h0[4 * i] = (float)src[2 * i];
+            h0[4 * i + 1] = (float)src[2 * i + 1];
+            h0[4 * i + 2] = (float)src[2 * j];
+            h0[4 * i + 3] = (float)-src[2 * j + 1];
+            omega[i] = (float)o->omega[cascade][i];
+        }
+}
+
+double ref_ocean_variance(const ref_ocean *o) {
+    double v = 0;
+    size_t nn = (size_t)o->n * o->n;
+    for (int c = 0; c < o->nc; c++)
+        for (size_t i = 0; i < nn; i++) {
+            double a = o->h0[c][2 * i], b = o->h0[c][2 * i + 1];
+            v += 2.0 * (a * a + b * b);     /* |h0(k)|^2 + |h0(-k)|^2 summed over k */
+        }
+    return v;
+}
+
+/* int S over the annulus lo <= |k| < hi: composite Simpson in ln k, the
+ * periodic trapezoid rule in theta (spectrally accurate for the smooth
+ * spreadings; cos^(2s) clipped at +-pi/2 has a kink of order 2s). */
+#define VAR_RADIAL 2000
+#define VAR_ANGULAR 720
+
+static double band_integral(const ref_ocean *o, double lo, double hi) {
+    if (!(hi > lo)) return 0;
+    double a = log(lo > 0 ? lo : 1e-7 * hi), b = log(hi), h = (b - a) / VAR_RADIAL;
+    double wind = atan2(o->wind[1], o->wind[0]), sum = 0;
+    for (int i = 0; i <= VAR_RADIAL; i++) {
+        double k = exp(a + i * h), s;
+        double r = radial_part(o, k, &s);
+        double ring = 0;
+        if (r > 0) {
+            double ln = spreading_lognorm(o, s);
+            for (int j = 0; j < VAR_ANGULAR; j++)
+                ring += spreading(o, TWO_PI * j / VAR_ANGULAR - wind, s, ln);
+            ring *= TWO_PI / VAR_ANGULAR * r * k * k;   /* k dk = k^2 d(ln k) */
+        }
+        double wgt = (i == 0 || i == VAR_RADIAL) ? 1.0 : (i & 1) ? 4.0 : 2.0;
+        sum += wgt * ring;
+    }
+    return sum * h / 3.0;
+}
+
+double ref_ocean_spectrum_variance(const ref_ocean *o) {
+    double v = 0;
+    for (int c = 0; c < o->nc; c++) v += band_integral(o, o->band_lo[c], o->band_hi[c]);
+    return v;
+}

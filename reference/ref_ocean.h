@@ -6,13 +6,20 @@
  * N x N grid. Its initial spectrum h0(k), k = 2 pi (m', n') / L_c with
  * m' = m < N/2 ? m : m - N (FFT order, texel (m, n)), is
  *
- *     h0(k) = (xi_r + i xi_i) sqrt(S(k) dk^2 / 2)      (xi: unit Gaussians)
+ *     h0(k) = (xi_r + i xi_i) sqrt(S(-k) dk^2 / 4)     (xi: unit Gaussians)
  *
  * from a hash of (seed, cascade, m, n) (the same numbers on every machine),
  * where S(k) is the directional spectrum (Phillips, JONSWAP or TMA, with
  * a spreading function; see ref_ocean.c for the formulas and sources),
  * masked to the cascade's band of |k| so the cascades add without
- * counting a wave twice. The Nyquist row and column (m or n = N/2) are
+ * counting a wave twice. Why S(-k) and 1/4: with h~ below, h0(k) is the
+ * wave whose phase is k.x + w t, which travels towards -k; the wave
+ * travelling towards +k is 2 Re(conj(h0(-k)) e^{i(k.x - w t)}), of
+ * variance 2 |h0(-k)|^2 = S(k) dk^2 on average: so the sea runs
+ * downwind and the variance of h is the integral of S (see
+ * ref_ocean_variance). Bands (ref_ocean.c): cascade c keeps
+ * lo_c <= |k| < hi_c, the edge between c and c + 1 at
+ * min(6 dk_(c+1), (N/2 - 1) dk_c), lo_0 = 0, hi_last = (N/2) dk_last. The Nyquist row and column (m or n = N/2) are
  * zero, so every field below is exactly real. At time t
  *
  *     h~(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t},   w = sqrt(g |k| tanh(|k| depth))
@@ -20,11 +27,16 @@
  * and the eight real fields are inverse DFTs on the grid x_(m,n) = (m, n) L/N:
  *
  *     h  = sum h~ e^{i k.x}               height
- *     Dx = sum -i kx/|k| h~ e^{i k.x}     sideways displacement (times lambda)
- *     Dz = sum -i kz/|k| h~ e^{i k.x}
+ *     Dx = sum i kx/|k| h~ e^{i k.x}      sideways displacement (times lambda)
+ *     Dz = sum i kz/|k| h~ e^{i k.x}
  *     hx = sum i kx h~ e^{i k.x}          slopes dh/dx, dh/dz
  *     hz = sum i kz h~ e^{i k.x}
- *     Dxx, Dzz, Dxz = sum (kx kx, kz kz, kx kz)/|k| h~ e^{i k.x}   (times lambda)
+ *     Dxx, Dzz, Dxz = sum -(kx kx, kz kz, kx kz)/|k| h~ e^{i k.x}  (times lambda)
+ *
+ * The sign of D: one wave h = A cos(k.x - w t) gets D = -A k^ sin(k.x - w t),
+ * Gerstner's displacement (GPU Gems 1 ch. 1), so lambda > 0 draws sharp
+ * crests and broad troughs and the sea folds at the crests (Tessendorf's
+ * -i k^ with this e^{+i k.x} would sharpen the troughs instead).
  *
  * The surface between grid nodes is the bilinear interpolation of the
  * nodes (periodic), exactly what the GL samples: so "the exact surface" of
@@ -86,9 +98,15 @@ typedef struct ref_ocean_sample {
     double dxx, dxz, dzz;          /* d(Dx)/du, d(Dx)/dv = d(Dz)/du, d(Dz)/dv */
 } ref_ocean_sample;
 
-/* Bounds of a frame (exact for the bilinear surface): |h| <= height,
- * |grad h| <= slope, and the sideways map's Jacobian's smallest singular
- * value >= 1 - chop (so world slopes <= slope / (1 - chop) when chop < 1). */
+/* Bounds of a frame, of the bilinear surface itself (summed over the
+ * cascades): |h| <= height (max |h| over nodes, attained); |grad h| <=
+ * slope (the gradient of the bilinear interpolant in a cell blends its
+ * edges' node differences / texel); the derivative of the bilinear
+ * sideways map (u, v) -> (Dx, Dz) has operator norm <= chop (Frobenius
+ * norm of the cell's largest node differences), so the map's Jacobian's
+ * smallest singular value >= 1 - chop and world slopes <= slope / (1 - chop)
+ * when chop < 1. ref_ocean_bounds_any: the sums of the waves' amplitudes
+ * (times k for slope, times lambda k for chop), true at every time. */
 typedef struct ref_ocean_bounds {
     double height, slope, chop;
 } ref_ocean_bounds;
