@@ -76,3 +76,10 @@ add_test(NAME window_msaa_xvfb
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_msaa_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_msaa_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS "window;gl")
+
+# A still window sleeps instead of drawing the same frame; a key wakes it;
+# Q quits at once (issue #30).
+add_test(NAME window_idle_xvfb
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_idle_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(window_idle_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "window;gl")

@@ -20,6 +20,8 @@
 #include "util.h"
 #include "watch.h"
 
+#include <poll.h>
+
 struct app {
     app_desc d;                  /* defaults filled in */
     gl_ctx *ctx;
@@ -59,6 +61,11 @@ struct app {
     bool stamp;                  /* the script's `stamp on`: time the first frame after a reload */
     bool stamp_pending;
     double stamp_seen;           /* glfwGetTime() when that reload began */
+    /* sleeping while the picture is still (issue #30: a still window burnt
+     * 0.75 of a core drawing the same frame) */
+    bool woken;                  /* an input or window event came since the last frame */
+    bool keep_awake;             /* a client asked for the next frame (app_keep_awake) */
+    bool slept;                  /* this frame follows a sleep: its dt measures nothing */
 };
 
 /* ---- watching ---- */
@@ -246,8 +253,22 @@ static void apply_common(app *a, const panel_actions *c) {
     if (a->key_shot) app_screenshot(a);
 }
 
+/* Any event wakes a sleeping window; the panel's own callbacks (ImGui's
+ * backend, installed after these) chain to them. */
+static void wake(GLFWwindow *w) {
+    app *a = glfwGetWindowUserPointer(w);
+    if (a) a->woken = true;
+}
+static void on_cursor(GLFWwindow *w, double x, double y) { (void)x; (void)y; wake(w); }
+static void on_char(GLFWwindow *w, unsigned c) { (void)c; wake(w); }
+static void on_size(GLFWwindow *w, int x, int y) { (void)x; (void)y; wake(w); }
+static void on_focus(GLFWwindow *w, int f) { (void)f; wake(w); }
+static void on_enter(GLFWwindow *w, int e) { (void)e; wake(w); }
+static void on_refresh(GLFWwindow *w) { wake(w); }
+
 static void on_scroll(GLFWwindow *w, double dx, double dy) {
     app *a = glfwGetWindowUserPointer(w);
+    a->woken = true;
     if (!a->panel || !panel_wants_mouse(a->panel)) a->s.mouse.scroll += dy;
 }
 
@@ -255,6 +276,7 @@ static void on_scroll(GLFWwindow *w, double dx, double dy) {
  * scene) the cursor may be elsewhere. */
 static void on_button(GLFWwindow *w, int button, int action, int mods) {
     app *a = glfwGetWindowUserPointer(w);
+    a->woken = true;
     if (action != GLFW_PRESS) return;
     int which = button == GLFW_MOUSE_BUTTON_LEFT ? VIEW_MOUSE_LEFT
               : button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE ? VIEW_MOUSE_PAN : 0;
@@ -265,6 +287,7 @@ static void on_button(GLFWwindow *w, int button, int action, int mods) {
 
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     app *a = glfwGetWindowUserPointer(w);
+    a->woken = true;
     if (action != GLFW_PRESS || !a->panel || panel_wants_keyboard(a->panel)) return;
     switch (key) {
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, 1); break;
@@ -354,7 +377,9 @@ static void frame(app *a, bool scripted) {
         orbit_rotate(&a->s.cam, a->orbit_dx, a->orbit_dy);
         a->orbit_left--;
     }
-    frame_meter_add(&a->meter, dt);
+    if (a->slept) a->frame_fair = false;    /* the sleep is not the frame's time */
+    else frame_meter_add(&a->meter, dt);
+    a->slept = false;
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
     if (!a->s.paused && !scripted) a->s.t += dt;
@@ -479,6 +504,39 @@ static void start_watching(app *a) {
     app_rewatch(a);
 }
 
+void app_keep_awake(app *a) { a->keep_awake = true; }
+
+/* Nothing to draw: the full-resolution frame of a still picture is on the
+ * screen (res_budget), no script or orbit drives frames, no toast is
+ * fading, no client asked for frames, no folder is being looked for. */
+static bool idle(const app *a, const view_script *script) {
+    return !script && a->budget.full_done && !a->keep_awake && a->orbit_left == 0 && !a->shot_pending &&
+           !a->stamp_pending && a->unwatched == 0 && glfwGetTime() > a->toast_until + 0.25;   /* and it is gone */
+}
+
+/* Has a watched file something to say (without taking it: frame() does)? */
+static bool files_pending(const app *a) {
+    if (!a->watch) return false;
+    if (watch_timeout_ms(a->watch) == 0) return true;
+    struct pollfd p = { .fd = watch_fd(a->watch), .events = POLLIN };
+    return p.fd >= 0 && poll(&p, 1, 0) > 0;
+}
+
+/* Waits for input, a window event or a file change while the picture is
+ * still; returns whether a frame is due. The timeout bounds how late a
+ * save is seen (the watcher's fd is not GLFW's to wait on). */
+static bool wait_for_work(app *a, const view_script *script) {
+    a->keep_awake = false;
+    if (!idle(a, script)) {
+        glfwPollEvents();
+        return true;
+    }
+    glfwWaitEventsTimeout(APP_IDLE_WAIT_S);
+    if (!a->woken && !files_pending(a) && idle(a, script)) return false;
+    a->slept = true;
+    return true;
+}
+
 int app_run(app *a, render *const *scenes, int n) {
     assert(n > 0 && a->d.draw && a->d.panel && a->d.reload);
     a->scenes = scenes;
@@ -495,7 +553,8 @@ int app_run(app *a, render *const *scenes, int n) {
     if (a->d.recordable && a->d.record) record_start(a, a->d.record);
     int rc = TARN_EXIT_OK;
     while (!glfwWindowShouldClose(a->win)) {
-        glfwPollEvents();
+        if (!wait_for_work(a, script)) continue;
+        a->woken = false;
         frame(a, script != NULL);
         char lost[1024];
         if (gl_ctx_lost(a->ctx, lost, sizeof lost)) {
@@ -542,6 +601,12 @@ app *app_create(const app_desc *desc) {
     glfwSetWindowTitle(a->win, title);
     /* ours first: the ImGui backend chains to callbacks installed before it */
     glfwSetScrollCallback(a->win, on_scroll);
+    glfwSetCursorPosCallback(a->win, on_cursor);
+    glfwSetCharCallback(a->win, on_char);
+    glfwSetWindowSizeCallback(a->win, on_size);
+    glfwSetWindowFocusCallback(a->win, on_focus);
+    glfwSetCursorEnterCallback(a->win, on_enter);
+    glfwSetWindowRefreshCallback(a->win, on_refresh);
     glfwSetKeyCallback(a->win, on_key);
     glfwSetMouseButtonCallback(a->win, on_button);
     a->panel = panel_create(a->win, "#version 130");

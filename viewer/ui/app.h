@@ -149,6 +149,13 @@ bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale);
 void app_budget_drawn(app *a, int iw, int ih, int w, int h);
 /* A rebuild or pack switch of the client's: the picture is new. */
 void app_picture_changed(app *a);
+
+/* A still window sleeps (waits for input, a window event or a watched
+ * file, at most APP_IDLE_WAIT_S at a time) instead of drawing the same
+ * frame; a client with work in flight (compare-view's heat maps) calls this
+ * in its draw to have the next frame drawn. */
+#define APP_IDLE_WAIT_S 0.05
+void app_keep_awake(app *a);
 /* The panel's "Frame budget ms" (0: off), read and written by its slider. */
 float *app_budget_ms(app *a);
 /* "480x270 (50%) of 960x540, budget 50 ms" for the panel. */

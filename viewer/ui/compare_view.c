@@ -559,6 +559,7 @@ static void on_draw(void *user, app *a) {
     if (v->wipe_a == v->wipe_b) v->wipe_b = (v->wipe_a + 1) % v->n;
     ensure_targets(v);
     poll_heat(v);
+    if (heat_job_busy(v->job)) app_keep_awake(a);   /* its result arrives between frames */
     bool heat = heat_shown(v);
     /* heat maps read the packs' images back: those are full size */
     double scale;
