@@ -11,6 +11,14 @@
 //       P = (x0 + sum Q_i A_i D.x cos th, level + sum A_i sin th, z0 + sum Q_i A_i D.z cos th)
 //       with Q_i = Q / (k_i A_i N), N the number of active Gerstner waves
 //   noise: octaves of tileable gradient noise (quintic fade), each drifting
+//   spectrum ocean (waves_ocean.glsl; Tessendorf 2001, reference/ref_ocean.h):
+//       up to 3 cascades of an N x N tile, inverse-FFT'd on the GPU each
+//       frame; adds height h, slope, the choppy sideways displacement
+//       lambda D and its Jacobian, bilinear between the tile's nodes;
+//       the frame's time is the textures' (wavesSums' t does not move it)
+//   explosion rings and 3D Perlin wave sets (waves_fx.glsl; height only,
+//       reference/ref_wavefx.h): expanding damped rings from a centre and
+//       a start time; octaves of improved Perlin noise in (x, z, t)
 //
 // k = 2 pi / L, omega = S k, S = sqrt(g L / 2 pi) when the speed is 0.
 // A wave with L <= 0 or A == 0 is inactive (and not counted in N).
@@ -35,6 +43,8 @@
 #define WAVES_GLSL
 
 #include "hash.glsl"
+#include "waves_ocean.glsl"
+#include "waves_fx.glsl"
 
 #define WAVES_MAX 8
 #define WAVES_NOISE_OCTAVES_MAX 8
@@ -143,8 +153,9 @@ vec3 wavesNoise(vec2 p0, float t) {
 
 // ---- the sums -----------------------------------------------------------
 
-// Height h (without level) and its gradient, Gerstner displacement D and its
-// Jacobian entries a = dDx/dx0, b = dDx/dz0 = dDz/dx0, d = dDz/dz0.
+// Height h (without level) and its gradient, the sideways displacement D
+// (Gerstner waves and the ocean) and its Jacobian entries a = dDx/dx0,
+// b = dDx/dz0 = dDz/dx0, d = dDz/dz0, of every model above.
 void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
     h = 0.0; dh = vec2(0.0); disp = vec2(0.0); abd = vec3(0.0);
     for (int i = 0; i < WAVES_MAX; i++) {
@@ -168,6 +179,12 @@ void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out ve
     vec3 nz = wavesNoise(p0, t);
     h += nz.x;
     dh += nz.yz;
+    wavesOcean(p0, h, dh, disp, abd);                   // no ocean: leaves at once
+    vec2 g;
+    h += wavesExplosions(p0, t, g);                     // height-only models
+    dh += g;
+    h += wavesPerlin(p0, t, g);
+    dh += g;
 }
 
 vec3 wavesDisplace(vec2 p0, float t) {
@@ -218,11 +235,13 @@ void wavesEval(vec2 p0, float t, out vec3 pos, out vec3 normal) {
 // ---- inversion -----------------------------------------------------------
 
 // The rest point p0 whose displaced position lies over the world (x, z):
-// Newton on p0 + D(p0) = xz from p0 = xz (only Gerstner waves move points
-// sideways); WAVES_NEWTON_ITERATIONS steps (the reference iterates to 1e-12).
+// Newton on p0 + D(p0) = xz from p0 = xz (Gerstner waves and the ocean's
+// choppy displacement move points sideways; the ocean's Jacobian is its
+// Dxx, Dxz, Dzz fields, bilinear like the displacement);
+// WAVES_NEWTON_ITERATIONS steps (the reference iterates to 1e-12).
 vec2 wavesRestPoint(vec2 xz, float t) {
     vec2 p0 = xz;
-    if (uWaveGerstN == 0 || uSteepness == 0.0) return p0;
+    if ((uWaveGerstN == 0 || uSteepness == 0.0) && uOceanN == 0) return p0;
     for (int it = 0; it < WAVES_NEWTON_ITERATIONS; it++) {
         vec2 disp = vec2(0.0);
         vec3 abd = vec3(0.0);
@@ -234,6 +253,9 @@ vec2 wavesRestPoint(vec2 xz, float t) {
             disp += cos(th) * a.yz;
             abd -= sin(th) * vec3(a.y * w.x, a.y * w.y, a.z * w.y);
         }
+        float oh = 0.0;
+        vec2 odh = vec2(0.0);
+        wavesOcean(p0, oh, odh, disp, abd);             // its height: unused, dropped
         vec2 F = p0 + disp - xz;
         mat2 J = mat2(1.0 + abd.x, abd.y, abd.y, 1.0 + abd.z);
         float det = determinant(J);

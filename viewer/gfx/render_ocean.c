@@ -175,14 +175,14 @@ static unsigned long long progs_hash(const gpu_ocean *o) {
     return h;
 }
 
-void ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
-    if (!o->active) return;
+bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
+    if (!o->active) return false;
     for (int i = 0; i < OCEAN_PROGS; i++)
-        if (!o->progs[i].gl) return;
+        if (!o->progs[i].gl) return false;
     unsigned long long hash = progs_hash(o);
     if (o->valid && t == o->t && hash == o->hash) {
         ocean_bind(o);
-        return;   /* a still frame, or a second view */
+        return false;   /* a still frame, or a second view */
     }
     int n = o->res;
     glViewport(0, 0, n, n);
@@ -249,6 +249,7 @@ void ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
     o->hash = hash;
     o->valid = true;
     o->frames++;
+    return true;
 }
 
 void ocean_read(const gpu_ocean *o, int c, float *a, float *b) {

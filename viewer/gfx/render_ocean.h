@@ -59,13 +59,16 @@ bool ocean_build_programs(gpu_ocean *o, const char *const *include_dirs, char **
 
 /* Computes the frame at time t unless the textures hold it already, naming
  * the passes in timer (may be NULL), and leaves A and B bound at their
- * units. Binds framebuffer 0, changes the viewport and the program. */
-void ocean_update(gpu_ocean *o, double t, gpu_timer *timer);
+ * units. Binds framebuffer 0, changes the viewport and the program.
+ * Returns whether it ran the passes. */
+bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer);
 
 /* Binds the frame's A and B at OCEAN_UNIT_A / OCEAN_UNIT_B (nothing when inactive). */
 void ocean_bind(const gpu_ocean *o);
 
-/* Sets uOceanA / uOceanB of program p to the units (whatever the world). */
+/* Sets uOceanA / uOceanB of program p to their units, with or without an
+ * ocean: every program that includes waves.glsl declares them, and two
+ * samplers of different types left on unit 0 fail every draw. */
 void ocean_upload(unsigned p);
 
 /* Reads the frame back: a and b each N * N * 4 floats of cascade c. */

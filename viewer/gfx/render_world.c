@@ -336,6 +336,7 @@ bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char *
     }
     if (!prog_build(&gw->height_prog, include_dirs, 1, log)) ok = false;
     prog_introspect(&gw->height_prog, log);
+    if (!ocean_build_programs(&gw->ocean, include_dirs, log)) ok = false;
     return ok;
 }
 
@@ -356,6 +357,7 @@ static bool above_water(const ref_world *w) {
 }
 
 void world_free(gpu_world *gw) {
+    ocean_free(&gw->ocean);
     for (int k = 0; k < WORLD_LODS; k++) {
         res_mesh_free(&gw->terrain[k]);
         res_mesh_free(&gw->skirt[k]);
@@ -479,6 +481,7 @@ static void seti(unsigned p, const char *name, int v) {
 }
 
 void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3]) {
+    if (p) ocean_upload(p);   /* with or without an ocean (see ocean_upload) */
     if (!gw->active || !p) return;
     const ref_world_desc *d = &gw->w.d;
     set3(p, "uSunDir", d->sun_dir);
@@ -538,6 +541,7 @@ void world_bind_textures(const gpu_world *gw) {
     glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_HEIGHT);
     glBindTexture(GL_TEXTURE_2D, gw->height_tex);
     glActiveTexture(GL_TEXTURE0);
+    ocean_bind(&gw->ocean);
 }
 
 /* Binds the world's program for a mode with everything it reads set. */
@@ -641,6 +645,13 @@ void world_draw_points(gpu_world *gw, int n, bool mesh) {
     }
     glDisableClientState(GL_VERTEX_ARRAY);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+/* ---- the spectrum ocean ---- */
+
+bool world_update_ocean(gpu_world *gw, double t, gpu_timer *timer) {
+    if (!gw->active) return false;
+    return ocean_update(&gw->ocean, t, timer);
 }
 
 /* ---- the waves' height map ---- */

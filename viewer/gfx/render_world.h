@@ -4,13 +4,15 @@
  * the CPU reference see one world. Private to render.c.
  *
  * Fixed texture units: 14 the terrain albedo (sampler uTerrainAlbedo),
- * 15 the sky cube map (samplerCube uSky). Every program that declares a
+ * 15 the sky cube map (samplerCube uSky), 28 and 29 the ocean's frame
+ * (uOceanA, uOceanB; OCEAN_UNIT_A/B), 30 the waves' height map. Every program that declares a
  * world uniform (uSunDir, uWaterLevel, the wave set, ...) gets it set. */
 #ifndef TARN_RENDER_WORLD_H
 #define TARN_RENDER_WORLD_H
 
 #include <stdbool.h>
 #include "ref_scene.h"
+#include "render_ocean.h"
 #include "render_prog.h"
 #include "render_res.h"
 
@@ -63,6 +65,9 @@ typedef struct gpu_world {
     int height_res;
     double height_t;
     unsigned long long height_hash;   /* the program the map was drawn with */
+    /* The spectrum ocean's frame (render_ocean.h): created with the world
+     * when its waves hold an ocean, nothing otherwise. */
+    gpu_ocean ocean;
 } gpu_world;
 
 /* A count the scene fixes (a target's side, points or texels per side)
@@ -90,6 +95,11 @@ bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char *
 void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);
 
 void world_bind_textures(const gpu_world *gw);
+
+/* Computes the ocean's frame for time t (render_ocean.h), unless the world
+ * has none or it holds t already; its passes are named in timer. Returns
+ * whether it ran passes. Call it before world_update_height, which reads it. */
+bool world_update_ocean(gpu_world *gw, double t, gpu_timer *timer);
 
 /* Draws the height map for time t at the detail of the frame (its side
  * WORLD_HEIGHT_RES times detail, at least 32), unless it is drawn for t
