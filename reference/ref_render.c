@@ -548,9 +548,10 @@ static void run_phase(rctx *c, void *(*fn)(void *), worker *wk, int items, doubl
 /* The caustic grid's region: the part of the world square where the
  * terrain can be under the water (h < level + wave height bound), found on
  * a REGION_SAMPLES^2 lattice and widened by one lattice step. 0 = none. */
-static int caustic_region(const ref_world *w, double box[4]) {
-    double hs = w->d.half_size, sp = 2 * hs / (REGION_SAMPLES - 1);
-    double top = w->d.water_level + w->waves.height_bound;
+static int caustic_region(const ref_world *w, double time, double box[4]) {
+    double hs = w->d.half_size, sp = 2 * hs / (REGION_SAMPLES - 1), hb;
+    ref_waves_bounds_at(&w->waves, time, &hb, NULL, NULL);   /* the frame's */
+    double top = w->d.water_level + hb;
     double x0 = INFINITY, x1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
     for (int j = 0; j < REGION_SAMPLES; j++)
         for (int i = 0; i < REGION_SAMPLES; i++) {
@@ -577,10 +578,11 @@ static int caustic_region(const ref_world *w, double box[4]) {
  * the grid's edge is dry land (the lake) this is far smaller than
  * ref_caustics' automatic margin, which assumes the deepest water at the
  * edge. */
-static double photon_margin(const ref_world *w, const double box[4], double cell) {
+static double photon_margin(const ref_world *w, double time, const double box[4], double cell) {
     const double *sun = w->d.sun_dir;
-    double hs = w->d.half_size, sp = 2 * hs / (REGION_SAMPLES - 1);
-    double top = w->d.water_level + w->waves.height_bound, wsb = w->waves.world_slope_bound;
+    double hs = w->d.half_size, sp = 2 * hs / (REGION_SAMPLES - 1), hb, wsb;
+    ref_waves_bounds_at(&w->waves, time, &hb, NULL, &wsb);   /* the frame's */
+    double top = w->d.water_level + hb;
     double tilt = atan(isfinite(wsb) ? wsb : 10.0), tn = tan(fmin(0.5 * tilt, PI / 4));
     double need = 0;
     for (int j = 0; j < REGION_SAMPLES; j++)
@@ -591,7 +593,7 @@ static double photon_margin(const ref_world *w, const double box[4], double cell
             double depth = top - ref_terrain_height(w, x, z);
             if (depth > 0) need = fmax(need, depth * tn - dist);
         }
-    return 2 * cell + w->waves.height_bound * (2 + hypot(sun[0], sun[2]) / sun[1]) + need +
+    return 2 * cell + hb * (2 + hypot(sun[0], sun[2]) / sun[1]) + need +
            (need > 0 ? sp : 0);
 }
 
@@ -601,7 +603,7 @@ static int plan_caustics(rctx *c, worker *wk, char *err, size_t errlen) {
     const ref_world *w = c->w;
     ref_render_result *r = c->out;
     double box[4];
-    if (!(w->d.sun_dir[1] > 1e-6) || !caustic_region(w, box)) return 0;   /* flat sun: zero or everywhere */
+    if (!(w->d.sun_dir[1] > 1e-6) || !caustic_region(w, c->d.time, box)) return 0;   /* flat sun: zero or everywhere */
     double ex = box[1] - box[0], ez = box[3] - box[2];
     double cell = fmax(ex, ez) / c->d.caustic_res;
     int nx = (int)ceil(ex / cell - 1e-9), nz = (int)ceil(ez / cell - 1e-9);
@@ -625,7 +627,7 @@ static int plan_caustics(rctx *c, worker *wk, char *err, size_t errlen) {
     cd.nx = nx;
     cd.nz = nz;
     cd.photons_per_cell = c->d.photons_per_cell;
-    cd.margin = photon_margin(w, box, cell);
+    cd.margin = photon_margin(w, c->d.time, box, cell);
     cd.opts.t_tol = PHOTON_T_TOL;
 
     ref_caustics *g = &r->caustics;

@@ -94,6 +94,10 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
     w->terrain_slope_bound = bound;
 }
 
+void ref_world_release(ref_world *w) {
+    if (w) ref_waves_release(&w->waves);
+}
+
 /* The lake: r is an elliptic radius in [0, ~1.4]; the bottom is flat-ish
  * below r = 0.35, rises to the water line near r = 0.95 and the shore goes
  * on rising to shore_height at the rim; the detail fades out on land. */

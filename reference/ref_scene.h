@@ -84,8 +84,14 @@ typedef struct ref_world {
     double terrain_slope_bound;    /* |grad h| <= this everywhere (for tracing) */
 } ref_world;
 
-/* Fills defaults, normalises, resolves the waves. */
+/* Fills defaults, normalises, resolves the waves. The waves may hold heap
+ * memory (a spectrum ocean, owned by w->waves): release the world with
+ * ref_world_release when it dies. A struct copy of a ref_world shares that
+ * memory: release exactly one copy, and use none after. */
 void ref_world_init(ref_world *w, const ref_world_desc *d);
+
+/* Frees what ref_world_init allocated; safe on a zeroed or released world. */
+void ref_world_release(ref_world *w);
 
 /* Terrain: height, gradient (dh/dx, dh/dz), unit normal; C1 everywhere. */
 double ref_terrain_height(const ref_world *w, double x, double z);

@@ -121,14 +121,24 @@ int ref_trace_water(const ref_waves *w, double time, const double o[3], const do
                     const ref_trace_opts *opts, ref_water_hit *hit) {
     trace_params tp = resolve_opts(opts);
     memset(hit, 0, sizeof *hit);
-    double level = w->desc.level, hb = w->height_bound;
+    /* the frame's own bounds (an ocean's any-time bounds are far looser) */
+    double level = w->desc.level, hb, wsb;
+    ref_waves_bounds_at(w, time, &hb, NULL, &wsb);
     double pad = 1e-7 * (1.0 + fabs(level) + hb);
     double ta = tp.t_min, tb = tp.t_max;
     if (!clip_slab(o[1], d[1], level - hb - pad, level + hb + pad, &ta, &tb)) return 0;
 
     double dlen = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double dh = hypot(d[0], d[2]);
-    double lip = fabs(d[1]) + w->world_slope_bound * dh;   /* |f'(t)| <= lip */
+    double lip = fabs(d[1]) + wsb * dh;   /* |f'(t)| <= lip */
+    /* min_wavelength is at most the finest ocean cascade's 2 texels, so the
+     * least step is a 64th of its texel. Where the sideways maps may fold
+     * (Gerstner Q + the ocean's chop >= 1) the world slope is unbounded and
+     * the march goes at this least step: it then finds every crossing of
+     * the surface whose sign change spans more than one step (a fold
+     * thinner than 1/64 texel along the ray may be stepped over), and
+     * where the inversion fails (NaN height: the surface is not a height
+     * field there) the sign test is false and the march goes on. */
     double min_step = (tp.min_step > 0.0 ? tp.min_step : w->min_wavelength / 128.0) / dlen;
 
     water_ctx c = { .w = w, .time = time, .o = o, .d = d };
@@ -337,7 +347,9 @@ int ref_caustics_plan_init(const ref_caustics_desc *din, ref_caustics_plan *p, c
     double level = w->desc.level;
     p->cell_dx = (d.x1 - d.x0) / d.nx;
     p->cell_dz = (d.z1 - d.z0) / d.nz;
-    p->emit_y = level + w->height_bound + 1e-3 * (1.0 + w->height_bound);
+    double hb_t, wsb_t;        /* the frame's bounds */
+    ref_waves_bounds_at(w, d.time, &hb_t, NULL, &wsb_t);
+    p->emit_y = level + hb_t + 1e-3 * (1.0 + hb_t);
 
     /* floor height range (bounds, or samples at the cell corners) */
     double ylo, yhi;
@@ -375,9 +387,9 @@ int ref_caustics_plan_init(const ref_caustics_desc *din, ref_caustics_plan *p, c
         /* two cells, the waves' height seen along the sun, and the sideways
          * drift of rays bent by tilted normals (half the tilt, at most 45
          * degrees) over the depth */
-        double tilt = atan(isfinite(w->world_slope_bound) ? w->world_slope_bound : 10.0);
+        double tilt = atan(isfinite(wsb_t) ? wsb_t : 10.0);
         margin = 2.0 * fmax(p->cell_dx, p->cell_dz) +
-                 w->height_bound * (2.0 + hypot(p->sun[0], p->sun[2]) / p->sun[1]) +
+                 hb_t * (2.0 + hypot(p->sun[0], p->sun[2]) / p->sun[1]) +
                  (level - ylo) * tan(fmin(0.5 * tilt, M_PI / 4.0));
     }
     double ex1, ez1;

@@ -171,12 +171,76 @@ int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t e
         double finest = nd->cell / (scale * 0.5);
         if (finest < lmin) lmin = finest;
     }
+    /* explosion rings and the Perlin set (height only) */
+    if (d.explosion_count < 0 || d.explosion_count > REF_EXPLOSIONS_MAX) {
+        msg_set(err, errlen, "explosion_count %d out of range 0..%d", d.explosion_count, REF_EXPLOSIONS_MAX);
+        return -1;
+    }
+    for (int i = 0; i < d.explosion_count; i++) {
+        if (ref_explosion_resolve(&d.explosion[i], err, errlen) != 0) return -1;
+        if (d.explosion[i].i0 == 0.0) continue;
+        ref_explosion_desc *e = &w->explosion[w->nexplosions++];
+        *e = d.explosion[i];
+        double eh, es;
+        ref_explosion_bounds(e, &eh, &es);
+        hb += eh;
+        slope += es;
+        if (TWO_PI / e->k < lmin) lmin = TWO_PI / e->k;
+    }
+    if (ref_perlin_resolve(&d.perlin, err, errlen) != 0) return -1;
+    if (d.perlin.amplitude != 0.0) {
+        w->has_perlin = 1;
+        w->perlin = d.perlin;
+        double ph, ps;
+        ref_perlin_bounds(&w->perlin, &ph, &ps);
+        hb += ph;
+        slope += ps;
+        /* the finest octave's lattice cell (2^(octaves-1) finer than cell) */
+        double finest = d.perlin.cell / ldexp(1.0, d.perlin.octaves - 1);
+        if (finest < lmin) lmin = finest;
+    }
+    w->fixed_height = hb;
+    w->fixed_slope = slope;
+    /* the ocean, last: the one part that holds memory */
+    if (d.ocean.spectrum != REF_SPECTRUM_NONE) {
+        w->ocean = ref_ocean_create(&d.ocean, err, errlen);
+        if (!w->ocean) return -1;
+        d.ocean = *ref_ocean_get_desc(w->ocean);
+        ref_ocean_bounds_any(w->ocean, &w->ocean_any);
+        hb += w->ocean_any.height;
+        slope += w->ocean_any.slope;
+        double ml = ref_ocean_min_wavelength(w->ocean);
+        if (ml < lmin) lmin = ml;
+    }
     w->desc = d;
     w->height_bound = hb;
     w->slope_bound = slope;
-    w->world_slope_bound = w->q_sum < 1.0 ? slope / (1.0 - w->q_sum) : INFINITY;
+    w->fold_bound = w->q_sum + w->ocean_any.chop;
+    w->world_slope_bound = w->fold_bound < 1.0 ? slope / (1.0 - w->fold_bound) : INFINITY;
     w->min_wavelength = isfinite(lmin) ? lmin : 1.0;
     return 0;
+}
+
+void ref_waves_release(ref_waves *w) {
+    if (!w) return;
+    ref_ocean_destroy(w->ocean);
+    w->ocean = NULL;
+}
+
+void ref_waves_bounds_at(const ref_waves *w, double t, double *height, double *slope, double *world_slope) {
+    double h = w->height_bound, s = w->slope_bound, fold = w->fold_bound;
+    if (w->ocean) {
+        ref_ocean_bounds b;
+        ref_ocean_bounds_at(w->ocean, t, &b);
+        h = w->fixed_height + b.height;
+        s = w->fixed_slope + b.slope;
+        fold = w->q_sum + b.chop;
+    }
+    if (height) *height = h;
+    if (slope) *slope = s;
+    /* grad H = J^-T grad h, and J = I + (Gerstner's and the ocean's
+     * sideways derivatives) has smallest singular value >= 1 - fold */
+    if (world_slope) *world_slope = fold < 1.0 ? s / (1.0 - fold) : INFINITY;
 }
 
 /* ------------------------------------------------------------------ */
@@ -279,6 +343,32 @@ static void sum_waves(const ref_waves *w, double u, double v, double t, int deri
         s->h += ref_waves_noise(w, u, v, t, derivs ? g : NULL);
         if (derivs) { s->hu += g[0]; s->hv += g[1]; }
     }
+    for (int i = 0; i < w->nexplosions; i++) {
+        double g[2];
+        s->h += ref_explosion_height(&w->explosion[i], u, v, t, derivs ? g : NULL);
+        if (derivs) { s->hu += g[0]; s->hv += g[1]; }
+    }
+    if (w->has_perlin) {
+        double g[2];
+        s->h += ref_perlin_height(&w->perlin, u, v, t, derivs ? g : NULL);
+        if (derivs) { s->hu += g[0]; s->hv += g[1]; }
+    }
+    if (w->ocean) {
+        ref_ocean_sample o;
+        ref_ocean_sample_at(w->ocean, u, v, t, &o);
+        s->h += o.h;
+        s->dx += o.dx;
+        s->dz += o.dz;
+        if (derivs) {
+            /* the slope fields, not the bilinear h's own gradient: what the
+             * GL shades with (smooth across cells) */
+            s->hu += o.hx;
+            s->hv += o.hz;
+            s->a += o.dxx;
+            s->b += o.dxz;
+            s->d += o.dzz;
+        }
+    }
 }
 
 void ref_waves_displace(const ref_waves *w, double u, double v, double t, double pos[3]) {
@@ -326,7 +416,10 @@ void ref_waves_eval(const ref_waves *w, double u, double v, double t, ref_waves_
 /* inversion: the undisplaced point under a world (x, z)               */
 
 /* Horizontal residual F = (u + Dx - x, v + Dz - z) and its Jacobian. Only the
- * Gerstner waves move points sideways, so only they are summed. */
+ * Gerstner waves and the ocean move points sideways, so only they are
+ * summed. The ocean's Jacobian is its interpolated D-derivative fields, the
+ * bilinear map's own derivative to O(texel): Newton still converges (at
+ * worst linearly, fast), and F itself is exact. */
 static double horiz_residual(const ref_waves *w, double u, double v, double t, double x, double z,
                              double F[2], double J[3]) {
     double dx = 0.0, dz = 0.0, a = 0.0, b = 0.0, d = 0.0;
@@ -342,6 +435,15 @@ static double horiz_residual(const ref_waves *w, double u, double v, double t, d
             b -= qs * c->dir[0] * c->dir[1];
             d -= qs * c->dir[1] * c->dir[1];
         }
+    }
+    if (w->ocean) {
+        ref_ocean_sample o;
+        ref_ocean_sample_at(w->ocean, u, v, t, &o);
+        dx += o.dx;
+        dz += o.dz;
+        a += o.dxx;
+        b += o.dxz;
+        d += o.dzz;
     }
     F[0] = u + dx - x;
     F[1] = v + dz - z;
@@ -566,6 +668,16 @@ int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max) {
     memcpy(&seed_bits, &d->noise.seed, sizeof seed_bits);
     all[n - 1].i = seed_bits;
     n += put_resolved(w, all + n);
+    n += ref_wavefx_uniforms(w->explosion, w->nexplosions, w->has_perlin ? &w->perlin : NULL, all + n,
+                             REF_WAVEFX_UNIFORMS_MAX);
+    put_scalar(&all[n++], "uOceanN", 1, w->ocean ? w->desc.ocean.cascades : 0);
+    put_scalar(&all[n++], "uOceanRes", 1, w->ocean ? w->desc.ocean.res : 0);
+    ref_waves_uniform *tile = &all[n++];
+    memset(tile, 0, sizeof *tile);
+    tile->name = "uOceanTile";
+    tile->count = REF_OCEAN_CASCADES_MAX;
+    tile->comps = 1;
+    for (int c = 0; w->ocean && c < w->desc.ocean.cascades; c++) tile->v[c] = (float)w->desc.ocean.tile[c];
     int k = n < max ? n : max;
     memcpy(out, all, (size_t)k * sizeof *out);
     return k;

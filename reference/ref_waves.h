@@ -9,7 +9,13 @@
  *     with Q_i = Q / (k_i A_i N), N the number of active Gerstner waves, so
  *     that sum Q_i k_i A_i = Q (the surface is loop-free while Q <= 1);
  *   - noise waves (height only): octaves of tileable 2D gradient noise
- *     (quintic fade, so C2), each drifting with its own velocity.
+ *     (quintic fade, so C2), each drifting with its own velocity;
+ *   - explosion rings and a 3D Perlin set (height only; ref_wavefx.h);
+ *   - a spectrum ocean (ref_ocean.h): height, slopes and Tessendorf's
+ *     sideways displacement, added like the Gerstner waves' (its Jacobian
+ *     too). Where it folds (the map's Jacobian <= 0) the height over a
+ *     world point is not unique: the inversion may fail (-1, NaN height)
+ *     and world-space slope bounds are infinite.
  *
  * Coordinates: y is up, the mean water plane is y = level; (u, v) are the
  * undisplaced (rest) coordinates (x0, z0) of a surface point and P(u, v, t)
@@ -27,7 +33,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ref_ocean.h"
 #include "ref_uniform.h"
+#include "ref_wavefx.h"
 
 #define REF_WAVES_MAX 8            /* sines, and Gerstner waves, each */
 #define REF_NOISE_OCTAVES_MAX 8
@@ -69,6 +77,10 @@ typedef struct ref_waves_desc {
     double steepness;   /* Q = sum Q_i k_i A_i; 0 = the Gerstner waves are plain sines */
     double level;       /* mean water height */
     ref_noise_desc noise;
+    ref_ocean_desc ocean;          /* spectrum NONE (0): no ocean */
+    int explosion_count;
+    ref_explosion_desc explosion[REF_EXPLOSIONS_MAX];   /* i0 = 0: no ring */
+    ref_perlin_desc perlin;        /* amplitude 0: no Perlin set */
 } ref_waves_desc;
 
 typedef struct ref_wave_comp {   /* one active wave, resolved */
@@ -99,7 +111,22 @@ typedef struct ref_waves {
     double slope_bound;        /* |grad h(u, v)| <= slope_bound (parameter domain) */
     double world_slope_bound;  /* |grad H(x, z)| bound in world space: slope_bound
                                   / (1 - q_sum); INFINITY when q_sum >= 1 */
-    double min_wavelength;     /* smallest feature: min L, noise cell / 2^(octaves-1) */
+    double min_wavelength;     /* smallest feature: min L, noise cell / 2^(octaves-1),
+                                  the ocean's finest 2 texels */
+    /* explosion rings with i0 != 0 and the Perlin set, resolved */
+    int nexplosions;
+    ref_explosion_desc explosion[REF_EXPLOSIONS_MAX];
+    int has_perlin;
+    ref_perlin_desc perlin;
+    /* The spectrum ocean, OWNED by this struct (NULL when there is none):
+     * ref_waves_release frees it. A struct copy of a ref_waves (or of a
+     * ref_world holding one) shares the pointer: exactly one copy is
+     * released, and no copy is used after that. */
+    ref_ocean *ocean;
+    ref_ocean_bounds ocean_any;  /* ref_ocean_bounds_any (zero without an ocean) */
+    double fixed_height, fixed_slope;   /* the bounds' parts of every model but the ocean */
+    double fold_bound;         /* q_sum + ocean_any.chop: the sideways map's
+                                  derivative has operator norm <= this at any time */
 } ref_waves;
 
 /* A point of the surface with its frame. */
@@ -124,8 +151,22 @@ ref_waves_desc ref_waves_default(void);
 
 /* Resolves a desc (NULL = all zero = flat water). Returns 0, or -1 with a
  * message in err (when err is not NULL) for bad input: counts out of range,
- * non-finite numbers, negative steepness. */
+ * non-finite numbers, negative steepness, a bad ocean, ring or Perlin set.
+ * It builds the ocean (heap memory): release w with ref_waves_release when
+ * done. w is overwritten, not released, so release a used one first. On
+ * error nothing is held (w->ocean is NULL). */
 int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t errlen);
+
+/* Frees what init allocated (the ocean); safe on a zeroed, failed or
+ * already released wave set. The resolved parameters stay readable, but
+ * queries must not be made after it when there was an ocean. */
+void ref_waves_release(ref_waves *w);
+
+/* Bounds for the frame at time t (tighter than the any-time fields when
+ * there is an ocean: its exact per-frame bounds): |y - level| <= height,
+ * |grad h(u, v)| <= slope, |grad H(x, z)| <= world_slope (INFINITY where
+ * the sideways maps may fold). Any pointer may be NULL. */
+void ref_waves_bounds_at(const ref_waves *w, double t, double *height, double *slope, double *world_slope);
 
 /* Displaced position P(u, v, t). */
 void ref_waves_displace(const ref_waves *w, double u, double v, double t, double pos[3]);
@@ -162,9 +203,12 @@ double ref_waves_height(const ref_waves *w, double x, double z, double t);
  * name, type and float values, in a fixed order: the waves as described
  * (uSineAngle, ...), then as resolved here (uWaveSine, ...: inactive
  * waves dropped, k D, omega, Q_i A_i D and the noise's octaves worked out
- * once, so no shader does it per vertex). Returns how many were written
+ * once, so no shader does it per vertex), then ref_wavefx_uniforms' (the
+ * rings and the Perlin set), then the ocean's: uOceanN (int, cascades, 0 =
+ * none), uOceanRes (int, N), uOceanTile (float[REF_OCEAN_CASCADES_MAX], L_c).
+ * Returns how many were written
  * (at most max; REF_WAVES_UNIFORMS_MAX fits all). */
-#define REF_WAVES_UNIFORMS_MAX 34
+#define REF_WAVES_UNIFORMS_MAX (34 + REF_WAVEFX_UNIFORMS_MAX + 3)
 int ref_waves_uniforms(const ref_waves *w, ref_waves_uniform *out, int max);
 
 #endif

@@ -460,7 +460,8 @@ static void test_uniforms(void) {
     if (init(&w, &d)) return;
     ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
     int n = ref_waves_uniforms(&w, u, REF_WAVES_UNIFORMS_MAX);
-    CHECK(n == 32);
+    /* 32 of the waves, ref_wavefx's 7 (rings and Perlin set), the ocean's 3 */
+    CHECK(n == 32 + 7 + 3);
     for (int i = 0; i < n; i++)
         for (int j = i + 1; j < n; j++) CHECK(strcmp(u[i].name, u[j].name) != 0);
     int seen = 0;
@@ -502,6 +503,130 @@ static void test_uniforms(void) {
     CHECK(ref_waves_uniforms(&w, u, 3) == 3);
 }
 
+/* A gentle spectrum ocean (lambda 1, not folding at t) through the wave
+ * set: the inversion converges, heights and positions are the ocean's
+ * fields at the rest point, the normal is the continuous surface's. */
+static ref_waves_desc ocean_desc(double wind, double lambda) {
+    ref_waves_desc d;
+    memset(&d, 0, sizeof d);
+    d.level = 0.5;
+    d.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_JONSWAP, .wind_speed = wind, .fetch = 20e3,
+                                .choppiness = lambda, .res = 64, .cascades = 2, .tile = { 64, 8 }, .seed = 3 };
+    return d;
+}
+
+static void test_ocean(void) {
+    ref_waves_desc d = ocean_desc(6, 1);
+    d.gerstner_count = 1;
+    d.gerstner[0] = (ref_wave_desc){ .angle_deg = 10, .wavelength = 7, .amplitude = 0.05 };
+    d.steepness = 0.2;
+    ref_waves w;
+    if (init(&w, &d)) return;
+    CHECK(w.ocean != NULL);
+    double t = 1.25, hb, sb, wsb;
+    ref_waves_bounds_at(&w, t, &hb, &sb, &wsb);
+    CHECK_MSG(isfinite(wsb) && hb <= w.height_bound && sb <= w.slope_bound, "bounds %g %g %g", hb, sb, wsb);
+    CHECK(w.min_wavelength <= 2 * 8.0 / 64);
+    uint64_t st = 7;
+    double worst_r = 0, worst_h = 0;
+    for (int i = 0; i < 300; i++) {
+        double x = 200 * lcg01(&st) - 100, z = 200 * lcg01(&st) - 100;
+        ref_waves_point p;
+        int rc = ref_waves_at(&w, x, z, t, NULL, &p);
+        CHECK(rc == 0);
+        worst_r = fmax(worst_r, p.residual / fmax(1, fmax(fabs(x), fabs(z))));
+        /* the rest point's own fields: Gerstner plus ocean, written out */
+        ref_ocean_sample s;
+        ref_ocean_sample_at(w.ocean, p.param[0], p.param[1], t, &s);
+        const ref_wave_comp *g = &w.gerstner[0];
+        double th = g->k * (g->dir[0] * p.param[0] + g->dir[1] * p.param[1]) + g->omega * t + g->phase;
+        double px = p.param[0] + g->qa * g->dir[0] * cos(th) + s.dx;
+        double pz = p.param[1] + g->qa * g->dir[1] * cos(th) + s.dz;
+        double py = d.level + g->amp * sin(th) + s.h;
+        CHECK(fabs(px - x) <= 1e-11 * fmax(1, fabs(x)) && fabs(pz - z) <= 1e-11 * fmax(1, fabs(z)));
+        worst_h = fmax(worst_h, fabs(ref_waves_height(&w, x, z, t) - py));
+        CHECK(fabs(p.pos[1] - py) < 1e-14 * 10);
+    }
+    /* a residual of 1e-12 moves the height by at most slope / (1 - fold) times it */
+    CHECK_MSG(worst_r <= 1e-12, "residual %g", worst_r);
+    CHECK_MSG(worst_h <= 1e-12 * 100 * wsb + 1e-14, "height %g", worst_h);
+    ref_waves_release(&w);
+
+    /* normals at nodes (integer metres are nodes of both cascades) against
+     * central differences of the continuous displaced surface (the direct
+     * sum; e = 1e-5: truncation (k e)^2, rounding 1e-15 / e: < 1e-7) */
+    ref_waves_desc od = ocean_desc(6, 1);
+    if (init(&w, &od)) return;
+    for (int i = 0; i < 10; i++) {
+        double u = (i * 7) % 64 - 20, v = (i * 13) % 64 + 3, e = 1e-5;
+        ref_waves_point p;
+        ref_waves_eval(&w, u, v, t, &p);
+        ref_ocean_sample a, b, c2, dd;
+        ref_ocean_direct_sum(w.ocean, u + e, v, t, &a);
+        ref_ocean_direct_sum(w.ocean, u - e, v, t, &b);
+        ref_ocean_direct_sum(w.ocean, u, v + e, t, &c2);
+        ref_ocean_direct_sum(w.ocean, u, v - e, t, &dd);
+        double B[3] = { (2 * e + a.dx - b.dx) / (2 * e), (a.h - b.h) / (2 * e), (a.dz - b.dz) / (2 * e) };
+        double T[3] = { (c2.dx - dd.dx) / (2 * e), (c2.h - dd.h) / (2 * e), (2 * e + c2.dz - dd.dz) / (2 * e) };
+        double n[3] = { T[1] * B[2] - T[2] * B[1], T[2] * B[0] - T[0] * B[2], T[0] * B[1] - T[1] * B[0] };
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; k++) CHECK_MSG(fabs(n[k] / l - p.normal[k]) < 1e-7, "normal %d: %g vs %g", k, n[k] / l, p.normal[k]);
+        CHECK(p.jacobian > 0);
+    }
+    ref_waves_uniform un[REF_WAVES_UNIFORMS_MAX];
+    int nu = ref_waves_uniforms(&w, un, REF_WAVES_UNIFORMS_MAX), seen = 0;
+    for (int i = 0; i < nu; i++) {
+        if (!strcmp(un[i].name, "uOceanN")) { seen++; CHECK(un[i].is_int && un[i].i == 2); }
+        if (!strcmp(un[i].name, "uOceanRes")) { seen++; CHECK(un[i].is_int && un[i].i == 64); }
+        if (!strcmp(un[i].name, "uOceanTile")) {
+            seen++;
+            CHECK(!un[i].is_int && un[i].count == REF_OCEAN_CASCADES_MAX && un[i].v[0] == 64 && un[i].v[1] == 8 && un[i].v[2] == 0);
+        }
+    }
+    CHECK(seen == 3);
+    ref_waves_release(&w);
+    ref_waves_release(&w);                 /* twice: safe */
+    ref_waves zero;
+    memset(&zero, 0, sizeof zero);
+    ref_waves_release(&zero);
+
+    /* a bad ocean is an error and holds nothing */
+    od.ocean.res = 100;
+    char err[256];
+    CHECK(ref_waves_init(&w, &od, err, sizeof err) == -1 && w.ocean == NULL);
+    CHECK_STR_CONTAINS(err, "power of two");
+}
+
+/* A folding sea (chop >= 1): ref_waves_eval stays finite everywhere; over
+ * a world point ref_waves_height gives a finite height (one of the
+ * surface's sheets there, rc 0) or NaN exactly when the inversion fails
+ * (rc -1: no unique rest point found). */
+static void test_ocean_folding(void) {
+    ref_waves_desc d = ocean_desc(15, 5);
+    d.ocean.amplitude = 1.5;
+    ref_waves w;
+    if (init(&w, &d)) return;
+    double t = 0.5, wsb;
+    ref_waves_bounds_at(&w, t, NULL, NULL, &wsb);
+    CHECK(isinf(wsb) && isinf(w.world_slope_bound));
+    uint64_t st = 3;
+    int nan = 0, folds = 0;
+    for (int i = 0; i < 400; i++) {
+        double x = 128 * lcg01(&st), z = 128 * lcg01(&st);
+        ref_waves_point p;
+        ref_waves_eval(&w, x, z, t, &p);
+        for (int k = 0; k < 3; k++) CHECK(isfinite(p.pos[k]) && isfinite(p.normal[k]));
+        folds += p.jacobian < 0;
+        double h = ref_waves_height(&w, x, z, t), uv[2], h2;
+        int rc = ref_waves_rest_point(&w, x, z, t, NULL, uv, &h2);
+        if (isnan(h)) { nan++; CHECK(rc == -1); }
+        else CHECK(rc == 0 && isfinite(h) && h == h2);
+    }
+    CHECK_MSG(folds > 0, "no fold at this setting");
+    (void)nan;
+    ref_waves_release(&w);
+}
+
 int main(void) {
     RUN(test_defaults_and_errors);
     RUN(test_gerstner_matches_gems_eq9);
@@ -512,5 +637,7 @@ int main(void) {
     RUN(test_newton_inversion);
     RUN(test_noise);
     RUN(test_uniforms);
+    RUN(test_ocean);
+    RUN(test_ocean_folding);
     return check_summary();
 }
