@@ -53,6 +53,26 @@ static void test_missing_scene_names_the_file(void) {
     CHECK_STR_CONTAINS(out, "nope.glib");
 }
 
+/* A frame that would take more than a quarter of the machine's memory is
+ * refused with the reason, before any drawing (issue #30: WindowSize 16000
+ * 16000 took 4.4 GB and 10.7 s a frame). */
+static void test_huge_frame_is_refused(void) {
+    char cmd[1024], out[8192], glib[512];
+    snprintf(glib, sizeof glib, "%s/huge.glib", dir);
+    FILE *f = fopen(glib, "w");
+    if (!f) { CHECK(f != NULL); return; }
+    fputs("##OpenGL GLIB\nWindowSize 16384 16384\nOrtho -1 1 -1 1\nQuadXY 0 1 1 1\n", f);
+    fclose(f);
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    if ((double)pages * page / 4 > 16384.0 * 16384.0 * 36) SKIP("this machine has room for a 16384^2 frame");
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s -o %s/huge.png 2>&1", bin, glib, dir);
+    int rc = run_command(cmd, out, sizeof out);
+    if (rc == 3) SKIP("no OpenGL");
+    CHECK_MSG(rc == 2, "%s", out);
+    CHECK_STR_CONTAINS(out, "huge.glib: 16384x16384 needs about");
+    CHECK_STR_CONTAINS(out, "ask for less");
+}
+
 /* The default scene, headless: the top rows see the sky above the far
  * shore, so they are the glib's Background (0.55 0.72 0.90); the middle is
  * water, which is not. Two renders at the same time are identical. */
@@ -198,6 +218,7 @@ int main(void) {
     RUN(test_help_lists_every_command);
     RUN(test_bad_usage_exits_2);
     RUN(test_missing_scene_names_the_file);
+    RUN(test_huge_frame_is_refused);
     RUN(test_render_headless_is_deterministic_and_follows_scene);
     RUN(test_frames_write_every_frame);
     RUN(test_set_changes_uniforms);

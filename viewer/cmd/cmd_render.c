@@ -133,6 +133,14 @@ int cli_render(const cli_render_desc *d) {
     if (w <= 0 || h <= 0) render_window_size(r, &w, &h);
     render_target t;
     bool linear_scene = render_has_world(r);
+    /* colour and depth, the multisampled ones, the image read back */
+    double bytes = 16 + 4 + 16 + (d->samples > 1 ? d->samples * 20.0 : 0);
+    if (!gl_ctx_frame_fits(w, h, bytes, err, sizeof err)) {
+        fprintf(stderr, "tarn: %s: %s\n", d->glib, err);
+        render_destroy(r);
+        gl_ctx_destroy(ctx);
+        return TARN_EXIT_USAGE;
+    }
     if (!render_target_create(&t, w, h, wants_float(d->out) || linear_scene)) {
         fprintf(stderr, "tarn: cannot create a %dx%d framebuffer\n", w, h);
         render_destroy(r);

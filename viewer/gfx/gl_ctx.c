@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "mem.h"
 
@@ -331,4 +332,29 @@ const char *gl_ctx_describe(gl_ctx *c) { return c->description; }
 bool gl_ctx_have_display(void) {
     const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
     return (x && *x) || (wl && *wl);
+}
+
+bool gl_ctx_frame_fits(int w, int h, double bytes_per_pixel, char *why, int whylen) {
+    GLint vp[2] = { 0, 0 }, rb = 0, tex = 0;
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &tex);
+    int max = vp[0];
+    if (vp[1] > 0 && vp[1] < max) max = vp[1];
+    if (rb > 0 && rb < max) max = rb;
+    if (tex > 0 && tex < max) max = tex;
+    if (max > 0 && (w > max || h > max)) {
+        snprintf(why, (size_t)whylen, "%dx%d is beyond this OpenGL's largest frame, %d a side; ask for less",
+                 w, h, max);
+        return false;
+    }
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    double have = pages > 0 && page > 0 ? (double)pages * (double)page : 0;
+    double need = (double)w * (double)h * bytes_per_pixel;
+    if (have > 0 && need > have / 4) {
+        snprintf(why, (size_t)whylen, "%dx%d needs about %.1f GB for its targets, more than a quarter of this "
+                 "machine's %.1f GB; ask for less", w, h, need / 1e9, have / 1e9);
+        return false;
+    }
+    return true;
 }

@@ -36,4 +36,11 @@ const char *gl_ctx_describe(gl_ctx *c);
 /* true when a display can be opened (DISPLAY or WAYLAND_DISPLAY set). */
 bool gl_ctx_have_display(void);
 
+/* Can the current context draw a w x h frame of bytes_per_pixel (all its
+ * targets together: colour, depth, samples)? No when a side is beyond the
+ * GL's maximum (viewport, renderbuffer, texture) or the frame would take
+ * more than a quarter of the machine's memory (issue #30: WindowSize 16000 16000
+ * asked for 4.4 GB and 10.7 s a frame). False with the reason in why. */
+bool gl_ctx_frame_fits(int w, int h, double bytes_per_pixel, char *why, int whylen);
+
 #endif

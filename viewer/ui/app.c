@@ -20,6 +20,7 @@
 #include "util.h"
 #include "watch.h"
 
+#include <math.h>
 #include <poll.h>
 
 struct app {
@@ -627,6 +628,21 @@ void app_destroy(app *a) {
 /* ---- small things ---- */
 
 void app_fit_window(app *a, int w, int h) {
+    /* no larger than the screen (issue #30: WindowSize 16000 16000 opened a
+     * 4.4 GB window at 10.7 s a frame): the scene keeps its aspect */
+    int mx = 0, my = 0, mw = 0, mh = 0;
+    GLFWmonitor *m = glfwGetPrimaryMonitor();
+    if (m) glfwGetMonitorWorkarea(m, &mx, &my, &mw, &mh);
+    int room_w = mw - APP_PANEL_WIDTH, room_h = mh;
+    if (room_w > 160 && room_h > 120 && (w > room_w || h > room_h)) {
+        double s = fmin((double)room_w / w, (double)room_h / h);
+        int nw = (int)(w * s), nh = (int)(h * s);
+        app_toast(a, "WindowSize %dx%d is larger than the screen: the window shows it at %dx%d "
+                  "(tarn render --size %dx%d draws the full size)", w, h, nw, nh, w, h);
+        fprintf(stderr, "%s: %s\n", a->d.name, a->toast);
+        w = nw;
+        h = nh;
+    }
     a->fit_w = w;
     a->fit_h = h;
     glfwSetWindowSize(a->win, w + APP_PANEL_WIDTH, h);
