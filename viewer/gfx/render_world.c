@@ -373,6 +373,7 @@ void world_free(gpu_world *gw) {
     prog_free(&gw->height_prog);
     if (gw->height_fbo) glDeleteFramebuffers(1, &gw->height_fbo);
     if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
+    ref_world_release(&gw->w);   /* after ocean_free: its GL passes read the ocean */
     bool off = gw->height_map_off;   /* a setting of the renderer's, not of this world */
     memset(gw, 0, sizeof *gw);
     gw->height_map_off = off;
