@@ -29,7 +29,10 @@
 #include "support.h"
 #include "gl_support.h"
 #include "ref_ocean.h"
+#include "ref_waves.h"
 #include "render_ocean.h"
+#include "render_world.h"
+#include "shader_src.h"
 
 static const char *common_dir(void) {
     static char dir[1024];
@@ -231,6 +234,245 @@ static void test_pass_cost(void) {
     }
 }
 
+/* ---- (b) through waves.glsl, against ref_waves ---- */
+
+#define GRID 48            /* GRID x GRID rest points (and world points) */
+#define EXTENT 30.0        /* over [-EXTENT, EXTENT]^2: the finest tiles many times, the middle one in part */
+#define WTIME 2.0
+
+static GLuint compile(GLenum type, const char *name) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", scratch_dir, name);
+    const char *inc[1] = { common_dir() };
+    shader_src src;
+    shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
+                          .include_dirs = inc, .ninclude_dirs = 1 };
+    if (!shader_src_load(&d, &src)) { fprintf(stderr, "%s\n", src.error); return 0; }
+    GLuint sh = glCreateShader(type);
+    const char *text = src.text;
+    glShaderSource(sh, 1, &text, NULL);
+    glCompileShader(sh);
+    GLint ok;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        fprintf(stderr, "%s\n", log);
+        sh = 0;
+    }
+    shader_src_free(&src);
+    return sh;
+}
+
+static GLuint eval_program(void) {
+    scratch_write("grid.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_Vertex; }\n");
+    scratch_write("grid.frag",
+                  "#version 330 compatibility\n#include \"waves.glsl\"\n"
+                  "uniform float uTime;\nuniform float uExtent;\nuniform int uMode;\nuniform float uGrid;\n"
+                  "out vec4 c;\n"
+                  "void main() {\n"
+                  "  vec2 p = -uExtent + gl_FragCoord.xy * 2.0 * uExtent / uGrid;\n"
+                  "  vec3 pos, n;\n"
+                  "  if (uMode == 0) { wavesEval(p, uTime, pos, n); c = vec4(pos, 1.0); }\n"
+                  "  else if (uMode == 1) { wavesEval(p, uTime, pos, n); c = vec4(n, 1.0); }\n"
+                  "  else c = vec4(wavesRestPoint(p, uTime), wavesHeightAt(p, uTime), 1.0);\n"
+                  "}\n");
+    GLuint vs = compile(GL_VERTEX_SHADER, "grid.vert"), fs = compile(GL_FRAGMENT_SHADER, "grid.frag");
+    if (!vs || !fs) return 0;
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    return ok ? p : 0;
+}
+
+static void upload_waves(GLuint p, const ref_waves *w) {
+    ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
+    int n = ref_waves_uniforms(w, u, REF_WAVES_UNIFORMS_MAX);
+    for (int i = 0; i < n; i++) {
+        GLint loc = glGetUniformLocation(p, u[i].name);
+        if (loc < 0) continue;
+        if (u[i].is_int) glUniform1i(loc, u[i].i);
+        else if (u[i].is_uint) glUniform1uiv(loc, u[i].count, u[i].u);
+        else if (u[i].comps == 4) glUniform4fv(loc, u[i].count, u[i].v);
+        else if (u[i].comps == 3) glUniform3fv(loc, u[i].count, u[i].v);
+        else glUniform1fv(loc, u[i].count, u[i].v);
+    }
+    ocean_upload(p);
+    glUniform1f(glGetUniformLocation(p, "uTime"), (float)WTIME);
+    glUniform1f(glGetUniformLocation(p, "uExtent"), (float)EXTENT);
+    glUniform1f(glGetUniformLocation(p, "uGrid"), (float)GRID);
+}
+
+/* mode 0 positions, 1 normals, 2 (rest point, height) over world points; GL rows (row 0 at the bottom) */
+static void draw_modes(GLuint p, const ref_waves *w, float out[3][GRID * GRID * 4]) {
+    GLuint tex, fbo;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, GRID, GRID, 0, GL_RGBA, GL_FLOAT, NULL);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    glViewport(0, 0, GRID, GRID);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(p);
+    upload_waves(p, w);
+    for (int m = 0; m < 3; m++) {
+        glUniform1i(glGetUniformLocation(p, "uMode"), m);
+        glRectf(-1, -1, 1, 1);
+        glReadPixels(0, 0, GRID, GRID, GL_RGBA, GL_FLOAT, out[m]);
+    }
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+}
+
+static double cell_coord(int i) { return -EXTENT + (i + 0.5) * 2 * EXTENT / GRID; }
+
+/* The tolerances, in metres for positions and heights and unit-vector
+ * components for normals, from the float error sources: the frame's
+ * fields are off by <= 1.5e-5 of their rms (part (a)); the bilinear
+ * weights by fract(p0 / L) N rounded (2^-24 * 30 / 5.3 * 128 texels
+ * = 4e-5 texel, times a texel's change of a field: under 1e-5 m here);
+ * the Gerstner wave's and the rings' phases by ~1e-5 rad (see
+ * test_waves_gl, waves_fx.glsl). 2e-4 leaves a margin of ~10 over the
+ * sum, while a missing model or a wrong sign shows at 1e-2 or more
+ * (ocean heights ~0.3 m, slopes ~0.2). The height over a world point
+ * adds the inversion: the GPU's 4 Newton steps (with the fields' own
+ * Jacobian, not the bilinear map's derivative) against the reference's
+ * 1e-12; checked at 2e-4 m like the rest point (measured: a few 1e-6 m
+ * for the positions and heights, 1e-5 for normals and rest points). */
+#define TOL_POS 2e-4
+#define TOL_NRM 2e-4
+#define TOL_WORLD 2e-4
+
+static void test_waves_with_an_ocean_match_reference(void) {
+    ref_waves_desc d;
+    memset(&d, 0, sizeof d);
+    d.gerstner_count = 1;
+    d.gerstner[0] = (ref_wave_desc){ .angle_deg = 60, .wavelength = 9, .amplitude = 0.08 };
+    d.steepness = 0.3;
+    d.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_JONSWAP, .wind_speed = 7, .wind_angle_deg = 20,
+                                .choppiness = 0.6, .res = 128, .cascades = 3, .seed = 11 };
+    d.explosion_count = 1;
+    d.explosion[0] = (ref_explosion_desc){ .center = { 3, -4 }, .start = 0.5, .i0 = 0.05, .k = 3, .decay = 0.2 };
+    d.perlin = (ref_perlin_desc){ .amplitude = 0.03, .cell = 3, .octaves = 3, .angle_deg = 45, .seed = 5 };
+    ref_waves w;
+    char err[256];
+    if (ref_waves_init(&w, &d, err, sizeof err) != 0) { CHECK_MSG(0, "%s", err); return; }
+    CHECK(w.ocean != NULL);
+    gpu_ocean g;
+    CHECK(gpu_from(&g, w.ocean));
+    CHECK(ocean_update(&g, WTIME, NULL));
+    GLuint p = eval_program();
+    CHECK(p != 0);
+    if (!p) { ocean_free(&g); ref_waves_release(&w); return; }
+    static float out[3][GRID * GRID * 4];
+    draw_modes(p, &w, out);
+    double wp = 0, wn = 0, wh = 0, wr = 0, amp = 0;
+    int failed = 0;
+    for (int j = 0; j < GRID; j++)
+        for (int i = 0; i < GRID; i++) {
+            double u = cell_coord(i), v = cell_coord(j);
+            const float *P = out[0] + (j * GRID + i) * 4, *Nr = out[1] + (j * GRID + i) * 4, *R = out[2] + (j * GRID + i) * 4;
+            ref_waves_point pt;
+            ref_waves_eval(&w, u, v, WTIME, &pt);
+            amp = fmax(amp, fabs(pt.pos[1]));
+            for (int k = 0; k < 3; k++) {
+                wp = fmax(wp, fabs(P[k] - pt.pos[k]));
+                wn = fmax(wn, fabs(Nr[k] - pt.normal[k]));
+            }
+            double uv[2], hh;
+            if (ref_waves_rest_point(&w, u, v, WTIME, NULL, uv, &hh) != 0) { failed++; continue; }   /* folded */
+            wr = fmax(wr, hypot(R[0] - uv[0], R[1] - uv[1]));
+            wh = fmax(wh, fabs(R[2] - hh));
+        }
+    fprintf(stderr, "  ocean + Gerstner + ring + Perlin (heights to %.2f m): position %.3g m, normal %.3g, "
+            "rest point %.3g m, height over a world point %.3g m (%d folded points skipped)\n",
+            amp, wp, wn, wr, wh, failed);
+    CHECK(amp > 0.1);
+    CHECK(wp <= TOL_POS);
+    CHECK(wn <= TOL_NRM);
+    CHECK(wr <= TOL_WORLD);
+    CHECK(wh <= TOL_WORLD);
+    CHECK(failed < GRID * GRID / 50);
+    glDeleteProgram(p);
+    ocean_free(&g);
+    ref_waves_release(&w);
+}
+
+/* ---- (c) a world without an ocean pays nothing ---- */
+
+static bool has_ocean_pass(render *r) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, true, &names, &ms);
+    for (int i = 0; i < n; i++)
+        if (strstr(names[i], "ocean")) return true;
+    return false;
+}
+
+static void test_no_ocean_no_pass(void) {
+    render *r = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    render_target tg;
+    CHECK(render_target_create(&tg, 64, 36, true));
+    render_frame(r, 1.0, tg.fbo, 64, 36, NULL);
+    render_frame(r, 2.0, tg.fbo, 64, 36, NULL);
+    CHECK(!has_ocean_pass(r));
+    render_target_destroy(&tg);
+    render_destroy(r);
+    /* the world module itself: no ocean, no texture, no program */
+    ref_world_desc desc;
+    memset(&desc, 0, sizeof desc);
+    gpu_world gw;
+    memset(&gw, 0, sizeof gw);
+    const char *inc[1] = { common_dir() };
+    char *log = NULL;
+    world_build(&gw, &desc, inc, common_dir(), &log);
+    free(log);
+    CHECK(gw.active);
+    CHECK(!gw.ocean.active && gw.ocean.tex[0][0] == 0 && gw.ocean.h0_tex == 0 && gw.ocean.progs[0].gl == 0);
+    CHECK(!world_update_ocean(&gw, 1.0, NULL));
+    world_free(&gw);
+}
+
+/* And one with an ocean computes it once a time and names its passes. */
+static void test_ocean_world_runs_its_passes(void) {
+    ref_world_desc desc;
+    memset(&desc, 0, sizeof desc);
+    desc.waves.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_PHILLIPS, .res = 64, .cascades = 2, .choppiness = 0.5 };
+    gpu_world gw;
+    memset(&gw, 0, sizeof gw);
+    const char *inc[1] = { common_dir() };
+    char *log = NULL;
+    CHECK(world_build(&gw, &desc, inc, common_dir(), &log));
+    if (log) fprintf(stderr, "%s", log);
+    free(log);
+    CHECK(gw.ocean.active && gw.ocean.cascades == 2 && gw.ocean.res == 64);
+    gpu_timer timer;
+    gpu_timer_init(&timer);
+    gpu_timer_begin_frame(&timer);
+    CHECK(world_update_ocean(&gw, 1.0, &timer));
+    CHECK(!world_update_ocean(&gw, 1.0, &timer));   /* held already */
+    gpu_timer_end_frame(&timer);
+    gpu_timer_collect(&timer, true);
+    bool spectrum = false, fft = false;
+    for (int i = 0; i < timer.npasses; i++) {
+        spectrum |= strcmp(timer.pass_names[i], "ocean spectrum") == 0;
+        fft |= strcmp(timer.pass_names[i], "ocean fft") == 0;
+    }
+    CHECK(spectrum && fft);
+    CHECK(gw.ocean.frames == 1);
+    gpu_timer_free(&timer);
+    world_free(&gw);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -240,6 +482,11 @@ int main(void) {
     RUN(test_frame_256_one_cascade);
     RUN(test_frame_256_three_cascades);
     RUN(test_pass_cost);
+    if (!scratch_create("ocean")) return 1;
+    RUN(test_waves_with_an_ocean_match_reference);
+    scratch_remove();
+    RUN(test_no_ocean_no_pass);
+    RUN(test_ocean_world_runs_its_passes);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

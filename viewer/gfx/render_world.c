@@ -399,6 +399,9 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
     }
     gw->has_above_water = above_water(&gw->w);
     if (!ok) str_appendf(log, "tarn: error: could not build the scene's world (out of memory?)\n");
+    /* the spectrum ocean's textures and passes: only a world with one */
+    if (gw->w.waves.ocean && !ocean_create_from(&gw->ocean, gw->w.waves.ocean, include_dirs, common_dir, log))
+        ok = false;
     ok = build_program(gw, include_dirs, common_dir, log) && ok;
     gw->active = true;
     return ok;
