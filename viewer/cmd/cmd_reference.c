@@ -321,6 +321,7 @@ static int run(reference_opts *o) {
     int rc = ref_render(&d, &r, rerr, sizeof rerr);
     double total = clock_now_s() - t0;
     if (b.drawn) fputc('\n', stderr);
+    ref_world_release(&world);
     if (rc != 0) {
         fprintf(stderr, "tarn reference: %s\n", rerr);
         return TARN_EXIT_INPUT;

@@ -278,6 +278,7 @@ bool assets_bake_caustics(int res, float *out, char *err, int errlen) {
     if (ref_caustics_plan_init(&d, &plan, why, sizeof why) != 0) {
         if (err && errlen > 0)
             snprintf(err, (size_t)errlen, "%s", why);
+        ref_waves_release(&waves);
         return false;
     }
     /* Rows are cut into a fixed number of chunks, each summed into its own
@@ -316,6 +317,7 @@ bool assets_bake_caustics(int res, float *out, char *err, int errlen) {
     for (int c = 0; c < CAUSTIC_CHUNKS; c++)
         free(job.flux[c]);
     pthread_mutex_destroy(&job.lock);
+    ref_waves_release(&waves);
     return ok;
 }
 
@@ -397,6 +399,7 @@ int assets_run(const assets_desc *d) {
     char err[512];
     if (!file_mkdir_p(dir, err, sizeof err)) {
         fprintf(stderr, "tarn assets: %s\n", err);
+        ref_world_release(w);
         free(w);
         return TARN_EXIT_INPUT;
     }
@@ -436,6 +439,7 @@ int assets_run(const assets_desc *d) {
     free(c);
     free(rgb);
     free(buf);
+    ref_world_release(w);
     free(w);
     return o.failed ? TARN_EXIT_INPUT : TARN_EXIT_OK;
 }

@@ -414,6 +414,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
         ref_world_desc_lake(&d);   /* no world at hand here: the lake's terrain */
         ref_world_init(&w, &d);
         ok = assets_bake_terrain_normal(&w, res, px);
+        ref_world_release(&w);
     }
     if (!ok) {
         str_appendf(log, "%s:%d: error: Texture2D %s: %s\n", c->file, c->line, c->path, err[0] ? err : "cannot generate");

@@ -117,6 +117,7 @@ bool refcache_key(const char *scene, int w, int h, double t, const refcache_opts
     ref_world_init(&world, &l.wd);
     ref_render_desc d = make_desc(&l, &world, w, h, t, NULL, o);
     *key = key_of(&l, &d);
+    ref_world_release(&world);
     return true;
 }
 
@@ -232,6 +233,7 @@ bool refcache_get(const char *dir, const char *scene, const char *name, int w, i
         stem_of(dir, name ? name : scene, w, h, t, key, out->stem, sizeof out->stem);
         if (read_cached(out->stem, w, h, out)) {
             out->from_cache = true;
+            ref_world_release(&world);
             return true;
         }
         for (int i = 0; i < NBUFS; i++) {   /* a partial or stale set: render again */
@@ -241,7 +243,9 @@ bool refcache_get(const char *dir, const char *scene, const char *name, int w, i
     }
     ref_render_result r;
     char rerr[512] = "";
-    if (ref_render(&d, &r, rerr, sizeof rerr) != 0) {
+    int rrc = ref_render(&d, &r, rerr, sizeof rerr);
+    ref_world_release(&world);
+    if (rrc != 0) {
         snprintf(err, (size_t)errlen, "reference of %s: %s", scene, rerr);
         return false;
     }
