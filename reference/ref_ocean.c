@@ -575,10 +575,11 @@ void ref_ocean_sample_at(const ref_ocean *o, double u, double v, double t, ref_o
         double inv = N / o->d.tile[c];
         double fu = u * inv, fv = v * inv, iu = floor(fu), iv = floor(fv);
         double x = fu - iu, z = fv - iv;
-        long i0 = (long)fmod(iu, (double)N), j0 = (long)fmod(iv, (double)N);
-        if (i0 < 0) i0 += N;
-        if (j0 < 0) j0 += N;
-        long i1 = (i0 + 1) % N, j1 = (j0 + 1) % N;
+        /* N is a power of two: the mask wraps negative nodes too (two's
+         * complement); |u| / texel stays far below 2^62 */
+        long mask = N - 1;
+        long i0 = (long)iu & mask, j0 = (long)iv & mask;
+        long i1 = (i0 + 1) & mask, j1 = (j0 + 1) & mask;
         const double *f = sl->f[c];
         const double *p00 = f + 8 * (j0 * N + i0), *p10 = f + 8 * (j0 * N + i1);
         const double *p01 = f + 8 * (j1 * N + i0), *p11 = f + 8 * (j1 * N + i1);
@@ -588,6 +589,32 @@ void ref_ocean_sample_at(const ref_ocean *o, double u, double v, double t, ref_o
     frame_release(o, sl);
     s->h = acc[0]; s->dx = acc[1]; s->dz = acc[2]; s->dxz = acc[3];
     s->hx = acc[4]; s->hz = acc[5]; s->dxx = acc[6]; s->dzz = acc[7];
+}
+
+void ref_ocean_sample_map(const ref_ocean *o, double u, double v, double t, double d[2], double jac[4]) {
+    frame_slot *sl = frame_acquire(o, t);
+    int N = o->n;
+    long mask = N - 1;
+    d[0] = d[1] = 0;
+    if (jac) jac[0] = jac[1] = jac[2] = jac[3] = 0;
+    for (int c = 0; c < o->nc; c++) {
+        double inv = N / o->d.tile[c];
+        double fu = u * inv, fv = v * inv, iu = floor(fu), iv = floor(fv);
+        double x = fu - iu, z = fv - iv;
+        long i0 = (long)iu & mask, j0 = (long)iv & mask, i1 = (i0 + 1) & mask, j1 = (j0 + 1) & mask;
+        const double *f = sl->f[c];
+        const double *p00 = f + 8 * (j0 * N + i0), *p10 = f + 8 * (j0 * N + i1);
+        const double *p01 = f + 8 * (j1 * N + i0), *p11 = f + 8 * (j1 * N + i1);
+        for (int q = 0; q < 2; q++) {
+            double a = p00[1 + q], b = p10[1 + q], e = p01[1 + q], g = p11[1 + q];
+            d[q] += (1 - x) * (1 - z) * a + x * (1 - z) * b + (1 - x) * z * e + x * z * g;
+            if (jac) {
+                jac[2 * q] += ((1 - z) * (b - a) + z * (g - e)) * inv;
+                jac[2 * q + 1] += ((1 - x) * (e - a) + x * (g - b)) * inv;
+            }
+        }
+    }
+    frame_release(o, sl);
 }
 
 void ref_ocean_direct_sum(const ref_ocean *o, double u, double v, double t, ref_ocean_sample *s) {

@@ -134,6 +134,13 @@ double ref_ocean_min_wavelength(const ref_ocean *o);
 /* The fields at rest point (u, v), time t: bilinear in the frame at t. */
 void ref_ocean_sample_at(const ref_ocean *o, double u, double v, double t, ref_ocean_sample *s);
 
+/* The sideways map alone, bilinear: D = (Dx, Dz) at (u, v) and, when jac is
+ * not NULL, the exact derivative of the bilinear interpolant in the cell
+ * holding (u, v): jac = (dDx/du, dDx/dv, dDz/du, dDz/dv) (not symmetric in
+ * general; the D-derivative fields are the continuous one's). Newton on
+ * the map converges fast with it (ref_waves' inversion). */
+void ref_ocean_sample_map(const ref_ocean *o, double u, double v, double t, double d[2], double jac[4]);
+
 /* The same fields by a direct sum of every wave of every cascade at (u, v)
  * (no FFT, no interpolation): equal to ref_ocean_sample_at at grid nodes
  * up to rounding. For tests; O(N^2) a call. */

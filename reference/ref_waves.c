@@ -417,11 +417,11 @@ void ref_waves_eval(const ref_waves *w, double u, double v, double t, ref_waves_
 
 /* Horizontal residual F = (u + Dx - x, v + Dz - z) and its Jacobian. Only the
  * Gerstner waves and the ocean move points sideways, so only they are
- * summed. The ocean's Jacobian is its interpolated D-derivative fields, the
- * bilinear map's own derivative to O(texel): Newton still converges (at
- * worst linearly, fast), and F itself is exact. */
+ * summed. J = (dx/du, dx/dv, dz/du, dz/dv): the ocean's part is the exact
+ * derivative of its bilinear map in the cell (ref_ocean_sample_map), so
+ * Newton converges as fast as on the Gerstner waves. */
 static double horiz_residual(const ref_waves *w, double u, double v, double t, double x, double z,
-                             double F[2], double J[3]) {
+                             double F[2], double J[4]) {
     double dx = 0.0, dz = 0.0, a = 0.0, b = 0.0, d = 0.0;
     for (int i = 0; i < w->ngerstner; i++) {
         const ref_wave_comp *c = &w->gerstner[i];
@@ -436,19 +436,18 @@ static double horiz_residual(const ref_waves *w, double u, double v, double t, d
             d -= qs * c->dir[1] * c->dir[1];
         }
     }
+    double c = b;   /* dDz/du: = dDx/dv for Gerstner waves, not for the bilinear ocean */
     if (w->ocean) {
-        ref_ocean_sample o;
-        ref_ocean_sample_at(w->ocean, u, v, t, &o);
-        dx += o.dx;
-        dz += o.dz;
-        a += o.dxx;
-        b += o.dxz;
-        d += o.dzz;
+        double D[2], jo[4];
+        ref_ocean_sample_map(w->ocean, u, v, t, D, J ? jo : NULL);
+        dx += D[0];
+        dz += D[1];
+        if (J) { a += jo[0]; b += jo[1]; c += jo[2]; d += jo[3]; }
     }
     F[0] = u + dx - x;
     F[1] = v + dz - z;
-    if (J) { J[0] = 1.0 + a; J[1] = b; J[2] = 1.0 + d; }
-    return hypot(F[0], F[1]);
+    if (J) { J[0] = 1.0 + a; J[1] = b; J[2] = c; J[3] = 1.0 + d; }
+    return sqrt(F[0] * F[0] + F[1] * F[1]);   /* no overflow at these scales; hypot is slow */
 }
 
 #define NEWTON_MAX_IT 50
@@ -459,7 +458,7 @@ static int invert(const ref_waves *w, double x, double z, double t, const double
                   double uv[2], double *residual, int *iterations) {
     double tol = 1e-12 * fmax(1.0, fmax(fabs(x), fabs(z)));
     double u = guess ? guess[0] : x, v = guess ? guess[1] : z;
-    double F[2], J[3];
+    double F[2], J[4];
     int it = 0, ok = 0;
     double r = horiz_residual(w, u, v, t, x, z, F, J);
     if (!isfinite(r)) { u = x; v = z; r = horiz_residual(w, u, v, t, x, z, F, J); }
@@ -467,15 +466,15 @@ static int invert(const ref_waves *w, double x, double z, double t, const double
     /* damped Newton: backtrack until |F| decreases */
     while (r > tol && it < NEWTON_MAX_IT) {
         it++;
-        double det = J[0] * J[2] - J[1] * J[1];
+        double det = J[0] * J[3] - J[1] * J[2];
         double du, dv;
         if (fabs(det) > 1e-14) {
-            du = -( J[2] * F[0] - J[1] * F[1]) / det;
-            dv = -(-J[1] * F[0] + J[0] * F[1]) / det;
+            du = -( J[3] * F[0] - J[1] * F[1]) / det;
+            dv = -(-J[2] * F[0] + J[0] * F[1]) / det;
         } else {
             du = -F[0]; dv = -F[1];   /* singular: a fixed-point step */
         }
-        double lam = 1.0, Fn[2], Jn[3], rn = r;
+        double lam = 1.0, Fn[2], Jn[4], rn = r;
         int accepted = 0;
         for (int k = 0; k < NEWTON_MAX_HALVINGS; k++, lam *= 0.5) {
             rn = horiz_residual(w, u + lam * du, v + lam * dv, t, x, z, Fn, Jn);
@@ -490,10 +489,10 @@ static int invert(const ref_waves *w, double x, double z, double t, const double
     /* polish: Newton converges quadratically, so one more step from a
      * residual at the tolerance lands at rounding level */
     if (ok && r > 0.0) {
-        double det = J[0] * J[2] - J[1] * J[1];
+        double det = J[0] * J[3] - J[1] * J[2];
         if (fabs(det) > 1e-14) {
-            double un = u - ( J[2] * F[0] - J[1] * F[1]) / det;
-            double vn = v - (-J[1] * F[0] + J[0] * F[1]) / det;
+            double un = u - ( J[3] * F[0] - J[1] * F[1]) / det;
+            double vn = v - (-J[2] * F[0] + J[0] * F[1]) / det;
             double Fn[2], rn = horiz_residual(w, un, vn, t, x, z, Fn, NULL);
             if (rn < r) { u = un; v = vn; r = rn; }
         }
