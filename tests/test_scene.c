@@ -465,8 +465,66 @@ static void test_program_gs_input(void) {
     glib_free(g);
 }
 
+/* The wave models of issue #23: each command fills its desc as docs/glib.md
+ * says, the glib's defaults where the desc's differ (choppiness 1), and
+ * absurd values are repaired with a warning at their line. */
+static void test_wave_models(void) {
+    ref_world_desc d;
+    scene_camera cam;
+    bool has;
+    char err[4096];
+    CHECK_MSG(world_of("##OpenGL GLIB\n"
+                       "WaveOceanTiles 160 37 5.3\n"
+                       "WaveOcean jonswap 9 -80\n"
+                       "WaveExplosion 6 -4 1.0 0.25 0 3.0 0.4\n"
+                       "WavePerlin 0.02 6 3 0.3 2 20 5 0.6\n",
+                       &d, &cam, &has, err, sizeof err), "%s", err);
+    CHECK(has);
+    const ref_ocean_desc *o = &d.waves.ocean;
+    CHECK(o->spectrum == REF_SPECTRUM_JONSWAP && o->wind_speed == 9 && o->wind_angle_deg == -80);
+    CHECK(o->choppiness == 1.0 && o->res == 0 && o->fetch == 0 && o->depth == 0);
+    CHECK(o->cascades == 3 && o->tile[0] == 160 && o->tile[1] == 37 && o->tile[2] == 5.3);   /* tiles first: kept */
+    CHECK(d.waves.explosion_count == 1);
+    const ref_explosion_desc *e = &d.waves.explosion[0];
+    CHECK(e->center[0] == 6 && e->center[1] == -4 && e->start == 1.0 && e->i0 == 0.25 && e->omega == 0 &&
+          e->k == 3.0 && e->decay == 0.4);
+    const ref_perlin_desc *pl = &d.waves.perlin;
+    CHECK(pl->amplitude == 0.02 && pl->cell == 6 && pl->octaves == 3 && pl->rate == 0.3 && pl->stretch == 2 &&
+          pl->angle_deg == 20 && pl->seed == 5 && pl->gain == 0.6);
+    /* and the world resolves it: the ocean is built, the ring and the set counted */
+    ref_world w;
+    ref_world_init(&w, &d);
+    CHECK(w.waves.ocean != NULL && w.waves.nexplosions == 1 && w.waves.has_perlin);
+    ref_world_release(&w);
+
+    bool ok = world_of("##OpenGL GLIB\n"
+                       "WaveOcean tma -5 0 -1 100 3 -1000 20\n"   /* 2 */
+                       "WaveOceanTiles 5 40 0\n"                 /* 3 */
+                       "WaveExplosion 0 0 1 0\n"                 /* 4 */
+                       "WavePerlin -0.1 -2 20 0 -1\n",           /* 5 */
+                       &d, &cam, &has, err, sizeof err);
+    CHECK(!ok);
+    fprintf(stderr, "%s\n", err);
+    CHECK_STR_CONTAINS(err, "mem.glib:2: warning: WaveOcean: wind speed -5 is negative; using 5");
+    CHECK_STR_CONTAINS(err, "mem.glib:2: warning: WaveOcean: choppiness -1 is negative");
+    CHECK_STR_CONTAINS(err, "mem.glib:2: warning: WaveOcean: res 100 is not a power of two in 64..512; using 128");
+    CHECK_STR_CONTAINS(err, "mem.glib:2: warning: WaveOcean: fetch -1000 is negative; using 1000");
+    CHECK_STR_CONTAINS(err, "mem.glib:3: warning: WaveOceanTiles: a tile of 0 m holds no waves");
+    CHECK_STR_CONTAINS(err, "mem.glib:3: warning: WaveOceanTiles: the tiles go largest first; using 40 5");
+    CHECK_STR_CONTAINS(err, "mem.glib:4: warning: WaveExplosion: an amplitude I0 of 0 is no ring");
+    CHECK_STR_CONTAINS(err, "mem.glib:5: warning: WavePerlin: amplitude -0.1 is negative; using 0.1");
+    CHECK_STR_CONTAINS(err, "mem.glib:5: warning: WavePerlin: octaves 20 is outside 1..8; using 8");
+    CHECK_STR_CONTAINS(err, "mem.glib:5: warning: WavePerlin: stretch -1 must be greater than 0");
+    CHECK(d.waves.ocean.spectrum == REF_SPECTRUM_TMA && d.waves.ocean.wind_speed == 5 &&
+          d.waves.ocean.choppiness == 1 && d.waves.ocean.res == 128 && d.waves.ocean.depth == 20);
+    CHECK(d.waves.ocean.cascades == 2 && d.waves.ocean.tile[0] == 40 && d.waves.ocean.tile[1] == 5);
+    CHECK(d.waves.explosion_count == 0);
+    CHECK(d.waves.perlin.amplitude == 0.1 && d.waves.perlin.octaves == 8 && d.waves.perlin.stretch == 0);
+}
+
 int main(void) {
     RUN(test_each_command);
+    RUN(test_wave_models);
     RUN(test_defaults);
     RUN(test_repairs);
     RUN(test_limits);

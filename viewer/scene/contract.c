@@ -40,6 +40,8 @@ static const contract_uniform table[] = {
     WORLD("uWaterShift", "vec2", "WaterSurface", "x, z by which the water grid's rest points (and the photon points) are moved"),
     WORLD("uSky", "samplerCube", "Sky", "unit 15: the sky, baked from ref_sky_radiance"),
     WORLD("uTerrainAlbedo", "sampler2D", "Terrain", "unit 14: terrain albedo, s = x, t = z over the world square"),
+    WORLD("uOceanA", "sampler2DArray", "WaveOcean", "unit 28: the ocean's frame, (h, Dx, Dz, Dxz) a node, a layer a cascade"),
+    WORLD("uOceanB", "sampler2DArray", "WaveOcean", "unit 29: (hx, hz, Dxx, Dzz) a node, a layer a cascade"),
     WORLD("uWorldScale", "float", "Terrain", "the scene's length unit: terrain half size / 12 m (1 on the lake)"),
     WORLD("uTerrainKind", "int", "Terrain", "the terrain's model: 0 flat, 1 lake, 2 slope, 3 pool (REF_TERRAIN_*)"),
     WORLD("uTerrainShape", "vec4", "Terrain", "the model's depth, shore height and slope"),
@@ -81,6 +83,18 @@ static const contract_uniform table[] = {
     WAVES("uWaveNoise", "vec4[8]", "WaveNoise", "frequency, frequency times drift (x, z), amplitude per octave"),
     WAVES("uWaveNoisePeriod", "float[8]", "WaveNoise", "lattice cells per tile per octave"),
     WAVES("uWaveNoiseSeed", "uint[8]", "WaveNoise", "hashed seed per octave"),
+    /* the explosion rings and the Perlin set (ref_wavefx_uniforms; waves_fx.glsl) */
+    WAVES("uExplosionN", "int", "WaveExplosion", "explosion rings (0: none)"),
+    WAVES("uExplosion", "vec4[4]", "WaveExplosion", "centre x, z, start time, I0 of each ring"),
+    WAVES("uExplosionWave", "vec4[4]", "WaveExplosion", "omega, k, decay, k^2 of each ring"),
+    WAVES("uPerlinN", "int", "WavePerlin", "Perlin octaves (0: no Perlin set)"),
+    WAVES("uPerlinOctave", "vec4[8]", "WavePerlin", "spatial frequency, time frequency, amplitude per octave"),
+    WAVES("uPerlinFrame", "vec4", "WavePerlin", "cos and sin of the wind's angle, 1 / stretch"),
+    WAVES("uPerlinSeed", "uint[8]", "WavePerlin", "hashed seed per octave"),
+    /* the spectrum ocean (ref_waves_uniforms; waves_ocean.glsl) */
+    WAVES("uOceanN", "int", "WaveOcean", "cascades (0: no ocean)"),
+    WAVES("uOceanRes", "int", "WaveOcean", "N, the FFT's nodes a side"),
+    WAVES("uOceanTile", "float[3]", "WaveOceanTiles", "each cascade's tile side"),
 };
 
 #define NTABLE ((int)(sizeof table / sizeof table[0]))

@@ -1000,6 +1000,22 @@ static bool h_terrain(cmdctx *c, glib_cmd *cmd) {
     return nums_from(c, cmd, 1, rules, 0, 5, "Terrain");
 }
 
+static bool h_wave_ocean(cmdctx *c, glib_cmd *cmd) {
+    static const keyword k[] = { { "phillips", "phillips", 1 }, { "jonswap", "jonswap", 2 },
+                                 { "tma", "tma", 3 } };
+    static const arg_rule rules[] = {
+        { "wind_speed", "a wind speed in m/s", 'r', 0, 0, 0 }, { "wind_angle_deg", NULL, 'r', 0, 0, 0 },
+        { "choppiness", NULL, 'r', 0, 0, 0 }, { "res", NULL, 'i', 0, 65536, 0 }, SEED_RULE("seed"),
+        { "fetch", NULL, 'r', 0, 0, 0 }, { "depth", NULL, 'r', 0, 0, 0 },
+        { "spreading", NULL, 'r', 0, 0, 0 }, { "amplitude", NULL, 'r', 0, 0, 0 },
+    };
+    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "phillips, jonswap or tma");
+    if (!m)
+        return false;
+    snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    return nums_from(c, cmd, 1, rules, 1, 9, "WaveOcean");
+}
+
 static bool h_object(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "sphere", "sphere", 7 }, { "box", "box", 9 },
                                  { "cylinder", "cylinder", 8 } };
@@ -1995,6 +2011,8 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_WATER_MESH] = "WaterMesh", [GLIB_CMD_TERRAIN] = "Terrain",
     [GLIB_CMD_WAVE_SINE] = "WaveSine", [GLIB_CMD_WAVE_GERSTNER] = "WaveGerstner",
     [GLIB_CMD_WAVE_STEEPNESS] = "WaveSteepness", [GLIB_CMD_WAVE_NOISE] = "WaveNoise",
+    [GLIB_CMD_WAVE_OCEAN] = "WaveOcean", [GLIB_CMD_WAVE_OCEAN_TILES] = "WaveOceanTiles",
+    [GLIB_CMD_WAVE_EXPLOSION] = "WaveExplosion", [GLIB_CMD_WAVE_PERLIN] = "WavePerlin",
     [GLIB_CMD_OBJECT] = "Object", [GLIB_CMD_PACK] = "Pack", [GLIB_CMD_WORLD] = "World",
     [GLIB_CMD_WATER_SURFACE] = "WaterSurface",
     [GLIB_CMD_CAMERA] = "Camera",
@@ -2167,6 +2185,20 @@ static const cmd_spec specs[] = {
         ARG_RD("speed", 0), ARG_RD("angle_deg", 0), SEED_RULE("seed"),
         { "period", NULL, 'i', 0, 65536, 0 }, ARG_RD("gain", 0) },
       "WaveNoise amplitude [cell [octaves [speed [angle_deg [seed [period [gain]]]]]]]", true },
+    { "WaveOcean", GLIB_CMD_WAVE_OCEAN, false, h_wave_ocean, false, 0, 0, { { 0 } },
+      "WaveOcean phillips|jonswap|tma wind_speed [wind_angle_deg [choppiness [res [seed [fetch [depth [spreading [amplitude]]]]]]]]", true },
+    { "WaveOceanTiles", GLIB_CMD_WAVE_OCEAN_TILES, false, h_world_nums, false, 1, 3,
+      { ARG_R("tile", "a tile side in metres"), ARG_RD("tile2", 0), ARG_RD("tile3", 0) },
+      "WaveOceanTiles tile [tile2 [tile3]]", true },
+    { "WaveExplosion", GLIB_CMD_WAVE_EXPLOSION, false, h_world_nums, false, 4, 7,
+      { ARG_R("x", NULL), ARG_R("z", NULL), ARG_R("start", NULL), ARG_R("i0", "an amplitude I0"),
+        ARG_RD("omega", 0), ARG_RD("k", 0), ARG_RD("decay", 0) },
+      "WaveExplosion x z start i0 [omega [k [decay]]]", true },
+    { "WavePerlin", GLIB_CMD_WAVE_PERLIN, false, h_world_nums, false, 1, 8,
+      { ARG_R("amplitude", "an amplitude"), ARG_RD("cell", 0), { "octaves", NULL, 'i', 0, 64, 0 },
+        ARG_RD("rate", 0), ARG_RD("stretch", 0), ARG_RD("angle_deg", 0), SEED_RULE("seed"),
+        ARG_RD("gain", 0) },
+      "WavePerlin amplitude [cell [octaves [rate [stretch [angle_deg [seed [gain]]]]]]]", true },
     { "Object", GLIB_CMD_OBJECT, false, h_object, false, 0, 0, { { 0 } },
       "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B", true },
     { "Pack", GLIB_CMD_PACK, false, h_pack, false, 0, 0, { { 0 } }, "Pack name", true },

@@ -89,6 +89,11 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_WAVE_GERSTNER,     /* num: as WaveSine */
     GLIB_CMD_WAVE_STEEPNESS,    /* num: Q */
     GLIB_CMD_WAVE_NOISE,        /* num: amplitude [cell octaves speed angle_deg seed period gain] */
+    GLIB_CMD_WAVE_OCEAN,        /* name: "phillips" | "jonswap" | "tma"; num: wind_speed
+                                 * [wind_angle_deg choppiness res seed fetch depth spreading amplitude] */
+    GLIB_CMD_WAVE_OCEAN_TILES,  /* num: the cascades' tile sides, 1 to 3, decreasing */
+    GLIB_CMD_WAVE_EXPLOSION,    /* num: x z start i0 [omega k decay] */
+    GLIB_CMD_WAVE_PERLIN,       /* num: amplitude [cell octaves rate stretch angle_deg seed gain] */
     GLIB_CMD_OBJECT,            /* name: "sphere" | "box" | "cylinder"; num:
                                  * sphere x y z r R G B; box x y z hx hy hz R G B;
                                  * cylinder x y z r h R G B (y: its base) */

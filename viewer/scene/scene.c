@@ -235,6 +235,134 @@ static void do_noise(ctx *x, const glib_cmd *c, ref_noise_desc *nd) {
     }
 }
 
+/* WaveOcean kind wind_speed [wind_angle choppiness res seed fetch depth
+ * spreading amplitude]: a spectrum ocean (reference/ref_ocean.h). What is
+ * not written takes the model's default, except the choppiness: 1 here
+ * (Tessendorf's X + D), 0 in the desc. */
+static void do_ocean(ctx *x, const glib_cmd *c, ref_ocean_desc *od) {
+    const double *n = c->num;
+    int k = c->nnum;
+    double tiles[REF_OCEAN_CASCADES_MAX];
+    int cascades = od->cascades;
+    memcpy(tiles, od->tile, sizeof tiles);   /* WaveOceanTiles may come first */
+    memset(od, 0, sizeof *od);
+    od->cascades = cascades;
+    memcpy(od->tile, tiles, sizeof tiles);
+    od->spectrum = !strcmp(c->name, "phillips") ? REF_SPECTRUM_PHILLIPS
+                 : !strcmp(c->name, "tma") ? REF_SPECTRUM_TMA : REF_SPECTRUM_JONSWAP;
+    od->wind_speed = fabs(n[0]);
+    if (n[0] < 0)
+        msg(x, c, "wind speed %g is negative; using %g (turn the wind with its angle)", n[0], -n[0]);
+    if (n[0] == 0)
+        msg(x, c, "a wind speed of 0 raises no waves; using the default 10 m/s");
+    od->wind_angle_deg = k >= 2 ? n[1] : 0;
+    od->choppiness = k >= 3 ? n[2] : 1.0;
+    if (od->choppiness < 0) {
+        msg(x, c, "choppiness %g is negative (the crests would round, the troughs sharpen); using %g",
+            od->choppiness, -od->choppiness);
+        od->choppiness = -od->choppiness;
+    }
+    if (k >= 4 && n[3] != 0) {
+        int r = REF_OCEAN_RES_MIN;
+        while (r < REF_OCEAN_RES_MAX && r < n[3]) r *= 2;
+        if (r != n[3])
+            msg(x, c, "res %g is not a power of two in %d..%d; using %d", n[3], REF_OCEAN_RES_MIN,
+                REF_OCEAN_RES_MAX, r);
+        od->res = r;
+    }
+    if (k >= 5) od->seed = (uint32_t)n[4];
+    const char *what[] = { "fetch", "depth", "spreading", "amplitude" };
+    double *dst[] = { &od->fetch, &od->depth, &od->spreading, &od->amplitude };
+    for (int i = 0; i < 4 && 5 + i < k; i++) {
+        double v = n[5 + i];
+        if (v < 0) {
+            msg(x, c, "%s %g is negative; using %g", what[i], v, -v);
+            v = -v;
+        }
+        *dst[i] = v;
+    }
+}
+
+/* WaveOceanTiles L1 [L2 [L3]]: the cascades, largest tile first. */
+static void do_ocean_tiles(ctx *x, const glib_cmd *c, ref_ocean_desc *od) {
+    double t[REF_OCEAN_CASCADES_MAX] = { 0 };
+    int n = 0;
+    for (int i = 0; i < c->nnum && i < REF_OCEAN_CASCADES_MAX; i++) {
+        double v = fabs(c->num[i]);
+        if (v == 0) {
+            msg(x, c, "a tile of 0 m holds no waves; it is dropped");
+            continue;
+        }
+        t[n++] = v;
+    }
+    for (int i = 1; i < n; i++)   /* largest first: the bands follow the order */
+        for (int j = i; j > 0 && t[j] > t[j - 1]; j--) {
+            double s = t[j]; t[j] = t[j - 1]; t[j - 1] = s;
+            if (i == j) msg(x, c, "the tiles go largest first; using %g %g%s", t[0], t[1], n > 2 ? " ..." : "");
+        }
+    for (int i = 1; i < n; i++)
+        if (t[i] == t[i - 1]) {
+            msg(x, c, "two tiles of %g m would hold the same waves; drop one", t[i]);
+            n = i;
+            break;
+        }
+    memcpy(od->tile, t, sizeof t);
+    od->cascades = n;
+}
+
+static void do_explosion(ctx *x, const glib_cmd *c, ref_waves_desc *wd) {
+    if (wd->explosion_count >= REF_EXPLOSIONS_MAX) {
+        msg(x, c, "more than %d explosion rings; this one is dropped", REF_EXPLOSIONS_MAX);
+        return;
+    }
+    const double *n = c->num;
+    ref_explosion_desc e = { .center = { n[0], n[1] }, .start = n[2], .i0 = n[3],
+                             .omega = c->nnum >= 5 ? n[4] : 0, .k = c->nnum >= 6 ? n[5] : 0,
+                             .decay = c->nnum >= 7 ? n[6] : 0 };
+    if (e.i0 == 0) {
+        msg(x, c, "an amplitude I0 of 0 is no ring; this one is dropped");
+        return;
+    }
+    if (e.omega < 0 || e.k < 0 || e.decay < 0) {
+        msg(x, c, "omega, k and decay are magnitudes; using %g %g %g", fabs(e.omega), fabs(e.k), fabs(e.decay));
+        e.omega = fabs(e.omega); e.k = fabs(e.k); e.decay = fabs(e.decay);
+    }
+    wd->explosion[wd->explosion_count++] = e;
+}
+
+static void do_perlin(ctx *x, const glib_cmd *c, ref_perlin_desc *pd) {
+    const double *n = c->num;
+    int k = c->nnum;
+    memset(pd, 0, sizeof *pd);
+    pd->amplitude = fabs(n[0]);
+    if (n[0] < 0)
+        msg(x, c, "amplitude %g is negative; using %g", n[0], -n[0]);
+    if (k >= 2) {
+        if (n[1] > 0) pd->cell = n[1];
+        else msg(x, c, "cell %g must be greater than 0; using the default", n[1]);
+    }
+    if (k >= 3) {
+        int o = (int)n[2];
+        if (o < 1 || o > REF_PERLIN_OCTAVES_MAX) {
+            int r = o < 1 ? 1 : REF_PERLIN_OCTAVES_MAX;
+            msg(x, c, "octaves %d is outside 1..%d; using %d", o, REF_PERLIN_OCTAVES_MAX, r);
+            o = r;
+        }
+        pd->octaves = o;
+    }
+    if (k >= 4) pd->rate = fabs(n[3]);
+    if (k >= 5) {
+        if (n[4] > 0) pd->stretch = n[4];
+        else msg(x, c, "stretch %g must be greater than 0; using 1", n[4]);
+    }
+    if (k >= 6) pd->angle_deg = n[5];
+    if (k >= 7) pd->seed = (uint32_t)n[6];
+    if (k >= 8) {
+        if (n[7] > 0) pd->gain = n[7];
+        else msg(x, c, "gain %g must be greater than 0; using 0.5", n[7]);
+    }
+}
+
 /* A size that must be positive: |v| for a negative one; false for 0. */
 static bool positive(ctx *x, const glib_cmd *c, double *v, const char *what) {
     if (*v > 0)
@@ -381,6 +509,10 @@ bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *c
         case GLIB_CMD_WAVE_GERSTNER: do_wave(&x, c, &w.waves); break;
         case GLIB_CMD_WAVE_STEEPNESS: do_steepness(&x, c, &w.waves); break;
         case GLIB_CMD_WAVE_NOISE: do_noise(&x, c, &w.waves.noise); break;
+        case GLIB_CMD_WAVE_OCEAN: do_ocean(&x, c, &w.waves.ocean); break;
+        case GLIB_CMD_WAVE_OCEAN_TILES: do_ocean_tiles(&x, c, &w.waves.ocean); break;
+        case GLIB_CMD_WAVE_EXPLOSION: do_explosion(&x, c, &w.waves); break;
+        case GLIB_CMD_WAVE_PERLIN: do_perlin(&x, c, &w.waves.perlin); break;
         case GLIB_CMD_OBJECT: do_object(&x, c, &w, &full_told); break;
         default: break;
         }
