@@ -43,6 +43,23 @@
 #define WAVES_GLSL
 
 #include "hash.glsl"
+
+// Which models the world has, decided when a program is built (llvmpipe runs
+// a loop's body even when a uniform count leaves it at once: a world
+// without an ocean paid ~40 ms a 960x540 frame for its loop). tarn's
+// renderer defines WAVES_MODELS and a WAVES_HAS_* for each model the
+// scene's world holds (render_world.c, world_wave_defines); a shader built
+// without WAVES_MODELS (a test, another tool) gets every model, each
+// switched off at run time by its count as before.
+#ifndef WAVES_MODELS
+#define WAVES_HAS_SINE
+#define WAVES_HAS_GERSTNER
+#define WAVES_HAS_NOISE
+#define WAVES_HAS_OCEAN
+#define WAVES_HAS_EXPLOSION
+#define WAVES_HAS_PERLIN
+#endif
+
 #include "waves_ocean.glsl"
 #include "waves_fx.glsl"
 
@@ -158,6 +175,7 @@ vec3 wavesNoise(vec2 p0, float t) {
 // b = dDx/dz0 = dDz/dx0, d = dDz/dz0, of every model above.
 void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
     h = 0.0; dh = vec2(0.0); disp = vec2(0.0); abd = vec3(0.0);
+#ifdef WAVES_HAS_SINE
     for (int i = 0; i < WAVES_MAX; i++) {
         if (i >= uWaveSineN) break;
         vec4 w = uWaveSine[i];                          // th = k D.p0 + omega t + phase
@@ -165,6 +183,8 @@ void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out ve
         h += A * sin(th);
         dh += A * cos(th) * w.xy;
     }
+#endif
+#ifdef WAVES_HAS_GERSTNER
     for (int i = 0; i < WAVES_MAX; i++) {
         if (i >= uWaveGerstN) break;
         vec4 w = uWaveGerst[i];
@@ -176,15 +196,24 @@ void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out ve
         disp += c * a.yz;                               // Q_i A_i D cos th
         abd -= s * vec3(a.y * w.x, a.y * w.y, a.z * w.y);   // Q_i A_i k sin th (DxDx, DxDz, DzDz)
     }
+#endif
+#ifdef WAVES_HAS_NOISE
     vec3 nz = wavesNoise(p0, t);
     h += nz.x;
     dh += nz.yz;
-    wavesOcean(p0, h, dh, disp, abd);                   // no ocean: leaves at once
-    vec2 g;
-    h += wavesExplosions(p0, t, g);                     // height-only models
+#endif
+#ifdef WAVES_HAS_OCEAN
+    wavesOcean(p0, h, dh, disp, abd);
+#endif
+    vec2 g;                                             // the height-only models
+#ifdef WAVES_HAS_EXPLOSION
+    h += wavesExplosions(p0, t, g);
     dh += g;
+#endif
+#ifdef WAVES_HAS_PERLIN
     h += wavesPerlin(p0, t, g);
     dh += g;
+#endif
 }
 
 vec3 wavesDisplace(vec2 p0, float t) {
@@ -241,10 +270,14 @@ void wavesEval(vec2 p0, float t, out vec3 pos, out vec3 normal) {
 // WAVES_NEWTON_ITERATIONS steps (the reference iterates to 1e-12).
 vec2 wavesRestPoint(vec2 xz, float t) {
     vec2 p0 = xz;
+#if !defined(WAVES_HAS_GERSTNER) && !defined(WAVES_HAS_OCEAN)
+    return p0;                                          // nothing moves points sideways
+#else
     if ((uWaveGerstN == 0 || uSteepness == 0.0) && uOceanN == 0) return p0;
     for (int it = 0; it < WAVES_NEWTON_ITERATIONS; it++) {
         vec2 disp = vec2(0.0);
         vec3 abd = vec3(0.0);
+#ifdef WAVES_HAS_GERSTNER
         for (int i = 0; i < WAVES_MAX; i++) {
             if (i >= uWaveGerstN) break;
             vec4 w = uWaveGerst[i];
@@ -253,15 +286,19 @@ vec2 wavesRestPoint(vec2 xz, float t) {
             disp += cos(th) * a.yz;
             abd -= sin(th) * vec3(a.y * w.x, a.y * w.y, a.z * w.y);
         }
+#endif
+#ifdef WAVES_HAS_OCEAN
         float oh = 0.0;
         vec2 odh = vec2(0.0);
         wavesOcean(p0, oh, odh, disp, abd);             // its height: unused, dropped
+#endif
         vec2 F = p0 + disp - xz;
         mat2 J = mat2(1.0 + abd.x, abd.y, abd.y, 1.0 + abd.z);
         float det = determinant(J);
         p0 -= abs(det) > 1e-6 ? inverse(J) * F : F;
     }
     return p0;
+#endif
 }
 
 float wavesHeightAt(vec2 xz, float t) {

@@ -295,6 +295,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->cmd = c;
     p->gstap = st->gstap;
     p->world_uniforms = r->world.active;
+    world_set_wave_defines(&r->world, p);   /* only the wave models the world has */
     p->scene = s->glib;
     for (int k = 0; k < SHADER_STAGE_COUNT; k++)
         snprintf(p->stage_path[k], sizeof p->stage_path[k], "%s", program_stage_path(st, (shader_stage)k));

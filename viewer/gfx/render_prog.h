@@ -9,7 +9,10 @@
 #include "shader_src.h"
 #include "unif.h"
 
-#define PROG_FIXED_MAX 2
+/* fixed[0], [1]: the world program's variants (WORLD_MODE, WORLD_HEIGHT_MAP);
+ * from PROG_FIXED_WORLD on: the world's wave models (world_wave_defines) */
+#define PROG_FIXED_WORLD 2
+#define PROG_FIXED_MAX 10
 
 typedef struct prog {
     char name[GLIB_NAME_MAX];

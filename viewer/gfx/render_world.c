@@ -300,6 +300,26 @@ static void set_height_define(const gpu_world *gw, prog *p) {
     snprintf(p->fixed[1].value, sizeof p->fixed[1].value, "1");
 }
 
+void world_set_wave_defines(const gpu_world *gw, prog *p) {
+    for (int k = PROG_FIXED_WORLD; k < PROG_FIXED_MAX; k++) memset(&p->fixed[k], 0, sizeof p->fixed[k]);
+    if (!gw->active) return;
+    const ref_waves *w = &gw->w.waves;
+    const char *has[7];
+    int n = 0;
+    has[n++] = "WAVES_MODELS";
+    if (w->nsine) has[n++] = "WAVES_HAS_SINE";
+    if (w->ngerstner) has[n++] = "WAVES_HAS_GERSTNER";
+    if (w->noctaves) has[n++] = "WAVES_HAS_NOISE";
+    if (w->ocean) has[n++] = "WAVES_HAS_OCEAN";
+    if (w->nexplosions) has[n++] = "WAVES_HAS_EXPLOSION";
+    if (w->has_perlin) has[n++] = "WAVES_HAS_PERLIN";
+    for (int i = 0; i < n && PROG_FIXED_WORLD + i < PROG_FIXED_MAX; i++) {
+        shader_define *d = &p->fixed[PROG_FIXED_WORLD + i];
+        snprintf(d->name, sizeof d->name, "%s", has[i]);
+        snprintf(d->value, sizeof d->value, "1");
+    }
+}
+
 static bool build_program(gpu_world *gw, const char *const *include_dirs, const char *common_dir, char **log) {
     for (int m = 0; m < WORLD_MODES; m++) {
         prog *p = &gw->progs[m];
@@ -311,6 +331,7 @@ static bool build_program(gpu_world *gw, const char *const *include_dirs, const 
         snprintf(p->fixed[0].name, sizeof p->fixed[0].name, "WORLD_MODE");
         snprintf(p->fixed[0].value, sizeof p->fixed[0].value, "%d", m);
         set_height_define(gw, p);
+        world_set_wave_defines(gw, p);
         snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world.vert", common_dir);
         snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world.frag", common_dir);
     }
@@ -319,6 +340,7 @@ static bool build_program(gpu_world *gw, const char *const *include_dirs, const 
     memset(&gw->height_unifs, 0, sizeof gw->height_unifs);
     h->unifs = &gw->height_unifs;
     h->world_uniforms = true;
+    world_set_wave_defines(gw, h);
     snprintf(h->name, sizeof h->name, "WorldHeight");
     snprintf(h->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", common_dir);
     snprintf(h->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_height.frag", common_dir);

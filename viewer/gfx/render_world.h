@@ -91,6 +91,13 @@ void world_free(gpu_world *gw);
 /* Builds the world's programs again (a shader file changed); false on errors. */
 bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char **log);
 
+/* The defines that tell packs/common/waves.glsl which wave models this
+ * world has (WAVES_MODELS, then WAVES_HAS_SINE, _GERSTNER, _NOISE, _OCEAN,
+ * _EXPLOSION, _PERLIN for each it holds), so a program compiles only
+ * those: llvmpipe runs a loop's body even when its uniform count is 0.
+ * Into p->fixed[PROG_FIXED_WORLD..] (cleared without a world). */
+void world_set_wave_defines(const gpu_world *gw, prog *p);
+
 /* Sets every world uniform the bound program declares. */
 void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);
 
