@@ -19,7 +19,7 @@ static const char usage[] =
     "their heat maps (DIR/img). The reference images are cached in\n"
     "$XDG_CACHE_HOME/tarn/ref (default ~/.cache/tarn/ref): reruns reuse them.\n"
     "\n"
-    "  SCENE.glib         scenes to measure (default: scenes/lake.glib and scenes/pool.glib)\n"
+    "  SCENE.glib         scenes to measure (default: scenes/lake.glib, pool.glib and ocean.glib)\n"
     "  --packs a,b        packs to measure (default: every packs/NAME/pack.glib)\n"
     "  --size WxH         image size (default 480x270)\n"
     "  --times t1,t2      simulated times, seconds (default 1,4)\n"

@@ -1,6 +1,7 @@
 /* bench: `tarn bench`, speed against error (see bench.h, docs/benchmark.md). */
 #include "util.h"
 #include "bench.h"
+#include "bench_ocean.h"
 #include "costmodel.h"
 
 #include <GL/gl.h>
@@ -23,6 +24,7 @@
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
+#include "scene.h"
 #include "ref_buffers.h"
 #include "file.h"
 #include "mem.h"
@@ -134,6 +136,9 @@ typedef struct bench {
     cost_model cost[PACKSET_MAX];
     bool has_cost[PACKSET_MAX];
     char cost_note[PACKSET_MAX][200];
+    /* the spectrum ocean's passes, when a scene has one (bench_ocean.h) */
+    bench_ocean_costs ocean;
+    char ocean_scene[256];
 } bench;
 
 /* ---- small helpers ---- */
@@ -325,13 +330,16 @@ static int resolve(bench *b, const bench_desc *d, char *why, size_t whylen) {
     ref_cache_dir(b, d);
     if (d->root && !realpath(d->root, b->root)) return unusable(why, whylen, "--root: no directory '%s'", d->root);
     if (!o->nscenes) {
-        /* the lake, and the pool, whose tiled floor turns an error in the
-         * refraction hit into a colour error (the lake's floor hides it) */
-        static char lake[4096], pool[4096];
+        /* the lake, the pool, whose tiled floor turns an error in the
+         * refraction hit into a colour error (the lake's floor hides it),
+         * and the open sea */
+        static char lake[4096], pool[4096], ocean[4096];
         snprintf(lake, sizeof lake, "%s/scenes/lake.glib", tarn_root());
         snprintf(pool, sizeof pool, "%s/scenes/pool.glib", tarn_root());
+        snprintf(ocean, sizeof ocean, "%s/scenes/ocean.glib", tarn_root());
         o->scenes[o->nscenes++] = lake;
         o->scenes[o->nscenes++] = pool;
+        o->scenes[o->nscenes++] = ocean;   /* open sea: the spectrum ocean to the horizon */
     }
     for (int s = 0; s < o->nscenes; s++) {
         char alt[PATH_LEN];
@@ -960,6 +968,20 @@ static void measure_cost(bench *b, int p) {
     b->has_cost[p] = cost_model_fit(samples, n, &b->cost[p], b->cost_note[p], sizeof b->cost_note[p]);
 }
 
+/* The ocean's FFT passes at every size, with the first scene that has an
+ * ocean: its cost grows with N^2 log N, whatever the pack draws. */
+static void measure_ocean(bench *b) {
+    for (int s = 0; s < b->o.nscenes; s++) {
+        ref_world_desc w;
+        if (!scene_load(b->scene_abs[s], NULL, &w, NULL, NULL, NULL, 0) || w.waves.ocean.spectrum == REF_SPECTRUM_NONE)
+            continue;
+        stem(b->scene_abs[s], b->ocean_scene, sizeof b->ocean_scene);
+        progress_set(&b->pr, b->pr.done, true, "%s: the ocean's FFT passes", b->ocean_scene);
+        if (!bench_ocean_measure(&w.waves.ocean, &b->ocean)) b->failures++;
+        return;
+    }
+}
+
 /* ---- summaries ---- */
 
 /* The Pareto front's tolerances: two settings whose times differ by less
@@ -1444,7 +1466,10 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
         }
         strbuf_printf(o, "\n![speed against error, %s](%splot-%s.png)\n\n", st, plot_prefix, st);
     }
-    if (b->o.cost_model) cost_md(b, o);
+    if (b->o.cost_model) {
+        cost_md(b, o);
+        bench_ocean_md(&b->ocean, b->ocean_scene, o);
+    }
     strbuf_printf(o, "– : not measured: the pack shows no such buffer (a `buffer` line in its bench.txt, or "
                  "`Define %s`; docs/benchmark.md).\n",
               BENCH_OUTPUT_DEFINE);
@@ -1653,6 +1678,7 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
         for (int p = 0; p < b->o.npacks; p++)
             for (int k = 0; k < b->pb[p].n; k++) measure_setting(b, s, p, k, per_time);
     for (int p = 0; p < b->o.npacks && b->o.cost_model; p++) measure_cost(b, p);
+    if (b->o.cost_model) measure_ocean(b);
     b->seconds = clock_now_s() - t_start;
     progress_set(&b->pr, b->pr.total, true, "done");
     if (b->pr.tty && !b->o.quiet) fputc('\n', stderr);
