@@ -95,8 +95,31 @@ static void test_drag_runs_from_its_press(void) {
     CHECK(orbit_equal(&cam, &before));
 }
 
+/* At 2 fps the cursor moves onto the panel and presses within one frame:
+ * ImGui, which has not had a frame since, does not want the mouse yet. The
+ * press is left of the panel's edge, so it is the panel's: the camera
+ * stays, for the whole drag (issue #30). */
+static void test_press_on_panel_never_reaches_camera(void) {
+    view_mouse m = { .last_x = 600, .last_y = 300, .ui_right = 320 };
+    orbit cam = home(), before = home();
+    view_mouse_press(&m, VIEW_MOUSE_LEFT, 150, 200);
+    view_mouse_input in = { .x = 180, .y = 200, .left = true, .pressed = VIEW_MOUSE_LEFT, .press_x = 150, .press_y = 200 };
+    view_mouse_step(&m, &in, false, &cam);   /* ImGui's answer is a frame old: false */
+    CHECK(orbit_equal(&cam, &before));
+    in = (view_mouse_input){ .x = 500, .y = 260, .left = true };   /* dragged out over the scene, held */
+    view_mouse_step(&m, &in, false, &cam);
+    CHECK(orbit_equal(&cam, &before));
+    /* the same press right of the edge is the camera's */
+    view_mouse_input up = { .x = 500, .y = 260 };
+    view_mouse_step(&m, &up, false, &cam);
+    in = (view_mouse_input){ .x = 520, .y = 260, .left = true, .pressed = VIEW_MOUSE_LEFT, .press_x = 420, .press_y = 260 };
+    view_mouse_step(&m, &in, false, &cam);
+    CHECK(!orbit_equal(&cam, &before));
+}
+
 int main(void) {
     RUN(test_drag_runs_from_its_press);
+    RUN(test_press_on_panel_never_reaches_camera);
     RUN(test_pass_names_read_as_the_glib);
     RUN(test_script_line_limit);
     RUN(test_reload_cause_names_the_files);

@@ -390,6 +390,7 @@ static void frame(app *a, bool scripted) {
         snprintf(a->cause, sizeof a->cause, "a missing folder appeared");
         reload(a);
     }
+    a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);
     else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel), &a->s.cam);
     a->d.draw(a->d.user, a);

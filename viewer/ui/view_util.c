@@ -91,6 +91,7 @@ void view_mouse_step(view_mouse *m, const view_mouse_input *in, bool ui_wants, o
      * between two frames), and its drag starts where it was */
     bool left = in->left || (in->pressed & VIEW_MOUSE_LEFT);
     bool pan = in->pan || (in->pressed & VIEW_MOUSE_PAN);
+    if (in->pressed && in->press_x < m->ui_right) ui_wants = true;   /* pressed on the panel: its press */   /* pressed on the panel: its press */
     bool new_orbit = left && !m->dragging_orbit && !ui_wants;
     bool new_pan = pan && !m->dragging_pan && !ui_wants;
     if (in->pressed && (new_orbit || new_pan)) {

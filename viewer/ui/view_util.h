@@ -35,6 +35,11 @@ typedef struct view_mouse {
      * cursor is far from the press by the next frame */
     int pressed;
     double press_x, press_y;
+    /* the panel's right edge, window pixels (0: no panel): a press left of
+     * it is the panel's whatever ImGui said last frame; at 2 fps ImGui has
+     * not yet seen the cursor arrive over the panel (issue #30: a press on
+     * a slider dragged the slider and orbited the camera too) */
+    double ui_right;
 } view_mouse;
 
 #define VIEW_MOUSE_LEFT 1
