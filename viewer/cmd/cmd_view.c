@@ -22,7 +22,8 @@ static const char usage[] =
     "  --time SECONDS   start at this simulated time\n"
     "  --script FILE    run scripted actions (frames N, set P U v, expect P U v,\n"
     "                   wait SECONDS, screenshot PATH, camera CX CY CZ DIST YAW PITCH,\n"
-    "                   pause 1|0, reload, window W H, pack NAME, setting NAME, quit),\n"
+    "                   pause 1|0, reload, window W H, pack NAME, setting NAME,\n"
+    "                   help 1|0, quit),\n"
     "                   then exit\n"
     "  --record FILE    record what you do (sliders, camera, pause) into the session\n"
     "                   FILE from the start; `tarn record FILE -o out.mp4` replays it\n"
@@ -31,6 +32,7 @@ static const char usage[] =
     "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
     "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
     "       Shift+R start/stop recording a session (tarn-DATE-N.session)   Esc or Q quit\n"
+    "       F1 or ? shows these keys over the scene\n"
     "\n"
     "Screenshots are opaque PNGs, tarn-DATE-N.png in the current directory; the\n"
     "path shows over the scene. Frame time is ms per frame over the last second.\n";

@@ -156,6 +156,10 @@ void app_picture_changed(app *a);
  * in its draw to have the next frame drawn. */
 #define APP_IDLE_WAIT_S 0.05
 void app_keep_awake(app *a);
+
+/* A message alone on a dark window, shown at once (before a scene's first
+ * frame: "loading ... compiling N programs" instead of a black window). */
+void app_splash(app *a, const char *text);
 /* The panel's "Frame budget ms" (0: off), read and written by its slider. */
 float *app_budget_ms(app *a);
 /* "480x270 (50%) of 960x540, budget 50 ms" for the panel. */
