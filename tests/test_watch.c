@@ -11,6 +11,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <poll.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -323,6 +324,50 @@ static void test_save_slow_editor(void) {
     if (fixture_open(&fx)) {
         CHECK(save_truncate_write(fx.a, next_content(), 80));
         expect_one_change(fx.w, fx.a, now_ms(), "truncate + 2 writes, 80 ms pause");
+    }
+    fixture_close(&fx);
+}
+
+/* A save that stalls far past the write grace (a writer pausing 400 ms
+ * mid-file, the file open all the while): reported once, after the close,
+ * never the half-written text (issue #30: a 100 ms stall flashed
+ * "unexpected end of file"). The watcher asks whether a writer still holds
+ * the file (a read lease), so this holds for any stall up to
+ * WATCH_WRITER_MAX_MS. */
+typedef struct stalled_save {
+    const char *path, *content;
+    int pause_ms;
+    double closed_ms;          /* when the writer closed the file */
+    bool ok;
+} stalled_save;
+
+static void *stalled_writer(void *arg) {
+    stalled_save *s = arg;
+    s->ok = save_truncate_write(s->path, s->content, s->pause_ms);
+    s->closed_ms = now_ms();
+    return NULL;
+}
+
+static void test_save_stalled_writer(void) {
+    fixture fx;
+    if (fixture_open(&fx)) {
+        char copy[128];
+        snprintf(copy, sizeof copy, "%s", next_content());
+        stalled_save s = { .path = fx.a, .content = copy, .pause_ms = 400 };
+        pthread_t th;
+        CHECK(pthread_create(&th, NULL, stalled_writer, &s) == 0);
+        int n = watch_poll(fx.w, REPORT_TIMEOUT_MS);   /* while the writer stalls */
+        double reported = now_ms();
+        pthread_join(th, NULL);
+        CHECK(s.ok);
+        CHECK_MSG(n == 1, "%d changes reported, expected 1", n);
+        CHECK_MSG(reported >= s.closed_ms, "reported %.0f ms before the writer's close", s.closed_ms - reported);
+        fprintf(stderr, "  %-32s latency %6.1f ms after the close\n", "400 ms stall mid-save", reported - s.closed_ms);
+        CHECK_MSG(watch_poll(fx.w, SILENCE_MS) == 0, "a second report after the save");
+        FILE *f = fopen(fx.a, "r");
+        char got[128] = "";
+        if (f) { size_t k = fread(got, 1, sizeof got - 1, f); got[k] = '\0'; fclose(f); }
+        CHECK(strcmp(got, copy) == 0);
     }
     fixture_close(&fx);
 }
@@ -779,6 +824,7 @@ int main(void) {
     RUN(test_save_in_place);
     RUN(test_save_truncate_write);
     RUN(test_save_slow_editor);
+    RUN(test_save_stalled_writer);
     RUN(test_save_rename_over);
     RUN(test_save_emacs_backup);
     RUN(test_save_vim_default);

@@ -1,3 +1,4 @@
+#define _GNU_SOURCE   /* F_SETLEASE (fcntl.h) */
 /* watch: see watch.h. */
 #include "watch.h"
 
@@ -307,6 +308,37 @@ static void retry_lost_dirs(watch *w, int64_t t) {
 
 /* ---- deciding ----------------------------------------------------------- */
 
+/* Does a process still hold path open for writing? 1 yes, 0 no, -1 cannot
+ * tell. A read lease (fcntl F_SETLEASE) is refused with EAGAIN exactly
+ * while some open file description has the file open for writing; it
+ * needs the file to be the caller's own (EACCES otherwise) and a
+ * filesystem that has leases. So a save stalled mid-write (an editor
+ * writing in two calls with a pause, a slow network mount) is waited for
+ * by the writer's close, not a fixed time (issue #30). */
+static int writer_holds(const char *path) {
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return -1;
+    int r = fcntl(fd, F_SETLEASE, F_RDLCK);
+    int err = errno;
+    if (r == 0) fcntl(fd, F_SETLEASE, F_UNLCK);
+    close(fd);
+    return r == 0 ? 0 : err == EAGAIN ? 1 : -1;
+}
+
+/* Is f still being written: its close not seen, and either within the
+ * grace or a writer provably holding it (up to WATCH_WRITER_MAX_MS)?
+ * *until gets when to look again. */
+static bool still_writing(const watch_file *f, int64_t t, int64_t *until) {
+    if (!f->writing) return false;
+    *until = f->last_ns + WATCH_WRITE_GRACE_MS * MS;
+    if (t < *until) return true;
+    if (t < f->last_ns + WATCH_WRITER_MAX_MS * MS && writer_holds(f->path) == 1) {
+        *until = t + WATCH_WRITER_POLL_MS * MS;
+        return true;
+    }
+    return false;
+}
+
 /* Decides the dirty files that have settled, appending the changed ones to
  * w->changed. Returns when the next undecided file is due (NEVER if none). */
 static int64_t decide(watch *w, int64_t t) {
@@ -323,20 +355,20 @@ static int64_t decide(watch *w, int64_t t) {
             if (quiet_at < next) next = quiet_at;
             continue;
         }
-        if (f->writing) { /* wait for the close */
-            int64_t until = f->last_ns + WATCH_WRITE_GRACE_MS * MS;
-            if (t < until) {
-                if (until < next) next = until;
-                continue;
-            }
-            ready_at = until;
+        int64_t until;
+        if (still_writing(f, t, &until)) { /* wait for the close */
+            if (until < next) next = until;
+            continue;
+        }
+        if (f->writing) {
+            ready_at = t;
         } else if (f->present && !is_regular(f->path)) { /* wait for it to come back */
-            int64_t until = f->last_ns + WATCH_MISSING_GRACE_MS * MS;
-            if (t < until) {
-                if (until < next) next = until;
+            int64_t back = f->last_ns + WATCH_MISSING_GRACE_MS * MS;
+            if (t < back) {
+                if (back < next) next = back;
                 continue;
             }
-            ready_at = until;
+            ready_at = back;
         }
         nready++;
         if (ready_at < earliest_ready) earliest_ready = ready_at;
@@ -350,7 +382,8 @@ static int64_t decide(watch *w, int64_t t) {
     for (int i = 0; i < w->nfiles; i++) {
         watch_file *f = &w->files[i];
         if (!f->dirty || t < f->last_ns + WATCH_QUIET_MS * MS) continue;
-        if (f->writing && t < f->last_ns + WATCH_WRITE_GRACE_MS * MS) continue;
+        int64_t again;
+        if (still_writing(f, t, &again)) continue;
         uint64_t h = 0;
         bool present = hash_file(f->path, &h);
         if (!present && f->present && !f->writing && t < f->last_ns + WATCH_MISSING_GRACE_MS * MS) {

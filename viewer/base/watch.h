@@ -42,7 +42,11 @@
 
 #define WATCH_QUIET_MS         20  /* no events for this long: the save is over (its read then waits
                                       * for the file to be FILE_SETTLE_MS old; every ms is the user's) */
-#define WATCH_WRITE_GRACE_MS   150 /* most to wait for the close of a file being written */
+#define WATCH_WRITE_GRACE_MS   150 /* most to wait for the close of a file being written, when
+                                      * whether a writer still holds it cannot be asked */
+#define WATCH_WRITER_MAX_MS  10000 /* ...and while a writer provably still holds it open (a
+                                      * stalled save): then the latest read is taken */
+#define WATCH_WRITER_POLL_MS    50 /* how often to ask again */
 #define WATCH_MISSING_GRACE_MS 200 /* most to wait for a deleted file to come back */
 #define WATCH_BATCH_MS         100 /* most a settled file waits for others still busy */
 #define WATCH_RETRY_MS         100 /* re-watch a deleted directory at least this often */
