@@ -535,6 +535,138 @@ static void test_ocean_world_runs_its_passes(void) {
     world_free(&gw);
 }
 
+/* ---- (d) folding foam and the filtered normal ---- */
+
+/* The Jacobian's coverage, as ocean_foam.frag computes it (floats). */
+static float foam_cover(const float *a, const float *b) {
+    float J = (1.0f + b[2]) * (1.0f + b[3]) - a[3] * a[3];
+    float c = ((float)OCEAN_FOAM_J - J) / (float)OCEAN_FOAM_SOFT;
+    return c < 0 ? 0 : c > 1 ? 1 : c;
+}
+
+/* Foam appears where J < OCEAN_FOAM_J (the coverage, exactly, on the first
+ * frame), then each frame is max(prev exp(-dt / decay), coverage); a still
+ * frame changes nothing; a jump backwards or over a second restarts it. */
+static void test_foam_from_the_jacobian(void) {
+    enum { NR = 64, C = 2 };
+    ref_ocean *ro = reference_ocean(NR, C, 1.6);
+    if (!ro) { CHECK(0); return; }
+    gpu_ocean g;
+    CHECK(gpu_from(&g, ro));
+    static float a[NR * NR * 4], b[NR * NR * 4], f[NR * NR * 2], prev[C][NR * NR * 2];
+    const double times[] = { 1.0, 1.2, 1.2, 1.5, 0.7, 3.0 };
+    int resets = 0;
+    for (int k = 0; k < (int)(sizeof times / sizeof *times); k++) {
+        double t = times[k], dt = k ? t - times[k - 1] : -1;
+        bool ran = ocean_update(&g, t, NULL);
+        CHECK(ran == (dt != 0));                         /* a still frame runs nothing */
+        bool reset = dt < 0 || dt > OCEAN_FOAM_RESET_DT;
+        resets += reset && ran;
+        CHECK(g.foam_resets == resets);
+        double keep = reset ? 0 : exp(-(dt > 0 ? dt : 0) / OCEAN_FOAM_DECAY);
+        int folded = 0, foamy = 0, decayed = 0;
+        double worst = 0;
+        for (int c = 0; c < C; c++) {
+            ocean_read(&g, c, a, b);
+            ocean_read_foam(&g, c, f);
+            for (int i = 0; i < NR * NR; i++) {
+                float cover = foam_cover(a + 4 * i, b + 4 * i);
+                double want = k == 0 ? cover : fmax(prev[c][2 * i] * keep, cover);
+                if (!ran) want = prev[c][2 * i];         /* nothing decays twice */
+                worst = fmax(worst, fabs(f[2 * i] - want));
+                folded += cover > 0;
+                foamy += f[2 * i] > 0;
+                decayed += f[2 * i] > cover + 1e-6;      /* foam left by an earlier frame */
+                CHECK(f[2 * i + 1] == g.slope_var[c]);
+            }
+            memcpy(prev[c], f, sizeof f);
+        }
+        printf("  foam t=%.1f (dt %+.1f%s): %d of %d nodes under J = %.2f, %d with foam, %d of them decaying; "
+               "worst |foam - expected| %.2g\n", t, dt, reset ? ", restart" : ran ? "" : ", still", folded,
+               C * NR * NR, OCEAN_FOAM_J, foamy, decayed, worst);
+        CHECK(worst <= 1e-5);
+        CHECK(folded > 0);
+        if (!reset && ran) CHECK(decayed > 0);   /* the foam of earlier crests stays a while */
+        if (reset) CHECK(decayed == 0);
+    }
+    for (int c = 0; c < C; c++) CHECK(g.slope_var[c] > 0);
+    ocean_free(&g);
+    ref_ocean_destroy(ro);
+}
+
+/* wavesNormalFiltered at footprint 0 is wavesNormal; at a footprint of
+ * many tiles the ocean's slopes are gone (its normal is straight up) and
+ * the slope variance it dropped is the cascades' sum. */
+static void test_filtered_normal(void) {
+    enum { NR = 64, C = 2, G = 32 };
+    ref_ocean *ro = reference_ocean(NR, C, 1.0);
+    if (!ro) { CHECK(0); return; }
+    gpu_ocean g;
+    CHECK(gpu_from(&g, ro));
+    CHECK(ocean_update(&g, 1.5, NULL));
+    scratch_write("filt.vert", "#version 330 compatibility\nvoid main() { gl_Position = gl_Vertex; }\n");
+    scratch_write("filt.frag",
+                  "#version 330 compatibility\n#include \"waves.glsl\"\n"
+                  "uniform float uFoot;\nout vec4 c;\n"
+                  "void main() {\n"
+                  "  vec2 p = gl_FragCoord.xy * 1.37 - 20.0;\n"
+                  "  float lost;\n"
+                  "  vec3 nf = wavesNormalFilteredVar(p, 1.5, vec2(uFoot, 0.5 * uFoot), lost);\n"
+                  "  vec3 n = uFoot == 0.0 ? wavesNormal(p, 1.5) : vec3(0.0, 1.0, 0.0);\n"
+                  "  c = vec4(nf - n, lost);\n"
+                  "}\n");
+    GLuint vs = compile(GL_VERTEX_SHADER, "filt.vert"), fs = compile(GL_FRAGMENT_SHADER, "filt.frag");
+    CHECK(vs && fs);
+    if (!vs || !fs) { ocean_free(&g); ref_ocean_destroy(ro); return; }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    GLuint tex, fbo;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, G, G, 0, GL_RGBA, GL_FLOAT, NULL);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    glViewport(0, 0, G, G);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(p);
+    const ref_ocean_desc *od = ref_ocean_get_desc(ro);
+    glUniform1i(glGetUniformLocation(p, "uOceanN"), od->cascades);
+    glUniform1i(glGetUniformLocation(p, "uOceanRes"), od->res);
+    float tile[C];
+    for (int c = 0; c < C; c++) tile[c] = (float)od->tile[c];
+    glUniform1fv(glGetUniformLocation(p, "uOceanTile"), C, tile);
+    ocean_upload(p);
+    ocean_bind(&g);
+    static float out[G * G * 4];
+    const float feet[2] = { 0.0f, 1e4f };
+    for (int k = 0; k < 2; k++) {
+        glUniform1f(glGetUniformLocation(p, "uFoot"), feet[k]);
+        glRectf(-1, -1, 1, 1);
+        glReadPixels(0, 0, G, G, GL_RGBA, GL_FLOAT, out);
+        double worst = 0, lost = 0;
+        for (int i = 0; i < G * G; i++) {
+            for (int j = 0; j < 3; j++) worst = fmax(worst, fabs(out[4 * i + j]));
+            lost = fmax(lost, fabs(out[4 * i + 3] - (k ? g.slope_var[0] + g.slope_var[1] : 0.0)));
+        }
+        printf("  filtered normal, footprint %g m: worst |n - expected| %.2g, |lost variance - expected| %.2g "
+               "(sigma^2 %.3g + %.3g)\n", feet[k], worst, lost, g.slope_var[0], g.slope_var[1]);
+        CHECK(worst == 0 || (k == 1 && worst <= 1e-6));
+        CHECK(lost <= 1e-6 * (1 + g.slope_var[0] + g.slope_var[1]));
+    }
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    glDeleteProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    ocean_free(&g);
+    ref_ocean_destroy(ro);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -547,7 +679,9 @@ int main(void) {
     if (!scratch_create("ocean")) return 1;
     RUN(test_waves_with_an_ocean_match_reference);
     RUN(test_eval_cost);
+    RUN(test_filtered_normal);
     scratch_remove();
+    RUN(test_foam_from_the_jacobian);
     RUN(test_no_ocean_no_pass);
     RUN(test_ocean_world_runs_its_passes);
     gl_ctx_destroy(ctx);

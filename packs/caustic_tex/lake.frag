@@ -311,7 +311,17 @@ vec3 fromBelow(vec3 P, vec3 T, vec3 sky, Mirror m, float R) {
 void main() {
     float t = uTime;
     vec3 P = vWorldPos;
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
+    // the spectrum ocean's cascades finer than the pixel filtered out
+    // (waves.glsl: the horizon does not sparkle); what they held widens the
+    // sun's highlight (lostVar)
+    vec2 footprint = wavesFootprint(vRest);     // derivatives: in uniform control flow
+    float lostVar;
+    vec3 n = wavesNormalFilteredVar(vRest, t, footprint, lostVar);
+#else
+    vec2 footprint = vec2(0.0);
     vec3 n = wavesNormal(vRest, t);
+#endif
     float tilesPerUnit = uWaterTiling / (2.0 * uTerrainHalfSize);
     vec2 uv = P.xz * tilesPerUnit;
     vec2 sa = firstWaveScroll(false, tilesPerUnit, t), sb = firstWaveScroll(true, tilesPerUnit, t);
@@ -382,7 +392,13 @@ void main() {
 #ifdef SKY_REFLECTION
     color = R * reflectionAbove(sky, mirror) + (1.0 - R) * color;
 #endif
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
+    float energy;
+    float shin = wavesToksvig(max(uShininess, 1.0), lostVar, energy);
+    color += uKs * energy * pow(max(dot(reflect(-uSunDir, n), e), 0.0), shin) * uSunIrradiance;
+#else
     color += uKs * pow(max(dot(reflect(-uSunDir, n), e), 0.0), max(uShininess, 1.0)) * uSunIrradiance;
+#endif
 
     // foam where the water is shallow (the shore is the lake's border)
     float shallow = hit0 ? max(P.y - F0.y, 0.0) : 1e6;
@@ -390,6 +406,11 @@ void main() {
     float foam = xingFoam(uv * 4.0, 2.0 * sa, -sb, shallow, waveAmpSum());
 #else
     float foam = noiseFoam(P, shallow, waveAmpSum(), t);
+#endif
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FOAM)
+    // the ocean's folding foam (waves_ocean.glsl) joins the pack's own,
+    // slightly translucent
+    if (uShowFoam) foam = max(foam, 0.85 * wavesFoamFiltered(vRest, max(footprint.x, footprint.y)));
 #endif
     vec3 white = 0.9 * (uSunIrradiance * diffuse / WORLD_PI + uAmbient);
     color = mix(color, white, foam);

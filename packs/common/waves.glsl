@@ -37,8 +37,30 @@
 //   vec3  wavesNormalApprox(vec2 p0, float t)
 //   void  wavesEval(vec2 p0, float t, out vec3 pos, out vec3 normal)
 //   vec3  wavesNoise(vec2 p0, float t)               (height, d/dx0, d/dz0) of the noise
+//   vec2  wavesFootprint(vec2 p0)                    the pixel's footprint on the rest plane
+//   vec3  wavesNormalFiltered(vec2 p0, float t, vec2 footprint)
+//   vec3  wavesNormalFilteredVar(vec2 p0, float t, vec2 footprint, out float lostVar)
+//   float wavesToksvig(float shininess, float lostVar, out float energy)
 //   vec2  wavesRestPoint(vec2 xz, float t)            p0 under a world (x, z) (Newton)
 //   float wavesHeightAt(vec2 xz, float t)             surface height over a world (x, z)
+//
+// Filtered normals (the spectrum ocean only: #ifdef WAVES_HAS_OCEAN; the
+// pack Define OCEAN_FILTER chooses them). Far out, a pixel covers many
+// texels of the ocean's finer cascades, and a normal read at one point of
+// each aliases into a salt-and-pepper band of white and dark pixels. As
+// ocean renderers do, wavesNormalFiltered fades cascade c's slope and
+// Jacobian by w_c = 1 - smoothstep(0.5, 2, footprint / (L_c / N)), the
+// footprint being max(footprint.x, footprint.y) metres of rest plane a
+// pixel spans (wavesFootprint: the lengths of p0's screen derivatives,
+// dFdx and dFdy, so call it where control flow is uniform, at the top of
+// main); heights and the sideways displacement stay whole. At footprint
+// (0, 0) it equals wavesNormal. wavesNormalFilteredVar also returns the
+// slope variance the weights removed, sum (1 - w_c^2) sigma_c^2 (each
+// cascade's mean hx^2 + hz^2, from its spectrum); wavesToksvig hands it to
+// a Blinn-Phong / Phong highlight as roughness (Toksvig; LEAN mapping's
+// idea): alpha^2 = 2 / (m + 2) + lostVar, m' = 2 / alpha^2 - 2, and
+// energy = (m' + 2) / (m + 2) keeps the lobe's light, so the sun's glitter
+// path stays a broad band instead of vanishing with the slopes.
 #ifndef WAVES_GLSL
 #define WAVES_GLSL
 
@@ -173,7 +195,7 @@ vec3 wavesNoise(vec2 p0, float t) {
 // Height h (without level) and its gradient, the sideways displacement D
 // (Gerstner waves and the ocean) and its Jacobian entries a = dDx/dx0,
 // b = dDx/dz0 = dDz/dx0, d = dDz/dz0, of every model above.
-void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
+void wavesSumsModels(vec2 p0, float t, bool ocean, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
     h = 0.0; dh = vec2(0.0); disp = vec2(0.0); abd = vec3(0.0);
 #ifdef WAVES_HAS_SINE
     for (int i = 0; i < WAVES_MAX; i++) {
@@ -203,7 +225,7 @@ void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out ve
     dh += nz.yz;
 #endif
 #ifdef WAVES_HAS_OCEAN
-    wavesOcean(p0, h, dh, disp, abd);
+    if (ocean) wavesOcean(p0, h, dh, disp, abd);
 #endif
     vec2 g;                                             // the height-only models
 #ifdef WAVES_HAS_EXPLOSION
@@ -214,6 +236,15 @@ void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out ve
     h += wavesPerlin(p0, t, g);
     dh += g;
 #endif
+}
+
+void wavesSums(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
+    wavesSumsModels(p0, t, true, h, dh, disp, abd);
+}
+
+// every model but the ocean (wavesNormalFilteredVar adds it filtered)
+void wavesSumsNoOcean(vec2 p0, float t, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
+    wavesSumsModels(p0, t, false, h, dh, disp, abd);
 }
 
 vec3 wavesDisplace(vec2 p0, float t) {
@@ -260,6 +291,34 @@ void wavesEval(vec2 p0, float t, out vec3 pos, out vec3 normal) {
     pos = vec3(p0.x + disp.x, uWaterLevel + h, p0.y + disp.y);
     normal = wavesNormalFrom(dh, abd, WAVES_USE_APPROX);
 }
+
+// ---- filtered normals (see the header) ----------------------------------
+
+// a macro, not a function: waves.glsl is in vertex shaders too, which have no dFdx
+#define wavesFootprint(p0) vec2(length(dFdx(p0)), length(dFdy(p0)))
+
+float wavesToksvig(float shininess, float lostVar, out float energy) {
+    float m = max(shininess, 0.0);
+    float m2 = 2.0 / (2.0 / (m + 2.0) + max(lostVar, 0.0)) - 2.0;
+    energy = (m2 + 2.0) / (m + 2.0);
+    return m2;
+}
+
+#ifdef WAVES_HAS_OCEAN
+vec3 wavesNormalFilteredVar(vec2 p0, float t, vec2 footprint, out float lostVar) {
+    float h; vec2 dh, disp; vec3 abd;
+    lostVar = 0.0;
+    // every model but the ocean, then the ocean filtered
+    wavesSumsNoOcean(p0, t, h, dh, disp, abd);
+    wavesOceanFiltered(p0, max(footprint.x, footprint.y), h, dh, disp, abd, lostVar);
+    return wavesNormalFrom(dh, abd, WAVES_USE_APPROX);
+}
+
+vec3 wavesNormalFiltered(vec2 p0, float t, vec2 footprint) {
+    float lostVar;
+    return wavesNormalFilteredVar(p0, t, footprint, lostVar);
+}
+#endif
 
 // ---- inversion -----------------------------------------------------------
 

@@ -183,7 +183,17 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
 
 void main() {
     vec3 U = vWorldPos;
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
+    // the spectrum ocean's cascades finer than the pixel filtered out
+    // (waves.glsl: the horizon does not sparkle); what they held widens the
+    // sun's highlight (lostVar)
+    vec2 footprint = wavesFootprint(vRest);     // derivatives: in uniform control flow
+    float lostVar;
+    vec3 N = wavesNormalFilteredVar(vRest, uTime, footprint, lostVar);
+#else
+    vec2 footprint = vec2(0.0);
     vec3 N = wavesNormal(vRest, uTime);
+#endif
     vec3 E = normalize(uCameraPos - U);
     vec3 n = dot(E, N) < 0.0 ? -N : N;          // faces the eye
     float cosI = clamp(dot(E, n), 0.0, 1.0);
@@ -238,9 +248,20 @@ void main() {
         // conserving factor): a small bright glint, as the sun's own
         // reflection is, whose light does not grow with m
         vec3 H = normalize(E + uSunDir);
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
+        float energy;
+        float shin = wavesToksvig(uShininess, lostVar, energy);
+        vec3 spec = uSpecular * pow(max(dot(n, H), 0.0), shin) * uSunIrradiance;
+#ifdef SPECULAR_FRESNEL
+        spec *= F * (shin + 8.0) / (8.0 * 3.14159265);   // normalised: its light kept as it widens
+#else
+        spec *= energy;
+#endif
+#else
         vec3 spec = uSpecular * pow(max(dot(n, H), 0.0), uShininess) * uSunIrradiance;
 #ifdef SPECULAR_FRESNEL
         spec *= F * (uShininess + 8.0) / (8.0 * 3.14159265);
+#endif
 #endif
         color += spec;
 #endif
@@ -276,6 +297,14 @@ void main() {
         color = attenuate(color, distance(uCameraPos, U));   // the eye's own path in water
     }
 
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FOAM)
+    // the ocean's folding foam (waves_ocean.glsl): white, rough (lit
+    // diffusely, no mirror), slightly translucent
+    float foam = 0.85 * wavesFoamFiltered(vRest, max(footprint.x, footprint.y));
+    vec3 white = 0.9 * (uSunIrradiance * max(dot(n, uSunDir), 0.0) / WORLD_PI + uAmbient);
+    if (under) white *= exp(-uAbsorption * distance(uCameraPos, U));
+    color = mix(color, white, foam);
+#endif
 #ifdef DEBUG_FRESNEL
     color = vec3(F);                                     // white: reflection, black: refraction
 #endif

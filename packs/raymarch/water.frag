@@ -63,8 +63,16 @@ out vec4 fragColor;
 
 int gFetches = 0;   // world-Y texels the marches read (DEBUG_OUTPUT 5)
 
-vec3 waterNormal() {
+// The slope variance the filtered normal dropped (OCEAN_FILTER): the
+// highlight's extra roughness (waves.glsl, wavesToksvig).
+float gLostVar = 0.0;
+
+vec3 waterNormal(vec2 footprint) {
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
+    vec3 n = wavesNormalFilteredVar(vRest, uTime, footprint, gLostVar);
+#else
     vec3 n = wavesNormal(vRest, uTime);
+#endif
 #ifdef NORMAL_MAP
     // the source's four scrolled samples of one normal map, averaged; their
     // slopes, times BumptexMult, are added to the waves' slopes
@@ -183,6 +191,21 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
 // path s in water, the point and the march's status.
 vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     vec3 d = marchClampDir(dir, true);
+#ifdef WAVES_HAS_OCEAN
+    // Water beyond the world square (the open sea's rings): no top-down
+    // texel under it, so the march would leave at once with a path of 0
+    // and the colour of the texture's edge (black speckles and a floor
+    // 60 m down shown unattenuated). The ground there is the terrain's
+    // model, as world.frag draws it: the ray goes on down to it (a few
+    // fixed-point steps on its height) through the water all the way.
+    if (!marchInFootprint(marchUV(p))) {
+        s = 0.0;
+        for (int i = 0; i < 3; i++) s = max(p.y - terrainHeightGrad((p + s * d).xz).x, 0.0) / -d.y;
+        hit = p + s * d;
+        status = MARCH_LEFT;
+        return groundModelColor(hit);
+    }
+#endif
     March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth * uWorldScale, uStepsGrazing,
                                uStepsSteep, uMaxStep * uWorldScale, -1e30, 1e30, uMaxIter, REFINE_COUNT,
                                -1e30);
@@ -237,10 +260,28 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
 }
 
 void main() {
-    vec3 n = waterNormal();
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
+    vec2 footprint = wavesFootprint(vRest);   // in uniform control flow: derivatives
+#else
+    vec2 footprint = vec2(0.0);
+#endif
+    vec3 n = waterNormal(footprint);
     vec3 p = vWorldPos;
     vec3 e = normalize(uCameraPos - p);
+#ifdef WAVES_HAS_OCEAN
+    // The side of the water is the camera's (pack.glib's passes: the mean
+    // level), not the normal's: a per-pixel normal of the ocean's finer
+    // cascades turned away from an eye above the water (the back of a
+    // ripple on a crest the mesh shows) made the pixel a view from below,
+    // its total internal reflection marched 60 m down: black speckles.
+    // Such a normal is mirrored about the plane across the view instead,
+    // so it faces the eye with its tilt kept.
+    bool below = uCameraPos.y < uWaterLevel;
+    float en = dot(e, n);
+    if (below ? en > 0.0 : en < 0.0) n = normalize(n - 2.0 * en * e);
+#else
     bool below = dot(e, n) < 0.0;
+#endif
     // Each side of the surface marches one ray down (through the ground
     // solid) and one up (the above-water one): from above, the refracted
     // ray down and the reflected one up; from below, the reflected ray down
@@ -261,7 +302,14 @@ void main() {
     vec3 color, hitT, hitR;
     int stT, stR;
     if (!below) {
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
+        // the slopes the filter dropped widen the highlight, its light kept
+        float energy;
+        float shin = wavesToksvig(uShininess, gLostVar, energy);
+        vec3 spec = uSpecular * energy * uSunIrradiance * pow(max(dot(rdir, uSunDir), 0.0), shin);
+#else
         vec3 spec = uSpecular * uSunIrradiance * pow(max(dot(rdir, uSunDir), 0.0), uShininess);
+#endif
         color = F * (up + spec) + (1.0 - F) * down;
         hitT = hitD; stT = stD; hitR = hitU; stR = stU;
     } else {
@@ -273,6 +321,13 @@ void main() {
         // the camera's own path in water (camera under the mean level)
         if (uCameraPos.y < uWaterLevel) color = attenuate(color, length(uCameraPos - p));
     }
+#if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FOAM)
+    // the ocean's folding foam (waves_ocean.glsl): white, rough (lit
+    // diffusely, no mirror), slightly translucent
+    float foam = 0.85 * wavesFoamFiltered(vRest, max(footprint.x, footprint.y));
+    vec3 white = 0.9 * (uSunIrradiance * max(dot(n, uSunDir), 0.0) / WORLD_PI + uAmbient);
+    color = mix(color, white, foam);
+#endif
     fragColor = vec4(color, 1.0);
 #if DEBUG_OUTPUT == 1
     fragColor = vec4(hitT, float(stT));     // refracted ray: point met, status

@@ -9,6 +9,9 @@
  * Each pass is one fullscreen triangle (packs/common/world_height.vert,
  * made from gl_VertexID) into an N x N layer; one draw per layer per pass,
  * cascades * (1 + 2 log2 N) draws a frame (3 cascades of 256^2: 51).
+ *   3. packs/common/ocean_foam.frag: the folding foam from the frame's
+ *      Jacobian and the foam before (render_ocean.h, OCEAN_FOAM_*), one
+ *      draw a cascade, foam ping-pong.
  *
  * Why fragment passes and not compute shaders. (1) The rest of tarn's GPU
  * work is fragment passes into FBOs, timed and state-managed one way
@@ -31,6 +34,7 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,7 +57,9 @@ static unsigned make_array(GLenum internal, GLenum format, int n, int layers, co
 }
 
 static void init_prog(gpu_ocean *o, int which, const char *common_dir) {
-    static const char *const names[OCEAN_PROGS] = { "OceanSpectrum", "OceanFFTx", "OceanFFTz" };
+    static const char *const names[OCEAN_PROGS] = { "OceanSpectrum", "OceanFFTx", "OceanFFTz", "OceanFoam" };
+    static const char *const frags[OCEAN_PROGS] = { "ocean_spectrum.frag", "ocean_fft.frag", "ocean_fft.frag",
+                                                    "ocean_foam.frag" };
     prog *p = &o->progs[which];
     memset(p, 0, sizeof *p);
     memset(&o->prog_unifs[which], 0, sizeof o->prog_unifs[which]);
@@ -61,8 +67,7 @@ static void init_prog(gpu_ocean *o, int which, const char *common_dir) {
     p->world_uniforms = true;   /* its uniforms are tarn's, not sliders */
     snprintf(p->name, sizeof p->name, "%s", names[which]);
     snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", common_dir);
-    snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/%s", common_dir,
-             which == OCEAN_PROG_SPECTRUM ? "ocean_spectrum.frag" : "ocean_fft.frag");
+    snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/%s", common_dir, frags[which]);
     if (which == OCEAN_PROG_FFT_V) {
         snprintf(p->fixed[0].name, sizeof p->fixed[0].name, "OCEAN_FFT_VERTICAL");
         snprintf(p->fixed[0].value, sizeof p->fixed[0].value, "1");
@@ -107,6 +112,36 @@ bool ocean_create(gpu_ocean *o, int cascades, int res, const float *tile, float 
             if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) ok = false;
         }
     }
+    /* the foam, zero at first (the first update restarts it anyway) */
+    float *zero = mem_zalloc((size_t)res * res * cascades * 2 * sizeof(float));
+    for (int p = 0; p < 2; p++) {
+        o->foam_tex[p] = make_array(GL_RG32F, GL_RG, res, cascades, zero);
+        glGenFramebuffers(cascades, o->foam_fbo[p]);
+        for (int c = 0; c < cascades; c++) {
+            glBindFramebuffer(GL_FRAMEBUFFER, o->foam_fbo[p][c]);
+            glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, o->foam_tex[p], 0, c);
+            glDrawBuffer(GL_COLOR_ATTACHMENT0);
+            if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) ok = false;
+        }
+    }
+    free(zero);
+    /* each cascade's slope variance, the mean of hx^2 + hz^2 over its tile
+     * in time: sum over k of |k|^2 (|h0(k)|^2 + |h0(-k)|^2) (the transform
+     * is unnormalised, as ref_ocean_variance's sum of h; k = 0 and the
+     * Nyquist row and column are not drawn, ocean_spectrum.frag) */
+    for (int c = 0; c < cascades; c++) {
+        double v = 0;
+        for (int j = 0; j < res; j++)
+            for (int i = 0; i < res; i++) {
+                if (i == res / 2 || j == res / 2) continue;
+                double kx = 2 * 3.14159265358979323846 * (i < res / 2 ? i : i - res) / tile[c];
+                double kz = 2 * 3.14159265358979323846 * (j < res / 2 ? j : j - res) / tile[c];
+                const float *t = h0 + (((size_t)c * res + j) * res + i) * 4;
+                v += (kx * kx + kz * kz) * ((double)t[0] * t[0] + (double)t[1] * t[1] + (double)t[2] * t[2] +
+                                            (double)t[3] * t[3]);
+            }
+        o->slope_var[c] = (float)v;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (!ok) str_appendf(log, "tarn: error: the ocean's RGBA32F targets are not complete on this GL\n");
     for (int i = 0; i < OCEAN_PROGS; i++) init_prog(o, i, common_dir);
@@ -142,6 +177,8 @@ void ocean_free(gpu_ocean *o) {
         glDeleteFramebuffers(o->cascades, o->fbo[p]);
         glDeleteTextures(2, o->tex[p]);
     }
+    for (int p = 0; p < 2; p++) glDeleteFramebuffers(o->cascades, o->foam_fbo[p]);
+    glDeleteTextures(2, o->foam_tex);
     glDeleteTextures(1, &o->h0_tex);
     glDeleteTextures(1, &o->omega_tex);
     memset(o, 0, sizeof *o);
@@ -156,6 +193,7 @@ void ocean_bind(const gpu_ocean *o) {
     if (!o->active) return;
     bind_array(OCEAN_UNIT_A, o->tex[0][0]);
     bind_array(OCEAN_UNIT_B, o->tex[0][1]);
+    bind_array(OCEAN_UNIT_FOAM, o->foam_tex[o->foam_cur]);
     glActiveTexture(GL_TEXTURE0);
 }
 
@@ -167,6 +205,7 @@ static void seti(unsigned p, const char *name, int v) {
 void ocean_upload(unsigned p) {
     seti(p, "uOceanA", OCEAN_UNIT_A);
     seti(p, "uOceanB", OCEAN_UNIT_B);
+    seti(p, "uOceanFoam", OCEAN_UNIT_FOAM);
 }
 
 static unsigned long long progs_hash(const gpu_ocean *o) {
@@ -241,6 +280,42 @@ bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
             src = 1 - src;
         }
     }
+
+    /* the foam: decayed by the time step since the foam's time, topped up
+     * with this frame's coverage; restarted from the coverage after a jump
+     * (backwards, or over OCEAN_FOAM_RESET_DT); a step of 0 (the programs
+     * rebuilt, same time) decays nothing */
+    if (timer) gpu_timer_mark(timer, "ocean foam");
+    double dt = t - o->foam_t;
+    bool reset = !o->foam_valid || dt < 0 || dt > OCEAN_FOAM_RESET_DT;
+    float keep = reset ? 0.0f : (float)exp(-dt / OCEAN_FOAM_DECAY);
+    if (reset) o->foam_resets++;
+    p = o->progs[OCEAN_PROG_FOAM].gl;
+    glUseProgram(p);
+    bind_array(OCEAN_UNIT_A, o->tex[0][0]);
+    bind_array(OCEAN_UNIT_B, o->tex[0][1]);
+    bind_array(OCEAN_UNIT_FOAM, o->foam_tex[o->foam_cur]);
+    seti(p, "uOceanSrcA", OCEAN_UNIT_A);
+    seti(p, "uOceanSrcB", OCEAN_UNIT_B);
+    seti(p, "uOceanFoamPrev", OCEAN_UNIT_FOAM);
+    loc = glGetUniformLocation(p, "uOceanFoamKeep");
+    if (loc >= 0) glUniform1f(loc, keep);
+    loc = glGetUniformLocation(p, "uOceanFoamJ");
+    if (loc >= 0) glUniform1f(loc, (float)OCEAN_FOAM_J);
+    loc = glGetUniformLocation(p, "uOceanFoamSoft");
+    if (loc >= 0) glUniform1f(loc, (float)OCEAN_FOAM_SOFT);
+    layer = glGetUniformLocation(p, "uOceanLayer");
+    GLint var = glGetUniformLocation(p, "uOceanSlopeVar");
+    for (int c = 0; c < o->cascades; c++) {
+        glBindFramebuffer(GL_FRAMEBUFFER, o->foam_fbo[1 - o->foam_cur][c]);
+        glUniform1i(layer, c);
+        glUniform1f(var, o->slope_var[c]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    o->foam_cur = 1 - o->foam_cur;
+    o->foam_t = t;
+    o->foam_valid = true;
+
     glPopClientAttrib();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -250,6 +325,19 @@ bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
     o->valid = true;
     o->frames++;
     return true;
+}
+
+void ocean_read_foam(const gpu_ocean *o, int c, float *foam) {
+    if (!o->active) return;
+    GLuint fbo;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glFramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, o->foam_tex[o->foam_cur], 0, c);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, o->res, o->res, GL_RG, GL_FLOAT, foam);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
 }
 
 void ocean_read(const gpu_ocean *o, int c, float *a, float *b) {

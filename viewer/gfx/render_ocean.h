@@ -18,8 +18,28 @@
 
 #define OCEAN_UNIT_A 28          /* above glman's units; 30 is the waves' height map */
 #define OCEAN_UNIT_B 29
+/* The folding foam: 27, beside A and B (31, the last unit of a GL with 32
+ * image units, e.g. llvmpipe, is left free) */
+#define OCEAN_UNIT_FOAM 27
 
-enum { OCEAN_PROG_SPECTRUM, OCEAN_PROG_FFT_H, OCEAN_PROG_FFT_V, OCEAN_PROGS };
+/* Folding foam (Tessendorf: where J = det(I + dD) falls under a threshold
+ * the crest folds): per cascade a foam layer, each frame
+ *     foam = max(foam_prev exp(-dt / decay), coverage(J)),
+ *     coverage(J) = clamp((OCEAN_FOAM_J - J) / OCEAN_FOAM_SOFT, 0, 1),
+ * dt the frame's time step; a time jump backwards or over
+ * OCEAN_FOAM_RESET_DT restarts it from the coverage; a still frame (same
+ * time) leaves it as it is. */
+/* per cascade, J of that cascade's own fields: the cascades' Jacobians add
+ * (to first order), so each alone seldom folds; at 0.86 a moderate sea
+ * (scenes/ocean.glib: 9 m/s, choppiness 1; each cascade's J has its 1st
+ * percentile at ~0.77, 5th at ~0.83, minimum ~0.6) shows whitecaps on its
+ * steepest crests, and a choppy one (2.2) far more */
+#define OCEAN_FOAM_J 0.86
+#define OCEAN_FOAM_SOFT 0.2
+#define OCEAN_FOAM_DECAY 2.5     /* seconds for foam to fall to 1/e */
+#define OCEAN_FOAM_RESET_DT 1.0
+
+enum { OCEAN_PROG_SPECTRUM, OCEAN_PROG_FFT_H, OCEAN_PROG_FFT_V, OCEAN_PROG_FOAM, OCEAN_PROGS };
 
 typedef struct gpu_ocean {
     bool active;
@@ -34,6 +54,17 @@ typedef struct gpu_ocean {
     unsigned fbo[2][REF_OCEAN_CASCADES_MAX];   /* pair p, layer c: MRT (A, B) */
     prog progs[OCEAN_PROGS];
     unif_set prog_unifs[OCEAN_PROGS];
+    /* the foam, RG32F arrays (foam, the cascade's slope variance sigma_c^2,
+     * the mean of hx^2 + hz^2 over the tile: waves.glsl's filtered normal
+     * hands what it drops to the highlight), ping-pong; foam_cur holds the
+     * frame's */
+    unsigned foam_tex[2];
+    unsigned foam_fbo[2][REF_OCEAN_CASCADES_MAX];
+    int foam_cur;
+    float slope_var[REF_OCEAN_CASCADES_MAX];
+    double foam_t;               /* the time the foam holds */
+    bool foam_valid;
+    int foam_resets;             /* tests: updates that restarted from the coverage */
     double t;                    /* the time the textures hold */
     bool valid;                  /* they hold a frame */
     unsigned long long hash;     /* of the programs that drew it */
@@ -57,16 +88,21 @@ void ocean_free(gpu_ocean *o);
 /* Rebuilds the pass programs (a shader file changed); false on errors. */
 bool ocean_build_programs(gpu_ocean *o, const char *const *include_dirs, char **log);
 
-/* Computes the frame at time t unless the textures hold it already, naming
+/* Computes the frame at time t unless the textures hold it already (and
+ * the foam from the frame and the time step since the last), naming
  * the passes in timer (may be NULL), and leaves A and B bound at their
  * units. Binds framebuffer 0, changes the viewport and the program.
  * Returns whether it ran the passes. */
 bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer);
 
-/* Binds the frame's A and B at OCEAN_UNIT_A / OCEAN_UNIT_B (nothing when inactive). */
+/* Reads the foam back: N * N * 2 floats (foam, sigma_c^2) of cascade c. */
+void ocean_read_foam(const gpu_ocean *o, int c, float *foam);
+
+/* Binds the frame's A and B at OCEAN_UNIT_A / OCEAN_UNIT_B and the foam at
+ * OCEAN_UNIT_FOAM (nothing when inactive). */
 void ocean_bind(const gpu_ocean *o);
 
-/* Sets uOceanA / uOceanB of program p to their units, with or without an
+/* Sets uOceanA / uOceanB / uOceanFoam of program p to their units, with or without an
  * ocean: every program that includes waves.glsl declares them, and two
  * samplers of different types left on unit 0 fail every draw. */
 void ocean_upload(unsigned p);

@@ -5,7 +5,10 @@
  *
  * Fixed texture units: 14 the terrain albedo (sampler uTerrainAlbedo),
  * 15 the sky cube map (samplerCube uSky), 28 and 29 the ocean's frame
- * (uOceanA, uOceanB; OCEAN_UNIT_A/B), 30 the waves' height map. Every program that declares a
+ * (uOceanA, uOceanB; OCEAN_UNIT_A/B), 27 its folding foam (uOceanFoam,
+ * OCEAN_UNIT_FOAM: beside the frame and under 30, so 31, the last unit of
+ * a GL with 32 image units such as llvmpipe, stays free), 30 the waves'
+ * height map. Every program that declares a
  * world uniform (uSunDir, uWaterLevel, the wave set, ...) gets it set. */
 #ifndef TARN_RENDER_WORLD_H
 #define TARN_RENDER_WORLD_H
