@@ -187,6 +187,17 @@ static void test_json_has_the_hand_computed_values(void) {
     int found;
     jnum(j, NULL, "heatmap", &found);
     CHECK(found);                               /* null without --out: keys are stable */
+    /* FLIP (HDR: TIFF is linear) beside RMSE; SSIM needs 11x11: null */
+    CHECK_STR_CONTAINS(j, "\"flip_kind\": \"HDR\"");
+    double fm = jnum(j, NULL, "flip_mean", NULL);
+    CHECK(fm > 0 && fm < 1);
+    CHECK(jnum(j, NULL, "flip_max", NULL) >= jnum(j, NULL, "flip_weighted_median", NULL));
+    CHECK(jnum(j, NULL, "flip_exposures", NULL) >= 2);
+    CHECK(isnan(jnum(j, NULL, "ssim", &found)) && found);
+    jnum(j, NULL, "flip_map", &found);
+    CHECK(found);
+    CHECK_STR_CONTAINS(out_buf, "FLIP, whole frame, mean");
+    CHECK_STR_CONTAINS(out_buf, "at least 11x11");
 
     /* --threshold moves the share. */
     rc = compare("%s %s --threshold 0.2 --json %s", path("a.tif"), path("b.tif"), path("m.json"));
@@ -409,6 +420,9 @@ static void test_water_first_from_the_reference_mask(void) {
     CHECK(jnum(j, NULL, "water_pixels", NULL) == 16);
     CHECK_NEAR(jnum(j, NULL, "off_water_rmse", NULL), el / sqrt(24.0 * 3), 1e-6);
     CHECK(jnum(j, NULL, "off_water_pixels", NULL) == 24);
+    CHECK(jnum(j, NULL, "water_flip_mean", NULL) > jnum(j, NULL, "off_water_flip_mean", NULL));
+    int fnd;
+    CHECK(isnan(jnum(j, NULL, "water_ssim", &fnd)) && fnd);     /* 10x4: smaller than SSIM's window */
     CHECK_NEAR(jnum(j, NULL, "rmse", NULL), sqrt((16 * 3 * ew * ew + el * el) / (40.0 * 3)), 1e-6);
     const char *water = strstr(out_buf, "water RMSE"), *whole = strstr(out_buf, "RMSE, whole frame");
     CHECK(water && whole && water < whole);
@@ -416,6 +430,91 @@ static void test_water_first_from_the_reference_mask(void) {
     rc = compare("%s %s", path("wa.tif"), path("wa.tif"));
     CHECK(rc == 0);
     CHECK_STR_CONTAINS(out_buf, "water-only error");
+    CHECK_STR_CONTAINS(out_buf, "FLIP, whole frame, mean");
+}
+
+/* FLIP and SSIM on display images: identical PNGs give FLIP 0 (LDR) and
+ * SSIM 1, the FLIP map is magma's black (0, 0, 4); a changed square gives
+ * FLIP > 0 there only and SSIM < 1; --flip-map greys what --mask leaves out. */
+static void test_flip_and_ssim(void) {
+    img a = make(32, 24, 3, 0.5f), b = make(32, 24, 3, 0.5f);
+    save(path("fa.png"), &a);
+    save(path("fb.png"), &b);
+    int rc = compare("%s %s --json %s --flip-map %s", path("fa.png"), path("fb.png"), path("f.json"), path("flip.png"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    char *j = read_file(path("f.json"));
+    CHECK(j && json_valid(j));
+    CHECK_STR_CONTAINS(j, "\"flip_kind\": \"LDR\"");
+    CHECK(jnum(j, NULL, "flip_mean", NULL) == 0);
+    CHECK(jnum(j, NULL, "flip_max", NULL) == 0);
+    CHECK_NEAR(jnum(j, NULL, "flip_ppd", NULL), 67.0206, 1e-3);
+    CHECK_NEAR(jnum(j, NULL, "ssim", NULL), 1, 1e-9);
+    CHECK(isnan(jnum(j, NULL, "flip_start_exposure", NULL)));
+    CHECK_STR_CONTAINS(j, path("flip.png"));
+    img m;
+    char e[512];
+    CHECK(img_read(path("flip.png"), &m, e, sizeof e));
+    CHECK(m.w == 32 && m.h == 24 && m.channels >= 3);
+    CHECK(m.px[0] == 0 && m.px[1] == 0 && fabsf(m.px[2] - 4 / 255.0f) < 1e-6f);
+    img_free(&m);
+
+    a = make(32, 24, 3, 0.5f);
+    for (int y = 8; y < 12; y++)
+        for (int x = 4; x < 8; x++) at(&a, x, y)[0] = 0.9f;
+    save(path("fa.png"), &a);
+    img mk = make(32, 24, 1, 1.0f);
+    for (int y = 0; y < 24; y++)
+        for (int x = 16; x < 32; x++) at(&mk, x, y)[0] = 0;       /* the right half out */
+    save(path("fmask.png"), &mk);
+    rc = compare("%s %s --json %s --flip-map %s --mask %s", path("fa.png"), path("fb.png"), path("f.json"),
+                 path("flip.png"), path("fmask.png"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    j = read_file(path("f.json"));
+    double fm = jnum(j, NULL, "flip_mean", NULL), ss = jnum(j, NULL, "ssim", NULL);
+    CHECK(fm > 0 && fm < 1);
+    CHECK(ss < 1 && ss > 0);
+    CHECK(jnum(j, NULL, "flip_min", NULL) == 0);               /* far from the square */
+    CHECK(jnum(j, NULL, "flip_max", NULL) > 0.3);
+    CHECK(img_read(path("flip.png"), &m, e, sizeof e));
+    CHECK(fabsf(at(&m, 20, 10)[0] - 0.5f) < 0.01f && fabsf(at(&m, 20, 10)[1] - 0.5f) < 0.01f);   /* masked: grey */
+    CHECK(at(&m, 5, 9)[0] > 0.3f);                              /* the square: bright */
+    img_free(&m);
+    /* without the mask the mean pools twice the pixels, and the little
+     * error the filters spread into the right half */
+    rc = compare("%s %s --json %s", path("fa.png"), path("fb.png"), path("f.json"));
+    j = read_file(path("f.json"));
+    double all = jnum(j, NULL, "flip_mean", NULL);
+    CHECK(all > fm / 2 && all < fm * 0.6);
+    rc = compare("%s %s --flip-map %s/no/such/dir.png", path("fa.png"), path("fb.png"), dir);
+    CHECK(rc == 1);
+    CHECK_STR_CONTAINS(err_buf, "FLIP map");
+}
+
+/* End to end on the FLIP oracle (../shared/flip-oracle): `tarn compare`
+ * gives the authors' mean for an LDR and an HDR pair, and leads with the
+ * water (ref.mask.exr is beside ref.exr and ref.png). */
+static void test_flip_oracle_through_compare(void) {
+    const char *o = TARN_SOURCE_DIR "/../shared/flip-oracle";
+    struct stat st;
+    if (stat(o, &st) != 0) SKIP("no %s", o);
+    int rc = compare("%s/natural.png %s/ref.png --json %s", o, o, path("o.json"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    char *j = read_file(path("o.json"));
+    CHECK_STR_CONTAINS(j, "\"flip_kind\": \"LDR\"");
+    CHECK_NEAR(jnum(j, NULL, "flip_mean", NULL), 0.050793, 1e-4);
+    double w = jnum(j, NULL, "water_flip_mean", NULL), ow = jnum(j, NULL, "off_water_flip_mean", NULL);
+    CHECK(w > ow && ow >= 0);
+    CHECK(jnum(j, NULL, "water_ssim", NULL) < jnum(j, NULL, "off_water_ssim", NULL));
+    rc = compare("%s/caustic_tex.exr %s/ref.exr --json %s", o, o, path("o.json"));
+    CHECK_MSG(rc == 0, "%s", err_buf);
+    j = read_file(path("o.json"));
+    CHECK_STR_CONTAINS(j, "\"flip_kind\": \"HDR\"");
+    CHECK_NEAR(jnum(j, NULL, "flip_mean", NULL), 0.135878, 1e-4);
+    CHECK_NEAR(jnum(j, NULL, "flip_start_exposure", NULL), 1.4344, 1e-4);
+    CHECK_NEAR(jnum(j, NULL, "flip_stop_exposure", NULL), 2.3352, 1e-4);
+    CHECK(jnum(j, NULL, "flip_exposures", NULL) == 2);
+    const char *wf = strstr(out_buf, "water FLIP, mean"), *ff = strstr(out_buf, "FLIP, whole frame");
+    CHECK(wf && ff && wf < ff);
 }
 
 static void test_mismatch_and_missing_files(void) {
@@ -446,7 +545,7 @@ static void test_mismatch_and_missing_files(void) {
 static void test_usage(void) {
     CHECK(compare("--help") == 0);
     const char *opts[] = { "--out", "--threshold", "--max", "--json", "--csv", "--buffers", "--texel",
-                           "--mask", "--linear", "exit codes" };
+                           "--mask", "--linear", "--flip-map", "FLIP", "SSIM", "exit codes" };
     for (int i = 0; i < (int)(sizeof opts / sizeof opts[0]); i++) CHECK_STR_CONTAINS(out_buf, opts[i]);
     CHECK(compare("") == 2);
     CHECK_STR_CONTAINS(err_buf, "usage: tarn compare");
@@ -459,6 +558,8 @@ static void test_usage(void) {
     CHECK(compare("a.exr b.exr --max -1") == 2);
     CHECK(compare("a.exr b.exr --texel") == 2);
     CHECK(compare("a.exr b.exr --json") == 2);
+    CHECK(compare("a.exr b.exr --flip-map") == 2);
+    CHECK_STR_CONTAINS(err_buf, "--flip-map wants a file name");
 }
 
 /* ---- the program ------------------------------------------------------------------ */
@@ -497,6 +598,8 @@ int main(void) {
     RUN(test_heatmap_png);
     RUN(test_buffers);
     RUN(test_water_first_from_the_reference_mask);
+    RUN(test_flip_and_ssim);
+    RUN(test_flip_oracle_through_compare);
     RUN(test_mismatch_and_missing_files);
     RUN(test_usage);
     RUN(test_tarn_compare_program);

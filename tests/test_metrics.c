@@ -2,13 +2,15 @@
  * hand: RMSE over all channel values, PSNR = 20 log10(1 / RMSE), the
  * over-threshold share with the per-pixel error max over channels, NaN/Inf
  * and mask counts, percentiles, the heat map's colours, hit-point distances
- * in world units and texels, scalar buffers' absolute and relative error. */
+ * in world units and texels, scalar buffers' absolute and relative error;
+ * SSIM (reference/ref_ssim.h) against its closed forms. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
 #include "ref_metrics.h"
+#include "ref_ssim.h"
 
 #define W 8
 #define H 4
@@ -359,6 +361,131 @@ static void test_srgb(void) {
     }
 }
 
+/* ---- SSIM --------------------------------------------------------------------- */
+
+#define SW 24
+#define SH 20
+#define SC1 (0.01 * 0.01)
+#define SC2 (0.03 * 0.03)
+
+/* A linear image whose display (sRGB-encoded luminance) value is v(x, y):
+ * grey, so the luminance is the grey value itself. */
+static float *grey_display(double (*v)(int x, int y, double p), double p) {
+    float *im = malloc(sizeof *im * SW * SH * 3);
+    for (int y = 0; y < SH; y++)
+        for (int x = 0; x < SW; x++)
+            for (int c = 0; c < 3; c++) im[(y * SW + x) * 3 + c] = (float)ref_srgb_to_linear(v(x, y, p));
+    return im;
+}
+
+static double flat(int x, int y, double p) { (void)x; (void)y; return p; }
+/* a checkerboard 0.5 +- 0.2, raised by p */
+static double checker(int x, int y, double p) { return 0.5 + ((x + y) % 2 ? 0.2 : -0.2) + p; }
+static double ramp(int x, int y, double p) { return (0.3 + 0.02 * x + 0.01 * y) * (1 - p) + p * ((x * 7 + y * 3) % 5) / 5.0; }
+
+static void test_ssim_identical_is_one(void) {
+    float *a = grey_display(ramp, 0.3), *m = malloc(sizeof *m * SW * SH);
+    ref_fimage fa = { a, SW, SH, 3 };
+    ref_ssim_result r;
+    char err[256];
+    for (int pc = 0; pc < 2; pc++) {
+        ref_ssim_desc d = { .per_channel = pc };
+        CHECK(ref_ssim(&fa, &fa, &d, m, &r, err, sizeof err));
+        CHECK_NEAR(r.mean, 1, 1e-12);
+        CHECK_NEAR(r.min, 1, 1e-12);
+        /* only centres whose 11x11 window is inside: (SW - 10) x (SH - 10) */
+        CHECK(r.pooled == (SW - 10) * (SH - 10) && r.border == SW * SH - r.pooled && r.invalid == 0);
+        CHECK(isnan(m[0]) && isnan(m[4 * SW + 4]) && !isnan(m[5 * SW + 5]) && isnan(m[5 * SW + SW - 5]));
+    }
+    free(a);
+    free(m);
+}
+
+/* Flat images of display values p and q: no variance, so SSIM is the
+ * luminance term (2pq + C1) / (p^2 + q^2 + C1). */
+static void test_ssim_flat_closed_form(void) {
+    double p = 0.5, q = 0.7;
+    float *a = grey_display(flat, p), *b = grey_display(flat, q);
+    ref_fimage fa = { a, SW, SH, 3 }, fb = { b, SW, SH, 3 };
+    ref_ssim_result r;
+    char err[256];
+    CHECK(ref_ssim(&fa, &fb, NULL, NULL, &r, err, sizeof err));
+    CHECK_NEAR(r.mean, (2 * p * q + SC1) / (p * p + q * q + SC1), 1e-6);
+    free(a);
+    free(b);
+}
+
+/* A checkerboard and the same raised by a constant d: equal variances and
+ * a covariance equal to them, so the contrast-structure term is 1 and
+ * SSIM = (2 mu (mu + d) + C1) / (mu^2 + (mu + d)^2 + C1), mu the window's
+ * weighted mean: 0.5 -+ 0.2 s^2 by the centre's parity, s = sum over k of
+ * (-1)^k g_k with g the normalised 1D Gaussian (sd 1.5). */
+static void test_ssim_offset_closed_form(void) {
+    double dd = 0.1;
+    float *a = grey_display(checker, 0), *b = grey_display(checker, dd), *m = malloc(sizeof *m * SW * SH);
+    ref_fimage fa = { a, SW, SH, 3 }, fb = { b, SW, SH, 3 };
+    double g[11], gs = 0, s = 0;
+    for (int k = -5; k <= 5; k++) gs += g[k + 5] = exp(-k * k / (2 * 1.5 * 1.5));
+    for (int k = -5; k <= 5; k++) s += (k % 2 ? -1 : 1) * g[k + 5] / gs;
+    ref_ssim_result r;
+    char err[256];
+    CHECK(ref_ssim(&fa, &fb, NULL, m, &r, err, sizeof err));
+    double sum = 0;
+    for (int y = 5; y < SH - 5; y++)
+        for (int x = 5; x < SW - 5; x++) {
+            double mu = 0.5 + ((x + y) % 2 ? 0.2 : -0.2) * s * s;
+            double want = (2 * mu * (mu + dd) + SC1) / (mu * mu + (mu + dd) * (mu + dd) + SC1);
+            CHECK_NEAR(m[y * SW + x], want, 2e-6);
+            sum += want;
+        }
+    CHECK_NEAR(r.mean, sum / r.pooled, 2e-6);
+    CHECK(r.mean < 1);
+    free(a);
+    free(b);
+    free(m);
+}
+
+/* SSIM(a, b) == SSIM(b, a), per pixel; the mask pools its own centres;
+ * a NaN leaves out the centres whose window touches it. */
+static void test_ssim_symmetry_mask_nan(void) {
+    float *a = grey_display(ramp, 0.2), *b = grey_display(ramp, 0.6);
+    float *m1 = malloc(sizeof *m1 * SW * SH), *m2 = malloc(sizeof *m2 * SW * SH);
+    ref_fimage fa = { a, SW, SH, 3 }, fb = { b, SW, SH, 3 };
+    ref_ssim_result r1, r2;
+    char err[256];
+    CHECK(ref_ssim(&fa, &fb, NULL, m1, &r1, err, sizeof err));
+    CHECK(ref_ssim(&fb, &fa, NULL, m2, &r2, err, sizeof err));
+    CHECK_NEAR(r1.mean, r2.mean, 1e-12);
+    for (int i = 0; i < SW * SH; i++) CHECK((isnan(m1[i]) && isnan(m2[i])) || fabsf(m1[i] - m2[i]) <= 1e-7f);
+    CHECK(r1.mean < 1 && r1.mean > -1);
+
+    unsigned char mask[SW * SH] = {0};
+    mask[7 * SW + 9] = mask[8 * SW + 12] = 1;
+    mask[0] = 1;                                   /* on the border: not pooled */
+    ref_ssim_desc d = { .mask = mask };
+    CHECK(ref_ssim(&fa, &fb, &d, NULL, &r2, err, sizeof err));
+    CHECK(r2.pooled == 2 && r2.border == 1);
+    CHECK_NEAR(r2.mean, (m1[7 * SW + 9] + m1[8 * SW + 12]) / 2.0, 1e-7);
+
+    a[(10 * SW + 10) * 3 + 1] = NAN;
+    CHECK(ref_ssim(&fa, &fb, NULL, m1, &r2, err, sizeof err));
+    /* centres x 5..15, y 5..14 (the last row inside is SH - 6 = 14) */
+    CHECK(r2.invalid == 11 * 10);
+    CHECK(isnan(m1[10 * SW + 10]) && isnan(m1[14 * SW + 15]) && !isnan(m1[14 * SW + 16]) && !isnan(m1[10 * SW + 4 + 12]));
+    CHECK(r2.pooled + r2.invalid == r1.pooled);
+
+    ref_fimage small = { a, 10, 10, 3 };
+    CHECK(!ref_ssim(&small, &small, NULL, NULL, &r2, err, sizeof err));
+    CHECK_STR_CONTAINS(err, "at least 11x11");
+    ref_fimage other = { b, SW - 1, SH, 3 };
+    CHECK(!ref_ssim(&fa, &other, NULL, NULL, &r2, err, sizeof err));
+    CHECK_STR_CONTAINS(err, "sizes differ");
+    free(a);
+    free(b);
+    free(m1);
+    free(m2);
+}
+
 int main(void) {
     RUN(test_identical_images);
     RUN(test_single_pixel_off);
@@ -373,5 +500,9 @@ int main(void) {
     RUN(test_hit_point_distance_and_texels);
     RUN(test_scalar_abs_and_relative);
     RUN(test_srgb);
+    RUN(test_ssim_identical_is_one);
+    RUN(test_ssim_flat_closed_form);
+    RUN(test_ssim_offset_closed_form);
+    RUN(test_ssim_symmetry_mask_nan);
     return check_summary();
 }

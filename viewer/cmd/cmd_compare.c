@@ -13,19 +13,26 @@
 static const char usage[] =
     "usage: tarn compare A B [--out HEATMAP.png] [--threshold T] [--max E]\n"
     "                        [--mask M] [--json FILE|-] [--csv FILE|-]\n"
-    "                        [--buffers] [--texel W] [--linear]\n"
+    "                        [--flip-map MAP.png] [--buffers] [--texel W]\n"
+    "                        [--linear]\n"
     "\n"
     "Measures the error of image A (under test) against image B (the reference),\n"
     "in linear RGB: RMSE and MAE over all channel values, PSNR (peak 1.0), the\n"
     "largest error and its pixel, the share of pixels whose error (the largest\n"
     "of the R, G, B errors) exceeds a threshold, and NaN/Inf pixels of each side\n"
-    "(left out of the statistics and counted). A and B are any format\n"
+    "(left out of the statistics and counted). Beside them, two perceptual\n"
+    "figures: FLIP (Andersson et al. 2020; 0 = no visible difference, 1 = the\n"
+    "largest; LDR-FLIP when A and B are both 8-bit display images, HDR-FLIP\n"
+    "otherwise; 67 pixels per degree), its mean, weighted median and quartiles,\n"
+    "min and max; and SSIM (Wang et al. 2004, on the sRGB-encoded luminance;\n"
+    "1 = identical). A and B are any format\n"
     "OpenImageIO reads, of the same size. PNG, JPEG, BMP, GIF, TGA, WebP and\n"
     "PNM inputs are sRGB-decoded to linear first; EXR, HDR and TIFF are read\n"
     "as linear. Alpha is ignored; a grey image stands for R = G = B.\n"
     "\n"
     "When B is a `tarn reference` image (B.mask.exr beside it), the figures lead\n"
-    "with the error over the reference's water pixels (water_rmse, ...: what a\n"
+    "with the error over the reference's water pixels (water_rmse,\n"
+    "water_flip_mean, water_ssim, ...: what a\n"
     "water technique gets right or wrong), then off the water (sky, land,\n"
     "objects: the world, which should agree), then the whole frame.\n"
     "\n"
@@ -33,6 +40,9 @@ static const char usage[] =
     "                     write the per-pixel error as an inferno heat map\n"
     "                     (black = 0, pale yellow = the scale or more,\n"
     "                     cyan = NaN/Inf in A or B, grey = outside the mask)\n"
+    "  --flip-map MAP.png write the per-pixel FLIP error in the authors' magma\n"
+    "                     colours (black = 0, pale yellow = 1; grey = outside\n"
+    "                     the mask, cyan = NaN/Inf in A or B)\n"
     "  --max E            heat-map scale (default: the 99th percentile of the\n"
     "                     per-pixel error)\n"
     "  --threshold T      error counted as 'over' when > T (default 0.05)\n"
@@ -72,6 +82,9 @@ static int parse(int argc, char **argv, compare_desc *o, FILE *err) {
             if (!next) return BAD("%s wants a file name%s", a, a[2] == 'm' ? "" : " or -");
             if (a[2] == 'j') o->json = next; else if (a[2] == 'c') o->csv = next; else o->mask = next;
             i++;
+        } else if (strcmp(a, "--flip-map") == 0) {
+            if (!next) return BAD("--flip-map wants a file name, e.g. flip.png");
+            o->flip_map = next; i++;
         } else if (strcmp(a, "--threshold") == 0) {
             if (!positive(next, &o->threshold)) return BAD("--threshold wants a number > 0, e.g. 0.05");
             i++;

@@ -11,10 +11,11 @@
 
 #include "exit_code.h"
 #include "mem.h"
+#include "ref_buffers.h"
+#include "ref_flip.h"
 #include "ref_metrics.h"
 #include "ref_render.h"
-#include "ref_buffers.h"
-#include "ref_render.h"
+#include "ref_ssim.h"
 
 
 /* ---- files -------------------------------------------------------------------- */
@@ -324,20 +325,48 @@ static float *load_classes(const char *b, int w, int h, char *why, size_t whylen
     return cls;
 }
 
-/* RMSE, PSNR, MAE and the pixel count over the pixels on one side of the
- * reference's water mask (and inside --mask when given): the error of the
- * water technique, and of the world around it. */
+/* The perceptual figures of a comparison: the FLIP map of the whole frame
+ * (pooled per region) and the images SSIM reads. */
+typedef struct percept {
+    const float *flip;      /* w * h, NULL when FLIP failed */
+    const ref_fimage *a, *b;
+} percept;
+
+/* Mean SSIM over mask (NULL = all); NaN when it cannot be computed (an
+ * image smaller than its window: the caller notes why). */
+static double ssim_mean(const percept *pc, const unsigned char *mask, char *why, size_t whylen) {
+    ref_ssim_desc d = { .mask = mask };
+    ref_ssim_result r;
+    char msg[256];
+    if (!ref_ssim(pc->a, pc->b, &d, NULL, &r, msg, sizeof msg)) {
+        if (why) snprintf(why, whylen, "%s", msg);
+        return NAN;
+    }
+    return r.mean;
+}
+
+static double flip_mean_over(const percept *pc, const unsigned char *mask) {
+    if (!pc->flip) return NAN;
+    ref_flip_result r;
+    ref_flip_pool(pc->flip, pc->a->w, pc->a->h, mask, &r);
+    return r.mean;
+}
+
+/* RMSE, PSNR, MAE, FLIP, SSIM and the pixel count over the pixels on one
+ * side of the reference's water mask (and inside --mask when given): the
+ * error of the water technique, and of the world around it. */
 static void add_region(kvlist *l, bool water, const ref_fimage *fa, const ref_fimage *fb, const float *cls,
-                       const unsigned char *user_mask, double threshold) {
-    static const char *const keys[2][4] = {
-        { "off_water_rmse", "off_water_psnr_db", "off_water_mae", "off_water_pixels" },
-        { "water_rmse", "water_psnr_db", "water_mae", "water_pixels" },
+                       const unsigned char *user_mask, double threshold, const percept *pc) {
+    static const char *const keys[2][6] = {
+        { "off_water_rmse", "off_water_psnr_db", "off_water_mae", "off_water_flip_mean", "off_water_ssim",
+          "off_water_pixels" },
+        { "water_rmse", "water_psnr_db", "water_mae", "water_flip_mean", "water_ssim", "water_pixels" },
     };
-    static const char *const labels[2][4] = {
+    static const char *const labels[2][6] = {
         { "off-water RMSE (sky, land, objects)", "off-water PSNR", "off-water mean abs. error",
-          "off-water pixels" },
+          "off-water FLIP, mean", "off-water SSIM, mean", "off-water pixels" },
         { "water RMSE (reference's mask)", "water PSNR", "water mean abs. error",
-          "water pixels" },
+          "water FLIP, mean", "water SSIM, mean", "water pixels" },
     };
     long n = (long)fa->w * fa->h;
     unsigned char *m = mem_alloc((size_t)n);
@@ -346,12 +375,15 @@ static void add_region(kvlist *l, bool water, const ref_fimage *fa, const ref_fi
     ref_image_metrics r;
     char msg[256];
     bool ok = ref_metrics_image(fa, fb, &d, &r, msg, sizeof msg);
+    double flip = flip_mean_over(pc, m), ssim = ssim_mean(pc, m, NULL, 0);
     free(m);
     const char *const *k = keys[water], *const *lab = labels[water];
     add_num(l, NULL, k[0], lab[0], ok ? r.rmse : NAN, NULL);
     add_num(l, NULL, k[1], lab[1], ok ? r.psnr_db : NAN, "dB");
     add_num(l, NULL, k[2], lab[2], ok ? r.mae : NAN, NULL);
-    add_int(l, NULL, k[3], lab[3], ok ? r.count.compared : 0);
+    add_num(l, NULL, k[3], lab[3], flip, NULL);
+    add_num(l, NULL, k[4], lab[4], ssim, NULL);
+    add_int(l, NULL, k[5], lab[5], ok ? r.count.compared : 0);
 }
 
 /* Builds the mask: nonzero where M's first channel is > 0.5. */
@@ -528,7 +560,7 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
 
     int rc = TARN_EXIT_INPUT;
     unsigned char *mask = NULL;
-    float *field = NULL;
+    float *field = NULL, *flip = NULL;
     kvlist l = {0};
     if (ia.w != ib.w || ia.h != ib.h) {
         fprintf(err, "tarn compare: sizes differ: A (%s) is %dx%d, B (%s) is %dx%d\n",
@@ -561,17 +593,31 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
     add_note(&l, NULL, "size", size);
     add_int(&l, NULL, "channels_a", NULL, ia.channels);
     add_int(&l, NULL, "channels_b", NULL, ib.channels);
+    /* FLIP over the whole frame (its filters see every pixel), pooled per
+     * region below: LDR-FLIP when both files are 8-bit display images (the
+     * authors' tool reads them so), HDR-FLIP when either is linear */
+    bool flip_hdr = !(compare_is_srgb_path(o.a) && compare_is_srgb_path(o.b));
+    ref_flip_desc fd = { .hdr = flip_hdr };
+    ref_flip_result fr;
+    flip = mem_alloc((size_t)ia.w * (size_t)ia.h * sizeof *flip);
+    if (!ref_flip_map(&fa, &fb, &fd, flip, NULL, &fr, msg, sizeof msg)) {
+        fprintf(err, "tarn compare: FLIP: %s\n", msg);
+        goto done;
+    }
+    percept pc = { flip, &fa, &fb };
     /* water first: the error of the technique, where the reference sees
      * water; the world around it second; the whole frame last */
     char why[4200] = "";
     float *cls = load_classes(o.b, ia.w, ia.h, why, sizeof why);
     if (cls) {
-        add_region(&l, true, &fa, &fb, cls, mask, o.threshold);
-        add_region(&l, false, &fa, &fb, cls, mask, o.threshold);
+        add_region(&l, true, &fa, &fb, cls, mask, o.threshold, &pc);
+        add_region(&l, false, &fa, &fb, cls, mask, o.threshold, &pc);
         free(cls);
     } else {
         add_note(&l, NULL, "water-only error", why);
         add_num(&l, NULL, "water_rmse", NULL, NAN, NULL);
+        add_num(&l, NULL, "water_flip_mean", NULL, NAN, NULL);
+        add_num(&l, NULL, "water_ssim", NULL, NAN, NULL);
     }
     add_counts(&l, NULL, &m.count);
     add_num(&l, NULL, "rmse", "RMSE, whole frame (linear RGB)", m.rmse, NULL);
@@ -601,6 +647,40 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
     add_num(&l, NULL, "error_median", "pixel error, median", m.pixel_err.median, NULL);
     add_num(&l, NULL, "error_p95", "pixel error, 95th percentile", m.pixel_err.p95, NULL);
     add_num(&l, NULL, "error_p99", "pixel error, 99th percentile", m.pixel_err.p99, NULL);
+
+    /* FLIP and SSIM of the whole frame (inside --mask) */
+    ref_flip_pool(flip, ia.w, ia.h, mask, &fr);
+    char fl[96];
+    snprintf(fl, sizeof fl, "%s-FLIP at %.0f pixels per degree", flip_hdr ? "HDR" : "LDR", fr.ppd);
+    add_note(&l, NULL, "FLIP", fl);
+    add_str(&l, NULL, "flip_kind", NULL, flip_hdr ? "HDR" : "LDR");
+    add_num(&l, NULL, "flip_ppd", NULL, fr.ppd, NULL);
+    add_num(&l, NULL, "flip_mean", "FLIP, whole frame, mean", fr.mean, NULL);
+    add_num(&l, NULL, "flip_weighted_median", "FLIP, weighted median", fr.weighted_median, NULL);
+    add_num(&l, NULL, "flip_q1", "FLIP, 1st weighted quartile", fr.q1, NULL);
+    add_num(&l, NULL, "flip_q3", "FLIP, 3rd weighted quartile", fr.q3, NULL);
+    add_num(&l, NULL, "flip_min", "FLIP, min", fr.min, NULL);
+    add_num(&l, NULL, "flip_max", "FLIP, max", fr.max, NULL);
+    add_num(&l, NULL, "flip_start_exposure", flip_hdr ? "FLIP, start exposure" : NULL, fr.start_exposure, NULL);
+    add_num(&l, NULL, "flip_stop_exposure", flip_hdr ? "FLIP, stop exposure" : NULL, fr.stop_exposure, NULL);
+    add_count_or_null(&l, NULL, "flip_exposures", "FLIP, exposures", flip_hdr ? fr.num_exposures : -1);
+    char swhy[256] = "";
+    double ssim = ssim_mean(&pc, mask, swhy, sizeof swhy);
+    add_num(&l, NULL, "ssim", "SSIM, whole frame, mean (luminance)", ssim, NULL);
+    if (isnan(ssim) && swhy[0]) add_note(&l, NULL, "  SSIM n/a", swhy);
+    if (o.flip_map) {
+        img fm;
+        char fmsg[1024];
+        bool ok = img_alloc(&fm, ia.w, ia.h, 3);
+        if (ok) {
+            ref_flip_colorize(flip, ia.w, ia.h, mask, fm.px);
+            ok = img_write(o.flip_map, &fm, fmsg, sizeof fmsg);
+            img_free(&fm);
+            if (!ok) fprintf(err, "tarn compare: cannot write the FLIP map: %s\n", fmsg);
+        } else fprintf(err, "tarn compare: %s: out of memory\n", o.flip_map);
+        if (!ok) all_ok = false;
+        add_str(&l, NULL, "flip_map", "FLIP map (magma)", ok ? o.flip_map : NULL);
+    } else add_str(&l, NULL, "flip_map", NULL, NULL);
 
     if (o.out) {
         field = mem_alloc((size_t)ia.w * (size_t)ia.h * sizeof *field);
@@ -657,6 +737,7 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
 done:
     kvlist_free(&l);
     free(field);
+    free(flip);
     free(mask);
     img_free(&ia);
     img_free(&ib);

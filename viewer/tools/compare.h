@@ -1,5 +1,6 @@
 /* compare: `tarn compare A B`, the error of image A (under test) against
- * image B (the reference): a table, a heat map, JSON and CSV, and with
+ * image B (the reference): RMSE, FLIP (ref_flip.h) and SSIM (ref_ssim.h),
+ * water first; a table, a heat map, a FLIP map, JSON and CSV, and with
  * --buffers the reference's per-pixel buffers beside them. The metrics
  * themselves are reference/ref_metrics.h; this module reads the files
  * (image_io.h), decodes sRGB and writes the outputs. See docs/metrics.md. */
@@ -17,6 +18,7 @@
 typedef struct compare_desc {
     const char *a, *b;                 /* A under test, B the reference */
     const char *out, *json, *csv, *mask;
+    const char *flip_map;              /* the FLIP error map, magma (NULL: none) */
     double threshold, max_err, texel;  /* 0: defaults (docs/metrics.md) */
     bool buffers, linear;
 } compare_desc;
