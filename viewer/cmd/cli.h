@@ -26,11 +26,13 @@ typedef struct cli_render_desc {
 
 int cli_render(const cli_render_desc *d);
 
-/* The scene tarn opens with no arguments. */
+/* The scene tarn opens with no arguments: scenes/showcase.glib, a pool in
+ * bright sun with a floating sphere, drawn by the pack its Pack line names
+ * (natural: the lowest water error of the packs that draw caustics,
+ * docs/benchmark.md), so `tarn` and `tarn view scenes/showcase.glib`
+ * show the same picture (issue #30). */
 const char *cli_default_scene(void);
-/* The pack the default scene is drawn with: the one that looks best and
- * measures best on the lake (docs/benchmark.md): refraction of the floor,
- * local reflections of the objects, the lowest water error of any default. */
+/* The pack the default scene names (its Pack line; "?" when it has none). */
 const char *cli_default_pack(void);
 
 #endif

@@ -14,6 +14,7 @@
 #include "cli.h"
 #include "cmd.h"
 #include "gl_ctx.h"
+#include "glib.h"
 #include "image_io.h"
 #include "packset.h"
 #include "ref_metrics.h"
@@ -22,12 +23,18 @@
 
 const char *cli_default_scene(void) {
     static char path[4096];
-    snprintf(path, sizeof path, "%s/scenes/lake.glib", tarn_root());
+    snprintf(path, sizeof path, "%s/scenes/showcase.glib", tarn_root());
     return path;
 }
 
 const char *cli_default_pack(void) {
-    return "raymarch";
+    static char pack[64];
+    glib_scene *g = glib_load(cli_default_scene());
+    snprintf(pack, sizeof pack, "?");
+    for (int i = 0; i < g->ncmds; i++)
+        if (g->cmds[i].kind == GLIB_CMD_PACK) snprintf(pack, sizeof pack, "%s", g->cmds[i].name);
+    glib_free(g);
+    return pack;
 }
 
 static bool wants_float(const char *path) {

@@ -67,8 +67,8 @@ static void print_usage(FILE *f) {
         fprintf(f, "  %-22s  %s\n", left, commands[i].summary);
     }
     fputs("\n"
-          "With no command, tarn opens the default scene (scenes/lake.glib drawn by the\n"
-          "raymarch pack) in a window,\n"
+          "With no command, tarn opens the default scene (scenes/showcase.glib, a pool\n"
+          "drawn by the pack it names, natural) in a window,\n"
           "or, when there is no display, renders it to out/default.png.\n"
           "`tarn COMMAND --help` lists a command's options; `tarn --version` says which tarn\n"
           "and where its packs and scenes are. `man tarn` documents it all.\n", f);
@@ -106,15 +106,15 @@ static int cmd_help(int argc, char **argv) {
 /* No arguments: the default scene, in a window when there is a display. */
 static int main_default(void) {
     if (gl_ctx_have_display()) {
-        view_desc d = { .glib = cli_default_scene(), .pack = cli_default_pack() };
+        view_desc d = { .glib = cli_default_scene() };   /* its own Pack, as `tarn view` draws it */
         return view_run(&d);
     }
     const char *out = "out/default.png";
     char err[512];
     if (!file_mkdir_p("out", err, sizeof err)) out = "default.png";   /* a read-only cwd still gets a render */
-    printf("tarn: no display: rendering the default scene (scenes/lake.glib, pack %s) to %s\n", cli_default_pack(),
-           out);
-    cli_render_desc d = { .glib = cli_default_scene(), .pack = cli_default_pack(), .out = out, .time_s = 2.0 };
+    printf("tarn: no display: rendering the default scene (scenes/showcase.glib, pack %s) to %s\n",
+           cli_default_pack(), out);
+    cli_render_desc d = { .glib = cli_default_scene(), .out = out, .time_s = 2.0 };
     return cli_render(&d);
 }
 

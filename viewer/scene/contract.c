@@ -42,6 +42,7 @@ static const contract_uniform table[] = {
     WORLD("uTerrainAlbedo", "sampler2D", "Terrain", "unit 14: terrain albedo, s = x, t = z over the world square"),
     WORLD("uOceanA", "sampler2DArray", "WaveOcean", "unit 28: the ocean's frame, (h, Dx, Dz, Dxz) a node, a layer a cascade"),
     WORLD("uOceanB", "sampler2DArray", "WaveOcean", "unit 29: (hx, hz, Dxx, Dzz) a node, a layer a cascade"),
+    WORLD("uOceanFoam", "sampler2DArray", "WaveOcean", "unit 27: (folding foam, the cascade's slope variance) a node, a layer a cascade"),
     WORLD("uWorldScale", "float", "Terrain", "the scene's length unit: terrain half size / 12 m (1 on the lake)"),
     WORLD("uTerrainKind", "int", "Terrain", "the terrain's model: 0 flat, 1 lake, 2 slope, 3 pool (REF_TERRAIN_*)"),
     WORLD("uTerrainShape", "vec4", "Terrain", "the model's depth, shore height and slope"),
