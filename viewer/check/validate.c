@@ -4,6 +4,7 @@
 #include "diag.h"
 #include "file.h"
 #include "glib.h"
+#include "glsl_fix.h"
 #include "glsl_hint.h"
 #include "mem.h"
 #include "program.h"
@@ -171,9 +172,11 @@ static bool is_noise(const char *line) {
 
 /* Splits a (mapped) compiler log into messages. Lines that are neither an
  * error nor a warning continue the message before them. */
-static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m) {
+static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m, char **mapped_out) {
+    if (mapped_out) *mapped_out = NULL;
     if (!log || !log[0]) return;
     char *raw_mapped = shader_src_map_log(src, log);
+    if (mapped_out) *mapped_out = mem_strdup(raw_mapped);
     /* tarn's notes on what NVIDIA let through (glsl_hint): kept with their error */
     char *mapped = glsl_hint_annotate(raw_mapped, src->text);
     free(raw_mapped);
@@ -302,12 +305,13 @@ static char *gs_compat_text(const char *text) {
  * behind, not input->code: without preprocessing first it parses an empty
  * string and says yes to anything. The info log collects both steps, so a
  * message can come twice (msgs_add keeps one). */
-static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *m, bool *ok,
-                                 char **preprocessed) {
+static glslang_shader_t *compile_text(const shader_src *src, const char *text, shader_stage st, vmsgs *m,
+                                      bool *ok, char **preprocessed, char **mapped) {
     ensure_glslang();
     if (preprocessed) *preprocessed = NULL;
-    char *gs_text = st == SHADER_GEOMETRY ? gs_compat_text(src->text) : NULL;
-    glslang_input_t in = make_input(gs_text ? gs_text : src->text, st);
+    if (mapped) *mapped = NULL;
+    char *gs_text = st == SHADER_GEOMETRY ? gs_compat_text(text) : NULL;
+    glslang_input_t in = make_input(gs_text ? gs_text : text, st);
     glslang_shader_t *sh = glslang_shader_create(&in);
     if (!sh) {
         free(gs_text);
@@ -322,7 +326,7 @@ static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *
         if (preprocessed && code) *preprocessed = mem_strdup(code);
         *ok = glslang_shader_parse(sh, &in) != 0;
     }
-    add_compile_log(src, glslang_shader_get_info_log(sh), *ok, m);
+    add_compile_log(src, glslang_shader_get_info_log(sh), *ok, m, mapped);
     free(gs_text);
     if (!*ok) {
         /* a failure glslang explained nowhere still counts */
@@ -333,6 +337,67 @@ static glslang_shader_t *compile(const shader_src *src, shader_stage st, vmsgs *
     return sh;
 }
 
+/* glsl_fix's warnings (`file:line: warning: ...` lines) as messages. */
+static void add_fix_notes(vmsgs *m, const char *notes) {
+    for (const char *p = notes; p && *p;) {
+        const char *e = strchr(p, '\n');
+        char *line = mem_strndup(p, e ? (size_t)(e - p) : strlen(p));
+        if (line[0]) msgs_add_text(m, DIAG_WARNING, line);
+        free(line);
+        p = e ? e + 1 : NULL;
+    }
+}
+
+/* As the renderer does (render_prog.c): the text as written first; when
+ * glslang rejects it (or warns of a returned int Mesa rejects) for a
+ * construct NVIDIA accepted, glsl_fix's rewrite, which becomes src->text
+ * when it compiles, its warnings in m. */
+static glslang_shader_t *compile(shader_src *src, shader_stage st, vmsgs *m, bool *ok, char **preprocessed) {
+    vmsgs first = {0};
+    char *mapped = NULL;
+    glslang_shader_t *sh = compile_text(src, src->text, st, &first, ok, preprocessed, &mapped);
+    if (sh && (!*ok || glsl_fix_wanted_by_warning(mapped))) {
+        char *text = NULL, *notes = NULL, *cur = mapped;
+        mapped = NULL;
+        for (int tries = 0; tries < 4; tries++) {
+            char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, cur, &notes);
+            free(cur);
+            cur = NULL;
+            if (!fixed) break;
+            free(text);
+            text = fixed;
+            vmsgs again = {0};
+            bool ok2 = false;
+            char *pp2 = NULL;
+            glslang_shader_t *sh2 = compile_text(src, text, st, &again, &ok2, preprocessed ? &pp2 : NULL, &cur);
+            if (sh2 && ok2 && !glsl_fix_wanted_by_warning(cur)) {
+                glslang_shader_delete(sh);
+                sh = sh2;
+                *ok = true;
+                if (preprocessed) { free(*preprocessed); *preprocessed = pp2; }
+                free(src->text);
+                src->text = text;
+                text = NULL;
+                msgs_free(&first);
+                add_fix_notes(&first, notes);
+                for (int i = 0; i < again.n; i++) msgs_add(&first, &again.v[i].d);
+                msgs_free(&again);
+                break;
+            }
+            free(pp2);
+            if (sh2) glslang_shader_delete(sh2);
+            msgs_free(&again);
+        }
+        free(cur);
+        free(text);
+        free(notes);
+    }
+    free(mapped);
+    for (int i = 0; i < first.n; i++) msgs_add(m, &first.v[i].d);
+    msgs_free(&first);
+    return sh;
+}
+
 bool validate_stage(const shader_src *src, shader_stage stage, char **log) {
     if (!src || !src->text || (unsigned)stage >= SHADER_STAGE_COUNT) {
         if (log) str_appendf(log, "%s\n", src && src->error[0] ? src->error : "error: no shader text");
@@ -340,7 +405,10 @@ bool validate_stage(const shader_src *src, shader_stage stage, char **log) {
     }
     vmsgs m = {0};
     bool ok = false;
-    glslang_shader_t *sh = compile(src, stage, &m, &ok, NULL);
+    shader_src copy = *src;   /* compile() may put glsl_fix's rewrite in its text */
+    copy.text = mem_strdup(src->text);
+    glslang_shader_t *sh = compile(&copy, stage, &m, &ok, NULL);
+    free(copy.text);
     if (sh) glslang_shader_delete(sh);
     char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
     for (int i = 0; log && i < m.n; i++) {
@@ -391,12 +459,14 @@ static void link_message(link_log *l, diag_severity s, const char *text) {
 }
 
 /* Links the compiled stages; messages are placed at the Program's line. */
-static void link_stages(glslang_shader_t *const *sh, int n, const glib_cmd *prog, vmsgs *m) {
+static void link_stages(glslang_shader_t *const *sh, int n, const glib_cmd *prog, vmsgs *m, char **log_out) {
+    if (log_out) *log_out = NULL;
     glslang_program_t *p = glslang_program_create();
     if (!p) return;
     for (int i = 0; i < n; i++) glslang_program_add_shader(p, sh[i]);
     int ok = glslang_program_link(p, GLSLANG_MSG_DEFAULT_BIT);
     const char *log = glslang_program_get_info_log(p);
+    if (log_out && log) *log_out = mem_strdup(log);
     /* messages start with ERROR: or WARNING:, continuation lines are indented */
     char *copy = mem_strdup(log);
     char *pending = NULL;
@@ -687,7 +757,7 @@ static void check_interfaces(const shader_src *src, char *const *pp, const shade
                                 error ? "ERROR" : "WARNING", v->str, v->line,
                                 shader_stage_name(stages[i]), v->block ? "block " : "", v->name,
                                 shader_stage_name(stages[i - 1]));
-            add_compile_log(&src[stages[i]], raw, true, m);
+            add_compile_log(&src[stages[i]], raw, true, m, NULL);
             free(raw);
         }
     }
@@ -766,6 +836,59 @@ static bool glib_reported(const glib_scene *sc, const glib_cmd *c) {
         if (sc->diags[i].severity == DIAG_ERROR && sc->diags[i].line == c->line && c->file && strcmp(sc->diags[i].file, c->file) == 0)
             return true;
     return false;
+}
+
+/* A fragment shader that writes gl_FragColor and declares outputs fails
+ * glslang's link (Mesa's compile): as the renderer, demote its outputs
+ * (glsl_fix) and link again; on success *lm holds the new link's messages
+ * and the rewrite's warnings, src and pp the rewritten fragment stage. */
+static void relink_fixed(glslang_shader_t **sh, char **pp, shader_src *src, const shader_stage *stages, int nst,
+                         const glib_cmd *cmd, vmsgs *lm, char **llog) {
+    static const char both[] = "Cannot use gl_FragColor or gl_FragData when using user-defined outputs";
+    int fi = -1;
+    for (int i = 0; i < nst; i++)
+        if (stages[i] == SHADER_FRAGMENT) fi = i;
+    if (fi < 0 || !*llog || !strstr(*llog, both)) return;
+    shader_src *fs = &src[SHADER_FRAGMENT];
+    char *notes = NULL;
+    char *fixed = glsl_fix_rewrite(fs, SHADER_FRAGMENT, fs->text, "?:0: error: Cannot use gl_FragColor or "
+                                   "gl_FragData when using user-defined outputs", &notes);
+    if (!fixed) return;
+    vmsgs cm = {0}, m2 = {0};
+    bool cok = false;
+    char *pp2 = NULL, *log2 = NULL;
+    glslang_shader_t *s2 = compile_text(fs, fixed, SHADER_FRAGMENT, &cm, &cok, &pp2, NULL);
+    glslang_shader_t *old = sh[fi];
+    if (s2 && cok) {
+        sh[fi] = s2;
+        link_stages(sh, nst, cmd, &m2, &log2);
+    }
+    bool linked = s2 && cok;
+    for (int i = 0; linked && i < m2.n; i++) linked = m2.v[i].d.severity != DIAG_ERROR;
+    if (linked) {
+        glslang_shader_delete(old);
+        free(pp[fi]);
+        pp[fi] = pp2;
+        pp2 = NULL;
+        free(fs->text);
+        fs->text = fixed;
+        fixed = NULL;
+        msgs_free(lm);
+        add_fix_notes(lm, notes);
+        for (int i = 0; i < m2.n; i++) msgs_add(lm, &m2.v[i].d);
+        free(*llog);
+        *llog = log2;
+        log2 = NULL;
+    } else {
+        sh[fi] = old;
+        if (s2) glslang_shader_delete(s2);
+    }
+    msgs_free(&cm);
+    msgs_free(&m2);
+    free(pp2);
+    free(log2);
+    free(fixed);
+    free(notes);
 }
 
 static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cmd, const program_stages *ps) {
@@ -870,7 +993,24 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             }
         }
         if (ok) {
-            link_stages(sh, nsh, cmd, &m);
+            char *llog = NULL;
+            vmsgs lm = {0};
+            link_stages(sh, nsh, cmd, &lm, &llog);
+            relink_fixed(sh, pp, src, stages, nst, cmd, &lm, &llog);
+            for (int i = 0; i < lm.n; i++) msgs_add(&m, &lm.v[i].d);
+            msgs_free(&lm);
+            const shader_src *srcs[SHADER_STAGE_COUNT] = { NULL };
+            for (int i = 0; i < nst; i++) srcs[stages[i]] = &src[stages[i]];
+            char *hint = glsl_fix_link_hint(llog, srcs);   /* a uniform with two types: say where */
+            for (const char *h = hint; h && *h;) {
+                const char *e = strchr(h, '\n');
+                char *line = mem_strndup(h, e ? (size_t)(e - h) : strlen(h));
+                if (line[0]) msgs_add_text(&m, DIAG_NOTE, line);
+                free(line);
+                h = e ? e + 1 : NULL;
+            }
+            free(hint);
+            free(llog);
             check_interfaces(src, pp, stages, nst, &m);
         }
         for (int i = 0; i < nsh; i++) glslang_shader_delete(sh[i]);

@@ -1,5 +1,6 @@
 #include "render_prog.h"
 #include "contract.h"
+#include "glsl_fix.h"
 #include "glsl_hint.h"
 #include "mem.h"
 #include "program.h"
@@ -72,32 +73,64 @@ static void append_tagged(char **log, const char *text, shader_stage st, const p
     }
 }
 
-/* Compiles one stage; on failure appends the mapped log. */
-static GLuint compile_stage(const prog *p, const shader_src *src, shader_stage st, char **log) {
+/* Compiles text as a stage; 0 on failure, with the driver's log in *raw. */
+static GLuint try_compile(shader_stage st, const char *text, char **raw) {
     GLuint sh = glCreateShader(stage_gl[st]);
-    const char *text = src->text;
     glShaderSource(sh, 1, &text, NULL);
     glCompileShader(sh);
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char *raw = gl_info_log(sh, false);
-        char *mapped = shader_src_map_log(src, raw);
-        /* what NVIDIA let through and Mesa does not, in plain words */
-        char *hinted = glsl_hint_annotate(mapped, src->text);
-        char failed[GLIB_PATH_MAX + 64];
-        snprintf(failed, sizeof failed, "%s:0: error: compile failed", src->nfiles ? src->files[0] : "?");
-        append_tagged(log, hinted[0] ? hinted : raw[0] ? raw : failed, st, p);
-        free(hinted);
-        free(mapped);
-        free(raw);
-        glDeleteShader(sh);
-        return 0;
-    }
-    return sh;
+    if (ok) return sh;
+    *raw = gl_info_log(sh, false);
+    glDeleteShader(sh);
+    return 0;
 }
 
-static GLuint link_program(const prog *p, const GLuint *shaders, char **log) {
+/* Compiles one stage as written; when the driver rejects it for a
+ * construct NVIDIA accepted, compiles glsl_fix's rewrite of what the log
+ * names instead (src->text becomes it) and appends a warning per rewrite.
+ * On failure appends the mapped log of the text as written, with hints. */
+static GLuint compile_stage(const prog *p, shader_src *src, shader_stage st, char **log) {
+    char *raw = NULL;
+    GLuint sh = try_compile(st, src->text, &raw);
+    if (sh) return sh;
+    char *mapped = shader_src_map_log(src, raw);
+    char *notes = NULL, *text = NULL, *cur = mem_strdup(mapped);
+    for (int tries = 0; tries < 4 && !sh; tries++) {
+        char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, cur, &notes);
+        if (!fixed) break;
+        free(text);
+        text = fixed;
+        char *raw2 = NULL;
+        sh = try_compile(st, text, &raw2);
+        free(cur);
+        cur = shader_src_map_log(src, raw2 ? raw2 : "");
+        free(raw2);
+    }
+    free(cur);
+    if (sh) {
+        free(src->text);
+        src->text = text;
+        append_tagged(log, notes, st, p);
+        free(notes);
+        free(mapped);
+        free(raw);
+        return sh;
+    }
+    free(text);
+    free(notes);
+    /* what NVIDIA let through and Mesa does not, in plain words */
+    char *hinted = glsl_hint_annotate(mapped, src->text);
+    char failed[GLIB_PATH_MAX + 64];
+    snprintf(failed, sizeof failed, "%s:0: error: compile failed", src->nfiles ? src->files[0] : "?");
+    append_tagged(log, hinted[0] ? hinted : raw[0] ? raw : failed, st, p);
+    free(hinted);
+    free(mapped);
+    free(raw);
+    return 0;
+}
+
+static GLuint link_program(const prog *p, const GLuint *shaders, const shader_src *src, char **log) {
     GLuint prg = glCreateProgram();
     for (int s = 0; s < SHADER_STAGE_COUNT; s++)
         if (shaders[s]) glAttachShader(prg, shaders[s]);
@@ -110,6 +143,12 @@ static GLuint link_program(const prog *p, const GLuint *shaders, char **log) {
         char *raw = gl_info_log(prg, true);
         str_appendf(log, "%s:%d: error: program '%s' failed to link: %s\n",
                     p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name, raw);
+        /* a uniform with one type in one stage and another in another: say which */
+        const shader_src *srcs[SHADER_STAGE_COUNT];
+        for (int s = 0; s < SHADER_STAGE_COUNT; s++) srcs[s] = shaders[s] ? &src[s] : NULL;
+        char *hint = glsl_fix_link_hint(raw, srcs);
+        if (hint) str_appendf(log, "%s", hint);
+        free(hint);
         free(raw);
         glDeleteProgram(prg);
         return 0;
@@ -180,7 +219,42 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
         shaders[s] = compile_stage(p, &src[s], (shader_stage)s, log);
         if (!shaders[s]) ok = false;
     }
-    GLuint prg = ok ? link_program(p, shaders, log) : 0;
+    GLuint prg = 0;
+    if (ok) {
+        /* a flat fragment input over an output without flat (NVIDIA linked it): link the rewrite */
+        char *link_log = NULL;
+        prg = link_program(p, shaders, src, &link_log);
+        const shader_src *srcs[SHADER_STAGE_COUNT];
+        for (int s = 0; s < SHADER_STAGE_COUNT; s++) srcs[s] = shaders[s] ? &src[s] : NULL;
+        char *text = NULL, *notes = NULL;
+        int st = prg ? -1 : glsl_fix_link_rewrite(link_log, srcs, &text, &notes);
+        char *raw = NULL;
+        GLuint sh = st >= 0 ? try_compile((shader_stage)st, text, &raw) : 0;
+        free(raw);
+        if (sh) {
+            GLuint old = shaders[st];
+            shaders[st] = sh;
+            char *log2 = NULL;
+            prg = link_program(p, shaders, src, &log2);
+            if (prg) {
+                glDeleteShader(old);
+                free(src[st].text);
+                src[st].text = text;
+                text = NULL;
+                free(link_log);
+                link_log = NULL;
+                append_tagged(log, notes, (shader_stage)st, p);
+            } else {
+                glDeleteShader(sh);
+                shaders[st] = old;
+            }
+            free(log2);
+        }
+        if (link_log) str_appendf(log, "%s", link_log);
+        free(link_log);
+        free(text);
+        free(notes);
+    }
     if (prg) keep_source(p, src);
     for (int s = 0; s < SHADER_STAGE_COUNT; s++) {
         if (shaders[s]) glDeleteShader(shaders[s]);
