@@ -141,6 +141,30 @@ void ref_ocean_sample_at(const ref_ocean *o, double u, double v, double t, ref_o
  * the map converges fast with it (ref_waves' inversion). */
 void ref_ocean_sample_map(const ref_ocean *o, double u, double v, double t, double d[2], double jac[4]);
 
+/* A snapshot: the frame at one time, held (refcounted) and read-only, so
+ * that a ray, a photon or a whole render looks the frame up ONCE (one lock)
+ * and samples it without locks. The per-call functions above take the
+ * cache's lock on every sample, which costs more than the sample itself
+ * when a march inverts the surface thousands of times a ray. A snapshot
+ * gives the same numbers as they do, bit for bit (the same formulas on the
+ * same nodes), and may be shared by any number of threads. Release every
+ * snapshot before ref_ocean_destroy. */
+typedef struct ref_ocean_snapshot ref_ocean_snapshot;
+
+const ref_ocean_snapshot *ref_ocean_snapshot_acquire(const ref_ocean *o, double t);
+void ref_ocean_snapshot_release(const ref_ocean_snapshot *s);
+
+/* ref_ocean_bounds_at, ref_ocean_sample_at and ref_ocean_sample_map on the
+ * snapshot. The map also gives the sample's h when height is not NULL (an
+ * inversion then has the height at its rest point for free); and
+ * ref_ocean_snapshot_height is h alone. Both read packed (Dx, Dz, h) nodes,
+ * not the eight fields: what a march needs. */
+void ref_ocean_snapshot_bounds(const ref_ocean_snapshot *s, ref_ocean_bounds *b);
+void ref_ocean_snapshot_sample(const ref_ocean_snapshot *s, double u, double v, ref_ocean_sample *out);
+void ref_ocean_snapshot_map(const ref_ocean_snapshot *s, double u, double v, double d[2], double jac[4],
+                            double *height);
+double ref_ocean_snapshot_height(const ref_ocean_snapshot *s, double u, double v);
+
 /* The same fields by a direct sum of every wave of every cascade at (u, v)
  * (no FFT, no interpolation): equal to ref_ocean_sample_at at grid nodes
  * up to rounding. For tests; O(N^2) a call. */

@@ -103,6 +103,8 @@ typedef struct rctx {
     ref_terrain ter;
     ref_trace_opts opts;        /* t_tol, t_max */
     const ref_caustics *grid;   /* NULL: flat sun everywhere */
+    ref_waves_ctx waves;        /* the waves at the render's time: the ocean's
+                                   frame looked up once for every ray */
     int eye_in_water;
 
     /* work distribution */
@@ -249,7 +251,7 @@ static void no_hit(first_hit *fh) {
 static double leave_surface(const rctx *c, const double p[3], const double d[3], int above) {
     double t = 1e-10 * (1.0 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]));
     for (int k = 0; k < 48; k++, t *= 2) {
-        double h = ref_waves_height(&c->w->waves, p[0] + t * d[0], p[2] + t * d[2], c->d.time);
+        double h = ref_waves_ctx_height(&c->waves, p[0] + t * d[0], p[2] + t * d[2]);
         if (isnan(h)) break;
         double f = p[1] + t * d[1] - h;
         if (above ? f > 0 : f < 0) break;
@@ -267,7 +269,7 @@ static void trace_path(const rctx *c, const double o[3], const double d[3], int 
     ref_trace_opts wo = c->opts;
     wo.t_min = on_surface ? leave_surface(c, o, d, !in_water) : 0.0;
     ref_water_hit wh;
-    int wat = ref_trace_water(&w->waves, c->d.time, o, d, &wo, &wh);
+    int wat = ref_trace_water_ctx(&c->waves, o, d, &wo, &wh);
     double tbest = wat ? wh.t : RAY_T_MAX;
     int kind = wat ? REF_MASK_WATER : REF_MASK_SKY;
 
@@ -751,6 +753,7 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     pthread_mutex_init(&c->mu, NULL);
     pthread_cond_init(&c->cv, NULL);
     for (int i = 0; i < d.threads; i++) wk[i].c = c;
+    ref_waves_ctx_begin(&c->waves, &d.world->waves, d.time);
 
     int w = d.camera.width, h = d.camera.height;
     size_t np = (size_t)w * h;
@@ -769,7 +772,7 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     out->irradiance = mem_alloc(np * 3 * sizeof *out->irradiance);
     int rc = 0;
 
-    double eh = ref_waves_height(&d.world->waves, d.camera.eye[0], d.camera.eye[2], d.time);
+    double eh = ref_waves_ctx_height(&c->waves, d.camera.eye[0], d.camera.eye[2]);
     c->eye_in_water = d.camera.eye[1] - eh < 0;
 
     if (rc == 0 && d.caustics == REF_CAUSTICS_PHOTONS) rc = plan_caustics(c, wk, err, errlen);
@@ -791,6 +794,7 @@ int ref_render(const ref_render_desc *din, ref_render_result *out, char *err, si
     }
 
     for (int i = 0; i < d.threads; i++) free(wk[i].buf);
+    ref_waves_ctx_end(&c->waves);
     pthread_cond_destroy(&c->cv);
     pthread_mutex_destroy(&c->mu);
     free(wk);

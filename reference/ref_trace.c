@@ -98,11 +98,9 @@ static int clip_slab(double oy, double dy, double lo, double hi, double *ta, dou
 /* water                                                               */
 
 typedef struct water_ctx {
-    const ref_waves *w;
-    double time;
+    const ref_waves_ctx *wc;
     const double *o, *d;
-    double guess[2];
-    int have_guess;
+    ref_waves_track track;      /* the last sample's rest point: the next one's start */
 } water_ctx;
 
 /* f(t) = y(t) - H(x(t), z(t)): > 0 above the water */
@@ -110,20 +108,26 @@ static double water_f(void *vctx, double t) {
     water_ctx *c = vctx;
     double x = c->o[0] + t * c->d[0], z = c->o[2] + t * c->d[2];
     double uv[2], h;
-    ref_waves_rest_point(c->w, x, z, c->time, c->have_guess ? c->guess : NULL, uv, &h);
-    c->guess[0] = uv[0];
-    c->guess[1] = uv[1];
-    c->have_guess = 1;
+    ref_waves_ctx_track(c->wc, x, z, &c->track, uv, &h);
     return c->o[1] + t * c->d[1] - h;
 }
 
 int ref_trace_water(const ref_waves *w, double time, const double o[3], const double d[3],
                     const ref_trace_opts *opts, ref_water_hit *hit) {
+    ref_waves_ctx wc;
+    ref_waves_ctx_begin(&wc, w, time);
+    int rc = ref_trace_water_ctx(&wc, o, d, opts, hit);
+    ref_waves_ctx_end(&wc);
+    return rc;
+}
+
+int ref_trace_water_ctx(const ref_waves_ctx *wc, const double o[3], const double d[3],
+                        const ref_trace_opts *opts, ref_water_hit *hit) {
     trace_params tp = resolve_opts(opts);
     memset(hit, 0, sizeof *hit);
+    const ref_waves *w = wc->w;
     /* the frame's own bounds (an ocean's any-time bounds are far looser) */
-    double level = w->desc.level, hb, wsb;
-    ref_waves_bounds_at(w, time, &hb, NULL, &wsb);
+    double level = w->desc.level, hb = wc->height, wsb = wc->world_slope;
     double pad = 1e-7 * (1.0 + fabs(level) + hb);
     double ta = tp.t_min, tb = tp.t_max;
     if (!clip_slab(o[1], d[1], level - hb - pad, level + hb + pad, &ta, &tb)) return 0;
@@ -141,7 +145,7 @@ int ref_trace_water(const ref_waves *w, double time, const double o[3], const do
      * field there) the sign test is false and the march goes on. */
     double min_step = (tp.min_step > 0.0 ? tp.min_step : w->min_wavelength / 128.0) / dlen;
 
-    water_ctx c = { .w = w, .time = time, .o = o, .d = d };
+    water_ctx c = { .wc = wc, .o = o, .d = d };
     double t = ta, ft = water_f(&c, t);
     int evals = 1, found = 0;
     double tr = t;
@@ -169,7 +173,7 @@ int ref_trace_water(const ref_waves *w, double time, const double o[3], const do
     hit->t = tr;
     hit->from_below = ft < 0.0;
     double x = o[0] + tr * d[0], z = o[2] + tr * d[2];
-    ref_waves_at(w, x, z, time, c.have_guess ? c.guess : NULL, &hit->surf);
+    ref_waves_ctx_at(wc, x, z, c.track.valid ? c.track.uv : NULL, &hit->surf);
     return 1;
 }
 
@@ -423,6 +427,8 @@ void ref_caustics_trace_rows(const ref_caustics_plan *p, int row0, int row1,
     double level = w->desc.level;
     if (row0 < 0) row0 = 0;
     if (row1 > p->mz) row1 = p->mz;
+    ref_waves_ctx wc;   /* the frame, looked up once for all these photons */
+    ref_waves_ctx_begin(&wc, w, d->time);
 
     for (int j = row0; j < row1; j++) {
         for (int i = 0; i < p->mx; i++) {
@@ -437,7 +443,7 @@ void ref_caustics_trace_rows(const ref_caustics_plan *p, int row0, int row1,
             s.flux_emitted += phi;
 
             ref_water_hit wh;
-            if (!ref_trace_water(w, d->time, o, down, &wopts, &wh)) continue;
+            if (!ref_trace_water_ctx(&wc, o, down, &wopts, &wh)) continue;
 
             /* dry land before the water: the sun lights it directly */
             if (d->floor && (!d->floor->bounded || d->floor->ymax > level - w->height_bound)) {
@@ -496,6 +502,7 @@ void ref_caustics_trace_rows(const ref_caustics_plan *p, int row0, int row1,
             s.in_grid++;
         }
     }
+    ref_waves_ctx_end(&wc);
     if (st) {
         st->photons += s.photons;
         st->hit_water += s.hit_water;

@@ -47,6 +47,13 @@ typedef struct ref_water_hit {
 int ref_trace_water(const ref_waves *w, double time, const double o[3], const double d[3],
                     const ref_trace_opts *opts, ref_water_hit *hit);
 
+/* The same on a prepared wave set (ref_waves.h: the frame looked up and its
+ * bounds worked out once, by the caller, for any number of rays; each
+ * march step of ref_trace_water would otherwise look the frame up again).
+ * The same numbers as ref_trace_water at wc's time. */
+int ref_trace_water_ctx(const ref_waves_ctx *wc, const double o[3], const double d[3],
+                        const ref_trace_opts *opts, ref_water_hit *hit);
+
 /* ---- ray vs a terrain heightfield ---------------------------------------- */
 
 typedef double (*ref_height_fn)(const void *user, double x, double z);

@@ -227,20 +227,40 @@ void ref_waves_release(ref_waves *w) {
     w->ocean = NULL;
 }
 
-void ref_waves_bounds_at(const ref_waves *w, double t, double *height, double *slope, double *world_slope) {
+/* The bounds with the ocean's frame bounds ob (NULL: no ocean). */
+static void bounds_with(const ref_waves *w, const ref_ocean_bounds *ob, double *height, double *slope,
+                        double *world_slope) {
     double h = w->height_bound, s = w->slope_bound, fold = w->fold_bound;
-    if (w->ocean) {
-        ref_ocean_bounds b;
-        ref_ocean_bounds_at(w->ocean, t, &b);
-        h = w->fixed_height + b.height;
-        s = w->fixed_slope + b.slope;
-        fold = w->q_sum + b.chop;
+    if (ob) {
+        h = w->fixed_height + ob->height;
+        s = w->fixed_slope + ob->slope;
+        fold = w->q_sum + ob->chop;
     }
     if (height) *height = h;
     if (slope) *slope = s;
     /* grad H = J^-T grad h, and J = I + (Gerstner's and the ocean's
      * sideways derivatives) has smallest singular value >= 1 - fold */
     if (world_slope) *world_slope = fold < 1.0 ? s / (1.0 - fold) : INFINITY;
+}
+
+void ref_waves_bounds_at(const ref_waves *w, double t, double *height, double *slope, double *world_slope) {
+    ref_ocean_bounds b;
+    if (w->ocean) ref_ocean_bounds_at(w->ocean, t, &b);
+    bounds_with(w, w->ocean ? &b : NULL, height, slope, world_slope);
+}
+
+void ref_waves_ctx_begin(ref_waves_ctx *c, const ref_waves *w, double t) {
+    c->w = w;
+    c->t = t;
+    c->ocean = w->ocean ? ref_ocean_snapshot_acquire(w->ocean, t) : NULL;
+    ref_ocean_bounds b;
+    if (c->ocean) ref_ocean_snapshot_bounds(c->ocean, &b);
+    bounds_with(w, c->ocean ? &b : NULL, &c->height, &c->slope, &c->world_slope);
+}
+
+void ref_waves_ctx_end(ref_waves_ctx *c) {
+    if (c->ocean) ref_ocean_snapshot_release(c->ocean);
+    c->ocean = NULL;
 }
 
 /* ------------------------------------------------------------------ */
@@ -308,7 +328,14 @@ typedef struct wave_sums {
     double a, b, d;
 } wave_sums;
 
-static void sum_waves(const ref_waves *w, double u, double v, double t, int derivs, wave_sums *s) {
+/* What sum_waves works out: h alone (a march's height test), the position
+ * (h and D), or the frame (and every derivative). */
+enum { SUM_HEIGHT, SUM_POSITION, SUM_FRAME };
+
+static void sum_waves(const ref_waves_ctx *ctx, double u, double v, int what, wave_sums *s) {
+    const ref_waves *w = ctx->w;
+    double t = ctx->t;
+    int derivs = what == SUM_FRAME;
     memset(s, 0, sizeof *s);
     for (int i = 0; i < w->nsine; i++) {
         const ref_wave_comp *c = &w->sine[i];
@@ -324,8 +351,10 @@ static void sum_waves(const ref_waves *w, double u, double v, double t, int deri
     for (int i = 0; i < w->ngerstner; i++) {
         const ref_wave_comp *c = &w->gerstner[i];
         double th = c->k * (c->dir[0] * u + c->dir[1] * v) + c->omega * t + c->phase;
-        double sn = sin(th), cs = cos(th);
+        double sn = sin(th);
         s->h += c->amp * sn;
+        if (what == SUM_HEIGHT) continue;
+        double cs = cos(th);
         s->dx += c->qa * c->dir[0] * cs;
         s->dz += c->qa * c->dir[1] * cs;
         if (derivs) {
@@ -353,9 +382,11 @@ static void sum_waves(const ref_waves *w, double u, double v, double t, int deri
         s->h += ref_perlin_height(&w->perlin, u, v, t, derivs ? g : NULL);
         if (derivs) { s->hu += g[0]; s->hv += g[1]; }
     }
-    if (w->ocean) {
+    if (ctx->ocean && what == SUM_HEIGHT) {
+        s->h += ref_ocean_snapshot_height(ctx->ocean, u, v);   /* one field, not eight */
+    } else if (ctx->ocean) {
         ref_ocean_sample o;
-        ref_ocean_sample_at(w->ocean, u, v, t, &o);
+        ref_ocean_snapshot_sample(ctx->ocean, u, v, &o);
         s->h += o.h;
         s->dx += o.dx;
         s->dz += o.dz;
@@ -373,7 +404,10 @@ static void sum_waves(const ref_waves *w, double u, double v, double t, int deri
 
 void ref_waves_displace(const ref_waves *w, double u, double v, double t, double pos[3]) {
     wave_sums s;
-    sum_waves(w, u, v, t, 0, &s);
+    ref_waves_ctx c;
+    ref_waves_ctx_begin(&c, w, t);
+    sum_waves(&c, u, v, SUM_POSITION, &s);
+    ref_waves_ctx_end(&c);
     pos[0] = u + s.dx;
     pos[1] = w->desc.level + s.h;
     pos[2] = v + s.dz;
@@ -404,24 +438,41 @@ static void fill_point(const ref_waves *w, double u, double v, const wave_sums *
     p->jacobian = (1.0 + s->a) * (1.0 + s->d) - s->b * s->b;
 }
 
-void ref_waves_eval(const ref_waves *w, double u, double v, double t, ref_waves_point *out) {
+void ref_waves_ctx_eval(const ref_waves_ctx *c, double u, double v, ref_waves_point *out) {
     wave_sums s;
-    sum_waves(w, u, v, t, 1, &s);
-    fill_point(w, u, v, &s, out);
+    sum_waves(c, u, v, SUM_FRAME, &s);
+    fill_point(c->w, u, v, &s, out);
     out->residual = 0.0;
     out->iterations = 0;
+}
+
+void ref_waves_eval(const ref_waves *w, double u, double v, double t, ref_waves_point *out) {
+    ref_waves_ctx c;
+    ref_waves_ctx_begin(&c, w, t);
+    ref_waves_ctx_eval(&c, u, v, out);
+    ref_waves_ctx_end(&c);
 }
 
 /* ------------------------------------------------------------------ */
 /* inversion: the undisplaced point under a world (x, z)               */
 
-/* Horizontal residual F = (u + Dx - x, v + Dz - z) and its Jacobian. Only the
- * Gerstner waves and the ocean move points sideways, so only they are
- * summed. J = (dx/du, dx/dv, dz/du, dz/dv): the ocean's part is the exact
- * derivative of its bilinear map in the cell (ref_ocean_sample_map), so
- * Newton converges as fast as on the Gerstner waves. */
-static double horiz_residual(const ref_waves *w, double u, double v, double t, double x, double z,
-                             double F[2], double J[4]) {
+/* A point of the inversion: the rest point (u, v), the horizontal residual
+ * F = (u + Dx - x, v + Dz - z) there, r = |F|, J = dF/d(u, v) = (dx/du,
+ * dx/dv, dz/du, dz/dv) when it was asked for, and the ocean's height at
+ * (u, v) (0 without one), which its map gives for free. */
+typedef struct newton_pt {
+    double u, v, F[2], r, J[4], ocean_h;
+} newton_pt;
+
+/* Fills p at (u, v) for the world point (x, z). Only the Gerstner waves and
+ * the ocean move points sideways, so only they are summed. The ocean's part
+ * of J is the exact derivative of its bilinear map in the cell
+ * (ref_ocean_sample_map), so Newton converges as fast as on the Gerstner
+ * waves. */
+static void horiz_residual(const ref_waves_ctx *ctx, double u, double v, double x, double z,
+                           int want_j, newton_pt *p) {
+    const ref_waves *w = ctx->w;
+    double t = ctx->t;
     double dx = 0.0, dz = 0.0, a = 0.0, b = 0.0, d = 0.0;
     for (int i = 0; i < w->ngerstner; i++) {
         const ref_wave_comp *c = &w->gerstner[i];
@@ -429,7 +480,7 @@ static double horiz_residual(const ref_waves *w, double u, double v, double t, d
         double cs = cos(th);
         dx += c->qa * c->dir[0] * cs;
         dz += c->qa * c->dir[1] * cs;
-        if (J) {
+        if (want_j) {
             double qs = c->qa * c->k * sin(th);
             a -= qs * c->dir[0] * c->dir[0];
             b -= qs * c->dir[0] * c->dir[1];
@@ -437,65 +488,68 @@ static double horiz_residual(const ref_waves *w, double u, double v, double t, d
         }
     }
     double c = b;   /* dDz/du: = dDx/dv for Gerstner waves, not for the bilinear ocean */
-    if (w->ocean) {
+    p->ocean_h = 0.0;
+    if (ctx->ocean) {
         double D[2], jo[4];
-        ref_ocean_sample_map(w->ocean, u, v, t, D, J ? jo : NULL);
+        ref_ocean_snapshot_map(ctx->ocean, u, v, D, want_j ? jo : NULL, &p->ocean_h);
         dx += D[0];
         dz += D[1];
-        if (J) { a += jo[0]; b += jo[1]; c += jo[2]; d += jo[3]; }
+        if (want_j) { a += jo[0]; b += jo[1]; c += jo[2]; d += jo[3]; }
     }
-    F[0] = u + dx - x;
-    F[1] = v + dz - z;
-    if (J) { J[0] = 1.0 + a; J[1] = b; J[2] = c; J[3] = 1.0 + d; }
-    return sqrt(F[0] * F[0] + F[1] * F[1]);   /* no overflow at these scales; hypot is slow */
+    p->u = u;
+    p->v = v;
+    p->F[0] = u + dx - x;
+    p->F[1] = v + dz - z;
+    if (want_j) { p->J[0] = 1.0 + a; p->J[1] = b; p->J[2] = c; p->J[3] = 1.0 + d; }
+    p->r = sqrt(p->F[0] * p->F[0] + p->F[1] * p->F[1]);   /* no overflow at these scales; hypot is slow */
+}
+
+/* The Newton step -J^-1 F at p; 0 when J is (nearly) singular. */
+static int newton_step(const newton_pt *p, double *du, double *dv) {
+    const double *J = p->J;
+    double det = J[0] * J[3] - J[1] * J[2];
+    if (!(fabs(det) > 1e-14)) return 0;
+    *du = -( J[3] * p->F[0] - J[1] * p->F[1]) / det;
+    *dv = -(-J[2] * p->F[0] + J[0] * p->F[1]) / det;
+    return 1;
 }
 
 #define NEWTON_MAX_IT 50
 #define NEWTON_MAX_HALVINGS 40
 #define FIXED_POINT_MAX_IT 2000
 
-static int invert(const ref_waves *w, double x, double z, double t, const double guess[2],
-                  double uv[2], double *residual, int *iterations) {
+/* Solves P_xz(u, v) = (x, z) from guess (NULL: (x, z)) into *p (its J is
+ * the last Newton iterate's: the map's derivative near the solution). */
+static int invert(const ref_waves_ctx *c, double x, double z, const double guess[2],
+                  newton_pt *p, int *iterations) {
     double tol = 1e-12 * fmax(1.0, fmax(fabs(x), fabs(z)));
-    double u = guess ? guess[0] : x, v = guess ? guess[1] : z;
-    double F[2], J[4];
     int it = 0, ok = 0;
-    double r = horiz_residual(w, u, v, t, x, z, F, J);
-    if (!isfinite(r)) { u = x; v = z; r = horiz_residual(w, u, v, t, x, z, F, J); }
+    horiz_residual(c, guess ? guess[0] : x, guess ? guess[1] : z, x, z, 1, p);
+    if (!isfinite(p->r)) horiz_residual(c, x, z, x, z, 1, p);
 
     /* damped Newton: backtrack until |F| decreases */
-    while (r > tol && it < NEWTON_MAX_IT) {
+    while (p->r > tol && it < NEWTON_MAX_IT) {
         it++;
-        double det = J[0] * J[3] - J[1] * J[2];
         double du, dv;
-        if (fabs(det) > 1e-14) {
-            du = -( J[3] * F[0] - J[1] * F[1]) / det;
-            dv = -(-J[2] * F[0] + J[0] * F[1]) / det;
-        } else {
-            du = -F[0]; dv = -F[1];   /* singular: a fixed-point step */
-        }
-        double lam = 1.0, Fn[2], Jn[4], rn = r;
+        if (!newton_step(p, &du, &dv)) { du = -p->F[0]; dv = -p->F[1]; }   /* singular: a fixed-point step */
+        double lam = 1.0;
+        newton_pt n;
         int accepted = 0;
         for (int k = 0; k < NEWTON_MAX_HALVINGS; k++, lam *= 0.5) {
-            rn = horiz_residual(w, u + lam * du, v + lam * dv, t, x, z, Fn, Jn);
-            if (rn < r) { accepted = 1; break; }
+            horiz_residual(c, p->u + lam * du, p->v + lam * dv, x, z, 1, &n);
+            if (n.r < p->r) { accepted = 1; break; }
         }
         if (!accepted) break;
-        u += lam * du; v += lam * dv;
-        r = rn; F[0] = Fn[0]; F[1] = Fn[1];
-        memcpy(J, Jn, sizeof J);
+        *p = n;
     }
-    ok = r <= tol;
+    ok = p->r <= tol;
     /* polish: Newton converges quadratically, so one more step from a
      * residual at the tolerance lands at rounding level */
-    if (ok && r > 0.0) {
-        double det = J[0] * J[3] - J[1] * J[2];
-        if (fabs(det) > 1e-14) {
-            double un = u - ( J[3] * F[0] - J[1] * F[1]) / det;
-            double vn = v - (-J[2] * F[0] + J[0] * F[1]) / det;
-            double Fn[2], rn = horiz_residual(w, un, vn, t, x, z, Fn, NULL);
-            if (rn < r) { u = un; v = vn; r = rn; }
-        }
+    double du, dv;
+    if (ok && p->r > 0.0 && newton_step(p, &du, &dv)) {
+        newton_pt n;
+        horiz_residual(c, p->u + du, p->v + dv, x, z, 0, &n);
+        if (n.r < p->r) { memcpy(n.J, p->J, sizeof n.J); *p = n; }
     }
 
     /* fallback: relaxed fixed point (u, v) <- (u, v) - alpha F; alpha = 1 is
@@ -503,55 +557,114 @@ static int invert(const ref_waves *w, double x, double z, double t, const double
      * it is not */
     if (!ok) {
         double alpha = 1.0;
-        for (int k = 0; k < FIXED_POINT_MAX_IT && r > tol; k++) {
+        for (int k = 0; k < FIXED_POINT_MAX_IT && p->r > tol; k++) {
             it++;
-            double un = u - alpha * F[0], vn = v - alpha * F[1], Fn[2];
-            double rn = horiz_residual(w, un, vn, t, x, z, Fn, NULL);
-            if (rn < r) {
-                u = un; v = vn; r = rn; F[0] = Fn[0]; F[1] = Fn[1];
+            newton_pt n;
+            horiz_residual(c, p->u - alpha * p->F[0], p->v - alpha * p->F[1], x, z, 0, &n);
+            if (n.r < p->r) {
+                memcpy(n.J, p->J, sizeof n.J);
+                *p = n;
             } else {
                 alpha *= 0.5;
                 if (alpha < 1e-6) break;
             }
         }
-        ok = r <= tol;
+        ok = p->r <= tol;
     }
-    uv[0] = u;
-    uv[1] = v;
-    *residual = r;
     *iterations = it;
     return ok ? 0 : -1;
 }
 
+/* The height at the rest point p: every wave's but the ocean's summed, and
+ * the ocean's from the inversion's own sample (the same number as
+ * sum_waves' SUM_HEIGHT, added in the same order). */
+static double height_at(const ref_waves_ctx *c, const newton_pt *p) {
+    wave_sums s;
+    ref_waves_ctx rest = *c;
+    rest.ocean = NULL;
+    sum_waves(&rest, p->u, p->v, SUM_HEIGHT, &s);
+    return c->w->desc.level + (s.h + p->ocean_h);
+}
+
+int ref_waves_ctx_at(const ref_waves_ctx *c, double x, double z, const double guess[2],
+                     ref_waves_point *out) {
+    newton_pt p;
+    int it;
+    int rc = invert(c, x, z, guess, &p, &it);
+    wave_sums s;
+    sum_waves(c, p.u, p.v, SUM_FRAME, &s);
+    fill_point(c->w, p.u, p.v, &s, out);
+    out->residual = p.r;
+    out->iterations = it;
+    return rc;
+}
+
+int ref_waves_ctx_rest_point(const ref_waves_ctx *c, double x, double z, const double guess[2],
+                             double uv[2], double *height) {
+    newton_pt p;
+    int it;
+    int rc = invert(c, x, z, guess, &p, &it);
+    uv[0] = p.u;
+    uv[1] = p.v;
+    if (height) *height = height_at(c, &p);
+    return rc;
+}
+
+int ref_waves_ctx_track(const ref_waves_ctx *c, double x, double z, ref_waves_track *tr,
+                        double uv[2], double *height) {
+    double guess[2];
+    if (tr->valid) {
+        /* one Newton step from the last rest point, without sampling: its
+         * residual for (x, z) is its own (at rounding level) plus the move */
+        newton_pt last = { .u = tr->uv[0], .v = tr->uv[1], .F = { tr->x - x, tr->z - z } };
+        memcpy(last.J, tr->jac, sizeof last.J);
+        double du, dv;
+        if (!newton_step(&last, &du, &dv)) { du = x - tr->x; dv = z - tr->z; }
+        guess[0] = last.u + du;
+        guess[1] = last.v + dv;
+    }
+    newton_pt p;
+    int it;
+    int rc = invert(c, x, z, tr->valid ? guess : NULL, &p, &it);
+    uv[0] = p.u;
+    uv[1] = p.v;
+    if (height) *height = height_at(c, &p);
+    /* kept after a failed inversion too (a fold): its best point is still
+     * the nearest start the next query has */
+    *tr = (ref_waves_track){ .valid = isfinite(p.u) && isfinite(p.v), .x = x, .z = z, .uv = { p.u, p.v } };
+    memcpy(tr->jac, p.J, sizeof tr->jac);
+    return rc;
+}
+
+double ref_waves_ctx_height(const ref_waves_ctx *c, double x, double z) {
+    double uv[2], h;
+    if (ref_waves_ctx_rest_point(c, x, z, NULL, uv, &h) != 0) return NAN;
+    return h;
+}
+
 int ref_waves_at(const ref_waves *w, double x, double z, double t,
                  const double guess[2], ref_waves_point *out) {
-    double uv[2], r;
-    int it;
-    int rc = invert(w, x, z, t, guess, uv, &r, &it);
-    wave_sums s;
-    sum_waves(w, uv[0], uv[1], t, 1, &s);
-    fill_point(w, uv[0], uv[1], &s, out);
-    out->residual = r;
-    out->iterations = it;
+    ref_waves_ctx c;
+    ref_waves_ctx_begin(&c, w, t);
+    int rc = ref_waves_ctx_at(&c, x, z, guess, out);
+    ref_waves_ctx_end(&c);
     return rc;
 }
 
 int ref_waves_rest_point(const ref_waves *w, double x, double z, double t,
                          const double guess[2], double uv[2], double *height) {
-    double r;
-    int it;
-    int rc = invert(w, x, z, t, guess, uv, &r, &it);
-    if (height) {
-        wave_sums s;
-        sum_waves(w, uv[0], uv[1], t, 0, &s);
-        *height = w->desc.level + s.h;
-    }
+    ref_waves_ctx c;
+    ref_waves_ctx_begin(&c, w, t);
+    int rc = ref_waves_ctx_rest_point(&c, x, z, guess, uv, height);
+    ref_waves_ctx_end(&c);
     return rc;
 }
 
 double ref_waves_height(const ref_waves *w, double x, double z, double t) {
-    double uv[2], h;
-    if (ref_waves_rest_point(w, x, z, t, NULL, uv, &h) != 0) return NAN;
+    ref_waves_ctx c;
+    ref_waves_ctx_begin(&c, w, t);
+    double h = ref_waves_ctx_height(&c, x, z);
+    ref_waves_ctx_end(&c);
     return h;
 }
 

@@ -168,6 +168,49 @@ void ref_waves_release(ref_waves *w);
  * the sideways maps may fold). Any pointer may be NULL. */
 void ref_waves_bounds_at(const ref_waves *w, double t, double *height, double *slope, double *world_slope);
 
+/* A wave set at one time t, prepared for many queries: the ocean's frame
+ * looked up once (a snapshot, ref_ocean.h: no lock a query after that) and
+ * the frame's bounds worked out once. The plain queries below prepare one
+ * per call; a ray march, a photon pass or a render prepares one and hands
+ * it on (ref_trace's *_ctx functions). Read-only once begun, so any number
+ * of threads may share one; the ctx queries give the plain ones' numbers
+ * bit for bit. End it before releasing the wave set. */
+typedef struct ref_waves_ctx {
+    const ref_waves *w;
+    double t;
+    const ref_ocean_snapshot *ocean;     /* NULL without an ocean */
+    double height, slope, world_slope;   /* ref_waves_bounds_at(w, t) */
+} ref_waves_ctx;
+
+void ref_waves_ctx_begin(ref_waves_ctx *c, const ref_waves *w, double t);
+void ref_waves_ctx_end(ref_waves_ctx *c);
+
+/* ref_waves_eval, ref_waves_at, ref_waves_rest_point, ref_waves_height at
+ * the context's time. */
+void ref_waves_ctx_eval(const ref_waves_ctx *c, double u, double v, ref_waves_point *out);
+int ref_waves_ctx_at(const ref_waves_ctx *c, double x, double z, const double guess[2],
+                     ref_waves_point *out);
+int ref_waves_ctx_rest_point(const ref_waves_ctx *c, double x, double z, const double guess[2],
+                             double uv[2], double *height);
+double ref_waves_ctx_height(const ref_waves_ctx *c, double x, double z);
+
+/* A march's memory between nearby queries (zero it before the first): the
+ * last world point, its rest point and the sideways map's Jacobian there.
+ * ref_waves_ctx_track is ref_waves_ctx_rest_point with the guess worked
+ * out from it: one Newton step from the last rest point, which needs no
+ * sample (the residual there is the world point's move), so a march step's
+ * inversion starts nearer and samples the ocean less often. Its rest point
+ * agrees with the plain query's to the inversion's tolerance. */
+typedef struct ref_waves_track {
+    int valid;
+    double x, z;          /* the last world point */
+    double uv[2];         /* its rest point */
+    double jac[4];        /* d(x, z)/d(u, v) near it */
+} ref_waves_track;
+
+int ref_waves_ctx_track(const ref_waves_ctx *c, double x, double z, ref_waves_track *tr,
+                        double uv[2], double *height);
+
 /* Displaced position P(u, v, t). */
 void ref_waves_displace(const ref_waves *w, double u, double v, double t, double pos[3]);
 

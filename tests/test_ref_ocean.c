@@ -473,6 +473,78 @@ static void test_threads(void) {
     ref_ocean_destroy(o);
 }
 
+/* The snapshot (the fast path a march takes: one lookup, packed nodes)
+ * against the per-call queries and against the bilinear interpolation of
+ * ref_ocean_frame's nodes written out here: the same numbers bit for bit
+ * where the formulas are the same, to rounding against the written-out
+ * one; and a held snapshot stays put while other times push the cache's
+ * slots round. */
+static void test_snapshot(void) {
+    ref_ocean *o = make(small_desc(REF_SPECTRUM_JONSWAP, 3));
+    if (!o) return;
+    const ref_ocean_desc *d = ref_ocean_get_desc(o);
+    int N = d->res;
+    size_t nn = (size_t)N * N;
+    double t = 1.25, *a[3], *b = malloc(sizeof(double) * 4 * nn);
+    for (int c = 0; c < d->cascades; c++) {
+        a[c] = malloc(sizeof(double) * 4 * nn);
+        ref_ocean_frame(o, c, t, a[c], b);
+    }
+    const ref_ocean_snapshot *snap = ref_ocean_snapshot_acquire(o, t);
+    ref_ocean_bounds b0, b1;
+    ref_ocean_bounds_at(o, t, &b0);
+    ref_ocean_snapshot_bounds(snap, &b1);
+    CHECK(b0.height == b1.height && b0.slope == b1.slope && b0.chop == b1.chop);
+    int bad = 0;
+    for (int p = 0; p < 3000; p++) {
+        /* far and negative points too: the nodes wrap */
+        double u = (p * 0.6180339887 - 900) * 1.7, v = (p * 0.41421356 - 600) * 2.3;
+        ref_ocean_sample s, fs;
+        ref_ocean_sample_at(o, u, v, t, &s);
+        ref_ocean_snapshot_sample(snap, u, v, &fs);
+        double dm[2], jm[4], dp[2], jp[4], hm;
+        ref_ocean_snapshot_map(snap, u, v, dm, jm, &hm);
+        ref_ocean_sample_map(o, u, v, t, dp, jp);
+        bad += memcmp(&s, &fs, sizeof s) != 0;
+        bad += dm[0] != s.dx || dm[1] != s.dz || hm != s.h;
+        bad += ref_ocean_snapshot_height(snap, u, v) != s.h;
+        bad += memcmp(jm, jp, sizeof jm) != 0;
+        /* the bilinear interpolant of the nodes, and its derivative, by hand */
+        double want[3] = { 0, 0, 0 }, wj[4] = { 0, 0, 0, 0 };
+        for (int c = 0; c < d->cascades; c++) {
+            double texel = d->tile[c] / N, fu = u / texel, fv = v / texel;
+            double x = fu - floor(fu), z = fv - floor(fv);
+            long i0 = ((long)floor(fu) % N + N) % N, j0 = ((long)floor(fv) % N + N) % N;
+            long i1 = (i0 + 1) % N, j1 = (j0 + 1) % N;
+            for (int q = 0; q < 3; q++) {
+                double n00 = a[c][4 * (j0 * N + i0) + q], n10 = a[c][4 * (j0 * N + i1) + q];
+                double n01 = a[c][4 * (j1 * N + i0) + q], n11 = a[c][4 * (j1 * N + i1) + q];
+                want[q] += (1 - z) * ((1 - x) * n00 + x * n10) + z * ((1 - x) * n01 + x * n11);
+                if (q == 0) continue;
+                wj[2 * (q - 1)] += ((1 - z) * (n10 - n00) + z * (n11 - n01)) / texel;
+                wj[2 * (q - 1) + 1] += ((1 - x) * (n01 - n00) + x * (n11 - n10)) / texel;
+            }
+        }
+        double tol = 1e-12 * (1 + b0.height);
+        bad += !(fabs(hm - want[0]) < tol && fabs(dm[0] - want[1]) < tol && fabs(dm[1] - want[2]) < tol);
+        for (int k = 0; k < 4; k++) bad += !(fabs(jm[k] - wj[k]) < 1e-10 * (1 + b0.chop));
+    }
+    CHECK_MSG(bad == 0, "%d disagreements", bad);
+    /* more times than the cache has slots: the held frame is not evicted */
+    ref_ocean_sample before, after;
+    ref_ocean_snapshot_sample(snap, 3.3, -7.1, &before);
+    for (int k = 1; k <= 6; k++) {
+        ref_ocean_sample s;
+        ref_ocean_sample_at(o, 3.3, -7.1, t + k, &s);
+    }
+    ref_ocean_snapshot_sample(snap, 3.3, -7.1, &after);
+    CHECK(memcmp(&before, &after, sizeof before) == 0);
+    ref_ocean_snapshot_release(snap);
+    for (int c = 0; c < d->cascades; c++) free(a[c]);
+    free(b);
+    ref_ocean_destroy(o);
+}
+
 int main(void) {
     RUN(test_fft_vs_direct);
     RUN(test_bilinear_periodic);
@@ -483,5 +555,6 @@ int main(void) {
     RUN(test_bounds);
     RUN(test_determinism_and_errors);
     RUN(test_threads);
+    RUN(test_snapshot);
     return check_summary();
 }

@@ -218,6 +218,73 @@ static void test_water_vs_brute_force(void) {
     CHECK(!ref_trace_water(&w, 0.0, o, down, &opts, &hit));
 }
 
+/* ---- the spectrum ocean's fast path --------------------------------------- */
+
+/* A march over the spectrum ocean (scenes/ocean.glib's sea at 64^2 a
+ * cascade, one Gerstner wave on top in the folding case): ref_trace_water
+ * and ref_trace_water_ctx (one frame lookup for every ray) give the same
+ * hit bit for bit, and both give the hits the reference gave before the
+ * fast path (a snapshot of the frame, packed nodes, the march's predicted
+ * Newton starts: commit c31aa40, printed to 17 digits): t within the
+ * refinement tolerance, the surface to rounding. The march takes as many
+ * steps as it did (its steps are the Lipschitz steps from the frame's
+ * bounds, unchanged). */
+typedef struct recorded_hit {
+    double t, y, nx;
+    int evals;
+} recorded_hit;
+
+static void test_ocean_fast_path(void) {
+    static const recorded_hit want[2][6] = {
+        {   /* the ocean alone (not folding: Lipschitz steps) */
+            { 44.228549147250128, 0.47735710488689681, -0.091696424290270348, 682 },
+            { 27.45527469799374, 0.72947999402743202, -0.025927404548995336, 167 },
+            { 22.814130219527208, 0.39575984375719014, 0.086726477768808902, 107 },
+            { 20.189199857427759, 0.043614356386600106, 0.056808377724659687, 107 },
+            { 17.834376276104408, -0.15245273336780563, -0.020621622162503433, 119 },
+            { 15.758781359820649, -0.22947434400370514, 0.068405667761570033, 113 },
+        }, {   /* and a Gerstner wave (Q + chop >= 1: the least steps) */
+            { 43.813480539858716, 0.51041580812276965, 0.0043241431451611139, 16840 },
+            { 27.674229438318289, 0.70339772508203391, -0.046971759460510437, 10009 },
+            { 22.620382178517119, 0.42636870163967183, -0.018773531819039731, 8903 },
+            { 20.256786792130455, 0.030369652270811232, 0.1045429386253014, 8740 },
+            { 17.928736898946202, -0.17442311350193407, -0.034304279954892887, 8037 },
+            { 15.879413485518068, -0.26185060896046219, -0.0068286174713047664, 7224 },
+        },
+    };
+    for (int g = 0; g < 2; g++) {
+        ref_waves_desc wd;
+        memset(&wd, 0, sizeof wd);
+        wd.level = 0.5;
+        wd.gerstner_count = g;
+        wd.gerstner[0] = (ref_wave_desc){ .angle_deg = 30, .wavelength = 7, .amplitude = 0.05 };
+        wd.steepness = 0.3;
+        wd.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_JONSWAP, .wind_speed = 9, .wind_angle_deg = -80,
+                                     .choppiness = 1, .res = 64, .seed = 7, .fetch = 100000, .cascades = 3,
+                                     .tile = { 160, 37, 5.3 } };
+        ref_waves w;
+        if (init_waves(&w, &wd)) return;
+        ref_waves_ctx wc;
+        ref_waves_ctx_begin(&wc, &w, 2.0);
+        ref_trace_opts op = { .t_tol = 1e-9 };
+        for (int k = 0; k < 6; k++) {
+            double o[3] = { 0.3 * k, 4, 12 - k }, d[3] = { -0.05 + 0.03 * k, -0.08 - 0.04 * k, -1 };
+            double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            for (int i = 0; i < 3; i++) d[i] /= l;
+            ref_water_hit a, b;
+            CHECK(ref_trace_water(&w, 2.0, o, d, &op, &a) && ref_trace_water_ctx(&wc, o, d, &op, &b));
+            CHECK(memcmp(&a, &b, sizeof a) == 0);
+            const recorded_hit *r = &want[g][k];
+            CHECK_MSG(fabs(a.t - r->t) <= 1e-9 && fabs(a.surf.pos[1] - r->y) <= 1e-12 &&
+                      fabs(a.surf.normal[0] - r->nx) <= 1e-12 && a.evals == r->evals,
+                      "case %d ray %d: t %.17g y %.17g nx %.17g evals %d", g, k, a.t, a.surf.pos[1],
+                      a.surf.normal[0], a.evals);
+        }
+        ref_waves_ctx_end(&wc);
+        ref_waves_release(&w);
+    }
+}
+
 /* ---- terrain -------------------------------------------------------------- */
 
 /* Sloped plane y = a + b x + c z: t = (a + b o.x + c o.z - o.y) /
@@ -536,6 +603,7 @@ static void test_photons_errors_and_rng(void) {
 int main(void) {
     RUN(test_flat_refraction_closed_form);
     RUN(test_water_vs_brute_force);
+    RUN(test_ocean_fast_path);
     RUN(test_terrain_sloped_plane);
     RUN(test_terrain_sine_floor);
     RUN(test_beer_lambert);

@@ -601,6 +601,62 @@ static void test_ocean(void) {
  * a world point ref_waves_height gives a finite height (one of the
  * surface's sheets there, rc 0) or NaN exactly when the inversion fails
  * (rc -1: no unique rest point found). */
+/* The fast path a march takes: a prepared context (ref_waves_ctx) gives
+ * the plain queries' numbers bit for bit, and the tracked inversion (its
+ * start predicted from the last point, as a march steps) reaches the plain
+ * inversion's rest point and height to its tolerance, in fewer iterations
+ * than from the world point. */
+static void test_ctx_fast_path(void) {
+    ref_waves_desc d = ocean_desc(6, 1);
+    d.gerstner_count = 1;
+    d.gerstner[0] = (ref_wave_desc){ .angle_deg = 10, .wavelength = 7, .amplitude = 0.05 };
+    d.steepness = 0.2;
+    d.sine_count = 1;
+    d.sine[0] = (ref_wave_desc){ .angle_deg = 70, .wavelength = 3, .amplitude = 0.02 };
+    ref_waves w;
+    if (init(&w, &d)) return;
+    double t = 1.25, hb, sb, wsb;
+    ref_waves_bounds_at(&w, t, &hb, &sb, &wsb);
+    ref_waves_ctx c;
+    ref_waves_ctx_begin(&c, &w, t);
+    CHECK(c.ocean != NULL && c.height == hb && c.slope == sb && c.world_slope == wsb);
+    ref_waves_track tr = { 0 };
+    uint64_t st = 11;
+    int bad = 0;
+    double worst_uv = 0, worst_h = 0;
+    for (int i = 0; i < 400; i++) {
+        /* a march: small steps along a line, and now and then a jump */
+        double x = -30 + 0.037 * i + (i % 50 == 0 ? 5 * lcg01(&st) : 0), z = 12 - 0.021 * i;
+        ref_waves_point p, q;
+        bad += ref_waves_at(&w, x, z, t, NULL, &p) != ref_waves_ctx_at(&c, x, z, NULL, &q);
+        bad += memcmp(&p, &q, sizeof p) != 0;
+        double uv0[2], uv1[2], uv2[2], h0, h1, h2;
+        ref_waves_rest_point(&w, x, z, t, NULL, uv0, &h0);
+        ref_waves_ctx_rest_point(&c, x, z, NULL, uv1, &h1);
+        bad += uv0[0] != uv1[0] || uv0[1] != uv1[1] || h0 != h1;
+        bad += ref_waves_height(&w, x, z, t) != ref_waves_ctx_height(&c, x, z) || h0 != ref_waves_ctx_height(&c, x, z);
+        bad += ref_waves_ctx_track(&c, x, z, &tr, uv2, &h2) != 0;
+        worst_uv = fmax(worst_uv, hypot(uv2[0] - uv0[0], uv2[1] - uv0[1]));
+        worst_h = fmax(worst_h, fabs(h2 - h0));
+    }
+    CHECK_MSG(bad == 0, "%d disagreements", bad);
+    /* both inversions stop at |residual| <= 1e-12 max(1, |x|, |z|), 3e-11 here;
+     * rest points then differ by at most twice that / (1 - fold) */
+    CHECK_MSG(worst_uv < 1e-9 && worst_h < 1e-9, "rest points %g m, heights %g m apart", worst_uv, worst_h);
+    ref_waves_ctx_end(&c);
+    CHECK(c.ocean == NULL);
+    ref_waves_release(&w);
+
+    /* without an ocean a context holds nothing and changes nothing */
+    ref_waves_desc lake = ref_waves_default();
+    if (init(&w, &lake)) return;
+    ref_waves_ctx_begin(&c, &w, 3.0);
+    CHECK(c.ocean == NULL && c.world_slope == w.world_slope_bound);
+    CHECK(ref_waves_ctx_height(&c, 1.5, -2.25) == ref_waves_height(&w, 1.5, -2.25, 3.0));
+    ref_waves_ctx_end(&c);
+    ref_waves_release(&w);
+}
+
 static void test_ocean_folding(void) {
     ref_waves_desc d = ocean_desc(15, 5);
     d.ocean.amplitude = 1.5;
@@ -639,5 +695,6 @@ int main(void) {
     RUN(test_uniforms);
     RUN(test_ocean);
     RUN(test_ocean_folding);
+    RUN(test_ctx_fast_path);
     return check_summary();
 }
