@@ -1519,7 +1519,9 @@ static void test_glman_defaults(void) {
         "##OpenGL GLIB\n"
         "Sphere\nSphere 2\nTorus\nQuadXY\nBox\nCone\nCylinder\nPerspective\nOrtho\n"
         "Translate 1 2\nNoise2D\nNoise3D 300\nWireSphere\n");
-    CHECK_NO_DIAGS(s);
+    /* issue 27: a 2-number Translate is glman's (0 for z), with a warning */
+    CHECK(s->ndiags == 1 && has_diag(s, P("gl14/def.glib"), 11, DIAG_WARNING,
+                                     "Translate has 2 numbers; glman fills the missing ones with 0 (Translate 1 2 0)"));
     CHECK(s->ncmds == 13);
     if (s->ncmds == 13) {
         const glib_cmd *c = s->cmds;
@@ -1628,6 +1630,41 @@ static int rm_entry(const char *path, const struct stat *sb, int flag, struct FT
     return remove(path);
 }
 
+/* Issue 27: glman's leniency. A slider with four numbers (a comma for a
+ * decimal point) is read as glman's atof read its blank-separated words;
+ * a two-word Program name keeps the uniform pairs after it in line; the
+ * header may follow blank and comment lines. */
+static void test_glman_leniency_27(void) {
+    glib_scene *s = load("gl27/l.glib",
+        "\n# a project header comment\n##OpenGL GLIB\n"
+        "Program P uA < 0,01 0.1 1.0 > uB <0 0.5 0.75 1>\n"     /* 4 */
+        "Program Cold Giraffe uK <0 1 2> uC {1, 0, 0}\n"         /* 5 */
+        "Program Warm Giraffe\n");                             /* 6 */
+    const char *f = P("gl27/l.glib");
+    CHECK_MSG(s->nerrors == 0 && s->ncmds == 3, "%d errors", s->nerrors);
+    CHECK(!has_diag(s, f, 1, DIAG_WARNING, "first line is not"));
+    CHECK(has_diag(s, f, 4, DIAG_WARNING, "uniform 'uA': a slider has more than 3 numbers (0,01 0.1 1.0)"));
+    CHECK(has_diag(s, f, 4, DIAG_WARNING, "used <0 0.1 1>"));
+    CHECK(has_diag(s, f, 5, DIAG_WARNING, "Program Cold: 'Giraffe' read as part of the program's name"));
+    CHECK(has_diag(s, f, 6, DIAG_WARNING, "Program Warm: 'Giraffe' read as part of the program's name"));
+    if (s->ncmds == 3) {
+        const unif_decl *u;
+        CHECK((u = find_uniform(&s->cmds[0], "uA")) && u->kind == UNIF_DECL_SLIDER && u->n == 3 &&
+              u->v[0] == 0 && u->v[1] == 0.1 && u->v[2] == 1.0);
+        CHECK((u = find_uniform(&s->cmds[0], "uB")) && u->kind == UNIF_DECL_SLIDER && u->v[0] == 0 &&
+              u->v[1] == 0.5 && u->v[2] == 0.75);
+        CHECK(strcmp(s->cmds[1].name, "Cold") == 0 && s->cmds[1].nuniforms == 2);
+        CHECK((u = find_uniform(&s->cmds[1], "uK")) && u->kind == UNIF_DECL_SLIDER && u->v[1] == 1);
+        CHECK((u = find_uniform(&s->cmds[1], "uC")) && u->kind == UNIF_DECL_COLOR);
+        CHECK(s->cmds[2].nuniforms == 0);
+    }
+    glib_free(s);
+    /* a file that never says it: still the warning */
+    s = load("gl27/n.glib", "# comment\nSphere\n##OpenGL GLIB\n");
+    CHECK(has_diag(s, P("gl27/n.glib"), 1, DIAG_WARNING, "first line is not '##OpenGL GLIB'"));
+    glib_free(s);
+}
+
 int main(void) {
     snprintf(root, sizeof root, "/tmp/test_glib_XXXXXX");
     if (!mkdtemp(root)) {
@@ -1679,6 +1716,7 @@ int main(void) {
     RUN(test_glman_real_file);
     RUN(test_glman_numbers);
     RUN(test_glman_defaults);
+    RUN(test_glman_leniency_27);
     RUN(test_glman_state);
     RUN(test_glman_geometry);
     nftw(root, rm_entry, 16, FTW_DEPTH | FTW_PHYS);

@@ -500,6 +500,9 @@ static bool h_nums(cmdctx *c, glib_cmd *cmd) {
     cmd->nnum = s->nmax;
     if (cmd->kind == GLIB_CMD_SCALE || cmd->kind == GLIB_CMD_BOX)
         return one_or_three(c, cmd, given);
+    if (cmd->kind == GLIB_CMD_TRANSLATE && given > 0 && given < 3)
+        cwarn(c, "Translate has %d number%s; glman fills the missing ones with 0 (Translate %g %g %g): write "
+              "all three", given, given == 1 ? "" : "s", cmd->num[0], cmd->num[1], cmd->num[2]);
     return check_degenerate(c, cmd);
 }
 
@@ -1312,6 +1315,36 @@ static val_result typed_bracket(cmdctx *c, char open, char **items, int n,
     return r;
 }
 
+/* A slider with more than three numbers (`< 0,01 0.1 1.0 >`: a comma for
+ * a decimal point). glman split the bracket on blanks only and read each
+ * word with atof, so "0,01" was 0 and the slider <0 0.1 1.0>; with four
+ * or more blank-separated words it used the first three. So does tarn,
+ * with a warning. False when the words are not numbers at all. */
+static bool slider_glman_words(cmdctx *c, char *raw, unif_decl *u, const char *owner) {
+    char *w[GLIB_MAX_NUMS];
+    int n = 0;
+    for (char *save = NULL, *t = strtok_r(raw, " \t", &save); t && n < GLIB_MAX_NUMS; t = strtok_r(NULL, " \t", &save))
+        w[n++] = t;
+    if (n < 3)
+        return false;
+    for (int i = 0; i < 3; i++) {
+        char *end;
+        u->v[i] = strtod(w[i], &end);
+        if (end == w[i])
+            return false;
+    }
+    u->kind = UNIF_DECL_SLIDER;
+    u->n = 3;
+    char extra[160] = "";
+    size_t len = 0;
+    for (int i = 3; i < n && len < sizeof extra; i++)
+        len += (size_t)snprintf(extra + len, sizeof extra - len, " %s", w[i]);
+    cwarn(c, "%s: a slider has more than 3 numbers (%s %s %s%s); glman read its words with atof and used "
+          "<%g %g %g>: write <min default max> with a '.' for the decimal point", owner, w[0], w[1], w[2], extra,
+          u->v[0], u->v[1], u->v[2]);
+    return true;
+}
+
 /* A bracketed value at *sp. An unclosed bracket ends the line: nothing
  * after it can be told apart from the bracket's contents. */
 static val_result read_bracket(cmdctx *c, char **sp, unif_decl *u, const char *owner) {
@@ -1331,8 +1364,12 @@ static val_result read_bracket(cmdctx *c, char **sp, unif_decl *u, const char *o
     }
     *e = '\0';
     *sp = e + 1;
+    char raw[512];
+    snprintf(raw, sizeof raw, "%s", s + 1);
     char *items[GLIB_MAX_NUMS];
     int n = split_items(s + 1, items, GLIB_MAX_NUMS);
+    if (open == '<' && n > 3 && slider_glman_words(c, raw, u, owner))
+        return slider_value(c, u, owner);
     return typed_bracket(c, open, items, n, u, owner);
 }
 
@@ -1451,6 +1488,40 @@ static bool h_program(cmdctx *c, glib_cmd *cmd) {
         return false;
     }
     memcpy(cmd->name, s, (size_t)(e - s));
+    /* `Program Cold Giraffe uA <0 1 2>`: glman's name is one word, the
+     * rest name/value pairs. A bare word followed by another word that is
+     * no value (or by nothing) cannot be a pair: it is more of the name
+     * the student wrote. tarn keeps glman's one-word name and skips the
+     * rest of it, so the pairs after it line up as they did in glman. */
+    for (s = skip_space(e);;) {
+        char *we = s;
+        while (*we && !is_space((unsigned char)*we) && !is_opener(*we))
+            we++;
+        if (we == s || is_opener(*we) || !isalpha((unsigned char)*s))
+            break;
+        char *next = skip_space(we);
+        char *ne = next;
+        while (*ne && !is_space((unsigned char)*ne) && !is_opener(*ne))
+            ne++;
+        char *num_end = next;
+        if (*next && ne > next)
+            (void)strtod(next, &num_end);
+        double bv;
+        char saved = *ne;
+        *ne = '\0';
+        bool boolword = *next && is_bool_word(next, &bv);
+        *ne = saved;
+        bool value_next = is_opener(*next) || (*next && num_end > next) || *next == '.' || *next == '-' || boolword;
+        /* a last bare word: a name's word when capitalised (Giraffe), else a
+         * uniform without its value (uA), which is an error below */
+        if (value_next || (!*next && !isupper((unsigned char)*s)))
+            break;
+        cwarn(c, "Program %s: '%.*s' read as part of the program's name (glman's name is one word; the "
+              "words after it are uniform/value pairs): write the name as one word, e.g. %s_%.*s",
+              cmd->name, (int)(we - s), s, cmd->name, (int)(we - s), s);
+        s = skip_space(we);
+    }
+    e = s;
     int cap = 0;
     for (s = skip_space(e); *s; s = skip_space(s)) {
         unif_decl u = { .file = c->file, .line = c->line };
@@ -1746,9 +1817,30 @@ static bool check_top(parser *p, const reader *r, const char *file) {
     const char *b = "";
     size_t n = 0;
     next_phys(&first, &b, &n);
-    if (!is_header(b, n))
-        report(p, DIAG_WARNING, file, 1,
-             "first line is not '##OpenGL GLIB': glman will not open this file; add that line");
+    if (is_header(b, n))
+        return true;
+    /* glman opened files whose header follows blank or comment lines
+     * (projects that ran in glman do this): the header anywhere before
+     * the first command is fine; only a file without it is worth a word */
+    for (int line = 1;; line++) {
+        size_t k = 0;
+        while (k < n && is_space((unsigned char)b[k]))
+            k++;
+        bool blank = k == n || b[k] == '\n' || b[k] == '\r';
+        bool comment = !blank && (b[k] == '#' || (b[k] == '/' && k + 1 < n && b[k + 1] == '/'));
+        if (is_header(b, n)) {
+            report(p, DIAG_NOTE, file, line, "the '##OpenGL GLIB' header is on line %d, after blank or comment "
+                   "lines; glman read it there too", line);
+            return true;
+        }
+        if (!blank && !comment)
+            break;
+        if (first.pos >= first.len)
+            break;
+        next_phys(&first, &b, &n);
+    }
+    report(p, DIAG_WARNING, file, 1,
+           "first line is not '##OpenGL GLIB': glman will not open this file; add that line");
     return true;
 }
 
