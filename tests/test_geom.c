@@ -850,6 +850,20 @@ static void test_clouds_and_arrow(void) {
     double vol = volume(&m), exact = PI * (0.02 * 0.02 * 0.8 + 0.06 * 0.06 * 0.2 / 3);
     CHECK_MSG(vol > 0.99 * exact && vol < exact, "arrow volume %g of %g", vol, exact);
     geom_free(&m);
+    /* issue 27: `Xarrow 200` has 200 segments along its length (a vertex
+     * shader bends it): the shaft's vertices sit at 160 distinct x in 0..0.8 */
+    CHECK(geom_xarrow(&m, 200));
+    int distinct = 0;
+    double xs[1024];
+    for (int k = 0; k < m.nvert && distinct < 1024; k++) {
+        double x = P(&m, k)[0];
+        bool seen = false;
+        for (int q = 0; q < distinct && !seen; q++) seen = fabs(xs[q] - x) < 1e-6;
+        if (!seen && x > 1e-6 && x < 0.8 - 1e-6) xs[distinct++] = x;
+    }
+    CHECK_MSG(distinct == 159, "the shaft has %d inner rings, want 159 (160 segments over 0..0.8)", distinct);
+    check_sane(&m, "Xarrow 200");
+    geom_free(&m);
 }
 
 /* The soccer ball: 32 faces on the sphere, pentagons at the icosahedron's

@@ -1244,13 +1244,15 @@ bool geom_point_cloud(geom_mesh *m, int nx, int ny, int nz, bool jitter) {
 typedef struct lathe_ctx {
     double x0, r0, x1, r1;      /* one segment of the profile */
     int slices;
+    int rows;                   /* rings along the segment */
 } lathe_ctx;
 
 static void lathe_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
     const lathe_ctx *q = vctx;
     double s, c;
     angle(i, q->slices, &s, &c);
-    double x = j ? q->x1 : q->x0, r = j ? q->r1 : q->r0;
+    double f = (double)j / q->rows;
+    double x = j == q->rows ? q->x1 : q->x0 + (q->x1 - q->x0) * f, r = j == q->rows ? q->r1 : q->r0 + (q->r1 - q->r0) * f;
     double dx = q->x1 - q->x0, dr = q->r1 - q->r0;
     v3set(p, x, r * c, r * s);
     v3set(n, -dr, dx * c, dx * s);   /* the profile's normal (-dr, dx) turned about x */
@@ -1267,10 +1269,15 @@ bool geom_xarrow(geom_mesh *m, int slices) {
     mb b;
     mb_init(&b, false);
     for (int k = 0; k < 4; k++) {
-        lathe_ctx q = {prof[k][0], prof[k][1], prof[k + 1][0], prof[k + 1][1],
-                       clamp_div(slices, 100, 3, GEOM_MAX_DIV)};
+        int n = clamp_div(slices, 100, 3, GEOM_MAX_DIV);
+        /* glman's arrow has n segments along its length (issue 27: a vertex
+         * shader bends `Xarrow 200` along a helix): the shaft and the head's
+         * cone get rings in proportion to their length, n over 0..1 */
+        double len = prof[k + 1][0] - prof[k][0];
+        int rows = len > 0 ? (int)lround(n * len) : 1;
+        lathe_ctx q = {prof[k][0], prof[k][1], prof[k + 1][0], prof[k + 1][1], n, rows < 1 ? 1 : rows};
         int flags = GRID_CLOSED_U | (q.r0 == 0 ? GRID_COLLAPSED_V0 : 0) | (q.r1 == 0 ? GRID_COLLAPSED_V1 : 0);
-        grid(&b, q.slices, 1, lathe_eval, &q, flags);
+        grid(&b, q.slices, q.rows, lathe_eval, &q, flags);
     }
     return mb_finish(&b, m);
 }
