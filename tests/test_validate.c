@@ -365,11 +365,13 @@ static void test_glman_era_glsl(void) {
     int rc = -1;
     validate_result res;
     char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
-    CHECK_MSG(rc == 1 && res.nerrors == 2, "%s", out ? out : "");
+    /* the write to an input is NVIDIA's leniency: rewritten (a local copy)
+     * and validated with a warning that says so (issue #27) */
+    CHECK_MSG(rc == 1 && res.nerrors == 1, "%s", out ? out : "");
     CHECK(out && !strstr(out, "ext.geom"));     /* gl_FrontColor written: glslang checks it as 4.00 */
     CHECK_STR_CONTAINS(out, "bad.geom:6: error: 'undefined_gk'");
-    CHECK_STR_CONTAINS(out, "in.frag:4: error: ");
-    CHECK_STR_CONTAINS(out, "in.frag:4: note: 'gK' is an input of this shader (declared varying)");
+    CHECK_STR_CONTAINS(out, "in.frag:4: warning: 'gK' is an input and the shader writes it");
+    CHECK(out && !strstr(out, "in.frag:4: error"));
     free(out);
 }
 
