@@ -61,6 +61,13 @@ bool cmd_opt_pack(const char *name, char *why, size_t whylen);
 #define CMD_MSAA_HELP \
     "  --msaa N         anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
     "                   a GPU, off on a CPU rasteriser such as llvmpipe: 2-3x the time)\n"
+/* Images and videos that are kept are anti-aliased on every renderer
+ * (issue #25); a live window keeps CMD_MSAA_HELP's default. */
+#define CMD_MSAA_STILL_DEFAULT 4
+#define CMD_MSAA_STILL_HELP \
+    "  --msaa N         anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
+    "                   every renderer: what is written is anti-aliased; on a CPU\n" \
+    "                   rasteriser such as llvmpipe it costs 2-3x the time)\n"
 
 /* Splits a copy of list (in buf) at commas into at most max parts; the
  * number of parts, or -1 when there are more than max. */

@@ -94,7 +94,7 @@ static int record_with(const record_desc *d, const session *s, bool parsed_ok) {
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     bool scene_ok = false;
-    render *r = load_scene(s, d->samples, &scene_ok);
+    render *r = load_scene(s, d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT, &scene_ok);   /* a kept video */
     if (!r) { gl_ctx_destroy(ctx); return TARN_EXIT_INPUT; }
     int w = d->width, h = d->height;
     if (w <= 0 || h <= 0) { w = s->width; h = s->height; }
@@ -153,7 +153,7 @@ static const char usage[] =
     "                   without ffmpeg the frames go to OUT-frames/ as PNGs\n"
     "  --size WxH       frame size (default: the window's when recording)\n"
     "  --fps N          frames per second, 1..240 (default 30)\n"
-    CMD_MSAA_HELP
+    CMD_MSAA_STILL_HELP
     "  --quiet          print only errors\n"
     "\n"
     "exit codes: 0 ok, 1 the session or scene has errors, 2 bad usage, 3 no OpenGL\n";

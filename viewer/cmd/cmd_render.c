@@ -131,7 +131,8 @@ int cli_render(const cli_render_desc *d) {
     char err[1024];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
-    render_desc rd = { .pack = d->pack, .samples = d->samples };
+    int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;   /* a kept image: anti-aliased */
+    render_desc rd = { .pack = d->pack, .samples = samples };
     render *r = render_create(&rd);
     bool ok = render_load(r, d->glib);
     print_load_messages(r, d->quiet);
@@ -141,7 +142,7 @@ int cli_render(const cli_render_desc *d) {
     render_target t;
     bool linear_scene = render_has_world(r);
     /* colour and depth, the multisampled ones, the image read back */
-    double bytes = 16 + 4 + 16 + (d->samples > 1 ? d->samples * 20.0 : 0);
+    double bytes = 16 + 4 + 16 + (samples > 1 ? samples * 20.0 : 0);
     if (!gl_ctx_frame_fits(w, h, bytes, err, sizeof err)) {
         fprintf(stderr, "tarn: %s: %s\n", d->glib, err);
         render_destroy(r);
@@ -222,7 +223,7 @@ static const char usage[] =
     "                   default, paper, ...), as the panel's Setting combo does\n"
     "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
     "                   as the panel would (NAME=V: of every Program); repeatable\n"
-    CMD_MSAA_HELP
+    CMD_MSAA_STILL_HELP
     "  --quiet          print only warnings and errors\n"
     "\n"
     "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
