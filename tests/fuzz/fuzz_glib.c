@@ -136,6 +136,7 @@ static void exercise(const glib_scene *g) {
         (void)ref_terrain_height(&w, 0.5, -0.25);
         ref_terrain_normal_at(&w, 1, 1, n);
         ref_sky_radiance(&w, dir, rgb);
+        ref_world_release(&w);   /* a WaveOcean's spectra live on the heap */
     }
 }
 
