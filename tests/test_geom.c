@@ -288,12 +288,13 @@ static void test_sphere(void) {
         double l = sqrt(north[0] * north[0] + north[1] * north[1] + north[2] * north[2]);
         if (l > 1e-3) offt += fabs(t[0] - north[0] / l) > 1e-5 || fabs(t[1] - north[1] / l) > 1e-5 ||
                               fabs(t[2] - north[2] / l) > 1e-5;
-        /* tc = (longitude / 2pi from +z towards +x, latitude 0..1) */
+        /* tc as the course's OsuSphere: s = (lng + pi) / 2pi where the point
+         * is (cos lng, ., -sin lng) cos lat; t = latitude 0..1 */
         double v = asin(fmax(-1, fmin(1, p[1] / r))) / PI + 0.5;
         offtc += fabs(m.tc[2 * k + 1] - v) > 1e-5;
         if (l > 1e-3) {
-            double u = atan2(p[0], p[2]) / (2 * PI);
-            if (u < 0) u += 1;
+            double u = (atan2(-p[2], p[0]) + PI) / (2 * PI);
+            if (u >= 1) u -= 1;
             double du = fabs(m.tc[2 * k] - u);
             offtc += du > 1e-5 && fabs(du - 1) > 1e-5;   /* the seam is 0 and 1 */
         }
@@ -301,6 +302,38 @@ static void test_sphere(void) {
     CHECK_MSG(off == 0 && offn == 0, "%d positions off the sphere, %d normals not pos/r", off, offn);
     CHECK_MSG(offt == 0, "%d tangents not d/d(latitude) (towards the north pole)", offt);
     CHECK_MSG(offtc == 0, "%d texture coordinates off", offtc);
+    /* Where a world map lands (issue #27: the date line faced the camera):
+     * on the equator, s = 0.25 faces glman's default camera (+z), s = 0.5
+     * is at +x, the seam (s = 0 and 1) at -x, away from the camera's centre;
+     * s increases eastwards seen from outside: from the front (+z, y up)
+     * the next meridian east is to the right (+x). */
+    int at_z = 0, at_x = 0, seam = 0, east = 0;
+    for (int k = 0; k < m.nvert; k++) {
+        const float *p = P(&m, k), *t = T(&m, k);
+        if (fabs(p[1]) > 1e-6) continue;              /* the equator (12 stacks: one ring) */
+        float s0 = m.tc[2 * k];
+        if (fabs(p[2] - r) < 1e-5) at_z += fabs(s0 - 0.25) < 1e-6;
+        if (fabs(p[0] - r) < 1e-5) at_x += fabs(s0 - 0.5) < 1e-6;
+        if (fabs(p[0] + r) < 1e-5) seam += s0 == 0 || s0 == 1;
+        /* east at this point: north (the Tangent) x outward normal... seen
+         * from outside, east = cross(north, n) */
+        const float *n = N(&m, k);
+        double e[3] = {t[1] * n[2] - t[2] * n[1], t[2] * n[0] - t[0] * n[2], t[0] * n[1] - t[1] * n[0]};
+        if (fabs(p[2] - r) < 1e-5) east += e[0] > 0.99;   /* at the front, east is +x: to the right */
+    }
+    CHECK_MSG(at_z >= 1 && at_x >= 1 && seam >= 1 && east >= 1,
+              "s = 0.25 at +z: %d, s = 0.5 at +x: %d, seam at -x: %d, east is +x at the front: %d",
+              at_z, at_x, seam, east);
+    /* s increasing along the equator goes east: from s = 0.25 (+z) to a
+     * slightly larger s lands at x > 0 */
+    int east_s = 0, west_s = 0;
+    for (int k = 0; k < m.nvert; k++) {
+        const float *p = P(&m, k);
+        if (fabs(p[1]) > 1e-6) continue;
+        float s0 = m.tc[2 * k];
+        if (s0 > 0.25f && s0 < 0.4f && p[2] > 0) east_s += p[0] > 0, west_s += p[0] <= 0;
+    }
+    CHECK_MSG(east_s > 0 && west_s == 0, "s past 0.25: %d east of the front, %d west", east_s, west_s);
     double vol = volume(&m), exact = 4.0 / 3.0 * PI * r * r * r;
     CHECK_MSG(vol > 0.95 * exact && vol < exact, "volume %g of %g", vol, exact);
     geom_free(&m);

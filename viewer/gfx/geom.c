@@ -338,8 +338,15 @@ typedef struct round_ctx {
 
 static void sphere_eval(const void *vctx, int i, int j, double p[3], double n[3], double t[3], double tc[2]) {
     const round_ctx *q = vctx;
-    double st, ct, sp, cp;
-    angle(i, q->nu, &st, &ct);
+    double sa, ca, sp, cp;
+    /* The course's sphere (Bailey's MjbSphere / OsuSphere): s = (lng + pi) /
+     * 2pi with the point at (cos lng, ., -sin lng): the seam (s = 0 and 1)
+     * at -x, s = 0.25 at +z (towards glman's default camera), s = 0.5 at +x,
+     * s increasing eastwards seen from outside. As tarn's longitude from +z
+     * towards +x that is lon = 2pi s - pi/2: sin lon = -cos a, cos lon = sin a,
+     * exact at the quarter turns. */
+    angle(i, q->nu, &sa, &ca);
+    double st = -ca, ct = sa;
     if (j == 0) { sp = -1; cp = 0; }
     else if (j == q->nv) { sp = 1; cp = 0; }
     else {

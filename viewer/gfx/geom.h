@@ -20,9 +20,12 @@
  *    normal is +axis; tc 0..1 with (tangent, bitangent) = QuadXY (+x, +y),
  *    QuadXZ (+x, -z: upright seen from above), QuadYZ (-z, +y: upright seen
  *    from +x).
- *  - Sphere: centred; longitude around +y, 0 at +z, increasing towards +x;
- *    tc = (lon / 2pi, (lat + pi/2) / pi); Tangent = d/d(latitude), towards
- *    the north pole (+y), as glman's (the one mesh whose tangent is +v).
+ *  - Sphere: centred; as the course's sphere code (OsuSphere): s = (lng +
+ *    pi) / 2pi, t = (lat + pi/2) / pi, the point (cos lat cos lng, sin lat,
+ *    -cos lat sin lng): the seam (s = 0/1) at -x, s = 0.25 at +z (facing
+ *    glman's default camera), s = 0.5 at +x, s increasing eastwards seen from
+ *    outside; Tangent = d/d(latitude), towards the north pole (+y), as
+ *    glman's (the one mesh whose tangent is +v).
  *  - Torus: as GLUT's, in the xy plane around the z axis; r_major is the
  *    distance from the centre to the tube's centre, r_minor the tube radius;
  *    `rings` segments around z, `sides` around the tube; tc = (ring angle /
