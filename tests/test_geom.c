@@ -9,6 +9,7 @@
 #include "geom.h"
 
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 #define PI 3.14159265358979323846
@@ -949,6 +950,128 @@ static void test_soccerball(void) {
     CHECK(!geom_soccerball(&m, NAN));
 }
 
+/* ---- Shp: ESRI shapefiles ---- */
+
+typedef struct shp_buf { unsigned char b[4096]; size_t n; } shp_buf;
+
+static void shp_be(shp_buf *f, size_t at, unsigned v) {
+    f->b[at] = (unsigned char)(v >> 24); f->b[at + 1] = (unsigned char)(v >> 16);
+    f->b[at + 2] = (unsigned char)(v >> 8); f->b[at + 3] = (unsigned char)v;
+}
+static void shp_le(shp_buf *f, size_t at, unsigned v) {
+    for (int k = 0; k < 4; k++) f->b[at + k] = (unsigned char)(v >> (8 * k));
+}
+static void shp_dbl(shp_buf *f, size_t at, double d) {
+    unsigned long long u;
+    memcpy(&u, &d, sizeof u);
+    for (int k = 0; k < 8; k++) f->b[at + k] = (unsigned char)(u >> (8 * k));
+}
+
+/* Appends a PolyLine (3) or Polygon (5) record: nparts parts starting at
+ * first[], npts points xy[]. */
+static void shp_record(shp_buf *f, int type, int nparts, const int *first, int npts, const double *xy) {
+    size_t at = f->n, c = at + 8;
+    size_t clen = 44 + 4 * (size_t)nparts + 16 * (size_t)npts;
+    static int recno = 0;
+    shp_be(f, at, (unsigned)++recno);
+    shp_be(f, at + 4, (unsigned)(clen / 2));
+    shp_le(f, c, (unsigned)type);
+    for (int k = 0; k < 4; k++) shp_dbl(f, c + 4 + 8 * k, 0);   /* the record's box: unread */
+    shp_le(f, c + 36, (unsigned)nparts);
+    shp_le(f, c + 40, (unsigned)npts);
+    for (int p = 0; p < nparts; p++) shp_le(f, c + 44 + 4 * (size_t)p, (unsigned)first[p]);
+    for (int i = 0; i < 2 * npts; i++) shp_dbl(f, c + 44 + 4 * (size_t)nparts + 8 * (size_t)i, xy[i]);
+    f->n = c + clen;
+}
+
+static void shp_header(shp_buf *f, int type, double x0, double y0, double x1, double y1) {
+    memset(f->b, 0, 100);
+    shp_be(f, 0, 9994);
+    shp_be(f, 24, (unsigned)(f->n / 2));
+    shp_le(f, 28, 1000);
+    shp_le(f, 32, (unsigned)type);
+    shp_dbl(f, 36, x0); shp_dbl(f, 44, y0); shp_dbl(f, 52, x1); shp_dbl(f, 60, y1);
+}
+
+static const char *shp_write(const char *name, const shp_buf *f, size_t n) {
+    static char path[512];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    FILE *fp = fopen(path, "wb");
+    if (!fp) { perror(path); exit(1); }
+    fwrite(f->b, 1, n, fp);
+    fclose(fp);
+    return path;
+}
+
+/* Two polylines (the second of two parts) and a polygon of two rings, one
+ * written closed and one not: each part a line strip, the open ring closed. */
+static void test_shp(void) {
+    shp_buf f;
+    memset(&f, 0, sizeof f);
+    f.n = 100;
+    const int f1[] = {0};
+    const double l1[] = {0, 0, 1, 0, 1, 1};
+    shp_record(&f, 3, 1, f1, 3, l1);
+    const int f2[] = {0, 2};
+    const double l2[] = {2, 0, 3, 0, 2, 1, 3, 1, 4, 1};
+    shp_record(&f, 3, 2, f2, 5, l2);
+    const int f3[] = {0, 4};
+    const double g[] = {0, 2, 1, 2, 1, 3, 0, 2, 5, 5, 6, 5, 6, 6};
+    shp_record(&f, 5, 2, f3, 7, g);
+    shp_header(&f, 3, 0, 0, 6, 6);
+    const char *path = shp_write("map.shp", &f, f.n);
+    geom_mesh m;
+    char err[512] = "";
+    CHECK_MSG(geom_shp_load(&m, path, err, sizeof err), "%s", err);
+    check_sane(&m, "shapefile");
+    CHECK((m.prim == GEOM_LINES));
+    const double want[] = {0, 0, 1, 0, 1, 1, 2, 0, 3, 0, 2, 1, 3, 1, 4, 1, 0, 2, 1, 2, 1, 3, 0, 2, 5, 5, 6, 5, 6, 6};
+    CHECK_MSG(m.nvert == 15, "%d vertices, want 15", m.nvert);
+    int off = 0;
+    for (int k = 0; k < m.nvert && k < 15; k++) {
+        off += P(&m, k)[0] != want[2 * k] || P(&m, k)[1] != want[2 * k + 1] || P(&m, k)[2] != 0;
+        off += m.tc[2 * k] != (float)(want[2 * k] / 6) || m.tc[2 * k + 1] != (float)(want[2 * k + 1] / 6);
+        off += N(&m, k)[2] != 1;
+    }
+    CHECK_MSG(off == 0, "%d vertices off (x, y on z = 0; tc over the box; normal +z)", off);
+    /* segments: 2 + (1 + 2) + (3 + 2, and the open ring's closing one) */
+    const unsigned seg[] = {0, 1, 1, 2, 3, 4, 5, 6, 6, 7, 8, 9, 9, 10, 10, 11, 12, 13, 13, 14, 14, 12};
+    CHECK_MSG(m.nidx == 22, "%d indices, want 22", m.nidx);
+    CHECK(m.nidx == 22 && memcmp(m.idx, seg, sizeof seg) == 0);
+    geom_free(&m);
+
+    /* truncated: the header promises more than there is */
+    path = shp_write("cut.shp", &f, f.n - 20);
+    CHECK(!geom_shp_load(&m, path, err, sizeof err));
+    CHECK_MSG(strstr(err, path) && strstr(err, "truncated"), "%s", err);
+    CHECK(m.nvert == 0);
+    /* a record cut short, the header's length matching the cut */
+    shp_buf g2 = f;
+    g2.n = f.n - 20;
+    shp_header(&g2, 3, 0, 0, 6, 6);
+    path = shp_write("cut2.shp", &g2, g2.n);
+    CHECK(!geom_shp_load(&m, path, err, sizeof err));
+    CHECK_MSG(strstr(err, path) && strstr(err, "record 3"), "%s", err);
+    /* missing; not a shapefile; points */
+    char missing[512];
+    snprintf(missing, sizeof missing, "%s/no_such_map.shp", tmpdir);
+    CHECK(!geom_shp_load(&m, missing, err, sizeof err));
+    CHECK_MSG(strstr(err, missing) != NULL, "%s", err);
+    shp_buf t;
+    memset(&t, 0, sizeof t);
+    memset(t.b, 'x', 200);
+    path = shp_write("text.shp", &t, 200);
+    CHECK(!geom_shp_load(&m, path, err, sizeof err));
+    CHECK_MSG(strstr(err, path) && strstr(err, "not a shapefile"), "%s", err);
+    shp_buf pt;
+    memset(&pt, 0, sizeof pt);
+    pt.n = 100;
+    shp_header(&pt, 1, 0, 0, 1, 1);
+    path = shp_write("points.shp", &pt, pt.n);
+    CHECK(!geom_shp_load(&m, path, err, sizeof err));
+    CHECK_MSG(strstr(err, "Point"), "%s", err);
+}
+
 int main(void) {
     const char *base = getenv("TMPDIR");
     snprintf(tmpdir, sizeof tmpdir, "%s/tarn_test_geom_XXXXXX", base && *base ? base : "/tmp");
@@ -968,6 +1091,7 @@ int main(void) {
     RUN(test_points_disk_box);
     RUN(test_clouds_and_arrow);
     RUN(test_soccerball);
+    RUN(test_shp);
 
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);

@@ -439,6 +439,64 @@ static void test_failed_draw_keeps_the_picture(void) {
     if (f) fclose(f);
 }
 
+/* Shp: a shapefile of one Polygon record, a square ring from (-1, -1) to
+ * (1, 1), written here; drawn as its outline on the XY plane in the file's
+ * units. A missing or broken file is an error naming it. */
+static void put32(unsigned char *b, unsigned v, bool big) {
+    for (int k = 0; k < 4; k++) b[k] = (unsigned char)(v >> (big ? 24 - 8 * k : 8 * k));
+}
+static void put64(unsigned char *b, double d) {
+    unsigned long long u;
+    memcpy(&u, &d, sizeof u);
+    for (int k = 0; k < 8; k++) b[k] = (unsigned char)(u >> (8 * k));
+}
+
+static void test_shapefile(void) {
+    unsigned char f[100 + 8 + 44 + 4 + 5 * 16];
+    memset(f, 0, sizeof f);
+    put32(f, 9994, true);
+    put32(f + 24, (unsigned)(sizeof f / 2), true);
+    put32(f + 28, 1000, false);
+    put32(f + 32, 5, false);
+    put64(f + 36, -1); put64(f + 44, -1); put64(f + 52, 1); put64(f + 60, 1);
+    unsigned char *r = f + 100;
+    put32(r, 1, true);
+    put32(r + 4, (44 + 4 + 5 * 16) / 2, true);
+    put32(r + 8, 5, false);
+    put32(r + 8 + 36, 1, false);
+    put32(r + 8 + 40, 5, false);
+    const double ring[] = {-1, -1, -1, 1, 1, 1, 1, -1, -1, -1};   /* clockwise, as the format's outer rings */
+    for (int i = 0; i < 10; i++) put64(r + 8 + 48 + 8 * i, ring[i]);
+    FILE *fp = fopen(scratch_path("square.shp"), "wb");
+    CHECK(fp && fwrite(f, 1, sizeof f, fp) == sizeof f);
+    if (fp) fclose(fp);
+    write_color_shaders();
+    bool ok = draw_scene("shp.glib", HEAD "Vertex col.vert\nFragment col.frag\nProgram Col\n"
+                         "LineWidth 3\nColor 0 1 0\nTranslate 0 0 -4\nShp square.shp\n");
+    CHECK_MSG(ok, "%s", msgs);
+    int lit = 0;
+    for (int k = -30; k <= 30; k++) {        /* each edge, away from the corners */
+        double u = k / 32.0;
+        lit += at(u, 1)[1] > 0.5 || at(u, 1 - 1 / 16.0)[1] > 0.5;
+        lit += at(u, -1)[1] > 0.5 || at(u, -1 - 1 / 16.0)[1] > 0.5;
+        lit += at(1, u)[1] > 0.5 || at(1 - 1 / 16.0, u)[1] > 0.5;
+        lit += at(-1, u)[1] > 0.5 || at(-1 - 1 / 16.0, u)[1] > 0.5;
+    }
+    CHECK_MSG(lit == 4 * 61, "%d of %d outline samples lit", lit, 4 * 61);
+    BACKGROUND(0, 0);                        /* an outline: the inside stays empty */
+    BACKGROUND(1.5, 1.5);
+
+    ok = draw_scene("noshp.glib", HEAD "Vertex col.vert\nFragment col.frag\nProgram Col\nShp world_borders.shp\n");
+    CHECK(!ok);
+    CHECK_MSG(strstr(msgs, "world_borders.shp") && strstr(msgs, "Shp"), "%s", msgs);
+    CHECK_MSG(!strstr(msgs, "unknown command"), "%s", msgs);
+    scratch_write("notshp.shp", "this is not a shapefile, it is a text file of more than one hundred bytes ......"
+                                "......................................................................\n");
+    ok = draw_scene("badshp.glib", HEAD "Vertex col.vert\nFragment col.frag\nProgram Col\nShp notshp.shp\n");
+    CHECK(!ok);
+    CHECK_MSG(strstr(msgs, "notshp.shp") && strstr(msgs, "not a shapefile"), "%s", msgs);
+}
+
 int main(void) {
     char err[512];
     ctx = gl_ctx_create_headless(err, sizeof err);
@@ -455,6 +513,7 @@ int main(void) {
     RUN(test_raw_textures);
     RUN(test_bad_raw_files);
     RUN(test_failed_draw_keeps_the_picture);
+    RUN(test_shapefile);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

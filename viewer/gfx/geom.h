@@ -139,6 +139,19 @@ bool geom_obj_load_adjacency(geom_mesh *m, const char *path, char *err, int errl
  * triangles, patches of 3. */
 bool geom_obj_load_patches(geom_mesh *m, const char *path, char *err, int errlen);
 
+/* Shp: an ESRI shapefile's main file (.shp): PolyLine (3) and Polygon (5)
+ * records, and their Z (13, 15) and M (23, 25) variants; null shapes are
+ * skipped. Each part is drawn as a line strip (GEOM_LINES pairs), a
+ * polygon's ring closed when its last point is not its first. Positions
+ * are the file's x, y (its own units: degrees for a world map) on the XY
+ * plane, z = 0 (the Z variants: the file's z); normal +z, Tangent +x; tc is
+ * x, y over the file's bounding box (0..1); one draw. False, with
+ * "path: why" in err, for a file that cannot be read, is not a shapefile
+ * (file code 9994, version 1000), holds other shapes (Point, MultiPoint,
+ * MultiPatch: named), is truncated or inconsistent (the record named), or
+ * has no line in it. Bounded: GEOM_OBJ_MAX_FILE_BYTES. */
+bool geom_shp_load(geom_mesh *m, const char *path, char *err, int errlen);
+
 /* n points given (3 floats each) as one primitive: Triangles (3 points,
  * GEOM_TRIANGLES, normal from the winding), LinesAdjacency (4 points,
  * GEOM_LINES_ADJACENCY), glBegin..glEnd (any count and prim). tc is (x, y)

@@ -23,7 +23,7 @@ bool res_is_geometry(glib_cmd_kind k) {
            k == GLIB_CMD_OBJ || k == GLIB_CMD_OBJ_ADJ || k == GLIB_CMD_OBJ_PATCH ||
            k == GLIB_CMD_DISK_XY || k == GLIB_CMD_QUAD_BOX || k == GLIB_CMD_POINT_CLOUD ||
            k == GLIB_CMD_JITTER_CLOUD || k == GLIB_CMD_SOCCERBALL || k == GLIB_CMD_XARROW ||
-           k == GLIB_CMD_LINES_ADJACENCY || k == GLIB_CMD_TRIANGLES;
+           k == GLIB_CMD_LINES_ADJACENCY || k == GLIB_CMD_TRIANGLES || k == GLIB_CMD_SHP;
 }
 
 bool res_is_texture(glib_cmd_kind k) {
@@ -82,6 +82,7 @@ static bool make_mesh(const glib_cmd *c, geom_mesh *g, char *err, int errlen) {
         return w ? geom_obj_load_wire(g, c->path, err, errlen) : geom_obj_load(g, c->path, err, errlen);
     case GLIB_CMD_OBJ_ADJ: return geom_obj_load_adjacency(g, c->path, err, errlen);
     case GLIB_CMD_OBJ_PATCH: return geom_obj_load_patches(g, c->path, err, errlen);
+    case GLIB_CMD_SHP: return geom_shp_load(g, c->path, err, errlen);
     case GLIB_CMD_DISK_XY: return geom_disk_xy(g, 0);
     case GLIB_CMD_QUAD_BOX: return geom_quad_box(g, arg_i(c, 0, 10));
     case GLIB_CMD_POINT_CLOUD: case GLIB_CMD_JITTER_CLOUD:

@@ -2120,6 +2120,7 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_OBJ_ADJ] = "ObjAdj", [GLIB_CMD_OBJ_PATCH] = "ObjPatch",
     [GLIB_CMD_NUM_PATCH_VERTICES] = "NumPatchVertices", [GLIB_CMD_GL_BEGIN] = "glBegin",
     [GLIB_CMD_GL_VERTEX] = "glVertex", [GLIB_CMD_GL_END] = "glEnd",
+    [GLIB_CMD_SHP] = "Shp",
 };
 
 const char *glib_cmd_name(glib_cmd_kind kind) {
@@ -2199,6 +2200,7 @@ static const cmd_spec specs[] = {
     { "WireObj", GLIB_CMD_OBJ, true, h_obj, false, 0, 0, { { 0 } }, "WireObj file.obj" },
     { "ObjAdj", GLIB_CMD_OBJ_ADJ, false, h_obj, false, 0, 0, { { 0 } }, "ObjAdj file.obj" },
     { "ObjPatch", GLIB_CMD_OBJ_PATCH, false, h_obj, false, 0, 0, { { 0 } }, "ObjPatch file.obj" },
+    { "Shp", GLIB_CMD_SHP, false, h_obj, false, 0, 0, { { 0 } }, "Shp file.shp" },
     { "DiskXY", GLIB_CMD_DISK_XY, false, h_nums, false, 0, 0, { { 0 } }, NULL },
     { "QuadBox", GLIB_CMD_QUAD_BOX, false, h_nums, false, 0, 1, { ARG_ID("n", 1, 2048, 10) }, NULL },
     { "PointCloud", GLIB_CMD_POINT_CLOUD, false, h_nums, false, 0, 3, CLOUD_ARGS, NULL },

@@ -134,6 +134,7 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_GL_BEGIN,          /* name: the primitive, lower case ("gl_patches") */
     GLIB_CMD_GL_VERTEX,         /* num: x y z [w] (nnum 4, w 1 when not written) */
     GLIB_CMD_GL_END,
+    GLIB_CMD_SHP,               /* path: an ESRI shapefile (.shp), drawn as lines */
     GLIB_CMD_KIND_COUNT
 } glib_cmd_kind;
 
