@@ -134,6 +134,52 @@ static void test_inactive_uniforms_one_line_same_on_reload(void) {
     render_destroy(r);
 }
 
+/* A glib and shaders that no longer belong together (issue #27: the
+ * shader declares none of the glib's uniforms, the picture is black): one
+ * line naming the program, its glib line and its shader files, not a
+ * warning a uniform; one typo among declared uniforms is still its own. */
+static void test_glib_and_shaders_apart_one_line(void) {
+    scratch_write("a.vert", vert);
+    scratch_write("other.frag", "#version 330 compatibility\nuniform float uSomethingElse;\nout vec4 fragColor;\n"
+                                "void main() { fragColor = vec4(uSomethingElse); }\n");
+    scratch_write("apart.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                                "Vertex a.vert\nFragment other.frag\n"
+                                "Program Stripes uA <0. 1. 2.> uB <0. 1. 2.> uColor {1. 0. 0. 1.}\n"
+                                "QuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    render_load(r, scratch_path("apart.glib"));
+    const char *m = render_messages(r);
+    fprintf(stderr, "%s", m);
+    CHECK_STR_CONTAINS(m, "apart.glib:5: warning: none of the 3 uniforms the glib gives Program 'Stripes' "
+                          "(uA, uB, uColor) is declared in its shaders (a.vert, other.frag): "
+                          "do the glib and the shaders belong together?");
+    CHECK_MSG(!strstr(m, "is not declared"), "one line, not one a uniform: %s", m);
+    render_destroy(r);
+    /* one of the two declared: the other is a typo, said as before */
+    scratch_write("other.frag", "#version 330 compatibility\nuniform float uA;\nout vec4 fragColor;\n"
+                                "void main() { fragColor = vec4(uA); }\n");
+    scratch_write("apart.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                                "Vertex a.vert\nFragment other.frag\n"
+                                "Program Stripes uA <0. 1. 2.> uB <0. 1. 2.>\n"
+                                "QuadXY 0 1 1 1\n");
+    r = render_create(NULL);
+    render_load(r, scratch_path("apart.glib"));
+    m = render_messages(r);
+    CHECK_STR_CONTAINS(m, "uniform 'uB' is not declared in program 'Stripes'");
+    CHECK_MSG(!strstr(m, "belong together"), "%s", m);
+    render_destroy(r);
+    /* a single glib uniform undeclared: its own warning (one name is a typo more likely) */
+    scratch_write("apart.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
+                                "Vertex a.vert\nFragment other.frag\nProgram Stripes uB <0. 1. 2.>\n"
+                                "QuadXY 0 1 1 1\n");
+    r = render_create(NULL);
+    render_load(r, scratch_path("apart.glib"));
+    m = render_messages(r);
+    CHECK_STR_CONTAINS(m, "uniform 'uB' is not declared in program 'Stripes'");
+    CHECK_MSG(!strstr(m, "belong together"), "%s", m);
+    render_destroy(r);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -142,6 +188,7 @@ int main(void) {
     RUN(test_stage_error_names_program_and_stage);
     RUN(test_no_uniform_warnings_for_a_failed_program);
     RUN(test_inactive_uniforms_one_line_same_on_reload);
+    RUN(test_glib_and_shaders_apart_one_line);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

@@ -367,7 +367,39 @@ void prog_introspect(prog *p, char **log) {
         p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
         return;
     }
+    /* None of the glib's uniforms (two or more) declared at all: the glib
+     * and the shaders no longer belong together (a black picture, in glman
+     * too): one line that says so, not one warning a uniform */
+    int nglib = 0, ndeclared = 0;
     for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (e->is_define || !e->from_glib || glib_uniform_consumed(p->scene, e->name, NULL)) continue;
+        nglib++;
+        ndeclared += e->in_shader || in_source(p, e->name);
+    }
+    if (nglib >= 2 && ndeclared == 0) {
+        char names[256] = "", files[512] = "";
+        int shown = 0;
+        for (int i = 0; i < p->unifs->n; i++) {
+            const unif_entry *e = &p->unifs->entries[i];
+            if (e->is_define || !e->from_glib || glib_uniform_consumed(p->scene, e->name, NULL)) continue;
+            size_t l = strlen(names);
+            if (shown == 6) { snprintf(names + l, sizeof names - l, ", ..."); break; }
+            snprintf(names + l, sizeof names - l, "%s%s", shown ? ", " : "", e->name);
+            shown++;
+        }
+        for (int st = 0; st < SHADER_STAGE_COUNT; st++) {
+            if (!p->stage_path[st][0]) continue;
+            const char *base = strrchr(p->stage_path[st], '/');
+            size_t l = strlen(files);
+            snprintf(files + l, sizeof files - l, "%s%s", l ? ", " : "", base ? base + 1 : p->stage_path[st]);
+        }
+        str_appendf(log, "%s:%d: warning: none of the %d uniforms the glib gives Program '%s' (%s) is declared "
+                         "in its shaders (%s): do the glib and the shaders belong together?\n",
+                    p->cmd && p->cmd->file ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, nglib, p->name, names,
+                    files[0] ? files : "none");
+    }
+    for (int i = 0; i < p->unifs->n && !(nglib >= 2 && ndeclared == 0); i++) {
         const unif_entry *e = &p->unifs->entries[i];
         if (e->is_define || !e->from_glib || e->in_shader) continue;
         if (in_source(p, e->name))   /* inactive: one summary line a load (prog_inactive_uniforms) */
