@@ -218,6 +218,22 @@ static void test_pareto_ties(void) {
     for (int i = 0; i < 4; i++) CHECK(on[i] == on2[i]);
 }
 
+/* The combined rule: errors tie within sqrt(u_i^2 + u_j^2), not u_i + u_j */
+static void test_pareto_combined(void) {
+    /* same time; errors 0.100 and 0.113 with u 0.01 each: sqrt(2) 0.01 = 0.0141 > 0.013, a tie;
+     * 0.100 and 0.116: 0.016 > 0.0141, the worse one falls off (with the sum rule, 0.02, it stayed) */
+    double x[] = { 10, 10 }, dx[] = { 0, 0 }, dy[] = { 0.01, 0.01 };
+    bool on[2];
+    double y1[] = { 0.100, 0.113 };
+    plot_pareto_combined(x, y1, dx, dy, 2, on);
+    CHECK(on[0] && on[1]);
+    double y2[] = { 0.100, 0.116 };
+    plot_pareto_combined(x, y2, dx, dy, 2, on);
+    CHECK(on[0] && !on[1]);
+    plot_pareto_ties(x, y2, dx, dy, 2, on);
+    CHECK(on[0] && on[1]);
+}
+
 static bool has_colour(const img *im, const float rgb[3], double tol) {
     for (long i = 0; i < (long)im->w * im->h; i++) {
         const float *p = im->px + i * im->channels;
@@ -364,13 +380,46 @@ static void test_bench_end_to_end(void) {
         /* MSAA 4 is compared with a reference subsampled where the GL samples */
         CHECK_STR_CONTAINS(json, "\"msaa\": 4, \"reference_spp\": 1, \"reference_positions\": [[");
         CHECK(!strstr(json, ": nan") && !strstr(json, "NaN") && !strstr(json, "\"rmse\": null"));
+        /* FLIP, SSIM, the uncertainty, the sequence, the timing's load and quartiles, both fronts */
+        const char *finite_keys[] = { "water_flip", "flip", "water_ssim", "water_rmse_u", "water_rmse_u_noise",
+                                      "water_rmse_u_grid", "water_flip_u", "wall_q1_ms", "wall_q3_ms",
+                                      "seq_water_rmse", "temporal_rmse", "seq_ref_change_rms" };
+        const char *summary = strstr(json, "\"summary\": [");
+        for (size_t k = 0; summary && k < sizeof finite_keys / sizeof *finite_keys; k++) {
+            char key[64];
+            snprintf(key, sizeof key, "\"%s\": ", finite_keys[k]);
+            const char *at = strstr(summary, key);
+            CHECK_MSG(at != NULL, "no %s in the summary", key);
+            if (!at) continue;
+            double v = strtod(at + strlen(key), NULL);
+            CHECK_MSG(isfinite(v) && strncmp(at + strlen(key), "null", 4) != 0, "%s is not finite", key);
+        }
+        CHECK_STR_CONTAINS(json, "\"pareto_flip\": ");
+        CHECK_STR_CONTAINS(json, "\"load_before\": [");
+        CHECK_STR_CONTAINS(json, "\"timing\": \"round-robin\"");
+        CHECK_STR_CONTAINS(json, "\"sequence\": {\"frames\": 8, \"fps\": 30, \"width\": 32, \"height\": 18");
+        /* the probe shows no irradiance buffer: its flat lighting is measured */
+        CHECK_STR_CONTAINS(json, "\"irradiance_flat\": true");
+        CHECK_STR_CONTAINS(json, "\"flat\": true}");
     }
     free(json);
+    csv = read_file(tmp("out/bench.csv"));
+    if (csv) {
+        CHECK_STR_CONTAINS(csv, ",water_flip,flip,water_ssim,gpu_q1_ms,gpu_q3_ms,wall_q1_ms,wall_q3_ms,");
+        CHECK_STR_CONTAINS(csv, ",temporal_rmse,");
+    }
+    free(csv);
+    struct stat st0;
+    CHECK(stat(tmp("out/plot-lake-flip.png"), &st0) == 0 && st0.st_size > 1000);
+    CHECK(stat(tmp("out/img/lake.probe.dark.temporal.png"), &st0) == 0);
     char *md = read_file(tmp("out/report.md"));
     CHECK(md != NULL);
     if (md) {
         CHECK_STR_CONTAINS(md, "| probe | dark |");
         CHECK_STR_CONTAINS(md, "Cost floor (a full-screen pass with one texture fetch)");
+        CHECK_STR_CONTAINS(md, "| load average (1, 5, 15 min) | before ");
+        CHECK_STR_CONTAINS(md, "(flat) |");
+        CHECK_STR_CONTAINS(md, "(plot-lake-flip.png)");
         CHECK_STR_CONTAINS(md, "Anti-aliasing: MSAA 4x; the reference takes 4 subsamples per pixel at the GL's MSAA "
                                    "sample positions, to match.");
     }
@@ -452,6 +501,7 @@ int main(void) {
     RUN(test_bounds);
     RUN(test_pareto);
     RUN(test_pareto_ties);
+    RUN(test_pareto_combined);
     RUN(test_plot);
     RUN(test_pack_list);
     RUN(test_usage);

@@ -14,9 +14,12 @@ static const char usage[] =
     "\n"
     "Speed against error: every pack (or those named) at every setting its\n"
     "packs/NAME/bench.txt declares, at fixed simulated times, timed and compared\n"
-    "with the CPU reference of the same frame. Writes DIR/bench.csv, bench.json,\n"
-    "passes.csv (GPU time per pass), report.md, plot-SCENE.png, the frames and\n"
-    "their heat maps (DIR/img). The reference images are cached in\n"
+    "with the CPU reference of the same frame (RMSE, HDR-FLIP, SSIM; water first),\n"
+    "over a short animated sequence, and with the reference's own uncertainty;\n"
+    "settings are timed round-robin. Writes DIR/bench.csv, bench.json,\n"
+    "passes.csv (GPU time per pass), report.md, plot-SCENE.png (time against\n"
+    "RMSE), plot-SCENE-flip.png (against FLIP), the frames, their heat maps and\n"
+    "the sequence's temporal error strips (DIR/img). The reference images are cached in\n"
     "$XDG_CACHE_HOME/tarn/ref (default ~/.cache/tarn/ref): reruns reuse them.\n"
     "\n"
     "  SCENE.glib         scenes to measure (default: scenes/lake.glib, pool.glib and ocean.glib)\n"
@@ -49,6 +52,14 @@ static const char usage[] =
     "  --no-cost-model    skip the cost model: each pack's default timed at three\n"
     "                     sizes and three water grids on the first scene, fitted\n"
     "                     as ms = a + b*Mpixels + c*kvertices and reported\n"
+    "  --no-uncertainty   skip the reference's noise (another photon sampling) and\n"
+    "                     grid bias (a caustic grid twice as fine) at the first time;\n"
+    "                     ties then fall back to a 1% error rule\n"
+    "  --seq-frames N     frames of the animated sequence each setting is measured\n"
+    "                     over, from the first time (default 8; 0 none)\n"
+    "  --seq-fps F        its frame rate (default 30)\n"
+    "  --seq-size WxH     its image size (default half the --size a side)\n"
+    "  --rr-frames N      frames a setting is timed in its round-robin turn (default 2)\n"
     "  --quiet            no progress bar\n"
     "  --root DIR         the tree whose packs/ is used (default: $TARN_ROOT, else\n"
     "                     the installed data, else tarn's source tree)\n"
@@ -104,6 +115,15 @@ static int parse_number(const char *a, const char *next, bench_desc *d, bool *ma
     } else if (strcmp(a, "--ref-caustic-res") == 0) {
         if (!cmd_opt_range(next, 1, 8192, &v)) return BAD("--ref-caustic-res wants 1..8192");
         d->ref.caustic_res = (int)v;
+    } else if (strcmp(a, "--seq-frames") == 0) {
+        if (!cmd_opt_range(next, 0, 240, &v)) return BAD("--seq-frames wants 0..240");
+        d->seq_frames = (int)v;
+        d->no_sequence = v == 0;
+    } else if (strcmp(a, "--seq-fps") == 0) {
+        if (!cmd_opt_range(next, 0.1, 1000, &d->seq_fps)) return BAD("--seq-fps wants 0.1..1000");
+    } else if (strcmp(a, "--rr-frames") == 0) {
+        if (!cmd_opt_range(next, 1, 1000, &v)) return BAD("--rr-frames wants 1..1000");
+        d->rr_chunk = (int)v;
     } else if (strcmp(a, "--heat-max") == 0) {
         if (!cmd_opt_range(next, 1e-9, 1e9, &d->heat_max)) return BAD("--heat-max wants a positive error");
     } else {
@@ -131,6 +151,11 @@ static int parse(int argc, char **argv, bench_desc *d, char *packs, size_t packs
                 d->height > 8192)
                 return BAD("--size wants WxH, e.g. 480x270");
             i++;
+        } else if (strcmp(a, "--seq-size") == 0) {
+            if (!opt_size(next, &d->seq_width, &d->seq_height) || d->seq_width < 11 || d->seq_height < 11 ||
+                d->seq_width > 8192 || d->seq_height > 8192)
+                return BAD("--seq-size wants WxH, at least 11x11, e.g. 240x135");
+            i++;
         } else if (strcmp(a, "--times") == 0) {
             if (!parse_times(next, d)) return BAD("--times wants up to %d numbers, e.g. 1,4", BENCH_MAX_TIMES);
             i++;
@@ -142,6 +167,7 @@ static int parse(int argc, char **argv, bench_desc *d, char *packs, size_t packs
             i++;
         } else if (strcmp(a, "--no-images") == 0) d->no_images = true;
         else if (strcmp(a, "--no-cost-model") == 0) d->no_cost_model = true;
+        else if (strcmp(a, "--no-uncertainty") == 0) d->no_uncertainty = true;
         else if (strcmp(a, "--quiet") == 0) d->quiet = true;
         else if (a[0] == '-') return BAD("unknown option '%s'", a);
         else if (d->nscenes < BENCH_MAX_SCENES) d->scenes[d->nscenes++] = a;

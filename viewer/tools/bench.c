@@ -1,13 +1,12 @@
-/* bench: `tarn bench`, speed against error (see bench.h, docs/benchmark.md). */
+/* bench: `tarn bench`, speed against error (see bench.h, docs/benchmark.md).
+ * This file measures; bench_report.c writes the results. */
 #include "util.h"
-#include "bench.h"
-#include "bench_ocean.h"
-#include "costmodel.h"
+#include "bench_int.h"
 
 #include <GL/gl.h>
-#include <dirent.h>
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,129 +18,15 @@
 #include "exit_code.h"
 #include "gl_ctx.h"
 #include "image_io.h"
-#include "packset.h"
 #include "plot.h"
+#include "ref_flip.h"
 #include "ref_metrics.h"
-#include "refcache.h"
+#include "ref_ssim.h"
 #include "render.h"
 #include "scene.h"
-#include "ref_buffers.h"
 #include "file.h"
 #include "mem.h"
-#include "strbuf.h"
 
-#define MAX_SCENES BENCH_MAX_SCENES
-#define MAX_TIMES BENCH_MAX_TIMES
-#define PATH_LEN 2048
-
-/* ---- the run's state ---- */
-
-typedef struct bench_opts {
-    const char *scenes[MAX_SCENES];
-    int nscenes;
-    packset_name packs[PACKSET_MAX];
-    int npacks;
-    int w, h;
-    double times[MAX_TIMES];
-    int ntimes;
-    int frames, warmup;
-    double frame_budget;
-    const char *out, *docs;
-    int time_axis;               /* 0 auto, 1 gpu, 2 wall */
-    refcache_opts ref;
-    double heat_max;
-    bool images, quiet;
-    bool cost_model;             /* fit each pack's a + b·pixels + c·vertices */
-    int samples;                 /* MSAA as asked (render_desc.samples) */
-    int samples_used;            /* ...and as this GL gives it (1: off) */
-    bool spp_matched;            /* ref.spp follows samples_used (no --ref-spp) */
-} bench_opts;
-
-typedef struct row {             /* one scene, pack, setting and time */
-    int scene, pack, setting, ti;
-    bool ok;
-    char error[600];
-    char note[600];
-    int frames;
-    double gpu_ms, wall_ms, first_wall_ms;
-    double water_rmse, water_psnr, off_rmse;   /* over the reference's water pixels / the rest */
-    long water_px;
-    double rmse, psnr, mae, p95, p99, max_abs, over_share;   /* the whole frame */
-    double wall_spread;          /* the timed frames' wall time, (p75 - p25) / median */
-    double capped_share;         /* water pixels whose refraction march ran out (NaN: not shown) */
-    long nan_px, inf_px;
-    unsigned gl_error;
-    bool has[REF_OUTPUT_COUNT];
-    double comp_median[REF_OUTPUT_COUNT], comp_p95[REF_OUTPUT_COUNT], comp_mean[REF_OUTPUT_COUNT];
-    double comp_rel_mean[REF_OUTPUT_COUNT];
-    double comp_rel_median[REF_OUTPUT_COUNT];
-    int npasses;                 /* GPU time per pass (render_pass_times), medians */
-    char pass_name[GPU_TIMER_MARKS][GPU_TIMER_NAME];
-    double pass_ms[GPU_TIMER_MARKS];
-} row;
-
-typedef struct summary {         /* one scene, pack and setting, over the times */
-    int scene, pack, setting;
-    bool ok;
-    double gpu_ms, wall_ms, rmse, psnr, p95, over_share;
-    double water_rmse, water_psnr, off_rmse;   /* means over the times */
-    double wall_spread;                        /* the largest of its rows' */
-    double capped_share;                       /* the largest of its rows' (NaN: not shown) */
-    /* hit p95 (m), Fresnel MAE, irradiance relative error's median (the
-     * mean is ruled by the few points the reference has almost no sun),
-     * depth MAE (m) */
-    double comp[REF_OUTPUT_COUNT];
-    bool has[REF_OUTPUT_COUNT];
-    long nan_px;
-    bool pareto;
-} summary;
-
-typedef struct ref_entry {
-    uint64_t key;
-    int ti;
-    refcache_image im;
-    bool tried, ok;
-    double weight;               /* progress units: a render, or a read from the cache */
-} ref_entry;
-
-typedef struct progress {
-    double start, total, done, last_draw;
-    bool tty, quiet;
-    char what[160];
-} progress;
-
-typedef struct bench {
-    bench_opts o;
-    char root[PATH_LEN];
-    char ref_dir[PATH_LEN];      /* the reference cache (ref_cache_dir) */
-    char scene_abs[MAX_SCENES][PATH_LEN];
-    packset_bench pb[PACKSET_MAX];
-    row *rows;
-    int nrows;
-    summary *sums;
-    int nsums;
-    ref_entry *refs;
-    int nrefs;
-    double floor_gpu, floor_wall;
-    char gl_renderer[256], gl_version[256], cpu[256];
-    int cores;
-    bool cpu_raster;
-    int axis;                    /* resolved: 1 gpu, 2 wall */
-    double seconds;
-    char started[64];
-    progress pr;
-    int failures;
-    int refs_rendered, refs_cached;
-    /* per pack: its default's cost model on the first scene (measure_cost) */
-    cost_model cost[PACKSET_MAX];
-    bool has_cost[PACKSET_MAX];
-    char cost_note[PACKSET_MAX][200];
-    /* the spectrum ocean's passes, when a scene has one (bench_ocean.h) */
-    bench_ocean_costs ocean;
-    char ocean_scene[256];
-} bench;
-
-/* ---- small helpers ---- */
 
 /* the median of v (NAN when empty: "not measured") */
 static double median(double *v, int n) { return n <= 0 ? NAN : median_double(v, (size_t)n); }
@@ -164,7 +49,7 @@ static bool is_file(const char *p) {
     return stat(p, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-static void stem(const char *path, char *out, size_t len) {
+void bench_stem(const char *path, char *out, size_t len) {
     const char *b = strrchr(path, '/');
     b = b ? b + 1 : path;
     size_t n = strlen(b);
@@ -172,14 +57,27 @@ static void stem(const char *path, char *out, size_t len) {
     snprintf(out, len, "%.*s", (int)n, b);
 }
 
-static bool write_text(const char *path, const char *text) {
+bool bench_write_text(const char *path, const char *text) {
     FILE *f = fopen(path, "w");
     if (!f) return false;
     fputs(text, f);
     return fclose(f) == 0;
 }
 
-/* A growing string. */
+#define stem bench_stem
+#define write_text bench_write_text
+
+const char *bench_setting_name(const bench *b, int pack, int setting) { return b->pb[pack].settings[setting].name; }
+
+/* /proc/loadavg's three figures (NaN where it cannot be read) */
+static void loadavg(double out[3]) {
+    out[0] = out[1] = out[2] = NAN;
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (!f) return;
+    if (fscanf(f, "%lf %lf %lf", &out[0], &out[1], &out[2]) != 3) out[0] = out[1] = out[2] = NAN;
+    fclose(f);
+}
+
 /* ---- the progress bar ---- */
 
 static void fmt_dur(double s, char *buf, size_t n) {
@@ -300,7 +198,18 @@ static void fill_opts(bench_opts *o, const bench_desc *d) {
     o->heat_max = d->heat_max > 0 ? d->heat_max : 0.25;
     o->images = !d->no_images;
     o->cost_model = !d->no_cost_model;
+    o->uncertainty = !d->no_uncertainty;
+    o->seq_frames = d->no_sequence ? 0 : d->seq_frames > 0 ? d->seq_frames : 8;
+    if (o->seq_frames == 1) o->seq_frames = 2;   /* a change needs two frames */
+    o->seq_fps = d->seq_fps > 0 ? d->seq_fps : 30;
+    o->seq_w = d->seq_width > 0 ? d->seq_width : o->w / 2 < 32 ? 32 : o->w / 2;
+    o->seq_h = d->seq_height > 0 ? d->seq_height : o->h / 2 < 18 ? 18 : o->h / 2;
+    o->rr_chunk = d->rr_chunk > 0 ? d->rr_chunk : 2;
     o->quiet = d->quiet;
+    ref_render_desc rd = ref_render_resolve(&(ref_render_desc){ .caustic_res = d->ref.caustic_res,
+                                                                 .photons_per_cell = d->ref.photons_per_cell });
+    o->ref_photons = rd.photons_per_cell;
+    o->ref_caustic_res = rd.caustic_res;
 }
 
 /* The reference is subsampled as the frames are multisampled, at the
@@ -384,10 +293,31 @@ static const char *wrapper_path(bench *b, int s, int p, int k, char *out, size_t
     return out;
 }
 
-static ref_entry *find_ref(bench *b, uint64_t key, int ti) {
+static ref_entry *find_ref(bench *b, uint64_t key) {
     for (int i = 0; i < b->nrefs; i++)
-        if (b->refs[i].key == key && b->refs[i].ti == ti) return &b->refs[i];
+        if (b->refs[i].key == key) return &b->refs[i];
     return NULL;
+}
+
+/* The reference's options for each kind of reference (REFK_*). The noise
+ * reference samples the photons on the next finer strata, k + 1 by k + 1 a
+ * cell instead of k by k (the photon tracer's random numbers are a function
+ * of a fixed seed and the stratum, and ref_render_desc has no seed: another
+ * stratification is the other sampling, at about the same count: 36 -> 49);
+ * the grid reference halves the caustic cells, photons a cell as the run's. */
+static refcache_opts ref_opts(const bench *b, int kind) {
+    refcache_opts o = b->o.ref;
+    if (kind == REFK_NOISE) {
+        int k = (int)lround(sqrt((double)b->o.ref_photons));
+        o.photons_per_cell = (k + 1) * (k + 1);
+        o.caustic_res = b->o.ref_caustic_res;
+    } else if (kind == REFK_GRID) {
+        o.caustic_res = 2 * b->o.ref_caustic_res;
+        o.photons_per_cell = b->o.ref_photons;
+    } else if (kind == REFK_FLAT) {
+        o.flat_caustics = true;
+    }
+    return o;
 }
 
 /* Progress weights, roughly seconds on the 2-core machine: a load, and a
@@ -395,17 +325,39 @@ static ref_entry *find_ref(bench *b, uint64_t key, int ti) {
  * cell; pixels: 5 s for 480x270 at 1 sample). */
 static const double LOAD_WEIGHT = 3;
 
-static double ref_weight(const bench *b) {
-    ref_render_desc d = ref_render_resolve(&(ref_render_desc){ .caustic_res = b->o.ref.caustic_res,
-                                                                .photons_per_cell = b->o.ref.photons_per_cell,
-                                                                .spp = b->o.ref.spp });
-    double cr = d.caustic_res / 256.0, rays = b->o.ref.nsamples > 0 ? b->o.ref.nsamples : d.spp * d.spp;
-    return 35 * cr * cr * d.photons_per_cell / 36.0 + 5.0 * b->o.w * b->o.h / (480.0 * 270.0) * rays;
+static double ref_weight(const bench *b, const refcache_opts *o, int w, int h) {
+    ref_render_desc d = ref_render_resolve(&(ref_render_desc){ .caustic_res = o->caustic_res,
+                                                                .photons_per_cell = o->photons_per_cell,
+                                                                .spp = o->spp });
+    double cr = d.caustic_res / 256.0, rays = o->nsamples > 0 ? o->nsamples : d.spp * d.spp;
+    double photons = o->flat_caustics ? 0 : 35 * cr * cr * d.photons_per_cell / 36.0;
+    (void)b;
+    return photons + 5.0 * w * h / (480.0 * 270.0) * rays;
 }
+
+/* A reference the run will need, registered for the progress bar's total
+ * (it is rendered or read on first use, get_ref). */
+static void want_ref(bench *b, int s, const char *scene, int kind, int w, int h, double t) {
+    refcache_opts o = ref_opts(b, kind);
+    uint64_t key;
+    char err[2048] = "";
+    if (!refcache_key(scene, w, h, t, &o, &key, err, sizeof err) || find_ref(b, key)) return;
+    char named[PATH_LEN], sc[256];
+    stem(b->scene_abs[s], sc, sizeof sc);
+    fmt(named, sizeof named, "%s/%s.glib", b->ref_dir, sc);
+    bool cached = refcache_cached(b->ref_dir, scene, named, w, h, t, &o);
+    b->refs = mem_realloc(b->refs, (size_t)(b->nrefs + 1) * sizeof *b->refs);
+    ref_entry *e = &b->refs[b->nrefs++];
+    memset(e, 0, sizeof *e);
+    e->key = key;
+    e->kind = kind;
+    e->weight = cached ? 0.2 : ref_weight(b, &o, w, h);
+}
+
+static double seq_time(const bench *b, int i) { return b->o.times[0] + i / b->o.seq_fps; }
 
 /* Keys of every reference the run needs; renders or reads each once. */
 static void prepare_refs(bench *b) {
-    const char *dir = b->ref_dir;
     for (int s = 0; s < b->o.nscenes; s++)
         for (int p = 0; p < b->o.npacks; p++)
             for (int k = 0; k < b->pb[p].n; k++) {
@@ -415,21 +367,15 @@ static void prepare_refs(bench *b) {
                                                                         err, sizeof err))
                     continue;
                 for (int ti = 0; ti < b->o.ntimes; ti++) {
-                    uint64_t key;
-                    if (!refcache_key(scene, b->o.w, b->o.h, b->o.times[ti], &b->o.ref, &key, err, sizeof err))
-                        continue;
-                    if (find_ref(b, key, ti)) continue;
-                    char named[PATH_LEN], sc[256];
-                    stem(b->scene_abs[s], sc, sizeof sc);
-                    fmt(named, sizeof named, "%s/%s.glib", dir, sc);
-                    bool cached = refcache_cached(dir, scene, named, b->o.w, b->o.h, b->o.times[ti], &b->o.ref);
-                    b->refs = mem_realloc(b->refs, (size_t)(b->nrefs + 1) * sizeof *b->refs);
-                    ref_entry *e = &b->refs[b->nrefs++];
-                    memset(e, 0, sizeof *e);
-                    e->key = key;
-                    e->ti = ti;
-                    e->weight = cached ? 0.2 : ref_weight(b);
+                    want_ref(b, s, scene, REFK_MAIN, b->o.w, b->o.h, b->o.times[ti]);
+                    want_ref(b, s, scene, REFK_FLAT, b->o.w, b->o.h, b->o.times[ti]);
                 }
+                if (b->o.uncertainty) {
+                    want_ref(b, s, scene, REFK_NOISE, b->o.w, b->o.h, b->o.times[0]);
+                    want_ref(b, s, scene, REFK_GRID, b->o.w, b->o.h, b->o.times[0]);
+                }
+                for (int i = 0; i < b->o.seq_frames; i++)
+                    want_ref(b, s, scene, REFK_SEQ, b->o.seq_w, b->o.seq_h, seq_time(b, i));
             }
 }
 
@@ -439,34 +385,47 @@ static double ref_total_weight(bench *b) {
     return w;
 }
 
-/* The reference for (scene path, pack, time), rendered on first use. */
-static ref_entry *get_ref(bench *b, int s, const char *scene, int ti) {
+/* A reference of the scene (a setting's wrapper) of the given kind, size
+ * and time, rendered (or read from the cache) on first use. */
+static ref_entry *get_ref_at(bench *b, int s, const char *scene, int kind, int w, int h, double t) {
+    refcache_opts o = ref_opts(b, kind);
     uint64_t key;
     char err[2048] = "";
-    if (!refcache_key(scene, b->o.w, b->o.h, b->o.times[ti], &b->o.ref, &key, err, sizeof err)) return NULL;
-    ref_entry *e = find_ref(b, key, ti);
-    if (!e) return NULL;
+    if (!refcache_key(scene, w, h, t, &o, &key, err, sizeof err)) return NULL;
+    ref_entry *e = find_ref(b, key);
+    if (!e) {   /* not foreseen: add it */
+        want_ref(b, s, scene, kind, w, h, t);
+        if (!(e = find_ref(b, key))) return NULL;
+    }
     if (e->tried) return e->ok ? e : NULL;
     e->tried = true;
     const char *dir = b->ref_dir;
     char sc[256];
     stem(b->scene_abs[s], sc, sizeof sc);
+    static const char *const what[REFK_COUNT] = { "reference", "sequence reference", "noise reference",
+                                                  "grid reference", "flat-lighting reference" };
     ref_progress_ctx pc = { &b->pr, b->pr.done, e->weight };
-    progress_set(&b->pr, b->pr.done, true, "reference %s t=%g", sc, b->o.times[ti]);
+    progress_set(&b->pr, b->pr.done, true, "%s %s t=%g", what[kind], sc, t);
     /* the stem names the scene, not the wrapper: settings that share a world share the file */
     char named[PATH_LEN];
     fmt(named, sizeof named, "%s/%s.glib", dir, sc);
-    e->ok = refcache_get(dir, scene, named, b->o.w, b->o.h, b->o.times[ti], NULL, &b->o.ref,
-                               on_ref_progress, &pc, &e->im, err, sizeof err);
+    e->ok = refcache_get(dir, scene, named, w, h, t, NULL, &o, on_ref_progress, &pc, &e->im, err, sizeof err);
     progress_set(&b->pr, pc.base + e->weight, true, NULL);
-    if (e->ok && e->im.from_cache) b->refs_cached++;
-    else if (e->ok) b->refs_rendered++;
+    if (e->ok) {
+        bool main = e->kind == REFK_MAIN;
+        if (e->im.from_cache) main ? b->refs_cached++ : b->extra_cached[e->kind]++;
+        else main ? b->refs_rendered++ : b->extra_rendered[e->kind]++;
+    }
     if (!e->ok) {
         fprintf(stderr, "%starn bench: %s\n", b->pr.tty ? "\n" : "", err);
         b->failures++;
         return NULL;
     }
     return e;
+}
+
+static ref_entry *get_ref(bench *b, int s, const char *scene, int ti) {
+    return get_ref_at(b, s, scene, REFK_MAIN, b->o.w, b->o.h, b->o.times[ti]);
 }
 
 /* ---- the cost floor: a full-screen pass with one texture fetch ---- */
@@ -495,7 +454,10 @@ static const char *floor_frag =
     "out vec4 fragColor;\n"
     "void main() { fragColor = vec4(texture(Noise2, vUv).rgb, 1.0); }\n";
 
-typedef struct timing { double gpu_ms, wall_ms, first_wall_ms, wall_spread; int frames; } timing;
+typedef struct timing {
+    double gpu_ms, wall_ms, first_wall_ms, wall_spread, gpu_q1, gpu_q3, wall_q1, wall_q3;
+    int frames;
+} timing;
 
 /* Collects this frame's GPU time per pass into per-name sample lists. */
 typedef struct pass_samples {
@@ -523,50 +485,101 @@ static void pass_collect(pass_samples *ps, render *r, int max) {
     }
 }
 
-/* Warm-up frames, then timed frames at the fixed time t: medians (and,
- * with rw, the median GPU time of each pass). */
-static timing time_frames(bench *b, render *r, const render_target *tg, double t, row *rw) {
-    timing out = { NAN, NAN, NAN, NAN, 0 };
+/* The timed frames of one setting at one time, gathered over its turns
+ * (round-robin: a few frames a turn, bench_time_round). */
+typedef struct timer_acc {
+    int max, n;
+    double spent;                /* seconds of timed frames so far */
+    double *gpu, *wall;
+    bool passes;
+    pass_samples ps;
+} timer_acc;
+
+static void acc_init(timer_acc *a, int max, bool passes) {
+    memset(a, 0, sizeof *a);
+    a->max = max;
+    a->passes = passes;
+    a->gpu = mem_zalloc((size_t)max * sizeof *a->gpu);
+    a->wall = mem_zalloc((size_t)max * sizeof *a->wall);
+}
+
+/* done: the most frames, or at least 3 and the budget spent */
+static bool acc_done(const bench *b, const timer_acc *a) {
+    return a->n >= a->max || (a->n >= 3 && a->spent > b->o.frame_budget);
+}
+
+/* Up to count more timed frames at time t (fewer when done first). */
+static void acc_frames(bench *b, timer_acc *a, render *r, const render_target *tg, double t, int count) {
+    for (int i = 0; i < count && !acc_done(b, a); i++) {
+        double t0 = clock_now_s();
+        render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
+        glFinish();   /* the wall time of the whole frame, deferred rasterisation included */
+        double s = clock_now_s() - t0;
+        a->wall[a->n] = s * 1e3;
+        a->gpu[a->n] = render_gpu_ms(r, true);
+        a->spent += s;
+        if (a->passes) pass_collect(&a->ps, r, a->max);
+        a->n++;
+    }
+}
+
+/* Medians and quartiles (numpy's interpolation), the passes' medians into
+ * rw (may be NULL); frees the samples. */
+static timing acc_finish(timer_acc *a, row *rw) {
+    timing out = { NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, a->n };
+    int n = a->n;
+    if (n > 0) {
+        qsort(a->wall, (size_t)n, sizeof *a->wall, cmp_double);
+        out.wall_ms = ref_percentile_sorted(a->wall, n, 50);
+        out.wall_q1 = ref_percentile_sorted(a->wall, n, 25);
+        out.wall_q3 = ref_percentile_sorted(a->wall, n, 75);
+        if (n >= 4 && out.wall_ms > 0) out.wall_spread = (out.wall_q3 - out.wall_q1) / out.wall_ms;
+    }
+    int ng = 0;
+    for (int i = 0; i < n; i++)
+        if (a->gpu[i] >= 0) a->gpu[ng++] = a->gpu[i];
+    if (ng > 0) {
+        qsort(a->gpu, (size_t)ng, sizeof *a->gpu, cmp_double);
+        out.gpu_ms = ref_percentile_sorted(a->gpu, ng, 50);
+        out.gpu_q1 = ref_percentile_sorted(a->gpu, ng, 25);
+        out.gpu_q3 = ref_percentile_sorted(a->gpu, ng, 75);
+    }
+    if (rw && a->passes) {
+        rw->npasses = a->ps.n;
+        for (int k = 0; k < a->ps.n; k++) {
+            memcpy(rw->pass_name[k], a->ps.name[k], GPU_TIMER_NAME);
+            rw->pass_ms[k] = a->ps.count[k] ? median(a->ps.ms[k], a->ps.count[k]) : NAN;
+        }
+    }
+    for (int k = 0; k < a->ps.n; k++) free(a->ps.ms[k]);
+    free(a->gpu);
+    free(a->wall);
+    memset(a, 0, sizeof *a);
+    return out;
+}
+
+/* Untimed frames first (the first one's wall time returned). */
+static double warm_up(bench *b, render *r, const render_target *tg, double t) {
+    double first = NAN;
     for (int i = 0; i < b->o.warmup; i++) {
         double t0 = clock_now_s();
         render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
         glFinish();
-        if (i == 0) out.first_wall_ms = (clock_now_s() - t0) * 1e3;
+        if (i == 0) first = (clock_now_s() - t0) * 1e3;
         render_gpu_ms(r, true);
     }
-    int max = b->o.frames;
-    double *gpu = mem_zalloc((size_t)max * sizeof *gpu), *wall = mem_zalloc((size_t)max * sizeof *wall);
-    double start = clock_now_s();
-    int n = 0;
-    pass_samples ps;
-    memset(&ps, 0, sizeof ps);
-    while (n < max) {
-        double t0 = clock_now_s();
-        render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
-        glFinish();   /* the wall time of the whole frame, deferred rasterisation included */
-        wall[n] = (clock_now_s() - t0) * 1e3;
-        gpu[n] = render_gpu_ms(r, true);
-        if (rw) pass_collect(&ps, r, max);
-        n++;
-        if (n >= 3 && clock_now_s() - start > b->o.frame_budget) break;
-    }
-    out.frames = n;
-    out.wall_ms = median(wall, n);   /* sorts wall */
-    if (n >= 4 && out.wall_ms > 0) out.wall_spread = (wall[(3 * n) / 4] - wall[n / 4]) / out.wall_ms;
-    int ng = 0;
-    for (int i = 0; i < n; i++)
-        if (gpu[i] >= 0) gpu[ng++] = gpu[i];
-    out.gpu_ms = ng ? median(gpu, ng) : NAN;
-    if (rw) {
-        rw->npasses = ps.n;
-        for (int k = 0; k < ps.n; k++) {
-            memcpy(rw->pass_name[k], ps.name[k], GPU_TIMER_NAME);
-            rw->pass_ms[k] = ps.count[k] ? median(ps.ms[k], ps.count[k]) : NAN;
-        }
-    }
-    for (int k = 0; k < ps.n; k++) free(ps.ms[k]);
-    free(gpu);
-    free(wall);
+    return first;
+}
+
+/* Warm-up frames, then timed frames at the fixed time t, one after
+ * another (the floor and the cost model; settings are timed round-robin). */
+static timing time_frames(bench *b, render *r, const render_target *tg, double t, row *rw) {
+    double first = warm_up(b, r, tg, t);
+    timer_acc a;
+    acc_init(&a, b->o.frames, rw != NULL);
+    acc_frames(b, &a, r, tg, t, b->o.frames);
+    timing out = acc_finish(&a, rw);
+    out.first_wall_ms = first;
     return out;
 }
 
@@ -807,12 +820,151 @@ static void first_line(const char *text, char *out, size_t len) {
     snprintf(out, len, "%.*s", (int)n, text);
 }
 
-static void measure_setting(bench *b, int s, int p, int k, double weight_each_time) {
+/* ---- FLIP, in parallel: HDR-FLIP costs about 1 s a 480x270 frame on one
+ * core, and the GL is idle while it runs ---- */
+
+typedef struct flip_job {
+    const float *test;           /* 4 channels (RGBA) */
+    const float *ref;            /* 3 */
+    const float *classes;        /* the reference's REF_MASK_* */
+    int w, h;
+    double water, frame;         /* out: the mean over water, over the frame (NaN: failed) */
+} flip_job;
+
+typedef struct flip_queue {
+    flip_job *jobs;
+    int n, next;
+    pthread_mutex_t mu;
+} flip_queue;
+
+/* One map, pooled per region (ref_flip_map once, ref_flip_pool per mask). */
+static void flip_job_run(flip_job *j) {
+    long n = (long)j->w * j->h;
+    j->water = j->frame = NAN;
+    float *map = mem_alloc((size_t)n * sizeof *map);
+    unsigned char *m = mem_alloc((size_t)n);
+    ref_fimage A = { j->test, j->w, j->h, 4 }, B = { j->ref, j->w, j->h, 3 };
+    ref_flip_desc d = { .hdr = true };
+    ref_flip_result info;
+    char err[256];
+    if (ref_flip_map(&A, &B, &d, map, NULL, &info, err, sizeof err)) {
+        ref_flip_result r = info;
+        ref_mask_water(j->classes, n, 1, NULL, m);
+        ref_flip_pool(map, j->w, j->h, m, &r);
+        j->water = r.mean;
+        ref_flip_pool(map, j->w, j->h, NULL, &r);
+        j->frame = r.mean;
+    }
+    free(m);
+    free(map);
+}
+
+static void *flip_worker(void *arg) {
+    flip_queue *q = arg;
+    for (;;) {
+        pthread_mutex_lock(&q->mu);
+        int i = q->next++;
+        pthread_mutex_unlock(&q->mu);
+        if (i >= q->n) return NULL;
+        flip_job_run(&q->jobs[i]);
+    }
+}
+
+static void run_flip_jobs(bench *b, flip_job *jobs, int n) {
+    if (n <= 0) return;
+    double t0 = clock_now_s();
+    flip_queue q = { .jobs = jobs, .n = n };
+    pthread_mutex_init(&q.mu, NULL);
+    int nt = b->cores > 1 ? b->cores : 1;
+    if (nt > n) nt = n;
+    pthread_t th[64];
+    int started = 0;
+    for (int i = 1; i < nt && i < 64; i++)
+        if (pthread_create(&th[started], NULL, flip_worker, &q) == 0) started++;
+    flip_worker(&q);
+    for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
+    pthread_mutex_destroy(&q.mu);
+    b->seconds_flip += clock_now_s() - t0;
+}
+
+/* SSIM over the reference's water (the luminance plane, ref_ssim.h) */
+static double water_ssim(const float *rgba, const refcache_image *ref, int w, int h) {
+    long n = (long)w * h;
+    unsigned char *m = mem_alloc((size_t)n);
+    ref_mask_water(ref->mask, n, 1, NULL, m);
+    ref_fimage A = { rgba, w, h, 4 }, B = { ref->color, w, h, 3 };
+    ref_ssim_desc d = { .mask = m };
+    ref_ssim_result r;
+    char err[256];
+    double v = ref_ssim(&A, &B, &d, NULL, &r, err, sizeof err) ? r.mean : NAN;
+    free(m);
+    return v;
+}
+
+/* The water RMSE of a frame against a reference (NaN: none compared) */
+static double water_rmse_of(const float *rgba, const refcache_image *ref, int w, int h) {
+    long n = (long)w * h;
+    unsigned char *m = mem_alloc((size_t)n);
+    ref_mask_water(ref->mask, n, 1, NULL, m);
+    ref_fimage A = { rgba, w, h, 4 }, B = { ref->color, w, h, 3 };
+    ref_metrics_desc d = { .mask = m };
+    ref_image_metrics r;
+    char err[256];
+    double v = ref_metrics_image(&A, &B, &d, &r, err, sizeof err) && r.count.compared ? r.rmse : NAN;
+    free(m);
+    return v;
+}
+
+/* Irradiance where the pack shows none: it lights the floor as the world
+ * does, by the sun through the flat mean surface (world.glsl's
+ * worldSunBelow, the reference's ref_render_flat_sun), so its irradiance
+ * at the reference's hit points is the flat-caustics reference's. */
+static void measure_flat_irradiance(bench *b, row *rw, const ref_entry *flat, const ref_entry *ref) {
+    int w = b->o.w, h = b->o.h;
+    long n = (long)w * h;
+    unsigned char *mask = mem_alloc((size_t)n);
+    for (long i = 0; i < n; i++) mask[i] = ref->im.mask[i] == REF_MASK_WATER;
+    ref_metrics_desc d = { .mask = mask };
+    ref_fimage A = { flat->im.irradiance, w, h, 3 }, B = { ref->im.irradiance, w, h, 3 };
+    ref_scalar_metrics m;
+    char err[256];
+    int mode = REF_OUTPUT_IRRADIANCE;
+    if (ref_metrics_scalar(&A, &B, &d, &m, err, sizeof err)) {
+        rw->has[mode] = true;
+        rw->irr_flat = true;
+        rw->comp_median[mode] = m.abs.median;
+        rw->comp_p95[mode] = m.abs.p95;
+        rw->comp_mean[mode] = m.abs.mean;
+        rw->comp_rel_mean[mode] = m.rel.mean;
+        rw->comp_rel_median[mode] = m.rel.median;
+    }
+    free(mask);
+}
+
+/* ---- one setting, kept alive while its scene is timed ---- */
+
+typedef struct slot {
+    int s, p, k;
+    char wp[PATH_LEN];
+    const char *scene;           /* the scene or its wrapper (wp) */
+    render *r;
+    render_target tg;
+    bool live;
+    int first_row;
+    timer_acc acc[MAX_TIMES];
+} slot;
+
+/* Its rows, then loaded and warmed up; false (rows failed) when it cannot be */
+static bool slot_open(bench *b, slot *sl, int s, int p, int k) {
     const packset_setting *st = &b->pb[p].settings[k];
-    char wp[PATH_LEN], sc[256];
-    const char *scene = wrapper_path(b, s, p, k, wp, sizeof wp);
+    char sc[256];
+    memset(sl, 0, sizeof *sl);
+    sl->s = s;
+    sl->p = p;
+    sl->k = k;
+    sl->scene = wrapper_path(b, s, p, k, sl->wp, sizeof sl->wp);
     stem(b->scene_abs[s], sc, sizeof sc);
-    int first_row = b->nrows;
+    sl->first_row = b->nrows;
     b->rows = mem_realloc(b->rows, (size_t)(b->nrows + b->o.ntimes) * sizeof *b->rows);
     for (int ti = 0; ti < b->o.ntimes; ti++) {
         row *rw = &b->rows[b->nrows++];
@@ -824,58 +976,229 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
         rw->gpu_ms = rw->wall_ms = rw->first_wall_ms = rw->rmse = rw->psnr = rw->mae = NAN;
         rw->water_rmse = rw->water_psnr = rw->off_rmse = rw->wall_spread = rw->capped_share = NAN;
         rw->p95 = rw->p99 = rw->max_abs = rw->over_share = NAN;
+        rw->gpu_q1 = rw->gpu_q3 = rw->wall_q1 = rw->wall_q3 = NAN;
+        rw->water_flip = rw->flip = rw->water_ssim = NAN;
+        rw->u_noise_rmse = rw->u_grid_rmse = rw->u_noise_flip = rw->u_grid_flip = NAN;
+        rw->seq_water_rmse = rw->seq_water_ssim = rw->temporal_rmse = rw->seq_ref_change = rw->seq_pack_change = NAN;
     }
-    double base = b->pr.done;
-    progress_set(&b->pr, base, true, "%s %s %s: loading", sc, b->o.packs[p], st->name);
+    progress_set(&b->pr, b->pr.done, true, "%s %s %s: loading", sc, b->o.packs[p], st->name);
     render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples };
-    render *r = render_create(&rd);
-    bool loaded = render_load(r, scene);
+    sl->r = render_create(&rd);
+    bool loaded = render_load(sl->r, sl->scene);
     char err[4096] = "";
     bool defines_changed = false;
     if (loaded) {
         int n;
-        unif_set *sets = render_uniforms(r, &n);
+        unif_set *sets = render_uniforms(sl->r, &n);
         if (!packset_apply(sets, n, st, &defines_changed, err, sizeof err))
             for (int ti = 0; ti < b->o.ntimes; ti++)
-                first_line(err, b->rows[first_row + ti].note, sizeof b->rows[first_row + ti].note);
-        if (defines_changed && !render_rebuild_programs(r)) loaded = false;
+                first_line(err, b->rows[sl->first_row + ti].note, sizeof b->rows[sl->first_row + ti].note);
+        if (defines_changed && !render_rebuild_programs(sl->r)) loaded = false;
     }
-    render_target tg;
-    bool have_target = loaded && render_target_create(&tg, b->o.w, b->o.h, true);
+    bool have_target = loaded && render_target_create(&sl->tg, b->o.w, b->o.h, true);
+    progress_set(&b->pr, b->pr.done + LOAD_WEIGHT, false, NULL);
     if (!loaded || !have_target) {
         char why[600];
-        first_line(render_messages(r)[0] ? render_messages(r) : "cannot create the framebuffer", why, sizeof why);
-        const diag_list *dl = render_diags(r);
+        first_line(render_messages(sl->r)[0] ? render_messages(sl->r) : "cannot create the framebuffer", why,
+                   sizeof why);
+        const diag_list *dl = render_diags(sl->r);
         for (int j = 0; j < dl->n; j++)
             if (dl->d[j].severity == DIAG_ERROR) { diag_format(&dl->d[j], why, sizeof why); break; }
-        for (int ti = 0; ti < b->o.ntimes; ti++) snprintf(b->rows[first_row + ti].error, sizeof why, "%s", why);
+        for (int ti = 0; ti < b->o.ntimes; ti++) snprintf(b->rows[sl->first_row + ti].error, sizeof why, "%s", why);
         fprintf(stderr, "%starn bench: %s with %s, setting %s: %s\n", b->pr.tty ? "\n" : "", sc, b->o.packs[p],
                 st->name, why);
         b->failures++;
-        render_destroy(r);
-        progress_set(&b->pr, base + LOAD_WEIGHT + weight_each_time * b->o.ntimes, true, NULL);
-        return;
+        render_destroy(sl->r);
+        sl->r = NULL;
+        return false;
     }
-    progress_set(&b->pr, base + LOAD_WEIGHT, false, NULL);
-    float *rgba = mem_alloc((size_t)b->o.w * b->o.h * 4 * sizeof *rgba);
     for (int ti = 0; ti < b->o.ntimes; ti++) {
-        row *rw = &b->rows[first_row + ti];
+        b->rows[sl->first_row + ti].first_wall_ms = warm_up(b, sl->r, &sl->tg, b->o.times[ti]);
+        acc_init(&sl->acc[ti], b->o.frames, true);
+    }
+    sl->live = true;
+    return true;
+}
+
+static void slot_close(slot *sl) {
+    if (!sl->r) return;
+    if (sl->live) render_target_destroy(&sl->tg);
+    render_destroy(sl->r);
+    sl->r = NULL;
+    sl->live = false;
+}
+
+/* Round-robin: every live setting and time in turn gets rr_chunk timed
+ * frames, turn after turn, until each has its frames (or its budget): a
+ * load that comes and goes falls on every setting alike, not on the ones
+ * that happened to run then. */
+static void time_round_robin(bench *b, slot *sl, int n, double weight_each_time) {
+    double t0 = clock_now_s(), base = b->pr.done;
+    double total = weight_each_time * b->o.ntimes * n;
+    for (bool more = true; more;) {
+        more = false;
+        for (int i = 0; i < n; i++) {
+            if (!sl[i].live) continue;
+            for (int ti = 0; ti < b->o.ntimes; ti++) {
+                timer_acc *a = &sl[i].acc[ti];
+                if (acc_done(b, a)) continue;
+                acc_frames(b, a, sl[i].r, &sl[i].tg, b->o.times[ti], b->o.rr_chunk);
+                more |= !acc_done(b, a);
+            }
+        }
+        /* progress: the share of the budget spent, roughly */
+        double spent = 0, want = 0;
+        for (int i = 0; i < n; i++)
+            for (int ti = 0; ti < b->o.ntimes && sl[i].live; ti++) {
+                spent += sl[i].acc[ti].n >= sl[i].acc[ti].max ? b->o.frame_budget
+                                                               : fmin(sl[i].acc[ti].spent, b->o.frame_budget);
+                want += b->o.frame_budget;
+            }
+        progress_set(&b->pr, base + (want > 0 ? total * spent / want : total), false, NULL);
+    }
+    for (int i = 0; i < n; i++) {
+        if (!sl[i].live) continue;
+        for (int ti = 0; ti < b->o.ntimes; ti++) {
+            row *rw = &b->rows[sl[i].first_row + ti];
+            timing tm = acc_finish(&sl[i].acc[ti], rw);
+            rw->frames = tm.frames;
+            rw->gpu_ms = tm.gpu_ms;
+            rw->wall_ms = tm.wall_ms;
+            rw->wall_spread = tm.wall_spread;
+            rw->gpu_q1 = tm.gpu_q1;
+            rw->gpu_q3 = tm.gpu_q3;
+            rw->wall_q1 = tm.wall_q1;
+            rw->wall_q3 = tm.wall_q3;
+        }
+    }
+    progress_set(&b->pr, base + total, false, NULL);
+    b->seconds_timing += clock_now_s() - t0;
+}
+
+/* The error over the animated sequence: seq_frames frames from the first
+ * time at seq_fps, at the sequence's size, each against the reference of
+ * its instant: the water RMSE and SSIM, means over the instants, and the
+ * temporal error: the RMS over the water (water in both frames) of the
+ * pack's frame-to-frame change minus the reference's, (P[i+1] - P[i]) -
+ * (R[i+1] - R[i]). A pack whose glints or march steps jump between frames
+ * where the reference's change is smooth scores worse there. With images,
+ * a strip of |that| per pixel (max over R, G, B), one panel a pair. */
+typedef struct seq_result { double water_rmse, water_ssim, temporal, ref_change, pack_change; int frames; } seq_result;
+
+static seq_result measure_sequence(bench *b, slot *sl) {
+    seq_result out = { NAN, NAN, NAN, NAN, NAN, 0 };
+    int nf = b->o.seq_frames, w = b->o.seq_w, h = b->o.seq_h;
+    if (nf < 2) return out;
+    double t0 = clock_now_s();
+    render_target tg;
+    if (!render_target_create(&tg, w, h, true)) return out;
+    long n = (long)w * h;
+    float *prev = mem_alloc((size_t)n * 4 * sizeof *prev), *cur = mem_alloc((size_t)n * 4 * sizeof *cur);
+    const refcache_image *rprev = NULL;
+    double sum_rmse = 0, sum_ssim = 0, sq = 0, sq_ref = 0, sq_pack = 0;
+    long cnt = 0;
+    int n_rmse = 0, n_ssim = 0, got = 0;
+    img strip = { 0 };
+    bool images = b->o.images && img_alloc(&strip, w * (nf - 1), h, 3);
+    float *field = images ? mem_alloc((size_t)n * sizeof *field) : NULL;
+    float *rgb = images ? mem_alloc((size_t)n * 3 * sizeof *rgb) : NULL;
+    for (int i = 0; i < nf; i++) {
+        double t = seq_time(b, i);
+        ref_entry *re = get_ref_at(b, sl->s, sl->scene, REFK_SEQ, w, h, t);
+        render_frame(sl->r, t, tg.fbo, w, h, NULL);
+        render_target_read(&tg, cur);
+        if (!re) { rprev = NULL; continue; }
+        const refcache_image *R = &re->im;
+        got++;
+        double e = water_rmse_of(cur, R, w, h), ss = water_ssim(cur, R, w, h);
+        if (isfinite(e)) { sum_rmse += e; n_rmse++; }
+        if (isfinite(ss)) { sum_ssim += ss; n_ssim++; }
+        if (rprev) {
+            for (long px = 0; px < n; px++) {
+                bool water = R->mask[px] == REF_MASK_WATER && rprev->mask[px] == REF_MASK_WATER;
+                float worst = NAN;
+                if (water) {
+                    worst = 0;
+                    for (int c = 0; c < 3; c++) {
+                        double dp = (double)cur[px * 4 + c] - prev[px * 4 + c];
+                        double dr = (double)R->color[px * 3 + c] - rprev->color[px * 3 + c];
+                        if (!isfinite(dp) || !isfinite(dr)) { worst = NAN; break; }
+                        sq += (dp - dr) * (dp - dr);
+                        sq_ref += dr * dr;
+                        sq_pack += dp * dp;
+                        cnt++;
+                        if (fabs(dp - dr) > worst) worst = (float)fabs(dp - dr);
+                    }
+                }
+                if (field) field[px] = water ? worst : -1.0f;
+            }
+            if (images) {
+                ref_heatmap(field, w, h, b->o.heat_max / 4, rgb);
+                for (int y = 0; y < h; y++)
+                    memcpy(strip.px + ((size_t)y * strip.w + (size_t)(i - 1) * w) * 3, rgb + (size_t)y * w * 3,
+                           (size_t)w * 3 * sizeof *rgb);
+            }
+        }
+        rprev = R;
+        float *tmp = prev;
+        prev = cur;
+        cur = tmp;
+    }
+    out.frames = got;
+    out.water_rmse = n_rmse ? sum_rmse / n_rmse : NAN;
+    out.water_ssim = n_ssim ? sum_ssim / n_ssim : NAN;
+    if (cnt) {
+        out.temporal = sqrt(sq / cnt);
+        out.ref_change = sqrt(sq_ref / cnt);
+        out.pack_change = sqrt(sq_pack / cnt);
+    }
+    if (images && cnt) {
+        char dir[PATH_LEN], path[PATH_LEN + 256], sc[256], err[512];
+        snprintf(dir, sizeof dir, "%s/img", b->o.out);
+        stem(b->scene_abs[sl->s], sc, sizeof sc);
+        fmt(path, sizeof path, "%s/%s.%s.%s.temporal.png", dir, sc, b->o.packs[sl->p],
+            bench_setting_name(b, sl->p, sl->k));
+        if (mkdirs(dir)) img_write(path, &strip, err, sizeof err);
+    }
+    if (images) img_free(&strip);
+    free(field);
+    free(rgb);
+    free(prev);
+    free(cur);
+    render_target_destroy(&tg);
+    b->seconds_seq += clock_now_s() - t0;
+    return out;
+}
+
+/* The error of a setting: at each time the frame against the reference
+ * (RMSE, and HDR-FLIP with SSIM over the water), its buffers, the
+ * irradiance of flat lighting where it shows none, its uncertainty (the
+ * first time against the noise and grid references), the sequence. */
+static void slot_measure(bench *b, slot *sl) {
+    int w = b->o.w, h = b->o.h, nt = b->o.ntimes;
+    long n = (long)w * h;
+    char sc[256];
+    stem(b->scene_abs[sl->s], sc, sizeof sc);
+    const char *name = bench_setting_name(b, sl->p, sl->k);
+    float *frames = mem_alloc((size_t)nt * n * 4 * sizeof *frames);
+    flip_job jobs[MAX_TIMES + 2];
+    int nj = 0, job_of[MAX_TIMES];
+    ref_entry *refs[MAX_TIMES];
+    for (int ti = 0; ti < nt; ti++) {
+        row *rw = &b->rows[sl->first_row + ti];
+        float *rgba = frames + (size_t)ti * n * 4;
         double t = b->o.times[ti];
-        progress_set(&b->pr, b->pr.done, true, "%s %s %s t=%g", sc, b->o.packs[p], st->name, t);
+        progress_set(&b->pr, b->pr.done, true, "%s %s %s t=%g: error", sc, b->o.packs[sl->p], name, t);
         while (glGetError() != GL_NO_ERROR) {}
-        timing tm = time_frames(b, r, &tg, t, rw);
-        rw->frames = tm.frames;
-        rw->gpu_ms = tm.gpu_ms;
-        rw->wall_ms = tm.wall_ms;
-        rw->first_wall_ms = tm.first_wall_ms;
-        rw->wall_spread = tm.wall_spread;
-        render_target_read(&tg, rgba);
+        render_frame(sl->r, t, sl->tg.fbo, w, h, NULL);
+        render_target_read(&sl->tg, rgba);
         GLenum ge = glGetError();
         if (ge != GL_NO_ERROR) rw->gl_error = ge;
         rw->ok = true;
-        ref_entry *ref = get_ref(b, s, scene, ti);
+        ref_entry *ref = refs[ti] = get_ref(b, sl->s, sl->scene, ti);
+        job_of[ti] = -1;
         if (ref) {
-            ref_fimage A = { rgba, b->o.w, b->o.h, 4 }, B = { ref->im.color, b->o.w, b->o.h, 3 };
+            ref_fimage A = { rgba, w, h, 4 }, B = { ref->im.color, w, h, 3 };
             ref_image_metrics m;
             char merr[256];
             measure_water(b, rw, &A, &B, ref->im.mask);
@@ -890,9 +1213,11 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
                 rw->nan_px = m.count.nan_a;
                 rw->inf_px = m.count.inf_a;
             }
+            rw->water_ssim = water_ssim(rgba, &ref->im, w, h);
+            job_of[ti] = nj;
+            jobs[nj++] = (flip_job){ rgba, ref->im.color, ref->im.mask, w, h, NAN, NAN };
         } else {
             snprintf(rw->note, sizeof rw->note, "no reference");
-            long n = (long)b->o.w * b->o.h;
             for (long i = 0; i < n; i++)
                 for (int c = 0; c < 3; c++) {
                     if (isnan(rgba[i * 4 + c])) { rw->nan_px++; break; }
@@ -900,13 +1225,76 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
                 }
         }
         if (b->o.images) write_images(b, rw, rgba, ref);
-        progress_set(&b->pr, base + LOAD_WEIGHT + weight_each_time * (ti + 1), false, NULL);
+    }
+    /* the uncertainty: the first time's frame against the other references */
+    ref_entry *alt[2] = { NULL, NULL };
+    int alt_job[2] = { -1, -1 };
+    if (b->o.uncertainty && refs[0]) {
+        alt[0] = get_ref_at(b, sl->s, sl->scene, REFK_NOISE, w, h, b->o.times[0]);
+        alt[1] = get_ref_at(b, sl->s, sl->scene, REFK_GRID, w, h, b->o.times[0]);
+        for (int k = 0; k < 2; k++)
+            if (alt[k]) {
+                alt_job[k] = nj;
+                /* the water is the default reference's, as for the figure it qualifies */
+                jobs[nj++] = (flip_job){ frames, alt[k]->im.color, refs[0]->im.mask, w, h, NAN, NAN };
+            }
+    }
+    progress_set(&b->pr, b->pr.done, true, "%s %s %s: FLIP x%d", sc, b->o.packs[sl->p], name, nj);
+    run_flip_jobs(b, jobs, nj);
+    for (int ti = 0; ti < nt; ti++)
+        if (job_of[ti] >= 0) {
+            b->rows[sl->first_row + ti].water_flip = jobs[job_of[ti]].water;
+            b->rows[sl->first_row + ti].flip = jobs[job_of[ti]].frame;
+        }
+    row *r0 = &b->rows[sl->first_row];
+    for (int k = 0; k < 2; k++) {
+        if (!alt[k]) continue;
+        /* the alternative reference's water mask is the same (the caustics
+         * differ, not the geometry): the default's is used for both */
+        refcache_image im = alt[k]->im;
+        im.mask = refs[0]->im.mask;
+        double e = water_rmse_of(frames, &im, w, h);
+        double du = fabs(e - r0->water_rmse), df = fabs(jobs[alt_job[k]].water - r0->water_flip);
+        if (k == 0) { r0->u_noise_rmse = du; r0->u_noise_flip = df; }
+        else { r0->u_grid_rmse = du; r0->u_grid_flip = df; }
+    }
+    /* the sequence, while the programs are the setting's own (the buffers change them) */
+    if (b->o.seq_frames >= 2) {
+        progress_set(&b->pr, b->pr.done, true, "%s %s %s: sequence", sc, b->o.packs[sl->p], name);
+        seq_result q = measure_sequence(b, sl);
+        r0->seq_frames = q.frames;
+        r0->seq_water_rmse = q.water_rmse;
+        r0->seq_water_ssim = q.water_ssim;
+        r0->temporal_rmse = q.temporal;
+        r0->seq_ref_change = q.ref_change;
+        r0->seq_pack_change = q.pack_change;
     }
     /* the buffers the pack shows: its bench.txt `buffer` lines, else TARN_OUTPUT */
-    if (rgba) measure_buffers(b, r, &tg, s, p, scene, first_row, rgba);
-    free(rgba);
-    render_target_destroy(&tg);
-    render_destroy(r);
+    measure_buffers(b, sl->r, &sl->tg, sl->s, sl->p, sl->scene, sl->first_row, frames);
+    for (int ti = 0; ti < nt; ti++) {
+        row *rw = &b->rows[sl->first_row + ti];
+        if (rw->has[REF_OUTPUT_IRRADIANCE] || !refs[ti]) continue;
+        ref_entry *flat = get_ref_at(b, sl->s, sl->scene, REFK_FLAT, w, h, b->o.times[ti]);
+        if (flat) measure_flat_irradiance(b, rw, flat, refs[ti]);
+    }
+    free(frames);
+}
+
+/* Every setting of a scene: loaded and warmed up, timed round-robin, then
+ * measured for error one by one. */
+static void measure_scene(bench *b, int s, double weight_each_time) {
+    int n = 0;
+    for (int p = 0; p < b->o.npacks; p++) n += b->pb[p].n;
+    slot *sl = mem_zalloc((size_t)(n ? n : 1) * sizeof *sl);
+    int i = 0;
+    for (int p = 0; p < b->o.npacks; p++)
+        for (int k = 0; k < b->pb[p].n; k++) slot_open(b, &sl[i++], s, p, k);
+    time_round_robin(b, sl, n, weight_each_time);
+    for (i = 0; i < n; i++) {
+        if (sl[i].live) slot_measure(b, &sl[i]);
+        slot_close(&sl[i]);
+    }
+    free(sl);
 }
 
 /* ---- the cost model ---- */
@@ -914,9 +1302,10 @@ static void measure_setting(bench *b, int s, int p, int k, double weight_each_ti
 /* The sweep a pack's cost model is fitted from: its default setting on the
  * first scene at three image sizes (half, the run's, 1.5x a side) and
  * three water grids: 9 timed frames, medians as the run's. */
-static const int COST_MESHES[] = { 64, 128, 256 };
-static const double COST_SCALES[] = { 0.5, 1.0, 1.5 };
-#define COST_SAMPLES 9
+const int BENCH_COST_MESHES[3] = { 64, 128, 256 };
+const double BENCH_COST_SCALES[3] = { 0.5, 1.0, 1.5 };
+#define COST_MESHES BENCH_COST_MESHES
+#define COST_SCALES BENCH_COST_SCALES
 
 /* One mesh: a wrapper glib adding `WaterMesh m` to the scene, loaded once
  * and timed at each size. Returns the samples added, -1 with why on a
@@ -984,16 +1373,15 @@ static void measure_ocean(bench *b) {
 
 /* ---- summaries ---- */
 
-/* The Pareto front's tolerances: two settings whose times differ by less
- * than BENCH_TIME_NOISE of their time (or their frames' spread, when
- * larger), and whose errors differ by less than BENCH_ERROR_TIE of their
- * error, tie (neither takes the other off the front). Measured on the
- * 2-core VM: two runs of the same setting differ by up to 15% in wall
- * time, never in error. */
-#define BENCH_TIME_NOISE 0.2
-#define BENCH_ERROR_TIE 0.01
+double bench_axis_time(const bench *b, const summary *s) { return b->axis == 1 ? s->gpu_ms : s->wall_ms; }
 
-static double axis_time(const bench *b, const summary *s) { return b->axis == 1 ? s->gpu_ms : s->wall_ms; }
+static double mean_of(const double *v, int n) {
+    double sum = 0;
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (isfinite(v[i])) { sum += v[i]; k++; }
+    return k ? sum / k : NAN;
+}
 
 static void summarise(bench *b) {
     b->sums = mem_zalloc((size_t)(b->nrows > 0 ? b->nrows : 1) * sizeof *b->sums);
@@ -1004,8 +1392,9 @@ static void summarise(bench *b) {
         s->scene = r0->scene;
         s->pack = r0->pack;
         s->setting = r0->setting;
-        double gpu[MAX_TIMES], wall[MAX_TIMES];
-        int ng = 0, nw = 0, ne = 0;
+        double gpu[MAX_TIMES], wall[MAX_TIMES], q[4][MAX_TIMES];
+        double wflip[MAX_TIMES], flip[MAX_TIMES], wssim[MAX_TIMES];
+        int ng = 0, nw = 0, ne = 0, nq = 0, nt = 0;
         double rmse = 0, psnr = 0, p95 = 0, share = 0, wrmse = 0, wpsnr = 0, off = 0;
         s->capped_share = NAN;
         int nw_err = 0;
@@ -1019,6 +1408,16 @@ static void summarise(bench *b) {
             s->nan_px += r->nan_px + r->inf_px;
             if (isfinite(r->gpu_ms)) gpu[ng++] = r->gpu_ms;
             if (isfinite(r->wall_ms)) wall[nw++] = r->wall_ms;
+            if (isfinite(r->wall_ms)) {
+                q[0][nq] = r->wall_q1;
+                q[1][nq] = r->wall_q3;
+                q[2][nq] = r->gpu_q1;
+                q[3][nq] = r->gpu_q3;
+                nq++;
+            }
+            wflip[nt] = r->water_flip;
+            flip[nt] = r->flip;
+            wssim[nt++] = r->water_ssim;
             if (isfinite(r->wall_spread) && r->wall_spread > s->wall_spread) s->wall_spread = r->wall_spread;
             if (isfinite(r->capped_share) && !(r->capped_share <= s->capped_share)) s->capped_share = r->capped_share;
             if (isfinite(r->water_rmse)) {
@@ -1039,14 +1438,27 @@ static void summarise(bench *b) {
                     comp[m] += m == REF_OUTPUT_REFRACT_HIT ? r->comp_p95[m]
                                : m == REF_OUTPUT_IRRADIANCE ? r->comp_rel_median[m] : r->comp_mean[m];
                     ncomp[m]++;
+                    if (m == REF_OUTPUT_IRRADIANCE) s->irr_flat |= r->irr_flat;
                 }
         }
         s->gpu_ms = median(gpu, ng);
         s->wall_ms = median(wall, nw);
+        s->wall_q1 = median(q[0], nq);
+        s->wall_q3 = median(q[1], nq);
+        int k2 = 0, k3 = 0;
+        for (int j = 0; j < nq; j++) {
+            if (isfinite(q[2][j])) q[2][k2++] = q[2][j];
+            if (isfinite(q[3][j])) q[3][k3++] = q[3][j];
+        }
+        s->gpu_q1 = median(q[2], k2);
+        s->gpu_q3 = median(q[3], k3);
         s->rmse = ne ? rmse / ne : NAN;
         s->water_rmse = nw_err ? wrmse / nw_err : NAN;
         s->water_psnr = nw_err ? wpsnr / nw_err : NAN;
         s->off_rmse = nw_err ? off / nw_err : NAN;
+        s->water_flip = mean_of(wflip, nt);
+        s->flip = mean_of(flip, nt);
+        s->water_ssim = mean_of(wssim, nt);
         s->psnr = ne ? psnr / ne : NAN;
         s->p95 = ne ? p95 / ne : NAN;
         s->over_share = ne ? share / ne : NAN;
@@ -1054,573 +1466,49 @@ static void summarise(bench *b) {
             s->has[m] = ncomp[m] > 0;
             s->comp[m] = ncomp[m] ? comp[m] / ncomp[m] : NAN;
         }
+        /* the uncertainty and the sequence: the first time's row */
+        s->u_noise_rmse = r0->u_noise_rmse;
+        s->u_grid_rmse = r0->u_grid_rmse;
+        s->u_noise_flip = r0->u_noise_flip;
+        s->u_grid_flip = r0->u_grid_flip;
+        s->u_rmse = hypot(r0->u_noise_rmse, r0->u_grid_rmse);
+        s->u_flip = hypot(r0->u_noise_flip, r0->u_grid_flip);
+        s->seq_frames = r0->seq_frames;
+        s->seq_water_rmse = r0->seq_water_rmse;
+        s->seq_water_ssim = r0->seq_water_ssim;
+        s->temporal_rmse = r0->temporal_rmse;
+        s->seq_ref_change = r0->seq_ref_change;
+        s->seq_pack_change = r0->seq_pack_change;
     }
-    /* the Pareto front of each scene, over every pack */
-    for (int sc = 0; sc < b->o.nscenes; sc++) {
-        double x[1024], y[1024], dx[1024], dy[1024];
-        bool on[1024];
-        int idx[1024], n = 0;
-        for (int i = 0; i < b->nsums && n < 1024; i++) {
-            const summary *si = &b->sums[i];
-            if (si->scene != sc) continue;
-            x[n] = si->ok ? axis_time(b, si) : NAN;
-            y[n] = isfinite(si->water_rmse) ? si->water_rmse : si->rmse;
-            /* what a second run could move: the time by its frames' spread
-             * (at least BENCH_TIME_NOISE: runs on a shared machine differ
-             * more than frames within one run), the error by BENCH_ERROR_TIE
-             * (it is deterministic; this is the precision it is read to) */
-            dx[n] = x[n] * fmax(BENCH_TIME_NOISE, isfinite(si->wall_spread) ? si->wall_spread : 0);
-            dy[n] = fmax(y[n] * BENCH_ERROR_TIE, 1e-5);
-            idx[n++] = i;
-        }
-        plot_pareto_ties(x, y, dx, dy, n, on);
-        for (int i = 0; i < n; i++) b->sums[idx[i]].pareto = on[i];
-    }
-}
-
-/* ---- writing ---- */
-
-static void json_num(strbuf *o, double v) {
-    if (isnan(v)) strbuf_printf(o, "null");
-    else if (isinf(v)) strbuf_printf(o, v > 0 ? "\"inf\"" : "\"-inf\"");
-    else strbuf_printf(o, "%.9g", v);
-}
-
-static void json_str(strbuf *o, const char *s) {
-    strbuf_printf(o, "\"");
-    for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
-        if (*c == '"' || *c == '\\') strbuf_printf(o, "\\%c", *c);
-        else if (*c < 0x20) strbuf_printf(o, "\\u%04x", *c);
-        else strbuf_printf(o, "%c", *c);
-    }
-    strbuf_printf(o, "\"");
-}
-
-static void csv_num(strbuf *o, double v) {
-    if (isnan(v)) strbuf_printf(o, ",");
-    else if (isinf(v)) strbuf_printf(o, ",%s", v > 0 ? "inf" : "-inf");
-    else strbuf_printf(o, ",%.9g", v);
-}
-
-static void csv_str(strbuf *o, const char *s, bool first) {
-    strbuf_printf(o, first ? "\"" : ",\"");
-    for (const char *c = s; *c; c++) strbuf_printf(o, *c == '"' ? "\"\"" : "%c", *c);
-    strbuf_printf(o, "\"");
-}
-
-
-static bool write_csv(bench *b, const char *path) {
-    strbuf o = { 0 };
-    strbuf_printf(&o, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms,first_frame_wall_ms,"
-                  "floor_gpu_ms,floor_wall_ms,x_floor_gpu,x_floor_wall,water_rmse,water_psnr_db,water_pixels,"
-                  "off_water_rmse,march_capped_share,rmse,psnr_db,mae,error_p95,error_p99,"
-                  "max_abs,over_threshold_share,nan_pixels,inf_pixels,gl_error");
-    for (int m = 1; m < REF_OUTPUT_COUNT; m++)
-        strbuf_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean,%s.rel_median", ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name,
-                  ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name);
-    strbuf_printf(&o, ",error,note\n");
-    for (int i = 0; i < b->nrows; i++) {
-        const row *r = &b->rows[i];
-        char sc[256];
-        stem(b->scene_abs[r->scene], sc, sizeof sc);
-        csv_str(&o, sc, true);
-        csv_str(&o, b->o.packs[r->pack], false);
-        csv_str(&o, b->pb[r->pack].settings[r->setting].name, false);
-        csv_num(&o, b->o.times[r->ti]);
-        strbuf_printf(&o, ",%d,%d,%d", b->o.w, b->o.h, r->frames);
-        csv_num(&o, r->gpu_ms);
-        csv_num(&o, r->wall_ms);
-        csv_num(&o, r->first_wall_ms);
-        csv_num(&o, b->floor_gpu);
-        csv_num(&o, b->floor_wall);
-        csv_num(&o, r->gpu_ms / b->floor_gpu);
-        csv_num(&o, r->wall_ms / b->floor_wall);
-        csv_num(&o, r->water_rmse);
-        csv_num(&o, r->water_psnr);
-        strbuf_printf(&o, ",%ld", r->water_px);
-        csv_num(&o, r->off_rmse);
-        csv_num(&o, r->capped_share);
-        csv_num(&o, r->rmse);
-        csv_num(&o, r->psnr);
-        csv_num(&o, r->mae);
-        csv_num(&o, r->p95);
-        csv_num(&o, r->p99);
-        csv_num(&o, r->max_abs);
-        csv_num(&o, r->over_share);
-        strbuf_printf(&o, ",%ld,%ld,%u", r->nan_px, r->inf_px, r->gl_error);
-        for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
-            csv_num(&o, r->has[m] ? r->comp_median[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_p95[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_mean[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_rel_mean[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_rel_median[m] : NAN);
-        }
-        csv_str(&o, r->error, false);
-        csv_str(&o, r->note, false);
-        strbuf_printf(&o, "\n");
-    }
-    bool ok = o.s && write_text(path, o.s);
-    free(o.s);
-    return ok;
-}
-
-/* One row per pass: scene, pack, setting, time, pass, its median GPU time. */
-static bool write_passes_csv(bench *b, const char *path) {
-    strbuf o = { 0 };
-    strbuf_printf(&o, "scene,pack,setting,time_s,pass,gpu_ms\n");
-    for (int i = 0; i < b->nrows; i++) {
-        const row *r = &b->rows[i];
-        char sc[256];
-        stem(b->scene_abs[r->scene], sc, sizeof sc);
-        for (int k = 0; k < r->npasses; k++) {
-            csv_str(&o, sc, true);
-            csv_str(&o, b->o.packs[r->pack], false);
-            csv_str(&o, b->pb[r->pack].settings[r->setting].name, false);
-            csv_num(&o, b->o.times[r->ti]);
-            csv_str(&o, r->pass_name[k], false);
-            csv_num(&o, r->pass_ms[k]);
-            strbuf_printf(&o, "\n");
-        }
-    }
-    bool ok = o.s && write_text(path, o.s);
-    free(o.s);
-    return ok;
-}
-
-static bool write_json(bench *b, const char *path) {
-    strbuf o = { 0 };
-    strbuf_printf(&o, "{\n  \"machine\": {\"cpu\": ");
-    json_str(&o, b->cpu);
-    strbuf_printf(&o, ", \"cores\": %d, \"gl_renderer\": ", b->cores);
-    json_str(&o, b->gl_renderer);
-    strbuf_printf(&o, ", \"gl_version\": ");
-    json_str(&o, b->gl_version);
-    strbuf_printf(&o, ", \"cpu_rasteriser\": %s},\n", b->cpu_raster ? "true" : "false");
-    strbuf_printf(&o, "  \"run\": {\"started\": \"%s\", \"seconds\": %.1f, \"width\": %d, \"height\": %d, \"times\": [",
-              b->started, b->seconds, b->o.w, b->o.h);
-    for (int i = 0; i < b->o.ntimes; i++) strbuf_printf(&o, "%s%.9g", i ? ", " : "", b->o.times[i]);
-    strbuf_printf(&o, "], \"max_frames\": %d, \"frame_budget_s\": %g, \"warmup\": %d, \"time_axis\": \"%s\", "
-                  "\"references_rendered\": %d, \"references_cached\": %d},\n",
-              b->o.frames, b->o.frame_budget, b->o.warmup, b->axis == 1 ? "gpu" : "wall", b->refs_rendered,
-              b->refs_cached);
-    strbuf_printf(&o, "  \"msaa\": %d, \"reference_spp\": %d, \"reference_positions\": [", b->o.samples_used,
-                  b->o.ref.spp);
-    for (int k = 0; k < b->o.ref.nsamples; k++)
-        strbuf_printf(&o, "%s[%.9g, %.9g]", k ? ", " : "", b->o.ref.samples[k][0], b->o.ref.samples[k][1]);
-    strbuf_printf(&o, "],\n");
-    strbuf_printf(&o, "  \"floor\": {\"gpu_ms\": ");
-    json_num(&o, b->floor_gpu);
-    strbuf_printf(&o, ", \"wall_ms\": ");
-    json_num(&o, b->floor_wall);
-    strbuf_printf(&o, "},\n  \"summary\": [\n");
-    for (int i = 0; i < b->nsums; i++) {
-        const summary *s = &b->sums[i];
-        char sc[256];
-        stem(b->scene_abs[s->scene], sc, sizeof sc);
-        strbuf_printf(&o, "    {\"scene\": ");
-        json_str(&o, sc);
-        strbuf_printf(&o, ", \"pack\": ");
-        json_str(&o, b->o.packs[s->pack]);
-        strbuf_printf(&o, ", \"setting\": ");
-        json_str(&o, b->pb[s->pack].settings[s->setting].name);
-        strbuf_printf(&o, ", \"ok\": %s, \"gpu_ms\": ", s->ok ? "true" : "false");
-        json_num(&o, s->gpu_ms);
-        strbuf_printf(&o, ", \"wall_ms\": ");
-        json_num(&o, s->wall_ms);
-        strbuf_printf(&o, ", \"x_floor_gpu\": ");
-        json_num(&o, s->gpu_ms / b->floor_gpu);
-        strbuf_printf(&o, ", \"x_floor_wall\": ");
-        json_num(&o, s->wall_ms / b->floor_wall);
-        strbuf_printf(&o, ", \"water_rmse\": ");
-        json_num(&o, s->water_rmse);
-        strbuf_printf(&o, ", \"water_psnr_db\": ");
-        json_num(&o, s->water_psnr);
-        strbuf_printf(&o, ", \"off_water_rmse\": ");
-        json_num(&o, s->off_rmse);
-        strbuf_printf(&o, ", \"march_capped_share\": ");
-        json_num(&o, s->capped_share);
-        strbuf_printf(&o, ", \"rmse\": ");
-        json_num(&o, s->rmse);
-        strbuf_printf(&o, ", \"psnr_db\": ");
-        json_num(&o, s->psnr);
-        strbuf_printf(&o, ", \"error_p95\": ");
-        json_num(&o, s->p95);
-        strbuf_printf(&o, ", \"over_threshold_share\": ");
-        json_num(&o, s->over_share);
-        strbuf_printf(&o, ", \"refract_hit_p95_m\": ");
-        json_num(&o, s->has[1] ? s->comp[1] : NAN);
-        strbuf_printf(&o, ", \"fresnel_mae\": ");
-        json_num(&o, s->has[2] ? s->comp[2] : NAN);
-        strbuf_printf(&o, ", \"irradiance_rel_median\": ");
-        json_num(&o, s->has[3] ? s->comp[3] : NAN);
-        strbuf_printf(&o, ", \"depth_mae\": ");
-        json_num(&o, s->has[4] ? s->comp[4] : NAN);
-        strbuf_printf(&o, ", \"nonfinite_pixels\": %ld, \"pareto\": %s}%s\n", s->nan_px, s->pareto ? "true" : "false",
-                  i + 1 < b->nsums ? "," : "");
-    }
-    strbuf_printf(&o, "  ],\n  \"rows\": [\n");
-    for (int i = 0; i < b->nrows; i++) {
-        const row *r = &b->rows[i];
-        char sc[256];
-        stem(b->scene_abs[r->scene], sc, sizeof sc);
-        strbuf_printf(&o, "    {\"scene\": ");
-        json_str(&o, sc);
-        strbuf_printf(&o, ", \"pack\": ");
-        json_str(&o, b->o.packs[r->pack]);
-        strbuf_printf(&o, ", \"setting\": ");
-        json_str(&o, b->pb[r->pack].settings[r->setting].name);
-        strbuf_printf(&o, ", \"time_s\": %.9g, \"ok\": %s, \"frames\": %d, \"gpu_ms\": ", b->o.times[r->ti],
-                  r->ok ? "true" : "false", r->frames);
-        json_num(&o, r->gpu_ms);
-        strbuf_printf(&o, ", \"wall_ms\": ");
-        json_num(&o, r->wall_ms);
-        strbuf_printf(&o, ", \"first_frame_wall_ms\": ");
-        json_num(&o, r->first_wall_ms);
-        strbuf_printf(&o, ", \"water_rmse\": ");
-        json_num(&o, r->water_rmse);
-        strbuf_printf(&o, ", \"water_psnr_db\": ");
-        json_num(&o, r->water_psnr);
-        strbuf_printf(&o, ", \"water_pixels\": %ld", r->water_px);
-        strbuf_printf(&o, ", \"off_water_rmse\": ");
-        json_num(&o, r->off_rmse);
-        strbuf_printf(&o, ", \"march_capped_share\": ");
-        json_num(&o, r->capped_share);
-        strbuf_printf(&o, ", \"rmse\": ");
-        json_num(&o, r->rmse);
-        strbuf_printf(&o, ", \"psnr_db\": ");
-        json_num(&o, r->psnr);
-        strbuf_printf(&o, ", \"mae\": ");
-        json_num(&o, r->mae);
-        strbuf_printf(&o, ", \"error_p95\": ");
-        json_num(&o, r->p95);
-        strbuf_printf(&o, ", \"error_p99\": ");
-        json_num(&o, r->p99);
-        strbuf_printf(&o, ", \"max_abs\": ");
-        json_num(&o, r->max_abs);
-        strbuf_printf(&o, ", \"over_threshold_share\": ");
-        json_num(&o, r->over_share);
-        strbuf_printf(&o, ", \"nan_pixels\": %ld, \"inf_pixels\": %ld, \"gl_error\": %u, \"buffers\": {", r->nan_px,
-                  r->inf_px, r->gl_error);
-        bool first = true;
-        for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
-            if (!r->has[m]) continue;
-            strbuf_printf(&o, "%s\"%s\": {\"median\": ", first ? "" : ", ", ref_buffer_for_output(m)->name);
-            json_num(&o, r->comp_median[m]);
-            strbuf_printf(&o, ", \"p95\": ");
-            json_num(&o, r->comp_p95[m]);
-            strbuf_printf(&o, ", \"mean\": ");
-            json_num(&o, r->comp_mean[m]);
-            strbuf_printf(&o, ", \"rel_mean\": ");
-            json_num(&o, r->comp_rel_mean[m]);
-            strbuf_printf(&o, ", \"rel_median\": ");
-            json_num(&o, r->comp_rel_median[m]);
-            strbuf_printf(&o, "}");
-            first = false;
-        }
-        strbuf_printf(&o, "}, \"passes\": [");
-        for (int k = 0; k < r->npasses; k++) {
-            strbuf_printf(&o, "%s{\"pass\": ", k ? ", " : "");
-            json_str(&o, r->pass_name[k]);
-            strbuf_printf(&o, ", \"gpu_ms\": ");
-            json_num(&o, r->pass_ms[k]);
-            strbuf_printf(&o, "}");
-        }
-        strbuf_printf(&o, "], \"error\": ");
-        json_str(&o, r->error);
-        strbuf_printf(&o, ", \"note\": ");
-        json_str(&o, r->note);
-        strbuf_printf(&o, "}%s\n", i + 1 < b->nrows ? "," : "");
-    }
-    strbuf_printf(&o, "  ],\n  \"cost_models\": [");
-    int nc = 0;
-    for (int p = 0; p < b->o.npacks; p++) {
-        if (!b->has_cost[p]) continue;
-        const cost_model *m = &b->cost[p];
-        strbuf_printf(&o, "%s\n    {\"pack\": ", nc++ ? "," : "");
-        json_str(&o, b->o.packs[p]);
-        strbuf_printf(&o, ", \"a_ms\": %.6g, \"b_ms_per_mpixel\": %.6g, \"c_ms_per_kvertex\": %.6g, \"r2\": %.6g, "
-                      "\"residual_ms\": %.6g, \"samples\": %d}", m->a, m->b, m->c, m->r2, m->rms_residual, m->n);
-    }
-    strbuf_printf(&o, "%s]\n}\n", nc ? "\n  " : "");
-    bool ok = o.s && write_text(path, o.s);
-    free(o.s);
-    return ok;
-}
-
-static void md_num(strbuf *o, const char *fmt, double v) {
-    if (isnan(v)) strbuf_printf(o, " – |");
-    else if (isinf(v)) strbuf_printf(o, " ∞ |");
-    else {
-        strbuf_printf(o, " ");
-        strbuf_printf(o, fmt, v);
-        strbuf_printf(o, " |");
-    }
-}
-
-/* The report: machine, run, floor, a table per scene, the plot. plot_dir is
- * how the Markdown names the plots' directory ("" for beside it). */
-/* The cost models: a line a pack, and what its default would cost at 1080p. */
-static void cost_md(bench *b, strbuf *o) {
-    char sc[256];
-    stem(b->scene_abs[0], sc, sizeof sc);
-    strbuf_printf(o, "**Cost model** (%s, each pack's default; %s ms a frame = a + b·Mpixels + c·kvertices of the "
-                  "water grid, least squares over %d frames: %dx%d, %dx%d and %dx%d, each with WaterMesh 64, 128 "
-                  "and 256; the last column extrapolates far beyond them, so read it as an order of magnitude):\n\n",
-                  sc, b->axis == 1 ? "GPU" : "wall", COST_SAMPLES, (int)lround(b->o.w * COST_SCALES[0]),
-                  (int)lround(b->o.h * COST_SCALES[0]), b->o.w, b->o.h, (int)lround(b->o.w * COST_SCALES[2]),
-                  (int)lround(b->o.h * COST_SCALES[2]));
-    strbuf_printf(o, "| pack | a ms | b ms/Mpixel | c ms/kvertex | R² | residual ms | 1920x1080, mesh 256 |\n"
-                  "|---|---:|---:|---:|---:|---:|---:|\n");
-    for (int p = 0; p < b->o.npacks; p++) {
-        if (!b->has_cost[p]) {
-            strbuf_printf(o, "| %s | not fitted: %s | | | | | |\n", b->o.packs[p], b->cost_note[p]);
-            continue;
-        }
-        const cost_model *m = &b->cost[p];
-        strbuf_printf(o, "| %s | %.1f | %.1f | %.3f | %.3f | %.1f | %.0f ms |\n", b->o.packs[p], m->a, m->b, m->c,
-                      m->r2, m->rms_residual, cost_model_predict(m, 1920 * 1080 / 1e6, cost_model_grid_kvertices(256)));
-    }
-    strbuf_printf(o, "\n");
-}
-
-static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
-    strbuf_printf(o, "Measured %s by `tarn bench` in %.0f s (%d:%02d; references: %d rendered, %d read from "
-                 "the cache).\n\n",
-              b->started, b->seconds, (int)(b->seconds / 60), (int)fmod(b->seconds, 60), b->refs_rendered,
-              b->refs_cached);
-    strbuf_printf(o, "| machine | |\n|---|---|\n| CPU | %s (%d cores online) |\n| GL renderer | %s |\n"
-                 "| GL version | %s |\n\n",
-              b->cpu, b->cores, b->gl_renderer, b->gl_version);
-    strbuf_printf(o, "Images %dx%d at t =", b->o.w, b->o.h);
-    for (int i = 0; i < b->o.ntimes; i++) strbuf_printf(o, "%s %g", i ? "," : "", b->o.times[i]);
-    strbuf_printf(o, " s; per setting and time %d warm-up frame(s), then up to %d timed frames (at least 3, "
-                 "stopping after %.3g s); medians. Error: the mean over the times of the colour error against "
-                 "the CPU reference of the same frame (linear RGB), first over the pixels where the reference "
-                 "sees water (what ranks the techniques and decides the Pareto front), then off the water "
-                 "and over the whole frame. Settings whose times agree within their run-to-run noise "
-                 "(%.0f%%, or their frames' spread) and whose water errors agree within %.0f%% tie: both "
-                 "stay on the front.\n\n",
-              b->o.warmup, b->o.frames, b->o.frame_budget, 100 * BENCH_TIME_NOISE, 100 * BENCH_ERROR_TIE);
-    char aa[32] = "off";
-    if (b->o.samples_used > 1) snprintf(aa, sizeof aa, "MSAA %dx", b->o.samples_used);
-    char subs[96];
-    refcache_describe_samples(&b->o.ref, subs, (int)sizeof subs);
-    strbuf_printf(o, "Anti-aliasing: %s; the reference takes %s%s. Per-pixel "
-                 "buffers (hit point, Fresnel, irradiance, depth) are drawn without MSAA and compared with the "
-                 "reference's pixel-centre buffers.\n\n",
-              aa, subs, b->o.spp_matched ? ", to match" : " (--ref-spp)");
-    if (b->cpu_raster)
-        strbuf_printf(o, "**%s is a CPU rasteriser**: its GPU timestamps are taken when commands are issued, "
-                     "not when pixels are drawn, so the GPU column is not meaningful here. The wall time "
-                     "(after `glFinish`) is what the plot and the Pareto front use.\n\n",
-                  b->gl_renderer);
-    strbuf_printf(o, "Cost floor (a full-screen pass with one texture fetch): %.3f ms GPU, %.3f ms wall. "
-                 "\"× floor\" is a setting's %s time over the floor's.\n\n",
-              b->floor_gpu, b->floor_wall, b->axis == 1 ? "GPU" : "wall");
-    for (int sc = 0; sc < b->o.nscenes; sc++) {
-        char st[256];
-        stem(b->scene_abs[sc], st, sizeof st);
-        strbuf_printf(o, "### %s\n\n", st);
-        strbuf_printf(o, "| pack | setting | GPU ms | wall ms | × floor | water RMSE | water PSNR dB | off-water RMSE | "
-                     "frame RMSE | p95 error | > 0.05 | hit p95 m | march capped | Fresnel MAE | irradiance rel. median | "
-                     "depth MAE m | Pareto |\n"
-                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
-        for (int i = 0; i < b->nsums; i++) {
-            const summary *s = &b->sums[i];
-            if (s->scene != sc) continue;
-            strbuf_printf(o, "| %s | %s |", b->o.packs[s->pack], b->pb[s->pack].settings[s->setting].name);
-            if (!s->ok) {
-                const row *r = NULL;
-                for (int j = 0; j < b->nrows; j++)
-                    if (b->rows[j].scene == sc && b->rows[j].pack == s->pack && b->rows[j].setting == s->setting)
-                        r = &b->rows[j];
-                strbuf_printf(o, " failed: %s | | | | | | | | | | | | | | | |\n", r && r->error[0] ? r->error : "?");
-                continue;
+    /* the Pareto fronts of each scene, over every pack: time against the
+     * water RMSE, and against the water FLIP */
+    for (int sc = 0; sc < b->o.nscenes; sc++)
+        for (int metric = 0; metric < 2; metric++) {
+            double x[1024], y[1024], dx[1024], dy[1024];
+            bool on[1024];
+            int idx[1024], n = 0;
+            for (int i = 0; i < b->nsums && n < 1024; i++) {
+                const summary *si = &b->sums[i];
+                if (si->scene != sc) continue;
+                x[n] = si->ok ? bench_axis_time(b, si) : NAN;
+                double u = metric == 0 ? si->u_rmse : si->u_flip;
+                y[n] = metric == 0 ? (isfinite(si->water_rmse) ? si->water_rmse : si->rmse)
+                                   : (isfinite(si->water_flip) ? si->water_flip : si->flip);
+                /* what a second run could move: the time by its frames'
+                 * spread (at least BENCH_TIME_NOISE: runs on a shared
+                 * machine differ more than frames within one run); what
+                 * another reference could move: the error by its measured
+                 * uncertainty (BENCH_ERROR_TIE of it where not measured) */
+                dx[n] = x[n] * fmax(BENCH_TIME_NOISE, isfinite(si->wall_spread) ? si->wall_spread : 0);
+                dy[n] = fmax(isfinite(u) ? u : y[n] * BENCH_ERROR_TIE, 1e-5);
+                idx[n++] = i;
             }
-            md_num(o, "%.2f", s->gpu_ms);
-            md_num(o, "%.1f", s->wall_ms);
-            md_num(o, "%.1f", axis_time(b, s) / (b->axis == 1 ? b->floor_gpu : b->floor_wall));
-            md_num(o, "%.4f", s->water_rmse);
-            md_num(o, "%.1f", s->water_psnr);
-            md_num(o, "%.4f", s->off_rmse);
-            md_num(o, "%.4f", s->rmse);
-            md_num(o, "%.4f", s->p95);
-            md_num(o, "%.1f%%", 100 * s->over_share);
-            md_num(o, "%.3f", s->has[1] ? s->comp[1] : NAN);
-            md_num(o, "%.1f%%", 100 * s->capped_share);
-            md_num(o, "%.4f", s->has[2] ? s->comp[2] : NAN);
-            md_num(o, "%.3f", s->has[3] ? s->comp[3] : NAN);
-            md_num(o, "%.3f", s->has[4] ? s->comp[4] : NAN);
-            strbuf_printf(o, " %s |\n", s->pareto ? "●" : "");
-            if (s->nan_px) strbuf_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | |\n", s->nan_px);
-        }
-        strbuf_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
-                     "RenderToTexture that begins it, `screen:LINE` what is drawn to the screen):\n\n");
-        for (int i = 0; i < b->nrows; i++) {
-            const row *r = &b->rows[i];
-            if (r->scene != sc || r->ti != 0 || !r->npasses) continue;
-            strbuf_printf(o, "- %s / %s:", b->o.packs[r->pack], b->pb[r->pack].settings[r->setting].name);
-            for (int k = 0; k < r->npasses; k++)
-                strbuf_printf(o, "%s `%s` %.2f ms", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
-            strbuf_printf(o, "\n");
-        }
-        strbuf_printf(o, "\n![speed against error, %s](%splot-%s.png)\n\n", st, plot_prefix, st);
-    }
-    if (b->o.cost_model) {
-        cost_md(b, o);
-        bench_ocean_md(&b->ocean, b->ocean_scene, o);
-    }
-    strbuf_printf(o, "– : not measured: the pack shows no such buffer (a `buffer` line in its bench.txt, or "
-                 "`Define %s`; docs/benchmark.md).\n",
-              BENCH_OUTPUT_DEFINE);
-}
-
-static bool write_plot(bench *b, int sc, const char *path) {
-    plot_series series[PACKSET_MAX];
-    plot_point *pts = mem_zalloc((size_t)(b->nsums > 0 ? b->nsums : 1) * sizeof *pts);
-    int np = 0, ns = 0;
-    for (int p = 0; p < b->o.npacks; p++) {
-        plot_series *se = &series[ns];
-        se->name = b->o.packs[p];
-        if (b->pb[p].has_colour) memcpy(se->rgb, b->pb[p].colour, sizeof se->rgb);
-        else packset_palette(p, se->rgb);
-        se->pts = pts + np;
-        se->n = 0;
-        for (int i = 0; i < b->nsums; i++) {
-            const summary *s = &b->sums[i];
-            if (s->scene != sc || s->pack != p || !s->ok) continue;
-            double e = isfinite(s->water_rmse) ? s->water_rmse : s->rmse;
-            pts[np++] = (plot_point){ axis_time(b, s), e, b->pb[p].settings[s->setting].name, s->pareto };
-            se->n++;
-        }
-        ns++;
-    }
-    char st[256], title[512], sub[512], floor[64];
-    stem(b->scene_abs[sc], st, sizeof st);
-    snprintf(title, sizeof title, "%s %dx%d: speed against error", st, b->o.w, b->o.h);
-    snprintf(sub, sizeof sub, "%.60s", b->gl_renderer);
-    snprintf(floor, sizeof floor, "floor %.3g ms", b->axis == 1 ? b->floor_gpu : b->floor_wall);
-    plot_chart c = { .title = title, .subtitle = sub,
-                     .xlabel = b->axis == 1 ? "GPU time per frame, ms (log)" : "wall time per frame, ms (log)",
-                     .ylabel = "water RMSE vs reference (log)", .series = series, .nseries = ns,
-                     .floor_x = b->axis == 1 ? b->floor_gpu : b->floor_wall, .floor_label = floor };
-    img im;
-    bool ok = plot_speed_error(&c, &im);
-    char err[512];
-    if (ok) ok = img_write(path, &im, err, sizeof err);
-    img_free(&im);
-    free(pts);
-    return ok;
-}
-
-/* text with what lies between the markers replaced by content (or, when
- * text has no such markers, with a section `heading` holding them added at
- * its end). A new string. */
-static char *replace_section(const char *text, const char *begin, const char *end, const char *heading,
-                             const char *content) {
-    strbuf o = { 0 };
-    const char *bp = strstr(text, begin), *ep = bp ? strstr(bp, end) : NULL;
-    if (bp && ep) strbuf_printf(&o, "%.*s%s\n%s%s", (int)(bp - text), text, begin, content, ep);
-    else strbuf_printf(&o, "%s\n%s\n\n%s\n%s%s\n", text, heading, begin, content, end);
-    return o.s;
-}
-
-
-/* The hard-case bounds of every pack (bounds.txt, else the built-in table),
- * a row per scenes/hard case, with the reasons where a pack has none. */
-static void bounds_md(bench *b, strbuf *o) {
-    char dir[PATH_LEN + 16];
-    fmt(dir, sizeof dir, "%s/scenes/hard", b->root);
-    char *cases[128];
-    int nc = 0;
-    DIR *d = opendir(dir);
-    struct dirent *e;
-    while (d && (e = readdir(d)) && nc < 128) {
-        size_t len = strlen(e->d_name);
-        if (len > 5 && strcmp(e->d_name + len - 5, ".glib") == 0) cases[nc++] = mem_strndup(e->d_name, len - 5);
-    }
-    if (d) closedir(d);
-    qsort(cases, (size_t)nc, sizeof *cases, cmp_str_ptr);
-    packset_name packs[PACKSET_MAX];
-    int np = packset_list(b->root, packs, PACKSET_MAX);
-    packset_bounds pb[PACKSET_MAX];
-    for (int p = 0; p < np; p++) packset_bounds_load(b->root, packs[p], &pb[p], NULL, 0);
-    strbuf_printf(o, "RMSE (linear RGB) that tests/test_hard_cases.c allows, 96x54 at t = 1 s: from each pack's "
-                 "bounds.txt, else (*in italics*) the built-in table of viewer/scene/packset.c. Written by `tarn bench "
-                 "--docs` from the files as they were then.\n\n| case |");
-    for (int p = 0; p < np; p++) strbuf_printf(o, " %s |", packs[p]);
-    strbuf_printf(o, "\n|---|");
-    for (int p = 0; p < np; p++) strbuf_printf(o, "---:|");
-    strbuf_printf(o, "\n");
-    strbuf notes = { 0 };
-    int nnotes = 0;
-    for (int c = 0; c < nc; c++) {
-        strbuf_printf(o, "| %s |", cases[c]);
-        for (int p = 0; p < np; p++) {
-            const char *from = NULL;
-            const packset_bound *bd = packset_bound_resolve(&pb[p], cases[c], &from);
-            bool builtin = from && strcmp(from, "built-in") == 0;
-            if (!bd) {
-                strbuf_printf(o, " – |");
-            } else if (bd->max_rmse >= 0) {
-                strbuf_printf(o, builtin ? " *%.3g* |" : " %.3g |", bd->max_rmse);
-            } else {
-                nnotes++;
-                strbuf_printf(o, builtin ? " *none* (%d) |" : " none (%d) |", nnotes);
-                strbuf_printf(&notes, "%d. %s, %s: %s\n", nnotes, packs[p], cases[c],
-                          bd->why[0] ? bd->why : "(no reason given)");
+            plot_pareto_combined(x, y, dx, dy, n, on);
+            for (int i = 0; i < n; i++) {
+                if (metric == 0) b->sums[idx[i]].pareto = on[i];
+                else b->sums[idx[i]].pareto_flip = on[i];
             }
         }
-        strbuf_printf(o, "\n");
-    }
-    if (notes.s) strbuf_printf(o, "\nWhere a pack holds no bound:\n\n%s", notes.s);
-    free(notes.s);
-    for (int p = 0; p < np; p++) packset_bounds_free(&pb[p]);
-    for (int c = 0; c < nc; c++) free(cases[c]);
-}
-
-/* Writes the report and the bounds between their markers in the docs page
- * (adding the sections when the page has no markers), the plots beside it. */
-static bool write_docs(bench *b, const char *path) {
-    strbuf gen = { 0 };
-    char dir[PATH_LEN];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (slash) *slash = '\0';
-    else snprintf(dir, sizeof dir, ".");
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    char prefix[256];
-    snprintf(prefix, sizeof prefix, "%.*s-", (int)(strcspn(base, ".")), base);
-    report_md(b, &gen, prefix);
-    for (int sc = 0; sc < b->o.nscenes; sc++) {
-        char st[256], pp[PATH_LEN + 300];
-        stem(b->scene_abs[sc], st, sizeof st);
-        fmt(pp, sizeof pp, "%s/%splot-%s.png", dir, prefix, st);
-        write_plot(b, sc, pp);
-    }
-    FILE *f = fopen(path, "r");
-    char *old = NULL;
-    if (f) {
-        old = mem_alloc(1 << 20);
-        size_t n = fread(old, 1, (1 << 20) - 1, f);
-        old[n] = '\0';
-        fclose(f);
-    }
-    strbuf bounds = { 0 };
-    bounds_md(b, &bounds);
-    char *mid = replace_section(old ? old : "# Benchmark\n", "<!-- bench:begin -->", "<!-- bench:end -->",
-                                "## Latest results", gen.s ? gen.s : "");
-    char *page = mid ? replace_section(mid, "<!-- bounds:begin -->", "<!-- bounds:end -->", "## Hard-case bounds",
-                                       bounds.s ? bounds.s : "")
-                     : NULL;
-    bool ok = page && write_text(path, page);
-    free(page);
-    free(mid);
-    free(bounds.s);
-    free(gen.s);
-    free(old);
-    return ok;
 }
 
 /* ---- the command ---- */
@@ -1634,6 +1522,7 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
         return rc;
     }
     double t_start = clock_now_s();
+    loadavg(b->load_before);
     char err[4096] = "";
     for (int p = 0; p < b->o.npacks; p++) {
         err[0] = '\0';
@@ -1663,8 +1552,10 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
     /* progress weights: a frame is 1; a reference, a load, the floor */
     int nsettings = 0;
     for (int p = 0; p < b->o.npacks; p++) nsettings += b->pb[p].n;
-    double per_time = 0.5 * b->o.warmup + b->o.frame_budget + 0.3;
-    b->pr.total = ref_total_weight(b) + 2 + (double)b->o.nscenes * nsettings * (LOAD_WEIGHT + per_time * b->o.ntimes);
+    double per_time = 0.5 * b->o.warmup + b->o.frame_budget + 0.3 + 1.0 /* FLIP */;
+    double per_setting = LOAD_WEIGHT + (b->o.uncertainty ? 2.0 : 0) + 0.1 * b->o.seq_frames;
+    b->pr.total = ref_total_weight(b) + 2 +
+                  (double)b->o.nscenes * nsettings * (per_setting + per_time * b->o.ntimes);
     if (!b->o.quiet)
         fprintf(stderr, "tarn bench: %d scene(s) x %d pack(s), %d setting(s), %d time(s) at %dx%d on %s\n",
                 b->o.nscenes, b->o.npacks, nsettings, b->o.ntimes, b->o.w, b->o.h, b->gl_renderer);
@@ -1674,42 +1565,18 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
         b->failures++;
     }
     progress_set(&b->pr, 2, true, NULL);
-    for (int s = 0; s < b->o.nscenes; s++)
-        for (int p = 0; p < b->o.npacks; p++)
-            for (int k = 0; k < b->pb[p].n; k++) measure_setting(b, s, p, k, per_time);
+    for (int s = 0; s < b->o.nscenes; s++) measure_scene(b, s, per_time);
     for (int p = 0; p < b->o.npacks && b->o.cost_model; p++) measure_cost(b, p);
     if (b->o.cost_model) measure_ocean(b);
+    loadavg(b->load_after);
     b->seconds = clock_now_s() - t_start;
     progress_set(&b->pr, b->pr.total, true, "done");
     if (b->pr.tty && !b->o.quiet) fputc('\n', stderr);
 
     summarise(b);
-    char path[PATH_LEN + 64];
-    snprintf(path, sizeof path, "%s/bench.csv", b->o.out);
-    bool ok = write_csv(b, path);
-    snprintf(path, sizeof path, "%s/passes.csv", b->o.out);
-    ok &= write_passes_csv(b, path);
-    snprintf(path, sizeof path, "%s/bench.json", b->o.out);
-    ok &= write_json(b, path);
     strbuf md = { 0 };
-    strbuf_printf(&md, "# tarn bench\n\n");
-    report_md(b, &md, "");
-    snprintf(path, sizeof path, "%s/report.md", b->o.out);
-    ok &= md.s && write_text(path, md.s);
-    for (int sc = 0; sc < b->o.nscenes; sc++) {
-        char st[256];
-        stem(b->scene_abs[sc], st, sizeof st);
-        snprintf(path, sizeof path, "%s/plot-%s.png", b->o.out, st);
-        ok &= write_plot(b, sc, path);
-    }
-    if (b->o.docs && !write_docs(b, b->o.docs)) {
-        fprintf(stderr, "tarn bench: cannot write %s\n", b->o.docs);
-        ok = false;
-    }
-    if (!ok) {
-        fprintf(stderr, "tarn bench: cannot write the results in %s\n", b->o.out);
-        b->failures++;
-    }
+    bool ok = bench_write_results(b, &md);
+    if (!ok) b->failures++;
     if (!b->o.quiet) {
         fputs(md.s ? md.s : "", stdout);
         printf("\ntarn bench: %d rows in %.1f s; results in %s (bench.csv, bench.json, report.md, plot-*.png)\n",

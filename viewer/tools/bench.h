@@ -2,12 +2,20 @@
  * pack present (or those named) and every setting its packs/NAME/bench.txt
  * declares (packset.h), at fixed simulated times: the median GPU time and
  * wall time per frame, and the error against the CPU reference of the same
- * frame (refcache.h, reference/ref_metrics.h) — the colour image always,
- * and hit point, Fresnel, irradiance and depth where the pack exposes them
- * (`Define TARN_OUTPUT`). The cost floor (a full-screen pass with one
- * texture fetch) is measured in the same run. Writes CSV, JSON, a Markdown
- * report and a speed-against-error plot per scene; with --docs, the report
- * section of docs/benchmark.md. See docs/benchmark.md. */
+ * frame (refcache.h, reference/ref_metrics.h, ref_flip.h, ref_ssim.h):
+ * RMSE, HDR-FLIP and SSIM over the reference's water pixels first, and hit
+ * point, Fresnel, irradiance and depth where the pack exposes them
+ * (`Define TARN_OUTPUT`; a pack without an irradiance buffer is measured as
+ * the flat lighting it draws). Settings are timed interleaved (round-robin,
+ * a few frames each turn) with the machine's load recorded; each setting is
+ * also measured over a short animated sequence (mean and temporal error),
+ * and the reference's own noise and grid bias give each error figure its
+ * uncertainty, which decides ties on the Pareto fronts. The cost floor (a
+ * full-screen pass with one texture fetch) is measured in the same run.
+ * Writes CSV, JSON, a Markdown report and speed-against-RMSE and
+ * speed-against-FLIP plots per scene; with --docs, the report section of
+ * docs/benchmark.md. See docs/benchmark.md. The measuring is bench.c, the
+ * writers bench_report.c (their shared state: bench_int.h). */
 #ifndef TARN_BENCH_H
 #define TARN_BENCH_H
 
@@ -46,6 +54,12 @@ typedef struct bench_desc {
     double heat_max;                       /* 0: 0.25 */
     bool no_images, quiet;
     bool no_cost_model;                    /* skip the cost model's sweep (costmodel.h) */
+    bool no_uncertainty;                   /* skip the reference's noise and grid-bias references */
+    int seq_frames;                        /* the animated sequence's frames (0: 8) */
+    bool no_sequence;                      /* ...none */
+    double seq_fps;                        /* 0: 30 */
+    int seq_width, seq_height;             /* 0: half the run's size a side (at least 32x18) */
+    int rr_chunk;                          /* frames each setting is timed in its turn (0: 2) */
 } bench_desc;
 
 /* Measures and writes. Exit codes: 0 ok, 1 a scene, pack or output failed

@@ -413,3 +413,17 @@ bool plot_speed_error(const plot_chart *c, img *out) {
     plot_text(out, lx0 + 44, y, "Pareto front", 2, black);
     return true;
 }
+
+void plot_pareto_combined(const double *x, const double *y, const double *dx, const double *dy, int n,
+                          bool *on_front) {
+    for (int i = 0; i < n; i++) {
+        on_front[i] = isfinite(x[i]) && isfinite(y[i]);
+        for (int j = 0; j < n && on_front[i]; j++) {
+            if (j == i || !isfinite(x[j]) || !isfinite(y[j])) continue;
+            double tx = dx[i] + dx[j], ty = sqrt(dy[i] * dy[i] + dy[j] * dy[j]);
+            bool no_worse = x[j] <= x[i] + tx && y[j] <= y[i] + ty;
+            bool better = x[j] < x[i] - tx || y[j] < y[i] - ty;
+            if (no_worse && better) on_front[i] = false;
+        }
+    }
+}

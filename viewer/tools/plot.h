@@ -39,6 +39,13 @@ void plot_pareto(const double *x, const double *y, int n, bool *on_front);
 void plot_pareto_ties(const double *x, const double *y, const double *dx, const double *dy, int n,
                       bool *on_front);
 
+/* The same with the errors' tolerances combined as uncertainties: i and j
+ * tie in error when |y[i] - y[j]| <= sqrt(dy[i]^2 + dy[j]^2) (dy a standard
+ * uncertainty of each), in time as in plot_pareto_ties (dx[i] + dx[j]: a
+ * run-to-run spread, not independent between settings timed together). */
+void plot_pareto_combined(const double *x, const double *y, const double *dx, const double *dy, int n,
+                          bool *on_front);
+
 typedef struct plot_point {
     double x, y;              /* time (> 0), error (> 0); non-finite: not drawn */
     const char *label;        /* drawn beside the point (may be NULL) */
