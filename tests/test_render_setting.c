@@ -136,6 +136,96 @@ static void test_not_applicable_and_unknown(void) {
     render_destroy(r);
 }
 
+/* ---- a scene pays only for the passes its content needs (issue #24) ----- */
+
+/* The units the last frame's RenderToTexture passes drew into, as bits
+ * (names "pass:LINE u1 u2 ..."); the names go to stderr, the passes per
+ * case. */
+static unsigned pass_units(render *r, const char *what) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, true, &names, &ms);
+    unsigned units = 0;
+    fprintf(stderr, "  %-40s", what);
+    for (int i = 0; i < n; i++) {
+        fprintf(stderr, " [%s]", names[i]);
+        if (strncmp(names[i], "pass:", 5) != 0) continue;
+        const char *u = strchr(names[i], ' ');
+        while (u && *u) {
+            char *end;
+            long v = strtol(u, &end, 10);
+            if (end == u) break;
+            if (v >= 0 && v < 32) units |= 1u << v;
+            u = end;
+        }
+    }
+    fprintf(stderr, "\n");
+    return units;
+}
+
+/* A scene loaded with pack at setting (bench.txt's row), one frame drawn
+ * twice (the timer's names are the previous frame's). */
+static render *with_setting(const char *scene, const char *pack, const char *setting) {
+    render *r = render_create(&(render_desc){ .repo_root = TARN_SOURCE_DIR, .pack = pack });
+    CHECK_MSG(render_load(r, scene), "%s", render_messages(r));
+    char msg[2048] = "";
+    CHECK_MSG(render_setting_apply_named(r, TARN_SOURCE_DIR, setting, msg, sizeof msg), "%s: %s", setting, msg);
+    free(draw(r));
+    free(draw(r));
+    return r;
+}
+
+#define CALM TARN_SOURCE_DIR "/scenes/hard/calm.glib"
+#define OCEAN TARN_SOURCE_DIR "/scenes/ocean.glib"
+
+/* natural: the photon passes (light depth 8, once; photons 9; the GPU's
+ * splat 10, the paper's is the CPU's `Splat`) only on water with waves (`If waves`): on calm water the ratio is exactly 1.
+ * caustic_tex: the mirror pass (10 11) only with SKY_REFLECTION (its paper
+ * row has it off). raymarch: the reflection march (no pass of its own:
+ * compiled in only when something stands above the water,
+ * WORLD_ABOVE_WATER) is in the lake's water program and not in the open
+ * sea's, which has only sky above its water (uReflectStep is read by that
+ * march alone, so it is active in the program exactly when the default's
+ * march is). */
+static void test_passes_per_scene_and_setting(void) {
+    static const char *settings[] = { "default", "paper" };
+    for (int k = 0; k < 2; k++) {
+        char what[128];
+        render *r = with_setting(LAKE, "natural", settings[k]);
+        snprintf(what, sizeof what, "natural %s, lake:", settings[k]);
+        CHECK_MSG(pass_units(r, what) & (1u << 9), "natural %s: the lake has waves, no photon pass ran", settings[k]);
+        render_destroy(r);
+        r = with_setting(CALM, "natural", settings[k]);
+        snprintf(what, sizeof what, "natural %s, calm:", settings[k]);
+        CHECK_MSG(!(pass_units(r, what) & (1u << 8 | 1u << 9 | 1u << 10)), "natural %s: a photon pass ran on calm water",
+                  settings[k]);
+        render_destroy(r);
+    }
+    render *r = with_setting(LAKE, "caustic_tex", "default");
+    CHECK_MSG(pass_units(r, "caustic_tex default, lake:") & (1u << 10), "caustic_tex default: no mirror pass");
+    render_destroy(r);
+    r = with_setting(LAKE, "caustic_tex", "paper");
+    CHECK_MSG(!(pass_units(r, "caustic_tex paper (no reflection), lake:") & (1u << 10 | 1u << 11)),
+              "caustic_tex paper: a mirror pass ran with SKY_REFLECTION off");
+    render_destroy(r);
+    for (int k = 0; k < 2; k++) {
+        float v;
+        r = with_setting(LAKE, "raymarch", settings[k]);
+        bool lake = render_read_uniform(r, "RaymarchWater", "uReflectStep", &v, 1) ||
+                    render_read_uniform(r, "RaymarchWater", "uReflectHeight", &v, 1);
+        render_destroy(r);
+        r = with_setting(OCEAN, "raymarch", settings[k]);
+        bool sea = render_read_uniform(r, "RaymarchWater", "uReflectStep", &v, 1) ||
+                   render_read_uniform(r, "RaymarchWater", "uReflectHeight", &v, 1);
+        render_destroy(r);
+        fprintf(stderr, "  raymarch %s: reflection march compiled in on the lake %s, on the open sea %s\n", settings[k],
+                lake ? "yes" : "no", sea ? "yes" : "no");
+        /* (the paper's march reads neither: its steps and 0.8 m cap are Lipp's constants) */
+        if (k == 0) CHECK_MSG(lake, "raymarch default: the lake has a box, a post and a tree above its water: no march");
+        CHECK_MSG(!sea, "raymarch %s: the open sea has only sky above it, yet the march is compiled in", settings[k]);
+    }
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -143,6 +233,7 @@ int main(void) {
     RUN(test_same_pixels_as_bench);
     RUN(test_water_mesh_shows);
     RUN(test_not_applicable_and_unknown);
+    RUN(test_passes_per_scene_and_setting);
     scratch_remove();
     gl_ctx_destroy(ctx);
     return check_summary();

@@ -334,7 +334,13 @@ void main() {
     float cosI = clamp(dot(e, n), 0.0, 1.0);
     vec3 r = reflect(-e, n);
     vec3 tr = refract(-e, n, fromWater ? uIOR : 1.0 / uIOR);   // 0 past the critical angle
+#ifdef SKY_REFLECTION
     Mirror mirror = mirrorAlong(P, r);
+#else
+    // no reflection (pack.glib skips the mirror passes): nothing mirrored,
+    // from below too (outside Snell's window the water shows nothing)
+    Mirror mirror = Mirror(false, vec2(0.0), P, vec3(0.0));
+#endif
     vec3 sky = texture(uSky, underCam && dot(tr, tr) > 0.0 ? tr : r).rgb;
     float R = worldFresnel(cosI, fromWater ? uIOR : 1.0, fromWater ? 1.0 : uIOR);
     if (underCam) {

@@ -23,6 +23,15 @@
 #ifndef NATURAL_GLSL
 #define NATURAL_GLSL
 
+// Waves of any model in the world: tarn defines WAVES_HAS_* for the models
+// the world has (a build without WAVES_MODELS, glslang's validation, has
+// them all). pack.glib's `If waves` is the same test: on calm water the
+// caustic ratio is exactly 1, so no photon pass runs and water.frag reads
+// no caustic texture.
+#if !defined(WAVES_MODELS) || defined(WAVES_HAS_SINE) || defined(WAVES_HAS_GERSTNER) || defined(WAVES_HAS_NOISE) || defined(WAVES_HAS_OCEAN) || defined(WAVES_HAS_EXPLOSION) || defined(WAVES_HAS_PERLIN)
+#define NAT_WAVES 1
+#endif
+
 #define NAT_CAUSTIC_MARGIN 1.25   // caustic square / world square (photons land beyond the edge)
 
 uniform float uTerrainHalfSize;
@@ -200,6 +209,55 @@ bool natPhoton(vec3 S, vec3 N, float area, out vec2 q, out float w) {
     float sigma = dot(uAbsorption, vec3(1.0 / 3.0));
     w = area * (1.0 - worldFresnel(cosI, 1.0, uIOR)) / (1.0 - worldFresnel(cosS, 1.0, uIOR))
         * exp(-sigma * (s - depth / cosT));
+    return true;
+}
+
+// ---- the paper's photon: Mihálik's equation (1) -------------------------------
+//
+// The paper's caustics (photon.frag, CAUSTICS_GPU off) take for each photon
+// the same one-shot estimate as the view ray (water.frag with REFINE_STEPS
+// 0), with the sun in place of the eye: d is the photon's path in water to
+// the floor the light camera sees under S (its depth map, along the sun,
+// unrefracted), the hit is W = S + clamp(d, 0, 2)/3 R (R the refracted
+// sun), and the light it brings is (1 - (1 - L.N)^4.5) exp(-d k) (k 0.5
+// a metre, the water shader's uAttenuation default). No march, no exact
+// Fresnel. Lengths are lake metres times uWorldScale.
+// Tarn's caustic texture holds a ratio to the flat-water light that
+// tarn's world shading already gives the floor (worldShadeAt), so the
+// weight is the paper's illumination over the same formula for flat water
+// on the same sun ray (L.N = cos_s, d from the mean plane): 1 exactly under
+// calm water, where W lies on the flat refracted sun ray through S and q =
+// S.xz.
+#define NAT_PAPER_CLAMP 2.0        // clamp(d, 0, 2)
+#define NAT_PAPER_SCALE (1.0 / 3.0)
+#define NAT_PAPER_Q 4.5            // (1 - E.N)^4.5
+#define NAT_PAPER_K 0.5            // exp(-d k), per lake metre
+
+bool natPhotonPaper(vec3 S, vec3 N, float area, out vec2 q, out float w) {
+    vec3 ts = natFlatSun();
+    float cosT = max(-ts.y, 1e-4);
+    q = S.xz;
+    w = 0.0;
+    float cosS = max(uSunDir.y, 1e-4);
+    float cosI = dot(N, uSunDir);
+    if (cosI <= 0.0 || area <= 0.0) return false;
+    vec3 l = natLightTex(S);
+    if (!natInside(l.xy)) return false;
+    float zF = texture(uLightDepth, l.xy).r;
+    if (zF >= 1.0) return false;
+    // the light's ortho depth is linear in distance along -sun
+    vec3 row2 = vec3(uCamLightVP[0][2], uCamLightVP[1][2], uCamLightVP[2][2]);
+    float kz = 0.5 * dot(row2, -uSunDir);
+    if (abs(kz) < 1e-8) return false;
+    float d = max(zF - l.z, 0.0) / kz;
+    vec3 R = refract(-uSunDir, N, 1.0 / uIOR);
+    vec3 W = S + clamp(d, 0.0, NAT_PAPER_CLAMP * uWorldScale) * NAT_PAPER_SCALE * R;
+    q = W.xz - ts.xz * ((uWaterLevel - W.y) / cosT);
+    float d0 = max(d + (uWaterLevel - S.y) / cosS, 0.0);   // from the mean plane on the same sun ray
+    float k = NAT_PAPER_K / uWorldScale;
+    float light = (1.0 - pow(1.0 - clamp(cosI, 0.0, 1.0), NAT_PAPER_Q)) * exp(-d * k);
+    float flat_ = (1.0 - pow(1.0 - cosS, NAT_PAPER_Q)) * exp(-d0 * k);
+    w = area * light / max(flat_, 1e-6);
     return true;
 }
 

@@ -1,6 +1,7 @@
 #version 330 compatibility
 // packs/natural, the paper's caustics: one photon per texel of the light
-// camera's target. RG: where it lands on the floor, in refracted-sun space
+// camera's target, its hit and light by Mihálik's equation (1)
+// (natPhotonPaper). RG: where it lands on the floor, in refracted-sun space
 // scaled so that tarn's `Splat` (which maps the world square onto the
 // caustic texture) maps the caustic square instead; B: its weight, scaled
 // the same way, so the splatted "irradiance" (weight per texel area) is the
@@ -24,7 +25,7 @@ void main() {
     vec3 N = wavesNormal(vRest, uTime);
     vec2 q;
     float w;
-    if (!natPhoton(vWorldPos, N, area, q, w)) {
+    if (!natPhotonPaper(vWorldPos, N, area, q, w)) {   // Mihálik's eq. (1) (natural.glsl)
         fragColor = vec4(0.0);
         return;
     }

@@ -18,6 +18,10 @@
 #include "world.glsl"
 #include "natural.glsl"
 
+#if defined(CAUSTICS) && !defined(NAT_WAVES)
+#undef CAUSTICS     // calm water: the ratio is 1 (pack.glib's `If waves` runs no photon pass)
+#endif
+
 uniform samplerCube uSky;
 uniform sampler2D uTerrainAlbedo;
 uniform vec3 uCameraPos;

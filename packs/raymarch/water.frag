@@ -22,6 +22,14 @@
 #ifndef DEBUG_OUTPUT
 #define DEBUG_OUTPUT 0
 #endif
+// The march up (reflections from above, Snell's window from below) meets
+// only what stands above the water: tarn defines WORLD_ABOVE_WATER when
+// the scene has any (`If above_water`'s test); with only sky there the
+// march is compiled out and the sky cube map is exact. (A build without
+// tarn's world defines, WAVES_MODELS unset: glslang's validation, keeps it.)
+#if !defined(NOREFLECTION) && (defined(WORLD_ABOVE_WATER) || !defined(WAVES_MODELS))
+#define RAYMARCH_MARCH_UP 1
+#endif
 #if defined(REFINE_BINARY) || defined(REFINE_SECANT)
 #define REFINE_COUNT uRefineSteps
 #else
@@ -206,9 +214,17 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
         return groundModelColor(hit);
     }
 #endif
+#ifdef PAPER_REFRACTION
+    // Lipp's: n = mix(10, 3, -R.y) steps of 1/n m each along R (the
+    // sliders' 10 and 3), uMaxIter (40) of them at most
+    float n = max(mix(uStepsGrazing, uStepsSteep, -d.y), 1.0);
+    March m = marchHeightfield(uWorldY, p, d, uWorldScale / n, 0.0, uStepsGrazing, uStepsSteep, 4.0 * uWorldScale,
+                               -1e30, 1e30, uMaxIter, REFINE_COUNT, -1e30);
+#else
     March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth * uWorldScale, uStepsGrazing,
                                uStepsSteep, uMaxStep * uWorldScale, -1e30, 1e30, uMaxIter, REFINE_COUNT,
                                -1e30);
+#endif
     gFetches += m.fetches;
     s = m.t;
     // no bracket: on down to the ground height of the last column
@@ -224,16 +240,17 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
 vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
     hit = dir;
     status = MARCH_LEFT;
-#ifndef NOREFLECTION
+#ifdef RAYMARCH_MARCH_UP
     vec3 d = marchClampDir(dir, false);
     float reach = uReflectHeight * uWorldScale;
 #ifdef PAPER_REFLECTION
-    // Lipp's: steps of mix(0.5, 4, 1 - R.y) m, 60 of them, through the
-    // solid seen from below; rays steeper than R.y = 0.8 are not marched
-    if (d.y > 0.8) return texture(uSky, dir).rgb;
-    float step = mix(0.5, 4.0, 1.0 - d.y) * uWorldScale;
+    // Lipp's: a step of 1 / mix(0.5, 4, 1 - R.y) m (0.25 m for a grazing
+    // ray, 2 m for a vertical one), 60 of them, through the solid seen from
+    // below; the march stops once the position is more than 0.8 m above the
+    // water (his cap is on the height reached, not on R.y): the sky there
+    float step = uWorldScale / mix(0.5, 4.0, 1.0 - d.y);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep, step, -1e30,
-                               uWaterLevel + reach, 60, REFINE_COUNT, uWaterLevel);
+                               uWaterLevel + 0.8 * uWorldScale, 60, REFINE_COUNT, uWaterLevel);
 #else
     float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uReflectStep * uWorldScale);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,

@@ -296,6 +296,12 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->gstap = st->gstap;
     p->world_uniforms = r->world.active;
     world_set_wave_defines(&r->world, p);   /* only the wave models the world has */
+    if (r->world.active && r->world.has_above_water) {   /* `If above_water` as a define: a pack
+                                                           * compiles out what only it needs */
+        shader_define *d = &p->fixed[PROG_FIXED_MAX - 1];   /* the wave defines use at most 7 */
+        snprintf(d->name, sizeof d->name, "WORLD_ABOVE_WATER");
+        snprintf(d->value, sizeof d->value, "1");
+    }
     p->scene = s->glib;
     for (int k = 0; k < SHADER_STAGE_COUNT; k++)
         snprintf(p->stage_path[k], sizeof p->stage_path[k], "%s", program_stage_path(st, (shader_stage)k));
@@ -1111,6 +1117,11 @@ static void exec_transform(frame_state *f, const glib_cmd *c) {
 /* `If NAME`: a Define toggle of any Program that is on, or a scene fact. */
 static bool condition(const render *r, const frame_state *f, const char *name) {
     if (strcmp(name, "above_water") == 0) return r->world.active && r->world.has_above_water;
+    if (strcmp(name, "waves") == 0) {   /* any wave model with an active wave: the WAVES_HAS_* set */
+        const ref_waves *w = &r->world.w.waves;
+        return r->world.active &&
+               (w->nsine || w->ngerstner || w->noctaves || w->ocean || w->nexplosions || w->has_perlin);
+    }
     if (strcmp(name, "under_water") == 0)
         return r->world.active && f->eye[1] < r->world.w.d.water_level;
     for (int p = 0; p < r->cur.nprogs; p++) {
