@@ -3,12 +3,14 @@
  * text as the command file's cmd_X_usage), an unknown command exits 2, and
  * `tarn --version` says which tarn. No OpenGL: help never makes a context. */
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
 #include "cmd.h"
+#include "image_io.h"
 #include "support.h"
 
 static const char *bin;
@@ -20,7 +22,8 @@ static const struct { const char *name; const char *(*usage)(void); } expected[]
     { "validate", cmd_validate_usage },   { "reference", cmd_reference_usage },
     { "compare", cmd_compare_usage },     { "compare-view", cmd_compare_view_usage },
     { "bench", cmd_bench_usage },         { "assets", cmd_assets_usage },
-    { "record", cmd_record_usage },       { "help", NULL },
+    { "record", cmd_record_usage },       { "sheet", cmd_sheet_usage },
+    { "help", NULL },
 };
 enum { NEXPECTED = sizeof expected / sizeof expected[0] };
 
@@ -110,6 +113,74 @@ static void test_version(void) {
     CHECK(major >= 0 && minor >= 0 && patch >= 0);
 }
 
+/* tarn sheet: a 3 x 2 sheet of a uniform pair is 6 tiles, found in the
+ * image as the non-paper rectangles of the tile size, each different from
+ * the others as the values differ; a uniform the scene lacks stops it with
+ * the name (exit 2). The one test here that draws: skipped without GL. */
+static void test_sheet(void) {
+    if (!scratch_create("sheet")) return;
+    scratch_write("s.vert", "#version 120\nvarying vec2 vST;\n"
+                            "void main() { vST = gl_MultiTexCoord0.st; gl_Position = ftransform(); }\n");
+    scratch_write("s.frag", "#version 120\nuniform float uFreq;\nuniform float uShift;\nvarying vec2 vST;\n"
+                            "void main() { float s = step(0.5, fract(vST.s * uFreq));\n"
+                            "  gl_FragColor = vec4(s, uShift, 1. - s, 1.); }\n");
+    scratch_write("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex s.vert\nFragment s.frag\n"
+                            "Program Stripes uFreq <1. 2. 10.> uShift <0. 0. 1.>\nQuadXY 0 1 1 1\n");
+    char args[2048], out[8192];
+    snprintf(args, sizeof args, "sheet %s --vary Stripes.uFreq=1:9:3 --vary uShift=0:1:2 --size 48x32 -o %s",
+             scratch_path("s.glib"), scratch_path("sheet.png"));
+    int rc = tarn(args, out, sizeof out);
+    if (rc == TARN_EXIT_NO_GL) { fprintf(stderr, "skip: no OpenGL: %s", out); scratch_remove(); return; }
+    CHECK_MSG(rc == 0, "tarn %s: %s", args, out);
+    img im;
+    char err[512];
+    CHECK_MSG(img_read(scratch_path("sheet.png"), &im, err, sizeof err), "%s", err);
+    enum { TW = 48, TH = 32 };
+    int ch = im.channels, tx[8], ty[8], n = 0;
+    #define PX(x, y) (im.px + ((size_t)(y) * im.w + (x)) * ch)
+    #define PAPER(x, y) ((x) < 0 || (y) < 0 || (PX(x, y)[0] > 0.99f && PX(x, y)[1] > 0.99f && PX(x, y)[2] > 0.99f))
+    for (int y = 0; y + TH <= im.h && n < 8; y++)
+        for (int x = 0; x + TW <= im.w && n < 8; x++) {
+            if (PAPER(x, y) || !PAPER(x - 1, y) || !PAPER(x, y - 1)) continue;
+            bool full = PAPER(x + TW, y) && PAPER(x, y + TH);
+            for (int k = 0; k < TW && full; k++) full = !PAPER(x + k, y) && !PAPER(x + k, y + TH - 1);
+            for (int k = 0; k < TH && full; k++) full = !PAPER(x, y + k) && !PAPER(x + TW - 1, y + k);
+            if (full) { tx[n] = x; ty[n] = y; n++; }
+        }
+    CHECK_MSG(n == 6, "%d tiles of 48x32 in the %dx%d sheet", n, im.w, im.h);
+    int same = 0;
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++) {
+            double diff = 0;
+            for (int y = 0; y < TH; y++)
+                for (int x = 0; x < TW; x++)
+                    for (int c = 0; c < 3; c++) diff += fabs(PX(tx[a] + x, ty[a] + y)[c] - PX(tx[b] + x, ty[b] + y)[c]);
+            same += diff / (TW * TH) < 0.05;
+        }
+    CHECK_MSG(same == 0, "%d pairs of tiles alike", same);
+    /* the labels: ink below each tile */
+    int labelled = 0;
+    for (int t = 0; t < n; t++) {
+        int ink = 0;
+        for (int y = ty[t] + TH; y < ty[t] + TH + 24 && y < im.h; y++)
+            for (int x = tx[t]; x < tx[t] + TW; x++) ink += PX(x, y)[0] < 0.2f && PX(x, y)[1] < 0.2f && PX(x, y)[2] < 0.2f;
+        labelled += ink > 20;
+    }
+    CHECK_MSG(labelled == n, "%d of %d tiles labelled", labelled, n);
+    #undef PAPER
+    #undef PX
+    img_free(&im);
+    snprintf(args, sizeof args, "sheet %s --vary Stripes.uNope=1:9:3 -o %s", scratch_path("s.glib"),
+             scratch_path("x.png"));
+    CHECK(tarn(args, out, sizeof out) == TARN_EXIT_USAGE);
+    CHECK_STR_CONTAINS(out, "uNope");
+    snprintf(args, sizeof args, "sheet %s --vary Stripes.uFreq=1:9 -o %s", scratch_path("s.glib"),
+             scratch_path("x.png"));
+    CHECK(tarn(args, out, sizeof out) == TARN_EXIT_USAGE);
+    CHECK_STR_CONTAINS(out, "--vary wants PROGRAM.NAME=A:B:N");
+    scratch_remove();
+}
+
 int main(void) {
     bin = getenv("TARN_BIN");
     if (!bin) { fprintf(stderr, "run through ctest (TARN_BIN)\n"); return 1; }
@@ -118,5 +189,6 @@ int main(void) {
     RUN(test_unknown_command_exits_2);
     RUN(test_unknown_pack_is_a_usage_error);
     RUN(test_version);
+    RUN(test_sheet);
     return check_summary();
 }

@@ -20,6 +20,7 @@ int cmd_compare_view(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_assets(int argc, char **argv);
 int cmd_record(int argc, char **argv);
+int cmd_sheet(int argc, char **argv);
 
 /* compare with the streams given (tests): the table and "-" outputs and
  * --help go to out, messages to err. */
@@ -35,6 +36,7 @@ const char *cmd_compare_view_usage(void);
 const char *cmd_bench_usage(void);
 const char *cmd_assets_usage(void);
 const char *cmd_record_usage(void);
+const char *cmd_sheet_usage(void);
 
 /* ---- shared by the command files (cmd_opts.c) ---- */
 
@@ -68,6 +70,13 @@ bool cmd_opt_pack(const char *name, char *why, size_t whylen);
     "  --msaa N         anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
     "                   every renderer: what is written is anti-aliased; on a CPU\n" \
     "                   rasteriser such as llvmpipe it costs 2-3x the time)\n"
+
+/* One --set assignment (PROGRAM.NAME=V, NAME=V for every Program, or
+ * scene.Command=ARGS) applied to r as the panel would (render_setting_assign);
+ * false, with "tarn: WHAT: why" on stderr, when it did not apply as written
+ * (a missing uniform, a clamped value). tarn sheet's --set and --vary. */
+struct render;
+bool cmd_apply_set(struct render *r, const char *set, const char *what);
 
 /* Splits a copy of list (in buf) at commas into at most max parts; the
  * number of parts, or -1 when there are more than max. */

@@ -32,6 +32,8 @@ static const command commands[] = {
     { "render", "FILE.glib", "render without a display (EGL) to an image", cmd_render_usage, cmd_render },
     { "record", "SESSION -o OUT", "replay a session recorded in the window to a video (ffmpeg) or PNGs",
       cmd_record_usage, cmd_record },
+    { "sheet", "FILE.glib --vary", "a hand-in sheet: the scene at several uniform values, labelled, in one image",
+      cmd_sheet_usage, cmd_sheet },
     { "validate", "[PATH...]", "check every shader of every pack with glslang", cmd_validate_usage,
       cmd_validate },
     { "reference", "FILE.glib", "the CPU ground truth: image and per-pixel buffers (double precision)",
