@@ -19,7 +19,7 @@ rc=$?
 render --setting paper -o "$scratch/paper.png" || fail "--setting paper failed"
 render --set NaturalWater.CAUSTICS_GPU=0 --set NaturalWater.EXACT_FRESNEL=0 --set NaturalWater.BEER_LAMBERT=0 \
     --set NaturalWater.REFINE_STEPS=0 --set NaturalWater.uPhotonGrid=512 --set NaturalWater.uCausticRes=256 \
-    --set NaturalWater.SPECULAR_FRESNEL=0 --set NaturalWater.uSpecular=0.5 --set NaturalWater.uShininess=400 \
+    --set NaturalWater.SPECULAR=0 --set NaturalWater.OCEAN_FOAM=0 \
     -o "$scratch/paper_sets.png" || fail "the paper --sets failed"
 cmp -s "$scratch/paper.png" "$scratch/paper_sets.png" || fail "--setting paper differs from its --sets"
 cmp -s "$scratch/paper.png" "$scratch/default.png" && fail "--setting paper draws the default"
