@@ -1429,7 +1429,16 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         draw_world(r, f, i);
     } else if (c->kind == GLIB_CMD_WATER_SURFACE) {
         if (c->name[0]) draw_points(r, f, c);   /* "points" or "mesh" */
-        else world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
+        else {
+            /* the surface nearer than the near plane is still water: an eye a
+             * few centimetres above it (scenes/hard/at_level.glib) saw the
+             * bottom third of the frame through a hole the near plane cut;
+             * depth clamping keeps it (what is behind the eye is still
+             * clipped by the x and y planes) */
+            glEnable(GL_DEPTH_CLAMP);
+            world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
+            glDisable(GL_DEPTH_CLAMP);
+        }
     } else if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE) {
         if (f->in_once) world_set_detail(&r->world, r->detail);
         f->in_once = false;
