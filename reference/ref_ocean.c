@@ -67,6 +67,11 @@ typedef struct ref_ocean_snapshot {
      * memory of the eight-field texels (the three cascades' 3 MiB do not
      * stay in a core's cache; 1.1 MiB does far better) */
     double *map[REF_OCEAN_CASCADES_MAX]; /* N * N * 3: Dx, Dz, h a texel */
+    /* the bounds by region (see cascade_bounds): a max pyramid a cascade,
+     * level l holding (slope, chop) of each block of 2^l x 2^l cells,
+     * rounded up to float; level 0 is the cells, level log2 N the tile */
+    float *pyr[REF_OCEAN_CASCADES_MAX];
+    double dlo[2], dhi[2];      /* (Dx, Dz) in [dlo, dhi] everywhere (summed) */
     ref_ocean_bounds bounds;
 } frame_slot;
 
@@ -397,6 +402,7 @@ void ref_ocean_destroy(ref_ocean *o) {
             assert(atomic_load(&o->slot[s].refs) == 0);   /* a snapshot outlived its ocean */
             free(o->slot[s].f[c]);
             free(o->slot[s].map[c]);
+            free(o->slot[s].pyr[c]);
         }
     }
     free(o->tw);
@@ -477,15 +483,69 @@ static void compute_cascade(const ref_ocean *o, int c, double t, double *f) {
     free(z);
 }
 
-/* Exact bounds of the bilinear fields of one cascade: max |h| over nodes;
- * the bilinear gradient in a cell is a blend of its edges' differences, so
- * |grad h| <= hypot(max |h(i+1,j) - h(i,j)|, max |h(i,j+1) - h(i,j)|) / texel
- * over the cell's edges; the same for the 2 x 2 derivative of the bilinear
- * (Dx, Dz) map, bounded in operator norm by its Frobenius norm of the
- * entries' maxima over the cell. */
-static void cascade_bounds(const ref_ocean *o, int c, const double *f, ref_ocean_bounds *b) {
+/* The bounds of the bilinear fields, exact per cell and per cascade.
+ *
+ * In a cell (x, z in [0, 1]^2 across it) the bilinear interpolant of a
+ * field q with node values q00, q10, q01, q11 has the derivatives
+ *
+ *     dq/du = ((1 - z) (q10 - q00) + z (q11 - q01)) / texel     (affine in z, free of x)
+ *     dq/dv = ((1 - x) (q01 - q00) + x (q11 - q10)) / texel     (affine in x, free of z)
+ *
+ * so the gradient of h, and the 2 x 2 derivative A = d(Dx, Dz)/d(u, v) of
+ * the sideways map, are bi-affine in (x, z): A(x, z) = sum_ab w_ab(x, z)
+ * A_ab, with the bilinear weights w_ab >= 0 (summing to 1) and the corner
+ * matrices A_ab = [dq/du at z = b | dq/dv at x = a] (q = Dx, Dz; the du
+ * column of both rows from the same edge z = b, the dv column from x = a).
+ * (Check: sum_a w_ab = (1 - z) or z, so column 1 of sum w_ab A_ab is
+ * (1 - z) du_0 + z du_1.) A norm is convex, so over the cell
+ *
+ *     |grad h(x, z)| <= max_ab |grad h_ab|,   ||A(x, z)||_2 <= max_ab ||A_ab||_2,
+ *
+ * and both are attained (at the corner): the cell's exact maxima. For h the
+ * four corner gradients are all the pairs (du at z = 0 or 1, dv at x = 0 or
+ * 1), so its max is hypot(max |du|, max |dv|). The spectral norm of
+ * [a b; c d] is (hypot(a + d, b - c) + hypot(a - d, b + c)) / 2.
+ *
+ * The interpolant is continuous and C1 inside cells, so on a convex set B
+ * of rest points (a segment between two points of B crosses finitely many
+ * cells) h is Lipschitz with the largest cell |grad h| of the cells meeting
+ * B, and D with the largest cell ||A||_2: |D(p) - D(q)| <= C |p - q|. Over
+ * the cascades these add (A = sum_c A_c: ||A|| <= sum ||A_c||), and then
+ * the sideways map F(p) = p + D(p) has |F(p) - F(q)| >= (1 - C) |p - q|
+ * (the smallest singular value of I + A is >= 1 - ||A||), which is what
+ * ref_waves' world-slope bounds are built on (ref_waves.c, world_slope_box).
+ *
+ * (The bound before this one took the Frobenius norm of the matrix of the
+ * entries' maxima over the cell, and ||A||_2 <= ||(max |a_ij|)||_2 <=
+ * Frobenius; the corners' spectral norm is the least of the three.)
+ *
+ * Besides the frame's bounds this fills the cascade's pyramid (frame_slot:
+ * level 0 the cells' (slope, chop), each level above the max of the 2 x 2
+ * blocks below it) and the per-cascade range of (Dx, Dz) over the nodes
+ * (a bilinear value lies between its cell's nodes). */
+static size_t pyr_size(int n) {
+    size_t s = 0;
+    for (int m = n; m >= 1; m >>= 1) s += (size_t)m * m;
+    return s;
+}
+
+/* x rounded up to a float (the pyramid's values are bounds) */
+static float float_up(double x) {
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* The spectral norm of [a b; c d]. */
+static double spectral2(double a, double b, double c, double d) {
+    return 0.5 * (hypot(a + d, b - c) + hypot(a - d, b + c));
+}
+
+static void cascade_bounds(const ref_ocean *o, int c, frame_slot *sl, ref_ocean_bounds *b) {
     int N = o->n;
+    const double *f = sl->f[c];
+    float *pyr = sl->pyr[c];
     double inv = N / o->d.tile[c], hmax = 0, smax = 0, cmax = 0;
+    double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY, -INFINITY };
     for (int j = 0; j < N; j++)
         for (int i = 0; i < N; i++) {
             const double *p00 = f + 8 * ((size_t)j * N + i);
@@ -493,22 +553,48 @@ static void cascade_bounds(const ref_ocean *o, int c, const double *f, ref_ocean
             const double *p01 = f + 8 * ((size_t)((j + 1) % N) * N + i);
             const double *p11 = f + 8 * ((size_t)((j + 1) % N) * N + (i + 1) % N);
             hmax = fmax(hmax, fabs(p00[0]));
-            double e[4] = { 0, 0, 0, 0 };   /* max over the cell of |d/du|, |d/dv| of h, Dx, Dz */
-            for (int q = 0; q < 3; q++) {
-                double du = fmax(fabs(p10[q] - p00[q]), fabs(p11[q] - p01[q])) * inv;
-                double dv = fmax(fabs(p01[q] - p00[q]), fabs(p11[q] - p10[q])) * inv;
-                if (q == 0) { e[0] = du; e[1] = dv; }
-                else if (q == 1) { e[2] = du; e[3] = dv; }
-                else {
-                    double fro = sqrt(e[2] * e[2] + e[3] * e[3] + du * du + dv * dv);
-                    cmax = fmax(cmax, fro);
-                }
+            for (int q = 0; q < 2; q++) {
+                lo[q] = fmin(lo[q], p00[1 + q]);
+                hi[q] = fmax(hi[q], p00[1 + q]);
             }
-            smax = fmax(smax, hypot(e[0], e[1]));
+            /* du on the edges z = 0, 1 and dv on x = 0, 1, of h, Dx, Dz */
+            double du[3][2], dv[3][2];
+            for (int q = 0; q < 3; q++) {
+                du[q][0] = (p10[q] - p00[q]) * inv;
+                du[q][1] = (p11[q] - p01[q]) * inv;
+                dv[q][0] = (p01[q] - p00[q]) * inv;
+                dv[q][1] = (p11[q] - p10[q]) * inv;
+            }
+            double sc = hypot(fmax(fabs(du[0][0]), fabs(du[0][1])), fmax(fabs(dv[0][0]), fabs(dv[0][1])));
+            double cc = 0;
+            for (int zb = 0; zb < 2; zb++)
+                for (int xa = 0; xa < 2; xa++)
+                    cc = fmax(cc, spectral2(du[1][zb], dv[1][xa], du[2][zb], dv[2][xa]));
+            smax = fmax(smax, sc);
+            cmax = fmax(cmax, cc);
+            pyr[2 * ((size_t)j * N + i)] = float_up(sc);
+            pyr[2 * ((size_t)j * N + i) + 1] = float_up(cc);
         }
+    /* the levels above: max of 2 x 2 blocks */
+    float *below = pyr;
+    for (int n = N / 2; n >= 1; n /= 2) {
+        float *lev = below + 2 * (size_t)(2 * n) * (2 * n);
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++)
+                for (int k = 0; k < 2; k++) {
+                    const float *r0 = below + 2 * ((size_t)(2 * j) * (2 * n) + 2 * i) + k;
+                    const float *r1 = r0 + 2 * (size_t)(2 * n);
+                    lev[2 * ((size_t)j * n + i) + k] = fmaxf(fmaxf(r0[0], r0[2]), fmaxf(r1[0], r1[2]));
+                }
+        below = lev;
+    }
     b->height += hmax;
     b->slope += smax;
     b->chop += cmax;
+    for (int q = 0; q < 2; q++) {
+        sl->dlo[q] += lo[q];
+        sl->dhi[q] += hi[q];
+    }
 }
 
 /* The slot's arrays for cascade c (allocated on first use); returns f. */
@@ -517,6 +603,7 @@ static double *slot_fields(const ref_ocean *o, frame_slot *sl, int c) {
     if (!sl->f[c]) {
         sl->f[c] = mem_alloc(sizeof(double) * 8 * nn);
         sl->map[c] = mem_alloc(sizeof(double) * 3 * nn);
+        sl->pyr[c] = mem_alloc(sizeof(float) * 2 * pyr_size(o->n));
     }
     return sl->f[c];
 }
@@ -564,10 +651,11 @@ static frame_slot *frame_acquire(const ref_ocean *oc, double t) {
         /* computed under the lock: a thread wanting the same t waits for it */
         lru->valid = 0;
         lru->bounds = (ref_ocean_bounds){ 0, 0, 0 };
+        lru->dlo[0] = lru->dlo[1] = lru->dhi[0] = lru->dhi[1] = 0;
         for (int c = 0; c < o->nc; c++) {
             compute_cascade(o, c, t, slot_fields(o, lru, c));
             pack_fields(o, lru, c);
-            cascade_bounds(o, c, lru->f[c], &lru->bounds);
+            cascade_bounds(o, c, lru, &lru->bounds);
         }
         lru->t = t;
         lru->valid = 1;
@@ -608,6 +696,60 @@ void ref_ocean_snapshot_release(const ref_ocean_snapshot *s) {
 }
 
 void ref_ocean_snapshot_bounds(const ref_ocean_snapshot *s, ref_ocean_bounds *b) { *b = s->bounds; }
+
+void ref_ocean_snapshot_disp_range(const ref_ocean_snapshot *s, double lo[2], double hi[2]) {
+    for (int q = 0; q < 2; q++) {
+        lo[q] = s->dlo[q];
+        hi[q] = s->dhi[q];
+    }
+}
+
+/* The cells a box [a, b] of texel coordinates meets, along one axis: the
+ * first one wrapped into [0, N) and how many more. 0 when it spans the
+ * tile (or is not finite). */
+static int cell_span(double a, double b, long N, long *i0, long *di) {
+    if (!(b - a < (double)(N - 1)) || !(fabs(a) < 0x1p52) || !(fabs(b) < 0x1p52)) return 0;
+    double fa = floor(a), fb = floor(b);
+    *i0 = (long)fa & (N - 1);
+    *di = (long)(fb - fa);
+    return 1;
+}
+
+void ref_ocean_snapshot_box_bounds(const ref_ocean_snapshot *s, double u0, double v0, double u1, double v1,
+                                   double *slope, double *chop) {
+    const ref_ocean *o = s->o;
+    long N = o->n;
+    double sl = 0, ch = 0;
+    for (int c = 0; c < o->nc; c++) {
+        const float *pyr = s->pyr[c];
+        double inv = o->inv[c];
+        long i0, di, j0, dj;
+        if (!cell_span(u0 * inv, u1 * inv, N, &i0, &di) || !cell_span(v0 * inv, v1 * inv, N, &j0, &dj)) {
+            /* the whole tile: the top level */
+            const float *top = pyr + 2 * (pyr_size((int)N) - 1);
+            sl += top[0];
+            ch += top[1];
+            continue;
+        }
+        /* the finest level whose blocks cover the cells in 2 x 2 of them */
+        long n = N, l = 0;
+        const float *lev = pyr;
+        while (((i0 + di) >> l) - (i0 >> l) > 1 || ((j0 + dj) >> l) - (j0 >> l) > 1) {
+            lev += 2 * (size_t)n * n;
+            n >>= 1;
+            l++;
+        }
+        long m = n - 1, ia = i0 >> l, ib = ((i0 + di) >> l) & m, ja = j0 >> l, jb = ((j0 + dj) >> l) & m;
+        const float *e[4] = { lev + 2 * (ja * n + ia), lev + 2 * (ja * n + ib), lev + 2 * (jb * n + ia),
+                              lev + 2 * (jb * n + ib) };
+        float a = fmaxf(fmaxf(e[0][0], e[1][0]), fmaxf(e[2][0], e[3][0]));
+        float b = fmaxf(fmaxf(e[0][1], e[1][1]), fmaxf(e[2][1], e[3][1]));
+        sl += a;
+        ch += b;
+    }
+    *slope = sl;
+    *chop = ch;
+}
 
 /* Where (u, v) lies in cascade c's periodic grid: the node indices of its
  * cell (row-major, m fastest) and its place (x, z) in [0, 1)^2 there. */

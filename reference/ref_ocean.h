@@ -100,13 +100,14 @@ typedef struct ref_ocean_sample {
 
 /* Bounds of a frame, of the bilinear surface itself (summed over the
  * cascades): |h| <= height (max |h| over nodes, attained); |grad h| <=
- * slope (the gradient of the bilinear interpolant in a cell blends its
- * edges' node differences / texel); the derivative of the bilinear
- * sideways map (u, v) -> (Dx, Dz) has operator norm <= chop (Frobenius
- * norm of the cell's largest node differences), so the map's Jacobian's
- * smallest singular value >= 1 - chop and world slopes <= slope / (1 - chop)
- * when chop < 1. ref_ocean_bounds_any: the sums of the waves' amplitudes
- * (times k for slope, times lambda k for chop), true at every time. */
+ * slope; the derivative of the bilinear sideways map (u, v) -> (Dx, Dz)
+ * has spectral norm <= chop. Each cascade's part is its exact maximum over
+ * the bilinear surface: both derivatives are bi-affine in a cell, so their
+ * norms peak at the cell's corners (proof at cascade_bounds, ref_ocean.c).
+ * So the map's Jacobian's smallest singular value >= 1 - chop and world
+ * slopes <= slope / (1 - chop) when chop < 1. ref_ocean_bounds_any: the
+ * sums of the waves' amplitudes (times k for slope, times lambda k for
+ * chop), true at every time. */
 typedef struct ref_ocean_bounds {
     double height, slope, chop;
 } ref_ocean_bounds;
@@ -164,6 +165,20 @@ void ref_ocean_snapshot_sample(const ref_ocean_snapshot *s, double u, double v, 
 void ref_ocean_snapshot_map(const ref_ocean_snapshot *s, double u, double v, double d[2], double jac[4],
                             double *height);
 double ref_ocean_snapshot_height(const ref_ocean_snapshot *s, double u, double v);
+
+/* Bounds by region. disp_range: (Dx, Dz) lies in [lo, hi] (per axis) at
+ * every rest point (the cascades' node minima and maxima summed).
+ * box_bounds: over the rest points of the box [u0, u1] x [v0, v1] (u0 <=
+ * u1, v0 <= v1) h is Lipschitz with constant slope and the sideways map
+ * (Dx, Dz) with constant chop (spectral norm), each the sum over the
+ * cascades of the largest exact cell maximum (ref_ocean_bounds) among the
+ * cells of a few blocks of cells that cover the box (a max pyramid of each
+ * cascade's cells: 2 x 2 blocks of the finest level that covers it so,
+ * rounded up to float). At most the frame's bounds (up to that rounding);
+ * O(cascades) a call. */
+void ref_ocean_snapshot_disp_range(const ref_ocean_snapshot *s, double lo[2], double hi[2]);
+void ref_ocean_snapshot_box_bounds(const ref_ocean_snapshot *s, double u0, double v0, double u1, double v1,
+                                   double *slope, double *chop);
 
 /* The same fields by a direct sum of every wave of every cascade at (u, v)
  * (no FFT, no interpolation): equal to ref_ocean_sample_at at grid nodes

@@ -101,6 +101,8 @@ typedef struct water_ctx {
     const ref_waves_ctx *wc;
     const double *o, *d;
     ref_waves_track track;      /* the last sample's rest point: the next one's start */
+    int rc;                     /* the last sample's inversion: 0 when it converged */
+    double seg_t0, seg_t1, seg_lip;   /* |f'| <= seg_lip on [seg_t0, seg_t1] (regional_step) */
 } water_ctx;
 
 /* f(t) = y(t) - H(x(t), z(t)): > 0 above the water */
@@ -108,8 +110,40 @@ static double water_f(void *vctx, double t) {
     water_ctx *c = vctx;
     double x = c->o[0] + t * c->d[0], z = c->o[2] + t * c->d[2];
     double uv[2], h;
-    ref_waves_ctx_track(c->wc, x, z, &c->track, uv, &h);
+    c->rc = ref_waves_ctx_track(c->wc, x, z, &c->track, uv, &h);
     return c->o[1] + t * c->d[1] - h;
+}
+
+/* The longest step from t (where |f| = af) that the world-slope bound of
+ * the region it crosses allows. Any dt with dt <= af / L(dt), L(dt) =
+ * |d.y| + (a world-slope bound over the ray's (x, z) on [t, t + dt]) |d.xz|
+ * a Lipschitz bound of f there, cannot step over a crossing: |f| > 0 on
+ * [t, t + dt). With the most hopeful reach, cand = af / L(0) (the bound at
+ * the point), dt = min(cand, af / L(cand)) is such a dt (the bound over
+ * [t, t + dt] is at most the one over [t, t + cand]), and at least the
+ * frame's step af / L(everywhere). The bounds are those of the world points
+ * within a distance of the ray's point at t, from its rest point (the last
+ * sample's, when its inversion converged: ref_waves_ctx_world_slope_near).
+ * 0 where none is known (the region may fold, or f is not a number). */
+static double regional_step(water_ctx *c, double t, double af, double dh) {
+    const double *o = c->o, *d = c->d;
+    if (!(af >= 0.0)) return 0.0;
+    if (t >= c->seg_t0 && t < c->seg_t1) {          /* the segment's bound still holds */
+        double dt = af / c->seg_lip;
+        if (t + dt <= c->seg_t1) return dt;
+    }
+    double x = o[0] + t * d[0], z = o[2] + t * d[2], ay = fabs(d[1]);
+    const double *uv = c->track.valid && c->rc == 0 ? c->track.uv : (const double[2]){ NAN, NAN };
+    double l0 = ay + ref_waves_ctx_world_slope_near(c->wc, x, z, uv, 0.0) * dh;
+    if (!(l0 > 0.0) || !isfinite(l0)) return 0.0;
+    double cand = af / l0;
+    double l1 = ay + ref_waves_ctx_world_slope_near(c->wc, x, z, uv, cand * dh) * dh;
+    if (!(l1 > 0.0) || !isfinite(l1)) return 0.0;
+    c->seg_t0 = t;
+    c->seg_t1 = t + cand;
+    c->seg_lip = l1;
+    double dt = af / l1;
+    return dt < cand ? dt : cand;
 }
 
 int ref_trace_water(const ref_waves *w, double time, const double o[3], const double d[3],
@@ -135,9 +169,14 @@ int ref_trace_water_ctx(const ref_waves_ctx *wc, const double o[3], const double
     double dlen = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double dh = hypot(d[0], d[2]);
     double lip = fabs(d[1]) + wsb * dh;   /* |f'(t)| <= lip */
+    /* with an ocean, each step takes the bound of the region it goes
+     * through (regional_step), which may be finite where the frame's is
+     * not (the sea folds somewhere else) */
+    int regional = wc->ocean != NULL && dh > 0.0;
     /* min_wavelength is at most the finest ocean cascade's 2 texels, so the
      * least step is a 64th of its texel. Where the sideways maps may fold
-     * (Gerstner Q + the ocean's chop >= 1) the world slope is unbounded and
+     * (Gerstner Q + the ocean's chop >= 1 over the region a step reaches,
+     * or over the frame without an ocean) the world slope is unbounded and
      * the march goes at this least step: it then finds every crossing of
      * the surface whose sign change spans more than one step (a fold
      * thinner than 1/64 texel along the ray may be stepped over), and
@@ -145,7 +184,7 @@ int ref_trace_water_ctx(const ref_waves_ctx *wc, const double o[3], const double
      * field there) the sign test is false and the march goes on. */
     double min_step = (tp.min_step > 0.0 ? tp.min_step : w->min_wavelength / 128.0) / dlen;
 
-    water_ctx c = { .wc = wc, .o = o, .d = d };
+    water_ctx c = { .wc = wc, .o = o, .d = d, .seg_t0 = INFINITY, .seg_t1 = -INFINITY };
     double t = ta, ft = water_f(&c, t);
     int evals = 1, found = 0;
     double tr = t;
@@ -154,7 +193,11 @@ int ref_trace_water_ctx(const ref_waves_ctx *wc, const double o[3], const double
     } else {
         for (int step = 0; step < tp.max_steps && t < tb; step++) {
             double dt = isfinite(lip) && lip > 0.0 ? fabs(ft) / lip : min_step;
-            if (dt < min_step) dt = min_step;
+            if (regional) {
+                double dr = regional_step(&c, t, fabs(ft), dh);
+                if (dr > dt) dt = dr;
+            }
+            if (!(dt >= min_step)) dt = min_step;   /* and where f is NaN (a fold) */
             double tn = t + dt < tb ? t + dt : tb;
             double fn = water_f(&c, tn);
             evals++;

@@ -256,6 +256,88 @@ void ref_waves_ctx_begin(ref_waves_ctx *c, const ref_waves *w, double t) {
     ref_ocean_bounds b;
     if (c->ocean) ref_ocean_snapshot_bounds(c->ocean, &b);
     bounds_with(w, c->ocean ? &b : NULL, &c->height, &c->slope, &c->world_slope);
+    c->fold = w->q_sum + (c->ocean ? b.chop : w->ocean_any.chop);
+    /* the sideways displacement's range: Gerstner's |Dx| <= sum |Q_i A_i D.x|,
+     * the ocean's between its nodes' extremes */
+    double g[2] = { 0.0, 0.0 };
+    for (int i = 0; i < w->ngerstner; i++)
+        for (int q = 0; q < 2; q++) g[q] += fabs(w->gerstner[i].qa * w->gerstner[i].dir[q]);
+    double lo[2] = { 0.0, 0.0 }, hi[2] = { 0.0, 0.0 };
+    if (c->ocean) ref_ocean_snapshot_disp_range(c->ocean, lo, hi);
+    for (int q = 0; q < 2; q++) {
+        c->disp_lo[q] = lo[q] - g[q];
+        c->disp_hi[q] = hi[q] + g[q];
+    }
+}
+
+/* Why the box's bound holds. Let X be a world point of the box W =
+ * [x0, x1] x [z0, z1] and p any rest point of it: p + D(p) = X, D the
+ * whole sideways displacement, which lies in [disp_lo, disp_hi] per axis.
+ * So p lies in the box B = [x0 - hi_x, x1 - lo_x] x [z0 - hi_z, z1 - lo_z],
+ * convex. Over B, h is Lipschitz with S = fixed_slope + the ocean's box
+ * slope, and D with C = q_sum + the ocean's box chop (ref_ocean.c,
+ * cascade_bounds: a Gerstner wave's derivative -Q_i A_i k_i sin D D^T has
+ * norm <= Q_i k_i |A_i|, and the noise, sines, rings and Perlin set do not
+ * move points sideways). When C < 1, for p, q in B
+ *     |F(p) - F(q)| >= |p - q| - |D(p) - D(q)| >= (1 - C) |p - q|,
+ * F(p) = p + D(p): so X has exactly one rest point (all of them lie in B,
+ * and two in B would be equal), the height over X is H(X) = h(p), and for
+ * X, X' in W with rest points p, p'
+ *     |H(X) - H(X')| = |h(p) - h(p')| <= S |p - p'| <= S / (1 - C) |X - X'|.
+ * This needs C < 1 over B only: the sea may fold elsewhere. (The frame's
+ * world_slope is the same with B the whole plane.) */
+/* S and C over the rest box [u0, u1] x [v0, v1] */
+static void rest_box(const ref_waves_ctx *c, double u0, double v0, double u1, double v1, double *s, double *fold) {
+    double os, oc;
+    ref_ocean_snapshot_box_bounds(c->ocean, u0, v0, u1, v1, &os, &oc);
+    *s = c->w->fixed_slope + os;
+    *fold = c->w->q_sum + oc;
+}
+
+double ref_waves_ctx_world_slope_box(const ref_waves_ctx *c, double x0, double z0, double x1, double z1) {
+    if (!c->ocean) return c->world_slope;
+    double s, fold;
+    rest_box(c, x0 - c->disp_hi[0], z0 - c->disp_hi[1], x1 - c->disp_lo[0], z1 - c->disp_lo[1], &s, &fold);
+    double ws = fold < 1.0 ? s / (1.0 - fold) : INFINITY;
+    return ws < c->world_slope ? ws : c->world_slope;
+}
+
+/* Why the bound near a rest point holds. Let the frame's fold be < 1, so
+ * F(p) = p + D(p) is one to one (ref_waves_ctx_world_slope_box's proof with
+ * B the plane) and every world point has exactly one rest point. uv is X0's
+ * rest point to the inversion's tolerance: |F(uv) - X0| <= pad. Let X be
+ * within reach of X0, so within l = reach + pad of F(uv), and let D be Lipschitz with C < 1 on the box B of
+ * half-width l / (1 - C) about uv. Then G(p) = X - D(p) maps the ball K of
+ * radius l / (1 - C) about uv (inside B) into itself,
+ *     |G(p) - uv| = |X - F(uv) - (D(p) - D(uv))| <= l + C |p - uv| <= l / (1 - C),
+ * and is a contraction there, so X's rest point lies in K. So for X, X'
+ * near X0 the rest points p, p' lie in B, and as in the box's proof
+ * |H(X) - H(X')| <= S |p - p'| <= S / (1 - C) |X - X'|, S h's Lipschitz
+ * bound on B. The first C is the frame's fold (valid everywhere); the box
+ * it gives has its own C1 <= C, and the smaller box of half-width
+ * l / (1 - C1) (inside the first, so C1 holds on it) gives C2; the bound
+ * takes the least S and C of the boxes that hold the last ball. */
+double ref_waves_ctx_world_slope_near(const ref_waves_ctx *c, double x, double z, const double uv[2],
+                                      double reach) {
+    if (!c->ocean) return c->world_slope;
+    if (!(c->fold < 1.0) || !isfinite(uv[0]) || !isfinite(uv[1]) || !(reach >= 0.0))
+        return ref_waves_ctx_world_slope_box(c, x - reach, z - reach, x + reach, z + reach);
+    /* the inversion stops within 1e-12 max(1, |x|, |z|); the pad covers
+     * that and the rounding of the caller's reach */
+    double pad = 1e-9 * (1.0 + fabs(x) + fabs(z));
+    /* the box's bound holds too (it is the better one when the reach is
+     * long: its region grows with the displacement's range, not as
+     * reach / (1 - C)): the better of the two */
+    double wb = ref_waves_ctx_world_slope_box(c, x - reach - pad, z - reach - pad, x + reach + pad, z + reach + pad);
+    double l = reach + pad, C = c->fold, S = INFINITY;
+    for (int k = 0; k < (reach == 0.0 ? 1 : 2); k++) {   /* a point's box is a cell or two: once */
+        double r = l / (1.0 - C), s1, c1;
+        rest_box(c, uv[0] - r, uv[1] - r, uv[0] + r, uv[1] + r, &s1, &c1);
+        if (s1 < S) S = s1;
+        if (c1 < C) C = c1;
+    }
+    double ws = S / (1.0 - C);
+    return ws < wb ? ws : wb;
 }
 
 void ref_waves_ctx_end(ref_waves_ctx *c) {

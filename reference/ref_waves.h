@@ -180,10 +180,32 @@ typedef struct ref_waves_ctx {
     double t;
     const ref_ocean_snapshot *ocean;     /* NULL without an ocean */
     double height, slope, world_slope;   /* ref_waves_bounds_at(w, t) */
+    double fold;                         /* the sideways map's derivative has spectral
+                                            norm <= fold (< 1: the map is one to one) */
+    double disp_lo[2], disp_hi[2];       /* the sideways displacement (Gerstner's and
+                                            the ocean's) lies in [lo, hi] per axis */
 } ref_waves_ctx;
 
 void ref_waves_ctx_begin(ref_waves_ctx *c, const ref_waves *w, double t);
 void ref_waves_ctx_end(ref_waves_ctx *c);
+
+/* A world-slope bound over a box of world points [x0, x1] x [z0, z1]:
+ * |H(X) - H(X')| <= it * |X - X'| for X, X' in the box (INFINITY when the
+ * sideways map may fold over the rest points that box can come from). At
+ * most c->world_slope; with an ocean it takes the ocean's bounds of the
+ * region the box's rest points lie in (ref_ocean_snapshot_box_bounds), so a
+ * march's step can use the bound of where it goes rather than the worst of
+ * the whole sea (proof in ref_waves.c). */
+double ref_waves_ctx_world_slope_box(const ref_waves_ctx *c, double x0, double z0, double x1, double z1);
+
+/* The same over the world points within distance reach of (x, z),
+ * given its rest point uv (an inversion's, which converged): when
+ * the frame's map is one to one (fold < 1) the rest points of those lie
+ * within reach / (1 - C) of uv, C the map's bound there, so the region
+ * is as small as the step (ref_waves_ctx_world_slope_box's is at least the
+ * displacement's range); else the box around (x, z). */
+double ref_waves_ctx_world_slope_near(const ref_waves_ctx *c, double x, double z, const double uv[2],
+                                      double reach);
 
 /* ref_waves_eval, ref_waves_at, ref_waves_rest_point, ref_waves_height at
  * the context's time. */

@@ -371,6 +371,89 @@ static void test_bounds(void) {
     ref_ocean_destroy(o);
 }
 
+/* The spectral norm of [a b; c d], by the eigenvalues of M^T M. */
+static double norm2(const double m[4]) {
+    double p = m[0] * m[0] + m[2] * m[2], q = m[1] * m[1] + m[3] * m[3], r = m[0] * m[1] + m[2] * m[3];
+    return sqrt(0.5 * (p + q) + sqrt(0.25 * (p - q) * (p - q) + r * r));
+}
+
+/* The chop bound is the exact max of the bilinear map's derivative's
+ * spectral norm (one cascade: attained just inside a cell's corner), and
+ * at random points and times, in random boxes, the derivative and the
+ * bilinear height's gradient (finite differences inside a cell) stay
+ * within the frame's and the box's bounds; the displacement within its
+ * range. */
+static void test_bounds_regions(void) {
+    ref_ocean_desc d1 = small_desc(REF_SPECTRUM_JONSWAP, 1);
+    d1.choppiness = 1.2;
+    ref_ocean *o1 = make(d1);
+    ref_ocean *o3 = make(small_desc(REF_SPECTRUM_PHILLIPS, 3));
+    if (!o1 || !o3) return;
+    /* one cascade: the max over every cell's four inner corners is the bound */
+    const ref_ocean_snapshot *s1 = ref_ocean_snapshot_acquire(o1, 1.5);
+    ref_ocean_bounds b1;
+    ref_ocean_snapshot_bounds(s1, &b1);
+    double cmax = 0, e = 1e-9;
+    for (int j = 0; j < 64; j++)
+        for (int i = 0; i < 64; i++)
+            for (int k = 0; k < 4; k++) {
+                double dd[2], jac[4];
+                ref_ocean_snapshot_map(s1, i + ((k & 1) ? 1 - e : e), j + ((k & 2) ? 1 - e : e), dd, jac, NULL);
+                cmax = fmax(cmax, norm2(jac));
+            }
+    CHECK_MSG(cmax <= b1.chop && cmax > b1.chop * (1 - 1e-7), "corner max %.12g, chop %.12g", cmax, b1.chop);
+    ref_ocean_snapshot_release(s1);
+
+    uint64_t st = 5;
+    int bad = 0, n = 0;
+    double worst_g = 0, worst_c = 0, worst_bg = 0, worst_bc = 0;
+    for (int k = 0; k < 12; k++) {
+        double t = 0.37 + 2.9 * k;
+        const ref_ocean_snapshot *s = ref_ocean_snapshot_acquire(o3, t);
+        ref_ocean_bounds b;
+        ref_ocean_snapshot_bounds(s, &b);
+        double lo[2], hi[2];
+        ref_ocean_snapshot_disp_range(s, lo, hi);
+        for (int r = 0; r < 40; r++) {
+            st = st * 6364136223846793005ull + 1442695040888963407ull;
+            double u0 = (double)(st >> 11) * 0x1.0p-53 * 200 - 100;
+            st = st * 6364136223846793005ull + 1442695040888963407ull;
+            double v0 = (double)(st >> 11) * 0x1.0p-53 * 200 - 100;
+            double w = 0.05 * pow(400.0, (r % 8) / 7.0);   /* boxes 5 cm .. 20 m */
+            double bs, bc;
+            ref_ocean_snapshot_box_bounds(s, u0, v0, u0 + w, v0 + 0.7 * w, &bs, &bc);
+            bad += !(bs <= b.slope * (1 + 1e-6) && bc <= b.chop * (1 + 1e-6));
+            for (int p = 0; p < 50; p++) {
+                st = st * 6364136223846793005ull + 1442695040888963407ull;
+                double u = u0 + w * (double)(st >> 11) * 0x1.0p-53;
+                st = st * 6364136223846793005ull + 1442695040888963407ull;
+                double v = v0 + 0.7 * w * (double)(st >> 11) * 0x1.0p-53;
+                double dd[2], jac[4], h0;
+                ref_ocean_snapshot_map(s, u, v, dd, jac, &h0);
+                /* one-sided differences, a step well inside the finest texel */
+                double h = 1e-7, su = ref_ocean_snapshot_height(s, u + h, v), sv = ref_ocean_snapshot_height(s, u, v + h);
+                double g = hypot(su - h0, sv - h0) / h, c = norm2(jac);
+                worst_g = fmax(worst_g, g / b.slope);
+                worst_c = fmax(worst_c, c / b.chop);
+                worst_bg = fmax(worst_bg, g / bs);
+                worst_bc = fmax(worst_bc, c / bc);
+                bad += !(dd[0] >= lo[0] - 1e-12 && dd[0] <= hi[0] + 1e-12 && dd[1] >= lo[1] - 1e-12 &&
+                         dd[1] <= hi[1] + 1e-12);
+                n++;
+            }
+        }
+        ref_ocean_snapshot_release(s);
+    }
+    CHECK_MSG(bad == 0, "%d of %d outside", bad, n);
+    /* the gradient by differences: to 1e-6 of the bound (their rounding) */
+    CHECK_MSG(worst_g <= 1 + 1e-6 && worst_c <= 1 && worst_bg <= 1 + 1e-6 && worst_bc <= 1,
+              "|grad h| / bound %.9g, ||A|| / chop %.9g, in boxes %.9g %.9g", worst_g, worst_c, worst_bg, worst_bc);
+    /* and the boxes' bounds are not loose: the sampled maxima reach a fair part */
+    CHECK_MSG(worst_bg > 0.5 && worst_bc > 0.5, "in boxes %g %g", worst_bg, worst_bc);
+    ref_ocean_destroy(o1);
+    ref_ocean_destroy(o3);
+}
+
 static void test_determinism_and_errors(void) {
     ref_ocean_desc d = small_desc(REF_SPECTRUM_JONSWAP, 2);
     ref_ocean *a = make(d), *b = make(d);
@@ -553,6 +636,7 @@ int main(void) {
     RUN(test_energy);
     RUN(test_folding);
     RUN(test_bounds);
+    RUN(test_bounds_regions);
     RUN(test_determinism_and_errors);
     RUN(test_threads);
     RUN(test_snapshot);

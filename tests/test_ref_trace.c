@@ -226,9 +226,13 @@ static void test_water_vs_brute_force(void) {
  * hit bit for bit, and both give the hits the reference gave before the
  * fast path (a snapshot of the frame, packed nodes, the march's predicted
  * Newton starts: commit c31aa40, printed to 17 digits): t within the
- * refinement tolerance, the surface to rounding. The march takes as many
- * steps as it did (its steps are the Lipschitz steps from the frame's
- * bounds, unchanged). */
+ * refinement tolerance (1e-9), the surface within what that moves it (y by
+ * |f'| <= 1 times it, the normal by the curvature times it). The march's
+ * steps are Lipschitz steps from the bounds of the region each crosses
+ * (ref_waves_ctx_world_slope_near; before, the frame's: then the evals
+ * were 682 167 107 107 119 113 and, where the frame's bound is infinite
+ * since Q + chop >= 1, the least steps' 16840 10009 8903 8740 8037 7224):
+ * the counts now are recorded. */
 typedef struct recorded_hit {
     double t, y, nx;
     int evals;
@@ -237,19 +241,20 @@ typedef struct recorded_hit {
 static void test_ocean_fast_path(void) {
     static const recorded_hit want[2][6] = {
         {   /* the ocean alone (not folding: Lipschitz steps) */
-            { 44.228549147250128, 0.47735710488689681, -0.091696424290270348, 682 },
-            { 27.45527469799374, 0.72947999402743202, -0.025927404548995336, 167 },
-            { 22.814130219527208, 0.39575984375719014, 0.086726477768808902, 107 },
-            { 20.189199857427759, 0.043614356386600106, 0.056808377724659687, 107 },
-            { 17.834376276104408, -0.15245273336780563, -0.020621622162503433, 119 },
-            { 15.758781359820649, -0.22947434400370514, 0.068405667761570033, 113 },
-        }, {   /* and a Gerstner wave (Q + chop >= 1: the least steps) */
-            { 43.813480539858716, 0.51041580812276965, 0.0043241431451611139, 16840 },
-            { 27.674229438318289, 0.70339772508203391, -0.046971759460510437, 10009 },
-            { 22.620382178517119, 0.42636870163967183, -0.018773531819039731, 8903 },
-            { 20.256786792130455, 0.030369652270811232, 0.1045429386253014, 8740 },
-            { 17.928736898946202, -0.17442311350193407, -0.034304279954892887, 8037 },
-            { 15.879413485518068, -0.26185060896046219, -0.0068286174713047664, 7224 },
+            { 44.228549147250128, 0.47735710488689681, -0.091696424290270348, 136 },
+            { 27.45527469799374, 0.72947999402743202, -0.025927404548995336, 44 },
+            { 22.814130219527208, 0.39575984375719014, 0.086726477768808902, 43 },
+            { 20.189199857427759, 0.043614356386600106, 0.056808377724659687, 48 },
+            { 17.834376276104408, -0.15245273336780563, -0.020621622162503433, 56 },
+            { 15.758781359820649, -0.22947434400370514, 0.068405667761570033, 54 },
+        }, {   /* and a Gerstner wave (Q + chop >= 1 over the frame: Lipschitz steps
+                  where the region a step reaches does not fold, else the least) */
+            { 43.813480539858716, 0.51041580812276965, 0.0043241431451611139, 585 },
+            { 27.674229438318289, 0.70339772508203391, -0.046971759460510437, 1349 },
+            { 22.620382178517119, 0.42636870163967183, -0.018773531819039731, 1509 },
+            { 20.256786792130455, 0.030369652270811232, 0.1045429386253014, 4792 },
+            { 17.928736898946202, -0.17442311350193407, -0.034304279954892887, 4448 },
+            { 15.879413485518068, -0.26185060896046219, -0.0068286174713047664, 4031 },
         },
     };
     for (int g = 0; g < 2; g++) {
@@ -275,8 +280,8 @@ static void test_ocean_fast_path(void) {
             CHECK(ref_trace_water(&w, 2.0, o, d, &op, &a) && ref_trace_water_ctx(&wc, o, d, &op, &b));
             CHECK(memcmp(&a, &b, sizeof a) == 0);
             const recorded_hit *r = &want[g][k];
-            CHECK_MSG(fabs(a.t - r->t) <= 1e-9 && fabs(a.surf.pos[1] - r->y) <= 1e-12 &&
-                      fabs(a.surf.normal[0] - r->nx) <= 1e-12 && a.evals == r->evals,
+            CHECK_MSG(fabs(a.t - r->t) <= 1e-9 && fabs(a.surf.pos[1] - r->y) <= 1e-9 &&
+                      fabs(a.surf.normal[0] - r->nx) <= 1e-7 && a.evals == r->evals,
                       "case %d ray %d: t %.17g y %.17g nx %.17g evals %d", g, k, a.t, a.surf.pos[1],
                       a.surf.normal[0], a.evals);
         }

@@ -628,6 +628,8 @@ static void test_ctx_fast_path(void) {
         /* a march: small steps along a line, and now and then a jump */
         double x = -30 + 0.037 * i + (i % 50 == 0 ? 5 * lcg01(&st) : 0), z = 12 - 0.021 * i;
         ref_waves_point p, q;
+        memset(&p, 0, sizeof p);   /* the struct's tail padding too: memcmp below */
+        memset(&q, 0, sizeof q);
         bad += ref_waves_at(&w, x, z, t, NULL, &p) != ref_waves_ctx_at(&c, x, z, NULL, &q);
         bad += memcmp(&p, &q, sizeof p) != 0;
         double uv0[2], uv1[2], uv2[2], h0, h1, h2;
@@ -655,6 +657,76 @@ static void test_ctx_fast_path(void) {
     CHECK(ref_waves_ctx_height(&c, 1.5, -2.25) == ref_waves_height(&w, 1.5, -2.25, 3.0));
     ref_waves_ctx_end(&c);
     ref_waves_release(&w);
+}
+
+/* The world-slope bounds by region hold: over random world boxes and
+ * discs about a point (its rest point given), at random times, the height
+ * over the world changes by at most bound * distance between any two
+ * points of them (ocean.glib's sea at N = 64, and with a Gerstner wave
+ * too); and the sideways map's smallest singular value (the bilinear map's
+ * exact derivative) stays >= 1 - fold. */
+static void test_world_slope_regions(void) {
+    double worst = 0, worst_sv = 0, ratio_box = 0, ratio_near = 0;
+    int n = 0;
+    for (int g = 0; g < 2; g++) {
+        ref_waves_desc d;
+        memset(&d, 0, sizeof d);
+        d.level = 0.5;
+        d.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_JONSWAP, .wind_speed = 9, .wind_angle_deg = -80,
+                                    .choppiness = 1, .res = 64, .seed = 7, .fetch = 100000, .cascades = 3,
+                                    .tile = { 160, 37, 5.3 } };
+        d.gerstner_count = g;
+        d.gerstner[0] = (ref_wave_desc){ .angle_deg = 30, .wavelength = 7, .amplitude = 0.05 };
+        d.steepness = 0.15;
+        ref_waves w;
+        if (init(&w, &d)) return;
+        uint64_t st = 17 + g;
+        for (int k = 0; k < 6; k++) {
+            ref_waves_ctx c;
+            ref_waves_ctx_begin(&c, &w, 0.4 + 1.7 * k);
+            CHECK(c.fold < 1 && isfinite(c.world_slope));
+            for (int r = 0; r < 12; r++) {
+                double x0 = 100 * lcg01(&st) - 50, z0 = 100 * lcg01(&st) - 50;
+                double reach = 0.02 * pow(250.0, (r % 6) / 5.0);   /* 2 cm .. 5 m */
+                double uv[2], h0;
+                CHECK(ref_waves_ctx_rest_point(&c, x0, z0, NULL, uv, &h0) == 0);
+                double bn = ref_waves_ctx_world_slope_near(&c, x0, z0, uv, reach);
+                double bb = ref_waves_ctx_world_slope_box(&c, x0 - reach, z0 - reach, x0 + reach, z0 + reach);
+                CHECK(bn <= bb && bb <= c.world_slope);
+                for (int p = 0; p < 40; p++) {
+                    /* a pair in the disc (for the box, in the square) */
+                    double a = 2 * M_PI * lcg01(&st), q = reach * sqrt(lcg01(&st));
+                    double x1 = x0 + q * cos(a), z1 = z0 + q * sin(a);
+                    double x2 = x0 + reach * (2 * lcg01(&st) - 1), z2 = z0 + reach * (2 * lcg01(&st) - 1);
+                    double h1 = ref_waves_ctx_height(&c, x1, z1), h2 = ref_waves_ctx_height(&c, x2, z2);
+                    double e = 1e-9;   /* the inversions' tolerance, times the slope */
+                    double rn = fabs(h1 - h0) / (bn * hypot(x1 - x0, z1 - z0) + e);
+                    double rb = fabs(h2 - h1) / (bb * hypot(x2 - x1, z2 - z1) + e);
+                    worst = fmax(worst, fmax(rn, rb));
+                    ratio_near = fmax(ratio_near, fabs(h1 - h0) / (bn * hypot(x1 - x0, z1 - z0) + 1e-300));
+                    ratio_box = fmax(ratio_box, fabs(h2 - h1) / (bb * hypot(x2 - x1, z2 - z1) + 1e-300));
+                    if (g == 0) {   /* J = I + the ocean's bilinear derivative */
+                        double u1[2], dd[2], jac[4];
+                        ref_waves_ctx_rest_point(&c, x1, z1, NULL, u1, NULL);
+                        ref_ocean_snapshot_map(c.ocean, u1[0], u1[1], dd, jac, NULL);
+                        double J[4] = { 1 + jac[0], jac[1], jac[2], 1 + jac[3] };
+                        double P = J[0] * J[0] + J[2] * J[2], Q = J[1] * J[1] + J[3] * J[3], R = J[0] * J[1] + J[2] * J[3];
+                        double smin = sqrt(fmax(0, 0.5 * (P + Q) - sqrt(0.25 * (P - Q) * (P - Q) + R * R)));
+                        worst_sv = fmax(worst_sv, (1 - c.fold) / smin);
+                    }
+                    n++;
+                }
+            }
+            ref_waves_ctx_end(&c);
+        }
+        ref_waves_release(&w);
+    }
+    CHECK_MSG(worst <= 1 && worst_sv <= 1, "%d pairs: |dH| / (bound |dX|) up to %g, (1 - fold) / sigma_min %g",
+              n, worst, worst_sv);
+    /* not loose by much: the pairs reach a fair part of the bounds */
+    CHECK_MSG(ratio_near > 0.2 && ratio_box > 0.1, "near %g, box %g", ratio_near, ratio_box);
+    printf("  world slope regions: %d pairs, |dH| / (bound |dX|) max: near %.3f, box %.3f; (1 - fold) / sigma_min max %.3f\n",
+           n, ratio_near, ratio_box, worst_sv);
 }
 
 static void test_ocean_folding(void) {
@@ -695,6 +767,7 @@ int main(void) {
     RUN(test_uniforms);
     RUN(test_ocean);
     RUN(test_ocean_folding);
+    RUN(test_world_slope_regions);
     RUN(test_ctx_fast_path);
     return check_summary();
 }
