@@ -183,6 +183,14 @@ int ref_trace_water_ctx(const ref_waves_ctx *wc, const double o[3], const double
      * where the inversion fails (NaN height: the surface is not a height
      * field there) the sign test is false and the march goes on. */
     double min_step = (tp.min_step > 0.0 ? tp.min_step : w->min_wavelength / 128.0) / dlen;
+    /* Where the sea folds, the height over a world point is not one number
+     * and no Lipschitz bound holds; marching at min_step there took minutes
+     * a ray (scenes/hard/ocean_fold.glib: over 5 min for 96x54). So there
+     * the march steps as if the sideways map's smallest singular value were
+     * REF_TRACE_FOLD_FLOOR: a fold narrower than the surface's height
+     * change over such a step may be stepped over. A folding sea is the
+     * reference's own limit: it draws one sheet where several lie. */
+    double lip_fold = fabs(d[1]) + wc->slope / REF_TRACE_FOLD_FLOOR * dh;
 
     water_ctx c = { .wc = wc, .o = o, .d = d, .seg_t0 = INFINITY, .seg_t1 = -INFINITY };
     double t = ta, ft = water_f(&c, t);
@@ -197,6 +205,8 @@ int ref_trace_water_ctx(const ref_waves_ctx *wc, const double o[3], const double
                 double dr = regional_step(&c, t, fabs(ft), dh);
                 if (dr > dt) dt = dr;
             }
+            if (!isfinite(lip) && isfinite(ft) && lip_fold > 0.0 && fabs(ft) / lip_fold > dt)
+                dt = fabs(ft) / lip_fold;           /* the sea folds: see lip_fold */
             if (!(dt >= min_step)) dt = min_step;   /* and where f is NaN (a fold) */
             double tn = t + dt < tb ? t + dt : tb;
             double fn = water_f(&c, tn);

@@ -19,6 +19,11 @@
 #include "ref_optics.h"
 #include "ref_waves.h"
 
+/* Where the sea folds (no Lipschitz bound of the height holds), the water
+ * march steps as if the sideways map's smallest singular value were this:
+ * a fold narrower than the height change of such a step may be missed. */
+#define REF_TRACE_FOLD_FLOOR 0.1
+
 /* Zero means default in every field. */
 typedef struct ref_trace_opts {
     double t_min;       /* start of the ray segment (0) */
