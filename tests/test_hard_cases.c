@@ -6,7 +6,8 @@
  *     buffer the pack shows (bench.txt `buffer` lines, TARN_OUTPUT) where
  *     the reference sees water; no GL error;
  *   - the colour error over the reference's water pixels against the CPU
- *     reference of the same frame (RMSE, linear RGB; the whole frame is
+ *     reference of the same frame, drawn with the pack's `default` row of
+ *     bench.txt as the bench draws it (the ocean's foam off) (RMSE, linear RGB; the whole frame is
  *     printed beside it) within the pack's bound for the case: its
  *     packs/NAME/bounds.txt line for the case, else its `*` line, else the
  *     built-in table (packset_bound_resolve, viewer/scene/packset.c). A bound of
@@ -35,6 +36,7 @@
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
+#include "render_setting.h"
 #include "ref_buffers.h"
 #include "bench.h"
 
@@ -156,6 +158,11 @@ static void test_every_case_through_every_pack(void) {
             CHECK_MSG(loaded, "%s: %s", what, render_messages(r));
             if (strcmp(cases[c].name, "steep_over") == 0)
                 CHECK_STR_CONTAINS(render_messages(r), "is above 1, where the surface folds into loops; using 1");
+            /* the pack's `default` row, as the bench measures it: the
+             * ocean's folding foam off (the reference has no foam) */
+            char smsg[1024];
+            if (loaded) CHECK_MSG(render_setting_apply_named(r, TARN_SOURCE_DIR, "default", smsg, sizeof smsg),
+                                  "%s: %s", what, smsg);
             if (!loaded || !draw(r, &tg, what)) continue;
             long bad = nonfinite(px, (long)W * H);
             CHECK_MSG(bad == 0, "%s: %ld pixels are NaN or Inf", what, bad);
