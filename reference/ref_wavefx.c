@@ -35,6 +35,7 @@
  *     |h| <= 1.04 sum |A_o|,  |grad h| <= 15 sqrt(2)/4 max(1, 1/stretch) sum |A_o| f_o.
  */
 #include "ref_wavefx.h"
+#include "ref_hash.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -45,14 +46,6 @@
 #define PERLIN3_VALUE_BOUND 1.04
 #define PERLIN3_GRAD_XY_BOUND (15.0 * M_SQRT2 / 4.0)
 
-static uint32_t hash32(uint32_t x) {         /* "lowbias32": hash.glsl's tarnHash */
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
 
 static int fail(char *err, size_t errlen, const char *fmt, const char *what, double v) {
     if (err && errlen) snprintf(err, errlen, fmt, what, v);
@@ -146,7 +139,7 @@ double ref_perlin3(double x, double y, double z, uint32_t seed, double grad[3]) 
     double n = 0.0, g[3] = { 0, 0, 0 };
     for (int c = 0; c < 8; c++) {
         int b0 = c & 1, b1 = (c >> 1) & 1, b2 = (c >> 2) & 1;
-        uint32_t h = hash32(il[0] + (uint32_t)b0 + hash32(il[1] + (uint32_t)b1 + hash32(il[2] + (uint32_t)b2 + seed)));
+        uint32_t h = ref_hash32(il[0] + (uint32_t)b0 + ref_hash32(il[1] + (uint32_t)b1 + ref_hash32(il[2] + (uint32_t)b2 + seed)));
         const double *gv = edge_grad[h % 12u];
         double d0 = f[0] - b0, d1 = f[1] - b1, d2 = f[2] - b2;
         double val = gv[0] * d0 + gv[1] * d1 + gv[2] * d2;
@@ -162,7 +155,7 @@ double ref_perlin3(double x, double y, double z, uint32_t seed, double grad[3]) 
 }
 
 /* Octave o's seed, frequency (1/m), time rate (lattice units/s) and amplitude. */
-static uint32_t octave_seed(uint32_t seed, int o) { return hash32(seed + (uint32_t)o * 0x9E3779B9U); }
+static uint32_t octave_seed(uint32_t seed, int o) { return ref_hash32(seed + (uint32_t)o * 0x9E3779B9U); }
 
 double ref_perlin_height(const ref_perlin_desc *p, double u, double v, double t, double grad[2]) {
     if (grad) grad[0] = grad[1] = 0.0;

@@ -1,6 +1,7 @@
 /* ref_waves: sum of sines, Gerstner and noise waves in double precision
  * (see ref_waves.h; the float twin is packs/common/waves.glsl). */
 #include "ref_waves.h"
+#include "ref_hash.h"
 #include "strbuf.h"
 #include "vec3.h"
 
@@ -66,14 +67,6 @@ static ref_wave_comp make_comp(const ref_wave_desc *wd) {
     return c;
 }
 
-static uint32_t hash32(uint32_t x) {   /* "lowbias32"; the GLSL has the same */
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
 
 int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t errlen) {
     ref_waves_desc d;
@@ -162,7 +155,7 @@ int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t e
             oc->drift[0] = spd * cos(ang);
             oc->drift[1] = spd * sin(ang);
             oc->period = nd->period * scale;
-            oc->seed = hash32(nd->seed + (uint32_t)o * 0x9E3779B9U);
+            oc->seed = ref_hash32(nd->seed + (uint32_t)o * 0x9E3779B9U);
             hb += fabs(amp) * NOISE_VALUE_BOUND;
             slope += fabs(amp) * oc->freq * NOISE_GRAD_BOUND;
             amp *= nd->gain;
@@ -354,7 +347,7 @@ static double dfade(double x) { double m = x * (x - 1.0); return 30.0 * m * m; }
 static double wrap_cell(double i, double period) { return i - period * floor(i / period); }
 
 static void lattice_grad(uint32_t seed, double i, double j, double g[2]) {
-    uint32_t h = hash32((uint32_t)i + hash32((uint32_t)j + seed));
+    uint32_t h = ref_hash32((uint32_t)i + ref_hash32((uint32_t)j + seed));
     double a = (double)(h >> 8) * (TWO_PI / 16777216.0);
     g[0] = cos(a);
     g[1] = sin(a);
