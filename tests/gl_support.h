@@ -4,10 +4,15 @@
 #ifndef TARN_TEST_GL_SUPPORT_H
 #define TARN_TEST_GL_SUPPORT_H
 
+#include <GL/gl.h>
+#include <GL/glext.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "gl_ctx.h"
+#include "ref_waves.h"
 #include "render.h"
+#include "shader_src.h"
 #include "unif.h"
 
 /* The test's exit code when it cannot run: ctest's SKIP_RETURN_CODE. */
@@ -20,6 +25,75 @@ static inline gl_ctx *gl_test_context(void) {
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) fprintf(stderr, "skip: %s\n", err);
     return ctx;
+}
+
+/* Compiles the shader file at path as a stage of type, its #include lines
+ * resolved from packs/common (tarn's shared GLSL) and with the defines
+ * given: what the wave tests compile waves.glsl with. 0 when it does not
+ * compile, the log (mapped through #include to the files' lines) on
+ * stderr. */
+static inline GLuint gl_test_compile(GLenum type, const char *path, const shader_define *defs, int ndefs) {
+    char common[1024];
+    snprintf(common, sizeof common, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
+    const char *inc[1] = { common };
+    shader_src src;
+    shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
+                          .defines = defs, .ndefines = ndefs, .include_dirs = inc, .ninclude_dirs = 1 };
+    if (!shader_src_load(&d, &src)) { fprintf(stderr, "%s\n", src.error); return 0; }
+    GLuint sh = glCreateShader(type);
+    const char *text = src.text;
+    glShaderSource(sh, 1, &text, NULL);
+    glCompileShader(sh);
+    GLint ok;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        char *mapped = shader_src_map_log(&src, log);
+        fprintf(stderr, "%s\n", mapped ? mapped : log);
+        free(mapped);
+        glDeleteShader(sh);
+        sh = 0;
+    }
+    shader_src_free(&src);
+    return sh;
+}
+
+/* Links a vertex and a fragment shader (and deletes them); 0 when either
+ * is 0 or the link fails. */
+static inline GLuint gl_test_link(GLuint vs, GLuint fs) {
+    if (!vs || !fs) {
+        if (vs) glDeleteShader(vs);
+        if (fs) glDeleteShader(fs);
+        return 0;
+    }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) { glDeleteProgram(p); return 0; }
+    return p;
+}
+
+/* Sets the wave set's uniforms (ref_waves_uniforms) in program p, as
+ * render_world's world_upload does: what a test shader including
+ * waves.glsl reads. */
+static inline void gl_test_upload_waves(GLuint p, const ref_waves *w) {
+    ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
+    int n = ref_waves_uniforms(w, u, REF_WAVES_UNIFORMS_MAX);
+    for (int i = 0; i < n; i++) {
+        GLint loc = glGetUniformLocation(p, u[i].name);
+        if (loc < 0) continue;
+        if (u[i].is_int) glUniform1i(loc, u[i].i);
+        else if (u[i].is_uint) glUniform1uiv(loc, u[i].count, u[i].u);
+        else if (u[i].comps == 4) glUniform4fv(loc, u[i].count, u[i].v);
+        else if (u[i].comps == 3) glUniform3fv(loc, u[i].count, u[i].v);
+        else glUniform1fv(loc, u[i].count, u[i].v);
+    }
 }
 
 /* A program that draws the geometry in uniform vec4 uColor. */

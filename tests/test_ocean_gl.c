@@ -221,25 +221,7 @@ static void test_still_frame_runs_no_pass(void) {
 static GLuint compile(GLenum type, const char *name) {
     char path[512];
     snprintf(path, sizeof path, "%s/%s", scratch_dir, name);
-    const char *inc[1] = { common_dir() };
-    shader_src src;
-    shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
-                          .include_dirs = inc, .ninclude_dirs = 1 };
-    if (!shader_src_load(&d, &src)) { fprintf(stderr, "%s\n", src.error); return 0; }
-    GLuint sh = glCreateShader(type);
-    const char *text = src.text;
-    glShaderSource(sh, 1, &text, NULL);
-    glCompileShader(sh);
-    GLint ok;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        glGetShaderInfoLog(sh, sizeof log, NULL, log);
-        fprintf(stderr, "%s\n", log);
-        sh = 0;
-    }
-    shader_src_free(&src);
-    return sh;
+    return gl_test_compile(type, path, NULL, 0);
 }
 
 /* eval_only: just wavesEval (the cost measurement: llvmpipe runs every
@@ -264,35 +246,9 @@ static GLuint eval_program(bool eval_only) {
              "}\n", eval_only ? "#define EVAL_ONLY 1\n" : "");
     scratch_write("grid.frag", text);
     GLuint vs = compile(GL_VERTEX_SHADER, "grid.vert"), fs = compile(GL_FRAGMENT_SHADER, "grid.frag");
-    if (!vs || !fs) return 0;
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    return ok ? p : 0;
+    return gl_test_link(vs, fs);
 }
 
-static void upload_waves(GLuint p, const ref_waves *w) {
-    ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
-    int n = ref_waves_uniforms(w, u, REF_WAVES_UNIFORMS_MAX);
-    for (int i = 0; i < n; i++) {
-        GLint loc = glGetUniformLocation(p, u[i].name);
-        if (loc < 0) continue;
-        if (u[i].is_int) glUniform1i(loc, u[i].i);
-        else if (u[i].is_uint) glUniform1uiv(loc, u[i].count, u[i].u);
-        else if (u[i].comps == 4) glUniform4fv(loc, u[i].count, u[i].v);
-        else if (u[i].comps == 3) glUniform3fv(loc, u[i].count, u[i].v);
-        else glUniform1fv(loc, u[i].count, u[i].v);
-    }
-    ocean_upload(p);
-    glUniform1f(glGetUniformLocation(p, "uTime"), (float)WTIME);
-    glUniform1f(glGetUniformLocation(p, "uExtent"), (float)EXTENT);
-    glUniform1f(glGetUniformLocation(p, "uGrid"), (float)GRID);
-}
 
 /* mode 0 positions, 1 normals, 2 (rest point, height) over world points; GL rows (row 0 at the bottom) */
 static void draw_modes(GLuint p, const ref_waves *w, float out[3][GRID * GRID * 4]) {
@@ -306,7 +262,11 @@ static void draw_modes(GLuint p, const ref_waves *w, float out[3][GRID * GRID * 
     glViewport(0, 0, GRID, GRID);
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
-    upload_waves(p, w);
+    gl_test_upload_waves(p, w);
+    ocean_upload(p);   /* the ocean's samplers at their units */
+    glUniform1f(glGetUniformLocation(p, "uTime"), (float)WTIME);
+    glUniform1f(glGetUniformLocation(p, "uExtent"), (float)EXTENT);
+    glUniform1f(glGetUniformLocation(p, "uGrid"), (float)GRID);
     for (int m = 0; m < 3; m++) {
         glUniform1i(glGetUniformLocation(p, "uMode"), m);
         glRectf(-1, -1, 1, 1);

@@ -39,45 +39,15 @@
 #define TOL_P3 1e-5
 
 static GLuint compile(GLenum type, const char *name) {
-    char path[512], common[1024];
+    char path[512];
     snprintf(path, sizeof path, "%s/%s", scratch_dir, name);
-    snprintf(common, sizeof common, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
-    const char *inc[1] = { common };
-    shader_src src;
-    shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
-                          .include_dirs = inc, .ninclude_dirs = 1 };
-    if (!shader_src_load(&d, &src)) { fprintf(stderr, "%s\n", src.error); return 0; }
-    GLuint sh = glCreateShader(type);
-    const char *text = src.text;
-    glShaderSource(sh, 1, &text, NULL);
-    glCompileShader(sh);
-    GLint ok;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        glGetShaderInfoLog(sh, sizeof log, NULL, log);
-        char *mapped = shader_src_map_log(&src, log);
-        fprintf(stderr, "%s\n", mapped ? mapped : log);
-        free(mapped);
-        sh = 0;
-    }
-    shader_src_free(&src);
-    return sh;
+    return gl_test_compile(type, path, NULL, 0);
 }
 
 static GLuint program(void) {
     GLuint vs = compile(GL_VERTEX_SHADER, "grid.vert");
     GLuint fs = compile(GL_FRAGMENT_SHADER, "grid.frag");
-    if (!vs || !fs) return 0;
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    return ok ? p : 0;
+    return gl_test_link(vs, fs);
 }
 
 static void upload(GLuint p, const ref_explosion_desc *e, int n, const ref_perlin_desc *pd) {

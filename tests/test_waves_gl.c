@@ -16,6 +16,7 @@
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "ref_waves.h"
 #include "render.h"
 #include "shader_src.h"
@@ -27,63 +28,18 @@
 
 
 static GLuint compile(GLenum type, const char *name, const shader_define *defs, int ndefs) {
-    char path[512], common[1024];
+    char path[512];
     snprintf(path, sizeof path, "%s/%s", scratch_dir, name);
-    snprintf(common, sizeof common, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
-    const char *inc[1] = { common };
-    shader_src src;
-    shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
-                          .defines = defs, .ndefines = ndefs, .include_dirs = inc, .ninclude_dirs = 1 };
-    if (!shader_src_load(&d, &src)) { fprintf(stderr, "%s\n", src.error); return 0; }
-    GLuint sh = glCreateShader(type);
-    const char *text = src.text;
-    glShaderSource(sh, 1, &text, NULL);
-    glCompileShader(sh);
-    GLint ok;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        glGetShaderInfoLog(sh, sizeof log, NULL, log);
-        char *mapped = shader_src_map_log(&src, log);
-        fprintf(stderr, "%s\n", mapped ? mapped : log);
-        free(mapped);
-        sh = 0;
-    }
-    shader_src_free(&src);
-    return sh;
+    return gl_test_compile(type, path, defs, ndefs);
 }
 
 static GLuint program(bool approx) {
     shader_define def = { "WAVES_APPROX_NORMAL", "1" };
     GLuint vs = compile(GL_VERTEX_SHADER, "grid.vert", NULL, 0);
     GLuint fs = compile(GL_FRAGMENT_SHADER, "grid.frag", &def, approx ? 1 : 0);
-    if (!vs || !fs) return 0;
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    return ok ? p : 0;
+    return gl_test_link(vs, fs);
 }
 
-static void upload_waves(GLuint p, const ref_waves *w) {
-    ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
-    int n = ref_waves_uniforms(w, u, REF_WAVES_UNIFORMS_MAX);
-    for (int i = 0; i < n; i++) {
-        GLint loc = glGetUniformLocation(p, u[i].name);
-        if (loc < 0) continue;
-        if (u[i].is_int) glUniform1i(loc, u[i].i);
-        else if (u[i].is_uint) glUniform1uiv(loc, u[i].count, u[i].u);
-        else if (u[i].comps == 4) glUniform4fv(loc, u[i].count, u[i].v);
-        else if (u[i].comps == 3) glUniform3fv(loc, u[i].count, u[i].v);
-        else glUniform1fv(loc, u[i].count, u[i].v);
-    }
-    glUniform1f(glGetUniformLocation(p, "uTime"), (float)TIME);
-    glUniform1f(glGetUniformLocation(p, "uExtent"), (float)EXTENT);
-}
 
 /* Draws mode 0 (position) or 1 (normal) for every grid point; returns RGBA. */
 static void draw(GLuint p, int mode, const ref_waves *w, float *out) {
@@ -93,7 +49,9 @@ static void draw(GLuint p, int mode, const ref_waves *w, float *out) {
     glViewport(0, 0, N, N);
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
-    upload_waves(p, w);
+    gl_test_upload_waves(p, w);
+    glUniform1f(glGetUniformLocation(p, "uTime"), (float)TIME);
+    glUniform1f(glGetUniformLocation(p, "uExtent"), (float)EXTENT);
     glUniform1i(glGetUniformLocation(p, "uMode"), mode);
     glRectf(-1, -1, 1, 1);
     glUseProgram(0);
