@@ -123,7 +123,7 @@ static void test_inactive_uniforms_one_line_same_on_reload(void) {
     char first[2048];
     snprintf(first, sizeof first, "%s", render_messages(r));
     fprintf(stderr, "start-up: %s", first);
-    CHECK_STR_CONTAINS(first, "note: 2 uniforms of the glib are declared but inactive as built");
+    CHECK_STR_CONTAINS(first, "lake.glib:5: note: 2 uniforms of the glib are declared but inactive as built");
     CHECK_STR_CONTAINS(first, "uLevel (Water), uGlint (Water)");
     CHECK_MSG(count_of(first, "\n") == 1, "one line, not one a uniform: %s", first);
     CHECK_MSG(!strstr(first, "not declared"), "%s", first);

@@ -520,18 +520,21 @@ static void build_begin(scene_state *s, int ci, char **log) {
 static void note_inactive_uniforms(const scene_state *s, char **log) {
     int total = 0, shown = 0;
     char *list = NULL;
+    const unif_entry *first = NULL;
     for (int i = 0; i < s->nprogs; i++) {
-        const char *names[INACTIVE_NAMED];
-        int n = prog_inactive_uniforms(&s->progs[i], names, INACTIVE_NAMED);
-        for (int k = 0; k < n && k < INACTIVE_NAMED && shown < INACTIVE_NAMED; k++, shown++)
-            str_appendf(&list, "%s%s (%s)", shown ? ", " : "", names[k], s->progs[i].name);
+        const unif_entry *found[INACTIVE_NAMED];
+        int n = prog_inactive_uniforms(&s->progs[i], found, INACTIVE_NAMED);
+        for (int k = 0; k < n && k < INACTIVE_NAMED && shown < INACTIVE_NAMED; k++, shown++) {
+            str_appendf(&list, "%s%s (%s)", shown ? ", " : "", found[k]->name, s->progs[i].name);
+            if (!first) first = found[k];
+        }
         total += n;
     }
-    if (total > 0)
-        str_appendf(log, "%s: note: %d uniform%s of the glib %s declared but inactive as built "
+    if (total > 0)   /* at the first one's glib line: an editor jumps there */
+        str_appendf(log, "%s:%d: note: %d uniform%s of the glib %s declared but inactive as built "
                     "(compiled out by a Define, or unused): %s%s\n",
-                    s->glib->nfiles ? s->glib->files[0] : "?", total, total == 1 ? "" : "s", total == 1 ? "is" : "are", list,
-                    total > shown ? ", ..." : "");
+                    first && first->glib_file ? first->glib_file : "?", first ? first->glib_line : 0, total,
+                    total == 1 ? "" : "s", total == 1 ? "is" : "are", list, total > shown ? ", ..." : "");
     free(list);
 }
 

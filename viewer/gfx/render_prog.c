@@ -419,13 +419,13 @@ void prog_introspect(prog *p, char **log) {
     p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
 }
 
-int prog_inactive_uniforms(const prog *p, const char **names, int max) {
+int prog_inactive_uniforms(const prog *p, const unif_entry **found, int max) {
     int n = 0;
     if (!p->good || !p->unifs) return 0;   /* a failed build's slots say nothing of its sources */
     for (int i = 0; i < p->unifs->n; i++) {
         const unif_entry *e = &p->unifs->entries[i];
         if (e->is_define || !e->from_glib || e->in_shader || !in_source(p, e->name)) continue;
-        if (names && n < max) names[n] = e->name;
+        if (found && n < max) found[n] = e;
         n++;
     }
     return n;

@@ -53,8 +53,9 @@ void prog_introspect(prog *p, char **log);
 /* The glib's uniforms that p declares but its build does not use
  * (compiled out by a Define, or unused and optimised out): not mistakes,
  * so the renderer says them in one summary line a load. Fills up to max
- * names (NULL: just count); returns how many there are. */
-int prog_inactive_uniforms(const prog *p, const char **names, int max);
+ * entries (NULL: just count; each knows its glib file and line); returns
+ * how many there are. */
+int prog_inactive_uniforms(const prog *p, const unif_entry **found, int max);
 
 /* Uploads every uniform value and Timer (0..1 sawtooth of period timer_s). */
 void prog_upload(const prog *p, double t, double timer_s);
