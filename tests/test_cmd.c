@@ -99,7 +99,8 @@ static void test_unknown_pack_is_a_usage_error(void) {
                             "compare-view scenes/lake.glib --packs natural,nope" };
     for (int i = 0; i < 3; i++) {
         CHECK_MSG(tarn(cases[i], out, sizeof out) == TARN_EXIT_USAGE, "tarn %s: %s", cases[i], out);
-        CHECK_STR_CONTAINS(out, "no pack 'nope': the packs are ");
+        CHECK_STR_CONTAINS(out, "no pack 'nope' in ");
+        CHECK_STR_CONTAINS(out, "/packs: the packs are ");
         CHECK_STR_CONTAINS(out, "natural");
         CHECK_STR_CONTAINS(out, "raymarch");
     }

@@ -58,7 +58,7 @@ bool cmd_opt_int(const char *s, int lo, int hi, int *out);
 bool cmd_opt_msaa(const char *s, int *samples);
 
 /* Is name a pack of tarn's (packs/NAME/pack.glib under tarn_root())? False
- * with "no pack 'X': the packs are ..." in why, for a usage error (exit 2). */
+ * with "no pack 'X' in ROOT/packs: the packs are ..." in why, for a usage error (exit 2). */
 bool cmd_opt_pack(const char *name, char *why, size_t whylen);
 #define CMD_MSAA_HELP \
     "  --msaa N         anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \

@@ -72,7 +72,7 @@ bool cmd_opt_pack(const char *name, char *why, size_t whylen) {
         strcat(list, i ? ", " : "");
         strcat(list, all[i]);
     }
-    snprintf(why, whylen, "no pack '%s': the packs are %s (in %s/packs)", name, n ? list : "(none found)",
-             tarn_root());
+    snprintf(why, whylen, "no pack '%s' in %s/packs: the packs are %s", name, tarn_root(),
+             n ? list : "(none found)");
     return false;
 }
