@@ -283,6 +283,7 @@ static double one_world_rmse(const char *path, double t, long *compared) {
     d.camera.height = OW_H;
     ref_render_result ref;
     CHECK_MSG(ref_render(&d, &ref, err, sizeof err) == 0, "%s: %s", path, err);
+    ref_world_release(&w);   /* an ocean's spectra and frames live on the heap */
     if (!ref.color) return NAN;
     double sum = 0;
     long n = 0;
