@@ -44,11 +44,14 @@ typedef struct ref_water_hit {
 } ref_water_hit;
 
 /* First crossing of the ray with y = H(x, z, time). The ray is clipped to
- * the slab |y - level| <= height_bound, then marched with steps
+ * the slab |y - level| <= the frame's height bound, then marched with steps
  * max(|f| / L, min_step), f(t) = y(t) - H(x(t), z(t)) and L = |d.y| +
- * world_slope_bound |d.xz| a Lipschitz bound of f (so no crossing is
- * skipped unless it is thinner than min_step; for Q >= 1 steps are
- * min_step), then refined by Brent's method to t_tol. Returns hit->hit. */
+ * (world slope bound) |d.xz| a Lipschitz bound of f: the frame's, or with
+ * an ocean the bound of the region the step reaches, whichever is larger a
+ * step (so no crossing is skipped unless it is thinner than min_step).
+ * Where the sideways map may fold no bound holds and the step is that of a
+ * map whose least singular value were REF_TRACE_FOLD_FLOOR. Then refined
+ * by Brent's method to t_tol. Returns hit->hit. */
 int ref_trace_water(const ref_waves *w, double time, const double o[3], const double d[3],
                     const ref_trace_opts *opts, ref_water_hit *hit);
 
