@@ -74,7 +74,7 @@ bool cmd_opt_pack(const char *name, char *why, size_t whylen);
 /* One --set assignment (PROGRAM.NAME=V, NAME=V for every Program, or
  * scene.Command=ARGS) applied to r as the panel would (render_setting_assign);
  * false, with "tarn: WHAT: why" on stderr, when it did not apply as written
- * (a missing uniform, a clamped value). tarn sheet's --set and --vary. */
+ * (a missing uniform, a clamped value). render's and sheet's --set, sheet's --vary. */
 struct render;
 bool cmd_apply_set(struct render *r, const char *set, const char *what);
 

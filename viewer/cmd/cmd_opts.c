@@ -9,6 +9,9 @@
 
 #include "packset.h"
 #include "util.h"
+#include "render.h"
+#include "strbuf.h"
+#include "render_setting.h"
 
 int cmd_bad_usage(FILE *err, const char *prefix, const char *usage, const char *fmt, ...) {
     va_list ap;
@@ -75,4 +78,23 @@ bool cmd_opt_pack(const char *name, char *why, size_t whylen) {
     snprintf(why, whylen, "no pack '%s' in %s/packs: the packs are %s", name, tarn_root(),
              n ? list : "(none found)");
     return false;
+}
+
+/* --set (and sheet's --vary): what moving a slider or ticking a Define would do, written as
+ * bench.txt assignments (PROGRAM.NAME=V, NAME=V for every Program, or
+ * scene.Command=ARGS as a setting's). One assignment at a time, in order,
+ * so there is no cap on how many and a later one wins as on the panel. */
+bool cmd_apply_set(render *r, const char *set, const char *what) {
+    const char *eq = strchr(set, '='), *dot = strchr(set, '.');
+    bool bare = !dot || (eq && dot > eq);
+    char *text = NULL;
+    str_appendf(&text, "cli %s%s", bare ? "*." : "", set);
+    packset_bench b = {0};
+    char err[2048] = "";
+    bool ok = text && packset_bench_parse(text, what, &b, err, sizeof err) && b.n > 0;
+    if (ok) ok = render_setting_assign(r, &b.settings[0], err, sizeof err);
+    if (err[0]) fprintf(stderr, "tarn: %s: %s%s", what, err, err[strlen(err) - 1] == '\n' ? "" : "\n");
+    packset_bench_free(&b);
+    free(text);
+    return ok;
 }

@@ -75,25 +75,6 @@ static double now_ms(void) {
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-/* --set: what moving a slider or ticking a Define would do, written as
- * bench.txt assignments (PROGRAM.NAME=V, NAME=V for every Program, or
- * scene.Command=ARGS as a setting's). One assignment at a time, in order,
- * so there is no cap on how many and a later one wins as on the panel. */
-static bool apply_set(render *r, const char *set) {
-    const char *eq = strchr(set, '='), *dot = strchr(set, '.');
-    bool bare = !dot || (eq && dot > eq);
-    char *text = NULL;
-    str_appendf(&text, "cli %s%s", bare ? "*." : "", set);
-    packset_bench b = {0};
-    char err[2048] = "";
-    bool ok = text && packset_bench_parse(text, "--set", &b, err, sizeof err) && b.n > 0;
-    if (ok) ok = render_setting_assign(r, &b.settings[0], err, sizeof err);
-    if (err[0]) fprintf(stderr, "tarn: --set: %s%s", err, err[strlen(err) - 1] == '\n' ? "" : "\n");
-    packset_bench_free(&b);
-    free(text);
-    return ok;
-}
-
 /* --setting first (the pack's row, from its defaults), then each --set on top. */
 static bool apply_sets(render *r, const cli_render_desc *d) {
     bool ok = true;
@@ -102,7 +83,7 @@ static bool apply_sets(render *r, const cli_render_desc *d) {
         ok = render_setting_apply_named(r, NULL, d->setting, err, sizeof err);
         if (err[0]) fprintf(stderr, "tarn: --setting: %s%s", err, err[strlen(err) - 1] == '\n' ? "" : "\n");
     }
-    for (int i = 0; i < d->nsets; i++) ok = apply_set(r, d->sets[i]) && ok;
+    for (int i = 0; i < d->nsets; i++) ok = cmd_apply_set(r, d->sets[i], "--set") && ok;
     return ok;
 }
 

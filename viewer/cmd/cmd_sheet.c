@@ -47,21 +47,6 @@ typedef struct sheet_desc {
     bool quiet;
 } sheet_desc;
 
-bool cmd_apply_set(render *r, const char *set, const char *what) {
-    const char *eq = strchr(set, '='), *dot = strchr(set, '.');
-    bool bare = !dot || (eq && dot > eq);
-    char *text = NULL;
-    str_appendf(&text, "cli %s%s", bare ? "*." : "", set);
-    packset_bench b = {0};
-    char err[2048] = "";
-    bool ok = text && packset_bench_parse(text, what, &b, err, sizeof err) && b.n > 0;
-    if (ok) ok = render_setting_assign(r, &b.settings[0], err, sizeof err);
-    if (err[0]) fprintf(stderr, "tarn: %s: %s%s", what, err, err[strlen(err) - 1] == '\n' ? "" : "\n");
-    packset_bench_free(&b);
-    free(text);
-    return ok;
-}
-
 static double vary_value(const sheet_vary *v, int i) {
     return v->n <= 1 ? v->a : v->a + (v->b - v->a) * i / (v->n - 1);
 }
