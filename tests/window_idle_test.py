@@ -10,11 +10,13 @@ core (it drew the same frame over and over: 75%). Then R (reload) must
 still be answered, and Q must end the process within a second.
 Exits 77 when libX11 or libXtst is missing.
 """
-import ctypes
 import os
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from x_keys import Keyboard  # noqa: E402
 
 MAX_IDLE_SHARE = 0.05   # of one core, while nothing changes
 MAX_QUIT_S = 1.0
@@ -27,25 +29,8 @@ def cpu_s(pid):
 
 
 def main(argv):
-    try:
-        x, t = ctypes.CDLL("libX11.so.6"), ctypes.CDLL("libXtst.so.6")
-    except OSError as e:
-        print("skip: %s" % e)
-        sys.exit(77)
-    x.XOpenDisplay.restype = ctypes.c_void_p
-    x.XStringToKeysym.restype = ctypes.c_ulong
-    x.XStringToKeysym.argtypes = [ctypes.c_char_p]
-    x.XKeysymToKeycode.argtypes = [ctypes.c_void_p, ctypes.c_ulong]
-    d = ctypes.c_void_p(x.XOpenDisplay(None))
-    if not d.value:
-        sys.exit("window_idle_test: no display")
-
-    def press(name):
-        kc = x.XKeysymToKeycode(d, x.XStringToKeysym(name.encode()))
-        for down in (1, 0):
-            t.XTestFakeKeyEvent(d, kc, down, 0)
-            x.XFlush(d)
-            time.sleep(0.05)
+    kb = Keyboard("window_idle_test")
+    press = kb.press
 
     tarn, src = argv[1], argv[2]
     log = open("window-idle.log", "w")
@@ -54,8 +39,7 @@ def main(argv):
     time.sleep(6)                       # start-up: the programs compile
     if p.poll() is not None:
         sys.exit("FAIL: tarn view exited early (%s); see window-idle.log" % p.returncode)
-    t.XTestFakeMotionEvent(d, -1, 600, 100, 0)   # over the scene, right of the panel
-    x.XFlush(d)
+    kb.move(600, 100)   # over the scene, right of the panel
     press("space")                      # pause: the picture stops changing
     time.sleep(2.0)                     # the budget's settle, the full frame
     c0, w0 = cpu_s(p.pid), time.time()

@@ -17,40 +17,54 @@ import sys
 import time
 
 
-def main(argv):
-    try:
-        x, t = ctypes.CDLL("libX11.so.6"), ctypes.CDLL("libXtst.so.6")
-    except OSError as e:
-        print("skip: %s" % e)
-        sys.exit(77)
-    x.XOpenDisplay.restype = ctypes.c_void_p
-    x.XStringToKeysym.restype = ctypes.c_ulong
-    x.XStringToKeysym.argtypes = [ctypes.c_char_p]
-    x.XKeysymToKeycode.argtypes = [ctypes.c_void_p, ctypes.c_ulong]
-    d = ctypes.c_void_p(x.XOpenDisplay(None))
-    if not d.value:
-        sys.exit("x_keys: no display")
+class Keyboard:
+    """The X display's fake keyboard and pointer (XTEST); exits 77 when
+    libX11 or libXtst is missing. Also used by window_idle_test.py."""
 
-    modifiers = {"shift": "Shift_L", "ctrl": "Control_L", "alt": "Alt_L"}
+    MODIFIERS = {"shift": "Shift_L", "ctrl": "Control_L", "alt": "Alt_L"}
 
-    def keycode(name):
-        return x.XKeysymToKeycode(d, x.XStringToKeysym(name.encode()))
+    def __init__(self, who="x_keys"):
+        try:
+            self.x, self.t = ctypes.CDLL("libX11.so.6"), ctypes.CDLL("libXtst.so.6")
+        except OSError as e:
+            print("skip: %s" % e)
+            sys.exit(77)
+        x = self.x
+        x.XOpenDisplay.restype = ctypes.c_void_p
+        x.XStringToKeysym.restype = ctypes.c_ulong
+        x.XStringToKeysym.argtypes = [ctypes.c_char_p]
+        x.XKeysymToKeycode.argtypes = [ctypes.c_void_p, ctypes.c_ulong]
+        self.d = ctypes.c_void_p(x.XOpenDisplay(None))
+        if not self.d.value:
+            sys.exit("%s: no display" % who)
 
-    def press(spec):
+    def keycode(self, name):
+        return self.x.XKeysymToKeycode(self.d, self.x.XStringToKeysym(name.encode()))
+
+    def press(self, spec):
+        """A key ("p", "space"), a modifier first if any ("shift+r")."""
+        x, t, d = self.x, self.t, self.d
         *mods, key = spec.split("+")
-        held = [keycode(modifiers[m]) for m in mods]
+        held = [self.keycode(self.MODIFIERS[m]) for m in mods]
         for kc in held:
             t.XTestFakeKeyEvent(d, kc, 1, 0)
         for down in (1, 0):
-            t.XTestFakeKeyEvent(d, keycode(key), down, 0)
+            t.XTestFakeKeyEvent(d, self.keycode(key), down, 0)
             x.XFlush(d)
             time.sleep(0.05)
         for kc in reversed(held):
             t.XTestFakeKeyEvent(d, kc, 0, 0)
         x.XFlush(d)
 
-    t.XTestFakeMotionEvent(d, -1, 100, 100, 0)   # the window is at the top left: keys go under the pointer
-    x.XFlush(d)
+    def move(self, px, py):
+        self.t.XTestFakeMotionEvent(self.d, -1, px, py, 0)
+        self.x.XFlush(self.d)
+
+
+def main(argv):
+    kb = Keyboard()
+    press = kb.press
+    kb.move(100, 100)   # the window is at the top left: keys go under the pointer
     deadline = time.time() + 10
     interval = float(argv[4]) if len(argv) > 4 else 0.5
     while not glob.glob(argv[1]) and time.time() < deadline:
