@@ -359,7 +359,7 @@ static void test_scene_load(void) {
     scene_camera cam;
     bool has = false;
     char err[1024] = "";
-    /* the lake with its pack (packs/basic) read in */
+    /* the lake with its pack (packs/raymarch) read in */
     bool ok = scene_load(TARN_SOURCE_DIR "/scenes/lake.glib", NULL, &d, &cam, &has, err, sizeof err);
     CHECK_MSG(ok, "%s", err);
     CHECK(has && d.terrain == REF_TERRAIN_LAKE && d.nobjects == 7 && cam.width == 960);

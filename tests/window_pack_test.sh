@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The view window switches packs live (the panel's Pack combo; the script's
 # `pack NAME` does the same), under Xvfb:
-#   - the lake opens with its own pack (basic); switching to natural links
+#   - the lake opens with its own pack (raymarch); switching to natural links
 #     natural's program (its slider's default holds), and the picture
-#     changes; switching back links basic's program again; a recording
+#     changes; switching back links raymarch's program again; a recording
 #     (--record) notes both switches;
 #   - a plain glman scene (no world) refuses a pack: the load fails with
 #     the reason, the scene stays on screen (its program still linked), and
@@ -18,15 +18,15 @@ xvfb() { xvfb-run -a -f "$scratch/Xauthority" -s "-screen 0 1280x800x24" "$@"; }
 
 cat > "$scratch/switch.script" <<SCRIPT
 frames 1
-expect BasicWater uOpacity 0.45
-screenshot $scratch/basic.png
+expect RaymarchWater uMaxIter 40
+screenshot $scratch/raymarch.png
 pack natural
 frames 1
 expect NaturalWater uReflectDist 1
 screenshot $scratch/natural.png
-pack basic
+pack raymarch
 frames 1
-expect BasicWater uOpacity 0.45
+expect RaymarchWater uMaxIter 40
 quit
 SCRIPT
 xvfb "$bin" view "$src/scenes/lake.glib" --size 240x135 --script "$scratch/switch.script" \
@@ -35,12 +35,12 @@ rc=$?
 cat "$scratch/lake.log"
 [ "$rc" -eq 0 ] || fail "tarn view exited $rc"
 [ "$(grep -c 'holds the expected value' "$scratch/lake.log")" -eq 3 ] || fail "an expect is missing"
-[ -s "$scratch/basic.png" ] && [ -s "$scratch/natural.png" ] || fail "no screenshots"
-cmp -s "$scratch/basic.png" "$scratch/natural.png" && fail "the picture did not change with the pack"
+[ -s "$scratch/raymarch.png" ] && [ -s "$scratch/natural.png" ] || fail "no screenshots"
+cmp -s "$scratch/raymarch.png" "$scratch/natural.png" && fail "the picture did not change with the pack"
 # a recording notes each switch, after a header naming the pack it began with
-grep -q "^pack basic$" "$scratch/switch.session" || fail "the session's header does not name the lake's pack"
+grep -q "^pack raymarch$" "$scratch/switch.session" || fail "the session's header does not name the lake's pack"
 [ "$(grep -c " pack natural$" "$scratch/switch.session")" -eq 1 ] || fail "the switch to natural was not recorded"
-[ "$(grep -c " pack basic$" "$scratch/switch.session")" -eq 1 ] || fail "the switch back to basic was not recorded"
+[ "$(grep -c " pack raymarch$" "$scratch/switch.session")" -eq 1 ] || fail "the switch back to raymarch was not recorded"
 
 cat > "$scratch/glman.script" <<'SCRIPT'
 frames 1

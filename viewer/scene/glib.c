@@ -1115,7 +1115,7 @@ static bool h_if(cmdctx *c, glib_cmd *cmd) {
     warn_extra(c, w + 1, "");
     const char *name = c->words[w];
     if (!(isalpha((unsigned char)name[0]) || name[0] == '_') || strlen(name) >= sizeof cmd->name) {
-        cerr(c, "If: '%.40s' is not a condition: write a Define name, above_water or under_water", name);
+        cerr(c, "If: '%.40s' is not a condition: write a Define name, above_water, under_water or waves", name);
         return false;
     }
     snprintf(cmd->name, sizeof cmd->name, "%s", name);
@@ -2304,7 +2304,7 @@ static const cmd_spec specs[] = {
       "Camera main|wide|mirror|top|light [fov_scale|uniform]" },
     { "RenderToTextureOnce", GLIB_CMD_RENDER_TO_TEXTURE_ONCE, false, h_rtt, false, 0, 0, { { 0 } },
       "RenderToTextureOnce unit [unit...]" },
-    { "If", GLIB_CMD_IF, false, h_if, false, 0, 0, { { 0 } }, "If [not] DEFINE|above_water|under_water" },
+    { "If", GLIB_CMD_IF, false, h_if, false, 0, 0, { { 0 } }, "If [not] DEFINE|above_water|under_water|waves" },
     { "EndIf", GLIB_CMD_END_IF, false, h_nums, false, 0, 0, { { 0 } }, NULL },
     { "Splat", GLIB_CMD_SPLAT, false, h_nums, false, 2, 2,
       { { "src", "a texture unit", 'i', 0, LIM_UNIT, 0 }, { "dst", "a texture unit", 'i', 0, LIM_UNIT, 0 } },
