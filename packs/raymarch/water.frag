@@ -162,7 +162,58 @@ vec3 underColor(vec2 uv, vec3 fallback) {
     return c.a > 1e-3 ? c.rgb / c.a : fallback;
 }
 
-vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
+// A vertical wall met (the side of a post, a box, a trunk: a column entered
+// through its side, well below its top and above its bottom): the top-down
+// views never saw it, and the top's colour there (the post's sunlit cap)
+// drew the post's submerged shaft as beige discs. The side is shaded the
+// way tarn's world program shades it (world.glsl, linear in the albedo):
+// the albedo is the top's colour divided by the top's own shading (its
+// normal from the heights beside it, one-sided so a flat cap stays flat
+// at its rim), and the wall's normal is the horizontal gradient of the
+// solid around the hit (a Sobel ring of the texels at the hit's height),
+// else the ray's way back. On a sphere's rim the top's normal is nearly
+// the wall's, so there the colour stays the top's.
+#define RAYMARCH_WALL_MIN 0.05   // lake m: a side at least this far below the top and above the bottom
+vec3 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
+    ivec2 size = textureSize(uWorldY, 0);
+    float gx = 0.0, gz = 0.0;
+    float tx[2], tz[2];   // tops at x-1, x+1 and z-1, z+1
+    for (int j = -1; j <= 1; j++) {
+        for (int i = -1; i <= 1; i++) {
+            if (i == 0 && j == 0) continue;
+            vec3 nb = texelFetch(uWorldY, clamp(ij + ivec2(i, j), ivec2(0), size - 1), 0).xyz;
+            float occ = nb.x > MARCH_EMPTY_Y && marchSolid(nb, hit.y) <= 0.0 ? 1.0 : 0.0;
+            float w = (i == 0 || j == 0) ? 2.0 : 1.0;
+            gx += float(i) * w * occ;
+            gz += float(j) * w * occ;
+            if (j == 0) tx[(i + 1) / 2] = nb.x;
+            if (i == 0) tz[(j + 1) / 2] = nb.x;
+        }
+    }
+    // texel side in world metres along s and t (the top camera's square)
+    vec2 w0 = marchWorldXZ((vec2(ij) + 0.5) / vec2(size));
+    vec2 ws = marchWorldXZ((vec2(ij) + vec2(1.5, 0.5)) / vec2(size)) - w0;
+    vec2 wt = marchWorldXZ((vec2(ij) + vec2(0.5, 1.5)) / vec2(size)) - w0;
+    // the gradient is in texel axes (s, t); its world direction
+    vec2 g = gx * ws / dot(ws, ws) + gz * wt / dot(wt, wt);
+    vec2 nh = dot(g, g) > 1e-12 ? -normalize(g) : -normalize(dir.xz + vec2(1e-9, 0.0));
+    vec3 nWall = vec3(nh.x, 0.0, nh.y);
+    // the top's slope, one-sided: the smaller difference on each axis (the
+    // other may fall off the thing's rim), none where the texel is a peak
+    // or a pit on that axis (a cap's rim one texel wide: both fall off)
+    float ax = t.x - tx[0], bx = tx[1] - t.x, az = t.x - tz[0], bz = tz[1] - t.x;
+    float sx = ax * bx <= 0.0 ? 0.0 : abs(ax) < abs(bx) ? ax : bx;
+    float sz = az * bz <= 0.0 ? 0.0 : abs(az) < abs(bz) ? az : bz;
+    vec2 slope = sx * ws / dot(ws, ws) + sz * wt / dot(wt, wt);
+    vec3 top = texelFetch(uTopColor, ij, 0).rgb;
+    if (dot(slope, slope) > 1.0) return top;   // a steep top (a sphere's rim): nearly the wall already
+    vec3 nTop = normalize(vec3(-slope.x, 1.0, -slope.y));
+    vec3 topPos = vec3(hit.x, t.x, hit.z);
+    vec3 albedo = min(top / max(worldShadeAt(vec3(1.0), nTop, topPos), vec3(1e-4)), vec3(1.0));
+    return worldShadeAt(albedo, nWall, hit);
+}
+
+vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
     ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
     vec3 t = marchFetch(uWorldY, size, uv);
@@ -186,6 +237,11 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside) {
     }
     // under the highest underside: a trunk under its crown
     if (!model && t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
+    // (only for things that rise out of the water: on the sunken crate the
+    // slab's walls also showed where the reference sees the floor)
+    if (!underside && t.x > uWaterLevel && t.x - hit.y > RAYMARCH_WALL_MIN * uWorldScale
+        && (t.y >= t.x || hit.y - t.y > RAYMARCH_WALL_MIN * uWorldScale))
+        return wallColor(hit, min(ivec2(uv * vec2(size)), size - 1), t, dir);
     vec3 top = texture(uTopColor, uv).rgb;
     if (underside) return underColor(uv, top);
     // a side between bottom and top: the two views blended by height, not
@@ -231,7 +287,7 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     if (m.status == MARCH_CAP || m.status == MARCH_LEFT) s += max(m.f, 0.0) / -d.y;
     hit = p + s * d;
     status = m.status;
-    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false);
+    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false, d);
 }
 
 // What is seen from p along dir (upwards, in air): the above-water geometry
@@ -270,7 +326,7 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
 #ifdef PAPER_REFLECTION
         underside = true;   // the textures from below: the underside's colour where there is one
 #endif
-        return solidColor(hit, p + m.tb * d, underside);
+        return solidColor(hit, p + m.tb * d, underside, d);
     }
 #endif
     return texture(uSky, dir).rgb;
