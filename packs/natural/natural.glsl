@@ -34,7 +34,7 @@
 
 #define NAT_CAUSTIC_MARGIN 1.25   // caustic square / world square (photons land beyond the edge)
 
-uniform float uTerrainHalfSize;
+#include "terrain.glsl"     // uTerrainHalfSize; the ground's height (the shore, objects)
 
 float natCausticHalfSize() { return NAT_CAUSTIC_MARGIN * uTerrainHalfSize; }
 
@@ -158,8 +158,20 @@ bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
     if (!natInside(natLightTex(S).xy) || t.y >= 0.0) return false;
     float s0 = 0.0, g0 = natBehindFloor(S);
     if (g0 >= 0.0) return true;                    // the floor touches the surface here
+    // S under the ground (the water grid runs on under a beach), which the
+    // map may not show (its clip, World below -0.02, cut the ground at the
+    // water's edge away, and the sun sees deeper ground through the cut):
+    // the ground is at the surface, the photon lands at S
+    if (terrainHeightGrad(S.xz).x >= S.y) return true;
     for (int leg = 0; leg < 2; leg++) {
         float start = s0, len = natLegLength(S + start * t, t);
+        // Nothing under S in the map, but the ground stands within the
+        // light pass's clip (World below -0.02) of the level here: the
+        // shore, where the clip cut the ground away, so the sun sees
+        // through it. The ground is at the surface: the photon lands at
+        // S. Lost, these photons drew a black line along the waterline.
+        if (len < 0.0 && leg == 0 && terrainHeightGrad(S.xz).x >= uWaterLevel - 0.02 * uWorldScale)
+            return true;
         if (len < 0.0) return false;
         for (int i = 1; i <= PHOTON_STEPS; i++) {
             float s1 = start + len * float(i) / float(PHOTON_STEPS);
@@ -205,7 +217,19 @@ bool natPhoton(vec3 S, vec3 N, float area, out vec2 q, out float w) {
     bool met = natTraceFloor(S, t, s, hit);
     float depth = uWaterLevel - hit.y;
     q = hit.xz - ts.xz * (depth / cosT);
-    if (!met || depth <= 0.0) return false;
+    if (!met) return false;
+    // S under the ground (the water grid runs on under a beach): the
+    // photon lands where it is, with no path in water. Lost (w 0), as
+    // before issue #24, it darkened the triangles it shares with the
+    // photons just off the shore: a black line along every waterline
+    // that the reference, whose photons light the ground at the water's
+    // edge, does not have. (Where S is above the mean level the ratio is
+    // not read: applyCaustics leaves points above the level alone.)
+    if (s <= 0.0) {
+        w = area * (1.0 - worldFresnel(cosI, 1.0, uIOR)) / (1.0 - worldFresnel(cosS, 1.0, uIOR));
+        return true;
+    }
+    if (depth <= 0.0) return false;
     float sigma = dot(uAbsorption, vec3(1.0 / 3.0));
     w = area * (1.0 - worldFresnel(cosI, 1.0, uIOR)) / (1.0 - worldFresnel(cosS, 1.0, uIOR))
         * exp(-sigma * (s - depth / cosT));

@@ -77,6 +77,8 @@ vec3 attenuate(vec3 c, float d) {
 #endif
 }
 
+#define NAT_ON_GROUND 0.15     // how far from the terrain model a shown point counts as ground (lake m)
+
 float gCausticRatio = 1.0;      // the last ratio applied (DEBUG_PASS 3)
 vec3 gRefractHit = vec3(0.0);   // the point the refraction lookup showed (DEBUG_PASS 4)
 vec3 gIrradiance = vec3(0.0);   // the sun's irradiance the last applyCaustics shaded with
@@ -95,7 +97,14 @@ vec3 applyCaustics(vec3 c, vec3 p) {
     float ratio = 1.0;
 #ifdef CAUSTICS
     vec2 uv = natCausticUV(natCausticQ(p));
-    if (natInside(uv)) {
+    // Only on the ground: the reference lights the objects under the water
+    // by the flat sun, and the relighting below takes the terrain's albedo,
+    // so on a sunken boulder or crate it turned the object's colour into
+    // the ground's (bright patches over the boulder of the close-ups). A
+    // shown point more than 15 cm off the terrain model (terrain.glsl) is
+    // on an object (5 cm lost far ground, whose point the 512^2 depth
+    // target gives less closely: lake 0.0479 -> 0.0480).
+    if (natInside(uv) && abs(p.y - terrainHeightGrad(p.xz).x) < NAT_ON_GROUND * uWorldScale) {
         vec2 o = 0.5 / vec2(textureSize(uCaustics, 0));
         float cr = 0.25 * (texture(uCaustics, uv + vec2(-o.x, -o.y)).r + texture(uCaustics, uv + vec2(o.x, -o.y)).r
                          + texture(uCaustics, uv + vec2(-o.x, o.y)).r + texture(uCaustics, uv + vec2(o.x, o.y)).r);
