@@ -132,6 +132,17 @@ static void test_inactive_uniforms_one_line_same_on_reload(void) {
     CHECK_MSG(strcmp(render_messages(r), first) == 0, "start-up said:\n%sreload said:\n%s", first,
               render_messages(r));
     render_destroy(r);
+    /* --verbose (render_desc.verbose): the summary, then each at its glib line */
+    r = render_create(&(render_desc){ .verbose = true });
+    CHECK_MSG(render_load(r, scratch_path("lake.glib")), "%s", render_messages(r));
+    const char *v = render_messages(r);
+    fprintf(stderr, "verbose: %s", v);
+    CHECK_STR_CONTAINS(v, "lake.glib:5: note: 2 uniforms of the glib are declared but inactive as built");
+    CHECK_STR_CONTAINS(v, "lake.glib:5: note: uniform 'uLevel' is declared in program 'Water' but inactive as built");
+    CHECK_STR_CONTAINS(v, "lake.glib:5: note: uniform 'uGlint' is declared in program 'Water' but inactive as built");
+    CHECK_MSG(count_of(v, "\n") == 3, "the summary and a line each: %s", v);
+    CHECK_MSG(!strstr(v, "uColor"), "uColor is active: %s", v);
+    render_destroy(r);
 }
 
 /* A glib and shaders that no longer belong together (issue #27: the

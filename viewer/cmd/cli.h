@@ -17,6 +17,7 @@ typedef struct cli_render_desc {
     int frames;                 /* 0: 1 */
     bool still;                 /* every frame at time_s (a paused window, tarn bench), not 1/60 s apart */
     bool quiet;
+    bool verbose;               /* each inactive uniform a note at its glib line */
     const char *pack;           /* replaces the scene's `Pack` */
     const char *setting;        /* --setting NAME: a row of the pack's bench.txt, before the --sets */
     const char *const *sets;    /* --set PROGRAM.NAME=V[,V...] or NAME=V: sliders, checkboxes, Defines */

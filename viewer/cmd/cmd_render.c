@@ -113,7 +113,7 @@ int cli_render(const cli_render_desc *d) {
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;   /* a kept image: anti-aliased */
-    render_desc rd = { .pack = d->pack, .samples = samples };
+    render_desc rd = { .pack = d->pack, .samples = samples, .verbose = d->verbose };
     render *r = render_create(&rd);
     bool ok = render_load(r, d->glib);
     print_load_messages(r, d->quiet);
@@ -187,6 +187,7 @@ int cli_render(const cli_render_desc *d) {
 static const char usage[] =
     "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
     "                   [--still] [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
+    "                   [--quiet | --verbose]\n"
     "\n"
     "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
     "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
@@ -206,6 +207,8 @@ static const char usage[] =
     "                   as the panel would (NAME=V: of every Program); repeatable\n"
     CMD_MSAA_STILL_HELP
     "  --quiet          print only warnings and errors\n"
+    "  --verbose        each uniform the shaders declare but do not use, a note at\n"
+    "                   its glib line (by default one summary line a load)\n"
     "\n"
     "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
 
@@ -244,6 +247,7 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
         else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }
         else if (strcmp(a, "--setting") == 0 && next) { d->setting = next; i++; }
         else if (strcmp(a, "--quiet") == 0) d->quiet = true;
+        else if (strcmp(a, "--verbose") == 0) d->verbose = true;
         else if (a[0] == '-') return bad("unknown option");
         else if (!d->glib) d->glib = a;
         else return bad("one scene at a time");

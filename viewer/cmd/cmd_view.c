@@ -8,7 +8,7 @@
 
 static const char usage[] =
     "usage: tarn view FILE.glib [--pack NAME] [--setting NAME] [--size WxH] [--time SECONDS]\n"
-    "                 [--script FILE] [--record FILE] [--msaa N]\n"
+    "                 [--script FILE] [--record FILE] [--msaa N] [--verbose]\n"
     "\n"
     "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
     "generated sliders (one section per Program). Every file the scene reads is\n"
@@ -28,6 +28,8 @@ static const char usage[] =
     "  --record FILE    record what you do (sliders, camera, pause) into the session\n"
     "                   FILE from the start; `tarn record FILE -o out.mp4` replays it\n"
     CMD_MSAA_HELP
+    "  --verbose        each uniform the shaders declare but do not use, a note at\n"
+    "                   its glib line (by default one summary line a load)\n"
     "\n"
     "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
     "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
@@ -61,6 +63,7 @@ int cmd_view(int argc, char **argv) {
             i++;
         }
         else if (strcmp(a, "--record") == 0 && next) { d.record = next; i++; }
+        else if (strcmp(a, "--verbose") == 0) d.verbose = true;
         else if (strcmp(a, "--setting") == 0 && next) { d.setting = next; i++; }
         else if (a[0] == '-') return cmd_bad_usage(stderr, "tarn", usage, "unknown option");
         else if (!d.glib) d.glib = a;

@@ -95,6 +95,7 @@ struct render {
     gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, always bound */
     char noise_dir[GLIB_PATH_MAX];  /* the project folder they were read for */
     bool noise_built;
+    bool verbose;              /* render_desc.verbose */
 };
 
 render *render_create(const render_desc *desc) {
@@ -105,6 +106,7 @@ render *render_create(const render_desc *desc) {
     snprintf(r->packs_dir, sizeof r->packs_dir, "%s/packs", r->root);
     if (desc && desc->pack) snprintf(r->pack, sizeof r->pack, "%s", desc->pack);
     r->samples = desc ? desc->samples : 0;
+    r->verbose = desc && desc->verbose;
     gpu_timer_init(&r->timer);
     wcache_init(&r->wcache);
     return r;
@@ -513,11 +515,26 @@ static void build_begin(scene_state *s, int ci, char **log) {
     free(xyz);
 }
 
+/* --verbose: each inactive uniform a note at its own glib line. */
+static void note_each_inactive(const scene_state *s, char **log) {
+    for (int i = 0; i < s->nprogs; i++) {
+        int n = prog_inactive_uniforms(&s->progs[i], NULL, 0);
+        if (n <= 0) continue;
+        const unif_entry **found = mem_alloc((size_t)n * sizeof *found);
+        n = prog_inactive_uniforms(&s->progs[i], found, n);
+        for (int k = 0; k < n; k++)
+            str_appendf(log, "%s:%d: note: uniform '%s' is declared in program '%s' but inactive as built\n",
+                        found[k]->glib_file ? found[k]->glib_file : "?", found[k]->glib_line, found[k]->name,
+                        s->progs[i].name);
+        free(found);
+    }
+}
+
 /* The glib's uniforms that shaders declare but do not use, in one line a
  * load (issue #30: a line each buried the real messages): the same words
  * at start-up and on every reload. */
 #define INACTIVE_NAMED 8
-static void note_inactive_uniforms(const scene_state *s, char **log) {
+static void note_inactive_uniforms(const scene_state *s, bool verbose, char **log) {
     int total = 0, shown = 0;
     char *list = NULL;
     const unif_entry *first = NULL;
@@ -534,8 +551,10 @@ static void note_inactive_uniforms(const scene_state *s, char **log) {
         str_appendf(log, "%s:%d: note: %d uniform%s of the glib %s declared but inactive as built "
                     "(compiled out by a Define, or unused): %s%s\n",
                     first && first->glib_file ? first->glib_file : "?", first ? first->glib_line : 0, total,
-                    total == 1 ? "" : "s", total == 1 ? "is" : "are", list, total > shown ? ", ..." : "");
+                    total == 1 ? "" : "s", total == 1 ? "is" : "are", list,
+                    total > shown ? verbose ? ", ... (each below)" : ", ... (--verbose lists each)" : "");
     free(list);
+    if (verbose) note_each_inactive(s, log);
 }
 
 static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
@@ -564,7 +583,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
         else program_stages_step(&st, c);
     }
     settings_from_glib(&s->set, s->glib);
-    note_inactive_uniforms(s, log);
+    note_inactive_uniforms(s, r->verbose, log);
     check_if_nesting(s->glib, log);
     check_named_counts(s, log);
     return true;

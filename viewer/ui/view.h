@@ -13,6 +13,7 @@ typedef struct view_desc {
     const char *setting;        /* a row of the pack's bench.txt to start from (the Setting combo) */
     const char *record;         /* record a session (session.h) into this file from the start */
     int samples;                /* MSAA (render_desc.samples): 0 the default, 1 off */
+    bool verbose;               /* render_desc.verbose: each inactive uniform at its line */
 } view_desc;
 
 /* Runs the window until it is closed (or the script quits). Returns a
