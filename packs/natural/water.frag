@@ -128,6 +128,46 @@ vec3 applyCaustics(vec3 c, vec3 p) {
 #endif
 }
 
+#if REFINE_STEPS > 0
+// The march of REFINE_STEPS (below): along U + s r, s in [0, smax], through
+// the target a camera (vp, eye) drew with depth depthTex, to where the ray
+// passes behind what the target shows (g(s) = |W - eye| - |shown(W) - eye|
+// > 0, g(0) = g0 < 0), then REFINE_BISECT halvings of the bracket and one
+// regula-falsi step. A ray that leaves the target keeps its last point in
+// front; one that never passes behind anything (the sky) ends at smax.
+// The refraction (the eye) and, since issue #24, the reflection (the
+// mirrored eye) march alike.
+float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax, float g0) {
+    vec2 uv;
+    bool ok;
+    float s = smax;
+    float sa = 0.0, ga = min(g0, -1e-4);
+    for (int i = 1; i <= REFINE_STEPS; i++) {
+        float sb = smax * float(i) / float(REFINE_STEPS);
+        vec3 b = natShownPoint(vp, eye, depthTex, U + sb * r, uv, ok);
+        if (!ok) { s = sa; break; }
+        float gb = distance(eye, U + sb * r) - distance(eye, b);
+        if (gb > 0.0) {
+            // bisection, then one interpolation: two regula-falsi steps
+            // (as before) stalled at one end where g bends (a floor seen at
+            // a slant), so the hits of whole rows of pixels stopped at the
+            // same step's end and showed as bands on the shallow floor
+            for (int k = 0; k < REFINE_BISECT; k++) {
+                float sm = 0.5 * (sa + sb);
+                vec3 bm = natShownPoint(vp, eye, depthTex, U + sm * r, uv, ok);
+                float gm = ok ? distance(eye, U + sm * r) - distance(eye, bm) : 1.0;
+                if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
+            }
+            s = sa + (sb - sa) * (-ga) / (gb - ga);
+            break;
+        }
+        sa = sb;
+        ga = gb;
+    }
+    return s;
+}
+#endif
+
 // What the refraction target shows along direction r from the surface
 // point U. The paper: W = U + s0 r. With REFINE_STEPS > 0, a march instead:
 // W = U + s r for s = smax i / REFINE_STEPS until W passes behind what the
@@ -142,30 +182,7 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
     vec2 uv;
     bool ok;
 #if REFINE_STEPS > 0
-    float sa = 0.0, ga = min(g0, -1e-4);
-    s = smax;
-    for (int i = 1; i <= REFINE_STEPS; i++) {
-        float sb = smax * float(i) / float(REFINE_STEPS);
-        vec3 b = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + sb * r, uv, ok);
-        if (!ok) { s = sa; break; }
-        float gb = distance(uCameraPos, U + sb * r) - distance(uCameraPos, b);
-        if (gb > 0.0) {
-            // bisection, then one interpolation: two regula-falsi steps
-            // (as before) stalled at one end where g bends (a floor seen at
-            // a slant), so the hits of whole rows of pixels stopped at the
-            // same step's end and showed as bands on the shallow floor
-            for (int k = 0; k < REFINE_BISECT; k++) {
-                float sm = 0.5 * (sa + sb);
-                vec3 bm = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + sm * r, uv, ok);
-                float gm = ok ? distance(uCameraPos, U + sm * r) - distance(uCameraPos, bm) : 1.0;
-                if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
-            }
-            s = sa + (sb - sa) * (-ga) / (gb - ga);
-            break;
-        }
-        sa = sb;
-        ga = gb;
-    }
+    s = natMarch(uCamWideVP, uCameraPos, uRefractionDepth, U, r, smax, g0);
 #endif
     vec3 shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
     // The perturbed lookup left the target, or the march closed on the
@@ -238,8 +255,33 @@ void main() {
         // band's outer half, so no seam shows where they leave the target.
         // Where the target shows the sky or nothing (no reflection pass: only
         // sky above the water), the cube map along Rr.
+        // The paper looks up W = U + c Rr, c fixed: exact for flat water,
+        // a guess on waves, where a thing's reflection came apart (the
+        // crate over grazing_sun's waves: two dark wedges where the
+        // reference has one). With REFINE_STEPS the reflected ray is
+        // marched through the mirror target as the refracted one is
+        // through the refraction target (natMarch), from the mirrored eye
+        // (issue #24).
+        float cr = uReflectDist * uWorldScale;
+#if REFINE_STEPS > 0
+        {
+            vec3 mirrorEye = vec3(uCameraPos.x, 2.0 * uWaterLevel - uCameraPos.y, uCameraPos.z);
+            vec2 uvm;
+            bool okm;
+            vec3 m0 = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U, uvm, okm);
+            float dm = okm && texture(uReflectionDepth, uvm).r < NAT_SKY_DEPTH ? distance(U, m0) : 50.0 * uWorldScale;
+            cr = natMarch(uCamMirrorVP, mirrorEye, uReflectionDepth, U, Rr, min(1.5 * dm + 0.5 * uWorldScale, 50.0 * uWorldScale), -dm);
+            // closed on a silhouette: the ray passed behind a thing (as the
+            // mirrored eye sees it), not into it; what it meets there is
+            // hidden from the mirror pass (the crate mirrored in open water
+            // mid-lake): the paper's lookup then
+            float spread;
+            natNearestShown(uCamMirrorVP, mirrorEye, uReflectionDepth, U + cr * Rr, spread);
+            if (spread > 1.25) cr = uReflectDist * uWorldScale;
+        }
+#endif
         float w;
-        vec2 uv = natProject(uCamMirrorVP, U + uReflectDist * uWorldScale * Rr, w);
+        vec2 uv = natProject(uCamMirrorVP, U + cr * Rr, w);
         float band = 0.5 * (1.0 - 1.0 / max(uFovScale, 1.0));
         float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
         float keep = w <= 0.0 ? 0.0 : band > 0.0 ? clamp(inside / (0.5 * band), 0.0, 1.0) : float(inside >= 0.0);
