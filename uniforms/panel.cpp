@@ -389,6 +389,53 @@ void panel_render(panel *p) {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
+namespace {
+
+// The heat maps' ramp as a bar across the panel, 0 at the left, the scale
+// (and more) at the right: outside the views, so it hides none of them.
+void compare_legend(const panel_compare *c) {
+    ImDrawList *dl = ImGui::GetWindowDrawList();
+    ImVec2 at = ImGui::GetCursorScreenPos();
+    float w = ImGui::GetContentRegionAvail().x, h = ImGui::GetFontSize() * 0.8f;
+    for (int i = 0; i + 1 < c->legend_n; i++) {
+        const float *a = &c->legend_rgb[3 * i], *b = &c->legend_rgb[3 * (i + 1)];
+        ImU32 ca = ImGui::ColorConvertFloat4ToU32(ImVec4(a[0], a[1], a[2], 1.0f));
+        ImU32 cb = ImGui::ColorConvertFloat4ToU32(ImVec4(b[0], b[1], b[2], 1.0f));
+        float x0 = at.x + w * i / (c->legend_n - 1), x1 = at.x + w * (i + 1) / (c->legend_n - 1);
+        dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), ca, cb, cb, ca);
+    }
+    ImGui::Dummy(ImVec2(w, h));
+    ImGui::Text("0");
+    char half[32], full[32];
+    std::snprintf(half, sizeof half, "%.3g", c->legend_scale / 2);
+    std::snprintf(full, sizeof full, ">= %.3g", c->legend_scale);
+    ImGui::SameLine(w * 0.5f - ImGui::CalcTextSize(half).x * 0.5f);
+    ImGui::TextUnformatted(half);
+    ImGui::SameLine(w - ImGui::CalcTextSize(full).x);
+    ImGui::TextUnformatted(full);
+    ImGui::TextColored(kGrey, "error (max |RGB|), linear");
+}
+
+// Each pack's passes and their times, folded; over the views only on request.
+void compare_pass_times(const panel_compare *c) {
+    bool any = false;
+    for (int i = 0; i < c->npacks; i++) any |= c->packs[i].passes && c->packs[i].passes[0];
+    if (!any) return;
+    if (!ImGui::TreeNode("pass times")) return;
+    if (c->passes_over_views) ImGui::Checkbox("over the views too", c->passes_over_views);
+    for (int i = 0; i < c->npacks && i < PANEL_COMPARE_MAX_PACKS; i++) {
+        const panel_compare_pack *pk = &c->packs[i];
+        if (!pk->passes || !pk->passes[0]) continue;
+        ImGui::Text("%d %s", i + 1, pk->name);
+        ImGui::Indent();
+        ImGui::TextUnformatted(pk->passes);
+        ImGui::Unindent();
+    }
+    ImGui::TreePop();
+}
+
+}  // namespace
+
 void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions *out) {
     panel_compare_actions none;
     if (!out) out = &none;
@@ -443,6 +490,7 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
             ImGui::PopItemWidth();
         }
         if (c->heat_status) ImGui::TextWrapped("%s", c->heat_status);
+        if (c->legend_rgb && c->legend_n >= 2) compare_legend(c);
         ImGui::Separator();
 
         if (ImGui::BeginTable("timings", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
@@ -465,6 +513,7 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
             }
             ImGui::EndTable();
         }
+        compare_pass_times(c);
         if (c->note) {   // wrapped: the llvmpipe note is longer than the panel is wide
             ImGui::PushStyleColor(ImGuiCol_Text, kGrey);
             ImGui::TextWrapped("%s", c->note);

@@ -97,6 +97,7 @@ typedef struct panel_compare_pack {
     double gpu_ms, wall_ms;      /* this pack's frame; < 0 when not measured */
     double rmse, psnr_db;        /* over the reference's water pixels (NaN: no heat map yet) */
     const char *error_text;      /* its load or build errors, NULL if none */
+    const char *passes;          /* its passes' times, a pass a line ("" or NULL: none) */
 } panel_compare_pack;
 
 enum { PANEL_LAYOUT_GRID = 0, PANEL_LAYOUT_WIPE = 1 };
@@ -116,6 +117,10 @@ typedef struct panel_compare {
     bool *show_heat;             /* heat maps instead of the images */
     float *heat_max;             /* the heat map's full scale (0: automatic) */
     const char *heat_status;     /* what the heat maps show, or why there are none */
+    const float *legend_rgb;     /* the maps' ramp from 0 to legend_scale, legend_n sRGB triples; NULL: none shown */
+    int legend_n;
+    double legend_scale;
+    bool *passes_over_views;     /* the passes' times over the views too (else only here) */
     const char *note;            /* a line under the timings (the time axis, ...) */
     float *budget_ms;            /* as panel_info's */
     const char *resolution;

@@ -39,12 +39,12 @@
 _Static_assert(COMPARE_VIEW_MAX_PACKS <= PANEL_COMPARE_MAX_PACKS, "the panel has a row for every pack");
 
 #define DIVIDER_GRAB 8    /* pixels either side of the wipe's divider that grab it */
-#define LEGEND_STEPS 256  /* colours in the heat maps' legend */
+#define LEGEND_STEPS 32   /* colours of the heat maps' legend (the panel interpolates between them) */
 
 _Static_assert(COMPARE_VIEW_MAX_PACKS <= HEAT_JOB_MAX_PACKS, "the worker takes every pack");
 
 typedef struct cv_pack {
-    char name[64], label[80];
+    char name[64], title[72], label[80];   /* "basic", "basic #2", "2 basic #2" (over its view) */
     render *r;
     render_target tg;            /* the pack's image, float, a cell's size */
     unsigned heat_tex, heat_fbo; /* its heat map, display values */
@@ -84,8 +84,8 @@ typedef struct cview {
     orbit pend_cam;
     int pend_w, pend_h;
     double pend_started;
-    unsigned legend_tex, legend_fbo;
-    double legend_scale;         /* the scale the legend texture was made for */
+    float legend_rgb[LEGEND_STEPS * 3];   /* the maps' ramp, no error to the scale, display values */
+    bool passes_over_views;      /* each pass's time over its pack's view (else in the panel only) */
     char heat_status[256];
     panel_compare_actions pending;   /* the panel's buttons of this frame, applied after it */
     /* the scene area and the cells, framebuffer pixels (GL: y from the bottom) */
@@ -227,16 +227,12 @@ static void upload_heat(cv_pack *p, const float *rgb, int w, int h) {
     p->heat_h = h;
 }
 
-/* The legend's bar: the maps' colours from no error (bottom) to the scale
- * and more (top), made again when the scale changes. */
+/* The legend's ramp, for the panel: the maps' colours from no error to
+ * the scale (the maps' own function, so the two cannot disagree). */
 static void make_legend(cview *v) {
-    if (v->legend_tex && v->legend_scale == v->heat_scale) return;
-    float field[LEGEND_STEPS], rgb[LEGEND_STEPS * 3];
-    for (int i = 0; i < LEGEND_STEPS; i++)
-        field[i] = (float)(v->heat_scale * (LEGEND_STEPS - 1 - i) / (LEGEND_STEPS - 1));
-    ref_heatmap(field, 1, LEGEND_STEPS, v->heat_scale, rgb);
-    upload_rgb(&v->legend_tex, &v->legend_fbo, rgb, 1, LEGEND_STEPS, false);
-    v->legend_scale = v->heat_scale;
+    float field[LEGEND_STEPS];
+    for (int i = 0; i < LEGEND_STEPS; i++) field[i] = (float)(v->heat_scale * i / (LEGEND_STEPS - 1));
+    ref_heatmap(field, LEGEND_STEPS, 1, v->heat_scale, v->legend_rgb);
 }
 
 /* The worker's maps (of the frame that was read back) into the packs'
@@ -369,10 +365,11 @@ static void to_window(const cview *v, int x, int y, float *wx, float *wy) {
 static void label_pack(cview *v, int i, int x0, int x1, int ytop, bool heat) {
     cv_pack *p = &v->packs[i];
     strbuf text = { 0 };
-    strbuf_printf(&text, "%s\n%.2f ms GPU  %.1f ms wall", p->label, p->gpu_ms, p->wall_ms);
-    if (heat && p->have_heat)
-        strbuf_printf(&text, "\nwater RMSE %.4f  PSNR %.1f dB\nframe RMSE %.4f", p->rmse, p->psnr, p->frame_rmse);
-    if (p->passes[0]) strbuf_printf(&text, "\n%s", p->passes);
+    /* two lines at most, so the view stays visible; the GPU time, the
+     * frame's error and each pass's time are in the panel */
+    strbuf_printf(&text, "%s  %.1f ms", p->label, p->wall_ms);
+    if (heat && p->have_heat) strbuf_printf(&text, "\nwater RMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
+    if (p->passes[0] && v->passes_over_views) strbuf_printf(&text, "\n%s", p->passes);
     float wx0, wx1, wy;
     to_window(v, x0, ytop, &wx0, &wy);
     to_window(v, x1, ytop, &wx1, &wy);
@@ -380,54 +377,13 @@ static void label_pack(cview *v, int i, int x0, int x1, int ytop, bool heat) {
     strbuf_free(&text);
 }
 
-/* ---- the heat maps' legend ---- */
-
-#define LEGEND_W 14       /* the bar's width, framebuffer pixels */
-
-/* The bar in framebuffer pixels: at the scene area's right edge, half its
- * height, below the packs' labels at the top (its caption under it). */
-static void legend_rect(const cview *v, int *x, int *y, int *w, int *h) {
-    *w = LEGEND_W;
-    *h = v->area_h / 2;
-    *x = v->area_x + v->area_w - LEGEND_W - 12;
-    *y = v->area_h / 6;
-}
+/* ---- the heat maps' legend: in the panel, outside the views (issue #30) ---- */
 
 static bool legend_shown(const cview *v, bool heat) {
     if (!heat || !(v->heat_scale > 0)) return false;
     for (int i = 0; i < v->n; i++)
         if (v->packs[i].have_heat) return true;
     return false;
-}
-
-static void draw_legend(cview *v) {
-    make_legend(v);
-    int x, y, w, h;
-    legend_rect(v, &x, &y, &w, &h);
-    fill(x - 1, y - 1, w + 2, h + 2, 0.9f, 0.9f, 0.9f);
-    glDisable(GL_FRAMEBUFFER_SRGB);   /* display values, as the maps */
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, v->legend_fbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBlitFramebuffer(0, 0, 1, LEGEND_STEPS, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-}
-
-/* The scale's values beside the bar: 0, half, the scale (and more). */
-static void legend_labels(cview *v) {
-    int x, y, w, h;
-    legend_rect(v, &x, &y, &w, &h);
-    for (int k = 0; k <= 2; k++) {
-        char text[48];
-        double value = v->heat_scale * k / 2;
-        if (k == 2) snprintf(text, sizeof text, ">= %.3g", value);
-        else snprintf(text, sizeof text, "%.3g", value);
-        float wx, wy;
-        to_window(v, x - 4, y + h * k / 2, &wx, &wy);
-        panel_label(v->panel, wx, wy - 9, text, true);
-    }
-    float wx, wy;
-    to_window(v, x + w, y - 4, &wx, &wy);
-    panel_label(v->panel, wx, wy, "error (max |RGB|)", true);
 }
 
 static void compose(cview *v, bool heat) {
@@ -449,11 +405,9 @@ static void compose(cview *v, bool heat) {
         for (int i = 1; i < 2; i++) fill(v->area_x + i * v->cell_w - 1, 0, 2, v->area_h, 0.12f, 0.12f, 0.13f);
         if (v->n > 2) fill(v->area_x, v->area_h - v->cell_h - 1, v->area_w, 2, 0.12f, 0.12f, 0.13f);
     }
-    if (legend_shown(v, heat)) draw_legend(v);
 }
 
 static void labels(cview *v, bool heat) {
-    if (legend_shown(v, heat)) legend_labels(v);
     if (v->layout == PANEL_LAYOUT_WIPE) {
         int split = v->area_x + wipe_px(v);
         label_pack(v, v->wipe_a, v->area_x, split, v->cell_h, heat);
@@ -586,7 +540,7 @@ static void on_panel(void *user, app *a, panel_actions *common) {
     panel_compare_pack pp[COMPARE_VIEW_MAX_PACKS];
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
-        pp[i] = (panel_compare_pack){ .name = p->label, .gpu_ms = pack_drawn(v, i) ? p->gpu_ms : -1,
+        pp[i] = (panel_compare_pack){ .name = p->title, .passes = p->passes, .gpu_ms = pack_drawn(v, i) ? p->gpu_ms : -1,
                                       .wall_ms = pack_drawn(v, i) ? p->wall_ms : -1,
                                       .rmse = heat && p->have_heat ? p->rmse : NAN,
                                       .psnr_db = heat && p->have_heat ? p->psnr : NAN,
@@ -594,6 +548,8 @@ static void on_panel(void *user, app *a, panel_actions *common) {
         pp[i].sets = render_uniforms(p->r, &pp[i].nsets);
     }
     const char *status = v->heat_status[0] ? v->heat_status : "no heat maps yet: H computes them";
+    bool legend = legend_shown(v, heat);
+    if (legend) make_legend(v);
     bool cpu_raster = v->s->cpu_raster;
     char res[160];
     app_budget_text(a, res, sizeof res);
@@ -601,9 +557,11 @@ static void on_panel(void *user, app *a, panel_actions *common) {
                          .packs = pp, .npacks = v->n, .layout = &v->layout, .wipe_a = &v->wipe_a,
                          .wipe_b = &v->wipe_b, .wipe = &v->wipe, .show_heat = &v->show_heat,
                          .heat_max = &v->heat_max, .heat_status = status,
+                         .legend_rgb = legend ? v->legend_rgb : NULL, .legend_n = LEGEND_STEPS,
+                         .legend_scale = v->heat_scale, .passes_over_views = &v->passes_over_views,
                          .note = cpu_raster ? "llvmpipe: GPU timestamps do not time the rasterisation; "
                                               "wall time (after glFinish) does"
-                                            : "per pass GPU times in each pack's corner" };
+                                            : NULL };
     panel_draw_compare(v->panel, &pc, &v->pending);
     labels(v, heat);
     *common = v->pending.common;
@@ -710,8 +668,13 @@ static void load_packs(cview *v, const cli_compare_view_desc *d, bool *ok) {
         snprintf(p->name, sizeof p->name, "%s", d->packs[i]);
         int copy = 1;
         for (int j = 0; j < i; j++) copy += strcmp(d->packs[j], d->packs[i]) == 0;
-        if (copy > 1) snprintf(p->label, sizeof p->label, "%d %s #%d", i + 1, p->name, copy);
-        else snprintf(p->label, sizeof p->label, "%d %s", i + 1, p->name);
+        if (copy > 1) snprintf(p->title, sizeof p->title, "%s #%d", p->name, copy);
+        else snprintf(p->title, sizeof p->title, "%s", p->name);
+        snprintf(p->label, sizeof p->label, "%d %s", i + 1, p->title);
+        char loading[1024], which[128];
+        snprintf(which, sizeof which, " (pack %d of %d: %s)", i + 1, v->n, p->title);
+        view_loading_text(d->glib, p->name, which, loading, sizeof loading);
+        app_splash(v->app, loading);
         render_desc rd = { .pack = p->name, .samples = d->samples };
         p->r = v->scenes[i] = render_create(&rd);
         if (!render_load(p->r, d->glib)) *ok = false;
@@ -731,8 +694,6 @@ static void free_packs(cview *v) {
     }
     heat_job_destroy(v->job);   /* first: its maps borrow the reference */
     refcache_free(&v->ref);
-    if (v->legend_fbo) glDeleteFramebuffers(1, &v->legend_fbo);
-    if (v->legend_tex) glDeleteTextures(1, &v->legend_tex);
 }
 
 int cli_compare_view(const cli_compare_view_desc *d) {

@@ -312,28 +312,6 @@ static void on_panel(void *user, app *a, panel_actions *common) {
 
 /* ---- the command ---- */
 
-/* "loading lake.glib (natural): compiling 7 programs..." on the window at
- * once: the first frame waits for every program to compile (1-6 s on a
- * CPU rasteriser), and a black window says nothing (issue #30). */
-static void splash_loading(app *a, const char *glib, const char *pack) {
-    char packs[4096], text[1024];
-    snprintf(packs, sizeof packs, "%s/packs", tarn_root());
-    glib_options opt = { .packs_dir = packs, .pack_override = pack };
-    glib_scene *g = glib_load_opts(glib, &opt);
-    int programs = 0;
-    bool world = false;
-    for (int i = 0; i < g->ncmds; i++) {
-        programs += g->cmds[i].kind == GLIB_CMD_PROGRAM;
-        world |= glib_cmd_describes_world(g->cmds[i].kind);
-    }
-    glib_free(g);
-    const char *base = strrchr(glib, '/');
-    int n = programs + (world ? 4 : 0);   /* the world's own: its three parts and the height map */
-    snprintf(text, sizeof text, "loading %s: compiling %d program%s ...", base ? base + 1 : glib, n,
-             n == 1 ? "" : "s");
-    app_splash(a, text);
-}
-
 int view_run(const view_desc *d) {
     viewer v;
     memset(&v, 0, sizeof v);
@@ -350,7 +328,9 @@ int view_run(const view_desc *d) {
     v.r = render_create(&rd);
     v.npacks = packset_list(tarn_root(), v.packs, PACKSET_MAX);
     for (int i = 0; i < v.npacks; i++) v.pack_names[i] = v.packs[i];
-    splash_loading(v.app, d->glib, d->pack);
+    char loading[1024];
+    view_loading_text(d->glib, d->pack, "", loading, sizeof loading);
+    app_splash(v.app, loading);
     bool ok = render_load(v.r, d->glib);
     report_load(&v);
     app_toast(v.app, "F1 or ? shows the keys and the mouse");

@@ -10,7 +10,9 @@
 #include <string.h>
 #include <time.h>
 
+#include "glib.h"
 #include "image_io.h"
+#include "util.h"
 
 orbit orbit_from_view(render_view v) {
     orbit o;
@@ -192,4 +194,22 @@ void view_reload_cause(const char *const *paths, int n, char *out, size_t len) {
     }
     if (n > shown && used < len) used += (size_t)snprintf(out + used, len - used, " and %d more", n - shown);
     if (n > 0 && used < len) snprintf(out + used, len - used, " changed");
+}
+
+void view_loading_text(const char *glib, const char *pack, const char *extra, char *out, size_t n) {
+    char packs[4096];
+    snprintf(packs, sizeof packs, "%s/packs", tarn_root());
+    glib_options opt = { .packs_dir = packs, .pack_override = pack };
+    glib_scene *g = glib_load_opts(glib, &opt);
+    int programs = 0;
+    bool world = false;
+    for (int i = 0; i < g->ncmds; i++) {
+        programs += g->cmds[i].kind == GLIB_CMD_PROGRAM;
+        world |= glib_cmd_describes_world(g->cmds[i].kind);
+    }
+    glib_free(g);
+    const char *base = strrchr(glib, '/');
+    int k = programs + (world ? 4 : 0);   /* the world's own: its three parts and the height map */
+    snprintf(out, n, "loading %s: compiling %d program%s ...%s", base ? base + 1 : glib, k, k == 1 ? "" : "s",
+             extra ? extra : "");
 }

@@ -14,6 +14,12 @@ typedef struct orbit {
     float distance, yaw, pitch;      /* radians */
 } orbit;
 
+/* "loading lake.glib: compiling 7 programs ..." (then `extra`), for the
+ * window at once: the first frame waits for every program to compile (1-6 s
+ * on a CPU rasteriser), and a black window says nothing (issue #30). pack
+ * replaces the scene's Pack (NULL: its own). */
+void view_loading_text(const char *glib, const char *pack, const char *extra, char *out, size_t n);
+
 orbit orbit_from_view(render_view v);
 render_view orbit_view(const orbit *o);
 /* Moves the centre in the view plane by a mouse delta in pixels. */
