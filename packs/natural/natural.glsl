@@ -109,6 +109,15 @@ vec3 natNearestShown(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out float sp
     return eye + (x - eye) * (min(lo, 1e6) / cx.w);
 }
 
+// Where the ray U + s r (downward) meets the ground of the terrain model
+// (terrain.glsl), objects left out: for a ray whose hit the camera's
+// target hides. Fixed-point steps on the drop under the current point.
+vec3 natGroundAlong(vec3 U, vec3 r) {
+    float s = 0.0, dy = max(-r.y, 1e-3);
+    for (int i = 0; i < 8; i++) s = max(U.y - terrainHeightGrad((U + s * r).xz).x, 0.0) / dy;
+    return U + s * r;
+}
+
 // ---- photons ----------------------------------------------------------------
 
 uniform sampler2D uLightDepth;   // the light camera's depth of the world below the water

@@ -199,6 +199,26 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
         edge = spread > 1.25 && near.y > U.y + 0.02 * uWorldScale;
     }
 #endif
+#if REFINE_STEPS > 0
+    if (edge && fallback) {
+        // Behind a thing standing out of the water, the point behind U is
+        // that thing too, up to the pass's clip (World below 0.3): the
+        // thing's dry band showed as a pale halo round it in the water
+        // (scenes/hard/look_down's rock). What the ray meets there is
+        // hidden from the camera; the ground is not: the terrain model
+        // (terrain.glsl), shaded as tarn's world program shades it.
+        vec3 g = natGroundAlong(U, r);
+        vec3 hg = terrainHeightGrad(g.xz);
+        vec3 gn = normalize(vec3(-hg.y, 1.0, -hg.z));
+        sky = false;
+        path = distance(U, g);
+        gRefractHit = g;
+        gIrradiance = vec3(0.0);
+        vec3 c = applyCaustics(worldShadeAt(terrainAlbedo(g.xz, hg.x, gn), gn, g), g);
+        gRefractIrradiance = gIrradiance;
+        return c;
+    }
+#endif
     if ((!ok || edge) && fallback)
         shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv, ok);
     sky = !ok || texture(uRefractionDepth, uv).r >= NAT_SKY_DEPTH;
