@@ -189,14 +189,18 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
     // silhouette of a thing standing out of the water (a floating sphere):
     // the ray went behind it, where what it meets is hidden from the
     // camera, and the halvings walked it to the edge, whose colour showed
-    // in arcs beside the thing. The ray runs down from U and cannot meet
-    // what is above U: the classic fix then, the point behind U itself.
+    // in arcs beside the thing. The same where the thing is under the
+    // water (a sunken boulder): a ray that passes behind it closed on its
+    // silhouette, and rows of pixels whose brackets straddled it showed as
+    // horizontal slivers (scenes/hard/crate_narrow). Where the bracket
+    // closes on a silhouette the ray meets the terrain model's ground
+    // (below); the point behind U itself where the lookup left the target.
     bool edge = false;
 #if REFINE_STEPS > 0
     if (ok) {
         float spread;
         vec3 near = natNearestShown(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, spread);
-        edge = spread > 1.25 && near.y > U.y + 0.02 * uWorldScale;
+        edge = spread > 1.25;
     }
 #endif
 #if REFINE_STEPS > 0
