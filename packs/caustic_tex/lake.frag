@@ -21,6 +21,8 @@
 //   UV_FLIP            swap U and V of the second copy of each two-layer lookup
 //   SKY_REFLECTION     (ours) the sky's reflection, exact Fresnel
 //   BEER_LAMBERT       (ours) attenuation along the refracted path
+//   SPECULAR_FRESNEL   (ours) the sun's highlight weighted by the Fresnel
+//                      reflectance and normalised (off: Xing's Phong lobe)
 //   SHOW_IRRADIANCE    (ours) output the sun's irradiance on the floor, E K,
 //                      per channel, for measurement against the reference
 //   DEBUG_OUTPUT       (ours) 1: the floor point the refracted lookup shows
@@ -32,12 +34,12 @@
 #include "hash.glsl"
 #include "waves.glsl"
 #include "world.glsl"
+#include "terrain.glsl"
 #include "xing_look.glsl"
 
 uniform samplerCube uSky;
 uniform vec3 uCameraPos;
 uniform float uTime;
-uniform float uTerrainHalfSize;
 uniform sampler2D uRefractColor;   // World below, from this camera
 uniform sampler2D uRefractDepth;   // its depth (1: nothing there)
 uniform float uWaterRefractMix;    // 0: the floor as refracted, 1: all turquoise
@@ -75,6 +77,129 @@ bool refractPoint(inout vec2 uv, out vec3 p) {
     vec4 c = gl_ModelViewProjectionMatrixInverse * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
     p = c.xyz / c.w;
     return z < SKY_DEPTH;
+}
+
+// The ground along the refracted ray d from P where the refraction pass
+// could not show it (the lookup left the screen): the terrain's model
+// (terrain.glsl), met by fixed-point steps on its height from the
+// level-floor guess s, shaded as tarn's world shades it under the water
+// (world.frag), so it joins what the pass saw on the screen without a
+// seam. Objects off the screen are not there (nothing saw them). Clamping
+// such a lookup to the screen's edge instead repeated the edge's row down
+// the frame: vertical streaks (issue #24).
+vec3 groundModel(vec3 P, vec3 d, float s, out vec3 hit, out vec3 n) {
+    for (int i = 0; i < 4; i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
+    vec3 hg = terrainHeightGrad((P + s * d).xz);
+    hit = vec3((P + s * d).x, hg.x, (P + s * d).z);
+    n = normalize(vec3(-hg.y, 1.0, -hg.z));
+    return worldShadeAt(terrainAlbedo(hit.xz, hg.x, n), n, hit);
+}
+
+bool onScreen(vec2 uv) {
+    return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+}
+
+// The refracted ray from P (direction d, down) marched over the refraction
+// pass's depth: the first sample behind what the pass shows there, by less
+// than REFRACT_THICKNESS (more: it went behind a thing, and goes on), then
+// bisection between it and the sample before. Returns REFRACT_HIT with the
+// uv and the point the pass shows there; REFRACT_MODEL where the ray left
+// the screen or went deeper than the terrain goes without meeting
+// anything (s: how far it got, the model's first guess); REFRACT_NONE
+// never (kept for the caller's reading).
+// Issue #24: the two projective steps it replaces took a level floor at
+// the depth of the point straight behind P; where that point was a thing
+// (the sunken crate, the rock breaking the surface) and the refracted ray
+// missed it, the steps stayed on the thing: a dark ghost of the crate's
+// side beside it, a pale halo round the rock.
+#define REFRACT_NONE  0
+#define REFRACT_HIT   1
+#define REFRACT_MODEL 2
+#define REFRACT_STEPS 24
+#define REFRACT_REFINE 5
+#define REFRACT_THICKNESS 0.6      // m on the lake, times uWorldScale
+bool behindShown(vec3 X, out vec2 uv, out bool off, out float gap) {
+    vec4 c = gl_ModelViewProjectionMatrix * vec4(X, 1.0);
+    uv = c.xy / c.w * 0.5 + 0.5;
+    off = c.w <= 0.0 || !onScreen(uv);
+    gap = 0.0;
+    if (off) return false;
+    ivec2 size = textureSize(uRefractDepth, 0);
+    float z = texelFetch(uRefractDepth, min(ivec2(uv * vec2(size)), size - 1), 0).r;
+    if (z >= SKY_DEPTH) return false;           // nothing there: go on
+    vec4 h = gl_ModelViewProjectionMatrixInverse * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
+    gap = distance(uCameraPos, X) - distance(uCameraPos, h.xyz / h.w);
+    return gap >= 0.0;
+}
+
+int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
+    // no deeper than the terrain's deepest (its depth, uTerrainShape.x,
+    // with a margin for the lake's detail), nor further than 100 m
+    float floorY = uWaterLevel - 1.2 * max(uTerrainShape.x, 0.1 * uWorldScale);
+    float sMax = min(max(P.y - floorY, 0.0) / -d.y, 100.0 * uWorldScale);
+    float thick = REFRACT_THICKNESS * uWorldScale;
+    float lo = 0.0;
+    s = 0.0;
+    uvF = screenOf(P);
+    F = P;
+    for (int i = 1; i <= REFRACT_STEPS; i++) {
+        float f = float(i) / float(REFRACT_STEPS);
+        s = sMax * f * f;                       // finer near P, where things are close
+        vec2 uv;
+        bool off;
+        float gap;
+        bool behind = behindShown(P + s * d, uv, off, gap);
+        if (off) {
+            // the step left the screen: close on the edge, and take the
+            // ray's last sample on the screen (a thing there, the crate
+            // by the frame's edge, is still met); else the model
+            float hi = s;
+            for (int k = 0; k < REFRACT_REFINE; k++) {
+                float mid = 0.5 * (lo + hi);
+                vec2 uvm;
+                float gm;
+                behindShown(P + mid * d, uvm, off, gm);
+                if (off) hi = mid; else lo = mid;
+            }
+            s = lo;
+            behind = behindShown(P + s * d, uv, off, gap);
+            if (!(behind && gap < thick + (hi - lo))) {
+                // a thing at the edge (above the terrain's model there)
+                // that the ray's last sample has nearly reached (within
+                // REFRACT_THICKNESS in front of it) most likely goes on
+                // past the edge, and the ray meets it there: show the
+                // edge's point, as the clamped lookup did (the crate at the
+                // frame's bottom in look_down); farther in front, the ray
+                // goes on to the ground (the terrain model knows no things)
+                vec3 S;
+                if (refractPoint(uv, S) && S.y > terrainHeightGrad(S.xz).x + 0.05 * uWorldScale && -gap < thick) {
+                    uvF = uv;
+                    F = S;
+                    return REFRACT_HIT;
+                }
+                return REFRACT_MODEL;
+            }
+            lo = max(lo - (hi - lo) * 8.0, 0.0);   // an interval in front, to close on below
+        }
+        if (behind && gap < thick + (s - lo)) {
+            // close on the crossing: a sample counts as through the
+            // surface when it is behind it by less than the interval
+            float hi = s;
+            for (int k = 0; k < REFRACT_REFINE; k++) {
+                float mid = 0.5 * (lo + hi);
+                vec2 uvm;
+                bool offm;
+                float gm;
+                if (behindShown(P + mid * d, uvm, offm, gm) && gm < thick + (hi - lo)) hi = mid; else lo = mid;
+            }
+            s = hi;
+            behindShown(P + s * d, uvF, off, gap);
+            refractPoint(uvF, F);
+            return REFRACT_HIT;
+        }
+        lo = s;                                 // in front, or behind a thing (passed it)
+    }
+    return REFRACT_MODEL;
 }
 
 // The floor's normal at uv from the depth of two neighbouring texels.
@@ -348,32 +473,33 @@ void main() {
         return;
     }
 
-    // the floor along the refracted ray: the point seen straight behind
-    // gives the depth D of a level floor under P; the refracted ray meets
-    // that level at P + tr D / -tr.y; the point seen there gives the next
-    // D (twice: a fixed-point iteration on the floor's height)
+    // the floor along the refracted ray, marched over the refraction pass's
+    // depth (refractMarch); off the screen, the terrain's model. F0, the
+    // point straight behind, stays the lookup where no ray goes down.
     vec2 uv0 = screenOf(P), uvF = uv0;
     vec3 F0, F;
-    bool hit0 = refractPoint(uv0, F0), hit = hit0;
+    bool hit0 = refractPoint(uv0, F0), hit = hit0, model = false;
     F = F0;
-    float D = P.y - F0.y;
-    if (!below && hit0 && D > 0.0 && tr.y < -1e-4) {
-        for (int i = 0; i < 2; i++) {
-            vec2 uvi = screenOf(P + tr * (D / -tr.y));
-            vec3 Fi;
-            if (!refractPoint(uvi, Fi) || Fi.y >= P.y) break;
-            uvF = uvi;
-            F = Fi;
-            D = P.y - Fi.y;
-        }
+    float sModel = 0.0;
+    if (!below && tr.y < -1e-4) {
+        int m = refractMarch(P, tr, uvF, F, sModel);
+        hit = m != REFRACT_NONE;
+        model = m == REFRACT_MODEL;
     }
     vec3 under = vec3(0.0);         // nothing seen: all absorbed
     vec3 E = vec3(0.0), K = vec3(1.0);
     if (hit && !below) {
-        E = worldSunBelow(refractNormal(uvF, F, uCameraPos), F);   // world.glsl
+        vec3 floorColor, floorN;
+        if (model) {
+            floorColor = groundModel(P, tr, sModel, F, floorN);
+        } else {
+            floorColor = texture(uRefractColor, uvF).rgb;
+            floorN = refractNormal(uvF, F, uCameraPos);
+        }
+        E = worldSunBelow(floorN, F);   // world.glsl
         K = causticFactor(F, t);
         vec3 ambient = WORLD_PI * uAmbient;
-        under = texture(uRefractColor, uvF).rgb * (E * K + ambient) / max(E + ambient, vec3(1e-6));
+        under = floorColor * (E * K + ambient) / max(E + ambient, vec3(1e-6));
 #ifdef BEER_LAMBERT
         under *= exp(-uAbsorption * distance(P, F));
 #endif
@@ -398,13 +524,27 @@ void main() {
 #ifdef SKY_REFLECTION
     color = R * reflectionAbove(sky, mirror) + (1.0 - R) * color;
 #endif
+    // the sun's highlight, Xing's Phong lobe Ks (r.e)^m E_sun. With
+    // SPECULAR_FRESNEL (ours) it is weighted by R, the share of the sun the
+    // surface reflects, and normalised by (m + 2) / (2 pi) (Phong's energy
+    // conserving factor), as packs/natural and raymarch weigh theirs: the
+    // unweighted lobe sends back 30-50 times the light a water surface
+    // reflects, a white patch that clips (issue #24's look_down). Linear
+    // HDR, no clamp: the lobe's peak is ~Ks R (m + 2) / (2 pi) E_sun.
+    float shin = max(uShininess, 1.0);
 #if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FILTER)
     float energy;
-    float shin = wavesToksvig(max(uShininess, 1.0), lostVar, energy);
-    color += uKs * energy * pow(max(dot(reflect(-uSunDir, n), e), 0.0), shin) * uSunIrradiance;
+    shin = wavesToksvig(shin, lostVar, energy);
 #else
-    color += uKs * pow(max(dot(reflect(-uSunDir, n), e), 0.0), max(uShininess, 1.0)) * uSunIrradiance;
+    float energy = 1.0;
 #endif
+    vec3 spec = uKs * pow(max(dot(reflect(-uSunDir, n), e), 0.0), shin) * uSunIrradiance;
+#ifdef SPECULAR_FRESNEL
+    spec *= R * (shin + 2.0) / (2.0 * WORLD_PI);   // normalised: its light kept as Toksvig widens it
+#else
+    spec *= energy;
+#endif
+    color += spec;
 
     // foam where the water is shallow (the shore is the lake's border)
     float shallow = hit0 ? max(P.y - F0.y, 0.0) : 1e6;
