@@ -171,10 +171,9 @@ vec3 underColor(vec2 uv, vec3 fallback) {
 // normal from the heights beside it, one-sided so a flat cap stays flat
 // at its rim), and the wall's normal is the horizontal gradient of the
 // solid around the hit (a Sobel ring of the texels at the hit's height),
-// else the ray's way back. On a sphere's rim the top's normal is nearly
-// the wall's, so there the colour stays the top's.
+// else the ray's way back. Alpha 0: not a wall under a flat top.
 #define RAYMARCH_WALL_MIN 0.05   // lake m: a side at least this far below the top and above the bottom
-vec3 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
+vec4 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
     ivec2 size = textureSize(uWorldY, 0);
     float gx = 0.0, gz = 0.0;
     float tx[2], tz[2];   // tops at x-1, x+1 and z-1, z+1
@@ -205,12 +204,44 @@ vec3 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
     float sx = ax * bx <= 0.0 ? 0.0 : abs(ax) < abs(bx) ? ax : bx;
     float sz = az * bz <= 0.0 ? 0.0 : abs(az) < abs(bz) ? az : bz;
     vec2 slope = sx * ws / dot(ws, ws) + sz * wt / dot(wt, wt);
+    // only under a flat top (a post's cap, a box's lid): on a curved one
+    // (the rock's rim) the slopes of neighbouring texels scatter, and the
+    // albedo with them (speckles); its top's colour is near the wall's there
+    if (dot(slope, slope) > 0.04) return vec4(0.0);
     vec3 top = texelFetch(uTopColor, ij, 0).rgb;
-    if (dot(slope, slope) > 1.0) return top;   // a steep top (a sphere's rim): nearly the wall already
     vec3 nTop = normalize(vec3(-slope.x, 1.0, -slope.y));
     vec3 topPos = vec3(hit.x, t.x, hit.z);
     vec3 albedo = min(top / max(worldShadeAt(vec3(1.0), nTop, topPos), vec3(1e-4)), vec3(1.0));
-    return worldShadeAt(albedo, nWall, hit);
+    return vec4(worldShadeAt(albedo, nWall, hit), 1.0);
+}
+
+// A colour of the top-down views at a hit at height y, bilinear over the
+// texels whose height (component `comp` of the world-Y texel: 0 top, 2
+// floor) is near y and, for the floor, where the floor pass saw the ground:
+// where it saw the thing itself (MARCH_GROUND_MODEL), or a texel of another
+// height (the band of a rock breaking the water, between its equator and
+// the floor pass's clip, seen from above and by that pass), the colour is
+// the rock's, and a plain read mixed that grey into the ground at the band's
+// edges: two dotted rings round the rock seen through the water. Where all
+// four are that surface (nearly everywhere) it is one plain read.
+vec3 colorNear(sampler2D tex, int comp, vec2 uv, float y) {
+    ivec2 size = textureSize(uWorldY, 0);
+    vec2 st = uv * vec2(size) - 0.5;
+    ivec2 i0 = ivec2(floor(st));
+    vec2 fr = st - vec2(i0);
+    bvec4 seen;
+    for (int k = 0; k < 4; k++) {
+        vec4 q = texelFetch(uWorldY, clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0);
+        seen[k] = (comp == 0 || q.w < MARCH_GROUND_MODEL) && abs(q[comp] - y) < RAYMARCH_WALL_MIN * uWorldScale;
+    }
+    if (all(seen)) return texture(tex, uv).rgb;   // the common case: one plain read
+    vec4 acc = vec4(0.0);
+    for (int k = 0; k < 4; k++) {
+        ivec2 q = clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), size - 1);
+        float w = ((k & 1) == 1 ? fr.x : 1.0 - fr.x) * ((k >> 1) == 1 ? fr.y : 1.0 - fr.y);
+        acc += (seen[k] ? w : 0.0) * vec4(texelFetch(tex, q, 0).rgb, 1.0);
+    }
+    return acc.a > 1e-4 ? acc.rgb / acc.a : texture(tex, uv).rgb;
 }
 
 vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
@@ -230,19 +261,23 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
     float side = -1.0;   // a side met between the column's bottom and top: how far up, 0..1
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
-        if (t.z < t.y && hit.y - t.z <= slab) return model ? groundModelColor(hit) : texture(uFloorColor, uv).rgb;
+        if (t.z < t.y && hit.y - t.z <= slab) return model ? groundModelColor(hit) : colorNear(uFloorColor, 2, uv, hit.y);
         if (t.z >= t.y || model) side = clamp((hit.y - t.y) / (t.x - t.y), 0.0, 1.0);   // a thing under the water
     } else if (hit.y - t.z <= slab) {
-        return texture(uFloorColor, uv).rgb;
+        return colorNear(uFloorColor, 2, uv, hit.y);   // the ground beside a rock's rim too
     }
     // under the highest underside: a trunk under its crown
     if (!model && t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
     // (only for things that rise out of the water: on the sunken crate the
     // slab's walls also showed where the reference sees the floor)
     if (!underside && t.x > uWaterLevel && t.x - hit.y > RAYMARCH_WALL_MIN * uWorldScale
-        && (t.y >= t.x || hit.y - t.y > RAYMARCH_WALL_MIN * uWorldScale))
-        return wallColor(hit, min(ivec2(uv * vec2(size)), size - 1), t, dir);
-    vec3 top = texture(uTopColor, uv).rgb;
+        && (t.y >= t.x || hit.y - t.y > RAYMARCH_WALL_MIN * uWorldScale)) {
+        vec4 w = wallColor(hit, min(ivec2(uv * vec2(size)), size - 1), t, dir);
+        if (w.a > 0.0) return w.rgb;
+    }
+    // at the top: bilinear over the texels whose top is this one's height
+    vec3 top = abs(hit.y - t.x) < RAYMARCH_WALL_MIN * uWorldScale ? colorNear(uTopColor, 0, uv, hit.y)
+                                                                  : texture(uTopColor, uv).rgb;
     if (underside) return underColor(uv, top);
     // a side between bottom and top: the two views blended by height, not
     // whichever end is nearer (that flips from column to column along a
