@@ -60,6 +60,11 @@ class Keyboard:
         self.t.XTestFakeMotionEvent(self.d, -1, px, py, 0)
         self.x.XFlush(self.d)
 
+    def button(self, n, down):
+        """Mouse button n (1 left) pressed (down True) or released."""
+        self.t.XTestFakeButtonEvent(self.d, n, 1 if down else 0, 0)
+        self.x.XFlush(self.d)
+
 
 def main(argv):
     kb = Keyboard()

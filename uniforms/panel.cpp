@@ -584,6 +584,16 @@ bool panel_wants_mouse(const panel *p) {
     return ImGui::GetIO().WantCaptureMouse;
 }
 
+bool panel_contains(const panel *p, double x, double y) {
+    if (!p) return false;
+    ImGuiContext &g = *p->ctx;
+    for (ImGuiWindow *w : g.Windows)   // as drawn last frame (toasts take no input)
+        if (w->WasActive && !w->Hidden && !(w->Flags & ImGuiWindowFlags_NoInputs) &&
+            w->Rect().Contains(ImVec2((float)x, (float)y)))
+            return true;
+    return false;
+}
+
 bool panel_wants_keyboard(const panel *p) {
     if (!p) return false;
     ImGui::SetCurrentContext(p->ctx);

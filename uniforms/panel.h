@@ -156,6 +156,11 @@ void panel_toast(panel *p, float x, float y, const char *text);
 
 /* true while ImGui uses the mouse / keyboard: the camera should not. */
 bool panel_wants_mouse(const panel *p);
+/* Is window point (x, y) on one of the panel's windows as last drawn? A
+ * press that arrives between two frames lands there before ImGui has seen
+ * the cursor move (at 2 fps wants_mouse still says where it was): the
+ * press is the panel's (issue #30). */
+bool panel_contains(const panel *p, double x, double y);
 bool panel_wants_keyboard(const panel *p);
 
 #ifdef __cplusplus

@@ -1,7 +1,6 @@
 #include "file.h"
 
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +9,7 @@
 
 #include "mem.h"
 #include "strbuf.h"
+#include "util.h"
 
 /* "8 MiB" for a whole number of MiB, else "N bytes". */
 static void size_text(size_t n, char *out, size_t outlen) {
@@ -83,10 +83,7 @@ static double now_ms(clockid_t clock) {
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-static void sleep_ms(double ms) {
-    struct timespec ts = { (time_t)(ms / 1e3), (long)(fmod(ms, 1e3) * 1e6) };
-    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {}
-}
+
 
 static bool same_stat(const struct stat *a, const struct stat *b) {
     return a->st_ino == b->st_ino && a->st_dev == b->st_dev && a->st_size == b->st_size &&
@@ -116,7 +113,7 @@ static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, c
         double age = age_ms(&after), settle = b->len == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
         bool young = age < settle;
         if (!torn && !young) return true;
-        sleep_ms(young && b->len > 0 ? settle - age + 1 : 5);
+        clock_sleep_s((young && b->len > 0 ? settle - age + 1 : 5) / 1e3);
     }
 }
 

@@ -8,6 +8,8 @@
 
 /* Seconds on a monotonic clock (only differences mean anything). */
 double clock_now_s(void);
+/* Sleeps s seconds (again after a signal); nothing for s <= 0. */
+void clock_sleep_s(double s);
 
 /* qsort comparators: doubles ascending, `char *` elements by strcmp. */
 int cmp_double(const void *a, const void *b);

@@ -67,6 +67,7 @@ struct app {
     bool woken;                  /* an input or window event came since the last frame */
     bool keep_awake;             /* a client asked for the next frame (app_keep_awake) */
     bool slept;                  /* this frame follows a sleep: its dt measures nothing */
+    double slow_s;               /* the script's `slow MS`: each frame lasts at least this (input tests) */
     bool help;                   /* F1 or ?: the keys and the mouse, over the scene */
 };
 
@@ -402,6 +403,12 @@ static void stamp_swap(app *a) {
 
 /* ---- the loop ---- */
 
+/* A press since the last frame that landed on the panel as drawn then
+ * (over the scene, where the panel floats on it, ui_right cannot say). */
+static bool pressed_on_panel(const app *a) {
+    return a->s.mouse.pressed && panel_contains(a->panel, a->s.mouse.press_x, a->s.mouse.press_y);
+}
+
 static void frame(app *a, bool scripted) {
     double now = glfwGetTime(), dt = now - a->last_wall;
     a->last_wall = now;
@@ -429,7 +436,7 @@ static void frame(app *a, bool scripted) {
     }
     a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);
-    else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel), &a->s.cam);
+    else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel) || pressed_on_panel(a), &a->s.cam);
     a->d.draw(a->d.user, a);
     panel_actions common;
     memset(&common, 0, sizeof common);
@@ -462,6 +469,16 @@ static view_script_status budget_action(app *a, const char *cmd, char *rest, con
         a->orbit_left = n - 1;
         a->orbit_dx = dx;
         a->orbit_dy = dy;
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "slow") == 0) {   /* MS: frames of at least MS, as a slow GPU draws them */
+        double ms;
+        if (sscanf(rest, "%lf", &ms) != 1 || !(ms >= 0) || ms > 10000) {
+            fprintf(stderr, "%s:%d: slow wants milliseconds a frame at least, 0 (off) to 10000\n", file, line);
+            return VIEW_SCRIPT_FAILED;
+        }
+        a->slow_s = ms / 1e3;
+        fprintf(stderr, "%s: slow %.0f ms a frame\n", a->d.name, ms);
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "help") == 0) {   /* 1 | 0: the key help overlay, as F1 */
@@ -599,6 +616,7 @@ int app_run(app *a, render *const *scenes, int n) {
     while (!glfwWindowShouldClose(a->win)) {
         if (!wait_for_work(a, script)) continue;
         a->woken = false;
+        double started = glfwGetTime();
         frame(a, script != NULL);
         char lost[1024];
         if (gl_ctx_lost(a->ctx, lost, sizeof lost)) {
@@ -609,6 +627,9 @@ int app_run(app *a, render *const *scenes, int n) {
         if (script && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
         glfwSwapBuffers(a->win);
         if (a->stamp_pending) stamp_swap(a);
+        /* input that arrives meanwhile queues, as behind a slow frame */
+        for (double left; (left = started + a->slow_s - glfwGetTime()) > 0;)
+            clock_sleep_s(left);
     }
     if (a->rec) record_stop(a);
     view_script_free(script);

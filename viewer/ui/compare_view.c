@@ -466,7 +466,7 @@ static void cv_mouse(cview *v, const view_mouse_input *in) {
     int ww, wh;
     glfwGetWindowSize(v->win, &ww, &wh);
     double sx = ww > 0 ? (double)v->fb_w / ww : 1.0;
-    bool ui = panel_wants_mouse(v->panel);
+    bool ui = panel_wants_mouse(v->panel) || (in->pressed && panel_contains(v->panel, in->press_x, in->press_y));
     if (v->layout == PANEL_LAYOUT_WIPE && (in->pressed & VIEW_MOUSE_LEFT) && !ui && !v->s->mouse.dragging_orbit &&
         !v->dragging_wipe) {
         double divider = v->area_x + wipe_px(v);
