@@ -118,6 +118,7 @@ bool onScreen(vec2 uv) {
 #define REFRACT_STEPS 24
 #define REFRACT_REFINE 5
 #define REFRACT_THICKNESS 0.6      // m on the lake, times uWorldScale
+#define REFRACT_SNAP 0.08          // m: a crossing closes to within this
 bool behindShown(vec3 X, out vec2 uv, out bool off, out float gap) {
     vec4 c = gl_ModelViewProjectionMatrix * vec4(X, 1.0);
     uv = c.xy / c.w * 0.5 + 0.5;
@@ -184,18 +185,39 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
         if (behind && gap < thick + (s - lo)) {
             // close on the crossing: a sample counts as through the
             // surface when it is behind it by less than the interval
-            float hi = s;
+            float a = lo, b = s;
             for (int k = 0; k < REFRACT_REFINE; k++) {
-                float mid = 0.5 * (lo + hi);
+                float mid = 0.5 * (a + b);
                 vec2 uvm;
                 bool offm;
                 float gm;
-                if (behindShown(P + mid * d, uvm, offm, gm) && gm < thick + (hi - lo)) hi = mid; else lo = mid;
+                if (behindShown(P + mid * d, uvm, offm, gm) && gm < thick + (b - a)) b = mid; else a = mid;
+            }
+            // a surface the ray goes through closes to a gap of 0; one it
+            // goes behind (a silhouette: a ridge of the floor, the post)
+            // leaves the gap it jumped by, and the ray goes on
+            vec2 uvh;
+            float gh;
+            behindShown(P + b * d, uvh, off, gh);
+            if (gh < REFRACT_SNAP * uWorldScale + 4.0 * (b - a)) {
+                s = b;
+                uvF = uvh;
+                refractPoint(uvF, F);
+                return REFRACT_HIT;
+            }
+        }
+        if ((P + s * d).y < terrainHeightGrad((P + s * d).xz).x) {
+            // under the terrain's model with no surface of the pass there:
+            // the ground is hidden from the camera (behind a ridge of the
+            // floor, a thing); the model's own crossing, by bisection
+            float hi = s;
+            for (int k = 0; k < REFRACT_REFINE + 2; k++) {
+                float mid = 0.5 * (lo + hi);
+                vec3 X = P + mid * d;
+                if (X.y < terrainHeightGrad(X.xz).x) hi = mid; else lo = mid;
             }
             s = hi;
-            behindShown(P + s * d, uvF, off, gap);
-            refractPoint(uvF, F);
-            return REFRACT_HIT;
+            return REFRACT_MODEL;
         }
         lo = s;                                 // in front, or behind a thing (passed it)
     }
