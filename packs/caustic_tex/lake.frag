@@ -376,18 +376,34 @@ float fbm(vec2 p) {
     return s / 0.9375;
 }
 
-// Foam as it forms: along the shore (water shallower than uFoamWidth) and
-// on the highest crests, broken up by drifting noise into streaks and
-// patches; more of it the rougher the water (full at a 0.1 amplitude sum).
-float noiseFoam(vec3 P, float shallow, float ampSum, float t) {
+// Foam as it forms: along the shore (water shallower than uFoamWidth over
+// the terrain's model) and where the waves fold (the Jacobian J of the
+// Gerstner/ocean displacement under FOAM_J_START: steep crests about to
+// break), broken up by drifting noise into soft streaks and patches; more
+// of it the rougher the water (full at a 0.1 amplitude sum). Issue #24:
+// it was a hard threshold of the noise (a 0.1 ramp) over every crest in
+// the top 35-75 % of the amplitude and wherever the refraction pass showed
+// a thing near the surface: hard white blobs round the rock that breaks
+// the surface and on gentle crests, white specks along the shoreline,
+// where the reference, and the waves, have none.
+#define FOAM_J_START 0.5     // J = 1 flat; 0 folds (the surface loops)
+#define FOAM_J_FULL 0.1
+float noiseFoam(vec3 P, vec2 rest, float shallow, float ampSum, float t) {
     if (!uShowFoam || ampSum <= 0.0) return 0.0;
     float shore = 1.0 - smoothstep(0.0, max(uFoamWidth * uWorldScale, 1e-4), shallow);
-    float crest = smoothstep(0.35, 0.75, (P.y - uWaterLevel) / ampSum);
-    float cover = clamp(max(shore, 0.45 * crest), 0.0, 1.0) * clamp(ampSum / (0.1 * uWorldScale), 0.0, 1.0);
+    float h;
+    vec2 dh, disp;
+    vec3 abd;
+    wavesSums(rest, t, h, dh, disp, abd);
+    float J = (1.0 + abd.x) * (1.0 + abd.z) - abd.y * abd.y;
+    float crest = 1.0 - smoothstep(FOAM_J_FULL, FOAM_J_START, J);
+    float cover = clamp(max(shore, crest), 0.0, 1.0) * clamp(ampSum / (0.1 * uWorldScale), 0.0, 1.0);
     vec2 drift = vec2(0.11, 0.07) * t;
     float n = fbm((P.xz + drift * uWorldScale) / (0.35 * uWorldScale));
-    float threshold = mix(0.85, 0.55, cover);   // the noise (mean 0.5) breaks even full cover
-    return smoothstep(threshold, threshold + 0.1, n) * smoothstep(0.0, 0.3, cover);
+    // soft: the noise (mean 0.5) ramps over 0.3 above a threshold the
+    // cover lowers, and the foam is as opaque as the cover
+    float threshold = mix(0.75, 0.35, cover);
+    return smoothstep(threshold, threshold + 0.3, n) * cover;
 }
 
 // Where a perspective target shows world point x: its uv, the point there
@@ -569,11 +585,12 @@ void main() {
     color += spec;
 
     // foam where the water is shallow (the shore is the lake's border)
-    float shallow = hit0 ? max(P.y - F0.y, 0.0) : 1e6;
+    // (over the terrain's model: a thing near the surface is no shore)
+    float shallow = max(P.y - terrainHeightGrad(P.xz).x, 0.0);
 #ifdef XING_FOAM
     float foam = xingFoam(uv * 4.0, 2.0 * sa, -sb, shallow, waveAmpSum());
 #else
-    float foam = noiseFoam(P, shallow, waveAmpSum(), t);
+    float foam = noiseFoam(P, vRest, shallow, waveAmpSum(), t);
 #endif
 #if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FOAM)
     // the ocean's folding foam (waves_ocean.glsl) joins the pack's own,
