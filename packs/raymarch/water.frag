@@ -42,7 +42,7 @@ uniform float uTime;
 
 uniform sampler2D uTopColor;      // Camera top, World all: colour
 uniform sampler2D uUnderColor;    // the same, undersides only: colour
-uniform sampler2D uFloorColor;    // World below: colour
+uniform sampler2D uFloorColor;    // World below: colour, a rock's band filled with ground (floor_fill.frag)
 uniform sampler2D uLowColor;      // World below 1.5, undersides only: colour
 uniform sampler2D uWorldY;        // pack_y.frag: world Y of top, bottom, floor
 uniform sampler2D uFresnelLut;       // fresnel_lut.frag's table
@@ -215,35 +215,6 @@ vec4 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
     return vec4(worldShadeAt(albedo, nWall, hit), 1.0);
 }
 
-// A colour of the top-down views at a hit at height y, bilinear over the
-// texels whose height (component `comp` of the world-Y texel: 0 top, 2
-// floor) is near y and, for the floor, where the floor pass saw the ground:
-// where it saw the thing itself (MARCH_GROUND_MODEL), or a texel of another
-// height (the band of a rock breaking the water, between its equator and
-// the floor pass's clip, seen from above and by that pass), the colour is
-// the rock's, and a plain read mixed that grey into the ground at the band's
-// edges: two dotted rings round the rock seen through the water. Where all
-// four are that surface (nearly everywhere) it is one plain read.
-vec3 colorNear(sampler2D tex, int comp, vec2 uv, float y) {
-    ivec2 size = textureSize(uWorldY, 0);
-    vec2 st = uv * vec2(size) - 0.5;
-    ivec2 i0 = ivec2(floor(st));
-    vec2 fr = st - vec2(i0);
-    bvec4 seen;
-    for (int k = 0; k < 4; k++) {
-        vec4 q = texelFetch(uWorldY, clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0);
-        seen[k] = (comp == 0 || q.w < MARCH_GROUND_MODEL) && abs(q[comp] - y) < RAYMARCH_WALL_MIN * uWorldScale;
-    }
-    if (all(seen)) return texture(tex, uv).rgb;   // the common case: one plain read
-    vec4 acc = vec4(0.0);
-    for (int k = 0; k < 4; k++) {
-        ivec2 q = clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), size - 1);
-        float w = ((k & 1) == 1 ? fr.x : 1.0 - fr.x) * ((k >> 1) == 1 ? fr.y : 1.0 - fr.y);
-        acc += (seen[k] ? w : 0.0) * vec4(texelFetch(tex, q, 0).rgb, 1.0);
-    }
-    return acc.a > 1e-4 ? acc.rgb / acc.a : texture(tex, uv).rgb;
-}
-
 vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
     ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
@@ -261,10 +232,10 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
     float side = -1.0;   // a side met between the column's bottom and top: how far up, 0..1
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
-        if (t.z < t.y && hit.y - t.z <= slab) return model ? groundModelColor(hit) : colorNear(uFloorColor, 2, uv, hit.y);
+        if (t.z < t.y && hit.y - t.z <= slab) return model ? groundModelColor(hit) : texture(uFloorColor, uv).rgb;
         if (t.z >= t.y || model) side = clamp((hit.y - t.y) / (t.x - t.y), 0.0, 1.0);   // a thing under the water
     } else if (hit.y - t.z <= slab) {
-        return colorNear(uFloorColor, 2, uv, hit.y);   // the ground beside a rock's rim too
+        return texture(uFloorColor, uv).rgb;   // the ground beside a rock's rim too
     }
     // under the highest underside: a trunk under its crown
     if (!model && t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
@@ -275,9 +246,13 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
         vec4 w = wallColor(hit, min(ivec2(uv * vec2(size)), size - 1), t, dir);
         if (w.a > 0.0) return w.rgb;
     }
-    // at the top: bilinear over the texels whose top is this one's height
-    vec3 top = abs(hit.y - t.x) < RAYMARCH_WALL_MIN * uWorldScale ? colorNear(uTopColor, 0, uv, hit.y)
-                                                                  : texture(uTopColor, uv).rgb;
+    // the ground with nothing over it (the floor pass saw what the top pass
+    // saw): the floor's colour, whose texels beside a rock's rim are ground
+    // too (floor_fill.frag), where the top's are the rock's: a bilinear read
+    // of the top's drew a dotted ring round the rock seen through the water
+    if (t.y <= MARCH_EMPTY_Y && abs(t.z - t.x) < RAYMARCH_WALL_MIN * uWorldScale)
+        return texture(uFloorColor, uv).rgb;
+    vec3 top = texture(uTopColor, uv).rgb;
     if (underside) return underColor(uv, top);
     // a side between bottom and top: the two views blended by height, not
     // whichever end is nearer (that flips from column to column along a
