@@ -191,6 +191,51 @@ static void test_glib_and_shaders_apart_one_line(void) {
     render_destroy(r);
 }
 
+/* Draws one frame of the loaded scene into a small target; returns the
+ * draw messages (issue #27: "say why a picture is black"). */
+static const char *draw_once(render *r) {
+    render_target tg;
+    CHECK(render_target_create(&tg, 32, 32, false));
+    render_frame_at(r, 0.0, tg.fbo, 0, 0, 32, 32, NULL);
+    render_target_destroy(&tg);
+    return render_draw_messages(r);
+}
+
+/* A one-colour picture while the program uses uniforms the glib never
+ * gives (0, in tarn as in glman): said once, naming them and what to do;
+ * not when each is given, nor when the picture is not flat. */
+static void test_flat_picture_names_unset_uniforms(void) {
+    scratch_write("a.vert", vert);
+    scratch_write("glow.frag", "#version 330 compatibility\nuniform float uBright;\nuniform vec3 uTint;\n"
+                               "uniform float uGiven;\nout vec4 fragColor;\n"
+                               "void main() { fragColor = vec4(uTint * uBright * uGiven + GRADIENT, 1.); }\n");
+    const char *glib = "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex a.vert\nFragment glow.frag\n%s\n"
+                       "Program Glow uGiven <0. 1. 2.>%s\nQuadXY 0 1 1 1\n";
+    char text[512];
+    snprintf(text, sizeof text, glib, "Define GRADIENT 0.0", "");
+    scratch_write("flat.glib", text);
+    render *r = render_create(NULL);
+    render_load(r, scratch_path("flat.glib"));
+    const char *m = draw_once(r);
+    fprintf(stderr, "%s", m);
+    CHECK_STR_CONTAINS(m, "flat.glib:6: warning: the picture is one flat colour, and program 'Glow' uses 2 uniforms "
+                          "that the glib gives no value, so they stay 0: uBright, uTint; give each a value");
+    CHECK(count_of(draw_once(r), "flat colour") == 1);   /* once a load */
+    /* each given: no word */
+    snprintf(text, sizeof text, glib, "Define GRADIENT 0.0", " uBright <0. 1. 2.> uTint {1. 1. 1.}");
+    scratch_write("flat.glib", text);
+    render_load(r, NULL);
+    m = draw_once(r);
+    CHECK_MSG(!strstr(m, "flat colour"), "%s", m);
+    /* unset but the picture varies: no word either */
+    snprintf(text, sizeof text, glib, "Define GRADIENT gl_FragCoord.x / 32.", "");
+    scratch_write("flat.glib", text);
+    render_load(r, NULL);
+    m = draw_once(r);
+    CHECK_MSG(!strstr(m, "flat colour"), "%s", m);
+    render_destroy(r);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -200,6 +245,7 @@ int main(void) {
     RUN(test_no_uniform_warnings_for_a_failed_program);
     RUN(test_inactive_uniforms_one_line_same_on_reload);
     RUN(test_glib_and_shaders_apart_one_line);
+    RUN(test_flat_picture_names_unset_uniforms);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

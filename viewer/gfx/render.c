@@ -52,6 +52,7 @@ typedef struct scene_state {
     uint64_t *once_sig;      /* per command: what a drawn block drew (once_signature) */
     bool *per_frame;         /* per Texture2D target: a RenderToTexture draws it every frame */
     bool *draw_warned;       /* per command: a problem drawing it was reported */
+    bool flat_checked;       /* the first frame was looked at for a one-colour picture */
     int nprogs;
     scene_settings set;
 } scene_state;
@@ -1552,6 +1553,59 @@ int render_ref_standard_positions(int samples, double (*pos)[2], int max) {
     return to_image_positions(render_msaa_standard_positions(samples, pos, max), pos, max);
 }
 
+/* Names program p's uniforms that the shader uses but the glib gives no
+ * value (so they stay 0, as in glman) into list; returns how many. */
+static int unset_uniforms(const prog *p, char *list, size_t n) {
+    int count = 0;
+    list[0] = '\0';
+    for (int i = 0; p->unifs && i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (e->is_define || e->from_glib || !e->in_shader || e->location < 0 || e->type == UNIF_SAMPLER) continue;
+        bool zero = true;
+        for (int k = 0; k < e->ncomp; k++) zero = zero && e->value[k] == 0.0f;
+        if (!zero) continue;
+        size_t l = strlen(list);
+        if (count < 6) snprintf(list + l, n - l, "%s%s", count ? ", " : "", e->name);
+        else if (count == 6) snprintf(list + l, n - l, ", ...");
+        count++;
+    }
+    return count;
+}
+
+/* Issue #27: "say why a picture is black". After a load's first frame, a
+ * picture of one colour while a program uses uniforms the glib never sets
+ * (0 in tarn as in glman) is said once, with what to give; a flat picture
+ * with every input set is the scene's own business and is not. */
+static void check_flat_picture(render *r, unsigned fbo, int x, int y, int w, int h) {
+    scene_state *s = &r->cur;
+    s->flat_checked = true;
+    if (r->world.active || w <= 0 || h <= 0) return;
+    int worst = -1, most = 0;
+    char names[256], best[256] = "";
+    for (int i = 0; i < s->nprogs; i++) {
+        int k = unset_uniforms(&s->progs[i], names, sizeof names);
+        if (k > most) { most = k; worst = i; snprintf(best, sizeof best, "%s", names); }
+    }
+    if (worst < 0) return;
+    unsigned char *px = mem_alloc((size_t)w * (size_t)h * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    bool flat = true;
+    for (size_t i = 4; flat && i < (size_t)w * (size_t)h * 4; i += 4) flat = memcmp(px + i, px, 3) == 0;
+    free(px);
+    if (!flat) return;
+    const prog *p = &s->progs[worst];
+    int ci = (int)(p->cmd - s->glib->cmds);
+    if (ci < 0 || ci >= s->glib->ncmds) return;
+    char first[64];
+    snprintf(first, sizeof first, "%.*s", (int)strcspn(best, ","), best);
+    draw_problem(r, ci, false, "the picture is one flat colour, and program '%s' uses %d uniform%s that the glib "
+                 "gives no value, so %s 0: %s; give %s a value in the Program line (e.g. %s <0. 1. 2.>)",
+                 p->name, most, most == 1 ? "" : "s", most == 1 ? "it stays" : "they stay", best,
+                 most == 1 ? "it" : "each", first);
+}
+
 void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view) {
     gpu_timer_begin_frame(&r->timer);
     const scene_state *s = &r->cur;
@@ -1618,6 +1672,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         r->nkept_once = 0;   /* the first frame after a load has decided every block */
     }
     if (ms) render_msaa_resolve(&r->msaa, dest, dest_x, dest_y);
+    if (s->glib && !s->flat_checked) check_flat_picture(r, dest, dest_x, dest_y, w, h);
     gpu_timer_end_frame(&r->timer);
 }
 
