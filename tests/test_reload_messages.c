@@ -236,6 +236,26 @@ static void test_flat_picture_names_unset_uniforms(void) {
     render_destroy(r);
 }
 
+/* A shapefile (or OBJ) that is not there: one line at its glib line naming
+ * it, not a second "cannot build" after the parser's (issue #27). */
+static void test_missing_file_said_once(void) {
+    scratch_write("a.vert", vert);
+    scratch_write("water.frag", frag_using(""));
+    scratch_write("common.glsl", "float helper(float x) { return x; }\n");
+    scratch_write("map.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex a.vert\nFragment water.frag\n"
+                              "Program Map uColor {1. 1. 1. 1.}\nShp coast.shp\nObj boat.obj\n");
+    render *r = render_create(NULL);
+    render_load(r, scratch_path("map.glib"));
+    const char *m = render_messages(r);
+    fprintf(stderr, "%s", m);
+    CHECK_STR_CONTAINS(m, "map.glib:6: error: cannot open '");
+    CHECK_STR_CONTAINS(m, "coast.shp' (from command Shp)");
+    CHECK_STR_CONTAINS(m, "map.glib:7: error: cannot open '");
+    CHECK_STR_CONTAINS(m, "boat.obj' (from command Obj)");
+    CHECK_MSG(count_of(m, "coast.shp") == 1 && count_of(m, "boat.obj") == 1, "once each: %s", m);
+    render_destroy(r);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -246,6 +266,7 @@ int main(void) {
     RUN(test_inactive_uniforms_one_line_same_on_reload);
     RUN(test_glib_and_shaders_apart_one_line);
     RUN(test_flat_picture_names_unset_uniforms);
+    RUN(test_missing_file_said_once);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

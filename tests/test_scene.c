@@ -446,21 +446,22 @@ static void test_program_stages(void) {
 
 /* A geometry shader without `layout(...) in;` gets the primitive of the
  * first draw after its Program: a Wire draw hands it lines, WaterSurface
- * points points, a solid or no draw at all triangles; the next Program's
+ * points points, Shp lines, a solid or no draw at all triangles; the next Program's
  * draws are not this one's. */
 static void test_program_gs_input(void) {
     glib_scene *g = parse("##OpenGL GLIB\nGeometry g.geom\nProgram A\nTranslate 0 0 1\nWireSphere\nSphere\n"
-                          "Program B\nColor 1 0 0\nBox\nWireBox\nProgram C\nProgram D\nWireTorus\n");
+                          "Program B\nColor 1 0 0\nBox\nWireBox\nProgram C\nProgram D\nWireTorus\n"
+                          "Program E\nShp coast.shp\n");
     const shader_gs_input want[] = { SHADER_GS_IN_LINES, SHADER_GS_IN_TRIANGLES, SHADER_GS_IN_TRIANGLES,
-                                     SHADER_GS_IN_LINES };
+                                     SHADER_GS_IN_LINES, SHADER_GS_IN_LINES };   /* a shapefile: line strips */
     int k = 0;
     for (int i = 0; i < g->ncmds; i++) {
-        if (g->cmds[i].kind != GLIB_CMD_PROGRAM || k >= 4) continue;
+        if (g->cmds[i].kind != GLIB_CMD_PROGRAM || k >= 5) continue;
         CHECK_MSG(program_gs_input(g, &g->cmds[i]) == want[k], "Program %s: %d", g->cmds[i].name,
                   (int)program_gs_input(g, &g->cmds[i]));
         k++;
     }
-    CHECK(k == 4);
+    CHECK(k == 5);
     CHECK(program_gs_input(NULL, NULL) == SHADER_GS_IN_TRIANGLES);
     glib_free(g);
 }

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <strings.h>
 #include <sys/stat.h>
 
@@ -143,7 +144,10 @@ bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
     memset(&g, 0, sizeof g);
     char err[512] = "";
     if (!make_mesh(c, &g, err, sizeof err) || !res_mesh_upload(&g, m)) {
-        str_appendf(log, "%s:%d: error: cannot build %s: %s\n", c->file, c->line,
+        /* a file that is still missing: the parser said so at this line
+         * ("cannot open 'x.shp' (from command Shp)"); once is enough */
+        bool said = c->path[0] && access(c->path, R_OK) != 0;
+        if (!said) str_appendf(log, "%s:%d: error: cannot build %s: %s\n", c->file, c->line,
                     glib_cmd_name(c->kind), err[0] ? err : "bad arguments");
         geom_free(&g);
         return false;

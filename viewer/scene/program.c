@@ -64,6 +64,7 @@ shader_gs_input program_gs_input(const glib_scene *g, const glib_cmd *program) {
         { "Triangles", SHADER_GS_IN_TRIANGLES }, { "DiskXY", SHADER_GS_IN_TRIANGLES },
         { "QuadBox", SHADER_GS_IN_TRIANGLES }, { "Soccerball", SHADER_GS_IN_TRIANGLES },
         { "WaterSurface", SHADER_GS_IN_TRIANGLES },
+        { "Shp", SHADER_GS_IN_LINES },   /* shapefile polylines and polygon rings: line strips */
     };
     if (!g || !program || program < g->cmds || program >= g->cmds + g->ncmds) return SHADER_GS_IN_TRIANGLES;
     for (const glib_cmd *c = program + 1; c < g->cmds + g->ncmds && c->kind != GLIB_CMD_PROGRAM; c++) {
