@@ -130,10 +130,19 @@ vec3 natLightTex(vec3 p) {
 }
 
 // > 0 when p lies behind (under) the floor as the light sees it; -2 off the map.
+// The terrain model (terrain.glsl) counts as floor too: the map lost the
+// ground within its clip of the level (World below -0.02), so at the shore
+// photons from the water over that strip ran on to the first ground under
+// the clip and piled up there: no light on the strip along the waterline
+// (a dark line), too much just past it (white specks; issue #24). Its
+// height difference is put in the map's depth units along the sun.
 float natBehindFloor(vec3 p) {
     vec3 l = natLightTex(p);
     if (!natInside(l.xy)) return -2.0;
-    return l.z - texture(uLightDepth, l.xy).r;
+    vec3 row2 = vec3(uCamLightVP[0][2], uCamLightVP[1][2], uCamLightVP[2][2]);
+    float kz = 0.5 * dot(row2, -uSunDir);           // map depth per unit along -sun
+    float gt = (terrainHeightGrad(p.xz).x - p.y) / max(uSunDir.y, 1e-4) * kz;
+    return max(l.z - texture(uLightDepth, l.xy).r, gt);
 }
 
 #ifndef PHOTON_STEPS
@@ -238,7 +247,9 @@ bool natPhoton(vec3 S, vec3 N, float area, out vec2 q, out float w) {
         w = area * (1.0 - worldFresnel(cosI, 1.0, uIOR)) / (1.0 - worldFresnel(cosS, 1.0, uIOR));
         return true;
     }
-    if (depth <= 0.0) return false;
+    // (a hit above the mean level, on a beach under a crest, keeps its
+    // light too: applyCaustics does not read the ratio there, but a lost
+    // corner would darken the triangles it shares with the wet side)
     float sigma = dot(uAbsorption, vec3(1.0 / 3.0));
     w = area * (1.0 - worldFresnel(cosI, 1.0, uIOR)) / (1.0 - worldFresnel(cosS, 1.0, uIOR))
         * exp(-sigma * (s - depth / cosT));
