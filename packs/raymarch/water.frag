@@ -219,7 +219,11 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
     ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
     vec3 t = marchFetch(uWorldY, size, uv);
-    if (marchSolid(t, hit.y) > 0.0) {
+    // (clearly outside: by more than rounding. Without refinement, Lipp's
+    // paper row, tb is a whole step, up to 0.33 m, past a hit on a flat floor
+    // that the interpolation puts a few ulps above it: the pool's tiles took
+    // the colour of a tile a step away, in speckles)
+    if (marchSolid(t, hit.y) > 1e-3 * uWorldScale) {
         uv = clamp(marchUV(inside), 0.0, 0.999999);
         t = marchFetch(uWorldY, size, uv);
     }
