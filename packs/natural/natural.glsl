@@ -288,12 +288,17 @@ bool natPhotonPaper(vec3 S, vec3 N, float area, out vec2 q, out float w) {
     vec3 l = natLightTex(S);
     if (!natInside(l.xy)) return false;
     float zF = texture(uLightDepth, l.xy).r;
-    if (zF >= 1.0) return false;
     // the light's ortho depth is linear in distance along -sun
     vec3 row2 = vec3(uCamLightVP[0][2], uCamLightVP[1][2], uCamLightVP[2][2]);
     float kz = 0.5 * dot(row2, -uSunDir);
     if (abs(kz) < 1e-8) return false;
-    float d = max(zF - l.z, 0.0) / kz;
+    // d: the map's, or the terrain model's where that is nearer (the
+    // map's clip, World below -0.02, cut the ground at the water's edge
+    // away, so over that strip d ran on to deeper ground and the photons
+    // piled up in a jagged line along the shore; issue #24)
+    float dT = (S.y - terrainHeightGrad(S.xz).x) / max(uSunDir.y, 1e-4);
+    if (zF >= 1.0 && dT < 0.0) return false;
+    float d = max(min(zF < 1.0 ? (zF - l.z) / kz : 1e30, max(dT, 0.0)), 0.0);
     vec3 R = refract(-uSunDir, N, 1.0 / uIOR);
     vec3 W = S + clamp(d, 0.0, NAT_PAPER_CLAMP * uWorldScale) * NAT_PAPER_SCALE * R;
     q = W.xz - ts.xz * ((uWaterLevel - W.y) / cosT);
