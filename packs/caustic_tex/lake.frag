@@ -55,6 +55,9 @@ uniform mat4 uCamMirrorVP, uCamMirrorInvVP;
 // The mirrored camera of pack.glib's reflection pass widens the field of
 // view this much (`Camera mirror 1.3`), so wave-perturbed lookups stay in.
 #define REFLECT_FOV_SCALE 1.3
+// The ripple map's footprint (tiles a pixel) over which it fades out.
+#define RIPPLE_FP_START (1.0 / 128.0)
+#define RIPPLE_FP_END (1.0 / 32.0)
 // A depth at or beyond this is the sky (drawn at the far plane) or nothing.
 #define SKY_DEPTH 0.99999
 in vec2 vRest;
@@ -438,9 +441,25 @@ struct Mirror {
     vec3 color;
 };
 
+// The lookup at P + L r with L first 1 m (exact for flat water at any L),
+// then twice the distance to the point the target shows there: with waves
+// the lookup must be at the reflected thing's own distance, or the pixel
+// it reads moves with the normal times the distance's error. From below
+// (total internal reflection at grazing angles, where r changes fast) the
+// fixed 1 m read the sphere in horizontal strips (issue #24).
+#define MIRROR_ITERATIONS 2
 Mirror mirrorAlong(vec3 P, vec3 r) {
     Mirror m;
     m.hit = targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + uWorldScale * r, m.uv, m.shown);
+    for (int i = 0; i < MIRROR_ITERATIONS; i++) {
+        if (!m.hit) break;
+        vec2 uv;
+        vec3 shown;
+        float L = max(dot(m.shown - P, r), 0.05 * uWorldScale);
+        if (!targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + L * r, uv, shown)) break;
+        m.uv = uv;
+        m.shown = shown;
+    }
     m.color = texture(uReflectColor, m.uv).rgb;
     return m;
 }
@@ -488,11 +507,19 @@ void main() {
     float tilesPerUnit = uWaterTiling / (2.0 * uTerrainHalfSize);
     vec2 uv = P.xz * tilesPerUnit;
     vec2 sa = firstWaveScroll(false, tilesPerUnit, t), sb = firstWaveScroll(true, tilesPerUnit, t);
-    n = xingBumpNormal(n, xingRippleSlope(uv, sa, sb));
+    // the ripple map filtered by the pixel's footprint (in tiles; uniform
+    // control flow): its slopes average out over a footprint wider than
+    // its detail (about 1/32 tile), as a mip chain of the normal map would
+    // flatten them. Point-sampled, at a slant or far off, they were
+    // compressed into bands: the sphere's reflection from below in strips,
+    // the pool's tile lines jagged (issue #24); the reference has no ripples
+    vec2 rippleFp = max(abs(dFdx(uv)), abs(dFdy(uv)));
+    float rippleKeep = 1.0 - smoothstep(RIPPLE_FP_START, RIPPLE_FP_END, max(rippleFp.x, rippleFp.y));
+    n = xingBumpNormal(n, rippleKeep * xingRippleSlope(uv, sa, sb));
     vec3 e = normalize(uCameraPos - P);
+    bool underCam = uCameraPos.y < uWaterLevel;  // pack.glib's under_water passes
     bool below = dot(e, n) < 0.0;
     if (below) n = -n;
-    bool underCam = uCameraPos.y < uWaterLevel;  // pack.glib's under_water passes
     bool fromWater = below || underCam;
     float cosI = clamp(dot(e, n), 0.0, 1.0);
     vec3 r = reflect(-e, n);
