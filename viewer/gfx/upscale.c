@@ -1,0 +1,227 @@
+/* upscale: the reduced frame into the window (see upscale.h). */
+#include "upscale.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "mem.h"
+#include "upscale_frag.h"   /* upscale_frag_src: shaders/upscale.frag, built in by embed.cmake */
+
+struct upscaler {
+    upscale_filter filter;
+    float sharpness;
+    unsigned prog, vao;
+    unsigned read_fbo;          /* the source texture attached, for the blits */
+    /* the first pass's output: the frame's rows at the destination's width,
+     * linear 16-bit float (an sRGB canvas decoded once); grown, never shrunk */
+    unsigned mid_tex, mid_fbo;
+    int mid_w, mid_h;
+    int u_src, u_axis, u_scale, u_origin, u_last, u_a;
+    char err[512];
+};
+
+/* One triangle that covers the viewport: no vertex buffer needed. */
+static const char vert_src[] =
+    "#version 330 core\n"
+    "void main() {\n"
+    "    vec2 p = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;\n"
+    "    gl_Position = vec4(p, 0.0, 1.0);\n"
+    "}\n";
+
+static unsigned compile(GLenum type, const char *src, char *err, size_t errlen) {
+    GLuint sh = glCreateShader(type);
+    glShaderSource(sh, 1, &src, NULL);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (ok) return sh;
+    char log[400] = "";
+    glGetShaderInfoLog(sh, sizeof log, NULL, log);
+    snprintf(err, errlen, "tarn: the upscale shader does not compile (bilinear instead): %s", log);
+    glDeleteShader(sh);
+    return 0;
+}
+
+/* The program, or false with u->err said (the upscaler then blits). */
+static bool build(upscaler *u) {
+    unsigned vs = compile(GL_VERTEX_SHADER, vert_src, u->err, sizeof u->err);
+    unsigned fs = vs ? compile(GL_FRAGMENT_SHADER, upscale_frag_src, u->err, sizeof u->err) : 0;
+    if (!fs) {
+        if (vs) glDeleteShader(vs);
+        return false;
+    }
+    u->prog = glCreateProgram();
+    glAttachShader(u->prog, vs);
+    glAttachShader(u->prog, fs);
+    glLinkProgram(u->prog);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(u->prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        snprintf(u->err, sizeof u->err, "tarn: the upscale shader does not link (bilinear instead)");
+        glDeleteProgram(u->prog);
+        u->prog = 0;
+        return false;
+    }
+    u->u_src = glGetUniformLocation(u->prog, "uSrc");
+    u->u_axis = glGetUniformLocation(u->prog, "uAxis");
+    u->u_scale = glGetUniformLocation(u->prog, "uScale");
+    u->u_origin = glGetUniformLocation(u->prog, "uOrigin");
+    u->u_last = glGetUniformLocation(u->prog, "uLast");
+    u->u_a = glGetUniformLocation(u->prog, "uA");
+    glGenVertexArrays(1, &u->vao);
+    glGenFramebuffers(1, &u->mid_fbo);
+    return true;
+}
+
+upscaler *upscale_create(const upscale_desc *desc, const char **err) {
+    upscale_desc d = desc ? *desc : (upscale_desc){ 0 };
+    upscaler *u = mem_zalloc(sizeof *u);
+    u->filter = d.filter;
+    u->sharpness = d.sharpness == 0 ? UPSCALE_SHARPNESS_DEFAULT : d.sharpness < 0 ? 0 : d.sharpness;
+    glGenFramebuffers(1, &u->read_fbo);
+    while (glGetError() != GL_NO_ERROR) {}
+    if (u->filter == UPSCALE_CUBIC && !build(u)) u->filter = UPSCALE_BILINEAR;
+    while (glGetError() != GL_NO_ERROR) {}   /* a failed build leaves nothing for the caller's checks */
+    if (err) *err = u->err[0] ? u->err : NULL;
+    return u;
+}
+
+void upscale_destroy(upscaler *u) {
+    if (!u) return;
+    if (u->prog) glDeleteProgram(u->prog);
+    if (u->vao) glDeleteVertexArrays(1, &u->vao);
+    if (u->mid_fbo) glDeleteFramebuffers(1, &u->mid_fbo);
+    if (u->mid_tex) glDeleteTextures(1, &u->mid_tex);
+    if (u->read_fbo) glDeleteFramebuffers(1, &u->read_fbo);
+    free(u);
+}
+
+upscale_filter upscale_filter_used(const upscaler *u) { return u->filter; }
+
+/* A blit of the source into rect: GL_NEAREST at 1:1 (a copy), GL_LINEAR
+ * otherwise (the window before this module). Blits are scissored. */
+static void blit(upscaler *u, unsigned src_tex, int src_w, int src_h, unsigned dst_fbo, upscale_rect r) {
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, u->read_fbo);
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, src_tex, 0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, dst_fbo);
+    bool copy = src_w == r.w && src_h == r.h;
+    glBlitFramebuffer(0, 0, src_w, src_h, r.x, r.y, r.x + r.w, r.y + r.h, GL_COLOR_BUFFER_BIT,
+                      copy ? GL_NEAREST : GL_LINEAR);
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, dst_fbo);
+    if (scissor) glEnable(GL_SCISSOR_TEST);
+}
+
+/* The GL state the pass changes, to give back as the caller had it. */
+typedef struct saved_state {
+    GLint viewport[4], scissor[4];
+    GLboolean scissor_on, depth_on, blend_on, cull_on, stencil_on;
+} saved_state;
+
+static saved_state save_state(void) {
+    saved_state s;
+    glGetIntegerv(GL_VIEWPORT, s.viewport);
+    glGetIntegerv(GL_SCISSOR_BOX, s.scissor);
+    s.scissor_on = glIsEnabled(GL_SCISSOR_TEST);
+    s.depth_on = glIsEnabled(GL_DEPTH_TEST);
+    s.blend_on = glIsEnabled(GL_BLEND);
+    s.cull_on = glIsEnabled(GL_CULL_FACE);
+    s.stencil_on = glIsEnabled(GL_STENCIL_TEST);
+    return s;
+}
+
+static void set_enabled(GLenum cap, GLboolean on) {
+    if (on) glEnable(cap);
+    else glDisable(cap);
+}
+
+static void restore_state(const saved_state *s) {
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    glScissor(s->scissor[0], s->scissor[1], s->scissor[2], s->scissor[3]);
+    set_enabled(GL_SCISSOR_TEST, s->scissor_on);
+    set_enabled(GL_DEPTH_TEST, s->depth_on);
+    set_enabled(GL_BLEND, s->blend_on);
+    set_enabled(GL_CULL_FACE, s->cull_on);
+    set_enabled(GL_STENCIL_TEST, s->stencil_on);
+}
+
+/* The first pass's target, at least w x h. */
+static bool mid_ensure(upscaler *u, int w, int h) {
+    if (u->mid_tex && u->mid_w >= w && u->mid_h >= h) return true;
+    w = w > u->mid_w ? w : u->mid_w;
+    h = h > u->mid_h ? h : u->mid_h;
+    if (u->mid_tex) glDeleteTextures(1, &u->mid_tex);
+    glGenTextures(1, &u->mid_tex);
+    glBindTexture(GL_TEXTURE_2D, u->mid_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_HALF_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, u->mid_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, u->mid_tex, 0);
+    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    u->mid_w = ok ? w : 0;
+    u->mid_h = ok ? h : 0;
+    return ok;
+}
+
+/* One axis: tex (its texels 0..last along the axis) into the w x h
+ * rectangle at (x, y) of the bound framebuffer. */
+static void pass(const upscaler *u, unsigned tex, int axis, int last, double scale, int x, int y, int w, int h) {
+    glViewport(x, y, w, h);
+    glScissor(x, y, w, h);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glUniform1i(u->u_axis, axis);
+    glUniform1f(u->u_scale, (float)scale);
+    glUniform2f(u->u_origin, (float)x, (float)y);
+    glUniform1i(u->u_last, last);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+/* The separable cubic: the frame's rows to the destination's width into
+ * the linear middle target, then its columns to the destination's height.
+ * Separable because on a CPU rasteriser the cost is the taps at the
+ * destination's size: 4 there (plus 4 at rect.w x src_h) against 16. */
+static void draw_cubic(upscaler *u, unsigned src_tex, int src_w, int src_h, unsigned dst_fbo, upscale_rect r) {
+    if (!mid_ensure(u, r.w, src_h)) {
+        blit(u, src_tex, src_w, src_h, dst_fbo, r);
+        return;
+    }
+    saved_state s = save_state();
+    GLboolean srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
+    glEnable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_STENCIL_TEST);
+    glUseProgram(u->prog);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(u->u_src, 0);
+    glUniform1f(u->u_a, -0.5f - 0.5f * u->sharpness);
+    glBindVertexArray(u->vao);
+    glBindFramebuffer(GL_FRAMEBUFFER, u->mid_fbo);
+    glDisable(GL_FRAMEBUFFER_SRGB);   /* the middle target holds linear values as they are */
+    pass(u, src_tex, 0, src_w - 1, (double)src_w / r.w, 0, 0, r.w, src_h);
+    glBindFramebuffer(GL_FRAMEBUFFER, dst_fbo);
+    if (srgb) glEnable(GL_FRAMEBUFFER_SRGB);   /* the caller's encoding, as a blit's */
+    pass(u, u->mid_tex, 1, src_h - 1, (double)src_h / r.h, r.x, r.y, r.w, r.h);
+    glBindVertexArray(0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glUseProgram(0);
+    restore_state(&s);
+}
+
+void upscale_draw(upscaler *u, unsigned src_tex, int src_w, int src_h, unsigned dst_fbo, upscale_rect rect) {
+    if (src_w <= 0 || src_h <= 0 || rect.w <= 0 || rect.h <= 0) return;
+    bool copy = src_w == rect.w && src_h == rect.h;
+    if (copy || u->filter == UPSCALE_BILINEAR || !u->prog) blit(u, src_tex, src_w, src_h, dst_fbo, rect);
+    else draw_cubic(u, src_tex, src_w, src_h, dst_fbo, rect);
+}

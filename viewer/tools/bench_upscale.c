@@ -1,0 +1,275 @@
+/* bench_upscale: what the window's upscaler buys, measured (a tool, not a
+ * test: its figures are timings and errors, nothing passes or fails).
+ *
+ * The window's case: a 960x540 scene area, time running. For each pack
+ * and scene, at a few animated instants, the frame is drawn at full
+ * resolution (the truth) and at a reduced scale (as the frame budget
+ * draws it, render_set_detail included), then brought to 960x540 by the
+ * bilinear blit (the window before) and by the upscaler (sharpened cubic);
+ * each against the truth: RMSE (linear RGB), SSIM (ref_ssim, luminance)
+ * and LDR-FLIP (ref_flip, default viewing). Both go through the window's
+ * 8-bit sRGB canvas, and the error is computed on the decoded linear
+ * values. Then each upscaler's own time per frame (glFinish'd wall time,
+ * median of runs).
+ *
+ *   bench_upscale [--pack NAME]... [--scene FILE]... [--scale S]... [--size WxH]
+ *                 [--times t1,t2,..] [--sharpness X] [--png DIR]
+ *
+ * Defaults: the four packs, scenes/lake.glib and scenes/showcase.glib,
+ * scales 0.19 (what the 50 ms budget picks on a 2-core llvmpipe machine)
+ * and 0.5, 960x540, times 2,2.7,3.4. --png writes truth / bilinear / edge
+ * of the first instant for looking at. */
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_ctx.h"
+#include "image_io.h"
+#include "mem.h"
+#include "ref_flip.h"
+#include "ref_metrics.h"
+#include "ref_ssim.h"
+#include "render.h"
+#include "upscale.h"
+#include "util.h"
+
+#define MAX_LIST 8
+
+typedef struct opts {
+    const char *packs[MAX_LIST], *scenes[MAX_LIST];
+    double scales[MAX_LIST], times[MAX_LIST];
+    int npacks, nscenes, nscales, ntimes;
+    int w, h;
+    float sharpness;
+    const char *png_dir;
+} opts;
+
+typedef struct errs { double rmse, ssim, flip; } errs;
+
+/* The sum of a case's errors over its instants, per upscaler. */
+typedef struct tally { errs bil, edge; int n; } tally;
+
+static void usage(void) {
+    fputs("usage: bench_upscale [--pack NAME]... [--scene FILE]... [--scale S]... [--size WxH]\n"
+          "                     [--times t1,t2,..] [--sharpness X] [--png DIR]\n",
+          stderr);
+    exit(2);
+}
+
+static void parse_times(const char *s, opts *o) {
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", s);
+    for (char *p = strtok(buf, ","); p && o->ntimes < MAX_LIST; p = strtok(NULL, ","))
+        o->times[o->ntimes++] = atof(p);
+}
+
+static opts parse(int argc, char **argv) {
+    opts o = { .w = 960, .h = 540 };
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!v) usage();
+        if (!strcmp(a, "--pack") && o.npacks < MAX_LIST) o.packs[o.npacks++] = v;
+        else if (!strcmp(a, "--scene") && o.nscenes < MAX_LIST) o.scenes[o.nscenes++] = v;
+        else if (!strcmp(a, "--scale") && o.nscales < MAX_LIST) o.scales[o.nscales++] = atof(v);
+        else if (!strcmp(a, "--size") && sscanf(v, "%dx%d", &o.w, &o.h) == 2) {}
+        else if (!strcmp(a, "--times")) parse_times(v, &o);
+        else if (!strcmp(a, "--sharpness")) o.sharpness = (float)atof(v);
+        else if (!strcmp(a, "--png")) o.png_dir = v;
+        else usage();
+        i++;
+    }
+    static const char *const packs[] = { "basic", "raymarch", "natural", "caustic_tex" };
+    if (!o.npacks) for (int i = 0; i < 4; i++) o.packs[o.npacks++] = packs[i];
+    if (!o.nscenes) {
+        o.scenes[o.nscenes++] = TARN_SOURCE_DIR "/scenes/lake.glib";
+        o.scenes[o.nscenes++] = TARN_SOURCE_DIR "/scenes/showcase.glib";
+    }
+    if (!o.nscales) { o.scales[0] = 0.19; o.scales[1] = 0.5; o.nscales = 2; }
+    if (!o.ntimes) { o.times[0] = 2.0; o.times[1] = 2.7; o.times[2] = 3.4; o.ntimes = 3; }
+    return o;
+}
+
+/* The target's 8-bit sRGB pixels (bottom-left w x h), decoded to linear
+ * RGB, row 0 = top. */
+static void read_linear(const render_target *t, int w, int h, float *rgb) {
+    unsigned char *b = mem_alloc((size_t)w * h * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, b);
+    float lut[256];
+    for (int i = 0; i < 256; i++) lut[i] = (float)ref_srgb_to_linear(i / 255.0);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            for (int c = 0; c < 3; c++)
+                rgb[((size_t)(h - 1 - y) * w + x) * 3 + c] = lut[b[((size_t)y * w + x) * 4 + c]];
+    free(b);
+}
+
+static errs measure(const float *test, const float *truth, int w, int h) {
+    ref_fimage a = { test, w, h, 3 }, b = { truth, w, h, 3 };
+    double s = 0;
+    size_t n = (size_t)w * h * 3;
+    for (size_t i = 0; i < n; i++) s += (double)(test[i] - truth[i]) * (test[i] - truth[i]);
+    errs e = { .rmse = sqrt(s / (double)n), .ssim = NAN, .flip = NAN };
+    char err[256];
+    ref_ssim_result sr;
+    if (ref_ssim(&a, &b, NULL, NULL, &sr, err, sizeof err)) e.ssim = sr.mean;
+    ref_flip_result fr;
+    if (ref_flip_mean(&a, &b, NULL, NULL, &fr, err, sizeof err)) e.flip = fr.mean;
+    return e;
+}
+
+static void add(errs *sum, errs e) {
+    sum->rmse += e.rmse;
+    sum->ssim += e.ssim;
+    sum->flip += e.flip;
+}
+
+static void write_png(const opts *o, const char *name, const float *rgb) {
+    if (!o->png_dir) return;
+    img im = { 0 };
+    if (!img_alloc(&im, o->w, o->h, 3)) return;
+    /* back to sRGB values: img_write stores what it is given */
+    for (size_t i = 0; i < (size_t)o->w * o->h * 3; i++) im.px[i] = (float)ref_linear_to_srgb(rgb[i]);
+    char path[1024], err[256];
+    snprintf(path, sizeof path, "%s/%s.png", o->png_dir, name);
+    if (!img_write(path, &im, err, sizeof err)) fprintf(stderr, "%s\n", err);
+    img_free(&im);
+}
+
+typedef struct rig {
+    render_target truth_tg, canvas, out;
+    upscaler *bil, *edge;
+    float *truth, *test;
+} rig;
+
+/* One instant of one case: the truth, the reduced frame, both upscales. */
+static void one_instant(const opts *o, rig *g, render *r, double t, double scale, tally *tl, const char *tag) {
+    int w = o->w, h = o->h, rw, rh;
+    glEnable(GL_FRAMEBUFFER_SRGB);
+    render_set_detail(r, 1.0);
+    render_frame_at(r, t, g->truth_tg.fbo, 0, 0, w, h, NULL);
+    read_linear(&g->truth_tg, w, h, g->truth);
+    rw = (int)lround(scale * w);
+    rh = (int)lround(scale * h);
+    render_set_detail(r, scale);
+    render_frame_at(r, t, g->canvas.fbo, 0, 0, rw, rh, NULL);
+    upscaler *ups[2] = { g->bil, g->edge };
+    for (int k = 0; k < 2; k++) {
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        upscale_draw(ups[k], g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+        read_linear(&g->out, w, h, g->test);
+        add(k ? &tl->edge : &tl->bil, measure(g->test, g->truth, w, h));
+        if (tl->n == 0) {
+            char name[256];
+            snprintf(name, sizeof name, "%s-%s", tag, k ? "cubic" : "bilinear");
+            write_png(o, name, g->test);
+        }
+    }
+    if (tl->n == 0) {
+        char name[256];
+        snprintf(name, sizeof name, "%s-truth", tag);
+        write_png(o, name, g->truth);
+    }
+    tl->n++;
+}
+
+static const char *base_name(const char *path) {
+    const char *s = strrchr(path, '/');
+    return s ? s + 1 : path;
+}
+
+static void run_case(const opts *o, rig *g, const char *scene, const char *pack) {
+    render *r = render_create(&(render_desc){ .pack = pack });
+    if (!render_load(r, scene)) {
+        fprintf(stderr, "%s with %s: %s", scene, pack, render_messages(r));
+        render_destroy(r);
+        return;
+    }
+    for (int s = 0; s < o->nscales; s++) {
+        tally tl = { 0 };
+        char tag[256];
+        snprintf(tag, sizeof tag, "%.*s-%s-%.2f", (int)strcspn(base_name(scene), "."), base_name(scene), pack,
+                 o->scales[s]);
+        for (int i = 0; i < o->ntimes; i++) one_instant(o, g, r, o->times[i], o->scales[s], &tl, tag);
+        double n = tl.n ? tl.n : 1;
+        int rw = (int)lround(o->scales[s] * o->w), rh = (int)lround(o->scales[s] * o->h);
+        printf("| %s | %s | %dx%d | %.4f | %.4f | %.0f%% | %.4f | %.4f | %.4f | %.4f |\n",
+               base_name(scene), pack, rw, rh, tl.bil.rmse / n, tl.edge.rmse / n,
+               100 * (1 - tl.edge.rmse / tl.bil.rmse), tl.bil.ssim / n, tl.edge.ssim / n, tl.bil.flip / n,
+               tl.edge.flip / n);
+        fflush(stdout);
+    }
+    render_destroy(r);
+}
+
+static int cmp_ms(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The upscaler's own time into w x h from rw x rh: median of 15 runs of 4
+ * draws each, each run ended by glFinish. */
+static double time_upscale(upscaler *u, rig *g, int rw, int rh, int w, int h) {
+    double runs[15];
+    glEnable(GL_FRAMEBUFFER_SRGB);
+    upscale_draw(u, g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+    glFinish();
+    for (int i = 0; i < 15; i++) {
+        double t0 = clock_now_s();
+        for (int k = 0; k < 4; k++) upscale_draw(u, g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+        glFinish();
+        runs[i] = (clock_now_s() - t0) * 1e3 / 4;
+    }
+    qsort(runs, 15, sizeof runs[0], cmp_ms);
+    return runs[7];
+}
+
+static void timings(const opts *o, rig *g) {
+    printf("\nupscaler's own time per frame into %dx%d (ms, median):\n\n", o->w, o->h);
+    printf("| from | bilinear blit | cubic |\n|---|---|---|\n");
+    for (int s = 0; s < o->nscales; s++) {
+        int rw = (int)lround(o->scales[s] * o->w), rh = (int)lround(o->scales[s] * o->h);
+        printf("| %dx%d | %.2f | %.2f |\n", rw, rh, time_upscale(g->bil, g, rw, rh, o->w, o->h),
+               time_upscale(g->edge, g, rw, rh, o->w, o->h));
+    }
+}
+
+int main(int argc, char **argv) {
+    opts o = parse(argc, argv);
+    char err[512];
+    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!ctx) { fprintf(stderr, "bench_upscale: no OpenGL: %s\n", err); return 3; }
+    printf("renderer: %s\n", (const char *)glGetString(GL_RENDERER));
+    rig g = { 0 };
+    const char *uerr = NULL;
+    g.bil = upscale_create(&(upscale_desc){ .filter = UPSCALE_BILINEAR }, NULL);
+    g.edge = upscale_create(&(upscale_desc){ .sharpness = o.sharpness }, &uerr);
+    if (uerr) fprintf(stderr, "%s\n", uerr);
+    if (!render_target_create_srgb(&g.truth_tg, o.w, o.h) || !render_target_create_srgb(&g.canvas, o.w, o.h) ||
+        !render_target_create_srgb(&g.out, o.w, o.h)) {
+        fprintf(stderr, "bench_upscale: no %dx%d targets\n", o.w, o.h);
+        return 1;
+    }
+    g.truth = mem_alloc((size_t)o.w * o.h * 3 * sizeof(float));
+    g.test = mem_alloc((size_t)o.w * o.h * 3 * sizeof(float));
+    timings(&o, &g);
+    printf("\nerror against the full-resolution frame (mean of %d instants; FLIP at %.0f px/degree):\n\n", o.ntimes,
+           REF_FLIP_PPD);
+    printf("| scene | pack | drawn at | RMSE bilinear | RMSE cubic | RMSE cut | SSIM bilinear | SSIM cubic | "
+           "FLIP bilinear | FLIP cubic |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int s = 0; s < o.nscenes; s++)
+        for (int p = 0; p < o.npacks; p++) run_case(&o, &g, o.scenes[s], o.packs[p]);
+    free(g.truth);
+    free(g.test);
+    render_target_destroy(&g.truth_tg);
+    render_target_destroy(&g.canvas);
+    render_target_destroy(&g.out);
+    upscale_destroy(g.bil);
+    upscale_destroy(g.edge);
+    gl_ctx_destroy(ctx);
+    return 0;
+}
