@@ -90,3 +90,10 @@ add_test(NAME window_input_xvfb
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_input_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_input_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "window;gl")
+
+# The window's hand-in sheet: a slider's right-click menu (the script's
+# `sheet P.NAME`) writes `tarn sheet`'s image of it (issue #27).
+add_test(NAME window_sheet_xvfb
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_sheet_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(window_sheet_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "window;gl")

@@ -3,6 +3,7 @@
 #include "check.h"
 #include "support.h"
 #include "view_script.h"
+#include "sheet_job.h"
 #include "view_util.h"
 
 static void test_pass_names_read_as_the_glib(void) {
@@ -117,11 +118,34 @@ static void test_press_on_panel_never_reaches_camera(void) {
     CHECK(!orbit_equal(&cam, &before));
 }
 
+/* The window's hand-in sheet (issue #27) is `tarn sheet` with the slider
+ * varied over its range and every value not at its default as a --set. */
+static void test_sheet_command_line(void) {
+    unif_entry e[3] = { { .name = "uOpacity", .widget = UNIF_WIDGET_SLIDER, .ncomp = 1, .min = 0, .max = 1 },
+                        { .name = "uTint", .widget = UNIF_WIDGET_COLOR, .ncomp = 3 },
+                        { .name = "uGlow", .widget = UNIF_WIDGET_SLIDER, .ncomp = 1, .min = 0, .max = 2 } };
+    e[0].value[0] = 0.8f;                                   /* varied: no --set */
+    e[1].value[0] = 1; e[1].value[1] = 0.5f; e[1].value[2] = 0.25f;   /* changed: --set */
+    e[2].value[0] = e[2].def[0] = 1;                        /* at its default: none */
+    unif_set set = { .program = "Water", .entries = e, .n = 3 };
+    sheet_job_desc d = { .tarn = "tarn", .scene = "/p/lake.glib", .pack = "natural", .program = "Water",
+                         .uniform = "uOpacity", .min = 0, .max = 1, .time_s = 2.5, .sets = &set, .nsets = 1,
+                         .out = "s.png" };
+    char *argv[32], text[2048], line[2048] = "";
+    int argc = sheet_job_argv(&d, argv, 32, text, sizeof text);
+    for (int i = 0; i < argc; i++) snprintf(line + strlen(line), sizeof line - strlen(line), "%s%s", i ? " " : "", argv[i]);
+    CHECK_MSG(strcmp(line, "tarn sheet /p/lake.glib --vary Water.uOpacity=0:1:5 --time 2.5 --pack natural "
+                           "--set Water.uTint=1,0.5,0.25 --quiet -o s.png") == 0, "%s", line);
+    CHECK(argv[argc] == NULL);
+    CHECK(sheet_job_argv(&d, argv, 8, text, sizeof text) == -1);   /* does not fit: said, not cut */
+}
+
 int main(void) {
     RUN(test_drag_runs_from_its_press);
     RUN(test_press_on_panel_never_reaches_camera);
     RUN(test_pass_names_read_as_the_glib);
     RUN(test_script_line_limit);
     RUN(test_reload_cause_names_the_files);
+    RUN(test_sheet_command_line);
     return check_summary();
 }

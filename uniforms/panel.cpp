@@ -67,8 +67,21 @@ void fixed_value_text(const unif_entry *e) {
     ImGui::TextColored(kGrey, "%s", text);
 }
 
-// One entry: [reset] widget. Returns true when its value changed.
-bool entry_widget(unif_entry *e) {
+// A slider's right-click menu: a hand-in sheet of it (issue #27).
+bool sheet_menu(const unif_entry *e) {
+    bool picked = false;
+    if (ImGui::BeginPopupContextItem("sheet")) {
+        char item[160];
+        std::snprintf(item, sizeof item, "Hand-in sheet: %s at 5 values, %g to %g", e->name, e->min, e->max);
+        picked = ImGui::MenuItem(item);
+        ImGui::EndPopup();
+    }
+    return picked;
+}
+
+// One entry: [reset] widget. Returns true when its value changed; *sheet
+// when its right-click menu asked for a hand-in sheet of it.
+bool entry_widget(unif_entry *e, bool *sheet) {
     bool changed = false;
     if (e->widget != UNIF_WIDGET_NONE) {
         bool at_default = unif_is_default(e);
@@ -101,6 +114,7 @@ bool entry_widget(unif_entry *e) {
                                       "%.4g", clamp)) {
             changed |= apply(e, edit, 1);
         }
+        if (!e->is_define && e->min < e->max) *sheet = sheet_menu(e);
         break;
     case UNIF_WIDGET_CHECKBOX: {
         bool b = e->value[0] != 0.0f;
@@ -236,7 +250,15 @@ void draw_sets(unif_set *sets, int nsets, panel_actions *out) {
                     defines_open = false;
                 }
                 ImGui::PushID(i);
-                if (entry_widget(e) && e->is_define) out->recompile = true;
+                bool sheet = false;
+                if (entry_widget(e, &sheet) && e->is_define) out->recompile = true;
+                if (sheet) {
+                    out->sheet = true;
+                    std::snprintf(out->sheet_program, sizeof out->sheet_program, "%s", set->program);
+                    std::snprintf(out->sheet_uniform, sizeof out->sheet_uniform, "%s", e->name);
+                    out->sheet_min = e->min;
+                    out->sheet_max = e->max;
+                }
                 ImGui::PopID();
             }
             if (set->n == 0) ImGui::TextColored(kGrey, "no uniforms");

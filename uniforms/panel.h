@@ -72,6 +72,9 @@ typedef struct panel_actions {
     int pack;
     bool switch_setting;         /* the Setting combo picked settings[setting] (the app applies it) */
     int setting;
+    bool sheet;                  /* a slider's right-click "Hand-in sheet": this uniform over its range */
+    char sheet_program[UNIF_NAME_MAX], sheet_uniform[UNIF_NAME_MAX];
+    float sheet_min, sheet_max;
 } panel_actions;
 
 /* A Pack combo first when info lists packs (switching draws the same world

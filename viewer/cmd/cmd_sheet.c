@@ -45,6 +45,7 @@ typedef struct sheet_desc {
     double time_s;
     int samples;
     bool quiet;
+    const char *pack;             /* --pack: replaces the scene's Pack */
 } sheet_desc;
 
 static double vary_value(const sheet_vary *v, int i) {
@@ -74,7 +75,7 @@ static int sheet_run(const sheet_desc *d) {
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;
-    render *r = render_create(&(render_desc){ .samples = samples });
+    render *r = render_create(&(render_desc){ .samples = samples, .pack = d->pack });
     bool ok = render_load(r, d->glib);
     if (!d->quiet || !ok) fputs(render_messages(r), stderr);
     int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
@@ -185,7 +186,7 @@ done:
 
 static const char usage[] =
     "usage: tarn sheet FILE.glib --vary PROGRAM.NAME=A:B:N [--vary PROGRAM.NAME=A:B:N] [-o OUT]\n"
-    "                  [--size WxH] [--time SECONDS] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
+    "                  [--size WxH] [--time SECONDS] [--pack NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
     "\n"
     "A hand-in sheet: renders the scene (headless, as tarn render) once for each\n"
     "value of a uniform, N values from A to B evenly (N = 1: A), side by side in\n"
@@ -199,10 +200,14 @@ static const char usage[] =
     "  --size WxH       each tile's size (default: the glib's WindowSize, scaled\n"
     "                   down to 400 pixels wide)\n"
     "  --time SECONDS   simulated time of every tile (default 0)\n"
+    "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
     "  --set P.NAME=V   set a slider, checkbox, colour or Define first, as in\n"
     "                   tarn render; repeatable\n"
     CMD_MSAA_STILL_HELP
     "  --quiet          print only warnings and errors\n"
+    "\n"
+    "In tarn view, a slider's right-click menu makes the same sheet of it (5 values\n"
+    "over its range, every other value as the window has it).\n"
     "\n"
     "A value the scene does not take (no such uniform, or outside its slider's\n"
     "range, which would be clamped) stops the sheet: its labels would be wrong.\n"
@@ -254,6 +259,7 @@ static int parse(int argc, char **argv, sheet_desc *d, const char **sets) {
             i++;
         }
         else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }
+        else if (strcmp(a, "--pack") == 0 && next) { d->pack = next; i++; }
         else if (strcmp(a, "--quiet") == 0) d->quiet = true;
         else if (a[0] == '-') return bad("unknown option");
         else if (!d->glib) d->glib = a;

@@ -17,6 +17,7 @@
 #include "mem.h"
 #include "res_budget.h"
 #include "session.h"
+#include "sheet_job.h"
 #include "util.h"
 #include "watch.h"
 
@@ -68,6 +69,8 @@ struct app {
     bool keep_awake;             /* a client asked for the next frame (app_keep_awake) */
     bool slept;                  /* this frame follows a sleep: its dt measures nothing */
     double slow_s;               /* the script's `slow MS`: each frame lasts at least this (input tests) */
+    sheet_job sheet;             /* a hand-in sheet being made (a slider's right-click menu) */
+    int sheets;                  /* made so far: the next one's number */
     bool help;                   /* F1 or ?: the keys and the mouse, over the scene */
 };
 
@@ -278,7 +281,38 @@ static void record_toggle(app *a) {
     record_start(a, path);
 }
 
+/* A hand-in sheet of one slider from min to max, the other values as the
+ * window has them (issue #27): `tarn sheet` in a child, the window live. */
+static bool start_sheet(app *a, const char *program, const char *uniform, double min, double max) {
+    if (!a->scenes || a->nscenes < 1) return false;
+    render *r = a->scenes[0];
+    char out[160], stamp[128], err[512];
+    view_shot_path(a->sheets++, stamp, sizeof stamp);   /* tarn-DATE-N.png */
+    snprintf(out, sizeof out, "tarn-sheet-%s", stamp + 5);
+    int n;
+    const unif_set *sets = render_uniforms(r, &n);
+    sheet_job_desc d = { .scene = render_scene_path(r), .pack = render_has_world(r) ? render_pack(r) : NULL,
+                         .program = program, .uniform = uniform, .min = min, .max = max, .time_s = a->s.t,
+                         .sets = sets, .nsets = n, .out = out };
+    bool ok = sheet_job_start(&a->sheet, &d, err, sizeof err);
+    if (ok) app_toast(a, "making a hand-in sheet of %s into %s ...", a->sheet.what, out);
+    else app_toast(a, "no sheet: %s", err);
+    fprintf(stderr, "%s: %s%s\n", a->d.name, ok ? "making a hand-in sheet of " : "no sheet: ", ok ? a->sheet.what : err);
+    return ok;
+}
+
+/* The sheet's end, said once; true when it ended now. */
+static bool sheet_ended(app *a, bool wait) {
+    int rc = sheet_job_poll(&a->sheet, wait);
+    if (rc < 0) return false;
+    if (rc == 0) app_toast(a, "sheet written: %s", a->sheet.out);
+    else app_toast(a, "the sheet of %s failed (tarn sheet exited %d): see the terminal", a->sheet.what, rc);
+    fprintf(stderr, "%s: %s %s\n", a->d.name, rc == 0 ? "sheet written:" : "sheet failed:", a->sheet.out);
+    return true;
+}
+
 static void apply_common(app *a, const panel_actions *c) {
+    if (c->sheet) start_sheet(a, c->sheet_program, c->sheet_uniform, c->sheet_min, c->sheet_max);
     if (c->reload) reload(a);
     if (c->toggle_pause) a->s.paused = !a->s.paused;
     /* the button's frame was drawn before the panel said so: the next one,
@@ -434,6 +468,7 @@ static void frame(app *a, bool scripted) {
         snprintf(a->cause, sizeof a->cause, "a missing folder appeared");
         reload(a);
     }
+    sheet_ended(a, false);
     a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);
     else view_mouse_update(&a->s.mouse, a->win, panel_wants_mouse(a->panel) || pressed_on_panel(a), &a->s.cam);
@@ -479,6 +514,23 @@ static view_script_status budget_action(app *a, const char *cmd, char *rest, con
         }
         a->slow_s = ms / 1e3;
         fprintf(stderr, "%s: slow %.0f ms a frame\n", a->d.name, ms);
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "sheet") == 0) {   /* PROGRAM.NAME: the slider's menu item, then wait for it */
+        char program[UNIF_NAME_MAX] = "", name[UNIF_NAME_MAX] = "";
+        const unif_entry *e = NULL;
+        if (sscanf(rest, "%63[^.].%63s", program, name) == 2 && a->scenes) {
+            int n;
+            unif_set *sets = render_uniforms(a->scenes[0], &n);
+            for (int i = 0; i < n && !e; i++)
+                if (strcmp(sets[i].program, program) == 0) e = unif_find(&sets[i], name);
+        }
+        if (!e || !(e->min < e->max)) {
+            fprintf(stderr, "%s:%d: sheet wants PROGRAM.NAME of a slider\n", file, line);
+            return VIEW_SCRIPT_FAILED;
+        }
+        if (!start_sheet(a, program, name, e->min, e->max)) return VIEW_SCRIPT_FAILED;
+        sheet_ended(a, true);
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "help") == 0) {   /* 1 | 0: the key help overlay, as F1 */
@@ -593,7 +645,8 @@ static bool wait_for_work(app *a, const view_script *script) {
         return true;
     }
     glfwWaitEventsTimeout(APP_IDLE_WAIT_S);
-    if (!a->woken && !files_pending(a) && idle(a, script)) return false;
+    bool sheet = a->sheet.pid > 0 && sheet_ended(a, false);   /* its toast wants frames */
+    if (!a->woken && !sheet && !files_pending(a) && idle(a, script)) return false;
     a->slept = true;
     return true;
 }
