@@ -17,6 +17,7 @@
 #include "render.h"
 #include "render_setting.h"
 #include "res_budget.h"
+#include "upscale.h"
 #include "util.h"
 #include "view.h"
 
@@ -40,6 +41,7 @@ typedef struct viewer {
      * encoding, so the picture is what drawing to the window gave) */
     render_target canvas;
     int drawn_w, drawn_h;        /* what the canvas holds (0: nothing yet) */
+    upscaler *up;                /* the canvas into the window (made at the first frame) */
 } viewer;
 
 static void canvas_free(viewer *v) {
@@ -249,7 +251,9 @@ static void on_apply(void *user, app *a) {
 
 /* The scene at the budget's scale into the canvas (when the picture
  * changed, or to bring it to full resolution), then the canvas into the
- * scene area, upscaled by a linear blit. */
+ * scene area: copied at full resolution, else enlarged by the sharpened,
+ * deringed cubic (gfx/upscale.h), which keeps edges that a linear blit
+ * blurred over the reduced frame's big pixels. */
 static void on_draw(void *user, app *a) {
     viewer *v = user;
     app_state *s = app_get_state(a);
@@ -276,13 +280,14 @@ static void on_draw(void *user, app *a) {
     glViewport(0, 0, w, h);
     glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-    /* sRGB to sRGB: decoded, filtered in linear, encoded again (1:1 exact) */
+    /* sRGB to sRGB: decoded, filtered in linear, encoded again (1:1 a copy) */
     if (world) glEnable(GL_FRAMEBUFFER_SRGB);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, v->canvas.fbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    bool full = v->drawn_w == aw && v->drawn_h == ah;
-    glBlitFramebuffer(0, 0, v->drawn_w, v->drawn_h, x0, 0, x0 + aw, ah, GL_COLOR_BUFFER_BIT,
-                      full ? GL_NEAREST : GL_LINEAR);
+    if (!v->up) {
+        const char *err = NULL;
+        v->up = upscale_create(NULL, &err);
+        if (err) fprintf(stderr, "%s\n", err);
+    }
+    upscale_draw(v->up, v->canvas.color, v->drawn_w, v->drawn_h, 0, (upscale_rect){ x0, 0, aw, ah });
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_FRAMEBUFFER_SRGB);
 }
@@ -353,6 +358,7 @@ int view_run(const view_desc *d) {
     if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
     settings_free(&v);
     canvas_free(&v);
+    upscale_destroy(v.up);
     render_destroy(v.r);
     app_destroy(v.app);
     return rc;
