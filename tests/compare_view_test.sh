@@ -15,7 +15,8 @@ fail() { echo "FAIL: $*"; exit 1; }
 [ "$rc" -eq 0 ] || fail "tarn compare-view exited $rc"
 [ "$(grep -c 'holds the expected value' compare-view-test.log)" -eq 2 ] || fail "an expect is missing"
 grep -q "every pack has a heat map" compare-view-test.log || fail "no heat maps"
-[ "$(grep -c 'heat map .*RMSE [0-9.]*, PSNR' compare-view-test.log)" -eq 2 ] || fail "a pack's RMSE is missing"
+[ "$(grep -c 'heat map .*RMSE [0-9.]*, PSNR' compare-view-test.log)" -eq 4 ] || fail "a pack's RMSE is missing"
+[ "$(grep -c 'heat map .*; HDR-FLIP map$' compare-view-test.log)" -eq 2 ] || fail "no FLIP maps"
 grep -q "1 basic: [0-9.]* ms GPU, [0-9.]* ms wall" compare-view-test.log || fail "no timings for pack 1"
 grep -q "2 basic #2: [0-9.]* ms GPU, [0-9.]* ms wall" compare-view-test.log || fail "no timings for pack 2"
 for f in compare-grid.png compare-wipe.png compare-heat.png; do [ -s "$f" ] || fail "no $f"; done

@@ -11,6 +11,7 @@
 
 #include "check.h"
 #include "heat_job.h"
+#include "ref_flip.h"
 #include "ref_metrics.h"
 #include "ref_render.h"
 
@@ -83,6 +84,40 @@ static void test_automatic_scale_is_the_largest(void) {
     heat_job_destroy(j);
 }
 
+/* HDR-FLIP maps (issue #26): what ref_flip_map gives the same pair, pooled
+ * over the water; the reference's own image scores 0; FLIP's magma ramp;
+ * the colour maps' figures are still there. */
+static void test_flip_maps(void) {
+    refcache_image ref = make_inputs();
+    heat_job *j = heat_job_create();
+    heat_job_set_metric(j, HEAT_METRIC_FLIP);
+    const float *rgba[2] = { pack_off, pack_same };
+    CHECK(heat_job_start_maps(j, rgba, 2, W, H, &ref, 0.6));
+    CHECK(heat_job_wait(j) == HEAT_JOB_MAPS);
+    const heat_maps *m = heat_job_maps(j);
+    CHECK(m->metric == HEAT_METRIC_FLIP && m->map[0].ok && m->map[1].ok);
+    CHECK_NEAR(m->scale, 1.0, 0);   /* FLIP is in [0, 1]: the fixed scale is not used */
+    /* the truth: ref_flip_map of the same pair, HDR, pooled over the top half */
+    ref_fimage A = { pack_off, W, H, 4 }, B = { ref_color, W, H, 3 };
+    float map[N];
+    ref_flip_desc d = { .hdr = true };
+    ref_flip_result all, wet;
+    CHECK(ref_flip_map(&A, &B, &d, map, NULL, &all, NULL, 0));
+    unsigned char water[N];
+    for (int i = 0; i < N; i++) water[i] = i < N / 2;
+    wet = all;
+    ref_flip_pool(map, W, H, water, &wet);
+    CHECK(wet.mean > 0.01);   /* a red shift of 0.1 is visible */
+    CHECK_NEAR(m->map[0].flip, wet.mean, 1e-6);
+    CHECK_NEAR(m->map[0].frame_flip, all.mean, 1e-6);
+    CHECK_NEAR(m->map[1].flip, 0.0, 1e-6);
+    CHECK_NEAR(m->map[0].rmse, 0.1 / sqrt(3.0), 1e-6);
+    float want[3];
+    ref_flip_magma(map[0], want);
+    for (int c = 0; c < 3; c++) CHECK_NEAR(m->map[0].rgb[c], want[c], 1e-6);
+    heat_job_destroy(j);
+}
+
 /* The reference of a real scene, computed while this thread polls. */
 static void test_reference_on_the_worker(void) {
     const char *root = getenv("TARN_SOURCE_DIR");
@@ -121,6 +156,7 @@ static void test_reference_on_the_worker(void) {
 int main(void) {
     RUN(test_maps_of_a_known_error);
     RUN(test_automatic_scale_is_the_largest);
+    RUN(test_flip_maps);
     RUN(test_reference_on_the_worker);
     return check_summary();
 }

@@ -430,12 +430,12 @@ void compare_legend(const panel_compare *c) {
     ImGui::Text("0");
     char half[32], full[32];
     std::snprintf(half, sizeof half, "%.3g", c->legend_scale / 2);
-    std::snprintf(full, sizeof full, ">= %.3g", c->legend_scale);
+    std::snprintf(full, sizeof full, c->legend_flip ? "%.3g" : ">= %.3g", c->legend_scale);   // FLIP ends at 1
     ImGui::SameLine(w * 0.5f - ImGui::CalcTextSize(half).x * 0.5f);
     ImGui::TextUnformatted(half);
     ImGui::SameLine(w - ImGui::CalcTextSize(full).x);
     ImGui::TextUnformatted(full);
-    ImGui::TextColored(kGrey, "error (max |RGB|), linear");
+    ImGui::TextColored(kGrey, "%s", c->legend_flip ? "HDR-FLIP (0: no visible difference)" : "error (max |RGB|), linear");
 }
 
 // Each pack's passes and their times, folded; over the views only on request.
@@ -511,15 +511,25 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
             ImGui::SliderFloat("scale (0: auto)", c->heat_max, 0.0f, 1.0f, "%.3f");
             ImGui::PopItemWidth();
         }
+        if (c->metric) {
+            ImGui::TextUnformatted("maps:");
+            ImGui::SameLine();
+            ImGui::RadioButton("|RGB| error", c->metric, 0);
+            ImGui::SameLine();
+            ImGui::RadioButton("FLIP", c->metric, 1);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("HDR-FLIP (Andersson et al.): what the eye sees of the difference, 0 to 1");
+        }
         if (c->heat_status) ImGui::TextWrapped("%s", c->heat_status);
         if (c->legend_rgb && c->legend_n >= 2) compare_legend(c);
         ImGui::Separator();
 
-        if (ImGui::BeginTable("timings", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+        if (ImGui::BeginTable("timings", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
             ImGui::TableSetupColumn("pack");
             ImGui::TableSetupColumn("GPU ms");
             ImGui::TableSetupColumn("wall ms");
             ImGui::TableSetupColumn("water RMSE");
+            ImGui::TableSetupColumn("FLIP");
             ImGui::TableHeadersRow();
             for (int i = 0; i < c->npacks; i++) {
                 const panel_compare_pack *pk = &c->packs[i];
@@ -532,6 +542,8 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
                 if (pk->wall_ms >= 0) ImGui::Text("%.2f", pk->wall_ms); else ImGui::TextUnformatted("-");
                 ImGui::TableNextColumn();
                 if (pk->rmse == pk->rmse) ImGui::Text("%.4f", pk->rmse); else ImGui::TextUnformatted("-");
+                ImGui::TableNextColumn();
+                if (pk->flip == pk->flip) ImGui::Text("%.3f", pk->flip); else ImGui::TextUnformatted("-");
             }
             ImGui::EndTable();
         }

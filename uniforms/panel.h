@@ -99,6 +99,7 @@ typedef struct panel_compare_pack {
     int nsets;
     double gpu_ms, wall_ms;      /* this pack's frame; < 0 when not measured */
     double rmse, psnr_db;        /* over the reference's water pixels (NaN: no heat map yet) */
+    double flip;                 /* HDR-FLIP over the water (NaN: not shown) */
     const char *error_text;      /* its load or build errors, NULL if none */
     const char *passes;          /* its passes' times, a pass a line ("" or NULL: none) */
 } panel_compare_pack;
@@ -124,6 +125,8 @@ typedef struct panel_compare {
     int legend_n;
     double legend_scale;
     bool *passes_over_views;     /* the passes' times over the views too (else only here) */
+    int *metric;                 /* what the heat maps show: 0 the largest |RGB| error, 1 HDR-FLIP */
+    bool legend_flip;            /* the legend is FLIP's (0..1, magma) */
     const char *note;            /* a line under the timings (the time axis, ...) */
     float *budget_ms;            /* as panel_info's */
     const char *resolution;

@@ -27,6 +27,7 @@
 #include "mem.h"
 #include "panel.h"
 #include "mem.h"
+#include "ref_flip.h"
 #include "ref_metrics.h"
 #include "refcache.h"
 #include "render.h"
@@ -54,6 +55,7 @@ typedef struct cv_pack {
     double gpu_ms, wall_ms;      /* smoothed */
     double rmse, psnr;          /* over the reference's water pixels: what ranks the packs */
     double frame_rmse;          /* the whole frame, second */
+    double flip;                /* HDR-FLIP over the water, when the maps show FLIP (else NaN) */
     char passes[512];            /* "RenderToTexture 6 7 (line 12)  1.20 ms", a pass a line */
 } cv_pack;
 
@@ -72,6 +74,8 @@ typedef struct cview {
     bool show_heat;
     float heat_max;
     double heat_scale;           /* the scale used last */
+    int metric;                  /* heat_metric the panel asks for */
+    int shown_metric;            /* heat_metric of the maps on screen */
     refcache_image ref;
     bool have_ref, reported;
     double ref_t;
@@ -230,6 +234,10 @@ static void upload_heat(cv_pack *p, const float *rgb, int w, int h) {
 /* The legend's ramp, for the panel: the maps' colours from no error to
  * the scale (the maps' own function, so the two cannot disagree). */
 static void make_legend(cview *v) {
+    if (v->shown_metric == HEAT_METRIC_FLIP) {   /* FLIP's own ramp, 0 to 1 */
+        for (int i = 0; i < LEGEND_STEPS; i++) ref_flip_magma((double)i / (LEGEND_STEPS - 1), &v->legend_rgb[3 * i]);
+        return;
+    }
     float field[LEGEND_STEPS];
     for (int i = 0; i < LEGEND_STEPS; i++) field[i] = (float)(v->heat_scale * i / (LEGEND_STEPS - 1));
     ref_heatmap(field, LEGEND_STEPS, 1, v->heat_scale, v->legend_rgb);
@@ -247,15 +255,18 @@ static void take_maps(cview *v) {
         p->rmse = m->map[i].rmse;
         p->psnr = m->map[i].psnr;
         p->frame_rmse = m->map[i].frame_rmse;
+        p->flip = m->map[i].flip;
         upload_heat(p, m->map[i].rgb, m->w, m->h);
     }
     v->heat_scale = m->scale;
+    v->shown_metric = m->metric;
     if (!v->reported) {
         for (int i = 0; i < v->n; i++)
             if (v->packs[i].have_heat)
                 fprintf(stderr, "tarn compare-view: heat map %s: water RMSE %.4f, PSNR %.2f dB; whole frame %.4f "
-                        "(scale %.4f)\n",
-                        v->packs[i].label, v->packs[i].rmse, v->packs[i].psnr, v->packs[i].frame_rmse, v->heat_scale);
+                        "(scale %.4f)%s\n",
+                        v->packs[i].label, v->packs[i].rmse, v->packs[i].psnr, v->packs[i].frame_rmse, v->heat_scale,
+                        m->metric == HEAT_METRIC_FLIP ? "; HDR-FLIP map" : "");
         v->reported = true;
     }
 }
@@ -281,6 +292,7 @@ static void request_maps(cview *v) {
         p->pixels = mem_realloc(p->pixels, n * 4 * sizeof *p->pixels);
         if (render_target_read(&p->tg, p->pixels)) rgba[i] = p->pixels;
     }
+    heat_job_set_metric(v->job, (heat_metric)v->metric);
     heat_job_start_maps(v->job, rgba, v->n, v->cell_w, v->cell_h, &v->ref, v->heat_max);
     if (v->scripted && heat_job_wait(v->job) == HEAT_JOB_MAPS) take_maps(v);
 }
@@ -368,7 +380,9 @@ static void label_pack(cview *v, int i, int x0, int x1, int ytop, bool heat) {
     /* two lines at most, so the view stays visible; the GPU time, the
      * frame's error and each pass's time are in the panel */
     strbuf_printf(&text, "%s  %.1f ms", p->label, p->wall_ms);
-    if (heat && p->have_heat) strbuf_printf(&text, "\nwater RMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
+    if (heat && p->have_heat && v->shown_metric == HEAT_METRIC_FLIP)
+        strbuf_printf(&text, "\nwater FLIP %.3f  RMSE %.4f", p->flip, p->rmse);
+    else if (heat && p->have_heat) strbuf_printf(&text, "\nwater RMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
     if (p->passes[0] && v->passes_over_views) strbuf_printf(&text, "\n%s", p->passes);
     float wx0, wx1, wy;
     to_window(v, x0, ytop, &wx0, &wy);
@@ -544,6 +558,7 @@ static void on_panel(void *user, app *a, panel_actions *common) {
                                       .wall_ms = pack_drawn(v, i) ? p->wall_ms : -1,
                                       .rmse = heat && p->have_heat ? p->rmse : NAN,
                                       .psnr_db = heat && p->have_heat ? p->psnr : NAN,
+                                      .flip = heat && p->have_heat ? p->flip : NAN,
                                       .error_text = render_has_errors(p->r) ? render_messages(p->r) : NULL };
         pp[i].sets = render_uniforms(p->r, &pp[i].nsets);
     }
@@ -559,6 +574,7 @@ static void on_panel(void *user, app *a, panel_actions *common) {
                          .heat_max = &v->heat_max, .heat_status = status,
                          .legend_rgb = legend ? v->legend_rgb : NULL, .legend_n = LEGEND_STEPS,
                          .legend_scale = v->heat_scale, .passes_over_views = &v->passes_over_views,
+                         .metric = &v->metric, .legend_flip = v->shown_metric == HEAT_METRIC_FLIP,
                          .note = cpu_raster ? "llvmpipe: GPU timestamps do not time the rasterisation; "
                                               "wall time (after glFinish) does"
                                             : NULL };
@@ -628,6 +644,17 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
         fprintf(stderr, "%s:%d: expect-camera %s: the camera is %s%s\n", file, line, a, home ? "home" : "moved",
                 ok ? "" : " (FAILED)");
         return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+    }
+    if (strcmp(cmd, "metric") == 0) {   /* color | flip: what the heat maps show */
+        char word[16] = "";
+        sscanf(rest, "%15s", word);
+        if (strcmp(word, "color") != 0 && strcmp(word, "flip") != 0) {
+            fprintf(stderr, "%s:%d: metric wants color or flip\n", file, line);
+            return VIEW_SCRIPT_FAILED;
+        }
+        v->metric = word[0] == 'f' ? HEAT_METRIC_FLIP : HEAT_METRIC_COLOR;
+        v->reported = false;   /* the next maps' figures are said again */
+        return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "heat") == 0) return compute_reference_now(v) ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
     if (strcmp(cmd, "heat-show") == 0) {

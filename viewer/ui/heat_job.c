@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ref_flip.h"
 #include "mem.h"
 #include "ref_metrics.h"
 
@@ -34,6 +35,7 @@ struct heat_job {
     float *field[HEAT_JOB_MAX_PACKS];
     const refcache_image *against;
     double heat_max;
+    heat_metric metric;
     heat_maps maps;
 };
 
@@ -93,6 +95,23 @@ static void run_reference(heat_job *j) {
                              j->err, (int)sizeof j->err);
 }
 
+/* HDR-FLIP of pack i (linear values, the exposures chosen from the
+ * reference as the bench does) into its field; its means over the water
+ * (the whole frame when the reference has none) and the frame. */
+static bool flip_field(heat_job *j, int i, const ref_fimage *A, const ref_fimage *B, bool have_water,
+                       const unsigned char *water) {
+    heat_map *m = &j->maps.map[i];
+    ref_flip_desc d = { .hdr = true };
+    ref_flip_result all;
+    char err[256];
+    if (!ref_flip_map(A, B, &d, j->field[i], NULL, &all, err, sizeof err)) return false;
+    m->frame_flip = all.mean;
+    ref_flip_result wet = all;
+    if (have_water) ref_flip_pool(j->field[i], A->w, A->h, water, &wet);
+    m->flip = wet.mean;
+    return true;
+}
+
 /* Pack i's field and metrics against the reference; its automatic scale. */
 static double map_one(heat_job *j, int i) {
     heat_map *m = &j->maps.map[i];
@@ -113,10 +132,17 @@ static double map_one(heat_job *j, int i) {
     ref_mask_water(j->against->mask, (long)n, 1, NULL, water);
     ref_metrics_desc wd = { .mask = water };
     bool have_water = ref_metrics_image(&A, &B, &wd, &water_m, err, sizeof err) && water_m.count.compared > 0;
-    free(water);
     m->frame_rmse = all.rmse;
     m->rmse = have_water ? water_m.rmse : all.rmse;
     m->psnr = have_water ? water_m.psnr_db : all.psnr_db;
+    m->flip = m->frame_flip = NAN;
+    if (j->maps.metric == HEAT_METRIC_FLIP) {
+        bool ok = flip_field(j, i, &A, &B, have_water, water);
+        free(water);
+        m->ok = ok;
+        return ok ? 1 : 0;   /* FLIP is in [0, 1]: one scale for all */
+    }
+    free(water);
     m->ok = true;
     /* a pack with no error has no scale of its own (the automatic one
      * would say 1, the whole range, and wash out the others' maps) */
@@ -132,7 +158,8 @@ static void run_maps(heat_job *j) {
         double s = map_one(j, i);
         if (s > scale) scale = s;
     }
-    if (j->heat_max > 0) scale = j->heat_max;
+    if (j->maps.metric == HEAT_METRIC_FLIP) scale = 1;
+    else if (j->heat_max > 0) scale = j->heat_max;
     else if (scale <= 0) scale = 1;   /* no error anywhere */
     j->maps.scale = scale;
     size_t n = (size_t)j->maps.w * j->maps.h;
@@ -140,7 +167,8 @@ static void run_maps(heat_job *j) {
         heat_map *m = &j->maps.map[i];
         if (!m->ok) continue;
         m->rgb = mem_realloc(m->rgb, n * 3 * sizeof *m->rgb);
-        ref_heatmap(j->field[i], j->maps.w, j->maps.h, scale, m->rgb);
+        if (j->maps.metric == HEAT_METRIC_FLIP) ref_flip_colorize(j->field[i], j->maps.w, j->maps.h, NULL, m->rgb);
+        else ref_heatmap(j->field[i], j->maps.w, j->maps.h, scale, m->rgb);
     }
 }
 
@@ -233,6 +261,7 @@ bool heat_job_start_maps(heat_job *j, const float *const *rgba, int n, int w, in
     j->maps.h = h;
     j->against = ref;
     j->heat_max = heat_max;
+    j->maps.metric = j->metric;
     return start(j, HEAT_JOB_MAPS);
 }
 
@@ -248,3 +277,5 @@ bool heat_job_take_reference(heat_job *j, refcache_image *out, char *err, int er
 }
 
 const heat_maps *heat_job_maps(const heat_job *j) { return &j->maps; }
+
+void heat_job_set_metric(heat_job *j, heat_metric m) { j->metric = m; }

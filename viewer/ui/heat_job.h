@@ -34,17 +34,24 @@ typedef struct heat_job heat_job;
 
 typedef enum heat_job_kind { HEAT_JOB_NONE, HEAT_JOB_REFERENCE, HEAT_JOB_MAPS } heat_job_kind;
 
+/* What a map shows (issue #26): the largest of the R, G, B errors in the
+ * inferno ramp up to a scale, or HDR-FLIP (reference/ref_flip.h, 0..1, what
+ * the eye sees of the difference) in the authors' magma ramp. */
+typedef enum heat_metric { HEAT_METRIC_COLOR = 0, HEAT_METRIC_FLIP = 1 } heat_metric;
+
 /* One pack's map: ok false when it was not given or its metrics failed. */
 typedef struct heat_map {
     bool ok;
     float *rgb;                  /* w * h * 3 display values, row 0 at the top (owned by the job) */
     double rmse, psnr;           /* over the reference's water pixels (the whole frame when it has none) */
     double frame_rmse;           /* the whole frame */
+    double flip, frame_flip;     /* HDR-FLIP means, water and whole frame (HEAT_METRIC_FLIP; else NaN) */
 } heat_map;
 
 typedef struct heat_maps {
     int n, w, h;
-    double scale;                /* the colour scale used for every pack */
+    heat_metric metric;          /* what the maps show */
+    double scale;                /* the colour scale used for every pack (FLIP: 1) */
     heat_map map[HEAT_JOB_MAX_PACKS];
 } heat_maps;
 
@@ -61,6 +68,9 @@ bool heat_job_start_reference(heat_job *j, const char *scene, int w, int h, doub
  * heat_max > 0 fixes the scale, else the largest pack's automatic scale. */
 bool heat_job_start_maps(heat_job *j, const float *const *rgba, int n, int w, int h, const refcache_image *ref,
                          double heat_max);
+
+/* The metric of the maps started from now on (default HEAT_METRIC_COLOR). */
+void heat_job_set_metric(heat_job *j, heat_metric m);
 
 bool heat_job_busy(heat_job *j);
 /* What is running: HEAT_JOB_NONE when idle. */
