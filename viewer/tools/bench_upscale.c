@@ -164,14 +164,14 @@ static void one_instant(const opts *o, rig *g, render *r, double t, double scale
         read_linear(&g->out, w, h, g->test);
         add(k ? &tl->edge : &tl->bil, measure(g->test, g->truth, w, h));
         if (tl->n == 0) {
-            char name[256];
-            snprintf(name, sizeof name, "%s-%s", tag, k ? "cubic" : "bilinear");
+            char name[300];
+            snprintf(name, sizeof name, "%.256s-%s", tag, k ? "cubic" : "bilinear");
             write_png(o, name, g->test);
         }
     }
     if (tl->n == 0) {
-        char name[256];
-        snprintf(name, sizeof name, "%s-truth", tag);
+        char name[300];
+        snprintf(name, sizeof name, "%.256s-truth", tag);
         write_png(o, name, g->truth);
     }
     tl->n++;
