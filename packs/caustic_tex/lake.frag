@@ -21,6 +21,8 @@
 //   UV_FLIP            swap U and V of the second copy of each two-layer lookup
 //   SKY_REFLECTION     (ours) the sky's reflection, exact Fresnel
 //   BEER_LAMBERT       (ours) attenuation along the refracted path
+//   RIPPLE_FILTER      (ours) the ripple map fades where a pixel covers more
+//                      than its detail (off: Xing's, point-sampled)
 //   SPECULAR_FRESNEL   (ours) the sun's highlight weighted by the Fresnel
 //                      reflectance and normalised (off: Xing's Phong lobe)
 //   SHOW_IRRADIANCE    (ours) output the sun's irradiance on the floor, E K,
@@ -513,8 +515,12 @@ void main() {
     // flatten them. Point-sampled, at a slant or far off, they were
     // compressed into bands: the sphere's reflection from below in strips,
     // the pool's tile lines jagged (issue #24); the reference has no ripples
+#ifdef RIPPLE_FILTER
     vec2 rippleFp = max(abs(dFdx(uv)), abs(dFdy(uv)));
     float rippleKeep = 1.0 - smoothstep(RIPPLE_FP_START, RIPPLE_FP_END, max(rippleFp.x, rippleFp.y));
+#else
+    float rippleKeep = 1.0;     // Xing's: the map point-sampled at every distance
+#endif
     n = xingBumpNormal(n, rippleKeep * xingRippleSlope(uv, sa, sb));
     vec3 e = normalize(uCameraPos - P);
     bool underCam = uCameraPos.y < uWaterLevel;  // pack.glib's under_water passes
