@@ -130,13 +130,37 @@ static int non_finite(void) {
 
 /* ---- the lake --------------------------------------------------------------- */
 
+/* The frame's mean and standard deviation of (R + G + B) / 3. */
+static void grey_stats(double *mean, double *sd) {
+    double s = 0, s2 = 0;
+    for (int i = 0; i < NPX; i++) {
+        double g = (px[i * 4] + px[i * 4 + 1] + px[i * 4 + 2]) / 3.0;
+        s += g;
+        s2 += g * g;
+    }
+    *mean = s / NPX;
+    *sd = sqrt(fmax(0.0, s2 / NPX - *mean * *mean));
+}
+
+/* Finite, and a picture: the lake in daylight is neither black nor one
+ * colour (its sky, shore and water: a mean grey of 0.42 and a spread of
+ * 0.23 at 96x54, at any time), and the water moves between the instants. */
 static void test_lake_no_nan_at_several_times(void) {
     render *r = load(TARN_SOURCE_DIR "/scenes/lake.glib");
     const double times[] = { 0.0, 3.3, 47.0 };
+    static float first[NPX * 4];
     for (int k = 0; k < 3; k++) {
         draw(r, times[k], NULL);
         int bad = non_finite();
         CHECK_MSG(bad == 0, "%d non-finite values at t=%g", bad, times[k]);
+        double mean, sd;
+        grey_stats(&mean, &sd);
+        fprintf(stderr, "  t = %g: mean grey %.3f, spread %.3f\n", times[k], mean, sd);
+        CHECK_MSG(mean > 0.1 && mean < 0.9, "t=%g: mean grey %.3f: a black or blown-out frame", times[k], mean);
+        CHECK_MSG(sd > 0.05, "t=%g: spread %.3f: a frame of one colour", times[k], sd);
+        if (k == 0) memcpy(first, px, sizeof first);
+        else CHECK_MSG(memcmp(first, px, sizeof first) != 0, "t=%g draws what t=0 drew: the water stands still",
+                       times[k]);
     }
     render_destroy(r);
 }

@@ -1360,55 +1360,6 @@ static void test_gl_lake_against_reference(void) {
     ref_render_free(&s.ref);
 }
 
-/* GPU time of a frame at the lake's size, for the page (TARN_RAYMARCH_TIMING=1;
- * on llvmpipe a rough figure, the ratios are what carries over). */
-static double frame_ms(render *r, render_target *tg) {
-    double ms[9];
-    apply_defines(r);
-    for (int k = 0; k < 9; k++) {
-        render_frame(r, 1.0, tg->fbo, tg->w, tg->h, NULL);
-        ms[k] = render_gpu_ms(r, true);
-    }
-    qsort(ms, 9, sizeof *ms, cmp_double);
-    return ms[4];
-}
-
-static void test_gl_timing(void) {
-    if (!have_gl) SKIP("no headless OpenGL");
-    if (!getenv("TARN_RAYMARCH_TIMING")) SKIP("set TARN_RAYMARCH_TIMING=1 for the timing table");
-    render *r = load_scene(LAKE);
-    render_target tg;
-    CHECK(render_target_create(&tg, 960, 540, false));
-    frame_ms(r, &tg);   /* the once-passes and the first compile */
-    fprintf(stderr, "  960x540 %-46s median GPU frame %.1f ms\n", "defaults (binary 6, step 0.25, reflections)",
-            frame_ms(r, &tg));
-    set_value(r, "uMaxStep", 0.5f);
-    fprintf(stderr, "  960x540 %-46s median GPU frame %.1f ms\n", "step 0.5", frame_ms(r, &tg));
-    set_refine(r, REFINE_NONE, 0);
-    fprintf(stderr, "  960x540 %-46s median GPU frame %.1f ms\n", "step 0.5, no refinement (source)", frame_ms(r, &tg));
-    set_value(r, "NOREFLECTION", 1);
-    fprintf(stderr, "  960x540 %-46s median GPU frame %.1f ms\n", "step 0.5, no refinement, NOREFLECTION",
-            frame_ms(r, &tg));
-    set_value(r, "NOREFLECTION", 0);
-    set_value(r, "uMaxStep", 0.25f);
-    set_refine(r, REFINE_BINARY, 6);
-    set_value(r, "FRESNEL_LUT", 0);
-    fprintf(stderr, "  960x540 %-46s median GPU frame %.1f ms\n", "defaults, Fresnel formula", frame_ms(r, &tg));
-    set_value(r, "FRESNEL_LUT", 1);
-    set_value(r, "NORMAL_MAP", 1);
-    fprintf(stderr, "  960x540 %-46s median GPU frame %.1f ms\n", "defaults, NORMAL_MAP", frame_ms(r, &tg));
-    render_target_destroy(&tg);
-    render_destroy(r);
-    render_desc rd = { .pack = "basic" };
-    r = render_create(&rd);
-    CHECK(render_load(r, LAKE));
-    CHECK(render_target_create(&tg, 960, 540, false));
-    frame_ms(r, &tg);
-    fprintf(stderr, "  960x540 %-46s median GPU frame %.1f ms\n", "packs/basic, for scale", frame_ms(r, &tg));
-    render_target_destroy(&tg);
-    render_destroy(r);
-}
-
 static double now(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -1444,7 +1395,6 @@ int main(void) {
     RUN_TIMED(test_gl_floor_under_a_floating_sphere);
     RUN_TIMED(test_gl_normal_map_sense);
     RUN_TIMED(test_gl_lake_against_reference);
-    RUN_TIMED(test_gl_timing);
     if (ctx) gl_ctx_destroy(ctx);
     fprintf(stderr, "cpu time %.1f s\n", (double)(clock() - t0) / CLOCKS_PER_SEC);
     return check_summary();
