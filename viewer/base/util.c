@@ -27,6 +27,12 @@ double clock_now_s(void) {
     return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
 }
 
+uint64_t hash_fnv1a(uint64_t h, const void *data, size_t n) {
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
 void clock_sleep_s(double s) {
     if (!(s > 0)) return;
     struct timespec ts = { (time_t)s, (long)((s - (double)(time_t)s) * 1e9) };

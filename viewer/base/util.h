@@ -5,6 +5,13 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
+
+/* FNV-1a (64-bit), the one hash of tarn's content keys (file contents,
+ * shader texts, a picture's inputs, the reference cache's keys): h
+ * continued over n bytes; start from HASH_FNV1A_BASIS. */
+#define HASH_FNV1A_BASIS 14695981039346656037ull
+uint64_t hash_fnv1a(uint64_t h, const void *data, size_t n);
 
 /* Seconds on a monotonic clock (only differences mean anything). */
 double clock_now_s(void);

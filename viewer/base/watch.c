@@ -1,6 +1,7 @@
 #define _GNU_SOURCE   /* F_SETLEASE (fcntl.h) */
 /* watch: see watch.h. */
 #include "watch.h"
+#include "util.h"
 
 #include "mem.h"
 #include "strbuf.h"
@@ -161,7 +162,7 @@ static bool hash_file(const char *path, uint64_t *hash) {
         close(fd);
         return false;
     }
-    uint64_t h = 0xcbf29ce484222325ull;
+    uint64_t h = HASH_FNV1A_BASIS;
     unsigned char buf[16384];
     for (;;) {
         ssize_t got = read(fd, buf, sizeof buf);
@@ -171,10 +172,7 @@ static bool hash_file(const char *path, uint64_t *hash) {
             return false;
         }
         if (got == 0) break;
-        for (ssize_t i = 0; i < got; i++) {
-            h ^= buf[i];
-            h *= 0x100000001b3ull;
-        }
+        h = hash_fnv1a(h, buf, (size_t)got);
     }
     close(fd);
     *hash = h;

@@ -1315,26 +1315,21 @@ static void draw_world(render *r, frame_state *f, int i) {
 
 /* ---- RenderToTextureOnce across a reload ---- */
 
-static uint64_t sig_add(uint64_t h, const void *data, size_t n) {
-    const unsigned char *b = data;
-    for (size_t k = 0; k < n; k++) h = (h ^ b[k]) * 1099511628211ull;
-    return h;
-}
 
-static uint64_t sig_str(uint64_t h, const char *str) { return sig_add(h, str, strlen(str) + 1); }
+static uint64_t sig_str(uint64_t h, const char *str) { return hash_fnv1a(h, str, strlen(str) + 1); }
 
 /* A program's source and slider values; and the time, when it reads the
  * clock (glman's Timer, or uTime): such a block shows the time of the
  * load, so a reload draws it again. */
 static uint64_t sig_prog(uint64_t h, const prog *p, double t) {
-    if (!p) return sig_add(h, "-", 1);
-    h = sig_add(h, &p->hash, sizeof p->hash);
+    if (!p) return hash_fnv1a(h, "-", 1);
+    h = hash_fnv1a(h, &p->hash, sizeof p->hash);
     if (p->gl && (glGetUniformLocation(p->gl, "Timer") >= 0 || glGetUniformLocation(p->gl, "uTime") >= 0))
-        h = sig_add(h, &t, sizeof t);
+        h = hash_fnv1a(h, &t, sizeof t);
     for (int k = 0; p->unifs && k < p->unifs->n; k++) {
         const unif_entry *e = &p->unifs->entries[k];
         h = sig_str(h, e->name);
-        h = sig_add(h, e->value, sizeof e->value);
+        h = hash_fnv1a(h, e->value, sizeof e->value);
     }
     return h;
 }
@@ -1351,38 +1346,38 @@ static uint64_t sig_prog(uint64_t h, const prog *p, double t) {
  * that drew it saw it. */
 static uint64_t once_signature(const render *r, const frame_state *f, int i) {
     const scene_state *s = &r->cur;
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = HASH_FNV1A_BASIS;
     bool own_camera = false;
     for (int k = i; k < s->glib->ncmds; k++) {
         const glib_cmd *c = &s->glib->cmds[k];
         if (k > i && (c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE)) break;
-        h = sig_add(h, &c->kind, sizeof c->kind);
-        h = sig_add(h, c->num, (size_t)c->nnum * sizeof c->num[0]);
+        h = hash_fnv1a(h, &c->kind, sizeof c->kind);
+        h = hash_fnv1a(h, c->num, (size_t)c->nnum * sizeof c->num[0]);
         h = sig_str(sig_str(sig_str(h, c->name), c->arg), c->path);
         if (c->kind == GLIB_CMD_PROGRAM && s->cmd_res[k] >= 0) h = sig_prog(h, &s->progs[s->cmd_res[k]], f->t);
         if (c->kind == GLIB_CMD_CAMERA) {
             int kind = cam_kind_from_name(c->name);
             own_camera = own_camera || k == i + 1;
             if (kind >= 0) {
-                h = sig_add(h, f->cams.view[kind], sizeof f->cams.view[kind]);
-                h = sig_add(h, f->cams.proj[kind], sizeof f->cams.proj[kind]);
+                h = hash_fnv1a(h, f->cams.view[kind], sizeof f->cams.view[kind]);
+                h = hash_fnv1a(h, f->cams.proj[kind], sizeof f->cams.proj[kind]);
             }
         }
     }
     if (!own_camera) {   /* the camera the frame had loaded */
-        h = sig_add(h, f->cams.view[f->cam_kind], sizeof f->cams.view[f->cam_kind]);
-        h = sig_add(h, f->cams.proj[f->cam_kind], sizeof f->cams.proj[f->cam_kind]);
+        h = hash_fnv1a(h, f->cams.view[f->cam_kind], sizeof f->cams.view[f->cam_kind]);
+        h = hash_fnv1a(h, f->cams.proj[f->cam_kind], sizeof f->cams.proj[f->cam_kind]);
     }
-    h = sig_add(h, &f->depth, sizeof f->depth);   /* inside a PushMatrix: conservatively, another block */
+    h = hash_fnv1a(h, &f->depth, sizeof f->depth);   /* inside a PushMatrix: conservatively, another block */
     h = sig_prog(h, f->cur, f->t);
     for (int k = 0; k < s->ntexs; k++) {
         const gpu_tex *t = &s->texs[k];
         int v[4] = { (int)t->tex, t->unit, t->w, t->h };
-        h = sig_add(h, v, sizeof v);
+        h = hash_fnv1a(h, v, sizeof v);
     }
     if (r->world.active) {
-        h = sig_add(h, &r->world.desc, sizeof r->world.desc);
-        for (int m = 0; m < WORLD_MODES; m++) h = sig_add(h, &r->world.progs[m].hash, sizeof r->world.progs[m].hash);
+        h = hash_fnv1a(h, &r->world.desc, sizeof r->world.desc);
+        for (int m = 0; m < WORLD_MODES; m++) h = hash_fnv1a(h, &r->world.progs[m].hash, sizeof r->world.progs[m].hash);
     }
     return h ? h : 1;
 }

@@ -31,6 +31,7 @@
  * measured costs per size are in tests/test_ocean_gl.c's output and the
  * issue's report. */
 #include "render_ocean.h"
+#include "util.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -209,8 +210,8 @@ void ocean_upload(unsigned p) {
 }
 
 static unsigned long long progs_hash(const gpu_ocean *o) {
-    unsigned long long h = 1469598103934665603ull;
-    for (int i = 0; i < OCEAN_PROGS; i++) h = (h ^ o->progs[i].hash) * 1099511628211ull;
+    unsigned long long h = HASH_FNV1A_BASIS;
+    for (int i = 0; i < OCEAN_PROGS; i++) h = hash_fnv1a(h, &o->progs[i].hash, sizeof o->progs[i].hash);
     return h;
 }
 

@@ -1,4 +1,5 @@
 #include "render_prog.h"
+#include "util.h"
 #include "contract.h"
 #include "glsl_fix.h"
 #include "glsl_hint.h"
@@ -181,7 +182,7 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
     shader_src src[SHADER_STAGE_COUNT];
     memset(src, 0, sizeof src);
     bool ok = true, any = false;
-    unsigned long long hash = 1469598103934665603ull;
+    unsigned long long hash = HASH_FNV1A_BASIS;
     for (int s = 0; s < SHADER_STAGE_COUNT; s++) {
         if (!p->stage_path[s][0]) continue;
         any = true;
@@ -200,7 +201,7 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
             }
             continue;
         }
-        hash = (hash ^ src[s].hash) * 1099511628211ull;
+        hash = hash_fnv1a(hash, &src[s].hash, sizeof src[s].hash);
     }
     set_deps(p, src, SHADER_STAGE_COUNT);
     if (!any) {

@@ -1,5 +1,6 @@
 /* shader_src: assembles a shader stage's source text (see shader_src.h). */
 #include "shader_src.h"
+#include "util.h"
 
 #include "file.h"
 #include "mem.h"
@@ -779,12 +780,7 @@ done:
     if (c.gs_marked) add_gs_layouts(&c);
     out->text = c.text.s ? c.text.s : mem_strdup("");
     if (!v.es) enable_layout_extensions(&out->text, version);
-    unsigned long long h = 14695981039346656037ull;
-    for (const unsigned char *q = (const unsigned char *)out->text; *q; q++) {
-        h ^= *q;
-        h *= 1099511628211ull;
-    }
-    out->hash = h;
+    out->hash = hash_fnv1a(HASH_FNV1A_BASIS, out->text, strlen(out->text));
     return true;
 }
 

@@ -1,5 +1,6 @@
 /* refcache: cached reference renders (see refcache.h). */
 #include "refcache.h"
+#include "util.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -22,14 +23,6 @@ typedef struct loaded {
     scene_camera cam;
 } loaded;
 
-static uint64_t fnv(uint64_t h, const void *data, size_t n) {
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}
 
 /* The world of a scene. Its Pack is not read: a pack draws the world, it
  * does not describe it (docs/packs/contract.md). */
@@ -89,22 +82,22 @@ static uint64_t key_of(const loaded *l, const ref_render_desc *d) {
     ref_world_desc wd = l->wd;
     wd.water_mesh_res = 0;   /* GL only: the reference has the exact surface and terrain */
     wd.terrain_res = 0;
-    uint64_t h = 14695981039346656037ull;
-    h = fnv(h, &wd, sizeof wd);
+    uint64_t h = HASH_FNV1A_BASIS;
+    h = hash_fnv1a(h, &wd, sizeof wd);
     ref_render_desc r = ref_render_resolve(d);
-    h = fnv(h, r.camera.eye, sizeof r.camera.eye);
-    h = fnv(h, r.camera.center, sizeof r.camera.center);
-    h = fnv(h, r.camera.up, sizeof r.camera.up);
-    h = fnv(h, &r.camera.fov_deg, sizeof r.camera.fov_deg);
+    h = hash_fnv1a(h, r.camera.eye, sizeof r.camera.eye);
+    h = hash_fnv1a(h, r.camera.center, sizeof r.camera.center);
+    h = hash_fnv1a(h, r.camera.up, sizeof r.camera.up);
+    h = hash_fnv1a(h, &r.camera.fov_deg, sizeof r.camera.fov_deg);
     int ints[] = { r.camera.width, r.camera.height, r.spp, r.caustics, r.caustic_res, r.photons_per_cell,
                    r.max_depth, r.radiance_n2,
                    2 /* file layout and world model version: 2, a scaled lake's detail and colours scale */ };
-    h = fnv(h, ints, sizeof ints);
-    h = fnv(h, &r.time, sizeof r.time);
-    h = fnv(h, &r.t_tol, sizeof r.t_tol);
+    h = hash_fnv1a(h, ints, sizeof ints);
+    h = hash_fnv1a(h, &r.time, sizeof r.time);
+    h = hash_fnv1a(h, &r.t_tol, sizeof r.t_tol);
     if (r.nsamples > 0 && r.nsamples <= REF_MAX_SAMPLES) {   /* absent: the keys of the grid as before */
-        h = fnv(h, &r.nsamples, sizeof r.nsamples);
-        h = fnv(h, r.samples, (size_t)r.nsamples * sizeof r.samples[0]);
+        h = hash_fnv1a(h, &r.nsamples, sizeof r.nsamples);
+        h = hash_fnv1a(h, r.samples, (size_t)r.nsamples * sizeof r.samples[0]);
     }
     return h;
 }

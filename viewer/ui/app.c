@@ -383,12 +383,12 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
 void app_picture_changed(app *a) { a->generation++; }
 
 uint64_t app_picture_key(app *a, int w, int h) {
-    uint64_t k = RES_BUDGET_KEY_SEED;
-    k = res_budget_key(k, &a->s.cam, sizeof a->s.cam);
-    k = res_budget_key(k, &a->s.t, sizeof a->s.t);
-    k = res_budget_key(k, &a->generation, sizeof a->generation);
+    uint64_t k = HASH_FNV1A_BASIS;
+    k = hash_fnv1a(k, &a->s.cam, sizeof a->s.cam);
+    k = hash_fnv1a(k, &a->s.t, sizeof a->s.t);
+    k = hash_fnv1a(k, &a->generation, sizeof a->generation);
     int size[2] = { w, h };
-    k = res_budget_key(k, size, sizeof size);
+    k = hash_fnv1a(k, size, sizeof size);
     /* every slider, checkbox and colour of every scene: what the panel,
      * a script or a preset changes */
     for (int i = 0; i < a->nscenes; i++) {
@@ -396,7 +396,7 @@ uint64_t app_picture_key(app *a, int w, int h) {
         unif_set *sets = render_uniforms(a->scenes[i], &n);
         for (int j = 0; j < n; j++)
             for (int e = 0; e < sets[j].n; e++)
-                k = res_budget_key(k, sets[j].entries[e].value, sizeof sets[j].entries[e].value);
+                k = hash_fnv1a(k, sets[j].entries[e].value, sizeof sets[j].entries[e].value);
     }
     return k;
 }

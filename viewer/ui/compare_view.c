@@ -532,7 +532,7 @@ static void on_draw(void *user, app *a) {
     /* heat maps read the packs' images back: those are full size */
     double scale;
     int what[4] = { v->layout, v->wipe_a, v->wipe_b, v->layout == PANEL_LAYOUT_WIPE };
-    uint64_t key = res_budget_key(app_picture_key(a, v->cell_w, v->cell_h), what, sizeof what);
+    uint64_t key = hash_fnv1a(app_picture_key(a, v->cell_w, v->cell_h), what, sizeof what);
     bool draw = app_budget_plan(a, key, heat, &scale);
     if (draw || v->drawn_w == 0 || v->drawn_w > v->cell_w || v->drawn_h > v->cell_h) {
         if (!draw) scale = 1.0;

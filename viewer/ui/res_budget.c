@@ -63,11 +63,3 @@ void res_budget_size(double scale, int w, int h, int *iw, int *ih) {
     if (*ih < 1) *ih = 1;
 }
 
-uint64_t res_budget_key(uint64_t h, const void *data, size_t n) {
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}

@@ -38,7 +38,6 @@
 #define RES_BUDGET_FLOOR 0.125      /* each side at least 1/8 of the window's */
 #define RES_BUDGET_SETTLE_S 0.25    /* still this long: the full-resolution frame */
 #define RES_BUDGET_DEADBAND 0.15    /* within 15% of the budget: keep the size */
-#define RES_BUDGET_KEY_SEED 1469598103934665603ull   /* FNV-1a's offset basis */
 
 typedef struct res_budget {
     double budget_ms;            /* 0 (or less): off, every frame at full resolution */
@@ -53,7 +52,7 @@ typedef struct res_budget {
 
 void res_budget_init(res_budget *b, double budget_ms);
 
-/* This frame: key is the picture (res_budget_key), now_s a clock in
+/* This frame: key is the picture (hash_fnv1a of its inputs), now_s a clock in
  * seconds, last_frame_ms the wall time of the previous frame (0: not a fair
  * measure, e.g. it reloaded the scene), force_full a frame that must be at
  * full resolution (a screenshot, heat maps read back). Returns whether the
@@ -68,9 +67,5 @@ void res_budget_feed(res_budget *b, double ms, double scale);
 /* The internal size for a w x h area at scale: each side rounded, at
  * least 1 pixel, exactly w x h at scale 1. */
 void res_budget_size(double scale, int w, int h, int *iw, int *ih);
-
-/* The picture's key: FNV-1a over n bytes, continuing from h
- * (RES_BUDGET_KEY_SEED to start). */
-uint64_t res_budget_key(uint64_t h, const void *data, size_t n);
 
 #endif
