@@ -399,7 +399,7 @@ float noiseFoam(vec3 P, vec2 rest, float shallow, float ampSum, float t) {
     float h;
     vec2 dh, disp;
     vec3 abd;
-    wavesSums(rest, t, h, dh, disp, abd);
+    wavesSumsNoOcean(rest, t, h, dh, disp, abd);   // the ocean folds under its own foam (OCEAN_FOAM)
     float J = (1.0 + abd.x) * (1.0 + abd.z) - abd.y * abd.y;
     float crest = 1.0 - smoothstep(FOAM_J_FULL, FOAM_J_START, J);
     float cover = clamp(max(shore, crest), 0.0, 1.0) * clamp(ampSum / (0.1 * uWorldScale), 0.0, 1.0);
