@@ -1,7 +1,7 @@
 /* validate: `tarn validate`, shader checking with glslang, no GPU needed.
  *
  * Every Program of a .glib is compiled for every combination of its boolean
- * `Define` toggles (2^n, at most 2^10), each stage assembled by shader_src
+ * `Define` toggles (2^n, at most 2^9), each stage assembled by shader_src
  * exactly as the renderer assembles it, then linked, so an error that shows
  * only with FOO=1 is found before anyone ticks the box.
  *
@@ -55,7 +55,7 @@ bool validate_stage(const shader_src *src, shader_stage stage, char **log);
  * <repo_root>/packs/common.
  *
  * Combinations: every combination of a Program's `Define NAME <true>`
- * toggles (the first 10; the rest at their defaults), then each
+ * toggles (the first 9; the rest at their defaults), then each
  * whole-number Define slider (`Define MODE <0 0 6>`) at its other values
  * with the toggles at their defaults: every value of a range of at most 8,
  * else its two ends (code under `#if MODE == 5` is compiled too).
