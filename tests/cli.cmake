@@ -80,14 +80,14 @@ set_tests_properties(window_msaa_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300
 # A still window sleeps instead of drawing the same frame; a key wakes it;
 # Q quits at once (issue #30).
 add_test(NAME window_idle_xvfb
-  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_idle_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_py_test.sh window_idle $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_idle_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "window;gl")
 
 # At 2 fps a press that starts over the panel never reaches the camera
 # (issue #30: it dragged a slider and orbited the camera too).
 add_test(NAME window_input_xvfb
-  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_input_test.sh $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_py_test.sh window_input $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(window_input_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "window;gl")
 
