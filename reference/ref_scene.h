@@ -14,6 +14,7 @@
 #ifndef TARN_REF_SCENE_H
 #define TARN_REF_SCENE_H
 
+#include <stdbool.h>
 #include "ref_waves.h"
 
 #define REF_MAX_OBJECTS 32
@@ -48,6 +49,43 @@ typedef enum ref_terrain_kind {
     REF_TERRAIN_POOL               /* a tiled pool: a flat floor, walls up to a deck */
 } ref_terrain_kind;
 
+/* Flow and spray (issue #29): world features the GL side draws
+ * (viewer/gfx/render_flow.c, render_spray.c) and the reference does not:
+ * the flow moves only the water's fine detail (normals and streak foam,
+ * no height), and the spray is particles above the water (docs/waves.md,
+ * "Flow and spray", says what leaving them out costs the error). */
+#define REF_FLOW_TERMS_MAX 4
+typedef enum ref_flow_kind {
+    REF_FLOW_CURRENT = 1,          /* p: vx vz (m/s), everywhere */
+    REF_FLOW_VORTEX                /* p: x z strength radius: a Rankine vortex turning
+                                    * anticlockwise seen from above for strength > 0,
+                                    * speed strength r/R inside R, strength R/r outside */
+} ref_flow_kind;
+
+typedef struct ref_flow_term {
+    ref_flow_kind kind;
+    double p[4];
+} ref_flow_term;
+
+typedef struct ref_flow_desc {
+    int nterms;                    /* 0: no flow (no pass, no texture) */
+    ref_flow_term term[REF_FLOW_TERMS_MAX];   /* their velocities add */
+    double detail_amp;             /* height amplitude (m) of the advected ripples; 0: 0.012 */
+    double detail_cell;            /* their noise cell (m); 0: 0.5 */
+    double period;                 /* seconds a layer lives before it restarts; 0: 3 */
+    double foam;                   /* cover of the advected foam streaks, 0..1; 0: none */
+} ref_flow_desc;
+
+typedef struct ref_spray_desc {
+    bool on;                       /* false: no spray (no pass, no texture) */
+    double threshold;              /* upward surface speed (m/s) over which it emits */
+    double rate;                   /* particles a second were the whole square over it */
+    double life;                   /* seconds a droplet lives at most; 0: 2 */
+    double size;                   /* droplet diameter (m); 0: 0.05 */
+    unsigned seed;
+    int count;                     /* particle slots; 0: 16384 */
+} ref_spray_desc;
+
 typedef struct ref_world_desc {
     /* light */
     double sun_dir[3];             /* towards the sun (normalised); 0: (0.4, 0.8, -0.45) */
@@ -80,6 +118,9 @@ typedef struct ref_world {
     /* the lake's detail: sum of a_i sin(k_i . (x, z) + phi_i) */
     double detail_k[REF_TERRAIN_DETAIL][2];
     double detail_a[REF_TERRAIN_DETAIL];
+    /* drawn by the GL side only (above) */
+    ref_flow_desc flow;
+    ref_spray_desc spray;
     double detail_phi[REF_TERRAIN_DETAIL];
     double terrain_slope_bound;    /* |grad h| <= this everywhere (for tracing) */
 } ref_world;

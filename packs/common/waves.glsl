@@ -190,6 +190,10 @@ vec3 wavesNoise(vec2 p0, float t) {
     return r;
 }
 
+#ifdef WAVES_HAS_FLOW
+#include "flow.glsl"                    // the advected ripples (a Flow; no height: normals only)
+#endif
+
 // ---- the sums -----------------------------------------------------------
 
 // Height h (without level) and its gradient, the sideways displacement D
@@ -235,6 +239,9 @@ void wavesSumsModels(vec2 p0, float t, bool ocean, out float h, out vec2 dh, out
 #ifdef WAVES_HAS_PERLIN
     h += wavesPerlin(p0, t, g);
     dh += g;
+#endif
+#ifdef WAVES_HAS_FLOW
+    dh += flowSlope(p0);                // the map holds the frame's time
 #endif
 }
 

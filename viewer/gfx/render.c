@@ -617,6 +617,7 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
         for (int k = 0; k < r->world.progs[0].ndeps; k++) add_dep(r, r->world.progs[0].deps[k]);
         for (int i = 0; i < OCEAN_PROGS; i++)   /* the ocean's passes (none without an ocean) */
             for (int k = 0; k < r->world.ocean.progs[i].ndeps; k++) add_dep(r, r->world.ocean.progs[i].deps[k]);
+        for (int k = 0; k < r->world.flow.prog.ndeps; k++) add_dep(r, r->world.flow.prog.deps[k]);   /* none without a Flow */
     }
 }
 
@@ -1610,6 +1611,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     /* the ocean's passes, then the height map, which reads them: before the
      * frame binds its target; the frame's own passes are "screen" again */
     if (s->glib && world_update_ocean(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
+    if (s->glib && world_update_flow(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     if (s->glib) world_update_height(&r->world, t, r->detail);
     bool ms = s->glib && render_msaa_begin(&r->msaa, render_samples(r), fbo, w, h, r->world.active);
     if (ms) { fbo = r->msaa.fbo; x = 0; y = 0; }

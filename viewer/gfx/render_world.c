@@ -304,7 +304,7 @@ void world_set_wave_defines(const gpu_world *gw, prog *p) {
     for (int k = PROG_FIXED_WORLD; k < PROG_FIXED_MAX; k++) memset(&p->fixed[k], 0, sizeof p->fixed[k]);
     if (!gw->active) return;
     const ref_waves *w = &gw->w.waves;
-    const char *has[7];
+    const char *has[8];
     int n = 0;
     has[n++] = "WAVES_MODELS";
     if (w->nsine) has[n++] = "WAVES_HAS_SINE";
@@ -329,6 +329,7 @@ static bool build_program(gpu_world *gw, const char *const *include_dirs, const 
         p->world_uniforms = true;
         snprintf(p->name, sizeof p->name, "World");
         snprintf(p->fixed[0].name, sizeof p->fixed[0].name, "WORLD_MODE");
+    if (gw->w.d.flow.nterms > 0) has[n++] = "WAVES_HAS_FLOW";   /* flow.glsl: the advected detail */
         snprintf(p->fixed[0].value, sizeof p->fixed[0].value, "%d", m);
         set_height_define(gw, p);
         world_set_wave_defines(gw, p);
@@ -375,6 +376,7 @@ static bool above_water(const ref_world *w) {
     for (int j = 0; j <= n; j++)
         for (int i = 0; i <= n; i++)
             if (ref_terrain_height(w, -hs + 2 * hs * i / n, -hs + 2 * hs * j / n) > level) return true;
+    if (!flow_build_program(&gw->flow, include_dirs, log)) ok = false;
     return false;
 }
 
@@ -396,6 +398,7 @@ void world_free(gpu_world *gw) {
     if (gw->height_fbo) glDeleteFramebuffers(1, &gw->height_fbo);
     if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
     ref_world_release(&gw->w);   /* after ocean_free: its GL passes read the ocean */
+    flow_free(&gw->flow);
     bool off = gw->height_map_off;   /* a setting of the renderer's, not of this world */
     memset(gw, 0, sizeof *gw);
     gw->height_map_off = off;
@@ -440,6 +443,10 @@ int world_detail_count(int n, double detail, int min) {
 /* The level for a frame at `detail` of each side: the vertices follow the
  * pixels (a quarter of the pixels, a quarter of the vertices). */
 static int detail_lod(double detail) {
+    /* the flow map and its pass: only a world with a Flow */
+    if (gw->w.d.flow.nterms > 0 &&
+        !flow_create(&gw->flow, &gw->w.d.flow, gw->w.d.half_size, include_dirs, common_dir, log))
+        ok = false;
     if (!(detail > 0) || detail >= 1) return 0;
     int lod = (int)lround(-log2(detail));
     return lod < 0 ? 0 : lod >= WORLD_LODS ? WORLD_LODS - 1 : lod;
@@ -525,6 +532,7 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
     GLint loc = glGetUniformLocation(p, "uTerrainShape");
     if (loc >= 0) glUniform4f(loc, (float)d->depth, (float)d->shore_height, (float)d->slope, 0.0f);
     loc = glGetUniformLocation(p, "uTerrainDetail");
+    flow_upload(&gw->flow, p);   /* nothing without a flow: no uniform is declared then */
     if (loc >= 0) {
         float det[REF_TERRAIN_DETAIL][4];
         for (int i = 0; i < REF_TERRAIN_DETAIL; i++) {
@@ -590,6 +598,7 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
     /* clip at the water plane: "above" keeps y > level, "below" y < level */
     /* the offset is in lake metres, like every length a pack writes */
     float level = (float)(gw->w.d.water_level + offset * ref_world_scale(&gw->w)), plane[4] = { 0, 0, 0, 1 };
+    flow_bind(&gw->flow);
     if (strcmp(which, "above") == 0) { plane[1] = 1; plane[3] = -level; }
     if (strcmp(which, "below") == 0) { plane[1] = -1; plane[3] = level; }
     glEnable(GL_CLIP_DISTANCE0);
@@ -702,6 +711,11 @@ void world_update_height(gpu_world *gw, double t, double detail) {
     if (gw->height_tex && res == gw->height_res && t == gw->height_t && gw->height_prog.hash == gw->height_hash)
         return;   /* drawn for this time already: a still frame, or a second view */
     if (!gw->height_tex || res != gw->height_res) height_target(gw, res);
+bool world_update_flow(gpu_world *gw, double t, gpu_timer *timer) {
+    if (!gw->active) return false;
+    return flow_update(&gw->flow, t, timer);
+}
+
     glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
     glViewport(0, 0, res, res);
     glDisable(GL_DEPTH_TEST);

@@ -15,6 +15,7 @@
 
 #include <stdbool.h>
 #include "ref_scene.h"
+#include "render_flow.h"
 #include "render_ocean.h"
 #include "render_prog.h"
 #include "render_res.h"
@@ -72,6 +73,9 @@ typedef struct gpu_world {
      * when its waves hold an ocean, nothing otherwise. */
     gpu_ocean ocean;
 } gpu_world;
+    /* The flow map (render_flow.h, FLOW_UNIT 26): created with the world
+     * when it has a `Flow`, nothing otherwise. */
+    gpu_flow flow;
 
 /* A count the scene fixes (a target's side, points or texels per side)
  * for a frame at `detail` of each side (render_set_detail): scaled with
@@ -96,7 +100,7 @@ bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char *
 
 /* The defines that tell packs/common/waves.glsl which wave models this
  * world has (WAVES_MODELS, then WAVES_HAS_SINE, _GERSTNER, _NOISE, _OCEAN,
- * _EXPLOSION, _PERLIN for each it holds), so a program compiles only
+ * _EXPLOSION, _PERLIN for each it holds; WAVES_HAS_FLOW with a Flow), so a program compiles only
  * those: llvmpipe runs a loop's body even when its uniform count is 0.
  * Into p->fixed[PROG_FIXED_WORLD..] (cleared without a world). */
 void world_set_wave_defines(const gpu_world *gw, prog *p);
@@ -112,6 +116,11 @@ void world_bind_textures(const gpu_world *gw);
 bool world_update_ocean(gpu_world *gw, double t, gpu_timer *timer);
 
 /* Draws the height map for time t at the detail of the frame (its side
+/* Advects the flow map to time t (render_flow.h), unless the world has no
+ * flow or it holds t already; its pass is named in timer. Returns whether
+ * it ran passes. */
+bool world_update_flow(gpu_world *gw, double t, gpu_timer *timer);
+
  * WORLD_HEIGHT_RES times detail, at least 32), unless it is drawn for t
  * already. Binds framebuffer 0 and leaves the viewport changed: call it
  * before the frame sets its own. */

@@ -1044,6 +1044,31 @@ static bool h_object(cmdctx *c, glib_cmd *cmd) {
     return nums_from(c, cmd, 1, rules, n, n, what);
 }
 
+/* Flow: one term of the flow field (its velocities add), or the look of
+ * the detail it carries; the numbers each kind takes, as Object's. */
+static bool h_flow(cmdctx *c, glib_cmd *cmd) {
+    static const keyword k[] = { { "current", "current", 2 }, { "vortex", "vortex", 4 },
+                                 { "detail", "detail", 4 } };
+    static const arg_rule rules[3][4] = {
+        { { "vx", "a speed vx (m/s)", 'r', 0, 0, 0 }, { "vz", "a speed vz (m/s)", 'r', 0, 0, 0 } },
+        { { "x", NULL, 'r', 0, 0, 0 }, { "z", NULL, 'r', 0, 0, 0 }, { "strength", "a speed (m/s)", 'r', 0, 0, 0 },
+          { "radius", "a radius (m)", 'r', 0, 0, 0 } },
+        { { "amplitude", "an amplitude (m)", 'r', 0, 0, 0 }, { "cell", NULL, 'r', 0, 0, 0 },
+          { "period", NULL, 'r', 0, 0, 0 }, { "foam", NULL, 'r', 0, 0, 0 } },
+    };
+    static const char *const usages[3] = { "Flow current vx vz", "Flow vortex x z strength radius",
+                                           "Flow detail amplitude [cell [period [foam]]]" };
+    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "current, vortex or detail");
+    if (!m)
+        return false;
+    int which = (int)(m - k), n = (int)m->value;
+    char what[32];
+    snprintf(what, sizeof what, "Flow %s", m->canon);
+    snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
+    snprintf(c->usage, sizeof c->usage, "%s", usages[which]);
+    return nums_from(c, cmd, 1, rules[which], which == 2 ? 1 : n, n, what);
+}
+
 static bool h_world(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule offset_rule = { "offset", "a clip offset", 'r', 0, 0, 0 };
     static const char *const modes[] = { "all", "above", "below" };
@@ -2107,6 +2132,7 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_WAVE_EXPLOSION] = "WaveExplosion", [GLIB_CMD_WAVE_PERLIN] = "WavePerlin",
     [GLIB_CMD_OBJECT] = "Object", [GLIB_CMD_PACK] = "Pack", [GLIB_CMD_WORLD] = "World",
     [GLIB_CMD_WATER_SURFACE] = "WaterSurface",
+    [GLIB_CMD_FLOW] = "Flow", [GLIB_CMD_SPRAY] = "Spray",
     [GLIB_CMD_CAMERA] = "Camera",
     [GLIB_CMD_RENDER_TO_TEXTURE_ONCE] = "RenderToTextureOnce",
     [GLIB_CMD_SPLAT] = "Splat", [GLIB_CMD_IF] = "If", [GLIB_CMD_END_IF] = "EndIf",
@@ -2304,6 +2330,12 @@ static const cmd_spec specs[] = {
       "Camera main|wide|mirror|top|light [fov_scale|uniform]" },
     { "RenderToTextureOnce", GLIB_CMD_RENDER_TO_TEXTURE_ONCE, false, h_rtt, false, 0, 0, { { 0 } },
       "RenderToTextureOnce unit [unit...]" },
+    { "Flow", GLIB_CMD_FLOW, false, h_flow, false, 0, 0, { { 0 } },
+      "Flow current vx vz | Flow vortex x z strength radius | Flow detail amplitude [cell [period [foam]]]", true },
+    { "Spray", GLIB_CMD_SPRAY, false, h_world_nums, false, 2, 6,
+      { ARG_R("threshold", "an upward speed threshold (m/s)"), ARG_R("rate", "a rate (particles/s)"),
+        ARG_RD("life", 0), ARG_RD("size", 0), SEED_RULE("seed"), { "count", NULL, 'i', 0, 1048576, 0 } },
+      "Spray threshold rate [life [size [seed [count]]]]", true },
     { "If", GLIB_CMD_IF, false, h_if, false, 0, 0, { { 0 } }, "If [not] DEFINE|above_water|under_water|waves" },
     { "EndIf", GLIB_CMD_END_IF, false, h_nums, false, 0, 0, { { 0 } }, NULL },
     { "Splat", GLIB_CMD_SPLAT, false, h_nums, false, 2, 2,

@@ -98,6 +98,9 @@ typedef enum glib_cmd_kind {
                                  * sphere x y z r R G B; box x y z hx hy hz R G B;
                                  * cylinder x y z r h R G B (y: its base) */
     GLIB_CMD_PACK,              /* name: the pack (after the override); with
+    GLIB_CMD_FLOW,              /* name: "current" | "vortex" | "detail"; num: current vx vz;
+                                 * vortex x z strength radius; detail amplitude [cell period foam] */
+    GLIB_CMD_SPRAY,             /* num: threshold rate [life size seed count] */
                                  * glib_options.packs_dir its pack.glib follows inline */
     /* drawing the world (in packs) */
     GLIB_CMD_CAMERA,            /* name: main|wide|mirror|top|light; num[0] fov scale (nnum 1),

@@ -330,6 +330,49 @@ static void do_explosion(ctx *x, const glib_cmd *c, ref_waves_desc *wd) {
     wd->explosion[wd->explosion_count++] = e;
 }
 
+/* Flow current / vortex add a term to the flow field; Flow detail sets
+ * the look of what it carries (ref_scene.h, ref_flow_desc). */
+static void do_flow(ctx *x, const glib_cmd *c, ref_flow_desc *f) {
+    const double *n = c->num;
+    if (strcmp(c->name, "detail") == 0) {
+        f->detail_amp = fabs(n[0]);
+        if (c->nnum >= 2) f->detail_cell = fabs(n[1]);
+        if (c->nnum >= 3) f->period = fabs(n[2]);
+        if (c->nnum >= 4) {
+            f->foam = n[3] < 0 ? 0 : n[3] > 1 ? 1 : n[3];
+            if (f->foam != n[3]) msg(x, c, "the foam cover is 0..1; using %g", f->foam);
+        }
+        return;
+    }
+    if (f->nterms >= REF_FLOW_TERMS_MAX) {
+        msg(x, c, "more than %d flow terms; this one is dropped", REF_FLOW_TERMS_MAX);
+        return;
+    }
+    ref_flow_term t = { .kind = strcmp(c->name, "vortex") == 0 ? REF_FLOW_VORTEX : REF_FLOW_CURRENT };
+    for (int i = 0; i < c->nnum && i < 4; i++) t.p[i] = n[i];
+    if (t.kind == REF_FLOW_VORTEX && !(t.p[3] > 0)) {
+        msg(x, c, "a vortex needs a radius > 0; this one is dropped");
+        return;
+    }
+    f->term[f->nterms++] = t;
+}
+
+static void do_spray(ctx *x, const glib_cmd *c, ref_spray_desc *s) {
+    const double *n = c->num;
+    memset(s, 0, sizeof *s);
+    s->on = true;
+    s->threshold = n[0];
+    s->rate = n[1];
+    if (c->nnum >= 3) s->life = n[2];
+    if (c->nnum >= 4) s->size = n[3];
+    if (c->nnum >= 5) s->seed = (unsigned)n[4];
+    if (c->nnum >= 6) s->count = (int)n[5];
+    if (s->rate < 0 || s->life < 0 || s->size < 0) {
+        msg(x, c, "rate, life and size are magnitudes; using %g %g %g", fabs(s->rate), fabs(s->life), fabs(s->size));
+        s->rate = fabs(s->rate); s->life = fabs(s->life); s->size = fabs(s->size);
+    }
+}
+
 static void do_perlin(ctx *x, const glib_cmd *c, ref_perlin_desc *pd) {
     const double *n = c->num;
     int k = c->nnum;
@@ -545,6 +588,8 @@ static void parser_errors(const glib_scene *g, char *err, int errlen) {
         }
         used += (size_t)w;
     }
+        case GLIB_CMD_FLOW: do_flow(&x, c, &w.flow); break;
+        case GLIB_CMD_SPRAY: do_spray(&x, c, &w.spray); break;
 }
 
 bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,
