@@ -69,5 +69,12 @@ void main() {
     color = mix(color, white, foam);
     alpha = mix(alpha, 1.0, foam);
 #endif
+#ifdef WAVES_HAS_FLOW
+    // the flow's advected foam streaks (flow.glsl), lit as the ocean's foam
+    float streak = flowFoam(vRest);
+    vec3 foamLit = 0.9 * (uSunIrradiance * max(dot(n, uSunDir), 0.0) / WORLD_PI + uAmbient);
+    color = mix(color, foamLit, streak);
+    alpha = mix(alpha, 1.0, streak);
+#endif
     fragColor = vec4(color, clamp(alpha, 0.0, 1.0));
 }

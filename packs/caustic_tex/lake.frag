@@ -630,6 +630,9 @@ void main() {
     // slightly translucent
     if (uShowFoam) foam = max(foam, 0.85 * wavesFoamFiltered(vRest, max(footprint.x, footprint.y)));
 #endif
+#ifdef WAVES_HAS_FLOW
+    foam = max(foam, flowFoam(vRest));   // the flow's advected streaks (flow.glsl)
+#endif
     vec3 white = 0.9 * (uSunIrradiance * diffuse / WORLD_PI + uAmbient);
     color = mix(color, white, foam);
     fragColor = vec4(color, 1.0);

@@ -75,12 +75,20 @@ vec2 flowSlope(vec2 xz) {
     return uFlowDetail.x * f * (w.x * sa + w.y * sb);
 }
 
+// Foam streaks: thin lines along a noise's zero contour, in patches of a
+// coarser noise, both drawn at the layers' source points, so a current
+// carries them and a vortex winds them into spirals.
+float flowFoamLayer(vec2 q, float seed) {
+    float line = 1.0 - smoothstep(0.015, 0.07, abs(flowNoise(q + seed, 0x3c6ef372u).x));
+    float patch = smoothstep(0.0, 0.25, flowNoise(q * 0.37 + 2.0 * seed, 0xa54ff53au).x);
+    return line * patch;
+}
+
 float flowFoam(vec2 xz) {
     if (uFlowDetail.z <= 0.0) return 0.0;
     vec4 d = texture(uFlowMap, flowMapUv(xz));
-    float f = uFlowDetail.y * 0.35;             // streaks coarser than the ripples
-    float a = smoothstep(0.22, 0.42, flowNoise((xz - d.xy) * f + 53.0, 0x3c6ef372u).x);
-    float b = smoothstep(0.22, 0.42, flowNoise((xz - d.zw) * f + 97.0, 0xa54ff53au).x);
+    float f = uFlowDetail.y * 0.5;              // streaks coarser than the ripples
+    float a = flowFoamLayer((xz - d.xy) * f, 53.0), b = flowFoamLayer((xz - d.zw) * f, 97.0);
     return uFlowDetail.z * (uFlowWeight.x * a + uFlowWeight.y * b);
 }
 #endif

@@ -384,6 +384,13 @@ void main() {
     if (under) white *= exp(-uAbsorption * distance(uCameraPos, U));
     color = mix(color, white, foam);
 #endif
+#ifdef WAVES_HAS_FLOW
+    // the flow's advected foam streaks (flow.glsl), lit as the ocean's foam
+    float streak = flowFoam(vRest);
+    vec3 foamLit = 0.9 * (uSunIrradiance * max(dot(n, uSunDir), 0.0) / WORLD_PI + uAmbient);
+    if (under) foamLit *= exp(-uAbsorption * distance(uCameraPos, U));
+    color = mix(color, foamLit, streak);
+#endif
 #ifdef DEBUG_FRESNEL
     color = vec3(F);                                     // white: reflection, black: refraction
 #endif

@@ -427,6 +427,12 @@ void main() {
     vec3 white = 0.9 * (uSunIrradiance * max(dot(n, uSunDir), 0.0) / WORLD_PI + uAmbient);
     color = mix(color, white, foam);
 #endif
+#ifdef WAVES_HAS_FLOW
+    // the flow's advected foam streaks (flow.glsl), lit as the ocean's foam
+    float streak = flowFoam(vRest);
+    vec3 foamLit = 0.9 * (uSunIrradiance * max(dot(n, uSunDir), 0.0) / WORLD_PI + uAmbient);
+    color = mix(color, foamLit, streak);
+#endif
     fragColor = vec4(color, 1.0);
 #if DEBUG_OUTPUT == 1
     fragColor = vec4(hitT, float(stT));     // refracted ray: point met, status
