@@ -109,6 +109,9 @@ typedef struct ref_world_desc {
     /* objects */
     int nobjects;
     ref_object objects[REF_MAX_OBJECTS];
+    /* drawn by the GL side only (above) */
+    ref_flow_desc flow;
+    ref_spray_desc spray;
 } ref_world_desc;
 
 typedef struct ref_world {
@@ -118,9 +121,6 @@ typedef struct ref_world {
     /* the lake's detail: sum of a_i sin(k_i . (x, z) + phi_i) */
     double detail_k[REF_TERRAIN_DETAIL][2];
     double detail_a[REF_TERRAIN_DETAIL];
-    /* drawn by the GL side only (above) */
-    ref_flow_desc flow;
-    ref_spray_desc spray;
     double detail_phi[REF_TERRAIN_DETAIL];
     double terrain_slope_bound;    /* |grad h| <= this everywhere (for tracing) */
 } ref_world;

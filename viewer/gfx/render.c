@@ -618,6 +618,8 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
         for (int i = 0; i < OCEAN_PROGS; i++)   /* the ocean's passes (none without an ocean) */
             for (int k = 0; k < r->world.ocean.progs[i].ndeps; k++) add_dep(r, r->world.ocean.progs[i].deps[k]);
         for (int k = 0; k < r->world.flow.prog.ndeps; k++) add_dep(r, r->world.flow.prog.deps[k]);   /* none without a Flow */
+        for (int i = 0; i < SPRAY_PROGS; i++)   /* the spray's (none without a Spray) */
+            for (int k = 0; k < r->world.spray.progs[i].ndeps; k++) add_dep(r, r->world.spray.progs[i].deps[k]);
     }
 }
 
@@ -1612,6 +1614,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
      * frame binds its target; the frame's own passes are "screen" again */
     if (s->glib && world_update_ocean(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     if (s->glib && world_update_flow(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
+    if (s->glib && world_update_spray(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     if (s->glib) world_update_height(&r->world, t, r->detail);
     bool ms = s->glib && render_msaa_begin(&r->msaa, render_samples(r), fbo, w, h, r->world.active);
     if (ms) { fbo = r->msaa.fbo; x = 0; y = 0; }
@@ -1657,6 +1660,13 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         for (int i = 0; i < s->glib->ncmds; i++) {
             exec_cmd(r, &f, i);
             if (f.check_each) check_gl(r, &f, i, NULL, NULL);   /* after a draw, draw_mesh has checked already */
+        }
+        if (r->world.spray.active && !f.in_rtt) {
+            /* the droplets over the finished frame (render_spray.h), the main camera's */
+            gpu_timer_mark(&r->timer, "spray draw");
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glViewport(x, y, w, h);
+            world_draw_spray(&r->world, f.cams.vp[CAM_MAIN], f.eye, w, h);
         }
         frame_gl_errors(r, &f);
         for (; f.depth > 0; f.depth--)   /* unbalanced PushMatrix in the glib */

@@ -313,12 +313,15 @@ void world_set_wave_defines(const gpu_world *gw, prog *p) {
     if (w->ocean) has[n++] = "WAVES_HAS_OCEAN";
     if (w->nexplosions) has[n++] = "WAVES_HAS_EXPLOSION";
     if (w->has_perlin) has[n++] = "WAVES_HAS_PERLIN";
+    if (gw->w.d.flow.nterms > 0) has[n++] = "WAVES_HAS_FLOW";   /* flow.glsl: the advected detail */
     for (int i = 0; i < n && PROG_FIXED_WORLD + i < PROG_FIXED_MAX; i++) {
         shader_define *d = &p->fixed[PROG_FIXED_WORLD + i];
         snprintf(d->name, sizeof d->name, "%s", has[i]);
         snprintf(d->value, sizeof d->value, "1");
     }
 }
+
+static void spray_defines(const void *ctx, prog *p) { world_set_wave_defines(ctx, p); }
 
 static bool build_program(gpu_world *gw, const char *const *include_dirs, const char *common_dir, char **log) {
     for (int m = 0; m < WORLD_MODES; m++) {
@@ -329,7 +332,6 @@ static bool build_program(gpu_world *gw, const char *const *include_dirs, const 
         p->world_uniforms = true;
         snprintf(p->name, sizeof p->name, "World");
         snprintf(p->fixed[0].name, sizeof p->fixed[0].name, "WORLD_MODE");
-    if (gw->w.d.flow.nterms > 0) has[n++] = "WAVES_HAS_FLOW";   /* flow.glsl: the advected detail */
         snprintf(p->fixed[0].value, sizeof p->fixed[0].value, "%d", m);
         set_height_define(gw, p);
         world_set_wave_defines(gw, p);
@@ -360,6 +362,8 @@ bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char *
     if (!prog_build(&gw->height_prog, include_dirs, 1, log)) ok = false;
     prog_introspect(&gw->height_prog, log);
     if (!ocean_build_programs(&gw->ocean, include_dirs, log)) ok = false;
+    if (!flow_build_program(&gw->flow, include_dirs, log)) ok = false;
+    if (!spray_build_programs(&gw->spray, include_dirs, log)) ok = false;
     return ok;
 }
 
@@ -376,12 +380,13 @@ static bool above_water(const ref_world *w) {
     for (int j = 0; j <= n; j++)
         for (int i = 0; i <= n; i++)
             if (ref_terrain_height(w, -hs + 2 * hs * i / n, -hs + 2 * hs * j / n) > level) return true;
-    if (!flow_build_program(&gw->flow, include_dirs, log)) ok = false;
     return false;
 }
 
 void world_free(gpu_world *gw) {
     ocean_free(&gw->ocean);
+    flow_free(&gw->flow);
+    spray_free(&gw->spray);
     for (int k = 0; k < WORLD_LODS; k++) {
         res_mesh_free(&gw->terrain[k]);
         res_mesh_free(&gw->skirt[k]);
@@ -398,7 +403,6 @@ void world_free(gpu_world *gw) {
     if (gw->height_fbo) glDeleteFramebuffers(1, &gw->height_fbo);
     if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
     ref_world_release(&gw->w);   /* after ocean_free: its GL passes read the ocean */
-    flow_free(&gw->flow);
     bool off = gw->height_map_off;   /* a setting of the renderer's, not of this world */
     memset(gw, 0, sizeof *gw);
     gw->height_map_off = off;
@@ -427,8 +431,17 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
     /* the spectrum ocean's textures and passes: only a world with one */
     if (gw->w.waves.ocean && !ocean_create_from(&gw->ocean, gw->w.waves.ocean, include_dirs, common_dir, log))
         ok = false;
+    /* the flow map and its pass: only a world with a Flow */
+    if (gw->w.d.flow.nterms > 0 &&
+        !flow_create(&gw->flow, &gw->w.d.flow, gw->w.d.half_size, include_dirs, common_dir, log))
+        ok = false;
     ok = build_program(gw, include_dirs, common_dir, log) && ok;
     gw->active = true;
+    /* the spray's state and passes: only a world with a Spray; after
+     * `active`, which its update program's wave defines need */
+    if (gw->w.d.spray.on && !spray_create(&gw->spray, &gw->w.d.spray, gw->w.d.half_size, include_dirs, common_dir,
+                                          spray_defines, gw, log))
+        ok = false;
     return ok;
 }
 
@@ -443,10 +456,6 @@ int world_detail_count(int n, double detail, int min) {
 /* The level for a frame at `detail` of each side: the vertices follow the
  * pixels (a quarter of the pixels, a quarter of the vertices). */
 static int detail_lod(double detail) {
-    /* the flow map and its pass: only a world with a Flow */
-    if (gw->w.d.flow.nterms > 0 &&
-        !flow_create(&gw->flow, &gw->w.d.flow, gw->w.d.half_size, include_dirs, common_dir, log))
-        ok = false;
     if (!(detail > 0) || detail >= 1) return 0;
     int lod = (int)lround(-log2(detail));
     return lod < 0 ? 0 : lod >= WORLD_LODS ? WORLD_LODS - 1 : lod;
@@ -516,6 +525,7 @@ static void seti(unsigned p, const char *name, int v) {
 void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3]) {
     if (p) ocean_upload(p);   /* with or without an ocean (see ocean_upload) */
     if (!gw->active || !p) return;
+    flow_upload(&gw->flow, p);   /* nothing without a flow: no uniform is declared then */
     const ref_world_desc *d = &gw->w.d;
     set3(p, "uSunDir", d->sun_dir);
     set3(p, "uSunIrradiance", d->sun_irradiance);
@@ -532,7 +542,6 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
     GLint loc = glGetUniformLocation(p, "uTerrainShape");
     if (loc >= 0) glUniform4f(loc, (float)d->depth, (float)d->shore_height, (float)d->slope, 0.0f);
     loc = glGetUniformLocation(p, "uTerrainDetail");
-    flow_upload(&gw->flow, p);   /* nothing without a flow: no uniform is declared then */
     if (loc >= 0) {
         float det[REF_TERRAIN_DETAIL][4];
         for (int i = 0; i < REF_TERRAIN_DETAIL; i++) {
@@ -576,6 +585,7 @@ void world_bind_textures(const gpu_world *gw) {
     glBindTexture(GL_TEXTURE_2D, gw->height_tex);
     glActiveTexture(GL_TEXTURE0);
     ocean_bind(&gw->ocean);
+    flow_bind(&gw->flow);
 }
 
 /* Binds the world's program for a mode with everything it reads set. */
@@ -598,7 +608,6 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
     /* clip at the water plane: "above" keeps y > level, "below" y < level */
     /* the offset is in lake metres, like every length a pack writes */
     float level = (float)(gw->w.d.water_level + offset * ref_world_scale(&gw->w)), plane[4] = { 0, 0, 0, 1 };
-    flow_bind(&gw->flow);
     if (strcmp(which, "above") == 0) { plane[1] = 1; plane[3] = -level; }
     if (strcmp(which, "below") == 0) { plane[1] = -1; plane[3] = level; }
     glEnable(GL_CLIP_DISTANCE0);
@@ -689,6 +698,26 @@ bool world_update_ocean(gpu_world *gw, double t, gpu_timer *timer) {
     return ocean_update(&gw->ocean, t, timer);
 }
 
+static void spray_upload(const void *ctx, unsigned p, double t) {
+    static const float origin[3] = { 0, 0, 0 };
+    world_upload(ctx, p, t, origin);
+}
+
+bool world_update_spray(gpu_world *gw, double t, gpu_timer *timer) {
+    if (!gw->active) return false;
+    return spray_update(&gw->spray, t, timer, spray_upload, gw);
+}
+
+void world_draw_spray(const gpu_world *gw, const float vp[16], const float eye[3], int w, int h) {
+    if (!gw->active) return;
+    spray_draw(&gw->spray, vp, eye, w, h, spray_upload, gw);
+}
+
+bool world_update_flow(gpu_world *gw, double t, gpu_timer *timer) {
+    if (!gw->active) return false;
+    return flow_update(&gw->flow, t, timer);
+}
+
 /* ---- the waves' height map ---- */
 
 static void height_target(gpu_world *gw, int res) {
@@ -711,11 +740,6 @@ void world_update_height(gpu_world *gw, double t, double detail) {
     if (gw->height_tex && res == gw->height_res && t == gw->height_t && gw->height_prog.hash == gw->height_hash)
         return;   /* drawn for this time already: a still frame, or a second view */
     if (!gw->height_tex || res != gw->height_res) height_target(gw, res);
-bool world_update_flow(gpu_world *gw, double t, gpu_timer *timer) {
-    if (!gw->active) return false;
-    return flow_update(&gw->flow, t, timer);
-}
-
     glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
     glViewport(0, 0, res, res);
     glDisable(GL_DEPTH_TEST);

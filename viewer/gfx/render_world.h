@@ -17,6 +17,7 @@
 #include "ref_scene.h"
 #include "render_flow.h"
 #include "render_ocean.h"
+#include "render_spray.h"
 #include "render_prog.h"
 #include "render_res.h"
 
@@ -72,10 +73,13 @@ typedef struct gpu_world {
     /* The spectrum ocean's frame (render_ocean.h): created with the world
      * when its waves hold an ocean, nothing otherwise. */
     gpu_ocean ocean;
-} gpu_world;
     /* The flow map (render_flow.h, FLOW_UNIT 26): created with the world
      * when it has a `Flow`, nothing otherwise. */
     gpu_flow flow;
+    /* The spray (render_spray.h, SPRAY_UNIT_POS/VEL 24, 25): created with
+     * the world when it has a `Spray`, nothing otherwise. */
+    gpu_spray spray;
+} gpu_world;
 
 /* A count the scene fixes (a target's side, points or texels per side)
  * for a frame at `detail` of each side (render_set_detail): scaled with
@@ -115,12 +119,21 @@ void world_bind_textures(const gpu_world *gw);
  * whether it ran passes. Call it before world_update_height, which reads it. */
 bool world_update_ocean(gpu_world *gw, double t, gpu_timer *timer);
 
-/* Draws the height map for time t at the detail of the frame (its side
 /* Advects the flow map to time t (render_flow.h), unless the world has no
  * flow or it holds t already; its pass is named in timer. Returns whether
  * it ran passes. */
 bool world_update_flow(gpu_world *gw, double t, gpu_timer *timer);
 
+/* Moves the spray to time t (render_spray.h), unless the world has none or
+ * it is there already; its pass is named in timer. Returns whether it ran
+ * passes. */
+bool world_update_spray(gpu_world *gw, double t, gpu_timer *timer);
+
+/* Draws the spray's droplets into the bound framebuffer (viewport w x h)
+ * through view-projection vp from eye; nothing without a spray. */
+void world_draw_spray(const gpu_world *gw, const float vp[16], const float eye[3], int w, int h);
+
+/* Draws the height map for time t at the detail of the frame (its side
  * WORLD_HEIGHT_RES times detail, at least 32), unless it is drawn for t
  * already. Binds framebuffer 0 and leaves the viewport changed: call it
  * before the frame sets its own. */

@@ -556,6 +556,8 @@ bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *c
         case GLIB_CMD_WAVE_OCEAN_TILES: do_ocean_tiles(&x, c, &w.waves.ocean); break;
         case GLIB_CMD_WAVE_EXPLOSION: do_explosion(&x, c, &w.waves); break;
         case GLIB_CMD_WAVE_PERLIN: do_perlin(&x, c, &w.waves.perlin); break;
+        case GLIB_CMD_FLOW: do_flow(&x, c, &w.flow); break;
+        case GLIB_CMD_SPRAY: do_spray(&x, c, &w.spray); break;
         case GLIB_CMD_OBJECT: do_object(&x, c, &w, &full_told); break;
         default: break;
         }
@@ -588,8 +590,6 @@ static void parser_errors(const glib_scene *g, char *err, int errlen) {
         }
         used += (size_t)w;
     }
-        case GLIB_CMD_FLOW: do_flow(&x, c, &w.flow); break;
-        case GLIB_CMD_SPRAY: do_spray(&x, c, &w.spray); break;
 }
 
 bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,

@@ -82,9 +82,9 @@ static uint64_t key_of(const loaded *l, const ref_render_desc *d) {
     ref_world_desc wd = l->wd;
     wd.water_mesh_res = 0;   /* GL only: the reference has the exact surface and terrain */
     wd.terrain_res = 0;
-    uint64_t h = HASH_FNV1A_BASIS;
     memset(&wd.flow, 0, sizeof wd.flow);     /* GL only: the reference draws neither (ref_scene.h) */
     memset(&wd.spray, 0, sizeof wd.spray);
+    uint64_t h = HASH_FNV1A_BASIS;
     h = hash_fnv1a(h, &wd, sizeof wd);
     ref_render_desc r = ref_render_resolve(d);
     h = hash_fnv1a(h, r.camera.eye, sizeof r.camera.eye);

@@ -1,0 +1,192 @@
+/* The spray (viewer/gfx/render_spray.c, packs/common/spray_*.{frag,vert};
+ * issue #29) against closed forms.
+ *
+ * (a) With emission off (a threshold no surface reaches) no particle ever
+ *     lives.
+ * (b) Over an explosion ring, particles are emitted where the surface
+ *     rises, and each follows x0 + v0 tau - g tau^2 / 2 y exactly (a step
+ *     is the parabola's own update, so only float rounding is left: a few
+ *     ulps of a position of metres, bound 1e-4 m over 0.1 s; measured
+ *     ~6e-8); a particle whose parabola has gone 0.3 m under the water's
+ *     highest point (the ring's height bound over the level) 0.5 s later
+ *     is gone: removed there.
+ * (c) Two runs of the same seed and steps give bit-identical state; another
+ *     seed another.
+ * (d) A world without a Spray runs no spray pass and builds no state. */
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "support.h"
+#include "gl_support.h"
+#include "ref_wavefx.h"
+#include "render_spray.h"
+#include "render_world.h"
+
+static const char *common_dir(void) {
+    static char dir[1024];
+    snprintf(dir, sizeof dir, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
+    return dir;
+}
+
+/* A flat lake with one explosion ring at the origin from t = 0.2 s. */
+static bool ring_world(gpu_world *gw, double threshold, unsigned seed) {
+    ref_world_desc desc;
+    memset(&desc, 0, sizeof desc);
+    desc.waves.explosion_count = 1;
+    desc.waves.explosion[0] = (ref_explosion_desc){ .center = { 0, 0 }, .start = 0.2, .i0 = 0.3 };
+    desc.half_size = 6;
+    desc.spray = (ref_spray_desc){ .on = true, .threshold = threshold, .rate = 4e5, .life = 3, .seed = seed,
+                                   .count = 4096 };
+    memset(gw, 0, sizeof *gw);
+    const char *inc[1] = { common_dir() };
+    char *log = NULL;
+    bool ok = world_build(gw, &desc, inc, common_dir(), &log);
+    if (log) fprintf(stderr, "%s", log);
+    free(log);
+    return ok && gw->spray.active;
+}
+
+static int live(const float *pos, int n) {
+    int k = 0;
+    for (int i = 0; i < n; i++) k += pos[4 * i + 3] > 0;
+    return k;
+}
+
+static void test_no_emission_no_particle(void) {
+    gpu_world gw;
+    CHECK(ring_world(&gw, 1e6, 1));
+    int n = gw.spray.res * gw.spray.res;
+    float *pos = malloc((size_t)n * 4 * sizeof(float)), *vel = malloc((size_t)n * 4 * sizeof(float));
+    int most = 0;
+    for (int s = 0; s <= 60; s++) {
+        world_update_spray(&gw, 0.2 + s / 30.0, NULL);
+        spray_read(&gw.spray, pos, vel);
+        int k = live(pos, n);
+        if (k > most) most = k;
+    }
+    CHECK(most == 0);
+    free(pos);
+    free(vel);
+    world_free(&gw);
+}
+
+static void test_parabolas_until_the_water(void) {
+    gpu_world gw;
+    CHECK(ring_world(&gw, 0.3, 3));
+    int n = gw.spray.res * gw.spray.res;
+    size_t bytes = (size_t)n * 4 * sizeof(float);
+    float *p0 = malloc(bytes), *v0 = malloc(bytes), *p1 = malloc(bytes), *v1 = malloc(bytes);
+    double t0 = 0.2 + 24 / 30.0;   /* the ring rises past the threshold from ~0.6 s */
+    for (int s = 1; s <= 24; s++) {
+        world_update_spray(&gw, 0.2 + s / 30.0, NULL);
+        spray_read(&gw.spray, p0, v0);
+        if (getenv("SPRAY_DEBUG")) printf("step %d live %d\n", s, live(p0, n));
+    }
+    double ring_h, ring_slope;
+    ref_explosion_desc e = gw.w.waves.explosion[0];
+    ref_explosion_bounds(&e, &ring_h, &ring_slope);
+    int born = live(p0, n), followed = 0, removed = 0, kept_under = 0;
+    double worst = 0, g = SPRAY_GRAVITY;
+    /* two looks: after 0.1 s (most still fly: v0 of 0.3-4 m/s stays up
+     * 2 v0 / g = 0.06-0.8 s) for the parabolas, after 0.5 s for removal */
+    const int until[2] = { 27, 39 };
+    double tau = 0;
+    for (int look = 0; look < 2; look++) {
+        for (int s = look ? until[0] + 1 : 25; s <= until[look]; s++) world_update_spray(&gw, 0.2 + s / 30.0, NULL);
+        spray_read(&gw.spray, p1, v1);
+        tau = 0.2 + until[look] / 30.0 - t0;
+        for (int i = 0; i < n; i++) {
+            const float *a = p0 + 4 * i, *va = v0 + 4 * i, *b = p1 + 4 * i;
+            if (a[3] <= 0) continue;
+            double x = a[0] + va[0] * tau, y = a[1] + va[1] * tau - 0.5 * g * tau * tau, z = a[2] + va[2] * tau;
+            bool same = b[3] > 0 && fabs(b[3] - (a[3] - tau)) < 1e-4;   /* the same particle, not a new one */
+            if (y < -ring_h - 0.3) {   /* under the water anywhere: must have been removed */
+                if (same) kept_under++;
+                else removed++;
+                continue;
+            }
+            if (!same || look == 1) continue;   /* fell into the water (or its life ended) on the way */
+            double d = sqrt((b[0] - x) * (b[0] - x) + (b[1] - y) * (b[1] - y) + (b[2] - z) * (b[2] - z));
+            if (d > worst) worst = d;
+            followed++;
+        }
+    }
+    printf("  %d live at t0 %.2f s (ring height bound %.2f m); after 0.1 s %d on their parabolas (worst %.2e m); "
+           "after %.2f s %d removed under the water, %d left under it\n",
+           born, t0, ring_h, followed, worst, tau, removed, kept_under);
+    CHECK(born > 30);
+    CHECK(followed > 10);
+    CHECK(worst < 1e-4);
+    CHECK(removed > 10);
+    CHECK(kept_under == 0);
+    free(p0); free(v0); free(p1); free(v1);
+    world_free(&gw);
+}
+
+static void run_state(unsigned seed, float *pos, float *vel) {
+    gpu_world gw;
+    CHECK(ring_world(&gw, 0.3, seed));
+    for (int s = 1; s <= 20; s++) world_update_spray(&gw, 0.2 + s / 30.0, NULL);
+    spray_read(&gw.spray, pos, vel);
+    world_free(&gw);
+}
+
+static void test_same_seed_same_spray(void) {
+    size_t bytes = 64 * 64 * 4 * sizeof(float);   /* count 4096: 64^2 */
+    float *a = malloc(bytes), *av = malloc(bytes), *b = malloc(bytes), *bv = malloc(bytes);
+    run_state(11, a, av);
+    run_state(11, b, bv);
+    CHECK(live(a, 4096) > 0);
+    CHECK(memcmp(a, b, bytes) == 0 && memcmp(av, bv, bytes) == 0);
+    run_state(12, b, bv);
+    CHECK(memcmp(a, b, bytes) != 0);
+    free(a); free(av); free(b); free(bv);
+}
+
+static bool has_pass(render *r, const char *what) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, true, &names, &ms);
+    for (int i = 0; i < n; i++)
+        if (strstr(names[i], what)) return true;
+    return false;
+}
+
+static void test_no_spray_no_pass(void) {
+    render *r = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    render_target tg;
+    CHECK(render_target_create(&tg, 64, 36, true));
+    render_frame(r, 1.0, tg.fbo, 64, 36, NULL);
+    render_frame(r, 1.5, tg.fbo, 64, 36, NULL);
+    CHECK(!has_pass(r, "spray"));
+    render_target_destroy(&tg);
+    render_destroy(r);
+    ref_world_desc desc;
+    memset(&desc, 0, sizeof desc);
+    gpu_world gw;
+    memset(&gw, 0, sizeof gw);
+    const char *inc[1] = { common_dir() };
+    char *log = NULL;
+    world_build(&gw, &desc, inc, common_dir(), &log);
+    free(log);
+    CHECK(!gw.spray.active && gw.spray.pos_tex[0] == 0 && gw.spray.progs[0].gl == 0);
+    CHECK(!world_update_spray(&gw, 1.0, NULL));
+    world_free(&gw);
+}
+
+int main(void) {
+    gl_ctx *ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
+    RUN(test_no_emission_no_particle);
+    RUN(test_parabolas_until_the_water);
+    RUN(test_same_seed_same_spray);
+    RUN(test_no_spray_no_pass);
+    gl_ctx_destroy(ctx);
+    return check_summary();
+}
