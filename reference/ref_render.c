@@ -259,12 +259,12 @@ static double leave_surface(const rctx *c, const double p[3], const double d[3],
     return t;
 }
 
-/* Radiance arriving at o from direction -d, for a ray in air or water.
- * on_surface: o is on the water surface (the ray leaves it). fh (may be
- * NULL) gets what this ray met first; pi (primary rays only) gets the
- * water interaction's details. */
+/* Radiance arriving at o from direction -d, for a ray in air or water,
+ * after a path of length `path` from the eye. on_surface: o is on the
+ * water surface (the ray leaves it). fh (may be NULL) gets what this ray
+ * met first; pi (primary rays only) gets the water interaction's details. */
 static void trace_path(const rctx *c, const double o[3], const double d[3], int on_surface,
-                       int in_water, int depth, double L[3], first_hit *fh, path_info *pi) {
+                       int in_water, int depth, double path, double L[3], first_hit *fh, path_info *pi) {
     const ref_world *w = c->w;
     ref_trace_opts wo = c->opts;
     wo.t_min = on_surface ? leave_surface(c, o, d, !in_water) : 0.0;
@@ -326,9 +326,9 @@ static void trace_path(const rctx *c, const double o[3], const double d[3], int 
             set3(Lh, 0.0);
         } else {
             double Lr[3], Lt[3] = { 0, 0, 0 };
-            trace_path(c, s->pos, rdir, 1, below, depth + 1, Lr, pi ? &pi->refl : NULL, NULL);
+            trace_path(c, s->pos, rdir, 1, below, depth + 1, path + tbest, Lr, pi ? &pi->refl : NULL, NULL);
             if (!tir && R < 1.0)
-                trace_path(c, s->pos, tdir, 1, !below, depth + 1, Lt, pi ? &pi->refr : NULL, NULL);
+                trace_path(c, s->pos, tdir, 1, !below, depth + 1, path + tbest, Lt, pi ? &pi->refr : NULL, NULL);
             double k = c->d.radiance_n2 ? (n1 / n2) * (n1 / n2) : 1.0;
             for (int i = 0; i < 3; i++) Lh[i] = R * Lr[i] + (1.0 - R) * k * Lt[i];
         }
@@ -354,6 +354,9 @@ static void trace_path(const rctx *c, const double o[3], const double d[3], int 
             if (cl < 0) cl = 0;
             for (int i = 0; i < 3; i++) me.e_sun[i] = w->d.sun_irradiance[i] * cl;
             ref_shade_lambert(w, albedo, n, 1.0, Lh);
+            /* Haze: the air path from the eye (a mirror camera's eye in
+             * GL: the same length over flat water) */
+            ref_haze(w, path + tbest, Lh);
         }
     }
     if (seg_water) {
@@ -392,12 +395,12 @@ static void render_pixel(const rctx *c, int px, int py) {
         bool centre = !have_centre && sx == 0.5 && sy == 0.5;
         have_centre |= centre;
         ref_camera_ray(cam, px + sx, py + sy, o, d);
-        trace_path(c, o, d, 0, c->eye_in_water, 0, L, centre ? &pi.first : NULL, centre ? &pi : NULL);
+        trace_path(c, o, d, 0, c->eye_in_water, 0, 0.0, L, centre ? &pi.first : NULL, centre ? &pi : NULL);
         for (int i = 0; i < 3; i++) acc[i] += L[i];
     }
     if (!have_centre) {   /* the buffers come from the pixel centre */
         ref_camera_ray(cam, px + 0.5, py + 0.5, o, d);
-        trace_path(c, o, d, 0, c->eye_in_water, 0, L, &pi.first, &pi);
+        trace_path(c, o, d, 0, c->eye_in_water, 0, 0.0, L, &pi.first, &pi);
     }
     size_t i = (size_t)py * r->width + px;
     for (int k = 0; k < 3; k++) r->color[i * 3 + k] = acc[k] / ns;

@@ -4,6 +4,8 @@
 #include <stdbool.h>
 #include <string.h>
 
+#include "ref_hash.h"
+#include "ref_mesh.h"
 #include "ref_trace.h"
 #include "vec3.h"
 
@@ -14,6 +16,7 @@
 #define POOL_WALL_OUT 0.85
 #define POOL_TILE 0.5
 #define POOL_GROUT 0.04
+#define POOL_DECK_OUT 1.15   /* GroundDetail: the deck's outer edge, a lawn beyond */
 
 static double smoothstep(double e0, double e1, double x) {
     double t = (x - e0) / (e1 - e0);
@@ -30,6 +33,18 @@ static double smoothstep_d(double e0, double e1, double x) {
 
 static void default3(double v[3], double a, double b, double c) {
     if (v[0] == 0 && v[1] == 0 && v[2] == 0) { v[0] = a; v[1] = b; v[2] = c; }
+}
+
+/* The mesh objects' triangles, placed (ref_mesh.h); a file that fails here
+ * was reported where the scene named it (viewer/scene/scene.c). */
+static void load_meshes(ref_world *w) {
+    for (int i = 0; i < w->d.nobjects; i++) {
+        const ref_object *ob = &w->d.objects[i];
+        if (ob->kind != REF_OBJECT_MESH) continue;
+        ref_mesh_place pl = { { ob->center[0], ob->center[1], ob->center[2] }, ob->rot_y_deg, ob->size[0] };
+        char err[256];
+        w->meshes[i] = ref_mesh_load(ob->mesh_path, &pl, err, sizeof err);
+    }
 }
 
 void ref_world_init(ref_world *w, const ref_world_desc *d) {
@@ -92,10 +107,16 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
         bound = (s->depth + s->shore_height) * 1.5 / (POOL_WALL_OUT - POOL_WALL_IN) / s->half_size;
     if (s->terrain == REF_TERRAIN_FLAT) bound = 0;
     w->terrain_slope_bound = bound;
+    load_meshes(w);
 }
 
 void ref_world_release(ref_world *w) {
-    if (w) ref_waves_release(&w->waves);
+    if (!w) return;
+    ref_waves_release(&w->waves);
+    for (int i = 0; i < REF_MAX_OBJECTS; i++) {
+        ref_mesh_free(w->meshes[i]);
+        w->meshes[i] = NULL;
+    }
 }
 
 /* The lake: r is an elliptic radius in [0, ~1.4]; the bottom is flat-ish
@@ -167,6 +188,15 @@ static double pool_height(const ref_world *w, double x, double z, double grad[2]
     return h;
 }
 
+static double pool_radius(const ref_world *w, double x, double z) {
+    double ex = x / w->d.half_size, ez = z / w->d.half_size;
+    return sqrt(sqrt(ex * ex * ex * ex + ez * ez * ez * ez));
+}
+
+static void mix3(const double a[3], const double b[3], double t, double out[3]);
+static void ground_detail_albedo(const ref_world *w, double x, double z, int lawn, double rgb[3]);
+static void ground_noise(double x, double z, double *broad, double *close);
+
 double ref_terrain_height(const ref_world *w, double x, double z) {
     switch (w->d.terrain) {
     case REF_TERRAIN_LAKE: return lake_height(w, x, z, NULL);
@@ -198,6 +228,64 @@ static void mix3(const double a[3], const double b[3], double t, double out[3]) 
     for (int i = 0; i < 3; i++) out[i] = a[i] + (b[i] - a[i]) * t;
 }
 
+/* ---- the world's look (issue #25) ---- */
+
+double ref_value_noise(double x, double z, unsigned seed) {
+    double fx = floor(x), fz = floor(z), u = x - fx, v = z - fz;
+    uint32_t i = (uint32_t)(int32_t)fx, j = (uint32_t)(int32_t)fz, c[4];
+    for (int k = 0; k < 4; k++)
+        c[k] = ref_hash32((i + (uint32_t)(k & 1)) * 0x8da6b343U ^
+                          ref_hash32((j + (uint32_t)(k >> 1)) * 0xd8163841U ^ seed));
+    u = u * u * u * (u * (u * 6 - 15) + 10);
+    v = v * v * v * (v * (v * 6 - 15) + 10);
+    double a = c[0] / 4294967295.0, b = c[1] / 4294967295.0, e = c[2] / 4294967295.0, f = c[3] / 4294967295.0;
+    return (a + (b - a) * u) + ((e + (f - e) * u) - (a + (b - a) * u)) * v;
+}
+
+/* fbm of value noise over `octaves`, the first of cell size `cell`, each
+ * half the last; normalised to [0, 1] (mean 0.5) */
+static double fbm(double x, double z, double cell, int octaves, unsigned seed) {
+    double sum = 0, amp = 1, norm = 0;
+    for (int k = 0; k < octaves; k++) {
+        sum += amp * ref_value_noise(x / cell, z / cell, seed + (unsigned)k);
+        norm += amp;
+        amp *= 0.5;
+        cell *= 0.5;
+    }
+    return sum / norm;
+}
+
+/* GroundDetail's two noises at (x, z) in the lake's units: broad patches
+ * (cells of 6 m) and close detail (0.6 m, faded out from 30 to 60 m off the
+ * centre, where a pixel spans many of its cells and it would only alias);
+ * terrain.glsl's terrainGroundNoise is the same */
+static void ground_noise(double x, double z, double *broad, double *close) {
+    *broad = fbm(x, z, 6.0, 3, 0x6c616e64u);
+    double fade = 1.0 - smoothstep(30.0, 60.0, sqrt(x * x + z * z));
+    *close = 0.5 + (fbm(x, z, 0.6, 3, 0x67726173u) - 0.5) * fade;
+}
+
+/* The pool's lawn and deck with GroundDetail (x, z in the lake's units). */
+static void ground_detail_albedo(const ref_world *w, double x, double z, int lawn, double rgb[3]) {
+    static const double stone[3] = { 0.55, 0.52, 0.47 }, grass[3] = { 0.20, 0.38, 0.12 },
+                        dry[3] = { 0.38, 0.42, 0.18 };
+    double g = w->d.ground_detail, broad, close;
+    ground_noise(x, z, &broad, &close);
+    if (!lawn) {
+        for (int i = 0; i < 3; i++) rgb[i] = stone[i] * (1.0 + g * 0.5 * (close - 0.5));
+        return;
+    }
+    double c[3];
+    mix3(grass, dry, g * smoothstep(0.35, 0.75, broad), c);
+    for (int i = 0; i < 3; i++) rgb[i] = c[i] * (1.0 + g * 0.8 * (close - 0.5));
+}
+
+void ref_haze(const ref_world *w, double dist, double rgb[3]) {
+    if (!(w->d.haze_distance > 0) || !(dist > 0)) return;
+    double f = 1.0 - exp(-dist / (w->d.haze_distance * ref_world_scale(w)));
+    for (int i = 0; i < 3; i++) rgb[i] += (w->d.sky_horizon[i] - rgb[i]) * f;
+}
+
 /* The pool's tiles: light and dark squares of POOL_TILE m (lake units) in a
  * checker, with dark grout lines POOL_GROUT wide, under the deck; the deck
  * plain stone. Strong contrast at the scale of a refraction hit's error (cm
@@ -213,6 +301,10 @@ static void pool_albedo(const ref_world *w, double x, double z, double rgb[3]) {
     const double *c;
     if (ref_terrain_height(w, x, z) > w->d.water_level + 0.5 * w->d.shore_height) {
         c = deck;
+        if (w->d.ground_detail > 0) {   /* a stone deck round the pool, a lawn beyond it */
+            ground_detail_albedo(w, x / unit, z / unit, pool_radius(w, x, z) > POOL_DECK_OUT, rgb);
+            return;
+        }
     } else {
         double u = x / (unit * POOL_TILE), v = z / (unit * POOL_TILE);
         double fu = u - floor(u), fv = v - floor(v), g = 0.5 * POOL_GROUT / POOL_TILE;
@@ -238,17 +330,56 @@ void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]) {
     double n[3];
     ref_terrain_normal_at(w, x, z, n);
     double c[3];
-    mix3(silt, sand, smoothstep(-1.6, -0.4, h), c);          /* deep silt to shallow sand */
-    mix3(c, grass, smoothstep(0.15, 0.35, h), c);            /* grass above the beach */
-    mix3(c, rock, smoothstep(0.80, 0.65, n[1]), c);          /* rock where it is steep */
-    /* a faint pattern so perturbed lookups show: ripples of the detail */
     x /= unit;
     z /= unit;
+    double g = w->d.ground_detail, broad = 0.5, close = 0.5;
+    if (g > 0) ground_noise(x, z, &broad, &close);
+    /* GroundDetail: the beach's edge and the rock's slope wander with the
+     * noise, the grass dries in patches and every colour varies close up */
+    double hy = h + g * 0.3 * (broad - 0.5), ny = n[1] + g * 0.12 * (close - 0.5);
+    mix3(silt, sand, smoothstep(-1.6, -0.4, h), c);          /* deep silt to shallow sand */
+    if (g > 0) {
+        static const double dry[3] = { 0.38, 0.42, 0.18 };
+        double gr[3];
+        mix3(grass, dry, g * smoothstep(0.35, 0.75, broad), gr);
+        mix3(c, gr, smoothstep(0.15, 0.35, hy), c);
+    } else {
+        mix3(c, grass, smoothstep(0.15, 0.35, h), c);        /* grass above the beach */
+    }
+    mix3(c, rock, smoothstep(0.80, 0.65, ny), c);            /* rock where it is steep */
+    /* a faint pattern so perturbed lookups show: ripples of the detail */
     double stripes = 0.06 * sin(3.1 * x + 1.7 * sin(0.9 * z)) * sin(2.3 * z + 1.3 * sin(0.7 * x));
-    for (int i = 0; i < 3; i++) rgb[i] = c[i] * (1.0 + stripes);
+    double grain = g * 0.6 * (close - 0.5);
+    for (int i = 0; i < 3; i++) rgb[i] = c[i] * (1.0 + stripes + grain);
 }
 
-void ref_sky_radiance(const ref_world *w, const double dir[3], double rgb[3]) {
+/* Clouds along dir: the cover (0..1) and the clouds' own radiance. */
+static double clouds(const ref_world *w, const double dir[3], double crgb[3]) {
+    const ref_world_desc *s = &w->d;
+    double fade = smoothstep(0.02, 0.25, dir[1]);   /* thinning into the horizon's haze */
+    if (!(s->cloud_cover > 0) || fade <= 0) return 0;
+    double scale = s->cloud_scale > 0 ? s->cloud_scale : 600, height = s->cloud_height > 0 ? s->cloud_height : 1500;
+    double k = height / dir[1] / scale, x = dir[0] * k, z = dir[2] * k;
+    /* octaves turned against each other, so no lattice lines show */
+    double sum = 0, amp = 1, norm = 0, ca = cos(0.61), sa = sin(0.61);
+    for (int o = 0; o < 6; o++) {
+        sum += amp * ref_value_noise(x, z, 0x636c6f75u + (unsigned)o);
+        norm += amp;
+        double nx = 2.03 * (ca * x - sa * z), nz = 2.03 * (sa * x + ca * z);
+        x = nx;
+        z = nz;
+        amp *= 0.5;
+    }
+    double d = 0.5 + 2.2 * (sum / norm - 0.5), thr = 1.0 - s->cloud_cover;   /* fbm's spread is narrow */
+    double alpha = smoothstep(thr - 0.12, thr + 0.12, d) * fade;
+    double thick = smoothstep(thr, thr + 0.35, d);
+    double c = dir[0] * s->sun_dir[0] + dir[1] * s->sun_dir[1] + dir[2] * s->sun_dir[2];
+    double lit = 0.95 - 0.45 * thick + 0.6 * pow(c > 0 ? c : 0, 8.0) * (1.0 - thick);   /* silver lining */
+    for (int i = 0; i < 3; i++) crgb[i] = s->sun_irradiance[i] / PI * lit + 0.9 * w->ambient[i];
+    return alpha;
+}
+
+void ref_sky_smooth(const ref_world *w, const double dir[3], double rgb[3], double *clear) {
     const ref_world_desc *s = &w->d;
     double y = dir[1];
     if (y >= 0) {
@@ -263,6 +394,30 @@ void ref_sky_radiance(const ref_world *w, const double dir[3], double rgb[3]) {
         double glow = 0.6 * pow(c, 64.0) + 0.25 * pow(c, 8.0);
         for (int i = 0; i < 3; i++) rgb[i] += glow * s->sun_irradiance[i] / 3.0;
     }
+    double crgb[3], a = clouds(w, dir, crgb);
+    if (a > 0) mix3(rgb, crgb, a, rgb);
+    if (clear) *clear = 1.0 - a;
+}
+
+void ref_sun_disc(const ref_world *w, const double dir[3], double rgb[3]) {
+    const ref_world_desc *s = &w->d;
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    if (!(s->sun_disc_deg > 0)) return;
+    double dd[3] = { dir[0] - s->sun_dir[0], dir[1] - s->sun_dir[1], dir[2] - s->sun_dir[2] };
+    double half = 0.5 * sqrt(dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]);
+    double a = 2.0 * asin(half < 1 ? half : 1), x = a / (s->sun_disc_deg * PI / 180.0);
+    if (x > 40) return;
+    double core = (1.0 - smoothstep(0.75, 1.25, x)) * (1.0 - 0.35 * (x < 1 ? x * x : 1.0));
+    double aureole = 0.015 * exp(-0.5 * (x > 1 ? x - 1 : 0));
+    double gain = s->sun_disc_gain > 0 ? s->sun_disc_gain : 20;
+    for (int i = 0; i < 3; i++) rgb[i] = s->sun_irradiance[i] / 3.0 * gain * (core + aureole);
+}
+
+void ref_sky_radiance(const ref_world *w, const double dir[3], double rgb[3]) {
+    double clear, disc[3];
+    ref_sky_smooth(w, dir, rgb, &clear);
+    ref_sun_disc(w, dir, disc);
+    for (int i = 0; i < 3; i++) rgb[i] += clear * disc[i];
 }
 
 void ref_shade_lambert(const ref_world *w, const double albedo[3], const double n[3],
@@ -377,6 +532,7 @@ int ref_objects_hit(const ref_world *w, const double o[3], const double d[3], do
         case REF_OBJECT_SPHERE: hit = hit_sphere(ob, o, d, tmin, best_t, &ti, nn); break;
         case REF_OBJECT_BOX: hit = hit_box(ob, o, d, tmin, best_t, &ti, nn); break;
         case REF_OBJECT_CYLINDER: hit = hit_cylinder(ob, o, d, tmin, best_t, &ti, nn); break;
+        case REF_OBJECT_MESH: hit = ref_mesh_hit(w->meshes[i], o, d, tmin, best_t, &ti, nn); break;
         default: break;
         }
         if (hit && ti < best_t) {

@@ -32,14 +32,24 @@
 typedef enum ref_object_kind {
     REF_OBJECT_SPHERE = 1,         /* center, radius */
     REF_OBJECT_BOX,                /* center, half extents (axis-aligned) */
-    REF_OBJECT_CYLINDER            /* base center, radius, height (vertical, capped) */
+    REF_OBJECT_CYLINDER,           /* base center, radius, height (vertical, capped) */
+    REF_OBJECT_MESH                /* an OBJ file's triangles (ref_mesh.h), placed at center */
 } ref_object_kind;
+
+#define REF_MESH_PATH_MAX 512
 
 typedef struct ref_object {
     ref_object_kind kind;
     double center[3];              /* the base centre for a cylinder */
     double size[3];                /* sphere: r; box: half x y z; cylinder: r, h */
     double albedo[3];
+    /* REF_OBJECT_MESH: the file, turned rot_y_deg about +y and scaled by
+     * size[0] (0: 1) around its origin, which goes to center; mesh_hash
+     * (the file's bytes' FNV-1a, set by whoever checked it) keys caches on
+     * its content. size[1]: its top over center[1] (set with the hash). */
+    char mesh_path[REF_MESH_PATH_MAX];
+    double rot_y_deg;
+    unsigned long long mesh_hash;
 } ref_object;
 
 typedef enum ref_terrain_kind {
@@ -92,6 +102,15 @@ typedef struct ref_world_desc {
     double sun_irradiance[3];      /* W/m^2-like units per channel; 0: (2.2, 2.1, 1.9) */
     double sky_zenith[3];          /* sky radiance straight up; 0: (0.25, 0.45, 0.85) */
     double sky_horizon[3];         /* at the horizon; 0: (0.70, 0.80, 0.92) */
+    /* the world's look (issue #25; every one off by default, so a scene
+     * without these commands draws as before) */
+    double sun_disc_deg;           /* SkySun: the disc's angular radius (deg); 0: no disc */
+    double sun_disc_gain;          /* its radiance in units of E_sun / 3 (the glow's); 0: 20 */
+    double cloud_cover;            /* Clouds: the sky's fraction under cloud, 0..1; 0: none */
+    double cloud_scale;            /* their features' size (m); 0: 600 */
+    double cloud_height;           /* the layer's height over the eye (m); 0: 1500 */
+    double haze_distance;          /* Haze: land at this air path (m) is 63 % horizon colour; 0: none */
+    double ground_detail;          /* GroundDetail: the terrain's noise (0..1); 0: none */
     /* water */
     double water_level;            /* mean height (the waves' level follows it) */
     double ior;                    /* 0: 1.333 */
@@ -123,6 +142,8 @@ typedef struct ref_world {
     double detail_a[REF_TERRAIN_DETAIL];
     double detail_phi[REF_TERRAIN_DETAIL];
     double terrain_slope_bound;    /* |grad h| <= this everywhere (for tracing) */
+    struct ref_mesh *meshes[REF_MAX_OBJECTS];   /* REF_OBJECT_MESH objects' triangles (else NULL);
+                                                   one that failed to load is NULL and never hit */
 } ref_world;
 
 /* Fills defaults, normalises, resolves the waves. The waves may hold heap
@@ -147,8 +168,33 @@ void ref_terrain_albedo(const ref_world *w, double x, double z, double rgb[3]);
 
 /* Sky radiance along unit direction dir (linear RGB): a zenith-horizon
  * gradient, a smooth glow around the sun, and a dim ground colour below
- * the horizon. */
+ * the horizon; with Clouds, the clouds over it, and with SkySun the sun's
+ * disc: ref_sky_smooth + clear * ref_sun_disc. */
 void ref_sky_radiance(const ref_world *w, const double dir[3], double rgb[3]);
+
+/* The sky without the sun's disc: what the GL side bakes into its cube
+ * map (RGB), with in *clear (may be NULL) the fraction of the disc that
+ * shows through the clouds there (the cube map's alpha). Clouds (Clouds):
+ * fbm of hashed value noise on a plane cloud_height over the eye, seen
+ * along dir, lit by the sun and thinning into the horizon; static. */
+void ref_sky_smooth(const ref_world *w, const double dir[3], double rgb[3], double *clear);
+
+/* The sun's disc (SkySun) along unit dir: radiance sun_disc_gain E_sun / 3
+ * over a core of angular radius sun_disc_deg with a soft, limb-darkened
+ * edge (0.75 to 1.25 radii) and an aureole falling off beyond it; 0 past
+ * 40 radii or with no disc. packs/common/world.glsl's worldSunDisc is the
+ * same formula in float. */
+void ref_sun_disc(const ref_world *w, const double dir[3], double rgb[3]);
+
+/* Value noise: a smooth (quintic) interpolation of hashed lattice values
+ * (ref_hash32) in [0, 1]; terrain.glsl's terrainValueNoise is its twin. */
+double ref_value_noise(double x, double z, unsigned seed);
+
+/* Aerial perspective (Haze): radiance seen over an air path of length
+ * dist, blended towards the horizon colour by 1 - exp(-dist / (haze_distance
+ * times the world scale)); rgb unchanged with no haze. world.frag's
+ * worldHaze is the same. */
+void ref_haze(const ref_world *w, double dist, double rgb[3]);
 
 /* Radiance leaving a Lambertian surface lit by the sun and the sky ambient:
  * albedo * (E_sun * max(0, n . l) / pi + ambient). sun_scale scales the sun

@@ -56,7 +56,7 @@ void main() {
         fragColor = vec4(t * f * uTint, 1.0 - dot(t, vec3(1.0 / 3.0)) * (1.0 - f));
         return;
     }
-    vec3 sky = texture(uSky, reflect(-e, n)).rgb;
+    vec3 sky = worldSkyLook(uSky, reflect(-e, n));
     vec3 color = f * sky + (1.0 - f) * uTint;
     // Blend premultiplied: out = color + dst * (1 - alpha), the floor seen
     // through what neither reflects nor absorbs

@@ -6,6 +6,7 @@
 // waves.glsl, included first). No #version here.
 #ifndef TERRAIN_GLSL
 #define TERRAIN_GLSL
+#include "hash.glsl"
 
 uniform int uTerrainKind;       // REF_TERRAIN_*: 0 flat, 1 lake, 2 slope, 3 pool
 uniform vec4 uTerrainShape;     // depth, shore height, slope, -
@@ -59,12 +60,54 @@ vec3 terrainHeightGrad(vec2 p) {
     return vec3(h, dhdr * dr + fade * dg);
 }
 
+uniform float uGroundDetail;    // GroundDetail: 0 none
+
+// ref_value_noise (needs hash.glsl): hashed lattice values, quintic blend.
+float terrainValueNoise(vec2 p, uint seed) {
+    vec2 f = floor(p), t = p - f;
+    uint i = uint(int(f.x)), j = uint(int(f.y));
+    float c[4];
+    for (int k = 0; k < 4; k++)
+        c[k] = float(tarnHash((i + uint(k & 1)) * 0x8da6b343u ^ tarnHash((j + uint(k >> 1)) * 0xd8163841u ^ seed)))
+             / 4294967295.0;
+    t = t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+    float a = mix(c[0], c[1], t.x), b = mix(c[2], c[3], t.x);
+    return a + (b - a) * t.y;
+}
+
+float terrainFbm(vec2 p, float cell, uint seed) {   // 3 octaves, ref_scene.c's fbm
+    float sum = 0.0, amp = 1.0, norm = 0.0;
+    for (int k = 0; k < 3; k++) {
+        sum += amp * terrainValueNoise(p / cell, seed + uint(k));
+        norm += amp;
+        amp *= 0.5;
+        cell *= 0.5;
+    }
+    return sum / norm;
+}
+
+// ref_scene.c's ground_noise: broad patches and close detail (lake units).
+vec2 terrainGroundNoise(vec2 p) {
+    float broad = terrainFbm(p, 6.0, 0x6c616e64u);
+    float fade = 1.0 - refSmooth(30.0, 60.0, length(p));
+    return vec2(broad, 0.5 + (terrainFbm(p, 0.6, 0x67726173u) - 0.5) * fade);
+}
+
 // ref_terrain_albedo: silt in the deep, sand at the shore, grass above,
 // rock where steep, and a faint pattern.
 vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
     float unit = uTerrainHalfSize / 12.0;   // REF_WORLD_UNIT: a scaled world's colours scale with it
     if (uTerrainKind == 3) {   // pool_albedo: 0.5 m tiles in a checker, 0.04 m grout, a stone deck
-        if (h > uWaterLevel + 0.5 * uTerrainShape.y) return vec3(0.55, 0.52, 0.47);
+        if (h > uWaterLevel + 0.5 * uTerrainShape.y) {
+            if (uGroundDetail <= 0.0) return vec3(0.55, 0.52, 0.47);
+            // ground_detail_albedo: a stone deck, a lawn beyond r 1.15 (POOL_DECK_OUT)
+            vec2 e = p / uTerrainHalfSize, q = p / unit, gn = terrainGroundNoise(q);
+            float g = uGroundDetail;
+            if (sqrt(sqrt(e.x * e.x * e.x * e.x + e.y * e.y * e.y * e.y)) <= 1.15)
+                return vec3(0.55, 0.52, 0.47) * (1.0 + g * 0.5 * (gn.y - 0.5));
+            vec3 c = mix(vec3(0.20, 0.38, 0.12), vec3(0.38, 0.42, 0.18), g * refSmooth(0.35, 0.75, gn.x));
+            return c * (1.0 + g * 0.8 * (gn.y - 0.5));
+        }
         vec2 t = p / (unit * 0.5), f = t - floor(t);
         float g = 0.5 * 0.04 / 0.5, sum = floor(t.x) + floor(t.y), odd = sum - 2.0 * floor(0.5 * sum);
         if (f.x < g || f.x > 1.0 - g || f.y < g || f.y > 1.0 - g) return vec3(0.05, 0.05, 0.06);
@@ -73,12 +116,15 @@ vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
     p /= unit;
     const vec3 silt = vec3(0.30, 0.28, 0.20), sand = vec3(0.76, 0.68, 0.50);
     const vec3 grass = vec3(0.22, 0.40, 0.14), rock = vec3(0.42, 0.40, 0.37);
-    float y = (h - uWaterLevel) / unit;
+    float y = (h - uWaterLevel) / unit, g = uGroundDetail;
+    vec2 gn = g > 0.0 ? terrainGroundNoise(p) : vec2(0.5);
+    float hy = y + g * 0.3 * (gn.x - 0.5), ny = n.y + g * 0.12 * (gn.y - 0.5);
     vec3 c = mix(silt, sand, refSmooth(-1.6, -0.4, y));
-    c = mix(c, grass, refSmooth(0.15, 0.35, y));
-    c = mix(c, rock, refSmooth(0.80, 0.65, n.y));
+    vec3 gr = mix(grass, vec3(0.38, 0.42, 0.18), g * refSmooth(0.35, 0.75, gn.x));
+    c = mix(c, gr, refSmooth(0.15, 0.35, hy));
+    c = mix(c, rock, refSmooth(0.80, 0.65, ny));
     float stripes = 0.06 * sin(3.1 * p.x + 1.7 * sin(0.9 * p.y)) * sin(2.3 * p.y + 1.3 * sin(0.7 * p.x));
-    return c * (1.0 + stripes);
+    return c * (1.0 + stripes + g * 0.6 * (gn.y - 0.5));
 }
 
 #endif // TERRAIN_GLSL

@@ -74,16 +74,17 @@ bool worldUnderWater(vec3 p) {
 void main() {
     vec3 c;
     if (uWorldMode == 2) {
-        c = texture(uSky, normalize(vWorldNormal)).rgb;
+        c = worldSkyLook(uSky, normalize(vWorldNormal));
     } else if (uWorldMode == 0) {
         vec3 hg = terrainHeightGrad(vWorldPos.xz);
         vec3 n = normalize(vec3(-hg.y, 1.0, -hg.z));
         vec3 albedo = terrainAlbedo(vWorldPos.xz, hg.x, n);
-        c = worldUnderWater(vWorldPos) ? worldShadeAt(albedo, n, vWorldPos) : worldLambert(albedo, n, vec3(1.0));
+        c = worldUnderWater(vWorldPos) ? worldShadeAt(albedo, n, vWorldPos)
+                                       : worldHaze(worldLambert(albedo, n, vec3(1.0)), distance(uCameraPos, vWorldPos));
     } else {
         vec3 n = normalize(vWorldNormal);
         c = worldUnderWater(vWorldPos) ? worldShadeAt(uWorldAlbedo, n, vWorldPos)
-                                       : worldLambert(uWorldAlbedo, n, vec3(1.0));
+                                       : worldHaze(worldLambert(uWorldAlbedo, n, vec3(1.0)), distance(uCameraPos, vWorldPos));
     }
     if (uWorldEyePath) c *= exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos));
     fragColor = vec4(c, 1.0);

@@ -21,6 +21,38 @@ uniform float uWaterLevel;
 
 const float WORLD_PI = 3.14159265358979;
 
+// The world's look (issue #25; ref_scene.h): the sun's disc (SkySun) and
+// the haze (Haze), both off (0) unless the scene asks.
+uniform vec2 uSunDisc;         // angular radius (rad), gain (radiance in E_sun / 3)
+uniform float uHazeDistance;   // air path (scene units) to 63 % horizon colour
+uniform vec3 uSkyHorizon;
+
+// ref_sun_disc: a soft-edged, limb-darkened core and an aureole.
+vec3 worldSunDisc(vec3 dir) {
+    if (uSunDisc.x <= 0.0) return vec3(0.0);
+    float half_ = 0.5 * length(normalize(dir) - uSunDir);
+    float x = 2.0 * asin(min(half_, 1.0)) / uSunDisc.x;
+    if (x > 40.0) return vec3(0.0);
+    float core = (1.0 - smoothstep(0.75, 1.25, x)) * (1.0 - 0.35 * min(x * x, 1.0));
+    float aureole = 0.015 * exp(-0.5 * max(x - 1.0, 0.0));
+    return uSunIrradiance / 3.0 * uSunDisc.y * (core + aureole);
+}
+
+// The sky along dir, as ref_sky_radiance has it: the cube map tarn bakes
+// (ref_sky_smooth: gradient, glow, clouds; alpha the share of the disc the
+// clouds let through) plus the sun's disc, evaluated here at full
+// resolution. Every pack reads the sky through this.
+vec3 worldSkyLook(samplerCube sky, vec3 dir) {
+    vec4 s = texture(sky, dir);
+    return s.rgb + s.a * worldSunDisc(dir);
+}
+
+// ref_haze: what an air path of length dist does to the radiance c.
+vec3 worldHaze(vec3 c, float dist) {
+    if (uHazeDistance <= 0.0) return c;
+    return mix(c, uSkyHorizon, 1.0 - exp(-dist / uHazeDistance));
+}
+
 vec3 worldLambert(vec3 albedo, vec3 n, vec3 sunScale) {
     float c = max(dot(n, uSunDir), 0.0);
     return albedo * (uSunIrradiance * c * sunScale / WORLD_PI + uAmbient);

@@ -355,7 +355,7 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
         return solidColor(hit, p + m.tb * d, underside, d);
     }
 #endif
-    return texture(uSky, dir).rgb;
+    return worldSkyLook(uSky, dir);
 }
 
 void main() {

@@ -10,6 +10,7 @@
 #include "assets.h"
 #include "geom.h"
 #include "mem.h"
+#include "ref_mesh.h"
 #include "render_camera.h"
 #include "strbuf.h"
 
@@ -235,10 +236,46 @@ static bool build_water(gpu_world *gw, int lod) {
     return ok;
 }
 
-static bool build_object(gpu_world *gw, const ref_object *ob, gpu_mesh *m) {
+/* A mesh object's triangles, already placed in the world (ref_mesh.h), as
+ * flat facets: three vertices a triangle with its normal, the one the
+ * reference shades the facet with. */
+static bool mesh_object(const ref_mesh *rm, geom_mesh *g) {
+    int nt = ref_mesh_count(rm);
+    if (nt < 1) return false;
+    memset(g, 0, sizeof *g);
+    g->nvert = 3 * nt;
+    g->nidx = 3 * nt;
+    g->pos = mem_alloc((size_t)g->nvert * 3 * sizeof(float));
+    g->nrm = mem_alloc((size_t)g->nvert * 3 * sizeof(float));
+    g->tan = mem_zalloc((size_t)g->nvert * 3 * sizeof(float));
+    g->tc = mem_zalloc((size_t)g->nvert * 2 * sizeof(float));
+    g->idx = mem_alloc((size_t)g->nidx * sizeof(unsigned));
+    for (int i = 0; i < nt; i++) {
+        const double *t = ref_mesh_triangle(rm, i), *n = ref_mesh_normal(rm, i);
+        for (int k = 0; k < 3; k++) {
+            int v = 3 * i + k;
+            for (int a = 0; a < 3; a++) {
+                g->pos[v * 3 + a] = (float)t[k * 3 + a];
+                g->nrm[v * 3 + a] = (float)n[a];
+            }
+            g->tan[v * 3] = 1.0f;
+            g->idx[v] = (unsigned)v;
+        }
+    }
+    return true;
+}
+
+static bool build_object(gpu_world *gw, int index, gpu_mesh *m) {
+    const ref_object *ob = &gw->w.d.objects[index];
     geom_mesh g;
     bool ok = false;
     double off_y = 0;
+    if (ob->kind == REF_OBJECT_MESH) {   /* in world coordinates already */
+        if (!mesh_object(gw->w.meshes[index], &g)) return false;
+        ok = res_mesh_upload(&g, m);
+        geom_free(&g);
+        return ok;
+    }
     switch (ob->kind) {
     case REF_OBJECT_SPHERE: ok = geom_sphere(&g, (float)ob->size[0], 48, 24, false); break;
     case REF_OBJECT_BOX:
@@ -276,14 +313,30 @@ static bool bake_albedo(gpu_world *gw) {
     return true;
 }
 
+/* One face of the sky without the sun's disc (ref_sky_smooth): RGB, and in
+ * alpha the share of the disc the clouds let through (world.glsl's
+ * worldSkyLook adds the disc at full resolution). */
+static void bake_sky_face(const ref_world *w, int face, int res, float *rgba) {
+    for (int j = 0; j < res; j++)
+        for (int i = 0; i < res; i++) {
+            double d[3], c[3], clear;
+            assets_face_dir(face, (i + 0.5) / res, (j + 0.5) / res, d);
+            ref_sky_smooth(w, d, c, &clear);
+            float *px = rgba + ((size_t)j * res + i) * 4;
+            for (int k = 0; k < 3; k++) px[k] = (float)c[k];
+            px[3] = (float)clear;
+        }
+}
+
 static bool bake_sky(gpu_world *gw) {
-    int res = WORLD_SKY_RES;
-    float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
+    /* clouds are detail a 128-texel face would blur (0.7 degrees a texel) */
+    int res = gw->w.d.cloud_cover > 0 ? WORLD_SKY_RES_CLOUDS : WORLD_SKY_RES;
+    float *px = mem_alloc((size_t)res * res * 4 * sizeof(float));
     glGenTextures(1, &gw->sky_tex);
     glBindTexture(GL_TEXTURE_CUBE_MAP, gw->sky_tex);
     for (int f = 0; f < 6; f++) {
-        assets_bake_sky_face(&gw->w, f, res, px);   /* GL's cube face table */
-        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
+        bake_sky_face(&gw->w, f, res, px);   /* GL's cube face table */
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
     }
     res_sampling(GL_TEXTURE_CUBE_MAP, false, GL_CLAMP_TO_EDGE);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -422,7 +475,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
               build_sky_box(gw);
     for (int i = 0; ok && i < gw->w.d.nobjects; i++) {
         const ref_object *ob = &gw->w.d.objects[i];
-        if (!build_object(gw, ob, &gw->objects[gw->nobjects])) continue;
+        if (!build_object(gw, i, &gw->objects[gw->nobjects])) continue;
         for (int k = 0; k < 3; k++) gw->object_albedo[gw->nobjects][k] = (float)ob->albedo[k];
         gw->nobjects++;
     }
@@ -531,6 +584,12 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
     set3(p, "uSunIrradiance", d->sun_irradiance);
     set3(p, "uSkyZenith", d->sky_zenith);
     set3(p, "uSkyHorizon", d->sky_horizon);
+    /* the world's look (issue #25): off (0) unless the scene asks */
+    GLint disc = glGetUniformLocation(p, "uSunDisc");
+    if (disc >= 0)
+        glUniform2f(disc, (float)(d->sun_disc_deg * M_PI / 180.0), (float)(d->sun_disc_gain > 0 ? d->sun_disc_gain : 20.0));
+    set1(p, "uHazeDistance", (float)(d->haze_distance * ref_world_scale(&gw->w)));
+    set1(p, "uGroundDetail", (float)d->ground_detail);
     set3(p, "uAmbient", gw->w.ambient);
     set3(p, "uAbsorption", d->absorption);
     set1(p, "uIOR", (float)d->ior);

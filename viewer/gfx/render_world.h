@@ -27,6 +27,7 @@
 #define WORLD_HEIGHT_RES 256   /* its texels a side at full detail */
 #define WORLD_HEIGHT_MARGIN 2.0   /* it covers twice the world square's half size */
 #define WORLD_SKY_RES 128
+#define WORLD_SKY_RES_CLOUDS 512   /* faces with clouds (Clouds): 0.18 degrees a texel */
 #define WORLD_MODES 3
 /* Levels of detail of the terrain, its skirt and the water grid: level k
  * has 1/2^k the cells a side (at least WORLD_LOD_MIN_CELLS). Level 0 is

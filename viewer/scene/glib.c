@@ -1019,6 +1019,31 @@ static bool h_wave_ocean(cmdctx *c, glib_cmd *cmd) {
     return nums_from(c, cmd, 1, rules, 1, 9, "WaveOcean");
 }
 
+/* Object mesh FILE x y z [rot_y_deg [scale [R G B]]] (issue #25): the
+ * file resolved like Obj's, the numbers as written (nnum 3 to 8). */
+static bool object_mesh(cmdctx *c, glib_cmd *cmd) {
+    static const arg_rule rules[8] = {
+        { "x", NULL, 'r', 0, 0, 0 }, { "y", NULL, 'r', 0, 0, 0 }, { "z", NULL, 'r', 0, 0, 0 },
+        { "rot_y_deg", NULL, 'r', 0, 0, 0 }, { "scale", NULL, 'r', 0, 0, 0 },
+        { "R", NULL, 'r', 0, 0, 0 }, { "G", NULL, 'r', 0, 0, 0 }, { "B", NULL, 'r', 0, 0, 0 },
+    };
+    snprintf(c->usage, sizeof c->usage, "Object mesh file.obj x y z [rot_y_deg [scale [R G B]]]");
+    snprintf(cmd->name, sizeof cmd->name, "mesh");
+    if (c->nwords < 2) {
+        cerr(c, "Object mesh needs a file: %s", c->usage);
+        return false;
+    }
+    if (!take_path(c, c->words[1], cmd->path))
+        return false;
+    if (!nums_from(c, cmd, 2, rules, 3, 8, "Object mesh"))
+        return false;
+    if (cmd->nnum > 5 && cmd->nnum < 8) {
+        cerr(c, "Object mesh: the colour needs 3 numbers (R G B), got %d: %s", cmd->nnum - 5, c->usage);
+        return false;
+    }
+    return true;
+}
+
 static bool h_object(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "sphere", "sphere", 7 }, { "box", "box", 9 },
                                  { "cylinder", "cylinder", 8 } };
@@ -1027,7 +1052,9 @@ static bool h_object(cmdctx *c, glib_cmd *cmd) {
         { "x", "y", "z", "hx", "hy", "hz", "R", "G", "B" },
         { "x", "y", "z", "r", "h", "R", "G", "B" },
     };
-    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "sphere, box or cylinder");
+    if (c->nwords >= 1 && strcasecmp(c->words[0], "mesh") == 0)
+        return object_mesh(c, cmd);
+    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "sphere, box, cylinder or mesh");
     if (!m)
         return false;
     int which = (int)(m - k), n = (int)m->value;
@@ -2124,7 +2151,9 @@ static const char *const kind_names[GLIB_CMD_KIND_COUNT] = {
     [GLIB_CMD_TIMER] = "Timer", [GLIB_CMD_GSTAP] = "GSTAP",
     [GLIB_CMD_DEFINE] = "Define", [GLIB_CMD_CULL] = "Cull",
     [GLIB_CMD_DEPTH_TEST] = "DepthTest", [GLIB_CMD_BLEND] = "Blend",
-    [GLIB_CMD_SUN] = "Sun", [GLIB_CMD_SKY] = "Sky", [GLIB_CMD_WATER] = "Water",
+    [GLIB_CMD_SUN] = "Sun", [GLIB_CMD_SKY] = "Sky", [GLIB_CMD_SKY_SUN] = "SkySun",
+    [GLIB_CMD_CLOUDS] = "Clouds", [GLIB_CMD_HAZE] = "Haze", [GLIB_CMD_GROUND_DETAIL] = "GroundDetail",
+    [GLIB_CMD_WATER] = "Water",
     [GLIB_CMD_WATER_MESH] = "WaterMesh", [GLIB_CMD_TERRAIN] = "Terrain",
     [GLIB_CMD_WAVE_SINE] = "WaveSine", [GLIB_CMD_WAVE_GERSTNER] = "WaveGerstner",
     [GLIB_CMD_WAVE_STEEPNESS] = "WaveSteepness", [GLIB_CMD_WAVE_NOISE] = "WaveNoise",
@@ -2287,6 +2316,15 @@ static const cmd_spec specs[] = {
     { "Sky", GLIB_CMD_SKY, false, h_world_nums, false, 6, 6,
       { ARG_R("zr", NULL), ARG_R("zg", NULL), ARG_R("zb", NULL), ARG_R("hr", NULL),
         ARG_R("hg", NULL), ARG_R("hb", "a horizon blue") }, NULL, true },
+    { "SkySun", GLIB_CMD_SKY_SUN, false, h_world_nums, false, 1, 2,
+      { ARG_R("radius_deg", "an angular radius in degrees"), ARG_RD("gain", 0) }, "SkySun radius_deg [gain]", true },
+    { "Clouds", GLIB_CMD_CLOUDS, false, h_world_nums, false, 1, 3,
+      { ARG_R("cover", "a cloud cover from 0 to 1"), ARG_RD("scale", 0), ARG_RD("height", 0) },
+      "Clouds cover [scale [height]]", true },
+    { "Haze", GLIB_CMD_HAZE, false, h_world_nums, false, 1, 1, { ARG_R("distance", "a distance in metres") },
+      "Haze distance", true },
+    { "GroundDetail", GLIB_CMD_GROUND_DETAIL, false, h_world_nums, false, 1, 1,
+      { ARG_R("amount", "an amount from 0 to 1") }, "GroundDetail amount", true },
     { "Water", GLIB_CMD_WATER, false, h_world_nums, false, 1, 5,
       { ARG_R("level", "a water level"), ARG_RD("ior", 0), ARG_RD("ar", 0), ARG_RD("ag", 0),
         ARG_RD("ab", 0) }, "Water level [ior [ar ag ab]]", true },
@@ -2326,7 +2364,8 @@ static const cmd_spec specs[] = {
         ARG_RD("life", 0), ARG_RD("size", 0), SEED_RULE("seed"), { "count", NULL, 'i', 0, 1048576, 0 } },
       "Spray threshold rate [life [size [seed [count]]]]", true },
     { "Object", GLIB_CMD_OBJECT, false, h_object, false, 0, 0, { { 0 } },
-      "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B", true },
+      "Object sphere x y z r R G B | Object box x y z hx hy hz R G B | Object cylinder x y z r h R G B | "
+      "Object mesh file.obj x y z [rot_y_deg [scale [R G B]]]", true },
     { "Pack", GLIB_CMD_PACK, false, h_pack, false, 0, 0, { { 0 } }, "Pack name", true },
     /* drawing the world (packs) */
     { "World", GLIB_CMD_WORLD, false, h_world, false, 0, 0, { { 0 } }, "World [all|above|below [offset|uniform]]" },

@@ -81,6 +81,10 @@ typedef enum glib_cmd_kind {
      * ranges are checked and repaired by scene_from_glib (viewer/scene/scene.h) */
     GLIB_CMD_SUN,               /* num: dx dy dz [r g b] (nnum 3 or 6) */
     GLIB_CMD_SKY,               /* num: zr zg zb hr hg hb */
+    GLIB_CMD_SKY_SUN,           /* num: radius_deg [gain] (the sun's disc) */
+    GLIB_CMD_CLOUDS,            /* num: cover [scale height] */
+    GLIB_CMD_HAZE,              /* num: distance */
+    GLIB_CMD_GROUND_DETAIL,     /* num: amount */
     GLIB_CMD_WATER,             /* num: level [ior [ar ag ab]] (nnum 1, 2 or 5) */
     GLIB_CMD_WATER_MESH,        /* num: res */
     GLIB_CMD_TERRAIN,           /* name: "flat" | "lake" | "slope";
@@ -99,7 +103,8 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_SPRAY,             /* num: threshold rate [life size seed count] */
     GLIB_CMD_OBJECT,            /* name: "sphere" | "box" | "cylinder"; num:
                                  * sphere x y z r R G B; box x y z hx hy hz R G B;
-                                 * cylinder x y z r h R G B (y: its base) */
+                                 * cylinder x y z r h R G B (y: its base);
+                                 * "mesh": path; num x y z [rot_y_deg scale R G B] (nnum 3-8) */
     GLIB_CMD_PACK,              /* name: the pack (after the override); with
                                  * glib_options.packs_dir its pack.glib follows inline */
     /* drawing the world (in packs) */

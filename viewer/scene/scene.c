@@ -10,10 +10,13 @@
  */
 #include "util.h"
 #include "scene.h"
+#include "file.h"
+#include "ref_mesh.h"
 
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define PI 3.14159265358979323846
@@ -419,6 +422,41 @@ static bool positive(ctx *x, const glib_cmd *c, double *v, const char *what) {
     return true;
 }
 
+/* Object mesh: the file loaded once here, so that what is wrong with it is
+ * said at the line that names it (the world loads it again, ref_world_init);
+ * its content's hash keys the reference's cache, its top the GL side's
+ * "above the water" test. False: the object is dropped. */
+static bool object_mesh(ctx *x, const glib_cmd *c, ref_object *o) {
+    const double *n = c->num;
+    o->kind = REF_OBJECT_MESH;
+    o->rot_y_deg = c->nnum > 3 ? n[3] : 0;
+    o->size[0] = c->nnum > 4 ? n[4] : 1;
+    if (c->nnum > 4 && !positive(x, c, &o->size[0], "the scale"))
+        return false;
+    for (int i = 0; i < 3; i++) o->albedo[i] = c->nnum > 7 ? fmin(fmax(n[5 + i], 0), 1) : 0.5;
+    if (snprintf(o->mesh_path, sizeof o->mesh_path, "%s", c->path) >= (int)sizeof o->mesh_path) {
+        msg(x, c, "the path is longer than %d characters; the object is dropped", REF_MESH_PATH_MAX - 1);
+        return false;
+    }
+    char err[512];
+    size_t len = 0;
+    char *bytes = file_read(c->path, 64u << 20, &len, err, sizeof err);
+    ref_mesh_place pl = { { n[0], n[1], n[2] }, o->rot_y_deg, o->size[0] };
+    ref_mesh *m = bytes ? ref_mesh_load(c->path, &pl, err, sizeof err) : NULL;
+    if (!m) {
+        msg(x, c, "%s; the object is dropped", err);
+        free(bytes);
+        return false;
+    }
+    o->mesh_hash = hash_fnv1a(HASH_FNV1A_BASIS, bytes, len);
+    double lo[3], hi[3];
+    ref_mesh_bounds(m, lo, hi);
+    o->size[1] = hi[1] - n[1];
+    ref_mesh_free(m);
+    free(bytes);
+    return true;
+}
+
 static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_told) {
     if (w->nobjects >= REF_MAX_OBJECTS) {
         if (!*full_told)
@@ -432,6 +470,12 @@ static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_t
     const double *n = c->num;
     memcpy(o.center, n, sizeof o.center);
     int col;
+    if (strcmp(c->name, "mesh") == 0) {
+        if (!object_mesh(x, c, &o))
+            return;
+        w->objects[w->nobjects++] = o;
+        return;
+    }
     if (strcmp(c->name, "sphere") == 0) {
         o.kind = REF_OBJECT_SPHERE;
         o.size[0] = n[3];
@@ -465,6 +509,34 @@ static void do_object(ctx *x, const glib_cmd *c, ref_world_desc *w, bool *full_t
         msg(x, c, "the colour %g %g %g is a reflectance, from 0 to 1; using %g %g %g", n[col],
             n[col + 1], n[col + 2], o.albedo[0], o.albedo[1], o.albedo[2]);
     w->objects[w->nobjects++] = o;
+}
+
+/* A number of the world's look that must lie in [lo, hi] (hi 0: no upper
+ * bound): out of it, a warning naming the command, and the nearest value. */
+static double in_range(ctx *x, const glib_cmd *c, double v, double lo, double hi, const char *what) {
+    double r = v < lo ? lo : (hi > 0 && v > hi) ? hi : v;
+    if (r != v)
+        msg(x, c, "%s %g is out of range; using %g", what, v, r);
+    return r;
+}
+
+/* SkySun, Clouds, Haze, GroundDetail (issue #25): what the world looks like. */
+static void do_look(ctx *x, const glib_cmd *c, ref_world_desc *w) {
+    const double *n = c->num;
+    switch (c->kind) {
+    case GLIB_CMD_SKY_SUN:
+        w->sun_disc_deg = in_range(x, c, n[0], 0, 20, "the disc's radius (degrees)");
+        if (c->nnum > 1) w->sun_disc_gain = in_range(x, c, n[1], 0, 1e4, "the gain");
+        break;
+    case GLIB_CMD_CLOUDS:
+        w->cloud_cover = in_range(x, c, n[0], 0, 1, "the cover");
+        if (c->nnum > 1) w->cloud_scale = in_range(x, c, n[1], 0, 0, "the scale");
+        if (c->nnum > 2) w->cloud_height = in_range(x, c, n[2], 0, 0, "the height");
+        break;
+    case GLIB_CMD_HAZE: w->haze_distance = in_range(x, c, n[0], 0, 0, "the distance"); break;
+    case GLIB_CMD_GROUND_DETAIL: w->ground_detail = in_range(x, c, n[0], 0, 1, "the amount"); break;
+    default: break;
+    }
 }
 
 /* WindowSize's range, as docs/glib.md gives it (the parser's too). */
@@ -545,6 +617,10 @@ bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *c
             set_rgb(&x, c, n, w.sky_zenith, "the zenith radiance");
             set_rgb(&x, c, n + 3, w.sky_horizon, "the horizon radiance");
             break;
+        case GLIB_CMD_SKY_SUN:
+        case GLIB_CMD_CLOUDS:
+        case GLIB_CMD_HAZE:
+        case GLIB_CMD_GROUND_DETAIL: do_look(&x, c, &w); break;
         case GLIB_CMD_WATER: do_water(&x, c, &w); break;
         case GLIB_CMD_WATER_MESH: w.water_mesh_res = clamp_res(&x, c, n[0], "res"); break;
         case GLIB_CMD_TERRAIN: do_terrain(&x, c, &w); break;

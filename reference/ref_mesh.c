@@ -1,0 +1,349 @@
+/* ref_mesh: OBJ triangles in the world and a BVH over them (ref_mesh.h). */
+#include "ref_mesh.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mem.h"
+#include "strbuf.h"
+
+#define PI 3.14159265358979323846
+
+typedef struct bvh_node {
+    double lo[3], hi[3];
+    int first;          /* leaf: first entry of order[]; inner: the left child (right = first + 1) */
+    int count;          /* leaf: triangles (> 0); inner: 0 */
+} bvh_node;
+
+struct ref_mesh {
+    int ntri;
+    double *tri;        /* 9 a triangle */
+    double *nrm;        /* 3 a triangle */
+    int *order;         /* triangle indices, leaf by leaf */
+    bvh_node *node;
+    int nnodes;
+};
+
+/* ---- building ---- */
+
+static void tri_bounds(const double *t, double lo[3], double hi[3]) {
+    for (int a = 0; a < 3; a++) {
+        lo[a] = fmin(t[a], fmin(t[3 + a], t[6 + a]));
+        hi[a] = fmax(t[a], fmax(t[3 + a], t[6 + a]));
+    }
+}
+
+static double centroid(const ref_mesh *m, int i, int axis) {
+    const double *t = m->tri + (size_t)i * 9;
+    return (t[axis] + t[3 + axis] + t[6 + axis]) / 3.0;
+}
+
+typedef struct sort_ctx { const ref_mesh *m; int axis; } sort_ctx;
+
+/* Partial sort by centroid: quickselect so order[lo..mid) <= order[mid..hi). */
+static void select_median(const ref_mesh *m, int *ord, int n, int k, int axis) {
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        double pivot = centroid(m, ord[(lo + hi) / 2], axis);
+        int i = lo, j = hi;
+        while (i <= j) {
+            while (centroid(m, ord[i], axis) < pivot) i++;
+            while (centroid(m, ord[j], axis) > pivot) j--;
+            if (i <= j) { int s = ord[i]; ord[i] = ord[j]; ord[j] = s; i++; j--; }
+        }
+        if (k <= j) hi = j;
+        else if (k >= i) lo = i;
+        else return;
+    }
+}
+
+/* Builds the node at index `at` over order[first .. first + n); returns the
+ * next free node index. Boxes are widened by a hair so that a hit on a
+ * triangle lying in a box's face is never culled by rounding. */
+static int build(ref_mesh *m, int at, int first, int n, int next) {
+    bvh_node *nd = &m->node[at];
+    for (int a = 0; a < 3; a++) { nd->lo[a] = INFINITY; nd->hi[a] = -INFINITY; }
+    double clo[3] = { INFINITY, INFINITY, INFINITY }, chi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (int k = 0; k < n; k++) {
+        double lo[3], hi[3];
+        int i = m->order[first + k];
+        tri_bounds(m->tri + (size_t)i * 9, lo, hi);
+        for (int a = 0; a < 3; a++) {
+            nd->lo[a] = fmin(nd->lo[a], lo[a]);
+            nd->hi[a] = fmax(nd->hi[a], hi[a]);
+            double c = centroid(m, i, a);
+            clo[a] = fmin(clo[a], c);
+            chi[a] = fmax(chi[a], c);
+        }
+    }
+    for (int a = 0; a < 3; a++) {
+        double pad = 1e-9 * (1.0 + fabs(nd->lo[a]) + fabs(nd->hi[a]));
+        nd->lo[a] -= pad;
+        nd->hi[a] += pad;
+    }
+    int axis = 0;
+    for (int a = 1; a < 3; a++)
+        if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
+    if (n <= REF_MESH_LEAF || !(chi[axis] > clo[axis])) {
+        nd->first = first;
+        nd->count = n;
+        return next;
+    }
+    int half = n / 2;
+    select_median(m, m->order + first, n, half, axis);
+    nd->first = next;
+    nd->count = 0;
+    next += 2;
+    next = build(m, nd->first, first, half, next);
+    return build(m, m->node[at].first + 1, first + half, n - half, next);
+}
+
+static ref_mesh *finish(double *tri, int ntri) {
+    ref_mesh *m = mem_zalloc(sizeof *m);
+    m->ntri = ntri;
+    m->tri = tri;
+    m->nrm = mem_alloc((size_t)ntri * 3 * sizeof *m->nrm);
+    m->order = mem_alloc((size_t)ntri * sizeof *m->order);
+    for (int i = 0; i < ntri; i++) {
+        const double *t = tri + (size_t)i * 9;
+        double e1[3], e2[3], *n = m->nrm + (size_t)i * 3;
+        for (int a = 0; a < 3; a++) { e1[a] = t[3 + a] - t[a]; e2[a] = t[6 + a] - t[a]; }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (l > 0) for (int a = 0; a < 3; a++) n[a] /= l;
+        else n[0] = 0, n[1] = 1, n[2] = 0;   /* a degenerate triangle: never hit (det 0) */
+        m->order[i] = i;
+    }
+    m->node = mem_alloc((size_t)(2 * ntri) * sizeof *m->node);   /* a binary tree of <= ntri leaves */
+    m->nnodes = build(m, 0, 0, ntri, 1);
+    return m;
+}
+
+ref_mesh *ref_mesh_from_triangles(const double *tri, int ntri) {
+    if (!tri || ntri < 1 || ntri > REF_MESH_MAX_TRIANGLES) return NULL;
+    double *copy = mem_alloc((size_t)ntri * 9 * sizeof *copy);
+    memcpy(copy, tri, (size_t)ntri * 9 * sizeof *copy);
+    return finish(copy, ntri);
+}
+
+/* ---- OBJ ---- */
+
+typedef struct obj_reader {
+    double *v;          /* 3 a vertex, placed */
+    int nv, capv;
+    double *tri;
+    int ntri, capt;
+} obj_reader;
+
+static void place_point(const ref_mesh_place *p, const double in[3], double out[3]) {
+    double s = p && p->scale != 0 ? p->scale : 1.0, a = p ? p->rot_y_deg * PI / 180.0 : 0.0;
+    double c = cos(a), sn = sin(a);
+    double x = in[0] * c + in[2] * sn, z = -in[0] * sn + in[2] * c;   /* about +y, anticlockwise from above */
+    out[0] = s * x + (p ? p->pos[0] : 0);
+    out[1] = s * in[1] + (p ? p->pos[1] : 0);
+    out[2] = s * z + (p ? p->pos[2] : 0);
+}
+
+/* One `f` line's vertex reference: its 0-based index, or -1. */
+static int face_index(const char **s, int nv) {
+    char *end;
+    errno = 0;
+    long k = strtol(*s, &end, 10);
+    if (end == *s || errno) return -1;
+    *s = end;
+    while (**s && **s != ' ' && **s != '\t' && **s != '\r' && **s != '\n') (*s)++;   /* /vt/vn */
+    if (k < 0) k += nv + 1;
+    return k >= 1 && k <= nv ? (int)(k - 1) : -1;
+}
+
+static bool add_face(obj_reader *r, const char *s, char *err, size_t errlen, const char *path, int line) {
+    int first = -1, prev = -1, count = 0;
+    for (;;) {
+        while (*s == ' ' || *s == '\t') s++;
+        if (!*s || *s == '\r' || *s == '\n' || *s == '#') break;
+        int k = face_index(&s, r->nv);
+        if (k < 0) {
+            msg_set(err, errlen, "%s:%d: a face names a vertex that does not exist (%d vertices so far)", path, line,
+                    r->nv);
+            return false;
+        }
+        if (count == 0) first = k;
+        else if (count >= 2) {
+            if (r->ntri >= REF_MESH_MAX_TRIANGLES) {
+                msg_set(err, errlen, "%s:%d: more than %d triangles", path, line, REF_MESH_MAX_TRIANGLES);
+                return false;
+            }
+            if (r->ntri == r->capt) {
+                r->capt = r->capt ? 2 * r->capt : 256;
+                r->tri = mem_realloc(r->tri, (size_t)r->capt * 9 * sizeof *r->tri);
+            }
+            double *t = r->tri + (size_t)r->ntri++ * 9;
+            memcpy(t, r->v + (size_t)first * 3, 3 * sizeof *t);
+            memcpy(t + 3, r->v + (size_t)prev * 3, 3 * sizeof *t);
+            memcpy(t + 6, r->v + (size_t)k * 3, 3 * sizeof *t);
+        }
+        prev = k;
+        count++;
+    }
+    if (count < 3) {
+        msg_set(err, errlen, "%s:%d: a face needs at least 3 vertices, has %d", path, line, count);
+        return false;
+    }
+    return true;
+}
+
+static bool add_vertex(obj_reader *r, const char *s, const ref_mesh_place *p, char *err, size_t errlen,
+                       const char *path, int line) {
+    double v[3];
+    char *end;
+    for (int a = 0; a < 3; a++) {
+        v[a] = strtod(s, &end);
+        if (end == s || !isfinite(v[a])) {
+            msg_set(err, errlen, "%s:%d: a vertex needs 3 numbers (v x y z)", path, line);
+            return false;
+        }
+        s = end;
+    }
+    if (r->nv == r->capv) {
+        r->capv = r->capv ? 2 * r->capv : 256;
+        r->v = mem_realloc(r->v, (size_t)r->capv * 3 * sizeof *r->v);
+    }
+    place_point(p, v, r->v + (size_t)r->nv++ * 3);
+    return true;
+}
+
+ref_mesh *ref_mesh_load(const char *path, const ref_mesh_place *place, char *err, size_t errlen) {
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        msg_set(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return NULL;
+    }
+    obj_reader r = { 0 };
+    char buf[4096];
+    int line = 0;
+    bool ok = true;
+    while (ok && fgets(buf, sizeof buf, f)) {
+        line++;
+        const char *s = buf;
+        while (*s == ' ' || *s == '\t') s++;
+        if (s[0] == 'v' && (s[1] == ' ' || s[1] == '\t')) ok = add_vertex(&r, s + 2, place, err, errlen, path, line);
+        else if (s[0] == 'f' && (s[1] == ' ' || s[1] == '\t')) ok = add_face(&r, s + 2, err, errlen, path, line);
+    }
+    fclose(f);
+    free(r.v);
+    if (ok && r.ntri == 0) {
+        msg_set(err, errlen, "%s: no triangles (no `f` lines)", path);
+        ok = false;
+    }
+    if (!ok) {
+        free(r.tri);
+        return NULL;
+    }
+    return finish(r.tri, r.ntri);
+}
+
+void ref_mesh_free(ref_mesh *m) {
+    if (!m) return;
+    free(m->tri);
+    free(m->nrm);
+    free(m->order);
+    free(m->node);
+    free(m);
+}
+
+int ref_mesh_count(const ref_mesh *m) { return m ? m->ntri : 0; }
+const double *ref_mesh_triangle(const ref_mesh *m, int i) { return m->tri + (size_t)i * 9; }
+const double *ref_mesh_normal(const ref_mesh *m, int i) { return m->nrm + (size_t)i * 3; }
+
+void ref_mesh_bounds(const ref_mesh *m, double lo[3], double hi[3]) {
+    for (int a = 0; a < 3; a++) { lo[a] = INFINITY; hi[a] = -INFINITY; }
+    for (int i = 0; m && i < m->ntri; i++) {
+        double l[3], h[3];
+        tri_bounds(m->tri + (size_t)i * 9, l, h);
+        for (int a = 0; a < 3; a++) { lo[a] = fmin(lo[a], l[a]); hi[a] = fmax(hi[a], h[a]); }
+    }
+}
+
+/* ---- rays ---- */
+
+/* Moller-Trumbore: t of the ray against triangle i, or NAN. */
+static double tri_hit(const ref_mesh *m, int i, const double o[3], const double d[3]) {
+    const double *a = m->tri + (size_t)i * 9;
+    double e1[3], e2[3], s[3], p[3], q[3];
+    for (int k = 0; k < 3; k++) { e1[k] = a[3 + k] - a[k]; e2[k] = a[6 + k] - a[k]; s[k] = o[k] - a[k]; }
+    p[0] = d[1] * e2[2] - d[2] * e2[1];
+    p[1] = d[2] * e2[0] - d[0] * e2[2];
+    p[2] = d[0] * e2[1] - d[1] * e2[0];
+    double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+    if (fabs(det) < 1e-300) return NAN;
+    double inv = 1.0 / det, u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) * inv;
+    if (u < 0.0 || u > 1.0) return NAN;
+    q[0] = s[1] * e1[2] - s[2] * e1[1];
+    q[1] = s[2] * e1[0] - s[0] * e1[2];
+    q[2] = s[0] * e1[1] - s[1] * e1[0];
+    double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) * inv;
+    if (v < 0.0 || u + v > 1.0) return NAN;
+    return (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) * inv;
+}
+
+/* Does the ray meet the box within (tmin, tmax)? */
+static bool box_hit(const bvh_node *nd, const double o[3], const double d[3], double tmin, double tmax) {
+    double t0 = tmin, t1 = tmax;
+    for (int a = 0; a < 3; a++) {
+        if (d[a] == 0.0) {
+            if (o[a] < nd->lo[a] || o[a] > nd->hi[a]) return false;
+            continue;
+        }
+        double ta = (nd->lo[a] - o[a]) / d[a], tb = (nd->hi[a] - o[a]) / d[a];
+        if (ta > tb) { double s = ta; ta = tb; tb = s; }
+        if (ta > t0) t0 = ta;
+        if (tb < t1) t1 = tb;
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+bool ref_mesh_hit(const ref_mesh *m, const double o[3], const double d[3], double tmin, double tmax,
+                  double *t, double n[3]) {
+    if (!m) return false;
+    int stack[128], sp = 0, best = -1;
+    double best_t = tmax;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const bvh_node *nd = &m->node[stack[--sp]];
+        if (!box_hit(nd, o, d, tmin, best_t)) continue;
+        if (nd->count > 0) {
+            for (int k = 0; k < nd->count; k++) {
+                int i = m->order[nd->first + k];
+                double ti = tri_hit(m, i, o, d);
+                if (ti > tmin && ti < best_t) { best_t = ti; best = i; }
+            }
+        } else if (sp + 2 <= (int)(sizeof stack / sizeof stack[0])) {
+            stack[sp++] = nd->first + 1;
+            stack[sp++] = nd->first;
+        }
+    }
+    if (best < 0) return false;
+    *t = best_t;
+    memcpy(n, m->nrm + (size_t)best * 3, 3 * sizeof *n);
+    return true;
+}
+
+bool ref_mesh_hit_brute(const ref_mesh *m, const double o[3], const double d[3], double tmin,
+                        double tmax, double *t, double n[3]) {
+    int best = -1;
+    double best_t = tmax;
+    for (int i = 0; m && i < m->ntri; i++) {
+        double ti = tri_hit(m, i, o, d);
+        if (ti > tmin && ti < best_t) { best_t = ti; best = i; }
+    }
+    if (best < 0) return false;
+    *t = best_t;
+    memcpy(n, m->nrm + (size_t)best * 3, 3 * sizeof *n);
+    return true;
+}
