@@ -360,10 +360,16 @@ static double clouds(const ref_world *w, const double dir[3], double crgb[3]) {
     if (!(s->cloud_cover > 0) || fade <= 0) return 0;
     double scale = s->cloud_scale > 0 ? s->cloud_scale : 600, height = s->cloud_height > 0 ? s->cloud_height : 1500;
     double k = height / dir[1] / scale, x = dir[0] * k, z = dir[2] * k;
-    /* octaves turned against each other, so no lattice lines show */
+    /* octaves turned against each other, so no lattice lines show; each
+     * fades to its mean where its features, seen foreshortened, span under
+     * 10 texels of the GL side's cube map (0.003 rad): towards the horizon
+     * they shrink below any pixel, and a point sample of them is noise */
     double sum = 0, amp = 1, norm = 0, ca = cos(0.61), sa = sin(0.61);
+    double angle = scale * dir[1] * dir[1] / height;   /* the first octave's cell, in radians */
     for (int o = 0; o < 6; o++) {
-        sum += amp * ref_value_noise(x, z, 0x636c6f75u + (unsigned)o);
+        double keep = smoothstep(0.015, 0.03, angle);
+        angle /= 2.03;
+        sum += amp * (0.5 + keep * (ref_value_noise(x, z, 0x636c6f75u + (unsigned)o) - 0.5));
         norm += amp;
         double nx = 2.03 * (ca * x - sa * z), nz = 2.03 * (sa * x + ca * z);
         x = nx;
@@ -371,7 +377,7 @@ static double clouds(const ref_world *w, const double dir[3], double crgb[3]) {
         amp *= 0.5;
     }
     double d = 0.5 + 2.2 * (sum / norm - 0.5), thr = 1.0 - s->cloud_cover;   /* fbm's spread is narrow */
-    double alpha = smoothstep(thr - 0.12, thr + 0.12, d) * fade;
+    double alpha = smoothstep(thr - 0.2, thr + 0.2, d) * fade;
     double thick = smoothstep(thr, thr + 0.35, d);
     double c = dir[0] * s->sun_dir[0] + dir[1] * s->sun_dir[1] + dir[2] * s->sun_dir[2];
     double lit = 0.95 - 0.45 * thick + 0.6 * pow(c > 0 ? c : 0, 8.0) * (1.0 - thick);   /* silver lining */

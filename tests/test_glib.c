@@ -1216,8 +1216,8 @@ static void test_world_errors(void) {
     CHECK(has_diag(s, f, 13, DIAG_ERROR, "WaveGerstner needs at least 3 numbers, got 1"));
     CHECK(has_diag(s, f, 14, DIAG_ERROR, "WaveNoise: octaves must be a whole number"));
     CHECK(has_diag(s, f, 15, DIAG_ERROR, "Object sphere needs 7 numbers, got 3: Object sphere x y z r R G B"));
-    CHECK(has_diag(s, f, 16, DIAG_ERROR, "Object: unknown kind 'cone': write sphere, box or cylinder"));
-    CHECK(has_diag(s, f, 17, DIAG_ERROR, "Object needs one of sphere, box or cylinder"));
+    CHECK(has_diag(s, f, 16, DIAG_ERROR, "Object: unknown kind 'cone': write sphere, box, cylinder or mesh"));
+    CHECK(has_diag(s, f, 17, DIAG_ERROR, "Object needs one of sphere, box, cylinder or mesh"));
     CHECK(has_diag(s, f, 18, DIAG_ERROR, "World: unknown mode 'sideways': write World all|above|below [offset]"));
     CHECK(has_diag(s, f, 19, DIAG_ERROR, "WaterSurface: write WaterSurface, WaterSurface points N or WaterSurface mesh N"));
     CHECK(has_diag(s, f, 20, DIAG_WARNING, "Sky takes at most 6 arguments; ignoring '1'"));
@@ -1226,6 +1226,46 @@ static void test_world_errors(void) {
     CHECK(has_diag(s, f, 23, DIAG_ERROR, "Sky needs 6 numbers, got 3"));
     CHECK(s->nerrors == 21 && count_sev(s, DIAG_WARNING) == 1);
     CHECK(s->ncmds == 1);       /* Sky 1 1 1 1 1 1 (1) */
+    glib_free(s);
+}
+
+/* Issue #25's world commands: the look (SkySun, Clouds, Haze,
+ * GroundDetail) keep the numbers written; Object mesh resolves its file
+ * beside the scene and takes 3 to 8 numbers, a colour whole or not at all. */
+static void test_look_commands(void) {
+    put("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    glib_scene *s = load("look.glib",
+        "##OpenGL GLIB\n"
+        "SkySun 0.27\n"                          /* 2 */
+        "Clouds 0.5 900 1500\n"                  /* 3 */
+        "Haze 300\n"                             /* 4 */
+        "GroundDetail 1\n"                       /* 5 */
+        "Object mesh m.obj 1 2 3 45 2 0.5 0.4 0.3\n" /* 6 */
+        "Object mesh m.obj 1 2 3\n"              /* 7 */
+        "SkySun\n"                               /* 8 */
+        "Clouds x\n"                             /* 9 */
+        "Object mesh\n"                          /* 10 */
+        "Object mesh m.obj 1 2\n"                /* 11 */
+        "Object mesh m.obj 1 2 3 0 1 0.5\n"      /* 12 */
+        "Object mesh nothere.obj 1 2 3\n");      /* 13 */
+    const char *f = P("look.glib");
+    CHECK(has_diag(s, f, 8, DIAG_ERROR, "SkySun needs an angular radius in degrees"));
+    CHECK(has_diag(s, f, 9, DIAG_ERROR, "Clouds: bad number 'x'"));
+    CHECK(has_diag(s, f, 10, DIAG_ERROR, "Object mesh needs a file"));
+    CHECK(has_diag(s, f, 11, DIAG_ERROR, "Object mesh needs at least 3 numbers, got 2"));
+    CHECK(has_diag(s, f, 12, DIAG_ERROR, "Object mesh: the colour needs 3 numbers (R G B), got 1"));
+    CHECK(has_diag(s, f, 13, DIAG_ERROR, "cannot open"));
+    CHECK(s->ncmds >= 6);
+    if (s->ncmds >= 6) {
+        const glib_cmd *c = s->cmds;
+        CHECK(c[0].kind == GLIB_CMD_SKY_SUN && c[0].nnum == 1 && c[0].num[0] == 0.27);
+        CHECK(c[1].kind == GLIB_CMD_CLOUDS && c[1].nnum == 3 && c[1].num[2] == 1500);
+        CHECK(c[2].kind == GLIB_CMD_HAZE && c[2].num[0] == 300);
+        CHECK(c[3].kind == GLIB_CMD_GROUND_DETAIL && c[3].num[0] == 1);
+        CHECK(c[4].kind == GLIB_CMD_OBJECT && strcmp(c[4].name, "mesh") == 0 && c[4].nnum == 8 &&
+              c[4].num[3] == 45 && c[4].num[7] == 0.3 && strstr(c[4].path, "m.obj") != NULL);
+        CHECK(c[5].kind == GLIB_CMD_OBJECT && c[5].nnum == 3);
+    }
     glib_free(s);
 }
 
@@ -1707,6 +1747,7 @@ int main(void) {
     RUN(test_program_errors);
     RUN(test_world_commands);
     RUN(test_world_errors);
+    RUN(test_look_commands);
     RUN(test_pack_contract_commands);
     RUN(test_pack_include);
     RUN(test_pack_missing);
