@@ -121,7 +121,7 @@ bool onScreen(vec2 uv) {
 #define REFRACT_HIT   1
 #define REFRACT_MODEL 2
 #define REFRACT_STEPS 24
-#define REFRACT_REFINE 5
+#define REFRACT_REFINE 8          // halvings closing on a crossing (5 left dashes: the snap below)
 #define REFRACT_THICKNESS 0.6      // m on the lake, times uWorldScale
 #define REFRACT_SNAP 0.08          // m: a crossing closes to within this
 bool behindShown(vec3 X, out vec2 uv, out bool off, out float gap) {
@@ -145,6 +145,7 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
     float sMax = min(max(P.y - floorY, 0.0) / -d.y, 100.0 * uWorldScale);
     float thick = REFRACT_THICKNESS * uWorldScale;
     float lo = 0.0;
+    float above = 0.0;      // the last sample above the terrain's model
     s = 0.0;
     uvF = screenOf(P);
     F = P;
@@ -214,19 +215,48 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
         if ((P + s * d).y < terrainHeightGrad((P + s * d).xz).x) {
             // under the terrain's model with no surface of the pass there:
             // the ground is hidden from the camera (behind a ridge of the
-            // floor, a thing); the model's own crossing, by bisection
-            float hi = s;
+            // floor, a thing); the model's own crossing, by bisection from
+            // the last sample above the model: lo may be under it already
+            // (a crossing of the pass's floor that did not close, taken
+            // for a silhouette), and a bisection from there stayed at that
+            // sample, deeper than the floor, its longer path in water
+            // darker: dark dashes along a contour of the lake's shallow
+            // floor, where closed and unclosed crossings alternate
+            float a = above, hi = s;
             for (int k = 0; k < REFRACT_REFINE + 2; k++) {
-                float mid = 0.5 * (lo + hi);
+                float mid = 0.5 * (a + hi);
                 vec3 X = P + mid * d;
-                if (X.y < terrainHeightGrad(X.xz).x) hi = mid; else lo = mid;
+                if (X.y < terrainHeightGrad(X.xz).x) hi = mid; else a = mid;
             }
             s = hi;
             return REFRACT_MODEL;
         }
+        above = s;                              // above the model (the branch above returns)
         lo = s;                                 // in front, or behind a thing (passed it)
     }
     return REFRACT_MODEL;
+}
+
+// A hit the march closed on the ground, moved to where the ray meets the
+// terrain's model, when the pass shows that point (the model and the pass
+// agree there to a texel): the march reads the pass's depth at the
+// nearest texel, and on the shallow floor seen at a slant the texels' steps
+// put the closed hit up to a texel's span off along the ray: dark dashes
+// along a contour of the lake's floor (issue #24). Things (the crate, the
+// post) keep the march's hit.
+#define GROUND_SNAP 0.15           // m on the lake, times uWorldScale
+void snapToGround(vec3 P, vec3 d, inout vec2 uvF, inout vec3 F) {
+    if (abs(F.y - terrainHeightGrad(F.xz).x) > GROUND_SNAP * uWorldScale) return;
+    float s = distance(P, F);
+    for (int i = 0; i < 4; i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
+    vec3 G = P + s * d;
+    vec2 uv;
+    bool off;
+    float gap;
+    behindShown(G, uv, off, gap);
+    if (off || abs(gap) > GROUND_SNAP * uWorldScale) return;
+    uvF = uv;
+    F = G;
 }
 
 // The floor's normal at uv from the depth of two neighbouring texels.
@@ -537,7 +567,7 @@ void main() {
     // from below too (outside Snell's window the water shows nothing)
     Mirror mirror = Mirror(false, vec2(0.0), P, vec3(0.0));
 #endif
-    vec3 sky = worldSkyLook(uSky, underCam && dot(tr, tr) > 0.0 ? tr : r);
+    vec3 sky = texture(uSky, underCam && dot(tr, tr) > 0.0 ? tr : r).rgb;
     float R = worldFresnel(cosI, fromWater ? uIOR : 1.0, fromWater ? 1.0 : uIOR);
     if (underCam) {
         fragColor = vec4(fromBelow(P, tr, sky, mirror, R), 1.0);
@@ -564,6 +594,7 @@ void main() {
         if (model) {
             floorColor = groundModel(P, tr, sModel, F, floorN);
         } else {
+            snapToGround(P, tr, uvF, F);
             floorColor = texture(uRefractColor, uvF).rgb;
             floorN = refractNormal(uvF, F, uCameraPos);
         }

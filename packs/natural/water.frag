@@ -137,15 +137,16 @@ vec3 applyCaustics(vec3 c, vec3 p) {
 // front; one that never passes behind anything (the sky) ends at smax.
 // The refraction (the eye) and, since issue #24, the reflection (the
 // mirrored eye) march alike.
-float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax, float g0) {
+float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax, float g0, out bool left) {
     vec2 uv;
     bool ok;
     float s = smax;
+    left = false;
     float sa = 0.0, ga = min(g0, -1e-4);
     for (int i = 1; i <= REFINE_STEPS; i++) {
         float sb = smax * float(i) / float(REFINE_STEPS);
         vec3 b = natShownPoint(vp, eye, depthTex, U + sb * r, uv, ok);
-        if (!ok) { s = sa; break; }
+        if (!ok) { s = sa; left = true; break; }
         float gb = distance(eye, U + sb * r) - distance(eye, b);
         if (gb > 0.0) {
             // bisection, then one interpolation: two regula-falsi steps
@@ -182,7 +183,8 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
     vec2 uv;
     bool ok;
 #if REFINE_STEPS > 0
-    s = natMarch(uCamWideVP, uCameraPos, uRefractionDepth, U, r, smax, g0);
+    bool left;
+    s = natMarch(uCamWideVP, uCameraPos, uRefractionDepth, U, r, smax, g0, left);
 #endif
     vec3 shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
     // The perturbed lookup left the target, or the march closed on the
@@ -202,6 +204,12 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
         vec3 near = natNearestShown(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, spread);
         edge = spread > 1.25;
     }
+    // A march that left the target (the refracted ray went off its edge,
+    // the frame's bottom looking down) kept its last point in front, on
+    // the edge's row: rows of pixels showed the same row, horizontal
+    // slivers below the sunken boulder in crate_narrow. Such a ray meets
+    // the terrain model's ground too.
+    edge = edge || left;
 #endif
 #if REFINE_STEPS > 0
     if (edge && fallback) {
@@ -294,7 +302,8 @@ void main() {
             bool okm;
             vec3 m0 = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U, uvm, okm);
             float dm = okm && texture(uReflectionDepth, uvm).r < NAT_SKY_DEPTH ? distance(U, m0) : 50.0 * uWorldScale;
-            cr = natMarch(uCamMirrorVP, mirrorEye, uReflectionDepth, U, Rr, min(1.5 * dm + 0.5 * uWorldScale, 50.0 * uWorldScale), -dm);
+            bool leftm;   // the reflected ray left the mirror target: its last point in front serves
+            cr = natMarch(uCamMirrorVP, mirrorEye, uReflectionDepth, U, Rr, min(1.5 * dm + 0.5 * uWorldScale, 50.0 * uWorldScale), -dm, leftm);
             // closed on a silhouette: the ray passed behind a thing (as the
             // mirrored eye sees it), not into it; what it meets there is
             // hidden from the mirror pass (the crate mirrored in open water
@@ -309,7 +318,7 @@ void main() {
         float band = 0.5 * (1.0 - 1.0 / max(uFovScale, 1.0));
         float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
         float keep = w <= 0.0 ? 0.0 : band > 0.0 ? clamp(inside / (0.5 * band), 0.0, 1.0) : float(inside >= 0.0);
-        refl = worldSkyLook(uSky, Rr);
+        refl = texture(uSky, Rr).rgb;
         if (keep > 0.0 && texture(uReflectionDepth, uv).r < NAT_SKY_DEPTH)
             refl = mix(refl, texture(uReflection, uv).rgb, keep);
 #ifdef EXACT_FRESNEL
@@ -357,7 +366,7 @@ void main() {
             float d0 = ok0 ? distance(U, b0) : 1e4;      // what lies behind U, seen from the eye
             vec3 c = lookThrough(U, T, uReflectDist * uWorldScale, min(1.5 * d0 + 0.5 * uWorldScale, 50.0 * uWorldScale), -d0, false, path, sky);
             hit = gRefractHit;
-            refr = sky ? worldSkyLook(uSky, T) : c;
+            refr = sky ? texture(uSky, T).rgb : c;
         }
         // the internal reflection: the reflection target holds the world
         // below, mirrored (for flat water exact for any c, as above)
