@@ -567,7 +567,7 @@ void main() {
     // from below too (outside Snell's window the water shows nothing)
     Mirror mirror = Mirror(false, vec2(0.0), P, vec3(0.0));
 #endif
-    vec3 sky = texture(uSky, underCam && dot(tr, tr) > 0.0 ? tr : r).rgb;
+    vec3 sky = worldSkyLook(uSky, underCam && dot(tr, tr) > 0.0 ? tr : r);
     float R = worldFresnel(cosI, fromWater ? uIOR : 1.0, fromWater ? 1.0 : uIOR);
     if (underCam) {
         fragColor = vec4(fromBelow(P, tr, sky, mirror, R), 1.0);

@@ -318,7 +318,7 @@ void main() {
         float band = 0.5 * (1.0 - 1.0 / max(uFovScale, 1.0));
         float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
         float keep = w <= 0.0 ? 0.0 : band > 0.0 ? clamp(inside / (0.5 * band), 0.0, 1.0) : float(inside >= 0.0);
-        refl = texture(uSky, Rr).rgb;
+        refl = worldSkyLook(uSky, Rr);
         if (keep > 0.0 && texture(uReflectionDepth, uv).r < NAT_SKY_DEPTH)
             refl = mix(refl, texture(uReflection, uv).rgb, keep);
 #ifdef EXACT_FRESNEL
@@ -366,7 +366,7 @@ void main() {
             float d0 = ok0 ? distance(U, b0) : 1e4;      // what lies behind U, seen from the eye
             vec3 c = lookThrough(U, T, uReflectDist * uWorldScale, min(1.5 * d0 + 0.5 * uWorldScale, 50.0 * uWorldScale), -d0, false, path, sky);
             hit = gRefractHit;
-            refr = sky ? texture(uSky, T).rgb : c;
+            refr = sky ? worldSkyLook(uSky, T) : c;
         }
         // the internal reflection: the reflection target holds the world
         // below, mirrored (for flat water exact for any c, as above)
