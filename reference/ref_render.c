@@ -602,6 +602,18 @@ static double photon_margin(const ref_world *w, double time, const double box[4]
            (need > 0 ? sp : 0);
 }
 
+/* The photon tracer's seed for a render's: 0 stays 0 (ref_caustics' fixed
+ * default, so a render without a seed is the one it always was); any other
+ * seed is scrambled by splitmix64 so that seeds 1, 2, 3 give unrelated
+ * per-stratum streams (the tracer xors the seed with the stratum index times
+ * an odd constant: nearby raw seeds would give nearby states). */
+static uint64_t photon_seed(uint64_t seed) {
+    if (seed == 0) return 0;
+    uint64_t s = seed;
+    uint64_t m = ref_splitmix64(&s);
+    return m ? m : 1;   /* 0 would mean the default again */
+}
+
 /* Plans the photons and allocates the grid; 0 (r->have_caustics says
  * whether there are photons to trace) or -1. */
 static int plan_caustics(rctx *c, worker *wk, char *err, size_t errlen) {
@@ -632,6 +644,7 @@ static int plan_caustics(rctx *c, worker *wk, char *err, size_t errlen) {
     cd.nx = nx;
     cd.nz = nz;
     cd.photons_per_cell = c->d.photons_per_cell;
+    cd.seed = photon_seed(c->d.seed);
     cd.margin = photon_margin(w, c->d.time, box, cell);
     cd.opts.t_tol = PHOTON_T_TOL;
 

@@ -26,6 +26,7 @@
 #define TARN_REF_RENDER_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "ref_scene.h"
 #include "ref_trace.h"
@@ -80,6 +81,10 @@ typedef struct ref_render_desc {
     int caustic_res;            /* caustic grid cells along the longer side of
                                    the underwater floor (0 = 256); cells are square */
     int photons_per_cell;       /* k x k strata per cell area, k = round(sqrt(.)) (0 = 36) */
+    uint64_t seed;              /* the photons' random numbers: 0 = the fixed default
+                                   sequence (every cached reference so far); another
+                                   value, another sampling of the same strata and count,
+                                   so two seeds differ by photon noise alone */
     int max_depth;              /* water-surface interactions along a path (0 = 5);
                                    a path that would need more gets no more light */
     int radiance_n2;            /* 1: radiance crossing the surface is scaled by

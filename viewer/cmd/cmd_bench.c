@@ -35,10 +35,12 @@ static const char usage[] =
     "  --docs FILE        also write the report into FILE between the markers\n"
     "                     <!-- bench:begin --> and <!-- bench:end --> (e.g.\n"
     "                     docs/benchmark.md), and the plots beside it\n"
-    "  --time-axis A      auto, gpu or wall: the time the plot and the Pareto front\n"
-    "                     use (auto: wall time on a CPU rasteriser such as\n"
-    "                     llvmpipe, whose GPU timestamps do not time the\n"
-    "                     rasterisation; GPU time otherwise)\n"
+    "  --time-axis A      auto, gpu, wall or cpu: the time the plot and the Pareto\n"
+    "                     front use (auto: on a CPU rasteriser such as llvmpipe the\n"
+    "                     process's CPU time a frame, the rasteriser's threads\n"
+    "                     included, which other processes' load barely moves, where\n"
+    "                     its GPU timestamps and the wall time are wall clocks; GPU\n"
+    "                     time otherwise)\n"
     "  --msaa N           anti-aliasing of the packs: N samples per pixel, 0 or 1 off\n"
     "                     (default 4 on a GPU, off on a CPU rasteriser such as llvmpipe)\n"
     "  --ref-spp N        reference subsamples on an N x N grid (default: matched to\n"
@@ -52,7 +54,7 @@ static const char usage[] =
     "  --no-cost-model    skip the cost model: each pack's default timed at three\n"
     "                     sizes and three water grids on the first scene, fitted\n"
     "                     as ms = a + b*Mpixels + c*kvertices and reported\n"
-    "  --no-uncertainty   skip the reference's noise (another photon sampling) and\n"
+    "  --no-uncertainty   skip the reference's noise (photon seed 1: another sampling) and\n"
     "                     grid bias (a caustic grid twice as fine) at the first time;\n"
     "                     ties then fall back to a 1% error rule\n"
     "  --seq-frames N     frames of the animated sequence each setting is measured\n"
@@ -84,8 +86,8 @@ static bool parse_times(const char *list, bench_desc *d) {
 }
 
 static bool parse_axis(const char *s, int *axis) {
-    static const char *const names[] = { "auto", "gpu", "wall" };
-    for (int i = 0; s && i < 3; i++)
+    static const char *const names[] = { "auto", "gpu", "wall", "cpu" };   /* BENCH_AXIS_* */
+    for (int i = 0; s && i < 4; i++)
         if (strcmp(s, names[i]) == 0) { *axis = i; return true; }
     return false;
 }
@@ -163,7 +165,7 @@ static int parse(int argc, char **argv, bench_desc *d, char *packs, size_t packs
         else if (strcmp(a, "--docs") == 0 && next) { d->docs = next; i++; }
         else if (strcmp(a, "--ref-cache") == 0 && next) { d->ref_cache = next; i++; }
         else if (strcmp(a, "--time-axis") == 0 && next) {
-            if (!parse_axis(next, &d->time_axis)) return BAD("--time-axis wants auto, gpu or wall");
+            if (!parse_axis(next, &d->time_axis)) return BAD("--time-axis wants auto, gpu, wall or cpu");
             i++;
         } else if (strcmp(a, "--no-images") == 0) d->no_images = true;
         else if (strcmp(a, "--no-cost-model") == 0) d->no_cost_model = true;

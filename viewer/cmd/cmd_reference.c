@@ -24,7 +24,7 @@
 static const char usage[] =
     "usage: tarn reference SCENE.glib -o OUT.exr [--size WxH] [--time SECONDS]\n"
     "                      [--threads N] [--spp N | --msaa N] [--photons N] [--caustic-res N]\n"
-    "                      [--flat-caustics] [--radiance-n2] [--quiet]\n"
+    "                      [--seed N] [--flat-caustics] [--radiance-n2] [--quiet]\n"
     "\n"
     "Renders the scene's world on the CPU in double precision: the ground truth\n"
     "the packs are measured against (exact waves, Fresnel, refraction, ray/terrain\n"
@@ -53,6 +53,9 @@ static const char usage[] =
     "                       2, 4, 8 or 16 samples; 0 or 1: the pixel centre\n"
     "  --photons N          photons per caustic grid cell (default 36)\n"
     "  --caustic-res N      caustic grid cells along the underwater floor (default 256)\n"
+    "  --seed N             the photons' random numbers (default 0, the fixed\n"
+    "                       sequence); another seed samples the same strata anew, so\n"
+    "                       two seeds differ by photon noise alone\n"
     "  --flat-caustics      no photons: the floor lit through flat water\n"
     "  --radiance-n2        scale radiance crossing the surface by (n_t/n_i)^2\n"
     "  --quiet              no progress bar and no summary, only errors\n"
@@ -244,6 +247,11 @@ static int parse(int argc, char **argv, reference_opts *o) {
             i++;
         } else if (strcmp(a, "--caustic-res") == 0) {
             if (!cmd_opt_int(next, 1, 8192, &d->caustic_res)) return bad_usage("--caustic-res wants 1..8192");
+            i++;
+        } else if (strcmp(a, "--seed") == 0) {
+            int seed;
+            if (!cmd_opt_int(next, 0, 2147483647, &seed)) return bad_usage("--seed wants 0..2147483647");
+            d->seed = (uint64_t)seed;
             i++;
         } else if (strcmp(a, "--flat-caustics") == 0) {
             d->caustics = REF_CAUSTICS_FLAT;

@@ -69,6 +69,17 @@ bool bench_write_text(const char *path, const char *text) {
 
 const char *bench_setting_name(const bench *b, int pack, int setting) { return b->pb[pack].settings[setting].name; }
 
+/* The CPU time this process has used, all its threads (NaN: no such
+ * clock). With llvmpipe the rasteriser's threads are the process's, so a
+ * frame's delta is the work it took, which the machine's other processes
+ * barely change; after glFinish those threads are asleep, so their time is
+ * up to date. */
+static double cpu_now_s(void) {
+    struct timespec ts;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0) return NAN;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* /proc/loadavg's three figures (NaN where it cannot be read) */
 static void loadavg(double out[3]) {
     out[0] = out[1] = out[2] = NAN;
@@ -156,7 +167,7 @@ static void machine(bench *b) {
     snprintf(b->gl_version, sizeof b->gl_version, "%s", v ? v : "?");
     b->cpu_raster = strstr(b->gl_renderer, "llvmpipe") || strstr(b->gl_renderer, "softpipe") ||
                     strstr(b->gl_renderer, "SwiftShader") || strstr(b->gl_renderer, "lavapipe");
-    b->axis = b->o.time_axis ? b->o.time_axis : b->cpu_raster ? 2 : 1;
+    b->axis = b->o.time_axis ? b->o.time_axis : b->cpu_raster ? BENCH_AXIS_CPU : BENCH_AXIS_GPU;
     time_t now = time(NULL);
     struct tm tmv;
     gmtime_r(&now, &tmv);
@@ -300,17 +311,14 @@ static ref_entry *find_ref(bench *b, uint64_t key) {
 }
 
 /* The reference's options for each kind of reference (REFK_*). The noise
- * reference samples the photons on the next finer strata, k + 1 by k + 1 a
- * cell instead of k by k (the photon tracer's random numbers are a function
- * of a fixed seed and the stratum, and ref_render_desc has no seed: another
- * stratification is the other sampling, at about the same count: 36 -> 49);
- * the grid reference halves the caustic cells, photons a cell as the run's. */
+ * reference is the run's with another photon seed: the same strata, grid
+ * and count, other random numbers, so it differs from the run's by photon
+ * noise alone; the grid reference halves the caustic cells, photons a cell
+ * as the run's. */
 static refcache_opts ref_opts(const bench *b, int kind) {
     refcache_opts o = b->o.ref;
     if (kind == REFK_NOISE) {
-        int k = (int)lround(sqrt((double)b->o.ref_photons));
-        o.photons_per_cell = (k + 1) * (k + 1);
-        o.caustic_res = b->o.ref_caustic_res;
+        o.seed = b->o.ref.seed + 1;
     } else if (kind == REFK_GRID) {
         o.caustic_res = 2 * b->o.ref_caustic_res;
         o.photons_per_cell = b->o.ref_photons;
@@ -456,8 +464,14 @@ static const char *floor_frag =
 
 typedef struct timing {
     double gpu_ms, wall_ms, first_wall_ms, wall_spread, gpu_q1, gpu_q3, wall_q1, wall_q3;
+    double cpu_ms, cpu_q1, cpu_q3, cpu_spread, gpu_spread;
     int frames;
 } timing;
+
+/* A timing's time on the run's axis */
+static double axis_ms(const bench *b, const timing *t) {
+    return b->axis == BENCH_AXIS_GPU ? t->gpu_ms : b->axis == BENCH_AXIS_CPU ? t->cpu_ms : t->wall_ms;
+}
 
 /* Collects this frame's GPU time per pass into per-name sample lists. */
 typedef struct pass_samples {
@@ -490,7 +504,7 @@ static void pass_collect(pass_samples *ps, render *r, int max) {
 typedef struct timer_acc {
     int max, n;
     double spent;                /* seconds of timed frames so far */
-    double *gpu, *wall;
+    double *gpu, *wall, *cpu;
     bool passes;
     pass_samples ps;
 } timer_acc;
@@ -501,6 +515,7 @@ static void acc_init(timer_acc *a, int max, bool passes) {
     a->passes = passes;
     a->gpu = mem_zalloc((size_t)max * sizeof *a->gpu);
     a->wall = mem_zalloc((size_t)max * sizeof *a->wall);
+    a->cpu = mem_zalloc((size_t)max * sizeof *a->cpu);
 }
 
 /* done: the most frames, or at least 3 and the budget spent */
@@ -511,10 +526,11 @@ static bool acc_done(const bench *b, const timer_acc *a) {
 /* Up to count more timed frames at time t (fewer when done first). */
 static void acc_frames(bench *b, timer_acc *a, render *r, const render_target *tg, double t, int count) {
     for (int i = 0; i < count && !acc_done(b, a); i++) {
-        double t0 = clock_now_s();
+        double c0 = cpu_now_s(), t0 = clock_now_s();
         render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
         glFinish();   /* the wall time of the whole frame, deferred rasterisation included */
         double s = clock_now_s() - t0;
+        a->cpu[a->n] = (cpu_now_s() - c0) * 1e3;
         a->wall[a->n] = s * 1e3;
         a->gpu[a->n] = render_gpu_ms(r, true);
         a->spent += s;
@@ -523,27 +539,30 @@ static void acc_frames(bench *b, timer_acc *a, render *r, const render_target *t
     }
 }
 
-/* Medians and quartiles (numpy's interpolation), the passes' medians into
- * rw (may be NULL); frees the samples. */
-static timing acc_finish(timer_acc *a, row *rw) {
-    timing out = { NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, a->n };
-    int n = a->n;
-    if (n > 0) {
-        qsort(a->wall, (size_t)n, sizeof *a->wall, cmp_double);
-        out.wall_ms = ref_percentile_sorted(a->wall, n, 50);
-        out.wall_q1 = ref_percentile_sorted(a->wall, n, 25);
-        out.wall_q3 = ref_percentile_sorted(a->wall, n, 75);
-        if (n >= 4 && out.wall_ms > 0) out.wall_spread = (out.wall_q3 - out.wall_q1) / out.wall_ms;
-    }
-    int ng = 0;
+/* The median, quartiles and spread ((q3 - q1) / median, from 4 samples)
+ * of the v[i] >= 0 (numpy's interpolation); v is reordered. */
+static void quartiles(double *v, int n, double *med, double *q1, double *q3, double *spread) {
+    int k = 0;
     for (int i = 0; i < n; i++)
-        if (a->gpu[i] >= 0) a->gpu[ng++] = a->gpu[i];
-    if (ng > 0) {
-        qsort(a->gpu, (size_t)ng, sizeof *a->gpu, cmp_double);
-        out.gpu_ms = ref_percentile_sorted(a->gpu, ng, 50);
-        out.gpu_q1 = ref_percentile_sorted(a->gpu, ng, 25);
-        out.gpu_q3 = ref_percentile_sorted(a->gpu, ng, 75);
-    }
+        if (v[i] >= 0) v[k++] = v[i];
+    *med = *q1 = *q3 = *spread = NAN;
+    if (k == 0) return;
+    qsort(v, (size_t)k, sizeof *v, cmp_double);
+    *med = ref_percentile_sorted(v, k, 50);
+    *q1 = ref_percentile_sorted(v, k, 25);
+    *q3 = ref_percentile_sorted(v, k, 75);
+    if (k >= 4 && *med > 0) *spread = (*q3 - *q1) / *med;
+}
+
+/* Medians and quartiles of the wall, GPU and CPU times, the passes'
+ * medians into rw (may be NULL); frees the samples. */
+static timing acc_finish(timer_acc *a, row *rw) {
+    timing out = { .frames = a->n };
+    int n = a->n;
+    quartiles(a->wall, n, &out.wall_ms, &out.wall_q1, &out.wall_q3, &out.wall_spread);
+    quartiles(a->gpu, n, &out.gpu_ms, &out.gpu_q1, &out.gpu_q3, &out.gpu_spread);
+    quartiles(a->cpu, n, &out.cpu_ms, &out.cpu_q1, &out.cpu_q3, &out.cpu_spread);
+    out.first_wall_ms = NAN;
     if (rw && a->passes) {
         rw->npasses = a->ps.n;
         for (int k = 0; k < a->ps.n; k++) {
@@ -554,6 +573,7 @@ static timing acc_finish(timer_acc *a, row *rw) {
     for (int k = 0; k < a->ps.n; k++) free(a->ps.ms[k]);
     free(a->gpu);
     free(a->wall);
+    free(a->cpu);
     memset(a, 0, sizeof *a);
     return out;
 }
@@ -603,6 +623,7 @@ static bool measure_floor(bench *b) {
         timing tm = time_frames(b, r, &tg, 0.0, NULL);
         b->floor_gpu = tm.gpu_ms;
         b->floor_wall = tm.wall_ms;
+        b->floor_cpu = tm.cpu_ms;
         render_target_destroy(&tg);
     } else {
         ok = false;
@@ -977,6 +998,7 @@ static bool slot_open(bench *b, slot *sl, int s, int p, int k) {
         rw->water_rmse = rw->water_psnr = rw->off_rmse = rw->wall_spread = rw->capped_share = NAN;
         rw->p95 = rw->p99 = rw->max_abs = rw->over_share = NAN;
         rw->gpu_q1 = rw->gpu_q3 = rw->wall_q1 = rw->wall_q3 = NAN;
+        rw->cpu_ms = rw->cpu_q1 = rw->cpu_q3 = rw->cpu_spread = rw->gpu_spread = NAN;
         rw->water_flip = rw->flip = rw->water_ssim = NAN;
         rw->u_noise_rmse = rw->u_grid_rmse = rw->u_noise_flip = rw->u_grid_flip = NAN;
         rw->seq_water_rmse = rw->seq_water_ssim = rw->temporal_rmse = rw->seq_ref_change = rw->seq_pack_change = NAN;
@@ -1028,10 +1050,24 @@ static void slot_close(slot *sl) {
     sl->live = false;
 }
 
+/* One turn of a setting at time t: an untimed frame, then up to count
+ * timed ones. The untimed frame takes the cost of coming back after the
+ * other settings' turns (their textures and programs evicted this one's
+ * from the caches): timed, it was half the frames at 2 a turn, and the
+ * median fell between cold and warm frames (raymarch's CPU time at 96x54:
+ * quartiles 30 and 55 ms about a median of 32). */
+static void acc_turn(bench *b, timer_acc *a, render *r, const render_target *tg, double t, int count) {
+    if (acc_done(b, a)) return;
+    render_frame(r, t, tg->fbo, tg->w, tg->h, NULL);
+    glFinish();
+    render_gpu_ms(r, true);   /* its GPU time is not a timed frame's */
+    acc_frames(b, a, r, tg, t, count);
+}
+
 /* Round-robin: every live setting and time in turn gets rr_chunk timed
- * frames, turn after turn, until each has its frames (or its budget): a
- * load that comes and goes falls on every setting alike, not on the ones
- * that happened to run then. */
+ * frames (after an untimed one, acc_turn), turn after turn, until each has
+ * its frames (or its budget): a load that comes and goes falls on every
+ * setting alike, not on the ones that happened to run then. */
 static void time_round_robin(bench *b, slot *sl, int n, double weight_each_time) {
     double t0 = clock_now_s(), base = b->pr.done;
     double total = weight_each_time * b->o.ntimes * n;
@@ -1042,7 +1078,7 @@ static void time_round_robin(bench *b, slot *sl, int n, double weight_each_time)
             for (int ti = 0; ti < b->o.ntimes; ti++) {
                 timer_acc *a = &sl[i].acc[ti];
                 if (acc_done(b, a)) continue;
-                acc_frames(b, a, sl[i].r, &sl[i].tg, b->o.times[ti], b->o.rr_chunk);
+                acc_turn(b, a, sl[i].r, &sl[i].tg, b->o.times[ti], b->o.rr_chunk);
                 more |= !acc_done(b, a);
             }
         }
@@ -1069,6 +1105,11 @@ static void time_round_robin(bench *b, slot *sl, int n, double weight_each_time)
             rw->gpu_q3 = tm.gpu_q3;
             rw->wall_q1 = tm.wall_q1;
             rw->wall_q3 = tm.wall_q3;
+            rw->cpu_ms = tm.cpu_ms;
+            rw->cpu_q1 = tm.cpu_q1;
+            rw->cpu_q3 = tm.cpu_q3;
+            rw->cpu_spread = tm.cpu_spread;
+            rw->gpu_spread = tm.gpu_spread;
         }
     }
     progress_set(&b->pr, base + total, false, NULL);
@@ -1337,7 +1378,7 @@ static int cost_mesh(bench *b, int p, int m, cost_sample *out, char *why, size_t
         timing tm = time_frames(b, r, &tg, b->o.times[0], NULL);
         render_target_destroy(&tg);
         out[n++] = (cost_sample){ (double)w * h / 1e6, cost_model_grid_kvertices(m),
-                                  b->axis == 1 ? tm.gpu_ms : tm.wall_ms };
+                                  axis_ms(b, &tm) };
     }
     render_destroy(r);
     return n;
@@ -1373,7 +1414,21 @@ static void measure_ocean(bench *b) {
 
 /* ---- summaries ---- */
 
-double bench_axis_time(const bench *b, const summary *s) { return b->axis == 1 ? s->gpu_ms : s->wall_ms; }
+double bench_axis_time(const bench *b, const summary *s) {
+    return b->axis == BENCH_AXIS_GPU ? s->gpu_ms : b->axis == BENCH_AXIS_CPU ? s->cpu_ms : s->wall_ms;
+}
+
+double bench_axis_floor(const bench *b) {
+    return b->axis == BENCH_AXIS_GPU ? b->floor_gpu : b->axis == BENCH_AXIS_CPU ? b->floor_cpu : b->floor_wall;
+}
+
+double bench_axis_spread(const bench *b, const summary *s) {
+    return b->axis == BENCH_AXIS_GPU ? s->gpu_spread : b->axis == BENCH_AXIS_CPU ? s->cpu_spread : s->wall_spread;
+}
+
+const char *bench_axis_name(const bench *b) {
+    return b->axis == BENCH_AXIS_GPU ? "gpu" : b->axis == BENCH_AXIS_CPU ? "cpu" : "wall";
+}
 
 static double mean_of(const double *v, int n) {
     double sum = 0;
@@ -1392,33 +1447,39 @@ static void summarise(bench *b) {
         s->scene = r0->scene;
         s->pack = r0->pack;
         s->setting = r0->setting;
-        double gpu[MAX_TIMES], wall[MAX_TIMES], q[4][MAX_TIMES];
+        double gpu[MAX_TIMES], wall[MAX_TIMES], cpu[MAX_TIMES], q[6][MAX_TIMES];
         double wflip[MAX_TIMES], flip[MAX_TIMES], wssim[MAX_TIMES];
-        int ng = 0, nw = 0, ne = 0, nq = 0, nt = 0;
+        int ng = 0, nw = 0, nc = 0, ne = 0, nq = 0, nt = 0;
         double rmse = 0, psnr = 0, p95 = 0, share = 0, wrmse = 0, wpsnr = 0, off = 0;
         s->capped_share = NAN;
         int nw_err = 0;
-        s->wall_spread = 0;
+        s->wall_spread = s->cpu_spread = s->gpu_spread = 0;
         double comp[REF_OUTPUT_COUNT] = { 0 };
         int ncomp[REF_OUTPUT_COUNT] = { 0 };
         s->ok = true;
         for (int j = i; j < b->nrows && j < i + b->o.ntimes; j++) {
             const row *r = &b->rows[j];
             s->ok &= r->ok;
+            if (r->frames > 0 && (s->frames == 0 || r->frames < s->frames)) s->frames = r->frames;
             s->nan_px += r->nan_px + r->inf_px;
             if (isfinite(r->gpu_ms)) gpu[ng++] = r->gpu_ms;
             if (isfinite(r->wall_ms)) wall[nw++] = r->wall_ms;
+            if (isfinite(r->cpu_ms)) cpu[nc++] = r->cpu_ms;
             if (isfinite(r->wall_ms)) {
                 q[0][nq] = r->wall_q1;
                 q[1][nq] = r->wall_q3;
                 q[2][nq] = r->gpu_q1;
                 q[3][nq] = r->gpu_q3;
+                q[4][nq] = r->cpu_q1;
+                q[5][nq] = r->cpu_q3;
                 nq++;
             }
             wflip[nt] = r->water_flip;
             flip[nt] = r->flip;
             wssim[nt++] = r->water_ssim;
             if (isfinite(r->wall_spread) && r->wall_spread > s->wall_spread) s->wall_spread = r->wall_spread;
+            if (isfinite(r->cpu_spread) && r->cpu_spread > s->cpu_spread) s->cpu_spread = r->cpu_spread;
+            if (isfinite(r->gpu_spread) && r->gpu_spread > s->gpu_spread) s->gpu_spread = r->gpu_spread;
             if (isfinite(r->capped_share) && !(r->capped_share <= s->capped_share)) s->capped_share = r->capped_share;
             if (isfinite(r->water_rmse)) {
                 wrmse += r->water_rmse;
@@ -1443,15 +1504,17 @@ static void summarise(bench *b) {
         }
         s->gpu_ms = median(gpu, ng);
         s->wall_ms = median(wall, nw);
+        s->cpu_ms = median(cpu, nc);
         s->wall_q1 = median(q[0], nq);
         s->wall_q3 = median(q[1], nq);
-        int k2 = 0, k3 = 0;
-        for (int j = 0; j < nq; j++) {
-            if (isfinite(q[2][j])) q[2][k2++] = q[2][j];
-            if (isfinite(q[3][j])) q[3][k3++] = q[3][j];
-        }
-        s->gpu_q1 = median(q[2], k2);
-        s->gpu_q3 = median(q[3], k3);
+        int kq[6] = { 0 };
+        for (int m = 2; m < 6; m++)
+            for (int j = 0; j < nq; j++)
+                if (isfinite(q[m][j])) q[m][kq[m]++] = q[m][j];
+        s->gpu_q1 = median(q[2], kq[2]);
+        s->gpu_q3 = median(q[3], kq[3]);
+        s->cpu_q1 = median(q[4], kq[4]);
+        s->cpu_q3 = median(q[5], kq[5]);
         s->rmse = ne ? rmse / ne : NAN;
         s->water_rmse = nw_err ? wrmse / nw_err : NAN;
         s->water_psnr = nw_err ? wpsnr / nw_err : NAN;
@@ -1494,12 +1557,19 @@ static void summarise(bench *b) {
                 double u = metric == 0 ? si->u_rmse : si->u_flip;
                 y[n] = metric == 0 ? (isfinite(si->water_rmse) ? si->water_rmse : si->rmse)
                                    : (isfinite(si->water_flip) ? si->water_flip : si->flip);
-                /* what a second run could move: the time by its frames'
-                 * spread (at least BENCH_TIME_NOISE: runs on a shared
-                 * machine differ more than frames within one run); what
-                 * another reference could move: the error by its measured
+                /* what a second run could move: the time by its median's
+                 * own uncertainty, the frames' spread over sqrt(frames)
+                 * (for normal noise the median's standard error is 0.93
+                 * IQR / sqrt(n)), at least BENCH_TIME_NOISE: runs on a
+                 * shared machine differ more than frames within one run.
+                 * (The frames' spread itself, as until issue 26, let one
+                 * noisy setting tie in time with, and so take off the
+                 * front, settings it was 50% slower than.) What another
+                 * reference could move: the error by its measured
                  * uncertainty (BENCH_ERROR_TIE of it where not measured) */
-                dx[n] = x[n] * fmax(BENCH_TIME_NOISE, isfinite(si->wall_spread) ? si->wall_spread : 0);
+                double spread = bench_axis_spread(b, si);
+                double se = isfinite(spread) && si->frames > 0 ? spread / sqrt((double)si->frames) : 0;
+                dx[n] = x[n] * fmax(BENCH_TIME_NOISE, se);
                 dy[n] = fmax(isfinite(u) ? u : y[n] * BENCH_ERROR_TIE, 1e-5);
                 idx[n++] = i;
             }

@@ -1,7 +1,7 @@
 /* bench: `tarn bench [SCENE...] [options]`, speed against error. For every
  * pack present (or those named) and every setting its packs/NAME/bench.txt
- * declares (packset.h), at fixed simulated times: the median GPU time and
- * wall time per frame, and the error against the CPU reference of the same
+ * declares (packset.h), at fixed simulated times: the median GPU time,
+ * wall time and process CPU time per frame, and the error against the CPU reference of the same
  * frame (refcache.h, reference/ref_metrics.h, ref_flip.h, ref_ssim.h):
  * RMSE, HDR-FLIP and SSIM over the reference's water pixels first, and hit
  * point, Fresnel, irradiance and depth where the pack exposes them
@@ -28,6 +28,13 @@
 #define BENCH_MAX_SCENES 16
 #define BENCH_MAX_TIMES 16
 
+/* The time the plots and the Pareto fronts rank by. auto (0): the GPU
+ * timer's on a GPU, the process's CPU time on a CPU rasteriser (llvmpipe's
+ * threads are the process's, so its CPU time is the work done, which other
+ * processes' load barely moves; its GL timer and the wall time are wall
+ * clocks, which a busy machine stretches). */
+enum { BENCH_AXIS_AUTO = 0, BENCH_AXIS_GPU = 1, BENCH_AXIS_WALL = 2, BENCH_AXIS_CPU = 3 };
+
 /* What to measure. Zero means default in every field but the two whose
  * zero is a real value (warmup, frame_budget: say so with *_set). */
 typedef struct bench_desc {
@@ -47,7 +54,7 @@ typedef struct bench_desc {
     const char *out;                       /* NULL: out/bench */
     const char *ref_cache;                 /* NULL: $XDG_CACHE_HOME/tarn/ref */
     const char *docs;                      /* NULL: no docs section */
-    int time_axis;                         /* 0 auto, 1 gpu, 2 wall */
+    int time_axis;                         /* 0 auto, else BENCH_AXIS_* */
     refcache_opts ref;                     /* the references' quality; ref.spp 0: matched to the
                                               MSAA (refcache_match_msaa: the GL's positions) */
     int samples;                           /* MSAA of the packs (render_desc.samples): 0 default, 1 off */

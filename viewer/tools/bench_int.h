@@ -21,9 +21,14 @@
 #define PATH_LEN 2048
 
 /* The Pareto front's time tolerance: two settings whose times differ by
- * less than BENCH_TIME_NOISE of their time (or their frames' spread, when
- * larger) tie in time. Measured on the 2-core VM: two runs of the same
- * setting differ by up to 15% in wall time. The error tolerance is each
+ * less than BENCH_TIME_NOISE of their time (or their median's uncertainty,
+ * the frames' (q3 - q1) / median over sqrt(frames), when larger) tie in
+ * time. Measured on the 2-core VM: two runs of the same setting differ by
+ * up to 15% in wall time on a quiet machine, but under other work by up to
+ * 4x; the CPU time (BENCH_AXIS_CPU, a CPU rasteriser's axis) moved by
+ * 0.83-1.32x (median 1.06) between a run beside other helpers' builds and
+ * one with two busy loops more (docs/benchmark.md, "Timing on a busy
+ * machine"). The error tolerance is each
  * setting's measured uncertainty (the reference's noise and grid bias,
  * bench_uncertainty); BENCH_ERROR_TIE of the error is the fallback where
  * it was not measured (--no-uncertainty). */
@@ -39,7 +44,7 @@ extern const double BENCH_COST_SCALES[3];
 enum {
     REFK_MAIN = 0,   /* the frame's reference (the run's quality) */
     REFK_SEQ,        /* a frame of the animated sequence */
-    REFK_NOISE,      /* the same at (k+1)^2 photons a cell: another photon sampling */
+    REFK_NOISE,      /* the same with photon seed 1 (ref_render_desc.seed): another photon sampling */
     REFK_GRID,       /* the same at twice the caustic grid's resolution */
     REFK_FLAT,       /* flat caustics (the sun through the mean plane): a pack's flat lighting */
     REFK_COUNT
@@ -56,7 +61,7 @@ typedef struct bench_opts {
     int frames, warmup;
     double frame_budget;
     const char *out, *docs;
-    int time_axis;               /* 0 auto, 1 gpu, 2 wall */
+    int time_axis;               /* 0 auto, else BENCH_AXIS_* */
     refcache_opts ref;
     double heat_max;
     bool images, quiet;
@@ -79,12 +84,15 @@ typedef struct row {             /* one scene, pack, setting and time */
     char note[600];
     int frames;
     double gpu_ms, wall_ms, first_wall_ms;
+    double cpu_ms;               /* the process's CPU time a frame (llvmpipe's threads are ours) */
     double gpu_q1, gpu_q3, wall_q1, wall_q3;   /* the timed frames' quartiles */
+    double cpu_q1, cpu_q3;
     double water_rmse, water_psnr, off_rmse;   /* over the reference's water pixels / the rest */
     double water_flip, flip, water_ssim;       /* HDR-FLIP mean over water / the frame; SSIM over water */
     long water_px;
     double rmse, psnr, mae, p95, p99, max_abs, over_share;   /* the whole frame */
     double wall_spread;          /* the timed frames' wall time, (p75 - p25) / median */
+    double cpu_spread, gpu_spread;   /* the same of their CPU and GPU times */
     double capped_share;         /* water pixels whose refraction march ran out (NaN: not shown) */
     long nan_px, inf_px;
     unsigned gl_error;
@@ -109,11 +117,12 @@ typedef struct row {             /* one scene, pack, setting and time */
 typedef struct summary {         /* one scene, pack and setting, over the times */
     int scene, pack, setting;
     bool ok;
-    double gpu_ms, wall_ms, rmse, psnr, p95, over_share;
-    double wall_q1, wall_q3, gpu_q1, gpu_q3;   /* medians over the times of the rows' quartiles */
+    double gpu_ms, wall_ms, cpu_ms, rmse, psnr, p95, over_share;
+    double wall_q1, wall_q3, gpu_q1, gpu_q3, cpu_q1, cpu_q3;   /* medians over the times of the rows' quartiles */
     double water_rmse, water_psnr, off_rmse;   /* means over the times */
     double water_flip, flip, water_ssim;       /* means over the times */
-    double wall_spread;                        /* the largest of its rows' */
+    double wall_spread, cpu_spread, gpu_spread;   /* the largest of its rows' */
+    int frames;                                /* the fewest timed frames of its rows */
     double capped_share;                       /* the largest of its rows' (NaN: not shown) */
     /* hit p95 (m), Fresnel MAE, irradiance relative error's median (the
      * mean is ruled by the few points the reference has almost no sun),
@@ -160,11 +169,11 @@ typedef struct bench {
     int nsums;
     ref_entry *refs;
     int nrefs;
-    double floor_gpu, floor_wall;
+    double floor_gpu, floor_wall, floor_cpu;
     char gl_renderer[256], gl_version[256], cpu[256];
     int cores;
     bool cpu_raster;
-    int axis;                    /* resolved: 1 gpu, 2 wall */
+    int axis;                    /* resolved: BENCH_AXIS_* */
     double seconds;
     char started[64];
     double load_before[3], load_after[3];   /* /proc/loadavg: 1, 5, 15 min (NaN: unknown) */
@@ -186,6 +195,9 @@ typedef struct bench {
 void bench_stem(const char *path, char *out, size_t len);
 bool bench_write_text(const char *path, const char *text);
 double bench_axis_time(const bench *b, const summary *s);
+double bench_axis_floor(const bench *b);           /* the cost floor's time on the axis */
+double bench_axis_spread(const bench *b, const summary *s);   /* its frames' (q3 - q1) / median */
+const char *bench_axis_name(const bench *b);       /* "gpu", "wall" or "cpu" */
 const char *bench_setting_name(const bench *b, int pack, int setting);
 
 /* the writers (bench_report.c): bench.csv, passes.csv, bench.json,

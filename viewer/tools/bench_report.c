@@ -30,6 +30,11 @@ static void fmt(char *out, size_t len, const char *f, ...) {
 
 /* ---- writing ---- */
 
+/* The time axis in words: "GPU", "wall" or "CPU" */
+static const char *axis_label(const bench *b) {
+    return b->axis == BENCH_AXIS_GPU ? "GPU" : b->axis == BENCH_AXIS_CPU ? "CPU" : "wall";
+}
+
 static void json_num(strbuf *o, double v) {
     if (isnan(v)) strbuf_printf(o, "null");
     else if (isinf(v)) strbuf_printf(o, v > 0 ? "\"inf\"" : "\"-inf\"");
@@ -66,6 +71,7 @@ static bool write_csv(bench *b, const char *path) {
                   "off_water_rmse,march_capped_share,rmse,psnr_db,mae,error_p95,error_p99,"
                   "max_abs,over_threshold_share,nan_pixels,inf_pixels,gl_error,"
                   "water_flip,flip,water_ssim,gpu_q1_ms,gpu_q3_ms,wall_q1_ms,wall_q3_ms,"
+                  "cpu_ms,cpu_q1_ms,cpu_q3_ms,floor_cpu_ms,x_floor_cpu,gpu_spread,wall_spread,cpu_spread,"
                   "water_rmse_u_noise,water_rmse_u_grid,water_flip_u_noise,water_flip_u_grid,"
                   "seq_frames,seq_water_rmse,seq_water_ssim,temporal_rmse,seq_ref_change_rms,seq_pack_change_rms,"
                   "irradiance_flat");
@@ -109,6 +115,14 @@ static bool write_csv(bench *b, const char *path) {
         csv_num(&o, r->gpu_q3);
         csv_num(&o, r->wall_q1);
         csv_num(&o, r->wall_q3);
+        csv_num(&o, r->cpu_ms);
+        csv_num(&o, r->cpu_q1);
+        csv_num(&o, r->cpu_q3);
+        csv_num(&o, b->floor_cpu);
+        csv_num(&o, r->cpu_ms / b->floor_cpu);
+        csv_num(&o, r->gpu_spread);
+        csv_num(&o, r->wall_spread);
+        csv_num(&o, r->cpu_spread);
         csv_num(&o, r->u_noise_rmse);
         csv_num(&o, r->u_grid_rmse);
         csv_num(&o, r->u_noise_flip);
@@ -173,7 +187,7 @@ static bool write_json(bench *b, const char *path) {
     for (int i = 0; i < b->o.ntimes; i++) strbuf_printf(&o, "%s%.9g", i ? ", " : "", b->o.times[i]);
     strbuf_printf(&o, "], \"max_frames\": %d, \"frame_budget_s\": %g, \"warmup\": %d, \"time_axis\": \"%s\", "
                   "\"references_rendered\": %d, \"references_cached\": %d, ",
-              b->o.frames, b->o.frame_budget, b->o.warmup, b->axis == 1 ? "gpu" : "wall", b->refs_rendered,
+              b->o.frames, b->o.frame_budget, b->o.warmup, bench_axis_name(b), b->refs_rendered,
               b->refs_cached);
     static const char *const kinds[REFK_COUNT] = { "frame", "sequence", "noise", "grid", "flat" };
     strbuf_printf(&o, "\"other_references\": {");
@@ -194,10 +208,11 @@ static bool write_json(bench *b, const char *path) {
     strbuf_printf(&o, "], \"seconds_timing\": %.1f, \"seconds_flip\": %.1f, \"seconds_sequence\": %.1f, "
                   "\"flip\": \"HDR\", \"flip_ppd\": %.4f, \"sequence\": {\"frames\": %d, \"fps\": %g, "
                   "\"width\": %d, \"height\": %d, \"start_s\": %.9g}, \"uncertainty\": %s, "
-                  "\"reference_photons\": %d, \"reference_caustic_res\": %d},\n",
+                  "\"reference_photons\": %d, \"reference_caustic_res\": %d, \"reference_seed\": %llu, "
+                  "\"noise_reference_seed\": %llu},\n",
                   b->seconds_timing, b->seconds_flip, b->seconds_seq, REF_FLIP_PPD, b->o.seq_frames, b->o.seq_fps,
                   b->o.seq_w, b->o.seq_h, b->o.times[0], b->o.uncertainty ? "true" : "false", b->o.ref_photons,
-                  b->o.ref_caustic_res);
+                  b->o.ref_caustic_res, (unsigned long long)b->o.ref.seed, (unsigned long long)b->o.ref.seed + 1);
     strbuf_printf(&o, "  \"msaa\": %d, \"reference_spp\": %d, \"reference_positions\": [", b->o.samples_used,
                   b->o.ref.spp);
     for (int k = 0; k < b->o.ref.nsamples; k++)
@@ -207,6 +222,8 @@ static bool write_json(bench *b, const char *path) {
     json_num(&o, b->floor_gpu);
     strbuf_printf(&o, ", \"wall_ms\": ");
     json_num(&o, b->floor_wall);
+    strbuf_printf(&o, ", \"cpu_ms\": ");
+    json_num(&o, b->floor_cpu);
     strbuf_printf(&o, "},\n  \"summary\": [\n");
     for (int i = 0; i < b->nsums; i++) {
         const summary *s = &b->sums[i];
@@ -226,6 +243,10 @@ static bool write_json(bench *b, const char *path) {
         json_num(&o, s->gpu_ms / b->floor_gpu);
         strbuf_printf(&o, ", \"x_floor_wall\": ");
         json_num(&o, s->wall_ms / b->floor_wall);
+        strbuf_printf(&o, ", \"cpu_ms\": ");
+        json_num(&o, s->cpu_ms);
+        strbuf_printf(&o, ", \"x_floor_cpu\": ");
+        json_num(&o, s->cpu_ms / b->floor_cpu);
         strbuf_printf(&o, ", \"water_rmse\": ");
         json_num(&o, s->water_rmse);
         strbuf_printf(&o, ", \"water_psnr_db\": ");
@@ -257,7 +278,9 @@ static bool write_json(bench *b, const char *path) {
             { "water_rmse_u_grid", s->u_grid_rmse }, { "water_flip_u", s->u_flip },
             { "water_flip_u_noise", s->u_noise_flip }, { "water_flip_u_grid", s->u_grid_flip },
             { "gpu_q1_ms", s->gpu_q1 }, { "gpu_q3_ms", s->gpu_q3 }, { "wall_q1_ms", s->wall_q1 },
-            { "wall_q3_ms", s->wall_q3 }, { "seq_water_rmse", s->seq_water_rmse },
+            { "wall_q3_ms", s->wall_q3 }, { "cpu_q1_ms", s->cpu_q1 }, { "cpu_q3_ms", s->cpu_q3 },
+            { "gpu_spread", s->gpu_spread }, { "wall_spread", s->wall_spread }, { "cpu_spread", s->cpu_spread },
+            { "seq_water_rmse", s->seq_water_rmse },
             { "seq_water_ssim", s->seq_water_ssim }, { "temporal_rmse", s->temporal_rmse },
             { "seq_ref_change_rms", s->seq_ref_change }, { "seq_pack_change_rms", s->seq_pack_change },
         };
@@ -313,7 +336,8 @@ static bool write_json(bench *b, const char *path) {
         const struct { const char *k; double v; } more[] = {
             { "water_flip", r->water_flip }, { "flip", r->flip }, { "water_ssim", r->water_ssim },
             { "gpu_q1_ms", r->gpu_q1 }, { "gpu_q3_ms", r->gpu_q3 }, { "wall_q1_ms", r->wall_q1 },
-            { "wall_q3_ms", r->wall_q3 }, { "water_rmse_u_noise", r->u_noise_rmse },
+            { "wall_q3_ms", r->wall_q3 }, { "cpu_ms", r->cpu_ms }, { "cpu_q1_ms", r->cpu_q1 },
+            { "cpu_q3_ms", r->cpu_q3 }, { "water_rmse_u_noise", r->u_noise_rmse },
             { "water_rmse_u_grid", r->u_grid_rmse }, { "water_flip_u_noise", r->u_noise_flip },
             { "water_flip_u_grid", r->u_grid_flip },
         };
@@ -389,7 +413,7 @@ static void cost_md(bench *b, strbuf *o) {
     strbuf_printf(o, "**Cost model** (%s, each pack's default; %s ms a frame = a + b·Mpixels + c·kvertices of the "
                   "water grid, least squares over %d frames: %dx%d, %dx%d and %dx%d, each with WaterMesh 64, 128 "
                   "and 256; the last column extrapolates far beyond them, so read it as an order of magnitude):\n\n",
-                  sc, b->axis == 1 ? "GPU" : "wall", COST_SAMPLES, (int)lround(b->o.w * COST_SCALES[0]),
+                  sc, axis_label(b), COST_SAMPLES, (int)lround(b->o.w * COST_SCALES[0]),
                   (int)lround(b->o.h * COST_SCALES[0]), b->o.w, b->o.h, (int)lround(b->o.w * COST_SCALES[2]),
                   (int)lround(b->o.h * COST_SCALES[2]));
     strbuf_printf(o, "| pack | a ms | b ms/Mpixel | c ms/kvertex | R² | residual ms | 1920x1080, mesh 256 |\n"
@@ -444,11 +468,13 @@ static void scene_notes_md(bench *b, strbuf *o, int sc) {
     for (int k = 0; k < 6; k++) m[k] = median_of(v[k], n);
     if (b->o.uncertainty && isfinite(m[0]))
         strbuf_printf(o, "Uncertainty (t = %g s, median over the settings): another photon sampling of the "
-                      "reference (%d instead of %d photons a caustic cell) moves a setting's water RMSE by %.5f "
+                      "reference (photon seed %llu instead of %llu, %d photons a caustic cell) moves a setting's "
+                      "water RMSE by %.5f "
                       "and its water FLIP by %.4f; a caustic grid twice as fine (%d cells instead of %d) by %.5f "
                       "and %.4f. Combined: %.1f%% of the water RMSE, %.1f%% of the water FLIP. Each setting's "
                       "own figures are the ± in the table; they decide the ties.\n\n",
-                      b->o.times[0], (int)pow(lround(sqrt(b->o.ref_photons)) + 1, 2), b->o.ref_photons, m[0], m[2],
+                      b->o.times[0], (unsigned long long)b->o.ref.seed + 1, (unsigned long long)b->o.ref.seed,
+                      b->o.ref_photons, m[0], m[2],
                       2 * b->o.ref_caustic_res, b->o.ref_caustic_res, m[1], m[3], 100 * m[4], 100 * m[5]);
     if (b->o.seq_frames >= 2 && isfinite(ref_change))
         strbuf_printf(o, "Over time: %d frames at %g fps from t = %g s at %dx%d; the reference's own frame-to-frame "
@@ -498,22 +524,28 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
               aa, subs, b->o.spp_matched ? ", to match" : " (--ref-spp)");
     if (b->cpu_raster)
         strbuf_printf(o, "**%s is a CPU rasteriser**: its GPU timestamps are taken when commands are issued, "
-                     "not when pixels are drawn, so the GPU column is not meaningful here. The wall time "
-                     "(after `glFinish`) is what the plot and the Pareto front use.\n\n",
+                     "not when pixels are drawn, so the GPU column is not meaningful here, and its wall time "
+                     "(after `glFinish`) stretches with whatever else the machine runs. \"CPU ms\" is this "
+                     "process's CPU time a frame (`CLOCK_PROCESS_CPUTIME_ID`): the rasteriser's threads are "
+                     "the process's, so it is the work the frame took, which other processes' load barely "
+                     "moves.\n\n",
                   b->gl_renderer);
-    strbuf_printf(o, "Cost floor (a full-screen pass with one texture fetch): %.3f ms GPU, %.3f ms wall. "
-                 "\"× floor\" is a setting's %s time over the floor's.\n\n",
-              b->floor_gpu, b->floor_wall, b->axis == 1 ? "GPU" : "wall");
+    strbuf_printf(o, "Time axis: **%s** time (`time_axis` \"%s\"): what the plots, \"× floor\" and the Pareto "
+                 "fronts use.\n\n", axis_label(b), bench_axis_name(b));
+    strbuf_printf(o, "Cost floor (a full-screen pass with one texture fetch): %.3f ms GPU, %.3f ms wall, %.3f ms "
+                 "CPU. \"× floor\" is a setting's %s time over the floor's.\n\n",
+              b->floor_gpu, b->floor_wall, b->floor_cpu, axis_label(b));
     for (int sc = 0; sc < b->o.nscenes; sc++) {
         char st[256];
         stem(b->scene_abs[sc], st, sizeof st);
         strbuf_printf(o, "### %s\n\n", st);
         scene_notes_md(b, o, sc);
-        strbuf_printf(o, "| pack | setting | GPU ms | wall ms | wall q1–q3 | × floor | water RMSE | water ꟻLIP | "
+        strbuf_printf(o, "| pack | setting | GPU ms | wall ms | wall q1–q3 | CPU ms | CPU q1–q3 | × floor | "
+                     "water RMSE | water ꟻLIP | "
                      "water SSIM | water PSNR dB | off-water RMSE | frame RMSE | frame ꟻLIP | p95 error | > 0.05 | "
                      "water RMSE over time | temporal | hit p95 m | march capped | Fresnel MAE | "
                      "irradiance rel. median | depth MAE m | Pareto | ꟻLIP front |\n"
-                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+                     "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
                      "---:|---:|---:|:-:|:-:|\n");
         for (int i = 0; i < b->nsums; i++) {
             const summary *s = &b->sums[i];
@@ -524,7 +556,7 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
                 for (int j = 0; j < b->nrows; j++)
                     if (b->rows[j].scene == sc && b->rows[j].pack == s->pack && b->rows[j].setting == s->setting)
                         r = &b->rows[j];
-                strbuf_printf(o, " failed: %s | | | | | | | | | | | | | | | | | | | | | |\n",
+                strbuf_printf(o, " failed: %s | | | | | | | | | | | | | | | | | | | | | | | |\n",
                               r && r->error[0] ? r->error : "?");
                 continue;
             }
@@ -532,7 +564,10 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
             md_num(o, "%.1f", s->wall_ms);
             if (isfinite(s->wall_q1)) strbuf_printf(o, " %.1f–%.1f |", s->wall_q1, s->wall_q3);
             else strbuf_printf(o, " – |");
-            md_num(o, "%.1f", axis_time(b, s) / (b->axis == 1 ? b->floor_gpu : b->floor_wall));
+            md_num(o, "%.1f", s->cpu_ms);
+            if (isfinite(s->cpu_q1)) strbuf_printf(o, " %.1f–%.1f |", s->cpu_q1, s->cpu_q3);
+            else strbuf_printf(o, " – |");
+            md_num(o, "%.1f", axis_time(b, s) / bench_axis_floor(b));
             md_pm(o, s->water_rmse, s->u_rmse, 4);
             md_pm(o, s->water_flip, s->u_flip, 3);
             md_num(o, "%.3f", s->water_ssim);
@@ -552,7 +587,7 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
             md_num(o, "%.3f", s->has[4] ? s->comp[4] : NAN);
             strbuf_printf(o, " %s | %s |\n", s->pareto ? "●" : "", s->pareto_flip ? "●" : "");
             if (s->nan_px)
-                strbuf_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | | | | | | | |\n",
+                strbuf_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | | | | | | | | | |\n",
                               s->nan_px);
         }
         strbuf_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
@@ -607,11 +642,13 @@ static bool write_plot(bench *b, int sc, int metric, const char *path) {
     snprintf(title, sizeof title, "%s %dx%d: speed against %s", st, b->o.w, b->o.h,
              metric == 0 ? "error" : "FLIP (perceptual error)");
     snprintf(sub, sizeof sub, "%.60s", b->gl_renderer);
-    snprintf(floor, sizeof floor, "floor %.3g ms", b->axis == 1 ? b->floor_gpu : b->floor_wall);
+    snprintf(floor, sizeof floor, "floor %.3g ms", bench_axis_floor(b));
+    char xlabel[64];
+    snprintf(xlabel, sizeof xlabel, "%s time per frame, ms (log)", axis_label(b));
     plot_chart c = { .title = title, .subtitle = sub,
-                     .xlabel = b->axis == 1 ? "GPU time per frame, ms (log)" : "wall time per frame, ms (log)",
+                     .xlabel = xlabel,
                      .ylabel = metric == 0 ? "water RMSE vs reference (log)" : "water HDR-FLIP vs reference (log)", .series = series, .nseries = ns,
-                     .floor_x = b->axis == 1 ? b->floor_gpu : b->floor_wall, .floor_label = floor };
+                     .floor_x = bench_axis_floor(b), .floor_label = floor };
     img im;
     bool ok = plot_speed_error(&c, &im);
     char err[512];

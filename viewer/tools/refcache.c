@@ -72,6 +72,7 @@ static ref_render_desc make_desc(const loaded *l, const ref_world *world, int w,
             memcpy(d.samples, o->samples, (size_t)o->nsamples * sizeof d.samples[0]);
         d.caustic_res = o->caustic_res;
         d.photons_per_cell = o->photons_per_cell;
+        d.seed = o->seed;
         d.threads = o->threads;
         d.caustics = o->flat_caustics ? REF_CAUSTICS_FLAT : REF_CAUSTICS_PHOTONS;
     }
@@ -101,6 +102,8 @@ static uint64_t key_of(const loaded *l, const ref_render_desc *d) {
         h = hash_fnv1a(h, &r.nsamples, sizeof r.nsamples);
         h = hash_fnv1a(h, r.samples, (size_t)r.nsamples * sizeof r.samples[0]);
     }
+    if (r.seed != 0 && r.caustics == REF_CAUSTICS_PHOTONS)   /* absent: seed 0's keys as before */
+        h = hash_fnv1a(h, &r.seed, sizeof r.seed);
     return h;
 }
 

@@ -2,7 +2,8 @@
  * at a size, time and camera, cached on disk so reruns of `tarn bench` are
  * fast. The key is a hash of everything the image depends on: the world
  * (less the GL-only mesh resolutions), the camera, the size, the time and
- * the reference's quality settings (the subsample positions among them).
+ * the reference's quality settings (the subsample positions and a photon
+ * seed other than 0 among them).
  * Files, in DIR:
  *
  *   STEM-WxH-tT-KEY.exr              linear RGB, 32-bit float
@@ -27,6 +28,8 @@ typedef struct refcache_opts {
     double samples[REF_MAX_SAMPLES][2];
     int caustic_res;
     int photons_per_cell;
+    uint64_t seed;            /* the photons' seed (ref_render_desc.seed; 0: the default
+                                 sequence, and the key of every cache file so far) */
     int threads;
     bool flat_caustics;
 } refcache_opts;
