@@ -12,7 +12,11 @@
  *     is gone: removed there.
  * (c) Two runs of the same seed and steps give bit-identical state; another
  *     seed another.
- * (d) A world without a Spray runs no spray pass and builds no state. */
+ * (d) A world without a Spray runs no spray pass and builds no state.
+ * (e) Over a spectrum ocean (height from textures of one time) a step
+ *     after a jump emits nothing (no other model rises), and played
+ *     steps, which read the ocean's upward speed from the last two height
+ *     maps, do: spray on its crests. */
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <math.h>
@@ -180,6 +184,43 @@ static void test_no_spray_no_pass(void) {
     world_free(&gw);
 }
 
+static void test_ocean_crests_throw_spray(void) {
+    ref_world_desc desc;
+    memset(&desc, 0, sizeof desc);
+    desc.terrain = REF_TERRAIN_FLAT;
+    desc.depth = 30;
+    desc.half_size = 20;
+    desc.waves.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_PHILLIPS, .wind_speed = 12, .res = 64,
+                                         .cascades = 1, .choppiness = 1, .seed = 3 };
+    desc.spray = (ref_spray_desc){ .on = true, .threshold = 0.3, .rate = 1e6, .life = 3, .seed = 5, .count = 4096 };
+    gpu_world gw;
+    memset(&gw, 0, sizeof gw);
+    const char *inc[1] = { common_dir() };
+    char *log = NULL;
+    CHECK(world_build(&gw, &desc, inc, common_dir(), &log));
+    if (log) fprintf(stderr, "%s", log);
+    free(log);
+    int n = gw.spray.res * gw.spray.res;
+    float *pos = malloc((size_t)n * 4 * sizeof(float)), *vel = malloc((size_t)n * 4 * sizeof(float));
+    int first = -1, most = 0;
+    for (int s = 0; s <= 20; s++) {   /* as render_frame: ocean, height map, spray */
+        double t = 2.0 + s / 30.0;
+        world_update_ocean(&gw, t, NULL);
+        world_update_height(&gw, t, 1.0);
+        world_update_spray(&gw, t, NULL);
+        spray_read(&gw.spray, pos, vel);
+        int k = live(pos, n);
+        if (s == 0) first = k;
+        if (k > most) most = k;
+    }
+    printf("  ocean: %d live after the jump, at most %d over 20 played steps\n", first, most);
+    CHECK(first == 0);
+    CHECK(most > 20);
+    free(pos);
+    free(vel);
+    world_free(&gw);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -187,6 +228,7 @@ int main(void) {
     RUN(test_parabolas_until_the_water);
     RUN(test_same_seed_same_spray);
     RUN(test_no_spray_no_pass);
+    RUN(test_ocean_crests_throw_spray);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

@@ -15,6 +15,12 @@ uniform uint  uSprayStep;       // round(t * 1000): the step's numbers
 uniform float uSprayDt;
 uniform vec4  uSprayEmit;       // (threshold m/s, emission probability a slot, life s, half square m)
 uniform float uSprayFd;         // the backward difference's step (s)
+uniform float uSprayHeightRate; // 1 / the time between the last two height maps; 0: not this step
+#ifdef WAVES_HAS_OCEAN
+uniform sampler2D uWaveHeight;      // unit 30: the surface's height over the world, now
+uniform sampler2D uSprayHeightPrev; // the map before
+uniform float uWaveHeightHalf;      // the maps cover x, z in [-half, half]
+#endif
 layout(location = 0) out vec4 oPos;
 layout(location = 1) out vec4 oVel;
 
@@ -53,6 +59,14 @@ void main() {
     wavesSums(p0, uTime, h, dh, disp, abd);
     wavesSums(p0, uTime - uSprayFd, hb, dhb, dispb, abdb);
     float w = (h - hb) / uSprayFd;                 // the surface's upward speed
+#ifdef WAVES_HAS_OCEAN
+    // the ocean's textures hold one time: the speed of every model from the
+    // last two height maps instead, where the step ends at the map's time
+    if (uSprayHeightRate > 0.0) {
+        vec2 uv = (p0 + disp) / (2.0 * uWaveHeightHalf) + 0.5;
+        w = (texture(uWaveHeight, uv).r - texture(uSprayHeightPrev, uv).r) * uSprayHeightRate;
+    }
+#endif
     if (w <= uSprayEmit.x) return;
     vec3 n = normalize(vec3(-dh.x, 1.0, -dh.y));
     vec3 jitter = vec3(sprayRand(k + 3u) - 0.5, 0.0, sprayRand(k + 4u) - 0.5) * 0.7;

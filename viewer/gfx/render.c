@@ -1614,8 +1614,9 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
      * frame binds its target; the frame's own passes are "screen" again */
     if (s->glib && world_update_ocean(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     if (s->glib && world_update_flow(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
-    if (s->glib && world_update_spray(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     if (s->glib) world_update_height(&r->world, t, r->detail);
+    /* the spray after the height map: an ocean's upward speed is read from it */
+    if (s->glib && world_update_spray(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     bool ms = s->glib && render_msaa_begin(&r->msaa, render_samples(r), fbo, w, h, r->world.active);
     if (ms) { fbo = r->msaa.fbo; x = 0; y = 0; }
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);

@@ -26,7 +26,13 @@
  * the desc's. So `rate` is the particles a second were the whole square
  * over the threshold, and a run of the same steps gives the same spray.
  * The spectrum ocean's height comes from textures of one time (its
- * derivative would take another inverse FFT): it adds no upward speed. */
+ * derivative would take another inverse FFT), so in a world with an ocean
+ * the step that ends at the height map's time takes the upward speed from
+ * the last two height maps instead (render_world.c keeps the one before
+ * while there is a spray), (H_t - H_prev) / (t - t_prev) at the candidate's
+ * displaced point: every model at once, Eulerian. A played sequence emits
+ * on the ocean's crests; the steps of a catch-up after a jump (no maps
+ * of their times) take the other models' speed only. */
 #ifndef TARN_RENDER_SPRAY_H
 #define TARN_RENDER_SPRAY_H
 
@@ -37,6 +43,7 @@
 
 #define SPRAY_UNIT_POS 24            /* under the flow's 26 and the ocean's 27-29 */
 #define SPRAY_UNIT_VEL 25
+#define SPRAY_UNIT_HEIGHT_PREV 23    /* the height map before (the ocean's upward speed) */
 #define SPRAY_GRAVITY 9.81
 #define SPRAY_DT_FD (1.0 / 256.0)    /* the upward speed's backward difference (s) */
 #define SPRAY_STEP_MAX (1.0 / 30.0)  /* a longer step is cut into steps of at most this */

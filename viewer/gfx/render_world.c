@@ -455,6 +455,8 @@ void world_free(gpu_world *gw) {
     prog_free(&gw->height_prog);
     if (gw->height_fbo) glDeleteFramebuffers(1, &gw->height_fbo);
     if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
+    if (gw->height_prev_fbo) glDeleteFramebuffers(1, &gw->height_prev_fbo);
+    if (gw->height_prev_tex) glDeleteTextures(1, &gw->height_prev_tex);
     ref_world_release(&gw->w);   /* after ocean_free: its GL passes read the ocean */
     bool off = gw->height_map_off;   /* a setting of the renderer's, not of this world */
     memset(gw, 0, sizeof *gw);
@@ -759,7 +761,20 @@ bool world_update_ocean(gpu_world *gw, double t, gpu_timer *timer) {
 
 static void spray_upload(const void *ctx, unsigned p, double t) {
     static const float origin[3] = { 0, 0, 0 };
-    world_upload(ctx, p, t, origin);
+    const gpu_world *gw = ctx;
+    world_upload(gw, p, t, origin);
+    /* the last two height maps, for the ocean's upward speed in the step
+     * that ends at the map's time (a short step after the one before) */
+    double gap = gw->height_t - gw->height_prev_t;
+    bool rate = gw->height_tex && gw->height_prev_tex && gw->height_prev_res == gw->height_res &&
+                t == gw->height_t && gap > 0 && gap <= SPRAY_JUMP_DT;
+    glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_HEIGHT);
+    glBindTexture(GL_TEXTURE_2D, gw->height_tex);
+    glActiveTexture(GL_TEXTURE0 + SPRAY_UNIT_HEIGHT_PREV);
+    glBindTexture(GL_TEXTURE_2D, gw->height_prev_tex);
+    glActiveTexture(GL_TEXTURE0);
+    seti(p, "uSprayHeightPrev", SPRAY_UNIT_HEIGHT_PREV);
+    set1(p, "uSprayHeightRate", rate ? (float)(1.0 / gap) : 0.0f);
 }
 
 bool world_update_spray(gpu_world *gw, double t, gpu_timer *timer) {
@@ -798,6 +813,18 @@ void world_update_height(gpu_world *gw, double t, double detail) {
     int res = world_detail_count(WORLD_HEIGHT_RES, detail, 32);
     if (gw->height_tex && res == gw->height_res && t == gw->height_t && gw->height_prog.hash == gw->height_hash)
         return;   /* drawn for this time already: a still frame, or a second view */
+    if (gw->spray.active && gw->height_tex) {
+        /* keep the map before: draw into the other one (swapped, no copy) */
+        unsigned tex = gw->height_tex, fbo = gw->height_fbo;
+        int r = gw->height_res;
+        gw->height_tex = gw->height_prev_tex;
+        gw->height_fbo = gw->height_prev_fbo;
+        gw->height_res = gw->height_prev_res;
+        gw->height_prev_tex = tex;
+        gw->height_prev_fbo = fbo;
+        gw->height_prev_res = r;
+        gw->height_prev_t = gw->height_t;
+    }
     if (!gw->height_tex || res != gw->height_res) height_target(gw, res);
     glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
     glViewport(0, 0, res, res);

@@ -70,6 +70,11 @@ typedef struct gpu_world {
     unsigned height_tex, height_fbo;
     int height_res;
     double height_t;
+    /* the map before this one, kept while the world has a spray: the
+     * spectrum ocean's upward speed is their difference (render_spray.h) */
+    unsigned height_prev_tex, height_prev_fbo;
+    int height_prev_res;
+    double height_prev_t;
     unsigned long long height_hash;   /* the program the map was drawn with */
     /* The spectrum ocean's frame (render_ocean.h): created with the world
      * when its waves hold an ocean, nothing otherwise. */
