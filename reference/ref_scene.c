@@ -362,12 +362,12 @@ static double clouds(const ref_world *w, const double dir[3], double crgb[3]) {
     double k = height / dir[1] / scale, x = dir[0] * k, z = dir[2] * k;
     /* octaves turned against each other, so no lattice lines show; each
      * fades to its mean where its features, seen foreshortened, span under
-     * 10 texels of the GL side's cube map (0.003 rad): towards the horizon
+     * 3-6 texels of the GL side's cube map (0.003 rad): towards the horizon
      * they shrink below any pixel, and a point sample of them is noise */
     double sum = 0, amp = 1, norm = 0, ca = cos(0.61), sa = sin(0.61);
     double angle = scale * dir[1] * dir[1] / height;   /* the first octave's cell, in radians */
     for (int o = 0; o < 6; o++) {
-        double keep = smoothstep(0.015, 0.03, angle);
+        double keep = smoothstep(0.01, 0.02, angle);
         angle /= 2.03;
         sum += amp * (0.5 + keep * (ref_value_noise(x, z, 0x636c6f75u + (unsigned)o) - 0.5));
         norm += amp;

@@ -67,9 +67,12 @@ typedef enum ref_terrain_kind {
 #define REF_FLOW_TERMS_MAX 4
 typedef enum ref_flow_kind {
     REF_FLOW_CURRENT = 1,          /* p: vx vz (m/s), everywhere */
-    REF_FLOW_VORTEX                /* p: x z strength radius: a Rankine vortex turning
+    REF_FLOW_VORTEX,               /* p: x z strength radius: a Rankine vortex turning
                                     * anticlockwise seen from above for strength > 0,
                                     * speed strength r/R inside R, strength R/r outside */
+    REF_FLOW_TEXTURE               /* p: scale (m/s); ref_flow_desc.texture: a velocity
+                                    * map over the world square, (vx, vz) = (2 R - 1,
+                                    * 2 G - 1) scale, its top row at z = -half_size */
 } ref_flow_kind;
 
 typedef struct ref_flow_term {
@@ -84,6 +87,7 @@ typedef struct ref_flow_desc {
     double detail_cell;            /* their noise cell (m); 0: 0.5 */
     double period;                 /* seconds a layer lives before it restarts; 0: 3 */
     double foam;                   /* cover of the advected foam streaks, 0..1; 0: none */
+    char texture[1024];            /* REF_FLOW_TEXTURE's file (resolved), one a world */
 } ref_flow_desc;
 
 typedef struct ref_spray_desc {

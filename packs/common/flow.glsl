@@ -28,11 +28,16 @@
 #define FLOW_TERMS_MAX 4
 #define FLOW_CURRENT 1
 #define FLOW_VORTEX 2
+#define FLOW_TEXTURE 3
 
 uniform int   uFlowN;                       // terms, 1..FLOW_TERMS_MAX
 uniform int   uFlowKind[FLOW_TERMS_MAX];    // FLOW_CURRENT, FLOW_VORTEX
 uniform vec4  uFlowTerm[FLOW_TERMS_MAX];    // current (vx, vz, 0, 0); vortex (x, z, strength, radius)
 uniform vec2  uFlowRect;                    // (half side of the map's square, 1 / side)
+#ifdef FLOW_ADVECT_PASS
+uniform sampler2D uFlowVel;                 // unit 22: a Flow texture's velocity map, (vx, vz) = (2 rg - 1) scale
+uniform float uFlowVelHalf;                 // it covers |x|, |z| <= this (the world square), top row at -z
+#endif
 
 vec2 flowVelocity(vec2 xz) {
     vec2 v = vec2(0.0);
@@ -41,7 +46,12 @@ vec2 flowVelocity(vec2 xz) {
         vec4 p = uFlowTerm[i];
         if (uFlowKind[i] == FLOW_CURRENT) {
             v += p.xy;
-        } else {                                // Rankine: s r / R inside, s R / r outside
+#ifdef FLOW_ADVECT_PASS
+        } else if (uFlowKind[i] == FLOW_TEXTURE) {
+            vec2 st = (xz / uFlowVelHalf) * 0.5 + 0.5;
+            v += (texture(uFlowVel, st).rg * 2.0 - 1.0) * p.x;
+#endif
+        } else if (uFlowKind[i] == FLOW_VORTEX) {                                // Rankine: s r / R inside, s R / r outside
             vec2 r = xz - p.xy;
             float d = length(r), R = p.w;
             float speed = d < R ? p.z * d / R : p.z * R / d;

@@ -14,8 +14,10 @@
 #include <GL/glext.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "image_io.h"
 #include "strbuf.h"
 
 void flow_desc_resolve(ref_flow_desc *d) {
@@ -61,6 +63,36 @@ static unsigned make_map(void) {
     return t;
 }
 
+/* A Flow texture's velocity map: R and G of the file (file order: its top
+ * row at z = -half, GL's first row), linear, clamped at the edges. */
+static bool load_velocity(gpu_flow *f, char **log) {
+    img im = { 0 };
+    char err[1200];
+    if (!img_read(f->d.texture, &im, err, sizeof err) || im.d != 1) {
+        str_appendf(log, "tarn: error: Flow texture: %s\n", im.d > 1 ? "a volume is not a velocity map" : err);
+        img_free(&im);
+        return false;
+    }
+    float *rg = malloc((size_t)im.w * im.h * 2 * sizeof(float));
+    if (!rg) { img_free(&im); return false; }
+    for (size_t i = 0; i < (size_t)im.w * im.h; i++) {
+        rg[2 * i] = im.px[i * im.channels];
+        rg[2 * i + 1] = im.channels > 1 ? im.px[i * im.channels + 1] : 0.5f;   /* a grey map: no vz */
+    }
+    glGenTextures(1, &f->vel_tex);
+    glBindTexture(GL_TEXTURE_2D, f->vel_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, im.w, im.h, 0, GL_RG, GL_FLOAT, rg);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    free(rg);
+    img_free(&im);
+    return true;
+}
+
 bool flow_build_program(gpu_flow *f, const char *const *include_dirs, char **log) {
     if (!f->active) return true;
     bool ok = prog_build(&f->prog, include_dirs, 1, log);
@@ -85,6 +117,7 @@ bool flow_create(gpu_flow *f, const ref_flow_desc *desc, double half_size, const
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (!ok) str_appendf(log, "tarn: error: the flow map's RGBA32F target is not complete on this GL\n");
+    if (f->d.texture[0] && !load_velocity(f, log)) ok = false;
     prog *p = &f->prog;
     memset(p, 0, sizeof *p);
     memset(&f->unifs, 0, sizeof f->unifs);
@@ -102,6 +135,7 @@ void flow_free(gpu_flow *f) {
         prog_free(&f->prog);
         glDeleteFramebuffers(2, f->fbo);
         glDeleteTextures(2, f->tex);
+        if (f->vel_tex) glDeleteTextures(1, &f->vel_tex);
     }
     memset(f, 0, sizeof *f);
 }
@@ -186,6 +220,13 @@ bool flow_update(gpu_flow *f, double t, gpu_timer *timer) {
     if (loc >= 0) glUniform1i(loc, FLOW_UNIT);
     loc = glGetUniformLocation(p, "uFlowPassRes");
     if (loc >= 0) glUniform1f(loc, (float)FLOW_RES);
+    loc = glGetUniformLocation(p, "uFlowVel");   /* set, with or without a map: a sampler left on unit 0 */
+    if (loc >= 0) glUniform1i(loc, FLOW_UNIT_VEL);
+    loc = glGetUniformLocation(p, "uFlowVelHalf");
+    if (loc >= 0) glUniform1f(loc, (float)(f->half / FLOW_MARGIN));
+    glActiveTexture(GL_TEXTURE0 + FLOW_UNIT_VEL);
+    glBindTexture(GL_TEXTURE_2D, f->vel_tex);
+    glActiveTexture(GL_TEXTURE0);
     float age[2] = { (float)(flow_phase(0, t, T) * T), (float)(flow_phase(1, t, T) * T) };
     if (jump) {
         /* from both layers' restarts to t in equal steps of each one's age */

@@ -23,6 +23,7 @@
 #include "render_prog.h"
 
 #define FLOW_UNIT 26                /* under the ocean's 27-29 and the height map's 30 */
+#define FLOW_UNIT_VEL 22            /* a Flow texture's velocity map, in the pass only */
 #define FLOW_RES 256                /* the map's texels a side */
 #define FLOW_MARGIN 1.25            /* it covers the world square's half size times this */
 #define FLOW_CATCHUP_STEPS 8        /* steps that rebuild the map after a time jump */
@@ -37,6 +38,7 @@ typedef struct gpu_flow {
     ref_flow_desc d;                /* defaults filled in */
     float half;                     /* the map covers |x|, |z| <= half */
     unsigned tex[2], fbo[2];
+    unsigned vel_tex;               /* a Flow texture's map (RG32F), 0: none */
     int cur;                        /* tex[cur] holds the frame's map */
     prog prog;
     unif_set unifs;
@@ -52,7 +54,8 @@ void flow_desc_resolve(ref_flow_desc *d);
 /* A layer's phase in [0, 1) at time t for period T (layer 0: A, 1: B). */
 double flow_phase(int layer, double t, double period);
 
-/* The flow velocity (m/s) at (x, z): the C twin of flow.glsl's flowVelocity. */
+/* The flow velocity (m/s) at (x, z): the C twin of flow.glsl's flowVelocity
+ * (without a Flow texture's term, which only the GPU reads). */
 void flow_velocity(const ref_flow_desc *d, double x, double z, double v[2]);
 
 /* Creates the maps and builds the pass program from common_dir for a

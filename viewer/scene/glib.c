@@ -1085,7 +1085,17 @@ static bool h_flow(cmdctx *c, glib_cmd *cmd) {
     };
     static const char *const usages[3] = { "Flow current vx vz", "Flow vortex x z strength radius",
                                            "Flow detail amplitude [cell [period [foam]]]" };
-    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "current, vortex or detail");
+    static const arg_rule scale_rule = { "scale", "a speed scale (m/s)", 'r', 0, 0, 0 };
+    if (c->nwords >= 1 && strcasecmp(c->words[0], "texture") == 0) {   /* Flow texture file scale */
+        snprintf(cmd->name, sizeof cmd->name, "texture");
+        snprintf(c->usage, sizeof c->usage, "Flow texture file scale");
+        if (c->nwords < 3) {
+            cerr(c, "Flow texture needs a file and a scale: %s", c->usage);
+            return false;
+        }
+        return take_path(c, c->words[1], cmd->path) && nums_from(c, cmd, 2, &scale_rule, 1, 1, "Flow texture");
+    }
+    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "current, vortex, texture or detail");
     if (!m)
         return false;
     int which = (int)(m - k), n = (int)m->value;
@@ -2358,7 +2368,7 @@ static const cmd_spec specs[] = {
         ARG_RD("gain", 0) },
       "WavePerlin amplitude [cell [octaves [rate [stretch [angle_deg [seed [gain]]]]]]]", true },
     { "Flow", GLIB_CMD_FLOW, false, h_flow, false, 0, 0, { { 0 } },
-      "Flow current vx vz | Flow vortex x z strength radius | Flow detail amplitude [cell [period [foam]]]", true },
+      "Flow current vx vz | Flow vortex x z strength radius | Flow texture file scale | Flow detail amplitude [cell [period [foam]]]", true },
     { "Spray", GLIB_CMD_SPRAY, false, h_world_nums, false, 2, 6,
       { ARG_R("threshold", "an upward speed threshold (m/s)"), ARG_R("rate", "a rate (particles/s)"),
         ARG_RD("life", 0), ARG_RD("size", 0), SEED_RULE("seed"), { "count", NULL, 'i', 0, 1048576, 0 } },

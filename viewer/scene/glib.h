@@ -98,8 +98,9 @@ typedef enum glib_cmd_kind {
     GLIB_CMD_WAVE_OCEAN_TILES,  /* num: the cascades' tile sides, 1 to 3, decreasing */
     GLIB_CMD_WAVE_EXPLOSION,    /* num: x z start i0 [omega k decay] */
     GLIB_CMD_WAVE_PERLIN,       /* num: amplitude [cell octaves rate stretch angle_deg seed gain] */
-    GLIB_CMD_FLOW,              /* name: "current" | "vortex" | "detail"; num: current vx vz;
-                                 * vortex x z strength radius; detail amplitude [cell period foam] */
+    GLIB_CMD_FLOW,              /* name: "current" | "vortex" | "texture" | "detail"; num: current
+                                 * vx vz; vortex x z strength radius; texture scale (path: the
+                                 * file); detail amplitude [cell period foam] */
     GLIB_CMD_SPRAY,             /* num: threshold rate [life size seed count] */
     GLIB_CMD_OBJECT,            /* name: "sphere" | "box" | "cylinder"; num:
                                  * sphere x y z r R G B; box x y z hx hy hz R G B;

@@ -351,6 +351,15 @@ static void do_flow(ctx *x, const glib_cmd *c, ref_flow_desc *f) {
         msg(x, c, "more than %d flow terms; this one is dropped", REF_FLOW_TERMS_MAX);
         return;
     }
+    if (strcmp(c->name, "texture") == 0) {
+        if (f->texture[0] && strcmp(f->texture, c->path) != 0) {
+            msg(x, c, "one velocity texture a world; this one is dropped");
+            return;
+        }
+        snprintf(f->texture, sizeof f->texture, "%s", c->path);
+        f->term[f->nterms++] = (ref_flow_term){ .kind = REF_FLOW_TEXTURE, .p = { n[0] } };
+        return;
+    }
     ref_flow_term t = { .kind = strcmp(c->name, "vortex") == 0 ? REF_FLOW_VORTEX : REF_FLOW_CURRENT };
     for (int i = 0; i < c->nnum && i < 4; i++) t.p[i] = n[i];
     if (t.kind == REF_FLOW_VORTEX && !(t.p[3] > 0)) {
