@@ -41,7 +41,6 @@ static double centroid(const ref_mesh *m, int i, int axis) {
     return (t[axis] + t[3 + axis] + t[6 + axis]) / 3.0;
 }
 
-typedef struct sort_ctx { const ref_mesh *m; int axis; } sort_ctx;
 
 /* Partial sort by centroid: quickselect so order[lo..mid) <= order[mid..hi). */
 static void select_median(const ref_mesh *m, int *ord, int n, int k, int axis) {
