@@ -113,6 +113,35 @@ static void test_writes_everything(void) {
     ref_render_free(&r);
 }
 
+/* --seed N: the same strata sampled anew, so the floor's irradiance (the
+ * caustics) differs from seed 0's (ref.exr, test_writes_everything), and
+ * the pixels that see no water floor (the sky, dry land) are NaN in both. */
+static void test_seed(void) {
+    if (access(lake(), R_OK) != 0) SKIP("no %s", lake());
+    const char *argv[] = { lake(), "-o", tmp_path("seed3.exr"), "--size", "32x18", "--time", "1.5",
+                           "--threads", "2", "--photons", "4", "--caustic-res", "48", "--seed", "3", "--quiet" };
+    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == TARN_EXIT_OK);
+    img a = { 0 }, b = { 0 };
+    char err[2048];
+    CHECK_MSG(img_read(tmp_path("ref.irradiance.exr"), &a, err, sizeof err), "%s", err);
+    CHECK_MSG(img_read(tmp_path("seed3.irradiance.exr"), &b, err, sizeof err), "%s", err);
+    if (a.px && b.px && a.w == b.w && a.h == b.h && a.channels == b.channels) {
+        int differ = 0, finite = 0;
+        for (size_t i = 0; i < (size_t)a.w * a.h * a.channels; i++) {
+            if (isnan(a.px[i])) { CHECK(isnan(b.px[i])); continue; }
+            finite++;
+            differ += a.px[i] != b.px[i];
+        }
+        fprintf(stderr, "  seed 3 against seed 0: %d of %d irradiance values differ\n", differ, finite);
+        CHECK(finite > 0 && differ > 0);
+    }
+    img_free(&a);
+    img_free(&b);
+    const char *bad[] = { "s.glib", "-o", "x.exr", "--seed", "-1" };
+    CHECK(run(5, bad) == TARN_EXIT_USAGE);
+    CHECK_STR_CONTAINS(cmd_reference_usage(), "--seed N");
+}
+
 /* --msaa 4 with no GL to ask (libglvnd pointed at no vendor): the
  * standard 4x positions, GL's (0.375, 0.125), (0.875, 0.375), (0.125,
  * 0.625), (0.625, 0.875) with y turned down, written out here as the
@@ -190,6 +219,7 @@ int main(void) {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/tarn_cli_reference_XXXXXX");
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
     RUN(test_writes_everything);
+    RUN(test_seed);
     RUN(test_msaa_without_gl);
     RUN(test_usage);
     RUN(test_input_errors);

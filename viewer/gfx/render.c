@@ -97,6 +97,7 @@ struct render {
     char noise_dir[GLIB_PATH_MAX];  /* the project folder they were read for */
     bool noise_built;
     bool verbose;              /* render_desc.verbose */
+    bool no_spray;             /* render_desc.no_spray */
 };
 
 render *render_create(const render_desc *desc) {
@@ -108,6 +109,7 @@ render *render_create(const render_desc *desc) {
     if (desc && desc->pack) snprintf(r->pack, sizeof r->pack, "%s", desc->pack);
     r->samples = desc ? desc->samples : 0;
     r->verbose = desc && desc->verbose;
+    r->no_spray = desc && desc->no_spray;
     gpu_timer_init(&r->timer);
     wcache_init(&r->wcache);
     return r;
@@ -642,6 +644,7 @@ static void build_world(render *r, const glib_scene *g, char **log) {
     if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) str_appendf(log, "%s\n", err);
     if (has_world && r->water_mesh > 0) desc.water_mesh_res = r->water_mesh;
     r->water_mesh_loaded = r->water_mesh;
+    if (r->no_spray) desc.spray.on = false;   /* no state, no pass: as a scene without Spray */
     if (has_world) world_build(&r->world, &desc, (const char *const *)r->include_dirs, r->common_dir, log);
     else world_free(&r->world);
 }

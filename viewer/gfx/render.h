@@ -21,6 +21,7 @@ typedef struct render_desc {
     const char *pack;           /* 0: the scene's own `Pack`; else this pack instead */
     int samples;                /* MSAA of the screen passes: 0 the default, 1 off, else N */
     bool verbose;               /* every inactive uniform a note at its glib line, not one summary */
+    bool no_spray;              /* leave the world's Spray out (tarn bench: the reference has none) */
 } render_desc;
 
 /* Anti-aliasing: the screen passes are drawn multisampled and resolved
