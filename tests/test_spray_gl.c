@@ -12,7 +12,8 @@
  *     is gone: removed there.
  * (c) Two runs of the same seed and steps give bit-identical state; another
  *     seed another.
- * (d) A world without a Spray runs no spray pass and builds no state.
+ * (d) A world without a Spray runs no spray pass and builds no state; a
+ *     Spray scene runs them, and none with render_desc.no_spray (the bench).
  * (e) Over a spectrum ocean (height from textures of one time) a step
  *     after a jump emits nothing (no other model rises), and played
  *     steps, which read the ocean's upward speed from the last two height
@@ -171,6 +172,16 @@ static void test_no_spray_no_pass(void) {
     CHECK(!has_pass(r, "spray"));
     render_target_destroy(&tg);
     render_destroy(r);
+    /* a Spray scene runs its passes, and not with render_desc.no_spray (tarn bench) */
+    for (int off = 0; off < 2; off++) {
+        r = render_create(&(render_desc){ .no_spray = off == 1 });
+        CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/waves/spray.glib"), "%s", render_messages(r));
+        CHECK(render_target_create(&tg, 64, 36, true));
+        render_frame(r, 1.8, tg.fbo, 64, 36, NULL);
+        CHECK(has_pass(r, "spray update") == (off == 0) && has_pass(r, "spray draw") == (off == 0));
+        render_target_destroy(&tg);
+        render_destroy(r);
+    }
     ref_world_desc desc;
     memset(&desc, 0, sizeof desc);
     gpu_world gw;

@@ -1004,7 +1004,8 @@ static bool slot_open(bench *b, slot *sl, int s, int p, int k) {
         rw->seq_water_rmse = rw->seq_water_ssim = rw->temporal_rmse = rw->seq_ref_change = rw->seq_pack_change = NAN;
     }
     progress_set(&b->pr, b->pr.done, true, "%s %s %s: loading", sc, b->o.packs[p], st->name);
-    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples };
+    /* no spray: the reference draws none (docs/waves.md), so it is no part of a pack's error or time */
+    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples, .no_spray = true };
     sl->r = render_create(&rd);
     bool loaded = render_load(sl->r, sl->scene);
     char err[4096] = "";
@@ -1363,7 +1364,8 @@ static int cost_mesh(bench *b, int p, int m, cost_sample *out, char *why, size_t
         snprintf(why, whylen, "%s", err);
         return -1;
     }
-    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples };
+    /* no spray: the reference draws none (docs/waves.md), so it is no part of a pack's error or time */
+    render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples, .no_spray = true };
     render *r = render_create(&rd);
     if (!render_load(r, path)) {
         first_line(render_messages(r), why, whylen);
