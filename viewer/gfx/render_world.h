@@ -8,7 +8,9 @@
  * (uOceanA, uOceanB; OCEAN_UNIT_A/B), 27 its folding foam (uOceanFoam,
  * OCEAN_UNIT_FOAM: beside the frame and under 30, so 31, the last unit of
  * a GL with 32 image units such as llvmpipe, stays free), 30 the waves'
- * height map. Every program that declares a
+ * height map; with a Flow 26 its map (uFlowMap) and 22 a Flow texture's
+ * velocities (its pass only), with a Spray 24 and 25 its state and 23 the
+ * height map before (its pass only). Every program that declares a
  * world uniform (uSunDir, uWaterLevel, the wave set, ...) gets it set. */
 #ifndef TARN_RENDER_WORLD_H
 #define TARN_RENDER_WORLD_H
