@@ -134,6 +134,40 @@ static void test_frames_write_every_frame(void) {
     img_free(&i2);
 }
 
+/* --passes lists the world's height map and each drawing command by its
+ * glib line (the lake: World and WaterSurface), and timing them (a finish
+ * around each mark) changes no pixel. */
+static void test_passes_lists_each_draw(void) {
+    char cmd[2048], out[8192], a[512], b[512];
+    snprintf(a, sizeof a, "%s/passes_on.exr", dir);
+    snprintf(b, sizeof b, "%s/passes_off.exr", dir);
+    snprintf(cmd, sizeof cmd,
+             "env -u DISPLAY %s render %s/scenes/lake.glib --pack basic -o %s --size 64x36 --frames 2 --passes 2>&1",
+             bin, src, a);
+    int rc = run_command(cmd, out, sizeof out);
+    if (rc == 3) SKIP("no OpenGL");
+    CHECK_MSG(rc == 0, "%s", out);
+    CHECK_STR_CONTAINS(out, "per pass:");
+    CHECK_STR_CONTAINS(out, "world height");
+    CHECK_STR_CONTAINS(out, "  World:");
+    CHECK_STR_CONTAINS(out, "  WaterSurface:");
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/lake.glib --pack basic -o %s --size 64x36 --frames 2 2>&1",
+             bin, src, b);
+    rc = run_command(cmd, out, sizeof out);
+    CHECK_MSG(rc == 0, "%s", out);
+    CHECK(strstr(out, "per pass:") == NULL);
+    img ia, ib;
+    char err[256];
+    memset(&ia, 0, sizeof ia);
+    memset(&ib, 0, sizeof ib);
+    CHECK(img_read(a, &ia, err, sizeof err) && img_read(b, &ib, err, sizeof err));
+    CHECK(ia.w == ib.w && ia.h == ib.h && ia.channels == ib.channels);
+    if (ia.px && ib.px && ia.w == ib.w && ia.h == ib.h && ia.channels == ib.channels)
+        CHECK(memcmp(ia.px, ib.px, sizeof(float) * ia.w * ia.h * ia.channels) == 0);
+    img_free(&ia);
+    img_free(&ib);
+}
+
 /* The pond rendered at 160x90 with Floor.uSandColor=1,0,0: the floor seen
  * through the water near the bottom (pixel 80, 80) is red. */
 static void check_floor_red(const char *png, const char *what) {
@@ -222,6 +256,7 @@ int main(void) {
     RUN(test_huge_frame_is_refused);
     RUN(test_render_headless_is_deterministic_and_follows_scene);
     RUN(test_frames_write_every_frame);
+    RUN(test_passes_lists_each_draw);
     RUN(test_set_changes_uniforms);
     RUN(test_many_sets_all_applied);
     RUN(test_no_arguments_renders_default_scene);

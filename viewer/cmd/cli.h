@@ -16,6 +16,7 @@ typedef struct cli_render_desc {
     double time_s;              /* simulated time of the (first) frame */
     int frames;                 /* 0: 1 */
     bool still;                 /* every frame at time_s (a paused window, tarn bench), not 1/60 s apart */
+    bool passes;                /* print each named pass's median GPU time over the frames */
     bool quiet;
     bool verbose;               /* each inactive uniform a note at its glib line */
     const char *pack;           /* replaces the scene's `Pack` */

@@ -108,6 +108,53 @@ static double frame_time(const cli_render_desc *d, int f) {
     return d->time_s + (d->still ? 0.0 : f / 60.0);
 }
 
+/* --passes: each named pass's GPU times over the frames (a pass a frame
+ * runs twice adds up under its name), then their medians. */
+typedef struct pass_table {
+    int n;
+    char name[GPU_TIMER_MARKS][GPU_TIMER_NAME];
+    double *ms[GPU_TIMER_MARKS];
+    int count[GPU_TIMER_MARKS];
+} pass_table;
+
+static int pass_index(pass_table *p, const char *name, int frames) {
+    for (int k = 0; k < p->n; k++)
+        if (strcmp(p->name[k], name) == 0) return k;
+    if (p->n >= GPU_TIMER_MARKS) return -1;
+    snprintf(p->name[p->n], GPU_TIMER_NAME, "%s", name);
+    p->ms[p->n] = mem_zalloc((size_t)frames * sizeof(double));
+    return p->n++;
+}
+
+static void pass_table_add(pass_table *p, render *r, int frames) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *t;
+    int n = render_pass_times(r, true, &names, &t);
+    double frame[GPU_TIMER_MARKS] = { 0 };
+    bool seen[GPU_TIMER_MARKS] = { false };
+    for (int i = 0; i < n; i++) {
+        int k = pass_index(p, names[i], frames);
+        if (k < 0 || t[i] < 0) continue;
+        frame[k] += t[i];
+        seen[k] = true;
+    }
+    for (int k = 0; k < p->n; k++)
+        if (seen[k] && p->count[k] < frames) p->ms[k][p->count[k]++] = frame[k];
+}
+
+static void pass_table_print(pass_table *p) {
+    printf("tarn: median GPU time a frame, per pass:\n");
+    for (int k = 0; k < p->n; k++) {
+        qsort(p->ms[k], (size_t)p->count[k], sizeof(double), cmp_double);
+        printf("  %-28s %9.3f ms  (%d frame%s)\n", p->name[k], p->count[k] ? p->ms[k][p->count[k] / 2] : 0.0,
+               p->count[k], p->count[k] == 1 ? "" : "s");
+    }
+}
+
+static void pass_table_free(pass_table *p) {
+    for (int k = 0; k < p->n; k++) free(p->ms[k]);
+}
+
 int cli_render(const cli_render_desc *d) {
     char err[1024];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
@@ -137,6 +184,8 @@ int cli_render(const cli_render_desc *d) {
         return TARN_EXIT_NO_GL;
     }
     int frames = d->frames > 0 ? d->frames : 1;
+    pass_table passes = { 0 };
+    render_set_draw_timing(r, d->passes);
     double *ms = mem_zalloc((size_t)frames * sizeof *ms);
     double *wall = mem_zalloc((size_t)frames * sizeof *wall);
     bool per_frame = strstr(d->out, "%d") != NULL;
@@ -152,6 +201,7 @@ int cli_render(const cli_render_desc *d) {
         }
         wall[f] = now_ms() - t0;
         ms[f] = render_gpu_ms(r, true);
+        if (d->passes) pass_table_add(&passes, r, frames);
         if (per_frame || f == frames - 1) {
             char path[2048];
             frame_path(path, sizeof path, d->out, per_frame ? f : -1);
@@ -173,7 +223,9 @@ int cli_render(const cli_render_desc *d) {
         qsort(wall, (size_t)frames, sizeof *wall, cmp_double);
         printf("tarn: %d frame(s) at %dx%d: median GPU time %.3f ms, wall %.3f ms, on %s\n", frames, w, h,
                ms[frames / 2], wall[frames / 2], gl_ctx_describe(ctx));
+        if (d->passes) pass_table_print(&passes);
     }
+    pass_table_free(&passes);
     free(ms);
     free(wall);
     render_target_destroy(&t);
@@ -186,7 +238,7 @@ int cli_render(const cli_render_desc *d) {
 
 static const char usage[] =
     "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
-    "                   [--still] [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
+    "                   [--still] [--passes] [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
     "                   [--quiet | --verbose]\n"
     "\n"
     "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
@@ -201,6 +253,8 @@ static const char usage[] =
     "                   and wall time per frame\n"
     "  --still          ...all N at --time, as a paused window and tarn bench draw\n"
     "                   them (what does not change is reused: the static-world cache)\n"
+    "  --passes         ...and the median GPU time of each pass and of each drawing\n"
+    "                   command (KIND:LINE) over the N frames: where a frame's time goes\n"
     "  --setting NAME   start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
     "                   default, paper, ...), as the panel's Setting combo does\n"
     "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
@@ -231,6 +285,8 @@ static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
             i++;
         } else if (strcmp(a, "--still") == 0) {
             d->still = true;
+        } else if (strcmp(a, "--passes") == 0) {
+            d->passes = true;
         } else if (strcmp(a, "--frames") == 0) {
             if (!cmd_opt_range(next, 1, 100000, &f)) return bad("--frames wants 1..100000");
             d->frames = (int)f;

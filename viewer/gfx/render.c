@@ -83,6 +83,7 @@ struct render {
      * error. Otherwise once a frame: glGetError can stall a GPU's
      * command stream, and the answer is almost always "none". */
     bool gl_check_each;
+    bool draw_timing;          /* render_set_draw_timing: an interval per drawing command */
     render_msaa msaa;          /* the screen passes' multisampled target */
     int max_target;            /* the largest side a slider may give a target (0: not asked yet) */
     double detail;             /* render_set_detail: 1 (0 before the first call) everything as the scene says */
@@ -998,6 +999,29 @@ static void mark_pass(render *r, const glib_cmd *c) {
     gpu_timer_mark(&r->timer, name);
 }
 
+static bool writes_pixels(glib_cmd_kind k);
+static void mark_now(render *r, const char *name);
+
+/* render_set_draw_timing: an interval of its own for each drawing command */
+static void mark_draw(render *r, const glib_cmd *c) {
+    if (!writes_pixels(c->kind) || c->kind == GLIB_CMD_CLEAR) return;
+    char name[GPU_TIMER_NAME];
+    snprintf(name, sizeof name, "%s:%d", glib_cmd_name(c->kind), c->line);
+    mark_now(r, name);
+}
+
+/* A mark that times what was drawn before it: a CPU rasteriser (llvmpipe)
+ * bins draws and rasterises them at a later flush, and resolves a
+ * timestamp query there too, so without the finishes a draw's pixels fell
+ * in a later draw's interval (the water's under the World before it). */
+static void mark_now(render *r, const char *name) {
+    glFinish();
+    gpu_timer_mark(&r->timer, name);
+    glFinish();
+}
+
+void render_set_draw_timing(render *r, bool on) { r->draw_timing = on; }
+
 static void end_rtt(frame_state *f) {
     glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
     glViewport(f->x, f->y, f->w, f->h);
@@ -1617,6 +1641,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
      * frame binds its target; the frame's own passes are "screen" again */
     if (s->glib && world_update_ocean(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     if (s->glib && world_update_flow(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
+    if (s->glib && r->draw_timing) mark_now(r, "world height");
     if (s->glib) world_update_height(&r->world, t, r->detail);
     /* the spray after the height map: an ocean's upward speed is read from it */
     if (s->glib && world_update_spray(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
@@ -1662,9 +1687,11 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {}   /* not ours: the caller's */
         f.check_each = r->gl_check_each;
         for (int i = 0; i < s->glib->ncmds; i++) {
+            if (r->draw_timing) mark_draw(r, &s->glib->cmds[i]);
             exec_cmd(r, &f, i);
             if (f.check_each) check_gl(r, &f, i, NULL, NULL);   /* after a draw, draw_mesh has checked already */
         }
+        if (r->draw_timing) mark_now(r, "screen");   /* the last draw's pixels in its own interval */
         if (r->world.spray.active && !f.in_rtt) {
             /* the droplets over the finished frame (render_spray.h), the main camera's */
             gpu_timer_mark(&r->timer, "spray draw");

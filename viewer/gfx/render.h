@@ -154,6 +154,14 @@ double render_gpu_ms(render *r, bool wait);
 #include "gpu_timer.h"
 int render_pass_times(render *r, bool wait, const char (**names)[GPU_TIMER_NAME], const double **ms);
 
+/* Per-draw timing (off by default): each glib command that draws (a
+ * World, the water, a mesh) also starts an interval of its own, named
+ * "KIND:LINE" (World:12, WaterSurface:40), and the world's per-frame
+ * height map is "world height"; so render_pass_times says where a frame's
+ * time goes draw by draw. A name can then come more than once a frame.
+ * For `tarn render --passes`; GPU_TIMER_MARKS intervals a frame at most. */
+void render_set_draw_timing(render *r, bool on);
+
 /* The same as text, a pass a line ("pass:63 10 12.40 ms"), cut to fit
  * len; "" before the first frame's times are known. */
 void render_pass_summary(render *r, char *out, int len);
