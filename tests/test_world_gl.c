@@ -228,6 +228,65 @@ static void test_under_water_eye_path_is_attenuated(void) {
     rmdir(dir);
 }
 
+/* The sun's disc (SkySun) looked at: world.glsl's worldSunDisc (float,
+ * per fragment) on the cube map's sky against ref_sky_radiance, pixel by
+ * pixel. A disc of 2 degrees so its core, limb and aureole span many
+ * pixels. Tolerance: 0.02 (the sky's cube map, as above) plus 0.2 % of the
+ * value (the core is ~15: float against double in the angle). No clouds:
+ * their alpha, bilinear in a 512-texel map, scales the disc's ~15 and
+ * errs by up to 0.06 where a cloud's edge crosses it; the clouds are held
+ * to the reference in the harbour's one-world check below. */
+static void test_sun_disc_is_the_reference(void) {
+    char dir[] = "/tmp/tarn-test-disc-XXXXXX", path[64];
+    CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/disc.glib", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("##OpenGL GLIB\nPerspective 30\nLookAt 0 1 0  -5.6 5.7 -6.9  0 1 0\n"
+          "Sun -0.5 0.42 -0.62  2.4 2.2 1.9\nSkySun 2\n"
+          "Terrain flat 8 3\nWater 0\nWaterMesh 8\nWorld all\n", f);
+    fclose(f);
+    char err[2048];
+    ref_world_desc desc;
+    bool has_world;
+    CHECK_MSG(scene_load(path, NULL, &desc, &cam, &has_world, err, sizeof err), "%s", err);
+    ref_world_init(&world, &desc);
+    render *r = render_create(&(render_desc){ .samples = 1 });
+    CHECK_MSG(render_load(r, path), "%s", render_messages(r));
+    render_target tg;
+    CHECK(render_target_create(&tg, W, H, true));
+    render_frame(r, 0.0, tg.fbo, W, H, NULL);
+    render_target_read(&tg, px);
+    CHECK(glGetError() == GL_NO_ERROR);
+    render_target_destroy(&tg);
+    render_destroy(r);
+    int checked = 0, in_disc = 0;
+    double worst = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double d[3], sky[3], disc[3];
+            pixel_ray(i, j, d);
+            if (d[1] < 0.05) continue;
+            ref_sky_radiance(&world, d, sky);
+            ref_sun_disc(&world, d, disc);
+            in_disc += disc[0] > 1.0;
+            const float *p = px + ((size_t)j * W + i) * 4;
+            for (int k = 0; k < 3; k++) {
+                double e = fabs(p[k] - sky[k]) - 0.002 * sky[k];
+                if (e > worst) worst = e;
+            }
+            checked++;
+        }
+    fprintf(stderr, "  %d sky pixels, %d in the disc's core: worst |GL - reference| - 0.2 %% %.4f\n", checked, in_disc,
+            worst);
+    CHECK(in_disc > 20);
+    CHECK(worst < 0.02);
+    ref_world_release(&world);
+    remove(path);
+    rmdir(dir);
+}
+
 /* One world (DESIGN.md, "Ground truth, speed and error"): off the water
  * the GL world is the reference's. Each scene (the lake and every hard
  * case) is drawn by `basic` into a float target and by the reference at
@@ -349,6 +408,7 @@ int main(void) {
     RUN(test_sky_pixels_are_the_sky);
     RUN(test_dry_shore_pixels_are_lambert);
     RUN(test_under_water_eye_path_is_attenuated);
+    RUN(test_sun_disc_is_the_reference);
     RUN(test_one_world_off_the_water);
     gl_ctx_destroy(ctx);
     return check_summary();
