@@ -502,15 +502,16 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
     strbuf_printf(o, "Images %dx%d at t =", b->o.w, b->o.h);
     for (int i = 0; i < b->o.ntimes; i++) strbuf_printf(o, "%s %g", i ? "," : "", b->o.times[i]);
     strbuf_printf(o, " s; per setting and time %d warm-up frame(s), then up to %d timed frames (at least 3, "
-                 "stopping after %.3g s), timed round-robin: every setting of a scene in turn, %d frames a turn, "
-                 "so a load that comes and goes falls on all of them; medians, with the quartiles of the frames "
+                 "stopping after %.3g s), timed round-robin: every setting of a scene in turn, %d frames a turn "
+                 "after an untimed one, so a load that comes and goes falls on all of them; medians, with the "
+                 "quartiles of the frames "
                  "(q1–q3). Error: the mean over the times of the error against the CPU reference of the same "
                  "frame, first over the pixels where the reference sees water (what ranks the techniques), then "
                  "off the water and over the whole frame: RMSE of linear RGB, HDR-ꟻLIP (docs/metrics.md) and "
                  "SSIM. Two Pareto fronts: time against water RMSE (\"Pareto\", the summary's `pareto`) and "
                  "against water ꟻLIP (\"ꟻLIP front\", `pareto_flip`). Settings whose times agree within their "
-                 "run-to-run noise (%.0f%%, or their frames' spread) and whose water errors agree within their "
-                 "combined uncertainty (the ±, in quadrature; %.0f%% where not measured) tie: both stay on the "
+                 "run-to-run noise (%.0f%%, or their medians' uncertainty, the frames' spread over √frames, "
+                 "when larger) and whose water errors agree within their combined uncertainty (the ±, in quadrature; %.0f%% where not measured) tie: both stay on the "
                  "front.\n\n",
               b->o.warmup, b->o.frames, b->o.frame_budget, b->o.rr_chunk, 100 * BENCH_TIME_NOISE,
               100 * BENCH_ERROR_TIE);
