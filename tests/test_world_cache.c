@@ -103,6 +103,37 @@ static void check_pack(const char *pack, bool is_float) {
     rig_close(&off);
 }
 
+/* A running clock with the camera still: from the second time on each
+ * World is composed from its layers (world_layers.h), and every frame
+ * equals, bit for bit, the frame drawn with the cache off: the lake
+ * (terrain, objects, sky; the shore uncovered and covered by the waves),
+ * and from under the water (the eye's path in water fades the world). */
+static void check_running_clock(const char *pack, bool is_float, const render_view *v) {
+    rig on, off;
+    rig_open(&on, pack, true, is_float);
+    rig_open(&off, pack, false, is_float);
+    for (int k = 0; k < 5; k++) {
+        double t = 1.0 + 0.37 * k;
+        float *a = frame(&on, t, v), *b = frame(&off, t, v);
+        CHECK_MSG(same(a, b), "%s, t = %.2f: the composed frame differs from the drawn one", pack, t);
+        free(a);
+        free(b);
+    }
+    CHECK_MSG(render_world_layer_frames(on.r) >= 3, "%s: %ld World draws composed from layers, want 3 or more", pack,
+              render_world_layer_frames(on.r));
+    CHECK(render_world_layer_frames(off.r) == 0);
+    rig_close(&on);
+    rig_close(&off);
+}
+
+static void test_running_clock_layers(void) {
+    check_running_clock("basic", false, NULL);
+    check_running_clock("natural", true, NULL);
+    /* under the water, looking at the rock and the shore */
+    render_view below = { .eye = { 0.0f, -0.6f, 2.0f }, .center = { -3.0f, -0.2f, -3.0f }, .up = { 0, 1, 0 } };
+    check_running_clock("basic", false, &below);
+}
+
 static void test_basic_rgba8(void) { check_pack("basic", false); }
 
 /* A pass drawn once (RenderToTextureOnce, skipped from the second frame)
@@ -144,6 +175,7 @@ int main(void) {
     if (!ctx) return GL_TEST_SKIP;
     RUN(test_screen_after_a_once_pass);
     RUN(test_basic_rgba8);
+    RUN(test_running_clock_layers);
     RUN(test_natural_float);
     gl_ctx_destroy(ctx);
     return check_summary();

@@ -2,6 +2,7 @@
 #include "waves.glsl"
 #include "world.glsl"
 #include "terrain.glsl"
+#include "world_wet.glsl"
 
 uniform sampler2D uTerrainAlbedo;
 uniform samplerCube uSky;
@@ -19,7 +20,13 @@ uniform bool uWorldEyePath;     // drawn to the screen: attenuate along the eye'
 in vec3 vWorldPos;
 in vec3 vWorldNormal;
 in vec2 vST;
-out vec4 fragColor;
+// world_layers (render.c): with uWorldLayers the draw keeps both of a
+// pixel's shadings, wet and dry, and its point, for frames that differ
+// only in time; location 0 then holds the wet colour and the depth
+layout(location = 0) out vec4 fragColor;
+layout(location = 1) out vec4 fragDry;
+layout(location = 2) out vec4 fragPos;
+uniform bool uWorldLayers;
 
 // The length of the segment eye -> p that lies under the mean water level
 // (the reference's eye path in water: it fades what an eye under the water
@@ -31,61 +38,39 @@ float eyePathInWater(vec3 eye, vec3 p) {
     return d * (uWaterLevel - eye.y) / max(p.y - eye.y, 1e-6);
 }
 
-// Is p under the water surface at this time? Below the mean level is not
-// enough: where a trough uncovers the shore, the reference's ray meets the
-// land in air and lights it dry (its shading follows the path, not the
-// mean level). Within the waves' height bound of the level (waves.glsl's
-// sum of amplitudes; gradient noise stays within 0.75 of its amplitude)
-// the surface's height is read from tarn's map of it this frame
-// (WORLD_HEIGHT_MAP, world_height.frag), or else solved for here: on a
-// CPU rasteriser every pixel pays for that solve, wet or dry.
-uniform float uTime;
-#ifdef WORLD_HEIGHT_MAP
-uniform sampler2D uWaveHeight;     // the surface's height over the world (set by tarn)
-uniform float uWaveHeightHalf;     // it covers x, z in [-half, half]
-#endif
-bool worldUnderWater(vec3 p) {
-    if (p.y >= uWaterLevel) return false;
-    float bound = 0.0;
-    for (int i = 0; i < WAVES_MAX; i++) {
-        if (i < uSineCount) bound += abs(uSineAmp[i]);
-        if (i < uGerstnerCount) bound += abs(uGerstnerAmp[i]);
-    }
-    int octaves = uNoiseOctaves > 0 ? uNoiseOctaves : 4;
-    float gain = uNoiseGain > 0.0 ? uNoiseGain : 0.5, a = abs(uNoiseAmp);
-    for (int o = 0; o < WAVES_NOISE_OCTAVES_MAX; o++) {
-        if (o >= octaves) break;
-        bound += 0.75 * a;
-        a *= gain;
-    }
-    if (p.y < uWaterLevel - bound) return true;
-#ifdef WORLD_HEIGHT_MAP
-    // the surface's height from tarn's map of it this frame (world_height.frag);
-    // beyond the map, the mean level
-    vec2 uv = p.xz / uWaveHeightHalf * 0.5 + 0.5;
-    float h = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)))
-            ? texture(uWaveHeight, uv).r : uWaterLevel;
-    return p.y < h;
-#else
-    return p.y < wavesHeightAt(p.xz, uTime);
-#endif
+// A pixel's shading under the water (the flat-water sun, the sky's ambient
+// through the surface) or in air (Lambert, then the haze); the eye's path
+// in water fades both.
+vec3 shadeAs(bool wet, vec3 albedo, vec3 n) {
+    vec3 c = wet ? worldShadeAt(albedo, n, vWorldPos)
+                 : worldHaze(worldLambert(albedo, n, vec3(1.0)), distance(uCameraPos, vWorldPos));
+    if (uWorldEyePath) c *= exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos));
+    return c;
 }
 
 void main() {
-    vec3 c;
-    if (uWorldMode == 2) {
-        c = worldSkyLook(uSky, normalize(vWorldNormal));
-    } else if (uWorldMode == 0) {
-        vec3 hg = terrainHeightGrad(vWorldPos.xz);
-        vec3 n = normalize(vec3(-hg.y, 1.0, -hg.z));
-        vec3 albedo = terrainAlbedo(vWorldPos.xz, hg.x, n);
-        c = worldUnderWater(vWorldPos) ? worldShadeAt(albedo, n, vWorldPos)
-                                       : worldHaze(worldLambert(albedo, n, vec3(1.0)), distance(uCameraPos, vWorldPos));
-    } else {
-        vec3 n = normalize(vWorldNormal);
-        c = worldUnderWater(vWorldPos) ? worldShadeAt(uWorldAlbedo, n, vWorldPos)
-                                       : worldHaze(worldLambert(uWorldAlbedo, n, vec3(1.0)), distance(uCameraPos, vWorldPos));
+    if (uWorldMode == 2) {   // the sky: never wet
+        vec3 c = worldSkyLook(uSky, normalize(vWorldNormal));
+        if (uWorldEyePath) c *= exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos));
+        fragColor = uWorldLayers ? vec4(c, gl_FragCoord.z) : vec4(c, 1.0);
+        fragDry = vec4(c, 1.0);
+        fragPos = vec4(vWorldPos, 0.0);
+        return;
     }
-    if (uWorldEyePath) c *= exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos));
-    fragColor = vec4(c, 1.0);
+    vec3 albedo, n;
+    if (uWorldMode == 0) {
+        vec3 hg = terrainHeightGrad(vWorldPos.xz);
+        n = normalize(vec3(-hg.y, 1.0, -hg.z));
+        albedo = terrainAlbedo(vWorldPos.xz, hg.x, n);
+    } else {
+        n = normalize(vWorldNormal);
+        albedo = uWorldAlbedo;
+    }
+    if (uWorldLayers) {
+        fragColor = vec4(shadeAs(true, albedo, n), gl_FragCoord.z);
+        fragDry = vec4(shadeAs(false, albedo, n), 1.0);
+        fragPos = vec4(vWorldPos, 1.0);
+        return;
+    }
+    fragColor = vec4(shadeAs(worldUnderWater(vWorldPos), albedo, n), 1.0);
 }

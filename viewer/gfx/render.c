@@ -22,6 +22,7 @@
 #include "render_res.h"
 #include "render_world.h"
 #include "world_cache.h"
+#include "world_layers.h"
 #include "scene.h"
 #include "mem.h"
 #include "strbuf.h"
@@ -65,6 +66,7 @@ struct render {
     int water_mesh_loaded;         /* the one the world on screen was built with */
     gpu_world world;               /* kept across reloads while the world is unchanged */
     world_cache wcache;            /* World commands drawn after a Clear, kept while their key stays */
+    world_layers wlayers;          /* ... and their layers, while only the time changes */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];
     char path[GLIB_PATH_MAX];
@@ -113,6 +115,7 @@ render *render_create(const render_desc *desc) {
     r->no_spray = desc && desc->no_spray;
     gpu_timer_init(&r->timer);
     wcache_init(&r->wcache);
+    wlayers_init(&r->wlayers);
     return r;
 }
 
@@ -145,6 +148,7 @@ void render_destroy(render *r) {
     scene_free(&r->cur);
     world_free(&r->world);
     wcache_free(&r->wcache);
+    wlayers_free(&r->wlayers);
     free_deps(r);
     free(r->messages);
     free(r->draw_messages);
@@ -744,6 +748,7 @@ bool render_load(render *r, const char *glib_path) {
     }
     build_world(r, g, &log);
     wcache_free(&r->wcache);   /* the world, its program or the commands may differ */
+    wlayers_free(&r->wlayers);
     scene_state fresh;
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
@@ -767,6 +772,7 @@ bool render_rebuild_programs(render *r) {
         prog_introspect(p, &log);
     }
     wcache_free(&r->wcache);   /* the world's program may draw differently now */
+    wlayers_free(&r->wlayers);
     if (r->world.active) {
         if (!world_build_programs(&r->world, (const char *const *)r->include_dirs, &log)) ok = false;
     }
@@ -1319,6 +1325,26 @@ static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
 
 /* `World`: drawn, or, right after a Clear, copied from the static-world
  * cache when nothing it depends on has changed (world_cache.h). */
+/* A World whose key has stayed while the time ran is drawn from its layers
+ * (world_layers.h): built once, then one full-screen pass a frame. */
+static bool draw_world_layers(render *r, frame_state *f, int i, const wcache_key *k, const char *which, float offset) {
+    wlayers_use use = wlayers_check(&r->wlayers, i, k);
+    if (use == WLAYERS_NO) return false;
+    unsigned restore = f->cur ? f->cur->gl : 0;
+    if (use == WLAYERS_BUILD) {
+        if (!wlayers_begin_build(&r->wlayers, i, k)) return false;
+        world_draw_layers(&r->world, which, offset, f->cam_eye, !f->in_rtt, restore);
+        wlayers_end_build(&r->wlayers, i, k);
+    }
+    const unsigned *tex = wlayers_textures(&r->wlayers, i);
+    if (!tex) return false;
+    GLint vp[4];
+    glGetIntegerv(GL_VIEWPORT, vp);
+    world_composite_layers(&r->world, f->t, f->cam_eye, tex, vp[0], vp[1], restore);
+    r->wlayers.composites++;
+    return true;
+}
+
 static void draw_world(render *r, frame_state *f, int i) {
     const scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
@@ -1337,6 +1363,10 @@ static void draw_world(render *r, frame_state *f, int i) {
                      wcache_key_gl(&k, WORLD_UNIT_ALBEDO, WORLD_UNIT_SKY);
     f->clean = false;
     if (cacheable && wcache_restore(&r->wcache, i, &k)) return;
+    if (cacheable && draw_world_layers(r, f, i, &k, which, offset)) {
+        wcache_store(&r->wcache, i, &k);   /* a still frame after it copies, as after a draw */
+        return;
+    }
     world_draw(&r->world, which, offset, f->t, f->cam_eye, !f->in_rtt, f->cur ? f->cur->gl : 0);
     if (!cacheable) return;
     check_gl(r, f, i, NULL, NULL);   /* the world's own errors, reported before the copy looks */
@@ -1508,7 +1538,9 @@ static void exec_cmd(render *r, frame_state *f, int i) {
 
 void render_set_world_cache(render *r, bool on) {
     r->wcache.off = !on;
+    r->wlayers.off = !on;
     if (!on) wcache_free(&r->wcache);
+    if (!on) wlayers_free(&r->wlayers);
 }
 
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
@@ -1522,6 +1554,8 @@ bool render_set_world_height_map(render *r, bool on) {
     wcache_free(&r->wcache);   /* the world may draw differently now */
     return ok;
 }
+
+long render_world_layer_frames(const render *r) { return r->wlayers.composites; }
 
 void render_set_detail(render *r, double detail) {
     r->detail = detail > 0 && detail < 1 ? detail : 1;

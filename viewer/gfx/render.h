@@ -116,6 +116,12 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
  * saved since render_create. */
 void render_set_world_cache(render *r, bool on);
 long render_world_cache_hits(const render *r);
+/* With the cache on, a World whose key stays while only the time changes
+ * (the clock running, the camera still) is drawn once into layers that
+ * hold each pixel's wet and dry shading, and each later time from them by
+ * one full-screen pass (world_layers.h): the same pixels. How many World
+ * draws were so composed since render_create: */
+long render_world_layer_frames(const render *r);
 
 /* The world's wet and dry land (where the moving surface is above it)
  * from a height map of the surface drawn once a frame, bilinear between

@@ -400,6 +400,16 @@ static bool build_program(gpu_world *gw, const char *const *include_dirs, const 
     snprintf(h->name, sizeof h->name, "WorldHeight");
     snprintf(h->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", common_dir);
     snprintf(h->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_height.frag", common_dir);
+    prog *c = &gw->layers_prog;
+    memset(c, 0, sizeof *c);
+    memset(&gw->layers_unifs, 0, sizeof gw->layers_unifs);
+    c->unifs = &gw->layers_unifs;
+    c->world_uniforms = true;
+    set_height_define(gw, c);
+    world_set_wave_defines(gw, c);
+    snprintf(c->name, sizeof c->name, "WorldLayers");
+    snprintf(c->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_layers.vert", common_dir);
+    snprintf(c->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_layers.frag", common_dir);
     return world_build_programs(gw, include_dirs, log);
 }
 
@@ -414,6 +424,8 @@ bool world_build_programs(gpu_world *gw, const char *const *include_dirs, char *
     }
     if (!prog_build(&gw->height_prog, include_dirs, 1, log)) ok = false;
     prog_introspect(&gw->height_prog, log);
+    if (!prog_build(&gw->layers_prog, include_dirs, 1, log)) ok = false;
+    prog_introspect(&gw->layers_prog, log);
     if (!ocean_build_programs(&gw->ocean, include_dirs, log)) ok = false;
     if (!flow_build_program(&gw->flow, include_dirs, log)) ok = false;
     if (!spray_build_programs(&gw->spray, include_dirs, log)) ok = false;
@@ -453,6 +465,7 @@ void world_free(gpu_world *gw) {
     if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
     for (int m = 0; m < WORLD_MODES; m++) prog_free(&gw->progs[m]);
     prog_free(&gw->height_prog);
+    prog_free(&gw->layers_prog);
     if (gw->height_fbo) glDeleteFramebuffers(1, &gw->height_fbo);
     if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
     if (gw->height_prev_fbo) glDeleteFramebuffers(1, &gw->height_prev_fbo);
@@ -650,10 +663,12 @@ void world_bind_textures(const gpu_world *gw) {
 }
 
 /* Binds the world's program for a mode with everything it reads set. */
-static void use_mode(const gpu_world *gw, int m, double t, const float eye[3], bool to_screen, const float plane[4]) {
+static void use_mode(const gpu_world *gw, int m, double t, const float eye[3], bool to_screen, const float plane[4],
+                     bool layers) {
     unsigned p = gw->progs[m].gl;
     glUseProgram(p);
     world_upload(gw, p, t, eye);
+    seti(p, "uWorldLayers", layers ? 1 : 0);
     GLint eye_path = glGetUniformLocation(p, "uWorldEyePath");
     if (eye_path >= 0) glUniform1i(eye_path, to_screen ? 1 : 0);
     GLint clip = glGetUniformLocation(p, "uWorldClip");
@@ -661,8 +676,8 @@ static void use_mode(const gpu_world *gw, int m, double t, const float eye[3], b
     seti(p, "uWorldMode", m);   /* a world.frag that takes the mode as a uniform */
 }
 
-void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
-                bool to_screen, unsigned restore_program) {
+static void draw_modes(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
+                       bool to_screen, unsigned restore_program, bool layers) {
     if (!gw->active) return;
     for (int m = 0; m < WORLD_MODES; m++)
         if (!gw->progs[m].gl) return;
@@ -673,19 +688,59 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
     if (strcmp(which, "below") == 0) { plane[1] = -1; plane[3] = level; }
     glEnable(GL_CLIP_DISTANCE0);
     if (strcmp(which, "below") != 0) {   /* the sky, behind everything */
-        use_mode(gw, 2, t, eye, to_screen, plane);
+        use_mode(gw, 2, t, eye, to_screen, plane, layers);
         res_mesh_draw(&gw->sky_box, -1);
     }
-    use_mode(gw, 0, t, eye, to_screen, plane);
+    use_mode(gw, 0, t, eye, to_screen, plane, layers);
     res_mesh_draw(&gw->terrain[gw->lod], -1);
     res_mesh_draw(&gw->skirt[gw->lod], -1);
-    use_mode(gw, 1, t, eye, to_screen, plane);
+    use_mode(gw, 1, t, eye, to_screen, plane, layers);
     GLint albedo = glGetUniformLocation(gw->progs[1].gl, "uWorldAlbedo");
     for (int i = 0; i < gw->nobjects; i++) {
         if (albedo >= 0) glUniform3fv(albedo, 1, gw->object_albedo[i]);
         res_mesh_draw(&gw->objects[i], -1);
     }
     glDisable(GL_CLIP_DISTANCE0);
+    glUseProgram(restore_program);
+}
+
+void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
+                bool to_screen, unsigned restore_program) {
+    draw_modes(gw, which, offset, t, eye, to_screen, restore_program, false);
+}
+
+void world_draw_layers(const gpu_world *gw, const char *which, double offset, const float eye[3], bool to_screen,
+                       unsigned restore_program) {
+    draw_modes(gw, which, offset, 0, eye, to_screen, restore_program, true);   /* no shading reads the time */
+}
+
+/* the units the composite borrows: above the world's fixed ones (14, 15,
+ * 22-30) and glman's, the last of a GL with 32 */
+static const int LAYER_UNITS[3] = { 31, 21, 20 };
+
+void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3], int x, int y,
+                            unsigned restore_program) {
+    unsigned p = gw->layers_prog.gl;
+    if (!gw->active || !p) return;
+    GLint active = 0, before[3];
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    glUseProgram(p);
+    world_upload(gw, p, t, eye);
+    static const char *const names[3] = { "uLayerWet", "uLayerDry", "uLayerPos" };
+    for (int i = 0; i < 3; i++) {
+        glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &before[i]);
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+        seti(p, names[i], LAYER_UNITS[i]);
+    }
+    GLint origin = glGetUniformLocation(p, "uLayerOrigin");
+    if (origin >= 0) glUniform2i(origin, x, y);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    for (int i = 0; i < 3; i++) {
+        glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
+        glBindTexture(GL_TEXTURE_2D, (GLuint)before[i]);
+    }
+    glActiveTexture((GLenum)active);
     glUseProgram(restore_program);
 }
 
@@ -857,5 +912,6 @@ bool world_set_height_map(gpu_world *gw, bool on, const char *const *include_dir
     gw->height_map_off = !on;
     if (!gw->active) return true;
     for (int m = 0; m < WORLD_MODES; m++) set_height_define(gw, &gw->progs[m]);
+    set_height_define(gw, &gw->layers_prog);
     return world_build_programs(gw, include_dirs, log);
 }

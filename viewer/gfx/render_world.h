@@ -69,6 +69,8 @@ typedef struct gpu_world {
     bool height_map_off;          /* world.frag solves per pixel (tests compare the two) */
     prog height_prog;
     unif_set height_unifs;
+    prog layers_prog;            /* world_layers.frag: a World's layers at a new time */
+    unif_set layers_unifs;
     unsigned height_tex, height_fbo;
     int height_res;
     double height_t;
@@ -169,6 +171,15 @@ void world_follow_waves(gpu_world *gw, double t);
  * passes itself). */
 void world_draw(const gpu_world *gw, const char *which, double offset, double t, const float eye[3],
                 bool to_screen, unsigned restore_program);
+/* The same draw into a world_layers target (world_layers.h): each pixel's
+ * wet and dry shading, its point and depth, for any time. */
+void world_draw_layers(const gpu_world *gw, const char *which, double offset, const float eye[3], bool to_screen,
+                       unsigned restore_program);
+/* A World at time t from its layers (tex: wet+depth, dry, point), into the
+ * bound target's viewport (its corner at x, y): the pixels world_draw gives
+ * at t. Restores `restore_program` and the texture units it borrows. */
+void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3], int x, int y,
+                            unsigned restore_program);
 
 /* `WaterSurface`: the water grid (at the level of detail) with the bound program. */
 void world_draw_water(gpu_world *gw, int tangent_loc);

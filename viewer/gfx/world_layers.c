@@ -1,0 +1,140 @@
+#include "world_layers.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <string.h>
+
+void wlayers_init(world_layers *l) {
+    memset(l, 0, sizeof *l);
+    for (int i = 0; i < WCACHE_SLOTS; i++) l->slot[i].cmd = -1;
+}
+
+static void slot_free(wlayers_slot *s) {
+    if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
+    glDeleteTextures(3, s->tex);
+    if (s->depth_rb) glDeleteRenderbuffers(1, &s->depth_rb);
+    memset(s, 0, sizeof *s);
+    s->cmd = -1;
+}
+
+void wlayers_free(world_layers *l) {
+    for (int i = 0; i < WCACHE_SLOTS; i++) slot_free(&l->slot[i]);
+}
+
+static wlayers_slot *find(world_layers *l, int cmd) {
+    for (int i = 0; i < WCACHE_SLOTS; i++)
+        if (l->slot[i].cmd == cmd) return &l->slot[i];
+    return NULL;
+}
+
+/* k without its time: what the layers depend on */
+static wcache_key timeless(const wcache_key *k) {
+    wcache_key u = *k;
+    u.t = 0;
+    return u;
+}
+
+static bool same_but_time(const wcache_key *a, const wcache_key *b) {
+    wcache_key x = timeless(a), y = timeless(b);
+    return memcmp(&x, &y, sizeof x) == 0;
+}
+
+wlayers_use wlayers_check(world_layers *l, int cmd, const wcache_key *k) {
+    /* one sample a pixel, no blending: the pass writes each pixel once */
+    if (l->off || k->samples > 1 || k->blend || !k->color_fmt || !k->depth_fmt) return WLAYERS_NO;
+    wlayers_slot *s = find(l, cmd);
+    if (!s) s = find(l, -1);
+    if (!s || s->broken) return WLAYERS_NO;
+    s->cmd = cmd;
+    wcache_key u = timeless(k);
+    if (s->valid && memcmp(&s->key, &u, sizeof u) == 0) {
+        s->last = *k;
+        return WLAYERS_READY;
+    }
+    bool running = s->seen && same_but_time(&s->last, k) && s->last.t != k->t;
+    s->seen = true;
+    s->last = *k;
+    return running ? WLAYERS_BUILD : WLAYERS_NO;
+}
+
+static unsigned make_tex(int w, int h) {
+    unsigned t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+/* The target, kept while the size and depth format stay. */
+static bool slot_alloc(wlayers_slot *s, const wcache_key *k) {
+    if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.depth_fmt == k->depth_fmt) return true;
+    int cmd = s->cmd;
+    slot_free(s);
+    s->cmd = cmd;
+    GLint tex2d = 0;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex2d);
+    glGenFramebuffers(1, &s->fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->fbo);
+    for (int i = 0; i < 3; i++) {
+        s->tex[i] = make_tex(k->vp_w, k->vp_h);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, s->tex[i], 0);
+    }
+    glBindTexture(GL_TEXTURE_2D, (GLuint)tex2d);
+    glGenRenderbuffers(1, &s->depth_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, s->depth_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, k->depth_fmt, k->vp_w, k->vp_h);
+    GLenum att = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8
+                     ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
+    glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, att, GL_RENDERBUFFER, s->depth_rb);
+    s->key.vp_w = k->vp_w;
+    s->key.vp_h = k->vp_h;
+    s->key.depth_fmt = k->depth_fmt;
+    return glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+}
+
+bool wlayers_begin_build(world_layers *l, int cmd, const wcache_key *k) {
+    wlayers_slot *s = find(l, cmd);
+    if (!s) return false;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &l->saved.draw_fbo);
+    glGetIntegerv(GL_RENDERBUFFER_BINDING, &l->saved.rb);
+    glGetIntegerv(GL_VIEWPORT, l->saved.vp);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, l->saved.clear);
+    l->saved.scissor = glIsEnabled(GL_SCISSOR_TEST) == GL_TRUE;
+    s->valid = false;
+    if (!slot_alloc(s, k)) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)l->saved.draw_fbo);
+        glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)l->saved.rb);
+        while (glGetError() != GL_NO_ERROR) {}
+        slot_free(s);
+        s->cmd = cmd;
+        s->broken = true;
+        return false;
+    }
+    static const GLenum bufs[3] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2 };
+    glDrawBuffers(3, bufs);
+    glViewport(0, 0, k->vp_w, k->vp_h);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(0, 0, 0, 1);   /* the wet layer's alpha is the depth: 1, nothing drawn */
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClearColor(l->saved.clear[0], l->saved.clear[1], l->saved.clear[2], l->saved.clear[3]);
+    return true;
+}
+
+void wlayers_end_build(world_layers *l, int cmd, const wcache_key *k) {
+    wlayers_slot *s = find(l, cmd);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)l->saved.draw_fbo);
+    glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)l->saved.rb);
+    glViewport(l->saved.vp[0], l->saved.vp[1], l->saved.vp[2], l->saved.vp[3]);
+    if (l->saved.scissor) glEnable(GL_SCISSOR_TEST);
+    if (!s) return;
+    s->key = timeless(k);
+    s->valid = true;
+    l->builds++;
+}
+
+const unsigned *wlayers_textures(world_layers *l, int cmd) {
+    wlayers_slot *s = find(l, cmd);
+    return s && s->valid ? s->tex : NULL;
+}
