@@ -9,6 +9,7 @@
  * d is summed over ~180 frames a period; half floats (11 bits) would round
  * off ~1 mm each step at 2-4 m. */
 #include "render_flow.h"
+#include "render_res.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -203,16 +204,8 @@ bool flow_update(gpu_flow *f, double t, gpu_timer *timer) {
     double T = f->d.period, dt = t - f->t;
     bool jump = !f->valid || dt < 0 || dt > FLOW_JUMP_DT || dt > 0.5 * T;
     if (timer) gpu_timer_mark(timer, "flow advect");
-    glViewport(0, 0, FLOW_RES, FLOW_RES);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_CULL_FACE);
-    glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);   /* the triangle comes from gl_VertexID */
-    glDisableClientState(GL_VERTEX_ARRAY);
-    glDisableClientState(GL_NORMAL_ARRAY);
-    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
-    glDisableClientState(GL_COLOR_ARRAY);
+    res_pass_state(FLOW_RES, FLOW_RES);
+    res_vertexid_begin();   /* the vertices come from gl_VertexID */
     unsigned p = f->prog.gl;
     glUseProgram(p);
     upload_field(f, p);
@@ -245,7 +238,7 @@ bool flow_update(gpu_flow *f, double t, gpu_timer *timer) {
         }
         step(f, sdt, reset);
     }
-    glPopClientAttrib();
+    res_vertexid_end();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     flow_bind(f);

@@ -31,6 +31,7 @@
  * measured costs per size are in tests/test_ocean_gl.c's output and the
  * issue's report. */
 #include "render_ocean.h"
+#include "render_res.h"
 #include "util.h"
 
 #include <GL/gl.h>
@@ -225,17 +226,8 @@ bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
         return false;   /* a still frame, or a second view */
     }
     int n = o->res;
-    glViewport(0, 0, n, n);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_CULL_FACE);
-    /* no vertex arrays: the triangle comes from gl_VertexID */
-    glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
-    glDisableClientState(GL_VERTEX_ARRAY);
-    glDisableClientState(GL_NORMAL_ARRAY);
-    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
-    glDisableClientState(GL_COLOR_ARRAY);
+    res_pass_state(n, n);
+    res_vertexid_begin();   /* the vertices come from gl_VertexID */
 
     /* the spectrum, into pair 0 */
     if (timer) gpu_timer_mark(timer, "ocean spectrum");
@@ -317,7 +309,7 @@ bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
     o->foam_t = t;
     o->foam_valid = true;
 
-    glPopClientAttrib();
+    res_vertexid_end();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     ocean_bind(o);   /* src is 0 again: the frame */

@@ -59,6 +59,16 @@ bool res_mesh_draw_with(const gpu_mesh *m, const res_draw *d, char *why, int why
 const char *res_mesh_prim_name(const gpu_mesh *m, const res_draw *d);
 void res_mesh_free(gpu_mesh *m);
 
+/* Draws whose vertices come from gl_VertexID alone (a triangle over the
+ * viewport, a point a particle): begin pushes the client vertex-array
+ * state and turns every array off (a compatibility context would feed an
+ * enabled one to the draw), end pops it. */
+void res_vertexid_begin(void);
+void res_vertexid_end(void);
+/* A pass into a w x h target of its own: viewport, no depth test,
+ * blending, scissor or culling. */
+void res_pass_state(int w, int h);
+
 bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
 /* Filtering and wrapping of the bound texture; mipmaps are generated. */
 void res_sampling(unsigned target, bool mipmaps, unsigned wrap);

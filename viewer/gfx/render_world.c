@@ -735,7 +735,9 @@ void world_composite_layers(const gpu_world *gw, double t, const float eye[3], c
     }
     GLint origin = glGetUniformLocation(p, "uLayerOrigin");
     if (origin >= 0) glUniform2i(origin, x, y);
+    res_vertexid_begin();   /* the vertices come from gl_VertexID */
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    res_vertexid_end();
     for (int i = 0; i < 3; i++) {
         glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
         glBindTexture(GL_TEXTURE_2D, (GLuint)before[i]);
@@ -882,25 +884,16 @@ void world_update_height(gpu_world *gw, double t, double detail) {
     }
     if (!gw->height_tex || res != gw->height_res) height_target(gw, res);
     glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
-    glViewport(0, 0, res, res);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_CULL_FACE);
+    res_pass_state(res, res);
     unsigned p = gw->height_prog.gl;
     glUseProgram(p);
     const float eye[3] = { 0, 0, 0 };
     world_upload(gw, p, t, eye);
     GLint loc = glGetUniformLocation(p, "uHeightRes");
     if (loc >= 0) glUniform2f(loc, (float)res, (float)res);
-    /* no vertex arrays: the triangle comes from gl_VertexID */
-    glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
-    glDisableClientState(GL_VERTEX_ARRAY);
-    glDisableClientState(GL_NORMAL_ARRAY);
-    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
-    glDisableClientState(GL_COLOR_ARRAY);
+    res_vertexid_begin();   /* the vertices come from gl_VertexID */
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    glPopClientAttrib();
+    res_vertexid_end();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gw->height_t = t;
