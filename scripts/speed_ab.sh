@@ -15,6 +15,8 @@
 #     --packs a,b    default: basic,raymarch,natural,caustic_tex
 #     --rounds N     default 3;  --frames N  default 6 (the median is
 #                    taken over all, so the first two, which fill caches, are outliers)
+#     --msaa N       anti-aliasing of the timed frames (default: tarn render's,
+#                    4 samples; 1 is the live window's case on a CPU rasteriser)
 #     --still        every frame at the same time (tarn render --still: what a
 #                    paused window and tarn bench draw, so the static-world
 #                    cache is used); a build without --still, which has no
@@ -28,7 +30,7 @@
 set -euo pipefail
 [ $# -ge 2 ] || { sed -n 2,19p "$0"; exit 2; }
 before=$1 after=$2; shift 2
-scene=scenes/lake.glib size=960x540 esize=480x270 t=2 rounds=3 frames=6 still=0
+scene=scenes/lake.glib size=960x540 esize=480x270 t=2 rounds=3 frames=6 still=0 msaa=
 packs=basic,raymarch,natural,caustic_tex
 while [ $# -gt 0 ]; do
     case $1 in
@@ -40,6 +42,7 @@ while [ $# -gt 0 ]; do
     --rounds) rounds=$2; shift ;;
     --frames) frames=$2; shift ;;
     --still) still=1 ;;
+    --msaa) msaa=$2; shift ;;
     *) echo "speed_ab.sh: unknown option $1" >&2; exit 2 ;;
     esac
     shift
@@ -53,6 +56,7 @@ trap 'rm -rf "$tmp"' EXIT
 wall() {  # tarn root pack
     local out opt=()
     if [ "$still" = 1 ] && [[ $("$1" render --help 2>&1) == *--still* ]]; then opt=(--still); fi
+    if [ -n "$msaa" ]; then opt+=(--msaa "$msaa"); fi
     out=$(TARN_ROOT=$2 "$1" render "$2/$scene" --pack "$3" --size "$size" --time "$t" \
           --frames "$frames" "${opt[@]}" -o "$tmp/f.png" 2>&1) || { echo "$out" >&2; return 1; }
     sed -n 's/.* wall \([0-9.]*\) ms.*/\1/p' <<<"$out"
