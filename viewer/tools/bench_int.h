@@ -25,10 +25,10 @@
  * the frames' (q3 - q1) / median over sqrt(frames), when larger) tie in
  * time. Measured on the 2-core VM: two runs of the same setting differ by
  * up to 15% in wall time on a quiet machine, but under other work by up to
- * 4x; the CPU time (BENCH_AXIS_CPU, a CPU rasteriser's axis) moved by
- * 0.83-1.32x (median 1.06) between a run beside other helpers' builds and
- * one with two busy loops more (docs/benchmark.md, "Timing on a busy
- * machine"). The error tolerance is each
+ * 4x (0.39-3.99x over three pairs of runs beside other helpers' work, one
+ * of each pair with two busy loops more); the CPU time (BENCH_AXIS_CPU, a
+ * CPU rasteriser's axis) moved by 0.62-1.32x (docs/benchmark.md, "Timing
+ * on a busy machine"). The error tolerance is each
  * setting's measured uncertainty (the reference's noise and grid bias,
  * bench_uncertainty); BENCH_ERROR_TIE of the error is the fallback where
  * it was not measured (--no-uncertainty). */
