@@ -27,15 +27,32 @@ static inline gl_ctx *gl_test_context(void) {
     return ctx;
 }
 
+/* packs/common, tarn's shared GLSL (TARN_SOURCE_DIR from the environment
+ * first: an installed copy's tests). */
+static inline const char *gl_test_common_dir(void) {
+    static char dir[1024];
+    snprintf(dir, sizeof dir, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
+    return dir;
+}
+
+/* Whether the last frame ran a pass whose timer name holds `what` (the
+ * passes a feature adds: "ocean", "flow advect", "spray draw"). */
+static inline bool gl_test_has_pass(render *r, const char *what) {
+    const char (*names)[GPU_TIMER_NAME];
+    const double *ms;
+    int n = render_pass_times(r, true, &names, &ms);
+    for (int i = 0; i < n; i++)
+        if (strstr(names[i], what)) return true;
+    return false;
+}
+
 /* Compiles the shader file at path as a stage of type, its #include lines
  * resolved from packs/common (tarn's shared GLSL) and with the defines
  * given: what the wave tests compile waves.glsl with. 0 when it does not
  * compile, the log (mapped through #include to the files' lines) on
  * stderr. */
 static inline GLuint gl_test_compile(GLenum type, const char *path, const shader_define *defs, int ndefs) {
-    char common[1024];
-    snprintf(common, sizeof common, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
-    const char *inc[1] = { common };
+    const char *inc[1] = { gl_test_common_dir() };
     shader_src src;
     shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
                           .defines = defs, .ndefines = ndefs, .include_dirs = inc, .ninclude_dirs = 1 };

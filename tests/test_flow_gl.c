@@ -35,17 +35,11 @@
 #include "render_world.h"
 #include "scene.h"
 
-static const char *common_dir(void) {
-    static char dir[1024];
-    snprintf(dir, sizeof dir, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
-    return dir;
-}
-
 static bool make_flow(gpu_flow *f, const ref_flow_desc *d, double half) {
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(f, 0, sizeof *f);
-    bool ok = flow_create(f, d, half, inc, common_dir(), &log);
+    bool ok = flow_create(f, d, half, inc, gl_test_common_dir(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok;
@@ -162,10 +156,10 @@ static void test_texture_velocity_is_a_current(void) {
     flow_free(&f);
     /* a missing file is an error naming it, not a crash */
     snprintf(wd.flow.texture, sizeof wd.flow.texture, "%s", scratch_path("nope.exr"));
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(&f, 0, sizeof f);
-    CHECK(!flow_create(&f, &wd.flow, 12, inc, common_dir(), &log));
+    CHECK(!flow_create(&f, &wd.flow, 12, inc, gl_test_common_dir(), &log));
     CHECK(log && strstr(log, "nope.exr"));
     free(log);
     flow_free(&f);
@@ -258,15 +252,6 @@ static void test_same_steps_same_map(void) {
 
 /* ---- (d) a world without a Flow pays nothing ---- */
 
-static bool has_pass(render *r, const char *what) {
-    const char (*names)[GPU_TIMER_NAME];
-    const double *ms;
-    int n = render_pass_times(r, true, &names, &ms);
-    for (int i = 0; i < n; i++)
-        if (strstr(names[i], what)) return true;
-    return false;
-}
-
 static bool frame_has_pass(const char *scene, const char *what) {
     render *r = render_create(&(render_desc){ .pack = "basic" });
     CHECK_MSG(render_load(r, scene), "%s", render_messages(r));
@@ -274,7 +259,7 @@ static bool frame_has_pass(const char *scene, const char *what) {
     CHECK(render_target_create(&tg, 64, 36, true));
     render_frame(r, 1.0, tg.fbo, 64, 36, NULL);
     render_frame(r, 1.5, tg.fbo, 64, 36, NULL);
-    bool has = has_pass(r, what);
+    bool has = gl_test_has_pass(r, what);
     render_target_destroy(&tg);
     render_destroy(r);
     return has;
@@ -297,9 +282,9 @@ static void test_no_flow_no_pass(void) {
         if (with) desc.flow = (ref_flow_desc){ .nterms = 1, .term = { { REF_FLOW_CURRENT, { 0.3, 0 } } } };
         gpu_world gw;
         memset(&gw, 0, sizeof gw);
-        const char *inc[1] = { common_dir() };
+        const char *inc[1] = { gl_test_common_dir() };
         char *log = NULL;
-        CHECK(world_build(&gw, &desc, inc, common_dir(), &log));
+        CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
         if (log) fprintf(stderr, "%s", log);
         free(log);
         CHECK(gw.active);

@@ -34,18 +34,12 @@
 #include "render_world.h"
 #include "shader_src.h"
 
-static const char *common_dir(void) {
-    static char dir[1024];
-    snprintf(dir, sizeof dir, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
-    return dir;
-}
-
 static bool make_ocean(gpu_ocean *o, int cascades, int n, const float *tile, float lambda, const float *h0,
                        const float *omega) {
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(o, 0, sizeof *o);
-    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, inc, common_dir(), &log);
+    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, inc, gl_test_common_dir(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok;
@@ -125,10 +119,10 @@ static ref_ocean *reference_ocean(int n, int cascades, double chop) {
 }
 
 static bool gpu_from(gpu_ocean *g, const ref_ocean *ro) {
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(g, 0, sizeof *g);
-    bool ok = ocean_create_from(g, ro, inc, common_dir(), &log);
+    bool ok = ocean_create_from(g, ro, inc, gl_test_common_dir(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok;
@@ -394,15 +388,6 @@ static void test_models_compiled_in_only_when_present(void) {
 
 /* ---- (c) a world without an ocean pays nothing ---- */
 
-static bool has_ocean_pass(render *r) {
-    const char (*names)[GPU_TIMER_NAME];
-    const double *ms;
-    int n = render_pass_times(r, true, &names, &ms);
-    for (int i = 0; i < n; i++)
-        if (strstr(names[i], "ocean")) return true;
-    return false;
-}
-
 static void test_no_ocean_no_pass(void) {
     render *r = render_create(&(render_desc){ .pack = "basic" });
     CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
@@ -410,7 +395,7 @@ static void test_no_ocean_no_pass(void) {
     CHECK(render_target_create(&tg, 64, 36, true));
     render_frame(r, 1.0, tg.fbo, 64, 36, NULL);
     render_frame(r, 2.0, tg.fbo, 64, 36, NULL);
-    CHECK(!has_ocean_pass(r));
+    CHECK(!gl_test_has_pass(r, "ocean"));
     render_target_destroy(&tg);
     render_destroy(r);
     /* the world module itself: no ocean, no texture, no program */
@@ -418,9 +403,9 @@ static void test_no_ocean_no_pass(void) {
     memset(&desc, 0, sizeof desc);
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    world_build(&gw, &desc, inc, common_dir(), &log);
+    world_build(&gw, &desc, inc, gl_test_common_dir(), &log);
     free(log);
     CHECK(gw.active);
     CHECK(!gw.ocean.active && gw.ocean.tex[0][0] == 0 && gw.ocean.h0_tex == 0 && gw.ocean.progs[0].gl == 0);
@@ -435,9 +420,9 @@ static void test_ocean_world_runs_its_passes(void) {
     desc.waves.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_PHILLIPS, .res = 64, .cascades = 2, .choppiness = 0.5 };
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    CHECK(world_build(&gw, &desc, inc, common_dir(), &log));
+    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
     if (log) fprintf(stderr, "%s", log);
     free(log);
     CHECK(gw.ocean.active && gw.ocean.cascades == 2 && gw.ocean.res == 64);

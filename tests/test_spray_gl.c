@@ -32,12 +32,6 @@
 #include "render_spray.h"
 #include "render_world.h"
 
-static const char *common_dir(void) {
-    static char dir[1024];
-    snprintf(dir, sizeof dir, "%s/packs/common", getenv("TARN_SOURCE_DIR") ? getenv("TARN_SOURCE_DIR") : TARN_SOURCE_DIR);
-    return dir;
-}
-
 /* A flat lake with one explosion ring at the origin from t = 0.2 s. */
 static bool ring_world(gpu_world *gw, double threshold, unsigned seed) {
     ref_world_desc desc;
@@ -48,9 +42,9 @@ static bool ring_world(gpu_world *gw, double threshold, unsigned seed) {
     desc.spray = (ref_spray_desc){ .on = true, .threshold = threshold, .rate = 4e5, .life = 3, .seed = seed,
                                    .count = 4096 };
     memset(gw, 0, sizeof *gw);
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    bool ok = world_build(gw, &desc, inc, common_dir(), &log);
+    bool ok = world_build(gw, &desc, inc, gl_test_common_dir(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok && gw->spray.active;
@@ -153,15 +147,6 @@ static void test_same_seed_same_spray(void) {
     free(a); free(av); free(b); free(bv);
 }
 
-static bool has_pass(render *r, const char *what) {
-    const char (*names)[GPU_TIMER_NAME];
-    const double *ms;
-    int n = render_pass_times(r, true, &names, &ms);
-    for (int i = 0; i < n; i++)
-        if (strstr(names[i], what)) return true;
-    return false;
-}
-
 static void test_no_spray_no_pass(void) {
     render *r = render_create(&(render_desc){ .pack = "basic" });
     CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
@@ -169,7 +154,7 @@ static void test_no_spray_no_pass(void) {
     CHECK(render_target_create(&tg, 64, 36, true));
     render_frame(r, 1.0, tg.fbo, 64, 36, NULL);
     render_frame(r, 1.5, tg.fbo, 64, 36, NULL);
-    CHECK(!has_pass(r, "spray"));
+    CHECK(!gl_test_has_pass(r, "spray"));
     render_target_destroy(&tg);
     render_destroy(r);
     /* a Spray scene runs its passes, and not with render_desc.no_spray (tarn bench) */
@@ -178,7 +163,7 @@ static void test_no_spray_no_pass(void) {
         CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/waves/spray.glib"), "%s", render_messages(r));
         CHECK(render_target_create(&tg, 64, 36, true));
         render_frame(r, 1.8, tg.fbo, 64, 36, NULL);
-        CHECK(has_pass(r, "spray update") == (off == 0) && has_pass(r, "spray draw") == (off == 0));
+        CHECK(gl_test_has_pass(r, "spray update") == (off == 0) && gl_test_has_pass(r, "spray draw") == (off == 0));
         render_target_destroy(&tg);
         render_destroy(r);
     }
@@ -186,9 +171,9 @@ static void test_no_spray_no_pass(void) {
     memset(&desc, 0, sizeof desc);
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    world_build(&gw, &desc, inc, common_dir(), &log);
+    world_build(&gw, &desc, inc, gl_test_common_dir(), &log);
     free(log);
     CHECK(!gw.spray.active && gw.spray.pos_tex[0] == 0 && gw.spray.progs[0].gl == 0);
     CHECK(!world_update_spray(&gw, 1.0, NULL));
@@ -206,9 +191,9 @@ static void test_ocean_crests_throw_spray(void) {
     desc.spray = (ref_spray_desc){ .on = true, .threshold = 0.3, .rate = 1e6, .life = 3, .seed = 5, .count = 4096 };
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    const char *inc[1] = { common_dir() };
+    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    CHECK(world_build(&gw, &desc, inc, common_dir(), &log));
+    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
     if (log) fprintf(stderr, "%s", log);
     free(log);
     int n = gw.spray.res * gw.spray.res;
