@@ -12,6 +12,7 @@
 #include "gl_ctx.h"
 #include "ref_waves.h"
 #include "render.h"
+#include "render_world.h"
 #include "shader_src.h"
 #include "unif.h"
 
@@ -44,6 +45,17 @@ static inline bool gl_test_has_pass(render *r, const char *what) {
     for (int i = 0; i < n; i++)
         if (strstr(names[i], what)) return true;
     return false;
+}
+
+/* Builds gw (zeroed first) from desc with packs/common's shaders: what a
+ * test of a world feature builds to look at the GL side alone; the build
+ * log is dropped (the test checks what it needs). */
+static inline void gl_test_world_build(gpu_world *gw, const ref_world_desc *desc) {
+    memset(gw, 0, sizeof *gw);
+    const char *inc[1] = { gl_test_common_dir() };
+    char *log = NULL;
+    world_build(gw, desc, inc, gl_test_common_dir(), &log);
+    free(log);
 }
 
 /* Compiles the shader file at path as a stage of type, its #include lines

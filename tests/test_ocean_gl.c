@@ -402,11 +402,7 @@ static void test_no_ocean_no_pass(void) {
     ref_world_desc desc;
     memset(&desc, 0, sizeof desc);
     gpu_world gw;
-    memset(&gw, 0, sizeof gw);
-    const char *inc[1] = { gl_test_common_dir() };
-    char *log = NULL;
-    world_build(&gw, &desc, inc, gl_test_common_dir(), &log);
-    free(log);
+    gl_test_world_build(&gw, &desc);
     CHECK(gw.active);
     CHECK(!gw.ocean.active && gw.ocean.tex[0][0] == 0 && gw.ocean.h0_tex == 0 && gw.ocean.progs[0].gl == 0);
     CHECK(!world_update_ocean(&gw, 1.0, NULL));

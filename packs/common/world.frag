@@ -41,17 +41,18 @@ float eyePathInWater(vec3 eye, vec3 p) {
 // A pixel's shading under the water (the flat-water sun, the sky's ambient
 // through the surface) or in air (Lambert, then the haze); the eye's path
 // in water fades both.
+vec3 eyeFade(vec3 c) {
+    return uWorldEyePath ? c * exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos)) : c;
+}
+
 vec3 shadeAs(bool wet, vec3 albedo, vec3 n) {
-    vec3 c = wet ? worldShadeAt(albedo, n, vWorldPos)
-                 : worldHaze(worldLambert(albedo, n, vec3(1.0)), distance(uCameraPos, vWorldPos));
-    if (uWorldEyePath) c *= exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos));
-    return c;
+    return eyeFade(wet ? worldShadeAt(albedo, n, vWorldPos)
+                       : worldHaze(worldLambert(albedo, n, vec3(1.0)), distance(uCameraPos, vWorldPos)));
 }
 
 void main() {
     if (uWorldMode == 2) {   // the sky: never wet
-        vec3 c = worldSkyLook(uSky, normalize(vWorldNormal));
-        if (uWorldEyePath) c *= exp(-uAbsorption * eyePathInWater(uCameraPos, vWorldPos));
+        vec3 c = eyeFade(worldSkyLook(uSky, normalize(vWorldNormal)));
         fragColor = uWorldLayers ? vec4(c, gl_FragCoord.z) : vec4(c, 1.0);
         fragDry = vec4(c, 1.0);
         fragPos = vec4(vWorldPos, 0.0);
