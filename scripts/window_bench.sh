@@ -13,10 +13,16 @@
 #     the cache, not the compiler); the wall clock of the save against the
 #     swap of the first frame after the reload (the script's `stamp on`),
 #     and from the reload's start (loading and compiling, then the frame).
-#     Twice: "cold", Mesa's shader cache off (MESA_SHADER_CACHE_DISABLE:
-#     every stage the reload links compiles, as on a first run), and "warm", the
-#     cache holding every stage but the edited one (a first, unmeasured run
-#     of the same scene fills it): what a user editing one file meets.
+#     Three times: "cold", Mesa's shader cache off (MESA_SHADER_CACHE_DISABLE:
+#     every stage the reload links compiles, as on a first run; with no
+#     cache the window compiles on the frame), "warm", the cache holding
+#     every stage but the edited one (a first, unmeasured run of the same
+#     scene fills it): what a user editing one file meets, the change
+#     compiled off the frame (viewer/ui/compile_job.h), and "warm/frame",
+#     the same compiled on the frame (TARN_COMPILE_ON_FRAME=1, as before
+#     issue #30) for the A/B. "longest gap" is the longest time between two
+#     frames on screen from the save's detection to the new frame: how long
+#     the window froze.
 # Usage: scripts/window_bench.sh [TARN] [BUDGET_MS[,BUDGET_MS...]] [PACK...]
 #   TARN defaults to build/tarn, BUDGET_MS to 50 (0: the budget off; "0,50"
 #   runs both, one after the other for each pack: an A/B in one run).
@@ -35,14 +41,15 @@ cp -r "$here/packs" "$here/scenes" "$scratch/"
 [ -d "$here/data" ] && cp -r "$here/data" "$scratch/"
 echo "window_bench: $(uptime | sed 's/^ *//')"
 echo "window_bench: lake at its WindowSize, $bin"
-printf "%-12s %5s %7s %10s %14s %22s %12s %14s\n" pack cache budget "orbit fps" "orbit ms/frame" "orbit resolution" \
-    "save->frame" "reload->frame"
+printf "%-12s %10s %7s %10s %14s %22s %12s %14s %12s\n" pack cache budget "orbit fps" "orbit ms/frame" "orbit resolution" \
+    "save->frame" "reload->frame" "longest gap"
 for p in "${packs[@]}"; do
-  for cache in cold warm; do
-  export MESA_SHADER_CACHE_DIR=$scratch/mesa-$p-$cache
+  for cache in cold warm warm/frame; do
+  export MESA_SHADER_CACHE_DIR=$scratch/mesa-$p-${cache%/*}
   rm -rf "$MESA_SHADER_CACHE_DIR" && mkdir -p "$MESA_SHADER_CACHE_DIR"
   if [ $cache = cold ]; then export MESA_SHADER_CACHE_DISABLE=true; else unset MESA_SHADER_CACHE_DISABLE; fi
-  if [ $cache = warm ]; then   # fill the cache with this scene's stages, unmeasured
+  if [ $cache = warm/frame ]; then export TARN_COMPILE_ON_FRAME=1; else unset TARN_COMPILE_ON_FRAME; fi
+  if [ $cache != cold ]; then   # fill the cache with this scene's stages, unmeasured
     printf 'pause 1\nframes 3\nquit\n' > "$scratch/fill.script"
     TARN_ROOT=$scratch xvfb-run -a -s "-screen 0 1600x900x24" "$bin" view "$scratch/scenes/lake.glib" --pack "$p" \
         --time 2 --script "$scratch/fill.script" > /dev/null 2>&1
@@ -65,7 +72,7 @@ stamp on
 wait 8
 quit
 SCRIPT
-    log=$scratch/$p.log
+    log=$scratch/$p-${cache/\//-}-$b.log
     TARN_ROOT=$scratch xvfb-run -a -s "-screen 0 1600x900x24" "$bin" view "$scratch/scenes/lake.glib" --pack "$p" \
         --time 2 --script "$scratch/bench.script" > "$log" 2>&1 &
     pid=$!
@@ -82,8 +89,9 @@ SCRIPT
     fps=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (c1 > c0) printf "%.1f", (f1 - f0) * 1000 / (c1 - c0); else print "-" }')
     ms=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (f1 > f0) printf "%.1f", (c1 - c0) / (f1 - f0); else print "-" }')
     rl=$(awk '/first frame after the reload swapped at/ { sub(/^\(/, "", $11); print $11 " ms"; exit }' "$log")
+    gap=$(awk '/first frame after the reload swapped at/ { for (i = 1; i < NF; i++) if ($i == "gap") print $(i + 2) " ms"; exit }' "$log")
     lat=$(awk -v s="$saved" -v w="$swap" 'BEGIN { if (w != "") printf "%.0f ms", (w - s) * 1000; else print "-" }')
-    printf "%-12s %5s %7s %10s %14s %22s %12s %14s%s\n" "$p" "$cache" "$b" "$fps" "$ms" "$res" "$lat" "${rl:--}" \
+    printf "%-12s %10s %7s %10s %14s %22s %12s %14s %12s%s\n" "$p" "$cache" "$b" "$fps" "$ms" "$res" "$lat" "${rl:--}" "${gap:--}" \
         "$([ "$rc" -eq 0 ] || echo "  (tarn exited $rc)")"
   done
   done

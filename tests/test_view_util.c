@@ -63,6 +63,23 @@ static void test_reload_cause_names_the_files(void) {
     CHECK(strlen(out) == 8);
 }
 
+/* The reload's line and the "compiling ..." note say what the window does
+ * with a save (compile_job.h): off the frame, and for which file. */
+static void test_reload_line_and_compiling_text(void) {
+    char out[256];
+    view_reload_line("tarn", "lake.glib", "water.frag changed", 0.914, out, sizeof out);
+    CHECK_MSG(strcmp(out, "tarn: reloaded lake.glib (water.frag changed), compiled off the frame in 0.91 s") == 0,
+              "%s", out);
+    view_reload_line("tarn", "lake.glib", "", -1, out, sizeof out);   /* R: no cause, compiled on the frame */
+    CHECK_MSG(strcmp(out, "tarn: reloaded lake.glib") == 0, "%s", out);
+    view_reload_line("tarn", "lake.glib", "water.frag changed", 0.5, out, 20);   /* cut, never overrun */
+    CHECK(strlen(out) == 19);
+    view_compiling_text("water.frag changed", out, sizeof out);
+    CHECK_MSG(strcmp(out, "compiling water.frag ... (the last good build draws meanwhile)") == 0, "%s", out);
+    view_compiling_text("", out, sizeof out);
+    CHECK_MSG(strncmp(out, "compiling ...", 13) == 0, "%s", out);
+}
+
 static orbit home(void) {
     render_view v = { { 0, 2, 10 }, { 0, 0, 0 }, { 0, 1, 0 } };
     return orbit_from_view(v);
@@ -146,6 +163,7 @@ int main(void) {
     RUN(test_pass_names_read_as_the_glib);
     RUN(test_script_line_limit);
     RUN(test_reload_cause_names_the_files);
+    RUN(test_reload_line_and_compiling_text);
     RUN(test_sheet_command_line);
     return check_summary();
 }

@@ -6,7 +6,11 @@
 #     the file while the window runs, and the program links (the script's
 #     expects hold) without a restart;
 #   - a lost context ends the window with exit 3 and the message;
-#   - a save's reload message names the file saved.
+#   - a save's reload message names the file saved;
+#   - a save is compiled off the frame (viewer/ui/compile_job.h, issue #30):
+#     the window draws frames between seeing the change and the new frame
+#     and says it compiled off the frame; with TARN_COMPILE_ON_FRAME=1 (the
+#     old way) the same measure reads 0 frames, so it can tell them apart.
 set -u
 bin=$1; src=$2
 command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
@@ -91,4 +95,35 @@ saved_file_named() {
 }
 saved_file_named view lost.glib "$bin" view lost.glib
 saved_file_named compare-view lost-world.glib "$bin" compare-view lost-world.glib --packs basic,basic --size 320x240
+# $1: "job" or "frame" (TARN_COMPILE_ON_FRAME=1)
+printf 'frames 2\nstamp on\nwait 6\nquit\n' > "$scratch/stamp.script"
+compile_mode() {
+    local mode=$1 log=$scratch/compile-$1.log
+    rm -f "$log"
+    (for _ in $(seq 300); do grep -q "stamp on" "$log" 2>/dev/null && break; sleep 0.1; done
+     sleep 1.5
+     echo "float unusedBy$mode$(date +%N)() { return 1.0; }" >> "$scratch/grey.frag") &
+    local saver=$!
+    if [ "$mode" = frame ]; then export TARN_COMPILE_ON_FRAME=1; else unset TARN_COMPILE_ON_FRAME; fi
+    (cd "$scratch" && xvfb "$bin" view lost.glib --script stamp.script >"$log" 2>&1)
+    local rc=$?
+    unset TARN_COMPILE_ON_FRAME
+    wait "$saver"
+    cat "$log"
+    [ "$rc" -eq 0 ] || fail "compile $mode: exited $rc"
+    local frames
+    frames=$(sed -n 's/.*first frame after the reload swapped.*, \([0-9]*\) frames before it).*/\1/p' "$log" | head -1)
+    [ -n "$frames" ] || fail "compile $mode: no stamp of the first frame after the reload"
+    if [ "$mode" = job ]; then
+        grep -q "reloaded lost.glib (grey.frag changed), compiled off the frame in" "$log" ||
+            fail "the save was not compiled off the frame"
+        [ "$frames" -ge 2 ] || fail "the window drew $frames frames while the save compiled (want 2 or more)"
+    else
+        grep -q "compiled off the frame" "$log" && fail "TARN_COMPILE_ON_FRAME=1 still compiled off the frame"
+        [ "$frames" -eq 0 ] || fail "compiled on the frame, yet $frames frames were drawn before the reload"
+    fi
+}
+# (Mesa's cache is what the job fills: on for this part whatever the caller set)
+MESA_SHADER_CACHE_DISABLE=false compile_mode job
+MESA_SHADER_CACHE_DISABLE=false compile_mode frame
 echo "window app test: ok"

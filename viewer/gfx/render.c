@@ -119,6 +119,11 @@ render *render_create(const render_desc *desc) {
     return r;
 }
 
+render_desc render_desc_of(const render *r) {
+    return (render_desc){ .repo_root = r->root, .pack = r->pack[0] ? r->pack : NULL, .samples = r->samples,
+                          .verbose = r->verbose, .no_spray = r->no_spray };
+}
+
 static void scene_free(scene_state *s) {
     for (int i = 0; i < s->nmeshes; i++) res_mesh_free(&s->meshes[i]);
     for (int i = 0; i < s->ntexs; i++) res_tex_free(&s->texs[i]);

@@ -37,6 +37,12 @@ typedef struct render_view {
 render *render_create(const render_desc *desc);
 void render_destroy(render *r);
 
+/* The desc r was made with, as it is now (render_set_pack changes .pack;
+ * repo_root always set): another render made from it draws the same scene
+ * the same way (the window's compile job warms the driver's shader cache
+ * with one). The strings point into r. */
+render_desc render_desc_of(const render *r);
+
 /* Loads (or reloads, when path equals the current one or is NULL) the scene.
  * Returns false if the load had errors; what could be kept is in use. */
 bool render_load(render *r, const char *glib_path);

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "compile_job.h"
 #include "exit_code.h"
 #include "file.h"
 #include "frame_meter.h"
@@ -72,6 +73,18 @@ struct app {
     sheet_job sheet;             /* a hand-in sheet being made (a slider's right-click menu) */
     int sheets;                  /* made so far: the next one's number */
     bool help;                   /* F1 or ?: the keys and the mouse, over the scene */
+    /* a save's shaders compiled off the frame (compile_job.h) */
+    compile_job *cjob;
+    bool compiling;              /* a job runs for the change last seen */
+    bool priming;                /* ... or to load the scenes in the job's renders before any change */
+    bool compile_ended;          /* ... and has ended: reload on this frame */
+    bool changed_again;          /* a file changed while it ran */
+    int compile_restarts;        /* jobs started again for such changes, since the last reload */
+    double change_seen;          /* glfwGetTime() when the change being compiled was seen (0: none) */
+    double last_swap, gap_max;   /* the longest swap-to-swap time since then (the stamp says it) */
+    double compile_s;            /* how long the last job ran */
+    bool compiled_off_frame;     /* during hooks.reload: the job compiled what it loads */
+    long frames_meanwhile;       /* frames swapped since the change was seen */
 };
 
 /* ---- watching ---- */
@@ -123,7 +136,9 @@ void app_rewatch(app *a) {
 
 static void reload(app *a) {
     a->stamp_pending = a->stamp;
-    a->stamp_seen = glfwGetTime();
+    a->stamp_seen = a->change_seen > 0 ? a->change_seen : glfwGetTime();
+    if (a->change_seen <= 0) a->gap_max = 0, a->frames_meanwhile = 0;
+    a->change_seen = 0;
     a->d.reload(a->d.user, a);
     app_picture_changed(a);
     a->frame_fair = false;   /* the reload's own time is not the scene's */
@@ -131,12 +146,72 @@ static void reload(app *a) {
     app_rewatch(a);
 }
 
-/* A reload for the files the watcher saw change (watch_changed 0..n-1). */
+/* Compiles the scenes as they are on disk now, off the frame, into
+ * Mesa's shader cache (compile_job.h); false when that cannot help or
+ * cannot start (reload on the frame then). */
+static bool start_compile(app *a, bool prime) {
+    if (!compile_job_useful() || a->drawn_w <= 0) return false;
+    if (!a->cjob) a->cjob = compile_job_create();
+    compile_job_desc d = { .scenes = a->scenes, .n = a->nscenes, .w = a->drawn_w, .h = a->drawn_h,
+                           .t = a->s.t, .view = orbit_view(&a->s.cam),
+                           .detail = a->area_w > 0 ? (double)a->drawn_w / a->area_w : 1 };
+    if (!compile_job_start(a->cjob, &d)) return false;
+    a->compiling = true;
+    a->priming = prime;
+    a->compile_ended = false;
+    if (!prime && a->change_seen <= 0) {
+        a->change_seen = glfwGetTime();
+        a->gap_max = 0;
+        a->frames_meanwhile = 0;
+    }
+    return true;
+}
+
+/* Has the running compile job ended (latched until the frame takes it)? */
+static bool compile_finished(app *a) {
+    if (a->compiling && !a->compile_ended && compile_job_done(a->cjob, &a->compile_s)) a->compile_ended = true;
+    return a->compile_ended;
+}
+
+/* The job ended: the reload finds its programs in the cache. A file that
+ * changed while it ran is compiled again first (twice at most, so that a
+ * stream of saves still shows one). */
+static void compile_ended(app *a) {
+    bool primed = a->priming;
+    a->compiling = a->compile_ended = a->priming = false;
+    if (primed && !a->changed_again) return;   /* the job's renders hold the scenes: nothing changed */
+    if (a->changed_again && a->compile_restarts < 2) {
+        a->changed_again = false;
+        a->compile_restarts++;
+        if (start_compile(a, false)) return;
+    }
+    a->changed_again = false;
+    a->compile_restarts = 0;
+    a->compiled_off_frame = true;
+    reload(a);
+    a->compiled_off_frame = false;
+}
+
+/* The files the watcher saw change (watch_changed 0..n-1): compiled off
+ * the frame, then reloaded; reloaded now where that cannot help. */
 static void reload_changed(app *a, int n) {
     const char **paths = mem_alloc((size_t)n * sizeof *paths);
     for (int i = 0; i < n; i++) paths[i] = watch_changed(a->watch, i);
-    view_reload_cause(paths, n, a->cause, sizeof a->cause);
+    char cause[sizeof a->cause];
+    view_reload_cause(paths, n, cause, sizeof cause);
     free(paths);
+    if (a->compiling) {   /* the job reads the files when it runs: compile again once it ends */
+        a->changed_again = true;
+        if (a->change_seen <= 0) {   /* (a priming job: the change's wait starts now) */
+            a->change_seen = glfwGetTime();
+            a->gap_max = 0;
+            a->frames_meanwhile = 0;
+        }
+        if (strcmp(cause, a->cause) != 0) snprintf(a->cause, sizeof a->cause, "%s", cause);
+        return;
+    }
+    snprintf(a->cause, sizeof a->cause, "%s", cause);
+    if (start_compile(a, false)) return;
     reload(a);
 }
 
@@ -188,8 +263,15 @@ static void draw_toast(app *a) {
                  session_rec_path(a->rec));
         panel_label(a->panel, (float)ww - 10.0f, 10.0f, label, true);
     }
+    float y = 40.0f, x = (app_scene_x_window(a) + (float)ww) * 0.5f;
+    if (a->compiling && !a->priming) {   /* what is on screen is the last good build until then */
+        char what[700];
+        view_compiling_text(a->cause, what, sizeof what);
+        panel_toast(a->panel, x, y, what);
+        y += 36.0f;
+    }
     if (!a->toast[0] || glfwGetTime() > a->toast_until) return;
-    panel_toast(a->panel, (app_scene_x_window(a) + (float)ww) * 0.5f, 40.0f, a->toast);
+    panel_toast(a->panel, x, y, a->toast);
 }
 
 /* F1 or ?: what the keys and the mouse do, over the scene's top left (the
@@ -431,8 +513,10 @@ static void stamp_swap(app *a) {
     a->stamp_pending = false;
     struct timespec ts;
     timespec_get(&ts, TIME_UTC);
-    fprintf(stderr, "%s: stamp: first frame after the reload swapped at %.6f (%.1f ms after the reload began)\n",
-            a->d.name, (double)ts.tv_sec + ts.tv_nsec * 1e-9, (glfwGetTime() - a->stamp_seen) * 1e3);
+    fprintf(stderr, "%s: stamp: first frame after the reload swapped at %.6f (%.1f ms after the reload began; "
+            "longest frame gap meanwhile %.1f ms, %ld frames before it)\n", a->d.name,
+            (double)ts.tv_sec + ts.tv_nsec * 1e-9, (glfwGetTime() - a->stamp_seen) * 1e3, a->gap_max * 1e3,
+            a->frames_meanwhile - 1);
 }
 
 /* ---- the loop ---- */
@@ -462,6 +546,7 @@ static void frame(app *a, bool scripted) {
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
     if (!a->s.paused && !scripted) a->s.t += dt;
+    if (compile_finished(a)) compile_ended(a);
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
     if (changed > 0) reload_changed(a, changed);
     else if (a->watch && missing_dir_appeared(a)) {
@@ -623,7 +708,7 @@ void app_keep_awake(app *a) { a->keep_awake = true; }
  * screen (res_budget), no script or orbit drives frames, no toast is
  * fading, no client asked for frames, no folder is being looked for. */
 static bool idle(const app *a, const view_script *script) {
-    return !script && a->budget.full_done && !a->keep_awake && a->orbit_left == 0 && !a->shot_pending &&
+    return !script && a->budget.full_done && !a->keep_awake && !a->compiling && a->orbit_left == 0 && !a->shot_pending &&
            !a->stamp_pending && a->unwatched == 0 && glfwGetTime() > a->toast_until + 0.25;   /* and it is gone */
 }
 
@@ -640,6 +725,14 @@ static bool files_pending(const app *a) {
  * save is seen (the watcher's fd is not GLFW's to wait on). */
 static bool wait_for_work(app *a, const view_script *script) {
     a->keep_awake = false;
+    if (a->compiling && !compile_finished(a) && !script && a->budget.full_done) {
+        /* a still picture while a job compiles: no frames to draw (the
+         * cores are the compiler's), only the job's end to see */
+        glfwWaitEventsTimeout(APP_COMPILE_POLL_S);
+        if (!a->woken && !compile_finished(a) && !files_pending(a)) return false;
+        a->slept = true;
+        return true;
+    }
     if (!idle(a, script)) {
         glfwPollEvents();
         return true;
@@ -679,7 +772,16 @@ int app_run(app *a, render *const *scenes, int n) {
         }
         if (script && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
         glfwSwapBuffers(a->win);
+        double swapped = glfwGetTime();
+        if (a->change_seen > 0 || a->stamp_pending) {
+            a->gap_max = fmax(a->gap_max, swapped - a->last_swap);
+            a->frames_meanwhile++;
+        }
+        a->last_swap = swapped;
         if (a->stamp_pending) stamp_swap(a);
+        /* the scenes loaded in the job's renders once the window shows
+         * them, so that the first save compiles only what it changed */
+        if (a->frames == 1 && !a->compiling) start_compile(a, true);
         /* input that arrives meanwhile queues, as behind a slow frame */
         for (double left; (left = started + a->slow_s - glfwGetTime()) > 0;)
             clock_sleep_s(left);
@@ -736,6 +838,7 @@ app *app_create(const app_desc *desc) {
 
 void app_destroy(app *a) {
     if (!a) return;
+    compile_job_destroy(a->cjob);   /* waits for a job: its context goes before the window's */
     watch_destroy(a->watch);
     panel_destroy(a->panel);
     gl_ctx_destroy(a->ctx);
@@ -777,6 +880,7 @@ void app_script_use(app *a, int i) {
 
 app_state *app_get_state(app *a) { return &a->s; }
 const char *app_reload_cause(const app *a) { return a->cause; }
+double app_reload_compiled_s(const app *a) { return a->compiled_off_frame ? a->compile_s : -1; }
 void *app_window(app *a) { return a->win; }
 gl_ctx *app_gl(app *a) { return a->ctx; }
 panel *app_panel(app *a) { return a->panel; }

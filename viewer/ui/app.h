@@ -16,8 +16,10 @@
  *     app_destroy(a);
  *
  * Each frame: poll events; advance the clock (not while paused or
- * scripted); reload on a watched file's change (hooks.reload, then
- * rewatch); the mouse (hooks.mouse, or the orbit camera's); hooks.draw;
+ * scripted); on a watched file's change, compile the scenes off the frame
+ * (compile_job.h: the last good programs keep drawing, the panel says
+ * "compiling water.frag ...") and reload when that ends (hooks.reload,
+ * then rewatch; R and the script's reload reload at once); the mouse (hooks.mouse, or the orbit camera's); hooks.draw;
  * the panel frame around hooks.panel; the panel's common actions, then
  * hooks.apply; the lost-context check (exit TARN_EXIT_NO_GL with the
  * message); one script step; swap.
@@ -155,6 +157,8 @@ void app_picture_changed(app *a);
  * frame; a client with work in flight (compare-view's heat maps) calls this
  * in its draw to have the next frame drawn. */
 #define APP_IDLE_WAIT_S 0.05
+/* how often a still window looks whether a compile job has ended */
+#define APP_COMPILE_POLL_S 0.02
 void app_keep_awake(app *a);
 
 /* A message alone on a dark window, shown at once (before a scene's first
@@ -169,6 +173,9 @@ void app_budget_text(const app *a, char *out, int len);
  * watcher saw change), "a missing folder appeared", or "" (R, the panel's
  * button, a script). */
 const char *app_reload_cause(const app *a);
+/* During hooks.reload: how long the compile job ran that compiled what
+ * it loads, off the frame (seconds); -1 when it compiles on the frame. */
+double app_reload_compiled_s(const app *a);
 
 app_state *app_get_state(app *a);
 void *app_window(app *a);        /* the GLFWwindow* */

@@ -444,8 +444,9 @@ static void report(cv_pack *p) {
 
 static void on_reload(void *user, app *a) {
     cview *v = user;
-    const char *cause = app_reload_cause(a);
-    fprintf(stderr, "tarn compare-view: reloaded %s%s%s%s\n", v->scene, cause[0] ? " (" : "", cause, cause[0] ? ")" : "");
+    char line[2048];
+    view_reload_line("tarn compare-view", v->scene, app_reload_cause(a), app_reload_compiled_s(a), line, sizeof line);
+    fprintf(stderr, "%s\n", line);
     for (int i = 0; i < v->n; i++) {
         render_load(v->packs[i].r, NULL);
         report(&v->packs[i]);

@@ -142,9 +142,9 @@ static int setting_row(viewer *v, const char *name) {
 static void on_reload(void *user, app *a) {
     viewer *v = user;
     render_load(v->r, NULL);
-    const char *cause = app_reload_cause(a);
-    fprintf(stderr, "tarn: reloaded %s%s%s%s\n", render_scene_path(v->r), cause[0] ? " (" : "", cause,
-            cause[0] ? ")" : "");
+    char line[2048];
+    view_reload_line("tarn", render_scene_path(v->r), app_reload_cause(a), app_reload_compiled_s(a), line, sizeof line);
+    fprintf(stderr, "%s\n", line);
     fputs(render_messages(v->r), stderr);
 }
 

@@ -196,6 +196,20 @@ void view_reload_cause(const char *const *paths, int n, char *out, size_t len) {
     if (n > 0 && used < len) snprintf(out + used, len - used, " changed");
 }
 
+void view_reload_line(const char *who, const char *scene, const char *cause, double compiled_s, char *out,
+                      size_t len) {
+    int n = snprintf(out, len, "%s: reloaded %s%s%s%s", who, scene, cause[0] ? " (" : "", cause, cause[0] ? ")" : "");
+    if (compiled_s >= 0 && n >= 0 && (size_t)n < len)
+        snprintf(out + n, len - (size_t)n, ", compiled off the frame in %.2f s", compiled_s);
+}
+
+void view_compiling_text(const char *cause, char *out, size_t len) {
+    static const char suffix[] = " changed";
+    size_t n = strlen(cause), k = strlen(suffix);
+    if (n >= k && strcmp(cause + n - k, suffix) == 0) n -= k;
+    snprintf(out, len, "compiling %.*s%s... (the last good build draws meanwhile)", (int)n, cause, n ? " " : "");
+}
+
 void view_loading_text(const char *glib, const char *pack, const char *extra, char *out, size_t n) {
     char packs[4096];
     snprintf(packs, sizeof packs, "%s/packs", tarn_root());

@@ -92,6 +92,17 @@ void view_pass_summary(render *r, char *out, size_t len);
  * "" for none (R, the panel's button). */
 void view_reload_cause(const char *const *paths, int n, char *out, size_t len);
 
+/* The reload's line on stderr: "WHO: reloaded SCENE (CAUSE)", and
+ * ", compiled off the frame in 0.91 s" when compiled_s >= 0
+ * (app_reload_compiled_s). */
+void view_reload_line(const char *who, const char *scene, const char *cause, double compiled_s, char *out,
+                      size_t len);
+
+/* What the window shows while a change compiles off the frame, from the
+ * reload's cause: "water.frag changed" -> "compiling water.frag ... (the
+ * last good build draws meanwhile)"; "" -> "compiling ...". */
+void view_compiling_text(const char *cause, char *out, size_t len);
+
 /* "tarn-YYYYmmdd-HHMMSS-N.png" into out. */
 void view_shot_path(int n, char *out, size_t len);
 

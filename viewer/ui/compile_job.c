@@ -1,0 +1,265 @@
+/* compile_job: a save's shaders compiled off the frame (see compile_job.h). */
+#include "compile_job.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "gl_ctx.h"
+#include "glib.h"
+#include "mem.h"
+#include "unif.h"
+#include "util.h"
+
+/* One Define's value as the window has it. */
+typedef struct job_define {
+    char program[UNIF_NAME_MAX], name[UNIF_NAME_MAX];
+    float value[UNIF_MAX_COMPONENTS];
+} job_define;
+
+/* What the worker needs of one of the window's scenes, copied. */
+typedef struct job_scene {
+    char glib[GLIB_PATH_MAX], root[GLIB_PATH_MAX], pack[GLIB_NAME_MAX];
+    render_desc desc;            /* its strings point into this struct */
+    bool srgb;                   /* a world: the window draws it into an sRGB canvas */
+    job_define *defines;
+    int ndefines;
+} job_scene;
+
+struct compile_job {
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    pthread_t th;
+    bool thread;                 /* the worker was started */
+    bool request;                /* under mu: a job is waiting for the worker */
+    bool busy;                   /* under mu: a job was started and has not been taken as done */
+    bool done;                   /* under mu: the worker finished it */
+    bool quit;                   /* under mu: destroy asked the worker to end */
+    double seconds;              /* under mu: how long it ran */
+    /* the job: written by compile_job_start while no job runs, read by the worker */
+    job_scene scenes[COMPILE_JOB_MAX_SCENES];
+    int nscenes, w, h;
+    double t, detail;
+    render_view view;
+    /* the worker's own: its context and the renders it keeps between jobs,
+     * so that a job reloads as the window does (the world, the once-drawn
+     * passes and the unchanged programs kept) instead of loading afresh */
+    gl_ctx *ctx;
+    render *kept[COMPILE_JOB_MAX_SCENES];
+    job_scene kept_as[COMPILE_JOB_MAX_SCENES];   /* (no defines: only the keys) */
+};
+
+static bool env_true(const char *name) {
+    const char *v = getenv(name);
+    return v && (strcmp(v, "1") == 0 || strcasecmp(v, "true") == 0 || strcasecmp(v, "yes") == 0);
+}
+
+bool compile_job_useful(void) {
+    const char *on_frame = getenv("TARN_COMPILE_ON_FRAME");
+    if (on_frame && on_frame[0]) return false;
+    return !env_true("MESA_SHADER_CACHE_DISABLE") && !env_true("MESA_GLSL_CACHE_DISABLE");
+}
+
+compile_job *compile_job_create(void) {
+    compile_job *j = mem_zalloc(sizeof *j);
+    pthread_mutex_init(&j->mu, NULL);
+    pthread_cond_init(&j->cv, NULL);
+    return j;
+}
+
+static void free_scenes(compile_job *j) {
+    for (int i = 0; i < j->nscenes; i++) free(j->scenes[i].defines);
+    j->nscenes = 0;
+}
+
+void compile_job_destroy(compile_job *j) {
+    if (!j) return;
+    if (j->thread) {
+        pthread_mutex_lock(&j->mu);
+        j->quit = true;
+        pthread_cond_signal(&j->cv);
+        pthread_mutex_unlock(&j->mu);
+        pthread_join(j->th, NULL);
+    }
+    free_scenes(j);
+    pthread_cond_destroy(&j->cv);
+    pthread_mutex_destroy(&j->mu);
+    free(j);
+}
+
+/* The Define entries of r's programs: they change the text compiled. */
+static void copy_defines(render *r, job_scene *s) {
+    int nsets;
+    unif_set *sets = render_uniforms(r, &nsets);
+    for (int i = 0; i < nsets; i++)
+        for (int k = 0; k < sets[i].n; k++) {
+            const unif_entry *e = &sets[i].entries[k];
+            if (!e->is_define) continue;
+            s->defines = mem_realloc(s->defines, (size_t)(s->ndefines + 1) * sizeof *s->defines);
+            job_define *d = &s->defines[s->ndefines++];
+            snprintf(d->program, sizeof d->program, "%s", sets[i].program);
+            snprintf(d->name, sizeof d->name, "%s", e->name);
+            memcpy(d->value, e->value, sizeof d->value);
+        }
+}
+
+static void copy_scene(render *r, job_scene *s) {
+    memset(s, 0, sizeof *s);
+    render_desc d = render_desc_of(r);
+    snprintf(s->glib, sizeof s->glib, "%s", render_scene_path(r));
+    snprintf(s->root, sizeof s->root, "%s", d.repo_root);
+    snprintf(s->pack, sizeof s->pack, "%s", d.pack ? d.pack : "");
+    s->desc = d;
+    s->desc.repo_root = s->root;
+    s->desc.pack = s->pack[0] ? s->pack : NULL;
+    s->srgb = render_has_world(r);
+    copy_defines(r, s);
+}
+
+/* The window's Define values on the job's fresh load; true when one
+ * differs from the glib's default (the programs must be built again). */
+static bool apply_defines(render *r, const job_scene *s) {
+    int nsets;
+    unif_set *sets = render_uniforms(r, &nsets);
+    bool changed = false;
+    for (int i = 0; i < s->ndefines; i++)
+        for (int k = 0; k < nsets; k++) {
+            if (strcmp(sets[k].program, s->defines[i].program) != 0) continue;
+            unif_entry *e = unif_find(&sets[k], s->defines[i].name);
+            if (!e || !e->is_define || memcmp(e->value, s->defines[i].value, sizeof e->value) == 0) continue;
+            memcpy(e->value, s->defines[i].value, sizeof e->value);
+            changed = true;
+        }
+    return changed;
+}
+
+/* Is the worker's render i one of this scene (then a job reloads it)? */
+static bool same_scene(const job_scene *a, const job_scene *b) {
+    return strcmp(a->glib, b->glib) == 0 && strcmp(a->root, b->root) == 0 && strcmp(a->pack, b->pack) == 0 &&
+           a->desc.samples == b->desc.samples && a->desc.verbose == b->desc.verbose &&
+           a->desc.no_spray == b->desc.no_spray;
+}
+
+/* Loads (or reloads) the scene and draws one frame as the window would:
+ * every changed stage compiled, every variant its draws need made, all
+ * into Mesa's cache. Pixels do not matter, so the frame is drawn at an
+ * eighth of the window's side with the detail to match (the variants do
+ * not depend on the size). */
+static void warm_scene(compile_job *j, int i) {
+    const job_scene *s = &j->scenes[i];
+    if (j->kept[i] && !same_scene(&j->kept_as[i], s)) {
+        render_destroy(j->kept[i]);
+        j->kept[i] = NULL;
+    }
+    if (!j->kept[i]) {
+        j->kept[i] = render_create(&s->desc);
+        j->kept_as[i] = *s;
+        j->kept_as[i].defines = NULL;
+        j->kept_as[i].ndefines = 0;
+        render_load(j->kept[i], s->glib);   /* its errors are the window's reload's to report */
+    }
+    else render_load(j->kept[i], NULL);
+    render *r = j->kept[i];
+    if (apply_defines(r, s)) render_rebuild_programs(r);
+    render_target t;
+    memset(&t, 0, sizeof t);
+    int w = (j->w + 7) / 8, h = (j->h + 7) / 8;
+    bool made = s->srgb ? render_target_create_srgb(&t, w, h) : render_target_create(&t, w, h, false);
+    if (made && render_has_scene(r)) {
+        if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
+        render_set_detail(r, j->detail / 8);
+        /* the frame the window draws after the reload, the same again
+         * (the static world copied from its cache), then with the clock
+         * running (the world's layers built, then composited): each its
+         * own draw state, so its own variants */
+        static const double dt[] = { 0, 0, 0.04, 0.08 };
+        for (size_t k = 0; k < sizeof dt / sizeof dt[0]; k++)
+            render_frame_at(r, j->t + dt[k], t.fbo, 0, 0, w, h, &j->view);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+        glFinish();
+    }
+    if (made) render_target_destroy(&t);
+}
+
+/* One job: the scenes asked for, warmed; renders of scenes no longer
+ * drawn are let go. */
+static void run_job(compile_job *j) {
+    if (!j->ctx) {
+        char err[1024] = "";
+        j->ctx = gl_ctx_create_headless(err, sizeof err);   /* none: the window compiles on the frame */
+        if (!j->ctx) return;
+    }
+    for (int i = 0; i < j->nscenes; i++) warm_scene(j, i);
+    for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
+        if (j->kept[i]) {
+            render_destroy(j->kept[i]);
+            j->kept[i] = NULL;
+        }
+}
+
+static void *worker(void *arg) {
+    compile_job *j = arg;
+    pthread_mutex_lock(&j->mu);
+    for (;;) {
+        while (!j->request && !j->quit) pthread_cond_wait(&j->cv, &j->mu);
+        if (j->quit) break;
+        j->request = false;
+        pthread_mutex_unlock(&j->mu);
+        double t0 = clock_now_s();
+        run_job(j);
+        pthread_mutex_lock(&j->mu);
+        j->done = true;
+        j->seconds = clock_now_s() - t0;
+    }
+    pthread_mutex_unlock(&j->mu);
+    for (int i = 0; i < COMPILE_JOB_MAX_SCENES; i++) render_destroy(j->kept[i]);
+    gl_ctx_destroy(j->ctx);   /* its screen writes what is still queued for Mesa's cache */
+    return NULL;
+}
+
+bool compile_job_start(compile_job *j, const compile_job_desc *d) {
+    if (!j || !d || d->n <= 0 || compile_job_busy(j)) return false;
+    free_scenes(j);
+    for (int i = 0; i < d->n && i < COMPILE_JOB_MAX_SCENES; i++)
+        if (render_has_scene(d->scenes[i])) copy_scene(d->scenes[i], &j->scenes[j->nscenes++]);
+    if (j->nscenes == 0) return false;
+    j->w = d->w > 0 ? d->w : 256;
+    j->h = d->h > 0 ? d->h : 144;
+    j->t = d->t;
+    j->detail = d->detail > 0 && d->detail < 1 ? d->detail : 1;
+    j->view = d->view;
+    if (!j->thread) {
+        if (pthread_create(&j->th, NULL, worker, j) != 0) return false;
+        j->thread = true;
+    }
+    pthread_mutex_lock(&j->mu);
+    j->request = j->busy = true;
+    j->done = false;
+    pthread_cond_signal(&j->cv);
+    pthread_mutex_unlock(&j->mu);
+    return true;
+}
+
+bool compile_job_busy(compile_job *j) {
+    if (!j) return false;
+    pthread_mutex_lock(&j->mu);
+    bool busy = j->busy;
+    pthread_mutex_unlock(&j->mu);
+    return busy;
+}
+
+bool compile_job_done(compile_job *j, double *seconds) {
+    if (!j) return false;
+    pthread_mutex_lock(&j->mu);
+    bool done = j->busy && j->done;
+    if (done) {
+        j->busy = j->done = false;
+        if (seconds) *seconds = j->seconds;
+    }
+    pthread_mutex_unlock(&j->mu);
+    return done;
+}

@@ -1,0 +1,65 @@
+/* compile_job: a save's shaders compiled off the window's frame (issue #30).
+ *
+ * On Mesa's llvmpipe the GLSL front end runs in glLinkProgram and the LLVM
+ * compile of a fragment shader's variant at the first draw that uses it:
+ * 0.6-1.2 s for a pack's water shader, on the thread that draws the
+ * window, which froze for as long. Mesa keeps both results in its on-disk
+ * shader cache, keyed by the shader's text and the draw state, not by the
+ * context. So before a save's reload, a compile job loads the same scene
+ * into a render of its own, on a worker thread with a headless context of
+ * its own, and draws one frame as the window would (the same pack, MSAA,
+ * Define values, target format and size); the window keeps drawing with
+ * the last good programs meanwhile, and when the job ends its own reload
+ * finds the stages and variants in the cache.
+ *
+ * The job's render shares nothing with the window's: no GL object, no
+ * state; it reads the files as they are when it runs. What it compiles is
+ * thrown away with its context; its messages too (the window's reload
+ * reports them). Without Mesa's cache (MESA_SHADER_CACHE_DISABLE) it buys
+ * nothing: compile_job_useful() says so and the window reloads at once.
+ *
+ *     compile_job *j = compile_job_create();
+ *     compile_job_start(j, &(compile_job_desc){ scenes, n, w, h, t, view });
+ *     ... each frame: if (compile_job_done(j, &s)) reload now ...
+ *     compile_job_destroy(j);                 waits for a running job
+ */
+#ifndef TARN_COMPILE_JOB_H
+#define TARN_COMPILE_JOB_H
+
+#include <stdbool.h>
+
+#include "render.h"
+
+#define COMPILE_JOB_MAX_SCENES 4
+
+typedef struct compile_job compile_job;
+
+typedef struct compile_job_desc {
+    render *const *scenes;       /* what the window draws: read by compile_job_start, on its thread */
+    int n;                       /* at most COMPILE_JOB_MAX_SCENES are warmed */
+    int w, h;                    /* the size the window draws them at (0: 256 x 144) */
+    double t;                    /* the clock */
+    double detail;               /* render_set_detail's (0: 1)*/
+    render_view view;
+} compile_job_desc;
+
+compile_job *compile_job_create(void);
+void compile_job_destroy(compile_job *j);   /* NULL is fine; waits for a running job */
+
+/* Copies what it needs of d's scenes (path, desc, Define values, whether
+ * a world draws in sRGB) and starts the worker. False (nothing started)
+ * while a job runs or when no thread can be made. */
+bool compile_job_start(compile_job *j, const compile_job_desc *d);
+
+bool compile_job_busy(compile_job *j);
+
+/* True once after a started job has ended (its thread joined), with how
+ * long it ran; the caller reloads then. */
+bool compile_job_done(compile_job *j, double *seconds);
+
+/* Does compiling off the frame help here? False when Mesa's shader cache
+ * is off (MESA_SHADER_CACHE_DISABLE or MESA_GLSL_CACHE_DISABLE true), or
+ * TARN_COMPILE_ON_FRAME is set (the old way, for A/B measurements). */
+bool compile_job_useful(void);
+
+#endif
