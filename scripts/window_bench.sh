@@ -5,6 +5,12 @@
 #   - orbiting: the camera turns every frame; after 20 frames for the
 #     budget to settle, the wall time of the next 40 frames gives the fps,
 #     and the internal resolution they ended at;
+#   - animating (issue #30 item 3): the camera still and the clock
+#     running (the script's `play 1`), after 20 frames to settle, the next
+#     40: fps and the internal resolution they ended at (what a person
+#     editing against the moving water sees); then the same with the
+#     world's caches off (`world-cache 0`: the static world and its layers
+#     drawn whole every frame, as before they were kept);
 #   - save -> first new frame: the picture still (paused, the full frame
 #     drawn and kept), the pack's water shader is saved (a line appended, in
 #     a scratch copy of packs/ and scenes/ under TARN_ROOT), a different
@@ -41,7 +47,8 @@ cp -r "$here/packs" "$here/scenes" "$scratch/"
 [ -d "$here/data" ] && cp -r "$here/data" "$scratch/"
 echo "window_bench: $(uptime | sed 's/^ *//')"
 echo "window_bench: lake at its WindowSize, $bin"
-printf "%-12s %10s %7s %10s %14s %22s %12s %14s %12s\n" pack cache budget "orbit fps" "orbit ms/frame" "orbit resolution" \
+printf "%-12s %10s %7s %10s %14s %18s %9s %18s %15s %12s %14s %12s\n" pack cache budget "orbit fps" "orbit ms/frame" "orbit resolution" \
+    "anim fps" "anim resolution" "no-cache fps,res" \
     "save->frame" "reload->frame" "longest gap"
 for p in "${packs[@]}"; do
   for cache in cold warm warm/frame; do
@@ -67,6 +74,23 @@ frames 40
 clock
 resolution
 orbit 0 0 1
+pause 0
+play 1
+frames 20
+clock
+frames 40
+clock
+resolution
+world-cache 0
+frames 20
+clock
+frames 40
+clock
+resolution
+world-cache 1
+pause 1
+play 0
+time 2
 wait 2
 stamp on
 wait 8
@@ -83,15 +107,21 @@ SCRIPT
     echo "// saved by window_bench ($b, $cache, $(date +%s%N))" >> "$scratch/packs/$p/$frag"
     wait $pid
     rc=$?
-    read -r f0 c0 f1 c1 < <(awk '/clock/ { printf "%s %s ", $3, $5 } END { print "" }' "$log")
-    res=$(awk '/resolution/ { print $3 }' "$log" | tail -1)
+    read -r f0 c0 f1 c1 f2 c2 f3 c3 f4 c4 f5 c5 < <(awk '/clock/ { printf "%s %s ", $3, $5 } END { print "" }' "$log")
+    nres=$(awk '/resolution/ { print $3 }' "$log" | sed -n 3p)
+    nfps=$(awk -v f0="$f4" -v f1="$f5" -v c0="$c4" -v c1="$c5" 'BEGIN { if (c1 > c0) printf "%.1f", (f1 - f0) * 1000 / (c1 - c0); else print "-" }')
+    res=$(awk '/resolution/ { print $3 }' "$log" | head -1)
+    ares=$(awk '/resolution/ { print $3 }' "$log" | sed -n 2p)
+    afps=$(awk -v f0="$f2" -v f1="$f3" -v c0="$c2" -v c1="$c3" 'BEGIN { if (c1 > c0) printf "%.1f", (f1 - f0) * 1000 / (c1 - c0); else print "-" }')
     swap=$(awk '/first frame after the reload swapped at/ { print $10; exit }' "$log")
     fps=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (c1 > c0) printf "%.1f", (f1 - f0) * 1000 / (c1 - c0); else print "-" }')
     ms=$(awk -v f0="$f0" -v f1="$f1" -v c0="$c0" -v c1="$c1" 'BEGIN { if (f1 > f0) printf "%.1f", (c1 - c0) / (f1 - f0); else print "-" }')
     rl=$(awk '/first frame after the reload swapped at/ { sub(/^\(/, "", $11); print $11 " ms"; exit }' "$log")
     gap=$(awk '/first frame after the reload swapped at/ { for (i = 1; i < NF; i++) if ($i == "gap") print $(i + 2) " ms"; exit }' "$log")
     lat=$(awk -v s="$saved" -v w="$swap" 'BEGIN { if (w != "") printf "%.0f ms", (w - s) * 1000; else print "-" }')
-    printf "%-12s %10s %7s %10s %14s %22s %12s %14s %12s%s\n" "$p" "$cache" "$b" "$fps" "$ms" "$res" "$lat" "${rl:--}" "${gap:--}" \
+    printf "%-12s %10s %7s %10s %14s %18s %9s %18s %15s %12s %14s %12s%s\n" "$p" "$cache" "$b" "$fps" "$ms" "$res" "$afps" "${ares:--}" \
+        "$nfps,${nres:--}" \
+        "$lat" "${rl:--}" "${gap:--}" \
         "$([ "$rc" -eq 0 ] || echo "  (tarn exited $rc)")"
   done
   done

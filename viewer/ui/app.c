@@ -73,6 +73,7 @@ struct app {
     sheet_job sheet;             /* a hand-in sheet being made (a slider's right-click menu) */
     int sheets;                  /* made so far: the next one's number */
     bool help;                   /* F1 or ?: the keys and the mouse, over the scene */
+    bool script_play;            /* the script's `play 1`: its clock runs as a user's does */
     /* a save's shaders compiled off the frame (compile_job.h) */
     compile_job *cjob;
     bool compiling;              /* a job runs for the change last seen */
@@ -545,7 +546,7 @@ static void frame(app *a, bool scripted) {
     a->slept = false;
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
-    if (!a->s.paused && !scripted) a->s.t += dt;
+    if (!a->s.paused && (!scripted || a->script_play)) a->s.t += dt;
     if (compile_finished(a)) compile_ended(a);
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
     if (changed > 0) reload_changed(a, changed);
@@ -642,6 +643,10 @@ static view_script_status budget_action(app *a, const char *cmd, char *rest, con
     }
     if (strcmp(cmd, "clock") == 0) {   /* for benchmarks: frames so far and the wall clock */
         fprintf(stderr, "%s: clock %ld frames %.3f ms\n", a->d.name, a->frames, glfwGetTime() * 1e3);
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "play") == 0) {   /* 1 | 0: the clock runs on the wall clock, as without a script */
+        a->script_play = atoi(rest) != 0;
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "stamp") == 0) {

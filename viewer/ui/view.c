@@ -210,10 +210,15 @@ static view_script_status setting_action(viewer *v, char *rest, const char *file
 
 /* The window's own script actions: `pack NAME` and `setting NAME` do what
  * picking NAME in the panel's Pack or Setting combo does (tests drive the
- * switches this way). */
+ * switches this way); `world-cache 0|1` turns the world's caches off and
+ * on (scripts/window_bench.sh's A/B). */
 static view_script_status script_action(void *user, const char *cmd, char *rest, const char *file, int line) {
     viewer *v = user;
     if (strcmp(cmd, "setting") == 0) return setting_action(v, rest, file, line);
+    if (strcmp(cmd, "world-cache") == 0) {   /* the static-world cache and the layers, for A/B runs */
+        render_set_world_cache(v->r, atoi(rest) != 0);
+        return VIEW_SCRIPT_CONTINUE;
+    }
     if (strcmp(cmd, "pack") != 0) {
         fprintf(stderr, "%s:%d: unknown script action '%s'\n", file, line, cmd);
         return VIEW_SCRIPT_FAILED;

@@ -20,11 +20,15 @@
  *   expect-resolution full|reduced
  *   clock                         print frames drawn and the wall clock (benchmarks)
  *   stamp on|off                  print when the first frame after a reload is swapped
+ *   play 1|0                      the clock runs on the wall clock, as without a script
+ *                                 (unless paused); 0: only `time` moves it (the default)
  * `#` starts a comment. A window may add actions of its own (ctx.custom):
  * `tarn compare-view` does (compare_view.h), and `tarn view` has
  *   pack NAME                     draw the scene with another pack (the panel's Pack combo)
  *   setting NAME                  the pack's defaults, then its bench.txt setting NAME
- *                                 (the panel's Setting combo; render_setting.h) */
+ *                                 (the panel's Setting combo; render_setting.h)
+ *   world-cache 1|0               keep the world's unchanging parts between frames (the
+ *                                 default) or draw it whole every frame (A/B benchmarks) */
 #ifndef TARN_VIEW_SCRIPT_H
 #define TARN_VIEW_SCRIPT_H
 
