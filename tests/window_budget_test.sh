@@ -6,6 +6,9 @@
 #   - once the camera stops, a full-resolution frame is drawn and kept, and
 #     it is the same picture, pixel for pixel, as a frame drawn with the
 #     budget off (the sRGB canvas encodes as the window did);
+#   - with the clock running (the script's `play 1`: a script's clock
+#     stands otherwise) the picture keeps changing, so it stays reduced
+#     past the settle time;
 #   - compare-view reduces its packs' images the same way.
 set -u
 bin=$1; src=$2
@@ -37,6 +40,11 @@ reload
 frames 1
 expect-resolution full
 screenshot $scratch/nobudget.png
+budget 0.001
+pause 0
+play 1
+wait 0.6
+expect-resolution reduced
 quit
 SCRIPT
 xvfb "$bin" view "$src/tests/data/raymarch/box.glib" --pack basic --size 900x300 \
