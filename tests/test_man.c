@@ -147,7 +147,7 @@ static void test_sections(void) {
         CHECK_MSG(strstr(exits, b) != NULL, "tarn.1's EXIT STATUS lacks %d", code);
     }
     const char *env = strstr(page, "\n.SH ENVIRONMENT\n");
-    static const char *const vars[] = { "TARN_ROOT", "XDG_CACHE_HOME", "DISPLAY" };
+    static const char *const vars[] = { "TARN_ROOT", "XDG_CACHE_HOME", "DISPLAY", "TARN_COMPILE_ON_FRAME" };
     for (size_t i = 0; env && i < sizeof vars / sizeof vars[0]; i++)
         CHECK_MSG(strstr(env, vars[i]) != NULL, "tarn.1's ENVIRONMENT lacks %s", vars[i]);
     free(page);
