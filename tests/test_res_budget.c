@@ -144,6 +144,12 @@ static void test_key_changes_with_any_byte(void) {
     CHECK(iw == 481 && ih == 271);
     res_budget_size(1e-6, 961, 541, &iw, &ih);
     CHECK(iw == 1 && ih == 1);
+    res_budget_size(0.5, 256, 1024, &iw, &ih);   /* reduced sides off powers of two (side_off_pow2) */
+    CHECK(iw == 129 && ih == 513);
+    res_budget_size(1.0, 256, 1024, &iw, &ih);   /* the full frame as it is */
+    CHECK(iw == 256 && ih == 1024);
+    CHECK(side_off_pow2(64, 64) == 64 && side_off_pow2(63, 64) == 63 && side_off_pow2(2, 64) == 2);
+    CHECK(side_off_pow2(64, 100) == 65 && side_off_pow2(4, 100) == 5);
 }
 
 int main(void) {

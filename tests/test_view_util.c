@@ -4,6 +4,7 @@
 #include "support.h"
 #include "view_script.h"
 #include "sheet_job.h"
+#include "compile_job.h"
 #include "view_util.h"
 
 static void test_pass_names_read_as_the_glib(void) {
@@ -65,6 +66,19 @@ static void test_reload_cause_names_the_files(void) {
 
 /* The reload's line and the "compiling ..." note say what the window does
  * with a save (compile_job.h): off the frame, and for which file. */
+/* When the job's work did not reach the window (its first frame after the
+ * reload still slow), later saves compile on the frame. */
+static void test_compile_job_helped(void) {
+    CHECK(compile_job_helped(0.084, 1.10, 50));   /* raymarch on llvmpipe: about a frame */
+    CHECK(compile_job_helped(0.37, 0.97, 50));    /* slower, but a third of the job's time */
+    CHECK(!compile_job_helped(1.31, 1.25, 50));   /* natural: the window compiled again */
+    CHECK(!compile_job_helped(0.55, 1.0, 50));    /* half the job's time or more */
+    CHECK(compile_job_helped(0.25, 0.1, 50));     /* the limit itself still counts as help */
+    CHECK(!compile_job_helped(0.26, 0.1, 0));     /* the budget off: the same limit */
+    CHECK(compile_job_helped(0.7, 0.1, 200));     /* a 200 ms budget: four of them */
+    CHECK(!compile_job_helped(0.9, 0.1, 200));
+}
+
 static void test_reload_line_and_compiling_text(void) {
     char out[256];
     view_reload_line("tarn", "lake.glib", "water.frag changed", 0.914, out, sizeof out);
@@ -164,6 +178,7 @@ int main(void) {
     RUN(test_script_line_limit);
     RUN(test_reload_cause_names_the_files);
     RUN(test_reload_line_and_compiling_text);
+    RUN(test_compile_job_helped);
     RUN(test_sheet_command_line);
     return check_summary();
 }

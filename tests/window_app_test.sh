@@ -77,7 +77,9 @@ lost_context view "$bin" view lost.glib
 world "$scratch/lost.glib" "$scratch/lost-world.glib"
 lost_context compare-view "$bin" compare-view lost-world.glib --packs basic,basic --size 320x240
 # a save while the window runs: the reload message names the file saved
-printf 'frames 2\nwait 4\nquit\n' > "$scratch/save.script"
+# (long enough for the compile job under a sanitizer: the save may land while
+# it loads the scenes for the first time, and is compiled after that)
+printf 'frames 2\nwait 12\nquit\n' > "$scratch/save.script"
 saved_file_named() {
     local name=$1 glib=$2; shift 2
     local log=$scratch/$name-save.log
@@ -96,16 +98,20 @@ saved_file_named() {
 saved_file_named view lost.glib "$bin" view lost.glib
 saved_file_named compare-view lost-world.glib "$bin" compare-view lost-world.glib --packs basic,basic --size 320x240
 # $1: "job" or "frame" (TARN_COMPILE_ON_FRAME=1)
-printf 'frames 2\nstamp on\nwait 6\nquit\n' > "$scratch/stamp.script"
+printf 'frames 2\nstamp on\nwait 12\nquit\n' > "$scratch/stamp.script"
 compile_mode() {
     local mode=$1 log=$scratch/compile-$1.log
     rm -f "$log"
-    (for _ in $(seq 300); do grep -q "stamp on" "$log" 2>/dev/null && break; sleep 0.1; done
+    # the save once the job has the scene loaded (--verbose says so; on the
+    # frame there is no job): what a user's first edit meets
+    local ready="compile job has the scene loaded"
+    [ "$mode" = frame ] && ready="stamp on"
+    (for _ in $(seq 600); do grep -q "$ready" "$log" 2>/dev/null && break; sleep 0.1; done
      sleep 1.5
      echo "float unusedBy$mode$(date +%N)() { return 1.0; }" >> "$scratch/grey.frag") &
     local saver=$!
     if [ "$mode" = frame ]; then export TARN_COMPILE_ON_FRAME=1; else unset TARN_COMPILE_ON_FRAME; fi
-    (cd "$scratch" && xvfb "$bin" view lost.glib --script stamp.script >"$log" 2>&1)
+    (cd "$scratch" && xvfb "$bin" view lost.glib --verbose --script stamp.script >"$log" 2>&1)
     local rc=$?
     unset TARN_COMPILE_ON_FRAME
     wait "$saver"

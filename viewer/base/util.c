@@ -118,3 +118,8 @@ bool tarn_cache_dir(char *out, size_t len) {
     else return false;
     return n > 0 && (size_t)n < len;
 }
+
+int side_off_pow2(int k, int full) {
+    bool pow2 = k >= 4 && (k & (k - 1)) == 0;
+    return pow2 && k + 1 < full ? k + 1 : k;
+}

@@ -44,4 +44,13 @@ const char *tarn_root(void);
  * is set (nowhere to cache). Not created here. */
 bool tarn_cache_dir(char *out, size_t len);
 
+/* A reduced size's side (a frame's, a target's drawn smaller than the
+ * scene says): k, or k + 1 when k is a power of two from 4 up and below
+ * full. llvmpipe compiles a shader's texture sampling apart for
+ * power-of-two sides, so a reduced frame that landed on one compiled the
+ * shaders that read it again, on the frame; kept off them, every reduced
+ * frame needs the same code as the first (and the window's compile job
+ * can make it ahead). */
+int side_off_pow2(int k, int full);
+
 #endif

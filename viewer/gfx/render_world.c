@@ -12,6 +12,7 @@
 #include "mem.h"
 #include "ref_mesh.h"
 #include "render_camera.h"
+#include "util.h"
 #include "strbuf.h"
 
 /* ---- baking ---- */
@@ -518,7 +519,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const char *const *i
 int world_detail_count(int n, double detail, int min) {
     if (!(detail > 0) || detail >= 1 || n <= min) return n;
     long k = lround(n * detail);
-    return k < min ? min : (int)k;
+    return side_off_pow2(k < min ? min : (int)k, n);
 }
 
 /* The level for a frame at `detail` of each side: the vertices follow the

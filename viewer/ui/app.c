@@ -85,6 +85,8 @@ struct app {
     double last_swap, gap_max;   /* the longest swap-to-swap time since then (the stamp says it) */
     double compile_s;            /* how long the last job ran */
     bool compiled_off_frame;     /* during hooks.reload: the job compiled what it loads */
+    bool judge_job;              /* this frame reloaded after a job: did the job help? */
+    bool job_futile;             /* no: saves compile on the frame from now on */
     long frames_meanwhile;       /* frames swapped since the change was seen */
 };
 
@@ -151,7 +153,7 @@ static void reload(app *a) {
  * Mesa's shader cache (compile_job.h); false when that cannot help or
  * cannot start (reload on the frame then). */
 static bool start_compile(app *a, bool prime) {
-    if (!compile_job_useful() || a->drawn_w <= 0) return false;
+    if (!compile_job_useful() || a->job_futile || a->drawn_w <= 0) return false;
     if (!a->cjob) a->cjob = compile_job_create();
     compile_job_desc d = { .scenes = a->scenes, .n = a->nscenes, .w = a->drawn_w, .h = a->drawn_h,
                            .t = a->s.t, .view = orbit_view(&a->s.cam),
@@ -174,12 +176,26 @@ static bool compile_finished(app *a) {
     return a->compile_ended;
 }
 
+/* The frame that reloaded after a job took frame_s: where the job did
+ * not help (compile_job_helped), it only delays the new frame, so later
+ * saves compile on the frame, as without it. */
+static void judge_compile_job(app *a, double frame_s) {
+    a->judge_job = false;
+    if (compile_job_helped(frame_s, a->compile_s, a->budget_ms)) return;
+    a->job_futile = true;
+    fprintf(stderr, "%s: compiling off the frame did not help this scene (the first frame of the new build "
+            "still took %.2f s, the job %.2f s): saves compile on the frame from now on\n", a->d.name, frame_s,
+            a->compile_s);
+}
+
 /* The job ended: the reload finds its programs in the cache. A file that
  * changed while it ran is compiled again first (twice at most, so that a
  * stream of saves still shows one). */
 static void compile_ended(app *a) {
     bool primed = a->priming;
     a->compiling = a->compile_ended = a->priming = false;
+    if (primed && a->d.verbose)
+        fprintf(stderr, "%s: the compile job has the scene loaded (%.2f s, off the frame)\n", a->d.name, a->compile_s);
     if (primed && !a->changed_again) return;   /* the job's renders hold the scenes: nothing changed */
     if (a->changed_again && a->compile_restarts < 2) {
         a->changed_again = false;
@@ -191,6 +207,7 @@ static void compile_ended(app *a) {
     a->compiled_off_frame = true;
     reload(a);
     a->compiled_off_frame = false;
+    a->judge_job = true;   /* this frame says whether the job made the first draw cheap */
 }
 
 /* The files the watcher saw change (watch_changed 0..n-1): compiled off
@@ -783,6 +800,7 @@ int app_run(app *a, render *const *scenes, int n) {
             a->frames_meanwhile++;
         }
         a->last_swap = swapped;
+        if (a->judge_job) judge_compile_job(a, swapped - started);
         if (a->stamp_pending) stamp_swap(a);
         /* the scenes loaded in the job's renders once the window shows
          * them, so that the first save compiles only what it changed */

@@ -84,6 +84,7 @@ typedef struct app_desc {
     bool recordable;             /* Shift+R records scenes[0] (one scene: view, not compare-view) */
     const char *record;          /* recordable: record into this session file from the start */
     const char *pack;            /* the --pack drawn, for a session's header (0: the scene's own) */
+    bool verbose;                /* say on stderr when the compile job has the scenes loaded */
     void *user;
     /* Draws the scene(s) into the default framebuffer. Required. */
     void (*draw)(void *user, app *a);

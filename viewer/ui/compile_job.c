@@ -64,6 +64,12 @@ bool compile_job_useful(void) {
     return !env_true("MESA_SHADER_CACHE_DISABLE") && !env_true("MESA_GLSL_CACHE_DISABLE");
 }
 
+bool compile_job_helped(double first_frame_s, double job_s, double budget_ms) {
+    double limit = COMPILE_JOB_SLOW_S, budgets = 4e-3 * budget_ms;
+    if (!(first_frame_s > (budgets > limit ? budgets : limit))) return true;
+    return first_frame_s < 0.5 * job_s;
+}
+
 compile_job *compile_job_create(void) {
     compile_job *j = mem_zalloc(sizeof *j);
     pthread_mutex_init(&j->mu, NULL);
@@ -137,6 +143,10 @@ static bool apply_defines(render *r, const job_scene *s) {
     return changed;
 }
 
+/* The detail of the reduced frames the job draws: any below 1 has the
+ * same draw states (side_off_pow2), so the cheap one. */
+#define COMPILE_JOB_REDUCED_DETAIL 0.25
+
 /* Is the worker's render i one of this scene (then a job reloads it)? */
 static bool same_scene(const job_scene *a, const job_scene *b) {
     return strcmp(a->glib, b->glib) == 0 && strcmp(a->root, b->root) == 0 && strcmp(a->pack, b->pack) == 0 &&
@@ -167,18 +177,23 @@ static void warm_scene(compile_job *j, int i) {
     if (apply_defines(r, s)) render_rebuild_programs(r);
     render_target t;
     memset(&t, 0, sizeof t);
-    int w = (j->w + 7) / 8, h = (j->h + 7) / 8;
+    int w = side_off_pow2((j->w + 7) / 8, j->w), h = side_off_pow2((j->h + 7) / 8, j->h);
     bool made = s->srgb ? render_target_create_srgb(&t, w, h) : render_target_create(&t, w, h, false);
     if (made && render_has_scene(r)) {
         if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
-        render_set_detail(r, j->detail / 8);
-        /* the frame the window draws after the reload, the same again
-         * (the static world copied from its cache), then with the clock
-         * running (the world's layers built, then composited): each its
-         * own draw state, so its own variants */
+        /* Each draw state its own variants. The reduced frames the window
+         * draws while the picture changes (no side a power of two there:
+         * side_off_pow2): the frame after the reload, the same again (the
+         * static world copied from its cache), then with the clock running
+         * (the world's layers built, then composited); and the still
+         * picture's full-resolution frame, where the targets and the
+         * world's height map have the scene's sizes. */
         static const double dt[] = { 0, 0, 0.04, 0.08 };
+        render_set_detail(r, COMPILE_JOB_REDUCED_DETAIL);
         for (size_t k = 0; k < sizeof dt / sizeof dt[0]; k++)
             render_frame_at(r, j->t + dt[k], t.fbo, 0, 0, w, h, &j->view);
+        render_set_detail(r, 1);
+        render_frame_at(r, j->t, t.fbo, 0, 0, w, h, &j->view);
         glDisable(GL_FRAMEBUFFER_SRGB);
         glFinish();
     }

@@ -7,8 +7,8 @@
  * shader cache, keyed by the shader's text and the draw state, not by the
  * context. So before a save's reload, a compile job loads the same scene
  * into a render of its own, on a worker thread with a headless context of
- * its own, and draws one frame as the window would (the same pack, MSAA,
- * Define values, target format and size); the window keeps drawing with
+ * its own, and draws frames as the window would (the same pack, MSAA,
+ * Define values and target format, reduced and full detail); the window keeps drawing with
  * the last good programs meanwhile, and when the job ends its own reload
  * finds the stages and variants in the cache.
  *
@@ -17,6 +17,9 @@
  * thrown away with its context; its messages too (the window's reload
  * reports them). Without Mesa's cache (MESA_SHADER_CACHE_DISABLE) it buys
  * nothing: compile_job_useful() says so and the window reloads at once.
+ * Nor does it for a scene whose first draw after the reload is still slow
+ * (the window's context making code the job's did not; app.c notices and
+ * compiles on the frame from then on).
  *
  *     compile_job *j = compile_job_create();
  *     compile_job_start(j, &(compile_job_desc){ scenes, n, w, h, t, view });
@@ -61,5 +64,15 @@ bool compile_job_done(compile_job *j, double *seconds);
  * is off (MESA_SHADER_CACHE_DISABLE or MESA_GLSL_CACHE_DISABLE true), or
  * TARN_COMPILE_ON_FRAME is set (the old way, for A/B measurements). */
 bool compile_job_useful(void);
+
+/* Did the job make the new build's first draw cheap? The job ran job_s;
+ * the window's frame that reloaded after it took first_frame_s. Up to
+ * COMPILE_JOB_SLOW_S (or four frame budgets, for a budget above that) it
+ * did; above that, when that frame took half the job's time or more, the
+ * window's context made most of the code again (as natural's and
+ * caustic_tex's water did, 0.8-2.5 s, while reduced sizes could be powers
+ * of two) and the job only delayed the new frame. */
+#define COMPILE_JOB_SLOW_S 0.25
+bool compile_job_helped(double first_frame_s, double job_s, double budget_ms);
 
 #endif

@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "util.h"
+
 void res_budget_init(res_budget *b, double budget_ms) {
     *b = (res_budget){ .budget_ms = budget_ms, .scale = 1.0 };
 }
@@ -61,5 +63,7 @@ void res_budget_size(double scale, int w, int h, int *iw, int *ih) {
     *ih = (int)lround(h * scale);
     if (*iw < 1) *iw = 1;
     if (*ih < 1) *ih = 1;
+    *iw = side_off_pow2(*iw, w);   /* the screen-sized targets' sides */
+    *ih = side_off_pow2(*ih, h);
 }
 

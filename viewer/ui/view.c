@@ -334,7 +334,7 @@ int view_run(const view_desc *d) {
      * applied by resizing once the scene is loaded */
     app_desc ad = { .name = "tarn", .scene_path = d->glib, .width = d->width, .height = d->height,
                     .time_s = d->time_s, .script = d->script, .user = &v,
-                    .recordable = true, .record = d->record, .pack = d->pack,
+                    .recordable = true, .record = d->record, .pack = d->pack, .verbose = d->verbose,
                     .draw = on_draw, .panel = on_panel, .apply = on_apply, .reload = on_reload,
                     .script_action = script_action };
     v.app = app_create(&ad);
