@@ -156,8 +156,7 @@ static bool start_compile(app *a, bool prime) {
     if (!compile_job_useful() || a->job_futile || a->drawn_w <= 0) return false;
     if (!a->cjob) a->cjob = compile_job_create();
     compile_job_desc d = { .scenes = a->scenes, .n = a->nscenes, .w = a->drawn_w, .h = a->drawn_h,
-                           .t = a->s.t, .view = orbit_view(&a->s.cam),
-                           .detail = a->area_w > 0 ? (double)a->drawn_w / a->area_w : 1 };
+                           .t = a->s.t, .view = orbit_view(&a->s.cam) };
     if (!compile_job_start(a->cjob, &d)) return false;
     a->compiling = true;
     a->priming = prime;

@@ -43,7 +43,7 @@ struct compile_job {
     /* the job: written by compile_job_start while no job runs, read by the worker */
     job_scene scenes[COMPILE_JOB_MAX_SCENES];
     int nscenes, w, h;
-    double t, detail;
+    double t;
     render_view view;
     /* the worker's own: its context and the renders it keeps between jobs,
      * so that a job reloads as the window does (the world, the once-drawn
@@ -154,11 +154,11 @@ static bool same_scene(const job_scene *a, const job_scene *b) {
            a->desc.no_spray == b->desc.no_spray;
 }
 
-/* Loads (or reloads) the scene and draws one frame as the window would:
+/* Loads (or reloads) the scene and draws frames as the window would:
  * every changed stage compiled, every variant its draws need made, all
- * into Mesa's cache. Pixels do not matter, so the frame is drawn at an
- * eighth of the window's side with the detail to match (the variants do
- * not depend on the size). */
+ * into Mesa's cache. Pixels do not matter, so the frames are an eighth of
+ * the window's side (a canvas's size changes no variant but for a
+ * power-of-two side, which side_off_pow2 keeps away). */
 static void warm_scene(compile_job *j, int i) {
     const job_scene *s = &j->scenes[i];
     if (j->kept[i] && !same_scene(&j->kept_as[i], s)) {
@@ -245,7 +245,6 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d) {
     j->w = d->w > 0 ? d->w : 256;
     j->h = d->h > 0 ? d->h : 144;
     j->t = d->t;
-    j->detail = d->detail > 0 && d->detail < 1 ? d->detail : 1;
     j->view = d->view;
     if (!j->thread) {
         if (pthread_create(&j->th, NULL, worker, j) != 0) return false;

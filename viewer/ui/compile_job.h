@@ -42,7 +42,6 @@ typedef struct compile_job_desc {
     int n;                       /* at most COMPILE_JOB_MAX_SCENES are warmed */
     int w, h;                    /* the size the window draws them at (0: 256 x 144) */
     double t;                    /* the clock */
-    double detail;               /* render_set_detail's (0: 1)*/
     render_view view;
 } compile_job_desc;
 
