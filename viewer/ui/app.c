@@ -137,10 +137,19 @@ void app_rewatch(app *a) {
     free(all);
 }
 
+/* A change starts waiting for its new frame now (unless one already
+ * waits): the stamp's times and frame gap count from here. */
+static void change_wait_starts(app *a) {
+    if (a->change_seen > 0) return;
+    a->change_seen = glfwGetTime();
+    a->gap_max = 0;
+    a->frames_meanwhile = 0;
+}
+
 static void reload(app *a) {
+    change_wait_starts(a);   /* R, a reload on the frame: the wait is the reload's */
     a->stamp_pending = a->stamp;
-    a->stamp_seen = a->change_seen > 0 ? a->change_seen : glfwGetTime();
-    if (a->change_seen <= 0) a->gap_max = 0, a->frames_meanwhile = 0;
+    a->stamp_seen = a->change_seen;
     a->change_seen = 0;
     a->d.reload(a->d.user, a);
     app_picture_changed(a);
@@ -161,11 +170,7 @@ static bool start_compile(app *a, bool prime) {
     a->compiling = true;
     a->priming = prime;
     a->compile_ended = false;
-    if (!prime && a->change_seen <= 0) {
-        a->change_seen = glfwGetTime();
-        a->gap_max = 0;
-        a->frames_meanwhile = 0;
-    }
+    if (!prime) change_wait_starts(a);
     return true;
 }
 
@@ -219,11 +224,7 @@ static void reload_changed(app *a, int n) {
     free(paths);
     if (a->compiling) {   /* the job reads the files when it runs: compile again once it ends */
         a->changed_again = true;
-        if (a->change_seen <= 0) {   /* (a priming job: the change's wait starts now) */
-            a->change_seen = glfwGetTime();
-            a->gap_max = 0;
-            a->frames_meanwhile = 0;
-        }
+        change_wait_starts(a);   /* (during a priming job: the change's wait starts now) */
         if (strcmp(cause, a->cause) != 0) snprintf(a->cause, sizeof a->cause, "%s", cause);
         return;
     }
