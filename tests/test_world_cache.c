@@ -126,7 +126,37 @@ static void check_running_clock(const char *pack, bool is_float, const render_vi
     rig_close(&off);
 }
 
+/* The window's budget draws a running clock at a new size from frame to
+ * frame: each frame from the second on is composed from layers built at
+ * its size (not drawn whole while the size keeps changing), and equals the
+ * frame drawn with the cache off. */
+static void check_running_clock_resizing(const char *pack, bool is_float) {
+    static const int sizes[][2] = { { 160, 90 }, { 141, 79 }, { 153, 86 }, { 127, 71 }, { 149, 83 }, { 135, 76 } };
+    const int n = (int)(sizeof sizes / sizeof *sizes);
+    rig on, off;
+    rig_open(&on, pack, true, is_float);
+    rig_open(&off, pack, false, is_float);
+    for (int k = 0; k < n; k++) {
+        double t = 1.0 + 0.05 * k, detail = sizes[k][0] / (double)W;
+        float *a = malloc((size_t)W * H * 4 * sizeof(float)), *b = malloc((size_t)W * H * 4 * sizeof(float));
+        render_set_detail(on.r, detail);
+        render_set_detail(off.r, detail);
+        render_frame(on.r, t, on.tg.fbo, sizes[k][0], sizes[k][1], NULL);
+        render_frame(off.r, t, off.tg.fbo, sizes[k][0], sizes[k][1], NULL);
+        render_target_read(&on.tg, a);
+        render_target_read(&off.tg, b);
+        CHECK_MSG(same(a, b), "%s, %dx%d: the composed frame differs from the drawn one", pack, sizes[k][0], sizes[k][1]);
+        free(a);
+        free(b);
+    }
+    CHECK_MSG(render_world_layer_frames(on.r) >= n - 1, "%s: %ld of %d frames at changing sizes composed from layers, want %d",
+              pack, render_world_layer_frames(on.r), n, n - 1);
+    rig_close(&on);
+    rig_close(&off);
+}
+
 static void test_running_clock_layers(void) {
+    check_running_clock_resizing("basic", false);
     check_running_clock("basic", false, NULL);
     check_running_clock("natural", true, NULL);
     /* under the water, looking at the rock and the shore */

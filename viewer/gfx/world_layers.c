@@ -34,8 +34,20 @@ static wcache_key timeless(const wcache_key *k) {
     return u;
 }
 
-static bool same_but_time(const wcache_key *a, const wcache_key *b) {
-    wcache_key x = timeless(a), y = timeless(b);
+/* k without its time and its size: what says the camera stood still
+ * between two frames while the clock ran, even where the window's frame
+ * budget drew them at two sizes (the size is in the projection's aspect,
+ * the viewport and the meshes' level of detail) */
+static wcache_key timeless_sizeless(const wcache_key *k) {
+    wcache_key u = timeless(k);
+    memset(u.projection, 0, sizeof u.projection);
+    u.vp_w = u.vp_h = 0;
+    u.lod = 0;
+    return u;
+}
+
+static bool same_but_time_and_size(const wcache_key *a, const wcache_key *b) {
+    wcache_key x = timeless_sizeless(a), y = timeless_sizeless(b);
     return memcmp(&x, &y, sizeof x) == 0;
 }
 
@@ -51,7 +63,9 @@ wlayers_use wlayers_check(world_layers *l, int cmd, const wcache_key *k) {
         s->last = *k;
         return WLAYERS_READY;
     }
-    bool running = s->seen && same_but_time(&s->last, k) && s->last.t != k->t;
+    /* the clock runs: the layers pay from this frame on, at this size (a
+     * budget's new size builds them at once, not one plain draw later) */
+    bool running = s->seen && same_but_time_and_size(&s->last, k) && s->last.t != k->t;
     s->seen = true;
     s->last = *k;
     return running ? WLAYERS_BUILD : WLAYERS_NO;
@@ -70,9 +84,15 @@ static unsigned make_tex(int w, int h) {
 /* The target, kept while the size and depth format stay. */
 static bool slot_alloc(wlayers_slot *s, const wcache_key *k) {
     if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.depth_fmt == k->depth_fmt) return true;
+    /* a new size: new textures, the command's last key kept (the clock
+     * still runs) */
     int cmd = s->cmd;
+    bool seen = s->seen;
+    wcache_key last = s->last;
     slot_free(s);
     s->cmd = cmd;
+    s->seen = seen;
+    s->last = last;
     GLint tex2d = 0;
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex2d);
     glGenFramebuffers(1, &s->fbo);

@@ -42,7 +42,8 @@ void wlayers_free(world_layers *l);
 
 /* Whether command cmd at key k can take its layers: they hold k's world
  * (k's time aside; WLAYERS_READY), or the command was drawn at the last
- * frame with the same key at another time, so the clock runs and the
+ * frame with the same key at another time (its size aside: the window's
+ * budget may have drawn it larger or smaller), so the clock runs and the
  * layers pay (WLAYERS_BUILD), or neither (WLAYERS_NO: draw it). Records k
  * as the command's last key. */
 typedef enum { WLAYERS_NO, WLAYERS_BUILD, WLAYERS_READY } wlayers_use;

@@ -25,7 +25,12 @@ void res_budget_feed(res_budget *b, double ms, double scale) {
 
 bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_frame_ms, bool force_full,
                      double *scale) {
-    if (b->measure && last_frame_ms > 0) res_budget_feed(b, last_frame_ms, b->drawn_scale);
+    /* the first frame at a new size is no measure of that size: it pays
+     * once for what the next ones keep (the world's layers built at the
+     * size, targets made), and sizing by it would shrink the picture and
+     * pay again, frame after frame */
+    if (b->measure && last_frame_ms > 0 && b->drawn_scale == b->prev_scale)
+        res_budget_feed(b, last_frame_ms, b->drawn_scale);
     b->measure = false;
     bool changed = !b->have_key || key != b->key;
     if (changed) {
@@ -46,6 +51,7 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
         *scale = b->drawn_scale;          /* settling: the reduced frame stays a moment */
         return false;
     }
+    b->prev_scale = b->drawn_scale;
     b->drawn_scale = s;
     b->full_done = s >= 1.0;
     b->measure = true;

@@ -12,7 +12,8 @@
  * reached without overshoot), at most twice the pixels a step, not below
  * RES_BUDGET_FLOOR of each side, and left alone within RES_BUDGET_DEADBAND
  * of the aim (no flicker between two near sizes), so a settled frame is at
- * most the budget. The renderer's fixed-size passes and meshes shrink with
+ * most the budget. The first frame at a new size is not fed (it pays once
+ * for what later frames at the size keep: the world's layers). The renderer's fixed-size passes and meshes shrink with
  * the frame (render_set_detail), so a cost stays about a + b*pixels. A cost that stays above the budget at the floor (a
  * fixed pass slower than the budget) stays at the floor.
  *
@@ -47,6 +48,7 @@ typedef struct res_budget {
     double still_since;          /* the clock when the key last changed */
     bool full_done;              /* this still picture's full-resolution frame is drawn */
     double drawn_scale;          /* the scale of the frame last drawn (0: none yet) */
+    double prev_scale;           /* ... and of the one drawn before it */
     bool measure;                /* the last frame drew the scene: its time is a measure */
 } res_budget;
 
