@@ -63,20 +63,20 @@ static void test_determinism(void) {
     const ref_world *w = lake();
     float *a = fbuf(R, 3), *b = fbuf(R, 3);
     CHECK(assets_bake_albedo(w, R, a) && assets_bake_albedo(w, R, b));
-    CHECK(memcmp(a, b, sizeof(float) * R * R * 3) == 0);
+    CHECK_EQ(memcmp(a, b, sizeof(float) * R * R * 3), 0);
     CHECK(assets_bake_terrain_normal(w, R, a) && assets_bake_terrain_normal(w, R, b));
-    CHECK(memcmp(a, b, sizeof(float) * R * R * 3) == 0);
+    CHECK_EQ(memcmp(a, b, sizeof(float) * R * R * 3), 0);
     for (int f = 0; f < ASSETS_FACES; f++) {
         CHECK(assets_bake_sky_face(w, f, R, a) && assets_bake_sky_face(w, f, R, b));
-        CHECK(memcmp(a, b, sizeof(float) * R * R * 3) == 0);
+        CHECK_EQ(memcmp(a, b, sizeof(float) * R * R * 3), 0);
     }
     CHECK(assets_bake_water_normal(R, a) && assets_bake_water_normal(R, b));
-    CHECK(memcmp(a, b, sizeof(float) * R * R * 3) == 0);
+    CHECK_EQ(memcmp(a, b, sizeof(float) * R * R * 3), 0);
     CHECK(assets_bake_foam(R, a) && assets_bake_foam(R, b));
-    CHECK(memcmp(a, b, sizeof(float) * R * R * 3) == 0);
+    CHECK_EQ(memcmp(a, b, sizeof(float) * R * R * 3), 0);
     char err[256];
     CHECK(assets_bake_caustics(R, a, err, sizeof err) && assets_bake_caustics(R, b, err, sizeof err));
-    CHECK(memcmp(a, b, sizeof(float) * R * R) == 0);
+    CHECK_EQ(memcmp(a, b, sizeof(float) * R * R), 0);
     free(a);
     free(b);
 }
@@ -172,7 +172,7 @@ static void test_cube_faces(void) {
     /* row 0 (the top of the file) of a side face looks up: brighter sky,
      * not the ground */
     CHECK(assets_bake_sky_face(w, ASSETS_FACE_PZ, R, px));
-    CHECK(px[2] > px[((size_t)(R - 1) * R) * 3 + 2]);
+    CHECK_GT(px[2], px[((size_t)(R - 1) * R) * 3 + 2]);
     free(px);
 }
 
@@ -186,7 +186,7 @@ static void test_tileable(void) {
     for (int k = 0; k < R * R; k++) {
         double n[3] = { 2 * px[3 * k] - 1, 2 * px[3 * k + 2] - 1, 2 * px[3 * k + 1] - 1 };
         CHECK_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-5);
-        CHECK(n[1] > 0.5);
+        CHECK_GT(n[1], 0.5);
     }
     CHECK(assets_bake_foam(R, px));
     check_tiles(px, R, 3, 0, "foam red");
@@ -269,8 +269,8 @@ static void test_cli(void) {
     snprintf(b, sizeof b, "%s/two", root);
     const char *args_a[] = { "--out", a, "--size", "16" };
     const char *args_b[] = { "--size", "16", "-o", b, TARN_SOURCE_DIR "/scenes/lake.glib" };
-    CHECK(run_cli(4, args_a) == TARN_EXIT_OK);
-    CHECK(run_cli(5, args_b) == TARN_EXIT_OK);
+    CHECK_EQ(run_cli(4, args_a), TARN_EXIT_OK);
+    CHECK_EQ(run_cli(5, args_b), TARN_EXIT_OK);
     /* the same bytes twice, and the lake glib's world is the default one */
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         char pa[256], pb[256], *ba = NULL, *bb = NULL;
@@ -316,7 +316,7 @@ static void test_cli(void) {
     CHECK(assets_bake_sky_face(lake(), ASSETS_FACE_PY, R, buf));
     if (im.px && im.w == R && im.h == R)
         for (int k = 0; k < R * R * 3; k++)
-            CHECK(im.px[k] == buf[k]);                  /* 32-bit floats: exact */
+            CHECK_EQ(im.px[k], buf[k]);                  /* 32-bit floats: exact */
     img_free(&im);
     float *c = fbuf(R, 1);
     CHECK(assets_bake_caustics(R, c, err, sizeof err));
@@ -335,7 +335,7 @@ static void test_cli(void) {
         double sum = 0;
         for (int k = 0; k < R * R; k++) {
             sum += im.px[3 * k];
-            CHECK(im.px[3 * k] == c[(R - 1 - k / R) * R + k % R]);   /* exact, flipped */
+            CHECK_EQ(im.px[3 * k], c[(R - 1 - k / R) * R + k % R]);   /* exact, flipped */
         }
         CHECK_NEAR(sum / (R * R), 1.0, 1e-6);
     }
@@ -345,9 +345,9 @@ static void test_cli(void) {
 
     /* usage and input errors */
     const char *help[] = { "--help" }, *bad[] = { "--frobnicate" }, *badsize[] = { "--size", "2" };
-    CHECK(run_cli(1, help) == TARN_EXIT_OK);
-    CHECK(run_cli(1, bad) == TARN_EXIT_USAGE);
-    CHECK(run_cli(2, badsize) == TARN_EXIT_USAGE);
+    CHECK_EQ(run_cli(1, help), TARN_EXIT_OK);
+    CHECK_EQ(run_cli(1, bad), TARN_EXIT_USAGE);
+    CHECK_EQ(run_cli(2, badsize), TARN_EXIT_USAGE);
     char scene[128];
     snprintf(scene, sizeof scene, "%s/bad.glib", root);
     FILE *f = fopen(scene, "w");
@@ -356,10 +356,10 @@ static void test_cli(void) {
     char out3[128];
     snprintf(out3, sizeof out3, "%s/three", root);
     const char *args_bad[] = { "--out", out3, scene };
-    CHECK(run_cli(3, args_bad) == TARN_EXIT_INPUT);
-    CHECK(access(out3, F_OK) != 0);                 /* nothing written */
+    CHECK_EQ(run_cli(3, args_bad), TARN_EXIT_INPUT);
+    CHECK_NE(access(out3, F_OK), 0);                 /* nothing written */
     const char *args_file[] = { "--out", scene, "--size", "8" };   /* a file, not a directory */
-    CHECK(run_cli(4, args_file) == TARN_EXIT_INPUT);
+    CHECK_EQ(run_cli(4, args_file), TARN_EXIT_INPUT);
 }
 
 int main(void) {

@@ -16,13 +16,13 @@
 static void test_strbuf_grows_and_formats(void) {
     strbuf b = { 0 };
     for (int i = 0; i < 1000; i++) strbuf_printf(&b, "%d,", i % 10);
-    CHECK(b.len == 2000);
-    CHECK(strncmp(b.s, "0,1,2,", 6) == 0);
+    CHECK_EQ(b.len, 2000);
+    CHECK_EQ(strncmp(b.s, "0,1,2,", 6), 0);
     strbuf_put(&b, "xyz", 2);
     CHECK(b.len == 2002 && strcmp(b.s + 2000, "xy") == 0);
     char *s = strbuf_take(&b);
     CHECK(b.s == NULL && b.len == 0);
-    CHECK(strlen(s) == 2002);
+    CHECK_EQ(strlen(s), 2002);
     free(s);
     s = strbuf_take(&b); /* empty: "" not NULL */
     CHECK(s && s[0] == '\0');
@@ -40,12 +40,12 @@ static void test_str_appendf(void) {
 static void test_messages_never_overrun(void) {
     char err[8];
     msg_set(err, sizeof err, "0123456789");
-    CHECK(strcmp(err, "0123456") == 0);
+    CHECK_STR_EQ(err, "0123456");
     msg_set(err, sizeof err, "ab");
     msg_add(err, sizeof err, "cd");
-    CHECK(strcmp(err, "ab\ncd") == 0); /* a line each */
+    CHECK_STR_EQ(err, "ab\ncd"); /* a line each */
     msg_add(err, sizeof err, "efghij");
-    CHECK(strlen(err) == 7);
+    CHECK_EQ(strlen(err), 7);
     msg_set(NULL, 0, "nothing"); /* no buffer: fine */
     msg_add(err, 0, "nothing");
 }
@@ -67,24 +67,24 @@ static void test_files(void) {
     char *s = file_read(path, 0, &n, err, sizeof err);
     CHECK(s && n == 11 && memcmp(s, "hello\0there", 11) == 0 && s[11] == '\0');
     free(s);
-    CHECK(file_read(path, 10, &n, err, sizeof err) == NULL); /* over the limit */
+    CHECK_EQ(file_read(path, 10, &n, err, sizeof err), NULL); /* over the limit */
     CHECK_STR_CONTAINS(err, "larger than 10 bytes");
-    CHECK(file_read(sub, 0, &n, err, sizeof err) == NULL); /* a folder */
+    CHECK_EQ(file_read(sub, 0, &n, err, sizeof err), NULL); /* a folder */
     CHECK_STR_CONTAINS(err, "it is a directory");
-    CHECK(file_read("/dev/null", 0, &n, err, sizeof err) == NULL); /* a device */
+    CHECK_EQ(file_read("/dev/null", 0, &n, err, sizeof err), NULL); /* a device */
     CHECK_STR_CONTAINS(err, "not a regular file");
     snprintf(path, sizeof path, "%s/missing", dir);
-    CHECK(file_read(path, 0, &n, err, sizeof err) == NULL);
+    CHECK_EQ(file_read(path, 0, &n, err, sizeof err), NULL);
     CHECK_STR_CONTAINS(err, "cannot open");
     snprintf(path, sizeof path, "%s/a/b/c/x.txt/d", dir); /* under a file */
     CHECK(!file_mkdir_p(path, err, sizeof err));
     char d[64];
     file_dirname("a/b.glib", d, sizeof d);
-    CHECK(strcmp(d, "a") == 0);
+    CHECK_STR_EQ(d, "a");
     file_dirname("b.glib", d, sizeof d);
-    CHECK(strcmp(d, ".") == 0);
+    CHECK_STR_EQ(d, ".");
     file_dirname("/b.glib", d, sizeof d);
-    CHECK(strcmp(d, "/") == 0);
+    CHECK_STR_EQ(d, "/");
     scratch_remove();
 }
 
@@ -130,15 +130,15 @@ static void test_read_text_options(void) {
     free(s);
     /* the limit counts the bytes in the file, checked before the options */
     s = read_text_as("ab\r\n", 4, &(file_text_opts){ .max_bytes = 3, .crlf_to_lf = true }, &n, why);
-    CHECK(s == NULL);
+    CHECK_EQ(s, NULL);
     CHECK_STR_CONTAINS(why, "it is larger than 3 bytes");
     s = read_text_as("ab\r\n", 4, &(file_text_opts){ .max_bytes = 4, .crlf_to_lf = true }, &n, why);
     CHECK(s && n == 3 && strcmp(s, "ab\n") == 0);
     free(s);
-    CHECK(file_read_text(scratch_path("missing"), NULL, &n, why, sizeof why) == NULL);
-    CHECK(strcmp(why, "No such file or directory") == 0);   /* the reason alone: the caller names the file */
-    CHECK(file_read_text(scratch_dir, NULL, &n, why, sizeof why) == NULL);
-    CHECK(strcmp(why, "it is a directory") == 0);
+    CHECK_EQ(file_read_text(scratch_path("missing"), NULL, &n, why, sizeof why), NULL);
+    CHECK_STR_EQ(why, "No such file or directory");   /* the reason alone: the caller names the file */
+    CHECK_EQ(file_read_text(scratch_dir, NULL, &n, why, sizeof why), NULL);
+    CHECK_STR_EQ(why, "it is a directory");
     scratch_remove();
 }
 
@@ -151,7 +151,7 @@ static void test_mem_grow(void) {
     int *same = mem_grow(v, &cap, 8, sizeof *v);   /* it fits: nothing moves */
     CHECK(same == v && cap == 8);
     v = mem_grow(v, &cap, 100, sizeof *v);
-    CHECK(cap == 128);
+    CHECK_EQ(cap, 128);
     v[99] = 99;
     bool kept = true;
     for (int i = 0; i < 8; i++) kept &= v[i] == i;
@@ -161,10 +161,10 @@ static void test_mem_grow(void) {
 
 static void test_median_and_sort(void) {
     double v[] = { 5, 1, 4, 2, 3 };
-    CHECK(median_double(v, 5) == 3);
+    CHECK_EQ(median_double(v, 5), 3);
     double w[] = { 4, 1, 3, 2 };
-    CHECK(median_double(w, 4) == 2.5);
-    CHECK(median_double(NULL, 0) == 0);
+    CHECK_EQ(median_double(w, 4), 2.5);
+    CHECK_EQ(median_double(NULL, 0), 0);
     const char *s[] = { "pear", "apple", "fig" };
     qsort(s, 3, sizeof *s, cmp_str_ptr);
     CHECK(strcmp(s[0], "apple") == 0 && strcmp(s[2], "pear") == 0);
@@ -187,7 +187,7 @@ static void test_root_follows_environment(void) {
     char keep[4096] = "";
     if (old) snprintf(keep, sizeof keep, "%s", old);
     setenv("TARN_ROOT", "/some/where", 1);
-    CHECK(strcmp(tarn_root(), "/some/where") == 0);
+    CHECK_STR_EQ(tarn_root(), "/some/where");
     unsetenv("TARN_ROOT");
     char packs[4200];
     snprintf(packs, sizeof packs, "%s/packs", tarn_root()); /* this build's tree */
@@ -228,17 +228,17 @@ static void test_diagnostics(void) {
     CHECK(l.d[4].file[0] == '\0' && l.d[4].line == 0 && strcmp(l.d[4].text, "no context") == 0);
     CHECK(strcmp(l.d[5].file, "scene.glib") == 0 && l.d[5].line == 0);
     CHECK(strcmp(l.d[1].file, "water.frag") == 0 && l.d[1].line == 12 && l.d[1].severity == DIAG_ERROR);
-    CHECK(strcmp(l.d[1].text, "'x' undeclared") == 0);
+    CHECK_STR_EQ(l.d[1].text, "'x' undeclared");
     CHECK(l.d[2].file[0] == '\0' && l.d[2].severity == DIAG_ERROR && strcmp(l.d[2].text, "plain words") == 0);
     char line[2048];
     diag_format(&l.d[0], line, sizeof line);
-    CHECK(strcmp(line, "a.glib:3: warning: unknown command 'Foo'") == 0);
+    CHECK_STR_EQ(line, "a.glib:3: warning: unknown command 'Foo'");
     diag_format(&l.d[2], line, sizeof line);
-    CHECK(strcmp(line, "tarn: error: plain words") == 0);
+    CHECK_STR_EQ(line, "tarn: error: plain words");
     /* the first severity of a line is its own, whatever its text says later */
     diag_add_text(&l, DIAG_NOTE, "a.frag:7: error: 'w' : no such field: warning: x\n");
     CHECK(l.n == 7 && l.d[6].severity == DIAG_ERROR && l.d[6].line == 7 && strcmp(l.d[6].file, "a.frag") == 0);
-    CHECK(strcmp(l.d[6].text, "'w' : no such field: warning: x") == 0);
+    CHECK_STR_EQ(l.d[6].text, "'w' : no such field: warning: x");
     diag_list_free(&l);
     CHECK(l.n == 0 && l.d == NULL);
 }

@@ -66,25 +66,25 @@ static void test_bench_txt(void) {
     packset_bench b;
     char err[1024] = "";
     CHECK_MSG(packset_bench_parse(text, "t/bench.txt", &b, err, sizeof err), "%s", err);
-    CHECK(b.n == 3);
+    CHECK_EQ(b.n, 3);
     CHECK(b.has_colour && fabsf(b.colour[0] - 0x1f / 255.0f) < 1e-6f && fabsf(b.colour[2] - 0xb4 / 255.0f) < 1e-6f);
     if (b.n == 3) {
         CHECK(strcmp(b.settings[0].name, "fast") == 0 && b.settings[0].nassign == 2 && b.settings[0].line == 4);
-        CHECK(strcmp(b.settings[0].assign[0].program, "Water") == 0);
+        CHECK_STR_EQ(b.settings[0].assign[0].program, "Water");
         CHECK(strcmp(b.settings[0].assign[0].name, "STEPS") == 0 && b.settings[0].assign[0].value[0] == 8);
         CHECK(b.settings[0].assign[1].nvalue == 3 && fabsf(b.settings[0].assign[1].value[2] - 0.3f) < 1e-7f);
         CHECK(strcmp(b.settings[1].assign[0].program, "*") == 0 && b.settings[1].assign[0].value[0] == 1);
-        CHECK(strcmp(b.settings[1].assign[1].program, "scene") == 0);
-        CHECK(b.settings[2].nassign == 0);
+        CHECK_STR_EQ(b.settings[1].assign[1].program, "scene");
+        CHECK_EQ(b.settings[2].nassign, 0);
         char lines[256];
-        CHECK(packset_scene_lines(&b.settings[1], lines, sizeof lines) > 0);
-        CHECK(strcmp(lines, "WaterMesh 64\n") == 0);
+        CHECK_GT(packset_scene_lines(&b.settings[1], lines, sizeof lines), 0);
+        CHECK_STR_EQ(lines, "WaterMesh 64\n");
         CHECK(packset_scene_lines(&b.settings[0], lines, sizeof lines) == 0 && lines[0] == '\0');
     }
-    CHECK(b.nbuffers == 2);
+    CHECK_EQ(b.nbuffers, 2);
     if (b.nbuffers == 2) {
         CHECK(strcmp(b.buffers[0].name, "fresnel") == 0 && b.buffers[0].how.assign[0].value[0] == 3);
-        CHECK(strcmp(b.buffers[1].name, "refract_hit") == 0);
+        CHECK_STR_EQ(b.buffers[1].name, "refract_hit");
     }
     packset_bench_free(&b);
 
@@ -93,7 +93,7 @@ static void test_bench_txt(void) {
     CHECK(!packset_bench_parse("good Water.a=1\nbad Water.a\nbad2 Water.a=x\ngood Water.a=2\nbuffer nope W.a=1\n"
                                "colour red\n",
                                "t/bench.txt", &b, err, sizeof err));
-    CHECK(b.n == 1);
+    CHECK_EQ(b.n, 1);
     CHECK_STR_CONTAINS(err, "t/bench.txt:2: 'Water.a' is not PROGRAM.ENTRY=VALUE");
     CHECK_STR_CONTAINS(err, "t/bench.txt:3: 'Water.a=x': 'x' is not a number");
     CHECK_STR_CONTAINS(err, "t/bench.txt:4: setting 'good' is written twice");
@@ -177,7 +177,7 @@ static void test_bounds(void) {
     CHECK(!packset_bounds_parse("calm -1\nshore\n", "p/bounds.txt", &b, err, sizeof err));
     CHECK_STR_CONTAINS(err, "p/bounds.txt:1: '-1' is not a positive RMSE or 'none'");
     CHECK_STR_CONTAINS(err, "p/bounds.txt:2: a bound line is CASE MAX_RMSE|none [why]");
-    CHECK(packset_bound_for(&b, "calm") == NULL);
+    CHECK_EQ(packset_bound_for(&b, "calm"), NULL);
     packset_bounds_free(&b);
     CHECK(packset_bounds_parse(NULL, "p/bounds.txt", &b, NULL, 0) && !b.found && b.n == 0);
     packset_bounds_free(&b);
@@ -215,7 +215,7 @@ static void test_pareto_ties(void) {
     bool on2[4];
     plot_pareto_ties(x2, y, dx, dy, 4, on2);
     plot_pareto_ties(x, y, dx, dy, 4, on);
-    for (int i = 0; i < 4; i++) CHECK(on[i] == on2[i]);
+    for (int i = 0; i < 4; i++) CHECK_EQ(on[i], on2[i]);
 }
 
 /* The combined rule: errors tie within sqrt(u_i^2 + u_j^2), not u_i + u_j */
@@ -247,9 +247,9 @@ static void test_plot(void) {
     CHECK(img_alloc(&im, 40, 12, 3));
     const float white[3] = { 1, 1, 1 }, black[3] = { 0, 0, 0 };
     plot_fill(&im, white);
-    CHECK(plot_text(&im, 1, 1, "Ag", 1, black) == 2 * PLOT_GLYPH_W);
+    CHECK_EQ(plot_text(&im, 1, 1, "Ag", 1, black), 2 * PLOT_GLYPH_W);
     CHECK(has_colour(&im, black, 1e-6));
-    CHECK(plot_text_width("abc", 2) == 3 * PLOT_GLYPH_W * 2);
+    CHECK_EQ(plot_text_width("abc", 2), 3 * PLOT_GLYPH_W * 2);
     img_free(&im);
 
     plot_point a[] = { { 10, 0.2, "slow", false }, { 2, 0.3, "fast", true }, { 20, 0.05, "best", true } };
@@ -262,7 +262,7 @@ static void test_plot(void) {
     CHECK(has_colour(&im, s[0].rgb, 0.02) && has_colour(&im, s[1].rgb, 0.02));
     int bad = 0;
     for (long i = 0; i < (long)im.w * im.h * 3; i++) bad += !(im.px[i] >= 0 && im.px[i] <= 1);
-    CHECK(bad == 0);
+    CHECK_EQ(bad, 0);
     char err[256];
     CHECK(img_write(tmp("plot.png"), &im, err, sizeof err));
     img_free(&im);
@@ -275,7 +275,7 @@ static void make_probe_root(void) {
     snprintf(cmd, sizeof cmd, "mkdir -p %s/root/packs/probe %s/root/packs/nopack %s/root/packs/common.x && "
              "ln -s %s/packs/common %s/root/packs/common",
              tmpdir, tmpdir, tmpdir, TARN_SOURCE_DIR, tmpdir);
-    CHECK(system(cmd) == 0);
+    CHECK_EQ(system(cmd), 0);
     write_file(tmp("root/packs/probe/pack.glib"),
                "##OpenGL GLIB\n"
                "# a probe pack: the world, then a flat grey water surface\n"
@@ -352,25 +352,25 @@ static int count_files(const char *dir, const char *suffix) {
 static void test_bench_end_to_end(void) {
     char cmd[1024];
     snprintf(cmd, sizeof cmd, "mkdir -p %s/docs", tmpdir);
-    CHECK(system(cmd) == 0);
+    CHECK_EQ(system(cmd), 0);
     write_file(tmp("docs/benchmark.md"), "# Benchmark\n\nkept\n\n<!-- bench:begin -->\nold\n<!-- bench:end -->\n\ntail\n");
     int rc = bench(tmp("out"), true, NULL, "4");
     if (rc == TARN_EXIT_NO_GL) SKIP("no OpenGL context");
-    CHECK(rc == TARN_EXIT_OK);
+    CHECK_EQ(rc, TARN_EXIT_OK);
 
     char *csv = read_file(tmp("out/bench.csv"));
-    CHECK(csv != NULL);
+    CHECK_NE(csv, NULL);
     if (csv) {
-        CHECK(strncmp(csv, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms", 60) == 0);
+        CHECK_EQ(strncmp(csv, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms", 60), 0);
         CHECK_STR_CONTAINS(csv, "\"lake\",\"probe\",\"dark\",0.5,64,36,");
         CHECK_STR_CONTAINS(csv, "\"lake\",\"probe\",\"light\",2,64,36,");
         int lines = 0;
         for (char *p = csv; *p; p++) lines += *p == '\n';
-        CHECK(lines == 1 + 2 * 2);
+        CHECK_EQ(lines, 1 + 2 * 2);
     }
     free(csv);
     char *json = read_file(tmp("out/bench.json"));
-    CHECK(json != NULL);
+    CHECK_NE(json, NULL);
     if (json) {
         CHECK_STR_CONTAINS(json, "\"machine\": {\"cpu\": ");
         CHECK_STR_CONTAINS(json, "\"floor\": {\"gpu_ms\": ");
@@ -411,9 +411,9 @@ static void test_bench_end_to_end(void) {
     free(csv);
     struct stat st0;
     CHECK(stat(tmp("out/plot-lake-flip.png"), &st0) == 0 && st0.st_size > 1000);
-    CHECK(stat(tmp("out/img/lake.probe.dark.temporal.png"), &st0) == 0);
+    CHECK_EQ(stat(tmp("out/img/lake.probe.dark.temporal.png"), &st0), 0);
     char *md = read_file(tmp("out/report.md"));
-    CHECK(md != NULL);
+    CHECK_NE(md, NULL);
     if (md) {
         CHECK_STR_CONTAINS(md, "| probe | dark |");
         CHECK_STR_CONTAINS(md, "Cost floor (a full-screen pass with one texture fetch)");
@@ -425,9 +425,9 @@ static void test_bench_end_to_end(void) {
     }
     free(md);
     char *page = read_file(tmp("docs/benchmark.md"));
-    CHECK(page != NULL);
+    CHECK_NE(page, NULL);
     if (page) {
-        CHECK(strncmp(page, "# Benchmark\n\nkept\n\n<!-- bench:begin -->\n", 40) == 0);
+        CHECK_EQ(strncmp(page, "# Benchmark\n\nkept\n\n<!-- bench:begin -->\n", 40), 0);
         CHECK(!strstr(page, "\nold\n"));
         CHECK_STR_CONTAINS(page, "| probe | light |");
         CHECK_STR_CONTAINS(page, "(benchmark-plot-lake.png)");
@@ -436,8 +436,8 @@ static void test_bench_end_to_end(void) {
     free(page);
     struct stat st;
     CHECK(stat(tmp("docs/benchmark-plot-lake.png"), &st) == 0 && st.st_size > 1000);
-    CHECK(stat(tmp("out/scenes/lake.probe.light.glib"), &st) == 0);   /* scene.WaterMesh=16 */
-    CHECK(stat(tmp("out/passes.csv"), &st) == 0);
+    CHECK_EQ(stat(tmp("out/scenes/lake.probe.light.glib"), &st), 0);   /* scene.WaterMesh=16 */
+    CHECK_EQ(stat(tmp("out/passes.csv"), &st), 0);
     img plot;
     char err[512];
     CHECK_MSG(img_read(tmp("out/plot-lake.png"), &plot, err, sizeof err), "%s", err);
@@ -448,23 +448,23 @@ static void test_bench_end_to_end(void) {
     }
 
     /* the references went to the XDG cache, not the output folder */
-    CHECK(count_files(tmp("cache/tarn/ref"), ".exr") > 0);
-    CHECK(stat(tmp("out/ref"), &st) != 0);
+    CHECK_GT(count_files(tmp("cache/tarn/ref"), ".exr"), 0);
+    CHECK_NE(stat(tmp("out/ref"), &st), 0);
 
     /* again: the references come from the cache */
-    CHECK(bench(tmp("out"), false, NULL, "4") == TARN_EXIT_OK);
+    CHECK_EQ(bench(tmp("out"), false, NULL, "4"), TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 0, \"references_cached\": 2");
     free(json);
 
     /* --ref-cache DIR: an empty cache there, so rendered again, into DIR */
-    CHECK(bench(tmp("out"), false, tmp("alt-cache"), "4") == TARN_EXIT_OK);
+    CHECK_EQ(bench(tmp("out"), false, tmp("alt-cache"), "4"), TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) CHECK_STR_CONTAINS(json, "\"references_rendered\": 2, \"references_cached\": 0");
     free(json);
 
     /* MSAA off: a 1 x 1 reference, which the 4-position ones in the cache are not */
-    CHECK(bench(tmp("out"), false, tmp("alt-cache"), "0") == TARN_EXIT_OK);
+    CHECK_EQ(bench(tmp("out"), false, tmp("alt-cache"), "0"), TARN_EXIT_OK);
     json = read_file(tmp("out/bench.json"));
     if (json) {
         CHECK_STR_CONTAINS(json, "\"msaa\": 1, \"reference_spp\": 1");
@@ -474,20 +474,20 @@ static void test_bench_end_to_end(void) {
     md = read_file(tmp("out/report.md"));
     if (md) CHECK_STR_CONTAINS(md, "Anti-aliasing: off; the reference takes 1 x 1 subsamples per pixel, to match.");
     free(md);
-    CHECK(count_files(tmp("alt-cache"), ".exr") > 0);
+    CHECK_GT(count_files(tmp("alt-cache"), ".exr"), 0);
 }
 
 static void test_usage(void) {
     const char *a1[] = { "--packs", "nosuchpack", "--root", tmp("root") };
-    CHECK(cmd_bench(4, (char **)a1) == TARN_EXIT_USAGE);
+    CHECK_EQ(cmd_bench(4, (char **)a1), TARN_EXIT_USAGE);
     const char *a2[] = { "--size", "12" };
-    CHECK(cmd_bench(2, (char **)a2) == TARN_EXIT_USAGE);
+    CHECK_EQ(cmd_bench(2, (char **)a2), TARN_EXIT_USAGE);
     const char *a3[] = { "--times", "1,x" };
-    CHECK(cmd_bench(2, (char **)a3) == TARN_EXIT_USAGE);
+    CHECK_EQ(cmd_bench(2, (char **)a3), TARN_EXIT_USAGE);
     const char *a4[] = { "no/such/scene.glib" };
-    CHECK(cmd_bench(1, (char **)a4) == TARN_EXIT_USAGE);
+    CHECK_EQ(cmd_bench(1, (char **)a4), TARN_EXIT_USAGE);
     const char *a5[] = { "--help" };
-    CHECK(cmd_bench(1, (char **)a5) == TARN_EXIT_OK);
+    CHECK_EQ(cmd_bench(1, (char **)a5), TARN_EXIT_OK);
 }
 
 int main(void) {

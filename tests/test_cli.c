@@ -17,14 +17,14 @@ static char dir[256];
 static void test_help_lists_every_command(void) {
     char cmd[1024], out[8192];
     snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin);
-    CHECK(run_command(cmd, out, sizeof out) == 0);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 0);
     CHECK_STR_CONTAINS(out, "view FILE.glib");
     CHECK_STR_CONTAINS(out, "render FILE.glib");
     CHECK_STR_CONTAINS(out, "validate");
     const char *cmds[] = { "view", "render", "validate" };
     for (int i = 0; i < 3; i++) {
         snprintf(cmd, sizeof cmd, "%s %s --help 2>&1", bin, cmds[i]);
-        CHECK(run_command(cmd, out, sizeof out) == 0);
+        CHECK_EQ(run_command(cmd, out, sizeof out), 0);
         CHECK_STR_CONTAINS(out, "usage: tarn");
     }
     snprintf(cmd, sizeof cmd, "%s render --help 2>&1", bin);
@@ -37,19 +37,19 @@ static void test_help_lists_every_command(void) {
 static void test_bad_usage_exits_2(void) {
     char cmd[1024], out[8192];
     snprintf(cmd, sizeof cmd, "%s frobnicate 2>&1", bin);
-    CHECK(run_command(cmd, out, sizeof out) == 2);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 2);
     CHECK_STR_CONTAINS(out, "unknown command 'frobnicate'");
     snprintf(cmd, sizeof cmd, "%s render %s/scenes/pond.glib 2>&1", bin, src);
-    CHECK(run_command(cmd, out, sizeof out) == 2);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 2);
     CHECK_STR_CONTAINS(out, "-o OUT");
     snprintf(cmd, sizeof cmd, "%s render x.glib -o x.png --size 12by3 2>&1", bin);
-    CHECK(run_command(cmd, out, sizeof out) == 2);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 2);
 }
 
 static void test_missing_scene_names_the_file(void) {
     char cmd[1024], out[8192];
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/nope.glib -o %s/nope.png 2>&1", bin, dir, dir);
-    CHECK(run_command(cmd, out, sizeof out) == 1);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 1);
     CHECK_STR_CONTAINS(out, "nope.glib");
 }
 
@@ -60,7 +60,7 @@ static void test_huge_frame_is_refused(void) {
     char cmd[1024], out[8192], glib[512];
     snprintf(glib, sizeof glib, "%s/huge.glib", dir);
     FILE *f = fopen(glib, "w");
-    if (!f) { CHECK(f != NULL); return; }
+    if (!f) { CHECK_NE(f, NULL); return; }
     fputs("##OpenGL GLIB\nWindowSize 16384 16384\nOrtho -1 1 -1 1\nQuadXY 0 1 1 1\n", f);
     fclose(f);
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
@@ -88,7 +88,7 @@ static void test_render_headless_is_deterministic_and_follows_scene(void) {
     CHECK_STR_CONTAINS(out, "wrote");
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 160x90 --time 3.5 --quiet 2>&1",
              bin, src, b);
-    CHECK(run_command(cmd, out, sizeof out) == 0);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 0);
     img ia, ib;
     char err[512];
     memset(&ia, 0, sizeof ia);
@@ -97,13 +97,13 @@ static void test_render_headless_is_deterministic_and_follows_scene(void) {
     CHECK_MSG(img_read(b, &ib, err, sizeof err), "%s", err);
     if (!ia.px || !ib.px) return;
     CHECK(ia.w == 160 && ia.h == 90);
-    CHECK(memcmp(ia.px, ib.px, sizeof(float) * ia.w * ia.h * ia.channels) == 0);
+    CHECK_EQ(memcmp(ia.px, ib.px, sizeof(float) * ia.w * ia.h * ia.channels), 0);
     const float *top = ia.px;   /* row 0 = top */
     CHECK_NEAR(top[0], 0.55, 1.0 / 255);
     CHECK_NEAR(top[1], 0.72, 1.0 / 255);
     CHECK_NEAR(top[2], 0.90, 1.0 / 255);
     const float *mid = ia.px + ((size_t)60 * ia.w + 80) * ia.channels;
-    CHECK(fabsf(mid[0] - 0.55f) + fabsf(mid[1] - 0.72f) + fabsf(mid[2] - 0.90f) > 0.05f);
+    CHECK_GT(fabsf(mid[0] - 0.55f) + fabsf(mid[1] - 0.72f) + fabsf(mid[2] - 0.90f), 0.05f);
     img_free(&ia);
     img_free(&ib);
 }
@@ -119,8 +119,8 @@ static void test_frames_write_every_frame(void) {
     CHECK_STR_CONTAINS(out, "median GPU time");
     snprintf(p0, sizeof p0, "%s/f0000.exr", dir);
     snprintf(p2, sizeof p2, "%s/f0002.exr", dir);
-    CHECK(access(p0, R_OK) == 0);
-    CHECK(access(p2, R_OK) == 0);
+    CHECK_EQ(access(p0, R_OK), 0);
+    CHECK_EQ(access(p2, R_OK), 0);
     /* 32-bit float, as the help says: half would quantise what a float
      * target holds (hit points: 4-8 mm at the lake's coordinates) */
     CHECK_MSG(exr_pixel_type(p0) == EXR_TYPE_FLOAT, "%s: pixel type %d, want float (2)", p0, exr_pixel_type(p0));
@@ -129,7 +129,7 @@ static void test_frames_write_every_frame(void) {
     memset(&i0, 0, sizeof i0);
     memset(&i2, 0, sizeof i2);
     if (img_read(p0, &i0, err, sizeof err) && img_read(p2, &i2, err, sizeof err))
-        CHECK(memcmp(i0.px, i2.px, sizeof(float) * i0.w * i0.h * i0.channels) != 0);
+        CHECK_NE(memcmp(i0.px, i2.px, sizeof(float) * i0.w * i0.h * i0.channels), 0);
     img_free(&i0);
     img_free(&i2);
 }
@@ -155,7 +155,7 @@ static void test_passes_lists_each_draw(void) {
              bin, src, b);
     rc = run_command(cmd, out, sizeof out);
     CHECK_MSG(rc == 0, "%s", out);
-    CHECK(strstr(out, "per pass:") == NULL);
+    CHECK_EQ(strstr(out, "per pass:"), NULL);
     img ia, ib;
     char err[256];
     memset(&ia, 0, sizeof ia);
@@ -163,7 +163,7 @@ static void test_passes_lists_each_draw(void) {
     CHECK(img_read(a, &ia, err, sizeof err) && img_read(b, &ib, err, sizeof err));
     CHECK(ia.w == ib.w && ia.h == ib.h && ia.channels == ib.channels);
     if (ia.px && ib.px && ia.w == ib.w && ia.h == ib.h && ia.channels == ib.channels)
-        CHECK(memcmp(ia.px, ib.px, sizeof(float) * ia.w * ia.h * ia.channels) == 0);
+        CHECK_EQ(memcmp(ia.px, ib.px, sizeof(float) * ia.w * ia.h * ia.channels), 0);
     img_free(&ia);
     img_free(&ib);
 }
@@ -195,7 +195,7 @@ static void test_set_changes_uniforms(void) {
     check_floor_red(a, "");
     snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/pond.glib -o %s --size 32x18 --quiet "
              "--set Water.uNope=1 2>&1", bin, src, a);
-    CHECK(run_command(cmd, out, sizeof out) == 1);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 1);
     CHECK_STR_CONTAINS(out, "no entry 'uNope' in Water");
 }
 

@@ -56,7 +56,7 @@ static void lake_in_memory(const double (*at)[2], int n, ref_render_result *r) {
     d.camera.fov_deg = cam.fov_deg;
     d.camera.width = 32;
     d.camera.height = 18;
-    CHECK(ref_render(&d, r, err, sizeof err) == 0);
+    CHECK_EQ(ref_render(&d, r, err, sizeof err), 0);
 }
 
 static void test_writes_everything(void) {
@@ -64,7 +64,7 @@ static void test_writes_everything(void) {
     const char *out = tmp_path("ref.exr");
     const char *argv[] = { lake(), "-o", out, "--size", "32x18", "--time", "1.5", "--threads", "2",
                            "--photons", "4", "--caustic-res", "48", "--quiet" };
-    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == TARN_EXIT_OK);
+    CHECK_EQ(run((int)(sizeof argv / sizeof *argv), argv), TARN_EXIT_OK);
 
     /* the same render in memory */
     ref_render_result r;
@@ -95,13 +95,13 @@ static void test_writes_everything(void) {
         for (size_t i = 0; files[f].ref && i < n; i++) {
             double want = files[f].ref[i], got = im.px[i];
             if (isnan(want)) { CHECK(isnan(got)); continue; }
-            if (isinf(want)) { CHECK(got == want); continue; }
+            if (isinf(want)) { CHECK_EQ(got, want); continue; }
             /* float: 24 bits, so 6e-8 relative (half would be 5e-4) */
             CHECK_MSG(fabs(got - want) <= 6e-8 * fabs(want) + 1e-30, "%s[%zu] = %.9g, want %.9g",
                       files[f].name, i, got, want);
         }
         if (strcmp(files[f].name, "ref.mask.exr") == 0)
-            for (size_t i = 0; i < n; i++) CHECK(im.px[i] == r.mask[i]);
+            for (size_t i = 0; i < n; i++) CHECK_EQ(im.px[i], r.mask[i]);
         if (strcmp(files[f].name, "ref.png") == 0)   /* sRGB-encoded 8 bits */
             for (size_t i = 0; i < n; i++) {
                 double v = r.color[i] > 1 ? 1 : r.color[i];
@@ -120,7 +120,7 @@ static void test_seed(void) {
     if (access(lake(), R_OK) != 0) SKIP("no %s", lake());
     const char *argv[] = { lake(), "-o", tmp_path("seed3.exr"), "--size", "32x18", "--time", "1.5",
                            "--threads", "2", "--photons", "4", "--caustic-res", "48", "--seed", "3", "--quiet" };
-    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == TARN_EXIT_OK);
+    CHECK_EQ(run((int)(sizeof argv / sizeof *argv), argv), TARN_EXIT_OK);
     img a = { 0 }, b = { 0 };
     char err[2048];
     CHECK_MSG(img_read(tmp_path("ref.irradiance.exr"), &a, err, sizeof err), "%s", err);
@@ -138,7 +138,7 @@ static void test_seed(void) {
     img_free(&a);
     img_free(&b);
     const char *bad[] = { "s.glib", "-o", "x.exr", "--seed", "-1" };
-    CHECK(run(5, bad) == TARN_EXIT_USAGE);
+    CHECK_EQ(run(5, bad), TARN_EXIT_USAGE);
     CHECK_STR_CONTAINS(cmd_reference_usage(), "--seed N");
 }
 
@@ -154,12 +154,12 @@ static void test_msaa_without_gl(void) {
     const char *out = tmp_path("msaa.exr");
     const char *argv[] = { lake(), "-o", out, "--size", "32x18", "--time", "1.5", "--photons", "4",
                            "--caustic-res", "48", "--msaa", "4", "--quiet" };
-    CHECK(run((int)(sizeof argv / sizeof *argv), argv) == TARN_EXIT_OK);
+    CHECK_EQ(run((int)(sizeof argv / sizeof *argv), argv), TARN_EXIT_OK);
     const char *three[] = { lake(), "-o", tmp_path("m3.exr"), "--size", "8x8", "--msaa", "3", "--quiet" };
-    CHECK(run((int)(sizeof three / sizeof *three), three) == TARN_EXIT_INPUT);
+    CHECK_EQ(run((int)(sizeof three / sizeof *three), three), TARN_EXIT_INPUT);
     unsetenv("__EGL_VENDOR_LIBRARY_FILENAMES");
     const char *both[] = { lake(), "-o", tmp_path("b.exr"), "--msaa", "4", "--spp", "2" };
-    CHECK(run((int)(sizeof both / sizeof *both), both) == TARN_EXIT_USAGE);
+    CHECK_EQ(run((int)(sizeof both / sizeof *both), both), TARN_EXIT_USAGE);
 
     const double at[4][2] = { { 0.375, 0.875 }, { 0.875, 0.625 }, { 0.125, 0.375 }, { 0.625, 0.125 } };
     ref_render_result r;
@@ -180,38 +180,38 @@ static void test_msaa_without_gl(void) {
 
 static void test_usage(void) {
     const char *no_out[] = { "scene.glib" };
-    CHECK(run(1, no_out) == TARN_EXIT_USAGE);
+    CHECK_EQ(run(1, no_out), TARN_EXIT_USAGE);
     const char *no_scene[] = { "-o", "x.exr" };
-    CHECK(run(2, no_scene) == TARN_EXIT_USAGE);
+    CHECK_EQ(run(2, no_scene), TARN_EXIT_USAGE);
     const char *png[] = { "s.glib", "-o", "x.png" };
-    CHECK(run(3, png) == TARN_EXIT_USAGE);
+    CHECK_EQ(run(3, png), TARN_EXIT_USAGE);
     const char *size[] = { "s.glib", "-o", "x.exr", "--size", "64" };
-    CHECK(run(5, size) == TARN_EXIT_USAGE);
+    CHECK_EQ(run(5, size), TARN_EXIT_USAGE);
     const char *spp[] = { "s.glib", "-o", "x.exr", "--spp", "0" };
-    CHECK(run(5, spp) == TARN_EXIT_USAGE);
+    CHECK_EQ(run(5, spp), TARN_EXIT_USAGE);
     const char *unknown[] = { "s.glib", "-o", "x.exr", "--frobnicate" };
-    CHECK(run(4, unknown) == TARN_EXIT_USAGE);
+    CHECK_EQ(run(4, unknown), TARN_EXIT_USAGE);
     CHECK_STR_CONTAINS(cmd_reference_usage(), "--threads");
     CHECK_STR_CONTAINS(cmd_reference_usage(), "refract_hit.exr");
 }
 
 static void test_input_errors(void) {
     const char *missing[] = { tmp_path("nope.glib"), "-o", tmp_path("x.exr"), "--quiet" };
-    CHECK(run(4, missing) == TARN_EXIT_INPUT);
+    CHECK_EQ(run(4, missing), TARN_EXIT_INPUT);
     /* a glman scene with no world commands: nothing to render */
     const char *glib = tmp_path("noworld.glib");
     FILE *f = fopen(glib, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs("##OpenGL GLIB\nLookAt 0 2 5  0 0 0  0 1 0\n", f);
     fclose(f);
     const char *noworld[] = { glib, "-o", tmp_path("x.exr"), "--quiet" };
-    CHECK(run(4, noworld) == TARN_EXIT_INPUT);
+    CHECK_EQ(run(4, noworld), TARN_EXIT_INPUT);
     /* an output that cannot be written */
     if (access(lake(), R_OK) == 0) {
         const char *bad[] = { lake(), "-o", tmp_path("no/such/dir/x.exr"), "--size", "8x4",
                               "--flat-caustics", "--quiet" };
-        CHECK(run(7, bad) == TARN_EXIT_INPUT);
+        CHECK_EQ(run(7, bad), TARN_EXIT_INPUT);
     }
 }
 

@@ -52,7 +52,7 @@ static int listed_names(const char *out, char names[][32], int max) {
 
 static void test_help_lists_every_command(void) {
     char out[8192], names[32][32];
-    CHECK(tarn("help", out, sizeof out) == 0);
+    CHECK_EQ(tarn("help", out, sizeof out), 0);
     int n = listed_names(out, names, 32);
     CHECK_MSG(n == NEXPECTED, "%d commands listed:\n%s", n, out);
     for (int i = 0; i < NEXPECTED; i++) {
@@ -61,7 +61,7 @@ static void test_help_lists_every_command(void) {
         CHECK_MSG(found, "'%s' not in `tarn help`", expected[i].name);
     }
     char again[8192];
-    CHECK(tarn("--help", again, sizeof again) == 0);
+    CHECK_EQ(tarn("--help", again, sizeof again), 0);
     CHECK_MSG(strcmp(again, out) == 0, "`tarn --help` differs from `tarn help`:\n%s", again);
 }
 
@@ -83,10 +83,10 @@ static void test_help_command_prints_its_usage(void) {
 
 static void test_unknown_command_exits_2(void) {
     char out[8192];
-    CHECK(tarn("frobnicate", out, sizeof out) == TARN_EXIT_USAGE);
+    CHECK_EQ(tarn("frobnicate", out, sizeof out), TARN_EXIT_USAGE);
     CHECK_STR_CONTAINS(out, "unknown command 'frobnicate'");
     CHECK_STR_CONTAINS(out, "compare-view");   /* the list, from the table */
-    CHECK(tarn("help frobnicate", out, sizeof out) == TARN_EXIT_USAGE);
+    CHECK_EQ(tarn("help frobnicate", out, sizeof out), TARN_EXIT_USAGE);
     CHECK_STR_CONTAINS(out, "unknown command 'frobnicate'");
 }
 
@@ -108,7 +108,7 @@ static void test_unknown_pack_is_a_usage_error(void) {
 
 static void test_version(void) {
     char out[256];
-    CHECK(tarn("--version", out, sizeof out) == 0);
+    CHECK_EQ(tarn("--version", out, sizeof out), 0);
     int major = -1, minor = -1, patch = -1;
     CHECK_MSG(sscanf(out, "tarn %d.%d.%d", &major, &minor, &patch) == 3, "%s", out);
     CHECK(major >= 0 && minor >= 0 && patch >= 0);
@@ -173,11 +173,11 @@ static void test_sheet(void) {
     img_free(&im);
     snprintf(args, sizeof args, "sheet %s --vary Stripes.uNope=1:9:3 -o %s", scratch_path("s.glib"),
              scratch_path("x.png"));
-    CHECK(tarn(args, out, sizeof out) == TARN_EXIT_USAGE);
+    CHECK_EQ(tarn(args, out, sizeof out), TARN_EXIT_USAGE);
     CHECK_STR_CONTAINS(out, "uNope");
     snprintf(args, sizeof args, "sheet %s --vary Stripes.uFreq=1:9 -o %s", scratch_path("s.glib"),
              scratch_path("x.png"));
-    CHECK(tarn(args, out, sizeof out) == TARN_EXIT_USAGE);
+    CHECK_EQ(tarn(args, out, sizeof out), TARN_EXIT_USAGE);
     CHECK_STR_CONTAINS(out, "--vary wants PROGRAM.NAME=A:B:N");
     scratch_remove();
 }

@@ -172,18 +172,18 @@ static void test_json_has_the_hand_computed_values(void) {
     CHECK_NEAR(jnum(j, NULL, "rmse", NULL), rmse, 1e-9);
     CHECK_NEAR(jnum(j, NULL, "psnr_db", NULL), 20 * log10(1 / rmse), 1e-6);
     CHECK_NEAR(jnum(j, NULL, "max_abs", NULL), e, 1e-9);
-    CHECK(jnum(j, NULL, "max_at_x", NULL) == 5);
-    CHECK(jnum(j, NULL, "max_at_y", NULL) == 3);
-    CHECK(jnum(j, NULL, "max_at_channel", NULL) == 1);
+    CHECK_EQ(jnum(j, NULL, "max_at_x", NULL), 5);
+    CHECK_EQ(jnum(j, NULL, "max_at_y", NULL), 3);
+    CHECK_EQ(jnum(j, NULL, "max_at_channel", NULL), 1);
     CHECK_NEAR(jnum(j, NULL, "mae", NULL), e / 381, 1e-9);
     CHECK_NEAR(jnum(j, NULL, "over_threshold_share", NULL), 1.0 / 127, 1e-9);
-    CHECK(jnum(j, NULL, "threshold", NULL) == 0.05);
-    CHECK(jnum(j, NULL, "nan_pixels_a", NULL) == 1);
-    CHECK(jnum(j, NULL, "nan_pixels_b", NULL) == 0);
-    CHECK(jnum(j, NULL, "compared_pixels", NULL) == 127);
-    CHECK(jnum(j, NULL, "width", NULL) == 16);
-    CHECK(jnum(j, NULL, "height", NULL) == 8);
-    CHECK(jnum(j, NULL, "a_srgb_decoded", NULL) == 0);
+    CHECK_EQ(jnum(j, NULL, "threshold", NULL), 0.05);
+    CHECK_EQ(jnum(j, NULL, "nan_pixels_a", NULL), 1);
+    CHECK_EQ(jnum(j, NULL, "nan_pixels_b", NULL), 0);
+    CHECK_EQ(jnum(j, NULL, "compared_pixels", NULL), 127);
+    CHECK_EQ(jnum(j, NULL, "width", NULL), 16);
+    CHECK_EQ(jnum(j, NULL, "height", NULL), 8);
+    CHECK_EQ(jnum(j, NULL, "a_srgb_decoded", NULL), 0);
     int found;
     jnum(j, NULL, "heatmap", &found);
     CHECK(found);                               /* null without --out: keys are stable */
@@ -191,8 +191,8 @@ static void test_json_has_the_hand_computed_values(void) {
     CHECK_STR_CONTAINS(j, "\"flip_kind\": \"HDR\"");
     double fm = jnum(j, NULL, "flip_mean", NULL);
     CHECK(fm > 0 && fm < 1);
-    CHECK(jnum(j, NULL, "flip_max", NULL) >= jnum(j, NULL, "flip_weighted_median", NULL));
-    CHECK(jnum(j, NULL, "flip_exposures", NULL) >= 2);
+    CHECK_GE(jnum(j, NULL, "flip_max", NULL), jnum(j, NULL, "flip_weighted_median", NULL));
+    CHECK_GE(jnum(j, NULL, "flip_exposures", NULL), 2);
     CHECK(isnan(jnum(j, NULL, "ssim", &found)) && found);
     jnum(j, NULL, "flip_map", &found);
     CHECK(found);
@@ -201,10 +201,10 @@ static void test_json_has_the_hand_computed_values(void) {
 
     /* --threshold moves the share. */
     rc = compare("%s %s --threshold 0.2 --json %s", path("a.tif"), path("b.tif"), path("m.json"));
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     j = read_file(path("m.json"));
-    CHECK(jnum(j, NULL, "over_threshold_share", NULL) == 0);
-    CHECK(jnum(j, NULL, "threshold", NULL) == 0.2);
+    CHECK_EQ(jnum(j, NULL, "over_threshold_share", NULL), 0);
+    CHECK_EQ(jnum(j, NULL, "threshold", NULL), 0.2);
 }
 
 static void test_identical_images_psnr_inf(void) {
@@ -217,8 +217,8 @@ static void test_identical_images_psnr_inf(void) {
     char *j = read_file(path("i.json"));
     CHECK(j && json_valid(j));
     CHECK_STR_CONTAINS(j, "\"psnr_db\": \"inf\"");
-    CHECK(jnum(j, NULL, "rmse", NULL) == 0);
-    CHECK(jnum(j, NULL, "differing_pixels", NULL) == 0);
+    CHECK_EQ(jnum(j, NULL, "rmse", NULL), 0);
+    CHECK_EQ(jnum(j, NULL, "differing_pixels", NULL), 0);
     char *c = read_file(path("i.csv"));
     CHECK_STR_CONTAINS(c, ",inf,");
 }
@@ -238,7 +238,7 @@ static void test_csv_to_stdout(void) {
     memcpy(header, out_buf, sizeof header);
     for (char *t = strtok(header, ","); t; t = strtok(NULL, ","), k++)
         if (strcmp(t, "rmse") == 0) col = k;
-    CHECK(col >= 0);
+    CHECK_GE(col, 0);
     CHECK_STR_CONTAINS(out_buf, "nan_pixels_a");
     CHECK_STR_CONTAINS(out_buf, "over_threshold_share");
     const char *v = nl + 1;
@@ -247,7 +247,7 @@ static void test_csv_to_stdout(void) {
         if (v) v++;
     }
     CHECK(v && fabs(strtod(v, NULL) - ((double)0.6f - 0.5) / sqrt(381.0)) < 1e-9);
-    CHECK(compare("%s %s --csv - --json -", path("a.tif"), path("b.tif")) == 2);
+    CHECK_EQ(compare("%s %s --csv - --json -", path("a.tif"), path("b.tif")), 2);
 }
 
 /* PNG values are sRGB: 128/255 decodes to 0.2158605; --linear keeps it. */
@@ -259,13 +259,13 @@ static void test_png_is_srgb_decoded(void) {
     int rc = compare("%s %s --json %s", path("s.png"), path("s.tif"), path("s.json"));
     CHECK_MSG(rc == 0, "%s", err_buf);
     char *j = read_file(path("s.json"));
-    CHECK(jnum(j, NULL, "a_srgb_decoded", NULL) == 1);
-    CHECK(jnum(j, NULL, "b_srgb_decoded", NULL) == 0);
-    CHECK(jnum(j, NULL, "rmse", NULL) < 1e-6);
+    CHECK_EQ(jnum(j, NULL, "a_srgb_decoded", NULL), 1);
+    CHECK_EQ(jnum(j, NULL, "b_srgb_decoded", NULL), 0);
+    CHECK_LT(jnum(j, NULL, "rmse", NULL), 1e-6);
     rc = compare("%s %s --linear --json %s", path("s.png"), path("s.tif"), path("s.json"));
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     j = read_file(path("s.json"));
-    CHECK(jnum(j, NULL, "a_srgb_decoded", NULL) == 0);
+    CHECK_EQ(jnum(j, NULL, "a_srgb_decoded", NULL), 0);
     CHECK_NEAR(jnum(j, NULL, "rmse", NULL), 128 / 255.0 - lin, 1e-6);
     CHECK(compare_is_srgb_path("x/y.PNG") && compare_is_srgb_path("a.jpeg"));
     CHECK(!compare_is_srgb_path("a.exr") && !compare_is_srgb_path("a.png/x") && !compare_is_srgb_path("noext"));
@@ -288,9 +288,9 @@ static void test_heatmap_png(void) {
                      path("heat.png"), path("mask.png"), path("h.json"));
     CHECK_MSG(rc == 0, "%s", err_buf);
     char *j = read_file(path("h.json"));
-    CHECK(jnum(j, NULL, "heatmap_scale", NULL) == 0.1);
-    CHECK(jnum(j, NULL, "masked_pixels", NULL) == 1);
-    CHECK(jnum(j, NULL, "nan_pixels_b", NULL) == 1);
+    CHECK_EQ(jnum(j, NULL, "heatmap_scale", NULL), 0.1);
+    CHECK_EQ(jnum(j, NULL, "masked_pixels", NULL), 1);
+    CHECK_EQ(jnum(j, NULL, "nan_pixels_b", NULL), 1);
     CHECK_NEAR(jnum(j, NULL, "max_abs", NULL), 0.25, 1e-7);   /* not the masked 0.4 */
     img h;
     char err[512];
@@ -302,7 +302,7 @@ static void test_heatmap_png(void) {
     float c[3];
     ref_colormap_inferno((double)(0.55f - 0.5f) / 0.1, c);
     p = at(&h, 1, 0);
-    for (int k = 0; k < 3; k++) CHECK(fabsf(p[k] - c[k]) <= 0.6f / 255);
+    for (int k = 0; k < 3; k++) CHECK_LE(fabsf(p[k] - c[k]), 0.6f / 255);
     p = at(&h, 2, 0);                           /* clamped: (252, 255, 164) */
     CHECK(fabsf(p[0] - 252 / 255.0f) < 1e-6f && p[1] == 1 && fabsf(p[2] - 164 / 255.0f) < 1e-6f);
     p = at(&h, 3, 0);
@@ -312,7 +312,7 @@ static void test_heatmap_png(void) {
     img_free(&h);
     /* Automatic scale: the 99th percentile of the per-pixel error. */
     rc = compare("%s %s --out %s --json %s", path("h1.tif"), path("h2.tif"), path("heat.png"), path("h.json"));
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     j = read_file(path("h.json"));
     /* 7 compared (the NaN pixel is not): 0 x4, 0.05, 0.25, 0.4 (unmasked
      * now); p99 at rank 0.99 * 6 = 5.94. */
@@ -361,37 +361,37 @@ static void test_buffers(void) {
     CHECK_STR_CONTAINS(out_buf, "texels");
     char *j = read_file(path("buf.json"));
     CHECK_MSG(j && json_valid(j), "%s", j ? j : "(no file)");
-    CHECK(jnum(j, NULL, "rmse", NULL) == 0);
-    CHECK(jnum(j, "refract_hit", "dist_max", NULL) == 0.5);
-    CHECK(jnum(j, "refract_hit", "dist_max_at_x", NULL) == 6);
-    CHECK(jnum(j, "refract_hit", "dist_max_at_y", NULL) == 1);
+    CHECK_EQ(jnum(j, NULL, "rmse", NULL), 0);
+    CHECK_EQ(jnum(j, "refract_hit", "dist_max", NULL), 0.5);
+    CHECK_EQ(jnum(j, "refract_hit", "dist_max_at_x", NULL), 6);
+    CHECK_EQ(jnum(j, "refract_hit", "dist_max_at_y", NULL), 1);
     CHECK_NEAR(jnum(j, "refract_hit", "dist_mean", NULL), 0.625 / 31, 1e-9);
-    CHECK(jnum(j, "refract_hit", "dist_median", NULL) == 0);
-    CHECK(jnum(j, "refract_hit", "texel_max", NULL) == 2);
-    CHECK(jnum(j, "refract_hit", "texel_size", NULL) == 0.25);
-    CHECK(jnum(j, "refract_hit", "nan_pixels_a", NULL) == 1);
-    CHECK(jnum(j, "refract_hit", "compared_pixels", NULL) == 31);
-    CHECK(jnum(j, "fresnel", "abs_max", NULL) == 0.25);
-    CHECK(jnum(j, "fresnel", "abs_max_at_x", NULL) == 7);
-    CHECK(jnum(j, "fresnel", "rel_max", NULL) == 0.5);
+    CHECK_EQ(jnum(j, "refract_hit", "dist_median", NULL), 0);
+    CHECK_EQ(jnum(j, "refract_hit", "texel_max", NULL), 2);
+    CHECK_EQ(jnum(j, "refract_hit", "texel_size", NULL), 0.25);
+    CHECK_EQ(jnum(j, "refract_hit", "nan_pixels_a", NULL), 1);
+    CHECK_EQ(jnum(j, "refract_hit", "compared_pixels", NULL), 31);
+    CHECK_EQ(jnum(j, "fresnel", "abs_max", NULL), 0.25);
+    CHECK_EQ(jnum(j, "fresnel", "abs_max_at_x", NULL), 7);
+    CHECK_EQ(jnum(j, "fresnel", "rel_max", NULL), 0.5);
     CHECK_NEAR(jnum(j, "fresnel", "bias", NULL), -0.25 / 32, 1e-12);
     CHECK(!strstr(j, "\"depth\""));
     int found;
     CHECK(isnan(jnum(j, "refract_hit", "flag_mismatch_pixels", &found)) && found);
-    CHECK(jnum(j, "reflect", "direction_pixels", NULL) == 1);
-    CHECK(jnum(j, "reflect", "flag_mismatch_pixels", NULL) == 2);
-    CHECK(jnum(j, "reflect", "masked_pixels", NULL) == 1);
-    CHECK(jnum(j, "reflect", "compared_pixels", NULL) == 31);
-    CHECK(jnum(j, "reflect", "dist_max", NULL) == 0.25);
+    CHECK_EQ(jnum(j, "reflect", "direction_pixels", NULL), 1);
+    CHECK_EQ(jnum(j, "reflect", "flag_mismatch_pixels", NULL), 2);
+    CHECK_EQ(jnum(j, "reflect", "masked_pixels", NULL), 1);
+    CHECK_EQ(jnum(j, "reflect", "compared_pixels", NULL), 31);
+    CHECK_EQ(jnum(j, "reflect", "dist_max", NULL), 0.25);
     struct stat st;
-    CHECK(stat(path("bheat.refract_hit.png"), &st) == 0);
-    CHECK(stat(path("bheat.fresnel.png"), &st) == 0);
+    CHECK_EQ(stat(path("bheat.refract_hit.png"), &st), 0);
+    CHECK_EQ(stat(path("bheat.fresnel.png"), &st), 0);
     char *c = read_file(path("buf.csv"));
     CHECK_STR_CONTAINS(c, "refract_hit.dist_max");
     CHECK_STR_CONTAINS(c, "fresnel.rel_p95");
     /* Nothing beside A or B: said, and still a comparison. */
     rc = compare("%s %s --buffers", path("a.tif"), path("b.tif"));
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     CHECK_STR_CONTAINS(err_buf, "no buffers");
 }
 
@@ -417,10 +417,10 @@ static void test_water_first_from_the_reference_mask(void) {
     CHECK(j && json_valid(j));
     double ew = (double)0.7f - 0.5, el = (double)0.55f - 0.5;
     CHECK_NEAR(jnum(j, NULL, "water_rmse", NULL), ew, 1e-6);
-    CHECK(jnum(j, NULL, "water_pixels", NULL) == 16);
+    CHECK_EQ(jnum(j, NULL, "water_pixels", NULL), 16);
     CHECK_NEAR(jnum(j, NULL, "off_water_rmse", NULL), el / sqrt(24.0 * 3), 1e-6);
-    CHECK(jnum(j, NULL, "off_water_pixels", NULL) == 24);
-    CHECK(jnum(j, NULL, "water_flip_mean", NULL) > jnum(j, NULL, "off_water_flip_mean", NULL));
+    CHECK_EQ(jnum(j, NULL, "off_water_pixels", NULL), 24);
+    CHECK_GT(jnum(j, NULL, "water_flip_mean", NULL), jnum(j, NULL, "off_water_flip_mean", NULL));
     int fnd;
     CHECK(isnan(jnum(j, NULL, "water_ssim", &fnd)) && fnd);     /* 10x4: smaller than SSIM's window */
     CHECK_NEAR(jnum(j, NULL, "rmse", NULL), sqrt((16 * 3 * ew * ew + el * el) / (40.0 * 3)), 1e-6);
@@ -428,7 +428,7 @@ static void test_water_first_from_the_reference_mask(void) {
     CHECK(water && whole && water < whole);
     /* without a mask beside B: the whole frame, and a note saying why */
     rc = compare("%s %s", path("wa.tif"), path("wa.tif"));
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     CHECK_STR_CONTAINS(out_buf, "water-only error");
     CHECK_STR_CONTAINS(out_buf, "FLIP, whole frame, mean");
 }
@@ -445,8 +445,8 @@ static void test_flip_and_ssim(void) {
     char *j = read_file(path("f.json"));
     CHECK(j && json_valid(j));
     CHECK_STR_CONTAINS(j, "\"flip_kind\": \"LDR\"");
-    CHECK(jnum(j, NULL, "flip_mean", NULL) == 0);
-    CHECK(jnum(j, NULL, "flip_max", NULL) == 0);
+    CHECK_EQ(jnum(j, NULL, "flip_mean", NULL), 0);
+    CHECK_EQ(jnum(j, NULL, "flip_max", NULL), 0);
     CHECK_NEAR(jnum(j, NULL, "flip_ppd", NULL), 67.0206, 1e-3);
     CHECK_NEAR(jnum(j, NULL, "ssim", NULL), 1, 1e-9);
     CHECK(isnan(jnum(j, NULL, "flip_start_exposure", NULL)));
@@ -473,11 +473,11 @@ static void test_flip_and_ssim(void) {
     double fm = jnum(j, NULL, "flip_mean", NULL), ss = jnum(j, NULL, "ssim", NULL);
     CHECK(fm > 0 && fm < 1);
     CHECK(ss < 1 && ss > 0);
-    CHECK(jnum(j, NULL, "flip_min", NULL) == 0);               /* far from the square */
-    CHECK(jnum(j, NULL, "flip_max", NULL) > 0.3);
+    CHECK_EQ(jnum(j, NULL, "flip_min", NULL), 0);               /* far from the square */
+    CHECK_GT(jnum(j, NULL, "flip_max", NULL), 0.3);
     CHECK(img_read(path("flip.png"), &m, e, sizeof e));
     CHECK(fabsf(at(&m, 20, 10)[0] - 0.5f) < 0.01f && fabsf(at(&m, 20, 10)[1] - 0.5f) < 0.01f);   /* masked: grey */
-    CHECK(at(&m, 5, 9)[0] > 0.3f);                              /* the square: bright */
+    CHECK_GT(at(&m, 5, 9)[0], 0.3f);                              /* the square: bright */
     img_free(&m);
     /* without the mask the mean pools twice the pixels, and the little
      * error the filters spread into the right half */
@@ -486,7 +486,7 @@ static void test_flip_and_ssim(void) {
     double all = jnum(j, NULL, "flip_mean", NULL);
     CHECK(all > fm / 2 && all < fm * 0.6);
     rc = compare("%s %s --flip-map %s/no/such/dir.png", path("fa.png"), path("fb.png"), dir);
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(err_buf, "FLIP map");
 }
 
@@ -504,7 +504,7 @@ static void test_flip_oracle_through_compare(void) {
     CHECK_NEAR(jnum(j, NULL, "flip_mean", NULL), 0.050793, 1e-4);
     double w = jnum(j, NULL, "water_flip_mean", NULL), ow = jnum(j, NULL, "off_water_flip_mean", NULL);
     CHECK(w > ow && ow >= 0);
-    CHECK(jnum(j, NULL, "water_ssim", NULL) < jnum(j, NULL, "off_water_ssim", NULL));
+    CHECK_LT(jnum(j, NULL, "water_ssim", NULL), jnum(j, NULL, "off_water_ssim", NULL));
     rc = compare("%s/caustic_tex.exr %s/ref.exr --json %s", o, o, path("o.json"));
     CHECK_MSG(rc == 0, "%s", err_buf);
     j = read_file(path("o.json"));
@@ -512,7 +512,7 @@ static void test_flip_oracle_through_compare(void) {
     CHECK_NEAR(jnum(j, NULL, "flip_mean", NULL), 0.135878, 1e-4);
     CHECK_NEAR(jnum(j, NULL, "flip_start_exposure", NULL), 1.4344, 1e-4);
     CHECK_NEAR(jnum(j, NULL, "flip_stop_exposure", NULL), 2.3352, 1e-4);
-    CHECK(jnum(j, NULL, "flip_exposures", NULL) == 2);
+    CHECK_EQ(jnum(j, NULL, "flip_exposures", NULL), 2);
     const char *wf = strstr(out_buf, "water FLIP, mean"), *ff = strstr(out_buf, "FLIP, whole frame");
     CHECK(wf && ff && wf < ff);
 }
@@ -522,43 +522,43 @@ static void test_mismatch_and_missing_files(void) {
     save(path("w.exr"), &a);
     save(path("t.exr"), &b);
     int rc = compare("%s %s", path("w.exr"), path("t.exr"));
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(err_buf, "w.exr");
     CHECK_STR_CONTAINS(err_buf, "t.exr");
     CHECK_STR_CONTAINS(err_buf, "16x8");
     CHECK_STR_CONTAINS(err_buf, "8x16");
     rc = compare("%s %s", path("nope-a.exr"), path("t.exr"));
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(err_buf, "nope-a.exr");
     rc = compare("%s %s", path("nope-a.exr"), path("nope-b.png"));
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(err_buf, "nope-a.exr");
     CHECK_STR_CONTAINS(err_buf, "nope-b.png");
     rc = compare("%s %s --mask %s", path("w.exr"), path("w.exr"), path("t.exr"));
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(err_buf, "mask");
     rc = compare("%s %s --json %s/no/such/dir.json", path("w.exr"), path("w.exr"), dir);
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(err_buf, "no/such/dir.json");
 }
 
 static void test_usage(void) {
-    CHECK(compare("--help") == 0);
+    CHECK_EQ(compare("--help"), 0);
     const char *opts[] = { "--out", "--threshold", "--max", "--json", "--csv", "--buffers", "--texel",
                            "--mask", "--linear", "--flip-map", "FLIP", "SSIM", "exit codes" };
     for (int i = 0; i < (int)(sizeof opts / sizeof opts[0]); i++) CHECK_STR_CONTAINS(out_buf, opts[i]);
-    CHECK(compare("") == 2);
+    CHECK_EQ(compare(""), 2);
     CHECK_STR_CONTAINS(err_buf, "usage: tarn compare");
-    CHECK(compare("a.exr") == 2);
-    CHECK(compare("a.exr b.exr c.exr") == 2);
-    CHECK(compare("a.exr b.exr --frob") == 2);
+    CHECK_EQ(compare("a.exr"), 2);
+    CHECK_EQ(compare("a.exr b.exr c.exr"), 2);
+    CHECK_EQ(compare("a.exr b.exr --frob"), 2);
     CHECK_STR_CONTAINS(err_buf, "unknown option '--frob'");
-    CHECK(compare("a.exr b.exr --threshold 0") == 2);
-    CHECK(compare("a.exr b.exr --threshold abc") == 2);
-    CHECK(compare("a.exr b.exr --max -1") == 2);
-    CHECK(compare("a.exr b.exr --texel") == 2);
-    CHECK(compare("a.exr b.exr --json") == 2);
-    CHECK(compare("a.exr b.exr --flip-map") == 2);
+    CHECK_EQ(compare("a.exr b.exr --threshold 0"), 2);
+    CHECK_EQ(compare("a.exr b.exr --threshold abc"), 2);
+    CHECK_EQ(compare("a.exr b.exr --max -1"), 2);
+    CHECK_EQ(compare("a.exr b.exr --texel"), 2);
+    CHECK_EQ(compare("a.exr b.exr --json"), 2);
+    CHECK_EQ(compare("a.exr b.exr --flip-map"), 2);
     CHECK_STR_CONTAINS(err_buf, "--flip-map wants a file name");
 }
 
@@ -572,20 +572,20 @@ static void test_tarn_compare_program(void) {
     snprintf(cmd, sizeof cmd, "%s compare --help 2>&1", bin);
     int rc = run_command(cmd, out, sizeof out);
     if (rc == 2 && strstr(out, "unknown command")) SKIP("tarn has no compare command yet (main.c)");
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     CHECK_STR_CONTAINS(out, "--buffers");
     snprintf(cmd, sizeof cmd, "%s compare %s %s --json - 2>/dev/null", bin, path("a.tif"), path("b.tif"));
-    CHECK(run_command(cmd, out, sizeof out) == 0);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 0);
     CHECK(json_valid(out));
     CHECK_NEAR(jnum(out, NULL, "rmse", NULL), ((double)0.6f - 0.5) / sqrt(381.0), 1e-9);
     snprintf(cmd, sizeof cmd, "%s compare %s %s 2>&1", bin, path("w.exr"), path("t.exr"));
-    CHECK(run_command(cmd, out, sizeof out) == 1);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 1);
     CHECK_STR_CONTAINS(out, "16x8");
     snprintf(cmd, sizeof cmd, "%s compare %s %s 2>&1", bin, path("missing.exr"), path("t.exr"));
-    CHECK(run_command(cmd, out, sizeof out) == 1);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 1);
     CHECK_STR_CONTAINS(out, "missing.exr");
     snprintf(cmd, sizeof cmd, "%s compare %s 2>&1", bin, path("t.exr"));
-    CHECK(run_command(cmd, out, sizeof out) == 2);
+    CHECK_EQ(run_command(cmd, out, sizeof out), 2);
 }
 
 int main(void) {

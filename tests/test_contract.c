@@ -31,7 +31,7 @@ static void test_wave_rows_are_ref_waves_uniforms(void) {
 static void test_rows_are_complete(void) {
     int rows = 0;
     const contract_uniform *t = contract_uniforms(&rows);
-    CHECK(rows > 40);
+    CHECK_GT(rows, 40);
     for (int i = 0; i < rows; i++) {
         CHECK_MSG(t[i].type && t[i].type[0] && t[i].set_by && t[i].set_by[0] && t[i].meaning &&
                   t[i].meaning[0], "row %s", t[i].name);

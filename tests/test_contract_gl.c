@@ -57,13 +57,13 @@ static void test_top_camera_maps_texels_to_world(void) {
             bool on_water = fabs(x) < 2 - 1e-3 && fabs(z) < 2 - 1e-3;
             if (!on_water) continue;
             inside++;
-            CHECK(p[3] == 1.0f);
+            CHECK_EQ(p[3], 1.0f);
             worst = fmax(worst, fmax(fabs(p[0] - x), fabs(p[2] - z)));
             CHECK_NEAR(p[1], 0.5, 1e-6);
         }
     fprintf(stderr, "  %d texels, worst |texel centre - world| = %.3g m\n", inside, worst);
-    CHECK(inside > n * n / 2);
-    CHECK(worst < 1e-4);     /* a linear map interpolated exactly, float rounding only */
+    CHECK_GT(inside, n * n / 2);
+    CHECK_LT(worst, 1e-4);     /* a linear map interpolated exactly, float rounding only */
     free(px);
 }
 
@@ -80,7 +80,7 @@ static void test_mirror_matrix_reflects_about_the_water(void) {
     scratch_write("mir.glib", text);
     float *px = draw(scratch_path("mir.glib"), 8, 8, 0, NULL);
     const float *p = px + (4 * 8 + 4) * 4;
-    CHECK(p[3] > 0.1f);                          /* the fragment ran and the matrices were set */
+    CHECK_GT(p[3], 0.1f);                          /* the fragment ran and the matrices were set */
     CHECK(p[0] < 1e-4f && p[1] < 1e-4f && p[2] < 1e-4f);
     free(px);
 }
@@ -288,7 +288,7 @@ static void test_points_from_a_slider(void) {
         CHECK_NEAR(sum, 1.0, 1e-4);
         free(px);
         unif_entry *e = uniform_of(r, "P", "uN");
-        CHECK(e != NULL);
+        CHECK_NE(e, NULL);
         if (e) e->value[0] = 37;
     }
     render_destroy(r);
@@ -343,7 +343,7 @@ static void test_water_shift_uniform(void) {
     float *px = draw(scratch_path("shift.glib"), 2, 1, 3.0, NULL);
     fprintf(stderr, "  rest point of the centre cell %.4f %.4f, uWaterShift %.4f %.4f\n", px[0], px[1], px[4],
             px[5]);
-    CHECK(fabs(px[0]) > 0.1);              /* the surface slid: the points moved */
+    CHECK_GT(fabs(px[0]), 0.1);              /* the surface slid: the points moved */
     CHECK_NEAR(px[4], px[0], 1e-5);
     CHECK_NEAR(px[5], px[1], 1e-5);
     free(px);
@@ -361,7 +361,7 @@ static void test_generated_caustics(void) {
     for (int i = 0; i < 64 * 64; i++) var += (px[i * 4] - mean) * (px[i * 4] - mean) / (64.0 * 64.0);
     fprintf(stderr, "  caustics: mean %.3f, std %.3f\n", mean, sqrt(var));
     CHECK_NEAR(mean, 1.0, 0.05);   /* 64^2 samples of a 128^2 texture with mip filtering: ~1% off */
-    CHECK(sqrt(var) > 0.1);        /* a pattern, not a constant */
+    CHECK_GT(sqrt(var), 0.1);        /* a pattern, not a constant */
     free(px);
 }
 
@@ -386,7 +386,7 @@ static void test_if_blocks(void) {
     int n;
     unif_set *sets = render_uniforms(r, &n);
     unif_entry *extra = n ? unif_find(&sets[0], "EXTRA") : NULL;
-    CHECK(extra != NULL);
+    CHECK_NE(extra, NULL);
     if (extra) {
         extra->value[0] = 1;
         render_rebuild_programs(r);

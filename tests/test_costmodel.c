@@ -39,8 +39,8 @@ static void test_exact_samples_give_the_model(void) {
     CHECK_NEAR(m.b, truth.b, 1e-6);
     CHECK_NEAR(m.c, truth.c, 1e-8);
     CHECK_NEAR(m.r2, 1.0, 1e-12);
-    CHECK(m.rms_residual < 1e-9);
-    CHECK(m.n == 9);
+    CHECK_LT(m.rms_residual, 1e-9);
+    CHECK_EQ(m.n, 9);
     CHECK_NEAR(cost_model_predict(&m, 1920 * 1080 / 1e6, cost_model_grid_kvertices(256)),
                15.0 + 249.0 * 2.0736 + 1.03 * 66.049, 1e-6);
 }
@@ -62,9 +62,9 @@ static void test_noisy_samples_fit_within_the_noise(void) {
     truth_res = sqrt(truth_res / n);
     fprintf(stderr, "  fit a %.2f b %.1f c %.3f, r2 %.4f, residual %.3f ms (the truth's %.3f)\n", m.a, m.b, m.c, m.r2,
             m.rms_residual, truth_res);
-    CHECK(m.rms_residual <= truth_res + 1e-9);
-    CHECK(m.r2 > 0.99);
-    CHECK(fabs(m.b - truth.b) < 0.1 * truth.b);
+    CHECK_LE(m.rms_residual, truth_res + 1e-9);
+    CHECK_GT(m.r2, 0.99);
+    CHECK_LT(fabs(m.b - truth.b), 0.1 * truth.b);
 }
 
 static void test_samples_that_cannot_separate_the_terms(void) {

@@ -79,7 +79,7 @@ static void test_oracle(void) {
     if (!oracle_present()) SKIP("no %s (the FLIP oracle sits beside the repository)", ORACLE);
     row rows[32];
     int n = read_rows(rows, 32);
-    CHECK(n >= 8);
+    CHECK_GE(n, 8);
     for (int i = 0; i < n; i++) {
         const row *r = &rows[i];
         img a = {0}, b = {0};
@@ -104,11 +104,11 @@ static void test_oracle(void) {
         CHECK_NEAR(res.q3, r->q3, 2e-3);
         CHECK_NEAR(res.min, r->min, 1e-4);
         CHECK_NEAR(res.max, r->max, 1e-3);
-        CHECK(res.pooled == (long)a.w * a.h);
+        CHECK_EQ(res.pooled, (long)a.w * a.h);
         if (hdr) {
             CHECK_NEAR(res.start_exposure, r->start, 6e-5);
             CHECK_NEAR(res.stop_exposure, r->stop, 6e-5);
-            CHECK(res.num_exposures == r->num);
+            CHECK_EQ(res.num_exposures, r->num);
         }
         img_free(&a);
         img_free(&b);
@@ -141,10 +141,10 @@ static void test_identical_is_zero(void) {
         ref_flip_result r;
         char err[256];
         CHECK(ref_flip_map(&fa, &fa, &d, map, NULL, &r, err, sizeof err));
-        for (int i = 0; i < W * H; i++) CHECK(map[i] == 0);
+        for (int i = 0; i < W * H; i++) CHECK_EQ(map[i], 0);
         CHECK(r.mean == 0 && r.max == 0 && r.min == 0);
-        CHECK(r.weighted_median == 0);
-        CHECK(r.pooled == W * H);
+        CHECK_EQ(r.weighted_median, 0);
+        CHECK_EQ(r.pooled, W * H);
     }
 }
 
@@ -161,12 +161,12 @@ static void test_single_pixel_is_local(void) {
     CHECK(ref_flip_map(&fa, &fb, &d, map, NULL, NULL, err, sizeof err));
     /* at 67 ppd: colour radius ceil(3 sqrt(0.04 / 2 pi^2) 67.02) = 10 */
     float peak = map[cy * W + cx];
-    CHECK(peak > 0.05f);
+    CHECK_GT(peak, 0.05f);
     int reach = 10;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             float v = map[y * W + x];
-            CHECK(v <= peak);
+            CHECK_LE(v, peak);
             if (abs(x - cx) > reach || abs(y - cy) > reach) CHECK_MSG(v == 0, "(%d, %d) = %g", x, y, v);
         }
     /* symmetric about the pixel */
@@ -200,13 +200,13 @@ static void test_range(void) {
     ref_flip_result r;
     ref_flip_desc d = {0};
     CHECK(ref_flip_map(&fa, &fb, &d, map, NULL, &r, err, sizeof err));
-    CHECK(r.min == r.max);
+    CHECK_EQ(r.min, r.max);
     /* cmax = HyAB(green, blue)^0.7, from the CIELAB of sRGB green (87.735,
      * -86.183, 83.179) and blue (32.303, 79.197, -107.864), Hunt-adjusted;
      * 100^0.7 is above the knee 0.4 cmax: 0.95 + the rest scaled to 0.05 */
     double ga = 0.87735 * -86.183, gb = 0.87735 * 83.179, ba = 0.32303 * 79.197, bb = 0.32303 * -107.864;
     double cmax = pow(87.735 - 32.303 + hypot(ga - ba, gb - bb), 0.7), e = pow(100.0, 0.7);
-    CHECK(e > 0.4 * cmax);
+    CHECK_GT(e, 0.4 * cmax);
     CHECK_NEAR(r.min, 0.95 + (e - 0.4 * cmax) / (0.6 * cmax) * 0.05, 1e-4);
 }
 
@@ -256,9 +256,9 @@ static void test_channels(void) {
     char err[256];
     CHECK(ref_flip_map(&fg, &fr, NULL, m1, NULL, NULL, err, sizeof err));
     CHECK(ref_flip_map(&frgb, &fr, NULL, m2, NULL, NULL, err, sizeof err));
-    for (int i = 0; i < W * H; i++) CHECK(m1[i] == m2[i]);
+    for (int i = 0; i < W * H; i++) CHECK_EQ(m1[i], m2[i]);
     CHECK(ref_flip_map(&fa, &fr, NULL, m1, NULL, NULL, err, sizeof err));
-    for (int i = 0; i < W * H; i++) CHECK(m1[i] == 0);
+    for (int i = 0; i < W * H; i++) CHECK_EQ(m1[i], 0);
 }
 
 static void test_errors(void) {
@@ -307,7 +307,7 @@ static void test_exposures(void) {
     }
     d.num_exposures = 7;
     CHECK(ref_flip_map(&ft, &fa, &d, map, emap, &r, err, sizeof err));
-    CHECK(r.num_exposures == 7);
+    CHECK_EQ(r.num_exposures, 7);
 }
 
 /* Magma: its endpoints, entries by round(255 t), clamping, and the

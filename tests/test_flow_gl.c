@@ -83,7 +83,7 @@ static void test_current_gives_the_shifted_field(void) {
      * (B at 1.0, A at 2.0, B at 3.0) */
     double t = 0.7;
     CHECK(flow_update(&f, t, NULL));
-    CHECK(f.catchups == 1);
+    CHECK_EQ(f.catchups, 1);
     for (int s = 0; s <= 150; s++) {
         if (s > 0) {
             t = 0.7 + s / 60.0;
@@ -96,7 +96,7 @@ static void test_current_gives_the_shifted_field(void) {
         if (ef > worst_f) worst_f = ef;
         if (ed > worst_d) worst_d = ed;
     }
-    CHECK(f.catchups == 1);   /* the steps were steps */
+    CHECK_EQ(f.catchups, 1);   /* the steps were steps */
     CHECK(!flow_update(&f, t, NULL));   /* a still frame runs nothing */
     /* and a jump back in time is rebuilt from the restarts */
     CHECK(flow_update(&f, 0.3, NULL) && f.catchups == 2);
@@ -106,8 +106,8 @@ static void test_current_gives_the_shifted_field(void) {
     if (ef > worst_f) worst_f = ef;
     if (ed > worst_d) worst_d = ed;
     printf("  current: max |d - v age| %.2e m, max |F0(x - d) - F0(x - v age)| %.2e\n", worst_d, worst_f);
-    CHECK(worst_d < 1e-3);
-    CHECK(worst_f < 5e-3);   /* |grad F0| <= 2.9: 2.9 x 1e-3 */
+    CHECK_LT(worst_d, 1e-3);
+    CHECK_LT(worst_f, 5e-3);   /* |grad F0| <= 2.9: 2.9 x 1e-3 */
     free(map);
     flow_free(&f);
 }
@@ -132,11 +132,11 @@ static void test_texture_velocity_is_a_current(void) {
     char msgs[512];
     CHECK(scene_load(scratch_path("tex.glib"), NULL, &wd, NULL, NULL, msgs, sizeof msgs));
     CHECK(wd.flow.nterms == 1 && wd.flow.term[0].kind == REF_FLOW_TEXTURE && wd.flow.term[0].p[0] == 1.2);
-    CHECK(strstr(wd.flow.texture, "vel.exr") != NULL);
+    CHECK_NE(strstr(wd.flow.texture, "vel.exr"), NULL);
     wd.flow.period = 2.0;
     gpu_flow f;
     CHECK(make_flow(&f, &wd.flow, 12));
-    CHECK(f.vel_tex != 0);
+    CHECK_NE(f.vel_tex, 0);
     double v[2] = { 0.6, -0.3 };
     float *map = malloc((size_t)FLOW_RES * FLOW_RES * 4 * sizeof(float));
     double worst_d = 0, worst_f = 0, ef, ed;
@@ -150,8 +150,8 @@ static void test_texture_velocity_is_a_current(void) {
         if (ed > worst_d) worst_d = ed;
     }
     printf("  texture: max |d - v age| %.2e m, max field error %.2e\n", worst_d, worst_f);
-    CHECK(worst_d < 1e-3);   /* v from a float texture: 0.75 and 0.375 are exact */
-    CHECK(worst_f < 5e-3);
+    CHECK_LT(worst_d, 1e-3);   /* v from a float texture: 0.75 and 0.375 are exact */
+    CHECK_LT(worst_f, 5e-3);
     free(map);
     flow_free(&f);
     /* a missing file is an error naming it, not a crash */
@@ -211,24 +211,24 @@ static void test_vortex_keeps_a_blob_on_its_circle(void) {
     printf("  vortex core: blob of %d texels (disc %.1f), centroid radius %.4f m (was %.2f), "
            "off the closed form by %.4f m, worst point radius error %.2e m\n",
            b.n, area, rc, r0, hypot(b.cx - ex, b.cz - ez), b.rmax_err);
-    CHECK(fabs(b.n - area) < 0.05 * area);            /* area kept: a rotation; the count's edge noise ~ perimeter/area */
+    CHECK_LT(fabs(b.n - area), 0.05 * area);            /* area kept: a rotation; the count's edge noise ~ perimeter/area */
     /* the centroid of a set of whole texels: its quantisation, ~ a texel
      * (0.117 m) over sqrt(texels), is what these bounds allow */
-    CHECK(fabs(rc - r0) < 0.02);
-    CHECK(hypot(b.cx - ex, b.cz - ez) < 0.03);        /* and where the closed form puts it */
+    CHECK_LT(fabs(rc - r0), 0.02);
+    CHECK_LT(hypot(b.cx - ex, b.cz - ez), 0.03);        /* and where the closed form puts it */
     /* each point: solid rotation's d is linear in x, so bilinear reads are
      * exact but where the blob's edge (r up to 1.95) reads across the core's
      * rim r = R, where the speed's slope jumps: measured 6.7e-3 m there,
      * 2.7e-4 m well inside; the bound is a tenth of a texel */
-    CHECK(b.rmax_err < 1.2e-2);
+    CHECK_LT(b.rmax_err, 1.2e-2);
     /* outside the core the speed falls as R / r: sheared, but each point
      * stays on its circle */
     double c1[2] = { c[0], c[1] + 3.5 };
     blob o = marked(&f, map, c, c1, 0.5);
     printf("  vortex outside the core: blob of %d texels (disc %.1f), worst point radius error %.2e m\n", o.n,
            M_PI * 0.25 / (cell * cell), o.rmax_err);
-    CHECK(fabs(o.n - M_PI * 0.25 / (cell * cell)) < 0.05 * M_PI * 0.25 / (cell * cell));
-    CHECK(o.rmax_err < 1.2e-2);   /* measured 4.8e-3: the 1/r field's curvature over a texel */
+    CHECK_LT(fabs(o.n - M_PI * 0.25 / (cell * cell)), 0.05 * M_PI * 0.25 / (cell * cell));
+    CHECK_LT(o.rmax_err, 1.2e-2);   /* measured 4.8e-3: the 1/r field's curvature over a texel */
     free(map);
     flow_free(&f);
 }
@@ -245,7 +245,7 @@ static void test_same_steps_same_map(void) {
         flow_read(&f, m[run]);
         flow_free(&f);
     }
-    CHECK(memcmp(m[0], m[1], n * sizeof(float)) == 0);
+    CHECK_EQ(memcmp(m[0], m[1], n * sizeof(float)), 0);
     free(m[0]);
     free(m[1]);
 }
@@ -288,18 +288,18 @@ static void test_no_flow_no_pass(void) {
         if (log) fprintf(stderr, "%s", log);
         free(log);
         CHECK(gw.active);
-        CHECK(gw.flow.active == (with == 1));
+        CHECK_EQ(gw.flow.active, (with == 1));
         CHECK((gw.flow.tex[0] != 0) == (with == 1) && (gw.flow.prog.gl != 0) == (with == 1));
-        CHECK(world_update_flow(&gw, 1.0, NULL) == (with == 1));
+        CHECK_EQ(world_update_flow(&gw, 1.0, NULL), (with == 1));
         /* what every pack program is built with (render.c) */
         prog p;
         memset(&p, 0, sizeof p);
         world_set_wave_defines(&gw, &p);
-        CHECK(defines_flow(&p) == (with == 1));
+        CHECK_EQ(defines_flow(&p), (with == 1));
         if (!with)   /* no flow: not one flow uniform in any world program */
             for (int m = 0; m < WORLD_MODES; m++) {
-                CHECK(glGetUniformLocation(gw.progs[m].gl, "uFlowMap") < 0);
-                CHECK(glGetUniformLocation(gw.progs[m].gl, "uFlowN") < 0);
+                CHECK_LT(glGetUniformLocation(gw.progs[m].gl, "uFlowMap"), 0);
+                CHECK_LT(glGetUniformLocation(gw.progs[m].gl, "uFlowN"), 0);
             }
         world_free(&gw);
     }

@@ -6,11 +6,11 @@
 
 static void test_empty_reads_zero(void) {
     frame_meter m = { 0 };
-    CHECK(frame_meter_ms(&m) == 0);
-    CHECK(frame_meter_fps(&m) == 0);
+    CHECK_EQ(frame_meter_ms(&m), 0);
+    CHECK_EQ(frame_meter_fps(&m), 0);
     frame_meter_add(&m, 0);               /* no time passed: not a frame */
     frame_meter_add(&m, -1);
-    CHECK(m.n == 0);
+    CHECK_EQ(m.n, 0);
 }
 
 /* The issue's case: a tiny first frame, then 2 fps. A 0.9/0.1 average of
@@ -19,7 +19,7 @@ static void test_first_frame_spike_then_slow_frames(void) {
     frame_meter m = { 0 };
     frame_meter_add(&m, 0.001);
     frame_meter_add(&m, 0.5);
-    CHECK(frame_meter_fps(&m) < 5);       /* already the right order after 0.5 s */
+    CHECK_LT(frame_meter_fps(&m), 5);       /* already the right order after 0.5 s */
     frame_meter_add(&m, 0.5);
     CHECK_NEAR(frame_meter_fps(&m), 2.0, 1e-9);
     CHECK_NEAR(frame_meter_ms(&m), 500.0, 1e-9);
@@ -49,7 +49,7 @@ static void test_one_frame_slower_than_the_window(void) {
 static void test_fast_frames_fill_the_ring(void) {
     frame_meter m = { 0 };
     for (int i = 0; i < 3 * FRAME_METER_MAX; i++) frame_meter_add(&m, 0.001);
-    CHECK(m.n == FRAME_METER_MAX);
+    CHECK_EQ(m.n, FRAME_METER_MAX);
     CHECK_NEAR(frame_meter_ms(&m), 1.0, 1e-9);
     CHECK_NEAR(frame_meter_fps(&m), 1000.0, 1e-6);
 }

@@ -141,7 +141,7 @@ static void test_quad(void) {
             else { CHECK_NEAR(lo[c], -2.5, 1e-6); CHECK_NEAR(hi[c], 2.5, 1e-6); }
         }
         for (int k = 0; k < m.nvert; k++) {
-            for (int c = 0; c < 3; c++) CHECK(m.nrm[3 * k + c] == (c == axis ? 1.0f : 0.0f));
+            for (int c = 0; c < 3; c++) CHECK_EQ(m.nrm[3 * k + c], (c == axis ? 1.0f : 0.0f));
             CHECK(m.tc[2 * k] >= 0 && m.tc[2 * k] <= 1 && m.tc[2 * k + 1] >= 0 && m.tc[2 * k + 1] <= 1);
         }
         /* the glib's counts: QuadXY nx ny, QuadXZ nx nz, QuadYZ ny nz */
@@ -160,7 +160,7 @@ static void test_quad(void) {
             int moved = (a[0] != b[0]) + (a[1] != b[1]) + (a[2] != b[2]);
             diag += moved != 1;
         }
-        CHECK(diag == 0);
+        CHECK_EQ(diag, 0);
         check_sane(&m, "wire quad");
         geom_free(&m);
     }
@@ -186,7 +186,7 @@ static void test_quad(void) {
     CHECK(m.nvert == 4 && m.nidx == 6);
     geom_free(&m);
     CHECK(geom_quad(&m, 1, 0, 1, 100000000, 1, false));
-    CHECK(m.nvert == (GEOM_MAX_DIV + 1) * 2);
+    CHECK_EQ(m.nvert, (GEOM_MAX_DIV + 1) * 2);
     geom_free(&m);
     CHECK(!geom_quad(&m, 1, NAN, 1, 2, 2, false));
     CHECK(m.pos == NULL && m.nvert == 0);
@@ -247,7 +247,7 @@ static void test_grid_bands(void) {
     CHECK(geom_grid_bands(&b, 70, 9, 32));
     CHECK(a.nidx == b.nidx && a.nvert == b.nvert);
     tri_key *ka = tri_keys(&a), *kb = tri_keys(&b);
-    CHECK(memcmp(ka, kb, (size_t)(a.nidx / 3) * sizeof *ka) == 0);
+    CHECK_EQ(memcmp(ka, kb, (size_t)(a.nidx / 3) * sizeof *ka), 0);
     free(ka);
     free(kb);
     unsigned next = 0;
@@ -260,7 +260,7 @@ static void test_grid_bands(void) {
     /* the first band, 32 cells by 9 rows, uses 33 x 10 vertices and no more */
     unsigned most = 0;
     for (int k = 0; k < 6 * 32 * 9; k++) most = b.idx[k] > most ? b.idx[k] : most;
-    CHECK(most == 33 * 10 - 1);
+    CHECK_EQ(most, 33 * 10 - 1);
     check_winding_and_tangents(&b, "banded quad");
     geom_free(&b);
     /* not a grid of that size: refused, untouched */
@@ -363,7 +363,7 @@ static void test_sphere(void) {
     CHECK_NEAR(len3(P(&m, 0)), 2, 1e-6);
     geom_free(&m);
     CHECK(!geom_sphere(&m, NAN, 8, 8, false));
-    CHECK(m.nvert == 0);
+    CHECK_EQ(m.nvert, 0);
 }
 
 /* ---- torus ---- */
@@ -419,7 +419,7 @@ static void test_box(void) {
         for (int c = 0; c < 3; c++) off += fabs(fabs(p[c]) - half[c]) > 1e-6;   /* corners */
     }
     for (int f = 0; f < 6; f++) CHECK_MSG(faces[f] == 4, "face %d has %d vertices", f, faces[f]);
-    CHECK(off == 0);
+    CHECK_EQ(off, 0);
     CHECK_NEAR(volume(&m), 24.0, 1e-5);
     geom_free(&m);
 
@@ -480,7 +480,7 @@ static void test_cylinder_cone(void) {
         double nh = sqrt((double)n[0] * n[0] + (double)n[2] * n[2]);
         bad += fabs(n[1] / nh - r / h) > 1e-5;
     }
-    CHECK(bad == 0);
+    CHECK_EQ(bad, 0);
     exact = PI * r * r * h / 3;
     CHECK_MSG(volume(&m) > 0.99 * exact && volume(&m) <= exact, "cone volume %g of %g", volume(&m), exact);
     geom_free(&m);
@@ -511,7 +511,7 @@ static void test_teapot(void) {
     check_sane(&m, "teapot");
     check_winding_and_tangents(&m, "teapot");
     /* 32 patches of 13 x 13 vertices */
-    CHECK(m.nvert == 32 * 13 * 13);
+    CHECK_EQ(m.nvert, 32 * 13 * 13);
     /* Newell's teapot, z up: 3.15 tall, body radius 2 at z 0.9, handle at
      * x = -3, spout tip near x = 3.43; glutSolidTeapot(s) turns it y up,
      * halves it and lowers it by 1.5 */
@@ -538,14 +538,14 @@ static void test_teapot(void) {
             pairs++;
             kinks += dot3(N(&m, a), N(&m, b)) < 0.99;
         }
-    CHECK(pairs > 100);
+    CHECK_GT(pairs, 100);
     CHECK_MSG(kinks == 0, "%d of %d coinciding vertices disagree on the normal", kinks, pairs);
     /* the knob's top faces up, the bottom's centre down */
     int top = 0, bottom = 0;
     for (int k = 0; k < m.nvert; k++) {
         const float *p = P(&m, k), *n = N(&m, k);
-        if (fabs(p[0]) < 1e-6 && fabs(p[2]) < 1e-6 && fabs(p[1] - hi[1]) < 1e-6) { top++; CHECK(n[1] > 0.999); }
-        if (fabs(p[0]) < 1e-6 && fabs(p[2]) < 1e-6 && fabs(p[1] - lo[1]) < 1e-6) { bottom++; CHECK(n[1] < -0.999); }
+        if (fabs(p[0]) < 1e-6 && fabs(p[2]) < 1e-6 && fabs(p[1] - hi[1]) < 1e-6) { top++; CHECK_GT(n[1], 0.999); }
+        if (fabs(p[0]) < 1e-6 && fabs(p[2]) < 1e-6 && fabs(p[1] - lo[1]) < 1e-6) { bottom++; CHECK_LT(n[1], -0.999); }
     }
     CHECK(top > 0 && bottom > 0);
     geom_free(&m);
@@ -553,10 +553,10 @@ static void test_teapot(void) {
     CHECK(geom_teapot(&m, 1, 0, true));          /* default grid, wire */
     CHECK((m.prim == GEOM_LINES));
     check_sane(&m, "wire teapot");
-    CHECK(m.nvert == 32 * 11 * 11);
+    CHECK_EQ(m.nvert, 32 * 11 * 11);
     geom_free(&m);
     CHECK(geom_teapot(&m, -1, 100000, false));   /* clamped grid, |size| */
-    CHECK(m.nvert == 32 * (GEOM_MAX_TEAPOT_GRID + 1) * (GEOM_MAX_TEAPOT_GRID + 1));
+    CHECK_EQ(m.nvert, 32 * (GEOM_MAX_TEAPOT_GRID + 1) * (GEOM_MAX_TEAPOT_GRID + 1));
     geom_free(&m);
     CHECK(geom_teapot(&m, 0, 1, false));
     check_sane(&m, "zero teapot");
@@ -620,7 +620,7 @@ static void test_obj_face_forms(void) {
         CHECK_MSG(t1 >= 0, "square %d: first triangle missing", z);
         /* the v//vn face is a single triangle (5 7 8): a c d */
         CHECK_MSG(find_tri(&m, a, c, d) >= 0, "square %d: fan triangle from corner 0 missing", z);
-        if (z == 1) CHECK(find_tri(&m, a, b, c) >= 0);
+        if (z == 1) CHECK_GE(find_tri(&m, a, b, c), 0);
         if (t1 < 0) continue;
         for (int k = 0; k < 3; k++) {
             unsigned v = m.idx[t1 + k];
@@ -637,7 +637,7 @@ static void test_obj_face_forms(void) {
         }
     }
     geom_free(&m);
-    CHECK(m.pos == NULL);
+    CHECK_EQ(m.pos, NULL);
 }
 
 /* Corners without vn get the area-weighted normal of the faces around. */
@@ -667,8 +667,8 @@ static void test_obj_computed_normals(void) {
             CHECK_NEAR(n[0], 1, 1e-6);
         }
     }
-    CHECK(edge == 2);       /* shared: one vertex per position */
-    CHECK(m.nvert == 6);
+    CHECK_EQ(edge, 2);       /* shared: one vertex per position */
+    CHECK_EQ(m.nvert, 6);
     geom_free(&m);
 
     /* a degenerate face and a zero vn: still no NaN */
@@ -730,7 +730,7 @@ static void test_obj_errors(void) {
     CHECK(!geom_obj_load(&m, path, err, sizeof err));
     snprintf(buf, sizeof buf, "%s:", path);
     CHECK_STR_CONTAINS(err, buf);
-    CHECK(m.nvert == 0);
+    CHECK_EQ(m.nvert, 0);
 
     /* missing file */
     snprintf(buf, sizeof buf, "%s/missing.obj", tmpdir);
@@ -749,7 +749,7 @@ static void test_obj_errors(void) {
     n += (size_t)snprintf(big + n, 40000 - n, "\n");
     path = write_text("long.obj", big);
     CHECK_MSG(geom_obj_load(&m, path, err, sizeof err), "%s", err);
-    CHECK(m.nidx == 3 * 298);
+    CHECK_EQ(m.nidx, 3 * 298);
     geom_free(&m);
     memset(big, 'x', 30000);
     big[30000] = 0;
@@ -834,7 +834,7 @@ static void test_points_disk_box(void) {
     }
     for (int k = 0; k < m.nvert; k++) {
         rmax = fmax(rmax, hypot(P(&m, k)[0], P(&m, k)[1]));
-        CHECK(P(&m, k)[2] == 0);
+        CHECK_EQ(P(&m, k)[2], 0);
     }
     CHECK_MSG(area > 0.99 * PI && area < PI && fabs(rmax - 1) < 1e-6, "disk area %g, radius %g", area, rmax);
     geom_free(&m);
@@ -869,7 +869,7 @@ static void test_clouds_and_arrow(void) {
     CHECK(geom_point_cloud(&j, 4, 3, 2, true));   /* the same cloud every time */
     geom_mesh j2;
     CHECK(geom_point_cloud(&j2, 4, 3, 2, true));
-    CHECK(memcmp(j.pos, j2.pos, sizeof(float) * 3 * 24) == 0);
+    CHECK_EQ(memcmp(j.pos, j2.pos, sizeof(float) * 3 * 24), 0);
     geom_free(&j);
     geom_free(&j2);
     geom_free(&m);
@@ -1044,7 +1044,7 @@ static void test_shp(void) {
     path = shp_write("cut.shp", &f, f.n - 20);
     CHECK(!geom_shp_load(&m, path, err, sizeof err));
     CHECK_MSG(strstr(err, path) && strstr(err, "truncated"), "%s", err);
-    CHECK(m.nvert == 0);
+    CHECK_EQ(m.nvert, 0);
     /* a record cut short, the header's length matching the cut */
     shp_buf g2 = f;
     g2.n = f.n - 20;

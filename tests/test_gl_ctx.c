@@ -56,7 +56,7 @@ static void test_no_egl_vendor(void) {
     render_args(args, sizeof args, "a.png", "");
     int rc = run_tarn("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent", args);
     fprintf(stderr, "  exit %d: %s", rc, out);
-    CHECK(rc == 3);
+    CHECK_EQ(rc, 3);
     CHECK_STR_CONTAINS(out, "no EGL driver was found");
     CHECK_STR_CONTAINS(out, "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent");   /* the likely culprit, named */
     CHECK_STR_CONTAINS(out, "apt-get install");
@@ -70,7 +70,7 @@ static void test_no_driver(void) {
     int rc = run_tarn("LIBGL_DRIVERS_PATH=/nonexistent", args);
     if (rc == 0) SKIP("the EGL driver here is not Mesa's (LIBGL_DRIVERS_PATH changes nothing)");
     fprintf(stderr, "  exit %d: %s", rc, out);
-    CHECK(rc == 3);
+    CHECK_EQ(rc, 3);
     CHECK_STR_CONTAINS(out, "could not load an OpenGL driver");
     CHECK_STR_CONTAINS(out, "libgl1-mesa-dri");
     CHECK_STR_CONTAINS(out, "apt-get install");
@@ -82,7 +82,7 @@ static void test_driver_too_old(void) {
     int rc = run_tarn("MESA_GL_VERSION_OVERRIDE=3.3COMPAT", args);
     if (rc == 0) SKIP("the driver here is not Mesa's (MESA_GL_VERSION_OVERRIDE changes nothing)");
     fprintf(stderr, "  exit %d: %s", rc, out);
-    CHECK(rc == 3);
+    CHECK_EQ(rc, 3);
     CHECK_STR_CONTAINS(out, "no OpenGL 4.5 compatibility-profile context");
     CHECK_STR_CONTAINS(out, "apt-get install");
 }
@@ -95,7 +95,7 @@ static void test_context_lost(void) {
     int rc = run_tarn("TARN_SIMULATE_CONTEXT_LOSS=0", args);
     fprintf(stderr, "  exit %d: %s", rc, out);
     if (rc == 3 && strstr(out, "cannot start OpenGL")) SKIP("no OpenGL here at all");
-    CHECK(rc == 3);
+    CHECK_EQ(rc, 3);
     CHECK_STR_CONTAINS(out, "the OpenGL context was lost");
     CHECK_STR_CONTAINS(out, "start tarn again");
     CHECK_STR_CONTAINS(out, "apt-get install --reinstall");
@@ -105,7 +105,7 @@ static void test_context_lost(void) {
 
     render_args(args, sizeof args, "f%d.png", "--frames 5");
     rc = run_tarn("TARN_SIMULATE_CONTEXT_LOSS=2", args);
-    CHECK(rc == 3);
+    CHECK_EQ(rc, 3);
     CHECK_STR_CONTAINS(out, "the OpenGL context was lost");
     for (int f = 0; f < 5; f++) {
         snprintf(path, sizeof path, "%s/f%04d.png", dir, f);

@@ -90,7 +90,7 @@ static const unif_decl *find_uniform(const glib_cmd *c, const char *name) {
     return NULL;
 }
 
-#define CHECK_NO_DIAGS(s) do { CHECK((s)->ndiags == 0); if ((s)->ndiags) dump(s); } while (0)
+#define CHECK_NO_DIAGS(s) do { CHECK_EQ((s)->ndiags, 0); if ((s)->ndiags) dump(s); } while (0)
 
 /* ------------------------------------------------------------------ */
 
@@ -113,7 +113,7 @@ static void test_basic_scene(void) {
         "GSTAP\n"
         "Clear\n");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 15);
+    CHECK_EQ(s->ncmds, 15);
     CHECK(s->nfiles == 1 && strcmp(s->files[0], P("basic.glib")) == 0);
     static const glib_cmd_kind kinds[] = {
         GLIB_CMD_WINDOW_SIZE, GLIB_CMD_PERSPECTIVE, GLIB_CMD_LOOKAT, GLIB_CMD_TRANSLATE,
@@ -123,20 +123,20 @@ static void test_basic_scene(void) {
     for (int i = 0; i < s->ncmds && i < 15; i++) {
         CHECK_MSG(s->cmds[i].kind == kinds[i], "cmd %d", i);
         CHECK_MSG(s->cmds[i].line == i + 2, "cmd %d line %d", i, s->cmds[i].line);
-        CHECK(s->cmds[i].file == s->files[0]);
+        CHECK_EQ(s->cmds[i].file, s->files[0]);
         CHECK(!s->cmds[i].wire);
     }
     if (s->ncmds == 15) {
         CHECK(s->cmds[0].nnum == 2 && s->cmds[0].num[0] == 800 && s->cmds[0].num[1] == 600);
         CHECK(s->cmds[1].nnum == 3 && s->cmds[1].num[0] == 70);
         CHECK(s->cmds[2].nnum == 9 && s->cmds[2].num[1] == 2 && s->cmds[2].num[7] == 1);
-        CHECK(s->cmds[3].num[2] == 3);
+        CHECK_EQ(s->cmds[3].num[2], 3);
         CHECK(s->cmds[4].nnum == 4 && s->cmds[4].num[0] == 90 && s->cmds[4].num[2] == 1);
         CHECK(s->cmds[5].nnum == 1 && s->cmds[5].num[0] == 2);
         CHECK(s->cmds[6].nnum == 3 && s->cmds[6].num[2] == 3);
         CHECK(s->cmds[9].nnum == 4 && s->cmds[9].num[0] == -0.5 && s->cmds[9].num[1] == 10 &&
               s->cmds[9].num[2] == 64 && s->cmds[9].num[3] == 32);
-        CHECK(s->cmds[12].num[0] == 20);
+        CHECK_EQ(s->cmds[12].num[0], 20);
     }
     glib_free(s);
 }
@@ -207,14 +207,14 @@ static void test_comments(void) {
         "Texture2D 2 a#b.bmp\n"
         "Program P uA {1 0 0}# after a bracket\n"
         "Sphere 4\t//\ttabs\n");
-    CHECK(s->ncmds == 6);
-    CHECK(s->nerrors == 1);
+    CHECK_EQ(s->ncmds, 6);
+    CHECK_EQ(s->nerrors, 1);
     CHECK(has_diag(s, P("c/comments.glib"), 7, DIAG_ERROR, "bad number '3#not' for r"));
     if (s->ncmds == 6) {
         CHECK(s->cmds[0].num[0] == 1 && s->cmds[0].line == 5);
         CHECK(s->cmds[1].num[0] == 2 && s->cmds[1].line == 6);
-        CHECK(strcmp(s->cmds[2].path, P("c/sub//t.bmp")) == 0);
-        CHECK(strcmp(s->cmds[3].path, P("c/a#b.bmp")) == 0);
+        CHECK_STR_EQ(s->cmds[2].path, P("c/sub//t.bmp"));
+        CHECK_STR_EQ(s->cmds[3].path, P("c/a#b.bmp"));
         CHECK(s->cmds[4].nuniforms == 1 && s->cmds[4].uniforms[0].kind == UNIF_DECL_COLOR);
         CHECK(s->cmds[5].num[0] == 4 && s->cmds[5].line == 11);
     }
@@ -235,14 +235,14 @@ static void test_case_insensitive(void) {
         "program MyProg uKaBig 1\n"
         "cull BACK\n");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 9);
+    CHECK_EQ(s->ncmds, 9);
     if (s->ncmds == 9) {
-        CHECK(s->cmds[0].kind == GLIB_CMD_SPHERE);
-        CHECK(s->cmds[1].kind == GLIB_CMD_QUAD_XZ);
-        CHECK(s->cmds[2].kind == GLIB_CMD_PUSH_MATRIX);
-        CHECK(s->cmds[3].kind == GLIB_CMD_POP_MATRIX);
+        CHECK_EQ(s->cmds[0].kind, GLIB_CMD_SPHERE);
+        CHECK_EQ(s->cmds[1].kind, GLIB_CMD_QUAD_XZ);
+        CHECK_EQ(s->cmds[2].kind, GLIB_CMD_PUSH_MATRIX);
+        CHECK_EQ(s->cmds[3].kind, GLIB_CMD_POP_MATRIX);
         CHECK(s->cmds[4].kind == GLIB_CMD_SPHERE && s->cmds[4].wire);
-        CHECK(s->cmds[5].kind == GLIB_CMD_GSTAP);
+        CHECK_EQ(s->cmds[5].kind, GLIB_CMD_GSTAP);
         CHECK(s->cmds[6].kind == GLIB_CMD_VERTEX && strcmp(s->cmds[6].path, P("ci/Foo.vert")) == 0);
         CHECK(s->cmds[7].kind == GLIB_CMD_PROGRAM && strcmp(s->cmds[7].name, "MyProg") == 0);
         CHECK(s->cmds[7].nuniforms == 1 && strcmp(s->cmds[7].uniforms[0].name, "uKaBig") == 0);
@@ -272,8 +272,8 @@ static void test_continuation(void) {
         "   uB 1.2.3\n"                 /* 10 */
         "Translate 1 2 \\");            /* 11: continued into the end of the file */
     /* glman's leniency (issue 14): 1.2.3 reads as 1.2, a missing z is 0 */
-    CHECK(s->ncmds == 4);
-    CHECK(s->nerrors == 0);
+    CHECK_EQ(s->ncmds, 4);
+    CHECK_EQ(s->nerrors, 0);
     if (s->ncmds == 4) {
         const glib_cmd *w = &s->cmds[0];
         CHECK(w->kind == GLIB_CMD_PROGRAM && w->line == 2 && w->nuniforms == 2);
@@ -297,7 +297,7 @@ static void test_uniform_kinds(void) {
         "uHi <-2. 0.5 3.> uShow <true > uHide < FALSE> uArr [1, 2, 3, 4] uTex 5 "
         "uRGB {1 0 0} uTight<0 1 2> uOne [7]\n");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 1);
+    CHECK_EQ(s->ncmds, 1);
     const glib_cmd *c = &s->cmds[0];
     CHECK(strcmp(c->name, "Ocean") == 0 && c->nuniforms == 11);
     const unif_decl *u;
@@ -328,14 +328,14 @@ static void test_number_forms(void) {
         "Background 0 0 0 1E0\n"
         "Program P uA <-1e+1 0 .5>\n");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 5);
+    CHECK_EQ(s->ncmds, 5);
     if (s->ncmds == 5) {
         CHECK(s->cmds[0].num[0] == 1 && s->cmds[0].num[1] == 0.5 && s->cmds[0].num[2] == -2);
         CHECK_NEAR(s->cmds[1].num[0], 1e-3, 1e-15);
-        CHECK(s->cmds[1].num[1] == 1);
-        CHECK(s->cmds[2].num[0] == -50);
+        CHECK_EQ(s->cmds[1].num[1], 1);
+        CHECK_EQ(s->cmds[2].num[0], -50);
         CHECK(s->cmds[3].nnum == 4 && s->cmds[3].num[3] == 1);
-        CHECK(s->cmds[4].uniforms[0].v[0] == -10);
+        CHECK_EQ(s->cmds[4].uniforms[0].v[0], -10);
     }
     glib_free(s);
 }
@@ -363,7 +363,7 @@ static void test_bad_numbers(void) {
     CHECK(has_diag(s, f, 9, DIAG_WARNING, "'1..2' read as 1"));
     CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uC': bad number 'three'"));
     CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uD': bad number '-'"));
-    CHECK(s->nerrors == 9);
+    CHECK_EQ(s->nerrors, 9);
     /* the bad commands are skipped; the Program stays, without its bad uniforms */
     CHECK(s->ncmds == 2 && s->cmds[0].kind == GLIB_CMD_SPHERE && s->cmds[0].num[0] == 1.2);
     CHECK(s->cmds[1].kind == GLIB_CMD_PROGRAM && s->cmds[1].nuniforms == 1 &&
@@ -391,12 +391,12 @@ static void test_unclosed_brackets(void) {
     CHECK(has_diag(s, f, 6, DIAG_ERROR, "uniform 'uG': unclosed '<'"));
     CHECK(has_diag(s, f, 8, DIAG_ERROR, "'2>' is not a valid uniform name"));
     CHECK(has_diag(s, f, 9, DIAG_ERROR, "uniform 'uI': '<' is not closed before '<'"));
-    CHECK(s->nerrors == 7);
-    CHECK(s->ncmds == 8);
+    CHECK_EQ(s->nerrors, 7);
+    CHECK_EQ(s->ncmds, 8);
     if (s->ncmds == 8) {
         for (int i = 0; i < 5; i++)
             CHECK(s->cmds[i].kind == GLIB_CMD_PROGRAM && s->cmds[i].nuniforms == 0);
-        CHECK(s->cmds[5].nuniforms == 1);       /* uH 1 is fine */
+        CHECK_EQ(s->cmds[5].nuniforms, 1);       /* uH 1 is fine */
         CHECK(s->cmds[7].kind == GLIB_CMD_SPHERE && s->cmds[7].line == 10);
     }
     glib_free(s);
@@ -416,12 +416,12 @@ static void test_slider_checks(void) {
     CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uF': <> needs 3 numbers <min default max> or <true>/<false>, got 0"));
     CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uG': {} needs 3 or 4 numbers"));
     CHECK(has_diag(s, f, 2, DIAG_ERROR, "uniform 'uH': [] needs 1 to 16 numbers [a b c], got 17"));
-    CHECK(s->ncmds == 1);
+    CHECK_EQ(s->ncmds, 1);
     const unif_decl *u;
     CHECK((u = find_uniform(&s->cmds[0], "uB")) && u->v[1] == 1);
     CHECK((u = find_uniform(&s->cmds[0], "uC")) && u->v[1] == 0);
     CHECK((u = find_uniform(&s->cmds[0], "uI")) && u->kind == UNIF_DECL_SLIDER);
-    CHECK(s->cmds[0].nuniforms == 3);
+    CHECK_EQ(s->cmds[0].nuniforms, 3);
     glib_free(s);
 }
 
@@ -459,7 +459,7 @@ static void test_arg_counts(void) {
     CHECK(s->nerrors == 4 && count_sev(s, DIAG_WARNING) == 2);
     /* bare Sphere, QuadXZ 0, Perspective and a short Ortho take glman's
      * defaults (issue 14; they were errors) */
-    CHECK(s->ncmds == 6);
+    CHECK_EQ(s->ncmds, 6);
     if (s->ncmds == 6) {
         CHECK(s->cmds[0].kind == GLIB_CMD_SPHERE && s->cmds[0].line == 2 && s->cmds[0].num[0] == 1);
         CHECK(s->cmds[1].kind == GLIB_CMD_SPHERE && s->cmds[1].line == 4 && s->cmds[1].nnum == 3);
@@ -489,7 +489,7 @@ static void test_defaults(void) {
         "Perspective 60\n"
         "Ortho -1 1 -1 1\n");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 13);
+    CHECK_EQ(s->ncmds, 13);
     if (s->ncmds == 13) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].nnum == 3 && c[0].num[1] == 60 && c[0].num[2] == 60);   /* glman's */
@@ -554,12 +554,12 @@ static void test_paths_relative(void) {
              "Vertex\n", P("rel/abs.frag"));
     glib_scene *s = load("rel/sub/scene.glib", text);
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 5);
+    CHECK_EQ(s->ncmds, 5);
     if (s->ncmds == 5) {
-        CHECK(strcmp(s->cmds[0].path, P("rel/sub/water.vert")) == 0);
-        CHECK(strcmp(s->cmds[1].path, P("rel/sub/../tex/w.bmp")) == 0);
-        CHECK(strcmp(s->cmds[2].path, P("rel/abs.frag")) == 0);
-        CHECK(strcmp(s->cmds[3].path, P("rel/sub/tex/w2.bmp")) == 0);
+        CHECK_STR_EQ(s->cmds[0].path, P("rel/sub/water.vert"));
+        CHECK_STR_EQ(s->cmds[1].path, P("rel/sub/../tex/w.bmp"));
+        CHECK_STR_EQ(s->cmds[2].path, P("rel/abs.frag"));
+        CHECK_STR_EQ(s->cmds[3].path, P("rel/sub/tex/w2.bmp"));
         CHECK(s->cmds[4].kind == GLIB_CMD_VERTEX && s->cmds[4].path[0] == '\0');
     }
     glib_free(s);
@@ -602,9 +602,9 @@ static void test_missing_files(void) {
         CHECK_MSG(has_diag(s, f, 2 + i, DIAG_ERROR, want), "%s", want);
     }
     CHECK(has_diag(s, f, 11, DIAG_ERROR, "it is a directory"));
-    CHECK(s->nerrors == 10);
+    CHECK_EQ(s->nerrors, 10);
     /* the commands stay: the files may appear before the renderer needs them */
-    CHECK(s->ncmds == 10);
+    CHECK_EQ(s->ncmds, 10);
     if (s->ncmds == 10) {
         const glib_cmd *cube = &s->cmds[8];
         CHECK(cube->kind == GLIB_CMD_CUBEMAP && cube->cube_paths && cube->num[0] == 7);
@@ -647,10 +647,10 @@ static void test_include(void) {
         "Sphere 3\n"
         "include \"parts/part.glib\"\n");
     CHECK_NO_DIAGS(s);
-    CHECK(s->nfiles == 2);
-    CHECK(s->ncmds == 6);
+    CHECK_EQ(s->nfiles, 2);
+    CHECK_EQ(s->ncmds, 6);
     if (s->nfiles == 2 && s->ncmds == 6) {
-        CHECK(strcmp(s->files[1], P("inc/parts/part.glib")) == 0);
+        CHECK_STR_EQ(s->files[1], P("inc/parts/part.glib"));
         CHECK(s->cmds[0].num[0] == 1 && s->cmds[0].file == s->files[0] && s->cmds[0].line == 2);
         CHECK(s->cmds[1].num[0] == 2 && s->cmds[1].file == s->files[1] && s->cmds[1].line == 2);
         CHECK(s->cmds[2].kind == GLIB_CMD_VERTEX && s->cmds[2].file == s->files[1] &&
@@ -680,7 +680,7 @@ static void test_include_missing(void) {
 
     s = load("incm/dir.glib", "##OpenGL GLIB\nInclude .\n");
     CHECK(has_diag(s, P("incm/dir.glib"), 2, DIAG_ERROR, "(from command Include): it is a directory"));
-    CHECK(s->nerrors == 1);
+    CHECK_EQ(s->nerrors, 1);
     glib_free(s);
 }
 
@@ -693,13 +693,13 @@ static void test_include_cycle(void) {
     CHECK(has_diag(s, P("cyc/b.glib"), 2, DIAG_ERROR, want));
     CHECK(s->nerrors == 1 && s->ncmds == 4);
     for (int i = 0; i < s->ncmds; i++)
-        CHECK(s->cmds[i].num[0] == i + 1);
+        CHECK_EQ(s->cmds[i].num[0], i + 1);
     glib_free(s);
 
     /* itself, spelled differently */
     s = load("cyc/self.glib", "##OpenGL GLIB\nInclude ./self.glib\nSphere 1\n");
     CHECK(has_diag(s, P("cyc/self.glib"), 2, DIAG_ERROR, "Include cycle"));
-    CHECK(s->ncmds == 1);
+    CHECK_EQ(s->ncmds, 1);
     glib_free(s);
 }
 
@@ -713,9 +713,9 @@ static void test_include_depth(void) {
     }
     glib_scene *s = glib_load(P("deep/d0.glib"));
     CHECK(has_diag(s, P("deep/d32.glib"), 1, DIAG_ERROR, "is nested more than 32 files deep"));
-    CHECK(s->nerrors == 1);
-    CHECK(s->ncmds == 33);      /* d0 .. d32 */
-    CHECK(s->nfiles == 33);
+    CHECK_EQ(s->nerrors, 1);
+    CHECK_EQ(s->ncmds, 33);      /* d0 .. d32 */
+    CHECK_EQ(s->nfiles, 33);
     glib_free(s);
 }
 
@@ -816,7 +816,7 @@ static void test_fuzz(void) {
         for (int i = 0; s && i < s->ncmds; i++) {
             CHECK(s->cmds[i].kind > GLIB_CMD_NONE && s->cmds[i].kind < GLIB_CMD_KIND_COUNT);
             CHECK(s->cmds[i].nnum >= 0 && s->cmds[i].nnum <= GLIB_MAX_NUMS);
-            CHECK(s->cmds[i].line >= 1);
+            CHECK_GE(s->cmds[i].line, 1);
         }
         glib_free(s);
     }
@@ -874,9 +874,9 @@ static void test_diag_cap(void) {
     for (int i = 0; i < 500; i++)
         n += (size_t)snprintf(t + n, cap - n, "Foo\n");
     glib_scene *s = glib_parse(t, n, "cap.glib");
-    CHECK(s->ndiags == 200);
+    CHECK_EQ(s->ndiags, 200);
     CHECK(has_diag(s, "cap.glib", 0, DIAG_WARNING, "too many errors: 301 more diagnostics not shown (0 errors)"));
-    CHECK(s->nerrors == 0);
+    CHECK_EQ(s->nerrors, 0);
     glib_free(s);
 
     n = (size_t)snprintf(t, cap, "##OpenGL GLIB\n");
@@ -919,7 +919,7 @@ static void test_sizes_from_sliders(void) {
     CHECK(has_diag(s, f, 7, DIAG_WARNING, "ignoring '9x'"));   /* a file 'uRes' with an extra word */
     CHECK(has_diag(s, f, 7, DIAG_ERROR, "cannot open"));
     CHECK(has_diag(s, f, 8, DIAG_ERROR, "cannot open"));
-    CHECK(s->ncmds == 7);
+    CHECK_EQ(s->ncmds, 7);
     if (s->ncmds == 7) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].kind == GLIB_CMD_TEXTURE2D_EMPTY && c[0].nnum == 3 && strcmp(c[0].name, "uRes") == 0 &&
@@ -979,16 +979,16 @@ static void test_textures(void) {
     CHECK(has_diag(s, f, 18, DIAG_ERROR, "cannot open"));
     CHECK(has_diag(s, f, 19, DIAG_ERROR, "Texture3D: an empty texture needs a width, a height and a depth"));
     CHECK(s->nerrors == 6 && count_sev(s, DIAG_WARNING) == 2);
-    CHECK(s->ncmds == 13);
+    CHECK_EQ(s->ncmds, 13);
     if (s->ncmds == 13) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].kind == GLIB_CMD_TEXTURE2D_FILE && c[0].nnum == 1 && c[0].num[0] == 5 &&
               strcmp(c[0].path, P("tex/w.bmp")) == 0);
         CHECK(c[1].kind == GLIB_CMD_TEXTURE2D_EMPTY && c[1].nnum == 3 && c[1].num[1] == 512 &&
               c[1].num[2] == 256 && c[1].format == GLIB_TARGET_RGBA8 && c[1].path[0] == '\0');
-        CHECK(c[2].format == GLIB_TARGET_RGBA32F);
-        CHECK(c[3].format == GLIB_TARGET_RGBA16F);
-        CHECK(c[4].format == GLIB_TARGET_DEPTH);
+        CHECK_EQ(c[2].format, GLIB_TARGET_RGBA32F);
+        CHECK_EQ(c[3].format, GLIB_TARGET_RGBA16F);
+        CHECK_EQ(c[4].format, GLIB_TARGET_DEPTH);
         CHECK(c[5].kind == GLIB_CMD_TEXTURE3D && c[5].nnum == 1 && strcmp(c[5].path, P("tex/vol.tif")) == 0);
         CHECK(c[6].kind == GLIB_CMD_TEXTURE3D && c[6].nnum == 4 && c[6].num[3] == 16 && c[6].path[0] == '\0');
         CHECK(c[7].kind == GLIB_CMD_CUBEMAP && c[7].cube_paths &&
@@ -996,7 +996,7 @@ static void test_textures(void) {
               strcmp(c[7].cube_paths[5], P("tex/sky5.png")) == 0);
         CHECK(c[8].kind == GLIB_CMD_RENDER_TO_TEXTURE && c[8].nnum == 2 && c[8].num[1] == 7);
         CHECK(c[9].kind == GLIB_CMD_RENDER_TO_TEXTURE && c[9].nnum == 0);
-        CHECK(c[10].nnum == 2);
+        CHECK_EQ(c[10].nnum, 2);
         CHECK(strcmp(c[11].path, P("tex/my water.png")) == 0 && c[11].line == 15);
         CHECK(strcmp(c[12].path, P("tex/my")) == 0 && c[12].line == 18);
     }
@@ -1030,9 +1030,9 @@ static void test_define(void) {
     CHECK(has_diag(s, f, 15, DIAG_ERROR, "Define needs a name"));
     CHECK(has_diag(s, f, 16, DIAG_WARNING, "Define ORPHAN comes after the last Program"));
     CHECK(has_diag(s, f, 14, DIAG_WARNING, "Define E comes after the last Program"));
-    CHECK(s->nerrors == 4);
+    CHECK_EQ(s->nerrors, 4);
     /* DEFINE x5, P1, DEFINE x2, P2, DEFINE E, DEFINE ORPHAN */
-    CHECK(s->ncmds == 11);
+    CHECK_EQ(s->ncmds, 11);
     if (s->ncmds == 11) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].kind == GLIB_CMD_DEFINE && strcmp(c[0].name, "WAVES") == 0 && c[0].nuniforms == 1 &&
@@ -1047,7 +1047,7 @@ static void test_define(void) {
         if (p1->ndefines == 5) {
             CHECK(strcmp(p1->defines[0].name, "WAVES") == 0 && p1->defines[0].line == 2);
             CHECK(strcmp(p1->defines[3].name, "STEPS") == 0 && p1->defines[3].v[2] == 64);
-            CHECK(p1->defines[4].file == s->files[0]);
+            CHECK_EQ(p1->defines[4].file, s->files[0]);
         }
         CHECK(p2->kind == GLIB_CMD_PROGRAM && p2->ndefines == 1 && p2->nuniforms == 0);
         if (p2->ndefines == 1)
@@ -1135,7 +1135,7 @@ static void test_world_commands(void) {
         "World below\n"                                         /* 20 */
         "WaterSurface\n");                                      /* 21 */
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 20);
+    CHECK_EQ(s->ncmds, 20);
     static const glib_cmd_kind kinds[] = {
         GLIB_CMD_SUN, GLIB_CMD_SUN, GLIB_CMD_SKY, GLIB_CMD_WATER, GLIB_CMD_WATER, GLIB_CMD_WATER,
         GLIB_CMD_WATER_MESH, GLIB_CMD_TERRAIN, GLIB_CMD_TERRAIN, GLIB_CMD_WAVE_SINE,
@@ -1169,9 +1169,9 @@ static void test_world_commands(void) {
         CHECK(strcmp(c[14].name, "box") == 0 && c[14].nnum == 9 && c[14].num[8] == 0.9);
         CHECK(strcmp(c[15].name, "cylinder") == 0 && c[15].nnum == 8 && c[15].num[1] == 0.3 &&
               c[15].num[4] == 2.2);
-        CHECK(strcmp(c[16].name, "basic") == 0);
+        CHECK_STR_EQ(c[16].name, "basic");
         CHECK(strcmp(c[17].name, "all") == 0 && strcmp(c[18].name, "below") == 0);
-        CHECK(c[19].nnum == 0);
+        CHECK_EQ(c[19].nnum, 0);
     }
     glib_free(s);
 }
@@ -1225,7 +1225,7 @@ static void test_world_errors(void) {
     CHECK(has_diag(s, f, 22, DIAG_ERROR, "Pack: '../evil' is not a pack name"));
     CHECK(has_diag(s, f, 23, DIAG_ERROR, "Sky needs 6 numbers, got 3"));
     CHECK(s->nerrors == 21 && count_sev(s, DIAG_WARNING) == 1);
-    CHECK(s->ncmds == 1);       /* Sky 1 1 1 1 1 1 (1) */
+    CHECK_EQ(s->ncmds, 1);       /* Sky 1 1 1 1 1 1 (1) */
     glib_free(s);
 }
 
@@ -1255,7 +1255,7 @@ static void test_look_commands(void) {
     CHECK(has_diag(s, f, 11, DIAG_ERROR, "Object mesh needs at least 3 numbers, got 2"));
     CHECK(has_diag(s, f, 12, DIAG_ERROR, "Object mesh: the colour needs 3 numbers (R G B), got 1"));
     CHECK(has_diag(s, f, 13, DIAG_ERROR, "cannot open"));
-    CHECK(s->ncmds >= 6);
+    CHECK_GE(s->ncmds, 6);
     if (s->ncmds >= 6) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].kind == GLIB_CMD_SKY_SUN && c[0].nnum == 1 && c[0].num[0] == 0.27);
@@ -1288,7 +1288,7 @@ static void test_pack_contract_commands(void) {
         "Splat 1\n"                           /* 14 */
         "WaterSurface mesh uPhotonGrid\n");    /* 15 */
     const char *f = P("contract.glib");
-    CHECK(s->ncmds == 9);
+    CHECK_EQ(s->ncmds, 9);
     if (s->ncmds == 9) {
         CHECK(s->cmds[0].kind == GLIB_CMD_CAMERA && !strcmp(s->cmds[0].name, "mirror") && s->cmds[0].nnum == 1 &&
               s->cmds[0].num[0] == 1.5 && s->cmds[0].arg[0] == '\0');
@@ -1332,10 +1332,10 @@ static void test_pack_include(void) {
     CHECK(has_diag(s, P("pk/packs/calm/pack.glib"), 5, DIAG_ERROR, "Sphere: r must be greater than 0"));
     CHECK(s->nerrors == 1 && s->ndiags == 1);
     CHECK(s->nfiles == 2 && strcmp(s->files[1], P("pk/packs/calm/pack.glib")) == 0);
-    CHECK(s->ncmds == 6);
+    CHECK_EQ(s->ncmds, 6);
     if (s->ncmds == 6) {
         const glib_cmd *c = s->cmds;
-        CHECK(c[0].kind == GLIB_CMD_SUN);
+        CHECK_EQ(c[0].kind, GLIB_CMD_SUN);
         CHECK(c[1].kind == GLIB_CMD_PACK && strcmp(c[1].name, "calm") == 0 && c[1].line == 3 &&
               c[1].file == s->files[0]);
         CHECK(c[2].kind == GLIB_CMD_WORLD && c[2].file == s->files[1] && c[2].line == 3);
@@ -1395,12 +1395,12 @@ static void test_pack_override(void) {
     /* the override replaces the scene's pack */
     glib_scene *s = load_opts("po/a.glib", "##OpenGL GLIB\nPack basic\nSphere 1\n", P("po/packs"), "natural");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 4);
+    CHECK_EQ(s->ncmds, 4);
     if (s->ncmds == 4) {
         CHECK(s->cmds[0].kind == GLIB_CMD_PACK && strcmp(s->cmds[0].name, "natural") == 0 &&
               s->cmds[0].line == 2);
         CHECK(strcmp(s->cmds[1].name, "above") == 0 && strcmp(s->cmds[2].name, "below") == 0);
-        CHECK(s->cmds[3].kind == GLIB_CMD_SPHERE);
+        CHECK_EQ(s->cmds[3].kind, GLIB_CMD_SPHERE);
     }
     glib_free(s);
 
@@ -1408,7 +1408,7 @@ static void test_pack_override(void) {
     put("po/inc.glib", "Sphere 2\n");
     s = load_opts("po/b.glib", "##OpenGL GLIB\nInclude inc.glib\nSphere 1\nSun 0 1 0\n", P("po/packs"), "basic");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 5);
+    CHECK_EQ(s->ncmds, 5);
     if (s->ncmds == 5) {
         CHECK(s->cmds[0].num[0] == 2 && s->cmds[1].num[0] == 1);
         CHECK(s->cmds[3].kind == GLIB_CMD_PACK && strcmp(s->cmds[3].name, "basic") == 0 &&
@@ -1422,7 +1422,7 @@ static void test_pack_override(void) {
     s = load_opts("po/glman.glib", "##OpenGL GLIB\nInclude inc.glib\nSphere 1\n", P("po/packs"), "basic");
     CHECK(has_diag(s, P("po/glman.glib"), 0, DIAG_ERROR, "--pack basic: this scene describes no world"));
     CHECK(has_diag(s, P("po/glman.glib"), 0, DIAG_ERROR, "Give --pack a world scene (scenes/lake.glib"));
-    CHECK(s->nerrors == 1);
+    CHECK_EQ(s->nerrors, 1);
     for (int i = 0; i < s->ncmds; i++) CHECK(s->cmds[i].kind != GLIB_CMD_PACK && s->cmds[i].kind != GLIB_CMD_WORLD);
     glib_free(s);
 
@@ -1460,13 +1460,13 @@ static void test_print_diags(void) {
 }
 
 static void test_cmd_name(void) {
-    CHECK(strcmp(glib_cmd_name(GLIB_CMD_QUAD_XZ), "QuadXZ") == 0);
-    CHECK(strcmp(glib_cmd_name(GLIB_CMD_TEXTURE2D_EMPTY), "Texture2D") == 0);
-    CHECK(strcmp(glib_cmd_name(GLIB_CMD_DEPTH_TEST), "DepthTest") == 0);
-    CHECK(strcmp(glib_cmd_name(GLIB_CMD_KIND_COUNT), "?") == 0);
-    CHECK(strcmp(glib_cmd_name((glib_cmd_kind)-1), "?") == 0);
-    CHECK(strcmp(glib_cmd_name(GLIB_CMD_WAVE_GERSTNER), "WaveGerstner") == 0);
-    CHECK(strcmp(glib_cmd_name(GLIB_CMD_WATER_SURFACE), "WaterSurface") == 0);
+    CHECK_STR_EQ(glib_cmd_name(GLIB_CMD_QUAD_XZ), "QuadXZ");
+    CHECK_STR_EQ(glib_cmd_name(GLIB_CMD_TEXTURE2D_EMPTY), "Texture2D");
+    CHECK_STR_EQ(glib_cmd_name(GLIB_CMD_DEPTH_TEST), "DepthTest");
+    CHECK_STR_EQ(glib_cmd_name(GLIB_CMD_KIND_COUNT), "?");
+    CHECK_STR_EQ(glib_cmd_name((glib_cmd_kind)-1), "?");
+    CHECK_STR_EQ(glib_cmd_name(GLIB_CMD_WAVE_GERSTNER), "WaveGerstner");
+    CHECK_STR_EQ(glib_cmd_name(GLIB_CMD_WATER_SURFACE), "WaterSurface");
     for (int k = 1; k < GLIB_CMD_KIND_COUNT; k++)
         CHECK_MSG(strcmp(glib_cmd_name((glib_cmd_kind)k), "?") != 0, "kind %d", k);
 }
@@ -1500,7 +1500,7 @@ static void test_glman_real_file(void) {
         "WireSphere 0.25 30 30  # the buoy\r\n"
         "Noise3D 128\r");
     CHECK_NO_DIAGS(s);
-    CHECK(s->ncmds == 12);
+    CHECK_EQ(s->ncmds, 12);
     if (s->ncmds == 12) {
         const glib_cmd *c = s->cmds;
         CHECK(c[2].kind == GLIB_CMD_TEXTURE2D_FILE && strcmp(c[2].path, P("proj/textures/sky.bmp")) == 0);
@@ -1537,7 +1537,7 @@ static void test_glman_numbers(void) {
     CHECK(has_diag(s, f, 2, DIAG_WARNING, "'-0.1.' read as -0.1"));
     CHECK(has_diag(s, f, 2, DIAG_WARNING, "'1..' read as 1"));
     CHECK(s->nerrors == 0 && s->ndiags == 3);
-    CHECK(s->ncmds == 5);
+    CHECK_EQ(s->ncmds, 5);
     if (s->ncmds == 5) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].num[0] == 0.1 && c[0].num[1] == -0.1 && c[0].num[2] == 1);
@@ -1562,7 +1562,7 @@ static void test_glman_defaults(void) {
     /* issue 27: a 2-number Translate is glman's (0 for z), with a warning */
     CHECK(s->ndiags == 1 && has_diag(s, P("gl14/def.glib"), 11, DIAG_WARNING,
                                      "Translate has 2 numbers; glman fills the missing ones with 0 (Translate 1 2 0)"));
-    CHECK(s->ncmds == 13);
+    CHECK_EQ(s->ncmds, 13);
     if (s->ncmds == 13) {
         const glib_cmd *c = s->cmds;
         CHECK(c[0].num[0] == 1 && c[0].num[1] == 60 && c[0].num[2] == 60);
@@ -1572,11 +1572,11 @@ static void test_glman_defaults(void) {
         CHECK(c[4].num[0] == 2 && c[4].num[1] == 2 && c[4].num[2] == 2);
         CHECK(c[5].num[0] == 1 && c[5].num[1] == 1);
         CHECK(c[6].num[0] == 1 && c[6].num[1] == 1);
-        CHECK(c[7].num[0] == 50);
+        CHECK_EQ(c[7].num[0], 50);
         CHECK(c[8].num[0] == -3 && c[8].num[1] == 3 && c[8].num[2] == -3 && c[8].num[3] == 3);
         CHECK(c[9].num[0] == 1 && c[9].num[1] == 2 && c[9].num[2] == 0);
-        CHECK(c[10].num[0] == 64);
-        CHECK(c[11].num[0] == 300);
+        CHECK_EQ(c[10].num[0], 64);
+        CHECK_EQ(c[11].num[0], 300);
         CHECK(c[12].wire && c[12].num[0] == 1 && c[12].num[1] == 60);
     }
     glib_free(s);
@@ -1595,12 +1595,12 @@ static void test_glman_state(void) {
     static const glib_cmd_kind kinds[] = {
         GLIB_CMD_FLAT, GLIB_CMD_SMOOTH, GLIB_CMD_LINE_WIDTH, GLIB_CMD_POINT_SIZE,
         GLIB_CMD_POINT_SIZE_MODE, GLIB_CMD_CLAMP, GLIB_CMD_LINE_WIDTH };
-    CHECK(s->ncmds == 7);
+    CHECK_EQ(s->ncmds, 7);
     for (int i = 0; i < s->ncmds && i < 7; i++)
         CHECK_MSG(s->cmds[i].kind == kinds[i], "cmd %d", i);
     if (s->ncmds == 7) {
         CHECK(s->cmds[2].num[0] == 3 && s->cmds[3].num[0] == 4.5 && s->cmds[4].num[0] == 1);
-        CHECK(s->cmds[6].num[0] == 1);
+        CHECK_EQ(s->cmds[6].num[0], 1);
     }
     glib_free(s);
 }
@@ -1623,21 +1623,21 @@ static void test_glman_geometry(void) {
         GLIB_CMD_GL_BEGIN, GLIB_CMD_GL_VERTEX, GLIB_CMD_GL_VERTEX, GLIB_CMD_GL_VERTEX,
         GLIB_CMD_GL_VERTEX, GLIB_CMD_GL_END };
     int n = (int)(sizeof kinds / sizeof kinds[0]);
-    CHECK(s->ncmds == n);
+    CHECK_EQ(s->ncmds, n);
     for (int i = 0; i < s->ncmds && i < n; i++)
         CHECK_MSG(s->cmds[i].kind == kinds[i], "cmd %d is %s", i, glib_cmd_name(s->cmds[i].kind));
     if (s->ncmds == n) {
         const glib_cmd *c = s->cmds;
-        CHECK(c[1].num[0] == 10);                                   /* QuadBox [10] */
+        CHECK_EQ(c[1].num[0], 10);                                   /* QuadBox [10] */
         CHECK(c[2].num[0] == 10 && c[2].num[1] == 10 && c[2].num[2] == 10);
         CHECK(c[3].num[0] == 2 && c[3].num[1] == 3 && c[3].num[2] == 4);
         CHECK(c[4].num[0] == 1 && c[5].num[0] == 100);              /* Soccerball [1], Xarrow [100] */
         CHECK(c[6].nnum == 12 && c[6].num[9] == 3 && c[7].nnum == 9 && c[7].num[7] == 1);
         CHECK(c[8].wire && !c[9].wire && c[9].path[0] && c[10].path[0]);
-        CHECK(c[11].num[0] == 4);
-        CHECK(strcmp(c[12].name, "gl_patches") == 0);
+        CHECK_EQ(c[11].num[0], 4);
+        CHECK_STR_EQ(c[12].name, "gl_patches");
         CHECK(c[14].num[0] == 1 && c[14].num[3] == 1 && c[15].num[3] == 1);   /* w defaults to 1 */
-        CHECK(strcmp(glib_cmd_name(c[12].kind), "glBegin") == 0);
+        CHECK_STR_EQ(glib_cmd_name(c[12].kind), "glBegin");
     }
     glib_free(s);
 
@@ -1662,7 +1662,7 @@ static void test_glman_geometry(void) {
     CHECK(has_diag(s, f, 2, DIAG_ERROR, "Triangles needs 9 numbers, got 6"));
     CHECK(has_diag(s, f, 3, DIAG_ERROR, "LinesAdjacency needs 12 numbers, got 0"));
     CHECK(has_diag(s, f, 4, DIAG_ERROR, "ObjAdj needs a file"));
-    CHECK(s->ncmds == 0);
+    CHECK_EQ(s->ncmds, 0);
     glib_free(s);
 }
 
@@ -1696,7 +1696,7 @@ static void test_glman_leniency_27(void) {
         CHECK(strcmp(s->cmds[1].name, "Cold") == 0 && s->cmds[1].nuniforms == 2);
         CHECK((u = find_uniform(&s->cmds[1], "uK")) && u->kind == UNIF_DECL_SLIDER && u->v[1] == 1);
         CHECK((u = find_uniform(&s->cmds[1], "uC")) && u->kind == UNIF_DECL_COLOR);
-        CHECK(s->cmds[2].nuniforms == 0);
+        CHECK_EQ(s->cmds[2].nuniforms, 0);
     }
     glib_free(s);
     /* a file that never says it: still the warning */

@@ -73,7 +73,7 @@ static void test_noise_always_present(void) {
  * format: int32 s t, then s*t RGBA bytes): a constant file gives its value. */
 static void test_noise_cache_file_is_read(void) {
     FILE *f = fopen(scratch_path("noise2d.064.tex"), "wb");
-    if (!f) { CHECK(f != NULL); return; }
+    if (!f) { CHECK_NE(f, NULL); return; }
     unsigned char hdr[8] = { 64, 0, 0, 0, 64, 0, 0, 0 }, texel[4] = { 64, 128, 192, 255 };
     fwrite(hdr, 1, sizeof hdr, f);
     for (int i = 0; i < 64 * 64; i++) fwrite(texel, 1, sizeof texel, f);
@@ -93,7 +93,7 @@ static void write_solid_bmp(const char *name, unsigned char r, unsigned char g, 
     unsigned char h[54] = { 'B', 'M', SIZE, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, 40, 0, 0, 0,
                             S, 0, 0, 0, S, 0, 0, 0, 1, 0, 24, 0 };
     FILE *f = fopen(scratch_path(name), "wb");
-    if (!f) { CHECK(f != NULL); return; }
+    if (!f) { CHECK_NE(f, NULL); return; }
     fwrite(h, 1, sizeof h, f);
     for (int i = 0; i < S * S; i++) {
         unsigned char bgr[3] = { b, g, r };
@@ -205,7 +205,7 @@ static void test_ext_geometry_shader(void) {
             break;
         }
     }
-    CHECK(lit > 0);
+    CHECK_GT(lit, 0);
 
     /* an error in it is still on the user's line */
     scratch_write("shrink_bad.geom", "#version 120\n#extension GL_EXT_geometry_shader4 : enable\n"

@@ -271,7 +271,7 @@ typedef void (*texel_fn)(int i, int j, int k, float rgba[4]);
 
 static void write_raw(const char *name, int s, int t, int p, bool is_float, texel_fn fn) {
     FILE *f = fopen(scratch_path(name), "wb");
-    if (!f) { CHECK(f != NULL); return; }
+    if (!f) { CHECK_NE(f, NULL); return; }
     put_i32(f, s);
     put_i32(f, t);
     if (p) put_i32(f, p);
@@ -367,17 +367,17 @@ static void test_raw_textures(void) {
  * with the Texture2D's line and the sizes; nothing crashes, the rest draws. */
 static void test_bad_raw_files(void) {
     FILE *f = fopen(scratch_path("bad.tex"), "wb");
-    if (!f) { CHECK(f != NULL); return; }
+    if (!f) { CHECK_NE(f, NULL); return; }
     put_i32(f, 8);
     put_i32(f, 8);
     for (int i = 0; i < 100; i++) fputc(7, f);
     fclose(f);
     f = fopen(scratch_path("short.tex"), "wb");
-    if (!f) { CHECK(f != NULL); return; }
+    if (!f) { CHECK_NE(f, NULL); return; }
     put_i32(f, 8);
     fclose(f);
     f = fopen(scratch_path("huge.tex"), "wb");
-    if (!f) { CHECK(f != NULL); return; }
+    if (!f) { CHECK_NE(f, NULL); return; }
     put_i32(f, -5);
     put_i32(f, 1 << 30);
     put_i32(f, 3);

@@ -79,7 +79,7 @@ static void test_call_note_after_candidates(void) {
               "%s", out);
     CHECK_STR_CONTAINS(out, "pow(a, vec2(b))");
     CHECK(note && strstr(note + 16, ": note: ") == NULL);    /* once */
-    CHECK(strlen(out) > strlen(log));
+    CHECK_GT(strlen(out), strlen(log));
     free(out);
     /* the last line of the log, without a newline */
     out = glsl_hint_annotate("p.frag:3: error: no matching function for call to `atan(vec3, float)'; "
@@ -271,7 +271,7 @@ static void test_link_hint(void) {
     h = glsl_fix_link_hint("ERROR: Linking fragment stages: Types must match: an earlier stage: \" vec3 uC\"", srcs);
     CHECK(h && strstr(h, "'uC'"));
     free(h);
-    CHECK(glsl_fix_link_hint("error: something else\n", srcs) == NULL);
+    CHECK_EQ(glsl_fix_link_hint("error: something else\n", srcs), NULL);
 }
 
 int main(void) {

@@ -197,7 +197,7 @@ static void test_every_case_through_every_pack(void) {
         packset_bounds_free(&pb);
     }
     fprintf(stderr, "  %ld float and depth render targets read back\n", targets_checked);
-    CHECK(targets_checked > 0);   /* the packs have targets: the check ran */
+    CHECK_GT(targets_checked, 0);   /* the packs have targets: the check ran */
     render_target_destroy(&tg);
 }
 
@@ -279,7 +279,7 @@ static void test_buffers_are_finite(void) {
         packset_bench_free(&pb);
     }
     fprintf(stderr, "  %d buffer images checked, %ld of them for a capped march\n", shown, capped_checked);
-    CHECK(capped_checked >= ncases);   /* raymarch shows its refraction hits: the check ran */
+    CHECK_GE(capped_checked, ncases);   /* raymarch shows its refraction hits: the check ran */
     render_target_destroy(&tg);
 }
 

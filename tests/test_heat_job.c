@@ -53,8 +53,8 @@ static void test_maps_of_a_known_error(void) {
     heat_job *j = heat_job_create();
     const float *rgba[3] = { pack_off, NULL, pack_same };
     CHECK(heat_job_start_maps(j, rgba, 3, W, H, &ref, 0.6));
-    CHECK(heat_job_wait(j) == HEAT_JOB_MAPS);
-    CHECK(heat_job_poll(j) == HEAT_JOB_NONE);   /* said once */
+    CHECK_EQ(heat_job_wait(j), HEAT_JOB_MAPS);
+    CHECK_EQ(heat_job_poll(j), HEAT_JOB_NONE);   /* said once */
     const heat_maps *m = heat_job_maps(j);
     CHECK(m->n == 3 && m->w == W && m->h == H);
     CHECK_NEAR(m->scale, 0.6, 1e-12);
@@ -77,7 +77,7 @@ static void test_automatic_scale_is_the_largest(void) {
     const float *rgba[2] = { pack_same, pack_off };
     CHECK(heat_job_start_maps(j, rgba, 2, W, H, &ref, 0));
     CHECK(!heat_job_start_maps(j, rgba, 2, W, H, &ref, 0));   /* one job at a time */
-    CHECK(heat_job_wait(j) == HEAT_JOB_MAPS);
+    CHECK_EQ(heat_job_wait(j), HEAT_JOB_MAPS);
     const heat_maps *m = heat_job_maps(j);
     CHECK_NEAR(m->scale, 0.3, 1e-6);
     check_rgb(m->map[1].rgb + (N - 1) * 3, 1.0);
@@ -93,7 +93,7 @@ static void test_flip_maps(void) {
     heat_job_set_metric(j, HEAT_METRIC_FLIP);
     const float *rgba[2] = { pack_off, pack_same };
     CHECK(heat_job_start_maps(j, rgba, 2, W, H, &ref, 0.6));
-    CHECK(heat_job_wait(j) == HEAT_JOB_MAPS);
+    CHECK_EQ(heat_job_wait(j), HEAT_JOB_MAPS);
     const heat_maps *m = heat_job_maps(j);
     CHECK(m->metric == HEAT_METRIC_FLIP && m->map[0].ok && m->map[1].ok);
     CHECK_NEAR(m->scale, 1.0, 0);   /* FLIP is in [0, 1]: the fixed scale is not used */
@@ -107,7 +107,7 @@ static void test_flip_maps(void) {
     for (int i = 0; i < N; i++) water[i] = i < N / 2;
     wet = all;
     ref_flip_pool(map, W, H, water, &wet);
-    CHECK(wet.mean > 0.01);   /* a red shift of 0.1 is visible */
+    CHECK_GT(wet.mean, 0.01);   /* a red shift of 0.1 is visible */
     CHECK_NEAR(m->map[0].flip, wet.mean, 1e-6);
     CHECK_NEAR(m->map[0].frame_flip, all.mean, 1e-6);
     CHECK_NEAR(m->map[1].flip, 0.0, 1e-6);
@@ -147,9 +147,9 @@ static void test_reference_on_the_worker(void) {
     refcache_free(&ref);
     /* a scene that is not there: the reason, no image */
     CHECK(heat_job_start_reference(j, "/nonexistent/none.glib", 8, 8, 0, &view, &o));
-    CHECK(heat_job_wait(j) == HEAT_JOB_REFERENCE);
+    CHECK_EQ(heat_job_wait(j), HEAT_JOB_REFERENCE);
     CHECK(!heat_job_take_reference(j, &ref, err, sizeof err));
-    CHECK(err[0] != '\0');
+    CHECK_NE(err[0], '\0');
     heat_job_destroy(j);
 }
 

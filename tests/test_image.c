@@ -75,12 +75,12 @@ static void test_alloc_free_flip(void) {
     img im;
     CHECK(img_alloc(&im, 3, 4, 2));
     CHECK(im.w == 3 && im.h == 4 && im.d == 1 && im.channels == 2 && im.px);
-    for (int i = 0; i < 3 * 4 * 2; i++) CHECK(im.px[i] == 0.0f);
+    for (int i = 0; i < 3 * 4 * 2; i++) CHECK_EQ(im.px[i], 0.0f);
     for (int y = 0; y < 4; y++)
         for (int i = 0; i < 6; i++) im.px[y * 6 + i] = (float)(y * 10 + i);
     img_flip_rows(&im);
     for (int y = 0; y < 4; y++)
-        for (int i = 0; i < 6; i++) CHECK(im.px[y * 6 + i] == (float)((3 - y) * 10 + i));
+        for (int i = 0; i < 6; i++) CHECK_EQ(im.px[y * 6 + i], (float)((3 - y) * 10 + i));
     img_free(&im);
     CHECK(im.px == NULL && im.w == 0);
     img_free(&im);                        /* twice is harmless */
@@ -91,7 +91,7 @@ static void test_alloc_free_flip(void) {
     img_free(&im);
     CHECK(!img_alloc(&im, 16385, 1, 1));
     CHECK(!img_alloc(&im, 4, 4, 0));
-    CHECK(im.px == NULL);
+    CHECK_EQ(im.px, NULL);
 }
 
 static void test_png_round_trip(void) {
@@ -242,7 +242,7 @@ static void test_errors(void) {
     err[0] = 0;
     CHECK(!img_read(junk, &im, err, sizeof err));
     CHECK_STR_CONTAINS(err, junk);
-    CHECK(im.px == NULL);
+    CHECK_EQ(im.px, NULL);
 
     /* an unknown extension */
     const char *unk = tmp_path("mystery.qqq");
@@ -265,13 +265,13 @@ static void test_errors(void) {
     err[0] = 0;
     CHECK(!img_read(big, &im, err, sizeof err));
     CHECK_STR_CONTAINS(err, big);
-    CHECK(im.px == NULL);
+    CHECK_EQ(im.px, NULL);
 
     /* a truncated BMP: header fine, pixels cut short */
     const unsigned char rgb[4 * 4 * 3] = {0};
     const char *cut = tmp_path("cut.bmp");
     CHECK(write_bmp24(cut, 4, 4, rgb, 1));
-    CHECK(truncate(cut, 60) == 0);
+    CHECK_EQ(truncate(cut, 60), 0);
     err[0] = 0;
     bool ok = img_read(cut, &im, err, sizeof err);
     if (!ok) CHECK_STR_CONTAINS(err, cut);

@@ -115,7 +115,7 @@ static void test_every_command_and_option(void) {
     if (!page) return;
     static char out[OUT_LEN], usage[OUT_LEN];
     char names[MAX_NAMES][NAME_LEN];
-    CHECK(tarn("help", out, sizeof out) == 0);
+    CHECK_EQ(tarn("help", out, sizeof out), 0);
     int n = listed_names(out, names, MAX_NAMES);
     CHECK_MSG(n >= 9, "%d commands in `tarn help`:\n%s", n, out);
     for (int i = 0; i < n; i++) {
@@ -159,7 +159,7 @@ static void test_version(void) {
     CHECK_MSG(page != NULL, "cannot read %s/docs/tarn.1", TARN_SOURCE_DIR);
     if (!page) return;
     char out[512], want[80];
-    CHECK(tarn("--version", out, sizeof out) == 0);
+    CHECK_EQ(tarn("--version", out, sizeof out), 0);
     char *nl = strchr(out, '\n');
     if (nl) *nl = '\0';
     snprintf(want, sizeof want, "\"%.70s\"", out);

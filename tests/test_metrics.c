@@ -31,7 +31,7 @@ static void test_identical_images(void) {
     ref_image_metrics m;
     char err[256] = "";
     CHECK(ref_metrics_image(&fa, &fb, NULL, &m, err, sizeof err));
-    CHECK(m.rmse == 0);
+    CHECK_EQ(m.rmse, 0);
     CHECK(isinf(m.psnr_db) && m.psnr_db > 0);
     CHECK(m.mae == 0 && m.max_abs == 0);
     CHECK(m.count.compared == N && m.count.pixels == N);
@@ -62,9 +62,9 @@ static void test_single_pixel_off(void) {
     CHECK(m.rmse_c[0] == 0 && m.rmse_c[2] == 0);
     CHECK_NEAR(m.rmse_c[1], e / sqrt((double)N), 1e-12);
     CHECK_NEAR(m.bias[1], e / N, 1e-12);
-    CHECK(m.over_threshold == 1);
+    CHECK_EQ(m.over_threshold, 1);
     CHECK_NEAR(m.over_threshold_share, 1.0 / N, 1e-15);
-    CHECK(m.differing == 1);
+    CHECK_EQ(m.differing, 1);
     CHECK(m.pixel_err.median == 0 && m.pixel_err.max == m.max_abs);
     CHECK(m.pixel_err.max_x == 5 && m.pixel_err.max_y == 2);
     /* A higher threshold: nothing over it. */
@@ -88,14 +88,14 @@ static void test_threshold_share(void) {
     ref_fimage fa = { a, 4, 1, 3 }, fb = { b, 4, 1, 3 };
     ref_image_metrics m;
     CHECK(ref_metrics_image(&fa, &fb, NULL, &m, NULL, 0));
-    CHECK(m.over_threshold == 2);
+    CHECK_EQ(m.over_threshold, 2);
     CHECK_NEAR(m.over_threshold_share, 0.5, 1e-15);
     a[0] = a[1] = a[2] = 0.04f;
     CHECK(ref_metrics_image(&fa, &fb, NULL, &m, NULL, 0));
-    CHECK(m.over_threshold == 2);
+    CHECK_EQ(m.over_threshold, 2);
     a[2] = 0.06f;
     CHECK(ref_metrics_image(&fa, &fb, NULL, &m, NULL, 0));
-    CHECK(m.over_threshold == 3);
+    CHECK_EQ(m.over_threshold, 3);
     CHECK_NEAR(m.over_threshold_share, 0.75, 1e-15);
     free(a);
     free(b);
@@ -116,8 +116,8 @@ static void test_nan_and_inf_are_counted_and_left_out(void) {
     CHECK(ref_metrics_image(&fa, &fb, NULL, &m, NULL, 0));
     CHECK(m.count.nan_a == 2 && m.count.nan_b == 1);
     CHECK(m.count.inf_a == 1 && m.count.inf_b == 1);
-    CHECK(m.count.invalid == 4);                /* (0,0) (1,0) (2,0) (4,0) */
-    CHECK(m.count.compared == N - 4);
+    CHECK_EQ(m.count.invalid, 4);                /* (0,0) (1,0) (2,0) (4,0) */
+    CHECK_EQ(m.count.compared, N - 4);
     double e = (double)0.7f - 0.5;
     CHECK_NEAR(m.rmse, e / sqrt(3.0 * (N - 4)), 1e-12);
     CHECK(m.max_x == 7 && m.max_y == 3);
@@ -130,10 +130,10 @@ static void test_nan_and_inf_are_counted_and_left_out(void) {
     mask[0] = 0;
     ref_metrics_desc d = { .mask = mask };
     CHECK(ref_metrics_image(&fa, &fb, &d, &m, NULL, 0));
-    CHECK(m.count.masked_out == 2);
-    CHECK(m.count.nan_a == 2);
-    CHECK(m.count.invalid == 3);
-    CHECK(m.count.compared == N - 5);
+    CHECK_EQ(m.count.masked_out, 2);
+    CHECK_EQ(m.count.nan_a, 2);
+    CHECK_EQ(m.count.invalid, 3);
+    CHECK_EQ(m.count.compared, N - 5);
     CHECK(m.rmse == 0 && isinf(m.psnr_db));
 
     /* Nothing left to compare: NaN statistics, not zeros. */
@@ -141,7 +141,7 @@ static void test_nan_and_inf_are_counted_and_left_out(void) {
     CHECK(ref_metrics_image(&fa, &fb, &d, &m, NULL, 0));
     CHECK(m.count.compared == 0 && m.count.masked_out == N);
     CHECK(isnan(m.rmse) && isnan(m.psnr_db) && isnan(m.over_threshold_share) && isnan(m.pixel_err.median));
-    CHECK(m.max_x == -1);
+    CHECK_EQ(m.max_x, -1);
     free(a);
     free(b);
 }
@@ -153,9 +153,9 @@ static void test_grey_against_rgb(void) {
     ref_fimage fg = { g, 2, 2, 1 }, fc = { rgb, 2, 2, 3 };
     ref_image_metrics m;
     CHECK(ref_metrics_image(&fg, &fc, NULL, &m, NULL, 0));
-    CHECK(m.channels == 3);
+    CHECK_EQ(m.channels, 3);
     CHECK_NEAR(m.rmse, 0.25 / sqrt(12.0), 1e-15);
-    CHECK(m.max_c == 2);
+    CHECK_EQ(m.max_c, 2);
     CHECK_NEAR(m.bias[2], -0.25 / 4, 1e-15);
     free(g);
     free(rgb);
@@ -181,18 +181,18 @@ static void test_size_mismatch_is_an_error(void) {
 
 static void test_percentiles(void) {
     double v[5] = { 5, 1, 4, 2, 3 };
-    CHECK(ref_percentile(v, 5, 50) == 3);          /* sorts v */
+    CHECK_EQ(ref_percentile(v, 5, 50), 3);          /* sorts v */
     CHECK(v[0] == 1 && v[4] == 5);
-    CHECK(ref_percentile_sorted(v, 5, 0) == 1);
-    CHECK(ref_percentile_sorted(v, 5, 25) == 2);
+    CHECK_EQ(ref_percentile_sorted(v, 5, 0), 1);
+    CHECK_EQ(ref_percentile_sorted(v, 5, 25), 2);
     CHECK_NEAR(ref_percentile_sorted(v, 5, 95), 4.8, 1e-12);   /* rank 3.8 */
     CHECK_NEAR(ref_percentile_sorted(v, 5, 99), 4.96, 1e-12);
-    CHECK(ref_percentile_sorted(v, 5, 100) == 5);
-    CHECK(ref_percentile_sorted(v, 5, 150) == 5);   /* clamped */
+    CHECK_EQ(ref_percentile_sorted(v, 5, 100), 5);
+    CHECK_EQ(ref_percentile_sorted(v, 5, 150), 5);   /* clamped */
     double two[2] = { 2, 1 };
     CHECK_NEAR(ref_percentile(two, 2, 50), 1.5, 1e-15);
     double one = 7;
-    CHECK(ref_percentile(&one, 1, 95) == 7);
+    CHECK_EQ(ref_percentile(&one, 1, 95), 7);
     CHECK(isnan(ref_percentile(NULL, 0, 50)));
     /* 0..99: p99 at rank 98.01 */
     double h[100];
@@ -241,7 +241,7 @@ static void test_heatmap_colours_and_scale(void) {
     /* 0, half the scale, the scale, NaN, masked out, twice the scale. */
     float f[6] = { 0, 0.05f, 0.1f, NAN, -1, 0.2f }, rgb[18], c[3];
     double s = ref_heatmap(f, 6, 1, 0.1, rgb);
-    CHECK(s == 0.1);
+    CHECK_EQ(s, 0.1);
     CHECK(rgb[0] == 0 && rgb[1] == 0);
     CHECK_NEAR(rgb[2], 4 / 255.0, 1e-7);
     ref_colormap_inferno(0.5, c);
@@ -264,11 +264,11 @@ static void test_heatmap_colours_and_scale(void) {
     /* 99% zeros: the max; all zero: 1. */
     float z[200] = {0};
     z[17] = 5;
-    CHECK(ref_heatmap_auto_scale(z, 200) == 5);
+    CHECK_EQ(ref_heatmap_auto_scale(z, 200), 5);
     z[17] = 0;
-    CHECK(ref_heatmap_auto_scale(z, 200) == 1);
+    CHECK_EQ(ref_heatmap_auto_scale(z, 200), 1);
     z[0] = -1;
-    CHECK(ref_heatmap_auto_scale(z, 1) == 1);
+    CHECK_EQ(ref_heatmap_auto_scale(z, 1), 1);
 }
 
 static void test_error_field(void) {
@@ -295,16 +295,16 @@ static void test_hit_point_distance_and_texels(void) {
     ref_metrics_desc d = { .texel_size = 0.25 };
     ref_point_metrics m;
     CHECK(ref_metrics_points(&fa, &fb, &d, &m, NULL, 0));
-    CHECK(m.count.compared == N);
+    CHECK_EQ(m.count.compared, N);
     CHECK_NEAR(m.world.max, 5, 1e-12);
     CHECK(m.world.max_x == 3 && m.world.max_y == 1);
     CHECK_NEAR(m.world.mean, 7.0 / N, 1e-12);
     CHECK_NEAR(m.world.rms, sqrt(29.0 / N), 1e-12);
-    CHECK(m.world.median == 0);
+    CHECK_EQ(m.world.median, 0);
     /* sorted: 30 zeros, 2, 5; p95 at rank 0.95 * 31 = 29.45 -> 0.45 * 2 */
     CHECK_NEAR(m.world.p95, 0.9, 1e-12);
     CHECK_NEAR(m.world.p99, 2 + 0.69 * 3, 1e-12);   /* rank 30.69 */
-    CHECK(m.texel_size == 0.25);
+    CHECK_EQ(m.texel_size, 0.25);
     CHECK_NEAR(m.texels.max, 20, 1e-12);
     CHECK_NEAR(m.texels.mean, 28.0 / N, 1e-12);
     CHECK_NEAR(m.texels.p95, 3.6, 1e-12);
@@ -317,7 +317,7 @@ static void test_hit_point_distance_and_texels(void) {
     CHECK(ref_metrics_points(&fa, &fb, &d, &m, NULL, 0));
     CHECK(m.texels.n == 0 && isnan(m.texels.max));
     CHECK(m.count.nan_a == 1 && m.count.nan_b == 1 && m.count.invalid == 1 && m.count.compared == N - 1);
-    CHECK(m.over_threshold == 1);
+    CHECK_EQ(m.over_threshold, 1);
     CHECK_NEAR(m.over_threshold_share, 1.0 / (N - 1), 1e-15);
     free(a);
     free(b);
@@ -351,7 +351,7 @@ static void test_scalar_abs_and_relative(void) {
 }
 
 static void test_srgb(void) {
-    CHECK(ref_srgb_to_linear(0) == 0);
+    CHECK_EQ(ref_srgb_to_linear(0), 0);
     CHECK_NEAR(ref_srgb_to_linear(1), 1, 1e-15);
     CHECK_NEAR(ref_srgb_to_linear(0.5), 0.21404114048223255, 1e-12);
     CHECK_NEAR(ref_srgb_to_linear(0.04), 0.04 / 12.92, 1e-15);
@@ -439,7 +439,7 @@ static void test_ssim_offset_closed_form(void) {
             sum += want;
         }
     CHECK_NEAR(r.mean, sum / r.pooled, 2e-6);
-    CHECK(r.mean < 1);
+    CHECK_LT(r.mean, 1);
     free(a);
     free(b);
     free(m);
@@ -470,9 +470,9 @@ static void test_ssim_symmetry_mask_nan(void) {
     a[(10 * SW + 10) * 3 + 1] = NAN;
     CHECK(ref_ssim(&fa, &fb, NULL, m1, &r2, err, sizeof err));
     /* centres x 5..15, y 5..14 (the last row inside is SH - 6 = 14) */
-    CHECK(r2.invalid == 11 * 10);
+    CHECK_EQ(r2.invalid, 11 * 10);
     CHECK(isnan(m1[10 * SW + 10]) && isnan(m1[14 * SW + 15]) && !isnan(m1[14 * SW + 16]) && !isnan(m1[10 * SW + 4 + 12]));
-    CHECK(r2.pooled + r2.invalid == r1.pooled);
+    CHECK_EQ(r2.pooled + r2.invalid, r1.pooled);
 
     ref_fimage small = { a, 10, 10, 3 };
     CHECK(!ref_ssim(&small, &small, NULL, NULL, &r2, err, sizeof err));

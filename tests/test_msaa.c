@@ -65,7 +65,7 @@ static int partial_pixels(double *area, bool *quarters) {
 
 static void test_off_has_two_colours(void) {
     render *r = tilted_square(1);
-    CHECK(render_samples(r) == 1);
+    CHECK_EQ(render_samples(r), 1);
     draw(r, true);
     double area;
     bool quarters;
@@ -90,7 +90,7 @@ static void test_four_samples_blend_the_edges(void) {
     CHECK_NEAR(px[(2 * W + 2) * 4], 0, 1e-6);
     /* an 8-bit target blends too */
     draw(r, false);
-    CHECK(partial_pixels(&area, &quarters) > 64);
+    CHECK_GT(partial_pixels(&area, &quarters), 64);
     render_destroy(r);
 }
 
@@ -102,10 +102,10 @@ static void test_set_samples_switches(void) {
     render_set_samples(r, 4);
     if (render_samples(r) < 4) { render_destroy(r); SKIP("this GL has fewer than 4 samples"); }
     draw(r, true);
-    CHECK(partial_pixels(&area, &quarters) > 64);
+    CHECK_GT(partial_pixels(&area, &quarters), 64);
     render_set_samples(r, 1);
     draw(r, true);
-    CHECK(partial_pixels(&area, &quarters) == 0);
+    CHECK_EQ(partial_pixels(&area, &quarters), 0);
     render_destroy(r);
 }
 
@@ -148,13 +148,13 @@ static void test_resolve_into_rectangle(void) {
 }
 
 static void test_reference_spp_matches(void) {
-    CHECK(render_ref_spp(1) == 1);
-    CHECK(render_ref_spp(2) == 1);
-    CHECK(render_ref_spp(4) == 2);
-    CHECK(render_ref_spp(8) == 3);
-    CHECK(render_ref_spp(9) == 3);
-    CHECK(render_ref_spp(16) == 4);
-    CHECK(render_samples_on_this_gl(1) == 1);
+    CHECK_EQ(render_ref_spp(1), 1);
+    CHECK_EQ(render_ref_spp(2), 1);
+    CHECK_EQ(render_ref_spp(4), 2);
+    CHECK_EQ(render_ref_spp(8), 3);
+    CHECK_EQ(render_ref_spp(9), 3);
+    CHECK_EQ(render_ref_spp(16), 4);
+    CHECK_EQ(render_samples_on_this_gl(1), 1);
     /* the default: off where MSAA costs a CPU rasteriser 2-3x, 4 on a GPU */
     const char *gl = (const char *)glGetString(GL_RENDERER);
     bool cpu = gl && (strstr(gl, "llvmpipe") || strstr(gl, "softpipe"));
@@ -204,7 +204,7 @@ static void test_reference_positions_match(void) {
     int n = render_ref_positions(4, pos, 32);
     if (n < 4) SKIP("this GL does not say where it samples with 4 samples");
     render *r = tilted_square(n);
-    CHECK(render_samples(r) == n);
+    CHECK_EQ(render_samples(r), n);
     draw(r, true);
     render_destroy(r);
     for (int k = 0; k < n; k++)
@@ -222,16 +222,16 @@ static void test_reference_positions_match(void) {
     fprintf(stderr, "4x edge RMSE: matched %.5f (%d pixels differ), ordered 2x2 %.5f (%d), mirrored %.5f (%d)\n",
             e_matched, d_matched, e_grid, d_grid, e_mirror, d_mirror);
     CHECK_MSG(d_matched <= 2, "%d pixels differ from the coverage at GL's positions", d_matched);
-    CHECK(e_matched < 0.25 * e_grid);
-    CHECK(e_matched < 0.25 * e_mirror);
+    CHECK_LT(e_matched, 0.25 * e_grid);
+    CHECK_LT(e_matched, 0.25 * e_mirror);
     const char *gl = (const char *)glGetString(GL_RENDERER);
     if (n == 4 && gl && strstr(gl, "llvmpipe")) {
-        CHECK(render_ref_standard_positions(4, std, 32) == 4);
+        CHECK_EQ(render_ref_standard_positions(4, std, 32), 4);
         for (int k = 0; k < 4; k++) CHECK(pos[k][0] == std[k][0] && pos[k][1] == std[k][1]);
     }
-    CHECK(render_ref_positions(1, pos, 32) == 0);   /* MSAA off: the grid */
-    CHECK(render_ref_standard_positions(3, std, 32) == 0);
-    CHECK(render_ref_standard_positions(16, std, 32) == 16);
+    CHECK_EQ(render_ref_positions(1, pos, 32), 0);   /* MSAA off: the grid */
+    CHECK_EQ(render_ref_standard_positions(3, std, 32), 0);
+    CHECK_EQ(render_ref_standard_positions(16, std, 32), 16);
 }
 
 int main(void) {

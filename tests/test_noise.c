@@ -46,7 +46,7 @@ static void test_2d_range_mean(void) {
         float *t = malloc((size_t)res * res * 4 * sizeof *t);
         CHECK(noise_2d(res, t));
         if (res > 1) check_range_and_mean(t, (size_t)res * res, "2D", glman_std_2d);
-        else for (int c = 0; c < 4; c++) CHECK(t[c] == 0.5f);    /* one texel: its mean */
+        else for (int c = 0; c < 4; c++) CHECK_EQ(t[c], 0.5f);    /* one texel: its mean */
         free(t);
     }
 }
@@ -83,7 +83,7 @@ static void test_function_periodic(void) {
         CHECK_NEAR(noise_perlin2(li, lj, period, 7), 0.0, 1e-12);
         CHECK_NEAR(noise_perlin3(li, lj, lk, period, 9), 0.0, 1e-12);
     }
-    CHECK(biggest > 0.5);     /* not a constant */
+    CHECK_GT(biggest, 0.5);     /* not a constant */
     /* seam continuity: approaching the period from below meets 0 from above */
     CHECK_NEAR(noise_perlin2(4.0 - 1e-7, 0.3, 4, 1), noise_perlin2(1e-7, 0.3, 4, 1), 1e-5);
     /* seeds are independent; period 0 is plain (non-wrapping) noise */
@@ -92,7 +92,7 @@ static void test_function_periodic(void) {
     int differ = 0;
     for (int i = 0; i < 20; i++)
         differ += fabs(noise_perlin2(0.3 + i, 0.6, 0, 3) - noise_perlin2(4.3 + i, 0.6, 0, 3)) > 1e-6;
-    CHECK(differ > 10);
+    CHECK_GT(differ, 10);
     /* absurd input gives a number, not a crash */
     CHECK(isfinite(noise_perlin2(NAN, 1, 4, 0)) && isfinite(noise_perlin3(1e300, -1e300, INFINITY, 0, 0)));
     CHECK(isfinite(noise_perlin2(1e300, 1, 4, 0)));
@@ -167,7 +167,7 @@ static void test_deterministic(void) {
     CHECK(noise_2d(res, a));
     srand(999);   /* the module must not depend on rand() */
     CHECK(noise_2d(res, b));
-    CHECK(memcmp(a, b, (size_t)res * res * 4 * sizeof *a) == 0);
+    CHECK_EQ(memcmp(a, b, (size_t)res * res * 4 * sizeof *a), 0);
     free(a); free(b);
     const int r3 = 16;
     a = malloc((size_t)r3 * r3 * r3 * 4 * sizeof *a);
@@ -175,7 +175,7 @@ static void test_deterministic(void) {
     CHECK(noise_3d(r3, a));
     srand(4);
     CHECK(noise_3d(r3, b));
-    CHECK(memcmp(a, b, (size_t)r3 * r3 * r3 * 4 * sizeof *a) == 0);
+    CHECK_EQ(memcmp(a, b, (size_t)r3 * r3 * r3 * 4 * sizeof *a), 0);
     free(a); free(b);
 }
 

@@ -96,13 +96,13 @@ static void test_plane_wave_through_the_passes(void) {
             }
         }
     fprintf(stderr, "  plane wave: worst error %.3g of amplitude %.3g\n", worst, scale);
-    CHECK(scale > 0.1);
-    CHECK(worst <= 1e-5 * scale);
+    CHECK_GT(scale, 0.1);
+    CHECK_LE(worst, 1e-5 * scale);
     /* cascade 0 holds nothing: all zero */
     ocean_read(&o, 0, a, b);
     double any = 0;
     for (int i = 0; i < NR * NR * 4; i++) any = fmax(any, fmax(fabs(a[i]), fabs(b[i])));
-    CHECK(any == 0);
+    CHECK_EQ(any, 0);
     ocean_free(&o);
 }
 
@@ -152,7 +152,7 @@ static double frame_error(const gpu_ocean *g, const ref_ocean *ro, int c, double
             if (!(d <= worst)) worst = d;   /* NaN counts */
         }
         double rms = sqrt(sum2 / (double)nn), rel = rms > 0 ? worst / rms : worst;
-        CHECK(rms > 0);
+        CHECK_GT(rms, 0);
         if (!(rel <= worst_rel)) worst_rel = rel;
         len += snprintf(line + len, sizeof line - (size_t)len, " %s %.2g", names[q], rel);
     }
@@ -163,7 +163,7 @@ static double frame_error(const gpu_ocean *g, const ref_ocean *ro, int c, double
 
 static void frame_matches(int n, int cascades) {
     ref_ocean *ro = reference_ocean(n, cascades, 0.8);
-    CHECK(ro != NULL);
+    CHECK_NE(ro, NULL);
     if (!ro) return;
     gpu_ocean g;
     CHECK(gpu_from(&g, ro));
@@ -173,7 +173,7 @@ static void frame_matches(int n, int cascades) {
     static const double times[2] = { 0.0, 3.7 };
     for (int k = 0; k < 2; k++) {
         ocean_update(&g, times[k], NULL);
-        for (int c = 0; c < cascades; c++) CHECK(frame_error(&g, ro, c, times[k]) <= bound);
+        for (int c = 0; c < cascades; c++) CHECK_LE(frame_error(&g, ro, c, times[k]), bound);
     }
     fprintf(stderr, "  bound log2 N eps N = %.2g\n", bound);
     ocean_free(&g);
@@ -198,9 +198,9 @@ static void test_still_frame_runs_no_pass(void) {
         CHECK(ocean_update(&g, 1.0, NULL));
         int frames = g.frames;
         CHECK(!ocean_update(&g, 1.0, NULL));
-        CHECK(g.frames == frames);
+        CHECK_EQ(g.frames, frames);
         CHECK(ocean_update(&g, 1.5, NULL));
-        CHECK(g.frames == frames + 1);
+        CHECK_EQ(g.frames, frames + 1);
         ocean_free(&g);
         ref_ocean_destroy(ro);
     }
@@ -305,12 +305,12 @@ static void test_waves_with_an_ocean_match_reference(void) {
     ref_waves w;
     char err[256];
     if (ref_waves_init(&w, &d, err, sizeof err) != 0) { CHECK_MSG(0, "%s", err); return; }
-    CHECK(w.ocean != NULL);
+    CHECK_NE(w.ocean, NULL);
     gpu_ocean g;
     CHECK(gpu_from(&g, w.ocean));
     CHECK(ocean_update(&g, WTIME, NULL));
     GLuint p = eval_program(false);
-    CHECK(p != 0);
+    CHECK_NE(p, 0);
     if (!p) { ocean_free(&g); ref_waves_release(&w); return; }
     static float out[3][GRID * GRID * 4];
     draw_modes(p, &w, out);
@@ -335,12 +335,12 @@ static void test_waves_with_an_ocean_match_reference(void) {
     fprintf(stderr, "  ocean + Gerstner + ring + Perlin (heights to %.2f m): position %.3g m, normal %.3g, "
             "rest point %.3g m, height over a world point %.3g m (%d folded points skipped)\n",
             amp, wp, wn, wr, wh, failed);
-    CHECK(amp > 0.1);
-    CHECK(wp <= TOL_POS);
-    CHECK(wn <= TOL_NRM);
-    CHECK(wr <= TOL_WORLD);
-    CHECK(wh <= TOL_WORLD);
-    CHECK(failed < GRID * GRID / 50);
+    CHECK_GT(amp, 0.1);
+    CHECK_LE(wp, TOL_POS);
+    CHECK_LE(wn, TOL_NRM);
+    CHECK_LE(wr, TOL_WORLD);
+    CHECK_LE(wh, TOL_WORLD);
+    CHECK_LT(failed, GRID * GRID / 50);
     glDeleteProgram(p);
     ocean_free(&g);
     ref_waves_release(&w);
@@ -435,7 +435,7 @@ static void test_ocean_world_runs_its_passes(void) {
         fft |= strcmp(timer.pass_names[i], "ocean fft") == 0;
     }
     CHECK(spectrum && fft);
-    CHECK(gw.ocean.frames == 1);
+    CHECK_EQ(gw.ocean.frames, 1);
     gpu_timer_free(&timer);
     world_free(&gw);
 }
@@ -464,10 +464,10 @@ static void test_foam_from_the_jacobian(void) {
     for (int k = 0; k < (int)(sizeof times / sizeof *times); k++) {
         double t = times[k], dt = k ? t - times[k - 1] : -1;
         bool ran = ocean_update(&g, t, NULL);
-        CHECK(ran == (dt != 0));                         /* a still frame runs nothing */
+        CHECK_EQ(ran, (dt != 0));                         /* a still frame runs nothing */
         bool reset = dt < 0 || dt > OCEAN_FOAM_RESET_DT;
         resets += reset && ran;
-        CHECK(g.foam_resets == resets);
+        CHECK_EQ(g.foam_resets, resets);
         double keep = reset ? 0 : exp(-(dt > 0 ? dt : 0) / OCEAN_FOAM_DECAY);
         int folded = 0, foamy = 0, decayed = 0;
         double worst = 0;
@@ -482,19 +482,19 @@ static void test_foam_from_the_jacobian(void) {
                 folded += cover > 0;
                 foamy += f[2 * i] > 0;
                 decayed += f[2 * i] > cover + 1e-6;      /* foam left by an earlier frame */
-                CHECK(f[2 * i + 1] == g.slope_var[c]);
+                CHECK_EQ(f[2 * i + 1], g.slope_var[c]);
             }
             memcpy(prev[c], f, sizeof f);
         }
         printf("  foam t=%.1f (dt %+.1f%s): %d of %d nodes under J = %.2f, %d with foam, %d of them decaying; "
                "worst |foam - expected| %.2g\n", t, dt, reset ? ", restart" : ran ? "" : ", still", folded,
                C * NR * NR, OCEAN_FOAM_J, foamy, decayed, worst);
-        CHECK(worst <= 1e-5);
-        CHECK(folded > 0);
-        if (!reset && ran) CHECK(decayed > 0);   /* the foam of earlier crests stays a while */
-        if (reset) CHECK(decayed == 0);
+        CHECK_LE(worst, 1e-5);
+        CHECK_GT(folded, 0);
+        if (!reset && ran) CHECK_GT(decayed, 0);   /* the foam of earlier crests stays a while */
+        if (reset) CHECK_EQ(decayed, 0);
     }
-    for (int c = 0; c < C; c++) CHECK(g.slope_var[c] > 0);
+    for (int c = 0; c < C; c++) CHECK_GT(g.slope_var[c], 0);
     ocean_free(&g);
     ref_ocean_destroy(ro);
 }
@@ -559,7 +559,7 @@ static void test_filtered_normal(void) {
         printf("  filtered normal, footprint %g m: worst |n - expected| %.2g, |lost variance - expected| %.2g "
                "(sigma^2 %.3g + %.3g)\n", feet[k], worst, lost, g.slope_var[0], g.slope_var[1]);
         CHECK(worst == 0 || (k == 1 && worst <= 1e-6));
-        CHECK(lost <= 1e-6 * (1 + g.slope_var[0] + g.slope_var[1]));
+        CHECK_LE(lost, 1e-6 * (1 + g.slope_var[0] + g.slope_var[1]));
     }
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -81,7 +81,7 @@ static void check_like_fresh(render *r, const char *what) {
 
 static void set_level(render *r, float v) {
     unif_entry *e = gl_test_uniform(r, "Once", "uLevel");
-    CHECK(e != NULL);
+    CHECK_NE(e, NULL);
     if (e) e->value[0] = v;
 }
 
@@ -95,7 +95,7 @@ static void test_kept_and_redrawn(void) {
     render *r = loaded();
     float px[W * H * 4];
     frame(r, px);
-    CHECK(render_once_reused(r) == 0);
+    CHECK_EQ(render_once_reused(r), 0);
 
     write_show_frag("0.125");   /* the screen's shader only: the block is kept */
     reload(r);
@@ -109,7 +109,7 @@ static void test_kept_and_redrawn(void) {
 
     reload(r);                  /* nothing changed: kept */
     check_like_fresh(r, "nothing edited");
-    CHECK(render_once_reused(r) == 2);
+    CHECK_EQ(render_once_reused(r), 2);
 
     /* a slider of the block's program moved since its pixels were drawn:
      * a fresh load would start from the glib's value, a reload keeps the

@@ -139,7 +139,7 @@ static void test_normals_both_waves_source_defaults(void) {
     double e1 = max_normal_error(&p, 1e-4), e2 = max_normal_error(&p, 5e-5);
     fprintf(stderr, "  both waves, defaults: max |n - n_fd| = %.3g (h = 1e-4), %.3g (h = 5e-5), ratio %.2f\n",
             e1, e2, e1 / e2);
-    CHECK(e1 < 1e-7);
+    CHECK_LT(e1, 1e-7);
     CHECK(e1 / e2 > 3.5 && e1 / e2 < 4.5);
 }
 
@@ -190,7 +190,7 @@ static void test_steepness_zero_is_a_sine(void) {
         CHECK_NEAR(pos[2], v, 1e-15);
         CHECK_NEAR(pos[1], p.sin_amp * sin(ths) + p.gerst_amp * sin(thg), 1e-15);
     }
-    CHECK(worst < 1e-14);
+    CHECK_LT(worst, 1e-14);
 }
 
 /* Steepness 1 with parallel waves: the Gerstner crest is a cusp where
@@ -381,7 +381,7 @@ static void all_extremes(render *r, const char *prog) {
  * their defaults), then all at their minimum, all at their maximum. */
 static void sweep_sliders(render *r, const char *prog) {
     unif_set *set = program_set(r, prog);
-    CHECK(set != NULL);
+    CHECK_NE(set, NULL);
     if (!set) return;
     int nsliders = 0;
     for (int i = 0; i < set->n; i++) {
@@ -442,7 +442,7 @@ static void test_water_glib_no_nan(void) {
     /* something was drawn: the water is not the background */
     draw(r, 1.0, NW, NH, nan_px);
     const float *c = nan_px + ((size_t)(NH / 2) * NW + NW / 2) * 4;
-    CHECK(fabs(c[0] - 0.62) + fabs(c[1] - 0.76) + fabs(c[2] - 0.90) > 0.05);
+    CHECK_GT(fabs(c[0] - 0.62) + fabs(c[1] - 0.76) + fabs(c[2] - 0.90), 0.05);
     render_destroy(r);
 }
 
@@ -452,7 +452,7 @@ static void test_lake_no_nan(void) {
     render *r = render_create(&rd);
     CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
     unif_set *set = program_set(r, "CausticTex");
-    CHECK(set != NULL);
+    CHECK_NE(set, NULL);
     if (!set) { render_destroy(r); return; }
     for (int mode = 0; mode < 4; mode++) {
         set_defines(r, "CausticTex", "BACKWARD_CAUSTICS", mode & 1, "SHOW_IRRADIANCE", mode & 2,
@@ -493,7 +493,7 @@ static void test_paper_setting(void) {
     const packset_setting *paper = NULL;
     for (int i = 0; i < b.n; i++)
         if (strcmp(b.settings[i].name, "paper") == 0) paper = &b.settings[i];
-    CHECK(paper != NULL);
+    CHECK_NE(paper, NULL);
     render *r = NULL;
     if (ctx) {
         render_desc rd = { .pack = "caustic_tex" };
@@ -681,7 +681,7 @@ static stats pack_stats(int c, int *bad) {
 static void test_caustics_vs_reference(void) {
     NEED_GL();
     reference_once();
-    CHECK(nfloor > CW * CH * 9 / 10);
+    CHECK_GT(nfloor, CW * CH * 9 / 10);
     /* the flat-water irradiance on this floor, for scale */
     double fp[3] = { 0, -2.5, 0 }, up[3] = { 0, 1, 0 }, e_flat[3];
     ref_render_flat_sun(&flat_world, fp, up, e_flat);
@@ -699,7 +699,7 @@ static void test_caustics_vs_reference(void) {
         for (int c = 0; floor_px[p] && c < 3; c++)
             worst = fmax(worst, fabs(pack_px[4 * p + c] / e_flat[c] - 1));
     fprintf(stderr, "  visibility 0: max |E / E_flat - 1| = %.2g\n", worst);
-    CHECK(worst < 2e-3);
+    CHECK_LT(worst, 2e-3);
 
     fprintf(stderr, "  | %-24s | c | mean   | /flat | contr | p50   | p95   | p99   | max   |\n", "floor irradiance");
     stats ref[3], tex[3], back[3];
@@ -730,7 +730,7 @@ static void test_caustics_vs_reference(void) {
         back[c] = pack_stats(c, &bad);
         print_stats(c == 0 ? "backward, power 16" : "", c, &back[c], e_flat[c]);
     }
-    CHECK(bad == 0);
+    CHECK_EQ(bad, 0);
     /* what the visibility that matches the reference's contrast would be:
      * the contrast is linear in it while K stays above 0 */
     double vis = ref[1].contrast / tex[1].contrast;
@@ -745,7 +745,7 @@ static void test_caustics_vs_reference(void) {
          * a few percent of flat */
         CHECK_MSG(fabs(tex[c].mean / ref[c].mean - 1) < 0.05, "channel %d: mean %g against %g", c, tex[c].mean,
                   ref[c].mean);
-        CHECK(fabs(ref[c].mean / e_flat[c] - 1) < 0.05);
+        CHECK_LT(fabs(ref[c].mean / e_flat[c] - 1), 0.05);
         /* both show caustics: contrast well above the photon noise */
         CHECK(ref[c].contrast > 0.1 && tex[c].contrast > 0.1 && back[c].contrast > 0.02);
     }

@@ -447,7 +447,7 @@ static void test_twin_flat_floor_is_exact(void) {
         err_acc bin = march_error(t_exact, &p);
         fprintf(stderr, "  %2.0f..%-8.0f %-10.2g %-10.2g %-10.2g %ld rays\n", p.n_steep, p.n_grazing, lin.max, sec.max,
                 bin.max, lin.n);
-        CHECK(lin.n > 250);
+        CHECK_GT(lin.n, 250);
         worst = fmax(worst, fmax(lin.max, fmax(sec.max, bin.max)));
     }
     /* a plane is linear along the ray: the interpolation is exact up to
@@ -520,7 +520,7 @@ static void test_twin_sine_floor_table(void) {
     double src = 0, refined = error_table(&f, "floor y = -2 + 0.1 x + 0.4 sin(2 pi x / 3)", &src);
     fprintf(stderr, "  binary 6 (any steps): max %.3f texel; source (3..10, linear): max %.3f texel\n", refined, src);
     CHECK_MSG(refined < 1.5, "refined hit error %.3f texels", refined);
-    CHECK(src > 2 * refined);
+    CHECK_GT(src, 2 * refined);
 }
 
 /* With the source's step counts, vertical and oblique rays over a flat
@@ -536,7 +536,7 @@ static void test_twin_step_count_rule(void) {
         v3 d = refracted_dir(th, 30);
         twin_march m = twin_march_hf(&hf, V3(0.3f, 0.0f, -0.2f), d, 0.0f, &p);
         float n = mixf(10, 3, -d.y);
-        CHECK(m.status == MARCH_HIT);
+        CHECK_EQ(m.status, MARCH_HIT);
         CHECK_MSG(m.steps == (int)ceilf(n - 1e-4f) || m.steps == (int)ceilf(n - 1e-4f) + 1,
                   "theta %g: %d samples for n = %g", th, m.steps, n);
         CHECK_NEAR(m.t, 1.0 / -d.y, 1e-5);
@@ -559,10 +559,10 @@ static void test_hazard_tir(void) {
         float cos_i = (float)cos(r);
         float F = is_tir ? 1.0f : twin_fresnel_from_water(lut, 1.333f, cos_i);
         CHECK(isfinite(t.x) && isfinite(t.y) && isfinite(t.z) && isfinite(F));
-        if (is_tir) { tir++; CHECK(a > crit - 0.02); }
-        else { pass++; CHECK(a < crit + 0.02); CHECK(F >= 0 && F <= 1.0f); CHECK(t.y > 0); }
+        if (is_tir) { tir++; CHECK_GT(a, crit - 0.02); }
+        else { pass++; CHECK_LT(a, crit + 0.02); CHECK(F >= 0 && F <= 1.0f); CHECK_GT(t.y, 0); }
         /* the table and refract agree on the side of the critical angle */
-        if (fabs(a - crit) > 0.02) CHECK((F == 1.0f) == is_tir);
+        if (fabs(a - crit) > 0.02) CHECK_EQ((F == 1.0f), is_tir);
     }
     fprintf(stderr, "  %d angles refract, %d are total internal reflection (critical %.3f deg)\n", pass, tir, crit);
     CHECK(tir > 4000 && pass > 4000);
@@ -579,7 +579,7 @@ static void test_hazard_no_bracket(void) {
     p.min_range = 0.01f;
     v3 d = refracted_dir(30, 0);
     twin_march m = twin_march_hf(&hf, o, d, 0.0f, &p);
-    CHECK(m.status == MARCH_CAP);
+    CHECK_EQ(m.status, MARCH_CAP);
     CHECK(isfinite(m.t) && m.t > 0 && m.f > 0);
     v3 hit;
     int st;
@@ -587,17 +587,17 @@ static void test_hazard_no_bracket(void) {
     CHECK(st == MARCH_CAP && isfinite(s) && isfinite(hit.x));
     /* the extension goes on down to the floor of the last column */
     CHECK_NEAR(hit.y, -15.0, 1e-3);
-    CHECK(hf.bad_fetches == 0);
+    CHECK_EQ(hf.bad_fetches, 0);
 }
 
 static void test_hazard_denominator(void) {
-    CHECK(twin_interp(1, 0.5f, 2, -0.5f) == 1.5f);
-    CHECK(twin_interp(1, 0.3f, 2, 0.3f) == 2);           /* zero denominator */
-    CHECK(twin_interp(1, 0.3f, 2, 0.7f) == 2);           /* same sign, negative denominator */
-    CHECK(twin_interp(1, -0.3f, 2, -0.1f) == 2);         /* both below */
-    CHECK(twin_interp(1, NAN, 2, -0.1f) == 2);           /* NaN */
-    CHECK(twin_interp(1, 1e-30f, 2, -0.0f) == 2);        /* denominator a denormal, ratio 1 */
-    CHECK(twin_interp(1, 1e30f, 2, -1e30f) == 1.5f);
+    CHECK_EQ(twin_interp(1, 0.5f, 2, -0.5f), 1.5f);
+    CHECK_EQ(twin_interp(1, 0.3f, 2, 0.3f), 2);           /* zero denominator */
+    CHECK_EQ(twin_interp(1, 0.3f, 2, 0.7f), 2);           /* same sign, negative denominator */
+    CHECK_EQ(twin_interp(1, -0.3f, 2, -0.1f), 2);         /* both below */
+    CHECK_EQ(twin_interp(1, NAN, 2, -0.1f), 2);           /* NaN */
+    CHECK_EQ(twin_interp(1, 1e-30f, 2, -0.0f), 2);        /* denominator a denormal, ratio 1 */
+    CHECK_EQ(twin_interp(1, 1e30f, 2, -1e30f), 1.5f);
     float t = twin_interp(1, 1e-38f, 2, -1e-38f);        /* denormal ratio */
     CHECK(t >= 1 && t <= 2);
     /* a floor exactly at a sample: f = 0 there, the hit is that sample */
@@ -606,7 +606,7 @@ static void test_hazard_denominator(void) {
     twin_hf hf = hf_make();
     twin_params p = twin_defaults();
     twin_march m = twin_march_hf(&hf, V3(0, 0, 0), V3(0, -1, 0), 0.25f, &p);
-    CHECK(m.status == MARCH_HIT);
+    CHECK_EQ(m.status, MARCH_HIT);
     CHECK_NEAR(m.t, 1.0, 1e-6);
 }
 
@@ -623,16 +623,16 @@ static void test_hazard_grazing(void) {
         float s = twin_ground_along(&hf, V3(-1, 0, 1), d, &p, &hit, &st);
         CHECK_MSG(isfinite(s) && isfinite(hit.x) && isfinite(hit.y) && isfinite(hit.z), "dir %d", k);
         CHECK(st == MARCH_HIT || st == MARCH_CAP || st == MARCH_LEFT);
-        CHECK(hit.y <= 0.0f);
+        CHECK_LE(hit.y, 0.0f);
         /* the step never exceeds max_step, whatever the slope */
-        CHECK(twin_step(2.0f, d.y, 10, 3, p.max_step) <= p.max_step);
+        CHECK_LE(twin_step(2.0f, d.y, 10, 3, p.max_step), p.max_step);
     }
     CHECK(isfinite(twin_step(2.0f, 0.0f, 10, 3, 1e30f)));
-    CHECK(twin_step(2.0f, 0.0f, 10, 3, 1e30f) == 2.0f / (mixf(10, 3, MARCH_MIN_DIR_Y) * MARCH_MIN_DIR_Y));
+    CHECK_EQ(twin_step(2.0f, 0.0f, 10, 3, 1e30f), 2.0f / (mixf(10, 3, MARCH_MIN_DIR_Y) * MARCH_MIN_DIR_Y));
     /* an upward refracted ray (a steep wave) is turned down */
     v3 d = twin_clamp_dir(V3(0.7f, 0.2f, 0.7f), true);
     CHECK(d.y <= -MARCH_MIN_DIR_Y * 0.99f && fabsf(dot3f(d, d) - 1) < 1e-6f);
-    CHECK(hf.bad_fetches == 0);
+    CHECK_EQ(hf.bad_fetches, 0);
 }
 
 static void test_hazard_leaving_footprint(void) {
@@ -662,7 +662,7 @@ static void test_hazard_leaving_footprint(void) {
     for (int k = 0; k < 5; k++) {
         v3 d = normalize3f(dirs[k]);
         twin_march m = twin_march_hf(&hf, V3(11.5f, 0, -11.5f), d, 0.0f, &p);
-        CHECK(m.status == MARCH_LEFT);
+        CHECK_EQ(m.status, MARCH_LEFT);
         v3 last = V3(11.5f + m.t * d.x, m.t * d.y, -11.5f + m.t * d.z);
         CHECK(fabsf(last.x) <= HALF + texel_size() && fabsf(last.z) <= HALF + texel_size());
         CHECK(m.f > 0 && m.f < 100);
@@ -674,7 +674,7 @@ static void test_hazard_leaving_footprint(void) {
     long before = hf.fetches;
     m = twin_march_hf(&hf, V3(NAN, 0, 0), V3(0, -1, 0), 0.0f, &p);
     CHECK(m.status == MARCH_LEFT && hf.fetches == before);
-    CHECK(hf.bad_fetches == 0);
+    CHECK_EQ(hf.bad_fetches, 0);
 }
 
 static void test_hazard_shore_and_depth_zero(void) {
@@ -725,7 +725,7 @@ static void test_solid_floating_box(void) {
     v3 hit;
     int st;
     float s = twin_ground_along(&hf, V3(0.2f, 0, 0.1f), V3(0, -1, 0), &p, &hit, &st);
-    CHECK(st == MARCH_HIT);
+    CHECK_EQ(st, MARCH_HIT);
     CHECK_NEAR(s, 2.0, 1e-4);
     /* upwards from (3.5, 0, 0) towards the box: it reaches y = 1 at x = 1,
      * the underside's edge, where f jumps (about 3 outside, 0 inside): the
@@ -737,55 +737,55 @@ static void test_solid_floating_box(void) {
     p.refine_mode = REFINE_BINARY;
     p.refine = 8;
     twin_march m = twin_march_hf(&hf, V3(3.5f, 0, 0), d, step, &p);
-    CHECK(m.status == MARCH_HIT);
+    CHECK_EQ(m.status, MARCH_HIT);
     CHECK_NEAR(3.5f + m.t * d.x, 1.0, 2 * texel_size());
     CHECK_NEAR(m.t * d.y, 1.0, 2 * texel_size());
     p.refine_mode = REFINE_SECANT;
     p.refine = 4;
     m = twin_march_hf(&hf, V3(3.5f, 0, 0), d, step, &p);
-    CHECK(m.status == MARCH_HIT);
+    CHECK_EQ(m.status, MARCH_HIT);
     fprintf(stderr, "  the box's edge: secant 4 stops %.3f m past it, binary 8 within a texel (step %.3f m)\n",
             1.0 - (3.5f + m.t * d.x), step);
-    CHECK(1.0 - (3.5f + m.t * d.x) < step);
+    CHECK_LT(1.0 - (3.5f + m.t * d.x), step);
     /* steeper: into the underside, from below it */
     d = normalize3f(V3(-1, 1.5f, 0));
     m = twin_march_hf(&hf, V3(1.5f, 0, 0), d, twin_step(5.0f, d.y, 10, 3, 0.5f), &p);
-    CHECK(m.status == MARCH_HIT);
+    CHECK_EQ(m.status, MARCH_HIT);
     CHECK_NEAR(m.t * d.y, 1.0, 1e-3);
-    CHECK(m.ta * d.y < 1.0f);               /* water.frag then takes the underside's colour */
+    CHECK_LT(m.ta * d.y, 1.0f);               /* water.frag then takes the underside's colour */
     /* under it and above its top: free */
     m = twin_march_hf(&hf, V3(0.3f, 2.5f, 0), normalize3f(V3(1, 0.3f, 0)), 0.5f, &p);
-    CHECK(m.status == MARCH_LEFT);
+    CHECK_EQ(m.status, MARCH_LEFT);
     /* with no bottom the box is a column down to the floor */
     for (int j = 0; j < HF_N; j++)
         for (int i = 0; i < HF_N; i++) texel(i, j)[1] = EMPTY_Y;
     s = twin_ground_along(&hf, V3(0.2f, 0, 0.1f), V3(0, -1, 0), &p, &hit, &st);
-    CHECK(st == MARCH_INSIDE);
+    CHECK_EQ(st, MARCH_INSIDE);
     /* a bottom at or above the top (the same faces drawn twice) is no bottom */
     for (int j = 0; j < HF_N; j++)
         for (int i = 0; i < HF_N; i++) texel(i, j)[1] = texel(i, j)[0];
     s = twin_ground_along(&hf, V3(0.2f, 0, 0.1f), V3(0, -1, 0), &p, &hit, &st);
-    CHECK(st == MARCH_INSIDE);
+    CHECK_EQ(st, MARCH_INSIDE);
     /* the floor: an overhang left out of it, ground under it kept */
-    CHECK(twin_solid(V3(2, 1, -2), 0.0f) == 1.0f);      /* 1 m under the box, 2 m over the floor */
-    CHECK(twin_solid(V3(2, 1, -2), -2.5f) == -0.5f);
-    CHECK(twin_solid(V3(2, 1, -2), 1.5f) == -0.5f);
-    CHECK(twin_solid(V3(2, EMPTY_Y, EMPTY_Y), 2.5f) == 0.5f);
+    CHECK_EQ(twin_solid(V3(2, 1, -2), 0.0f), 1.0f);      /* 1 m under the box, 2 m over the floor */
+    CHECK_EQ(twin_solid(V3(2, 1, -2), -2.5f), -0.5f);
+    CHECK_EQ(twin_solid(V3(2, 1, -2), 1.5f), -0.5f);
+    CHECK_EQ(twin_solid(V3(2, EMPTY_Y, EMPTY_Y), 2.5f), 0.5f);
     /* the paper's reflection solid, from below: above the bottom where
      * there is one, else above the top; nothing over a texel under the
      * water; a thing crossing the water is solid from the water up */
-    CHECK(twin_solid_as(V3(2, 1, -2), 1.5f, 0.0f) == -0.5f);
-    CHECK(twin_solid_as(V3(2, 1, -2), 2.5f, 0.0f) == -1.5f);   /* over the top: still solid */
-    CHECK(twin_solid_as(V3(0.6f, EMPTY_Y, 0.6f), 0.2f, 0.0f) == 0.6f - 0.2f);
-    CHECK(twin_solid_as(V3(-2, EMPTY_Y, -2), 0.5f, 0.0f) == 1e30f);
-    CHECK(twin_solid_as(V3(0.7f, -1.1f, 0.7f), 0.1f, 0.0f) == -0.1f);
+    CHECK_EQ(twin_solid_as(V3(2, 1, -2), 1.5f, 0.0f), -0.5f);
+    CHECK_EQ(twin_solid_as(V3(2, 1, -2), 2.5f, 0.0f), -1.5f);   /* over the top: still solid */
+    CHECK_EQ(twin_solid_as(V3(0.6f, EMPTY_Y, 0.6f), 0.2f, 0.0f), 0.6f - 0.2f);
+    CHECK_EQ(twin_solid_as(V3(-2, EMPTY_Y, -2), 0.5f, 0.0f), 1e30f);
+    CHECK_EQ(twin_solid_as(V3(0.7f, -1.1f, 0.7f), 0.1f, 0.0f), -0.1f);
     /* a thing under the water (a boulder: top -1.8, bottom -2.4) is seen by
      * the floor pass too (floor = top): it is the slab alone, not a column
      * down from its top (issue #16); 0.2 m under it is free */
     CHECK_NEAR(twin_solid(V3(-1.8f, -2.4f, -1.8f), -2.6f), 0.2, 1e-6);
     CHECK_NEAR(twin_solid(V3(-1.8f, -2.4f, -1.8f), -2.0f), -0.2, 1e-6);
     CHECK_NEAR(twin_solid(V3(-1.8f, -2.4f, -1.8f), -1.5f), 0.3, 1e-6);
-    CHECK(twin_solid(V3(EMPTY_Y, EMPTY_Y, EMPTY_Y), 0.0f) == 1e30f);
+    CHECK_EQ(twin_solid(V3(EMPTY_Y, EMPTY_Y, EMPTY_Y), 0.0f), 1e30f);
 }
 
 /* ---- the Fresnel table ---- */
@@ -810,9 +810,9 @@ static void test_fresnel_table(void) {
     fprintf(stderr, "  Fresnel table %d texels: max error air->water %.2g, water->air %.2g "
             "(a plain cos table: %.3f at %.2f deg, the critical angle is %.2f deg)\n",
             LUT_W, above, below, plain, acos(plain_at) * 180 / PI, acos(cos_c) * 180 / PI);
-    CHECK(above < 2e-4);
-    CHECK(below < 2e-3);
-    CHECK(plain > 0.05);   /* why the table is remapped below the water */
+    CHECK_LT(above, 2e-4);
+    CHECK_LT(below, 2e-3);
+    CHECK_GT(plain, 0.05);   /* why the table is remapped below the water */
     /* reference values (DESIGN.md) */
     CHECK_NEAR(lut_at(lut[0], 1.0f), 0.0204, 5e-5);
     CHECK_NEAR(lut_at(lut[0], (float)cos(60 * PI / 180)), 0.0597, 2e-4);
@@ -1127,21 +1127,21 @@ static void check_floor_scene(const char *file, double bound_refined) {
     set_refine(r, REFINE_BINARY, 6);
     cmp_stats bin6 = compare_refract_hits(r, &s);
     print_hits("refraction hit, binary 6 (default)", bin6);
-    CHECK(bin6.n > W * H / 4);
+    CHECK_GT(bin6.n, W * H / 4);
     CHECK_MSG(sec4.p95 <= bound_refined && bin6.p95 <= bound_refined, "p95 %.3f / %.3f texels", sec4.p95,
               bin6.p95);
     cmp_stats fr = compare_scalar(r, &s, 3, s.ref.fresnel, false);
     fprintf(stderr, "  %-34s %5ld px  mean %.2g  p95 %.2g  max %.2g\n", "Fresnel (table), absolute", fr.n, fr.mean,
             fr.p95, fr.max);
-    CHECK(fr.max < 2e-3);
+    CHECK_LT(fr.max, 2e-3);
     cmp_stats dp = compare_scalar(r, &s, 4, s.ref.depth, true);
     fprintf(stderr, "  %-34s %5ld px  mean %.2g  p95 %.2g  max %.2g\n", "path in water, relative", dp.n, dp.mean,
             dp.p95, dp.max);
-    CHECK(dp.p95 < 0.02);
+    CHECK_LT(dp.p95, 0.02);
     ref_image_metrics m = compare_color(r, &s);
     fprintf(stderr, "  colour (water px, no highlight):   rmse %.4f  psnr %.1f dB  mae %.4f  max %.4f  "
             "bias %+.4f %+.4f %+.4f\n", m.rmse, m.psnr_db, m.mae, m.max_abs, m.bias[0], m.bias[1], m.bias[2]);
-    CHECK(m.rmse < 0.05);
+    CHECK_LT(m.rmse, 0.05);
     render_destroy(r);
     ref_render_free(&s.ref);
 }
@@ -1165,7 +1165,7 @@ static void test_gl_floor_under_a_floating_sphere(void) {
     if (!r) return;
     cmp_stats c = compare_refract_hits(r, &s);
     print_hits("floor hit round a floating sphere", c);
-    CHECK(c.n > W * H / 4);
+    CHECK_GT(c.n, W * H / 4);
     CHECK_MSG(c.max * s.texel < 0.1, "max %.2f texels (%.3f m)", c.max, c.max * s.texel);
     render_destroy(r);
     ref_render_free(&s.ref);
@@ -1233,7 +1233,7 @@ static void test_gl_normal_map_sense(void) {
         double slope = sxx > 0 ? sxy / sxx : 0, corr = sxx > 0 && syy > 0 ? sxy / sqrt(sxx * syy) : 0;
         fprintf(stderr, "  normal map, BumptexMult %d: %ld px, slope %.3f (want 1), correlation %.4f, rms slope %.4f\n",
                 bump, n, slope, corr, sqrt(sxx / (2.0 * (n > 0 ? n : 1))));
-        CHECK(n > W * H / 3);
+        CHECK_GT(n, W * H / 3);
         CHECK_MSG(fabs(slope - 1) < 0.02, "slope %.3f", slope);
         CHECK_MSG(corr > 0.999, "correlation %.4f", corr);
     }
@@ -1294,9 +1294,9 @@ static void test_gl_floating_box_reflection(void) {
     set_value(r, "uReflectStep", 0.1f);
     print_refl("binary 6, step 0.1", compare_reflections(r, &s));
     CHECK(sec.n > 100 && bin.n > 100);
-    CHECK(bin.c.p95 < sec.c.p95);   /* f jumps at the box's edge: bisection beats regula falsi */
-    CHECK(bin.ref_only + bin.gl_only < bin.n / 5);
-    CHECK(bin.c.p95 < 8);
+    CHECK_LT(bin.c.p95, sec.c.p95);   /* f jumps at the box's edge: bisection beats regula falsi */
+    CHECK_LT(bin.ref_only + bin.gl_only, bin.n / 5);
+    CHECK_LT(bin.c.p95, 8);
     render_destroy(r);
     ref_render_free(&s.ref);
 }
@@ -1354,8 +1354,8 @@ static void test_gl_lake_against_reference(void) {
     fprintf(stderr, "  Fresnel, defaults: mean %.2g, p95 %.2g, max %.2g; colour bias %+.4f %+.4f %+.4f\n", fr.mean,
             fr.p95, fr.max, def_m.bias[0], def_m.bias[1], def_m.bias[2]);
     CHECK(def_hits.n > 1000 && def_hits.p95 < 2);
-    CHECK(fr.p95 < 0.01);
-    CHECK(def_m.rmse < 0.05);
+    CHECK_LT(fr.p95, 0.01);
+    CHECK_LT(def_m.rmse, 0.05);
     render_destroy(r);
     ref_render_free(&s.ref);
 }

@@ -31,7 +31,7 @@ static void test_comments(void) {
     packset_bench b;
     char err[512] = "";
     CHECK_MSG(packset_bench_parse(text, "t/bench.txt", &b, err, sizeof err), "%s", err);
-    CHECK(b.n == 5);
+    CHECK_EQ(b.n, 5);
     const packset_setting *s;
     CHECK((s = packset_setting_named(&b, "fast")) && strcmp(s->comment, "fewer steps") == 0);
     CHECK((s = packset_setting_named(&b, "paper")) &&
@@ -50,7 +50,7 @@ static void test_menu_order(void) {
     int order[8];
     int n = packset_menu(&b, order);
     const char *want[] = { "default", "paper", "fast", "plain", "hashes" };
-    CHECK(n == 5);
+    CHECK_EQ(n, 5);
     for (int i = 0; i < n && i < 5; i++)
         CHECK_MSG(order[i] >= 0 && strcmp(b.settings[order[i]].name, want[i]) == 0, "row %d: %s", i,
                   order[i] >= 0 ? b.settings[order[i]].name : "(implicit default)");
@@ -68,7 +68,7 @@ static void test_menu_order(void) {
 static void test_packs_files(void) {
     packset_name names[PACKSET_MAX];
     int np = packset_list(TARN_SOURCE_DIR, names, PACKSET_MAX);
-    CHECK(np >= 4);
+    CHECK_GE(np, 4);
     int papers = 0;
     for (int p = 0; p < np; p++) {
         packset_bench b;

@@ -57,9 +57,9 @@ static int centre_grey(const img *im) {
 static void test_replay_is_deterministic_and_follows_the_events(void) {
     write_session("s.session", "");
     char out[8192];
-    CHECK(tarn("record s.session -o a/ --fps 10 --size 40x30", out, sizeof out) == 0);
+    CHECK_EQ(tarn("record s.session -o a/ --fps 10 --size 40x30", out, sizeof out), 0);
     CHECK_STR_CONTAINS(out, "10 frames, 40x30, 10 fps");
-    CHECK(tarn("record s.session -o b/ --fps 10 --size 40x30", out, sizeof out) == 0);
+    CHECK_EQ(tarn("record s.session -o b/ --fps 10 --size 40x30", out, sizeof out), 0);
     /* uGrey 0.25 (the glib's default) before t=0.5, 0.75 until t=0.8, then uOn off: 0 */
     const int want[10] = { 64, 64, 64, 64, 64, 191, 191, 191, 0, 0 };
     for (int i = 0; i < 10; i++) {
@@ -82,7 +82,7 @@ static void test_replay_is_deterministic_and_follows_the_events(void) {
 static void test_session_size_and_fps(void) {
     write_session("s.session", "");
     char out[8192];
-    CHECK(tarn("record s.session -o c/ --fps 4", out, sizeof out) == 0);
+    CHECK_EQ(tarn("record s.session -o c/ --fps 4", out, sizeof out), 0);
     CHECK_STR_CONTAINS(out, "4 frames, 32x24, 4 fps");
     const int want[4] = { 64, 64, 191, 191 };   /* t = 0, 0.25, 0.5, 0.75 */
     for (int i = 0; i < 4; i++) {
@@ -99,32 +99,32 @@ static void test_no_ffmpeg_writes_pngs_and_says_so(void) {
     snprintf(full, sizeof full,
              "cd %s && env -u DISPLAY TARN_FFMPEG=/nonexistent/ffmpeg %s record s.session -o take.mp4 --fps 10 2>&1",
              scratch_dir, bin);
-    CHECK(run_command(full, out, sizeof out) == 0);
+    CHECK_EQ(run_command(full, out, sizeof out), 0);
     fputs(out, stderr);
     CHECK_STR_CONTAINS(out, "apt-get install ffmpeg");
     CHECK_STR_CONTAINS(out, "take-frames/");
     img a = {0};
     CHECK(read_frame("take-frames", 9, &a));
-    if (a.px) CHECK(centre_grey(&a) == 0);
+    if (a.px) CHECK_EQ(centre_grey(&a), 0);
     img_free(&a);
 }
 
 static void test_bad_lines_are_named_and_the_rest_plays(void) {
     write_session("bad.session", "t=0.900 slider Flat\nt=0.850 slider Flat uNope 1\n");
     char out[8192];
-    CHECK(tarn("record bad.session -o d/ --fps 10", out, sizeof out) == 1);
+    CHECK_EQ(tarn("record bad.session -o d/ --fps 10", out, sizeof out), 1);
     CHECK_STR_CONTAINS(out, "bad.session:9: error: slider: expected PROGRAM NAME");
     CHECK_STR_CONTAINS(out, "bad.session:10: no uniform 'uNope'");   /* the scene lacks it */
     img a = {0};
     CHECK(read_frame("d", 5, &a));
-    if (a.px) CHECK(centre_grey(&a) == 191);
+    if (a.px) CHECK_EQ(centre_grey(&a), 191);
     img_free(&a);
 
     scratch_write("glib.session", "##OpenGL GLIB\nWindowSize 32 24\n");
-    CHECK(tarn("record glib.session -o e/", out, sizeof out) == 1);
+    CHECK_EQ(tarn("record glib.session -o e/", out, sizeof out), 1);
     CHECK_STR_CONTAINS(out, "glib.session:2: error: not a tarn session");
     scratch_write("noscene.session", "tarn-session 1\nscene nope.glib\nt=1 end\n");
-    CHECK(tarn("record noscene.session -o e/", out, sizeof out) == 1);
+    CHECK_EQ(tarn("record noscene.session -o e/", out, sizeof out), 1);
     CHECK_STR_CONTAINS(out, "nope.glib");
 }
 
@@ -141,7 +141,7 @@ static void test_define_event_rebuilds(void) {
     scratch_write("level.session", "tarn-session 1\nscene level.glib\n"
                                    "t=0.5 define Level LEVEL 0.75\nt=1 end\n");
     char out[8192];
-    CHECK(tarn("record level.session -o lv/ --fps 4", out, sizeof out) == 0);
+    CHECK_EQ(tarn("record level.session -o lv/ --fps 4", out, sizeof out), 0);
     const int want[4] = { 64, 64, 191, 191 };
     for (int i = 0; i < 4; i++) {
         img a = {0};
@@ -173,7 +173,7 @@ static void test_clock_and_pause_match_tarn_render(void) {
     snprintf(text, sizeof text,
              "tarn-session 1\nscene %s/scenes/pond.glib\ntime 2\nt=0.25 pause 1\nt=0.75 pause 0\nt=1.25 end\n", src);
     scratch_write("pond.session", text);
-    CHECK(tarn("record pond.session -o pond/ --size 48x27 --fps 4", out, sizeof out) == 0);
+    CHECK_EQ(tarn("record pond.session -o pond/ --size 48x27 --fps 4", out, sizeof out), 0);
     img f[5], r[2];
     memset(f, 0, sizeof f);
     memset(r, 0, sizeof r);
@@ -182,7 +182,7 @@ static void test_clock_and_pause_match_tarn_render(void) {
     for (int i = 0; i < 2; i++) {
         snprintf(args, sizeof args, "render %s/scenes/pond.glib --time %s --size 48x27 -o r%d.png --quiet", src,
                  times[i], i);
-        CHECK(tarn(args, out, sizeof out) == 0);
+        CHECK_EQ(tarn(args, out, sizeof out), 0);
         char path[600], err[512];
         snprintf(path, sizeof path, "%s/r%d.png", scratch_dir, i);
         CHECK(img_read(path, &r[i], err, sizeof err));
@@ -198,14 +198,14 @@ static void test_clock_and_pause_match_tarn_render(void) {
 
 static void test_usage(void) {
     char out[8192];
-    CHECK(tarn("record", out, sizeof out) == 2);
-    CHECK(tarn("record s.session", out, sizeof out) == 2);
+    CHECK_EQ(tarn("record", out, sizeof out), 2);
+    CHECK_EQ(tarn("record s.session", out, sizeof out), 2);
     CHECK_STR_CONTAINS(out, "-o out.mp4");
-    CHECK(tarn("record s.session -o x/ --fps 0", out, sizeof out) == 2);
-    CHECK(tarn("record s.session -o x/ --fps 2.5", out, sizeof out) == 2);
-    CHECK(tarn("record s.session -o video", out, sizeof out) == 2);   /* ffmpeg could not tell the format */
+    CHECK_EQ(tarn("record s.session -o x/ --fps 0", out, sizeof out), 2);
+    CHECK_EQ(tarn("record s.session -o x/ --fps 2.5", out, sizeof out), 2);
+    CHECK_EQ(tarn("record s.session -o video", out, sizeof out), 2);   /* ffmpeg could not tell the format */
     CHECK_STR_CONTAINS(out, "extension");
-    CHECK(tarn("record --help", out, sizeof out) == 0);
+    CHECK_EQ(tarn("record --help", out, sizeof out), 0);
     CHECK_STR_CONTAINS(out, "usage: tarn record SESSION");
 }
 

@@ -35,7 +35,7 @@ static const char *write_obj(const char *name, const char *text) {
     static char path[256];
     snprintf(path, sizeof path, "%s/%s", tmpdir, name);
     FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (f) {
         fputs(text, f);
         fclose(f);
@@ -54,10 +54,10 @@ static void test_cube_closed_forms(void) {
     ref_mesh *m = ref_mesh_load(write_obj("cube.obj", cube_obj), NULL, err, sizeof err);
     CHECK_MSG(m != NULL, "%s", err);
     if (!m) return;
-    CHECK(ref_mesh_count(m) == 12);
+    CHECK_EQ(ref_mesh_count(m), 12);
     double o[3] = { 0.1, 0.2, 5 }, d[3] = { 0, 0, -1 }, t, n[3];
     CHECK(ref_mesh_hit(m, o, d, 0, 1e9, &t, n));
-    CHECK(t == 4.5);                       /* the +z face, exactly */
+    CHECK_EQ(t, 4.5);                       /* the +z face, exactly */
     CHECK(n[0] == 0 && n[1] == 0 && n[2] == 1);
     CHECK(!ref_mesh_hit(m, o, d, 0, 4.4, &t, n));   /* tmax before it */
     CHECK(ref_mesh_hit(m, o, d, 4.6, 1e9, &t, n));  /* tmin past it: the back face */
@@ -70,7 +70,7 @@ static void test_cube_closed_forms(void) {
     /* placed: turned 90 degrees about +y (x goes to -z), scaled 2, moved */
     ref_mesh_place pl = { { 10, 1, -3 }, 90, 2 };
     m = ref_mesh_load(write_obj("cube.obj", cube_obj), &pl, err, sizeof err);
-    CHECK(m != NULL);
+    CHECK_NE(m, NULL);
     if (!m) return;
     ref_mesh_bounds(m, lo, hi);
     CHECK_NEAR(lo[0], 9, 1e-12);
@@ -119,7 +119,7 @@ static int bvh_against_brute(const ref_mesh *m, int nrays) {
         }
         hits += hf;
     }
-    CHECK(bad == 0);
+    CHECK_EQ(bad, 0);
     return hits;
 }
 
@@ -134,11 +134,11 @@ static void test_bvh_equals_brute_force(void) {
     }
     ref_mesh *m = ref_mesh_from_triangles(tri, n);
     free(tri);
-    CHECK(m != NULL);
+    CHECK_NE(m, NULL);
     if (m) {
         int hits = bvh_against_brute(m, 20000);
         fprintf(stderr, "  soup: %d of 20000 rays hit\n", hits);
-        CHECK(hits > 8000);
+        CHECK_GT(hits, 8000);
         ref_mesh_free(m);
     }
     /* the shipped models, placed as scenes/harbour.glib has them */
@@ -152,7 +152,7 @@ static void test_bvh_equals_brute_force(void) {
         if (!m) continue;
         int hits = bvh_against_brute(m, 20000);
         fprintf(stderr, "  %s: %d triangles, %d of 20000 rays hit\n", models[i], ref_mesh_count(m), hits);
-        CHECK(hits > 8000);
+        CHECK_GT(hits, 8000);
         ref_mesh_free(m);
     }
 }
@@ -186,24 +186,24 @@ static void test_models_face_outwards(void) {
             if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0) backs++;
         }
         fprintf(stderr, "  %s: %d hits from outside, %d on a back face\n", models[i], hits, backs);
-        CHECK(hits > 4000);
-        CHECK(backs == 0);
+        CHECK_GT(hits, 4000);
+        CHECK_EQ(backs, 0);
         ref_mesh_free(m);
     }
 }
 
 static void test_bad_files(void) {
     char err[256] = "";
-    CHECK(ref_mesh_load(write_obj("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n"), NULL, err, sizeof err) == NULL);
+    CHECK_EQ(ref_mesh_load(write_obj("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n"), NULL, err, sizeof err), NULL);
     CHECK_STR_CONTAINS(err, "bad.obj:3:");
     CHECK_STR_CONTAINS(err, "does not exist");
-    CHECK(ref_mesh_load(write_obj("bad2.obj", "v 0 0\n"), NULL, err, sizeof err) == NULL);
+    CHECK_EQ(ref_mesh_load(write_obj("bad2.obj", "v 0 0\n"), NULL, err, sizeof err), NULL);
     CHECK_STR_CONTAINS(err, "bad2.obj:1:");
-    CHECK(ref_mesh_load(write_obj("empty.obj", "# nothing\nv 0 0 0\n"), NULL, err, sizeof err) == NULL);
+    CHECK_EQ(ref_mesh_load(write_obj("empty.obj", "# nothing\nv 0 0 0\n"), NULL, err, sizeof err), NULL);
     CHECK_STR_CONTAINS(err, "no triangles");
-    CHECK(ref_mesh_load("/nonexistent/x.obj", NULL, err, sizeof err) == NULL);
+    CHECK_EQ(ref_mesh_load("/nonexistent/x.obj", NULL, err, sizeof err), NULL);
     CHECK_STR_CONTAINS(err, "/nonexistent/x.obj");
-    CHECK(ref_mesh_from_triangles(NULL, 0) == NULL);
+    CHECK_EQ(ref_mesh_from_triangles(NULL, 0), NULL);
 }
 
 /* A world's mesh object is hit through ref_objects_hit, with its albedo. */
@@ -218,13 +218,13 @@ static void test_world_object(void) {
     ref_world w;
     ref_world_init(&w, &d);
     double o[3] = { 3, 0, 10 }, dir[3] = { 0, 0, -1 }, t, n[3];
-    CHECK(ref_objects_hit(&w, o, dir, 0, 1e9, &t, n) == 0);
-    CHECK(t == 9);
+    CHECK_EQ(ref_objects_hit(&w, o, dir, 0, 1e9, &t, n), 0);
+    CHECK_EQ(t, 9);
     ref_world_release(&w);
 }
 
 int main(void) {
-    CHECK(mkdtemp(tmpdir) != NULL);
+    CHECK_NE(mkdtemp(tmpdir), NULL);
     RUN(test_cube_closed_forms);
     RUN(test_bvh_equals_brute_force);
     RUN(test_models_face_outwards);

@@ -29,7 +29,7 @@ static void test_fresnel_reference_values(void) {
     double prev = 0.0;
     for (int i = 0; i <= 900; i++) {
         double r = R_air_water(i * 0.1);
-        CHECK(r >= prev - 1e-15);
+        CHECK_GE(r, prev - 1e-15);
         prev = r;
     }
 }
@@ -60,22 +60,22 @@ static void test_fresnel_tir(void) {
     double tc = ref_critical_angle(N_W, 1.0);
     CHECK_NEAR(tc / DEG, 48.61, 5e-3);
     CHECK_NEAR(tc, asin(1.0 / N_W), 1e-15);
-    CHECK(ref_critical_angle(1.0, N_W) < 0.0);
+    CHECK_LT(ref_critical_angle(1.0, N_W), 0.0);
 
-    CHECK(R_water_air(48.60) < 1.0);
-    CHECK(R_water_air(48.62) == 1.0);
-    CHECK(ref_fresnel(cos(tc - 1e-9), N_W, 1.0) < 1.0);
-    CHECK(ref_fresnel(cos(tc - 1e-9), N_W, 1.0) > 0.99);     /* continuous at the edge */
-    CHECK(ref_fresnel(cos(tc + 1e-9), N_W, 1.0) == 1.0);
-    for (int i = 0; i <= 100; i++) CHECK(R_water_air(48.62 + i * 0.4138) == 1.0);
+    CHECK_LT(R_water_air(48.60), 1.0);
+    CHECK_EQ(R_water_air(48.62), 1.0);
+    CHECK_LT(ref_fresnel(cos(tc - 1e-9), N_W, 1.0), 1.0);
+    CHECK_GT(ref_fresnel(cos(tc - 1e-9), N_W, 1.0), 0.99);     /* continuous at the edge */
+    CHECK_EQ(ref_fresnel(cos(tc + 1e-9), N_W, 1.0), 1.0);
+    for (int i = 0; i <= 100; i++) CHECK_EQ(R_water_air(48.62 + i * 0.4138), 1.0);
 
     double d_below[3] = { sin(48.60 * DEG), cos(48.60 * DEG), 0.0 };   /* going up */
     double d_beyond[3] = { sin(48.62 * DEG), cos(48.62 * DEG), 0.0 };
     double n[3] = { 0.0, 1.0, 0.0 }, t[3];
-    CHECK(ref_refract(d_below, n, N_W, 1.0, t) == 1);
+    CHECK_EQ(ref_refract(d_below, n, N_W, 1.0, t), 1);
     CHECK_NEAR(t[1], cos(asin(N_W * sin(48.60 * DEG))), 1e-12);       /* nearly grazing out */
-    CHECK(t[1] < 0.02);
-    CHECK(ref_refract(d_beyond, n, N_W, 1.0, t) == 0);
+    CHECK_LT(t[1], 0.02);
+    CHECK_EQ(ref_refract(d_beyond, n, N_W, 1.0, t), 0);
     CHECK_NEAR(t[0], d_beyond[0], 1e-15);                              /* the reflection */
     CHECK_NEAR(t[1], -d_beyond[1], 1e-15);
 }
@@ -106,26 +106,26 @@ static void test_snell_refraction(void) {
             double tt = asin(sin(th) / N_W);
             double want[3] = { sin(tt) * cos(ph), -cos(tt), sin(tt) * sin(ph) };
             double n_up[3] = { 0, 1, 0 }, n_down[3] = { 0, -1, 0 }, t[3];
-            CHECK(ref_refract(d, n_up, 1.0, N_W, t) == 1);
+            CHECK_EQ(ref_refract(d, n_up, 1.0, N_W, t), 1);
             for (int k = 0; k < 3; k++) CHECK_NEAR(t[k], want[k], 1e-14);
-            CHECK(ref_refract(d, n_down, 1.0, N_W, t) == 1);
+            CHECK_EQ(ref_refract(d, n_down, 1.0, N_W, t), 1);
             for (int k = 0; k < 3; k++) CHECK_NEAR(t[k], want[k], 1e-14);
             /* rotated frame: refraction commutes with rotations */
             double dr[3], nr[3], wr[3];
             rot_y_then_x(d, 0.7, 0.4, dr);
             rot_y_then_x(n_up, 0.7, 0.4, nr);
             rot_y_then_x(want, 0.7, 0.4, wr);
-            CHECK(ref_refract(dr, nr, 1.0, N_W, t) == 1);
+            CHECK_EQ(ref_refract(dr, nr, 1.0, N_W, t), 1);
             for (int k = 0; k < 3; k++) CHECK_NEAR(t[k], wr[k], 1e-14);
             /* the way back (reversibility): from below along -t gives -d */
             double back[3] = { -want[0], -want[1], -want[2] }, t2[3];
-            CHECK(ref_refract(back, n_up, N_W, 1.0, t2) == 1);
+            CHECK_EQ(ref_refract(back, n_up, N_W, 1.0, t2), 1);
             for (int k = 0; k < 3; k++) CHECK_NEAR(t2[k], -d[k], 1e-13);
         }
     double c;
-    CHECK(ref_snell_cos(cos(30 * DEG), 1.0, N_W, &c) == 1);
+    CHECK_EQ(ref_snell_cos(cos(30 * DEG), 1.0, N_W, &c), 1);
     CHECK_NEAR(c, cos(asin(sin(30 * DEG) / N_W)), 1e-15);
-    CHECK(ref_snell_cos(cos(60 * DEG), N_W, 1.0, &c) == 0);
+    CHECK_EQ(ref_snell_cos(cos(60 * DEG), N_W, 1.0, &c), 0);
 }
 
 static void test_reflection(void) {
@@ -152,7 +152,7 @@ static void test_schlick_and_pow(void) {
     double r0 = ref_fresnel(1.0, 1.0, N_W);
     CHECK_NEAR(ref_fresnel_schlick(1.0, 1.0, N_W), r0, 1e-15);
     CHECK_NEAR(ref_fresnel_schlick(1.0, N_W, 1.0), r0, 1e-15);
-    CHECK(ref_fresnel_schlick(cos(50 * DEG), N_W, 1.0) == 1.0);
+    CHECK_EQ(ref_fresnel_schlick(cos(50 * DEG), N_W, 1.0), 1.0);
     CHECK_NEAR(ref_fresnel_schlick(0.0, 1.0, N_W), 1.0, 1e-15);
     double maxerr = 0.0, at = 0.0;
     for (int i = 0; i <= 9000; i++) {
@@ -163,7 +163,7 @@ static void test_schlick_and_pow(void) {
     CHECK_NEAR(maxerr, 0.0592, 1e-3);
     CHECK(at > 80.0 && at < 87.0);
 
-    CHECK(ref_fresnel_pow(1.0, 5.25) == 0.0);
+    CHECK_EQ(ref_fresnel_pow(1.0, 5.25), 0.0);
     CHECK_NEAR(ref_fresnel_pow(0.5, 2.0), 0.25, 1e-15);
     double best_q = 0.0, best = INFINITY;
     for (int iq = 450; iq <= 600; iq++) {

@@ -86,7 +86,7 @@ static void test_flat_snell(void) {
     ref_render_desc d = { .world = &w, .caustics = REF_CAUSTICS_FLAT, .threads = 2 };
     d.camera = (ref_camera){ { 0.3, 1.5, 4.0 }, { 0.0, -1.0, 0.0 }, { 0, 1, 0 }, 60, 48, 32 };
     ref_render_result r;
-    CHECK(render(&d, &r) == 0);
+    CHECK_EQ(render(&d, &r), 0);
     if (!r.color) return;
     double err_hit = 0, err_fres = 0, err_laws = 0, err_depth = 0;
     int n = 0;
@@ -95,8 +95,8 @@ static void test_flat_snell(void) {
             size_t p = (size_t)j * r.width + i;
             double dir[3];
             camera_ray(&d.camera, i, j, dir);
-            if (!(dir[1] < -1e-3)) { CHECK(r.mask[p] == REF_MASK_SKY); continue; }
-            CHECK(r.mask[p] == REF_MASK_WATER);
+            if (!(dir[1] < -1e-3)) { CHECK_EQ(r.mask[p], REF_MASK_SKY); continue; }
+            CHECK_EQ(r.mask[p], REF_MASK_WATER);
             const double *e = d.camera.eye;
             double tw = e[1] / -dir[1];
             double s[3] = { e[0] + tw * dir[0], 0.0, e[2] + tw * dir[2] };
@@ -113,17 +113,17 @@ static void test_flat_snell(void) {
                 err_laws = worse(err_laws, fabs(r.fresnel[p] - fresnel_laws(asin(sin_i), asin(sin_t))));
             err_depth = worse(err_depth, fabs(r.depth[p] - D / cos_t));
             /* the reflection goes to the sky along the mirrored ray */
-            CHECK(r.reflect[p * 4 + 3] == REF_REFLECT_SKY);
+            CHECK_EQ(r.reflect[p * 4 + 3], REF_REFLECT_SKY);
             CHECK_NEAR(r.reflect[p * 4 + 1], -dir[1], 1e-12);
             n++;
         }
     fprintf(stderr, "  %d water pixels: hit %.2g, Fresnel %.2g (laws %.2g), depth %.2g\n", n, err_hit,
             err_fres, err_laws, err_depth);
-    CHECK(n > r.width * r.height / 2);
-    CHECK(err_hit <= 1e-9);
-    CHECK(err_fres <= 1e-12);
-    CHECK(err_laws <= 1e-12);
-    CHECK(err_depth <= 1e-9);
+    CHECK_GT(n, r.width * r.height / 2);
+    CHECK_LE(err_hit, 1e-9);
+    CHECK_LE(err_fres, 1e-12);
+    CHECK_LE(err_laws, 1e-12);
+    CHECK_LE(err_depth, 1e-9);
     ref_render_free(&r);
 }
 
@@ -136,7 +136,7 @@ static void test_flat_color(void) {
     ref_render_desc d = { .world = &w, .caustics = REF_CAUSTICS_FLAT, .threads = 1 };
     d.camera = (ref_camera){ { -0.5, 2.0, 3.0 }, { 0.5, -1.0, -1.0 }, { 0, 1, 0 }, 50, 24, 16 };
     ref_render_result r;
-    CHECK(render(&d, &r) == 0);
+    CHECK_EQ(render(&d, &r), 0);
     if (!r.color) return;
     const double *sun = w.d.sun_dir, *sig = w.d.absorption;
     double cos_s = sun[1], sin_ts = sqrt(1 - cos_s * cos_s) / N_WATER, cos_ts = sqrt(1 - sin_ts * sin_ts);
@@ -165,8 +165,8 @@ static void test_flat_color(void) {
         n++;
     }
     fprintf(stderr, "  %d pixels, colour relative error %.2g\n", n, worst);
-    CHECK(n > 100);
-    CHECK(worst <= 1e-12);
+    CHECK_GT(n, 100);
+    CHECK_LE(worst, 1e-12);
     ref_render_free(&r);
 }
 
@@ -179,7 +179,7 @@ static void test_tir_from_below(void) {
     /* looking up at 45 degrees with a 90 degree field: 0..90 degrees from the zenith */
     d.camera = (ref_camera){ { 0.0, -1.0, 0.0 }, { 0.0, 0.0, -1.0 }, { 0, 1, 0 }, 90, 32, 32 };
     ref_render_result r;
-    CHECK(render(&d, &r) == 0);
+    CHECK_EQ(render(&d, &r), 0);
     if (!r.color) return;
     double crit = asin(1.0 / N_WATER) * 180 / PI;   /* 48.61 */
     int tir = 0, through = 0;
@@ -189,17 +189,17 @@ static void test_tir_from_below(void) {
             double dir[3];
             camera_ray(&d.camera, i, j, dir);
             if (dir[1] <= 1e-3) continue;
-            CHECK(r.mask[p] == REF_MASK_WATER);
+            CHECK_EQ(r.mask[p], REF_MASK_WATER);
             double theta = acos(dir[1]) * 180 / PI;
             CHECK_NEAR(r.depth[p], 1.0 / dir[1], 1e-9);          /* eye to surface, in water */
             if (theta > crit + 0.01) {
-                CHECK(r.fresnel[p] == 1.0);
+                CHECK_EQ(r.fresnel[p], 1.0);
                 CHECK(isnan(r.refract_hit[p * 4]) && r.refract_hit[p * 4 + 3] == REF_MASK_SKY);
-                CHECK(r.reflect[p * 4 + 3] == REF_REFLECT_POINT);   /* down to the floor */
+                CHECK_EQ(r.reflect[p * 4 + 3], REF_REFLECT_POINT);   /* down to the floor */
                 CHECK_NEAR(r.reflect[p * 4 + 1], -5.0, 1e-9);
                 tir++;
             } else if (theta < crit - 0.01) {
-                CHECK(r.fresnel[p] < 1.0);
+                CHECK_LT(r.fresnel[p], 1.0);
                 CHECK_NEAR(r.fresnel[p], ref_fresnel(dir[1], N_WATER, 1.0), 1e-12);
                 double st = N_WATER * sin(acos(dir[1]));
                 CHECK_NEAR(r.fresnel[p], fresnel_laws(acos(dir[1]), asin(st)), 1e-12);
@@ -250,7 +250,7 @@ static double flat_caustics_error(const ref_world *w, const ref_render_result *r
 static void test_flat_caustics(void) {
     ref_world w;
     ref_render_result r;
-    CHECK(flat_caustics(&w, 0, &r) == 0);
+    CHECK_EQ(flat_caustics(&w, 0, &r), 0);
     if (!r.color) return;
     CHECK(r.have_caustics);
     /* k = 32 strata a side per cell: the count's sd is at most sqrt(k+1) of
@@ -259,8 +259,8 @@ static void test_flat_caustics(void) {
     double worst = flat_caustics_error(&w, &r);
     fprintf(stderr, "  %d pixels, %ld photons: worst relative error %.2g (bound %.3g)\n", r.width * r.height,
             r.caustics.stats.photons, worst, bound);
-    CHECK(worst >= 0);
-    CHECK(worst <= bound);
+    CHECK_GE(worst, 0);
+    CHECK_LE(worst, bound);
     ref_render_free(&r);
 }
 
@@ -276,13 +276,13 @@ static void test_flat_caustics(void) {
 static void test_seed_flat(void) {
     ref_world w;
     ref_render_result a, b, c;
-    CHECK(flat_caustics(&w, 0, &a) == 0);
-    CHECK(flat_caustics(&w, 1, &b) == 0);
-    CHECK(flat_caustics(&w, 1, &c) == 0);
+    CHECK_EQ(flat_caustics(&w, 0, &a), 0);
+    CHECK_EQ(flat_caustics(&w, 1, &b), 0);
+    CHECK_EQ(flat_caustics(&w, 1, &c), 0);
     if (!a.color || !b.color || !c.color) return;
     size_t n = (size_t)a.width * a.height, cells = (size_t)a.caustics.nx * a.caustics.nz;
     CHECK(b.caustics.nx == a.caustics.nx && b.caustics.nz == a.caustics.nz);
-    CHECK(b.caustics.stats.photons == a.caustics.stats.photons);   /* the same strata */
+    CHECK_EQ(b.caustics.stats.photons, a.caustics.stats.photons);   /* the same strata */
     CHECK(!SAME(a.caustics.irradiance, b.caustics.irradiance, cells * 3));
     CHECK(SAME(b.caustics.irradiance, c.caustics.irradiance, cells * 3));
     CHECK(SAME(b.color, c.color, n * 3));
@@ -310,8 +310,8 @@ static void test_seed_lake(void) {
     ref_render_desc d7 = d;
     d7.seed = 7;
     ref_render_result a, b;
-    CHECK(render(&d, &a) == 0);
-    CHECK(render(&d7, &b) == 0);
+    CHECK_EQ(render(&d, &a), 0);
+    CHECK_EQ(render(&d7, &b), 0);
     if (!a.color || !b.color) return;
     CHECK(a.have_caustics && b.have_caustics);
     CHECK(a.caustics.nx == b.caustics.nx && a.caustics.nz == b.caustics.nz);
@@ -327,7 +327,7 @@ static void test_seed_lake(void) {
         sq_rel += (ea - eb) * (ea - eb) / (0.25 * (ea + eb) * (ea + eb));
         m++;
     }
-    CHECK(m > 100);
+    CHECK_GT(m, 100);
     if (m <= 100) return;
     double mean_a = sum_a / m, mean_d = sum_d / m;
     double sd_d = sqrt(fmax(0, sq_d / m - mean_d * mean_d)), se = sd_d / sqrt((double)m);
@@ -337,7 +337,7 @@ static void test_seed_lake(void) {
     /* k = 4: at most sqrt(5)/16 = 14% a cell unfocused, two seeds sqrt(2)
        times that; focusing raises it: noise, but neither none nor garbage */
     CHECK(rms_rel > 0.01 && rms_rel < 0.6);
-    CHECK(fabs(mean_d) <= 5 * se);
+    CHECK_LE(fabs(mean_d), 5 * se);
     ref_render_free(&a);
     ref_render_free(&b);
 }
@@ -356,9 +356,9 @@ static void test_deterministic(void) {
     lake_world(&w);
     ref_render_desc d1 = lake_desc(&w, 1, 2.0), d2 = lake_desc(&w, 2, 2.0), d3 = lake_desc(&w, 3, 2.0);
     ref_render_result a, b, c;
-    CHECK(render(&d1, &a) == 0);
-    CHECK(render(&d2, &b) == 0);
-    CHECK(render(&d3, &c) == 0);
+    CHECK_EQ(render(&d1, &a), 0);
+    CHECK_EQ(render(&d2, &b), 0);
+    CHECK_EQ(render(&d3, &c), 0);
     if (!a.color || !b.color || !c.color) return;
     size_t n = (size_t)a.width * a.height;
     const ref_render_result *o[2] = { &b, &c };
@@ -374,7 +374,7 @@ static void test_deterministic(void) {
         CHECK(a.caustics.nx == o[k]->caustics.nx && a.caustics.nz == o[k]->caustics.nz);
         CHECK(SAME(a.caustics.irradiance, o[k]->caustics.irradiance,
                    (size_t)a.caustics.nx * a.caustics.nz * 3));
-        CHECK(a.caustics.stats.flux_in_grid[1] == o[k]->caustics.stats.flux_in_grid[1]);
+        CHECK_EQ(a.caustics.stats.flux_in_grid[1], o[k]->caustics.stats.flux_in_grid[1]);
     }
     CHECK(a.threads == 1 && b.threads == 2 && c.threads == 3);
     ref_render_free(&a);
@@ -390,7 +390,7 @@ static void test_lake_finite(void) {
         ref_render_desc d = lake_desc(&w, 2, times[t]);
         if (t == 2) d.spp = 2;
         ref_render_result r;
-        CHECK(render(&d, &r) == 0);
+        CHECK_EQ(render(&d, &r), 0);
         if (!r.color) return;
         int bad = 0, kinds[4] = { 0 };
         for (size_t p = 0; p < (size_t)r.width * r.height; p++) {
@@ -422,10 +422,10 @@ static void test_positions_centre_is_spp1(void) {
     dp.nsamples = 1;
     dp.samples[0][0] = dp.samples[0][1] = 0.5;
     ref_render_result a, b;
-    CHECK(render(&d1, &a) == 0);
-    CHECK(render(&dp, &b) == 0);
+    CHECK_EQ(render(&d1, &a), 0);
+    CHECK_EQ(render(&dp, &b), 0);
     size_t n = (size_t)a.width * a.height;
-    CHECK(b.nsamples == 1);
+    CHECK_EQ(b.nsamples, 1);
     CHECK(SAME(a.color, b.color, n * 3));
     CHECK(SAME(a.mask, b.mask, n));
     CHECK(SAME(a.refract_hit, b.refract_hit, n * 4));
@@ -474,10 +474,10 @@ static void test_positions_are_subpixel_rays(void) {
     }
     grid.spp = 2;
     ref_render_result r, b, g, m;
-    CHECK(render(&d, &r) == 0);
-    CHECK(render(&big, &b) == 0);
-    CHECK(render(&grid, &g) == 0);
-    CHECK(render(&mirror, &m) == 0);
+    CHECK_EQ(render(&d, &r), 0);
+    CHECK_EQ(render(&big, &b), 0);
+    CHECK_EQ(render(&grid, &g), 0);
+    CHECK_EQ(render(&mirror, &m), 0);
     double e = lattice_error(&r, &b, ROTATED4, 4);
     CHECK_MSG(e < 1e-12, "rotated 4x: worst %g off the mean of the 4x image's pixels", e);
     double em = lattice_error(&m, &b, ROTATED4, 4);
@@ -492,7 +492,7 @@ static void test_positions_are_subpixel_rays(void) {
         gp.samples[k][1] = 0.25 + 0.5 * (k / 2);
     }
     ref_render_result q;
-    CHECK(render(&gp, &q) == 0);
+    CHECK_EQ(render(&gp, &q), 0);
     CHECK(SAME(q.color, g.color, (size_t)g.width * g.height * 3));
     ref_render_free(&q);
     /* the centre ray's buffers do not depend on the subsamples */
@@ -513,7 +513,7 @@ static void test_lake_snell(void) {
     ref_render_desc d = lake_desc(&w, 2, 4.5);
     d.caustics = REF_CAUSTICS_FLAT;
     ref_render_result r;
-    CHECK(render(&d, &r) == 0);
+    CHECK_EQ(render(&d, &r), 0);
     if (!r.color) return;
     double worst_surf = 0, worst_dir = 0, worst_floor = 0;
     int n = 0, nter = 0, nobj = 0;
@@ -523,7 +523,7 @@ static void test_lake_snell(void) {
             if (r.mask[p] != REF_MASK_WATER) continue;
             const double *s = r.surface + p * 3, *h = r.refract_hit + p * 4;
             ref_waves_point wp;
-            CHECK(ref_waves_at(&w.waves, s[0], s[2], d.time, NULL, &wp) == 0);
+            CHECK_EQ(ref_waves_at(&w.waves, s[0], s[2], d.time, NULL, &wp), 0);
             worst_surf = worse(worst_surf, fabs(wp.pos[1] - s[1]));
             if (isnan(h[0])) continue;
             double dir[3], t[3], seg[3];
@@ -540,8 +540,8 @@ static void test_lake_snell(void) {
                 nter++;
             } else {   /* an object: the segment ends on its surface */
                 double to, no[3];
-                CHECK(h[3] == REF_MASK_OBJECT);
-                CHECK(ref_objects_hit(&w, s, t, 0.0, len + 1e-6, &to, no) >= 0);
+                CHECK_EQ(h[3], REF_MASK_OBJECT);
+                CHECK_GE(ref_objects_hit(&w, s, t, 0.0, len + 1e-6, &to, no), 0);
                 CHECK_NEAR(to, len, 1e-9);
                 nobj++;
             }
@@ -550,9 +550,9 @@ static void test_lake_snell(void) {
     fprintf(stderr, "  %d pixels (%d terrain, %d objects): surface %.2g, direction %.2g of the bound, on the terrain %.2g\n",
             n, nter, nobj, worst_surf, worst_dir, worst_floor);
     CHECK(n > 200 && nter > 0 && nobj > 0);
-    CHECK(worst_surf <= 1e-9);
-    CHECK(worst_dir <= 1.0);      /* in units of the bound 2e-9 / len + 1e-12 */
-    CHECK(worst_floor <= 1e-12);
+    CHECK_LE(worst_surf, 1e-9);
+    CHECK_LE(worst_dir, 1.0);      /* in units of the bound 2e-9 / len + 1e-12 */
+    CHECK_LE(worst_floor, 1e-12);
     ref_render_free(&r);
 }
 
@@ -562,7 +562,7 @@ static void test_sky_exact(void) {
     ref_render_desc d = { .world = &w, .threads = 2, .caustics = REF_CAUSTICS_FLAT };
     d.camera = (ref_camera){ { 1.0, 2.0, 13.0 }, { 0.0, 2.5, 0.0 }, { 0, 1, 0 }, 70, 40, 30 };
     ref_render_result r;
-    CHECK(render(&d, &r) == 0);
+    CHECK_EQ(render(&d, &r), 0);
     if (!r.color) return;
     int n = 0;
     for (int j = 0; j < r.height; j++)
@@ -574,12 +574,12 @@ static void test_sky_exact(void) {
             camera_ray(&d.camera, i, j, mine);
             for (int k = 0; k < 3; k++) CHECK_NEAR(dir[k], mine[k], 1e-14);
             ref_sky_radiance(&w, dir, want);
-            CHECK(memcmp(want, r.color + p * 3, sizeof want) == 0);
+            CHECK_EQ(memcmp(want, r.color + p * 3, sizeof want), 0);
             CHECK(isnan(r.fresnel[p]) && isnan(r.depth[p]) && r.reflect[p * 4 + 3] == REF_REFLECT_NONE);
             n++;
         }
     fprintf(stderr, "  %d sky pixels\n", n);
-    CHECK(n > 300);
+    CHECK_GT(n, 300);
     ref_render_free(&r);
 }
 
@@ -641,33 +641,33 @@ static void test_bad_input(void) {
     ref_render_result r;
     char err[256] = "";
     ref_render_desc d = { 0 };
-    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_EQ(ref_render(&d, &r, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "no world");
     d.world = &w;
     d.camera = (ref_camera){ { 0, 1, 0 }, { 0, 1, 0 }, { 0, 1, 0 }, 50, 8, 8 };
-    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_EQ(ref_render(&d, &r, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "eye equals");
     d.camera.center[1] = 5;
-    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_EQ(ref_render(&d, &r, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "up lies along");
     d.camera.center[2] = 1;
     d.spp = 100;
-    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
-    CHECK(r.color == NULL);
+    CHECK_EQ(ref_render(&d, &r, err, sizeof err), -1);
+    CHECK_EQ(r.color, NULL);
     /* photon grids past the memory budget: refused before any is allocated */
     d.spp = 1;
     d.nsamples = 1;
     d.samples[0][1] = 1.0;   /* a position must lie in the pixel, [0, 1) */
-    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_EQ(ref_render(&d, &r, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "outside the pixel");
     d.nsamples = REF_MAX_SAMPLES + 1;
-    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_EQ(ref_render(&d, &r, err, sizeof err), -1);
     d.nsamples = 0;
     d.caustic_res = 8192;
     d.threads = 64;
-    CHECK(ref_render(&d, &r, err, sizeof err) == -1);
+    CHECK_EQ(ref_render(&d, &r, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "a 8192 x 8192 caustic grid on 64 threads needs 99 GiB");
-    CHECK(r.color == NULL);
+    CHECK_EQ(r.color, NULL);
     ref_render_desc z = ref_render_resolve(NULL);
     CHECK(z.camera.width == 640 && z.camera.height == 360 && z.camera.fov_deg == 50);
     CHECK(z.spp == 1 && z.threads >= 1 && z.max_depth == 5 && z.t_tol == 1e-9);

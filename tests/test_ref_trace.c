@@ -150,10 +150,10 @@ static void test_flat_refraction_closed_form(void) {
             CHECK(!r.tir);
             CHECK_NEAR(r.refract_dir[0], sin(tt), 1e-12);
             CHECK_NEAR(r.refract_dir[1], cos(tt), 1e-12);
-            CHECK(r.fresnel < 1.0);
+            CHECK_LT(r.fresnel, 1.0);
         } else {
             CHECK(r.tir);
-            CHECK(r.fresnel == 1.0);
+            CHECK_EQ(r.fresnel, 1.0);
             CHECK_NEAR(r.reflect_dir[1], -cos(th), 1e-12);
         }
     }
@@ -187,7 +187,7 @@ static void test_water_vs_brute_force(void) {
         if (below) { d[0] *= 0.5; d[2] *= 0.5; double l = sqrt(d[0]*d[0]+d[1]*d[1]+d[2]*d[2]); for (int k = 0; k < 3; k++) d[k] /= l; }
         ref_water_hit hit;
         if (!ref_trace_water(&w, time, o, d, NULL, &hit)) { CHECK_MSG(0, "ray %d missed", i); continue; }
-        CHECK(hit.from_below == below);
+        CHECK_EQ(hit.from_below, below);
         evals += hit.evals;
         /* on the surface, and the parametric point maps to it */
         double P[3];
@@ -280,7 +280,7 @@ static void test_ocean_fast_path(void) {
             for (int i = 0; i < 3; i++) d[i] /= l;
             ref_water_hit a, b;
             CHECK(ref_trace_water(&w, 2.0, o, d, &op, &a) && ref_trace_water_ctx(&wc, o, d, &op, &b));
-            CHECK(memcmp(&a, &b, sizeof a) == 0);
+            CHECK_EQ(memcmp(&a, &b, sizeof a), 0);
             const recorded_hit *r = &want[g][k];
             CHECK_MSG(fabs(a.t - r->t) <= 1e-9 && fabs(a.surf.pos[1] - r->y) <= 1e-9 &&
                       fabs(a.surf.normal[0] - r->nx) <= 1e-7 && a.evals == r->evals,
@@ -464,8 +464,8 @@ static void test_photons_flat_uniform(void) {
     CHECK_MSG(maxdev <= per_cell, "worst cell off by %.4f (bound %.4f)", maxdev, per_cell);
     CHECK_NEAR(c.stats.flux_reflected + c.stats.flux_transmitted, c.stats.flux_emitted,
                1e-9 * c.stats.flux_emitted);
-    CHECK(c.stats.hit_water == c.stats.photons);
-    CHECK(c.irradiance[5 * 3 + 0] == c.irradiance[5 * 3 + 2]);      /* clear water: grey */
+    CHECK_EQ(c.stats.hit_water, c.stats.photons);
+    CHECK_EQ(c.irradiance[5 * 3 + 0], c.irradiance[5 * 3 + 2]);      /* clear water: grey */
     fprintf(stderr, "  E = %.6g: mean %.6g (rel %.2g), worst cell %.4f (bound %.4f), %ld photons\n",
             E, mean, mean / E - 1.0, maxdev, per_cell, c.stats.photons);
     ref_caustics_free(&c);
@@ -594,17 +594,17 @@ static void test_photons_errors_and_rng(void) {
     ref_caustics c;
     char err[256];
     ref_caustics_desc cd = { .waves = &w, .x0 = 1.0, .x1 = 0.0, .z1 = 1.0 };
-    CHECK(ref_caustics_trace(&cd, &c, err, sizeof err) == -1);
+    CHECK_EQ(ref_caustics_trace(&cd, &c, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "region");
     ref_caustics_desc cd2 = { .waves = &w, .x1 = 1.0, .z1 = 1.0, .sun_dir = { 1.0, -0.2, 0.0 } };
-    CHECK(ref_caustics_trace(&cd2, &c, err, sizeof err) == -1);
+    CHECK_EQ(ref_caustics_trace(&cd2, &c, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "horizon");
     ref_caustics_desc cd3 = { .x1 = 1.0, .z1 = 1.0 };
-    CHECK(ref_caustics_trace(&cd3, &c, err, sizeof err) == -1);
+    CHECK_EQ(ref_caustics_trace(&cd3, &c, err, sizeof err), -1);
     /* splitmix64: the published first outputs for seed 1234567 */
     uint64_t s = 1234567;
-    CHECK(ref_splitmix64(&s) == 6457827717110365317ULL);
-    CHECK(ref_splitmix64(&s) == 3203168211198807973ULL);
+    CHECK_EQ(ref_splitmix64(&s), 6457827717110365317ULL);
+    CHECK_EQ(ref_splitmix64(&s), 3203168211198807973ULL);
 }
 
 int main(void) {

@@ -33,20 +33,20 @@ static void test_defaults_and_errors(void) {
     double p[3];
     ref_waves_displace(&w, 3.0, -7.0, 12.0, p);
     CHECK(p[0] == 3.0 && p[1] == 0.0 && p[2] == -7.0);
-    CHECK(ref_waves_height(&w, 1.0, 2.0, 3.0) == 0.0);
+    CHECK_EQ(ref_waves_height(&w, 1.0, 2.0, 3.0), 0.0);
     ref_waves_point pt;
     ref_waves_eval(&w, 1.0, 2.0, 0.0, &pt);
     CHECK(pt.normal[0] == 0.0 && pt.normal[1] == 1.0 && pt.normal[2] == 0.0);
-    CHECK(w.height_bound == 0.0);
+    CHECK_EQ(w.height_bound, 0.0);
 
     ref_waves_desc d = ref_waves_default();
     if (init(&w, &d)) return;
     CHECK_NEAR(w.q_sum, d.steepness, 1e-15);            /* sum Q_i w_i A_i = Q */
     CHECK(w.ngerstner == d.gerstner_count && w.nsine == d.sine_count);
-    CHECK(w.noctaves == d.noise.octaves);
+    CHECK_EQ(w.noctaves, d.noise.octaves);
     /* zero speed became the deep-water phase speed */
     CHECK_NEAR(w.desc.gerstner[0].speed, sqrt(REF_GRAVITY * d.gerstner[0].wavelength / TWO_PI), 1e-15);
-    CHECK(w.world_slope_bound > w.slope_bound);
+    CHECK_GT(w.world_slope_bound, w.slope_bound);
 
     /* zero noise fields take the defaults */
     ref_waves_desc dn;
@@ -60,19 +60,19 @@ static void test_defaults_and_errors(void) {
     char err[256];
     ref_waves_desc bad = d;
     bad.sine_count = REF_WAVES_MAX + 1;
-    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_EQ(ref_waves_init(&w, &bad, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "sine_count");
     bad = d;
     bad.steepness = -0.1;
-    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_EQ(ref_waves_init(&w, &bad, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "steepness");
     bad = d;
     bad.gerstner[1].amplitude = NAN;
-    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_EQ(ref_waves_init(&w, &bad, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "Gerstner wave 1");
     bad = d;
     bad.noise.octaves = 99;
-    CHECK(ref_waves_init(&w, &bad, err, sizeof err) == -1);
+    CHECK_EQ(ref_waves_init(&w, &bad, err, sizeof err), -1);
     CHECK_STR_CONTAINS(err, "octaves");
 
     /* an inactive wave (A = 0) is skipped and not counted in N */
@@ -83,7 +83,7 @@ static void test_defaults_and_errors(void) {
     dz.gerstner[0] = (ref_wave_desc){ .angle_deg = 10, .wavelength = 4, .amplitude = 0.1 };
     dz.gerstner[1] = (ref_wave_desc){ .angle_deg = 80, .wavelength = 3, .amplitude = 0.0 };
     if (init(&w, &dz)) return;
-    CHECK(w.ngerstner == 1);
+    CHECK_EQ(w.ngerstner, 1);
     CHECK_NEAR(w.q_sum, 0.5, 1e-15);
 }
 
@@ -205,7 +205,7 @@ static void test_normals_vs_finite_differences(void) {
         double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (int k = 0; k < 3; k++) n[k] /= l;
         worst_n = fmax(worst_n, dist3(n, p.normal));
-        CHECK(p.normal[1] > 0.0);
+        CHECK_GT(p.normal[1], 0.0);
         /* Jacobian = the horizontal cross product of the differences */
         CHECK_NEAR(p.jacobian, B[0] * T[2] - B[2] * T[0], 1e-7);
         if (i < 300) {   /* convergence order with larger steps (truncation dominates) */
@@ -305,7 +305,7 @@ static void test_loop_free_up_to_q1(void) {
         double m = min_jacobian(&w);
         double bound = (1.0 - qs[k]) * (1.0 - qs[k]);
         CHECK_MSG(m >= bound - 1e-12, "Q = %g: min det %g < (1-Q)^2 = %g", qs[k], m, bound);
-        if (qs[k] < 1.0) CHECK(m > 0.0);
+        if (qs[k] < 1.0) CHECK_GT(m, 0.0);
     }
     /* parallel waves at Q = 1 touch 0 at the common crest, fold above */
     ref_waves_desc dp;
@@ -320,7 +320,7 @@ static void test_loop_free_up_to_q1(void) {
     ref_waves_point p;
     ref_waves_eval(&w, 1.0, 0.0, 0.0, &p);
     CHECK_NEAR(p.jacobian, 0.0, 1e-12);
-    CHECK(min_jacobian(&w) >= -1e-12);
+    CHECK_GE(min_jacobian(&w), -1e-12);
     /* x(u) along the wave is monotone (no loop) at Q = 1 ... */
     double prev = -INFINITY;
     int monotone = 1;
@@ -348,7 +348,7 @@ static void test_loop_free_up_to_q1(void) {
     /* the four-direction set folds too once Q is well above 1 */
     ref_waves_desc d = four_waves(1.8, 1);
     if (init(&w, &d)) return;
-    CHECK(min_jacobian(&w) < 0.0);
+    CHECK_LT(min_jacobian(&w), 0.0);
 }
 
 /* Newton at a world point recovers the parametric point: take (u, v), map
@@ -372,7 +372,7 @@ static void test_newton_inversion(void) {
             if (ref_waves_at(&w, P[0], P[2], t, NULL, &q) != 0) fails++;
             worst_uv = fmax(worst_uv, fmax(fabs(q.param[0] - u), fabs(q.param[1] - v)));
             worst_h = fmax(worst_h, fabs(q.pos[1] - P[1]));
-            CHECK(q.residual <= 1e-12 * fmax(1.0, fmax(fabs(P[0]), fabs(P[2]))));
+            CHECK_LE(q.residual, 1e-12 * fmax(1.0, fmax(fabs(P[0]), fabs(P[2]))));
             if (q.iterations > max_it) max_it = q.iterations;
         }
         CHECK_MSG(fails == 0, "Q = %g: %d failures", qs[k], fails);
@@ -400,8 +400,8 @@ static void test_newton_inversion(void) {
     ref_waves_displace(&w, 3.0, 4.0, 1.0, P);
     double guess[2] = { 3.0 + 1e-6, 4.0 - 1e-6 };
     ref_waves_point q;
-    CHECK(ref_waves_at(&w, P[0], P[2], 1.0, guess, &q) == 0);
-    CHECK(q.iterations <= 2);
+    CHECK_EQ(ref_waves_at(&w, P[0], P[2], 1.0, guess, &q), 0);
+    CHECK_LE(q.iterations, 2);
     CHECK_NEAR(ref_waves_height(&w, P[0], P[2], 1.0), P[1], 1e-12);
 }
 
@@ -433,9 +433,9 @@ static void test_noise(void) {
     }
     CHECK_MSG(worst_tile <= 1e-9, "tile mismatch %g", worst_tile);
     CHECK_MSG(worst_grad <= 1e-7, "noise gradient vs FD %g", worst_grad);
-    CHECK(maxabs <= w.height_bound);
-    CHECK(maxgrad <= w.slope_bound);
-    CHECK(maxabs > 0.05);                         /* it is not flat */
+    CHECK_LE(maxabs, w.height_bound);
+    CHECK_LE(maxgrad, w.slope_bound);
+    CHECK_GT(maxabs, 0.05);                         /* it is not flat */
     /* across a lattice line of octave 0 (u = 4.0 is a multiple of cell at
      * t = 0 since the drift moves the lattice with time) */
     double ga[2], gb[2];
@@ -449,8 +449,8 @@ static void test_noise(void) {
     d.noise.seed = 78;
     ref_waves w2;
     if (init(&w2, &d)) return;
-    CHECK(ref_waves_noise(&w, 1.234, 5.678, 0.5, NULL) == n1);
-    CHECK(fabs(ref_waves_noise(&w2, 1.234, 5.678, 0.5, NULL) - n1) > 1e-6);
+    CHECK_EQ(ref_waves_noise(&w, 1.234, 5.678, 0.5, NULL), n1);
+    CHECK_GT(fabs(ref_waves_noise(&w2, 1.234, 5.678, 0.5, NULL) - n1), 1e-6);
 }
 
 static void test_uniforms(void) {
@@ -461,7 +461,7 @@ static void test_uniforms(void) {
     ref_waves_uniform u[REF_WAVES_UNIFORMS_MAX];
     int n = ref_waves_uniforms(&w, u, REF_WAVES_UNIFORMS_MAX);
     /* 32 of the waves, ref_wavefx's 7 (rings and Perlin set), the ocean's 3 */
-    CHECK(n == 32 + 7 + 3);
+    CHECK_EQ(n, 32 + 7 + 3);
     for (int i = 0; i < n; i++)
         for (int j = i + 1; j < n; j++) CHECK(strcmp(u[i].name, u[j].name) != 0);
     int seen = 0;
@@ -469,15 +469,15 @@ static void test_uniforms(void) {
         if (!strcmp(u[i].name, "uGerstnerLength")) {
             seen++;
             CHECK(u[i].count == REF_WAVES_MAX && !u[i].is_int);
-            CHECK(u[i].v[1] == (float)d.gerstner[1].wavelength);
+            CHECK_EQ(u[i].v[1], (float)d.gerstner[1].wavelength);
         }
         if (!strcmp(u[i].name, "uGerstnerSpeed")) {
             seen++;
-            CHECK(u[i].v[0] == (float)sqrt(REF_GRAVITY * d.gerstner[0].wavelength / TWO_PI));
+            CHECK_EQ(u[i].v[0], (float)sqrt(REF_GRAVITY * d.gerstner[0].wavelength / TWO_PI));
         }
         if (!strcmp(u[i].name, "uSineCount")) { seen++; CHECK(u[i].is_int && u[i].i == d.sine_count); }
         if (!strcmp(u[i].name, "uNoiseSeed")) { seen++; CHECK(u[i].is_int && (uint32_t)u[i].i == 0xdeadbeefU); }
-        if (!strcmp(u[i].name, "uSteepness")) { seen++; CHECK(u[i].v[0] == (float)d.steepness); }
+        if (!strcmp(u[i].name, "uSteepness")) { seen++; CHECK_EQ(u[i].v[0], (float)d.steepness); }
         if (!strcmp(u[i].name, "uWaveGerst")) {   /* (k D.x, k D.z, omega, phase) of the second */
             seen++;
             double k = TWO_PI / d.gerstner[1].wavelength, a = d.gerstner[1].angle_deg * TWO_PI / 360.0;
@@ -486,21 +486,21 @@ static void test_uniforms(void) {
             CHECK_NEAR(u[i].v[4], k * cos(a), 1e-5);
             CHECK_NEAR(u[i].v[5], k * sin(a), 1e-5);
             CHECK_NEAR(u[i].v[6], omega, 1e-5);
-            CHECK(u[i].v[7] == (float)d.gerstner[1].phase);
+            CHECK_EQ(u[i].v[7], (float)d.gerstner[1].phase);
         }
         if (!strcmp(u[i].name, "uWaveGerstAmp")) {   /* (A, Q_i A_i D.x, Q_i A_i D.z), Q_i A_i = Q / (k N) */
             seen++;
             double k = TWO_PI / d.gerstner[0].wavelength, a = d.gerstner[0].angle_deg * TWO_PI / 360.0;
             double qa = d.steepness / (k * w.ngerstner);
-            CHECK(u[i].comps == 3);
-            CHECK(u[i].v[0] == (float)d.gerstner[0].amplitude);
+            CHECK_EQ(u[i].comps, 3);
+            CHECK_EQ(u[i].v[0], (float)d.gerstner[0].amplitude);
             CHECK_NEAR(u[i].v[1], qa * cos(a), 1e-6);
             CHECK_NEAR(u[i].v[2], qa * sin(a), 1e-6);
         }
         if (!strcmp(u[i].name, "uWaveNoiseSeed")) { seen++; CHECK(u[i].is_uint && u[i].u[0] == w.octave[0].seed); }
     }
-    CHECK(seen == 8);
-    CHECK(ref_waves_uniforms(&w, u, 3) == 3);
+    CHECK_EQ(seen, 8);
+    CHECK_EQ(ref_waves_uniforms(&w, u, 3), 3);
 }
 
 /* A gentle spectrum ocean (lambda 1, not folding at t) through the wave
@@ -522,18 +522,18 @@ static void test_ocean(void) {
     d.steepness = 0.2;
     ref_waves w;
     if (init(&w, &d)) return;
-    CHECK(w.ocean != NULL);
+    CHECK_NE(w.ocean, NULL);
     double t = 1.25, hb, sb, wsb;
     ref_waves_bounds_at(&w, t, &hb, &sb, &wsb);
     CHECK_MSG(isfinite(wsb) && hb <= w.height_bound && sb <= w.slope_bound, "bounds %g %g %g", hb, sb, wsb);
-    CHECK(w.min_wavelength <= 2 * 8.0 / 64);
+    CHECK_LE(w.min_wavelength, 2 * 8.0 / 64);
     uint64_t st = 7;
     double worst_r = 0, worst_h = 0;
     for (int i = 0; i < 300; i++) {
         double x = 200 * lcg01(&st) - 100, z = 200 * lcg01(&st) - 100;
         ref_waves_point p;
         int rc = ref_waves_at(&w, x, z, t, NULL, &p);
-        CHECK(rc == 0);
+        CHECK_EQ(rc, 0);
         worst_r = fmax(worst_r, p.residual / fmax(1, fmax(fabs(x), fabs(z))));
         /* the rest point's own fields: Gerstner plus ocean, written out */
         ref_ocean_sample s;
@@ -545,7 +545,7 @@ static void test_ocean(void) {
         double py = d.level + g->amp * sin(th) + s.h;
         CHECK(fabs(px - x) <= 1e-11 * fmax(1, fabs(x)) && fabs(pz - z) <= 1e-11 * fmax(1, fabs(z)));
         worst_h = fmax(worst_h, fabs(ref_waves_height(&w, x, z, t) - py));
-        CHECK(fabs(p.pos[1] - py) < 1e-14 * 10);
+        CHECK_LT(fabs(p.pos[1] - py), 1e-14 * 10);
     }
     /* a residual of 1e-12 moves the height by at most slope / (1 - fold) times it */
     CHECK_MSG(worst_r <= 1e-12, "residual %g", worst_r);
@@ -571,7 +571,7 @@ static void test_ocean(void) {
         double n[3] = { T[1] * B[2] - T[2] * B[1], T[2] * B[0] - T[0] * B[2], T[0] * B[1] - T[1] * B[0] };
         double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (int k = 0; k < 3; k++) CHECK_MSG(fabs(n[k] / l - p.normal[k]) < 1e-7, "normal %d: %g vs %g", k, n[k] / l, p.normal[k]);
-        CHECK(p.jacobian > 0);
+        CHECK_GT(p.jacobian, 0);
     }
     ref_waves_uniform un[REF_WAVES_UNIFORMS_MAX];
     int nu = ref_waves_uniforms(&w, un, REF_WAVES_UNIFORMS_MAX), seen = 0;
@@ -583,7 +583,7 @@ static void test_ocean(void) {
             CHECK(!un[i].is_int && un[i].count == REF_OCEAN_CASCADES_MAX && un[i].v[0] == 64 && un[i].v[1] == 8 && un[i].v[2] == 0);
         }
     }
-    CHECK(seen == 3);
+    CHECK_EQ(seen, 3);
     ref_waves_release(&w);
     ref_waves_release(&w);                 /* twice: safe */
     ref_waves zero;
@@ -646,7 +646,7 @@ static void test_ctx_fast_path(void) {
      * rest points then differ by at most twice that / (1 - fold) */
     CHECK_MSG(worst_uv < 1e-9 && worst_h < 1e-9, "rest points %g m, heights %g m apart", worst_uv, worst_h);
     ref_waves_ctx_end(&c);
-    CHECK(c.ocean == NULL);
+    CHECK_EQ(c.ocean, NULL);
     ref_waves_release(&w);
 
     /* without an ocean a context holds nothing and changes nothing */
@@ -654,7 +654,7 @@ static void test_ctx_fast_path(void) {
     if (init(&w, &lake)) return;
     ref_waves_ctx_begin(&c, &w, 3.0);
     CHECK(c.ocean == NULL && c.world_slope == w.world_slope_bound);
-    CHECK(ref_waves_ctx_height(&c, 1.5, -2.25) == ref_waves_height(&w, 1.5, -2.25, 3.0));
+    CHECK_EQ(ref_waves_ctx_height(&c, 1.5, -2.25), ref_waves_height(&w, 1.5, -2.25, 3.0));
     ref_waves_ctx_end(&c);
     ref_waves_release(&w);
 }
@@ -689,7 +689,7 @@ static void test_world_slope_regions(void) {
                 double x0 = 100 * lcg01(&st) - 50, z0 = 100 * lcg01(&st) - 50;
                 double reach = 0.02 * pow(250.0, (r % 6) / 5.0);   /* 2 cm .. 5 m */
                 double uv[2], h0;
-                CHECK(ref_waves_ctx_rest_point(&c, x0, z0, NULL, uv, &h0) == 0);
+                CHECK_EQ(ref_waves_ctx_rest_point(&c, x0, z0, NULL, uv, &h0), 0);
                 double bn = ref_waves_ctx_world_slope_near(&c, x0, z0, uv, reach);
                 double bb = ref_waves_ctx_world_slope_box(&c, x0 - reach, z0 - reach, x0 + reach, z0 + reach);
                 CHECK(bn <= bb && bb <= c.world_slope);
@@ -747,7 +747,7 @@ static void test_ocean_folding(void) {
         folds += p.jacobian < 0;
         double h = ref_waves_height(&w, x, z, t), uv[2], h2;
         int rc = ref_waves_rest_point(&w, x, z, t, NULL, uv, &h2);
-        if (isnan(h)) { nan++; CHECK(rc == -1); }
+        if (isnan(h)) { nan++; CHECK_EQ(rc, -1); }
         else CHECK(rc == 0 && isfinite(h) && h == h2);
     }
     CHECK_MSG(folds > 0, "no fold at this setting");

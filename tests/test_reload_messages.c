@@ -220,7 +220,7 @@ static void test_flat_picture_names_unset_uniforms(void) {
     fprintf(stderr, "%s", m);
     CHECK_STR_CONTAINS(m, "flat.glib:6: warning: the picture is one flat colour, and program 'Glow' uses 2 uniforms "
                           "that the glib gives no value, so they stay 0: uBright, uTint; give each a value");
-    CHECK(count_of(draw_once(r), "flat colour") == 1);   /* once a load */
+    CHECK_EQ(count_of(draw_once(r), "flat colour"), 1);   /* once a load */
     /* each given: no word */
     snprintf(text, sizeof text, glib, "Define GRADIENT 0.0", " uBright <0. 1. 2.> uTint {1. 1. 1.}");
     scratch_write("flat.glib", text);

@@ -99,7 +99,7 @@ static void test_file_reads_are_whole_saves(void) {
     }
     stop_writer(w);
     fprintf(stderr, "  %d reads, %d torn\n", reads, torn);
-    CHECK(reads >= 20);
+    CHECK_GE(reads, 20);
     CHECK_MSG(torn == 0, "%d of %d reads saw a text no save had", torn, reads);
 }
 
@@ -120,7 +120,7 @@ static void test_stage_assembly_reads_whole_saves(void) {
     }
     stop_writer(w);
     fprintf(stderr, "  %d loads, %d incomplete\n", loads, bad);
-    CHECK(loads >= 20);
+    CHECK_GE(loads, 20);
     CHECK_MSG(bad == 0, "%d of %d stage loads were not a whole save", bad, loads);
 }
 
@@ -145,7 +145,7 @@ static void test_reloads_in_a_burst_report_no_error(void) {
     }
     stop_writer(w);
     fprintf(stderr, "  %d reloads, %d reported something\n", loads, failed);
-    CHECK(loads >= 10);
+    CHECK_GE(loads, 10);
     CHECK_MSG(failed == 0, "%d of %d reloads reported an error no save had", failed, loads);
     render_destroy(r);
 }

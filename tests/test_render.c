@@ -358,7 +358,7 @@ static void test_cube_map_faces(void) {
     int n;
     unif_set *sets = render_uniforms(r, &n);
     unif_entry *dir_e = n ? unif_find(&sets[0], "uDir") : NULL;
-    CHECK(dir_e != NULL);
+    CHECK_NE(dir_e, NULL);
     for (int f = 0; dir_e && f < 6; f++) {
         float d[3] = {0, 0, 0};
         d[f / 2] = (f % 2) ? -1.0f : 1.0f;
@@ -414,14 +414,14 @@ static void test_save_is_seen_and_reloaded(void) {
     char tmp[512];
     snprintf(tmp, sizeof tmp, "%s", scratch_path("live.frag.tmp"));
     double t0 = now_ms();
-    CHECK(rename(tmp, scratch_path("live.frag")) == 0);
+    CHECK_EQ(rename(tmp, scratch_path("live.frag")), 0);
     int changed = watch_poll(w, 2000);
-    CHECK(changed == 1);
+    CHECK_EQ(changed, 1);
     CHECK(render_load(r, NULL));
     draw(r, 0);
     fprintf(stderr, "  save to new image: %.1f ms\n", now_ms() - t0);
     CHECK_RGB(at(32, 32), 0, 1, 1);
-    CHECK(watch_poll(w, 300) == 0);   /* one save, one reload */
+    CHECK_EQ(watch_poll(w, 300), 0);   /* one save, one reload */
     watch_destroy(w);
     render_destroy(r);
 }
@@ -434,12 +434,12 @@ static void test_no_gl_errors(void) {
     const char (*names)[GPU_TIMER_NAME];
     const double *ms;
     int n = render_pass_times(r, true, &names, &ms);
-    CHECK(n == 3);
+    CHECK_EQ(n, 3);
     if (n == 3) {
-        CHECK(strcmp(names[0], "screen") == 0);
+        CHECK_STR_EQ(names[0], "screen");
         CHECK_MSG(strcmp(names[1], "pass:4 6") == 0, "%s", names[1]);
         CHECK_MSG(strcmp(names[2], "screen:11") == 0, "%s", names[2]);
-        for (int i = 0; i < n; i++) CHECK(ms[i] >= 0);
+        for (int i = 0; i < n; i++) CHECK_GE(ms[i], 0);
     }
     GLenum e = glGetError();
     CHECK_MSG(e == GL_NO_ERROR, "GL error 0x%x", e);

@@ -73,7 +73,7 @@ static void test_same_pixels_as_bench(void) {
     render *r = render_create(&(render_desc){ .repo_root = TARN_SOURCE_DIR, .pack = "natural" });
     CHECK_MSG(render_load(r, LAKE), "%s", render_messages(r));
     unif_entry *att = gl_test_uniform(r, "NaturalWater", "uAttenuation");
-    CHECK(att != NULL);
+    CHECK_NE(att, NULL);
     if (!att) { render_destroy(r); return; }
     float def = att->def[0];
     unif_set_component(att, 0, def + 0.7f);

@@ -36,9 +36,9 @@ static void test_converges_to_the_budget(void) {
     uint64_t key = 0;
     double s = run_moving(&rb, 15, 249, 40, &t, &key, &last);
     double ms = model_ms(15, 249, s, 960, 540);
-    CHECK(s < 1.0);
-    CHECK(ms <= 50 + 1e-9);   /* within the budget: it aims below it by the dead band */
-    CHECK(ms >= 50 / (1 + RES_BUDGET_DEADBAND) * (1 - RES_BUDGET_DEADBAND) - 2);   /* and not needlessly small */
+    CHECK_LT(s, 1.0);
+    CHECK_LE(ms, 50 + 1e-9);   /* within the budget: it aims below it by the dead band */
+    CHECK_GE(ms, 50 / (1 + RES_BUDGET_DEADBAND) * (1 - RES_BUDGET_DEADBAND) - 2);   /* and not needlessly small */
     /* 40 more frames: it stays (no hunting) */
     double s2 = run_moving(&rb, 15, 249, 40, &t, &key, &last);
     CHECK_NEAR(s2, s, 0.05);
@@ -74,23 +74,23 @@ static void test_still_picture_returns_to_full(void) {
     double t = 0, last = 0, s;
     uint64_t key = 0;
     double moving = run_moving(&rb, 15, 249, 20, &t, &key, &last);
-    CHECK(moving < 1.0);
+    CHECK_LT(moving, 1.0);
     t += 0.01;
     CHECK(!res_budget_plan(&rb, key, t, last, false, &s));   /* settling: keep the reduced frame */
     CHECK_NEAR(s, moving, 1e-12);
     t += RES_BUDGET_SETTLE_S;
     CHECK(res_budget_plan(&rb, key, t, 5, false, &s));
-    CHECK(s == 1.0);
+    CHECK_EQ(s, 1.0);
     last = model_ms(15, 249, 1.0, 960, 540);
     for (int i = 0; i < 10; i++) {
         t += 0.005;
         CHECK(!res_budget_plan(&rb, key, t, i == 0 ? last : 5, false, &s));
-        CHECK(s == 1.0);
+        CHECK_EQ(s, 1.0);
     }
     CHECK(res_budget_plan(&rb, key + 1, t, 5, false, &s));
     CHECK(s < 1.0 && s >= RES_BUDGET_FLOOR);
     /* one step from the full frame's time: the fixed cost leaves it a little over */
-    CHECK(model_ms(15, 249, s, 960, 540) <= 50 * 1.3);
+    CHECK_LE(model_ms(15, 249, s, 960, 540), 50 * 1.3);
 }
 
 /* A screenshot (force_full) of a moving picture is drawn at full size; with
@@ -102,12 +102,12 @@ static void test_force_full_and_off(void) {
     uint64_t key = 0;
     run_moving(&rb, 15, 249, 20, &t, &key, &last);
     CHECK(res_budget_plan(&rb, ++key, t, last, true, &s));
-    CHECK(s == 1.0);
+    CHECK_EQ(s, 1.0);
     CHECK(!res_budget_plan(&rb, key, t + 0.001, 500, true, &s));   /* drawn already */
     res_budget_init(&rb, 0);
     for (int i = 0; i < 5; i++) {
         CHECK(res_budget_plan(&rb, ++key, t, 500, false, &s));
-        CHECK(s == 1.0);
+        CHECK_EQ(s, 1.0);
     }
     CHECK(!res_budget_plan(&rb, key, t, 500, false, &s));
 }
@@ -150,19 +150,41 @@ static void test_first_frame_at_a_size_is_not_a_measure(void) {
         t += last / 1e3;
     }
     CHECK_MSG(changes <= 1, "%d new sizes in the last 60 frames, want at most 1", changes);
-    CHECK(model_ms(10, 100, s, 960, 540) <= 50 + 1e-9);
+    CHECK_LE(model_ms(10, 100, s, 960, 540), 50 + 1e-9);
     CHECK_MSG(model_ms(10, 100, s, 960, 540) >= 50 / (1 + RES_BUDGET_DEADBAND) * (1 - RES_BUDGET_DEADBAND) - 2 || s == 1.0,
               "settled at %.3f of a side, %.1f ms a frame", s, model_ms(10, 100, s, 960, 540));
+}
+
+/* One slow frame (the machine's noise) keeps the size; two in a row over
+ * the aim shrink it; one quick one does not grow it. */
+static void test_one_frame_is_noise(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0;
+    uint64_t key = 0;
+    double s = run_moving(&rb, 15, 249, 40, &t, &key, &last), s1;
+    double steady = model_ms(15, 249, s, 960, 540);
+    CHECK(res_budget_plan(&rb, ++key, t, 1.4 * steady, false, &s1));   /* one slow frame */
+    CHECK(res_budget_plan(&rb, ++key, t, steady, false, &s1));
+    CHECK(res_budget_plan(&rb, ++key, t, steady, false, &s1));
+    CHECK_EQ(s1, s);
+    CHECK(res_budget_plan(&rb, ++key, t, 0.5 * steady, false, &s1));   /* one quick frame */
+    CHECK(res_budget_plan(&rb, ++key, t, steady, false, &s1));
+    CHECK(res_budget_plan(&rb, ++key, t, steady, false, &s1));
+    CHECK_EQ(s1, s);
+    CHECK(res_budget_plan(&rb, ++key, t, 1.4 * steady, false, &s1));   /* two: the scene got heavier */
+    CHECK(res_budget_plan(&rb, ++key, t, 1.4 * steady, false, &s1));
+    CHECK_LT(s1, s);
 }
 
 static void test_key_changes_with_any_byte(void) {
     float a[3] = { 1, 2, 3 }, b[3] = { 1, 2, 3.0001f };
     uint64_t ka = hash_fnv1a(HASH_FNV1A_BASIS, a, sizeof a);
-    CHECK(ka == hash_fnv1a(HASH_FNV1A_BASIS, a, sizeof a));
-    CHECK(ka != hash_fnv1a(HASH_FNV1A_BASIS, b, sizeof b));
+    CHECK_EQ(ka, hash_fnv1a(HASH_FNV1A_BASIS, a, sizeof a));
+    CHECK_NE(ka, hash_fnv1a(HASH_FNV1A_BASIS, b, sizeof b));
     /* FNV-1a's published vectors (64-bit): "" and "a" */
-    CHECK(hash_fnv1a(HASH_FNV1A_BASIS, "", 0) == 0xcbf29ce484222325ull);
-    CHECK(hash_fnv1a(HASH_FNV1A_BASIS, "a", 1) == 0xaf63dc4c8601ec8cull);
+    CHECK_EQ(hash_fnv1a(HASH_FNV1A_BASIS, "", 0), 0xcbf29ce484222325ull);
+    CHECK_EQ(hash_fnv1a(HASH_FNV1A_BASIS, "a", 1), 0xaf63dc4c8601ec8cull);
     int iw, ih;
     res_budget_size(0.5, 961, 541, &iw, &ih);
     CHECK(iw == 481 && ih == 271);
@@ -184,6 +206,7 @@ int main(void) {
     RUN(test_force_full_and_off);
     RUN(test_noise_stays_bounded);
     RUN(test_first_frame_at_a_size_is_not_a_measure);
+    RUN(test_one_frame_is_noise);
     RUN(test_key_changes_with_any_byte);
     return check_summary();
 }

@@ -63,7 +63,7 @@ static void test_each_command(void) {
     CHECK(d.sky_horizon[0] == 0.4 && d.sky_horizon[1] == 0.5 && d.sky_horizon[2] == 0.6);
     CHECK(d.water_level == 0.25 && d.waves.level == 0.25 && d.ior == 1.5);
     CHECK(d.absorption[0] == 0.7 && d.absorption[1] == 0.8 && d.absorption[2] == 0.9);
-    CHECK(d.water_mesh_res == 100);
+    CHECK_EQ(d.water_mesh_res, 100);
     CHECK(d.terrain == REF_TERRAIN_SLOPE && d.half_size == 20 && d.depth == 4 &&
           d.slope == -0.5 && d.shore_height == 0 && d.seed == 42 && d.terrain_res == 512);
     const ref_waves_desc *w = &d.waves;
@@ -75,11 +75,11 @@ static void test_each_command(void) {
           w->gerstner[0].amplitude == 0.1);
     CHECK(w->gerstner[1].angle_deg == -15 && w->gerstner[1].speed == 1.25 &&
           w->gerstner[1].phase == 1);
-    CHECK(w->steepness == 0.6);
+    CHECK_EQ(w->steepness, 0.6);
     CHECK(w->noise.amplitude == 0.01 && w->noise.cell == 2 && w->noise.octaves == 3 &&
           w->noise.speed == 0.7 && w->noise.angle_deg == 30 && w->noise.seed == 9 &&
           w->noise.period == 32 && w->noise.gain == 0.45);
-    CHECK(d.nobjects == 3);
+    CHECK_EQ(d.nobjects, 3);
     const ref_object *o = d.objects;
     CHECK(o[0].kind == REF_OBJECT_SPHERE && o[0].center[0] == 1 && o[0].center[1] == 2 &&
           o[0].center[2] == 3 && o[0].size[0] == 0.5 && o[0].albedo[0] == 0.1 &&
@@ -125,8 +125,8 @@ static void test_defaults(void) {
         CHECK(w.d.absorption[k] == def.d.absorption[k] && w.d.absorption[k] > 0);
     }
     CHECK(w.d.ior == def.d.ior && w.d.ior > 1);
-    CHECK(w.d.water_mesh_res == def.d.water_mesh_res);
-    CHECK(w.d.sun_dir[1] == 1);
+    CHECK_EQ(w.d.water_mesh_res, def.d.water_mesh_res);
+    CHECK_EQ(w.d.sun_dir[1], 1);
     CHECK(w.waves.desc.level == 0.5 && w.waves.noctaves == REF_NOISE_DEFAULT_OCTAVES);
 
     /* Pack says the glib has a world; the drawing commands do not (a pack
@@ -188,12 +188,12 @@ static void test_repairs(void) {
     CHECK_STR_CONTAINS(err, "mem.glib:14: warning: Sun: the irradiance -1 1 1 has a negative part; using 0 1 1");
 
     CHECK(d.ior == 0 && d.absorption[0] == 0 && d.absorption[1] == 0.1);
-    CHECK(d.water_mesh_res == 8);
+    CHECK_EQ(d.water_mesh_res, 8);
     CHECK(d.terrain == REF_TERRAIN_SLOPE && d.half_size == 10 && d.slope == 0);   /* the last Terrain wins */
     CHECK(d.waves.sine_count == 1 && d.waves.sine[0].wavelength == 2);
     CHECK(d.waves.gerstner_count == 1 && d.waves.gerstner[0].amplitude == 0.2);
     CHECK_NEAR(d.waves.gerstner[0].phase, 0.5 + PI, 1e-15);
-    CHECK(d.waves.steepness == 1);
+    CHECK_EQ(d.waves.steepness, 1);
     CHECK(d.waves.noise.amplitude == 0.1 && d.waves.noise.cell == 0 && d.waves.noise.octaves == 8 &&
           d.waves.noise.period == 0 && d.waves.noise.gain == 0);
     CHECK(d.nobjects == 1 && d.objects[0].size[0] == 1 && d.objects[0].albedo[0] == 1 &&
@@ -223,7 +223,7 @@ static void test_repairs(void) {
     ref_world w;
     ref_world_init(&w, &d);
     CHECK(w.d.ior > 1 && w.waves.nsine == 1 && w.waves.ngerstner == 1);
-    CHECK(w.waves.noctaves == 8);
+    CHECK_EQ(w.waves.noctaves, 8);
 }
 
 static void test_limits(void) {
@@ -244,7 +244,7 @@ static void test_limits(void) {
     CHECK_STR_CONTAINS(err, "mem.glib:18: warning: WaveSine: more than 8 waves of this kind; this one is dropped");
     CHECK_STR_CONTAINS(err, "mem.glib:19: warning: WaveGerstner: more than 8 waves");
     CHECK_STR_CONTAINS(err, "mem.glib:52: warning: Object: more than 32 objects; this one and the ones after it are dropped");
-    CHECK(strstr(err, "mem.glib:53:") == NULL);     /* said once */
+    CHECK_EQ(strstr(err, "mem.glib:53:"), NULL);     /* said once */
 
     /* a message that does not fit is cut with "..." and never overflows */
     char small[40];
@@ -303,12 +303,12 @@ static void test_lake_matches_reference(void) {
     }
     CHECK_NEAR(x->water_level, y->water_level, tol);
     CHECK_NEAR(x->ior, y->ior, tol);
-    CHECK(x->water_mesh_res == y->water_mesh_res);
+    CHECK_EQ(x->water_mesh_res, y->water_mesh_res);
     CHECK(x->terrain == y->terrain && x->seed == y->seed && x->terrain_res == y->terrain_res);
     CHECK_NEAR(x->half_size, y->half_size, tol);
     CHECK_NEAR(x->depth, y->depth, tol);
     CHECK_NEAR(x->shore_height, y->shore_height, tol);
-    CHECK(x->nobjects == y->nobjects);
+    CHECK_EQ(x->nobjects, y->nobjects);
     for (int i = 0; i < x->nobjects && i < y->nobjects; i++) {
         CHECK_MSG(x->objects[i].kind == y->objects[i].kind, "object %d", i);
         for (int k = 0; k < 3; k++) {
@@ -434,13 +434,13 @@ static void test_program_stages(void) {
             CHECK_STR_CONTAINS(program_stage_path(&st, SHADER_VERTEX), "a.vert");
         } else {
             CHECK(n == 2 && list[0] == SHADER_GEOMETRY && list[1] == SHADER_FRAGMENT && st.gstap);
-            CHECK(program_stage_path(&st, SHADER_VERTEX)[0] == '\0');
+            CHECK_EQ(program_stage_path(&st, SHADER_VERTEX)[0], '\0');
             shader_src_desc d = program_stage_desc(&st, SHADER_GEOMETRY, NULL, 0, NULL, 0);
             CHECK(d.gstap && d.stage == SHADER_GEOMETRY && strstr(d.path, "g.geom"));
         }
     }
-    CHECK(seen == 2);
-    CHECK(program_stage_of(GLIB_CMD_PROGRAM) == SHADER_STAGE_COUNT);
+    CHECK_EQ(seen, 2);
+    CHECK_EQ(program_stage_of(GLIB_CMD_PROGRAM), SHADER_STAGE_COUNT);
     glib_free(g);
 }
 
@@ -461,8 +461,8 @@ static void test_program_gs_input(void) {
                   (int)program_gs_input(g, &g->cmds[i]));
         k++;
     }
-    CHECK(k == 5);
-    CHECK(program_gs_input(NULL, NULL) == SHADER_GS_IN_TRIANGLES);
+    CHECK_EQ(k, 5);
+    CHECK_EQ(program_gs_input(NULL, NULL), SHADER_GS_IN_TRIANGLES);
     glib_free(g);
 }
 
@@ -485,7 +485,7 @@ static void test_wave_models(void) {
     CHECK(o->spectrum == REF_SPECTRUM_JONSWAP && o->wind_speed == 9 && o->wind_angle_deg == -80);
     CHECK(o->choppiness == 1.0 && o->res == 0 && o->fetch == 0 && o->depth == 0);
     CHECK(o->cascades == 3 && o->tile[0] == 160 && o->tile[1] == 37 && o->tile[2] == 5.3);   /* tiles first: kept */
-    CHECK(d.waves.explosion_count == 1);
+    CHECK_EQ(d.waves.explosion_count, 1);
     const ref_explosion_desc *e = &d.waves.explosion[0];
     CHECK(e->center[0] == 6 && e->center[1] == -4 && e->start == 1.0 && e->i0 == 0.25 && e->omega == 0 &&
           e->k == 3.0 && e->decay == 0.4);
@@ -519,7 +519,7 @@ static void test_wave_models(void) {
     CHECK(d.waves.ocean.spectrum == REF_SPECTRUM_TMA && d.waves.ocean.wind_speed == 5 &&
           d.waves.ocean.choppiness == 1 && d.waves.ocean.res == 128 && d.waves.ocean.depth == 20);
     CHECK(d.waves.ocean.cascades == 2 && d.waves.ocean.tile[0] == 40 && d.waves.ocean.tile[1] == 5);
-    CHECK(d.waves.explosion_count == 0);
+    CHECK_EQ(d.waves.explosion_count, 0);
     CHECK(d.waves.perlin.amplitude == 0.1 && d.waves.perlin.octaves == 8 && d.waves.perlin.stretch == 0);
 }
 

@@ -39,19 +39,19 @@ static void test_parses_header_and_every_kind(void) {
     session s = {0};
     diag_list dl = {0};
     CHECK(session_parse(&s, good, "s.session", &dl));
-    CHECK(dl.n == 0);
-    CHECK(strcmp(s.scene, "/abs/pond.glib") == 0);
-    CHECK(strcmp(s.pack, "natural") == 0);
+    CHECK_EQ(dl.n, 0);
+    CHECK_STR_EQ(s.scene, "/abs/pond.glib");
+    CHECK_STR_EQ(s.pack, "natural");
     CHECK(s.width == 640 && s.height == 360);
     CHECK_NEAR(s.time_s, 2.5, 0);
-    CHECK(s.n == 10);
+    CHECK_EQ(s.n, 10);
     session_kind kinds[] = { SESSION_CAMERA, SESSION_SLIDER, SESSION_COLOUR, SESSION_CHECKBOX, SESSION_DEFINE,
                              SESSION_DRAG, SESSION_PAUSE, SESSION_PACK, SESSION_SETTING, SESSION_END };
-    for (int i = 0; i < 10 && i < s.n; i++) CHECK(s.events[i].kind == kinds[i]);
+    for (int i = 0; i < 10 && i < s.n; i++) CHECK_EQ(s.events[i].kind, kinds[i]);
     CHECK(s.n < 9 || strcmp(s.events[8].args, "paper") == 0);
     CHECK_NEAR(s.events[1].t, 1.25, 0);
-    CHECK(s.events[1].line == 8);
-    CHECK(strcmp(s.events[1].args, "Water uWaveAmp 0.4") == 0);
+    CHECK_EQ(s.events[1].line, 8);
+    CHECK_STR_EQ(s.events[1].args, "Water uWaveAmp 0.4");
     CHECK_NEAR(session_duration(&s), 5.5, 0);
     session_free(&s);
     diag_list_free(&dl);
@@ -62,7 +62,7 @@ static void test_relative_scene_is_beside_the_file(void) {
     session s = {0};
     diag_list dl = {0};
     CHECK(session_parse(&s, "tarn-session 1\nscene pond.glib\n", "dir/sub/s.session", &dl));
-    CHECK(strcmp(s.scene, "dir/sub/pond.glib") == 0);
+    CHECK_STR_EQ(s.scene, "dir/sub/pond.glib");
     CHECK(s.n == 0 && session_duration(&s) == 0);
     session_free(&s);
     diag_list_free(&dl);
@@ -99,8 +99,8 @@ static void test_bad_lines_are_diags_at_their_line(void) {
     CHECK(has_diag(&dl, 12, "unknown line"));
     CHECK(has_diag(&dl, 13, "distance > 0"));
     CHECK(has_diag(&dl, 14, "setting wants a setting's name"));
-    CHECK(dl.nerrors == 11);
-    CHECK(s.n == 2);
+    CHECK_EQ(dl.nerrors, 11);
+    CHECK_EQ(s.n, 2);
     CHECK(s.n == 2 && s.events[0].line == 4 && s.events[1].kind == SESSION_END);
     session_free(&s);
     diag_list_free(&dl);
@@ -114,9 +114,9 @@ static void test_not_a_session_stops_at_line_one(void) {
         session s = {0};
         diag_list dl = {0};
         CHECK(!session_parse(&s, texts[i], "s.session", &dl));
-        CHECK(dl.n == 1);
+        CHECK_EQ(dl.n, 1);
         CHECK_STR_CONTAINS(dl.n ? dl.d[0].text : "", why[i]);
-        if (i < 4) CHECK(s.n == 0);
+        if (i < 4) CHECK_EQ(s.n, 0);
         session_free(&s);
         diag_list_free(&dl);
     }
@@ -144,7 +144,7 @@ static void test_any_bytes_never_crash(void) {
         session s = {0};
         diag_list dl = {0};
         session_parse(&s, buf, "s.session", &dl);
-        for (int i = 1; i < s.n; i++) CHECK(s.events[i].t >= s.events[i - 1].t);
+        for (int i = 1; i < s.n; i++) CHECK_GE(s.events[i].t, s.events[i - 1].t);
         session_free(&s);
         diag_list_free(&dl);
     }
@@ -201,7 +201,7 @@ static void test_recorder_writes_what_changed(void) {
     char err[512];
     const char *path = scratch_path("r.session");
     session_rec *rec = session_rec_start(path, &h, &set, 1, &cam, false, 100.0, err, sizeof err);
-    CHECK(rec != NULL);
+    CHECK_NE(rec, NULL);
     if (!rec) return;
     session_rec_frame(rec, &set, 1, &cam, false, 100.5);       /* nothing changed */
     entries[0].value[0] = 0.123456789f;
@@ -216,7 +216,7 @@ static void test_recorder_writes_what_changed(void) {
     session_rec_setting(rec, "paper", 102.75);
     int n = 0;
     CHECK(session_rec_stop(rec, 103.0, &n, err, sizeof err));
-    CHECK(n == 10);
+    CHECK_EQ(n, 10);
 
     session s = {0};
     diag_list dl = {0};
@@ -237,16 +237,16 @@ static void test_recorder_writes_what_changed(void) {
         { 2.75, SESSION_SETTING, "paper" },
         { 3, SESSION_END, "" },
     };
-    CHECK(s.n == 11);
+    CHECK_EQ(s.n, 11);
     for (int i = 0; i < 11 && i < s.n; i++) {
         CHECK_NEAR(s.events[i].t, want[i].t, 1e-9);
-        CHECK(s.events[i].kind == want[i].k);
+        CHECK_EQ(s.events[i].kind, want[i].k);
         CHECK_MSG(strcmp(s.events[i].args, want[i].args) == 0, "event %d: '%s'", i, s.events[i].args);
     }
-    CHECK((float)strtod("0.123456791", NULL) == 0.123456789f);   /* %.9g gives the float back */
+    CHECK_EQ((float)strtod("0.123456791", NULL), 0.123456789f);   /* %.9g gives the float back */
     session_free(&s);
     diag_list_free(&dl);
-    CHECK(session_rec_start("/nonexistent/dir/r.session", &h, &set, 1, &cam, false, 0, err, sizeof err) == NULL);
+    CHECK_EQ(session_rec_start("/nonexistent/dir/r.session", &h, &set, 1, &cam, false, 0, err, sizeof err), NULL);
     CHECK_STR_CONTAINS(err, "/nonexistent/dir/r.session");
     scratch_remove();
 }
@@ -272,7 +272,7 @@ static void test_replay_clock_stops_while_paused(void) {
     double want[] = { 10, 10.5, 11, 11, 11, 11, 11, 12.25, 13 };
     for (int i = 0; i < 9; i++) {
         CHECK_NEAR(session_player_advance(&p, NULL, ts[i]), want[i], 1e-12);
-        if (ts[i] < 3) CHECK(p.cam.distance == home_distance);
+        if (ts[i] < 3) CHECK_EQ(p.cam.distance, home_distance);
     }
     CHECK(p.cam.center[0] == 1 && p.cam.center[1] == 2 && p.cam.center[2] == 3);
     CHECK(p.cam.distance == 4 && p.cam.yaw == 0.5f && p.cam.pitch == 0.25f);

@@ -102,12 +102,12 @@ static void test_includes_and_line_map(void) {
     bool ok = load(&s, "map_main.frag", SHADER_FRAGMENT, NULL, 0, false);
     CHECK_MSG(ok, "%s", s.error);
     if (!ok) { shader_src_free(&s); return; }
-    CHECK(s.nfiles == 3);
+    CHECK_EQ(s.nfiles, 3);
     CHECK_STR_CONTAINS(s.files[0], "map_main.frag");
     CHECK_STR_CONTAINS(s.files[1], "inc/map_waves.glsl");
     CHECK_STR_CONTAINS(s.files[2], "inc/map_fresnel.glsl");
-    CHECK(strncmp(s.text, "#version 330 compatibility\n", 27) == 0);
-    CHECK(strstr(s.text, "#include") == NULL);
+    CHECK_EQ(strncmp(s.text, "#version 330 compatibility\n", 27), 0);
+    CHECK_EQ(strstr(s.text, "#include"), NULL);
     for (int drop = 0; drop <= 1; drop++) {
         const char formats[] = { 'm', 'n', 'g' };
         for (int f = 0; f < 3; f++) {
@@ -132,7 +132,7 @@ static void test_old_version_line_rule(void) {
     bool ok = load(&s, "old120.vert", SHADER_VERTEX, NULL, 0, false);
     CHECK_MSG(ok, "%s", s.error);
     if (!ok) { shader_src_free(&s); return; }
-    CHECK(strncmp(s.text, "#version 120\n", 13) == 0);
+    CHECK_EQ(strncmp(s.text, "#version 120\n", 13), 0);
     char *log = fake_compile(s.text, 'm', false);
     char *mapped = shader_src_map_log(&s, log);
     CHECK_MSG(mapped_has(mapped, "old120.vert", 5, "undefined_in_old"), "%s", mapped);
@@ -146,7 +146,7 @@ static void test_no_version_gets_glman_default(void) {
     bool ok = load(&s, "noversion.frag", SHADER_FRAGMENT, NULL, 0, false);
     CHECK_MSG(ok, "%s", s.error);
     if (!ok) { shader_src_free(&s); return; }
-    CHECK(strncmp(s.text, "#version 330 compatibility", 26) == 0);
+    CHECK_EQ(strncmp(s.text, "#version 330 compatibility", 26), 0);
     const char *nl = strchr(s.text, '\n');
     CHECK(nl && mem_has(s.text, (size_t)(nl - s.text), "//"));     /* says why, in a comment */
     CHECK_STR_CONTAINS(s.text, "#line 1 0\n");
@@ -164,7 +164,7 @@ static void test_defines_and_gstap_follow_version(void) {
     bool ok = load(&s, "gstap.vert", SHADER_VERTEX, defs, 2, true);
     CHECK_MSG(ok, "%s", s.error);
     if (!ok) { shader_src_free(&s); return; }
-    CHECK(strncmp(s.text, "#version 330 compatibility\n", 27) == 0);
+    CHECK_EQ(strncmp(s.text, "#version 330 compatibility\n", 27), 0);
     const char *foo = strstr(s.text, "#define FOO 1\n");
     const char *empty = strstr(s.text, "#define EMPTY\n");
     const char *avertex = strstr(s.text, "#define aVertex gl_Vertex\n");
@@ -177,7 +177,7 @@ static void test_defines_and_gstap_follow_version(void) {
     CHECK_STR_CONTAINS(s.text, "#define uModelViewProjectionMatrix gl_ModelViewProjectionMatrix\n");
     CHECK_STR_CONTAINS(s.text, "#define uModelViewMatrixInverse gl_ModelViewMatrixInverse\n");
     /* no #version-breaking text before the prologue ends */
-    CHECK(strstr(s.text, "gstap.vert: glman's GSTAP") > line);
+    CHECK_GT(strstr(s.text, "gstap.vert: glman's GSTAP"), line);
     shader_src_free(&s);
 
     /* fragment: matrices and aColor (gl_Color, the interpolated colour), no attributes */
@@ -186,8 +186,8 @@ static void test_defines_and_gstap_follow_version(void) {
     if (ok) {
         CHECK_STR_CONTAINS(s.text, "#define uNormalMatrix gl_NormalMatrix\n");
         CHECK_STR_CONTAINS(s.text, "#define aColor gl_Color\n");
-        CHECK(strstr(s.text, "aVertex") == NULL);
-        CHECK(strstr(s.text, "aTexCoord0") == NULL);
+        CHECK_EQ(strstr(s.text, "aVertex"), NULL);
+        CHECK_EQ(strstr(s.text, "aTexCoord0"), NULL);
     }
     shader_src_free(&s);
 
@@ -197,14 +197,14 @@ static void test_defines_and_gstap_follow_version(void) {
     CHECK_MSG(ok, "%s", s.error);
     if (ok) {
         CHECK_STR_CONTAINS(s.text, "#define uNormalMatrix gl_NormalMatrix\n");
-        CHECK(strstr(s.text, "aColor") == NULL);
+        CHECK_EQ(strstr(s.text, "aColor"), NULL);
     }
     shader_src_free(&s);
 
     /* without gstap: nothing */
     ok = load(&s, "gstap.vert", SHADER_VERTEX, NULL, 0, false);
     CHECK(ok);
-    if (ok) CHECK(strstr(s.text, "#define") == NULL);
+    if (ok) CHECK_EQ(strstr(s.text, "#define"), NULL);
     shader_src_free(&s);
 }
 
@@ -213,8 +213,8 @@ static void test_missing_include_is_file_line_error(void) {
     CHECK(!load(&s, "missing_inc.frag", SHADER_FRAGMENT, NULL, 0, false));
     CHECK_STR_CONTAINS(s.error, "missing_inc.frag:3: error: ");
     CHECK_STR_CONTAINS(s.error, "no_such_file.glsl");
-    CHECK(s.text == NULL);
-    CHECK(s.nfiles >= 1);          /* the watcher still watches the stage file */
+    CHECK_EQ(s.text, NULL);
+    CHECK_GE(s.nfiles, 1);          /* the watcher still watches the stage file */
     shader_src_free(&s);
 }
 
@@ -223,7 +223,7 @@ static void test_include_cycle_is_file_line_error(void) {
     CHECK(!load(&s, "cycle_main.frag", SHADER_FRAGMENT, NULL, 0, false));
     CHECK_STR_CONTAINS(s.error, "inc/cycle_b.glsl:3: error: include cycle");
     CHECK_STR_CONTAINS(s.error, "cycle_a.glsl -> ");
-    CHECK(s.nfiles == 3);
+    CHECK_EQ(s.nfiles, 3);
     shader_src_free(&s);
 }
 
@@ -292,7 +292,7 @@ static void test_include_depth_limit(void) {
     d.path = tmp("deep32.frag");
     bool ok = shader_src_load(&d, &s);
     CHECK_MSG(ok, "%s", s.error);
-    CHECK(s.nfiles == 33);
+    CHECK_EQ(s.nfiles, 33);
     shader_src_free(&s);
 }
 
@@ -316,13 +316,13 @@ static void test_hash_changes_iff_text_changes(void) {
 
     write_file("h.frag", "#version 330 compatibility\nvoid main() { gl_FragColor = vec4(0.5); }\n");
     CHECK(shader_src_load(&d, &b));
-    CHECK(a.hash != b.hash);
+    CHECK_NE(a.hash, b.hash);
     shader_src_free(&b);
 
     /* the same text again: the same hash (CRLF is read as LF) */
     write_file("h.frag", "#version 330 compatibility\r\nvoid main() { gl_FragColor = vec4(1.0); }\r\n");
     CHECK(shader_src_load(&d, &b));
-    CHECK(a.hash == b.hash);
+    CHECK_EQ(a.hash, b.hash);
     shader_src_free(&b);
 
     /* an included file's change shows too */
@@ -333,7 +333,7 @@ static void test_hash_changes_iff_text_changes(void) {
     CHECK(shader_src_load(&d, &c1));
     write_file("hi.glsl", "float k() { return 2.0; }\n");
     CHECK(shader_src_load(&d, &c2));
-    CHECK(c1.hash != c2.hash);
+    CHECK_NE(c1.hash, c2.hash);
     shader_src_free(&c1);
     shader_src_free(&c2);
     shader_src_free(&a);
@@ -355,11 +355,11 @@ static void test_include_search_order_and_once(void) {
     bool ok = shader_src_load(&d, &s);
     CHECK_MSG(ok, "%s", s.error);
     if (ok) {
-        CHECK(s.nfiles == 3);
+        CHECK_EQ(s.nfiles, 3);
         CHECK_STR_CONTAINS(s.files[2], "sub/common.glsl");
         const char *first = strstr(s.text, "from_local");
         CHECK(first && strstr(first + 1, "from_local") == NULL);   /* #pragma once */
-        CHECK(strstr(s.text, "#pragma once") == NULL);
+        CHECK_EQ(strstr(s.text, "#pragma once"), NULL);
         /* numbering survives the skipped include: main() is line 5 */
         char *log = NULL;
         const char *m = strstr(s.text, "void main");
@@ -391,7 +391,7 @@ static void test_version_line_with_comment_tail(void) {
     bool ok = shader_src_load(&d, &s);
     CHECK_MSG(ok, "%s", s.error);
     if (ok) {
-        CHECK(strncmp(s.text, "#version 330 core\n#define X 2\n", 30) == 0);
+        CHECK_EQ(strncmp(s.text, "#version 330 core\n#define X 2\n", 30), 0);
         char *log = fake_compile(s.text, 'g', false);
         char *mapped = shader_src_map_log(&s, log);
         CHECK_MSG(mapped_has(mapped, "t.frag", 5, "undefined_tail"), "%s\n---\n%s", mapped, s.text);
@@ -431,7 +431,7 @@ static void test_ext_geometry_shader_rewritten(void) {
     bool ok = shader_src_load(&d, &s);
     CHECK_MSG(ok, "%s", s.error);
     if (ok) {
-        CHECK(strncmp(s.text, "#version 150 compatibility", 26) == 0);
+        CHECK_EQ(strncmp(s.text, "#version 150 compatibility", 26), 0);
         CHECK_STR_CONTAINS(s.text, "in vec3 vN[gl_in.length()];\n");
         CHECK_STR_CONTAINS(s.text, "\nout vec3 gN;\n");
         CHECK_STR_CONTAINS(s.text, "\nout  float gF;");   /* the blanks after `varying` stay */
@@ -439,8 +439,8 @@ static void test_ext_geometry_shader_rewritten(void) {
         CHECK_STR_CONTAINS(s.text, "gl_FrontColor = gl_in[i].gl_FrontColor;");
         CHECK_STR_CONTAINS(s.text, "gl_TexCoord[0] = gl_in[ i ].gl_TexCoord[0];");
         CHECK_STR_CONTAINS(s.text, "gl_Position = gl_in[idx[i]].gl_Position + undefined_gs;");
-        CHECK(strstr(s.text, "varying") == NULL);
-        CHECK(strstr(s.text, "#extension GL_EXT_geometry_shader4") == NULL);
+        CHECK_EQ(strstr(s.text, "varying"), NULL);
+        CHECK_EQ(strstr(s.text, "#extension GL_EXT_geometry_shader4"), NULL);
         CHECK(before(s.text, "#extension GL_ARB_gpu_shader5", "layout(triangles) in;"));
         CHECK(before(s.text, "layout(triangles) in;", "layout(triangle_strip, max_vertices = 64) out;"));
         CHECK(before(s.text, "max_vertices = 64) out;", "in vec3 vN["));
@@ -470,8 +470,8 @@ static void test_ext_geometry_shader_rewritten(void) {
     ok = shader_src_load(&d2, &s);
     CHECK_MSG(ok, "%s", s.error);
     if (ok) {
-        CHECK(strncmp(s.text, "#version 330 compatibility", 26) == 0);
-        CHECK(strstr(s.text, "layout(triangles)") == NULL);
+        CHECK_EQ(strncmp(s.text, "#version 330 compatibility", 26), 0);
+        CHECK_EQ(strstr(s.text, "layout(triangles)"), NULL);
         CHECK(before(s.text, "layout(triangle_strip, max_vertices = 64) out;", "layout( points )"));
         char *log = fake_compile(s.text, 'g', false);
         char *mapped = shader_src_map_log(&s, log);
@@ -571,7 +571,7 @@ static void test_include_quirks(void) {
     if (ok) {
         const char *v = strstr(s.text, "#version");
         CHECK(v == s.text && strstr(v + 1, "#version") == NULL);
-        CHECK(s.nfiles == 2);
+        CHECK_EQ(s.nfiles, 2);
         char *log = fake_compile(s.text, 'm', true);
         char *mapped = shader_src_map_log(&s, log);
         CHECK_MSG(mapped_has(mapped, "q.frag", 6, "undefined_q"), "%s", mapped);
@@ -585,7 +585,7 @@ static void test_include_quirks(void) {
     d.path = tmp("bom.frag");
     ok = shader_src_load(&d, &s);
     CHECK_MSG(ok, "%s", s.error);
-    if (ok) CHECK(strncmp(s.text, "#version 120\n", 13) == 0);
+    if (ok) CHECK_EQ(strncmp(s.text, "#version 120\n", 13), 0);
     shader_src_free(&s);
 
     write_file("bad.frag", "#version 330 compatibility\n#include waves.glsl\nvoid main() {}\n");
@@ -613,7 +613,7 @@ static void test_map_log_passthrough(void) {
     CHECK_STR_CONTAINS(m, "map_main.frag:2: warning: 'x' : something\n");
     CHECK_STR_CONTAINS(m, "map_main.frag:4: warning C7050:");
     CHECK_STR_CONTAINS(m, "inc/map_fresnel.glsl:1: error: 'y' : in an include");
-    CHECK(m[strlen(m) - 1] != '\n');
+    CHECK_NE(m[strlen(m) - 1], '\n');
     free(m);
     m = shader_src_map_log(&s, "");
     CHECK(m && m[0] == '\0');
@@ -622,23 +622,23 @@ static void test_map_log_passthrough(void) {
 }
 
 static void test_stage_names_and_paths(void) {
-    CHECK(strcmp(shader_stage_name(SHADER_VERTEX), "vertex") == 0);
-    CHECK(strcmp(shader_stage_name(SHADER_FRAGMENT), "fragment") == 0);
-    CHECK(strcmp(shader_stage_name(SHADER_TESS_CONTROL), "tess control") == 0);
-    CHECK(shader_stage_from_path("a/b/water.vert") == SHADER_VERTEX);
-    CHECK(shader_stage_from_path("water.vs") == SHADER_VERTEX);
-    CHECK(shader_stage_from_path("water.tesc") == SHADER_TESS_CONTROL);
-    CHECK(shader_stage_from_path("water.tese") == SHADER_TESS_EVALUATION);
-    CHECK(shader_stage_from_path("water.geom") == SHADER_GEOMETRY);
-    CHECK(shader_stage_from_path("water.gs") == SHADER_GEOMETRY);
-    CHECK(shader_stage_from_path("water.FRAG") == SHADER_FRAGMENT);
-    CHECK(shader_stage_from_path("water.fs") == SHADER_FRAGMENT);
-    CHECK(shader_stage_from_path("water.frag.glsl") == SHADER_FRAGMENT);
-    CHECK(shader_stage_from_path("water_vert.glsl") == SHADER_VERTEX);
-    CHECK(shader_stage_from_path("water-gs.glsl") == SHADER_GEOMETRY);
-    CHECK(shader_stage_from_path("waves.glsl") == SHADER_STAGE_COUNT);
-    CHECK(shader_stage_from_path("scene.glib") == SHADER_STAGE_COUNT);
-    CHECK(shader_stage_from_path("Makefile") == SHADER_STAGE_COUNT);
+    CHECK_STR_EQ(shader_stage_name(SHADER_VERTEX), "vertex");
+    CHECK_STR_EQ(shader_stage_name(SHADER_FRAGMENT), "fragment");
+    CHECK_STR_EQ(shader_stage_name(SHADER_TESS_CONTROL), "tess control");
+    CHECK_EQ(shader_stage_from_path("a/b/water.vert"), SHADER_VERTEX);
+    CHECK_EQ(shader_stage_from_path("water.vs"), SHADER_VERTEX);
+    CHECK_EQ(shader_stage_from_path("water.tesc"), SHADER_TESS_CONTROL);
+    CHECK_EQ(shader_stage_from_path("water.tese"), SHADER_TESS_EVALUATION);
+    CHECK_EQ(shader_stage_from_path("water.geom"), SHADER_GEOMETRY);
+    CHECK_EQ(shader_stage_from_path("water.gs"), SHADER_GEOMETRY);
+    CHECK_EQ(shader_stage_from_path("water.FRAG"), SHADER_FRAGMENT);
+    CHECK_EQ(shader_stage_from_path("water.fs"), SHADER_FRAGMENT);
+    CHECK_EQ(shader_stage_from_path("water.frag.glsl"), SHADER_FRAGMENT);
+    CHECK_EQ(shader_stage_from_path("water_vert.glsl"), SHADER_VERTEX);
+    CHECK_EQ(shader_stage_from_path("water-gs.glsl"), SHADER_GEOMETRY);
+    CHECK_EQ(shader_stage_from_path("waves.glsl"), SHADER_STAGE_COUNT);
+    CHECK_EQ(shader_stage_from_path("scene.glib"), SHADER_STAGE_COUNT);
+    CHECK_EQ(shader_stage_from_path("Makefile"), SHADER_STAGE_COUNT);
 }
 
 /* A file beyond SHADER_SRC_MAX_FILE_BYTES is refused, and so is a "regular"
@@ -647,7 +647,7 @@ static void test_file_size_limit(void) {
     char path[600];
     snprintf(path, sizeof path, "%s/huge.glsl", g_tmp);
     FILE *f = fopen(path, "wb");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     static char line[1024];
     memset(line, ' ', sizeof line - 1);

@@ -68,7 +68,7 @@ static void test_no_emission_no_particle(void) {
         int k = live(pos, n);
         if (k > most) most = k;
     }
-    CHECK(most == 0);
+    CHECK_EQ(most, 0);
     free(pos);
     free(vel);
     world_free(&gw);
@@ -118,11 +118,11 @@ static void test_parabolas_until_the_water(void) {
     printf("  %d live at t0 %.2f s (ring height bound %.2f m); after 0.1 s %d on their parabolas (worst %.2e m); "
            "after %.2f s %d removed under the water, %d left under it\n",
            born, t0, ring_h, followed, worst, tau, removed, kept_under);
-    CHECK(born > 30);
-    CHECK(followed > 10);
-    CHECK(worst < 1e-4);
-    CHECK(removed > 10);
-    CHECK(kept_under == 0);
+    CHECK_GT(born, 30);
+    CHECK_GT(followed, 10);
+    CHECK_LT(worst, 1e-4);
+    CHECK_GT(removed, 10);
+    CHECK_EQ(kept_under, 0);
     free(p0); free(v0); free(p1); free(v1);
     world_free(&gw);
 }
@@ -140,10 +140,10 @@ static void test_same_seed_same_spray(void) {
     float *a = malloc(bytes), *av = malloc(bytes), *b = malloc(bytes), *bv = malloc(bytes);
     run_state(11, a, av);
     run_state(11, b, bv);
-    CHECK(live(a, 4096) > 0);
+    CHECK_GT(live(a, 4096), 0);
     CHECK(memcmp(a, b, bytes) == 0 && memcmp(av, bv, bytes) == 0);
     run_state(12, b, bv);
-    CHECK(memcmp(a, b, bytes) != 0);
+    CHECK_NE(memcmp(a, b, bytes), 0);
     free(a); free(av); free(b); free(bv);
 }
 
@@ -206,8 +206,8 @@ static void test_ocean_crests_throw_spray(void) {
         if (k > most) most = k;
     }
     printf("  ocean: %d live after the jump, at most %d over 20 played steps\n", first, most);
-    CHECK(first == 0);
-    CHECK(most > 20);
+    CHECK_EQ(first, 0);
+    CHECK_GT(most, 20);
     free(pos);
     free(vel);
     world_free(&gw);

@@ -97,9 +97,9 @@ static void test_from_glib_kinds(void) {
     unif_set set = {0};
     char err[512] = "junk";
     CHECK(glib_unif_set(&set, &cmd, err, sizeof err));
-    CHECK(err[0] == '\0');
-    CHECK(strcmp(set.program, "Water") == 0);
-    CHECK(set.n == 11);
+    CHECK_EQ(err[0], '\0');
+    CHECK_STR_EQ(set.program, "Water");
+    CHECK_EQ(set.n, 11);
 
     /* defines first, in file order */
     unif_entry *e = &set.entries[0];
@@ -110,16 +110,16 @@ static void test_from_glib_kinds(void) {
     CHECK(e->type == UNIF_INT && e->min == 1.0f && e->max == 8.0f && e->def[0] == 4.0f);
     e = &set.entries[2];
     CHECK(strcmp(e->name, "SCALE") == 0 && e->widget == UNIF_WIDGET_NONE && e->type == UNIF_FLOAT);
-    CHECK(set.entries[3].type == UNIF_INT);
-    CHECK(set.entries[4].type == UNIF_FLOAT);   /* <0.5 1 2> is not all whole */
+    CHECK_EQ(set.entries[3].type, UNIF_INT);
+    CHECK_EQ(set.entries[4].type, UNIF_FLOAT);   /* <0.5 1 2> is not all whole */
 
     char text[64];
     unif_define_value(&set.entries[0], text, sizeof text);
-    CHECK(strcmp(text, "0") == 0);
+    CHECK_STR_EQ(text, "0");
     unif_define_value(&set.entries[1], text, sizeof text);
-    CHECK(strcmp(text, "4") == 0);
+    CHECK_STR_EQ(text, "4");
     unif_define_value(&set.entries[2], text, sizeof text);
-    CHECK(strcmp(text, "2.5") == 0);
+    CHECK_STR_EQ(text, "2.5");
     unif_define_value(&set.entries[4], text, sizeof text);
     CHECK_MSG(strcmp(text, "1.0") == 0, "got %s", text);   /* a float define stays a float in GLSL */
 
@@ -142,7 +142,7 @@ static void test_from_glib_kinds(void) {
     e = unif_find(&set, "uW");
     CHECK(e && e->widget == UNIF_WIDGET_NONE && e->ncomp == 3 && e->array_len == 3);
     CHECK(e && e->value[0] == 1.0f && e->value[2] == 3.0f);
-    CHECK(unif_find(&set, "nope") == NULL);
+    CHECK_EQ(unif_find(&set, "nope"), NULL);
 
     unif_set_free(&set);
     CHECK(set.n == 0 && set.entries == NULL);
@@ -158,7 +158,7 @@ static void test_not_a_program(void) {
     char err[256];
     CHECK(!glib_unif_set(&set, &cmd, err, sizeof err));
     CHECK_STR_CONTAINS(err, "scene.glib:4:");
-    CHECK(set.n == 0);
+    CHECK_EQ(set.n, 0);
     CHECK(!glib_unif_set(&set, NULL, NULL, 0));
 }
 
@@ -175,7 +175,7 @@ static void test_int_vs_float_slider(void) {
     unif_set set = {0};
     CHECK(glib_unif_set(&set, &cmd, NULL, 0));
     unif_entry *e = unif_set_shader_type(&set, "uSteps", UNIF_INT, 1, 7);
-    CHECK(e == unif_find(&set, "uSteps"));
+    CHECK_EQ(e, unif_find(&set, "uSteps"));
     CHECK(e && e->type == UNIF_INT && e->in_shader && e->location == 7 && unif_is_int(e));
     CHECK(e && e->widget == UNIF_WIDGET_SLIDER);
     CHECK(e && e->min == 0.0f && e->max == 10.0f && e->def[0] == 3.0f && e->value[0] == 3.0f);
@@ -202,8 +202,8 @@ static void test_int_vs_float_slider(void) {
     CHECK(e && e->value[0] == 1.0f && !unif_type_mismatch(e));
 
     /* built-ins are not entries */
-    CHECK(unif_set_shader_type(&set, "gl_ModelViewMatrix", UNIF_MAT4, 1, -1) == NULL);
-    CHECK(set.n == 4);
+    CHECK_EQ(unif_set_shader_type(&set, "gl_ModelViewMatrix", UNIF_MAT4, 1, -1), NULL);
+    CHECK_EQ(set.n, 4);
     unif_set_free(&set);
 }
 
@@ -239,7 +239,7 @@ static void test_fit_arrays_and_colours(void) {
     CHECK(e && unif_type_mismatch(e) && !unif_uploadable(e));
     e = unif_set_shader_type(&set, "uLong[0]", UNIF_FLOAT, 4, 8);
     CHECK(e && unif_type_mismatch(e) && !unif_uploadable(e));
-    CHECK(set.n == 8);
+    CHECK_EQ(set.n, 8);
     unif_set_free(&set);
 }
 
@@ -254,20 +254,20 @@ static void test_type_mismatch(void) {
     glib_cmd cmd = program("P", u, 5, NULL, 0);
     unif_set set = {0};
     CHECK(glib_unif_set(&set, &cmd, NULL, 0));
-    CHECK(unif_type_mismatch(unif_find(&set, "uCol")) == NULL);   /* nothing known yet */
+    CHECK_EQ(unif_type_mismatch(unif_find(&set, "uCol")), NULL);   /* nothing known yet */
 
     unif_entry *e = unif_set_shader_type(&set, "uCol", UNIF_FLOAT, 1, 1);
     CHECK(e && unif_type_mismatch(e) != NULL && !unif_uploadable(e));
     CHECK(e && e->widget == UNIF_WIDGET_COLOR && e->value[0] == 1.0f);  /* left as written */
     char msg[256];
-    CHECK(unif_describe_mismatch(e, msg, sizeof msg) > 0);
+    CHECK_GT(unif_describe_mismatch(e, msg, sizeof msg), 0);
     CHECK_STR_CONTAINS(msg, "scene.glib:12: uniform 'uCol'");
     CHECK_STR_CONTAINS(msg, "colour");
     CHECK_STR_CONTAINS(msg, "declares float");
 
-    CHECK(unif_type_mismatch(unif_set_shader_type(&set, "uVec", UNIF_VEC3, 1, 2)) != NULL);
-    CHECK(unif_type_mismatch(unif_set_shader_type(&set, "uV2", UNIF_VEC2, 1, 3)) != NULL);
-    CHECK(unif_type_mismatch(unif_set_shader_type(&set, "uV3", UNIF_VEC3, 1, 4)) != NULL);
+    CHECK_NE(unif_type_mismatch(unif_set_shader_type(&set, "uVec", UNIF_VEC3, 1, 2)), NULL);
+    CHECK_NE(unif_type_mismatch(unif_set_shader_type(&set, "uV2", UNIF_VEC2, 1, 3)), NULL);
+    CHECK_NE(unif_type_mismatch(unif_set_shader_type(&set, "uV3", UNIF_VEC3, 1, 4)), NULL);
     e = unif_set_shader_type(&set, "uOk", UNIF_FLOAT, 1, 5);
     CHECK(e && unif_type_mismatch(e) == NULL);
     CHECK(unif_describe_mismatch(e, msg, sizeof msg) == 0 && msg[0] == '\0');
@@ -311,14 +311,14 @@ static void test_introspected_defaults(void) {
     e = unif_set_shader_type(&set, "uWeights[0]", UNIF_FLOAT, 40, 12);
     CHECK(e && strcmp(e->name, "uWeights") == 0 && e->widget == UNIF_WIDGET_NONE);
     CHECK(e && e->ncomp <= UNIF_MAX_COMPONENTS && e->array_len == e->ncomp);
-    CHECK(set.n == 13);
+    CHECK_EQ(set.n, 13);
     /* seen again: same entry, no duplicate */
-    CHECK(unif_set_shader_type(&set, "uAmp", UNIF_FLOAT, 1, 0) == unif_find(&set, "uAmp"));
-    CHECK(set.n == 13);
+    CHECK_EQ(unif_set_shader_type(&set, "uAmp", UNIF_FLOAT, 1, 0), unif_find(&set, "uAmp"));
+    CHECK_EQ(set.n, 13);
     /* the shader changed the declaration: rebuilt for the new type */
     e = unif_set_shader_type(&set, "uAmp", UNIF_INT, 1, 0);
     CHECK(e && e->type == UNIF_INT && e->max == 10.0f);
-    CHECK(set.n == 13);
+    CHECK_EQ(set.n, 13);
     unif_set_free(&set);
 }
 
@@ -380,18 +380,18 @@ static void test_malformed_ranges_repaired(void) {
     CHECK(e && e->def[0] == 0.25f);
     for (int i = 0; i < set.n; i++) {
         const unif_entry *x = &set.entries[i];
-        CHECK(x->name[0] != '\0');
-        CHECK(x->min <= x->max);
+        CHECK_NE(x->name[0], '\0');
+        CHECK_LE(x->min, x->max);
         for (int k = 0; k < UNIF_MAX_COMPONENTS; k++) CHECK(isfinite(x->value[k]) && isfinite(x->def[k]));
         if (x->widget == UNIF_WIDGET_SLIDER) CHECK(x->def[0] >= x->min && x->def[0] <= x->max);
     }
-    CHECK(set.n == 11);
+    CHECK_EQ(set.n, 11);
     unif_set_free(&set);
 
     /* a tiny message buffer or none at all is fine */
     char small[8];
     CHECK(!glib_unif_set(&set, &cmd, small, sizeof small));
-    CHECK(strlen(small) < sizeof small);
+    CHECK_LT(strlen(small), sizeof small);
     unif_set_free(&set);
     CHECK(!glib_unif_set(&set, &cmd, NULL, 0));
     unif_set_free(&set);
@@ -436,7 +436,7 @@ static void test_merge(void) {
                                     UNIF_VEC4, UNIF_FLOAT };
     unif_set old;
     build(&old, u_old, 7, d_old, 2, names_old, types_old, 8);
-    CHECK(old.n == 10);
+    CHECK_EQ(old.n, 10);
     /* the user moves everything */
     for (int i = 0; i < old.n; i++) {
         unif_entry *e = &old.entries[i];
@@ -444,9 +444,9 @@ static void test_merge(void) {
         if (e->widget == UNIF_WIDGET_COLOR) for (int k = 0; k < e->ncomp; k++) e->value[k] = 0.25f;
         if (e->widget == UNIF_WIDGET_CHECKBOX) e->value[0] = 1.0f;
     }
-    CHECK(unif_find(&old, "uK")->value[0] == 1.5f);
-    CHECK(unif_find(&old, "uN")->value[0] == 8.0f);   /* 7.5 rounded */
-    CHECK(unif_find(&old, "STEPS")->value[0] == 6.0f);
+    CHECK_EQ(unif_find(&old, "uK")->value[0], 1.5f);
+    CHECK_EQ(unif_find(&old, "uN")->value[0], 8.0f);   /* 7.5 rounded */
+    CHECK_EQ(unif_find(&old, "STEPS")->value[0], 6.0f);
 
     unif_decl u_new[] = {
         SLIDER("uNew", 10, 0, 0.1, 1),
@@ -465,18 +465,18 @@ static void test_merge(void) {
     build(&fresh, u_new, 7, d_new, 2, names_new, types_new, 8);
     unif_merge(&fresh, &old);
 
-    CHECK(unif_find(&fresh, "uK")->value[0] == 1.5f);          /* kept */
-    CHECK(unif_find(&fresh, "uN")->value[0] == 4.0f);          /* new default */
+    CHECK_EQ(unif_find(&fresh, "uK")->value[0], 1.5f);          /* kept */
+    CHECK_EQ(unif_find(&fresh, "uN")->value[0], 4.0f);          /* new default */
     const unif_entry *c = unif_find(&fresh, "uCol");
     CHECK(c->value[0] == 0.25f && c->value[1] == 0.25f && c->value[2] == 0.25f);
-    CHECK(unif_find(&fresh, "uGone") == NULL);                  /* dropped */
-    CHECK(unif_find(&fresh, "uRange")->value[0] == 1.0f);      /* range changed: reset */
-    CHECK(unif_find(&fresh, "uType")->value[0] == 1.0f);       /* type changed: reset */
-    CHECK(unif_find(&fresh, "uAlpha")->value[0] == 1.0f);      /* ncomp changed: reset */
-    CHECK(unif_find(&fresh, "uNew")->value[0] == 0.1f);
-    CHECK(unif_find(&fresh, "uAmp")->value[0] == 0.75f);       /* introspected: kept */
-    CHECK(unif_find(&fresh, "FOAM")->value[0] == 1.0f);        /* define kept */
-    CHECK(unif_find(&fresh, "STEPS")->value[0] == 6.0f);
+    CHECK_EQ(unif_find(&fresh, "uGone"), NULL);                  /* dropped */
+    CHECK_EQ(unif_find(&fresh, "uRange")->value[0], 1.0f);      /* range changed: reset */
+    CHECK_EQ(unif_find(&fresh, "uType")->value[0], 1.0f);       /* type changed: reset */
+    CHECK_EQ(unif_find(&fresh, "uAlpha")->value[0], 1.0f);      /* ncomp changed: reset */
+    CHECK_EQ(unif_find(&fresh, "uNew")->value[0], 0.1f);
+    CHECK_EQ(unif_find(&fresh, "uAmp")->value[0], 0.75f);       /* introspected: kept */
+    CHECK_EQ(unif_find(&fresh, "FOAM")->value[0], 1.0f);        /* define kept */
+    CHECK_EQ(unif_find(&fresh, "STEPS")->value[0], 6.0f);
     CHECK(unif_find(&fresh, "uK")->in_shader && unif_find(&fresh, "uK")->location == 3);
 
     /* the introspected uniform now written in the glib: the glib's default wins */
@@ -486,14 +486,14 @@ static void test_merge(void) {
     unif_set third;
     build(&third, u3, 1, NULL, 0, names3, types3, 1);
     unif_merge(&third, &fresh);
-    CHECK(unif_find(&third, "uAmp")->value[0] == 0.3f);
+    CHECK_EQ(unif_find(&third, "uAmp")->value[0], 0.3f);
     unif_set_free(&third);
 
     /* merge before the shader's types are known still carries values */
     unif_decl u4[] = { SLIDER("uK", 11, 0, 0.5, 2) };
     build(&third, u4, 1, NULL, 0, NULL, NULL, 0);
     unif_merge(&third, &fresh);
-    CHECK(unif_find(&third, "uK")->value[0] == 1.5f);
+    CHECK_EQ(unif_find(&third, "uK")->value[0], 1.5f);
     unif_set_free(&third);
 
     unif_merge(&fresh, NULL);
@@ -521,13 +521,13 @@ static void test_merge_twice_like_the_renderer(void) {
     unif_merge(&fresh, &old);
     for (int i = 0; i < 2; i++) unif_set_shader_type(&fresh, names[i], t_new[i], 1, i);
     unif_merge(&fresh, &old);
-    CHECK(unif_find(&fresh, "uN")->value[0] == 3.0f);    /* float -> int: reset */
-    CHECK(unif_find(&fresh, "uF")->value[0] == 8.0f);    /* int -> int: kept */
+    CHECK_EQ(unif_find(&fresh, "uN")->value[0], 3.0f);    /* float -> int: reset */
+    CHECK_EQ(unif_find(&fresh, "uF")->value[0], 8.0f);    /* int -> int: kept */
 
     unif_set_component(unif_find(&fresh, "uN"), 0, 6);
     for (int i = 0; i < 2; i++) unif_set_shader_type(&fresh, names[i], t_new[i], 1, i);
-    CHECK(unif_find(&fresh, "uN")->value[0] == 6.0f);
-    CHECK(unif_find(&fresh, "uF")->value[0] == 8.0f);
+    CHECK_EQ(unif_find(&fresh, "uN")->value[0], 6.0f);
+    CHECK_EQ(unif_find(&fresh, "uF")->value[0], 8.0f);
     unif_set_free(&old);
     unif_set_free(&fresh);
 }
@@ -540,14 +540,14 @@ static void test_reset_all(void) {
     CHECK(glib_unif_set(&set, &cmd, NULL, 0));
     unif_set_component(unif_find(&set, "uK"), 0, 1.0);
     CHECK(!unif_reset_all_ex(&set));                 /* no define moved */
-    CHECK(unif_find(&set, "uK")->value[0] == 0.5f);
+    CHECK_EQ(unif_find(&set, "uK")->value[0], 0.5f);
     unif_set_component(unif_find(&set, "FOAM"), 0, 1.0);
-    CHECK(unif_find(&set, "FOAM")->value[0] == 1.0f);
+    CHECK_EQ(unif_find(&set, "FOAM")->value[0], 1.0f);
     CHECK(unif_reset_all_ex(&set));                  /* recompile */
-    CHECK(unif_find(&set, "FOAM")->value[0] == 0.0f);
+    CHECK_EQ(unif_find(&set, "FOAM")->value[0], 0.0f);
     unif_set_component(unif_find(&set, "uK"), 0, 2.0);
     unif_reset_all(&set);
-    CHECK(unif_find(&set, "uK")->value[0] == 0.5f);
+    CHECK_EQ(unif_find(&set, "uK")->value[0], 0.5f);
     unif_set_free(&set);
 }
 
@@ -614,10 +614,10 @@ static void test_preset_round_trip(void) {
     char path[512], err[1024];
     tmp_path(path, sizeof path, "round.preset");
     CHECK_MSG(unif_preset_save(a.s, 2, path, err, sizeof err), "%s", err);
-    CHECK(err[0] == '\0');
+    CHECK_EQ(err[0], '\0');
     char tmp[600];
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    CHECK(access(tmp, F_OK) != 0);                  /* the temp file was renamed */
+    CHECK_NE(access(tmp, F_OK), 0);                  /* the temp file was renamed */
     char *text = read_text(path);
     CHECK(text && strncmp(text, "tarn-preset 1\n", 14) == 0);
     CHECK(text && strstr(text, "Water uK 1 ") && strstr(text, "Sky uK 1 "));
@@ -629,9 +629,9 @@ static void test_preset_round_trip(void) {
     CHECK_MSG(err[0] == '\0', "%s", err);
     CHECK(defines_changed);
     CHECK(values_equal(&a, &b));                     /* bit-exact */
-    CHECK(unif_find(&b.s[0], "uK")->value[0] == 0.1f);
-    CHECK(unif_find(&b.s[0], "uWind")->value[0] == FLT_MAX);
-    CHECK(unif_find(&b.s[0], "uWind")->value[2] == 1e-40f);
+    CHECK_EQ(unif_find(&b.s[0], "uK")->value[0], 0.1f);
+    CHECK_EQ(unif_find(&b.s[0], "uWind")->value[0], FLT_MAX);
+    CHECK_EQ(unif_find(&b.s[0], "uWind")->value[2], 1e-40f);
 
     /* loading the same again changes no define */
     CHECK(unif_preset_load_ex(b.s, 2, path, err, sizeof err, &defines_changed));
@@ -723,36 +723,36 @@ static void test_preset_unknown_skipped(void) {
     CHECK_STR_CONTAINS(err, ":6: 'uCol' in program 'Water' has 4 values, the preset 3; skipped");
     CHECK_STR_CONTAINS(err, ":7: program 'Water' has no uniform 'uTex'");   /* fixed: not a preset value */
     CHECK_STR_CONTAINS(err, ":9: 'uN' in program 'Water': a value outside its range was clamped");
-    CHECK(unif_find(&a.s[0], "uK")->value[0] == 12.5f);
-    CHECK(unif_find(&a.s[0], "uN")->value[0] == 10.0f);
-    CHECK(unif_find(&a.s[0], "uCol")->value[0] == 1.0f);      /* skipped: unchanged */
-    CHECK(unif_find(&a.s[0], "uTex")->value[0] == 4.0f);
-    CHECK(unif_find(&a.s[1], "uK")->value[0] == 0.25f);
-    CHECK(unif_find(&a.s[0], "uFoam")->value[0] == 1.0f);
+    CHECK_EQ(unif_find(&a.s[0], "uK")->value[0], 12.5f);
+    CHECK_EQ(unif_find(&a.s[0], "uN")->value[0], 10.0f);
+    CHECK_EQ(unif_find(&a.s[0], "uCol")->value[0], 1.0f);      /* skipped: unchanged */
+    CHECK_EQ(unif_find(&a.s[0], "uTex")->value[0], 4.0f);
+    CHECK_EQ(unif_find(&a.s[1], "uK")->value[0], 0.25f);
+    CHECK_EQ(unif_find(&a.s[0], "uFoam")->value[0], 1.0f);
     free_presets(&a);
 }
 
 static void test_preset_path(void) {
     char out[256];
     unif_preset_path("dir/scene.glib", out, sizeof out);
-    CHECK(strcmp(out, "dir/scene.preset") == 0);
+    CHECK_STR_EQ(out, "dir/scene.preset");
     unif_preset_path("/abs/lake.glib", out, sizeof out);
-    CHECK(strcmp(out, "/abs/lake.preset") == 0);
+    CHECK_STR_EQ(out, "/abs/lake.preset");
     unif_preset_path("scene.glib", out, sizeof out);
-    CHECK(strcmp(out, "scene.preset") == 0);
+    CHECK_STR_EQ(out, "scene.preset");
     unif_preset_path("dir.v2/scene", out, sizeof out);
-    CHECK(strcmp(out, "dir.v2/scene.preset") == 0);
+    CHECK_STR_EQ(out, "dir.v2/scene.preset");
     unif_preset_path("dir/.hidden", out, sizeof out);
-    CHECK(strcmp(out, "dir/.hidden.preset") == 0);
+    CHECK_STR_EQ(out, "dir/.hidden.preset");
     unif_preset_path("dir/a.b.glib", out, sizeof out);
-    CHECK(strcmp(out, "dir/a.b.preset") == 0);
+    CHECK_STR_EQ(out, "dir/a.b.preset");
     char small[10];
     unif_preset_path("dir/scene.glib", small, sizeof small);
-    CHECK(small[0] == '\0');
+    CHECK_EQ(small[0], '\0');
     unif_preset_path("", out, sizeof out);
-    CHECK(out[0] == '\0');
+    CHECK_EQ(out[0], '\0');
     unif_preset_path(NULL, out, sizeof out);
-    CHECK(out[0] == '\0');
+    CHECK_EQ(out[0], '\0');
 }
 
 static void cleanup(void) {

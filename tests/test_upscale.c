@@ -40,7 +40,7 @@ static void make_target(GLenum internal, int w, int h, unsigned *fbo, unsigned *
     glGenFramebuffers(1, fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
-    CHECK(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    CHECK_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
     glClearColor(c[0], c[1], c[2], c[3]);
     glClear(GL_COLOR_BUFFER_BIT);
 }
@@ -66,7 +66,7 @@ static void copy_case(GLenum internal, bool srgb_writes) {
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, out);
     CHECK_MSG(memcmp(in, out, W * H * 4) == 0, "1:1 (format 0x%x) is not a copy", internal);
-    CHECK(glGetError() == GL_NO_ERROR);
+    CHECK_EQ(glGetError(), GL_NO_ERROR);
     upscale_destroy(u);
     free_target(fbo, tex);
     glDeleteTextures(1, &src);
@@ -132,7 +132,7 @@ static void test_better_than_bilinear(void) {
     const char *err = NULL;
     upscaler *cub = upscale_create(NULL, &err);
     CHECK_MSG(!err, "%s", err ? err : "");
-    CHECK(upscale_filter_used(cub) == UPSCALE_CUBIC);
+    CHECK_EQ(upscale_filter_used(cub), UPSCALE_CUBIC);
     bool finite = true;
     double eb = error_of(bil, truth, 1, &finite), ec = error_of(cub, truth, 1, &finite);
     double edge_b = error_of(bil, truth, 0, &finite), edge_c = error_of(cub, truth, 0, &finite);
@@ -198,7 +198,7 @@ static void test_rect_only(void) {
         }
     CHECK_MSG(outside_changed == 0, "%d pixels outside the rectangle changed", outside_changed);
     CHECK_MSG(inside_kept < r.w * r.h / 100, "%d pixels inside the rectangle were not drawn", inside_kept);
-    CHECK(glGetError() == GL_NO_ERROR);
+    CHECK_EQ(glGetError(), GL_NO_ERROR);
     upscale_destroy(u);
     free_target(fbo, tex);
     glDeleteTextures(1, &src);

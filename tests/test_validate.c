@@ -62,7 +62,7 @@ static void test_good_compat_shader_validates(void) {
     /* a bare glman shader with no #version is compatibility 3.30 */
     CHECK(!check_stage("noversion.frag", SHADER_FRAGMENT, false, &log));
     CHECK_STR_CONTAINS(log, "noversion.frag:4: error: 'undefined_in_noversion'");
-    CHECK(strstr(log, "gl_FragColor") == NULL);
+    CHECK_EQ(strstr(log, "gl_FragColor"), NULL);
     free(log);
 }
 
@@ -70,14 +70,14 @@ static void test_error_in_included_file_reports_that_file_and_line(void) {
     char *log = NULL;
     CHECK(!check_stage("inc_error.frag", SHADER_FRAGMENT, false, &log));
     CHECK_STR_CONTAINS(log, "inc/bad_line4.glsl:4: error: ");
-    CHECK(count_lines_with(log, "error:") == 1);
+    CHECK_EQ(count_lines_with(log, "error:"), 1);
     free(log);
 
     /* two levels down, through inc/map_waves.glsl */
     CHECK(!check_stage("map_main.frag", SHADER_FRAGMENT, false, &log));
     CHECK_STR_CONTAINS(log, "inc/map_fresnel.glsl:4: error: 'undefined_in_fresnel' : undeclared identifier");
-    CHECK(strstr(log, "compilation terminated") == NULL);     /* glslang's noise is dropped */
-    CHECK(strstr(log, "No code generated") == NULL);
+    CHECK_EQ(strstr(log, "compilation terminated"), NULL);     /* glslang's noise is dropped */
+    CHECK_EQ(strstr(log, "No code generated"), NULL);
     free(log);
 }
 
@@ -111,12 +111,12 @@ static void test_gstap_names_compile(void) {
     validate_result res;
     const char *p1[] = { shader_data("gstap.glib") };
     char *out = run_validate(p1, 1, shader_data("repo"), &rc, &res);
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     CHECK(res.nerrors == 0 && res.nprograms == 1 && res.nstages == 2);
     free(out);
     const char *p2[] = { shader_data("nogstap.glib") };
     out = run_validate(p2, 1, shader_data("repo"), &rc, &res);
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(out, "gstap.vert:7: error: ");
     free(out);
 }
@@ -126,13 +126,13 @@ static void test_toggle_combination_that_breaks_is_found(void) {
     validate_result res;
     const char *paths[] = { shader_data("toggle.glib") };
     char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
-    CHECK(rc == 1);
-    CHECK(res.nprograms == 1);
-    CHECK(res.ncombinations == 4);
-    CHECK(res.nerrors == 1);
+    CHECK_EQ(rc, 1);
+    CHECK_EQ(res.nprograms, 1);
+    CHECK_EQ(res.ncombinations, 4);
+    CHECK_EQ(res.nerrors, 1);
     CHECK_STR_CONTAINS(out, "toggle.frag:8: error: ");
     CHECK_STR_CONTAINS(out, "[with FOO=1 BAR=0] (2 of 4 combinations)\n");
-    CHECK(strstr(out, "FOO=0") == NULL);
+    CHECK_EQ(strstr(out, "FOO=0"), NULL);
     CHECK_STR_CONTAINS(out, "validate: 1 programs, 2 stages, 4 combinations: 1 errors\n");
     free(out);
 }
@@ -142,7 +142,7 @@ static void test_good_glib_passes(void) {
     validate_result res;
     const char *paths[] = { shader_data("good.glib") };
     char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
-    CHECK(rc == 0);
+    CHECK_EQ(rc, 0);
     CHECK(res.nerrors == 0 && res.nwarnings == 0);
     CHECK_STR_CONTAINS(out, "validate: 1 programs, 2 stages, 1 combinations: 0 errors\n");
     free(out);
@@ -153,19 +153,19 @@ static void test_link_checks(void) {
     validate_result res;
     const char *paths[] = { shader_data("link.glib") };
     char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
-    CHECK(rc == 1);
-    CHECK(res.nprograms == 3);
+    CHECK_EQ(rc, 1);
+    CHECK_EQ(res.nprograms, 3);
     /* vec3 out, vec4 in: glslang's link finds it; it is placed at the Program line */
     CHECK_STR_CONTAINS(out, "link.glib:5: error: program Mismatch: ");
     CHECK_STR_CONTAINS(out, "vN");
     /* an input the vertex shader never writes (glslang's link does not look) */
     CHECK_STR_CONTAINS(out, "unwritten.frag:4: warning: fragment shader input 'vNormal' is not written by the vertex shader");
-    CHECK(strstr(out, "vUnused") == NULL);             /* declared, never read: fine */
+    CHECK_EQ(strstr(out, "vUnused"), NULL);             /* declared, never read: fine */
     /* gl_TexCoord/gl_Color between compatibility stages are not an error */
-    CHECK(strstr(out, "TexCoord") == NULL);
-    CHECK(strstr(out, "Anonymous") == NULL);
-    CHECK(res.nerrors == 1);
-    CHECK(res.nwarnings == 1);
+    CHECK_EQ(strstr(out, "TexCoord"), NULL);
+    CHECK_EQ(strstr(out, "Anonymous"), NULL);
+    CHECK_EQ(res.nerrors, 1);
+    CHECK_EQ(res.nwarnings, 1);
     free(out);
 }
 
@@ -174,9 +174,9 @@ static void test_missing_stage_file_is_reported_at_glib_line(void) {
     validate_result res;
     const char *paths[] = { shader_data("missing_stage.glib") };
     char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(out, "missing_stage.glib:4: error: ");
-    CHECK(count_lines_with(out, "missing_stage.glib:4: error: ") == 1);    /* once */
+    CHECK_EQ(count_lines_with(out, "missing_stage.glib:4: error: "), 1);    /* once */
     free(out);
 }
 
@@ -187,9 +187,9 @@ static void test_no_paths_means_packs_and_scenes(void) {
     /* packs/testpack/pack.glib (its shader includes packs/common) and
      * scenes/sub/scene.glib, whose GLSL 1.20 fragment shader reads a varying
      * the vertex shader does not write: an error before GLSL 1.30 */
-    CHECK(res.nprograms == 2);
-    CHECK(rc == 1);
-    CHECK(res.nerrors == 1);
+    CHECK_EQ(res.nprograms, 2);
+    CHECK_EQ(rc, 1);
+    CHECK_EQ(res.nerrors, 1);
     CHECK_STR_CONTAINS(out, "scenes/sub/scene120.frag:3: error: fragment shader input 'vColour' is not written");
     CHECK_STR_CONTAINS(out, "validate: 2 programs, 4 stages, 2 combinations: 1 errors\n");
     free(out);
@@ -201,15 +201,15 @@ static void test_stage_files_and_directories(void) {
     const char *paths[] = { shader_data("good_compat.vert"), shader_data("inc_error.frag"), shader_data("inc/map_waves.glsl"),
                             shader_data("no_such_file.frag"), shader_data("inc") };
     char *out = run_validate(paths, 5, shader_data("repo"), &rc, &res);
-    CHECK(rc == 1);
-    CHECK(res.nprograms == 0);
-    CHECK(res.nstages == 2);
+    CHECK_EQ(rc, 1);
+    CHECK_EQ(res.nprograms, 0);
+    CHECK_EQ(res.nstages, 2);
     CHECK_STR_CONTAINS(out, "inc/bad_line4.glsl:4: error: ");
     CHECK_STR_CONTAINS(out, "map_waves.glsl:0: warning: cannot tell the stage");   /* named: said */
     CHECK_STR_CONTAINS(out, "no_such_file.frag:0: error: No such file or directory");
     /* inc/ holds only includes (no main): nothing to check, nothing said of them */
-    CHECK(strstr(out, "cycle_a.glsl") == NULL);
-    CHECK(res.nerrors == 2);
+    CHECK_EQ(strstr(out, "cycle_a.glsl"), NULL);
+    CHECK_EQ(res.nerrors, 2);
     free(out);
 }
 
@@ -221,7 +221,7 @@ static void test_define_slider_values_are_validated(void) {
     char path[512], frag[512];
     snprintf(frag, sizeof frag, "%s/modes.frag", g_tmp);
     FILE *f = fopen(frag, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs("#version 330 core\nout vec4 c;\nvoid main() {\n    c = vec4(0.0);\n"
           "    for (int i = 0; i < STEPS; i++) c += vec4(0.1);\n"
@@ -229,7 +229,7 @@ static void test_define_slider_values_are_validated(void) {
     fclose(f);
     snprintf(path, sizeof path, "%s/modes.glib", g_tmp);
     f = fopen(path, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs("##OpenGL GLIB\nFragment modes.frag\nDefine MODE <0 0 3>\nDefine STEPS <1 8 32>\nDefine FLAG <true>\n"
           "Program Modes\n", f);
@@ -239,7 +239,7 @@ static void test_define_slider_values_are_validated(void) {
     const char *paths[] = { path };
     char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
     /* FLAG on and off, then MODE 1, 2, 3 and STEPS 1, 32 */
-    CHECK(res.ncombinations == 2 + 3 + 2);
+    CHECK_EQ(res.ncombinations, 2 + 3 + 2);
     CHECK(rc == 1 && res.nerrors == 1);
     CHECK_STR_CONTAINS(out, "modes.frag:7: error: ");
     CHECK_STR_CONTAINS(out, "[with MODE=2 FLAG=1]\n");
@@ -251,13 +251,13 @@ static void test_define_slider_values_are_validated(void) {
 static void test_unnamed_glsl_with_main_is_reported(void) {
     char dir[300], path[400];
     snprintf(dir, sizeof dir, "%s/glsl", g_tmp);
-    CHECK(mkdir(dir, 0777) == 0);
+    CHECK_EQ(mkdir(dir, 0777), 0);
     const char *files[2][2] = { { "x.glsl", "vec3 f();\nvoid main\n ()\n{}\n" },
                                 { "y.glsl", "float mainly() { return 1.0; }\nfloat domain(float x);\n" } };
     for (int i = 0; i < 2; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, files[i][0]);
         FILE *f = fopen(path, "w");
-        CHECK(f != NULL);
+        CHECK_NE(f, NULL);
         if (!f) return;
         fputs(files[i][1], f);
         fclose(f);
@@ -277,14 +277,14 @@ static void test_too_many_toggles_are_capped(void) {
     char path[512], frag[512];
     snprintf(frag, sizeof frag, "%s/t12.frag", g_tmp);
     FILE *f = fopen(frag, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs("#version 330 core\nout vec4 c;\nvoid main() {\n    c = vec4(0.0);\n"
           "#if defined(T10) && !defined(T11)\n    c = 1;\n#endif\n}\n", f);
     fclose(f);
     snprintf(path, sizeof path, "%s/t12.glib", g_tmp);
     f = fopen(path, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs("##OpenGL GLIB\nFragment t12.frag\n", f);
     for (int i = 0; i < 12; i++) fprintf(f, "Define T%d <%s>\n", i, i == 10 ? "true" : "false");
@@ -294,11 +294,11 @@ static void test_too_many_toggles_are_capped(void) {
     validate_result res;
     const char *paths[] = { path };
     char *out = run_validate(paths, 1, shader_data("repo"), &rc, &res);
-    CHECK(res.ncombinations == 512);
-    CHECK(res.nwarnings == 1);
+    CHECK_EQ(res.ncombinations, 512);
+    CHECK_EQ(res.nwarnings, 1);
     CHECK_STR_CONTAINS(out, "t12.glib:15: warning: Program Many has 12 Define toggles");
     /* T10 stays on, T11 off: the error shows in every combination */
-    CHECK(rc == 1);
+    CHECK_EQ(rc, 1);
     CHECK_STR_CONTAINS(out, "t12.frag:6: error: ");
     CHECK_STR_CONTAINS(out, "T10=1 T11=0] (all 512 combinations)");
     free(out);
@@ -333,7 +333,7 @@ static void write_tmp(const char *name, const char *text) {
     char path[512];
     snprintf(path, sizeof path, "%s/%s", g_tmp, name);
     FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs(text, f);
     fclose(f);

@@ -10,15 +10,15 @@
 static void test_pass_names_read_as_the_glib(void) {
     char out[96];
     view_pass_name("pass:65 10", out, sizeof out);
-    CHECK(strcmp(out, "RenderToTexture 10 (line 65)") == 0);
+    CHECK_STR_EQ(out, "RenderToTexture 10 (line 65)");
     view_pass_name("pass:21 8 9", out, sizeof out);
-    CHECK(strcmp(out, "RenderToTexture 8 9 (line 21)") == 0);
+    CHECK_STR_EQ(out, "RenderToTexture 8 9 (line 21)");
     view_pass_name("screen:24", out, sizeof out);
-    CHECK(strcmp(out, "to the screen (line 24)") == 0);
+    CHECK_STR_EQ(out, "to the screen (line 24)");
     view_pass_name("screen", out, sizeof out);      /* before any command */
-    CHECK(strcmp(out, "screen") == 0);
+    CHECK_STR_EQ(out, "screen");
     view_pass_name("pass:7 1 2 3 4 5 6 7 8", out, 12);   /* cut, never overrun */
-    CHECK(strlen(out) == 11);
+    CHECK_EQ(strlen(out), 11);
 }
 
 /* A script is read whole, up to its line limit: a huge file is refused, not
@@ -32,7 +32,7 @@ static void test_script_line_limit(void) {
     char err[512] = "";
     for (int n = VIEW_SCRIPT_MAX_LINES; n <= VIEW_SCRIPT_MAX_LINES + 1; n++) {
         FILE *f = fopen(path, "w");
-        CHECK(f != NULL);
+        CHECK_NE(f, NULL);
         if (!f) break;
         for (int i = 0; i < n; i++) fputs("frames 1\n", f);
         fclose(f);
@@ -59,9 +59,9 @@ static void test_reload_cause_names_the_files(void) {
     view_reload_cause(five, 5, out, sizeof out);
     CHECK_MSG(strcmp(out, "a.frag, b.frag and 3 more changed") == 0, "%s", out);
     view_reload_cause(NULL, 0, out, sizeof out);
-    CHECK(out[0] == '\0');
+    CHECK_EQ(out[0], '\0');
     view_reload_cause(five, 5, out, 9);   /* cut, never overrun */
-    CHECK(strlen(out) == 8);
+    CHECK_EQ(strlen(out), 8);
 }
 
 /* The reload's line and the "compiling ..." note say what the window does
@@ -87,7 +87,7 @@ static void test_reload_line_and_compiling_text(void) {
     view_reload_line("tarn", "lake.glib", "", -1, out, sizeof out);   /* R: no cause, compiled on the frame */
     CHECK_MSG(strcmp(out, "tarn: reloaded lake.glib") == 0, "%s", out);
     view_reload_line("tarn", "lake.glib", "water.frag changed", 0.5, out, 20);   /* cut, never overrun */
-    CHECK(strlen(out) == 19);
+    CHECK_EQ(strlen(out), 19);
     view_compiling_text("water.frag changed", out, sizeof out);
     CHECK_MSG(strcmp(out, "compiling water.frag ... (the last good build draws meanwhile)") == 0, "%s", out);
     view_compiling_text("", out, sizeof out);
@@ -167,8 +167,8 @@ static void test_sheet_command_line(void) {
     for (int i = 0; i < argc; i++) snprintf(line + strlen(line), sizeof line - strlen(line), "%s%s", i ? " " : "", argv[i]);
     CHECK_MSG(strcmp(line, "tarn sheet /p/lake.glib --vary Water.uOpacity=0:1:5 --time 2.5 --pack natural "
                            "--set Water.uTint=1,0.5,0.25 --quiet -o s.png") == 0, "%s", line);
-    CHECK(argv[argc] == NULL);
-    CHECK(sheet_job_argv(&d, argv, 8, text, sizeof text) == -1);   /* does not fit: said, not cut */
+    CHECK_EQ(argv[argc], NULL);
+    CHECK_EQ(sheet_job_argv(&d, argv, 8, text, sizeof text), -1);   /* does not fit: said, not cut */
 }
 
 int main(void) {

@@ -236,7 +236,7 @@ static void expect_one_change(watch *w, const char *path, double t_saved, const 
                   watch_changed(w, 0));
         fprintf(stderr, "  %-32s latency %6.1f ms\n", what, latency);
     }
-    CHECK(watch_changed(w, n) == NULL);
+    CHECK_EQ(watch_changed(w, n), NULL);
     int again = watch_poll(w, SILENCE_MS);
     CHECK_MSG(again == 0, "%s: %d more changes reported after the save", what, again);
 }
@@ -254,12 +254,12 @@ static void test_create_and_bad_paths(void) {
     watch *w = watch_create(err, sizeof err);
     CHECK_MSG(w != NULL, "%s", err);
     if (!w) return;
-    CHECK(watch_fd(w) >= 0);
-    CHECK(watch_poll(w, 0) == 0);               /* nothing watched: fine */
-    CHECK(watch_poll(w, 20) == 0);
-    CHECK(watch_timeout_ms(w) == -1);
-    CHECK(watch_changed(w, 0) == NULL);
-    CHECK(watch_changed(w, -1) == NULL);
+    CHECK_GE(watch_fd(w), 0);
+    CHECK_EQ(watch_poll(w, 0), 0);               /* nothing watched: fine */
+    CHECK_EQ(watch_poll(w, 20), 0);
+    CHECK_EQ(watch_timeout_ms(w), -1);
+    CHECK_EQ(watch_changed(w, 0), NULL);
+    CHECK_EQ(watch_changed(w, -1), NULL);
 
     const char *missing_dir[] = { "/nonexistent_tarn_dir/x/shader.frag" };
     err[0] = '\0';
@@ -277,7 +277,7 @@ static void test_create_and_bad_paths(void) {
 
     /* a file under a regular file: its "directory" is not one */
     char *dir = make_tmpdir();
-    CHECK(dir != NULL);
+    CHECK_NE(dir, NULL);
     if (dir) {
         char *f = path_join(dir, "plain");
         CHECK(write_file(f, "x"));
@@ -355,7 +355,7 @@ static void test_save_stalled_writer(void) {
         snprintf(copy, sizeof copy, "%s", next_content());
         stalled_save s = { .path = fx.a, .content = copy, .pause_ms = 400 };
         pthread_t th;
-        CHECK(pthread_create(&th, NULL, stalled_writer, &s) == 0);
+        CHECK_EQ(pthread_create(&th, NULL, stalled_writer, &s), 0);
         int n = watch_poll(fx.w, REPORT_TIMEOUT_MS);   /* while the writer stalls */
         double reported = now_ms();
         pthread_join(th, NULL);
@@ -367,7 +367,7 @@ static void test_save_stalled_writer(void) {
         FILE *f = fopen(fx.a, "r");
         char got[128] = "";
         if (f) { size_t k = fread(got, 1, sizeof got - 1, f); got[k] = '\0'; fclose(f); }
-        CHECK(strcmp(got, copy) == 0);
+        CHECK_STR_EQ(got, copy);
     }
     fixture_close(&fx);
 }
@@ -411,9 +411,9 @@ static void test_vim_probe_reports_nothing(void) {
     if (fixture_open(&fx)) {
         char *probe = path_join(fx.dir, "4913");
         int fd = open(probe, O_WRONLY | O_CREAT | O_EXCL, 0644);
-        CHECK(fd >= 0);
+        CHECK_GE(fd, 0);
         if (fd >= 0) close(fd);
-        CHECK(unlink(probe) == 0);
+        CHECK_EQ(unlink(probe), 0);
         expect_silence(fx.w, "vim 4913 probe");
         free(probe);
     }
@@ -438,14 +438,14 @@ static void test_save_delete_create(void) {
 static void test_file_stays_deleted(void) {
     fixture fx;
     if (fixture_open(&fx)) {
-        CHECK(unlink(fx.a) == 0);
+        CHECK_EQ(unlink(fx.a), 0);
         expect_one_change(fx.w, fx.a, now_ms(), "deleted for good");
         CHECK(write_file(fx.a, next_content()));
         expect_one_change(fx.w, fx.a, now_ms(), "back after deletion");
         /* back with the very content it had before: still a change from "gone" */
-        CHECK(rename(fx.a, fx.other) == 0);
+        CHECK_EQ(rename(fx.a, fx.other), 0);
         expect_one_change(fx.w, fx.a, now_ms(), "renamed away");
-        CHECK(rename(fx.other, fx.a) == 0);
+        CHECK_EQ(rename(fx.other, fx.a), 0);
         expect_one_change(fx.w, fx.a, now_ms(), "renamed back");
     }
     fixture_close(&fx);
@@ -476,7 +476,7 @@ static void test_same_content_and_touch(void) {
         size_t n = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
         if (f) fclose(f);
         buf[n] = '\0';
-        CHECK(n > 0);
+        CHECK_GT(n, 0);
         CHECK(save_truncate_write(fx.a, buf, 0));
         expect_silence(fx.w, "same content, truncate + write");
         CHECK(save_rename_over(fx.a, buf));
@@ -487,13 +487,13 @@ static void test_same_content_and_touch(void) {
         expect_silence(fx.w, "same content, delete + create");
         /* touch: open for writing, set times, close */
         int fd = open(fx.a, O_WRONLY | O_CREAT | O_NOCTTY | O_NONBLOCK, 0666);
-        CHECK(fd >= 0);
+        CHECK_GE(fd, 0);
         if (fd >= 0) {
-            CHECK(futimens(fd, NULL) == 0);
+            CHECK_EQ(futimens(fd, NULL), 0);
             close(fd);
         }
-        CHECK(utimensat(AT_FDCWD, fx.b, NULL, 0) == 0);
-        CHECK(chmod(fx.b, 0600) == 0);
+        CHECK_EQ(utimensat(AT_FDCWD, fx.b, NULL, 0), 0);
+        CHECK_EQ(chmod(fx.b, 0600), 0);
         expect_silence(fx.w, "touch, chmod");
         /* and a real change after all that is still seen */
         CHECK(save_in_place(fx.a, next_content()));
@@ -509,7 +509,7 @@ static void test_unwatched_files_ignored(void) {
         CHECK(save_vim(fx.other, next_content()));
         CHECK(save_rename_over(fx.other, next_content()));
         char *sub = path_join(fx.dir, "sub");
-        CHECK(mkdir(sub, 0755) == 0);
+        CHECK_EQ(mkdir(sub, 0755), 0);
         char *inner = path_join(sub, "a.vert");     /* same name, other dir */
         CHECK(write_file(inner, next_content()));
         /* a name that only starts like a watched one */
@@ -545,13 +545,13 @@ static void test_relative_paths_normalised(void) {
     char *cwd = getcwd(NULL, 0);
     if (cwd && fixture_open(&fx)) {
         char *sub = path_join(fx.dir, "sub");
-        CHECK(mkdir(sub, 0755) == 0);
-        CHECK(chdir(sub) == 0);
+        CHECK_EQ(mkdir(sub, 0755), 0);
+        CHECK_EQ(chdir(sub), 0);
         char err[256] = "";
         /* both name a.vert; they must merge into one watched file */
         const char *files[] = { "../a.vert", ".//..//sub/./../a.vert", "../b.frag" };
         CHECK_MSG(watch_set_files(fx.w, files, 3, err, sizeof err), "%s", err);
-        CHECK(chdir(cwd) == 0);     /* the paths were resolved when given */
+        CHECK_EQ(chdir(cwd), 0);     /* the paths were resolved when given */
         CHECK(save_rename_over(fx.a, next_content()));
         expect_one_change(fx.w, fx.a, now_ms(), "relative path");
         CHECK(save_in_place(fx.b, next_content()));
@@ -559,7 +559,7 @@ static void test_relative_paths_normalised(void) {
         free(sub);
     }
     if (cwd) {
-        CHECK(chdir(cwd) == 0);
+        CHECK_EQ(chdir(cwd), 0);
         fixture_close(&fx);
     }
     free(cwd);
@@ -596,7 +596,7 @@ static void test_directory_deleted_and_recreated(void) {
     if (fixture_open(&fx)) {
         char *sub = path_join(fx.dir, "shaders");
         char *f = path_join(sub, "water.frag");
-        CHECK(mkdir(sub, 0755) == 0);
+        CHECK_EQ(mkdir(sub, 0755), 0);
         CHECK(write_file(f, "void main() {}\n"));
         char err[256] = "";
         const char *files[] = { f, fx.a };
@@ -604,7 +604,7 @@ static void test_directory_deleted_and_recreated(void) {
 
         rm_rf(sub);
         expect_one_change(fx.w, f, now_ms(), "directory deleted");
-        CHECK(mkdir(sub, 0755) == 0);
+        CHECK_EQ(mkdir(sub, 0755), 0);
         CHECK(write_file(f, next_content()));
         expect_one_change(fx.w, f, now_ms(), "directory recreated");
         CHECK(save_rename_over(f, next_content()));
@@ -612,8 +612,8 @@ static void test_directory_deleted_and_recreated(void) {
 
         /* moved away and replaced quickly (a git checkout, say) */
         char *moved = path_join(fx.dir, "shaders.old");
-        CHECK(rename(sub, moved) == 0);
-        CHECK(mkdir(sub, 0755) == 0);
+        CHECK_EQ(rename(sub, moved), 0);
+        CHECK_EQ(mkdir(sub, 0755), 0);
         CHECK(write_file(f, next_content()));
         expect_one_change(fx.w, f, now_ms(), "directory moved, replaced");
         /* the moved directory is no longer what is watched */
@@ -646,10 +646,10 @@ static void test_symlink_target(void) {
         char *target = path_join(lib, "common.glsl");
         char *link = path_join(fx.dir, "common.glsl");
         char *target2 = path_join(lib, "common2.glsl");
-        CHECK(mkdir(lib, 0755) == 0);
+        CHECK_EQ(mkdir(lib, 0755), 0);
         CHECK(write_file(target, "float f() { return 1.0; }\n"));
         CHECK(write_file(target2, "float f() { return 2.0; }\n"));
-        CHECK(symlink("lib/common.glsl", link) == 0);
+        CHECK_EQ(symlink("lib/common.glsl", link), 0);
         char err[256] = "";
         const char *files[] = { link };
         CHECK_MSG(watch_set_files(fx.w, files, 1, err, sizeof err), "%s", err);
@@ -661,8 +661,8 @@ static void test_symlink_target(void) {
 
         /* re-point the link atomically */
         char *tmp = path_join(fx.dir, "common.glsl.new");
-        CHECK(symlink("lib/common2.glsl", tmp) == 0);
-        CHECK(rename(tmp, link) == 0);
+        CHECK_EQ(symlink("lib/common2.glsl", tmp), 0);
+        CHECK_EQ(rename(tmp, link), 0);
         expect_one_change(fx.w, link, now_ms(), "symlink re-pointed");
         free(tmp);
         free(lib);
@@ -678,7 +678,7 @@ static void test_symlink_target(void) {
 static void test_own_poll_loop(void) {
     fixture fx;
     if (fixture_open(&fx)) {
-        CHECK(watch_timeout_ms(fx.w) == -1);
+        CHECK_EQ(watch_timeout_ms(fx.w), -1);
         CHECK(save_vim(fx.a, next_content()));
         double t_saved = now_ms();
         int total = 0, calls = 0;
@@ -694,8 +694,8 @@ static void test_own_poll_loop(void) {
             if (dt > longest_call) longest_call = dt;
             calls++;
             if (n > 0) {
-                CHECK(n == 1);
-                CHECK(strcmp(watch_changed(fx.w, 0), fx.a) == 0);
+                CHECK_EQ(n, 1);
+                CHECK_STR_EQ(watch_changed(fx.w, 0), fx.a);
                 total += n;
                 fprintf(stderr, "  %-32s latency %6.1f ms (%d polls)\n", "own poll loop, poll(0)",
                         now_ms() - t_saved, calls);
@@ -705,7 +705,7 @@ static void test_own_poll_loop(void) {
         CHECK_MSG(total == 1, "%d reported", total);
         /* poll(0) does no waiting of its own (generous bound for a loaded box) */
         CHECK_MSG(longest_call < 50, "watch_poll(w, 0) took %.1f ms", longest_call);
-        CHECK(watch_timeout_ms(fx.w) == -1);
+        CHECK_EQ(watch_timeout_ms(fx.w), -1);
         expect_silence(fx.w, "after own poll loop");
     }
     fixture_close(&fx);
@@ -716,7 +716,7 @@ static void test_own_poll_loop(void) {
 static void test_own_poll_no_spin(void) {
     fixture fx;
     if (fixture_open(&fx)) {
-        CHECK(unlink(fx.a) == 0);
+        CHECK_EQ(unlink(fx.a), 0);
         double t_saved = now_ms();
         int total = 0, wakeups = 0;
         while (now_ms() - t_saved < REPORT_TIMEOUT_MS && total == 0) {
@@ -753,8 +753,8 @@ static void test_queue_overflow(void) {
         CHECK(x >= 0 && y >= 0);
         /* alternate names so that the kernel cannot merge the events */
         for (long i = 0; x >= 0 && y >= 0 && i < max_events + 1000; i++) {
-            CHECK(write(x, "x", 1) == 1);
-            CHECK(write(y, "y", 1) == 1);
+            CHECK_EQ(write(x, "x", 1), 1);
+            CHECK_EQ(write(y, "y", 1), 1);
         }
         if (x >= 0) close(x);
         if (y >= 0) close(y);
@@ -769,14 +769,14 @@ static void test_queue_overflow(void) {
 static void test_many_files(void) {
     enum { NDIRS = 40, PER_DIR = 30, N = NDIRS * PER_DIR };
     char *root = make_tmpdir();
-    CHECK(root != NULL);
+    CHECK_NE(root, NULL);
     if (!root) return;
     char **paths = calloc(N, sizeof *paths);
     for (int d = 0; d < NDIRS; d++) {
         char name[32];
         snprintf(name, sizeof name, "d%02d", d);
         char *dir = path_join(root, name);
-        CHECK(mkdir(dir, 0755) == 0);
+        CHECK_EQ(mkdir(dir, 0755), 0);
         for (int i = 0; i < PER_DIR; i++) {
             snprintf(name, sizeof name, "shader_%03d.glsl", i);
             paths[d * PER_DIR + i] = path_join(dir, name);
@@ -800,7 +800,7 @@ static void test_many_files(void) {
         int got = n;
         /* a burst this size may be split when the machine is loaded */
         while (n > 0 && got < 25) {
-            for (int i = 0; i < n; i++) CHECK(watch_changed(w, i) != NULL);
+            for (int i = 0; i < n; i++) CHECK_NE(watch_changed(w, i), NULL);
             n = watch_poll(w, SILENCE_MS);
             got += n;
         }

@@ -36,10 +36,10 @@ static ref_explosion_desc ring(double i0, double omega, double k, double decay) 
 static void test_ring_defaults_and_errors(void) {
     ref_explosion_desc e = { { 0, 0 }, 0, 1, 0, 0, 0 };
     char err[200];
-    CHECK(ref_explosion_resolve(&e, err, sizeof err) == 0);
+    CHECK_EQ(ref_explosion_resolve(&e, err, sizeof err), 0);
     CHECK_NEAR(e.k, TWO_PI, 1e-15);
     CHECK_NEAR(e.omega, sqrt(9.81 * TWO_PI), 1e-12);
-    CHECK(e.decay == 0);
+    CHECK_EQ(e.decay, 0);
     struct { ref_explosion_desc d; const char *word; } bad[] = {
         { { { NAN, 0 }, 0, 1, 0, 0, 0 }, "center" },
         { { { 0, INFINITY }, 0, 1, 0, 0, 0 }, "center" },
@@ -52,10 +52,10 @@ static void test_ring_defaults_and_errors(void) {
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         err[0] = 0;
-        CHECK(ref_explosion_resolve(&bad[i].d, err, sizeof err) == -1);
+        CHECK_EQ(ref_explosion_resolve(&bad[i].d, err, sizeof err), -1);
         CHECK_STR_CONTAINS(err, bad[i].word);
     }
-    CHECK(ref_explosion_resolve(&bad[4].d, NULL, 0) == -1);   /* no buffer: still an error */
+    CHECK_EQ(ref_explosion_resolve(&bad[4].d, NULL, 0), -1);   /* no buffer: still an error */
 }
 
 static void test_ring_flat_before_and_at_start(void) {
@@ -72,7 +72,7 @@ static void test_ring_flat_before_and_at_start(void) {
         }
     }
     /* and it does rise afterwards */
-    CHECK(fabs(ref_explosion_height(&e, e.center[0], e.center[1], e.start + 1.0, NULL)) > 1e-3);
+    CHECK_GT(fabs(ref_explosion_height(&e, e.center[0], e.center[1], e.start + 1.0, NULL)), 1e-3);
 }
 
 static void test_ring_formula(void) {
@@ -103,7 +103,7 @@ static void test_ring_centre_smooth(void) {
             double a = d * M_PI / 4, eps = 1e-4;
             double h1 = ref_explosion_height(&e, e.center[0] + eps * cos(a), e.center[1] + eps * sin(a), t, NULL);
             double h2 = ref_explosion_height(&e, e.center[0] + 2 * eps * cos(a), e.center[1] + 2 * eps * sin(a), t, NULL);
-            CHECK(fabs(h1 - h0) < 1e-6);
+            CHECK_LT(fabs(h1 - h0), 1e-6);
             /* quadratic: the step at 2 eps is 4 times that at eps */
             if (fabs(h1 - h0) > 1e-12) CHECK_NEAR((h2 - h0) / (h1 - h0), 4.0, 1e-3);
         }
@@ -136,7 +136,7 @@ static void test_ring_gradient_fd(void) {
         if (d > worst) worst = d;
     }
     fprintf(stderr, "  ring: worst |analytic - FD| gradient %.3g\n", worst);
-    CHECK(worst < 2e-7);
+    CHECK_LT(worst, 2e-7);
 }
 
 /* The outermost r where h != 0 (scanning inwards in steps of dr) and the
@@ -166,8 +166,8 @@ static void test_ring_speed(void) {
         front_and_crest(&e, t2, c * 14 + 5, 1e-4, &f2, &c2);
         double vf = (f2 - f1) / (t2 - t1), vc = (c2 - c1) / (t2 - t1);
         fprintf(stderr, "  omega/k %.5g: front %.5g m/s, crest %.5g m/s\n", c, vf, vc);
-        CHECK(fabs(vf - c) < 2e-3 * c);
-        CHECK(fabs(vc - c) < 2e-3 * c);
+        CHECK_LT(fabs(vf - c), 2e-3 * c);
+        CHECK_LT(fabs(vc - c), 2e-3 * c);
         /* the front is where s reaches R = (omega / k) tau */
         CHECK_NEAR(sqrt(f1 * f1 + 1 / (e.k * e.k)), c * 8.0, 2e-4);
     }
@@ -178,7 +178,7 @@ static void test_ring_decay(void) {
     double r = 2.0, q = sqrt(e.k * e.k * r * r + 1);
     /* at phase -pi/2 - 40 pi, then 5 periods later: the same phase */
     double tau1 = (q + M_PI / 2 + 40 * M_PI) / e.omega, tau2 = tau1 + 5 * TWO_PI / e.omega;
-    CHECK(e.omega / e.k * tau1 - r > 2 * TWO_PI / e.k);     /* far behind the front */
+    CHECK_GT(e.omega / e.k * tau1 - r, 2 * TWO_PI / e.k);     /* far behind the front */
     double h1 = ref_explosion_height(&e, e.center[0] + r, e.center[1], e.start + tau1, NULL);
     double h2 = ref_explosion_height(&e, e.center[0], e.center[1] + r, e.start + tau2, NULL);
     CHECK_NEAR(h2 / h1, exp(-e.decay * (tau2 - tau1)), 1e-9);
@@ -224,7 +224,7 @@ static void test_perlin3_lattice(void) {
         uint32_t seed = (uint32_t)(lcg01(&s) * 4294967295.0);
         double g[3];
         double h = ref_perlin3(ix, iy, iz, seed, g);
-        CHECK(h == 0.0);
+        CHECK_EQ(h, 0.0);
         /* the gradient there is the corner's edge vector, chosen by the spec's hash */
         uint32_t k = my_hash((uint32_t)ix + my_hash((uint32_t)iy + my_hash((uint32_t)iz + seed))) % 12u;
         CHECK(g[0] == G12[k][0] && g[1] == G12[k][1] && g[2] == G12[k][2]);
@@ -255,8 +255,8 @@ static void test_perlin3_range_and_gradient(void) {
     fprintf(stderr, "  perlin3: range [%.4f, %.4f], max |grad| %.3f, worst FD %.3g\n", lo, hi, gmax, worst);
     CHECK(lo >= -1.0 && hi <= 1.0);
     CHECK(lo < -0.7 && hi > 0.7);
-    CHECK(gmax <= 15 * sqrt(3.0) / 4);
-    CHECK(worst < 1e-7);
+    CHECK_LE(gmax, 15 * sqrt(3.0) / 4);
+    CHECK_LT(worst, 1e-7);
 }
 
 static void test_perlin3_seeds(void) {
@@ -265,12 +265,12 @@ static void test_perlin3_seeds(void) {
     for (int n = 0; n < 2000; n++) {
         double x = (lcg01(&s) - 0.5) * 50, y = (lcg01(&s) - 0.5) * 50, z = (lcg01(&s) - 0.5) * 50;
         double a = ref_perlin3(x, y, z, 42, NULL), b = ref_perlin3(x, y, z, 42, NULL);
-        CHECK(a == b);
+        CHECK_EQ(a, b);
         double c = ref_perlin3(x, y, z, 43, NULL);
         total++;
         if (fabs(a - c) > 1e-3) differ++;
     }
-    CHECK(differ > total * 9 / 10);
+    CHECK_GT(differ, total * 9 / 10);
     /* a known value written out from the definition at (0.5, 0.25, 0.75), seed 7 */
     double x = 0.5, y = 0.25, z = 0.75, want = 0;
     for (int c = 0; c < 8; c++) {
@@ -301,7 +301,7 @@ static ref_perlin_desc pset(double amp, int oct, double stretch, double angle, u
 static void test_perlin_defaults_and_errors(void) {
     ref_perlin_desc p = { .amplitude = 0.2 };
     char err[200];
-    CHECK(ref_perlin_resolve(&p, err, sizeof err) == 0);
+    CHECK_EQ(ref_perlin_resolve(&p, err, sizeof err), 0);
     CHECK(p.cell == 4 && p.octaves == 4 && p.gain == 0.5 && p.stretch == 1 && p.rate == 0.5);
     struct { ref_perlin_desc d; const char *word; } bad[] = {
         { { .amplitude = NAN }, "amplitude" },
@@ -315,11 +315,11 @@ static void test_perlin_defaults_and_errors(void) {
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         err[0] = 0;
-        CHECK(ref_perlin_resolve(&bad[i].d, err, sizeof err) == -1);
+        CHECK_EQ(ref_perlin_resolve(&bad[i].d, err, sizeof err), -1);
         CHECK_STR_CONTAINS(err, bad[i].word);
     }
     ref_perlin_desc none = { 0 };
-    CHECK(ref_perlin_resolve(&none, err, sizeof err) == 0);
+    CHECK_EQ(ref_perlin_resolve(&none, err, sizeof err), 0);
     double g[2] = { 1, 1 };
     CHECK(ref_perlin_height(&none, 1, 2, 3, g) == 0.0 && g[0] == 0 && g[1] == 0);
 }
@@ -344,7 +344,7 @@ static void test_perlin_set_formula_and_gradient(void) {
         worst = fmax(worst, fmax(fabs(fx - g[0]), fabs(fz - g[1])));
     }
     fprintf(stderr, "  perlin set: worst |analytic - FD| gradient %.3g\n", worst);
-    CHECK(worst < 1e-7);
+    CHECK_LT(worst, 1e-7);
 }
 
 /* The lag at which the normalised autocorrelation along dir first drops
@@ -372,11 +372,11 @@ static void test_perlin_stretch_direction(void) {
     double across = corr_half(&p, -sin(th), cos(th));
     fprintf(stderr, "  stretch %.1f: half-correlation length along the wind %.3f m, across %.3f m (ratio %.3f)\n",
             stretch, along, across, across / along);
-    CHECK(fabs(across / along - stretch) < 0.1 * stretch);
+    CHECK_LT(fabs(across / along - stretch), 0.1 * stretch);
     ref_perlin_desc iso = pset(1.0, 1, 1.0, angle, 77);
     double a1 = corr_half(&iso, cos(th), sin(th)), c1 = corr_half(&iso, -sin(th), cos(th));
-    CHECK(fabs(c1 / a1 - 1.0) < 0.1);
-    CHECK(fabs(a1 - along) < 0.1 * a1);      /* along the wind: unstretched */
+    CHECK_LT(fabs(c1 / a1 - 1.0), 0.1);
+    CHECK_LT(fabs(a1 - along), 0.1 * a1);      /* along the wind: unstretched */
 }
 
 static void test_perlin_bounds(void) {
@@ -431,7 +431,7 @@ static void test_uniforms(void) {
     n = ref_wavefx_uniforms(NULL, 0, NULL, u, REF_WAVEFX_UNIFORMS_MAX);
     CHECK(find(u, n, "uExplosionN")->i == 0 && find(u, n, "uPerlinN")->i == 0);
     /* a short array: no more than max */
-    CHECK(ref_wavefx_uniforms(e, 3, &p, u, 2) == 2);
+    CHECK_EQ(ref_wavefx_uniforms(e, 3, &p, u, 2), 2);
 }
 
 int main(void) {

@@ -135,7 +135,7 @@ static void test_rings_match_reference(void) {
         { { -3.1, 4.2 }, 1.5, -0.2, 3.0, 2.5, 0 },
         { { 2.0, 2.0 }, 0.0, 0.0, 0, 0, 0 },                                              /* I0 = 0: none */
     };
-    for (int i = 0; i < 3; i++) CHECK(ref_explosion_resolve(&e[i], NULL, 0) == 0);
+    for (int i = 0; i < 3; i++) CHECK_EQ(ref_explosion_resolve(&e[i], NULL, 0), 0);
     g_rings = e; g_nrings = 3;
     glUseProgram(g_prog);
     upload(g_prog, e, 3, NULL);
@@ -145,9 +145,9 @@ static void test_rings_match_reference(void) {
         compare(g_prog, 0, times[k], 0, &wh, &wg, &hmax);
         fprintf(stderr, "  rings t = %.4f: max |h| %.3g, worst height error %.3g, gradient error %.3g\n",
                 times[k], hmax, wh, wg);
-        CHECK(wh <= TOL_H);
-        CHECK(wg <= TOL_G);
-        if (k >= 4) CHECK(hmax > 0.02);       /* something to compare */
+        CHECK_LE(wh, TOL_H);
+        CHECK_LE(wg, TOL_G);
+        if (k >= 4) CHECK_GT(hmax, 0.02);       /* something to compare */
     }
     /* exactly at r = 0, later: finite, gradient 0 on both sides */
     static float img[N * N * 4];
@@ -161,7 +161,7 @@ static void test_rings_match_reference(void) {
 
 static void test_perlin_set_matches_reference(void) {
     ref_perlin_desc pd = { 0.2, 2.0, 5, 0.5, 2.0, 30.0, 0.6, 99 };
-    CHECK(ref_perlin_resolve(&pd, NULL, 0) == 0);
+    CHECK_EQ(ref_perlin_resolve(&pd, NULL, 0), 0);
     g_perlin = &pd;
     glUseProgram(g_prog);
     upload(g_prog, NULL, 0, &pd);
@@ -171,9 +171,9 @@ static void test_perlin_set_matches_reference(void) {
         compare(g_prog, 1, times[k], 0, &wh, &wg, &hmax);
         fprintf(stderr, "  perlin set t = %.2f: max |h| %.3g, worst height error %.3g, gradient error %.3g\n",
                 times[k], hmax, wh, wg);
-        CHECK(wh <= TOL_H);
-        CHECK(wg <= TOL_G);
-        CHECK(hmax > 0.05);
+        CHECK_LE(wh, TOL_H);
+        CHECK_LE(wg, TOL_G);
+        CHECK_GT(hmax, 0.05);
     }
 }
 
@@ -185,8 +185,8 @@ static void test_perlin3_matches_reference(void) {
         compare(g_prog, 2, zs[k], seeds[k], &wh, &wg, &hmax);
         fprintf(stderr, "  perlin3 z = %.3f seed %u: max |n| %.3g, worst value error %.3g, gradient error %.3g\n",
                 zs[k], seeds[k], hmax, wh, wg);
-        CHECK(wh <= TOL_P3);
-        CHECK(wg <= 10 * TOL_P3);
+        CHECK_LE(wh, TOL_P3);
+        CHECK_LE(wg, 10 * TOL_P3);
     }
 }
 
@@ -200,7 +200,7 @@ static void test_nothing_is_zero(void) {
         int nonzero = 0;
         for (int i = 0; i < N * N * 4; i += 4)
             if (img[i] != 0 || img[i + 1] != 0 || img[i + 2] != 0) nonzero++;
-        CHECK(nonzero == 0);
+        CHECK_EQ(nonzero, 0);
     }
 }
 
@@ -223,7 +223,7 @@ int main(void) {
                   "         c = vec4(h, g3); }\n"
                   "}\n");
     g_prog = program();
-    CHECK(g_prog != 0);
+    CHECK_NE(g_prog, 0);
     if (g_prog) {
         RUN(test_rings_match_reference);
         RUN(test_perlin_set_matches_reference);

@@ -68,7 +68,7 @@ static void rest_point(int i, int j, double *u, double *v) {
 
 static void compare(const ref_waves *w, bool approx) {
     GLuint p = program(approx);
-    CHECK(p != 0);
+    CHECK_NE(p, 0);
     if (!p) return;
     static float pos[N * N * 4], nrm[N * N * 4];
     draw(p, 0, w, pos);
@@ -90,22 +90,22 @@ static void compare(const ref_waves *w, bool approx) {
         }
     fprintf(stderr, "  %s normal: worst position error %.3g, normal error %.3g\n",
             approx ? "approximate" : "exact", worst_p, worst_n);
-    CHECK(worst_p <= TOL);
-    CHECK(worst_n <= TOL);
+    CHECK_LE(worst_p, TOL);
+    CHECK_LE(worst_n, TOL);
     glDeleteProgram(p);
 }
 
 static void test_lake_waves_match_reference(void) {
     ref_waves w;
     ref_waves_desc d = ref_waves_default();
-    CHECK(ref_waves_init(&w, &d, NULL, 0) == 0);
+    CHECK_EQ(ref_waves_init(&w, &d, NULL, 0), 0);
     compare(&w, false);
 }
 
 static void test_approximate_normal_matches_reference(void) {
     ref_waves w;
     ref_waves_desc d = ref_waves_default();
-    CHECK(ref_waves_init(&w, &d, NULL, 0) == 0);
+    CHECK_EQ(ref_waves_init(&w, &d, NULL, 0), 0);
     compare(&w, true);
 }
 
@@ -114,7 +114,7 @@ static void test_zero_steepness_matches(void) {
     ref_waves w;
     ref_waves_desc d = ref_waves_default();
     d.steepness = 0;
-    CHECK(ref_waves_init(&w, &d, NULL, 0) == 0);
+    CHECK_EQ(ref_waves_init(&w, &d, NULL, 0), 0);
     compare(&w, false);
 }
 

@@ -58,7 +58,7 @@ static void check_pack(const char *pack, bool is_float) {
     /* the first frame at a time draws, the second keeps, the third copies */
     float *a0 = frame(&on, 2.0, NULL), *a0b = frame(&on, 2.0, NULL);
     long h0 = render_world_cache_hits(on.r);
-    CHECK(h0 == 0);
+    CHECK_EQ(h0, 0);
     float *a1 = frame(&on, 2.0, NULL), *b1 = frame(&off, 2.0, NULL);
     CHECK_MSG(render_world_cache_hits(on.r) > h0, "%s: the second frame copied no World", pack);
     CHECK_MSG(render_world_cache_hits(off.r) == 0, "%s: the cache was off", pack);
@@ -92,9 +92,9 @@ static void check_pack(const char *pack, bool is_float) {
     CHECK(render_load(off.r, LAKE));
     long h1 = render_world_cache_hits(on.r);
     float *a5 = frame(&on, 2.0, NULL);
-    CHECK(render_world_cache_hits(on.r) == h1);
+    CHECK_EQ(render_world_cache_hits(on.r), h1);
     float *a6 = frame(&on, 2.0, NULL), *a7 = frame(&on, 2.0, NULL), *b6 = frame(&off, 2.0, NULL);
-    CHECK(render_world_cache_hits(on.r) > h1);
+    CHECK_GT(render_world_cache_hits(on.r), h1);
     CHECK_MSG(same(a5, b6) && same(a6, b6) && same(a7, b6), "%s: after a reload", pack);
 
     float *all[] = { a0, a0b, a1, b1, a2, b2, a3, b3, a5, a6, a7, b6 };
@@ -121,7 +121,7 @@ static void check_running_clock(const char *pack, bool is_float, const render_vi
     }
     CHECK_MSG(render_world_layer_frames(on.r) >= 3, "%s: %ld World draws composed from layers, want 3 or more", pack,
               render_world_layer_frames(on.r));
-    CHECK(render_world_layer_frames(off.r) == 0);
+    CHECK_EQ(render_world_layer_frames(off.r), 0);
     rig_close(&on);
     rig_close(&off);
 }

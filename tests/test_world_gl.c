@@ -114,7 +114,7 @@ static void test_sky_pixels_are_the_sky(void) {
                           p[k], clamp01(sky[k]));
             checked++;
         }
-    CHECK(checked > 50);
+    CHECK_GT(checked, 50);
 }
 
 /* Tolerance 0.04: GL interpolates a 256-cell mesh, so a pixel shows a point
@@ -149,7 +149,7 @@ static void test_dry_shore_pixels_are_lambert(void) {
             checked++;
         }
     fprintf(stderr, "  %d terrain hits, %d dry shore pixels checked\n", hits, checked);
-    CHECK(checked > 20);
+    CHECK_GT(checked, 20);
 }
 
 /* An eye under the water sees the world through its own path in water:
@@ -158,10 +158,10 @@ static void test_dry_shore_pixels_are_lambert(void) {
  * objects under flat water: albedo (E_flat / pi + A_w(y))). */
 static void test_under_water_eye_path_is_attenuated(void) {
     char dir[] = "/tmp/tarn-test-world-XXXXXX", path[64];
-    CHECK(mkdtemp(dir) != NULL);
+    CHECK_NE(mkdtemp(dir), NULL);
     snprintf(path, sizeof path, "%s/under.glib", dir);
     FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs("##OpenGL GLIB\nPerspective 60\nLookAt 0 -0.5 4  0 -2.5 0  0 1 0\n"
           "Terrain flat 8 3\nWater 0\nWaterMesh 8\n"
@@ -181,7 +181,7 @@ static void test_under_water_eye_path_is_attenuated(void) {
     CHECK(render_target_create(&tg, W, H, true));
     render_frame(r, 0.0, tg.fbo, W, H, NULL);
     render_target_read(&tg, px);
-    CHECK(glGetError() == GL_NO_ERROR);
+    CHECK_EQ(glGetError(), GL_NO_ERROR);
     render_target_destroy(&tg);
     render_destroy(r);
     double r0 = (world.d.ior - 1) / (world.d.ior + 1);
@@ -217,13 +217,13 @@ static void test_under_water_eye_path_is_attenuated(void) {
         }
     fprintf(stderr, "  %d pixels: worst |GL - reference| %.4f (%.4f without the eye's path)\n", checked, worst,
             worst_unfaded);
-    CHECK(checked > 300);
+    CHECK_GT(checked, 300);
     /* 0.005: a float target, so what remains is the sphere mesh's facets
      * away from its silhouette (observed 0.0004 since world.frag evaluates
      * the terrain's albedo per fragment; 0.0018 with the albedo texture);
      * the fade itself is far larger (the last check) */
-    CHECK(worst < 0.005);
-    CHECK(worst_unfaded > 0.1);
+    CHECK_LT(worst, 0.005);
+    CHECK_GT(worst_unfaded, 0.1);
     remove(path);
     rmdir(dir);
 }
@@ -238,10 +238,10 @@ static void test_under_water_eye_path_is_attenuated(void) {
  * to the reference in the harbour's one-world check below. */
 static void test_sun_disc_is_the_reference(void) {
     char dir[] = "/tmp/tarn-test-disc-XXXXXX", path[64];
-    CHECK(mkdtemp(dir) != NULL);
+    CHECK_NE(mkdtemp(dir), NULL);
     snprintf(path, sizeof path, "%s/disc.glib", dir);
     FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
+    CHECK_NE(f, NULL);
     if (!f) return;
     fputs("##OpenGL GLIB\nPerspective 30\nLookAt 0 1 0  -5.6 5.7 -6.9  0 1 0\n"
           "Sun -0.5 0.42 -0.62  2.4 2.2 1.9\nSkySun 2\n"
@@ -258,7 +258,7 @@ static void test_sun_disc_is_the_reference(void) {
     CHECK(render_target_create(&tg, W, H, true));
     render_frame(r, 0.0, tg.fbo, W, H, NULL);
     render_target_read(&tg, px);
-    CHECK(glGetError() == GL_NO_ERROR);
+    CHECK_EQ(glGetError(), GL_NO_ERROR);
     render_target_destroy(&tg);
     render_destroy(r);
     int checked = 0, in_disc = 0;
@@ -280,8 +280,8 @@ static void test_sun_disc_is_the_reference(void) {
         }
     fprintf(stderr, "  %d sky pixels, %d in the disc's core: worst |GL - reference| - 0.2 %% %.4f\n", checked, in_disc,
             worst);
-    CHECK(in_disc > 20);
-    CHECK(worst < 0.02);
+    CHECK_GT(in_disc, 20);
+    CHECK_LT(worst, 0.02);
     ref_world_release(&world);
     remove(path);
     rmdir(dir);
@@ -329,7 +329,7 @@ static double one_world_rmse(const char *path, double t, long *compared) {
     CHECK(render_target_create(&tg, OW_W, OW_H, true));
     render_frame(r, t, tg.fbo, OW_W, OW_H, NULL);
     render_target_read(&tg, ow_px);
-    CHECK(glGetError() == GL_NO_ERROR);
+    CHECK_EQ(glGetError(), GL_NO_ERROR);
     render_target_destroy(&tg);
     render_destroy(r);
 
@@ -380,7 +380,7 @@ static void test_one_world_off_the_water(void) {
      * three OBJ meshes (a boat, a pier, a rock) traced through their BVH */
     snprintf(paths[n++], sizeof paths[0], "%s/scenes/harbour.glib", TARN_SOURCE_DIR);
     DIR *dir = opendir(TARN_SOURCE_DIR "/scenes/hard");
-    CHECK(dir != NULL);
+    CHECK_NE(dir, NULL);
     struct dirent *e;
     while (dir && (e = readdir(dir)) && n < 64) {
         size_t len = strlen(e->d_name);
@@ -390,7 +390,7 @@ static void test_one_world_off_the_water(void) {
     if (dir) closedir(dir);
     for (int i = 0; i < n; i++) order[i] = paths[i];
     qsort(order + 3, (size_t)(n - 3), sizeof *order, cmp_str);
-    CHECK(n >= 15);
+    CHECK_GE(n, 15);
     for (int i = 0; i < n; i++) {
         long compared;
         double rmse = one_world_rmse(order[i], 2.0, &compared);

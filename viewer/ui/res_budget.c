@@ -23,14 +23,28 @@ void res_budget_feed(res_budget *b, double ms, double scale) {
     b->scale = clampd(sqrt(area), RES_BUDGET_FLOOR, 1.0);
 }
 
+/* The last frame's time, as a measure of its size. The first frame at a
+ * new size is none: it pays once for what the next ones keep (the world's
+ * layers built at the size, targets made), and sizing by it would shrink
+ * the picture and pay again, frame after frame. Nor is one frame: the
+ * size changes when two in a row at it were both over the aim (by the
+ * smaller time) or both under it (by the larger), so one slow or quick
+ * frame (the machine's noise) does not cost a new size's first frame. */
+static void measure(res_budget *b, double ms) {
+    if (!(ms > 0) || b->drawn_scale != b->prev_scale) {
+        b->prev_ms = 0;
+        return;
+    }
+    double aim = b->budget_ms / (1.0 + RES_BUDGET_DEADBAND), prev = b->prev_ms;
+    b->prev_ms = ms;
+    if (!(prev > 0)) return;
+    if (ms > aim && prev > aim) res_budget_feed(b, fmin(ms, prev), b->drawn_scale);
+    else if (ms < aim && prev < aim) res_budget_feed(b, fmax(ms, prev), b->drawn_scale);
+}
+
 bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_frame_ms, bool force_full,
                      double *scale) {
-    /* the first frame at a new size is no measure of that size: it pays
-     * once for what the next ones keep (the world's layers built at the
-     * size, targets made), and sizing by it would shrink the picture and
-     * pay again, frame after frame */
-    if (b->measure && last_frame_ms > 0 && b->drawn_scale == b->prev_scale)
-        res_budget_feed(b, last_frame_ms, b->drawn_scale);
+    if (b->measure) measure(b, last_frame_ms);
     b->measure = false;
     bool changed = !b->have_key || key != b->key;
     if (changed) {

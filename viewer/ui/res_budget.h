@@ -12,8 +12,10 @@
  * reached without overshoot), at most twice the pixels a step, not below
  * RES_BUDGET_FLOOR of each side, and left alone within RES_BUDGET_DEADBAND
  * of the aim (no flicker between two near sizes), so a settled frame is at
- * most the budget. The first frame at a new size is not fed (it pays once
- * for what later frames at the size keep: the world's layers). The renderer's fixed-size passes and meshes shrink with
+ * most the budget. The first frame at a new size is not a measure (it pays
+ * once for what later frames at the size keep: the world's layers), and
+ * the size changes on two frames in a row, both over or both under the aim
+ * (one noisy frame would cost a new size's first frame). The renderer's fixed-size passes and meshes shrink with
  * the frame (render_set_detail), so a cost stays about a + b*pixels. A cost that stays above the budget at the floor (a
  * fixed pass slower than the budget) stays at the floor.
  *
@@ -49,6 +51,7 @@ typedef struct res_budget {
     bool full_done;              /* this still picture's full-resolution frame is drawn */
     double drawn_scale;          /* the scale of the frame last drawn (0: none yet) */
     double prev_scale;           /* ... and of the one drawn before it */
+    double prev_ms;              /* the time of the last frame measured at drawn_scale (0: none) */
     bool measure;                /* the last frame drew the scene: its time is a measure */
 } res_budget;
 
