@@ -861,7 +861,11 @@ app *app_create(const app_desc *desc) {
 
 void app_destroy(app *a) {
     if (!a) return;
-    compile_job_destroy(a->cjob);   /* waits for a job: its context goes before the window's */
+    /* the window goes at once (issue #30: quitting is immediate); a job
+     * under way stops at its next step, and its context goes before the
+     * window's */
+    if (a->win) glfwHideWindow(a->win);
+    compile_job_destroy(a->cjob);
     watch_destroy(a->watch);
     panel_destroy(a->panel);
     gl_ctx_destroy(a->ctx);

@@ -143,6 +143,15 @@ static bool apply_defines(render *r, const job_scene *s) {
     return changed;
 }
 
+/* The window is closing: what the job has not begun is left undone (a
+ * load or a frame under way runs to its end; GL has no way to stop one). */
+static bool quitting(compile_job *j) {
+    pthread_mutex_lock(&j->mu);
+    bool q = j->quit;
+    pthread_mutex_unlock(&j->mu);
+    return q;
+}
+
 /* The detail of the reduced frames the job draws: any below 1 has the
  * same draw states (side_off_pow2), so the cheap one. */
 #define COMPILE_JOB_REDUCED_DETAIL 0.25
@@ -190,10 +199,10 @@ static void warm_scene(compile_job *j, int i) {
          * world's height map have the scene's sizes. */
         static const double dt[] = { 0, 0, 0.04, 0.08 };
         render_set_detail(r, COMPILE_JOB_REDUCED_DETAIL);
-        for (size_t k = 0; k < sizeof dt / sizeof dt[0]; k++)
+        for (size_t k = 0; k < sizeof dt / sizeof dt[0] && !quitting(j); k++)
             render_frame_at(r, j->t + dt[k], t.fbo, 0, 0, w, h, &j->view);
         render_set_detail(r, 1);
-        render_frame_at(r, j->t, t.fbo, 0, 0, w, h, &j->view);
+        if (!quitting(j)) render_frame_at(r, j->t, t.fbo, 0, 0, w, h, &j->view);
         glDisable(GL_FRAMEBUFFER_SRGB);
         glFinish();
     }
@@ -208,7 +217,7 @@ static void run_job(compile_job *j) {
         j->ctx = gl_ctx_create_headless(err, sizeof err);   /* none: the window compiles on the frame */
         if (!j->ctx) return;
     }
-    for (int i = 0; i < j->nscenes; i++) warm_scene(j, i);
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_scene(j, i);
     for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
         if (j->kept[i]) {
             render_destroy(j->kept[i]);

@@ -24,7 +24,7 @@
  *     compile_job *j = compile_job_create();
  *     compile_job_start(j, &(compile_job_desc){ scenes, n, w, h, t, view });
  *     ... each frame: if (compile_job_done(j, &s)) reload now ...
- *     compile_job_destroy(j);                 waits for a running job
+ *     compile_job_destroy(j);                 stops a running job at its next step
  */
 #ifndef TARN_COMPILE_JOB_H
 #define TARN_COMPILE_JOB_H
@@ -46,7 +46,9 @@ typedef struct compile_job_desc {
 } compile_job_desc;
 
 compile_job *compile_job_create(void);
-void compile_job_destroy(compile_job *j);   /* NULL is fine; waits for a running job */
+/* NULL is fine. A running job stops at its next step (a scene's load or
+ * one frame under way ends first), then the thread is joined. */
+void compile_job_destroy(compile_job *j);
 
 /* Copies what it needs of d's scenes (path, desc, Define values, whether
  * a world draws in sRGB) and starts the worker. False (nothing started)
