@@ -69,6 +69,19 @@ static void test_noise_always_present(void) {
     CHECK_MSG(hi - lo > 0.05, "Noise2's red is flat: %g..%g", lo, hi);
 }
 
+/* A sampler of another name set to unit 3 on the Program line reads the
+ * built-in Noise3 too (it is built when a program samples its unit). */
+static void test_noise_at_its_unit_by_any_name(void) {
+    if (!draw_file(DATA "noise/named.glib")) return;
+    double lo = 1, hi = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            lo = at(x, y)[0] < lo ? at(x, y)[0] : lo;
+            hi = at(x, y)[0] > hi ? at(x, y)[0] : hi;
+        }
+    CHECK_MSG(lo > 0.1 && hi < 0.9 && hi - lo > 0.05, "Noise3 at unit 3 read as %g..%g", lo, hi);
+}
+
 /* glman's cached noise2d.064.tex in the project folder is read (raw
  * format: int32 s t, then s*t RGBA bytes): a constant file gives its value. */
 static void test_noise_cache_file_is_read(void) {
@@ -360,6 +373,7 @@ int main(void) {
     if (!scratch_create("glman")) return 1;
     RUN(test_default_view_and_sphere);
     RUN(test_noise_always_present);
+    RUN(test_noise_at_its_unit_by_any_name);
     RUN(test_noise_cache_file_is_read);
     RUN(test_texture_rebinds_in_order);
     RUN(test_flat_and_smooth);

@@ -96,9 +96,8 @@ struct render {
     int nkept_once;
     long once_reused;          /* blocks so kept since render_create */
     gpu_timer timer;           /* per frame and per pass */
-    gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, always bound */
+    gpu_tex noise[2];          /* glman's built-in Noise2 / Noise3, bound once a program samples them */
     char noise_dir[GLIB_PATH_MAX];  /* the project folder they were read for */
-    bool noise_built;
     bool verbose;              /* render_desc.verbose */
     bool no_spray;             /* render_desc.no_spray */
 };
@@ -849,21 +848,33 @@ render_view render_default_view(const render *r) {
 /* glman's Noise2 and Noise3 are there for every shader without any
  * command: built once per project folder (whose cached .tex files win),
  * bound to units 2 and 3 before the scene's own textures, so a Noise2D or
- * a Texture2D on those units still takes over. */
+ * a Texture2D on those units still takes over. Each is built when a
+ * program first samples its unit (a sampler in the shader set to 2 or 3,
+ * Noise2 and Noise3 by name): the 64^3 texture costs ~250 ms of CPU a
+ * load, which a scene that never reads it (every pack's) need not pay. */
+static bool samples_unit(const scene_state *s, int unit) {
+    for (int i = 0; i < s->nprogs; i++) {
+        const unif_set *u = s->progs[i].unifs;
+        for (int k = 0; u && k < u->n; k++) {
+            const unif_entry *e = &u->entries[k];
+            if (e->type == UNIF_SAMPLER && e->in_shader && (int)e->value[0] == unit) return true;
+        }
+    }
+    return false;
+}
+
 static void bind_builtin_noise(render *r, const scene_state *s) {
     char dir[GLIB_PATH_MAX];
     const char *top = s->glib && s->glib->nfiles ? s->glib->files[0] : "";
     const char *slash = strrchr(top, '/');
     snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - top) : 0, top);
-    if (!r->noise_built || strcmp(dir, r->noise_dir) != 0) {
+    if (strcmp(dir, r->noise_dir) != 0) {   /* another project: its own .tex files */
         res_tex_free(&r->noise[0]);
         res_tex_free(&r->noise[1]);
-        res_noise_builtin(dir, false, &r->noise[0]);
-        res_noise_builtin(dir, true, &r->noise[1]);
         snprintf(r->noise_dir, sizeof r->noise_dir, "%s", dir);
-        r->noise_built = true;
     }
     for (int k = 0; k < 2; k++) {
+        if (!r->noise[k].tex && samples_unit(s, 2 + k)) res_noise_builtin(dir, k == 1, &r->noise[k]);
         if (!r->noise[k].tex) continue;
         glActiveTexture(GL_TEXTURE0 + (GLenum)r->noise[k].unit);
         glBindTexture(r->noise[k].target, r->noise[k].tex);

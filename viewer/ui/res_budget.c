@@ -6,7 +6,7 @@
 #include "util.h"
 
 void res_budget_init(res_budget *b, double budget_ms) {
-    *b = (res_budget){ .budget_ms = budget_ms, .scale = 1.0 };
+    *b = (res_budget){ .budget_ms = budget_ms, .scale = budget_ms > 0 ? RES_BUDGET_FIRST : 1.0 };
 }
 
 static double clampd(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }

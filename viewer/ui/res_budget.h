@@ -41,10 +41,14 @@
 #define RES_BUDGET_FLOOR 0.125      /* each side at least 1/8 of the window's */
 #define RES_BUDGET_SETTLE_S 0.25    /* still this long: the full-resolution frame */
 #define RES_BUDGET_DEADBAND 0.15    /* within 15% of the budget: keep the size */
+#define RES_BUDGET_FIRST 0.5        /* the first changing frame, before any measure: half a side */
 
 typedef struct res_budget {
     double budget_ms;            /* 0 (or less): off, every frame at full resolution */
-    double scale;                /* each side's factor for a changing picture, [FLOOR, 1] */
+    double scale;                /* each side's factor for a changing picture, [FLOOR, 1]
+                                  * (RES_BUDGET_FIRST before a measure: a window's first
+                                  * picture comes a quarter of a full frame's time after its
+                                  * load; a cheap scene grows to 1 in a few frames) */
     uint64_t key;                /* the picture last planned */
     bool have_key;
     double still_since;          /* the clock when the key last changed */
