@@ -44,6 +44,19 @@ static void test_converges_to_the_budget(void) {
     CHECK_NEAR(s2, s, 0.05);
 }
 
+/* The first frame, before any measure, is drawn at RES_BUDGET_FIRST of a
+ * side (a window's first picture sooner); with the budget off, full. */
+static void test_first_frame_is_reduced(void) {
+    res_budget rb;
+    double s;
+    res_budget_init(&rb, 50);
+    CHECK(res_budget_plan(&rb, 1, 0.0, 0, false, &s));
+    CHECK_EQ(s, RES_BUDGET_FIRST);
+    res_budget_init(&rb, 0);
+    CHECK(res_budget_plan(&rb, 1, 0.0, 0, false, &s));
+    CHECK_EQ(s, 1.0);
+}
+
 /* A cheap scene is never reduced: the scale stays 1. */
 static void test_cheap_scene_stays_full(void) {
     res_budget rb;
@@ -200,6 +213,7 @@ static void test_key_changes_with_any_byte(void) {
 
 int main(void) {
     RUN(test_converges_to_the_budget);
+    RUN(test_first_frame_is_reduced);
     RUN(test_cheap_scene_stays_full);
     RUN(test_fixed_cost_over_budget_stays_at_the_floor);
     RUN(test_still_picture_returns_to_full);

@@ -42,7 +42,7 @@ const char *cmd_compare_view_usage(void) { return usage; }
 static int bad(const char *what) { return cmd_bad_usage(stderr, "tarn", usage, "%s", what); }
 
 int cmd_compare_view(int argc, char **argv) {
-    cli_compare_view_desc d = {0};
+    compare_view_desc d = {0};
     char packs[1024];   /* --packs split in place; d.packs point into it */
     double v;
     if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
@@ -80,5 +80,5 @@ int cmd_compare_view(int argc, char **argv) {
     }
     if (!d.glib) return bad("which scene? give FILE.glib");
     if (d.npacks < 2) return bad("which packs? give --packs a,b (2 to 4)");
-    return cli_compare_view(&d);
+    return compare_view_run(&d);
 }

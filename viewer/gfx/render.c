@@ -113,8 +113,8 @@ render *render_create(const render_desc *desc) {
     r->verbose = desc && desc->verbose;
     r->no_spray = desc && desc->no_spray;
     gpu_timer_init(&r->timer);
-    wcache_init(&r->wcache);
-    wlayers_init(&r->wlayers);
+    world_cache_init(&r->wcache);
+    world_layers_init(&r->wlayers);
     return r;
 }
 
@@ -124,8 +124,8 @@ render_desc render_desc_of(const render *r) {
 }
 
 static void scene_free(scene_state *s) {
-    for (int i = 0; i < s->nmeshes; i++) res_mesh_free(&s->meshes[i]);
-    for (int i = 0; i < s->ntexs; i++) res_tex_free(&s->texs[i]);
+    for (int i = 0; i < s->nmeshes; i++) render_res_mesh_free(&s->meshes[i]);
+    for (int i = 0; i < s->ntexs; i++) render_res_tex_free(&s->texs[i]);
     for (int i = 0; i < s->nprogs; i++) prog_free(&s->progs[i]);
     free(s->meshes);
     free(s->texs);
@@ -151,8 +151,8 @@ void render_destroy(render *r) {
     if (!r) return;
     scene_free(&r->cur);
     world_free(&r->world);
-    wcache_free(&r->wcache);
-    wlayers_free(&r->wlayers);
+    world_cache_free(&r->wcache);
+    world_layers_free(&r->wlayers);
     free_deps(r);
     free(r->messages);
     free(r->draw_messages);
@@ -162,8 +162,8 @@ void render_destroy(render *r) {
     if (r->rtt_depth) glDeleteRenderbuffers(1, &r->rtt_depth);
     render_msaa_free(&r->msaa);
     gpu_timer_free(&r->timer);
-    res_tex_free(&r->noise[0]);
-    res_tex_free(&r->noise[1]);
+    render_res_tex_free(&r->noise[0]);
+    render_res_tex_free(&r->noise[1]);
     free(r);
 }
 
@@ -228,12 +228,12 @@ static int steal_mesh(scene_state *old, const char *key) {
 static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int ci, char **log) {
     gpu_mesh *m = &s->meshes[s->nmeshes];
     memset(m, 0, sizeof *m);
-    res_key(c, m->key, sizeof m->key);
+    render_res_key(c, m->key, sizeof m->key);
     int o = steal_mesh(old, m->key);
     if (o >= 0) {
         *m = old->meshes[o];
         memset(&old->meshes[o], 0, sizeof old->meshes[o]);
-    } else if (!res_mesh_build(c, m, log) && c->path[0]) {
+    } else if (!render_res_mesh_build(c, m, log) && c->path[0]) {
         /* a broken OBJ keeps the last good mesh of that file (as textures do) */
         for (int i = 0; i < old->nmeshes; i++) {
             const char *a = old->meshes[i].key, *at = strrchr(a, '@'), *bt = strrchr(m->key, '@');
@@ -252,7 +252,7 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
 static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int ci, char **log) {
     gpu_tex *t = &s->texs[s->ntexs];
     memset(t, 0, sizeof *t);
-    res_key(c, t->key, sizeof t->key);
+    render_res_key(c, t->key, sizeof t->key);
     for (int i = 0; i < old->ntexs; i++) {
         if (old->texs[i].tex && strcmp(old->texs[i].key, t->key) == 0) {
             *t = old->texs[i];
@@ -263,7 +263,7 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
     }
     char key[RES_KEY_MAX];
     memcpy(key, t->key, sizeof key);
-    if (!res_tex_build(c, t, log)) {
+    if (!render_res_tex_build(c, t, log)) {
         const char *want = c->kind == GLIB_CMD_CUBEMAP && c->cube_paths ? c->cube_paths[0] : c->path;
         for (int i = 0; i < old->ntexs; i++) {
             if (old->texs[i].tex && want[0] && strcmp(old->texs[i].path, want) == 0) {
@@ -463,7 +463,7 @@ static void size_targets(render *r, int screen_w, int screen_h) {
         if (per_frame && !c->name[0]) w = detail_count(r, w);
         if (per_frame && !c->arg[0]) h = detail_count(r, h);
         if (w == t->w && h == t->h) continue;
-        res_target_resize(t, w, h);
+        render_res_target_resize(t, w, h);
         once_redraw_unit(s, (int)c->num[0]);
         r->nkept_once = 0;   /* its pixels are gone */
     }
@@ -519,7 +519,7 @@ static void build_begin(scene_state *s, int ci, char **log) {
     gpu_mesh *m = &s->meshes[s->nmeshes];
     memset(m, 0, sizeof *m);
     geom_mesh gm;
-    if (geom_points(&gm, xyz, n, begin_prim(g->cmds[ci].name)) && res_mesh_upload(&gm, m))
+    if (geom_points(&gm, xyz, n, begin_prim(g->cmds[ci].name)) && render_res_mesh_upload(&gm, m))
         s->cmd_res[ci] = s->nmeshes++;
     else
         str_appendf(log, "%s:%d: error: glBegin: cannot build its %d vertices\n", g->cmds[ci].file, g->cmds[ci].line, n);
@@ -587,9 +587,9 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
     for (int i = 0; i < n; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
         s->cmd_res[i] = -1;
-        if (res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
+        if (render_res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
         else if (c->kind == GLIB_CMD_GL_BEGIN) build_begin(s, i, log);
-        else if (res_is_texture(c->kind)) build_tex(s, old, c, i, log);
+        else if (render_res_is_texture(c->kind)) build_tex(s, old, c, i, log);
         if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY) s->per_frame[i] = drawn_every_frame(s->glib, (int)c->num[0]);
         else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log);
         else program_stages_step(&st, c);
@@ -619,7 +619,7 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
             const glib_cmd *c = &g->cmds[i];
             if (c->kind == GLIB_CMD_CUBEMAP && c->cube_paths)
                 for (int f = 0; f < 6; f++) add_dep(r, c->cube_paths[f]);
-            else if (res_is_geometry(c->kind) || res_is_texture(c->kind))
+            else if (render_res_is_geometry(c->kind) || render_res_is_texture(c->kind))
                 add_dep(r, c->path);
         }
     for (int i = 0; i < s->nprogs; i++)
@@ -751,8 +751,8 @@ bool render_load(render *r, const char *glib_path) {
         return false;
     }
     build_world(r, g, &log);
-    wcache_free(&r->wcache);   /* the world, its program or the commands may differ */
-    wlayers_free(&r->wlayers);
+    world_cache_free(&r->wcache);   /* the world, its program or the commands may differ */
+    world_layers_free(&r->wlayers);
     scene_state fresh;
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
@@ -775,8 +775,8 @@ bool render_rebuild_programs(render *r) {
         if (!prog_build(p, (const char *const *)r->include_dirs, 1, &log)) ok = false;
         prog_introspect(p, &log);
     }
-    wcache_free(&r->wcache);   /* the world's program may draw differently now */
-    wlayers_free(&r->wlayers);
+    world_cache_free(&r->wcache);   /* the world's program may draw differently now */
+    world_layers_free(&r->wlayers);
     if (r->world.active) {
         if (!world_build_programs(&r->world, (const char *const *)r->include_dirs, &log)) ok = false;
     }
@@ -869,12 +869,12 @@ static void bind_builtin_noise(render *r, const scene_state *s) {
     const char *slash = strrchr(top, '/');
     snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - top) : 0, top);
     if (strcmp(dir, r->noise_dir) != 0) {   /* another project: its own .tex files */
-        res_tex_free(&r->noise[0]);
-        res_tex_free(&r->noise[1]);
+        render_res_tex_free(&r->noise[0]);
+        render_res_tex_free(&r->noise[1]);
         snprintf(r->noise_dir, sizeof r->noise_dir, "%s", dir);
     }
     for (int k = 0; k < 2; k++) {
-        if (!r->noise[k].tex && samples_unit(s, 2 + k)) res_noise_builtin(dir, k == 1, &r->noise[k]);
+        if (!r->noise[k].tex && samples_unit(s, 2 + k)) render_res_noise_builtin(dir, k == 1, &r->noise[k]);
         if (!r->noise[k].tex) continue;
         glActiveTexture(GL_TEXTURE0 + (GLenum)r->noise[k].unit);
         glBindTexture(r->noise[k].target, r->noise[k].tex);
@@ -1070,14 +1070,14 @@ static void track_clean(frame_state *f, const glib_cmd *c) {
     if (c->kind == GLIB_CMD_CLEAR) {
         f->clean = true;
         glGetFloatv(GL_COLOR_CLEAR_VALUE, f->clean_rgba);
-    } else if (res_is_geometry(c->kind) || c->kind == GLIB_CMD_GL_BEGIN || c->kind == GLIB_CMD_WATER_SURFACE ||
+    } else if (render_res_is_geometry(c->kind) || c->kind == GLIB_CMD_GL_BEGIN || c->kind == GLIB_CMD_WATER_SURFACE ||
                c->kind == GLIB_CMD_SPLAT) {
         f->clean = false;
     }
 }
 
 static bool writes_pixels(glib_cmd_kind k) {
-    return k == GLIB_CMD_CLEAR || res_is_geometry(k) || k == GLIB_CMD_GL_BEGIN || k == GLIB_CMD_WATER_SURFACE ||
+    return k == GLIB_CMD_CLEAR || render_res_is_geometry(k) || k == GLIB_CMD_GL_BEGIN || k == GLIB_CMD_WATER_SURFACE ||
            k == GLIB_CMD_SPLAT || k == GLIB_CMD_WORLD;
 }
 
@@ -1297,7 +1297,7 @@ static const char *gs_input_word(unsigned in, const char **draw_with) {
 /* After command ci: a GL error it caused is reported (once) with its line
  * and what to do, and cleared, so the rest of the frame draws and the
  * picture can be read back. m, d: the mesh it drew, or NULL. */
-static void check_gl(render *r, const frame_state *f, int ci, const gpu_mesh *m, const res_draw *d) {
+static void check_gl(render *r, const frame_state *f, int ci, const gpu_mesh *m, const render_res_draw *d) {
     GLenum e = glGetError();
     if (e == GL_NO_ERROR) return;
     for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; k++) {}
@@ -1307,7 +1307,7 @@ static void check_gl(render *r, const frame_state *f, int ci, const gpu_mesh *m,
         draw_problem(r, ci, true, "%s: OpenGL failed here (%s); the rest of the scene is drawn", name, gl_error_name(e));
         return;
     }
-    const char *prim = res_mesh_prim_name(m, d), *with = "";
+    const char *prim = render_res_mesh_prim_name(m, d), *with = "";
     const prog *p = f->cur;
     if (p && p->gl && p->gs_input && !p->tess) {
         const char *want = gs_input_word(p->gs_input, &with);
@@ -1324,7 +1324,7 @@ static void check_gl(render *r, const frame_state *f, int ci, const gpu_mesh *m,
 /* A mesh of command ci, drawn for the current program. */
 static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m) {
     const prog *p = f->cur && f->cur->gl ? f->cur : NULL;
-    res_draw d = { .tangent_loc = p ? p->tangent_loc : -1, .face_index_loc = p ? p->face_index_loc : -1,
+    render_res_draw d = { .tangent_loc = p ? p->tangent_loc : -1, .face_index_loc = p ? p->face_index_loc : -1,
                    .face_index_int = p && p->face_index_int, .tess = p && p->tess,
                    .patch_vertices = f->patch_vertices };
     char why[512];
@@ -1332,7 +1332,7 @@ static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
         draw_problem(r, ci, false, "ObjPatch draws patches of its faces' %d corners; NumPatchVertices %d "
                      "(line %d) is for glBegin gl_patches and not used here", m->patch_size,
                      f->patch_vertices, r->cur.glib->cmds[f->patch_cmd].line);
-    bool drawn = res_mesh_draw_with(m, &d, why, sizeof why);
+    bool drawn = render_res_mesh_draw_with(m, &d, why, sizeof why);
     if (why[0])
         draw_problem(r, ci, !drawn, "%s %s%s", glib_cmd_name(r->cur.glib->cmds[ci].kind),
                      drawn ? "" : "drew nothing: ", why);
@@ -1343,16 +1343,16 @@ static void draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
  * cache when nothing it depends on has changed (world_cache.h). */
 /* A World whose key has stayed while the time ran is drawn from its layers
  * (world_layers.h): built once, then one full-screen pass a frame. */
-static bool draw_world_layers(render *r, frame_state *f, int i, const wcache_key *k, const char *which, float offset) {
-    wlayers_use use = wlayers_check(&r->wlayers, i, k);
-    if (use == WLAYERS_NO) return false;
+static bool draw_world_layers(render *r, frame_state *f, int i, const world_cache_key *k, const char *which, float offset) {
+    world_layers_use use = world_layers_check(&r->wlayers, i, k);
+    if (use == WORLD_LAYERS_NO) return false;
     unsigned restore = f->cur ? f->cur->gl : 0;
-    if (use == WLAYERS_BUILD) {
-        if (!wlayers_begin_build(&r->wlayers, i, k)) return false;
+    if (use == WORLD_LAYERS_BUILD) {
+        if (!world_layers_begin_build(&r->wlayers, i, k)) return false;
         world_draw_layers(&r->world, which, offset, f->cam_eye, !f->in_rtt, restore);
-        wlayers_end_build(&r->wlayers, i, k);
+        world_layers_end_build(&r->wlayers, i, k);
     }
-    const unsigned *tex = wlayers_textures(&r->wlayers, i);
+    const unsigned *tex = world_layers_textures(&r->wlayers, i);
     if (!tex) return false;
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
@@ -1366,8 +1366,8 @@ static void draw_world(render *r, frame_state *f, int i) {
     const glib_cmd *c = &s->glib->cmds[i];
     const char *which = c->name[0] ? c->name : "all";
     float offset = cmd_number(s, i, 0.0f);
-    wcache_key k;
-    wcache_key_init(&k);
+    world_cache_key k;
+    world_cache_key_init(&k);
     k.t = f->t;
     memcpy(k.eye, f->cam_eye, sizeof k.eye);
     k.offset = offset;
@@ -1376,17 +1376,17 @@ static void draw_world(render *r, frame_state *f, int i) {
     k.lod = r->world.lod;
     memcpy(k.clear_rgba, f->clean_rgba, sizeof k.clear_rgba);
     bool cacheable = f->clean && r->world.active && !r->wcache.off &&
-                     wcache_key_gl(&k, WORLD_UNIT_ALBEDO, WORLD_UNIT_SKY);
+                     world_cache_key_gl(&k, WORLD_UNIT_ALBEDO, WORLD_UNIT_SKY);
     f->clean = false;
-    if (cacheable && wcache_restore(&r->wcache, i, &k)) return;
+    if (cacheable && world_cache_restore(&r->wcache, i, &k)) return;
     if (cacheable && draw_world_layers(r, f, i, &k, which, offset)) {
-        wcache_store(&r->wcache, i, &k);   /* a still frame after it copies, as after a draw */
+        world_cache_store(&r->wcache, i, &k);   /* a still frame after it copies, as after a draw */
         return;
     }
     world_draw(&r->world, which, offset, f->t, f->cam_eye, !f->in_rtt, f->cur ? f->cur->gl : 0);
     if (!cacheable) return;
     check_gl(r, f, i, NULL, NULL);   /* the world's own errors, reported before the copy looks */
-    wcache_store(&r->wcache, i, &k);
+    world_cache_store(&r->wcache, i, &k);
 }
 
 /* ---- RenderToTextureOnce across a reload ---- */
@@ -1505,7 +1505,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         }
     } else if (c->kind == GLIB_CMD_SPLAT) {
         splat(r, (int)c->num[0], (int)c->num[1]);
-    } else if (res_is_geometry(c->kind) || c->kind == GLIB_CMD_GL_BEGIN) {
+    } else if (render_res_is_geometry(c->kind) || c->kind == GLIB_CMD_GL_BEGIN) {
         if (res >= 0) draw_mesh(r, f, i, &s->meshes[res]);
     } else if (c->kind == GLIB_CMD_NUM_PATCH_VERTICES) {
         f->patch_vertices = (int)c->num[0];
@@ -1540,7 +1540,7 @@ static void exec_cmd(render *r, frame_state *f, int i) {
         if (c->nnum > 0) { leave_target(f); begin_rtt(r, c); f->in_rtt = true; }
         else end_rtt(f);
         upload_target_size(f);
-    } else if (res_is_texture(c->kind)) {
+    } else if (render_res_is_texture(c->kind)) {
         /* glman runs the file in order: a Texture2D after a draw rebinds its
          * unit for the draws after it (the course's sky box: one image per
          * wall on one unit) */
@@ -1555,8 +1555,8 @@ static void exec_cmd(render *r, frame_state *f, int i) {
 void render_set_world_cache(render *r, bool on) {
     r->wcache.off = !on;
     r->wlayers.off = !on;
-    if (!on) wcache_free(&r->wcache);
-    if (!on) wlayers_free(&r->wlayers);
+    if (!on) world_cache_free(&r->wcache);
+    if (!on) world_layers_free(&r->wlayers);
 }
 
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
@@ -1567,7 +1567,7 @@ bool render_set_world_height_map(render *r, bool on) {
     char *log = NULL;
     bool ok = world_set_height_map(&r->world, on, (const char *const *)r->include_dirs, &log);
     free(log);
-    wcache_free(&r->wcache);   /* the world may draw differently now */
+    world_cache_free(&r->wcache);   /* the world may draw differently now */
     return ok;
 }
 

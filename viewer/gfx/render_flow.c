@@ -204,8 +204,8 @@ bool flow_update(gpu_flow *f, double t, gpu_timer *timer) {
     double T = f->d.period, dt = t - f->t;
     bool jump = !f->valid || dt < 0 || dt > FLOW_JUMP_DT || dt > 0.5 * T;
     if (timer) gpu_timer_mark(timer, "flow advect");
-    res_pass_state(FLOW_RES, FLOW_RES);
-    res_vertexid_begin();   /* the vertices come from gl_VertexID */
+    render_res_pass_state(FLOW_RES, FLOW_RES);
+    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
     unsigned p = f->prog.gl;
     glUseProgram(p);
     upload_field(f, p);
@@ -238,7 +238,7 @@ bool flow_update(gpu_flow *f, double t, gpu_timer *timer) {
         }
         step(f, sdt, reset);
     }
-    res_vertexid_end();
+    render_res_vertexid_end();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     flow_bind(f);

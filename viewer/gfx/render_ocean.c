@@ -226,8 +226,8 @@ bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
         return false;   /* a still frame, or a second view */
     }
     int n = o->res;
-    res_pass_state(n, n);
-    res_vertexid_begin();   /* the vertices come from gl_VertexID */
+    render_res_pass_state(n, n);
+    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
 
     /* the spectrum, into pair 0 */
     if (timer) gpu_timer_mark(timer, "ocean spectrum");
@@ -309,7 +309,7 @@ bool ocean_update(gpu_ocean *o, double t, gpu_timer *timer) {
     o->foam_t = t;
     o->foam_valid = true;
 
-    res_vertexid_end();
+    render_res_vertexid_end();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     ocean_bind(o);   /* src is 0 again: the frame */

@@ -17,7 +17,7 @@
 #include "noise.h"
 #include "strbuf.h"
 
-bool res_is_geometry(glib_cmd_kind k) {
+bool render_res_is_geometry(glib_cmd_kind k) {
     return k == GLIB_CMD_QUAD_XY || k == GLIB_CMD_QUAD_XZ || k == GLIB_CMD_QUAD_YZ ||
            k == GLIB_CMD_SPHERE || k == GLIB_CMD_TORUS || k == GLIB_CMD_BOX ||
            k == GLIB_CMD_CYLINDER || k == GLIB_CMD_CONE || k == GLIB_CMD_TEAPOT ||
@@ -27,7 +27,7 @@ bool res_is_geometry(glib_cmd_kind k) {
            k == GLIB_CMD_LINES_ADJACENCY || k == GLIB_CMD_TRIANGLES || k == GLIB_CMD_SHP;
 }
 
-bool res_is_texture(glib_cmd_kind k) {
+bool render_res_is_texture(glib_cmd_kind k) {
     return k == GLIB_CMD_TEXTURE2D_FILE || k == GLIB_CMD_TEXTURE2D_EMPTY ||
            k == GLIB_CMD_TEXTURE3D || k == GLIB_CMD_CUBEMAP ||
            k == GLIB_CMD_NOISE2D || k == GLIB_CMD_NOISE3D;
@@ -43,7 +43,7 @@ static void append_stamp(char *out, int outlen, const char *path) {
         snprintf(out + l, (size_t)outlen - l, "|%s@missing", path);
 }
 
-void res_key(const glib_cmd *c, char *out, int outlen) {
+void render_res_key(const glib_cmd *c, char *out, int outlen) {
     int l = snprintf(out, (size_t)outlen, "%d%c%d", (int)c->kind, c->wire ? 'w' : 's', (int)c->format);
     for (int i = 0; i < c->nnum && l < outlen; i++)
         l += snprintf(out + l, (size_t)(outlen - l), " %.9g", c->num[i]);
@@ -100,7 +100,7 @@ static bool make_mesh(const glib_cmd *c, geom_mesh *g, char *err, int errlen) {
     }
 }
 
-bool res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
+bool render_res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
     if (g->nvert <= 0 || g->nidx <= 0) return false;
     long nv = g->nvert;
     long sz_pos = nv * 3 * (long)sizeof(float);
@@ -139,11 +139,11 @@ bool res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
     return true;
 }
 
-bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
+bool render_res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
     geom_mesh g;
     memset(&g, 0, sizeof g);
     char err[512] = "";
-    if (!make_mesh(c, &g, err, sizeof err) || !res_mesh_upload(&g, m)) {
+    if (!make_mesh(c, &g, err, sizeof err) || !render_res_mesh_upload(&g, m)) {
         /* a file that is still missing: the parser said so at this line
          * ("cannot open 'x.shp' (from command Shp)"); once is enough */
         bool said = c->path[0] && access(c->path, R_OK) != 0;
@@ -177,7 +177,7 @@ static const struct { GLenum mode; int verts; const char *name; } prims[] = {
  * every list primitive as patches of its own size (a triangle list is
  * patches of 3), so a Sphere can feed a triangle tessellation shader;
  * patches are of the mesh's own size or the scene's NumPatchVertices. */
-static GLenum draw_mode(const gpu_mesh *m, const res_draw *d, int *patch) {
+static GLenum draw_mode(const gpu_mesh *m, const render_res_draw *d, int *patch) {
     int p = m->prim >= 0 && m->prim < NPRIMS ? m->prim : GEOM_TRIANGLES;
     *patch = 0;
     if (p == GEOM_PATCHES) {
@@ -191,7 +191,7 @@ static GLenum draw_mode(const gpu_mesh *m, const res_draw *d, int *patch) {
     return prims[p].mode;
 }
 
-const char *res_mesh_prim_name(const gpu_mesh *m, const res_draw *d) {
+const char *render_res_mesh_prim_name(const gpu_mesh *m, const render_res_draw *d) {
     int patch;
     GLenum mode = draw_mode(m, d, &patch);
     for (int i = 0; i < NPRIMS; i++)
@@ -200,7 +200,7 @@ const char *res_mesh_prim_name(const gpu_mesh *m, const res_draw *d) {
 }
 
 /* One glDrawElements a part, with FaceIndex telling the shader which. */
-static void draw_parts(const gpu_mesh *m, const res_draw *d, GLenum mode) {
+static void draw_parts(const gpu_mesh *m, const render_res_draw *d, GLenum mode) {
     if (!m->part_first || m->nparts <= 0) {
         glDrawElements(mode, m->nidx, GL_UNSIGNED_INT, (const void *)0);
         return;
@@ -215,7 +215,7 @@ static void draw_parts(const gpu_mesh *m, const res_draw *d, GLenum mode) {
     }
 }
 
-bool res_mesh_draw_with(const gpu_mesh *m, const res_draw *d, char *why, int whylen) {
+bool render_res_mesh_draw_with(const gpu_mesh *m, const render_res_draw *d, char *why, int whylen) {
     if (why && whylen > 0) why[0] = '\0';
     if (!m->vbo) return true;
     int patch = 0;
@@ -254,12 +254,12 @@ bool res_mesh_draw_with(const gpu_mesh *m, const res_draw *d, char *why, int why
 }
 
 /* glman's attributes: gl_Vertex, gl_Normal, gl_MultiTexCoord0, Tangent. */
-void res_mesh_draw(const gpu_mesh *m, int tangent_loc) {
-    res_draw d = { .tangent_loc = tangent_loc, .face_index_loc = -1, .patch_vertices = 3 };
-    res_mesh_draw_with(m, &d, NULL, 0);
+void render_res_mesh_draw(const gpu_mesh *m, int tangent_loc) {
+    render_res_draw d = { .tangent_loc = tangent_loc, .face_index_loc = -1, .patch_vertices = 3 };
+    render_res_mesh_draw_with(m, &d, NULL, 0);
 }
 
-void res_mesh_free(gpu_mesh *m) {
+void render_res_mesh_free(gpu_mesh *m) {
     if (m->vbo) glDeleteBuffers(1, &m->vbo);
     if (m->ibo) glDeleteBuffers(1, &m->ibo);
     m->vbo = m->ibo = 0;
@@ -294,7 +294,7 @@ static float *to_rgba(const img *im) {
     return out;
 }
 
-void res_vertexid_begin(void) {
+void render_res_vertexid_begin(void) {
     glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
     glDisableClientState(GL_VERTEX_ARRAY);
     glDisableClientState(GL_NORMAL_ARRAY);
@@ -302,9 +302,9 @@ void res_vertexid_begin(void) {
     glDisableClientState(GL_COLOR_ARRAY);
 }
 
-void res_vertexid_end(void) { glPopClientAttrib(); }
+void render_res_vertexid_end(void) { glPopClientAttrib(); }
 
-void res_pass_state(int w, int h) {
+void render_res_pass_state(int w, int h) {
     glViewport(0, 0, w, h);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
@@ -312,7 +312,7 @@ void res_pass_state(int w, int h) {
     glDisable(GL_CULL_FACE);
 }
 
-void res_sampling(unsigned target, bool mipmaps, unsigned wrap) {
+void render_res_sampling(unsigned target, bool mipmaps, unsigned wrap) {
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(target, GL_TEXTURE_WRAP_S, (GLint)wrap);
@@ -452,7 +452,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
         glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
     }
     free(px);
-    res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
+    render_res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
     return true;
 }
 
@@ -465,7 +465,7 @@ static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
         t->h = rt.n[1];
         raw_upload_2d(GL_TEXTURE_2D, &rt);
         free(rt.px);
-        res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
+        render_res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
         return true;
     }
     img im;
@@ -478,7 +478,7 @@ static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
     img_free(&im);
     glTexImage2D(GL_TEXTURE_2D, 0, hdr ? GL_RGBA16F : GL_RGBA8, t->w, t->h, 0, GL_RGBA, GL_FLOAT, rgba);
     free(rgba);
-    res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
+    render_res_sampling(GL_TEXTURE_2D, true, GL_REPEAT);
     return true;
 }
 
@@ -502,11 +502,11 @@ static bool tex_2d_empty(const glib_cmd *c, gpu_tex *t, char **log) {
     t->render_target = true;
     t->format = c->format;
     target_storage(t);
-    res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
+    render_res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
     return true;
 }
 
-void res_target_resize(gpu_tex *t, int w, int h) {
+void render_res_target_resize(gpu_tex *t, int w, int h) {
     if (!t->tex || !t->render_target || (t->w == w && t->h == h)) return;
     t->w = w;
     t->h = h;
@@ -523,7 +523,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
             return false;
         }
         glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, w, h, d, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-        res_sampling(GL_TEXTURE_3D, false, GL_REPEAT);
+        render_res_sampling(GL_TEXTURE_3D, false, GL_REPEAT);
         return true;
     }
     if (is_raw_name(c->path)) {
@@ -532,7 +532,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
         glTexImage3D(GL_TEXTURE_3D, 0, rt.bytes ? GL_RGBA8 : GL_RGBA32F, rt.n[0], rt.n[1], rt.n[2], 0, GL_RGBA,
                      GL_FLOAT, rt.px);
         free(rt.px);
-        res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
+        render_res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
         return true;
     }
     img im;
@@ -542,7 +542,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
     glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, im.w, im.h, d, 0, GL_RGBA, GL_FLOAT, rgba);
     img_free(&im);
     free(rgba);
-    res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
+    render_res_sampling(GL_TEXTURE_3D, true, GL_REPEAT);
     return true;
 }
 
@@ -565,7 +565,7 @@ static bool tex_cube(const glib_cmd *c, gpu_tex *t, char **log) {
         img_free(&im);
         free(rgba);
     }
-    res_sampling(GL_TEXTURE_CUBE_MAP, true, GL_CLAMP_TO_EDGE);
+    render_res_sampling(GL_TEXTURE_CUBE_MAP, true, GL_CLAMP_TO_EDGE);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     return true;
 }
@@ -585,11 +585,11 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
     if (ok && is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, res, res, res, 0, GL_RGBA, GL_FLOAT, px);
     if (ok && !is3d) glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
     free(px);
-    if (ok) res_sampling(t->target, true, GL_REPEAT);
+    if (ok) render_res_sampling(t->target, true, GL_REPEAT);
     return ok;
 }
 
-bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
+bool render_res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
     char path[GLIB_PATH_MAX + 32], why[768];
     snprintf(path, sizeof path, "%s%snoise%dd.064.tex", dir, dir[0] ? "/" : "", is3d ? 3 : 2);
     raw_tex rt;
@@ -609,13 +609,13 @@ bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     if (is3d) glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, rt.n[0], rt.n[1], rt.n[2], 0, GL_RGBA, GL_FLOAT, rt.px);
     else glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, rt.n[0], rt.n[1], 0, GL_RGBA, GL_FLOAT, rt.px);
-    res_sampling(t->target, true, GL_REPEAT);
+    render_res_sampling(t->target, true, GL_REPEAT);
     glBindTexture(t->target, 0);
     free(rt.px);
     return true;
 }
 
-bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log) {
+bool render_res_tex_build(const glib_cmd *c, gpu_tex *t, char **log) {
     t->unit = c->kind == GLIB_CMD_NOISE2D ? 2 : c->kind == GLIB_CMD_NOISE3D ? 3 : arg_i(c, 0, 0);
     if (t->unit < 0 || t->unit > 31) {
         str_appendf(log, "%s:%d: error: texture unit %d: use 0..31\n", c->file, c->line, t->unit);
@@ -638,11 +638,11 @@ bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log) {
     default: break;
     }
     glBindTexture(t->target, 0);
-    if (!ok) res_tex_free(t);
+    if (!ok) render_res_tex_free(t);
     return ok;
 }
 
-void res_tex_free(gpu_tex *t) {
+void render_res_tex_free(gpu_tex *t) {
     if (t->tex) glDeleteTextures(1, &t->tex);
     t->tex = 0;
 }

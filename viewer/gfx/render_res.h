@@ -20,13 +20,13 @@ typedef struct gpu_mesh {
 } gpu_mesh;
 
 /* What a draw needs to know of the current program and state. */
-typedef struct res_draw {
+typedef struct render_res_draw {
     int tangent_loc;            /* the Tangent attribute, or -1 */
     int face_index_loc;         /* the FaceIndex uniform, or -1 */
     bool face_index_int;        /* declared int (else float) */
     bool tess;                  /* the program tessellates: draws become GL_PATCHES */
     int patch_vertices;         /* NumPatchVertices now */
-} res_draw;
+} render_res_draw;
 
 typedef struct gpu_tex {
     char key[RES_KEY_MAX];      /* command + file stamps: equal key, same texture */
@@ -40,45 +40,45 @@ typedef struct gpu_tex {
 
 /* The reuse key of a geometry or texture command (includes file size and
  * modification time of the files it reads). */
-void res_key(const glib_cmd *c, char *out, int outlen);
+void render_res_key(const glib_cmd *c, char *out, int outlen);
 
 /* Gives a render target a new image of w x h texels (same format; the
  * old contents are gone). Nothing happens when the size is the same. */
-void res_target_resize(gpu_tex *t, int w, int h);
+void render_res_target_resize(gpu_tex *t, int w, int h);
 
-bool res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
+bool render_res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
 struct geom_mesh;
-bool res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);
-void res_mesh_draw(const gpu_mesh *m, int tangent_loc);
+bool render_res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);
+void render_res_mesh_draw(const gpu_mesh *m, int tangent_loc);
 /* Draws m for the current program as d says. A draw that cannot work
  * (patches without a tessellating program) is not made: false, with the
  * reason in why (a sentence saying what to do). A draw made with a
  * problem (vertices left over from whole patches) is true with why set. */
-bool res_mesh_draw_with(const gpu_mesh *m, const res_draw *d, char *why, int whylen);
+bool render_res_mesh_draw_with(const gpu_mesh *m, const render_res_draw *d, char *why, int whylen);
 /* The primitive OpenGL gets for m under d, as GL names it ("GL_PATCHES"). */
-const char *res_mesh_prim_name(const gpu_mesh *m, const res_draw *d);
-void res_mesh_free(gpu_mesh *m);
+const char *render_res_mesh_prim_name(const gpu_mesh *m, const render_res_draw *d);
+void render_res_mesh_free(gpu_mesh *m);
 
 /* Draws whose vertices come from gl_VertexID alone (a triangle over the
  * viewport, a point a particle): begin pushes the client vertex-array
  * state and turns every array off (a compatibility context would feed an
  * enabled one to the draw), end pops it. */
-void res_vertexid_begin(void);
-void res_vertexid_end(void);
+void render_res_vertexid_begin(void);
+void render_res_vertexid_end(void);
 /* A pass into a w x h target of its own: viewport, no depth test,
  * blending, scissor or culling. */
-void res_pass_state(int w, int h);
+void render_res_pass_state(int w, int h);
 
-bool res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
+bool render_res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
 /* Filtering and wrapping of the bound texture; mipmaps are generated. */
-void res_sampling(unsigned target, bool mipmaps, unsigned wrap);
-void res_tex_free(gpu_tex *t);
+void render_res_sampling(unsigned target, bool mipmaps, unsigned wrap);
+void render_res_tex_free(gpu_tex *t);
 /* glman's Noise2 (unit 2) or Noise3 (unit 3), there without any command:
  * dir's noise2d.064.tex / noise3d.064.tex when present (glman's cache,
  * shipped with real projects), else tarn's 64-texel noise (noise.h). */
-bool res_noise_builtin(const char *dir, bool is3d, gpu_tex *t);
+bool render_res_noise_builtin(const char *dir, bool is3d, gpu_tex *t);
 
-bool res_is_geometry(glib_cmd_kind k);
-bool res_is_texture(glib_cmd_kind k);
+bool render_res_is_geometry(glib_cmd_kind k);
+bool render_res_is_texture(glib_cmd_kind k);
 
 #endif

@@ -161,15 +161,15 @@ bool spray_update(gpu_spray *s, double t, gpu_timer *timer, void (*upload)(const
     int n = (int)ceil((t - from) / SPRAY_STEP_MAX - 1e-9);
     if (n < 1) n = 1;
     if (timer) gpu_timer_mark(timer, "spray update");
-    res_pass_state(s->res, s->res);
-    res_vertexid_begin();   /* the vertices come from gl_VertexID */
+    render_res_pass_state(s->res, s->res);
+    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
     glUseProgram(s->progs[SPRAY_PROG_UPDATE].gl);
     for (int k = 1; k <= n; k++) {
         /* equal steps, the last landing on t exactly */
         double tk = k == n ? t : from + (t - from) * k / n, tprev = k == 1 ? from : from + (t - from) * (k - 1) / n;
         step(s, tk, tk - tprev, upload, ctx);
     }
-    res_vertexid_end();
+    render_res_vertexid_end();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     s->t = t;
@@ -202,9 +202,9 @@ void spray_draw(const gpu_spray *s, const float vp[16], const float eye[3], int 
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);   /* premultiplied */
     glEnable(GL_PROGRAM_POINT_SIZE);
-    res_vertexid_begin();   /* the vertices come from gl_VertexID */
+    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
     glDrawArrays(GL_POINTS, 0, s->d.count);
-    res_vertexid_end();
+    render_res_vertexid_end();
     glDisable(GL_PROGRAM_POINT_SIZE);
     glDisable(GL_BLEND);
     glDepthMask(depth_mask);

@@ -38,7 +38,7 @@ static bool build_terrain(gpu_world *gw, int lod) {
         g.tc[i * 2] = (float)((x + hs) / (2 * hs));
         g.tc[i * 2 + 1] = (float)((z + hs) / (2 * hs));
     }
-    bool ok = res_mesh_upload(&g, &gw->terrain[lod]);
+    bool ok = render_res_mesh_upload(&g, &gw->terrain[lod]);
     geom_free(&g);
     return ok;
 }
@@ -47,7 +47,7 @@ static bool build_terrain(gpu_world *gw, int lod) {
 static bool build_sky_box(gpu_world *gw) {
     geom_mesh g;
     if (!geom_box(&g, 2.0f, 2.0f, 2.0f, false)) return false;
-    bool ok = res_mesh_upload(&g, &gw->sky_box);
+    bool ok = render_res_mesh_upload(&g, &gw->sky_box);
     geom_free(&g);
     return ok;
 }
@@ -138,7 +138,7 @@ static bool build_skirt(gpu_world *gw, int lod) {
             memcpy(g.idx + n, quad, sizeof quad);
             n += 6;
         }
-    bool ok = res_mesh_upload(&g, &gw->skirt[lod]);
+    bool ok = render_res_mesh_upload(&g, &gw->skirt[lod]);
     geom_free(&g);
     return ok;
 }
@@ -232,7 +232,7 @@ static bool build_water(gpu_world *gw, int lod) {
         g.pos[i * 3 + 0] += (float)gw->water_shift[0];
         g.pos[i * 3 + 2] += (float)gw->water_shift[1];
     }
-    bool ok = res_mesh_upload(&g, &gw->water[lod]);
+    bool ok = render_res_mesh_upload(&g, &gw->water[lod]);
     geom_free(&g);
     return ok;
 }
@@ -273,7 +273,7 @@ static bool build_object(gpu_world *gw, int index, gpu_mesh *m) {
     double off_y = 0;
     if (ob->kind == REF_OBJECT_MESH) {   /* in world coordinates already */
         if (!mesh_object(gw->w.meshes[index], &g)) return false;
-        ok = res_mesh_upload(&g, m);
+        ok = render_res_mesh_upload(&g, m);
         geom_free(&g);
         return ok;
     }
@@ -294,7 +294,7 @@ static bool build_object(gpu_world *gw, int index, gpu_mesh *m) {
         g.pos[i * 3 + 1] += (float)(ob->center[1] + off_y);
         g.pos[i * 3 + 2] += (float)ob->center[2];
     }
-    ok = res_mesh_upload(&g, m);
+    ok = render_res_mesh_upload(&g, m);
     geom_free(&g);
     return ok;
 }
@@ -308,7 +308,7 @@ static bool bake_albedo(gpu_world *gw) {
     glGenTextures(1, &gw->albedo_tex);
     glBindTexture(GL_TEXTURE_2D, gw->albedo_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
-    res_sampling(GL_TEXTURE_2D, true, GL_CLAMP_TO_EDGE);
+    render_res_sampling(GL_TEXTURE_2D, true, GL_CLAMP_TO_EDGE);
     glBindTexture(GL_TEXTURE_2D, 0);
     free(px);
     return true;
@@ -339,7 +339,7 @@ static bool bake_sky(gpu_world *gw) {
         bake_sky_face(&gw->w, f, res, px);   /* GL's cube face table */
         glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA16F, res, res, 0, GL_RGBA, GL_FLOAT, px);
     }
-    res_sampling(GL_TEXTURE_CUBE_MAP, false, GL_CLAMP_TO_EDGE);
+    render_res_sampling(GL_TEXTURE_CUBE_MAP, false, GL_CLAMP_TO_EDGE);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
     free(px);
@@ -454,14 +454,14 @@ void world_free(gpu_world *gw) {
     flow_free(&gw->flow);
     spray_free(&gw->spray);
     for (int k = 0; k < WORLD_LODS; k++) {
-        res_mesh_free(&gw->terrain[k]);
-        res_mesh_free(&gw->skirt[k]);
-        res_mesh_free(&gw->water[k]);
+        render_res_mesh_free(&gw->terrain[k]);
+        render_res_mesh_free(&gw->skirt[k]);
+        render_res_mesh_free(&gw->water[k]);
     }
-    res_mesh_free(&gw->sky_box);
+    render_res_mesh_free(&gw->sky_box);
     if (gw->points_vbo) glDeleteBuffers(1, &gw->points_vbo);
     if (gw->mesh_ibo) glDeleteBuffers(1, &gw->mesh_ibo);
-    for (int i = 0; i < gw->nobjects; i++) res_mesh_free(&gw->objects[i]);
+    for (int i = 0; i < gw->nobjects; i++) render_res_mesh_free(&gw->objects[i]);
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
     if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
     for (int m = 0; m < WORLD_MODES; m++) prog_free(&gw->progs[m]);
@@ -571,7 +571,7 @@ void world_follow_waves(gpu_world *gw, double t) {
     if (!isfinite(shift[0]) || !isfinite(shift[1])) return;
     gw->water_shift[0] = shift[0];
     gw->water_shift[1] = shift[1];
-    for (int k = 0; k < WORLD_LODS; k++) res_mesh_free(&gw->water[k]);   /* coarser levels: rebuilt when drawn */
+    for (int k = 0; k < WORLD_LODS; k++) render_res_mesh_free(&gw->water[k]);   /* coarser levels: rebuilt when drawn */
     if (!build_water(gw, gw->lod)) memset(&gw->water[gw->lod], 0, sizeof gw->water[gw->lod]);
     gw->points_n = 0;   /* rebuilt with the shift when next drawn */
 }
@@ -690,16 +690,16 @@ static void draw_modes(const gpu_world *gw, const char *which, double offset, do
     glEnable(GL_CLIP_DISTANCE0);
     if (strcmp(which, "below") != 0) {   /* the sky, behind everything */
         use_mode(gw, 2, t, eye, to_screen, plane, layers);
-        res_mesh_draw(&gw->sky_box, -1);
+        render_res_mesh_draw(&gw->sky_box, -1);
     }
     use_mode(gw, 0, t, eye, to_screen, plane, layers);
-    res_mesh_draw(&gw->terrain[gw->lod], -1);
-    res_mesh_draw(&gw->skirt[gw->lod], -1);
+    render_res_mesh_draw(&gw->terrain[gw->lod], -1);
+    render_res_mesh_draw(&gw->skirt[gw->lod], -1);
     use_mode(gw, 1, t, eye, to_screen, plane, layers);
     GLint albedo = glGetUniformLocation(gw->progs[1].gl, "uWorldAlbedo");
     for (int i = 0; i < gw->nobjects; i++) {
         if (albedo >= 0) glUniform3fv(albedo, 1, gw->object_albedo[i]);
-        res_mesh_draw(&gw->objects[i], -1);
+        render_res_mesh_draw(&gw->objects[i], -1);
     }
     glDisable(GL_CLIP_DISTANCE0);
     glUseProgram(restore_program);
@@ -736,9 +736,9 @@ void world_composite_layers(const gpu_world *gw, double t, const float eye[3], c
     }
     GLint origin = glGetUniformLocation(p, "uLayerOrigin");
     if (origin >= 0) glUniform2i(origin, x, y);
-    res_vertexid_begin();   /* the vertices come from gl_VertexID */
+    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    res_vertexid_end();
+    render_res_vertexid_end();
     for (int i = 0; i < 3; i++) {
         glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
         glBindTexture(GL_TEXTURE_2D, (GLuint)before[i]);
@@ -750,7 +750,7 @@ void world_composite_layers(const gpu_world *gw, double t, const float eye[3], c
 void world_draw_water(gpu_world *gw, int tangent_loc) {
     if (!gw->active) return;
     if (!gw->water[gw->lod].vbo && !build_water(gw, gw->lod)) return;   /* moved by world_follow_waves */
-    res_mesh_draw(&gw->water[gw->lod], tangent_loc);
+    render_res_mesh_draw(&gw->water[gw->lod], tangent_loc);
 }
 
 /* N x N points at the cell centres of the world square, at the mean level;
@@ -859,7 +859,7 @@ static void height_target(gpu_world *gw, int res) {
     }
     glBindTexture(GL_TEXTURE_2D, gw->height_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, res, res, 0, GL_RED, GL_FLOAT, NULL);
-    res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
+    render_res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gw->height_tex, 0);
@@ -885,16 +885,16 @@ void world_update_height(gpu_world *gw, double t, double detail) {
     }
     if (!gw->height_tex || res != gw->height_res) height_target(gw, res);
     glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
-    res_pass_state(res, res);
+    render_res_pass_state(res, res);
     unsigned p = gw->height_prog.gl;
     glUseProgram(p);
     const float eye[3] = { 0, 0, 0 };
     world_upload(gw, p, t, eye);
     GLint loc = glGetUniformLocation(p, "uHeightRes");
     if (loc >= 0) glUniform2f(loc, (float)res, (float)res);
-    res_vertexid_begin();   /* the vertices come from gl_VertexID */
+    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    res_vertexid_end();
+    render_res_vertexid_end();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gw->height_t = t;

@@ -4,12 +4,12 @@
 #include <GL/glext.h>
 #include <string.h>
 
-void wcache_init(world_cache *c) {
+void world_cache_init(world_cache *c) {
     memset(c, 0, sizeof *c);
-    for (int i = 0; i < WCACHE_SLOTS; i++) c->slot[i].cmd = -1;
+    for (int i = 0; i < WORLD_CACHE_SLOTS; i++) c->slot[i].cmd = -1;
 }
 
-static void slot_free(wcache_slot *s) {
+static void slot_free(world_cache_slot *s) {
     if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
     if (s->color_rb) glDeleteRenderbuffers(1, &s->color_rb);
     if (s->depth_rb) glDeleteRenderbuffers(1, &s->depth_rb);
@@ -17,11 +17,11 @@ static void slot_free(wcache_slot *s) {
     s->cmd = -1;
 }
 
-void wcache_free(world_cache *c) {
-    for (int i = 0; i < WCACHE_SLOTS; i++) slot_free(&c->slot[i]);
+void world_cache_free(world_cache *c) {
+    for (int i = 0; i < WORLD_CACHE_SLOTS; i++) slot_free(&c->slot[i]);
 }
 
-void wcache_key_init(wcache_key *k) { memset(k, 0, sizeof *k); }
+void world_cache_key_init(world_cache_key *k) { memset(k, 0, sizeof *k); }
 
 /* The internal format of a colour attachment of the bound draw framebuffer,
  * from its sizes and type (the window's own buffers have no name to ask):
@@ -57,7 +57,7 @@ static unsigned depth_format(GLenum att) {
     return d == 16 ? GL_DEPTH_COMPONENT16 : d == 32 ? GL_DEPTH_COMPONENT32 : 0;
 }
 
-static void key_state(wcache_key *k) {
+static void key_state(world_cache_key *k) {
     glGetFloatv(GL_MODELVIEW_MATRIX, k->modelview);
     glGetFloatv(GL_PROJECTION_MATRIX, k->projection);
     GLint vp[4];
@@ -85,7 +85,7 @@ static void key_state(wcache_key *k) {
     glGetIntegerv(GL_POLYGON_MODE, k->polygon_mode);
 }
 
-static void key_textures(wcache_key *k, int albedo_unit, int sky_unit) {
+static void key_textures(world_cache_key *k, int albedo_unit, int sky_unit) {
     GLint active;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
     glActiveTexture(GL_TEXTURE0 + (GLenum)albedo_unit);
@@ -95,7 +95,7 @@ static void key_textures(wcache_key *k, int albedo_unit, int sky_unit) {
     glActiveTexture((GLenum)active);
 }
 
-bool wcache_key_gl(wcache_key *k, int albedo_unit, int sky_unit) {
+bool world_cache_key_gl(world_cache_key *k, int albedo_unit, int sky_unit) {
     GLint fbo = 0, db0 = GL_NONE, db1 = GL_NONE;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
     glGetIntegerv(GL_DRAW_BUFFER0, &db0);
@@ -113,12 +113,12 @@ bool wcache_key_gl(wcache_key *k, int albedo_unit, int sky_unit) {
     return k->vp_w > 0 && k->vp_h > 0;
 }
 
-static GLbitfield copy_mask(const wcache_key *k) {
+static GLbitfield copy_mask(const world_cache_key *k) {
     return (k->color_fmt ? GL_COLOR_BUFFER_BIT : 0) | (k->depth_fmt ? GL_DEPTH_BUFFER_BIT : 0);
 }
 
-static wcache_slot *find(world_cache *c, int cmd) {
-    for (int i = 0; i < WCACHE_SLOTS; i++)
+static world_cache_slot *find(world_cache *c, int cmd) {
+    for (int i = 0; i < WORLD_CACHE_SLOTS; i++)
         if (c->slot[i].cmd == cmd) return &c->slot[i];
     return NULL;
 }
@@ -145,15 +145,15 @@ static void restore_gl(const saved_gl *s) {
 }
 
 /* A copy went wrong (a format the blit refused): draw this command from now on. */
-static void give_up(wcache_slot *s, int cmd) {
+static void give_up(world_cache_slot *s, int cmd) {
     while (glGetError() != GL_NO_ERROR) {}
     slot_free(s);
     s->cmd = cmd;
     s->broken = true;
 }
 
-bool wcache_restore(world_cache *c, int cmd, const wcache_key *k) {
-    wcache_slot *s = find(c, cmd);
+bool world_cache_restore(world_cache *c, int cmd, const world_cache_key *k) {
+    world_cache_slot *s = find(c, cmd);
     if (c->off || !s || !s->valid || s->broken || memcmp(&s->key, k, sizeof *k) != 0) return false;
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
@@ -174,7 +174,7 @@ static void alloc_rb(unsigned *rb, int samples, unsigned fmt, int w, int h) {
 }
 
 /* Storage for k's pixels, kept while the size, formats and samples stay. */
-static bool slot_alloc(wcache_slot *s, const wcache_key *k) {
+static bool slot_alloc(world_cache_slot *s, const world_cache_key *k) {
     if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.color_fmt == k->color_fmt &&
         s->key.depth_fmt == k->depth_fmt && s->key.samples == k->samples)
         return true;
@@ -199,9 +199,9 @@ static bool slot_alloc(wcache_slot *s, const wcache_key *k) {
     return glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
-void wcache_store(world_cache *c, int cmd, const wcache_key *k) {
+void world_cache_store(world_cache *c, int cmd, const world_cache_key *k) {
     if (c->off) return;
-    wcache_slot *s = find(c, cmd);
+    world_cache_slot *s = find(c, cmd);
     if (!s) s = find(c, -1);
     if (!s || s->broken) return;   /* more World commands than slots: the rest are drawn */
     s->cmd = cmd;

@@ -9,10 +9,10 @@
 #define TARN_WORLD_CACHE_H
 #include <stdbool.h>
 
-#define WCACHE_SLOTS 16
+#define WORLD_CACHE_SLOTS 16
 
-/* memcmp'd: fill with wcache_key_init first, so padding is zero. */
-typedef struct wcache_key {
+/* memcmp'd: fill with world_cache_key_init first, so padding is zero. */
+typedef struct world_cache_key {
     /* the world's inputs (render.c) */
     double t;
     float eye[3];
@@ -21,7 +21,7 @@ typedef struct wcache_key {
     int to_screen;
     int lod;                    /* the world meshes' level of detail */
     float clear_rgba[4];        /* the colour the target was cleared to */
-    /* GL state (wcache_key_gl) */
+    /* GL state (world_cache_key_gl) */
     float modelview[16], projection[16];
     int vp_w, vp_h;
     int cull, cull_mode, front_face, depth_test, depth_func, blend, blend_func[4], blend_eq[2];
@@ -29,39 +29,39 @@ typedef struct wcache_key {
     int tex_units[2];           /* what the world samples: the albedo (2D) and sky (cube) units' textures */
     unsigned color_fmt, depth_fmt;   /* 0: none */
     int samples;
-} wcache_key;
+} world_cache_key;
 
-typedef struct wcache_slot {
+typedef struct world_cache_slot {
     int cmd;                    /* the World command (-1: free) */
     bool valid;                 /* holds the pixels of key */
     bool broken;                /* a copy failed: this command is drawn, not cached */
     bool seen;                  /* drawn before, at time seen_t */
     double seen_t;
-    wcache_key key;
+    world_cache_key key;
     unsigned fbo, color_rb, depth_rb;
-} wcache_slot;
+} world_cache_slot;
 
 typedef struct world_cache {
-    wcache_slot slot[WCACHE_SLOTS];
+    world_cache_slot slot[WORLD_CACHE_SLOTS];
     bool off;                   /* render_set_world_cache(false) */
     long hits, stores;
 } world_cache;
 
-void wcache_init(world_cache *c);
+void world_cache_init(world_cache *c);
 /* Forgets every slot (a reload; the world or its program rebuilt). */
-void wcache_free(world_cache *c);
+void world_cache_free(world_cache *c);
 
-void wcache_key_init(wcache_key *k);
+void world_cache_key_init(world_cache_key *k);
 /* Adds the bound draw framebuffer's and the GL state's part; false when
  * the target cannot be cached (several colour buffers, a format the cache
  * does not know). albedo_unit, sky_unit: the texture units the world reads. */
-bool wcache_key_gl(wcache_key *k, int albedo_unit, int sky_unit);
+bool world_cache_key_gl(world_cache_key *k, int albedo_unit, int sky_unit);
 
 /* Copies command cmd's cached pixels for key k into the bound draw
  * framebuffer's viewport; false (nothing done) on a miss. */
-bool wcache_restore(world_cache *c, int cmd, const wcache_key *k);
+bool world_cache_restore(world_cache *c, int cmd, const world_cache_key *k);
 /* Keeps the bound draw framebuffer's viewport as command cmd's pixels for
  * k, once command cmd has been drawn twice in a row at k's time: while the
  * time runs (an animation) no copy could be used, and each costs. */
-void wcache_store(world_cache *c, int cmd, const wcache_key *k);
+void world_cache_store(world_cache *c, int cmd, const world_cache_key *k);
 #endif

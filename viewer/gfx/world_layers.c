@@ -4,12 +4,12 @@
 #include <GL/glext.h>
 #include <string.h>
 
-void wlayers_init(world_layers *l) {
+void world_layers_init(world_layers *l) {
     memset(l, 0, sizeof *l);
-    for (int i = 0; i < WCACHE_SLOTS; i++) l->slot[i].cmd = -1;
+    for (int i = 0; i < WORLD_CACHE_SLOTS; i++) l->slot[i].cmd = -1;
 }
 
-static void slot_free(wlayers_slot *s) {
+static void slot_free(world_layers_slot *s) {
     if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
     glDeleteTextures(3, s->tex);
     if (s->depth_rb) glDeleteRenderbuffers(1, &s->depth_rb);
@@ -17,19 +17,19 @@ static void slot_free(wlayers_slot *s) {
     s->cmd = -1;
 }
 
-void wlayers_free(world_layers *l) {
-    for (int i = 0; i < WCACHE_SLOTS; i++) slot_free(&l->slot[i]);
+void world_layers_free(world_layers *l) {
+    for (int i = 0; i < WORLD_CACHE_SLOTS; i++) slot_free(&l->slot[i]);
 }
 
-static wlayers_slot *find(world_layers *l, int cmd) {
-    for (int i = 0; i < WCACHE_SLOTS; i++)
+static world_layers_slot *find(world_layers *l, int cmd) {
+    for (int i = 0; i < WORLD_CACHE_SLOTS; i++)
         if (l->slot[i].cmd == cmd) return &l->slot[i];
     return NULL;
 }
 
 /* k without its time: what the layers depend on */
-static wcache_key timeless(const wcache_key *k) {
-    wcache_key u = *k;
+static world_cache_key timeless(const world_cache_key *k) {
+    world_cache_key u = *k;
     u.t = 0;
     return u;
 }
@@ -38,37 +38,37 @@ static wcache_key timeless(const wcache_key *k) {
  * between two frames while the clock ran, even where the window's frame
  * budget drew them at two sizes (the size is in the projection's aspect,
  * the viewport and the meshes' level of detail) */
-static wcache_key timeless_sizeless(const wcache_key *k) {
-    wcache_key u = timeless(k);
+static world_cache_key timeless_sizeless(const world_cache_key *k) {
+    world_cache_key u = timeless(k);
     memset(u.projection, 0, sizeof u.projection);
     u.vp_w = u.vp_h = 0;
     u.lod = 0;
     return u;
 }
 
-static bool same_but_time_and_size(const wcache_key *a, const wcache_key *b) {
-    wcache_key x = timeless_sizeless(a), y = timeless_sizeless(b);
+static bool same_but_time_and_size(const world_cache_key *a, const world_cache_key *b) {
+    world_cache_key x = timeless_sizeless(a), y = timeless_sizeless(b);
     return memcmp(&x, &y, sizeof x) == 0;
 }
 
-wlayers_use wlayers_check(world_layers *l, int cmd, const wcache_key *k) {
+world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_key *k) {
     /* one sample a pixel, no blending: the pass writes each pixel once */
-    if (l->off || k->samples > 1 || k->blend || !k->color_fmt || !k->depth_fmt) return WLAYERS_NO;
-    wlayers_slot *s = find(l, cmd);
+    if (l->off || k->samples > 1 || k->blend || !k->color_fmt || !k->depth_fmt) return WORLD_LAYERS_NO;
+    world_layers_slot *s = find(l, cmd);
     if (!s) s = find(l, -1);
-    if (!s || s->broken) return WLAYERS_NO;
+    if (!s || s->broken) return WORLD_LAYERS_NO;
     s->cmd = cmd;
-    wcache_key u = timeless(k);
+    world_cache_key u = timeless(k);
     if (s->valid && memcmp(&s->key, &u, sizeof u) == 0) {
         s->last = *k;
-        return WLAYERS_READY;
+        return WORLD_LAYERS_READY;
     }
     /* the clock runs: the layers pay from this frame on, at this size (a
      * budget's new size builds them at once, not one plain draw later) */
     bool running = s->seen && same_but_time_and_size(&s->last, k) && s->last.t != k->t;
     s->seen = true;
     s->last = *k;
-    return running ? WLAYERS_BUILD : WLAYERS_NO;
+    return running ? WORLD_LAYERS_BUILD : WORLD_LAYERS_NO;
 }
 
 static unsigned make_tex(int w, int h) {
@@ -82,13 +82,13 @@ static unsigned make_tex(int w, int h) {
 }
 
 /* The target, kept while the size and depth format stay. */
-static bool slot_alloc(wlayers_slot *s, const wcache_key *k) {
+static bool slot_alloc(world_layers_slot *s, const world_cache_key *k) {
     if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.depth_fmt == k->depth_fmt) return true;
     /* a new size: new textures, the command's last key kept (the clock
      * still runs) */
     int cmd = s->cmd;
     bool seen = s->seen;
-    wcache_key last = s->last;
+    world_cache_key last = s->last;
     slot_free(s);
     s->cmd = cmd;
     s->seen = seen;
@@ -114,8 +114,8 @@ static bool slot_alloc(wlayers_slot *s, const wcache_key *k) {
     return glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
-bool wlayers_begin_build(world_layers *l, int cmd, const wcache_key *k) {
-    wlayers_slot *s = find(l, cmd);
+bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k) {
+    world_layers_slot *s = find(l, cmd);
     if (!s) return false;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &l->saved.draw_fbo);
     glGetIntegerv(GL_RENDERBUFFER_BINDING, &l->saved.rb);
@@ -142,8 +142,8 @@ bool wlayers_begin_build(world_layers *l, int cmd, const wcache_key *k) {
     return true;
 }
 
-void wlayers_end_build(world_layers *l, int cmd, const wcache_key *k) {
-    wlayers_slot *s = find(l, cmd);
+void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k) {
+    world_layers_slot *s = find(l, cmd);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)l->saved.draw_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)l->saved.rb);
     glViewport(l->saved.vp[0], l->saved.vp[1], l->saved.vp[2], l->saved.vp[3]);
@@ -154,7 +154,7 @@ void wlayers_end_build(world_layers *l, int cmd, const wcache_key *k) {
     l->builds++;
 }
 
-const unsigned *wlayers_textures(world_layers *l, int cmd) {
-    wlayers_slot *s = find(l, cmd);
+const unsigned *world_layers_textures(world_layers *l, int cmd) {
+    world_layers_slot *s = find(l, cmd);
     return s && s->valid ? s->tex : NULL;
 }

@@ -8,7 +8,7 @@
  * time is a full-screen pass that picks one of the two
  * (world_layers.frag): the pixels the World draw gives, at the cost of
  * one test a pixel instead of the terrain's and objects' shading. One
- * layer target per World command (WCACHE_SLOTS); single-sample targets
+ * layer target per World command (WORLD_CACHE_SLOTS); single-sample targets
  * without blending only. Private to render.c. */
 #ifndef TARN_WORLD_LAYERS_H
 #define TARN_WORLD_LAYERS_H
@@ -16,17 +16,17 @@
 
 #include "world_cache.h"
 
-typedef struct wlayers_slot {
+typedef struct world_layers_slot {
     int cmd;                    /* the World command (-1: free) */
     bool valid;                 /* the layers hold key's world (its time aside) */
     bool broken;                /* the target could not be made: drawn as before */
     bool seen;                  /* last: the command's key at its last frame */
-    wcache_key last, key;       /* key: what the layers hold, t zeroed */
+    world_cache_key last, key;       /* key: what the layers hold, t zeroed */
     unsigned fbo, tex[3], depth_rb;
-} wlayers_slot;
+} world_layers_slot;
 
 typedef struct world_layers {
-    wlayers_slot slot[WCACHE_SLOTS];
+    world_layers_slot slot[WORLD_CACHE_SLOTS];
     bool off;                   /* render_set_world_layers(false) */
     long builds, composites;
     struct {                    /* what a build changes, put back after it */
@@ -36,29 +36,29 @@ typedef struct world_layers {
     } saved;
 } world_layers;
 
-void wlayers_init(world_layers *l);
+void world_layers_init(world_layers *l);
 /* Forgets every slot (a reload; the world or its program rebuilt). */
-void wlayers_free(world_layers *l);
+void world_layers_free(world_layers *l);
 
 /* Whether command cmd at key k can take its layers: they hold k's world
- * (k's time aside; WLAYERS_READY), or the command was drawn at the last
+ * (k's time aside; WORLD_LAYERS_READY), or the command was drawn at the last
  * frame with the same key at another time (its size aside: the window's
  * budget may have drawn it larger or smaller), so the clock runs and the
- * layers pay (WLAYERS_BUILD), or neither (WLAYERS_NO: draw it). Records k
+ * layers pay (WORLD_LAYERS_BUILD), or neither (WORLD_LAYERS_NO: draw it). Records k
  * as the command's last key. */
-typedef enum { WLAYERS_NO, WLAYERS_BUILD, WLAYERS_READY } wlayers_use;
-wlayers_use wlayers_check(world_layers *l, int cmd, const wcache_key *k);
+typedef enum { WORLD_LAYERS_NO, WORLD_LAYERS_BUILD, WORLD_LAYERS_READY } world_layers_use;
+world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_key *k);
 
 /* Binds command cmd's layer target for k (made or resized), cleared (the
  * wet layer's depth to 1: nothing drawn), with its three draw buffers and
  * a viewport at its corner; the caller draws the World with uWorldLayers
- * set, then wlayers_end_build. false: it could not be made (the command
+ * set, then world_layers_end_build. false: it could not be made (the command
  * is drawn as before from now on). */
-bool wlayers_begin_build(world_layers *l, int cmd, const wcache_key *k);
-/* Puts back the target and viewport wlayers_begin_build found; the layers
+bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k);
+/* Puts back the target and viewport world_layers_begin_build found; the layers
  * now hold k's world. */
-void wlayers_end_build(world_layers *l, int cmd, const wcache_key *k);
+void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k);
 
 /* The three layer textures of command cmd (wet+depth, dry, point), or NULL. */
-const unsigned *wlayers_textures(world_layers *l, int cmd);
+const unsigned *world_layers_textures(world_layers *l, int cmd);
 #endif

@@ -690,7 +690,7 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
 
 /* ---- the command ---- */
 
-static void load_packs(cview *v, const cli_compare_view_desc *d, bool *ok) {
+static void load_packs(cview *v, const compare_view_desc *d, bool *ok) {
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
         snprintf(p->name, sizeof p->name, "%s", d->packs[i]);
@@ -724,7 +724,7 @@ static void free_packs(cview *v) {
     refcache_free(&v->ref);
 }
 
-int cli_compare_view(const cli_compare_view_desc *d) {
+int compare_view_run(const compare_view_desc *d) {
     if (d->npacks < 2 || d->npacks > COMPARE_VIEW_MAX_PACKS) {
         fprintf(stderr, "tarn compare-view: give 2 to 4 packs (--packs a,b)\n");
         return TARN_EXIT_USAGE;

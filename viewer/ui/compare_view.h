@@ -35,7 +35,7 @@
 
 #define COMPARE_VIEW_MAX_PACKS 4
 
-typedef struct cli_compare_view_desc {
+typedef struct compare_view_desc {
     const char *glib;
     const char *packs[COMPARE_VIEW_MAX_PACKS];   /* 2..4; the same pack twice is allowed */
     int npacks;
@@ -47,8 +47,8 @@ typedef struct cli_compare_view_desc {
     int samples;                /* MSAA of every pack (render_desc.samples): 0 the default, 1 off;
                                    the heat maps' reference subsamples at the GL's positions
                                    (refcache_match_msaa) */
-} cli_compare_view_desc;
+} compare_view_desc;
 
-int cli_compare_view(const cli_compare_view_desc *d);
+int compare_view_run(const compare_view_desc *d);
 
 #endif
