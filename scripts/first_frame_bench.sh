@@ -18,7 +18,7 @@ command -v xvfb-run >/dev/null || { echo "first_frame_bench: xvfb-run is missing
 script=$(mktemp /tmp/tarn-first-frame.XXXXXX)
 trap 'rm -f "$script"' EXIT
 printf 'clock\nquit\n' > "$script"
-echo "first_frame_bench: $(uptime | sed 's/^ *//'), cache ${MESA_SHADER_CACHE_DISABLE:+off}${MESA_SHADER_CACHE_DISABLE:-as it is}"
+echo "first_frame_bench: $(uptime | sed 's/^ *//'), Mesa's shader cache $([ -n "${MESA_SHADER_CACHE_DISABLE:-}" ] && echo off || echo "as it is")"
 first() {   # the clock line's milliseconds, as seconds
   xvfb-run -a -s "-screen 0 1600x900x24" "$@" --script "$script" 2>&1 |
     awk '/ clock / { for (i = 1; i < NF; i++) if ($(i + 1) == "ms") printf "%.2f", $i / 1000 }'
