@@ -54,6 +54,7 @@ typedef struct scene_state {
     bool *per_frame;         /* per Texture2D target: a RenderToTexture draws it every frame */
     bool *draw_warned;       /* per command: a problem drawing it was reported */
     bool flat_checked;       /* the first frame was looked at for a one-colour picture */
+    bool samples_noise[2];   /* a program samples unit 2 / 3: glman's noise is built (note_noise_units) */
     int nprogs;
     scene_settings set;
 } scene_state;
@@ -569,6 +570,22 @@ static void note_inactive_uniforms(const scene_state *s, bool verbose, char **lo
     if (verbose) note_each_inactive(s, log);
 }
 
+/* Which of glman's noise units the programs sample (a sampler in the
+ * shader set to 2 or 3, Noise2 and Noise3 by name), known once the
+ * programs are introspected: the 64^3 texture costs ~250 ms of CPU a
+ * load, which a scene that never reads it (every pack's) need not pay. */
+static void note_noise_units(scene_state *s) {
+    s->samples_noise[0] = s->samples_noise[1] = false;
+    for (int i = 0; i < s->nprogs; i++) {
+        const unif_set *u = s->progs[i].unifs;
+        for (int k = 0; u && k < u->n; k++) {
+            const unif_entry *e = &u->entries[k];
+            int unit = (int)e->value[0];
+            if (e->type == UNIF_SAMPLER && e->in_shader && (unit == 2 || unit == 3)) s->samples_noise[unit - 2] = true;
+        }
+    }
+}
+
 static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
     int n = s->glib->ncmds;
     s->cmd_res = mem_alloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
@@ -595,6 +612,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
         else program_stages_step(&st, c);
     }
     settings_from_glib(&s->set, s->glib);
+    note_noise_units(s);
     note_inactive_uniforms(s, r->verbose, log);
     check_if_nesting(s->glib, log);
     check_named_counts(s, log);
@@ -775,6 +793,7 @@ bool render_rebuild_programs(render *r) {
         if (!prog_build(p, (const char *const *)r->include_dirs, 1, &log)) ok = false;
         prog_introspect(p, &log);
     }
+    note_noise_units(&r->cur);
     world_cache_free(&r->wcache);   /* the world's program may draw differently now */
     world_layers_free(&r->wlayers);
     if (r->world.active) {
@@ -848,21 +867,9 @@ render_view render_default_view(const render *r) {
 /* glman's Noise2 and Noise3 are there for every shader without any
  * command: built once per project folder (whose cached .tex files win),
  * bound to units 2 and 3 before the scene's own textures, so a Noise2D or
- * a Texture2D on those units still takes over. Each is built when a
- * program first samples its unit (a sampler in the shader set to 2 or 3,
- * Noise2 and Noise3 by name): the 64^3 texture costs ~250 ms of CPU a
- * load, which a scene that never reads it (every pack's) need not pay. */
-static bool samples_unit(const scene_state *s, int unit) {
-    for (int i = 0; i < s->nprogs; i++) {
-        const unif_set *u = s->progs[i].unifs;
-        for (int k = 0; u && k < u->n; k++) {
-            const unif_entry *e = &u->entries[k];
-            if (e->type == UNIF_SAMPLER && e->in_shader && (int)e->value[0] == unit) return true;
-        }
-    }
-    return false;
-}
-
+ * a Texture2D on those units still takes over. Each is built at the first
+ * frame after a load that has a program sampling its unit
+ * (note_noise_units). */
 static void bind_builtin_noise(render *r, const scene_state *s) {
     char dir[GLIB_PATH_MAX];
     const char *top = s->glib && s->glib->nfiles ? s->glib->files[0] : "";
@@ -874,7 +881,7 @@ static void bind_builtin_noise(render *r, const scene_state *s) {
         snprintf(r->noise_dir, sizeof r->noise_dir, "%s", dir);
     }
     for (int k = 0; k < 2; k++) {
-        if (!r->noise[k].tex && samples_unit(s, 2 + k)) render_res_noise_builtin(dir, k == 1, &r->noise[k]);
+        if (!r->noise[k].tex && s->samples_noise[k]) render_res_noise_builtin(dir, k == 1, &r->noise[k]);
         if (!r->noise[k].tex) continue;
         glActiveTexture(GL_TEXTURE0 + (GLenum)r->noise[k].unit);
         glBindTexture(r->noise[k].target, r->noise[k].tex);
