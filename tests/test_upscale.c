@@ -2,7 +2,10 @@
  * its input bit for bit (the full-resolution frame the window shows when
  * the picture is still); at 4x it is closer than the bilinear blit to the
  * truth on an image with a sharp edge and a smooth gradient; it makes no
- * NaN; it touches nothing outside its rectangle. */
+ * NaN; it touches nothing outside its rectangle. The sharp world
+ * (upscale_draw_over_world) shows the full-resolution world bit for bit
+ * where the reduced frame kept its world, the bilinear blit where water
+ * covers it, and halves the blit's error on a world with fine detail. */
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <math.h>
@@ -204,6 +207,110 @@ static void test_rect_only(void) {
     glDeleteTextures(1, &src);
 }
 
+/* ---- the sharp world ---- */
+
+/* The world: fine stripes (detail a 4x reduction cannot hold); the water:
+ * a disc of a smooth gradient over it. */
+static void world_at(double x, double y, unsigned char *rgba) {
+    int stripe = ((int)(x / 3) + (int)(y / 5)) % 2;
+    rgba[0] = (unsigned char)(stripe ? 200 : 40);
+    rgba[1] = (unsigned char)(90 + (int)x % 64);
+    rgba[2] = (unsigned char)(stripe ? 30 : 160);
+    rgba[3] = 255;
+}
+
+static bool in_water(double x, double y) { return (x - 150) * (x - 150) + (y - 70) * (y - 70) < 50.0 * 50.0; }
+
+static void scene_at(double x, double y, unsigned char *rgba) {
+    if (!in_water(x, y)) { world_at(x, y, rgba); return; }
+    rgba[0] = 20;
+    rgba[1] = (unsigned char)(60 + x * 0.5);
+    rgba[2] = (unsigned char)(120 + y * 0.6);
+    rgba[3] = 255;
+}
+
+/* sRGB bytes to linear, for the error */
+static double lin(unsigned char b) {
+    double c = b / 255.0;
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+/* The window's case: sRGB canvas, snapshot and world, drawn into an sRGB
+ * target with sRGB writes on. The reduced frame and its snapshot are point
+ * samples at the reduced pixels' centres, as a renderer draws them. */
+static void test_over_world(void) {
+    enum { RW = W / F, RH = H / F };
+    static unsigned char world[W * H * 4], truth[W * H * 4], small[RW * RH * 4], snap[RW * RH * 4];
+    static unsigned char over[W * H * 4], blit_px[W * H * 4];
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            world_at(x + 0.5, y + 0.5, world + (y * W + x) * 4);
+            scene_at(x + 0.5, y + 0.5, truth + (y * W + x) * 4);
+        }
+    for (int y = 0; y < RH; y++)
+        for (int x = 0; x < RW; x++) {
+            scene_at((x + 0.5) * F, (y + 0.5) * F, small + (y * RW + x) * 4);
+            world_at((x + 0.5) * F, (y + 0.5) * F, snap + (y * RW + x) * 4);
+        }
+    unsigned frame_tex = make_tex(GL_SRGB8_ALPHA8, RW, RH, GL_UNSIGNED_BYTE, small);
+    unsigned snap_tex = make_tex(GL_SRGB8_ALPHA8, RW, RH, GL_UNSIGNED_BYTE, snap);
+    unsigned world_tex = make_tex(GL_SRGB8_ALPHA8, W, H, GL_UNSIGNED_BYTE, world);
+    unsigned fbo, tex;
+    make_target(GL_SRGB8_ALPHA8, W, H, &fbo, &tex, (float[]){ 0, 0, 0, 1 });
+    upscaler *u = upscale_create(&(upscale_desc){ .filter = UPSCALE_BILINEAR }, NULL);
+    glEnable(GL_FRAMEBUFFER_SRGB);
+    upscale_rect rect = { 0, 0, W, H };
+    CHECK(upscale_draw_over_world(u, frame_tex, snap_tex, RW, RH, world_tex, fbo, rect));
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, over);
+    upscale_draw(u, frame_tex, RW, RH, fbo, rect);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, blit_px);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    CHECK_EQ(glGetError(), GL_NO_ERROR);
+    /* a pixel whose four nearest reduced texels are all world (or all
+     * water): far enough from the disc's edge that no bilinear tap
+     * crosses it, with a texel's margin for where the point samples fall */
+    int world_px = 0, world_off = 0, water_px = 0, water_off = 0;
+    double e_over = 0, e_blit = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double d = sqrt((x + 0.5 - 150) * (x + 0.5 - 150) + (y + 0.5 - 70) * (y + 0.5 - 70));
+            const unsigned char *o = over + (y * W + x) * 4, *b = blit_px + (y * W + x) * 4;
+            const unsigned char *wd = world + (y * W + x) * 4, *tr = truth + (y * W + x) * 4;
+            bool inner = x >= F && x < W - F && y >= F && y < H - F;
+            if (d > 50 + 2.5 * F && inner) {
+                world_px++;
+                world_off += memcmp(o, wd, 3) != 0;
+            } else if (d < 50 - 2.5 * F) {
+                water_px++;
+                for (int c = 0; c < 3; c++) water_off += abs(o[c] - b[c]) > 1;   /* the blit's, to 8-bit rounding */
+            }
+            for (int c = 0; c < 3; c++) {
+                e_over += (lin(o[c]) - lin(tr[c])) * (lin(o[c]) - lin(tr[c]));
+                e_blit += (lin(b[c]) - lin(tr[c])) * (lin(b[c]) - lin(tr[c]));
+            }
+        }
+    e_over = sqrt(e_over / (3.0 * W * H));
+    e_blit = sqrt(e_blit / (3.0 * W * H));
+    printf("sharp world, 4x: RMSE %.4f against the blit's %.4f; %d world pixels, %d off; %d water pixels, %d values off\n",
+           e_over, e_blit, world_px, world_off, water_px, water_off);
+    CHECK_GT(world_px, W * H / 2);
+    CHECK_GT(water_px, 1000);
+    CHECK_EQ(world_off, 0);
+    CHECK_EQ(water_off, 0);
+    /* the stripes are most of the blit's error, and the world's pixels
+     * carry none: well under half (the disc's edge, a texel wide, remains) */
+    CHECK_LT(e_over, 0.5 * e_blit);
+    /* no snapshot: nothing drawn, the caller blits */
+    CHECK(!upscale_draw_over_world(u, frame_tex, 0, RW, RH, world_tex, fbo, rect));
+    upscale_destroy(u);
+    free_target(fbo, tex);
+    glDeleteTextures(1, &frame_tex);
+    glDeleteTextures(1, &snap_tex);
+    glDeleteTextures(1, &world_tex);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
@@ -211,6 +318,7 @@ int main(void) {
     RUN(test_better_than_bilinear);
     RUN(test_no_nan);
     RUN(test_rect_only);
+    RUN(test_over_world);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

@@ -23,6 +23,7 @@
 #include "render_world.h"
 #include "world_cache.h"
 #include "world_layers.h"
+#include "world_snapshot.h"
 #include "scene.h"
 #include "mem.h"
 #include "strbuf.h"
@@ -68,6 +69,8 @@ struct render {
     gpu_world world;               /* kept across reloads while the world is unchanged */
     world_cache wcache;            /* World commands drawn after a Clear, kept while their key stays */
     world_layers wlayers;          /* ... and their layers, while only the time changes */
+    world_snapshot snap;           /* the screen right after its World (render_set_world_snapshot) */
+    bool world_only;               /* inside render_frame_world_at */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];
     char path[GLIB_PATH_MAX];
@@ -154,6 +157,7 @@ void render_destroy(render *r) {
     world_free(&r->world);
     world_cache_free(&r->wcache);
     world_layers_free(&r->wlayers);
+    world_snapshot_free(&r->snap);
     free_deps(r);
     free(r->messages);
     free(r->draw_messages);
@@ -457,6 +461,8 @@ static void size_targets(render *r, int screen_w, int screen_h) {
     for (int i = 0; i < s->glib->ncmds; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
         if (c->kind != GLIB_CMD_TEXTURE2D_EMPTY || s->cmd_res[i] < 0) continue;
+        /* a world-only frame draws only the screen-sized passes: the others keep their size */
+        if (r->world_only && !(screen_divisor(c->name) && screen_divisor(c->arg))) continue;
         gpu_tex *t = &s->texs[s->cmd_res[i]];
         bool per_frame = s->per_frame[i];
         int w = c->name[0] ? target_side(r, c->name, screen_w, max, per_frame) : (int)c->num[1];
@@ -1019,6 +1025,7 @@ typedef struct frame_state {
     bool once_drawn;         /* a RenderToTextureOnce block was drawn this frame */
     bool in_once;            /* drawing one: at full detail, whatever the frame's (it is kept) */
     bool replaying;          /* in one a reload kept: its commands run, but none that writes pixels */
+    bool water_reached;      /* the first WaterSurface on the screen has come (water_on_screen) */
 } frame_state;
 
 static void mark_pass(render *r, const glib_cmd *c) {
@@ -1368,11 +1375,9 @@ static bool draw_world_layers(render *r, frame_state *f, int i, const world_cach
     return true;
 }
 
-static void draw_world(render *r, frame_state *f, int i) {
-    const scene_state *s = &r->cur;
-    const glib_cmd *c = &s->glib->cmds[i];
-    const char *which = c->name[0] ? c->name : "all";
-    float offset = cmd_number(s, i, 0.0f);
+/* The World command i through the caches: copied from the last frame, or
+ * composed from its layers, or drawn (and kept for the next frame). */
+static void draw_world_cached(render *r, frame_state *f, int i, const char *which, float offset) {
     world_cache_key k;
     world_cache_key_init(&k);
     k.t = f->t;
@@ -1394,6 +1399,20 @@ static void draw_world(render *r, frame_state *f, int i) {
     if (!cacheable) return;
     check_gl(r, f, i, NULL, NULL);   /* the world's own errors, reported before the copy looks */
     world_cache_store(&r->wcache, i, &k);
+}
+
+static void draw_world(render *r, frame_state *f, int i) {
+    const scene_state *s = &r->cur;
+    const glib_cmd *c = &s->glib->cmds[i];
+    const char *which = c->name[0] ? c->name : "all";
+    float offset = cmd_number(s, i, 0.0f);
+    if (r->world_only) {
+        /* a frame of its own size and time: the caches keep the window's frames' */
+        f->clean = false;
+        world_draw(&r->world, which, offset, f->t, f->cam_eye, !f->in_rtt, f->cur ? f->cur->gl : 0);
+        return;
+    }
+    draw_world_cached(r, f, i, which, offset);
 }
 
 /* ---- RenderToTextureOnce across a reload ---- */
@@ -1478,14 +1497,53 @@ static bool once_kept(render *r, const frame_state *f, uint64_t sig) {
     return false;
 }
 
+/* Whether texture unit is a render target the size of the screen (or a
+ * half or quarter of it): a pass into it draws the frame's own view. */
+static bool screen_sized_unit(const scene_state *s, int unit) {
+    for (int i = 0; i < s->glib->ncmds; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY && (int)c->num[0] == unit)
+            return screen_divisor(c->name) && screen_divisor(c->arg);
+    }
+    return false;
+}
+
+/* Which passes a world-only frame draws: those into screen-sized targets
+ * (caustic_tex draws its World into one and copies it to the screen);
+ * not a RenderToTextureOnce block (kept for the real frames), nor a pass
+ * of the water's own (a light's view, a mirror, photons). */
+static bool world_only_pass(const scene_state *s, const glib_cmd *c) {
+    if (c->kind != GLIB_CMD_RENDER_TO_TEXTURE || c->nnum == 0) return false;
+    for (int k = 0; k < c->nnum; k++)
+        if (!screen_sized_unit(s, (int)c->num[k])) return false;
+    return true;
+}
+
+/* The screen as the scene left it before its water (the sharp world's
+ * snapshot), and what a world-only frame stops at. */
+static bool water_on_screen(const frame_state *f, const glib_cmd *c) {
+    return c->kind == GLIB_CMD_WATER_SURFACE && !f->in_rtt;
+}
+
 static void exec_cmd(render *r, frame_state *f, int i) {
     scene_state *s = &r->cur;
     const glib_cmd *c = &s->glib->cmds[i];
     int res = s->cmd_res[i];
+    if (r->world_only && f->water_reached) return;
     if (skipped_by_if(r, f, c)) return;
     bool pass_cmd = c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE;
     if (f->skipping && !pass_cmd) return;
     f->skipping = false;
+    if (r->world_only && pass_cmd && c->nnum > 0 && !world_only_pass(s, c)) {
+        f->skipping = true;   /* the block's pixels are not the screen's world */
+        return;
+    }
+    if (water_on_screen(f, c) && !f->water_reached) {
+        f->water_reached = true;
+        if (r->world_only) return;
+        world_snapshot_take(&r->snap, f->screen_fbo, f->x, f->y, f->w, f->h);
+    }
+    if (r->world_only && c->kind == GLIB_CMD_SPLAT) return;
     if (pass_cmd) f->replaying = false;
     /* a kept block leaves the state (camera, program, transforms) a drawn one does */
     if (f->replaying && writes_pixels(c->kind)) return;
@@ -1696,12 +1754,15 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
     int dest_x = x, dest_y = y;
     /* the ocean's passes, then the height map, which reads them: before the
      * frame binds its target; the frame's own passes are "screen" again */
-    if (s->glib && world_update_ocean(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
-    if (s->glib && world_update_flow(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
-    if (s->glib && r->draw_timing) mark_now(r, "world height");
-    if (s->glib) world_update_height(&r->world, t, r->detail);
+    world_snapshot_frame(&r->snap);
+    /* a world-only frame keeps the last frame's: the water's state is not its to advance */
+    bool update = s->glib && !r->world_only;
+    if (update && world_update_ocean(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
+    if (update && world_update_flow(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
+    if (update && r->draw_timing) mark_now(r, "world height");
+    if (update) world_update_height(&r->world, t, r->detail);
     /* the spray after the height map: an ocean's upward speed is read from it */
-    if (s->glib && world_update_spray(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
+    if (update && world_update_spray(&r->world, t, &r->timer)) gpu_timer_mark(&r->timer, "screen");
     bool ms = s->glib && render_msaa_begin(&r->msaa, render_samples(r), fbo, w, h, r->world.active);
     if (ms) { fbo = r->msaa.fbo; x = 0; y = 0; }
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -1749,7 +1810,7 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
             if (f.check_each) check_gl(r, &f, i, NULL, NULL);   /* after a draw, draw_mesh has checked already */
         }
         if (r->draw_timing) mark_now(r, "screen");   /* the last draw's pixels in its own interval */
-        if (r->world.spray.active && !f.in_rtt) {
+        if (r->world.spray.active && !f.in_rtt && !r->world_only) {
             /* the droplets over the finished frame (render_spray.h), the main camera's */
             gpu_timer_mark(&r->timer, "spray draw");
             glBindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -1764,11 +1825,32 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
         if (f.in_once) world_set_detail(&r->world, r->detail);
         glUseProgram(0);
         glFrontFace(GL_CCW);
-        r->nkept_once = 0;   /* the first frame after a load has decided every block */
+        if (!r->world_only) r->nkept_once = 0;   /* the first frame after a load has decided every block */
     }
     if (ms) render_msaa_resolve(&r->msaa, dest, dest_x, dest_y);
-    if (s->glib && !s->flat_checked) check_flat_picture(r, dest, dest_x, dest_y, w, h);
+    if (s->glib && !s->flat_checked && !r->world_only) check_flat_picture(r, dest, dest_x, dest_y, w, h);
     gpu_timer_end_frame(&r->timer);
+}
+
+void render_frame_world_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view) {
+    double detail = r->detail;
+    r->detail = 1.0;
+    r->world_only = true;
+    render_frame_at(r, t, fbo, x, y, w, h, view);
+    r->world_only = false;
+    r->detail = detail;
+    world_set_detail(&r->world, detail);
+}
+
+void render_set_world_snapshot(render *r, bool on) {
+    r->snap.on = on;
+    if (!on) world_snapshot_free(&r->snap);
+}
+
+unsigned render_world_snapshot(const render *r, int *w, int *h) {
+    if (w) *w = r->snap.valid ? r->snap.w : 0;
+    if (h) *h = r->snap.valid ? r->snap.h : 0;
+    return r->snap.valid ? r->snap.tex : 0;
 }
 
 double render_gpu_ms(render *r, bool wait) {

@@ -115,6 +115,27 @@ void render_frame(render *r, double t, unsigned fbo, int w, int h, const render_
  * beside the panel). */
 void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view);
 
+/* The window's sharp world (ui/view.c): the static world at full
+ * resolution under a reduced frame's water.
+ * With snapshots on, each frame keeps a copy of its screen as it was right
+ * before its first WaterSurface on the screen (the world, and what the
+ * scene drew before its water: caustic_tex's copy of its world pass):
+ * render_world_snapshot gives that texture (its bottom-left w x h texels,
+ * the screen's format, copied raw so a pixel nothing drew over after is bit
+ * for bit the frame's), or 0 when the last frame drew no WaterSurface on
+ * its screen (a glman scene). */
+void render_set_world_snapshot(render *r, bool on);
+unsigned render_world_snapshot(const render *r, int *w, int *h);
+/* A frame of what the screen holds at that point and nothing after: the
+ * commands up to its first WaterSurface on the screen, with the passes
+ * into screen-sized targets ("screen", "screen_half", "screen_quarter")
+ * and no other (the water's mirror, refraction, light and photon passes,
+ * RenderToTextureOnce blocks), at full detail, drawn past the world's
+ * caches (the window's frames keep theirs), leaving the water's state
+ * (ocean, flow, spray, height map) and the other targets as the last frame
+ * left them: the world the water is drawn over, at any size, for one time. */
+void render_frame_world_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view);
+
 /* The static-world cache (on by default): a `World` drawn right after a
  * Clear is copied from the last frame's pixels while its camera, clip,
  * target, GL state, time and the world are unchanged (bit for bit what

@@ -19,8 +19,46 @@ struct upscaler {
     unsigned mid_tex, mid_fbo;
     int mid_w, mid_h;
     int u_src, u_axis, u_scale, u_origin, u_last, u_a;
+    /* upscale_draw_over_world: its two programs (built at its first use),
+     * and the frame's water premultiplied by its share, at the frame's
+     * size, filtered linearly; grown, never shrunk */
+    unsigned mask_prog, over_prog, water_tex, water_fbo;
+    int water_w, water_h;
+    bool over_tried;
+    int u_over_scale, u_over_origin, u_over_size, u_over_last;
     char err[512];
 };
+
+/* Which of the reduced frame's pixels the scene drew over its World: the
+ * texel differs from the snapshot taken right after the World (both
+ * decoded the same way, so an untouched texel is equal to the bit). Out:
+ * the frame's colour premultiplied by that share (1 or 0) and the share. */
+static const char mask_frag[] =
+    "#version 330 core\n"
+    "uniform sampler2D uFrame, uWorld;\n"
+    "out vec4 fragColor;\n"
+    "void main() {\n"
+    "    ivec2 p = ivec2(gl_FragCoord.xy);\n"
+    "    vec3 f = texelFetch(uFrame, p, 0).rgb;\n"
+    "    float water = any(notEqual(f, texelFetch(uWorld, p, 0).rgb)) ? 1.0 : 0.0;\n"
+    "    fragColor = vec4(f * water, water);\n"
+    "}\n";
+
+/* Each window pixel: the water's share, enlarged bilinearly with the
+ * water's colour (premultiplied, so no world texel of the reduced frame
+ * bleeds in), over the full-resolution world. */
+static const char over_frag[] =
+    "#version 330 core\n"
+    "uniform sampler2D uWater, uFull;\n"
+    "uniform vec2 uScale, uOrigin, uSize, uLast;\n"
+    "out vec4 fragColor;\n"
+    "void main() {\n"
+    "    vec2 d = gl_FragCoord.xy - uOrigin;\n"
+    "    vec2 s = clamp(d * uScale, vec2(0.5), uLast + 0.5);\n"
+    "    vec4 w = texture(uWater, s / uSize);\n"
+    "    vec3 world = texelFetch(uFull, ivec2(d), 0).rgb;\n"
+    "    fragColor = vec4(w.rgb + (1.0 - w.a) * world, 1.0);\n"
+    "}\n";
 
 /* One triangle that covers the viewport: no vertex buffer needed. */
 static const char vert_src[] =
@@ -44,36 +82,38 @@ static unsigned compile(GLenum type, const char *src, char *err, size_t errlen) 
     return 0;
 }
 
-/* The program, or false with u->err said (the upscaler then blits). */
-static bool build(upscaler *u) {
-    unsigned vs = compile(GL_VERTEX_SHADER, vert_src, u->err, sizeof u->err);
-    unsigned fs = vs ? compile(GL_FRAGMENT_SHADER, upscale_frag_src, u->err, sizeof u->err) : 0;
+/* A program of the full-screen triangle and frag_src, or 0 with err said. */
+static unsigned link_program(const char *frag_src, char *err, size_t errlen) {
+    unsigned vs = compile(GL_VERTEX_SHADER, vert_src, err, errlen);
+    unsigned fs = vs ? compile(GL_FRAGMENT_SHADER, frag_src, err, errlen) : 0;
     if (!fs) {
         if (vs) glDeleteShader(vs);
-        return false;
+        return 0;
     }
-    u->prog = glCreateProgram();
-    glAttachShader(u->prog, vs);
-    glAttachShader(u->prog, fs);
-    glLinkProgram(u->prog);
+    unsigned prog = glCreateProgram();
+    glAttachShader(prog, vs);
+    glAttachShader(prog, fs);
+    glLinkProgram(prog);
     glDeleteShader(vs);
     glDeleteShader(fs);
     GLint ok = 0;
-    glGetProgramiv(u->prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        snprintf(u->err, sizeof u->err, "tarn: the upscale shader does not link (bilinear instead)");
-        glDeleteProgram(u->prog);
-        u->prog = 0;
-        return false;
-    }
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (ok) return prog;
+    snprintf(err, errlen, "tarn: the upscale shader does not link (bilinear instead)");
+    glDeleteProgram(prog);
+    return 0;
+}
+
+/* The cubic's program, or false with u->err said (the upscaler then blits). */
+static bool build(upscaler *u) {
+    u->prog = link_program(upscale_frag_src, u->err, sizeof u->err);
+    if (!u->prog) return false;
     u->u_src = glGetUniformLocation(u->prog, "uSrc");
     u->u_axis = glGetUniformLocation(u->prog, "uAxis");
     u->u_scale = glGetUniformLocation(u->prog, "uScale");
     u->u_origin = glGetUniformLocation(u->prog, "uOrigin");
     u->u_last = glGetUniformLocation(u->prog, "uLast");
     u->u_a = glGetUniformLocation(u->prog, "uA");
-    glGenVertexArrays(1, &u->vao);
-    glGenFramebuffers(1, &u->mid_fbo);
     return true;
 }
 
@@ -81,6 +121,8 @@ upscaler *upscale_create(const upscale_desc *desc, const char **err) {
     upscale_desc d = desc ? *desc : (upscale_desc){ 0 };
     upscaler *u = mem_zalloc(sizeof *u);
     u->filter = d.filter;
+    glGenVertexArrays(1, &u->vao);
+    glGenFramebuffers(1, &u->mid_fbo);
     u->sharpness = d.sharpness == 0 ? UPSCALE_SHARPNESS_DEFAULT : d.sharpness < 0 ? 0 : d.sharpness;
     glGenFramebuffers(1, &u->read_fbo);
     while (glGetError() != GL_NO_ERROR) {}
@@ -97,6 +139,10 @@ void upscale_destroy(upscaler *u) {
     if (u->mid_fbo) glDeleteFramebuffers(1, &u->mid_fbo);
     if (u->mid_tex) glDeleteTextures(1, &u->mid_tex);
     if (u->read_fbo) glDeleteFramebuffers(1, &u->read_fbo);
+    if (u->mask_prog) glDeleteProgram(u->mask_prog);
+    if (u->over_prog) glDeleteProgram(u->over_prog);
+    if (u->water_fbo) glDeleteFramebuffers(1, &u->water_fbo);
+    if (u->water_tex) glDeleteTextures(1, &u->water_tex);
     free(u);
 }
 
@@ -224,4 +270,99 @@ void upscale_draw(upscaler *u, unsigned src_tex, int src_w, int src_h, unsigned 
     bool copy = src_w == rect.w && src_h == rect.h;
     if (copy || u->filter == UPSCALE_BILINEAR || !u->prog) blit(u, src_tex, src_w, src_h, dst_fbo, rect);
     else draw_cubic(u, src_tex, src_w, src_h, dst_fbo, rect);
+}
+
+/* ---- the reduced frame's water over the full-resolution world ---- */
+
+static bool build_over(upscaler *u) {
+    if (u->over_tried) return u->over_prog != 0;
+    u->over_tried = true;
+    char err[512];
+    u->mask_prog = link_program(mask_frag, err, sizeof err);
+    u->over_prog = u->mask_prog ? link_program(over_frag, err, sizeof err) : 0;
+    if (!u->over_prog) {
+        fprintf(stderr, "%s\n", err);
+        return false;
+    }
+    glUseProgram(u->mask_prog);
+    glUniform1i(glGetUniformLocation(u->mask_prog, "uFrame"), 0);
+    glUniform1i(glGetUniformLocation(u->mask_prog, "uWorld"), 1);
+    glUseProgram(u->over_prog);
+    glUniform1i(glGetUniformLocation(u->over_prog, "uWater"), 0);
+    glUniform1i(glGetUniformLocation(u->over_prog, "uFull"), 1);
+    u->u_over_scale = glGetUniformLocation(u->over_prog, "uScale");
+    u->u_over_origin = glGetUniformLocation(u->over_prog, "uOrigin");
+    u->u_over_size = glGetUniformLocation(u->over_prog, "uSize");
+    u->u_over_last = glGetUniformLocation(u->over_prog, "uLast");
+    glUseProgram(0);
+    glGenFramebuffers(1, &u->water_fbo);
+    return true;
+}
+
+/* The water target, at least w x h, linear 16-bit float, filtered linearly. */
+static bool water_ensure(upscaler *u, int w, int h) {
+    if (u->water_tex && u->water_w >= w && u->water_h >= h) return true;
+    w = w > u->water_w ? w : u->water_w;
+    h = h > u->water_h ? h : u->water_h;
+    if (u->water_tex) glDeleteTextures(1, &u->water_tex);
+    glGenTextures(1, &u->water_tex);
+    glBindTexture(GL_TEXTURE_2D, u->water_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_HALF_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, u->water_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, u->water_tex, 0);
+    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    u->water_w = ok ? w : 0;
+    u->water_h = ok ? h : 0;
+    return ok;
+}
+
+static void bind_unit(int unit, unsigned tex) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, tex);
+}
+
+bool upscale_draw_over_world(upscaler *u, unsigned src_tex, unsigned world_tex, int src_w, int src_h,
+                             unsigned full_tex, unsigned dst_fbo, upscale_rect r) {
+    if (src_w <= 0 || src_h <= 0 || r.w <= 0 || r.h <= 0 || !world_tex || !full_tex) return false;
+    if (!build_over(u) || !water_ensure(u, src_w, src_h)) return false;
+    saved_state st = save_state();
+    GLboolean srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
+    glEnable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_STENCIL_TEST);
+    glBindVertexArray(u->vao);
+    /* the water and its share, at the frame's size, in linear values */
+    glBindFramebuffer(GL_FRAMEBUFFER, u->water_fbo);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glViewport(0, 0, src_w, src_h);
+    glScissor(0, 0, src_w, src_h);
+    glUseProgram(u->mask_prog);
+    bind_unit(1, world_tex);
+    bind_unit(0, src_tex);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    /* over the world, at the window's size, encoded as the caller asks */
+    glBindFramebuffer(GL_FRAMEBUFFER, dst_fbo);
+    if (srgb) glEnable(GL_FRAMEBUFFER_SRGB);
+    glViewport(r.x, r.y, r.w, r.h);
+    glScissor(r.x, r.y, r.w, r.h);
+    glUseProgram(u->over_prog);
+    glUniform2f(u->u_over_scale, (float)src_w / r.w, (float)src_h / r.h);
+    glUniform2f(u->u_over_origin, (float)r.x, (float)r.y);
+    glUniform2f(u->u_over_size, (float)u->water_w, (float)u->water_h);
+    glUniform2f(u->u_over_last, (float)(src_w - 1), (float)(src_h - 1));
+    bind_unit(1, full_tex);
+    bind_unit(0, u->water_tex);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    bind_unit(1, 0);
+    bind_unit(0, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    restore_state(&st);
+    return true;
 }

@@ -92,4 +92,21 @@ upscale_filter upscale_filter_used(const upscaler *u);
  * texture bound; GL_FRAMEBUFFER_SRGB is the caller's. */
 void upscale_draw(upscaler *u, unsigned src_tex, int src_w, int src_h, unsigned dst_fbo, upscale_rect rect);
 
+/* The sharp world: the reduced frame's water over a full-resolution world.
+ * While the clock runs and the camera stands still, the static world (sky,
+ * land and objects above the water) does not change, so the window keeps
+ * it at full resolution (full_tex: rect.w x rect.h texels, drawn by
+ * render_frame_world_at) and enlarges only what the scene drew over its
+ * World in the reduced frame: a pixel of src_tex that differs from the
+ * same pixel of world_tex (the frame's screen right after its World,
+ * render_world_snapshot, the same size and format) is the water's. Two
+ * passes: the water premultiplied by its share at the frame's size, then
+ * each window pixel the bilinear water over the full world. Where the
+ * frame is all world this is full_tex bit for bit; where it is all water,
+ * the bilinear blit's picture. Same colour rules and GL state as
+ * upscale_draw. false (nothing drawn): a texture missing or the programs
+ * not built (the caller then calls upscale_draw). */
+bool upscale_draw_over_world(upscaler *u, unsigned src_tex, unsigned world_tex, int src_w, int src_h,
+                             unsigned full_tex, unsigned dst_fbo, upscale_rect rect);
+
 #endif

@@ -4,21 +4,26 @@
  * The window's case: a 960x540 scene area, time running. For each pack
  * and scene, at a few animated instants, the frame is drawn at full
  * resolution (the truth) and at a reduced scale (as the frame budget
- * draws it, render_set_detail included), then brought to 960x540 by the
- * bilinear blit (the window before) and by the upscaler (sharpened cubic);
- * each against the truth: RMSE (linear RGB), SSIM (ref_ssim, luminance)
- * and LDR-FLIP (ref_flip, default viewing). Both go through the window's
- * 8-bit sRGB canvas, and the error is computed on the decoded linear
- * values. Then each upscaler's own time per frame (glFinish'd wall time,
- * median of runs).
+ * draws it, render_set_detail included), then brought to 960x540 three
+ * ways: the bilinear blit (the window before), the upscaler (sharpened
+ * cubic), and the sharp world (upscale_draw_over_world: the reduced
+ * frame's water over the world drawn once at full resolution, half a
+ * second before the first instant, as the window keeps it); each against
+ * the truth: RMSE (linear RGB), SSIM (ref_ssim, luminance) and LDR-FLIP
+ * (ref_flip, default viewing). All go through the window's 8-bit sRGB
+ * canvas, and the error is computed on the decoded linear values. Then
+ * each one's own time per frame (glFinish'd wall time, median of runs),
+ * and the world-only frame's (what the window pays once when the camera
+ * stops, one run).
  *
  *   bench_upscale [--pack NAME]... [--scene FILE]... [--scale S]... [--size WxH]
  *                 [--times t1,t2,..] [--sharpness X] [--png DIR]
  *
  * Defaults: the four packs, scenes/lake.glib and scenes/showcase.glib,
  * scales 0.19 (what the 50 ms budget picks on a 2-core llvmpipe machine)
- * and 0.5, 960x540, times 2,2.7,3.4. --png writes truth / bilinear / edge
- * of the first instant for looking at. */
+ * and 0.5, 960x540, times 2,2.7,3.4. --png writes truth / bilinear / cubic /
+ * world of the first instant for looking at. scripts/live_error.sh
+ * measures the window itself. */
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <math.h>
@@ -50,7 +55,7 @@ typedef struct opts {
 typedef struct errs { double rmse, ssim, flip; } errs;
 
 /* The sum of a case's errors over its instants, per upscaler. */
-typedef struct tally { errs bil, edge; int n; } tally;
+typedef struct tally { errs bil, edge, over; int n; } tally;
 
 static void usage(void) {
     fputs("usage: bench_upscale [--pack NAME]... [--scene FILE]... [--scale S]... [--size WxH]\n"
@@ -142,6 +147,7 @@ static void write_png(const opts *o, const char *name, const float *rgb) {
 
 typedef struct rig {
     render_target truth_tg, canvas, out;
+    render_target full;         /* the world alone at full resolution (the sharp world) */
     upscaler *bil, *edge;
     float *truth, *test;
 } rig;
@@ -158,14 +164,22 @@ static void one_instant(const opts *o, rig *g, render *r, double t, double scale
     render_set_detail(r, scale);
     render_frame_at(r, t, g->canvas.fbo, 0, 0, rw, rh, NULL);
     upscaler *ups[2] = { g->bil, g->edge };
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < 3; k++) {
         glEnable(GL_FRAMEBUFFER_SRGB);
-        upscale_draw(ups[k], g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+        if (k < 2) upscale_draw(ups[k], g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+        else {
+            int sw, sh;
+            unsigned snap = render_world_snapshot(r, &sw, &sh);
+            if (!upscale_draw_over_world(g->bil, g->canvas.color, snap, rw, rh, g->full.color, g->out.fbo,
+                                         (upscale_rect){ 0, 0, w, h }))
+                upscale_draw(g->bil, g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+        }
         read_linear(&g->out, w, h, g->test);
-        add(k ? &tl->edge : &tl->bil, measure(g->test, g->truth, w, h));
+        add(k == 0 ? &tl->bil : k == 1 ? &tl->edge : &tl->over, measure(g->test, g->truth, w, h));
         if (tl->n == 0) {
+            static const char *const tags[3] = { "bilinear", "cubic", "world" };
             char name[300];
-            snprintf(name, sizeof name, "%.256s-%s", tag, k ? "cubic" : "bilinear");
+            snprintf(name, sizeof name, "%.256s-%s", tag, tags[k]);
             write_png(o, name, g->test);
         }
     }
@@ -189,18 +203,31 @@ static void run_case(const opts *o, rig *g, const char *scene, const char *pack)
         render_destroy(r);
         return;
     }
+    render_set_world_snapshot(r, true);
     for (int s = 0; s < o->nscales; s++) {
+        /* the world the window keeps: drawn once, half a second before the
+         * first instant (after a reduced frame, as in the window, whose
+         * height map it keeps) */
+        double t0 = o->times[0] - 0.5;
+        int rw = (int)lround(o->scales[s] * o->w), rh = (int)lround(o->scales[s] * o->h);
+        render_set_detail(r, o->scales[s]);
+        render_frame_at(r, t0, g->canvas.fbo, 0, 0, rw, rh, NULL);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        glFinish();
+        double w0 = clock_now_s();
+        render_frame_world_at(r, t0, g->full.fbo, 0, 0, o->w, o->h, NULL);
+        glFinish();
+        double world_ms = (clock_now_s() - w0) * 1e3;
         tally tl = { 0 };
         char tag[256];
         snprintf(tag, sizeof tag, "%.*s-%s-%.2f", (int)strcspn(base_name(scene), "."), base_name(scene), pack,
                  o->scales[s]);
         for (int i = 0; i < o->ntimes; i++) one_instant(o, g, r, o->times[i], o->scales[s], &tl, tag);
         double n = tl.n ? tl.n : 1;
-        int rw = (int)lround(o->scales[s] * o->w), rh = (int)lround(o->scales[s] * o->h);
-        printf("| %s | %s | %dx%d | %.4f | %.4f | %.0f%% | %.4f | %.4f | %.4f | %.4f |\n",
-               base_name(scene), pack, rw, rh, tl.bil.rmse / n, tl.edge.rmse / n,
-               100 * (1 - tl.edge.rmse / tl.bil.rmse), tl.bil.ssim / n, tl.edge.ssim / n, tl.bil.flip / n,
-               tl.edge.flip / n);
+        printf("| %s | %s | %dx%d | %.4f | %.4f | %.4f | %.0f%% | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.0f%% | %.0f |\n",
+               base_name(scene), pack, rw, rh, tl.bil.rmse / n, tl.edge.rmse / n, tl.over.rmse / n,
+               100 * (1 - tl.over.rmse / tl.bil.rmse), tl.bil.ssim / n, tl.edge.ssim / n, tl.over.ssim / n,
+               tl.bil.flip / n, tl.edge.flip / n, tl.over.flip / n, 100 * (1 - tl.over.flip / tl.bil.flip), world_ms);
         fflush(stdout);
     }
     render_destroy(r);
@@ -211,16 +238,25 @@ static int cmp_ms(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
+/* One enlargement of the canvas's rw x rh into w x h: by u, or the sharp
+ * world's over g->full when over (the truth target stands in for the
+ * snapshot: the cost does not depend on what the texels hold). */
+static void upscale_once(upscaler *u, rig *g, bool over, int rw, int rh, int w, int h) {
+    upscale_rect rect = { 0, 0, w, h };
+    if (!over || !upscale_draw_over_world(u, g->canvas.color, g->truth_tg.color, rw, rh, g->full.color, g->out.fbo, rect))
+        upscale_draw(u, g->canvas.color, rw, rh, g->out.fbo, rect);
+}
+
 /* The upscaler's own time into w x h from rw x rh: median of 15 runs of 4
  * draws each, each run ended by glFinish. */
-static double time_upscale(upscaler *u, rig *g, int rw, int rh, int w, int h) {
+static double time_upscale(upscaler *u, rig *g, bool over, int rw, int rh, int w, int h) {
     double runs[15];
     glEnable(GL_FRAMEBUFFER_SRGB);
-    upscale_draw(u, g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+    upscale_once(u, g, over, rw, rh, w, h);
     glFinish();
     for (int i = 0; i < 15; i++) {
         double t0 = clock_now_s();
-        for (int k = 0; k < 4; k++) upscale_draw(u, g->canvas.color, rw, rh, g->out.fbo, (upscale_rect){ 0, 0, w, h });
+        for (int k = 0; k < 4; k++) upscale_once(u, g, over, rw, rh, w, h);
         glFinish();
         runs[i] = (clock_now_s() - t0) * 1e3 / 4;
     }
@@ -230,11 +266,11 @@ static double time_upscale(upscaler *u, rig *g, int rw, int rh, int w, int h) {
 
 static void timings(const opts *o, rig *g) {
     printf("\nupscaler's own time per frame into %dx%d (ms, median):\n\n", o->w, o->h);
-    printf("| from | bilinear blit | cubic |\n|---|---|---|\n");
+    printf("| from | bilinear blit | cubic | sharp world |\n|---|---|---|---|\n");
     for (int s = 0; s < o->nscales; s++) {
         int rw = (int)lround(o->scales[s] * o->w), rh = (int)lround(o->scales[s] * o->h);
-        printf("| %dx%d | %.2f | %.2f |\n", rw, rh, time_upscale(g->bil, g, rw, rh, o->w, o->h),
-               time_upscale(g->edge, g, rw, rh, o->w, o->h));
+        printf("| %dx%d | %.2f | %.2f | %.2f |\n", rw, rh, time_upscale(g->bil, g, false, rw, rh, o->w, o->h),
+               time_upscale(g->edge, g, false, rw, rh, o->w, o->h), time_upscale(g->bil, g, true, rw, rh, o->w, o->h));
     }
 }
 
@@ -250,7 +286,7 @@ int main(int argc, char **argv) {
     g.edge = upscale_create(&(upscale_desc){ .sharpness = o.sharpness }, &uerr);
     if (uerr) fprintf(stderr, "%s\n", uerr);
     if (!render_target_create_srgb(&g.truth_tg, o.w, o.h) || !render_target_create_srgb(&g.canvas, o.w, o.h) ||
-        !render_target_create_srgb(&g.out, o.w, o.h)) {
+        !render_target_create_srgb(&g.out, o.w, o.h) || !render_target_create_srgb(&g.full, o.w, o.h)) {
         fprintf(stderr, "bench_upscale: no %dx%d targets\n", o.w, o.h);
         return 1;
     }
@@ -259,8 +295,9 @@ int main(int argc, char **argv) {
     timings(&o, &g);
     printf("\nerror against the full-resolution frame (mean of %d instants; FLIP at %.0f px/degree):\n\n", o.ntimes,
            REF_FLIP_PPD);
-    printf("| scene | pack | drawn at | RMSE bilinear | RMSE cubic | RMSE cut | SSIM bilinear | SSIM cubic | "
-           "FLIP bilinear | FLIP cubic |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    printf("| scene | pack | drawn at | RMSE bilinear | RMSE cubic | RMSE sharp world | RMSE cut | SSIM bilinear | "
+           "SSIM cubic | SSIM sharp world | FLIP bilinear | FLIP cubic | FLIP sharp world | FLIP cut | world frame ms |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int s = 0; s < o.nscenes; s++)
         for (int p = 0; p < o.npacks; p++) run_case(&o, &g, o.scenes[s], o.packs[p]);
     free(g.truth);
@@ -268,6 +305,7 @@ int main(int argc, char **argv) {
     render_target_destroy(&g.truth_tg);
     render_target_destroy(&g.canvas);
     render_target_destroy(&g.out);
+    render_target_destroy(&g.full);
     upscale_destroy(g.bil);
     upscale_destroy(g.edge);
     gl_ctx_destroy(ctx);

@@ -482,10 +482,10 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
 
 void app_picture_changed(app *a) { a->generation++; }
 
-uint64_t app_picture_key(app *a, int w, int h) {
+static uint64_t picture_key(app *a, int w, int h, bool with_time) {
     uint64_t k = HASH_FNV1A_BASIS;
     k = hash_fnv1a(k, &a->s.cam, sizeof a->s.cam);
-    k = hash_fnv1a(k, &a->s.t, sizeof a->s.t);
+    if (with_time) k = hash_fnv1a(k, &a->s.t, sizeof a->s.t);
     k = hash_fnv1a(k, &a->generation, sizeof a->generation);
     int size[2] = { w, h };
     k = hash_fnv1a(k, size, sizeof size);
@@ -500,6 +500,9 @@ uint64_t app_picture_key(app *a, int w, int h) {
     }
     return k;
 }
+
+uint64_t app_picture_key(app *a, int w, int h) { return picture_key(a, w, h, true); }
+uint64_t app_picture_key_timeless(app *a, int w, int h) { return picture_key(a, w, h, false); }
 
 bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale) {
     a->budget.budget_ms = a->budget_ms;
@@ -656,6 +659,17 @@ static view_script_status budget_action(app *a, const char *cmd, char *rest, con
         bool full = a->drawn_w == a->area_w && a->drawn_h == a->area_h;
         bool ok = cmd[0] == 'r' || (strcmp(word, "full") == 0 ? full : strcmp(word, "reduced") == 0 ? !full : false);
         fprintf(stderr, "%s: resolution %s%s\n", a->d.name, text, ok ? "" : " (FAILED: want full or reduced)");
+        return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
+    }
+    if (strcmp(cmd, "grab") == 0) {   /* the scene area as this frame showed it, and its time */
+        char path[1024] = "", said[1100];
+        sscanf(rest, "%1023s", path);
+        int w, h;
+        glfwGetFramebufferSize(a->win, &w, &h);
+        int x0 = app_scene_x(w);
+        bool ok = path[0] && view_screenshot_area(x0, 0, w - x0, h, path, said, sizeof said);
+        fprintf(stderr, "%s: grab %s at t=%.9g, drawn at %dx%d of %dx%d\n", a->d.name, ok ? path : said, a->s.t,
+                a->drawn_w, a->drawn_h, a->area_w, a->area_h);
         return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;
     }
     if (strcmp(cmd, "clock") == 0) {   /* for benchmarks: frames so far and the wall clock */

@@ -144,6 +144,9 @@ void app_record_setting(app *a, const char *setting);
 /* The picture a w x h scene area shows: the camera, the time, every
  * scene's uniform values, the reloads (and app_picture_changed's). */
 uint64_t app_picture_key(app *a, int w, int h);
+/* The same without the time: what stays while only the clock runs (the
+ * view keeps its full-resolution world while it holds). */
+uint64_t app_picture_key_timeless(app *a, int w, int h);
 /* This frame: true to draw the scene at *scale (1: full resolution);
  * false: the frame drawn last is still the picture. force_full: the
  * client needs full-resolution pixels (heat maps). */

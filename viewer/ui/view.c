@@ -42,6 +42,14 @@ typedef struct viewer {
     render_target canvas;
     int drawn_w, drawn_h;        /* what the canvas holds (0: nothing yet) */
     upscaler *up;                /* the canvas into the window (made at the first frame) */
+    /* the sharp world (gfx/upscale.h upscale_draw_over_world): the world
+     * alone at the canvas's full size, kept while only the clock runs, under
+     * the reduced frames' water */
+    render_target world;
+    uint64_t world_key;          /* the timeless picture key it was drawn for (0: none) */
+    uint64_t last_timeless;      /* the timeless key of the last frame drawn */
+    bool over_world;             /* the canvas's frame goes over it */
+    bool world_off;              /* the script's `sharp-world 0`: enlarged whole, as before */
 } viewer;
 
 static void canvas_free(viewer *v) {
@@ -58,6 +66,26 @@ static bool canvas_ensure(viewer *v, int w, int h, bool srgb) {
     if (srgb ? render_target_create_srgb(c, w, h) : render_target_create(c, w, h, false)) return true;
     fprintf(stderr, "tarn: cannot make a %dx%d scene canvas\n", w, h);
     return false;
+}
+
+/* Whether the full-resolution world holds this frame's world: drawn once
+ * the picture's key without its time has held for two frames (the clock
+ * running, nothing else changing), not while the camera or a slider moves
+ * (a full-size world draw each frame would cost what the budget saves). */
+static bool world_ready(viewer *v, app *a, int w, int h, const render_view *view, double t) {
+    uint64_t k = app_picture_key_timeless(a, w, h);
+    bool held = k == v->last_timeless;
+    v->last_timeless = k;
+    if (k == v->world_key) return true;
+    if (!held) return false;
+    render_target *c = &v->world;
+    if (!(c->fbo && c->w == w && c->h == h)) {
+        render_target_destroy(c);
+        if (!render_target_create_srgb(c, w, h)) return false;
+    }
+    render_frame_world_at(v->r, t, c->fbo, 0, 0, w, h, view);
+    v->world_key = k;
+    return true;
 }
 
 static void report_load(viewer *v) {
@@ -211,12 +239,17 @@ static view_script_status setting_action(viewer *v, char *rest, const char *file
 /* The window's own script actions: `pack NAME` and `setting NAME` do what
  * picking NAME in the panel's Pack or Setting combo does (tests drive the
  * switches this way); `world-cache 0|1` turns the world's caches off and
- * on (scripts/window_bench.sh's A/B). */
+ * on (scripts/window_bench.sh's A/B); `sharp-world 0|1` the full-resolution
+ * world under a reduced frame's water (scripts/live_error.sh's A/B). */
 static view_script_status script_action(void *user, const char *cmd, char *rest, const char *file, int line) {
     viewer *v = user;
     if (strcmp(cmd, "setting") == 0) return setting_action(v, rest, file, line);
     if (strcmp(cmd, "world-cache") == 0) {   /* the static-world cache and the layers, for A/B runs */
         render_set_world_cache(v->r, atoi(rest) != 0);
+        return VIEW_SCRIPT_CONTINUE;
+    }
+    if (strcmp(cmd, "sharp-world") == 0) {   /* the full-resolution world under the water, for A/B runs */
+        v->world_off = atoi(rest) == 0;
         return VIEW_SCRIPT_CONTINUE;
     }
     if (strcmp(cmd, "pack") != 0) {
@@ -276,6 +309,9 @@ static void on_draw(void *user, app *a) {
         res_budget_size(scale, aw, ah, &v->drawn_w, &v->drawn_h);
         render_view view = orbit_view(&s->cam);
         if (world) glEnable(GL_FRAMEBUFFER_SRGB);
+        /* before the frame: the world-only frame starts a snapshot of its own */
+        v->over_world = world && !v->world_off && v->drawn_w < aw && world_ready(v, a, aw, ah, &view, s->t);
+        render_set_world_snapshot(v->r, world);
         render_set_detail(v->r, scale);   /* the passes and meshes shrink with the frame */
         render_frame_at(v->r, s->t, v->canvas.fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
     }
@@ -297,7 +333,12 @@ static void on_draw(void *user, app *a) {
         v->up = upscale_create(&ud, &err);
         if (err) fprintf(stderr, "%s\n", err);
     }
-    upscale_draw(v->up, v->canvas.color, v->drawn_w, v->drawn_h, 0, (upscale_rect){ x0, 0, aw, ah });
+    upscale_rect rect = { x0, 0, aw, ah };
+    int sw = 0, sh = 0;
+    unsigned snap = v->over_world ? render_world_snapshot(v->r, &sw, &sh) : 0;
+    bool over = snap && sw == v->drawn_w && sh == v->drawn_h &&
+                upscale_draw_over_world(v->up, v->canvas.color, snap, v->drawn_w, v->drawn_h, v->world.color, 0, rect);
+    if (!over) upscale_draw(v->up, v->canvas.color, v->drawn_w, v->drawn_h, 0, rect);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_FRAMEBUFFER_SRGB);
 }
@@ -368,6 +409,7 @@ int view_run(const view_desc *d) {
     if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
     settings_free(&v);
     canvas_free(&v);
+    render_target_destroy(&v.world);
     upscale_destroy(v.up);
     render_destroy(v.r);
     app_destroy(v.app);

@@ -22,13 +22,19 @@
  *   stamp on|off                  print when the first frame after a reload is swapped
  *   play 1|0                      the clock runs on the wall clock, as without a script
  *                                 (unless paused); 0: only `time` moves it (the default)
+ *   grab PATH                     write the scene area as this frame showed it (reduced
+ *                                 or not: not drawn again, unlike screenshot), and print
+ *                                 its time and the size drawn (scripts/live_error.sh)
  * `#` starts a comment. A window may add actions of its own (ctx.custom):
  * `tarn compare-view` does (compare_view.h), and `tarn view` has
  *   pack NAME                     draw the scene with another pack (the panel's Pack combo)
  *   setting NAME                  the pack's defaults, then its bench.txt setting NAME
  *                                 (the panel's Setting combo; render_setting.h)
  *   world-cache 1|0               keep the world's unchanging parts between frames (the
- *                                 default) or draw it whole every frame (A/B benchmarks) */
+ *                                 default) or draw it whole every frame (A/B benchmarks)
+ *   sharp-world 1|0               while only the clock runs, the reduced frame's water
+ *                                 over the world kept at full resolution (the default),
+ *                                 or the whole frame enlarged (A/B: scripts/live_error.sh) */
 #ifndef TARN_VIEW_SCRIPT_H
 #define TARN_VIEW_SCRIPT_H
 

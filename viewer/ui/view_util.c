@@ -128,16 +128,20 @@ static void make_opaque(img *im) {
 bool view_screenshot(void *glfw_window, const char *path, char *said, size_t len) {
     int w, h;
     glfwGetFramebufferSize(glfw_window, &w, &h);
+    return view_screenshot_area(0, 0, w, h, path, said, len);
+}
+
+bool view_screenshot_area(int x, int y, int w, int h, const char *path, char *said, size_t len) {
     img im;
     memset(&im, 0, sizeof im);
-    if (!img_alloc(&im, w, h, 4)) {
+    if (w <= 0 || h <= 0 || !img_alloc(&im, w, h, 4)) {
         snprintf(said, len, "screenshot failed: no memory for %d x %d", w, h);
         return false;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glReadBuffer(GL_BACK);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, im.px);
+    glReadPixels(x, y, w, h, GL_RGBA, GL_FLOAT, im.px);
     img_flip_rows(&im);
     make_opaque(&im);
     char err[512], abs[PATH_MAX];

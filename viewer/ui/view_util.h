@@ -77,6 +77,8 @@ void view_mouse_update(view_mouse *m, void *glfw_window, bool ui_wants, orbit *c
  * image out in a viewer. said gets "screenshot ABSOLUTE-PATH" or
  * "screenshot failed: why". */
 bool view_screenshot(void *glfw_window, const char *path, char *said, size_t len);
+/* The same of the rectangle (x, y, w, h) of the back buffer (bottom-left origin). */
+bool view_screenshot_area(int x, int y, int w, int h, const char *path, char *said, size_t len);
 
 /* A pass as a student reads it, from the renderer's timer name (whose
  * "pass:LINE units" form bench's CSV and tests keep): "pass:65 10" is
