@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# `tarn compare-view` under Xvfb: two packs in one window, a slider of one
+# `tarn compare-view` under Xvfb: two packs in one window, the first drawn
+# before the second loads, a slider of one
 # reaches only its own program, the wipe and the heat maps are drawn, and
 # each pack's time is reported; a divider drag between two frames moves the
 # divider, not the camera.
@@ -15,6 +16,10 @@ fail() { echo "FAIL: $*"; exit 1; }
 [ "$rc" -eq 0 ] || fail "tarn compare-view exited $rc"
 [ "$(grep -c 'holds the expected value' compare-view-test.log)" -eq 2 ] || fail "an expect is missing"
 grep -q "every pack has a heat map" compare-view-test.log || fail "no heat maps"
+# the first pack's picture comes before the second pack is loaded (issue #30 item 7)
+first=$(grep -n "first picture at [0-9.]* ms, basic drawn; loading the others" compare-view-test.log | head -1 | cut -d: -f1)
+all=$(grep -n "loaded .*lake.glib (2 packs)" compare-view-test.log | head -1 | cut -d: -f1)
+[ -n "$first" ] && [ -n "$all" ] && [ "$first" -lt "$all" ] || fail "the first picture did not come before the second pack's load"
 [ "$(grep -c 'heat map .*RMSE [0-9.]*, PSNR' compare-view-test.log)" -eq 4 ] || fail "a pack's RMSE is missing"
 [ "$(grep -c 'heat map .*; HDR-FLIP map$' compare-view-test.log)" -eq 2 ] || fail "no FLIP maps"
 grep -q "1 basic: [0-9.]* ms GPU, [0-9.]* ms wall" compare-view-test.log || fail "no timings for pack 1"

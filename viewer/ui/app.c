@@ -57,6 +57,8 @@ struct app {
     bool frame_fair;             /* this frame did no reload, no second draw: its time measures the scene */
     unsigned long generation;    /* reloads, rebuilds, pack switches: a new picture each */
     bool shooting;               /* this frame is a screenshot's: full resolution */
+    bool client_busy;            /* app_desc.between_frames has work left */
+    bool primed;                 /* the start-up compile job was asked for (or could not be) */
     bool key_shot;               /* ... asked for by P/F12 or the panel: shot after it is drawn */
     int drawn_w, drawn_h, area_w, area_h;   /* the internal size last drawn, of the scene area */
     int orbit_left;              /* the script's `orbit ... N`: frames still to turn */
@@ -744,7 +746,7 @@ void app_keep_awake(app *a) { a->keep_awake = true; }
  * screen (res_budget), no script or orbit drives frames, no toast is
  * fading, no client asked for frames, no folder is being looked for. */
 static bool idle(const app *a, const view_script *script) {
-    return !script && a->budget.full_done && !a->keep_awake && !a->compiling && a->orbit_left == 0 && !a->shot_pending &&
+    return !script && !a->client_busy && a->budget.full_done && !a->keep_awake && !a->compiling && a->orbit_left == 0 && !a->shot_pending &&
            !a->stamp_pending && a->unwatched == 0 && glfwGetTime() > a->toast_until + 0.25;   /* and it is gone */
 }
 
@@ -793,6 +795,7 @@ int app_run(app *a, render *const *scenes, int n) {
     start_watching(a);
     a->s.t = a->d.time_s;
     a->last_wall = glfwGetTime();
+    a->slept = true;   /* the first frame has no frame before it to time ("first frame" on the panel) */
     if (a->d.recordable && a->d.record) record_start(a, a->d.record);
     int rc = TARN_EXIT_OK;
     while (!glfwWindowShouldClose(a->win)) {
@@ -806,9 +809,10 @@ int app_run(app *a, render *const *scenes, int n) {
             rc = TARN_EXIT_NO_GL;
             break;
         }
-        if (script && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
+        if (script && !a->client_busy && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
         glfwSwapBuffers(a->win);
         double swapped = glfwGetTime();
+        if (a->client_busy) a->client_busy = a->d.between_frames(a->d.user, a);
         if (a->change_seen > 0 || a->stamp_pending) {
             a->gap_max = fmax(a->gap_max, swapped - a->last_swap);
             a->frames_meanwhile++;
@@ -817,8 +821,11 @@ int app_run(app *a, render *const *scenes, int n) {
         if (a->judge_job) judge_compile_job(a, swapped - started);
         if (a->stamp_pending) stamp_swap(a);
         /* the scenes loaded in the job's renders once the window shows
-         * them, so that the first save compiles only what it changed */
-        if (a->frames == 1 && !a->compiling) start_compile(a, true);
+         * them all, so that the first save compiles only what it changed */
+        if (!a->primed && !a->client_busy) {
+            a->primed = true;
+            if (!a->compiling) start_compile(a, true);
+        }
         /* input that arrives meanwhile queues, as behind a slow frame */
         for (double left; (left = started + a->slow_s - glfwGetTime()) > 0;)
             clock_sleep_s(left);
@@ -841,6 +848,7 @@ static app_desc with_defaults(const app_desc *d) {
 app *app_create(const app_desc *desc) {
     app *a = mem_zalloc(sizeof *a);
     a->d = with_defaults(desc);
+    a->client_busy = a->d.between_frames != NULL;
     char err[1024];
     a->ctx = gl_ctx_create_window(a->d.width, a->d.height, a->d.name, err, sizeof err);
     if (!a->ctx) {

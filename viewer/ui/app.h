@@ -102,6 +102,11 @@ typedef struct app_desc {
     void (*key)(void *user, app *a, int key);
     /* Script actions of the client's own (view_script_ctx.custom). */
     view_script_status (*script_action)(void *user, const char *cmd, char *rest, const char *file, int line);
+    /* Work the client does after a frame is on screen, a step a frame,
+     * until it returns false (compare-view loads its other packs while the
+     * first one's picture shows): meanwhile frames keep coming and a
+     * script waits. 0: none. */
+    bool (*between_frames)(void *user, app *a);
 } app_desc;
 
 /* The window, its key and scroll callbacks and the panel; NULL, with the

@@ -57,6 +57,8 @@ typedef struct cv_pack {
     double frame_rmse;          /* the whole frame, second */
     double flip;                /* HDR-FLIP over the water, when the maps show FLIP (else NaN) */
     char passes[512];            /* "RenderToTexture 6 7 (line 12)  1.20 ms", a pass a line */
+    bool loaded;                 /* the scene is loaded (the first pack before the window's
+                                    first frame, the others after it: load_next_pack) */
 } cv_pack;
 
 typedef struct cview {
@@ -68,6 +70,7 @@ typedef struct cview {
     cv_pack packs[COMPARE_VIEW_MAX_PACKS];
     render *scenes[COMPARE_VIEW_MAX_PACKS];   /* the packs' renderers, for the app */
     int n;
+    bool load_failed;            /* a pack's scene had errors (a script's run then fails) */
     int layout, wipe_a, wipe_b;
     float wipe;
     bool dragging_wipe;
@@ -124,7 +127,7 @@ static void cell_rect(const cview *v, int i, int *x, int *y) {
 }
 
 static bool pack_drawn(const cview *v, int i) {
-    return v->layout != PANEL_LAYOUT_WIPE || i == v->wipe_a || i == v->wipe_b;
+    return v->packs[i].loaded && (v->layout != PANEL_LAYOUT_WIPE || i == v->wipe_a || i == v->wipe_b);
 }
 
 static void ensure_targets(cview *v) {
@@ -337,6 +340,7 @@ static void blit_image(const cview *v, unsigned fbo, int x0, int x1, int dx, int
 /* Blits pack i's image (or heat map) columns [x0, x1) of its cell to (dx, dy). */
 static void show(cview *v, int i, int x0, int x1, int dx, int dy, bool heat) {
     cv_pack *p = &v->packs[i];
+    if (!p->loaded) return;   /* its label says it is loading */
     if (heat && p->have_heat) {
         glDisable(GL_FRAMEBUFFER_SRGB);   /* heat maps are display values already */
         blit(p->heat_fbo, x0, x1, p->heat_h, dx, dy);
@@ -379,7 +383,8 @@ static void label_pack(cview *v, int i, int x0, int x1, int ytop, bool heat) {
     strbuf text = { 0 };
     /* two lines at most, so the view stays visible; the GPU time, the
      * frame's error and each pass's time are in the panel */
-    strbuf_printf(&text, "%s  %.1f ms", p->label, p->wall_ms);
+    if (!p->loaded) strbuf_printf(&text, "%s\nloading... (compiling its shaders)", p->label);
+    else strbuf_printf(&text, "%s  %.1f ms", p->label, p->wall_ms);
     if (heat && p->have_heat && v->shown_metric == HEAT_METRIC_FLIP)
         strbuf_printf(&text, "\nwater FLIP %.3f  RMSE %.4f", p->flip, p->rmse);
     else if (heat && p->have_heat) strbuf_printf(&text, "\nwater RMSE %.4f  PSNR %.1f dB", p->rmse, p->psnr);
@@ -448,6 +453,7 @@ static void on_reload(void *user, app *a) {
     view_reload_line("tarn compare-view", v->scene, app_reload_cause(a), app_reload_compiled_s(a), line, sizeof line);
     fprintf(stderr, "%s\n", line);
     for (int i = 0; i < v->n; i++) {
+        if (!v->packs[i].loaded) continue;   /* load_next_pack reads the files as they are then */
         render_load(v->packs[i].r, NULL);
         report(&v->packs[i]);
     }
@@ -690,7 +696,9 @@ static view_script_status script_action(void *user, const char *cmd, char *rest,
 
 /* ---- the command ---- */
 
-static void load_packs(cview *v, const compare_view_desc *d, bool *ok) {
+/* The packs' renderers, and the first pack's scene, loaded before the
+ * window's first frame (the others load after it, load_next_pack). */
+static void load_packs(cview *v, const compare_view_desc *d) {
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
         snprintf(p->name, sizeof p->name, "%s", d->packs[i]);
@@ -699,16 +707,40 @@ static void load_packs(cview *v, const compare_view_desc *d, bool *ok) {
         if (copy > 1) snprintf(p->title, sizeof p->title, "%s #%d", p->name, copy);
         else snprintf(p->title, sizeof p->title, "%s", p->name);
         snprintf(p->label, sizeof p->label, "%d %s", i + 1, p->title);
-        char loading[1024], which[128];
-        snprintf(which, sizeof which, " (pack %d of %d: %s)", i + 1, v->n, p->title);
-        view_loading_text(d->glib, p->name, which, loading, sizeof loading);
-        app_splash(v->app, loading);
         render_desc rd = { .pack = p->name, .samples = d->samples };
         p->r = v->scenes[i] = render_create(&rd);
-        if (!render_load(p->r, d->glib)) *ok = false;
-        report(p);
         p->rmse = p->psnr = p->frame_rmse = NAN;
     }
+    char loading[1024], which[128];
+    snprintf(which, sizeof which, " (pack 1 of %d: %s)", v->n, v->packs[0].title);
+    view_loading_text(d->glib, v->packs[0].name, which, loading, sizeof loading);
+    app_splash(v->app, loading);
+    v->load_failed = !render_load(v->packs[0].r, d->glib);
+    v->packs[0].loaded = true;
+    report(&v->packs[0]);
+}
+
+/* After a frame is on screen: the next pack's scene (its tile said
+ * "loading..." until now); false once every pack is loaded. */
+static bool load_next_pack(void *user, app *a) {
+    cview *v = user;
+    int i = 0;
+    while (i < v->n && v->packs[i].loaded) i++;
+    if (i == 1)   /* the GLFW clock, as the script's `clock` (scripts/first_frame_bench.sh) */
+        fprintf(stderr, "tarn compare-view: first picture at %.3f ms, %s drawn; loading the others\n",
+                glfwGetTime() * 1e3, v->packs[0].title);
+    if (i < v->n) {
+        cv_pack *p = &v->packs[i];
+        if (!render_load(p->r, v->scene)) v->load_failed = true;
+        p->loaded = true;
+        report(p);
+        app_rewatch(a);            /* its shaders are watched too */
+        app_picture_changed(a);    /* and drawn */
+        i++;
+    }
+    if (i < v->n) return true;
+    fprintf(stderr, "tarn compare-view: loaded %s (%d packs)\n", v->scene, v->n);
+    return false;
 }
 
 static void free_packs(cview *v) {
@@ -742,7 +774,8 @@ int compare_view_run(const compare_view_desc *d) {
                     .width = d->width > 0 ? d->width + APP_PANEL_WIDTH : 1400,
                     .height = d->height > 0 ? d->height : 800, .time_s = d->time_s, .script = d->script,
                     .user = v, .draw = on_draw, .panel = on_panel, .apply = on_apply, .reload = on_reload,
-                    .mouse = on_mouse, .key = on_key, .script_action = script_action };
+                    .mouse = on_mouse, .key = on_key, .script_action = script_action,
+                    .between_frames = load_next_pack };
     v->app = app_create(&ad);
     if (!v->app) {
         heat_job_destroy(v->job);
@@ -752,12 +785,10 @@ int compare_view_run(const compare_view_desc *d) {
     v->s = app_get_state(v->app);
     v->win = app_window(v->app);
     v->panel = app_panel(v->app);
-    bool ok = true;
-    load_packs(v, d, &ok);
+    load_packs(v, d);
     /* the reference is subsampled where the packs' MSAA samples, so an
      * anti-aliased edge is compared with an edge anti-aliased alike */
     refcache_match_msaa(&v->ref_opts, render_samples(v->packs[0].r));
-    fprintf(stderr, "tarn compare-view: loaded %s\n", d->glib);
     if (d->width <= 0 || d->height <= 0) {
         int w, h;
         render_window_size(v->packs[0].r, &w, &h);
@@ -765,7 +796,7 @@ int compare_view_run(const compare_view_desc *d) {
     }
     app_home(v->app, render_default_view(v->packs[0].r));
     int rc = app_run(v->app, v->scenes, v->n);
-    if (rc == TARN_EXIT_OK && !ok && d->script) rc = TARN_EXIT_INPUT;
+    if (rc == TARN_EXIT_OK && v->load_failed && d->script) rc = TARN_EXIT_INPUT;
     free_packs(v);
     app_destroy(v->app);
     free(v);
