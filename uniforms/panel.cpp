@@ -214,7 +214,8 @@ void budget_row(float *budget_ms, const char *resolution) {
 // The frame time (the window's wall time; fps from it), then the GPU's,
 // which on a CPU rasteriser does not time the drawing and says so.
 void timings(const panel_info *info) {
-    ImGui::Text("%.1f ms/frame  %.1f fps", info->frame_ms, info->fps);
+    if (info->frame_ms > 0) ImGui::Text("%.1f ms/frame  %.1f fps", info->frame_ms, info->fps);
+    else ImGui::TextUnformatted("first frame");   // nothing timed yet (app.c): no fps to show
     ImGui::SameLine();
     ImGui::Text("  t = %.2f s%s", info->time_s, info->paused ? " (paused)" : "");
     if (info->gpu_ms >= 0 && info->cpu_raster)
@@ -468,8 +469,10 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
     if (ImGui::Begin("tarn compare")) {
         p->width = ImGui::GetWindowWidth();
         if (c->scene_path) ImGui::TextUnformatted(c->scene_path);
-        ImGui::Text("t = %.2f s%s   %.1f ms/frame  %.1f fps", c->time_s, c->paused ? " (paused)" : "",
-                    c->frame_ms, c->fps);
+        if (c->frame_ms > 0)
+            ImGui::Text("t = %.2f s%s   %.1f ms/frame  %.1f fps", c->time_s, c->paused ? " (paused)" : "",
+                        c->frame_ms, c->fps);
+        else ImGui::Text("t = %.2f s%s   first frame", c->time_s, c->paused ? " (paused)" : "");
         budget_row(c->budget_ms, c->resolution);
         out->common.toggle_pause = ImGui::Button(c->paused ? "Play" : "Pause");
         ImGui::SameLine();
@@ -525,11 +528,15 @@ void panel_draw_compare(panel *p, const panel_compare *c, panel_compare_actions 
         ImGui::Separator();
 
         if (ImGui::BeginTable("timings", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
-            ImGui::TableSetupColumn("pack");
-            ImGui::TableSetupColumn("GPU ms");
-            ImGui::TableSetupColumn("wall ms");
-            ImGui::TableSetupColumn("water RMSE");
-            ImGui::TableSetupColumn("FLIP");
+            // weights of their own: measured from the contents, the columns
+            // of the window's first frame (nothing measured yet) were a
+            // letter wide ("1 1 natural" for "1 natural  1.20  ...")
+            const ImGuiTableColumnFlags stretch = ImGuiTableColumnFlags_WidthStretch;
+            ImGui::TableSetupColumn("pack", stretch, 2.4f);
+            ImGui::TableSetupColumn("GPU ms", stretch, 1.0f);
+            ImGui::TableSetupColumn("wall ms", stretch, 1.0f);
+            ImGui::TableSetupColumn("water RMSE", stretch, 1.4f);
+            ImGui::TableSetupColumn("FLIP", stretch, 0.8f);
             ImGui::TableHeadersRow();
             for (int i = 0; i < c->npacks; i++) {
                 const panel_compare_pack *pk = &c->packs[i];
