@@ -8,6 +8,10 @@
 # clock, started before the window) to the first picture on screen. Mesa's
 # shader cache as it is (warm after a first run), or cold with
 # MESA_SHADER_CACHE_DISABLE=true in the environment.
+# compare-view draws its first pack before the others are loaded and holds
+# the script until they are: its rows give the first picture (the log's
+# "first picture at", GLFW's clock too) and, after a slash, the `clock`:
+# every pack drawn (a build without that line: the clock alone).
 # Usage: scripts/first_frame_bench.sh [RUNS] TARN...
 set -u
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,9 +23,11 @@ script=$(mktemp /tmp/tarn-first-frame.XXXXXX)
 trap 'rm -f "$script"' EXIT
 printf 'clock\nquit\n' > "$script"
 echo "first_frame_bench: $(uptime | sed 's/^ *//'), Mesa's shader cache $([ -n "${MESA_SHADER_CACHE_DISABLE:-}" ] && echo off || echo "as it is")"
-first() {   # the clock line's milliseconds, as seconds
+first() {   # "FIRST/CLOCK" (or "CLOCK" alone) in seconds
   xvfb-run -a -s "-screen 0 1600x900x24" "$@" --script "$script" 2>&1 |
-    awk '/ clock / { for (i = 1; i < NF; i++) if ($(i + 1) == "ms") printf "%.2f", $i / 1000 }'
+    awk '/ first picture at / { for (i = 1; i < NF; i++) if ($(i + 1) == "ms,") f = sprintf("%.2f/", $i / 1000) }
+         / clock / { for (i = 1; i < NF; i++) if ($(i + 1) == "ms") c = sprintf("%.2f", $i / 1000) }
+         END { printf "%s%s", f, c }'
 }
 printf "%-40s %-28s %s\n" binary window "first picture, s (each run)"
 for bin in "${bins[@]}"; do

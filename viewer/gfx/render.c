@@ -1842,10 +1842,7 @@ void render_frame_world_at(render *r, double t, unsigned fbo, int x, int y, int 
     world_set_detail(&r->world, detail);
 }
 
-void render_set_world_snapshot(render *r, bool on) {
-    r->snap.on = on;
-    if (!on) world_snapshot_free(&r->snap);
-}
+void render_set_world_snapshot(render *r, bool on) { r->snap.on = on; }   /* the texture stays for the next */
 
 unsigned render_world_snapshot(const render *r, int *w, int *h) {
     if (w) *w = r->snap.valid ? r->snap.w : 0;

@@ -812,7 +812,6 @@ int app_run(app *a, render *const *scenes, int n) {
         if (script && !a->client_busy && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
         glfwSwapBuffers(a->win);
         double swapped = glfwGetTime();
-        if (a->client_busy) a->client_busy = a->d.between_frames(a->d.user, a);
         if (a->change_seen > 0 || a->stamp_pending) {
             a->gap_max = fmax(a->gap_max, swapped - a->last_swap);
             a->frames_meanwhile++;
@@ -821,10 +820,16 @@ int app_run(app *a, render *const *scenes, int n) {
         if (a->judge_job) judge_compile_job(a, swapped - started);
         if (a->stamp_pending) stamp_swap(a);
         /* the scenes loaded in the job's renders once the window shows
-         * them all, so that the first save compiles only what it changed */
+         * them all (after the frame that drew the last one loaded: the job
+         * would take the cores its first draw compiles on), so that the
+         * first save compiles only what it changed */
         if (!a->primed && !a->client_busy) {
             a->primed = true;
             if (!a->compiling) start_compile(a, true);
+        }
+        if (a->client_busy) {
+            a->client_busy = a->d.between_frames(a->d.user, a);
+            a->slept = true;   /* the client's work is not the next frame's time */
         }
         /* input that arrives meanwhile queues, as behind a slow frame */
         for (double left; (left = started + a->slow_s - glfwGetTime()) > 0;)

@@ -311,7 +311,7 @@ static void on_draw(void *user, app *a) {
         if (world) glEnable(GL_FRAMEBUFFER_SRGB);
         /* before the frame: the world-only frame starts a snapshot of its own */
         v->over_world = world && !v->world_off && v->drawn_w < aw && world_ready(v, a, aw, ah, &view, s->t);
-        render_set_world_snapshot(v->r, world);
+        render_set_world_snapshot(v->r, v->over_world);   /* only a frame that goes over it pays the copy */
         render_set_detail(v->r, scale);   /* the passes and meshes shrink with the frame */
         render_frame_at(v->r, s->t, v->canvas.fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
     }
