@@ -59,6 +59,7 @@ typedef struct cv_pack {
     char passes[512];            /* "RenderToTexture 6 7 (line 12)  1.20 ms", a pass a line */
     bool loaded;                 /* the scene is loaded (the first pack before the window's
                                     first frame, the others after it: load_next_pack) */
+    bool drawn;                  /* its target holds a frame of drawn_w x drawn_h */
 } cv_pack;
 
 typedef struct cview {
@@ -98,6 +99,7 @@ typedef struct cview {
     /* the scene area and the cells, framebuffer pixels (GL: y from the bottom) */
     int fb_w, fb_h, area_x, area_w, area_h, cell_w, cell_h;
     int drawn_w, drawn_h;        /* the packs' images: this corner of their targets (the frame budget) */
+    double drawn_scale;          /* ... at this scale of the cells */
 } cview;
 
 /* ---- layout ---- */
@@ -135,6 +137,7 @@ static void ensure_targets(cview *v) {
         cv_pack *p = &v->packs[i];
         if (p->tg.fbo && p->tg.w == v->cell_w && p->tg.h == v->cell_h) continue;
         render_target_destroy(&p->tg);
+        p->drawn = false;
         if (!render_target_create(&p->tg, v->cell_w, v->cell_h, true))
             fprintf(stderr, "tarn compare-view: cannot create a %dx%d target\n", v->cell_w, v->cell_h);
     }
@@ -302,10 +305,14 @@ static void request_maps(cview *v) {
 
 /* ---- drawing ---- */
 
-static void draw_packs(cview *v, const render_view *view, double scale) {
+/* The packs shown into their targets at scale; only_new: those that
+ * have nothing drawn there yet (a pack just loaded, the others' frames
+ * still the picture). */
+static void draw_packs(cview *v, const render_view *view, double scale, bool only_new) {
     for (int i = 0; i < v->n; i++) {
         cv_pack *p = &v->packs[i];
-        if (!pack_drawn(v, i) || !p->tg.fbo) continue;
+        if (!pack_drawn(v, i) || !p->tg.fbo || (only_new && p->drawn)) continue;
+        p->drawn = true;
         double t0 = clock_now_s();
         render_set_detail(p->r, scale);   /* the passes and meshes shrink with the frame */
         render_frame(p->r, v->s->t, p->tg.fbo, v->drawn_w, v->drawn_h, view);
@@ -541,11 +548,14 @@ static void on_draw(void *user, app *a) {
     int what[4] = { v->layout, v->wipe_a, v->wipe_b, v->layout == PANEL_LAYOUT_WIPE };
     uint64_t key = hash_fnv1a(app_picture_key(a, v->cell_w, v->cell_h), what, sizeof what);
     bool draw = app_budget_plan(a, key, heat, &scale);
+    render_view view = orbit_view(&v->s->cam);
     if (draw || v->drawn_w == 0 || v->drawn_w > v->cell_w || v->drawn_h > v->cell_h) {
         if (!draw) scale = 1.0;
         res_budget_size(scale, v->cell_w, v->cell_h, &v->drawn_w, &v->drawn_h);
-        render_view view = orbit_view(&v->s->cam);
-        draw_packs(v, &view, scale);
+        v->drawn_scale = scale;
+        draw_packs(v, &view, scale, false);
+    } else {
+        draw_packs(v, &view, v->drawn_scale, true);   /* a pack loaded since: the same picture, its part */
     }
     app_budget_drawn(a, v->drawn_w, v->drawn_h, v->cell_w, v->cell_h);
     if (heat) request_maps(v);
@@ -734,8 +744,7 @@ static bool load_next_pack(void *user, app *a) {
         if (!render_load(p->r, v->scene)) v->load_failed = true;
         p->loaded = true;
         report(p);
-        app_rewatch(a);            /* its shaders are watched too */
-        app_picture_changed(a);    /* and drawn */
+        app_rewatch(a);            /* its shaders are watched too; on_draw draws it (drawn is false) */
         i++;
     }
     if (i < v->n) return true;
