@@ -9,21 +9,26 @@
 #include "mem.h"
 #include "upscale_frag.h"   /* upscale_frag_src: shaders/upscale.frag, built in by embed.cmake */
 
+/* A linear 16-bit float target of its own, grown, never shrunk. */
+typedef struct float_target {
+    unsigned tex, fbo;
+    int w, h;
+} float_target;
+
 struct upscaler {
     upscale_filter filter;
     float sharpness;
     unsigned prog, vao;
     unsigned read_fbo;          /* the source texture attached, for the blits */
     /* the first pass's output: the frame's rows at the destination's width,
-     * linear 16-bit float (an sRGB canvas decoded once); grown, never shrunk */
-    unsigned mid_tex, mid_fbo;
-    int mid_w, mid_h;
+     * linear 16-bit float (an sRGB canvas decoded once) */
+    float_target mid;
     int u_src, u_axis, u_scale, u_origin, u_last, u_a;
     /* upscale_draw_over_world: its two programs (built at its first use),
      * and the frame's water premultiplied by its share, at the frame's
-     * size, filtered linearly; grown, never shrunk */
-    unsigned mask_prog, over_prog, water_tex, water_fbo;
-    int water_w, water_h;
+     * size, filtered linearly */
+    unsigned mask_prog, over_prog;
+    float_target water;
     bool over_tried;
     int u_over_scale, u_over_origin, u_over_size, u_over_last;
     char err[512];
@@ -117,12 +122,38 @@ static bool build(upscaler *u) {
     return true;
 }
 
+/* t, at least w x h, sampled with filter (GL_NEAREST or GL_LINEAR). */
+static bool float_target_ensure(float_target *t, int w, int h, GLint filter) {
+    if (t->tex && t->w >= w && t->h >= h) return true;
+    w = w > t->w ? w : t->w;
+    h = h > t->h ? h : t->h;
+    if (t->tex) glDeleteTextures(1, &t->tex);
+    if (!t->fbo) glGenFramebuffers(1, &t->fbo);
+    glGenTextures(1, &t->tex);
+    glBindTexture(GL_TEXTURE_2D, t->tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_HALF_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
+    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    t->w = ok ? w : 0;
+    t->h = ok ? h : 0;
+    return ok;
+}
+
+static void float_target_free(float_target *t) {
+    if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
+    if (t->tex) glDeleteTextures(1, &t->tex);
+}
+
 upscaler *upscale_create(const upscale_desc *desc, const char **err) {
     upscale_desc d = desc ? *desc : (upscale_desc){ 0 };
     upscaler *u = mem_zalloc(sizeof *u);
     u->filter = d.filter;
     glGenVertexArrays(1, &u->vao);
-    glGenFramebuffers(1, &u->mid_fbo);
     u->sharpness = d.sharpness == 0 ? UPSCALE_SHARPNESS_DEFAULT : d.sharpness < 0 ? 0 : d.sharpness;
     glGenFramebuffers(1, &u->read_fbo);
     while (glGetError() != GL_NO_ERROR) {}
@@ -136,13 +167,11 @@ void upscale_destroy(upscaler *u) {
     if (!u) return;
     if (u->prog) glDeleteProgram(u->prog);
     if (u->vao) glDeleteVertexArrays(1, &u->vao);
-    if (u->mid_fbo) glDeleteFramebuffers(1, &u->mid_fbo);
-    if (u->mid_tex) glDeleteTextures(1, &u->mid_tex);
+    float_target_free(&u->mid);
     if (u->read_fbo) glDeleteFramebuffers(1, &u->read_fbo);
     if (u->mask_prog) glDeleteProgram(u->mask_prog);
     if (u->over_prog) glDeleteProgram(u->over_prog);
-    if (u->water_fbo) glDeleteFramebuffers(1, &u->water_fbo);
-    if (u->water_tex) glDeleteTextures(1, &u->water_tex);
+    float_target_free(&u->water);
     free(u);
 }
 
@@ -198,27 +227,6 @@ static void restore_state(const saved_state *s) {
     set_enabled(GL_STENCIL_TEST, s->stencil_on);
 }
 
-/* The first pass's target, at least w x h. */
-static bool mid_ensure(upscaler *u, int w, int h) {
-    if (u->mid_tex && u->mid_w >= w && u->mid_h >= h) return true;
-    w = w > u->mid_w ? w : u->mid_w;
-    h = h > u->mid_h ? h : u->mid_h;
-    if (u->mid_tex) glDeleteTextures(1, &u->mid_tex);
-    glGenTextures(1, &u->mid_tex);
-    glBindTexture(GL_TEXTURE_2D, u->mid_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_HALF_FLOAT, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, u->mid_fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, u->mid_tex, 0);
-    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    u->mid_w = ok ? w : 0;
-    u->mid_h = ok ? h : 0;
-    return ok;
-}
-
 /* One axis: tex (its texels 0..last along the axis) into the w x h
  * rectangle at (x, y) of the bound framebuffer. */
 static void pass(const upscaler *u, unsigned tex, int axis, int last, double scale, int x, int y, int w, int h) {
@@ -237,7 +245,7 @@ static void pass(const upscaler *u, unsigned tex, int axis, int last, double sca
  * Separable because on a CPU rasteriser the cost is the taps at the
  * destination's size: 4 there (plus 4 at rect.w x src_h) against 16. */
 static void draw_cubic(upscaler *u, unsigned src_tex, int src_w, int src_h, unsigned dst_fbo, upscale_rect r) {
-    if (!mid_ensure(u, r.w, src_h)) {
+    if (!float_target_ensure(&u->mid, r.w, src_h, GL_NEAREST)) {
         blit(u, src_tex, src_w, src_h, dst_fbo, r);
         return;
     }
@@ -253,12 +261,12 @@ static void draw_cubic(upscaler *u, unsigned src_tex, int src_w, int src_h, unsi
     glUniform1i(u->u_src, 0);
     glUniform1f(u->u_a, -0.5f - 0.5f * u->sharpness);
     glBindVertexArray(u->vao);
-    glBindFramebuffer(GL_FRAMEBUFFER, u->mid_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, u->mid.fbo);
     glDisable(GL_FRAMEBUFFER_SRGB);   /* the middle target holds linear values as they are */
     pass(u, src_tex, 0, src_w - 1, (double)src_w / r.w, 0, 0, r.w, src_h);
     glBindFramebuffer(GL_FRAMEBUFFER, dst_fbo);
     if (srgb) glEnable(GL_FRAMEBUFFER_SRGB);   /* the caller's encoding, as a blit's */
-    pass(u, u->mid_tex, 1, src_h - 1, (double)src_h / r.h, r.x, r.y, r.w, r.h);
+    pass(u, u->mid.tex, 1, src_h - 1, (double)src_h / r.h, r.x, r.y, r.w, r.h);
     glBindVertexArray(0);
     glBindTexture(GL_TEXTURE_2D, 0);
     glUseProgram(0);
@@ -295,29 +303,7 @@ static bool build_over(upscaler *u) {
     u->u_over_size = glGetUniformLocation(u->over_prog, "uSize");
     u->u_over_last = glGetUniformLocation(u->over_prog, "uLast");
     glUseProgram(0);
-    glGenFramebuffers(1, &u->water_fbo);
     return true;
-}
-
-/* The water target, at least w x h, linear 16-bit float, filtered linearly. */
-static bool water_ensure(upscaler *u, int w, int h) {
-    if (u->water_tex && u->water_w >= w && u->water_h >= h) return true;
-    w = w > u->water_w ? w : u->water_w;
-    h = h > u->water_h ? h : u->water_h;
-    if (u->water_tex) glDeleteTextures(1, &u->water_tex);
-    glGenTextures(1, &u->water_tex);
-    glBindTexture(GL_TEXTURE_2D, u->water_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, w, h, 0, GL_RGBA, GL_HALF_FLOAT, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, u->water_fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, u->water_tex, 0);
-    bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    u->water_w = ok ? w : 0;
-    u->water_h = ok ? h : 0;
-    return ok;
 }
 
 static void bind_unit(int unit, unsigned tex) {
@@ -328,7 +314,7 @@ static void bind_unit(int unit, unsigned tex) {
 bool upscale_draw_over_world(upscaler *u, unsigned src_tex, unsigned world_tex, int src_w, int src_h,
                              unsigned full_tex, unsigned dst_fbo, upscale_rect r) {
     if (src_w <= 0 || src_h <= 0 || r.w <= 0 || r.h <= 0 || !world_tex || !full_tex) return false;
-    if (!build_over(u) || !water_ensure(u, src_w, src_h)) return false;
+    if (!build_over(u) || !float_target_ensure(&u->water, src_w, src_h, GL_LINEAR)) return false;
     saved_state st = save_state();
     GLboolean srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
     glEnable(GL_SCISSOR_TEST);
@@ -338,7 +324,7 @@ bool upscale_draw_over_world(upscaler *u, unsigned src_tex, unsigned world_tex, 
     glDisable(GL_STENCIL_TEST);
     glBindVertexArray(u->vao);
     /* the water and its share, at the frame's size, in linear values */
-    glBindFramebuffer(GL_FRAMEBUFFER, u->water_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, u->water.fbo);
     glDisable(GL_FRAMEBUFFER_SRGB);
     glViewport(0, 0, src_w, src_h);
     glScissor(0, 0, src_w, src_h);
@@ -354,10 +340,10 @@ bool upscale_draw_over_world(upscaler *u, unsigned src_tex, unsigned world_tex, 
     glUseProgram(u->over_prog);
     glUniform2f(u->u_over_scale, (float)src_w / r.w, (float)src_h / r.h);
     glUniform2f(u->u_over_origin, (float)r.x, (float)r.y);
-    glUniform2f(u->u_over_size, (float)u->water_w, (float)u->water_h);
+    glUniform2f(u->u_over_size, (float)u->water.w, (float)u->water.h);
     glUniform2f(u->u_over_last, (float)(src_w - 1), (float)(src_h - 1));
     bind_unit(1, full_tex);
-    bind_unit(0, u->water_tex);
+    bind_unit(0, u->water.tex);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     bind_unit(1, 0);
     bind_unit(0, 0);
