@@ -69,7 +69,7 @@ struct render {
     gpu_world world;               /* kept across reloads while the world is unchanged */
     world_cache wcache;            /* World commands drawn after a Clear, kept while their key stays */
     world_layers wlayers;          /* ... and their layers, while only the time changes */
-    world_snapshot snap;           /* the screen right after its World (render_set_world_snapshot) */
+    world_snapshot snap;           /* the screen right before its water (render_set_world_snapshot) */
     bool world_only;               /* inside render_frame_world_at */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];

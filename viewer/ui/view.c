@@ -289,9 +289,10 @@ static void on_apply(void *user, app *a) {
 
 /* The scene at the budget's scale into the canvas (when the picture
  * changed, or to bring it to full resolution), then the canvas into the
- * scene area: copied at full resolution, else enlarged by the sharpened,
- * deringed cubic (gfx/upscale.h) on a GPU, the linear blit on a CPU
- * rasteriser (below). */
+ * scene area: copied at full resolution; while only the clock runs, its
+ * water over the world kept at full resolution (world_ready); else
+ * enlarged by the sharpened, deringed cubic (gfx/upscale.h) on a GPU, the
+ * linear blit on a CPU rasteriser (below). */
 static void on_draw(void *user, app *a) {
     viewer *v = user;
     app_state *s = app_get_state(a);
