@@ -217,6 +217,18 @@ static void set_enabled(GLenum cap, GLboolean on) {
     else glDisable(cap);
 }
 
+/* The caller's state saved, and the passes' set: scissored to each pass's
+ * rectangle, no depth test, blending, culling or stencil. */
+static saved_state begin_passes(void) {
+    saved_state s = save_state();
+    glEnable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_STENCIL_TEST);
+    return s;
+}
+
 static void restore_state(const saved_state *s) {
     glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
     glScissor(s->scissor[0], s->scissor[1], s->scissor[2], s->scissor[3]);
@@ -249,13 +261,8 @@ static void draw_cubic(upscaler *u, unsigned src_tex, int src_w, int src_h, unsi
         blit(u, src_tex, src_w, src_h, dst_fbo, r);
         return;
     }
-    saved_state s = save_state();
+    saved_state s = begin_passes();
     GLboolean srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
-    glEnable(GL_SCISSOR_TEST);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_STENCIL_TEST);
     glUseProgram(u->prog);
     glActiveTexture(GL_TEXTURE0);
     glUniform1i(u->u_src, 0);
@@ -315,13 +322,8 @@ bool upscale_draw_over_world(upscaler *u, unsigned src_tex, unsigned world_tex, 
                              unsigned full_tex, unsigned dst_fbo, upscale_rect r) {
     if (src_w <= 0 || src_h <= 0 || r.w <= 0 || r.h <= 0 || !world_tex || !full_tex) return false;
     if (!build_over(u) || !float_target_ensure(&u->water, src_w, src_h, GL_LINEAR)) return false;
-    saved_state st = save_state();
+    saved_state st = begin_passes();
     GLboolean srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
-    glEnable(GL_SCISSOR_TEST);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_STENCIL_TEST);
     glBindVertexArray(u->vao);
     /* the water and its share, at the frame's size, in linear values */
     glBindFramebuffer(GL_FRAMEBUFFER, u->water.fbo);
