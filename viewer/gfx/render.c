@@ -1847,7 +1847,7 @@ void render_set_world_snapshot(render *r, bool on) { r->snap.on = on; }   /* the
 unsigned render_world_snapshot(const render *r, int *w, int *h) {
     if (w) *w = r->snap.valid ? r->snap.w : 0;
     if (h) *h = r->snap.valid ? r->snap.h : 0;
-    return r->snap.valid ? r->snap.tex : 0;
+    return r->snap.valid ? r->snap.tg.color : 0;
 }
 
 double render_gpu_ms(render *r, bool wait) {

@@ -121,8 +121,8 @@ void render_frame_at(render *r, double t, unsigned fbo, int x, int y, int w, int
  * before its first WaterSurface on the screen (the world, and what the
  * scene drew before its water: caustic_tex's copy of its world pass):
  * render_world_snapshot gives that texture (its bottom-left w x h texels,
- * the screen's format, copied raw so a pixel nothing drew over after is bit
- * for bit the frame's), or 0 when the last frame drew no WaterSurface on
+ * the screen's kind of colour, copied without sRGB conversion so a pixel
+ * nothing drew over after reads back as the frame's, bit for bit), or 0 when the last frame drew no WaterSurface on
  * its screen (a glman scene). */
 void render_set_world_snapshot(render *r, bool on);
 unsigned render_world_snapshot(const render *r, int *w, int *h);

@@ -6,18 +6,20 @@
  * window shows from a full-resolution world instead of enlarging the
  * reduced one.
  *
- * The copy is raw (no sRGB conversion, the screen's own format), so a pixel
- * nothing drew over is bit for bit the frame's. Private to render.c. */
+ * The copy is a render_target of the screen's kind (8-bit sRGB, 8-bit,
+ * float), blitted without sRGB conversion, so a pixel nothing drew over
+ * reads back as the frame's, bit for bit. Private to render.c. */
 #ifndef TARN_WORLD_SNAPSHOT_H
 #define TARN_WORLD_SNAPSHOT_H
 #include <stdbool.h>
 
+#include "render.h"
+
 typedef struct world_snapshot {
     bool on;                    /* render_set_world_snapshot */
-    bool valid;                 /* this frame's screen had a World drawn on it */
-    unsigned tex, fbo, format;  /* format: the screen's, the texture made for it */
-    int tex_w, tex_h;           /* the texture's size */
-    int w, h;                   /* the copy's (its bottom-left corner) */
+    bool valid;                 /* this frame's screen had its water drawn on it */
+    render_target tg;           /* of the screen's kind (sRGB, float, plain), at least w x h */
+    int w, h;                   /* the copy's size (its bottom-left corner) */
 } world_snapshot;
 
 /* A frame begins: no copy yet. */
