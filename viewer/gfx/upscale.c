@@ -34,8 +34,8 @@ struct upscaler {
     char err[512];
 };
 
-/* Which of the reduced frame's pixels the scene drew over its World: the
- * texel differs from the snapshot taken right after the World (both
+/* Which of the reduced frame's pixels its water changed: the texel
+ * differs from the snapshot taken right before the water (both
  * decoded the same way, so an untouched texel is equal to the bit). Out:
  * the frame's colour premultiplied by that share (1 or 0) and the share. */
 static const char mask_frag[] =
