@@ -124,8 +124,29 @@ bool onScreen(vec2 uv) {
 #define REFRACT_REFINE 8          // halvings closing on a crossing (5 left dashes: the snap below)
 #define REFRACT_THICKNESS 0.6      // m on the lake, times uWorldScale
 #define REFRACT_SNAP 0.08          // m: a crossing closes to within this
-bool behindShown(vec3 X, out vec2 uv, out bool off, out float gap) {
-    vec4 c = gl_ModelViewProjectionMatrix * vec4(X, 1.0);
+// The ray being marched, P + s d, in clip space as well: clip(P + s d) =
+// gClipP + s gClipD, linear in s, so a step applies no matrix; and the
+// eye's clip position, for the distance of what the pass shows along a
+// step's eye ray. Globals, set by clipRay: a struct passed to
+// behindShown at every step cost llvmpipe 15% more than the matrices did.
+vec3 gRayP, gRayD;
+vec4 gClipP, gClipD, gClipEye;
+void clipRay(vec3 P, vec3 d) {
+    gRayP = P;
+    gRayD = d;
+    gClipP = gl_ModelViewProjectionMatrix * vec4(P, 1.0);
+    gClipD = gl_ModelViewProjectionMatrix * vec4(d, 0.0);
+    gClipEye = gl_ModelViewProjectionMatrix * vec4(uCameraPos, 1.0);
+}
+
+// Is the ray's point at s behind what the pass shows at its pixel? uv: the
+// pixel; off: it is off the screen; gap: how far behind (m, along the eye
+// ray; < 0 in front). The shown point Y lies on the eye ray through X,
+// Y = eye + k (X - eye), and its depth z fixes k: clip(Y) = clip(eye) +
+// k (clip(X) - clip(eye)) has z / w = 2 z - 1, so the gap is
+// |X - eye| (1 - k) without unprojecting the depth.
+bool behindShown(float s, out vec2 uv, out bool off, out float gap) {
+    vec4 c = gClipP + s * gClipD;
     uv = c.xy / c.w * 0.5 + 0.5;
     off = c.w <= 0.0 || !onScreen(uv);
     gap = 0.0;
@@ -133,11 +154,49 @@ bool behindShown(vec3 X, out vec2 uv, out bool off, out float gap) {
     ivec2 size = textureSize(uRefractDepth, 0);
     float z = texelFetch(uRefractDepth, min(ivec2(uv * vec2(size)), size - 1), 0).r;
     if (z >= SKY_DEPTH) return false;           // nothing there: go on
-    vec4 h = gl_ModelViewProjectionMatrixInverse * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
-    gap = distance(uCameraPos, X) - distance(uCameraPos, h.xyz / h.w);
+    vec4 e = gClipEye, dc = c - e;
+    float zn = 2.0 * z - 1.0;
+    float k = (zn * e.w - e.z) / (dc.z - zn * dc.w);
+    gap = distance(uCameraPos, gRayP + s * gRayD) * (1.0 - k);
     return gap >= 0.0;
 }
 
+// The march's events: where a step stops being a plain step in front of
+// what the pass shows.
+#define STEP_ON     0   // nothing met: the next step
+#define STEP_EDGE   1   // the step left the screen
+#define STEP_CROSS  2   // the step went through (or behind) a surface of the pass
+#define STEP_MODEL  3   // the step went under the terrain's model
+
+// Close on a crossing between a (in front) and b (behind): a sample counts
+// as through the surface when it is behind it by less than the interval.
+// A surface the ray goes through closes to a gap of 0 (true: uvF, F, s the
+// hit); one it goes behind (a silhouette: a ridge of the floor, the post)
+// leaves the gap it jumped by, and the ray goes on (false).
+bool closeCrossing(float a, float b, float thick, inout vec2 uvF, inout vec3 F, inout float s) {
+    for (int k = 0; k < REFRACT_REFINE; k++) {
+        float mid = 0.5 * (a + b);
+        vec2 uvm;
+        bool offm;
+        float gm;
+        if (behindShown(mid, uvm, offm, gm) && gm < thick + (b - a)) b = mid; else a = mid;
+    }
+    vec2 uvh;
+    bool off;
+    float gh;
+    behindShown(b, uvh, off, gh);
+    if (gh >= REFRACT_SNAP * uWorldScale + 4.0 * (b - a)) return false;
+    s = b;
+    uvF = uvh;
+    refractPoint(uvF, F);
+    return true;
+}
+
+// The march runs in rounds: the inner loop takes plain steps (one lookup
+// and one height of the model each) until an event, which the round then
+// resolves by bisection. Written with the bisections inside the steps'
+// loop, a CPU rasteriser (llvmpipe: a block of pixels runs both sides of
+// every `if`, masked) paid all three bisections at every step.
 int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
     // no deeper than the terrain's deepest (its depth, uTerrainShape.x,
     // with a margin for the lake's detail), nor further than 100 m
@@ -147,16 +206,30 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
     float lo = 0.0;
     float above = 0.0;      // the last sample above the terrain's model
     s = 0.0;
+    clipRay(P, d);
     uvF = screenOf(P);
     F = P;
-    for (int i = 1; i <= REFRACT_STEPS; i++) {
-        float f = float(i) / float(REFRACT_STEPS);
-        s = sMax * f * f;                       // finer near P, where things are close
+    int i = 1;
+    // each round ends on an event at step i and goes on from i + 1: at most
+    // one round a step
+    for (int round = 0; round <= REFRACT_STEPS; round++) {
+        int event = STEP_ON;
         vec2 uv;
         bool off;
         float gap;
-        bool behind = behindShown(P + s * d, uv, off, gap);
-        if (off) {
+        bool behind = false;
+        for (; i <= REFRACT_STEPS; i++) {
+            float f = float(i) / float(REFRACT_STEPS);
+            s = sMax * f * f;                       // finer near P, where things are close
+            behind = behindShown(s, uv, off, gap);
+            if (off) { event = STEP_EDGE; break; }
+            if (behind && gap < thick + (s - lo)) { event = STEP_CROSS; break; }
+            if ((P + s * d).y < terrainHeightGrad((P + s * d).xz).x) { event = STEP_MODEL; break; }
+            above = s;                              // above the model
+            lo = s;                                 // in front, or behind a thing (passed it)
+        }
+        if (event == STEP_ON) return REFRACT_MODEL;
+        if (event == STEP_EDGE) {
             // the step left the screen: close on the edge, and take the
             // ray's last sample on the screen (a thing there, the crate
             // by the frame's edge, is still met); else the model
@@ -165,11 +238,11 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
                 float mid = 0.5 * (lo + hi);
                 vec2 uvm;
                 float gm;
-                behindShown(P + mid * d, uvm, off, gm);
+                behindShown(mid, uvm, off, gm);
                 if (off) hi = mid; else lo = mid;
             }
             s = lo;
-            behind = behindShown(P + s * d, uv, off, gap);
+            behind = behindShown(s, uv, off, gap);
             if (!(behind && gap < thick + (hi - lo))) {
                 // a thing at the edge (above the terrain's model there)
                 // that the ray's last sample has nearly reached (within
@@ -187,52 +260,32 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
                 return REFRACT_MODEL;
             }
             lo = max(lo - (hi - lo) * 8.0, 0.0);   // an interval in front, to close on below
+            event = behind && gap < thick + (s - lo) ? STEP_CROSS : STEP_ON;
         }
-        if (behind && gap < thick + (s - lo)) {
-            // close on the crossing: a sample counts as through the
-            // surface when it is behind it by less than the interval
-            float a = lo, b = s;
-            for (int k = 0; k < REFRACT_REFINE; k++) {
-                float mid = 0.5 * (a + b);
-                vec2 uvm;
-                bool offm;
-                float gm;
-                if (behindShown(P + mid * d, uvm, offm, gm) && gm < thick + (b - a)) b = mid; else a = mid;
-            }
-            // a surface the ray goes through closes to a gap of 0; one it
-            // goes behind (a silhouette: a ridge of the floor, the post)
-            // leaves the gap it jumped by, and the ray goes on
-            vec2 uvh;
-            float gh;
-            behindShown(P + b * d, uvh, off, gh);
-            if (gh < REFRACT_SNAP * uWorldScale + 4.0 * (b - a)) {
-                s = b;
-                uvF = uvh;
-                refractPoint(uvF, F);
-                return REFRACT_HIT;
-            }
+        if (event == STEP_CROSS && closeCrossing(lo, s, thick, uvF, F, s)) return REFRACT_HIT;
+        if (event != STEP_MODEL && (P + s * d).y >= terrainHeightGrad((P + s * d).xz).x) {
+            above = s;
+            lo = s;
+            i++;
+            continue;
         }
-        if ((P + s * d).y < terrainHeightGrad((P + s * d).xz).x) {
-            // under the terrain's model with no surface of the pass there:
-            // the ground is hidden from the camera (behind a ridge of the
-            // floor, a thing); the model's own crossing, by bisection from
-            // the last sample above the model: lo may be under it already
-            // (a crossing of the pass's floor that did not close, taken
-            // for a silhouette), and a bisection from there stayed at that
-            // sample, deeper than the floor, its longer path in water
-            // darker: dark dashes along a contour of the lake's shallow
-            // floor, where closed and unclosed crossings alternate
-            float a = above, hi = s;
-            for (int k = 0; k < REFRACT_REFINE + 2; k++) {
-                float mid = 0.5 * (a + hi);
-                vec3 X = P + mid * d;
-                if (X.y < terrainHeightGrad(X.xz).x) hi = mid; else a = mid;
-            }
-            s = hi;
-            return REFRACT_MODEL;
+        // under the terrain's model with no surface of the pass there:
+        // the ground is hidden from the camera (behind a ridge of the
+        // floor, a thing); the model's own crossing, by bisection from
+        // the last sample above the model: lo may be under it already
+        // (a crossing of the pass's floor that did not close, taken
+        // for a silhouette), and a bisection from there stayed at that
+        // sample, deeper than the floor, its longer path in water
+        // darker: dark dashes along a contour of the lake's shallow
+        // floor, where closed and unclosed crossings alternate
+        float a = above, hi = s;
+        for (int k = 0; k < REFRACT_REFINE + 2; k++) {
+            float mid = 0.5 * (a + hi);
+            vec3 X = P + mid * d;
+            if (X.y < terrainHeightGrad(X.xz).x) hi = mid; else a = mid;
         }
-        above = s;                              // above the model (the branch above returns)
-        lo = s;                                 // in front, or behind a thing (passed it)
+        s = hi;
+        return REFRACT_MODEL;
     }
     return REFRACT_MODEL;
 }
@@ -253,7 +306,8 @@ void snapToGround(vec3 P, vec3 d, inout vec2 uvF, inout vec3 F) {
     vec2 uv;
     bool off;
     float gap;
-    behindShown(G, uv, off, gap);
+    clipRay(P, d);
+    behindShown(s, uv, off, gap);
     if (off || abs(gap) > GROUND_SNAP * uWorldScale) return;
     uvF = uv;
     F = G;
