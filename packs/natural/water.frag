@@ -142,28 +142,32 @@ float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax
     bool ok;
     float s = smax;
     left = false;
-    float sa = 0.0, ga = min(g0, -1e-4);
+    float sa = 0.0, ga = min(g0, -1e-4), sb = smax, gb = 0.0;
+    bool crossed = false;
     for (int i = 1; i <= REFINE_STEPS; i++) {
-        float sb = smax * float(i) / float(REFINE_STEPS);
+        sb = smax * float(i) / float(REFINE_STEPS);
         vec3 b = natShownPoint(vp, eye, depthTex, U + sb * r, uv, ok);
         if (!ok) { s = sa; left = true; break; }
-        float gb = distance(eye, U + sb * r) - distance(eye, b);
-        if (gb > 0.0) {
-            // bisection, then one interpolation: two regula-falsi steps
-            // (as before) stalled at one end where g bends (a floor seen at
-            // a slant), so the hits of whole rows of pixels stopped at the
-            // same step's end and showed as bands on the shallow floor
-            for (int k = 0; k < REFINE_BISECT; k++) {
-                float sm = 0.5 * (sa + sb);
-                vec3 bm = natShownPoint(vp, eye, depthTex, U + sm * r, uv, ok);
-                float gm = ok ? distance(eye, U + sm * r) - distance(eye, bm) : 1.0;
-                if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
-            }
-            s = sa + (sb - sa) * (-ga) / (gb - ga);
-            break;
-        }
+        gb = distance(eye, U + sb * r) - distance(eye, b);
+        if (gb > 0.0) { crossed = true; break; }
         sa = sb;
         ga = gb;
+    }
+    // after the steps' loop, not inside it: llvmpipe runs an if's body for
+    // every pixel of a block, masked, so a bisection inside the loop cost
+    // every step a second lookup
+    if (crossed) {
+        // bisection, then one interpolation: two regula-falsi steps
+        // (as before) stalled at one end where g bends (a floor seen at
+        // a slant), so the hits of whole rows of pixels stopped at the
+        // same step's end and showed as bands on the shallow floor
+        for (int k = 0; k < REFINE_BISECT; k++) {
+            float sm = 0.5 * (sa + sb);
+            vec3 bm = natShownPoint(vp, eye, depthTex, U + sm * r, uv, ok);
+            float gm = ok ? distance(eye, U + sm * r) - distance(eye, bm) : 1.0;
+            if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
+        }
+        s = sa + (sb - sa) * (-ga) / (gb - ga);
     }
     return s;
 }
