@@ -1,13 +1,13 @@
 /* ref_mesh: OBJ triangles in the world and a BVH over them (ref_mesh.h). */
 #include "ref_mesh.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "mem.h"
+#include "obj.h"
 #include "strbuf.h"
 
 #define PI 3.14159265358979323846
@@ -130,14 +130,7 @@ ref_mesh *ref_mesh_from_triangles(const double *tri, int ntri) {
     return finish(copy, ntri);
 }
 
-/* ---- OBJ ---- */
-
-typedef struct obj_reader {
-    double *v;          /* 3 a vertex, placed */
-    int nv, capv;
-    double *tri;
-    int ntri, capt;
-} obj_reader;
+/* ---- OBJ (base/obj.h reads it) ---- */
 
 static void place_point(const ref_mesh_place *p, const double in[3], double out[3]) {
     double s = p && p->scale != 0 ? p->scale : 1.0, a = p ? p->rot_y_deg * PI / 180.0 : 0.0;
@@ -148,102 +141,41 @@ static void place_point(const ref_mesh_place *p, const double in[3], double out[
     out[2] = s * z + (p ? p->pos[2] : 0);
 }
 
-/* One `f` line's vertex reference: its 0-based index, or -1. */
-static int face_index(const char **s, int nv) {
-    char *end;
-    errno = 0;
-    long k = strtol(*s, &end, 10);
-    if (end == *s || errno) return -1;
-    *s = end;
-    while (**s && **s != ' ' && **s != '\t' && **s != '\r' && **s != '\n') (*s)++;   /* /vt/vn */
-    if (k < 0) k += nv + 1;
-    return k >= 1 && k <= nv ? (int)(k - 1) : -1;
-}
-
-static bool add_face(obj_reader *r, const char *s, char *err, size_t errlen, const char *path, int line) {
-    int first = -1, prev = -1, count = 0;
-    for (;;) {
-        while (*s == ' ' || *s == '\t') s++;
-        if (!*s || *s == '\r' || *s == '\n' || *s == '#') break;
-        int k = face_index(&s, r->nv);
-        if (k < 0) {
-            msg_set(err, errlen, "%s:%d: a face names a vertex that does not exist (%d vertices so far)", path, line,
-                    r->nv);
-            return false;
+ref_mesh *ref_mesh_from_obj(const obj_data *d, const char *name, const ref_mesh_place *place, char *err,
+                            size_t errlen) {
+    if (!d || d->ntri == 0) {
+        msg_set(err, errlen, "%s: no triangles (no `f` lines)", name ? name : "(null)");
+        return NULL;
+    }
+    if (d->ntri > REF_MESH_MAX_TRIANGLES) {   /* obj_parse was told the limit: a caller's own data */
+        msg_set(err, errlen, "%s: more than %d triangles", name ? name : "(null)", REF_MESH_MAX_TRIANGLES);
+        return NULL;
+    }
+    double *v = mem_alloc((size_t)(d->nv > 0 ? d->nv : 1) * 3 * sizeof *v);
+    for (int i = 0; i < d->nv; i++) place_point(place, d->v + (size_t)i * 3, v + (size_t)i * 3);
+    double *tri = mem_alloc((size_t)d->ntri * 9 * sizeof *tri);
+    int ntri = 0;
+    for (int f = 0; f < d->nface; f++) {   /* polygons fanned from their first corner */
+        const obj_corner *c = d->corner + d->face_first[f];
+        int n = d->face_first[f + 1] - d->face_first[f];
+        for (int k = 1; k + 1 < n; k++) {
+            double *t = tri + (size_t)ntri++ * 9;
+            memcpy(t, v + (size_t)c[0].v * 3, 3 * sizeof *t);
+            memcpy(t + 3, v + (size_t)c[k].v * 3, 3 * sizeof *t);
+            memcpy(t + 6, v + (size_t)c[k + 1].v * 3, 3 * sizeof *t);
         }
-        if (count == 0) first = k;
-        else if (count >= 2) {
-            if (r->ntri >= REF_MESH_MAX_TRIANGLES) {
-                msg_set(err, errlen, "%s:%d: more than %d triangles", path, line, REF_MESH_MAX_TRIANGLES);
-                return false;
-            }
-            if (r->ntri == r->capt) {
-                r->capt = r->capt ? 2 * r->capt : 256;
-                r->tri = mem_realloc(r->tri, (size_t)r->capt * 9 * sizeof *r->tri);
-            }
-            double *t = r->tri + (size_t)r->ntri++ * 9;
-            memcpy(t, r->v + (size_t)first * 3, 3 * sizeof *t);
-            memcpy(t + 3, r->v + (size_t)prev * 3, 3 * sizeof *t);
-            memcpy(t + 6, r->v + (size_t)k * 3, 3 * sizeof *t);
-        }
-        prev = k;
-        count++;
     }
-    if (count < 3) {
-        msg_set(err, errlen, "%s:%d: a face needs at least 3 vertices, has %d", path, line, count);
-        return false;
-    }
-    return true;
-}
-
-static bool add_vertex(obj_reader *r, const char *s, const ref_mesh_place *p, char *err, size_t errlen,
-                       const char *path, int line) {
-    double v[3];
-    char *end;
-    for (int a = 0; a < 3; a++) {
-        v[a] = strtod(s, &end);
-        if (end == s || !isfinite(v[a])) {
-            msg_set(err, errlen, "%s:%d: a vertex needs 3 numbers (v x y z)", path, line);
-            return false;
-        }
-        s = end;
-    }
-    if (r->nv == r->capv) {
-        r->capv = r->capv ? 2 * r->capv : 256;
-        r->v = mem_realloc(r->v, (size_t)r->capv * 3 * sizeof *r->v);
-    }
-    place_point(p, v, r->v + (size_t)r->nv++ * 3);
-    return true;
+    free(v);
+    return finish(tri, ntri);
 }
 
 ref_mesh *ref_mesh_load(const char *path, const ref_mesh_place *place, char *err, size_t errlen) {
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        msg_set(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return NULL;
-    }
-    obj_reader r = { 0 };
-    char buf[4096];
-    int line = 0;
-    bool ok = true;
-    while (ok && fgets(buf, sizeof buf, f)) {
-        line++;
-        const char *s = buf;
-        while (*s == ' ' || *s == '\t') s++;
-        if (s[0] == 'v' && (s[1] == ' ' || s[1] == '\t')) ok = add_vertex(&r, s + 2, place, err, errlen, path, line);
-        else if (s[0] == 'f' && (s[1] == ' ' || s[1] == '\t')) ok = add_face(&r, s + 2, err, errlen, path, line);
-    }
-    fclose(f);
-    free(r.v);
-    if (ok && r.ntri == 0) {
-        msg_set(err, errlen, "%s: no triangles (no `f` lines)", path);
-        ok = false;
-    }
-    if (!ok) {
-        free(r.tri);
-        return NULL;
-    }
-    return finish(r.tri, r.ntri);
+    obj_data d;
+    obj_opts o = { .max_triangles = REF_MESH_MAX_TRIANGLES, .positions_only = true };
+    if (!obj_read(&d, path, &o, err, errlen)) return NULL;
+    ref_mesh *m = ref_mesh_from_obj(&d, path, place, err, errlen);
+    obj_free(&d);
+    return m;
 }
 
 void ref_mesh_free(ref_mesh *m) {

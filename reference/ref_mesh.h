@@ -18,6 +18,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "obj.h"
+
 #define REF_MESH_LEAF 4
 #define REF_MESH_MAX_TRIANGLES (1 << 20)   /* what a wrong file can cost */
 
@@ -31,13 +33,19 @@ typedef struct ref_mesh_place {
     double scale;
 } ref_mesh_place;
 
-/* Reads path's `v` and `f` lines (polygons fanned into triangles; `f` may
- * say v, v/vt, v//vn or v/vt/vn, negative indices count back from the
- * last vertex; every other line is ignored) and places the triangles.
- * NULL, with "path:line: why" in err, for a file that cannot be read, a
- * face naming a vertex that does not exist, no triangle at all, or more
- * than REF_MESH_MAX_TRIANGLES. */
+/* Reads the OBJ file at path with tarn's one OBJ reader (base/obj.h:
+ * v, vt, vn, f with v, v/vt, v//vn or v/vt/vn corners and negative
+ * indices; grouping and materials skipped; positions only: a corner's vt
+ * and vn are not looked up) and places its faces' triangles
+ * (polygons fanned from their first corner). NULL, with "path:line: why"
+ * in err, for a file that cannot be read or that obj_parse refuses (an
+ * index that does not exist, an unknown statement, a bad number), no
+ * triangle at all, or more than REF_MESH_MAX_TRIANGLES. */
 ref_mesh *ref_mesh_load(const char *path, const ref_mesh_place *place, char *err, size_t errlen);
+
+/* The same from an OBJ already parsed (obj_parse), name for the messages. */
+ref_mesh *ref_mesh_from_obj(const obj_data *d, const char *name, const ref_mesh_place *place, char *err,
+                            size_t errlen);
 
 /* A mesh of ntri triangles given as 9 doubles each (a, b, c), as they are
  * (tests). NULL for ntri < 1. */

@@ -46,9 +46,11 @@
 
 #include <stdbool.h>
 
+#include "obj.h"
+
 #define GEOM_MAX_DIV 2048       /* most segments on one side of a grid */
 #define GEOM_MAX_TEAPOT_GRID 128
-#define GEOM_OBJ_MAX_FILE_BYTES (256L << 20)   /* an OBJ file: what a wrong path can cost */
+#define GEOM_MAX_FILE_BYTES OBJ_MAX_BYTES   /* an OBJ or shapefile: what a wrong path can cost */
 
 /* How the indices are read: as GL's primitive of the same name. */
 typedef enum geom_prim {
@@ -110,16 +112,19 @@ bool geom_cone(geom_mesh *m, float r, float h, int slices, int stacks, bool wire
 /* Default grid 10 (segments per patch side), at most GEOM_MAX_TEAPOT_GRID. */
 bool geom_teapot(geom_mesh *m, float size, int grid, bool wire);
 
-/* Reads a Wavefront OBJ file: v (x y z [w] or x y z r g b), vt, vn and f
- * with corners v, v/vt, v//vn or v/vt/vn (negative indices count back from
- * the last element defined); polygons are fan-triangulated. Corners without
- * vn get area-weighted smooth normals of the faces sharing the position;
- * without vt, tc is (0, 0). Grouping, material and other OBJ statements are
- * ignored. Errors (false, mesh empty) are "path:line: message" for bad
- * indices (0, out of range), bad numbers, malformed or unknown statements,
- * and "path: reason" for a missing/unreadable file, a binary one (a NUL
- * byte), one over GEOM_OBJ_MAX_FILE_BYTES or one with no faces. A UTF-8
- * byte order mark and CRLF line ends are read as text. */
+/* Reads a Wavefront OBJ file with tarn's one OBJ reader (base/obj.h, which
+ * the reference's world meshes use too): v (x y z [w] or x y z r g b), vt,
+ * vn and f with corners v, v/vt, v//vn or v/vt/vn (negative indices count
+ * back from the last element defined); polygons are fan-triangulated.
+ * Corners without vn get area-weighted smooth normals of the faces sharing
+ * the position; without vt, tc is (0, 0). Grouping, material and other OBJ
+ * statements are ignored. Errors (false, mesh empty) are "path:line:
+ * message" for bad indices (0, out of range), bad numbers, malformed or
+ * unknown statements, and "path: reason" for a missing/unreadable file, a
+ * binary one (a NUL byte), one over OBJ_MAX_BYTES or one with no faces. A
+ * UTF-8 byte order mark and CRLF line ends are read as text.
+ * (geom_obj.c; the other shapes: geom_shapes.c, geom_teapot.c,
+ * geom_soccerball.c, geom_shp.c, on geom_build.c's mesh builder.) */
 bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen);
 
 /* Wire variant of an OBJ (WireObj): the same vertices, GL_LINES over each
@@ -139,6 +144,12 @@ bool geom_obj_load_adjacency(geom_mesh *m, const char *path, char *err, int errl
  * triangles, patches of 3. */
 bool geom_obj_load_patches(geom_mesh *m, const char *path, char *err, int errlen);
 
+/* The mesh of an OBJ already parsed (obj_parse), drawn as prim:
+ * GEOM_TRIANGLES (Obj), GEOM_LINES (WireObj), GEOM_TRIANGLES_ADJACENCY
+ * (ObjAdj) or GEOM_PATCHES (ObjPatch); name for the messages ("name: no
+ * faces"). The loaders above are obj_read and this. */
+bool geom_obj_mesh(geom_mesh *m, const obj_data *d, geom_prim prim, const char *name, char *err, int errlen);
+
 /* Shp: an ESRI shapefile's main file (.shp): PolyLine (3) and Polygon (5)
  * records, and their Z (13, 15) and M (23, 25) variants; null shapes are
  * skipped. Each part is drawn as a line strip (GEOM_LINES pairs), a
@@ -149,7 +160,7 @@ bool geom_obj_load_patches(geom_mesh *m, const char *path, char *err, int errlen
  * "path: why" in err, for a file that cannot be read, is not a shapefile
  * (file code 9994, version 1000), holds other shapes (Point, MultiPoint,
  * MultiPatch: named), is truncated or inconsistent (the record named), or
- * has no line in it. Bounded: GEOM_OBJ_MAX_FILE_BYTES. */
+ * has no line in it. Bounded: GEOM_MAX_FILE_BYTES. */
 bool geom_shp_load(geom_mesh *m, const char *path, char *err, int errlen);
 
 /* n points given (3 floats each) as one primitive: Triangles (3 points,
