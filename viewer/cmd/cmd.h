@@ -1,8 +1,9 @@
 /* cmd: the commands of the tarn program, one file each (cmd_NAME.c). Each
  * parses the arguments after its command word (argv[0] is the first of
  * them) into its lower layer's desc struct and calls it; main.c's table
- * names them. Only this layer reads argv. Every command returns an exit
- * code (exit_code.h) and prints its usage for -h/--help. */
+ * names them. Only this layer reads argv, each command through its option
+ * table (cmd_opt_table.h). Every command returns an exit code (exit_code.h)
+ * and prints its usage for -h/--help. */
 #ifndef TARN_CMD_H
 #define TARN_CMD_H
 
@@ -26,7 +27,12 @@ int cmd_sheet(int argc, char **argv);
  * --help go to out, messages to err. */
 int cmd_compare_io(int argc, char **argv, FILE *out, FILE *err);
 
-/* The usage texts (`tarn help NAME`, `tarn NAME --help`). */
+/* The commands' tables (cmd_opt_table.h): options, usage and man page. */
+struct cmd_spec;
+extern const struct cmd_spec cmd_view_spec, cmd_render_spec, cmd_validate_spec, cmd_reference_spec,
+    cmd_compare_spec, cmd_compare_view_spec, cmd_bench_spec, cmd_assets_spec, cmd_record_spec, cmd_sheet_spec;
+
+/* The usage texts (`tarn help NAME`, `tarn NAME --help`), from the tables. */
 const char *cmd_view_usage(void);
 const char *cmd_render_usage(void);
 const char *cmd_validate_usage(void);
@@ -40,10 +46,9 @@ const char *cmd_sheet_usage(void);
 
 /* ---- shared by the command files (cmd_opts.c) ---- */
 
-/* "PREFIX: WHAT\n\nUSAGE" on err; returns TARN_EXIT_USAGE. prefix is
- * "tarn" or "tarn NAME", as each command has always said it. */
-int cmd_bad_usage(FILE *err, const char *prefix, const char *usage, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
+/* Each command's options are a table (cmd_opt_table.h): its parser, its
+ * usage text and its man-page entries. */
+#include "cmd_opt_table.h"
 
 /* True when any argument is -h or --help. */
 bool cmd_wants_help(int argc, char **argv);
@@ -60,16 +65,19 @@ bool cmd_opt_msaa(const char *s, int *samples);
 /* Is name a pack of tarn's (packs/NAME/pack.glib under tarn_root())? False
  * with "no pack 'X' in ROOT/packs: the packs are ..." in why, for a usage error (exit 2). */
 bool cmd_opt_pack(const char *name, char *why, size_t whylen);
+/* The help of --msaa N: a live window's (default 4 on a GPU, off on a CPU
+ * rasteriser) and a kept image's or video's (CMD_MSAA_STILL_HELP); lines
+ * after the first are indented by the usage writer. */
 #define CMD_MSAA_HELP \
-    "  --msaa N         anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
-    "                   a GPU, off on a CPU rasteriser such as llvmpipe: 2-3x the time)\n"
+    "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
+    "a GPU, off on a CPU rasteriser such as llvmpipe: 2-3x the time)\n"
 /* Images and videos that are kept are anti-aliased on every renderer
  * (issue #25); a live window keeps CMD_MSAA_HELP's default. */
 #define CMD_MSAA_STILL_DEFAULT 4
 #define CMD_MSAA_STILL_HELP \
-    "  --msaa N         anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
-    "                   every renderer: what is written is anti-aliased; on a CPU\n" \
-    "                   rasteriser such as llvmpipe it costs 2-3x the time)\n"
+    "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
+    "every renderer: what is written is anti-aliased; on a CPU\n" \
+    "rasteriser such as llvmpipe it costs 2-3x the time)\n"
 
 /* One --set assignment (PROGRAM.NAME=V, NAME=V for every Program, or
  * scene.Command=ARGS) applied to r as the panel would (render_setting_assign);

@@ -2,41 +2,44 @@
  * generated textures (gfx/assets.h). */
 #include "cmd.h"
 
-#include <string.h>
+#include <stddef.h>
 
 #include "assets.h"
 
-static const char usage[] =
-    "usage: tarn assets [--out DIR] [--size N] [SCENE.glib]\n"
-    "  Generates the textures the packs use (the same bytes every time) into\n"
-    "  DIR (default: assets/ here): terrain albedo and normal map, the sky cube\n"
-    "  map (sky_px.exr ... sky_nz.exr and .png), water_normal.png, foam.png,\n"
-    "  caustics.exr and .png. The terrain and sky come from SCENE's world\n"
-    "  (default: the lake). --size N bakes every texture at N x N.\n";
+static const cmd_option options[] = {
+    { "SCENE.glib", .kind = CMD_ARG, .offset = offsetof(assets_desc, scene) },
+    { "--out", "-o", "DIR", .kind = CMD_STRING, .offset = offsetof(assets_desc, dir),
+      .help = "where the textures go (default: assets/ here)\n",
+      .man = "where the textures go (default:\n"
+             ".I assets/\n"
+             "in the current folder).\n" },
+    { "--size", .metavar = "N", .kind = CMD_INT, .offset = offsetof(assets_desc, size), .lo = ASSETS_MIN_SIZE,
+      .hi = ASSETS_MAX_SIZE,
+      .help = "bake every texture at N x N\n",
+      .man = "bake every texture at\n"
+             ".IR N \" x \" N .\n" },
+    { 0 }
+};
 
-const char *cmd_assets_usage(void) { return usage; }
+const cmd_spec cmd_assets_spec = {
+    .name = "assets",
+    .synopsis = "[--out DIR] [--size N] [SCENE.glib]\n",
+    .about = "Generates the textures the packs use (the same bytes every time) into\n"
+             "DIR: terrain albedo and normal map, the sky cube map (sky_px.exr ...\n"
+             "sky_nz.exr and .png), water_normal.png, foam.png, caustics.exr and .png.\n"
+             "The terrain and sky come from SCENE's world (default: the lake).\n",
+    .options = options,
+    .extra = "one scene at a time",
+};
+
+const char *cmd_assets_usage(void) {
+    static char text[CMD_USAGE_MAX];
+    return cmd_usage(&cmd_assets_spec, text, sizeof text);
+}
 
 int cmd_assets(int argc, char **argv) {
+    if (cmd_wants_help(argc, argv)) { fputs(cmd_assets_usage(), stdout); return TARN_EXIT_OK; }
     assets_desc d = {0};
-    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if ((strcmp(a, "--out") == 0 || strcmp(a, "-o") == 0) && next) {
-            d.dir = next;
-            i++;
-        } else if (strcmp(a, "--size") == 0 && next) {
-            if (!cmd_opt_int(next, ASSETS_MIN_SIZE, ASSETS_MAX_SIZE, &d.size)) {
-                fprintf(stderr, "tarn assets: --size takes a whole number from %d to %d, not '%s'\n",
-                        ASSETS_MIN_SIZE, ASSETS_MAX_SIZE, next);
-                return TARN_EXIT_USAGE;
-            }
-            i++;
-        } else if (a[0] != '-' && !d.scene) {
-            d.scene = a;
-        } else {
-            fprintf(stderr, "tarn assets: unexpected argument '%s'\n%s", a, usage);
-            return TARN_EXIT_USAGE;
-        }
-    }
-    return assets_run(&d);
+    int rc = cmd_parse(&cmd_assets_spec, argc, argv, &d, stderr);
+    return rc == TARN_EXIT_OK ? assets_run(&d) : rc;
 }

@@ -2,7 +2,6 @@
 #include "cmd.h"
 
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,16 +11,6 @@
 #include "render.h"
 #include "strbuf.h"
 #include "render_setting.h"
-
-int cmd_bad_usage(FILE *err, const char *prefix, const char *usage, const char *fmt, ...) {
-    va_list ap;
-    fprintf(err, "%s: ", prefix);
-    va_start(ap, fmt);
-    vfprintf(err, fmt, ap);
-    va_end(ap);
-    fprintf(err, "\n\n%s", usage);
-    return TARN_EXIT_USAGE;
-}
 
 bool cmd_wants_help(int argc, char **argv) {
     for (int i = 0; i < argc; i++)

@@ -4,6 +4,7 @@
  * simulated clock follows from the session alone, never from the wall
  * clock: the same session gives the same frames at any speed. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -139,54 +140,71 @@ static int record(const record_desc *d) {
 
 /* ---- the command line ---- */
 
-static const char usage[] =
-    "usage: tarn record SESSION -o OUT [--size WxH] [--fps N] [--msaa N] [--quiet]\n"
-    "\n"
-    "Replays a session recorded by `tarn view` (Shift+R, or --record FILE)\n"
-    "without any display (EGL, as `tarn render`): its slider, colour, checkbox\n"
-    "and Define changes, camera moves, pack switches and pauses at their times.\n"
-    "Frame i shows the session at i/N seconds; the simulated clock follows from\n"
-    "the session alone, so the same session gives the same frames.\n"
-    "\n"
-    "  -o, --out OUT    a video made by the ffmpeg program (.mp4, .webm, .mkv, .gif:\n"
-    "                   whatever it writes), or DIR/ for PNG frames frame-00000.png...;\n"
-    "                   without ffmpeg the frames go to OUT-frames/ as PNGs\n"
-    "  --size WxH       frame size (default: the window's when recording)\n"
-    "  --fps N          frames per second, 1..240 (default 30)\n"
-    CMD_MSAA_STILL_HELP
-    "  --quiet          print only errors\n"
-    "\n"
-    "exit codes: 0 ok, 1 the session or scene has errors, 2 bad usage, 3 no OpenGL\n";
+#define OFF(field) offsetof(record_desc, field)
 
-const char *cmd_record_usage(void) { return usage; }
+static const cmd_option options[] = {
+    { "SESSION", .kind = CMD_ARG, .offset = OFF(session),
+      .missing = "which session? give the file `tarn view --record` wrote" },
+    { "--out", "-o", "OUT", .kind = CMD_STRING, .offset = OFF(out), .missing = "where to? give -o out.mp4 or -o frames/",
+      .help = "a video made by the ffmpeg program (.mp4, .webm, .mkv, .gif:\n"
+              "whatever it writes), or DIR/ for PNG frames frame-00000.png...;\n"
+              "without ffmpeg the frames go to OUT-frames/ as PNGs\n",
+      .man = "a video\n"
+             ".RI ( .mp4 \", \" .webm \", \" .mkv \", \" .gif :\n"
+             "whatever ffmpeg writes), or\n"
+             ".I DIR/\n"
+             "for PNG frames\n"
+             ".IR DIR/frame\\-00000.png \", ....\"\n"
+             "Without ffmpeg the frames become PNGs in\n"
+             ".I OUT\\-frames/\n"
+             "and a message says how to make the video later.\n" },
+    { "--size", .metavar = "WxH", .kind = CMD_SIZE, .offset = OFF(width), .offset2 = OFF(height),
+      .wants = "WxH, e.g. 640x360",
+      .help = "frame size (default: the window's when recording)\n",
+      .man = "frame size (default: the window's scene area when recording).\n" },
+    { "--fps", .metavar = "N", .kind = CMD_INT, .offset = OFF(fps), .lo = 1, .hi = 240,
+      .wants = "a whole number 1..240",
+      .help = "frames per second, 1..240 (default 30)\n",
+      .man = "frames per second, 1 to 240 (default 30).\n" },
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = OFF(samples), .help = CMD_MSAA_STILL_HELP,
+      .man = "anti\\-aliasing: the screen passes are drawn with\n"
+             ".I N\n"
+             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n"
+             "every renderer, or as many as it allows: what is written is anti\\-aliased;\n"
+             "on a CPU rasteriser such as llvmpipe 4 samples cost 2 to 3 times the frame).\n" },
+    { "--quiet", .kind = CMD_FLAG, .offset = OFF(quiet),
+      .help = "print only errors\n",
+      .man = "print only errors.\n" },
+    { 0 }
+};
 
-static int bad(const char *what) { return cmd_bad_usage(stderr, "tarn record", usage, "%s", what); }
+const cmd_spec cmd_record_spec = {
+    .name = "record",
+    .synopsis = "SESSION -o OUT [--size WxH] [--fps N] [--msaa N] [--quiet]\n",
+    .about = "Replays a session recorded by `tarn view` (Shift+R, or --record FILE)\n"
+             "without any display (EGL, as `tarn render`): its slider, colour, checkbox\n"
+             "and Define changes, camera moves, pack switches and pauses at their times.\n"
+             "Frame i shows the session at i/N seconds; the simulated clock follows from\n"
+             "the session alone, so the same session gives the same frames.\n",
+    .options = options,
+    .notes = "exit codes: 0 ok, 1 the session or scene has errors, 2 bad usage, 3 no OpenGL\n",
+    .extra = "one session at a time",
+};
+
+const char *cmd_record_usage(void) {
+    static char text[CMD_USAGE_MAX];
+    return cmd_usage(&cmd_record_spec, text, sizeof text);
+}
 
 int cmd_record(int argc, char **argv) {
-    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
+    if (cmd_wants_help(argc, argv)) { fputs(cmd_record_usage(), stdout); return TARN_EXIT_OK; }
     record_desc d = { .fps = 30 };
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if ((strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) && next) { d.out = next; i++; }
-        else if (strcmp(a, "--size") == 0) {
-            if (!opt_size(next, &d.width, &d.height)) return bad("--size wants WxH, e.g. 640x360");
-            i++;
-        } else if (strcmp(a, "--fps") == 0) {
-            if (!cmd_opt_int(next, 1, 240, &d.fps)) return bad("--fps wants a whole number 1..240");
-            i++;
-        } else if (strcmp(a, "--msaa") == 0) {
-            if (!cmd_opt_msaa(next, &d.samples)) return bad("--msaa wants 0..16 samples");
-            i++;
-        } else if (strcmp(a, "--quiet") == 0) d.quiet = true;
-        else if (a[0] == '-') return bad("unknown option");
-        else if (!d.session) d.session = a;
-        else return bad("one session at a time");
-    }
-    if (!d.session) return bad("which session? give the file `tarn view --record` wrote");
-    if (!d.out) return bad("where to? give -o out.mp4 or -o frames/");
+    int rc = cmd_parse(&cmd_record_spec, argc, argv, &d, stderr);
+    if (rc != TARN_EXIT_OK) return rc;
     /* ffmpeg picks the format by the extension: without one it can only fail, after the replay */
     const char *base = strrchr(d.out, '/') ? strrchr(d.out, '/') + 1 : d.out;
     if (base[0] && !strchr(base, '.') && !file_is_dir(d.out))
-        return bad("-o wants a video with its extension (out.mp4) or a folder ending in / (frames/)");
+        return cmd_bad_usage(&cmd_record_spec, stderr,
+                             "-o wants a video with its extension (out.mp4) or a folder ending in / (frames/)");
     return record(&d);
 }

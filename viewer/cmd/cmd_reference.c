@@ -6,6 +6,7 @@
 #include "cmd.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,52 +21,6 @@
 #include "ref_buffers.h"
 #include "gl_ctx.h"
 #include "render.h"
-
-static const char usage[] =
-    "usage: tarn reference SCENE.glib -o OUT.exr [--size WxH] [--time SECONDS]\n"
-    "                      [--threads N] [--spp N | --msaa N] [--photons N] [--caustic-res N]\n"
-    "                      [--seed N] [--flat-caustics] [--radiance-n2] [--quiet]\n"
-    "\n"
-    "Renders the scene's world on the CPU in double precision: the ground truth\n"
-    "the packs are measured against (exact waves, Fresnel, refraction, ray/terrain\n"
-    "intersection, Beer-Lambert, caustics by photon tracing). Deterministic: the\n"
-    "same output for any number of threads.\n"
-    "\n"
-    "  -o, --out OUT.exr    the image, linear RGB, 32-bit float; beside it:\n"
-    "                         OUT.png              the image, sRGB 8-bit\n"
-    "                         OUT.refract_hit.exr  xyz the refracted ray meets, and what (A)\n"
-    "                         OUT.reflect.exr      xyz the reflected ray meets, or its\n"
-    "                                              direction, and a flag (A)\n"
-    "                         OUT.fresnel.exr      Fresnel reflectance at the water\n"
-    "                         OUT.depth.exr        path length in water\n"
-    "                         OUT.irradiance.exr   sun irradiance at the refraction hit\n"
-    "                         OUT.surface.exr      where the ray meets the water\n"
-    "                         OUT.mask.exr         0 sky, 1 water, 2 terrain, 3 object\n"
-    "                       (NaN where a buffer has no value; docs/reference.md)\n"
-    "  --size WxH           image size (default: the scene's WindowSize)\n"
-    "  --time SECONDS       simulated time of the waves (default 0)\n"
-    "  --threads N          worker threads (default: every core)\n"
-    "  --spp N              N x N subsamples per pixel for the colour (default 1);\n"
-    "                       the buffers are always the pixel centre's\n"
-    "  --msaa N             match N-sample MSAA (a `tarn render --msaa N` frame):\n"
-    "                       subsample where the GL samples with N (asked of a headless\n"
-    "                       context), or without one at the standard positions of\n"
-    "                       2, 4, 8 or 16 samples; 0 or 1: the pixel centre\n"
-    "  --photons N          photons per caustic grid cell (default 36)\n"
-    "  --caustic-res N      caustic grid cells along the underwater floor (default 256)\n"
-    "  --seed N             the photons' random numbers (default 0, the fixed\n"
-    "                       sequence); another seed samples the same strata anew, so\n"
-    "                       two seeds differ by photon noise alone\n"
-    "  --flat-caustics      no photons: the floor lit through flat water\n"
-    "  --radiance-n2        scale radiance crossing the surface by (n_t/n_i)^2\n"
-    "  --quiet              no progress bar and no summary, only errors\n"
-    "\n"
-    "exit codes: 0 ok, 1 the scene has errors or an output could not be written,\n"
-    "2 bad usage\n";
-
-const char *cmd_reference_usage(void) { return usage; }
-
-static int bad_usage(const char *what) { return cmd_bad_usage(stderr, "tarn reference", usage, "%s", what); }
 
 /* ---- the progress bar ------------------------------------------------- */
 
@@ -219,59 +174,148 @@ typedef struct reference_opts {
     ref_render_desc d;
 } reference_opts;
 
+static bool set_seed(void *desc, const char *value, char *why, size_t whylen) {
+    int seed;
+    if (!cmd_opt_int(value, 0, 2147483647, &seed)) return false;
+    ((reference_opts *)desc)->d.seed = (uint64_t)seed;
+    return true;
+}
+
+static bool set_flat_caustics(void *desc, const char *value, char *why, size_t whylen) {
+    ((reference_opts *)desc)->d.caustics = REF_CAUSTICS_FLAT;
+    return true;
+}
+
+static bool set_radiance_n2(void *desc, const char *value, char *why, size_t whylen) {
+    ((reference_opts *)desc)->d.radiance_n2 = 1;
+    return true;
+}
+
+#define OFF(field) offsetof(reference_opts, field)
+
+static const cmd_option options[] = {
+    { "SCENE.glib", .kind = CMD_ARG, .offset = OFF(glib), .missing = "which scene? give SCENE.glib" },
+    { "--out", "-o", "OUT.exr", .kind = CMD_STRING, .offset = OFF(out), .wants = "a path, e.g. -o out/ref.exr",
+      .missing = "where to? give -o OUT.exr",
+      .help = "the image, linear RGB, 32-bit float; beside it:\n"
+              "  OUT.png              the image, sRGB 8-bit\n"
+              "  OUT.refract_hit.exr  xyz the refracted ray meets, and what (A)\n"
+              "  OUT.reflect.exr      xyz the reflected ray meets, or its\n"
+              "                       direction, and a flag (A)\n"
+              "  OUT.fresnel.exr      Fresnel reflectance at the water\n"
+              "  OUT.depth.exr        path length in water\n"
+              "  OUT.irradiance.exr   sun irradiance at the refraction hit\n"
+              "  OUT.surface.exr      where the ray meets the water\n"
+              "  OUT.mask.exr         0 sky, 1 water, 2 terrain, 3 object\n"
+              "(NaN where a buffer has no value; docs/reference.md)\n",
+      .man = "the image, linear RGB, 32\\-bit float; beside it\n"
+             ".I OUT.png\n"
+             "(the image, sRGB 8\\-bit),\n"
+             ".I OUT.refract_hit.exr\n"
+             "(xyz the refracted ray meets, and what, in A),\n"
+             ".I OUT.reflect.exr\n"
+             "(xyz the reflected ray meets, or its direction, and a flag in A),\n"
+             ".I OUT.fresnel.exr\n"
+             "(Fresnel reflectance at the water),\n"
+             ".I OUT.depth.exr\n"
+             "(path length in water),\n"
+             ".I OUT.irradiance.exr\n"
+             "(sun irradiance at the refraction hit),\n"
+             ".I OUT.surface.exr\n"
+             "(where the ray meets the water) and\n"
+             ".I OUT.mask.exr\n"
+             "(0 sky, 1 water, 2 terrain, 3 object); NaN where a buffer has no value\n"
+             ".RI ( docs/reference.md ).\n" },
+    { "--size", .metavar = "WxH", .kind = CMD_SIZE, .offset = OFF(width), .offset2 = OFF(height),
+      .wants = "WxH, e.g. 640x360",
+      .help = "image size (default: the scene's WindowSize)\n",
+      .man = "image size (default: the scene's\n"
+             ".BR WindowSize ).\n" },
+    { "--time", .metavar = "SECONDS", .kind = CMD_DOUBLE, .offset = OFF(d.time), .wants = "seconds, e.g. 2.5",
+      .help = "simulated time of the waves (default 0)\n",
+      .man = "simulated time of the waves (default 0).\n" },
+    { "--threads", .metavar = "N", .kind = CMD_INT, .offset = OFF(d.threads), .lo = 1, .hi = 256,
+      .help = "worker threads (default: every core)\n",
+      .man = "worker threads (default: every core).\n" },
+    { "--spp", .metavar = "N", .kind = CMD_INT, .offset = OFF(d.spp), .lo = 1, .hi = 16,
+      .wants = "1..16 (N x N subsamples)",
+      .help = "N x N subsamples per pixel for the colour (default 1);\n"
+              "the buffers are always the pixel centre's\n",
+      .man = ".IR N \" x \" N\n"
+             "subsamples per pixel for the colour (default 1); the buffers are always the\n"
+             "pixel centre's.\n" },
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = OFF(msaa),
+      .help = "match N-sample MSAA (a `tarn render --msaa N` frame):\n"
+              "subsample where the GL samples with N (asked of a headless\n"
+              "context), or without one at the standard positions of\n"
+              "2, 4, 8 or 16 samples; 0 or 1: the pixel centre\n",
+      .man = "match a frame drawn with\n"
+             ".I N\n"
+             "MSAA samples\n"
+             ".RB ( \"tarn render \\-\\-msaa\" \" N):\"\n"
+             "subsample the colour where the GL samples with\n"
+             ".I N\n"
+             "(asked of a headless context with\n"
+             ".BR glGetMultisamplefv ;\n"
+             "with 4 on llvmpipe: (0.375, 0.125), (0.875, 0.375), (0.125, 0.625),\n"
+             "(0.625, 0.875) with y up), not on an ordered grid, so edges cover a pixel\n"
+             "alike in both; without a context, at the standard positions of 2, 4, 8 or\n"
+             "16 samples (it says which). 0 or 1: the pixel centre. Not with\n"
+             ".BR \\-\\-spp .\n" },
+    { "--photons", .metavar = "N", .kind = CMD_INT, .offset = OFF(d.photons_per_cell), .lo = 1, .hi = 1 << 20,
+      .wants = "1..1048576 per cell",
+      .help = "photons per caustic grid cell (default 36)\n",
+      .man = "photons per caustic grid cell (default 36).\n" },
+    { "--caustic-res", .metavar = "N", .kind = CMD_INT, .offset = OFF(d.caustic_res), .lo = 1, .hi = 8192,
+      .help = "caustic grid cells along the underwater floor (default 256)\n",
+      .man = "caustic grid cells along the underwater floor (default 256; at most 8192,\n"
+             "and the grids of all threads at most 8 GiB).\n" },
+    { "--seed", .metavar = "N", .kind = CMD_CUSTOM, .set = set_seed, .wants = "0..2147483647",
+      .help = "the photons' random numbers (default 0, the fixed\n"
+              "sequence); another seed samples the same strata anew, so\n"
+              "two seeds differ by photon noise alone\n",
+      .man = "the photons' random numbers (default 0, the fixed sequence); another seed\n"
+             "samples the same strata anew, so two seeds differ by photon noise alone.\n" },
+    { "--flat-caustics", .kind = CMD_CUSTOM, .set = set_flat_caustics,
+      .help = "no photons: the floor lit through flat water\n",
+      .man = "no photons: the floor lit through flat water.\n" },
+    { "--radiance-n2", .kind = CMD_CUSTOM, .set = set_radiance_n2,
+      .help = "scale radiance crossing the surface by (n_t/n_i)^2\n",
+      .man = "scale radiance crossing the surface by\n"
+             ".RI ( n_t / n_i )^2.\n" },
+    { "--quiet", .kind = CMD_FLAG, .offset = OFF(quiet),
+      .help = "no progress bar and no summary, only errors\n",
+      .man = "no progress bar and no summary, only errors.\n" },
+    { 0 }
+};
+
+const cmd_spec cmd_reference_spec = {
+    .name = "reference",
+    .synopsis = "SCENE.glib -o OUT.exr [--size WxH] [--time SECONDS]\n"
+                "[--threads N] [--spp N | --msaa N] [--photons N] [--caustic-res N]\n"
+                "[--seed N] [--flat-caustics] [--radiance-n2] [--quiet]\n",
+    .about = "Renders the scene's world on the CPU in double precision: the ground truth\n"
+             "the packs are measured against (exact waves, Fresnel, refraction, ray/terrain\n"
+             "intersection, Beer-Lambert, caustics by photon tracing). Deterministic: the\n"
+             "same output for any number of threads.\n",
+    .options = options,
+    .notes = "exit codes: 0 ok, 1 the scene has errors or an output could not be written,\n"
+             "2 bad usage\n",
+    .column = 23,
+    .extra = "one scene at a time",
+};
+
+const char *cmd_reference_usage(void) {
+    static char text[CMD_USAGE_MAX];
+    return cmd_usage(&cmd_reference_spec, text, sizeof text);
+}
+
+static int bad_usage(const char *what) { return cmd_bad_usage(&cmd_reference_spec, stderr, "%s", what); }
+
 static int parse(int argc, char **argv, reference_opts *o) {
-    ref_render_desc *d = &o->d;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) {
-            if (!next) return bad_usage("-o wants a path, e.g. -o out/ref.exr");
-            o->out = next;
-            i++;
-        } else if (strcmp(a, "--size") == 0) {
-            if (!opt_size(next, &o->width, &o->height)) return bad_usage("--size wants WxH, e.g. 640x360");
-            i++;
-        } else if (strcmp(a, "--time") == 0) {
-            if (!opt_double(next, &d->time) || !isfinite(d->time)) return bad_usage("--time wants seconds, e.g. 2.5");
-            i++;
-        } else if (strcmp(a, "--threads") == 0) {
-            if (!cmd_opt_int(next, 1, 256, &d->threads)) return bad_usage("--threads wants 1..256");
-            i++;
-        } else if (strcmp(a, "--spp") == 0) {
-            if (!cmd_opt_int(next, 1, 16, &d->spp)) return bad_usage("--spp wants 1..16 (N x N subsamples)");
-            i++;
-        } else if (strcmp(a, "--msaa") == 0) {
-            if (!cmd_opt_msaa(next, &o->msaa)) return bad_usage("--msaa wants 0..16 samples");
-            i++;
-        } else if (strcmp(a, "--photons") == 0) {
-            if (!cmd_opt_int(next, 1, 1 << 20, &d->photons_per_cell)) return bad_usage("--photons wants 1..1048576 per cell");
-            i++;
-        } else if (strcmp(a, "--caustic-res") == 0) {
-            if (!cmd_opt_int(next, 1, 8192, &d->caustic_res)) return bad_usage("--caustic-res wants 1..8192");
-            i++;
-        } else if (strcmp(a, "--seed") == 0) {
-            int seed;
-            if (!cmd_opt_int(next, 0, 2147483647, &seed)) return bad_usage("--seed wants 0..2147483647");
-            d->seed = (uint64_t)seed;
-            i++;
-        } else if (strcmp(a, "--flat-caustics") == 0) {
-            d->caustics = REF_CAUSTICS_FLAT;
-        } else if (strcmp(a, "--radiance-n2") == 0) {
-            d->radiance_n2 = 1;
-        } else if (strcmp(a, "--quiet") == 0) {
-            o->quiet = true;
-        } else if (a[0] == '-') {
-            char what[160];
-            snprintf(what, sizeof what, "unknown option '%.100s'", a);
-            return bad_usage(what);
-        } else if (!o->glib) {
-            o->glib = a;
-        } else {
-            return bad_usage("one scene at a time");
-        }
-    }
-    if (o->msaa && d->spp) return bad_usage("--spp and --msaa: give one (--spp N is an N x N grid, --msaa N matches MSAA)");
-    if (!o->glib) return bad_usage("which scene? give SCENE.glib");
-    if (!o->out) return bad_usage("where to? give -o OUT.exr");
+    int rc = cmd_parse(&cmd_reference_spec, argc, argv, o, stderr);
+    if (rc != TARN_EXIT_OK) return rc;
+    if (o->msaa && o->d.spp) return bad_usage("--spp and --msaa: give one (--spp N is an N x N grid, --msaa N matches MSAA)");
     size_t ol = strlen(o->out);
     if (ol < 5 || strcmp(o->out + ol - 4, ".exr") != 0)
         return bad_usage("-o wants a .exr path (the PNG and the buffers go beside it)");
@@ -349,7 +393,7 @@ static int run(reference_opts *o) {
 }
 
 int cmd_reference(int argc, char **argv) {
-    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
+    if (cmd_wants_help(argc, argv)) { fputs(cmd_reference_usage(), stdout); return TARN_EXIT_OK; }
     reference_opts o;
     memset(&o, 0, sizeof o);
     int rc = parse(argc, argv, &o);

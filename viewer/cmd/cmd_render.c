@@ -3,6 +3,7 @@
  * Deterministic for a fixed --time. */
 #include <GL/gl.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -236,88 +237,133 @@ int cli_render(const cli_render_desc *d) {
 
 /* ---- the command line ---- */
 
-static const char usage[] =
-    "usage: tarn render FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
-    "                   [--still] [--passes] [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
-    "                   [--quiet | --verbose]\n"
-    "\n"
-    "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
-    "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n"
-    "\n"
-    "  -o, --out OUT    output image: .png (8-bit) or .exr (float), any format\n"
-    "                   OpenImageIO writes; a %d in the name writes every frame\n"
-    "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
-    "  --size WxH       image size (default: the glib's WindowSize)\n"
-    "  --time SECONDS   simulated time of the first frame (default 0)\n"
-    "  --frames N       render N frames, 1/60 s apart; prints the median GPU time\n"
-    "                   and wall time per frame\n"
-    "  --still          ...all N at --time, as a paused window and tarn bench draw\n"
-    "                   them (what does not change is reused: the static-world cache)\n"
-    "  --passes         ...and the median GPU time of each pass and of each drawing\n"
-    "                   command (KIND:LINE) over the N frames: where a frame's time goes\n"
-    "  --setting NAME   start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
-    "                   default, paper, ...), as the panel's Setting combo does\n"
-    "  --set P.NAME=V   set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
-    "                   as the panel would (NAME=V: of every Program); repeatable\n"
-    CMD_MSAA_STILL_HELP
-    "  --quiet          print only warnings and errors\n"
-    "  --verbose        each uniform the shaders declare but do not use, a note at\n"
-    "                   its glib line (by default one summary line a load)\n"
-    "\n"
-    "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
+#define OFF(field) offsetof(cli_render_desc, field)
 
-const char *cmd_render_usage(void) { return usage; }
+static const cmd_option options[] = {
+    { "FILE.glib", .kind = CMD_ARG, .offset = OFF(glib), .missing = "which scene? give FILE.glib" },
+    { "--out", "-o", "OUT", .kind = CMD_STRING, .offset = OFF(out), .missing = "where to? give -o OUT.png",
+      .help = "output image: .png (8-bit) or .exr (float), any format\n"
+              "OpenImageIO writes; a %d in the name writes every frame\n",
+      .man = "output image:\n"
+             ".I .png\n"
+             "(8\\-bit) or\n"
+             ".I .exr\n"
+             "(float), any format OpenImageIO writes; a\n"
+             ".B %d\n"
+             "in the name writes every frame.\n" },
+    { "--pack", .metavar = "NAME", .kind = CMD_PACK, .offset = OFF(pack),
+      .help = "draw the water with packs/NAME instead of the scene's Pack\n",
+      .man = "draw the water with\n"
+             ".BI packs/ NAME\n"
+             "instead of the scene's\n"
+             ".BR Pack .\n" },
+    { "--size", .metavar = "WxH", .kind = CMD_SIZE, .offset = OFF(width), .offset2 = OFF(height),
+      .wants = "WxH, e.g. 640x360",
+      .help = "image size (default: the glib's WindowSize)\n",
+      .man = "image size (default: the glib's\n"
+             ".BR WindowSize ).\n" },
+    { "--time", .metavar = "SECONDS", .kind = CMD_DOUBLE, .offset = OFF(time_s), .wants = "seconds, e.g. 2.5",
+      .help = "simulated time of the first frame (default 0)\n",
+      .man = "simulated time of the first frame (default 0).\n" },
+    { "--frames", .metavar = "N", .kind = CMD_INT, .offset = OFF(frames), .lo = 1, .hi = 100000,
+      .help = "render N frames, 1/60 s apart; prints the median GPU time\n"
+              "and wall time per frame\n",
+      .man = "render\n"
+             ".I N\n"
+             "frames, 1/60 s apart; prints the median GPU time and wall time per frame.\n" },
+    { "--still", .kind = CMD_FLAG, .offset = OFF(still),
+      .help = "...all N at --time, as a paused window and tarn bench draw\n"
+              "them (what does not change is reused: the static-world cache)\n",
+      .man = "render the\n"
+             ".B \\-\\-frames\n"
+             "all at\n"
+             ".BR \\-\\-time ,\n"
+             "as a paused window and\n"
+             ".B tarn bench\n"
+             "draw them: what does not change from frame to frame is reused (the\n"
+             "static\\-world cache), so the median is a still picture's cost.\n" },
+    { "--passes", .kind = CMD_FLAG, .offset = OFF(passes),
+      .help = "...and the median GPU time of each pass and of each drawing\n"
+              "command (KIND:LINE) over the N frames: where a frame's time goes\n",
+      .man = "also print the median GPU time of each pass and of each drawing command\n"
+             "(its kind and glib line:\n"
+             ".BR World:12 ,\n"
+             ".BR WaterSurface:40 ),\n"
+             "and of the world's height map: where a frame's time goes. Each mark\n"
+             "finishes the work before it (on a CPU rasteriser the time of a draw's\n"
+             "pixels otherwise falls in a later draw), so the total is a little more\n"
+             "than without.\n" },
+    { "--setting", .metavar = "NAME", .kind = CMD_STRING, .offset = OFF(setting),
+      .help = "start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
+              "default, paper, ...), as the panel's Setting combo does\n",
+      .man = "start from the pack's setting\n"
+             ".I NAME\n"
+             "(a row of\n"
+             ".BI packs/ PACK /bench.txt ,\n"
+             "e.g.\n"
+             ".BR paper ),\n"
+             "applied as the view window's\n"
+             ".B Setting\n"
+             "combo applies it, before any\n"
+             ".BR \\-\\-set .\n" },
+    { "--set", .metavar = "P.NAME=V", .kind = CMD_LIST, .offset = OFF(sets), .offset2 = OFF(nsets),
+      .help = "set a slider, checkbox, colour (V,V,V) or Define of Program P\n"
+              "as the panel would (NAME=V: of every Program); repeatable\n",
+      .man = "set a slider, checkbox, colour\n"
+             ".RI ( V , V , V )\n"
+             "or\n"
+             ".B Define\n"
+             "of\n"
+             ".B Program\n"
+             ".I P\n"
+             "as the panel would\n"
+             ".RI ( NAME = V :\n"
+             "of every\n"
+             ".BR Program ;\n"
+             ".BI scene. Command = ARGS :\n"
+             "a world command the renderer takes at run time,\n"
+             ".BR WaterMesh );\n"
+             "repeatable.\n" },
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = OFF(samples), .help = CMD_MSAA_STILL_HELP,
+      .man = "anti\\-aliasing: the screen passes are drawn with\n"
+             ".I N\n"
+             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n"
+             "every renderer, or as many as it allows: what is written is anti\\-aliased;\n"
+             "on a CPU rasteriser such as llvmpipe 4 samples cost 2 to 3 times the frame).\n" },
+    { "--quiet", .kind = CMD_FLAG, .offset = OFF(quiet),
+      .help = "print only warnings and errors\n",
+      .man = "print only warnings and errors (not notes, such as the uniforms a pack's Defines compile out).\n" },
+    { "--verbose", .kind = CMD_FLAG, .offset = OFF(verbose),
+      .help = "each uniform the shaders declare but do not use, a note at\n"
+              "its glib line (by default one summary line a load)\n",
+      .man = "each uniform of the glib that the shaders declare but do not use (compiled\n"
+             "out by a Define, or unused) as a note at its own glib line; by default a\n"
+             "load says them in one summary line.\n" },
+    { 0 }
+};
 
-static int bad(const char *what) { return cmd_bad_usage(stderr, "tarn", usage, "%s", what); }
+const cmd_spec cmd_render_spec = {
+    .name = "render",
+    .synopsis = "FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
+                "[--still] [--passes] [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
+                "[--quiet | --verbose]\n",
+    .about = "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
+             "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n",
+    .options = options,
+    .notes = "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n",
+    .extra = "one scene at a time",
+};
 
-/* Fills d from argv; sets has room for argc entries (every --set kept). */
-static int parse(int argc, char **argv, cli_render_desc *d, const char **sets) {
-    d->sets = sets;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        double f;
-        if ((strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) && next) { d->out = next; i++; }
-        else if (strcmp(a, "--size") == 0) {
-            if (!opt_size(next, &d->width, &d->height)) return bad("--size wants WxH, e.g. 640x360");
-            i++;
-        } else if (strcmp(a, "--time") == 0) {
-            if (!opt_double(next, &d->time_s)) return bad("--time wants seconds, e.g. 2.5");
-            i++;
-        } else if (strcmp(a, "--still") == 0) {
-            d->still = true;
-        } else if (strcmp(a, "--passes") == 0) {
-            d->passes = true;
-        } else if (strcmp(a, "--frames") == 0) {
-            if (!cmd_opt_range(next, 1, 100000, &f)) return bad("--frames wants 1..100000");
-            d->frames = (int)f;
-            i++;
-        } else if (strcmp(a, "--msaa") == 0) {
-            if (!cmd_opt_msaa(next, &d->samples)) return bad("--msaa wants 0..16 samples");
-            i++;
-        } else if (strcmp(a, "--pack") == 0 && next) {
-            char why[512];
-            if (!cmd_opt_pack(next, why, sizeof why)) return bad(why);
-            d->pack = next;
-            i++;
-        }
-        else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }
-        else if (strcmp(a, "--setting") == 0 && next) { d->setting = next; i++; }
-        else if (strcmp(a, "--quiet") == 0) d->quiet = true;
-        else if (strcmp(a, "--verbose") == 0) d->verbose = true;
-        else if (a[0] == '-') return bad("unknown option");
-        else if (!d->glib) d->glib = a;
-        else return bad("one scene at a time");
-    }
-    if (!d->glib) return bad("which scene? give FILE.glib");
-    if (!d->out) return bad("where to? give -o OUT.png");
-    return TARN_EXIT_OK;
+const char *cmd_render_usage(void) {
+    static char text[CMD_USAGE_MAX];
+    return cmd_usage(&cmd_render_spec, text, sizeof text);
 }
 
 int cmd_render(int argc, char **argv) {
-    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
-    const char **sets = mem_zalloc(((size_t)argc + 1) * sizeof *sets);
-    cli_render_desc d = {0};
-    int rc = parse(argc, argv, &d, sets);
+    if (cmd_wants_help(argc, argv)) { fputs(cmd_render_usage(), stdout); return TARN_EXIT_OK; }
+    const char **sets = mem_zalloc(((size_t)argc + 1) * sizeof *sets);   /* every --set kept */
+    cli_render_desc d = { .sets = sets };
+    int rc = cmd_parse(&cmd_render_spec, argc, argv, &d, stderr);
     if (rc == TARN_EXIT_OK) rc = cli_render(&d);
     free(sets);
     return rc;

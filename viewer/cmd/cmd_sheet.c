@@ -6,6 +6,7 @@
  * glman's capture wrote the variables onto the image), in one image. */
 #include <GL/gl.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -184,40 +185,6 @@ done:
 
 /* ---- the command line ---- */
 
-static const char usage[] =
-    "usage: tarn sheet FILE.glib --vary PROGRAM.NAME=A:B:N [--vary PROGRAM.NAME=A:B:N] [-o OUT]\n"
-    "                  [--size WxH] [--time SECONDS] [--pack NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
-    "\n"
-    "A hand-in sheet: renders the scene (headless, as tarn render) once for each\n"
-    "value of a uniform, N values from A to B evenly (N = 1: A), side by side in\n"
-    "one image, each tile labelled with its values. A second --vary makes a grid:\n"
-    "the first varies along a row, the second down the columns.\n"
-    "\n"
-    "  --vary P.NAME=A:B:N  the uniform NAME of Program P (NAME=...: of every\n"
-    "                   Program), set as --set and the panel set it; N 1..64,\n"
-    "                   at most 256 tiles\n"
-    "  -o, --out OUT    the sheet: .png (default sheet.png), .jpg, any 8-bit format\n"
-    "  --size WxH       each tile's size (default: the glib's WindowSize, scaled\n"
-    "                   down to 400 pixels wide)\n"
-    "  --time SECONDS   simulated time of every tile (default 0)\n"
-    "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
-    "  --set P.NAME=V   set a slider, checkbox, colour or Define first, as in\n"
-    "                   tarn render; repeatable\n"
-    CMD_MSAA_STILL_HELP
-    "  --quiet          print only warnings and errors\n"
-    "\n"
-    "In tarn view, a slider's right-click menu makes the same sheet of it (5 values\n"
-    "over its range, every other value as the window has it).\n"
-    "\n"
-    "A value the scene does not take (no such uniform, or outside its slider's\n"
-    "range, which would be clamped) stops the sheet: its labels would be wrong.\n"
-    "\n"
-    "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n";
-
-const char *cmd_sheet_usage(void) { return usage; }
-
-static int bad(const char *what) { return cmd_bad_usage(stderr, "tarn sheet", usage, "%s", what); }
-
 /* "NAME=A:B:N" */
 static bool parse_vary(const char *s, sheet_vary *v) {
     const char *eq = s ? strrchr(s, '=') : NULL;
@@ -236,46 +203,115 @@ static bool parse_vary(const char *s, sheet_vary *v) {
     return isfinite(v->a) && isfinite(v->b);
 }
 
-static int parse(int argc, char **argv, sheet_desc *d, const char **sets) {
-    d->sets = sets;
-    d->out = "sheet.png";
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if ((strcmp(a, "-o") == 0 || strcmp(a, "--out") == 0) && next) { d->out = next; i++; }
-        else if (strcmp(a, "--vary") == 0) {
-            if (d->nvary == SHEET_MAX_VARY) return bad("at most two --vary: a row, or a grid");
-            if (!parse_vary(next, &d->vary[d->nvary]))
-                return bad("--vary wants PROGRAM.NAME=A:B:N, e.g. Stripes.uFreq=1:10:5 (N 1..64)");
-            d->nvary++;
-            i++;
-        } else if (strcmp(a, "--size") == 0) {
-            if (!opt_size(next, &d->width, &d->height)) return bad("--size wants WxH, e.g. 320x240");
-            i++;
-        } else if (strcmp(a, "--time") == 0) {
-            if (!opt_double(next, &d->time_s)) return bad("--time wants seconds, e.g. 2.5");
-            i++;
-        } else if (strcmp(a, "--msaa") == 0) {
-            if (!cmd_opt_msaa(next, &d->samples)) return bad("--msaa wants 0..16 samples");
-            i++;
-        }
-        else if (strcmp(a, "--set") == 0 && next) { sets[d->nsets++] = next; i++; }
-        else if (strcmp(a, "--pack") == 0 && next) { d->pack = next; i++; }
-        else if (strcmp(a, "--quiet") == 0) d->quiet = true;
-        else if (a[0] == '-') return bad("unknown option");
-        else if (!d->glib) d->glib = a;
-        else return bad("one scene at a time");
+/* --vary: one more varied uniform, at most SHEET_MAX_VARY. */
+static bool set_vary(void *desc, const char *value, char *why, size_t whylen) {
+    sheet_desc *d = desc;
+    if (d->nvary == SHEET_MAX_VARY) {
+        snprintf(why, whylen, "at most two --vary: a row, or a grid");
+        return false;
     }
-    if (!d->glib) return bad("which scene? give FILE.glib");
-    if (d->nvary == 0) return bad("what to vary? give --vary PROGRAM.NAME=A:B:N");
-    if (d->vary[0].n * (d->nvary > 1 ? d->vary[1].n : 1) > SHEET_MAX_TILES) return bad("more than 256 tiles");
-    return TARN_EXIT_OK;
+    if (!parse_vary(value, &d->vary[d->nvary])) return false;
+    d->nvary++;
+    return true;
+}
+
+#define OFF(field) offsetof(sheet_desc, field)
+
+static const cmd_option options[] = {
+    { "FILE.glib", .kind = CMD_ARG, .offset = OFF(glib), .missing = "which scene? give FILE.glib" },
+    { "--vary", .metavar = "P.NAME=A:B:N", .kind = CMD_CUSTOM, .set = set_vary,
+      .wants = "PROGRAM.NAME=A:B:N, e.g. Stripes.uFreq=1:10:5 (N 1..64)",
+      .missing = "what to vary? give --vary PROGRAM.NAME=A:B:N",
+      .help = "the uniform NAME of Program P (NAME=...: of every\n"
+              "Program), set as --set and the panel set it; N 1..64,\n"
+              "at most 256 tiles\n",
+      .man = "the uniform\n"
+             ".I NAME\n"
+             "of\n"
+             ".B Program\n"
+             ".I P\n"
+             ".RI ( NAME =...:\n"
+             "of every\n"
+             ".BR Program ),\n"
+             "set for each tile as\n"
+             ".B \\-\\-set\n"
+             "and the panel set it;\n"
+             ".I N\n"
+             "1 to 64, at most 256 tiles.\n"
+             "A value the scene does not take (no such uniform, or outside its slider's\n"
+             "range, which would be clamped) stops the sheet with exit status 2: its labels\n"
+             "would be wrong.\n" },
+    { "--out", "-o", "OUT", .kind = CMD_STRING, .offset = OFF(out),
+      .help = "the sheet: .png (default sheet.png), .jpg, any 8-bit format\n",
+      .man = "the sheet:\n"
+             ".I .png\n"
+             "(default\n"
+             ".IR sheet.png ),\n"
+             ".IR .jpg ,\n"
+             "any 8\\-bit format OpenImageIO writes.\n" },
+    { "--size", .metavar = "WxH", .kind = CMD_SIZE, .offset = OFF(width), .offset2 = OFF(height),
+      .wants = "WxH, e.g. 320x240",
+      .help = "each tile's size (default: the glib's WindowSize, scaled\n"
+              "down to 400 pixels wide)\n",
+      .man = "each tile's size (default: the glib's\n"
+             ".BR WindowSize ,\n"
+             "scaled down to 400 pixels wide).\n" },
+    { "--time", .metavar = "SECONDS", .kind = CMD_DOUBLE, .offset = OFF(time_s), .wants = "seconds, e.g. 2.5",
+      .help = "simulated time of every tile (default 0)\n",
+      .man = "simulated time of every tile (default 0).\n" },
+    { "--pack", .metavar = "NAME", .kind = CMD_PACK, .offset = OFF(pack),
+      .help = "draw the water with packs/NAME instead of the scene's Pack\n",
+      .man = "draw the water with\n"
+             ".I packs/NAME\n"
+             "instead of the scene's\n"
+             ".BR Pack .\n" },
+    { "--set", .metavar = "P.NAME=V", .kind = CMD_LIST, .offset = OFF(sets), .offset2 = OFF(nsets),
+      .help = "set a slider, checkbox, colour or Define first, as in\n"
+              "tarn render; repeatable\n",
+      .man = "set a slider, checkbox, colour or\n"
+             ".B Define\n"
+             "before the varied values, as in\n"
+             ".BR \"tarn render\" ;\n"
+             "repeatable.\n" },
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = OFF(samples), .help = CMD_MSAA_STILL_HELP,
+      .man = "anti\\-aliasing samples per pixel, 0 or 1 off (default 4 on every renderer).\n" },
+    { "--quiet", .kind = CMD_FLAG, .offset = OFF(quiet),
+      .help = "print only warnings and errors\n",
+      .man = "print the load's messages only when it has errors.\n" },
+    { 0 }
+};
+
+const cmd_spec cmd_sheet_spec = {
+    .name = "sheet",
+    .synopsis = "FILE.glib --vary PROGRAM.NAME=A:B:N [--vary PROGRAM.NAME=A:B:N] [-o OUT]\n"
+                "[--size WxH] [--time SECONDS] [--pack NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n",
+    .about = "A hand-in sheet: renders the scene (headless, as tarn render) once for each\n"
+             "value of a uniform, N values from A to B evenly (N = 1: A), side by side in\n"
+             "one image, each tile labelled with its values. A second --vary makes a grid:\n"
+             "the first varies along a row, the second down the columns.\n",
+    .options = options,
+    .notes = "In tarn view, a slider's right-click menu makes the same sheet of it (5 values\n"
+             "over its range, every other value as the window has it).\n"
+             "\n"
+             "A value the scene does not take (no such uniform, or outside its slider's\n"
+             "range, which would be clamped) stops the sheet: its labels would be wrong.\n"
+             "\n"
+             "exit codes: 0 ok, 1 the scene or a shader has errors, 2 bad usage, 3 no OpenGL\n",
+    .extra = "one scene at a time",
+};
+
+const char *cmd_sheet_usage(void) {
+    static char text[CMD_USAGE_MAX];
+    return cmd_usage(&cmd_sheet_spec, text, sizeof text);
 }
 
 int cmd_sheet(int argc, char **argv) {
-    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
-    const char **sets = mem_zalloc(((size_t)argc + 1) * sizeof *sets);
-    sheet_desc d = {0};
-    int rc = parse(argc, argv, &d, sets);
+    if (cmd_wants_help(argc, argv)) { fputs(cmd_sheet_usage(), stdout); return TARN_EXIT_OK; }
+    const char **sets = mem_zalloc(((size_t)argc + 1) * sizeof *sets);   /* every --set kept */
+    sheet_desc d = { .sets = sets, .out = "sheet.png" };
+    int rc = cmd_parse(&cmd_sheet_spec, argc, argv, &d, stderr);
+    if (rc == TARN_EXIT_OK && d.vary[0].n * (d.nvary > 1 ? d.vary[1].n : 1) > SHEET_MAX_TILES)
+        rc = cmd_bad_usage(&cmd_sheet_spec, stderr, "more than 256 tiles");
     if (rc == TARN_EXIT_OK) rc = sheet_run(&d);
     free(sets);
     return rc;

@@ -1,75 +1,130 @@
 /* cmd_view: `tarn view FILE.glib`, the live window (ui/view.h). */
 #include "cmd.h"
 
-#include <string.h>
+#include <stddef.h>
 
 #include "util.h"
 #include "view.h"
 
-static const char usage[] =
-    "usage: tarn view FILE.glib [--pack NAME] [--setting NAME] [--size WxH] [--time SECONDS]\n"
-    "                 [--script FILE] [--record FILE] [--msaa N] [--verbose]\n"
-    "\n"
-    "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
-    "generated sliders (one section per Program). Every file the scene reads is\n"
-    "watched; a save reloads within a frame or two. A shader that fails to\n"
-    "compile keeps the last good one running and shows the error.\n"
-    "\n"
-    "  --pack NAME      draw the water with packs/NAME instead of the scene's Pack\n"
-    "  --setting NAME   start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
-    "                   default, paper, ...; the panel's Setting combo)\n"
-    "  --size WxH       window size of the scene (default: the glib's WindowSize)\n"
-    "  --time SECONDS   start at this simulated time\n"
-    "  --script FILE    run scripted actions (frames N, set P U v, expect P U v,\n"
-    "                   wait SECONDS, screenshot PATH, camera CX CY CZ DIST YAW PITCH,\n"
-    "                   pause 1|0, reload, window W H, pack NAME, setting NAME,\n"
-    "                   help 1|0, slow MS (frames of at least MS: input at a low\n"
-    "                   frame rate), quit),\n"
-    "                   then exit\n"
-    "  --record FILE    record what you do (sliders, camera, pause) into the session\n"
-    "                   FILE from the start; `tarn record FILE -o out.mp4` replays it\n"
-    CMD_MSAA_HELP
-    "  --verbose        each uniform the shaders declare but do not use, a note at\n"
-    "                   its glib line (by default one summary line a load)\n"
-    "\n"
-    "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
-    "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
-    "       Shift+R start/stop recording a session (tarn-DATE-N.session)   Esc or Q quit\n"
-    "       F1 or ? shows these keys over the scene\n"
-    "\n"
-    "Screenshots are opaque PNGs, tarn-DATE-N.png in the current directory; the\n"
-    "path shows over the scene. Frame time is ms per frame over the last second.\n";
+static const cmd_option options[] = {
+    { "FILE.glib", .kind = CMD_ARG, .offset = offsetof(view_desc, glib), .missing = "which scene? give FILE.glib" },
+    { "--pack", .metavar = "NAME", .kind = CMD_PACK, .offset = offsetof(view_desc, pack),
+      .help = "draw the water with packs/NAME instead of the scene's Pack\n",
+      .man = "draw the water with\n"
+             ".BI packs/ NAME\n"
+             "instead of the scene's\n"
+             ".BR Pack .\n" },
+    { "--setting", .metavar = "NAME", .kind = CMD_STRING, .offset = offsetof(view_desc, setting),
+      .help = "start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
+              "default, paper, ...; the panel's Setting combo)\n",
+      .man = "start from the pack's setting\n"
+             ".I NAME\n"
+             "(the\n"
+             ".B Setting\n"
+             "combo's).\n" },
+    { "--size", .metavar = "WxH", .kind = CMD_SIZE, .offset = offsetof(view_desc, width),
+      .offset2 = offsetof(view_desc, height),
+      .help = "window size of the scene (default: the glib's WindowSize)\n",
+      .man = "window size of the scene (default: the glib's\n"
+             ".BR WindowSize ).\n" },
+    { "--time", .metavar = "SECONDS", .kind = CMD_DOUBLE, .offset = offsetof(view_desc, time_s), .wants = "seconds",
+      .help = "start at this simulated time\n",
+      .man = "start at this simulated time.\n" },
+    { "--script", .metavar = "FILE", .kind = CMD_STRING, .offset = offsetof(view_desc, script),
+      .help = "run scripted actions (frames N, set P U v, expect P U v,\n"
+              "wait SECONDS, screenshot PATH, camera CX CY CZ DIST YAW PITCH,\n"
+              "pause 1|0, reload, window W H, pack NAME, setting NAME,\n"
+              "help 1|0, slow MS (frames of at least MS: input at a low\n"
+              "frame rate), quit),\n"
+              "then exit\n",
+      .man = "run scripted actions, one a line, then exit:\n"
+             ".BI frames \" N\" ,\n"
+             ".BI set \" P U v\" ,\n"
+             ".BI expect \" P U v\" ,\n"
+             ".BI wait \" SECONDS\" ,\n"
+             ".BI screenshot \" PATH\" ,\n"
+             ".BI camera \" CX CY CZ DIST YAW PITCH\" ,\n"
+             ".BR \"pause 1\" | 0 ,\n"
+             ".BR \"help 1\" | 0\n"
+             "(the key help, as F1),\n"
+             ".BI window \" W H\" ,\n"
+             ".BI orbit \" DYAW DPITCH\" \" \\fR[\\fPFRAMES\\fR]\\fP\"\n"
+             "(turn the camera now and on each of the next frames),\n"
+             ".BI budget \" MS\" ,\n"
+             ".BI slow \" MS\"\n"
+             "(every frame lasts at least MS, as on a slow GPU: input between frames is tested so),\n"
+             ".B resolution\n"
+             "(print the size drawn),\n"
+             ".B expect\\-resolution full\\fR|\\fBreduced\\fR,\n"
+             ".B clock\n"
+             "(frames and wall ms, for benchmarks),\n"
+             ".B stamp on\\fR|\\fBoff\\fR\n"
+             "(print when the first frame after a reload is on screen),\n"
+             ".BR reload ,\n"
+             ".BI pack \" NAME\"\n"
+             "(the\n"
+             ".B Pack\n"
+             "combo),\n"
+             ".BI setting \" NAME\"\n"
+             "(the\n"
+             ".B Setting\n"
+             "combo),\n"
+             ".BR quit .\n" },
+    { "--record", .metavar = "FILE", .kind = CMD_STRING, .offset = offsetof(view_desc, record),
+      .help = "record what you do (sliders, camera, pause) into the session\n"
+              "FILE from the start; `tarn record FILE -o out.mp4` replays it\n",
+      .man = "record what you do into the session\n"
+             ".I FILE\n"
+             "from the start: slider, colour, checkbox and\n"
+             ".B Define\n"
+             "changes, camera moves, pauses, pack and setting switches, each a line with its time\n"
+             ".RB ( \"t=1.250 slider Water uWaveAmp 0.4\" ).\n"
+             ".B Shift+R\n"
+             "stops and starts recordings in the window too;\n"
+             ".B tarn record\n"
+             "replays them.\n" },
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = offsetof(view_desc, samples), .help = CMD_MSAA_HELP,
+      .man = "anti\\-aliasing: the screen passes are drawn with\n"
+             ".I N\n"
+             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n"
+             "a GPU, or as many as it allows; off on a CPU rasteriser such as llvmpipe,\n"
+             "where 4 samples cost 2 to 3 times the frame).\n" },
+    { "--verbose", .kind = CMD_FLAG, .offset = offsetof(view_desc, verbose),
+      .help = "each uniform the shaders declare but do not use, a note at\n"
+              "its glib line (by default one summary line a load)\n",
+      .man = "each uniform of the glib that the shaders declare but do not use (compiled\n"
+             "out by a Define, or unused) as a note at its own glib line; by default a\n"
+             "load says them in one summary line.\n" },
+    { 0 }
+};
 
-const char *cmd_view_usage(void) { return usage; }
+const cmd_spec cmd_view_spec = {
+    .name = "view",
+    .synopsis = "FILE.glib [--pack NAME] [--setting NAME] [--size WxH] [--time SECONDS]\n"
+                "[--script FILE] [--record FILE] [--msaa N] [--verbose]\n",
+    .about = "Opens an OpenGL 4.5 compatibility window on the scene, with a panel of\n"
+             "generated sliders (one section per Program). Every file the scene reads is\n"
+             "watched; a save reloads within a frame or two. A shader that fails to\n"
+             "compile keeps the last good one running and shows the error.\n",
+    .options = options,
+    .notes = "mouse: left drag orbits, right or middle drag pans, wheel zooms\n"
+             "keys:  R reload   Space pause time   P or F12 screenshot   F or Home reset camera\n"
+             "       Shift+R start/stop recording a session (tarn-DATE-N.session)   Esc or Q quit\n"
+             "       F1 or ? shows these keys over the scene\n"
+             "\n"
+             "Screenshots are opaque PNGs, tarn-DATE-N.png in the current directory; the\n"
+             "path shows over the scene. Frame time is ms per frame over the last second.\n",
+    .extra = "one scene at a time",
+};
+
+const char *cmd_view_usage(void) {
+    static char text[CMD_USAGE_MAX];
+    return cmd_usage(&cmd_view_spec, text, sizeof text);
+}
 
 int cmd_view(int argc, char **argv) {
+    if (cmd_wants_help(argc, argv)) { fputs(cmd_view_usage(), stdout); return TARN_EXIT_OK; }
     view_desc d = {0};
-    if (cmd_wants_help(argc, argv)) { fputs(usage, stdout); return TARN_EXIT_OK; }
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--size") == 0) {
-            if (!opt_size(next, &d.width, &d.height)) return cmd_bad_usage(stderr, "tarn", usage, "--size wants WxH");
-            i++;
-        } else if (strcmp(a, "--time") == 0) {
-            if (!opt_double(next, &d.time_s)) return cmd_bad_usage(stderr, "tarn", usage, "--time wants seconds");
-            i++;
-        } else if (strcmp(a, "--msaa") == 0) {
-            if (!cmd_opt_msaa(next, &d.samples)) return cmd_bad_usage(stderr, "tarn", usage, "--msaa wants 0..16 samples");
-            i++;
-        } else if (strcmp(a, "--script") == 0 && next) { d.script = next; i++; }
-        else if (strcmp(a, "--pack") == 0 && next) {
-            char why[512];
-            if (!cmd_opt_pack(next, why, sizeof why)) return cmd_bad_usage(stderr, "tarn", usage, "%s", why);
-            d.pack = next;
-            i++;
-        }
-        else if (strcmp(a, "--record") == 0 && next) { d.record = next; i++; }
-        else if (strcmp(a, "--verbose") == 0) d.verbose = true;
-        else if (strcmp(a, "--setting") == 0 && next) { d.setting = next; i++; }
-        else if (a[0] == '-') return cmd_bad_usage(stderr, "tarn", usage, "unknown option");
-        else if (!d.glib) d.glib = a;
-        else return cmd_bad_usage(stderr, "tarn", usage, "one scene at a time");
-    }
-    if (!d.glib) return cmd_bad_usage(stderr, "tarn", usage, "which scene? give FILE.glib");
-    return view_run(&d);
+    int rc = cmd_parse(&cmd_view_spec, argc, argv, &d, stderr);
+    return rc == TARN_EXIT_OK ? view_run(&d) : rc;
 }

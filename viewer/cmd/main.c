@@ -1,6 +1,9 @@
 /* tarn: a live lab for real-time water shaders. The command line: one
  * table of commands drives dispatch, the usage text, `tarn help [COMMAND]`
- * and `tarn COMMAND --help`; each command is a cmd_NAME.c (cmd.h). */
+ * and `tarn COMMAND --help`; each command is a cmd_NAME.c (cmd.h) whose
+ * option table (cmd_opt_table.h) gives its usage and its man-page entries
+ * (`tarn help --roff`). */
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -8,6 +11,7 @@
 #include "cmd.h"
 #include "file.h"
 #include "gl_ctx.h"
+#include "strbuf.h"
 #include "util.h"
 #include "view.h"
 
@@ -16,44 +20,45 @@
 #endif
 
 typedef struct command {
-    const char *name;
+    const cmd_spec *spec;           /* its name, usage text and options (cmd_opt_table.h) */
     const char *args;               /* after the name in the list of commands */
     const char *summary;            /* one line */
-    const char *(*usage)(void);     /* the full text: help NAME, NAME --help */
     int (*run)(int argc, char **argv);   /* the arguments after the name */
 } command;
 
-static const char *help_usage(void);
+static const cmd_spec help_spec;
 static int cmd_help(int argc, char **argv);
 
 static const command commands[] = {
-    { "view", "FILE.glib", "open a window; edits to any file the scene reads reload it",
-      cmd_view_usage, cmd_view },
-    { "render", "FILE.glib", "render without a display (EGL) to an image", cmd_render_usage, cmd_render },
-    { "record", "SESSION -o OUT", "replay a session recorded in the window to a video (ffmpeg) or PNGs",
-      cmd_record_usage, cmd_record },
-    { "sheet", "FILE.glib --vary", "a hand-in sheet: the scene at several uniform values, labelled, in one image",
-      cmd_sheet_usage, cmd_sheet },
-    { "validate", "[PATH...]", "check every shader of every pack with glslang", cmd_validate_usage,
-      cmd_validate },
-    { "reference", "FILE.glib", "the CPU ground truth: image and per-pixel buffers (double precision)",
-      cmd_reference_usage, cmd_reference },
-    { "compare", "A B", "error of image A against reference B: RMSE, PSNR, heat map, JSON/CSV",
-      cmd_compare_usage, cmd_compare },
-    { "compare-view", "FILE.glib", "two to four packs side by side in one window, heat maps",
-      cmd_compare_view_usage, cmd_compare_view },
-    { "bench", "[FILE.glib...]", "speed against error of every pack and setting: CSV, JSON, report, plot",
-      cmd_bench_usage, cmd_bench },
-    { "assets", "[--out DIR]", "write the generated textures (terrain, sky, normal maps, foam, caustics)",
-      cmd_assets_usage, cmd_assets },
-    { "help", "[COMMAND]", "this text, or a command's options", help_usage, cmd_help },
+    { &cmd_view_spec, "FILE.glib", "open a window; edits to any file the scene reads reload it", cmd_view },
+    { &cmd_render_spec, "FILE.glib", "render without a display (EGL) to an image", cmd_render },
+    { &cmd_record_spec, "SESSION -o OUT", "replay a session recorded in the window to a video (ffmpeg) or PNGs",
+      cmd_record },
+    { &cmd_sheet_spec, "FILE.glib --vary", "a hand-in sheet: the scene at several uniform values, labelled, in one image",
+      cmd_sheet },
+    { &cmd_validate_spec, "[PATH...]", "check every shader of every pack with glslang", cmd_validate },
+    { &cmd_reference_spec, "FILE.glib", "the CPU ground truth: image and per-pixel buffers (double precision)",
+      cmd_reference },
+    { &cmd_compare_spec, "A B", "error of image A against reference B: RMSE, PSNR, heat map, JSON/CSV", cmd_compare },
+    { &cmd_compare_view_spec, "FILE.glib", "two to four packs side by side in one window, heat maps",
+      cmd_compare_view },
+    { &cmd_bench_spec, "[FILE.glib...]", "speed against error of every pack and setting: CSV, JSON, report, plot",
+      cmd_bench },
+    { &cmd_assets_spec, "[--out DIR]", "write the generated textures (terrain, sky, normal maps, foam, caustics)",
+      cmd_assets },
+    { &help_spec, "[COMMAND]", "this text, or a command's options", cmd_help },
 };
 enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
 
 static const command *find(const char *name) {
     for (int i = 0; i < NCOMMANDS; i++)
-        if (strcmp(commands[i].name, name) == 0) return &commands[i];
+        if (strcmp(commands[i].spec->name, name) == 0) return &commands[i];
     return NULL;
+}
+
+static void print_help(const command *c, FILE *f) {
+    char text[CMD_USAGE_MAX];
+    fputs(cmd_usage(c->spec, text, sizeof text), f);
 }
 
 static void print_usage(FILE *f) {
@@ -65,7 +70,7 @@ static void print_usage(FILE *f) {
           "commands:\n", f);
     for (int i = 0; i < NCOMMANDS; i++) {
         char left[64];
-        snprintf(left, sizeof left, "%s %s", commands[i].name, commands[i].args);
+        snprintf(left, sizeof left, "%s %s", commands[i].spec->name, commands[i].args);
         fprintf(f, "  %-22s  %s\n", left, commands[i].summary);
     }
     fputs("\n"
@@ -90,18 +95,53 @@ static int unknown(const char *name) {
     return TARN_EXIT_USAGE;
 }
 
-static const char *help_usage(void) {
-    return "usage: tarn help [COMMAND]\n"
-           "\n"
-           "Lists the commands, or prints COMMAND's usage and options (the same as\n"
-           "`tarn COMMAND --help`).\n";
+/* `tarn help`'s own command line. */
+typedef struct help_args {
+    const char *command;
+    bool roff;
+} help_args;
+
+static const cmd_option help_options[] = {
+    { "COMMAND", .kind = CMD_ARG, .offset = offsetof(help_args, command) },
+    { "--roff", .kind = CMD_FLAG, .offset = offsetof(help_args, roff),
+      .help = "COMMAND's options (every command's, without one) as man-page\n"
+              "entries: the lists docs/tarn.1 holds (scripts/man_options.sh\n"
+              "writes them there)\n" },
+    { 0 }
+};
+
+static const cmd_spec help_spec = {
+    .name = "help",
+    .synopsis = "[COMMAND] [--roff]\n",
+    .about = "Lists the commands, or prints COMMAND's usage and options (the same as\n"
+             "`tarn COMMAND --help`).\n",
+    .options = help_options,
+    .extra = "one command at a time",
+};
+
+/* --roff: c's option list as man-page entries; every command's, each
+ * between the comments that mark it in docs/tarn.1, when c is NULL. */
+static void print_roff(const command *c) {
+    for (int i = 0; i < NCOMMANDS; i++) {
+        const command *k = &commands[i];
+        if (c && k != c) continue;
+        strbuf b = {0};
+        cmd_roff_options(k->spec, &b);
+        if (c) fputs(b.s ? b.s : "", stdout);
+        else if (b.s) printf(".\\\" BEGIN options: tarn help --roff %s\n%s.\\\" END options\n", k->spec->name, b.s);
+        strbuf_free(&b);
+    }
 }
 
 static int cmd_help(int argc, char **argv) {
-    if (argc == 0) { print_usage(stdout); return TARN_EXIT_OK; }
-    const command *c = find(argv[0]);
-    if (!c) return unknown(argv[0]);
-    fputs(c->usage(), stdout);
+    help_args a = {0};
+    int rc = cmd_parse(&help_spec, argc, argv, &a, stderr);
+    if (rc != TARN_EXIT_OK) return rc;
+    const command *c = a.command ? find(a.command) : NULL;
+    if (a.command && !c) return unknown(a.command);
+    if (a.roff) print_roff(c);
+    else if (c) print_help(c, stdout);
+    else print_usage(stdout);
     return TARN_EXIT_OK;
 }
 
@@ -126,7 +166,7 @@ int main(int argc, char **argv) {
     if (opt_is_help(name)) { print_usage(stdout); return TARN_EXIT_OK; }
     if (strcmp(name, "--version") == 0) return print_version();
     const command *c = find(name);
-    if (c && cmd_wants_help(argc - 2, argv + 2)) { fputs(c->usage(), stdout); return TARN_EXIT_OK; }
+    if (c && cmd_wants_help(argc - 2, argv + 2)) { print_help(c, stdout); return TARN_EXIT_OK; }
     if (c) return c->run(argc - 2, argv + 2);
     if (strstr(name, ".glib")) return cmd_view(argc - 1, argv + 1);   /* `tarn scene.glib` */
     return unknown(name);
