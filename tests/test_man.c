@@ -3,7 +3,10 @@
  * usage text names is in that section; the page has the sections a man
  * page has, the four exit codes, and the version `tarn --version` prints.
  * The lists come from the program itself, so a new option without a line
- * in the man page fails here. No OpenGL: help never makes a context. */
+ * in the man page fails here. And every command's option list in the page
+ * is what its option table generates (`tarn help --roff NAME`, written
+ * there by scripts/man_options.sh), so the two cannot drift. No OpenGL:
+ * help never makes a context. */
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,6 +53,20 @@ static char *read_page(void) {
     out[k] = '\0';
     free(raw);
     return out;
+}
+
+/* docs/tarn.1 as it is on disk (NULL when it cannot be read). */
+static char *read_raw_page(void) {
+    FILE *f = fopen(TARN_SOURCE_DIR "/docs/tarn.1", "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *raw = malloc((size_t)n + 1);
+    size_t got = raw ? fread(raw, 1, (size_t)n, f) : 0;
+    fclose(f);
+    if (raw) raw[got] = '\0';
+    return raw;
 }
 
 /* The names in the "commands:" block of `tarn help`: the first word of each
@@ -131,6 +148,58 @@ static void test_every_command_and_option(void) {
     free(page);
 }
 
+/* The first line where a and b differ, for the message. */
+static void first_difference(const char *a, const char *b, char *buf, size_t len) {
+    const char *line_a = a, *line_b = b;
+    for (; *a && *a == *b; a++, b++)
+        if (*a == '\n') { line_a = a + 1; line_b = b + 1; }
+    snprintf(buf, len, "page: %.*s\n  table: %.*s", (int)strcspn(line_a, "\n"), line_a, (int)strcspn(line_b, "\n"),
+             line_b);
+}
+
+/* Each command's option list in the page is exactly what its table gives:
+ * the block between ".\" BEGIN options: tarn help --roff NAME" and ".\" END
+ * options" is `tarn help --roff NAME`; a command with options has one, and
+ * every block names a command. */
+static void test_option_lists_are_generated(void) {
+    char *page = read_raw_page();
+    CHECK_MSG(page != NULL, "cannot read %s/docs/tarn.1", TARN_SOURCE_DIR);
+    if (!page) return;
+    static char out[OUT_LEN], roff[OUT_LEN];
+    char names[MAX_NAMES][NAME_LEN];
+    CHECK_EQ(tarn("help", out, sizeof out), 0);
+    int n = listed_names(out, names, MAX_NAMES);
+    static const char fix[] = "regenerate it from the tables (viewer/cmd/cmd_*.c): scripts/man_options.sh build/tarn";
+    int blocks = 0;
+    for (int i = 0; i < n; i++) {
+        char args[128], begin[128];
+        snprintf(args, sizeof args, "help --roff %.31s", names[i]);
+        CHECK_MSG(tarn(args, roff, sizeof roff) == 0, "`tarn %s` failed", args);
+        snprintf(begin, sizeof begin, "\n.\\\" BEGIN options: tarn help --roff %.31s\n", names[i]);
+        const char *b = strstr(page, begin);
+        if (!roff[0] && !b) continue;   /* no options, no list */
+        CHECK_MSG(b != NULL, "docs/tarn.1 has no option list for '%s' (a line %.*s): add the markers and %s",
+                  names[i], (int)strlen(begin) - 2, begin + 1, fix);
+        if (!b) continue;
+        blocks++;
+        b += strlen(begin);
+        const char *e = strstr(b, ".\\\" END options\n");
+        CHECK_MSG(e != NULL, "docs/tarn.1's option list for '%s' has no END line", names[i]);
+        if (!e) continue;
+        bool same = (size_t)(e - b) == strlen(roff) && strncmp(b, roff, strlen(roff)) == 0;
+        char diff[512] = "";
+        if (!same) first_difference(b, roff, diff, sizeof diff);
+        CHECK_MSG(same, "docs/tarn.1's options of '%s' are not its table's (`tarn help --roff %s`); %s\n  %s",
+                  names[i], names[i], fix, diff);
+    }
+    int markers = 0;
+    for (const char *p = strstr(page, ".\\\" BEGIN options:"); p; p = strstr(p + 1, ".\\\" BEGIN options:"))
+        markers++;
+    CHECK_MSG(markers == blocks, "docs/tarn.1 has %d option lists, %d of them for commands `tarn help` lists",
+              markers, blocks);
+    free(page);
+}
+
 static void test_sections(void) {
     char *page = read_page();
     CHECK_MSG(page != NULL, "cannot read %s/docs/tarn.1", TARN_SOURCE_DIR);
@@ -174,6 +243,7 @@ int main(void) {
     bin = getenv("TARN_BIN");
     if (!bin) { fprintf(stderr, "run through ctest (TARN_BIN)\n"); return 1; }
     RUN(test_every_command_and_option);
+    RUN(test_option_lists_are_generated);
     RUN(test_sections);
     RUN(test_version);
     return check_summary();
