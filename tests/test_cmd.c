@@ -1,9 +1,12 @@
 /* test_cmd: the command table as a user meets it: `tarn help` lists every
  * command, `tarn help X` and `tarn X --help` print X's usage (the same
  * text as the command file's cmd_X_usage), an unknown command exits 2, and
- * `tarn --version` says which tarn. No OpenGL: help never makes a context. */
+ * `tarn --version` says which tarn; and the option tables every command
+ * parses with (cmd_opt_table.h), through a table of the test's own. No
+ * OpenGL: help never makes a context. */
 #include <ctype.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -182,6 +185,185 @@ static void test_sheet(void) {
     scratch_remove();
 }
 
+/* ---- the option table (cmd_opt_table.h), through a table of the test's own ---- */
+
+typedef struct t_desc {
+    const char *in, *out, *mode;
+    int n, w, h, samples, nsets, custom;
+    double x;
+    bool flag;
+    const char **sets;
+} t_desc;
+
+static bool t_set_custom(void *desc, const char *value, char *why, size_t whylen) {
+    if (value && strcmp(value, "bad") == 0) { snprintf(why, whylen, "custom says no to '%s'", value); return false; }
+    if (value && strcmp(value, "ok") != 0) return false;   /* why empty: "wants" says it */
+    ((t_desc *)desc)->custom++;
+    return true;
+}
+
+static const cmd_option t_options[] = {
+    { "IN", .kind = CMD_ARG, .offset = offsetof(t_desc, in), .missing = "which input? give IN" },
+    { "--out", "-o", "OUT", .kind = CMD_STRING, .offset = offsetof(t_desc, out), .help = "where it goes\n" },
+    { "--count", .metavar = "N", .kind = CMD_INT, .offset = offsetof(t_desc, n), .lo = 1, .hi = 10,
+      .help = "how many,\nfrom 1 to 10\n" },
+    { "--x", .metavar = "X", .kind = CMD_DOUBLE, .offset = offsetof(t_desc, x), .lo = 0, .hi = 1, .wants = "0..1, e.g. 0.5",
+      .help = "a share\n" },
+    { "--size", .metavar = "WxH", .kind = CMD_SIZE, .offset = offsetof(t_desc, w), .offset2 = offsetof(t_desc, h),
+      .lo = 8, .hi = 64, .help = "a size\n" },
+    { "--flag", .kind = CMD_FLAG, .offset = offsetof(t_desc, flag), .help = "a flag\n" },
+    { "--set", .metavar = "P.NAME=V", .kind = CMD_LIST, .offset = offsetof(t_desc, sets),
+      .offset2 = offsetof(t_desc, nsets), .help = "repeatable\n" },
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = offsetof(t_desc, samples), .help = "samples\n" },
+    { "--custom", .metavar = "C", .kind = CMD_CUSTOM, .set = t_set_custom, .help = "ok or not\n" },
+    { "--a-very-long-option", .metavar = "VALUE", .kind = CMD_STRING, .offset = offsetof(t_desc, mode),
+      .help = "on a line of its own\n", .man = "the man page's own \\fBtext\\fR\n" },
+    { 0 }
+};
+
+static const cmd_spec t_spec = {
+    .name = "t",
+    .synopsis = "IN [-o OUT] [--count N]\n[--flag]\n",
+    .about = "About t.\n",
+    .options = t_options,
+    .notes = "exit codes: 0 ok\n",
+    .extra = "one input at a time",
+};
+
+/* cmd_parse on a command line split at spaces; *err_text: what it said. */
+static int t_parse(const char *line, t_desc *d, char *err_text, size_t errlen) {
+    static char buf[1024];
+    static const char *sets[64];
+    char *argv[64];
+    int argc = 0;
+    snprintf(buf, sizeof buf, "%s", line);
+    for (char *save = NULL, *a = strtok_r(buf, " ", &save); a && argc < 64; a = strtok_r(NULL, " ", &save))
+        argv[argc++] = a;
+    memset(d, 0, sizeof *d);
+    d->sets = sets;
+    char *text = NULL;
+    size_t len = 0;
+    FILE *err = open_memstream(&text, &len);
+    int rc = cmd_parse(&t_spec, argc, argv, d, err);
+    fclose(err);
+    snprintf(err_text, errlen, "%s", text ? text : "");
+    free(text);
+    return rc;
+}
+
+static void test_table_parses(void) {
+    t_desc d;
+    char err[8192];
+    CHECK_EQ(t_parse("in.glib -o o.png --count 3 --x 0.25 --size 16x32 --flag --msaa 0 --set a=1 --set b=2", &d, err,
+                     sizeof err), TARN_EXIT_OK);
+    CHECK_STR_EQ(err, "");
+    CHECK_STR_EQ(d.in, "in.glib");
+    CHECK_STR_EQ(d.out, "o.png");
+    CHECK_EQ(d.n, 3);
+    CHECK_EQ(d.x, 0.25);
+    CHECK(d.w == 16 && d.h == 32);
+    CHECK(d.flag);
+    CHECK_EQ(d.samples, 1);   /* 0: off, which render_desc.samples says as 1 */
+    CHECK_EQ(d.nsets, 2);     /* a repeated option keeps every value, in order */
+    if (d.nsets == 2) { CHECK_STR_EQ(d.sets[0], "a=1"); CHECK_STR_EQ(d.sets[1], "b=2"); }
+    /* --name=value, the long and short spellings, the last of a repeated plain option, "-" a positional */
+    CHECK_EQ(t_parse("--out=x.png --count=2 --count 4 - --custom ok --custom=ok", &d, err, sizeof err), TARN_EXIT_OK);
+    CHECK_STR_EQ(d.out, "x.png");
+    CHECK_EQ(d.n, 4);
+    CHECK_STR_EQ(d.in, "-");
+    CHECK_EQ(d.custom, 2);
+    CHECK(!d.flag && d.nsets == 0);   /* what is not given stays zero: the default */
+    CHECK_EQ(t_parse("in --x -0", &d, err, sizeof err), TARN_EXIT_OK);   /* a value may start with - */
+}
+
+static void test_table_errors(void) {
+    static const struct { const char *line, *says; } cases[] = {
+        { "in --frob", "tarn t: unknown option '--frob'\n\nusage: tarn t IN" },
+        { "in -x", "unknown option '-x'" },
+        { "in --count", "tarn t: --count wants 1..10\n" },          /* missing value */
+        { "in --count 11", "tarn t: --count wants 1..10\n" },       /* out of range */
+        { "in --count 2.5", "--count wants 1..10" },                /* not whole */
+        { "in --x 2", "--x wants 0..1, e.g. 0.5" },                 /* a range of its own words */
+        { "in --x nan", "--x wants 0..1, e.g. 0.5" },
+        { "in --size 4x4", "--size wants WxH" },                    /* the size's own bounds */
+        { "in --size 16by16", "--size wants WxH" },
+        { "in --msaa 17", "--msaa wants 0..16 samples" },
+        { "in --flag=1", "--flag takes no value" },
+        { "in --custom bad", "tarn t: custom says no to 'bad'\n" }, /* a setter's own reason */
+        { "in --custom what", "--custom wants C" },                 /* ...or the metavar */
+        { "in -o", "-o wants OUT" },                                /* as the user spelled it */
+        { "--flag", "tarn t: which input? give IN\n" },             /* a required one */
+        { "in more", "tarn t: one input at a time (got another: 'more')" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        t_desc d;
+        char err[8192];
+        CHECK_MSG(t_parse(cases[i].line, &d, err, sizeof err) == TARN_EXIT_USAGE, "'%s' is not a usage error", cases[i].line);
+        CHECK_MSG(strstr(err, cases[i].says) != NULL, "'%s' says:\n%s\nnot: %s", cases[i].line, err, cases[i].says);
+        CHECK_MSG(strstr(err, "\n\nusage: tarn t IN [-o OUT]") != NULL, "'%s': no usage after the message", cases[i].line);
+    }
+}
+
+static void test_table_usage_and_roff(void) {
+    char text[CMD_USAGE_MAX];
+    cmd_usage(&t_spec, text, sizeof text);
+    CHECK_STR_EQ(text, "usage: tarn t IN [-o OUT] [--count N]\n"
+                       "              [--flag]\n"
+                       "\n"
+                       "About t.\n"
+                       "\n"
+                       "  -o, --out OUT    where it goes\n"
+                       "  --count N        how many,\n"
+                       "                   from 1 to 10\n"
+                       "  --x X            a share\n"
+                       "  --size WxH       a size\n"
+                       "  --flag           a flag\n"
+                       "  --set P.NAME=V   repeatable\n"
+                       "  --msaa N         samples\n"
+                       "  --custom C       ok or not\n"
+                       "  --a-very-long-option VALUE\n"
+                       "                   on a line of its own\n"
+                       "\n"
+                       "exit codes: 0 ok\n");
+    strbuf b = {0};
+    cmd_roff_options(&t_spec, &b);
+    CHECK_STR_CONTAINS(b.s, ".TP\n.BR \\-o \", \" \\-\\-out \" \\fIOUT\\fR\"\nwhere it goes\n");
+    CHECK_STR_CONTAINS(b.s, ".TP\n.BI \\-\\-count \" N\"\nhow many,\nfrom 1 to 10\n");   /* unindented */
+    CHECK_STR_CONTAINS(b.s, ".TP\n.B \\-\\-flag\na flag\n");
+    CHECK_STR_CONTAINS(b.s, ".TP\n.BI \\-\\-a\\-very\\-long\\-option \" VALUE\"\nthe man page's own \\fBtext\\fR\n");
+    CHECK(strstr(b.s, "IN") == NULL);   /* a positional with no help is the synopsis's alone */
+    strbuf_free(&b);
+}
+
+/* Each command's table, as `tarn` runs it: the messages the scripts and
+ * tests read, and exit 2. */
+static void test_commands_parse_by_their_tables(void) {
+    static const struct { const char *args, *says; } cases[] = {
+        { "render x.glib -o x.png --frames 0", "tarn render: --frames wants 1..100000" },
+        { "render x.glib -o x.png --bogus", "tarn render: unknown option '--bogus'" },
+        { "render x.glib", "where to? give -o OUT.png" },
+        { "view", "tarn view: which scene? give FILE.glib" },
+        { "view a.glib b.glib", "one scene at a time" },
+        { "reference s.glib -o x.exr --spp 0", "--spp wants 1..16 (N x N subsamples)" },
+        { "reference s.glib -o x.exr --spp 2 --msaa 4", "--spp and --msaa: give one" },
+        { "compare a b --threshold 0", "--threshold wants a number > 0" },
+        { "compare a b --json - --csv -", "cannot both go to stdout" },
+        { "compare-view s.glib --packs natural", "which packs? give --packs a,b (2 to 4)" },
+        { "bench --time-axis sideways", "--time-axis wants auto, gpu, wall or cpu" },
+        { "bench --times 1,x", "--times wants up to" },
+        { "record s.session -o x/ --fps 0", "--fps wants a whole number 1..240" },
+        { "sheet s.glib", "what to vary? give --vary PROGRAM.NAME=A:B:N" },
+        { "sheet s.glib --vary a=1:2:3 --vary b=1:2:3 --vary c=1:2:3", "at most two --vary" },
+        { "assets --size 2", "tarn assets: --size wants 4..1024" },
+        { "help --frob", "tarn help: unknown option '--frob'" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char out[16384];
+        CHECK_MSG(tarn(cases[i].args, out, sizeof out) == TARN_EXIT_USAGE, "tarn %s: %s", cases[i].args, out);
+        CHECK_MSG(strstr(out, cases[i].says) != NULL, "tarn %s says:\n%.300s\nnot: %s", cases[i].args, out, cases[i].says);
+    }
+}
+
 int main(void) {
     bin = getenv("TARN_BIN");
     if (!bin) { fprintf(stderr, "run through ctest (TARN_BIN)\n"); return 1; }
@@ -190,6 +372,10 @@ int main(void) {
     RUN(test_unknown_command_exits_2);
     RUN(test_unknown_pack_is_a_usage_error);
     RUN(test_version);
+    RUN(test_table_parses);
+    RUN(test_table_errors);
+    RUN(test_table_usage_and_roff);
+    RUN(test_commands_parse_by_their_tables);
     RUN(test_sheet);
     return check_summary();
 }
