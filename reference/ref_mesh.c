@@ -1,6 +1,7 @@
 /* ref_mesh: OBJ triangles in the world and a BVH over them (ref_mesh.h). */
 #include "ref_mesh.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -222,7 +223,11 @@ static double tri_hit(const ref_mesh *m, int i, const double o[3], const double 
     return (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) * inv;
 }
 
-/* Does the ray meet the box within (tmin, tmax)? */
+/* Does the ray meet the box within (tmin, tmax)? Conservatively: each
+ * axis's far t is widened by its rounding bound, 2 gamma(3) (Pharr, Jakob
+ * and Humphreys, PBR 3rd ed. 3.9.2), so that rounding never culls a box the
+ * ray meets (a far-off ray at a mesh, found by fuzz_obj). */
+#define BOX_T_SLACK (2.0 * (3.0 * DBL_EPSILON / 2) / (1.0 - 3.0 * DBL_EPSILON / 2))
 static bool box_hit(const bvh_node *nd, const double o[3], const double d[3], double tmin, double tmax) {
     double t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; a++) {
@@ -232,6 +237,7 @@ static bool box_hit(const bvh_node *nd, const double o[3], const double d[3], do
         }
         double ta = (nd->lo[a] - o[a]) / d[a], tb = (nd->hi[a] - o[a]) / d[a];
         if (ta > tb) { double s = ta; ta = tb; tb = s; }
+        tb += fabs(tb) * BOX_T_SLACK;
         if (ta > t0) t0 = ta;
         if (tb < t1) t1 = tb;
         if (t0 > t1) return false;

@@ -13,12 +13,17 @@ dirs=("$work" "$src/corpus_$name")
 [ -d "$src/regress_$name" ] && dirs+=("$src/regress_$name")
 # the repository's own files of the target's kind seed it too, as they are
 # now (a copy of each, flattened: libFuzzer reads the directory)
-case "$name" in glib) pattern='.*\.glib' ;; shader) pattern='.*\.\(vert\|frag\|geom\|glsl\|tesc\|tese\)' ;; *) pattern= ;; esac
+case "$name" in
+    glib) pattern='.*\.glib' ;;
+    shader) pattern='.*\.\(vert\|frag\|geom\|glsl\|tesc\|tese\)' ;;
+    obj) pattern='.*\.obj' ;;
+    *) pattern= ;;
+esac
 if [ -n "$pattern" ]; then
     seeds=fuzz-work/repo-$name
     rm -rf "$seeds" && mkdir -p "$seeds"
     root=$(cd "$src/../.." && pwd)
-    find "$root/packs" "$root/scenes" "$root/tests/data" -type f -regex "$pattern" | while read -r f; do
+    find "$root/packs" "$root/scenes" "$root/tests/data" "$root/data" -type f -regex "$pattern" | while read -r f; do
         rel=${f#"$root"/}
         cp "$f" "$seeds/${rel//\//_}"
     done
