@@ -132,30 +132,25 @@ static void expect_error(const char *text, const obj_opts *o, int line, const ch
 
 static void test_errors_name_the_line(void) {
     const char *tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s# fine\nf 0 1 2\n", tri);
-    expect_error(buf, NULL, 5, "index 0 (OBJ indices start at 1)");
-    snprintf(buf, sizeof buf, "%sf 1 2 4\n", tri);
-    expect_error(buf, NULL, 4, "vertex index 4 out of range");
-    snprintf(buf, sizeof buf, "%sf -1 -2 -4\n", tri);
-    expect_error(buf, NULL, 4, "does not exist (3 defined so far");
-    snprintf(buf, sizeof buf, "%svt 0 0\nf 1/2 2/1 3/1\n", tri);
-    expect_error(buf, NULL, 5, "texture coordinate index 2 out of range");
-    snprintf(buf, sizeof buf, "%sf 1//1 2//1 3//1\n", tri);
-    expect_error(buf, NULL, 4, "normal index 1 out of range");
-    snprintf(buf, sizeof buf, "%sf 1/1/1/1 2 3\n", tri);
-    expect_error(buf, NULL, 4, "bad face vertex '1/1/1/1'");
-    snprintf(buf, sizeof buf, "%sf 1 2 3x\n", tri);
-    expect_error(buf, NULL, 4, "bad vertex index '3x'");
-    snprintf(buf, sizeof buf, "%sf 1 2 99999999999999999999999\n", tri);
-    expect_error(buf, NULL, 4, "bad vertex index");
-    snprintf(buf, sizeof buf, "%sf 1 2\n", tri);
-    expect_error(buf, NULL, 4, "at least 3 vertices, got 2");
-    snprintf(buf, sizeof buf, "%sf /1 2 3\n", tri);
-    expect_error(buf, NULL, 4, "empty vertex index");
-    /* the line of a continued statement is its first */
-    snprintf(buf, sizeof buf, "%sf 1 \\\n2 \\\n7\nf 1 2 3\n", tri);
-    expect_error(buf, NULL, 4, "out of range");
+    /* after three vertices: what follows, the line it is on, what is said */
+    static const struct { const char *text; int line; const char *phrase; } faces[] = {
+        { "# fine\nf 0 1 2\n", 5, "index 0 (OBJ indices start at 1)" },
+        { "f 1 2 4\n", 4, "vertex index 4 out of range" },
+        { "f -1 -2 -4\n", 4, "does not exist (3 defined so far" },
+        { "vt 0 0\nf 1/2 2/1 3/1\n", 5, "texture coordinate index 2 out of range" },
+        { "f 1//1 2//1 3//1\n", 4, "normal index 1 out of range" },
+        { "f 1/1/1/1 2 3\n", 4, "bad face vertex '1/1/1/1'" },
+        { "f 1 2 3x\n", 4, "bad vertex index '3x'" },
+        { "f 1 2 99999999999999999999999\n", 4, "bad vertex index" },
+        { "f 1 2\n", 4, "at least 3 vertices, got 2" },
+        { "f /1 2 3\n", 4, "empty vertex index" },
+        { "f 1 \\\n2 \\\n7\nf 1 2 3\n", 4, "out of range" },   /* a continued statement: its first line */
+    };
+    for (size_t k = 0; k < sizeof faces / sizeof faces[0]; k++) {
+        char buf[256];
+        snprintf(buf, sizeof buf, "%s%s", tri, faces[k].text);
+        expect_error(buf, NULL, faces[k].line, faces[k].phrase);
+    }
     expect_error("v 0 0 0\nv 1 zero 0\n", NULL, 2, "bad number 'zero'");
     expect_error("v nan 0 0\n", NULL, 1, "bad number 'nan'");
     expect_error("v 1e999 0 0\n", NULL, 1, "bad number");
