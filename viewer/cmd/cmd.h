@@ -65,19 +65,55 @@ bool cmd_opt_msaa(const char *s, int *samples);
 /* Is name a pack of tarn's (packs/NAME/pack.glib under tarn_root())? False
  * with "no pack 'X' in ROOT/packs: the packs are ..." in why, for a usage error (exit 2). */
 bool cmd_opt_pack(const char *name, char *why, size_t whylen);
-/* The help of --msaa N: a live window's (default 4 on a GPU, off on a CPU
- * rasteriser) and a kept image's or video's (CMD_MSAA_STILL_HELP); lines
- * after the first are indented by the usage writer. */
-#define CMD_MSAA_HELP \
-    "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
-    "a GPU, off on a CPU rasteriser such as llvmpipe: 2-3x the time)\n"
 /* Images and videos that are kept are anti-aliased on every renderer
- * (issue #25); a live window keeps CMD_MSAA_HELP's default. */
+ * (issue #25); a live window keeps CMD_OPTION_MSAA's default. */
 #define CMD_MSAA_STILL_DEFAULT 4
-#define CMD_MSAA_STILL_HELP \
-    "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
-    "every renderer: what is written is anti-aliased; on a CPU\n" \
-    "rasteriser such as llvmpipe it costs 2-3x the time)\n"
+
+/* Option table entries that several commands share (cmd_opt_table.h), off
+ * the place of the value in the command's desc: --pack NAME (view, render,
+ * sheet), --msaa N of a live window (view) and of what is kept (render,
+ * record, sheet), --verbose (view, render). */
+#define CMD_OPTION_PACK(off) \
+    { "--pack", .metavar = "NAME", .kind = CMD_PACK, .offset = (off), \
+      .help = "draw the water with packs/NAME instead of the scene's Pack\n", \
+      .man = "draw the water with\n" \
+             ".BI packs/ NAME\n" \
+             "instead of the scene's\n" \
+             ".BR Pack .\n" }
+#define CMD_OPTION_MSAA(off) \
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = (off), \
+      .help = "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
+              "a GPU, off on a CPU rasteriser such as llvmpipe: 2-3x the time)\n", \
+      .man = "anti\\-aliasing: the screen passes are drawn with\n" \
+             ".I N\n" \
+             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n" \
+             "a GPU, or as many as it allows; off on a CPU rasteriser such as llvmpipe,\n" \
+             "where 4 samples cost 2 to 3 times the frame).\n" }
+#define CMD_OPTION_MSAA_STILL(off) \
+    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = (off), \
+      .help = "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
+              "every renderer: what is written is anti-aliased; on a CPU\n" \
+              "rasteriser such as llvmpipe it costs 2-3x the time)\n", \
+      .man = "anti\\-aliasing: the screen passes are drawn with\n" \
+             ".I N\n" \
+             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n" \
+             "every renderer, or as many as it allows: what is written is anti\\-aliased;\n" \
+             "on a CPU rasteriser such as llvmpipe 4 samples cost 2 to 3 times the frame).\n" }
+#define CMD_OPTION_VERBOSE(off) \
+    { "--verbose", .kind = CMD_FLAG, .offset = (off), \
+      .help = "each uniform the shaders declare but do not use, a note at\n" \
+              "its glib line (by default one summary line a load)\n", \
+      .man = "each uniform of the glib that the shaders declare but do not use (compiled\n" \
+             "out by a Define, or unused) as a note at its own glib line; by default a\n" \
+             "load says them in one summary line.\n" }
+
+/* Defines `const char *NAME(void)`, spec's usage text in static storage:
+ * the cmd_X_usage() of each command. */
+#define CMD_USAGE_FUNCTION(NAME, spec) \
+    const char *NAME(void) { \
+        static char text[CMD_USAGE_MAX]; \
+        return cmd_usage(&(spec), text, sizeof text); \
+    }
 
 /* One --set assignment (PROGRAM.NAME=V, NAME=V for every Program, or
  * scene.Command=ARGS) applied to r as the panel would (render_setting_assign);

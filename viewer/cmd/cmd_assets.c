@@ -32,10 +32,7 @@ const cmd_spec cmd_assets_spec = {
     .extra = "one scene at a time",
 };
 
-const char *cmd_assets_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_assets_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_assets_usage, cmd_assets_spec)
 
 int cmd_assets(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_assets_usage(), stdout); return TARN_EXIT_OK; }

@@ -266,10 +266,7 @@ const cmd_spec cmd_bench_spec = {
     .column = 21,
 };
 
-const char *cmd_bench_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_bench_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_bench_usage, cmd_bench_spec)
 
 int cmd_bench(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_bench_usage(), stdout); return TARN_EXIT_OK; }

@@ -126,10 +126,7 @@ const cmd_spec cmd_compare_spec = {
     .extra = "two images at a time",
 };
 
-const char *cmd_compare_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_compare_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_compare_usage, cmd_compare_spec)
 
 static int parse(int argc, char **argv, compare_desc *o, FILE *err) {
     int rc = cmd_parse(&cmd_compare_spec, argc, argv, o, err);

@@ -102,10 +102,7 @@ const cmd_spec cmd_compare_view_spec = {
     .extra = "one scene at a time",
 };
 
-const char *cmd_compare_view_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_compare_view_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_compare_view_usage, cmd_compare_view_spec)
 
 int cmd_compare_view(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_compare_view_usage(), stdout); return TARN_EXIT_OK; }

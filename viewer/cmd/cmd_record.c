@@ -166,12 +166,7 @@ static const cmd_option options[] = {
       .wants = "a whole number 1..240",
       .help = "frames per second, 1..240 (default 30)\n",
       .man = "frames per second, 1 to 240 (default 30).\n" },
-    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = OFF(samples), .help = CMD_MSAA_STILL_HELP,
-      .man = "anti\\-aliasing: the screen passes are drawn with\n"
-             ".I N\n"
-             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n"
-             "every renderer, or as many as it allows: what is written is anti\\-aliased;\n"
-             "on a CPU rasteriser such as llvmpipe 4 samples cost 2 to 3 times the frame).\n" },
+    CMD_OPTION_MSAA_STILL(OFF(samples)),
     { "--quiet", .kind = CMD_FLAG, .offset = OFF(quiet),
       .help = "print only errors\n",
       .man = "print only errors.\n" },
@@ -191,10 +186,7 @@ const cmd_spec cmd_record_spec = {
     .extra = "one session at a time",
 };
 
-const char *cmd_record_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_record_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_record_usage, cmd_record_spec)
 
 int cmd_record(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_record_usage(), stdout); return TARN_EXIT_OK; }

@@ -305,10 +305,7 @@ const cmd_spec cmd_reference_spec = {
     .extra = "one scene at a time",
 };
 
-const char *cmd_reference_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_reference_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_reference_usage, cmd_reference_spec)
 
 static int bad_usage(const char *what) { return cmd_bad_usage(&cmd_reference_spec, stderr, "%s", what); }
 

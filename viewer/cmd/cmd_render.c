@@ -251,12 +251,7 @@ static const cmd_option options[] = {
              "(float), any format OpenImageIO writes; a\n"
              ".B %d\n"
              "in the name writes every frame.\n" },
-    { "--pack", .metavar = "NAME", .kind = CMD_PACK, .offset = OFF(pack),
-      .help = "draw the water with packs/NAME instead of the scene's Pack\n",
-      .man = "draw the water with\n"
-             ".BI packs/ NAME\n"
-             "instead of the scene's\n"
-             ".BR Pack .\n" },
+    CMD_OPTION_PACK(OFF(pack)),
     { "--size", .metavar = "WxH", .kind = CMD_SIZE, .offset = OFF(width), .offset2 = OFF(height),
       .wants = "WxH, e.g. 640x360",
       .help = "image size (default: the glib's WindowSize)\n",
@@ -324,21 +319,11 @@ static const cmd_option options[] = {
              "a world command the renderer takes at run time,\n"
              ".BR WaterMesh );\n"
              "repeatable.\n" },
-    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = OFF(samples), .help = CMD_MSAA_STILL_HELP,
-      .man = "anti\\-aliasing: the screen passes are drawn with\n"
-             ".I N\n"
-             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n"
-             "every renderer, or as many as it allows: what is written is anti\\-aliased;\n"
-             "on a CPU rasteriser such as llvmpipe 4 samples cost 2 to 3 times the frame).\n" },
+    CMD_OPTION_MSAA_STILL(OFF(samples)),
     { "--quiet", .kind = CMD_FLAG, .offset = OFF(quiet),
       .help = "print only warnings and errors\n",
       .man = "print only warnings and errors (not notes, such as the uniforms a pack's Defines compile out).\n" },
-    { "--verbose", .kind = CMD_FLAG, .offset = OFF(verbose),
-      .help = "each uniform the shaders declare but do not use, a note at\n"
-              "its glib line (by default one summary line a load)\n",
-      .man = "each uniform of the glib that the shaders declare but do not use (compiled\n"
-             "out by a Define, or unused) as a note at its own glib line; by default a\n"
-             "load says them in one summary line.\n" },
+    CMD_OPTION_VERBOSE(OFF(verbose)),
     { 0 }
 };
 
@@ -354,10 +339,7 @@ const cmd_spec cmd_render_spec = {
     .extra = "one scene at a time",
 };
 
-const char *cmd_render_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_render_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_render_usage, cmd_render_spec)
 
 int cmd_render(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_render_usage(), stdout); return TARN_EXIT_OK; }

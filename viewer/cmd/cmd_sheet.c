@@ -259,12 +259,7 @@ static const cmd_option options[] = {
     { "--time", .metavar = "SECONDS", .kind = CMD_DOUBLE, .offset = OFF(time_s), .wants = "seconds, e.g. 2.5",
       .help = "simulated time of every tile (default 0)\n",
       .man = "simulated time of every tile (default 0).\n" },
-    { "--pack", .metavar = "NAME", .kind = CMD_PACK, .offset = OFF(pack),
-      .help = "draw the water with packs/NAME instead of the scene's Pack\n",
-      .man = "draw the water with\n"
-             ".I packs/NAME\n"
-             "instead of the scene's\n"
-             ".BR Pack .\n" },
+    CMD_OPTION_PACK(OFF(pack)),
     { "--set", .metavar = "P.NAME=V", .kind = CMD_LIST, .offset = OFF(sets), .offset2 = OFF(nsets),
       .help = "set a slider, checkbox, colour or Define first, as in\n"
               "tarn render; repeatable\n",
@@ -273,8 +268,7 @@ static const cmd_option options[] = {
              "before the varied values, as in\n"
              ".BR \"tarn render\" ;\n"
              "repeatable.\n" },
-    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = OFF(samples), .help = CMD_MSAA_STILL_HELP,
-      .man = "anti\\-aliasing samples per pixel, 0 or 1 off (default 4 on every renderer).\n" },
+    CMD_OPTION_MSAA_STILL(OFF(samples)),
     { "--quiet", .kind = CMD_FLAG, .offset = OFF(quiet),
       .help = "print only warnings and errors\n",
       .man = "print the load's messages only when it has errors.\n" },
@@ -300,10 +294,7 @@ const cmd_spec cmd_sheet_spec = {
     .extra = "one scene at a time",
 };
 
-const char *cmd_sheet_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_sheet_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_sheet_usage, cmd_sheet_spec)
 
 int cmd_sheet(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_sheet_usage(), stdout); return TARN_EXIT_OK; }

@@ -16,10 +16,7 @@ const cmd_spec cmd_validate_spec = {
              "exit codes: 0 no errors, 1 errors\n",
 };
 
-const char *cmd_validate_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_validate_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_validate_usage, cmd_validate_spec)
 
 int cmd_validate(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_validate_usage(), stdout); return TARN_EXIT_OK; }

@@ -8,12 +8,7 @@
 
 static const cmd_option options[] = {
     { "FILE.glib", .kind = CMD_ARG, .offset = offsetof(view_desc, glib), .missing = "which scene? give FILE.glib" },
-    { "--pack", .metavar = "NAME", .kind = CMD_PACK, .offset = offsetof(view_desc, pack),
-      .help = "draw the water with packs/NAME instead of the scene's Pack\n",
-      .man = "draw the water with\n"
-             ".BI packs/ NAME\n"
-             "instead of the scene's\n"
-             ".BR Pack .\n" },
+    CMD_OPTION_PACK(offsetof(view_desc, pack)),
     { "--setting", .metavar = "NAME", .kind = CMD_STRING, .offset = offsetof(view_desc, setting),
       .help = "start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
               "default, paper, ...; the panel's Setting combo)\n",
@@ -83,18 +78,8 @@ static const cmd_option options[] = {
              "stops and starts recordings in the window too;\n"
              ".B tarn record\n"
              "replays them.\n" },
-    { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = offsetof(view_desc, samples), .help = CMD_MSAA_HELP,
-      .man = "anti\\-aliasing: the screen passes are drawn with\n"
-             ".I N\n"
-             "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n"
-             "a GPU, or as many as it allows; off on a CPU rasteriser such as llvmpipe,\n"
-             "where 4 samples cost 2 to 3 times the frame).\n" },
-    { "--verbose", .kind = CMD_FLAG, .offset = offsetof(view_desc, verbose),
-      .help = "each uniform the shaders declare but do not use, a note at\n"
-              "its glib line (by default one summary line a load)\n",
-      .man = "each uniform of the glib that the shaders declare but do not use (compiled\n"
-             "out by a Define, or unused) as a note at its own glib line; by default a\n"
-             "load says them in one summary line.\n" },
+    CMD_OPTION_MSAA(offsetof(view_desc, samples)),
+    CMD_OPTION_VERBOSE(offsetof(view_desc, verbose)),
     { 0 }
 };
 
@@ -117,10 +102,7 @@ const cmd_spec cmd_view_spec = {
     .extra = "one scene at a time",
 };
 
-const char *cmd_view_usage(void) {
-    static char text[CMD_USAGE_MAX];
-    return cmd_usage(&cmd_view_spec, text, sizeof text);
-}
+CMD_USAGE_FUNCTION(cmd_view_usage, cmd_view_spec)
 
 int cmd_view(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_view_usage(), stdout); return TARN_EXIT_OK; }
