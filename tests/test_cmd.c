@@ -274,6 +274,9 @@ static void test_table_parses(void) {
     CHECK_EQ(d.custom, 2);
     CHECK(!d.flag && d.nsets == 0);   /* what is not given stays zero: the default */
     CHECK_EQ(t_parse("in --x -0", &d, err, sizeof err), TARN_EXIT_OK);   /* a value may start with - */
+    CHECK_EQ(t_parse("--flag -- --in", &d, err, sizeof err), TARN_EXIT_OK);   /* after --, a positional */
+    CHECK_STR_EQ(d.in, "--in");
+    CHECK(d.flag);
 }
 
 static void test_table_errors(void) {

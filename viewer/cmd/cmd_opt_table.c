@@ -5,7 +5,6 @@
 #include <assert.h>
 #include <float.h>
 #include <stdarg.h>
-#include <stdint.h>
 #include <string.h>
 
 #include "cmd.h"
@@ -117,10 +116,12 @@ int cmd_parse(const cmd_spec *s, int argc, char **argv, void *desc, FILE *err) {
     const cmd_option *t = s->options;
     int n = count(s), cursor = 0;
     bool given[MAX_OPTIONS] = { false };
+    bool options_over = false;   /* after "--" every argument is a positional */
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         char why[1024] = "";
-        if (a[0] != '-' || a[1] == '\0') {   /* a positional ("-" too: stdin or stdout) */
+        if (!options_over && strcmp(a, "--") == 0) { options_over = true; continue; }
+        if (options_over || a[0] != '-' || a[1] == '\0') {   /* a positional ("-" too: stdin or stdout) */
             const cmd_option *o = next_arg(t, n, &cursor);
             if (!o) return cmd_bad_usage(s, err, "%s (got another: '%s')", s->extra ? s->extra : "too many arguments", a);
             if (!store(o, a, desc, why, sizeof why)) return complain(s, err, o, o->name, why);

@@ -15,6 +15,8 @@
  *   ARG                                     a positional argument: the
  *                                           CMD_ARG entries in table order
  *   -                                       a positional argument too
+ *   --                                      the end of the options: every
+ *                                           argument after it is positional
  * An option given twice keeps the last value, except a CMD_LIST (each
  * value kept) and a CMD_CUSTOM (its setter sees each). */
 #ifndef TARN_CMD_OPT_TABLE_H
@@ -73,7 +75,8 @@ typedef struct cmd_spec {
     const char *notes;          /* the paragraphs after the options (NULL: none) */
     int column;                 /* where the options' help starts (0: 19); a longer
                                  * name and metavar puts it on the next line */
-    const char *extra;          /* a positional argument too many ("one scene at a time") */
+    const char *extra;          /* a positional argument too many: "EXTRA (got another:
+                                 * 'ARG')" ("one scene at a time"; NULL: "too many arguments") */
 } cmd_spec;
 
 enum { CMD_USAGE_MAX = 16384 };
