@@ -38,6 +38,7 @@
 #include "world.glsl"
 #include "terrain.glsl"
 #include "xing_look.glsl"
+#include "scene_waves.glsl"
 
 uniform samplerCube uSky;
 uniform vec3 uCameraPos;
@@ -64,6 +65,11 @@ uniform mat4 uCamMirrorVP, uCamMirrorInvVP;
 #define SKY_DEPTH 0.99999
 in vec2 vRest;
 in vec3 vWorldPos;
+// scene_waves.glsl's figures, the same at every vertex (water.vert): worked
+// out per pixel they were two loops over every wave slot, masked
+flat in float vWaveAmpSum;
+flat in float vCausticWavelength;
+flat in vec4 vCausticVel;       // the sines' (xy) and Gerstner waves' (zw)
 out vec4 fragColor;
 
 vec2 screenOf(vec3 p) {
@@ -358,16 +364,6 @@ void waveOffsets(vec2 xz, float t, out vec2 offS, out vec2 offG) {
     }
 }
 
-// The amplitudes of every wave, noise included (foam strength).
-float waveAmpSum() {
-    float s = abs(uNoiseAmp);
-    for (int i = 0; i < WAVES_MAX; i++) {
-        if (i < uSineCount && uSineLength[i] > 0.0) s += abs(uSineAmp[i]);
-        if (i < uGerstnerCount && uGerstnerLength[i] > 0.0) s += abs(uGerstnerAmp[i]);
-    }
-    return s;
-}
-
 // A scroll of 0.25 of the first wave's phase speed, in tiles (foam and
 // ripples drift much slower than the crests).
 vec2 firstWaveScroll(bool gerstner, float tilesPerUnit, float t) {
@@ -377,31 +373,6 @@ vec2 firstWaveScroll(bool gerstner, float tilesPerUnit, float t) {
     float L = gerstner ? uGerstnerLength[0] : uSineLength[0];
     float S = L > 0.0 ? wavesPhaseSpeed(gerstner ? uGerstnerSpeed[0] : uSineSpeed[0], L) : 0.0;
     return 0.25 * S * tilesPerUnit * t * vec2(cos(ang), sin(ang));
-}
-
-// The scene's waves as the caustics see them: the curvature-weighted
-// (k^2 A: what focuses light) mean wavelength, 0 without waves; and each
-// kind's most curved wave's phase velocity (the pattern travels with it).
-float sceneCausticWavelength(out vec2 velS, out vec2 velG) {
-    float W = 0.0, LW = 0.0, bestS = 0.0, bestG = 0.0;
-    velS = velG = vec2(0.0);
-    for (int i = 0; i < WAVES_MAX; i++) {
-        for (int kind = 0; kind < 2; kind++) {
-            bool g = kind == 1;
-            if (i >= (g ? uGerstnerCount : uSineCount)) continue;
-            float L = g ? uGerstnerLength[i] : uSineLength[i];
-            float A = abs(g ? uGerstnerAmp[i] : uSineAmp[i]);
-            if (L <= 0.0 || A == 0.0) continue;
-            float k = WAVES_TWO_PI / L, w = k * k * A;
-            W += w;
-            LW += L * w;
-            float ang = radians(g ? uGerstnerAngle[i] : uSineAngle[i]);
-            vec2 v = wavesPhaseSpeed(g ? uGerstnerSpeed[i] : uSineSpeed[i], L) * vec2(cos(ang), sin(ang));
-            if (g && w > bestG) { bestG = w; velG = v; }
-            if (!g && w > bestS) { bestS = w; velS = v; }
-        }
-    }
-    return W > 0.0 ? LW / W : 0.0;
 }
 
 // The caustic factor at floor point p.
@@ -425,8 +396,8 @@ vec3 causticFactor(vec3 p, float t) {
     // depth), and it travels with the waves' phase velocity.
     vec3 ts = refract(-uSunDir, vec3(0.0, 1.0, 0.0), 1.0 / uIOR);
     q -= ts.xz * depth / max(-ts.y, 0.05);
-    vec2 velS, velG;
-    float L = sceneCausticWavelength(velS, velG);
+    vec2 velS = vCausticVel.xy, velG = vCausticVel.zw;
+    float L = vCausticWavelength;
     if (L <= 0.0) return vec3(1.0);            // no waves: no caustics
     float s = L / TEX_CAUSTIC_WAVELENGTH;
     scale = uCausticScale * s;
@@ -477,13 +448,11 @@ float fbm(vec2 p) {
 // where the reference, and the waves, have none.
 #define FOAM_J_START 0.5     // J = 1 flat; 0 folds (the surface loops)
 #define FOAM_J_FULL 0.1
-float noiseFoam(vec3 P, vec2 rest, float shallow, float ampSum, float t) {
+// abd: the Jacobian entries of the waves' sums but the ocean's (which folds
+// under its own foam, OCEAN_FOAM) at the point.
+float noiseFoam(vec3 P, vec3 abd, float shallow, float ampSum, float t) {
     if (!uShowFoam || ampSum <= 0.0) return 0.0;
     float shore = 1.0 - smoothstep(0.0, max(uFoamWidth * uWorldScale, 1e-4), shallow);
-    float h;
-    vec2 dh, disp;
-    vec3 abd;
-    wavesSumsNoOcean(rest, t, h, dh, disp, abd);   // the ocean folds under its own foam (OCEAN_FOAM)
     float J = (1.0 + abd.x) * (1.0 + abd.z) - abd.y * abd.y;
     float crest = 1.0 - smoothstep(FOAM_J_FULL, FOAM_J_START, J);
     float cover = clamp(max(shore, crest), 0.0, 1.0) * clamp(ampSum / (0.1 * uWorldScale), 0.0, 1.0);
@@ -586,9 +555,20 @@ void main() {
     vec2 footprint = wavesFootprint(vRest);     // derivatives: in uniform control flow
     float lostVar;
     vec3 n = wavesNormalFilteredVar(vRest, t, footprint, lostVar);
-#else
+#endif
+    // the waves' sums at the point but the ocean's, once: the foam's
+    // folding takes them, and without an ocean they are the normal's too
+    // (two evaluations of every wave, written out, are two on any GPU)
+    float sumH;
+    vec2 sumDh, sumDisp;
+    vec3 sumAbd;
+    wavesSumsNoOcean(vRest, t, sumH, sumDh, sumDisp, sumAbd);
+#if defined(WAVES_HAS_OCEAN) && !defined(OCEAN_FILTER)
     vec2 footprint = vec2(0.0);
     vec3 n = wavesNormal(vRest, t);
+#elif !defined(WAVES_HAS_OCEAN)
+    vec2 footprint = vec2(0.0);
+    vec3 n = wavesNormalFrom(sumDh, sumAbd, WAVES_USE_APPROX);   // wavesNormal's
 #endif
     float tilesPerUnit = uWaterTiling / (2.0 * uTerrainHalfSize);
     vec2 uv = P.xz * tilesPerUnit;
@@ -706,9 +686,9 @@ void main() {
     // (over the terrain's model: a thing near the surface is no shore)
     float shallow = max(P.y - terrainHeightGrad(P.xz).x, 0.0);
 #ifdef XING_FOAM
-    float foam = xingFoam(uv * 4.0, 2.0 * sa, -sb, shallow, waveAmpSum());
+    float foam = xingFoam(uv * 4.0, 2.0 * sa, -sb, shallow, vWaveAmpSum);
 #else
-    float foam = noiseFoam(P, vRest, shallow, waveAmpSum(), t);
+    float foam = noiseFoam(P, sumAbd, shallow, vWaveAmpSum, t);
 #endif
 #if defined(WAVES_HAS_OCEAN) && defined(OCEAN_FOAM)
     // the ocean's folding foam (waves_ocean.glsl) joins the pack's own,
