@@ -215,7 +215,8 @@ vec4 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
     return vec4(worldShadeAt(albedo, nWall, hit), 1.0);
 }
 
-vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
+vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needModel) {
+    needModel = false;
     ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
     vec3 t = marchFetch(uWorldY, size, uv);
@@ -236,7 +237,7 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
     float side = -1.0;   // a side met between the column's bottom and top: how far up, 0..1
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
-        if (t.z < t.y && hit.y - t.z <= slab) return model ? groundModelColor(hit) : texture(uFloorColor, uv).rgb;
+        if (t.z < t.y && hit.y - t.z <= slab) { needModel = model; return texture(uFloorColor, uv).rgb; }
         if (t.z >= t.y || model) side = clamp((hit.y - t.y) / (t.x - t.y), 0.0, 1.0);   // a thing under the water
     } else if (hit.y - t.z <= slab) {
         return texture(uFloorColor, uv).rgb;   // the ground beside a rock's rim too
@@ -265,9 +266,23 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir) {
     return side >= 0.0 ? mix(underColor(uv, top), top, side) : top;
 }
 
+// The terrain model's colour where a march met ground no pass saw
+// (solidColor's needModel), written in one place: llvmpipe runs the code of
+// every branch for a whole block of pixels, so each call written out cost
+// every pixel one shading of the model (ground noise, albedo, light), at
+// the two marches' solidColor and the open sea's edge. The loop takes a
+// second turn only where a block has a pixel whose both rays want it.
+void groundModelWhereWanted(bool wantD, vec3 hitD, inout vec3 down, bool wantU, vec3 hitU, inout vec3 up) {
+    for (int k = 0; k < 2; k++) {
+        if (!wantD && !wantU) break;
+        vec3 c = groundModelColor(wantD ? hitD : hitU);
+        if (wantD) { down = c; wantD = false; } else { up = c; wantU = false; }
+    }
+}
+
 // The ground seen from p along dir (downwards, in water): its colour, the
 // path s in water, the point and the march's status.
-vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
+vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, out bool needModel) {
     vec3 d = marchClampDir(dir, true);
 #ifdef WAVES_HAS_OCEAN
     // Water beyond the world square (the open sea's rings): no top-down
@@ -281,7 +296,8 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
         for (int i = 0; i < 3; i++) s = max(p.y - terrainHeightGrad((p + s * d).xz).x, 0.0) / -d.y;
         hit = p + s * d;
         status = MARCH_LEFT;
-        return groundModelColor(hit);
+        needModel = true;
+        return vec3(0.0);
     }
 #endif
 #ifdef PAPER_REFRACTION
@@ -313,14 +329,15 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status) {
     if (m.status == MARCH_CAP || m.status == MARCH_LEFT) s += max(m.f, 0.0) / -d.y;
     hit = p + s * d;
     status = m.status;
-    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false, d);
+    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false, d, needModel);
 }
 
 // What is seen from p along dir (upwards, in air): the above-water geometry
 // where the march meets it, else the sky. hit: the point, or the direction
 // when the sky.
-vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
+vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status, out bool needModel) {
     hit = dir;
+    needModel = false;
     status = MARCH_LEFT;
 #ifdef RAYMARCH_MARCH_UP
     vec3 d = marchClampDir(dir, false);
@@ -352,7 +369,7 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status) {
 #ifdef PAPER_REFLECTION
         underside = true;   // the textures from below: the underside's colour where there is one
 #endif
-        return solidColor(hit, p + m.tb * d, underside, d);
+        return solidColor(hit, p + m.tb * d, underside, d, needModel);
     }
 #endif
     return worldSkyLook(uSky, dir);
@@ -396,8 +413,11 @@ void main() {
     float s;
     vec3 hitD, hitU;
     int stD, stU;
-    vec3 down = attenuate(groundAlong(p, below ? rdir : tdir, s, hitD, stD), s);
-    vec3 up = aboveAlong(p, below ? tdir : rdir, hitU, stU);
+    bool modelD, modelU;
+    vec3 down = groundAlong(p, below ? rdir : tdir, s, hitD, stD, modelD);
+    vec3 up = aboveAlong(p, below ? tdir : rdir, hitU, stU, modelU);
+    groundModelWhereWanted(modelD, hitD, down, modelU, hitU, up);
+    down = attenuate(down, s);
     vec3 color, hitT, hitR;
     int stT, stR;
     if (!below) {
