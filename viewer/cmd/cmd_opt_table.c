@@ -112,39 +112,47 @@ static int complain(const cmd_spec *s, FILE *err, const cmd_option *o, const cha
     return cmd_bad_usage(s, err, "%s wants %s", typed, wants(o, buf, sizeof buf));
 }
 
-int cmd_parse(const cmd_spec *s, int argc, char **argv, void *desc, FILE *err) {
-    const cmd_option *t = s->options;
-    int n = count(s), cursor = 0;
-    bool given[MAX_OPTIONS] = { false };
-    bool options_over = false;   /* after "--" every argument is a positional */
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        char why[1024] = "";
-        if (!options_over && strcmp(a, "--") == 0) { options_over = true; continue; }
-        if (options_over || a[0] != '-' || a[1] == '\0') {   /* a positional ("-" too: stdin or stdout) */
-            const cmd_option *o = next_arg(t, n, &cursor);
-            if (!o) return cmd_bad_usage(s, err, "%s (got another: '%s')", s->extra ? s->extra : "too many arguments", a);
-            if (!store(o, a, desc, why, sizeof why)) return complain(s, err, o, o->name, why);
-            given[o - t] = true;
-            if (!o->set) cursor++;
-            continue;
-        }
-        const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;   /* --name=value */
-        size_t len = eq ? (size_t)(eq - a) : strlen(a);
-        const cmd_option *o = find(t, n, a, len);
-        if (!o) return cmd_bad_usage(s, err, "unknown option '%s'", a);
-        char typed[64];
-        snprintf(typed, sizeof typed, "%.*s", (int)len, a);
-        const char *value = NULL;
-        bool flag = o->kind == CMD_FLAG || (o->kind == CMD_CUSTOM && !o->metavar);
-        if (flag && eq) return cmd_bad_usage(s, err, "%s takes no value", typed);
-        if (!flag) value = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
-        if (!store(o, value, desc, why, sizeof why)) return complain(s, err, o, typed, why);
-        given[o - t] = true;
-    }
-    for (int k = 0; k < n; k++)
-        if (t[k].missing && !given[k]) return cmd_bad_usage(s, err, "%s", t[k].missing);
+/* A positional argument, to the CMD_ARG entry at or after *cursor. */
+static int take_arg(const cmd_spec *s, const char *a, void *desc, int *cursor, bool *given, FILE *err) {
+    const cmd_option *t = s->options, *o = next_arg(t, count(s), cursor);
+    char why[1024] = "";
+    if (!o) return cmd_bad_usage(s, err, "%s (got another: '%s')", s->extra ? s->extra : "too many arguments", a);
+    if (!store(o, a, desc, why, sizeof why)) return complain(s, err, o, o->name, why);
+    given[o - t] = true;
+    if (!o->set) ++*cursor;   /* one that sets takes every positional left */
     return TARN_EXIT_OK;
+}
+
+/* The option argv[*i] and its value: after its '=', or the next argument
+ * (*i then moves past it). */
+static int take_option(const cmd_spec *s, int argc, char **argv, int *i, void *desc, bool *given, FILE *err) {
+    const char *a = argv[*i], *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+    size_t len = eq ? (size_t)(eq - a) : strlen(a);
+    const cmd_option *t = s->options, *o = find(t, count(s), a, len);
+    if (!o) return cmd_bad_usage(s, err, "unknown option '%s'", a);
+    char typed[64], why[1024] = "";   /* typed: as the user spelled it (-o or --out) */
+    snprintf(typed, sizeof typed, "%.*s", (int)len, a);
+    const char *value = NULL;
+    bool flag = o->kind == CMD_FLAG || (o->kind == CMD_CUSTOM && !o->metavar);
+    if (flag && eq) return cmd_bad_usage(s, err, "%s takes no value", typed);
+    if (!flag) value = eq ? eq + 1 : *i + 1 < argc ? argv[++*i] : NULL;
+    if (!store(o, value, desc, why, sizeof why)) return complain(s, err, o, typed, why);
+    given[o - t] = true;
+    return TARN_EXIT_OK;
+}
+
+int cmd_parse(const cmd_spec *s, int argc, char **argv, void *desc, FILE *err) {
+    int n = count(s), cursor = 0, rc = TARN_EXIT_OK;
+    bool given[MAX_OPTIONS] = { false }, options_over = false;   /* after "--": positionals only */
+    for (int i = 0; i < argc && rc == TARN_EXIT_OK; i++) {
+        const char *a = argv[i];
+        if (!options_over && strcmp(a, "--") == 0) options_over = true;
+        else if (options_over || a[0] != '-' || a[1] == '\0') rc = take_arg(s, a, desc, &cursor, given, err);   /* "-" too */
+        else rc = take_option(s, argc, argv, &i, desc, given, err);
+    }
+    for (int k = 0; k < n && rc == TARN_EXIT_OK; k++)
+        if (s->options[k].missing && !given[k]) rc = cmd_bad_usage(s, err, "%s", s->options[k].missing);
+    return rc;
 }
 
 /* ---- the usage text ---- */
