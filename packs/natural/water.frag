@@ -270,16 +270,24 @@ void main() {
     float F, path;
     bool sky;
 
+    // The refracted lookup, from above (the paper) and from below (the
+    // passes' roles swapped: Snell's window, the refraction target holding
+    // the world above) alike: one call of lookThrough for both. llvmpipe
+    // runs both sides of an if for a block of pixels, even on a uniform
+    // condition: written in each side, the march and its shading cost every
+    // pixel twice.
+    vec3 dirT = refract(-E, n, under ? uIOR : 1.0 / uIOR);   // from below: 0 on TIR
+    bool tir = dot(dirT, dirT) == 0.0;
+    vec2 uv0;
+    bool ok0;
+    vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
+    float dv = ok0 ? distance(U, b0) : 1e4;             // what lies behind U: from above the view ray's path in water
+    float s0 = under ? uReflectDist * uWorldScale : clamp(dv, 0.0, uDepthClamp * uWorldScale) * uDepthScale;
+    vec3 c = lookThrough(U, dirT, s0, min(1.5 * dv + 0.5 * uWorldScale, 50.0 * uWorldScale), -dv, !under, path, sky);
+    hit = gRefractHit;
+
     if (!under) {
         // ---- from above: the paper ----
-        vec3 R = refract(-E, n, 1.0 / uIOR);
-        vec2 uv0;
-        bool ok0;
-        vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
-        float dv = ok0 ? distance(U, b0) : 1e4;          // the view ray's path in water
-        vec3 c = lookThrough(U, R, clamp(dv, 0.0, uDepthClamp * uWorldScale) * uDepthScale, min(1.5 * dv + 0.5 * uWorldScale, 50.0 * uWorldScale), -dv,
-                             true, path, sky);
-        hit = gRefractHit;
 #ifdef BEER_LAMBERT
         refr = attenuate(c, path);
 #else
@@ -359,18 +367,11 @@ void main() {
 #endif
     } else {
         // ---- from below: the roles swapped ----
-        vec3 T = refract(-E, n, uIOR);                   // out into the air; 0 on TIR
-        bool tir = dot(T, T) == 0.0;
-        // Snell's window: the refraction target holds the world above
-        refr = vec3(0.0);
-        if (!tir) {
-            vec2 uv0;
-            bool ok0;
-            vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
-            float d0 = ok0 ? distance(U, b0) : 1e4;      // what lies behind U, seen from the eye
-            vec3 c = lookThrough(U, T, uReflectDist * uWorldScale, min(1.5 * d0 + 0.5 * uWorldScale, 50.0 * uWorldScale), -d0, false, path, sky);
-            hit = gRefractHit;
-            refr = sky ? worldSkyLook(uSky, T) : c;
+        // Snell's window (dirT: out into the air); nothing on TIR
+        refr = tir ? vec3(0.0) : sky ? worldSkyLook(uSky, dirT) : c;
+        if (tir) {
+            hit = vec3(0.0);
+            gRefractIrradiance = vec3(0.0);
         }
         // the internal reflection: the reflection target holds the world
         // below, mirrored (for flat water exact for any c, as above)
@@ -383,7 +384,7 @@ void main() {
 #ifdef EXACT_FRESNEL
         F = worldFresnel(cosI, uIOR, 1.0);
 #else
-        F = tir ? 1.0 : pow(1.0 - clamp(-dot(T, n), 0.0, 1.0), uFresnelPower);
+        F = tir ? 1.0 : pow(1.0 - clamp(-dot(dirT, n), 0.0, 1.0), uFresnelPower);
 #endif
         color = refr + F * (refl - refr);
         color = attenuate(color, distance(uCameraPos, U));   // the eye's own path in water
