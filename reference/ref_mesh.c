@@ -170,13 +170,27 @@ ref_mesh *ref_mesh_from_obj(const obj_data *d, const char *name, const ref_mesh_
     return finish(tri, ntri);
 }
 
+/* What the reference reads of an OBJ: positions alone, its triangle bound. */
+static const obj_opts mesh_obj_opts = { .max_triangles = REF_MESH_MAX_TRIANGLES, .positions_only = true };
+
+static ref_mesh *mesh_from_parsed(bool parsed, obj_data *d, const char *name, const ref_mesh_place *place,
+                                  char *err, size_t errlen) {
+    if (!parsed) return NULL;
+    ref_mesh *m = ref_mesh_from_obj(d, name, place, err, errlen);
+    obj_free(d);
+    return m;
+}
+
 ref_mesh *ref_mesh_load(const char *path, const ref_mesh_place *place, char *err, size_t errlen) {
     obj_data d;
-    obj_opts o = { .max_triangles = REF_MESH_MAX_TRIANGLES, .positions_only = true };
-    if (!obj_read(&d, path, &o, err, errlen)) return NULL;
-    ref_mesh *m = ref_mesh_from_obj(&d, path, place, err, errlen);
-    obj_free(&d);
-    return m;
+    return mesh_from_parsed(obj_read(&d, path, &mesh_obj_opts, err, errlen), &d, path, place, err, errlen);
+}
+
+ref_mesh *ref_mesh_parse(const char *text, size_t len, const char *name, const ref_mesh_place *place, char *err,
+                         size_t errlen) {
+    obj_data d;
+    return mesh_from_parsed(obj_parse(&d, text, len, name, &mesh_obj_opts, err, errlen), &d, name, place, err,
+                            errlen);
 }
 
 void ref_mesh_free(ref_mesh *m) {

@@ -43,6 +43,12 @@ typedef struct ref_mesh_place {
  * triangle at all, or more than REF_MESH_MAX_TRIANGLES. */
 ref_mesh *ref_mesh_load(const char *path, const ref_mesh_place *place, char *err, size_t errlen);
 
+/* The same from len bytes of OBJ text already read (the scene's loader
+ * reads a file once, for its content hash and its triangles); name for the
+ * messages. */
+ref_mesh *ref_mesh_parse(const char *text, size_t len, const char *name, const ref_mesh_place *place, char *err,
+                         size_t errlen);
+
 /* The same from an OBJ already parsed (obj_parse), name for the messages. */
 ref_mesh *ref_mesh_from_obj(const obj_data *d, const char *name, const ref_mesh_place *place, char *err,
                             size_t errlen);

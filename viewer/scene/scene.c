@@ -11,6 +11,7 @@
 #include "util.h"
 #include "scene.h"
 #include "file.h"
+#include "obj.h"
 #include "ref_mesh.h"
 
 #include <math.h>
@@ -449,9 +450,10 @@ static bool object_mesh(ctx *x, const glib_cmd *c, ref_object *o) {
     }
     char err[512];
     size_t len = 0;
-    char *bytes = file_read(c->path, 64u << 20, &len, err, sizeof err);
+    char *bytes = file_read(c->path, OBJ_MAX_BYTES, &len, err, sizeof err);
     ref_mesh_place pl = { { n[0], n[1], n[2] }, o->rot_y_deg, o->size[0] };
-    ref_mesh *m = bytes ? ref_mesh_load(c->path, &pl, err, sizeof err) : NULL;
+    /* the bytes hashed are the bytes parsed: one read of the file */
+    ref_mesh *m = bytes ? ref_mesh_parse(bytes, len, c->path, &pl, err, sizeof err) : NULL;
     if (!m) {
         msg(x, c, "%s; the object is dropped", err);
         free(bytes);
