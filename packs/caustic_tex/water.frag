@@ -334,34 +334,30 @@ vec3 refractNormal(vec2 uv, vec3 p, vec3 eye) {
 }
 
 // Each wave kind's displacement along its directions at xz: the sines'
-// sum of A sin(th) D, the Gerstner waves' sum of (Q_i A_i cos th + A sin th) D.
+// sum of A sin(th) D, the Gerstner waves' sum of (Q_i A_i cos th + A sin th) D,
+// from the waves resolved once on the CPU (waves.glsl's uWave*: k D, omega,
+// phase, Q_i A_i D): per pixel, the directions' and wavenumbers' trig was
+// most of this.
 void waveOffsets(vec2 xz, float t, out vec2 offS, out vec2 offG) {
     offS = vec2(0.0);
     offG = vec2(0.0);
+#ifdef WAVES_HAS_SINE
     for (int i = 0; i < WAVES_MAX; i++) {
-        if (i >= uSineCount) break;
-        float L = uSineLength[i], A = uSineAmp[i];
-        if (L <= 0.0 || A == 0.0) continue;
-        float ang = radians(uSineAngle[i]), k = WAVES_TWO_PI / L;
-        vec2 D = vec2(cos(ang), sin(ang));
-        float th = k * dot(D, xz) + wavesPhaseSpeed(uSineSpeed[i], L) * k * t + uSinePhase[i];
-        offS += A * sin(th) * D;
+        if (i >= uWaveSineN) break;
+        vec4 w = uWaveSine[i];                  // th = k D.xz + omega t + phase
+        float th = dot(w.xy, xz) + w.z * t + w.w;
+        offS += uWaveSineAmp[i] * sin(th) * normalize(w.xy);
     }
-    int n = 0;
+#endif
+#ifdef WAVES_HAS_GERSTNER
     for (int i = 0; i < WAVES_MAX; i++) {
-        if (i >= uGerstnerCount) break;
-        if (uGerstnerLength[i] > 0.0 && uGerstnerAmp[i] != 0.0) n++;
+        if (i >= uWaveGerstN) break;
+        vec4 w = uWaveGerst[i];
+        vec3 a = uWaveGerstAmp[i];              // A, Q_i A_i D
+        float th = dot(w.xy, xz) + w.z * t + w.w;
+        offG += cos(th) * a.yz + a.x * sin(th) * normalize(w.xy);
     }
-    for (int i = 0; i < WAVES_MAX; i++) {
-        if (i >= uGerstnerCount) break;
-        float L = uGerstnerLength[i], A = uGerstnerAmp[i];
-        if (L <= 0.0 || A == 0.0) continue;
-        float ang = radians(uGerstnerAngle[i]), k = WAVES_TWO_PI / L;
-        vec2 D = vec2(cos(ang), sin(ang));
-        float qa = uSteepness / (k * float(n)) * sign(A);
-        float th = k * dot(D, xz) + wavesPhaseSpeed(uGerstnerSpeed[i], L) * k * t + uGerstnerPhase[i];
-        offG += (qa * cos(th) + A * sin(th)) * D;
-    }
+#endif
 }
 
 // A scroll of 0.25 of the first wave's phase speed, in tiles (foam and
