@@ -1,10 +1,8 @@
 #version 330 compatibility
+#include "contract.glsl"
 #include "waves.glsl"
 #include "world.glsl"
 
-uniform samplerCube uSky;
-uniform vec3 uCameraPos;
-uniform float uTime;
 uniform vec3 uTint;       // what the water adds where light is absorbed
 uniform float uOpacity;   // how much of the floor the water hides at normal incidence
 in vec2 vRest;

@@ -1,9 +1,9 @@
 #version 330 compatibility
 // The water grid is in world space (gl_Vertex is the rest point); the wave
 // set of packs/common/waves.glsl displaces it.
+#include "contract.glsl"
 #include "waves.glsl"
 
-uniform float uTime;
 out vec2 vRest;
 out vec3 vWorldPos;
 

@@ -33,6 +33,7 @@
 #ifndef DEBUG_OUTPUT
 #define DEBUG_OUTPUT 0
 #endif
+#include "contract.glsl"
 #include "hash.glsl"
 #include "waves.glsl"
 #include "world.glsl"
@@ -40,9 +41,6 @@
 #include "xing_look.glsl"
 #include "scene_waves.glsl"
 
-uniform samplerCube uSky;
-uniform vec3 uCameraPos;
-uniform float uTime;
 uniform sampler2D uRefractColor;   // World below, from this camera
 uniform sampler2D uRefractDepth;   // its depth (1: nothing there)
 uniform float uWaterRefractMix;    // 0: the floor as refracted, 1: all turquoise
@@ -51,7 +49,6 @@ uniform float uKa, uKd, uKs, uShininess;
 uniform float uCausticDepth;       // (ours) depth of full caustic contrast
 uniform sampler2D uReflectColor;   // World above, mirrored camera (under water: World below)
 uniform sampler2D uReflectDepth;   // its depth (1 or the sky: nothing there; cleared when no pass)
-uniform mat4 uCamMirrorVP, uCamMirrorInvVP;
 // The @caustics tile (viewer/gfx/assets.c): 4 m, traced 2.5 m deep through
 // six sines whose curvature-weighted (k^2 A) mean wavelength is this.
 #define TEX_CAUSTIC_WAVELENGTH 1.3038

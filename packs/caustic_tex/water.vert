@@ -1,10 +1,10 @@
 #version 330 compatibility
 // The lake's water grid (world space, gl_Vertex the rest point), displaced
 // by the scene's wave set (packs/common/waves.glsl), as in packs/basic.
+#include "contract.glsl"
 #include "waves.glsl"
 #include "scene_waves.glsl"
 
-uniform float uTime;
 out vec2 vRest;
 out vec3 vWorldPos;
 flat out float vWaveAmpSum;         // water.frag's foam strength

@@ -19,13 +19,13 @@
 // ocean_fft.frag then transforms them in place of the layout: the frame's
 // A = (h, Dx, Dz, Dxz) and B = (hx, hz, Dxx, Dzz).
 
+#include "contract.glsl"
 uniform sampler2DArray uOceanH0;      // (Re h0(k), Im h0(k), Re conj(h0(-k)), Im conj(h0(-k)))
 uniform sampler2DArray uOceanOmega;   // w(|k|)
 uniform int uOceanLayer;              // the cascade
 uniform int uOceanPassRes;            // N
 uniform float uOceanPassTile;         // L of the cascade
 uniform float uOceanLambda;           // choppiness
-uniform float uTime;
 
 layout(location = 0) out vec4 oA;
 layout(location = 1) out vec4 oB;

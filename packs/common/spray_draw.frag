@@ -3,9 +3,7 @@
 // a small water drop scatters the sun forwards and back (a broad lobe
 // here, its albedo 0.8) and shows the sky around it; its cover falls off
 // towards the rim and fades in its last 0.3 s. Premultiplied alpha.
-uniform vec3 uSunDir;
-uniform vec3 uSunIrradiance;
-uniform vec3 uAmbient;
+#include "contract.glsl"
 in float vLife;
 out vec4 fragColor;
 

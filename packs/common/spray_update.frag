@@ -3,9 +3,9 @@
 // (tarn's render_spray.h tells the model: exact parabolas under gravity,
 // removal at the water or at the end of life, deterministic emission where
 // the surface rises faster than a threshold).
+#include "contract.glsl"
 #include "waves.glsl"
 
-uniform float uTime;            // the step's end
 uniform sampler2D uSprayPos;    // (x, y, z, life left; <= 0: dead)
 uniform sampler2D uSprayVel;    // (vx, vy, vz, 0)
 uniform int   uSprayRes;        // the state's side

@@ -6,12 +6,9 @@
 // waves.glsl, included first). No #version here.
 #ifndef TERRAIN_GLSL
 #define TERRAIN_GLSL
+#include "contract_terrain.glsl"
 #include "hash.glsl"
 
-uniform int uTerrainKind;       // REF_TERRAIN_*: 0 flat, 1 lake, 2 slope, 3 pool
-uniform vec4 uTerrainShape;     // depth, shore height, slope, -
-uniform vec4 uTerrainDetail[6]; // the lake's detail: k.x, k.z, amplitude, phase (REF_TERRAIN_DETAIL)
-uniform float uTerrainHalfSize;
 
 // ref_scene.c's smoothstep, which (unlike GLSL's) allows e0 > e1.
 float refSmooth(float e0, float e1, float x) {
@@ -60,7 +57,6 @@ vec3 terrainHeightGrad(vec2 p) {
     return vec3(h, dhdr * dr + fade * dg);
 }
 
-uniform float uGroundDetail;    // GroundDetail: 0 none
 
 // ref_value_noise (needs hash.glsl): hashed lattice values, quintic blend.
 float terrainValueNoise(vec2 p, uint seed) {

@@ -63,6 +63,7 @@
 // path stays a broad band instead of vanishing with the slopes.
 #ifndef WAVES_GLSL
 #define WAVES_GLSL
+#include "contract_water.glsl"
 
 #include "hash.glsl"
 
@@ -94,10 +95,6 @@
 #define WAVES_NEWTON_ITERATIONS 4       // for wavesRestPoint / wavesHeightAt
 #endif
 
-#ifndef TARN_UWATERLEVEL                // world.glsl declares it too: either may come first
-#define TARN_UWATERLEVEL
-uniform float uWaterLevel;              // mean water height
-#endif
 uniform float uSteepness;               // Q = sum Q_i k_i A_i (loop-free while <= 1)
 
 uniform int   uSineCount;               // 0..WAVES_MAX

@@ -1,11 +1,10 @@
 #version 330 compatibility
+#include "contract.glsl"
 #include "waves.glsl"
 #include "world.glsl"
 #include "terrain.glsl"
 #include "world_wet.glsl"
 
-uniform sampler2D uTerrainAlbedo;
-uniform samplerCube uSky;
 // 0 terrain (the terrain's model, below), 1 object, 2 sky. tarn compiles one
 // program per mode (WORLD_MODE defined), so a pixel runs only its own
 // branch: llvmpipe runs both sides of an `if` on a uniform.
@@ -15,7 +14,6 @@ const int uWorldMode = WORLD_MODE;
 uniform int uWorldMode;
 #endif
 uniform vec3 uWorldAlbedo;      // objects: one albedo each
-uniform vec3 uCameraPos;        // the eye of the current camera
 uniform bool uWorldEyePath;     // drawn to the screen: attenuate along the eye's path in water
 in vec3 vWorldPos;
 in vec3 vWorldNormal;

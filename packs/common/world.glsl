@@ -6,26 +6,14 @@
 // sun ray (the flat-water caustic; packs with caustics replace sunScale).
 #ifndef TARN_WORLD_GLSL
 #define TARN_WORLD_GLSL
+#include "contract_water.glsl"
+#include "contract_light.glsl"
 
-uniform vec3 uSunDir;          // towards the sun, unit
-uniform vec3 uSunIrradiance;
-uniform vec3 uAmbient;         // sky ambient radiance
-uniform vec3 uAbsorption;      // Beer-Lambert sigma per metre
-uniform float uIOR;
-uniform float uWorldScale;     // the scene's length unit: 1 on the lake (terrain half size 12 m);
-                               // a pack's lengths in lake metres are multiplied by it
-#ifndef TARN_UWATERLEVEL   // waves.glsl declares it too: either may be included first
-#define TARN_UWATERLEVEL
-uniform float uWaterLevel;
-#endif
 
 const float WORLD_PI = 3.14159265358979;
 
 // The world's look (issue #25; ref_scene.h): the sun's disc (SkySun) and
 // the haze (Haze), both off (0) unless the scene asks.
-uniform vec2 uSunDisc;         // angular radius (rad), gain (radiance in E_sun / 3)
-uniform float uHazeDistance;   // air path (scene units) to 63 % horizon colour
-uniform vec3 uSkyHorizon;
 
 // ref_sun_disc: a soft-edged, limb-darkened core and an aureole.
 vec3 worldSunDisc(vec3 dir) {

@@ -1,6 +1,7 @@
 #version 330 compatibility
 // The world (terrain and objects) in world space: tarn bakes the meshes in
 // world coordinates, so gl_Vertex is the world position.
+#include "contract.glsl"
 uniform vec4 uWorldClip;       // plane (n, d): keep dot(n, p) + d >= 0
 // 0 terrain, 1 object, 2 sky (a unit box around the eye): compiled in
 // (WORLD_MODE, one program per mode), or else a uniform
@@ -9,7 +10,6 @@ const int uWorldMode = WORLD_MODE;
 #else
 uniform int uWorldMode;
 #endif
-uniform vec3 uCameraPos;
 out vec3 vWorldPos;
 out vec3 vWorldNormal;
 out vec2 vST;

@@ -7,9 +7,9 @@
 // runs an `if`'s body for every pixel of a block whatever the condition.
 // A 256^2 map costs an eighth of that, and bilinear interpolation between
 // its texels is off by about A k^2 h^2 / 8 (lake: under 2 mm).
+#include "contract.glsl"
 #include "waves.glsl"
 
-uniform float uTime;
 uniform float uWaveHeightHalf;   // the map covers x, z in [-half, half]
 uniform vec2 uHeightRes;         // its texels a side
 out vec4 fragColor;

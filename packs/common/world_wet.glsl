@@ -5,6 +5,7 @@
 // at each new time, with the same function on the same point.
 #ifndef WORLD_WET_GLSL
 #define WORLD_WET_GLSL
+#include "contract.glsl"
 
 // Is p under the water surface at this time? Below the mean level is not
 // enough: where a trough uncovers the shore, the reference's ray meets the
@@ -14,7 +15,6 @@
 // the surface's height is read from tarn's map of it this frame
 // (WORLD_HEIGHT_MAP, world_height.frag), or else solved for here: on a
 // CPU rasteriser every pixel pays for that solve, wet or dry.
-uniform float uTime;
 #ifdef WORLD_HEIGHT_MAP
 uniform sampler2D uWaveHeight;     // the surface's height over the world (set by tarn)
 uniform float uWaveHeightHalf;     // it covers x, z in [-half, half]

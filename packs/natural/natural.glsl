@@ -22,6 +22,7 @@
 // first order in the photon directions' departure from t_s under waves.
 #ifndef NATURAL_GLSL
 #define NATURAL_GLSL
+#include "contract.glsl"
 
 // Waves of any model in the world: tarn defines WAVES_HAS_* for the models
 // the world has (a build without WAVES_MODELS, glslang's validation, has
@@ -121,7 +122,6 @@ vec3 natGroundAlong(vec3 U, vec3 r) {
 // ---- photons ----------------------------------------------------------------
 
 uniform sampler2D uLightDepth;   // the light camera's depth of the world below the water
-uniform mat4 uCamLightVP;
 
 // Light-target coordinates (xy) and depth (z), both 0..1.
 vec3 natLightTex(vec3 p) {

@@ -6,12 +6,11 @@
 // caustic texture) maps the caustic square instead; B: its weight, scaled
 // the same way, so the splatted "irradiance" (weight per texel area) is the
 // caustic ratio; A: 1 when valid (0: the cleared texel, no photon).
+#include "contract.glsl"
 #include "waves.glsl"
 #include "world.glsl"
 #include "natural.glsl"
 
-uniform float uTime;
-uniform float uCamLightHalfSize;
 in vec2 vRest;
 in vec3 vWorldPos;
 in vec2 vLightNdc;

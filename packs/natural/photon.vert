@@ -1,10 +1,9 @@
 #version 330 compatibility
 // packs/natural, the paper's caustics: the water surface seen from the
 // light camera (orthographic along the sun), one photon per light texel.
+#include "contract.glsl"
 #include "waves.glsl"
 
-uniform float uTime;
-uniform mat4 uCamLightVP;
 out vec2 vRest;
 out vec3 vWorldPos;
 out vec2 vLightNdc;

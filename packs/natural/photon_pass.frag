@@ -7,13 +7,11 @@
 // in refracted-sun space scaled onto the world square, B its weight scaled
 // the same way, A 1 when valid (photon.frag's layout). photon_splat.vert
 // splats it on the GPU; `Splat` would on the CPU.
+#include "contract.glsl"
 #include "waves.glsl"
 #include "world.glsl"
 #include "natural.glsl"
 
-uniform float uTime;
-uniform vec2 uTargetSize;    // the photon grid's N x N (set by tarn)
-uniform vec2 uWaterShift;    // the slide of the water's rest points (set by tarn)
 out vec4 fragColor;
 
 void main() {

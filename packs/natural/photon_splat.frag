@@ -4,10 +4,9 @@
 // of the rest cell coordinate across the texture (exact: it is affine over
 // a triangle), each worth its photon's weight w / texel area, as a point
 // splat adds per photon. Under calm water that is 1 exactly.
+#include "contract.glsl"
 in vec2 vCell;
 in float vWeight;
-uniform vec2 uTargetSize;    // the caustic target's size (set by tarn)
-uniform float uTerrainHalfSize;
 out vec4 fragColor;
 
 // Where the light folds over, a triangle lands as a sliver: its ratio grows

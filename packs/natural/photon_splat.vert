@@ -9,9 +9,8 @@
 // triangle (or, where the light folds over, in one per layer). Wallace's
 // WebGL Water lights its pool so. No geometry shader: on a CPU rasteriser
 // it would run on one thread.
+#include "contract.glsl"
 uniform sampler2D uPhotons;  // photon_pass.frag's target
-uniform float uPointGrid;    // N (set by tarn)
-uniform float uTerrainHalfSize;
 out vec2 vCell;              // the photon's rest cell (i, j): area in the mean plane
 out float vWeight;           // its weight per rest cell (scaled as for Splat); 0 if lost
 

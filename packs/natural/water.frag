@@ -14,6 +14,7 @@
 // world below, mirrored); this shader swaps the optics to match: Snell's
 // window out of the water, total internal reflection beyond it, and the
 // eye's own path through the water.
+#include "contract.glsl"
 #include "waves.glsl"
 #include "world.glsl"
 #include "natural.glsl"
@@ -22,12 +23,6 @@
 #undef CAUSTICS     // calm water: the ratio is 1 (pack.glib's `If waves` runs no photon pass)
 #endif
 
-uniform samplerCube uSky;
-uniform sampler2D uTerrainAlbedo;
-uniform vec3 uCameraPos;
-uniform float uTime;
-uniform mat4 uCamWideVP;    // the refraction pass's camera: main, field of view widened
-uniform mat4 uCamMirrorVP;
 
 uniform sampler2D uRefraction;        // the far side of the water from the main camera
 uniform sampler2D uRefractionDepth;   //   its depth

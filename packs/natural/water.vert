@@ -1,9 +1,9 @@
 #version 330 compatibility
 // packs/natural: the water grid, displaced by the scene's wave set
 // (packs/common/waves.glsl), through the current camera.
+#include "contract.glsl"
 #include "waves.glsl"
 
-uniform float uTime;
 out vec2 vRest;
 out vec3 vWorldPos;
 

@@ -40,6 +40,7 @@
 //   it is not (a NaN, equal or same-signed values) tb is returned.
 #ifndef RAYMARCH_MARCH_GLSL
 #define RAYMARCH_MARCH_GLSL
+#include "contract.glsl"
 
 #define MARCH_MAX_ITER 64       // compile-time bound of the uMaxIter slider
 #define MARCH_REFINE_MAX 8      // compile-time bound of the uRefineSteps slider
@@ -53,7 +54,6 @@
 #define MARCH_CAP 2
 #define MARCH_LEFT 3
 
-uniform mat4 uCamTopVP;         // world -> clip of `Camera top` (set by tarn)
 
 struct March {
     float t;        // ray parameter of the hit (or of the last sample, see above)

@@ -14,6 +14,7 @@
 // same ground march, the refracted one up through the above-water march,
 // with total internal reflection, and the camera's own path in water
 // attenuates the result.
+#include "contract.glsl"
 #include "waves.glsl"
 #include "world.glsl"
 #include "terrain.glsl"
@@ -36,9 +37,6 @@
 #define REFINE_COUNT 0
 #endif
 
-uniform samplerCube uSky;
-uniform vec3 uCameraPos;
-uniform float uTime;
 
 uniform sampler2D uTopColor;      // Camera top, World all: colour
 uniform sampler2D uUnderColor;    // the same, undersides only: colour

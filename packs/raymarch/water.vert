@@ -2,9 +2,9 @@
 // The water grid is in world space (gl_Vertex is the rest point); the wave
 // set of packs/common/waves.glsl displaces it. The fragment shader evaluates
 // the normal from the rest point again (exact, not interpolated).
+#include "contract.glsl"
 #include "waves.glsl"
 
-uniform float uTime;
 out vec2 vRest;
 out vec3 vWorldPos;
 

@@ -26,7 +26,7 @@ static const contract_uniform table[] = {
     CAM("uCamTopHalfSize", "float", "Camera top", "half the side of the top-down camera's square"),
     CAM("uCamLightHalfSize", "float", "Camera light", "half the side of the light camera's square"),
     PASS("uTargetSize", "vec2", "RenderToTexture", "the size in texels of what the program draws into"),
-    PASS("uPointGrid", "int", "WaterSurface points", "N of the N x N points drawn (or of the mesh between them)"),
+    PASS("uPointGrid", "float", "WaterSurface points", "N of the N x N points drawn (or of the mesh between them), as a float (glUniform1f)"),
     WORLD("uSunDir", "vec3", "Sun", "towards the sun, unit"),
     WORLD("uSunIrradiance", "vec3", "Sun", "the sun's irradiance"),
     WORLD("uSkyZenith", "vec3", "Sky", "sky radiance at the zenith"),

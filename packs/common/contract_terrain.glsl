@@ -1,0 +1,15 @@
+// contract_terrain.glsl: the terrain's model (a part of the pack contract:
+// contract.glsl includes it, and terrain.glsl includes it alone, declaring
+// no more than it always did, so a shader of yours that includes it and
+// declares uTime, a camera's matrix... itself still compiles). No #version
+// here.
+#ifndef TARN_CONTRACT_TERRAIN_GLSL
+#define TARN_CONTRACT_TERRAIN_GLSL
+
+uniform float uTerrainHalfSize;    // the world is the square |x|, |z| <= this
+uniform int uTerrainKind;          // REF_TERRAIN_*: 0 flat, 1 lake, 2 slope, 3 pool
+uniform vec4 uTerrainShape;        // depth, shore height, slope, -
+uniform vec4 uTerrainDetail[6];    // the lake's detail: k.x, k.z, amplitude, phase (REF_TERRAIN_DETAIL)
+uniform float uGroundDetail;       // GroundDetail: the ground's noise, 0 to 1
+
+#endif // TARN_CONTRACT_TERRAIN_GLSL
