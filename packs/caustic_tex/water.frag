@@ -28,8 +28,11 @@
 //   SHOW_IRRADIANCE    (ours) output the sun's irradiance on the floor, E K,
 //                      per channel, for measurement against the reference
 //   DEBUG_OUTPUT       (ours) 1: the floor point the refracted lookup shows
-//                      (world xyz), 2: the Fresnel reflectance, 3: the path
-//                      in water to that point (m); for the benchmark
+//                      (world xyz), 2: the point the reflected lookup shows
+//                      (its direction where the sky), 3: the Fresnel
+//                      reflectance, 4: the path in water to the floor point
+//                      (m); raymarch's numbers (one meaning a Define name
+//                      across the packs); for the benchmark
 #ifndef DEBUG_OUTPUT
 #define DEBUG_OUTPUT 0
 #endif
@@ -641,9 +644,12 @@ void main() {
     fragColor = vec4(hit ? F : vec3(0.0), 1.0);
     return;
 #elif DEBUG_OUTPUT == 2
-    fragColor = vec4(vec3(R), 1.0);
+    fragColor = vec4(mirror.hit ? mirror.shown : r, 1.0);
     return;
 #elif DEBUG_OUTPUT == 3
+    fragColor = vec4(vec3(R), 1.0);
+    return;
+#elif DEBUG_OUTPUT == 4
     fragColor = vec4(vec3(below ? distance(uCameraPos, P) : hit ? distance(P, F) : 1e4), 1.0);
     return;
 #endif
