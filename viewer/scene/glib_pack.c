@@ -1,0 +1,145 @@
+/* glib_pack.c: a scene names the pack that draws its water (`Pack
+ * name`, or --pack from outside): the Pack command, the pack's pack.glib
+ * read in place, and the packs there are when the name is wrong
+ * (glib_internal.h).
+ */
+#include "glib_internal.h"
+#include "mem.h"
+
+#include <ctype.h>
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* A directory name under packs/: no path separators, no leading dot. */
+static bool is_pack_name(const char *s) {
+    if (!*s || *s == '.' || strlen(s) >= GLIB_NAME_MAX)
+        return false;
+    for (; *s; s++)
+        if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-' && *s != '.')
+            return false;
+    return true;
+}
+
+static int cmp_str(const void *a, const void *b) {
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* "basic, natural, raymarch" (the directories of dir holding a pack.glib)
+ * into out, and the one closest to name into near (or ""). */
+static void list_packs(const char *dir, const char *name, char *out, size_t outlen,
+                       char near[GLIB_NAME_MAX]) {
+    enum { MAXP = 64 };
+    char *names[MAXP];
+    int n = 0;
+    out[0] = near[0] = '\0';
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    while (d && n < MAXP && (e = readdir(d)) != NULL) {
+        char path[GLIB_PATH_MAX];
+        struct stat st;
+        if (!is_pack_name(e->d_name) ||
+            snprintf(path, sizeof path, "%s/%s/pack.glib", dir, e->d_name) >= (int)sizeof path)
+            continue;
+        if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+            names[n++] = mem_strdup(e->d_name);
+    }
+    if (d)
+        closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], cmp_str);
+    size_t len = 0;
+    int best = 3;
+    for (int i = 0; i < n; i++) {
+        append_cut(out, outlen, &len, i ? ", " : "");
+        append_cut(out, outlen, &len, names[i]);
+        int dist = edit_distance(name, names[i]);
+        if (dist < best) {
+            best = dist;
+            snprintf(near, GLIB_NAME_MAX, "%s", names[i]);
+        }
+        free(names[i]);
+    }
+}
+
+/* The scene's pack is `name` (or the override): records the command and,
+ * with a packs directory, reads the pack's pack.glib in place. */
+static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written) {
+    parser *p = c->p;
+    const char *name = p->pack_override ? p->pack_override : written;
+    if (!is_pack_name(name)) {
+        cerr(c, "Pack: '%.60s'%s is not a pack name: write the name of a directory under packs/, e.g. Pack basic",
+             name, p->pack_override ? " (the pack chosen instead of the scene's)" : "");
+        return;
+    }
+    p->pack_seen = true;
+    p->pack_file = c->file;
+    p->pack_line = c->line;
+    snprintf(p->pack_name, sizeof p->pack_name, "%s", name);
+    snprintf(cmd->name, sizeof cmd->name, "%s", name);
+    push_cmd(p, cmd);
+    memset(cmd, 0, sizeof *cmd);        /* pushed: the caller frees nothing */
+    if (!p->packs_dir || p->stop)
+        return;
+    char path[GLIB_PATH_MAX];
+    if (snprintf(path, sizeof path, "%s/%s/pack.glib", p->packs_dir, name) >= (int)sizeof path) {
+        cerr(c, "Pack %s: the path of its pack.glib is too long (at most %d characters)", name,
+             GLIB_PATH_MAX - 1);
+        return;
+    }
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
+        char packs[160], near[GLIB_NAME_MAX], hint[GLIB_NAME_MAX + 24] = "";
+        list_packs(p->packs_dir, name, packs, sizeof packs, near);
+        if (near[0])
+            snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
+        cerr(c, "Pack: no pack '%s' in %s (no %s/pack.glib); the packs are: %s%s", name,
+             p->packs_dir, name, packs[0] ? packs : "(none)", hint);
+        return;
+    }
+    include_file(c, path);
+}
+
+bool h_pack(cmdctx *c, glib_cmd *cmd) {
+    parser *p = c->p;
+    if (c->nwords < 1) {
+        cerr(c, "Pack needs a name: %s", c->usage);
+        return false;
+    }
+    warn_extra(c, 1, "");
+    if (p->pack_seen) {
+        cwarn(c, "Pack %.60s ignored: this scene's pack is already '%s' (%s:%d); a scene has one pack",
+              c->words[0], p->pack_name, p->pack_file, p->pack_line);
+        return false;
+    }
+    use_pack(c, cmd, c->words[0]);
+    return false;               /* pushed by use_pack, before the pack's commands */
+}
+
+/* A pack chosen from outside for a scene that names none: as if the top
+ * file ended with `Pack name` (at its line 0). */
+void override_pack_at_end(parser *p, const char *file) {
+    /* A pack draws the water of a world (Terrain, Water, Sun, Sky...). A
+     * plain glman scene draws its own floor and water: given a pack, it
+     * would get the pack's world and water on top of its own. Refuse, and
+     * say what to do instead. */
+    bool world = false;
+    for (int i = 0; i < p->sc->ncmds && !world; i++)
+        world = p->sc->cmds[i].kind != GLIB_CMD_PACK && glib_cmd_describes_world(p->sc->cmds[i].kind);
+    if (!world) {
+        report(p, DIAG_ERROR, file, 0,
+               "--pack %.60s: this scene describes no world (no Terrain, Water, Sun or Sky command), so a pack "
+               "has no water of its own to draw here: it would draw its world over the scene's. Give --pack a "
+               "world scene (scenes/lake.glib, scenes/pool.glib), or open this one without --pack",
+               p->pack_override);
+        return;
+    }
+    cmdctx c = { .p = p, .file = file, .line = 0, .spec = find_spec("Pack") };
+    build_usage(c.spec, c.usage, sizeof c.usage);
+    glib_cmd cmd;
+    memset(&cmd, 0, sizeof cmd);
+    cmd.kind = GLIB_CMD_PACK;
+    cmd.file = file;
+    use_pack(&c, &cmd, p->pack_override);
+}
