@@ -1,6 +1,7 @@
-/* bench_int: the state `tarn bench` shares between its measuring half
- * (bench.c) and its writers (bench_report.c: CSV, JSON, Markdown, plots,
- * the docs section). Private to those two files. */
+/* bench_int: the state `tarn bench` shares between its measuring parts
+ * (bench.c and the files it names) and its writers (bench_csv.c,
+ * bench_json.c, bench_report.c: CSV, JSON, Markdown, plots, the docs
+ * section). Private to those files. */
 #ifndef TARN_BENCH_INT_H
 #define TARN_BENCH_INT_H
 
@@ -14,6 +15,8 @@
 #include "packset.h"
 #include "ref_buffers.h"
 #include "refcache.h"
+#include "ref_metrics.h"
+#include "render.h"
 #include "strbuf.h"
 
 #define MAX_SCENES BENCH_MAX_SCENES
@@ -35,7 +38,7 @@
 #define BENCH_TIME_NOISE 0.2
 #define BENCH_ERROR_TIE 0.01
 
-/* The cost model's sweep (bench.c's measure_cost; bench_report.c's cost_md) */
+/* The cost model's sweep (bench_cost.c's measure_cost; bench_report.c's cost_md) */
 #define COST_SAMPLES 9
 extern const int BENCH_COST_MESHES[3];
 extern const double BENCH_COST_SCALES[3];
@@ -106,7 +109,7 @@ typedef struct row {             /* one scene, pack, setting and time */
      * fine */
     double u_noise_rmse, u_grid_rmse, u_noise_flip, u_grid_flip;
     /* the first time's row only (NaN elsewhere): the animated sequence
-     * (bench.c's measure_sequence) */
+     * (bench_measure.c's measure_sequence) */
     double seq_water_rmse, seq_water_ssim, temporal_rmse, seq_ref_change, seq_pack_change;
     int seq_frames;
     int npasses;                 /* GPU time per pass (render_pass_times), medians */
@@ -191,18 +194,123 @@ typedef struct bench {
     char ocean_scene[256];
 } bench;
 
-/* helpers both halves use (bench.c) */
+/* Progress weights, roughly seconds on the 2-core machine: a load, and a
+ * reference (photons: 35 s for the default 256-cell grid of 36 photons a
+ * cell; pixels: 5 s for 480x270 at 1 sample; bench_refs.c). */
+#define BENCH_LOAD_WEIGHT 3.0
+
+/* A setting's timed frames at one time: medians, quartiles, spreads */
+typedef struct timing {
+    double gpu_ms, wall_ms, first_wall_ms, wall_spread, gpu_q1, gpu_q3, wall_q1, wall_q3;
+    double cpu_ms, cpu_q1, cpu_q3, cpu_spread, gpu_spread;
+    int frames;
+} timing;
+
+/* Collects this frame's GPU time per pass into per-name sample lists. */
+typedef struct pass_samples {
+    int n;
+    char name[GPU_TIMER_MARKS][GPU_TIMER_NAME];
+    double *ms[GPU_TIMER_MARKS];
+    int count[GPU_TIMER_MARKS];
+} pass_samples;
+
+/* The timed frames of one setting at one time, gathered over its turns
+ * (round-robin: a few frames a turn, bench_time_round_robin). */
+typedef struct timer_acc {
+    int max, n;
+    double spent;                /* seconds of timed frames so far */
+    double *gpu, *wall, *cpu;
+    bool passes;
+    pass_samples ps;
+} timer_acc;
+
+/* One frame's HDR-FLIP against its reference, run in parallel (bench_run_flip_jobs) */
+typedef struct flip_job {
+    const float *test;           /* 4 channels (RGBA) */
+    const float *ref;            /* 3 */
+    const float *classes;        /* the reference's REF_MASK_* */
+    int w, h;
+    double water, frame;         /* out: the mean over water, over the frame (NaN: failed) */
+} flip_job;
+
+/* One setting, kept alive while its scene is timed (bench_measure.c) */
+typedef struct slot {
+    int s, p, k;
+    char wp[PATH_LEN];
+    const char *scene;           /* the scene or its wrapper (wp) */
+    render *r;
+    render_target tg;
+    bool live;
+    int first_row;
+    timer_acc acc[MAX_TIMES];
+} slot;
+
+/* helpers every part uses (bench.c) */
 void bench_stem(const char *path, char *out, size_t len);
 bool bench_write_text(const char *path, const char *text);
+bool bench_write_strbuf(const char *path, strbuf *text);   /* and frees text */
+const char *bench_setting_name(const bench *b, int pack, int setting);
+
+/* the time axis (bench_summary.c) */
 double bench_axis_time(const bench *b, const summary *s);
 double bench_axis_floor(const bench *b);           /* the cost floor's time on the axis */
 double bench_axis_spread(const bench *b, const summary *s);   /* its frames' (q3 - q1) / median */
 const char *bench_axis_name(const bench *b);       /* "gpu", "wall" or "cpu" */
-const char *bench_setting_name(const bench *b, int pack, int setting);
 
-/* the writers (bench_report.c): bench.csv, passes.csv, bench.json,
- * report.md, the plots, and --docs. False when a file could not be
- * written. The Markdown report goes to md too (for stdout). */
+/* the measuring, part by part */
+/* bench.c */
+double bench_median(double *v, int n);
+void bench_fmt(char *out, size_t len, const char *f, ...);
+bool bench_mkdirs(const char *dir);
+void bench_first_line(const char *text, char *out, size_t len);
+
+/* bench_progress.c */
+void bench_progress_draw(progress *p, bool force);
+void bench_progress_set(progress *p, double done, bool force, const char *fmt, ...);
+
+/* bench_refs.c */
+const char *bench_wrapper_path(bench *b, int s, int p, int k, char *out, size_t len);
+double bench_seq_time(const bench *b, int i);
+void bench_prepare_refs(bench *b);
+double bench_ref_total_weight(bench *b);
+ref_entry *bench_get_ref_at(bench *b, int s, const char *scene, int kind, int w, int h, double t);
+ref_entry *bench_get_ref(bench *b, int s, const char *scene, int ti);
+
+/* bench_timing.c */
+double bench_axis_ms(const bench *b, const timing *t);
+void bench_acc_init(timer_acc *a, int max, bool passes);
+double bench_warm_up(bench *b, render *r, const render_target *tg, double t);
+timing bench_time_frames(bench *b, render *r, const render_target *tg, double t, row *rw);
+void bench_time_round_robin(bench *b, slot *sl, int n, double weight_each_time);
+bool bench_measure_floor(bench *b);
+
+/* bench_error.c */
+void bench_write_images(bench *b, const row *rw, const float *rgba, const ref_entry *ref);
+void bench_measure_water(bench *b, row *rw, const ref_fimage *A, const ref_fimage *B, const float *classes);
+void bench_measure_buffers(bench *b, render *r, const render_target *tg, int s, int p, const char *scene,
+                           int first_row, float *rgba);
+void bench_run_flip_jobs(bench *b, flip_job *jobs, int n);
+double bench_water_ssim(const float *rgba, const refcache_image *ref, int w, int h);
+double bench_water_rmse_of(const float *rgba, const refcache_image *ref, int w, int h);
+void bench_measure_flat_irradiance(bench *b, row *rw, const ref_entry *flat, const ref_entry *ref);
+
+/* bench_measure.c */
+void bench_measure_scene(bench *b, int s, double weight_each_time);
+
+/* bench_cost.c */
+void bench_measure_cost(bench *b, int p);
+void bench_measure_ocean(bench *b);
+
+/* bench_summary.c */
+void bench_summarise(bench *b);
+
+/* the writers: bench.csv and passes.csv (bench_csv.c), bench.json
+ * (bench_json.c); report.md, the plots, and --docs (bench_report.c), which
+ * writes them all. False when a file could not be written. The Markdown
+ * report goes to md too (for stdout). */
+bool bench_write_csv(bench *b, const char *path);
+bool bench_write_passes_csv(bench *b, const char *path);
+bool bench_write_json(bench *b, const char *path);
 bool bench_write_results(bench *b, strbuf *md);
 
 #endif

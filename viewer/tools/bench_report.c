@@ -1,6 +1,7 @@
-/* bench_report: `tarn bench`'s writers (bench_int.h): bench.csv,
- * passes.csv, bench.json, report.md, the plots (time against water RMSE
- * and against water FLIP) and the --docs section. */
+/* bench_report: `tarn bench`'s reports (bench_int.h): report.md, the
+ * plots (time against water RMSE and against water FLIP) and the --docs
+ * section; and bench_write_results, which writes every result (the tables:
+ * bench_csv.c, bench_json.c). */
 #include "bench_int.h"
 
 #include <dirent.h>
@@ -21,377 +22,11 @@
 #define axis_time bench_axis_time
 #define COST_SCALES BENCH_COST_SCALES
 
-static void fmt(char *out, size_t len, const char *f, ...) {
-    va_list ap;
-    va_start(ap, f);
-    vsnprintf(out, len, f, ap);
-    va_end(ap);
-}
-
 /* ---- writing ---- */
 
 /* The time axis in words: "GPU", "wall" or "CPU" */
 static const char *axis_label(const bench *b) {
     return b->axis == BENCH_AXIS_GPU ? "GPU" : b->axis == BENCH_AXIS_CPU ? "CPU" : "wall";
-}
-
-static void json_num(strbuf *o, double v) {
-    if (isnan(v)) strbuf_printf(o, "null");
-    else if (isinf(v)) strbuf_printf(o, v > 0 ? "\"inf\"" : "\"-inf\"");
-    else strbuf_printf(o, "%.9g", v);
-}
-
-static void json_str(strbuf *o, const char *s) {
-    strbuf_printf(o, "\"");
-    for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
-        if (*c == '"' || *c == '\\') strbuf_printf(o, "\\%c", *c);
-        else if (*c < 0x20) strbuf_printf(o, "\\u%04x", *c);
-        else strbuf_printf(o, "%c", *c);
-    }
-    strbuf_printf(o, "\"");
-}
-
-static void csv_num(strbuf *o, double v) {
-    if (isnan(v)) strbuf_printf(o, ",");
-    else if (isinf(v)) strbuf_printf(o, ",%s", v > 0 ? "inf" : "-inf");
-    else strbuf_printf(o, ",%.9g", v);
-}
-
-static void csv_str(strbuf *o, const char *s, bool first) {
-    strbuf_printf(o, first ? "\"" : ",\"");
-    for (const char *c = s; *c; c++) strbuf_printf(o, *c == '"' ? "\"\"" : "%c", *c);
-    strbuf_printf(o, "\"");
-}
-
-
-static bool write_csv(bench *b, const char *path) {
-    strbuf o = { 0 };
-    strbuf_printf(&o, "scene,pack,setting,time_s,width,height,frames,gpu_ms,wall_ms,first_frame_wall_ms,"
-                  "floor_gpu_ms,floor_wall_ms,x_floor_gpu,x_floor_wall,water_rmse,water_psnr_db,water_pixels,"
-                  "off_water_rmse,march_capped_share,rmse,psnr_db,mae,error_p95,error_p99,"
-                  "max_abs,over_threshold_share,nan_pixels,inf_pixels,gl_error,"
-                  "water_flip,flip,water_ssim,gpu_q1_ms,gpu_q3_ms,wall_q1_ms,wall_q3_ms,"
-                  "cpu_ms,cpu_q1_ms,cpu_q3_ms,floor_cpu_ms,x_floor_cpu,gpu_spread,wall_spread,cpu_spread,"
-                  "water_rmse_u_noise,water_rmse_u_grid,water_flip_u_noise,water_flip_u_grid,"
-                  "seq_frames,seq_water_rmse,seq_water_ssim,temporal_rmse,seq_ref_change_rms,seq_pack_change_rms,"
-                  "irradiance_flat");
-    for (int m = 1; m < REF_OUTPUT_COUNT; m++)
-        strbuf_printf(&o, ",%s.median,%s.p95,%s.mean,%s.rel_mean,%s.rel_median", ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name,
-                  ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name, ref_buffer_for_output(m)->name);
-    strbuf_printf(&o, ",error,note\n");
-    for (int i = 0; i < b->nrows; i++) {
-        const row *r = &b->rows[i];
-        char sc[256];
-        stem(b->scene_abs[r->scene], sc, sizeof sc);
-        csv_str(&o, sc, true);
-        csv_str(&o, b->o.packs[r->pack], false);
-        csv_str(&o, b->pb[r->pack].settings[r->setting].name, false);
-        csv_num(&o, b->o.times[r->ti]);
-        strbuf_printf(&o, ",%d,%d,%d", b->o.w, b->o.h, r->frames);
-        csv_num(&o, r->gpu_ms);
-        csv_num(&o, r->wall_ms);
-        csv_num(&o, r->first_wall_ms);
-        csv_num(&o, b->floor_gpu);
-        csv_num(&o, b->floor_wall);
-        csv_num(&o, r->gpu_ms / b->floor_gpu);
-        csv_num(&o, r->wall_ms / b->floor_wall);
-        csv_num(&o, r->water_rmse);
-        csv_num(&o, r->water_psnr);
-        strbuf_printf(&o, ",%ld", r->water_px);
-        csv_num(&o, r->off_rmse);
-        csv_num(&o, r->capped_share);
-        csv_num(&o, r->rmse);
-        csv_num(&o, r->psnr);
-        csv_num(&o, r->mae);
-        csv_num(&o, r->p95);
-        csv_num(&o, r->p99);
-        csv_num(&o, r->max_abs);
-        csv_num(&o, r->over_share);
-        strbuf_printf(&o, ",%ld,%ld,%u", r->nan_px, r->inf_px, r->gl_error);
-        csv_num(&o, r->water_flip);
-        csv_num(&o, r->flip);
-        csv_num(&o, r->water_ssim);
-        csv_num(&o, r->gpu_q1);
-        csv_num(&o, r->gpu_q3);
-        csv_num(&o, r->wall_q1);
-        csv_num(&o, r->wall_q3);
-        csv_num(&o, r->cpu_ms);
-        csv_num(&o, r->cpu_q1);
-        csv_num(&o, r->cpu_q3);
-        csv_num(&o, b->floor_cpu);
-        csv_num(&o, r->cpu_ms / b->floor_cpu);
-        csv_num(&o, r->gpu_spread);
-        csv_num(&o, r->wall_spread);
-        csv_num(&o, r->cpu_spread);
-        csv_num(&o, r->u_noise_rmse);
-        csv_num(&o, r->u_grid_rmse);
-        csv_num(&o, r->u_noise_flip);
-        csv_num(&o, r->u_grid_flip);
-        strbuf_printf(&o, ",%d", r->seq_frames);
-        csv_num(&o, r->seq_water_rmse);
-        csv_num(&o, r->seq_water_ssim);
-        csv_num(&o, r->temporal_rmse);
-        csv_num(&o, r->seq_ref_change);
-        csv_num(&o, r->seq_pack_change);
-        strbuf_printf(&o, ",%d", r->irr_flat ? 1 : 0);
-        for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
-            csv_num(&o, r->has[m] ? r->comp_median[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_p95[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_mean[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_rel_mean[m] : NAN);
-            csv_num(&o, r->has[m] ? r->comp_rel_median[m] : NAN);
-        }
-        csv_str(&o, r->error, false);
-        csv_str(&o, r->note, false);
-        strbuf_printf(&o, "\n");
-    }
-    bool ok = o.s && write_text(path, o.s);
-    free(o.s);
-    return ok;
-}
-
-/* One row per pass: scene, pack, setting, time, pass, its median GPU time. */
-static bool write_passes_csv(bench *b, const char *path) {
-    strbuf o = { 0 };
-    strbuf_printf(&o, "scene,pack,setting,time_s,pass,gpu_ms\n");
-    for (int i = 0; i < b->nrows; i++) {
-        const row *r = &b->rows[i];
-        char sc[256];
-        stem(b->scene_abs[r->scene], sc, sizeof sc);
-        for (int k = 0; k < r->npasses; k++) {
-            csv_str(&o, sc, true);
-            csv_str(&o, b->o.packs[r->pack], false);
-            csv_str(&o, b->pb[r->pack].settings[r->setting].name, false);
-            csv_num(&o, b->o.times[r->ti]);
-            csv_str(&o, r->pass_name[k], false);
-            csv_num(&o, r->pass_ms[k]);
-            strbuf_printf(&o, "\n");
-        }
-    }
-    bool ok = o.s && write_text(path, o.s);
-    free(o.s);
-    return ok;
-}
-
-static bool write_json(bench *b, const char *path) {
-    strbuf o = { 0 };
-    strbuf_printf(&o, "{\n  \"machine\": {\"cpu\": ");
-    json_str(&o, b->cpu);
-    strbuf_printf(&o, ", \"cores\": %d, \"gl_renderer\": ", b->cores);
-    json_str(&o, b->gl_renderer);
-    strbuf_printf(&o, ", \"gl_version\": ");
-    json_str(&o, b->gl_version);
-    strbuf_printf(&o, ", \"cpu_rasteriser\": %s},\n", b->cpu_raster ? "true" : "false");
-    strbuf_printf(&o, "  \"run\": {\"started\": \"%s\", \"seconds\": %.1f, \"width\": %d, \"height\": %d, \"times\": [",
-              b->started, b->seconds, b->o.w, b->o.h);
-    for (int i = 0; i < b->o.ntimes; i++) strbuf_printf(&o, "%s%.9g", i ? ", " : "", b->o.times[i]);
-    strbuf_printf(&o, "], \"max_frames\": %d, \"frame_budget_s\": %g, \"warmup\": %d, \"time_axis\": \"%s\", "
-                  "\"references_rendered\": %d, \"references_cached\": %d, ",
-              b->o.frames, b->o.frame_budget, b->o.warmup, bench_axis_name(b), b->refs_rendered,
-              b->refs_cached);
-    static const char *const kinds[REFK_COUNT] = { "frame", "sequence", "noise", "grid", "flat" };
-    strbuf_printf(&o, "\"other_references\": {");
-    for (int k = 1; k < REFK_COUNT; k++)
-        strbuf_printf(&o, "%s\"%s\": {\"rendered\": %d, \"cached\": %d}", k > 1 ? ", " : "", kinds[k],
-                      b->extra_rendered[k], b->extra_cached[k]);
-    strbuf_printf(&o, "}, \"timing\": \"round-robin\", \"round_robin_frames\": %d, \"load_before\": [",
-                  b->o.rr_chunk);
-    for (int k = 0; k < 3; k++) {
-        strbuf_printf(&o, k ? ", " : "");
-        json_num(&o, b->load_before[k]);
-    }
-    strbuf_printf(&o, "], \"load_after\": [");
-    for (int k = 0; k < 3; k++) {
-        strbuf_printf(&o, k ? ", " : "");
-        json_num(&o, b->load_after[k]);
-    }
-    strbuf_printf(&o, "], \"seconds_timing\": %.1f, \"seconds_flip\": %.1f, \"seconds_sequence\": %.1f, "
-                  "\"flip\": \"HDR\", \"flip_ppd\": %.4f, \"sequence\": {\"frames\": %d, \"fps\": %g, "
-                  "\"width\": %d, \"height\": %d, \"start_s\": %.9g}, \"uncertainty\": %s, "
-                  "\"reference_photons\": %d, \"reference_caustic_res\": %d, \"reference_seed\": %llu, "
-                  "\"noise_reference_seed\": %llu},\n",
-                  b->seconds_timing, b->seconds_flip, b->seconds_seq, REF_FLIP_PPD, b->o.seq_frames, b->o.seq_fps,
-                  b->o.seq_w, b->o.seq_h, b->o.times[0], b->o.uncertainty ? "true" : "false", b->o.ref_photons,
-                  b->o.ref_caustic_res, (unsigned long long)b->o.ref.seed, (unsigned long long)b->o.ref.seed + 1);
-    strbuf_printf(&o, "  \"msaa\": %d, \"reference_spp\": %d, \"reference_positions\": [", b->o.samples_used,
-                  b->o.ref.spp);
-    for (int k = 0; k < b->o.ref.nsamples; k++)
-        strbuf_printf(&o, "%s[%.9g, %.9g]", k ? ", " : "", b->o.ref.samples[k][0], b->o.ref.samples[k][1]);
-    strbuf_printf(&o, "],\n");
-    strbuf_printf(&o, "  \"floor\": {\"gpu_ms\": ");
-    json_num(&o, b->floor_gpu);
-    strbuf_printf(&o, ", \"wall_ms\": ");
-    json_num(&o, b->floor_wall);
-    strbuf_printf(&o, ", \"cpu_ms\": ");
-    json_num(&o, b->floor_cpu);
-    strbuf_printf(&o, "},\n  \"summary\": [\n");
-    for (int i = 0; i < b->nsums; i++) {
-        const summary *s = &b->sums[i];
-        char sc[256];
-        stem(b->scene_abs[s->scene], sc, sizeof sc);
-        strbuf_printf(&o, "    {\"scene\": ");
-        json_str(&o, sc);
-        strbuf_printf(&o, ", \"pack\": ");
-        json_str(&o, b->o.packs[s->pack]);
-        strbuf_printf(&o, ", \"setting\": ");
-        json_str(&o, b->pb[s->pack].settings[s->setting].name);
-        strbuf_printf(&o, ", \"ok\": %s, \"gpu_ms\": ", s->ok ? "true" : "false");
-        json_num(&o, s->gpu_ms);
-        strbuf_printf(&o, ", \"wall_ms\": ");
-        json_num(&o, s->wall_ms);
-        strbuf_printf(&o, ", \"x_floor_gpu\": ");
-        json_num(&o, s->gpu_ms / b->floor_gpu);
-        strbuf_printf(&o, ", \"x_floor_wall\": ");
-        json_num(&o, s->wall_ms / b->floor_wall);
-        strbuf_printf(&o, ", \"cpu_ms\": ");
-        json_num(&o, s->cpu_ms);
-        strbuf_printf(&o, ", \"x_floor_cpu\": ");
-        json_num(&o, s->cpu_ms / b->floor_cpu);
-        strbuf_printf(&o, ", \"water_rmse\": ");
-        json_num(&o, s->water_rmse);
-        strbuf_printf(&o, ", \"water_psnr_db\": ");
-        json_num(&o, s->water_psnr);
-        strbuf_printf(&o, ", \"off_water_rmse\": ");
-        json_num(&o, s->off_rmse);
-        strbuf_printf(&o, ", \"march_capped_share\": ");
-        json_num(&o, s->capped_share);
-        strbuf_printf(&o, ", \"rmse\": ");
-        json_num(&o, s->rmse);
-        strbuf_printf(&o, ", \"psnr_db\": ");
-        json_num(&o, s->psnr);
-        strbuf_printf(&o, ", \"error_p95\": ");
-        json_num(&o, s->p95);
-        strbuf_printf(&o, ", \"over_threshold_share\": ");
-        json_num(&o, s->over_share);
-        strbuf_printf(&o, ", \"refract_hit_p95_m\": ");
-        json_num(&o, s->has[1] ? s->comp[1] : NAN);
-        strbuf_printf(&o, ", \"fresnel_mae\": ");
-        json_num(&o, s->has[2] ? s->comp[2] : NAN);
-        strbuf_printf(&o, ", \"irradiance_rel_median\": ");
-        json_num(&o, s->has[3] ? s->comp[3] : NAN);
-        strbuf_printf(&o, ", \"depth_mae\": ");
-        json_num(&o, s->has[4] ? s->comp[4] : NAN);
-        strbuf_printf(&o, ", \"irradiance_flat\": %s", s->irr_flat ? "true" : "false");
-        const struct { const char *k; double v; } more[] = {
-            { "water_flip", s->water_flip }, { "flip", s->flip }, { "water_ssim", s->water_ssim },
-            { "water_rmse_u", s->u_rmse }, { "water_rmse_u_noise", s->u_noise_rmse },
-            { "water_rmse_u_grid", s->u_grid_rmse }, { "water_flip_u", s->u_flip },
-            { "water_flip_u_noise", s->u_noise_flip }, { "water_flip_u_grid", s->u_grid_flip },
-            { "gpu_q1_ms", s->gpu_q1 }, { "gpu_q3_ms", s->gpu_q3 }, { "wall_q1_ms", s->wall_q1 },
-            { "wall_q3_ms", s->wall_q3 }, { "cpu_q1_ms", s->cpu_q1 }, { "cpu_q3_ms", s->cpu_q3 },
-            { "gpu_spread", s->gpu_spread }, { "wall_spread", s->wall_spread }, { "cpu_spread", s->cpu_spread },
-            { "seq_water_rmse", s->seq_water_rmse },
-            { "seq_water_ssim", s->seq_water_ssim }, { "temporal_rmse", s->temporal_rmse },
-            { "seq_ref_change_rms", s->seq_ref_change }, { "seq_pack_change_rms", s->seq_pack_change },
-        };
-        for (size_t k = 0; k < sizeof more / sizeof more[0]; k++) {
-            strbuf_printf(&o, ", \"%s\": ", more[k].k);
-            json_num(&o, more[k].v);
-        }
-        strbuf_printf(&o, ", \"seq_frames\": %d", s->seq_frames);
-        strbuf_printf(&o, ", \"nonfinite_pixels\": %ld, \"pareto\": %s, \"pareto_flip\": %s}%s\n", s->nan_px,
-                      s->pareto ? "true" : "false", s->pareto_flip ? "true" : "false", i + 1 < b->nsums ? "," : "");
-    }
-    strbuf_printf(&o, "  ],\n  \"rows\": [\n");
-    for (int i = 0; i < b->nrows; i++) {
-        const row *r = &b->rows[i];
-        char sc[256];
-        stem(b->scene_abs[r->scene], sc, sizeof sc);
-        strbuf_printf(&o, "    {\"scene\": ");
-        json_str(&o, sc);
-        strbuf_printf(&o, ", \"pack\": ");
-        json_str(&o, b->o.packs[r->pack]);
-        strbuf_printf(&o, ", \"setting\": ");
-        json_str(&o, b->pb[r->pack].settings[r->setting].name);
-        strbuf_printf(&o, ", \"time_s\": %.9g, \"ok\": %s, \"frames\": %d, \"gpu_ms\": ", b->o.times[r->ti],
-                  r->ok ? "true" : "false", r->frames);
-        json_num(&o, r->gpu_ms);
-        strbuf_printf(&o, ", \"wall_ms\": ");
-        json_num(&o, r->wall_ms);
-        strbuf_printf(&o, ", \"first_frame_wall_ms\": ");
-        json_num(&o, r->first_wall_ms);
-        strbuf_printf(&o, ", \"water_rmse\": ");
-        json_num(&o, r->water_rmse);
-        strbuf_printf(&o, ", \"water_psnr_db\": ");
-        json_num(&o, r->water_psnr);
-        strbuf_printf(&o, ", \"water_pixels\": %ld", r->water_px);
-        strbuf_printf(&o, ", \"off_water_rmse\": ");
-        json_num(&o, r->off_rmse);
-        strbuf_printf(&o, ", \"march_capped_share\": ");
-        json_num(&o, r->capped_share);
-        strbuf_printf(&o, ", \"rmse\": ");
-        json_num(&o, r->rmse);
-        strbuf_printf(&o, ", \"psnr_db\": ");
-        json_num(&o, r->psnr);
-        strbuf_printf(&o, ", \"mae\": ");
-        json_num(&o, r->mae);
-        strbuf_printf(&o, ", \"error_p95\": ");
-        json_num(&o, r->p95);
-        strbuf_printf(&o, ", \"error_p99\": ");
-        json_num(&o, r->p99);
-        strbuf_printf(&o, ", \"max_abs\": ");
-        json_num(&o, r->max_abs);
-        strbuf_printf(&o, ", \"over_threshold_share\": ");
-        json_num(&o, r->over_share);
-        const struct { const char *k; double v; } more[] = {
-            { "water_flip", r->water_flip }, { "flip", r->flip }, { "water_ssim", r->water_ssim },
-            { "gpu_q1_ms", r->gpu_q1 }, { "gpu_q3_ms", r->gpu_q3 }, { "wall_q1_ms", r->wall_q1 },
-            { "wall_q3_ms", r->wall_q3 }, { "cpu_ms", r->cpu_ms }, { "cpu_q1_ms", r->cpu_q1 },
-            { "cpu_q3_ms", r->cpu_q3 }, { "water_rmse_u_noise", r->u_noise_rmse },
-            { "water_rmse_u_grid", r->u_grid_rmse }, { "water_flip_u_noise", r->u_noise_flip },
-            { "water_flip_u_grid", r->u_grid_flip },
-        };
-        for (size_t k = 0; k < sizeof more / sizeof more[0]; k++) {
-            strbuf_printf(&o, ", \"%s\": ", more[k].k);
-            json_num(&o, more[k].v);
-        }
-        strbuf_printf(&o, ", \"nan_pixels\": %ld, \"inf_pixels\": %ld, \"gl_error\": %u, \"buffers\": {", r->nan_px,
-                  r->inf_px, r->gl_error);
-        bool first = true;
-        for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
-            if (!r->has[m]) continue;
-            strbuf_printf(&o, "%s\"%s\": {\"median\": ", first ? "" : ", ", ref_buffer_for_output(m)->name);
-            json_num(&o, r->comp_median[m]);
-            strbuf_printf(&o, ", \"p95\": ");
-            json_num(&o, r->comp_p95[m]);
-            strbuf_printf(&o, ", \"mean\": ");
-            json_num(&o, r->comp_mean[m]);
-            strbuf_printf(&o, ", \"rel_mean\": ");
-            json_num(&o, r->comp_rel_mean[m]);
-            strbuf_printf(&o, ", \"rel_median\": ");
-            json_num(&o, r->comp_rel_median[m]);
-            if (m == REF_OUTPUT_IRRADIANCE) strbuf_printf(&o, ", \"flat\": %s", r->irr_flat ? "true" : "false");
-            strbuf_printf(&o, "}");
-            first = false;
-        }
-        strbuf_printf(&o, "}, \"passes\": [");
-        for (int k = 0; k < r->npasses; k++) {
-            strbuf_printf(&o, "%s{\"pass\": ", k ? ", " : "");
-            json_str(&o, r->pass_name[k]);
-            strbuf_printf(&o, ", \"gpu_ms\": ");
-            json_num(&o, r->pass_ms[k]);
-            strbuf_printf(&o, "}");
-        }
-        strbuf_printf(&o, "], \"error\": ");
-        json_str(&o, r->error);
-        strbuf_printf(&o, ", \"note\": ");
-        json_str(&o, r->note);
-        strbuf_printf(&o, "}%s\n", i + 1 < b->nrows ? "," : "");
-    }
-    strbuf_printf(&o, "  ],\n  \"cost_models\": [");
-    int nc = 0;
-    for (int p = 0; p < b->o.npacks; p++) {
-        if (!b->has_cost[p]) continue;
-        const cost_model *m = &b->cost[p];
-        strbuf_printf(&o, "%s\n    {\"pack\": ", nc++ ? "," : "");
-        json_str(&o, b->o.packs[p]);
-        strbuf_printf(&o, ", \"a_ms\": %.6g, \"b_ms_per_mpixel\": %.6g, \"c_ms_per_kvertex\": %.6g, \"r2\": %.6g, "
-                      "\"residual_ms\": %.6g, \"samples\": %d}", m->a, m->b, m->c, m->r2, m->rms_residual, m->n);
-    }
-    strbuf_printf(&o, "%s]\n}\n", nc ? "\n  " : "");
-    bool ok = o.s && write_text(path, o.s);
-    free(o.s);
-    return ok;
 }
 
 static void md_num(strbuf *o, const char *fmt, double v) {
@@ -676,7 +311,7 @@ static char *replace_section(const char *text, const char *begin, const char *en
  * a row per scenes/hard case, with the reasons where a pack has none. */
 static void bounds_md(bench *b, strbuf *o) {
     char dir[PATH_LEN + 16];
-    fmt(dir, sizeof dir, "%s/scenes/hard", b->root);
+    bench_fmt(dir, sizeof dir, "%s/scenes/hard", b->root);
     char *cases[128];
     int nc = 0;
     DIR *d = opendir(dir);
@@ -742,9 +377,9 @@ static bool write_docs(bench *b, const char *path) {
     for (int sc = 0; sc < b->o.nscenes; sc++) {
         char st[256], pp[PATH_LEN + 300];
         stem(b->scene_abs[sc], st, sizeof st);
-        fmt(pp, sizeof pp, "%s/%splot-%s.png", dir, prefix, st);
+        bench_fmt(pp, sizeof pp, "%s/%splot-%s.png", dir, prefix, st);
         write_plot(b, sc, 0, pp);
-        fmt(pp, sizeof pp, "%s/%splot-%s-flip.png", dir, prefix, st);
+        bench_fmt(pp, sizeof pp, "%s/%splot-%s-flip.png", dir, prefix, st);
         write_plot(b, sc, 1, pp);
     }
     FILE *f = fopen(path, "r");
@@ -775,11 +410,11 @@ static bool write_docs(bench *b, const char *path) {
 bool bench_write_results(bench *b, strbuf *md) {
     char path[PATH_LEN + 64];
     snprintf(path, sizeof path, "%s/bench.csv", b->o.out);
-    bool ok = write_csv(b, path);
+    bool ok = bench_write_csv(b, path);
     snprintf(path, sizeof path, "%s/passes.csv", b->o.out);
-    ok &= write_passes_csv(b, path);
+    ok &= bench_write_passes_csv(b, path);
     snprintf(path, sizeof path, "%s/bench.json", b->o.out);
-    ok &= write_json(b, path);
+    ok &= bench_write_json(b, path);
     strbuf_printf(md, "# tarn bench\n\n");
     report_md(b, md, "");
     snprintf(path, sizeof path, "%s/report.md", b->o.out);
