@@ -1,4 +1,4 @@
-/* test_glib: the .glib parser (viewer/scene/glib.c).
+/* test_glib: the .glib parser (viewer/scene/glib*.c, through glib.h).
  *
  * Each case writes its files under one mkdtemp directory (includes, shaders
  * and textures that must exist or must be missing), parses, and checks the

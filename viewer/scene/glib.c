@@ -27,7 +27,7 @@
 /* memory: bounded by the limits (mem.h: out of memory aborts)        */
 
 /* Makes room for need elements in *arr (capacity *cap). */
-void *grow(void *arr, int *cap, int need, size_t elem) {
+void *glib_grow(void *arr, int *cap, int need, size_t elem) {
     if (need <= *cap)
         return arr;
     int c = *cap ? *cap : 8;
@@ -43,7 +43,7 @@ void *grow(void *arr, int *cap, int need, size_t elem) {
 static void add_diag(parser *p, diag_severity sev, const char *file, int line,
                      const char *msg) {
     glib_scene *sc = p->sc;
-    sc->diags = grow(sc->diags, &p->diag_cap, sc->ndiags + 1, sizeof *sc->diags);
+    sc->diags = glib_grow(sc->diags, &p->diag_cap, sc->ndiags + 1, sizeof *sc->diags);
     diag *d = &sc->diags[sc->ndiags++];
     memset(d, 0, sizeof *d);
     d->severity = sev;
@@ -68,7 +68,7 @@ static void vdiag(parser *p, diag_severity sev, const char *file, int line,
 }
 
 __attribute__((format(printf, 5, 6)))
-void report(parser *p, diag_severity sev, const char *file, int line,
+void glib_report(parser *p, diag_severity sev, const char *file, int line,
             const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
@@ -78,18 +78,18 @@ void report(parser *p, diag_severity sev, const char *file, int line,
 
 /* Records a file name in scene->files (once) and returns the stored copy,
  * which commands and diagnostics point at. */
-const char *add_file(parser *p, const char *name) {
+const char *glib_add_file(parser *p, const char *name) {
     glib_scene *sc = p->sc;
     for (int i = 0; i < sc->nfiles; i++)
         if (strcmp(sc->files[i], name) == 0)
             return sc->files[i];
-    sc->files = grow(sc->files, &p->file_cap, sc->nfiles + 1, sizeof *sc->files);
+    sc->files = glib_grow(sc->files, &p->file_cap, sc->nfiles + 1, sizeof *sc->files);
     sc->files[sc->nfiles] = mem_strdup(name);
     return sc->files[sc->nfiles++];
 }
 
 __attribute__((format(printf, 2, 3)))
-void cerr(cmdctx *c, const char *fmt, ...) {
+void glib_cerr(cmdctx *c, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     vdiag(c->p, DIAG_ERROR, c->file, c->line, fmt, ap);
@@ -97,7 +97,7 @@ void cerr(cmdctx *c, const char *fmt, ...) {
 }
 
 __attribute__((format(printf, 2, 3)))
-void cwarn(cmdctx *c, const char *fmt, ...) {
+void glib_cwarn(cmdctx *c, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     vdiag(c->p, DIAG_WARNING, c->file, c->line, fmt, ap);
@@ -113,27 +113,27 @@ static void free_cmd_parts(glib_cmd *cmd) {
     free(cmd->defines);
 }
 
-void push_cmd(parser *p, glib_cmd *cmd) {
+void glib_push_cmd(parser *p, glib_cmd *cmd) {
     glib_scene *sc = p->sc;
     if (sc->ncmds >= LIM_CMDS) {
-        report(p, DIAG_ERROR, cmd->file, cmd->line,
+        glib_report(p, DIAG_ERROR, cmd->file, cmd->line,
              "too many commands (more than %d); the rest of the scene is ignored", LIM_CMDS);
         free_cmd_parts(cmd);
         p->stop = true;
         return;
     }
-    sc->cmds = grow(sc->cmds, &p->cmd_cap, sc->ncmds + 1, sizeof *sc->cmds);
+    sc->cmds = glib_grow(sc->cmds, &p->cmd_cap, sc->ncmds + 1, sizeof *sc->cmds);
     sc->cmds[sc->ncmds++] = *cmd;
 }
 
 static void unknown_command(parser *p, const char *name, char *rest, const char *file, int line) {
-    const char *near = suggest(name);
+    const char *near = glib_suggest(name);
     char hint[96] = "";
     if (near)
         snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
-    else if (is_opener(*skip_space(rest)))
+    else if (glib_is_opener(*glib_skip_space(rest)))
         snprintf(hint, sizeof hint, "; a uniform on its own line? end the Program line above with '\\'");
-    report(p, DIAG_WARNING, file, line, "unknown command '%.60s' (skipped)%s", name, hint);
+    glib_report(p, DIAG_WARNING, file, line, "unknown command '%.60s' (skipped)%s", name, hint);
 }
 
 /* glman tolerated brackets around plain numbers and commas between them
@@ -146,25 +146,25 @@ static void blank_brackets(char *s) {
 }
 
 static void process_line(parser *p, char *s, const char *file, int line) {
-    s = skip_space(s);
+    s = glib_skip_space(s);
     if (!*s)
         return;
     char *name = s;
-    while (*s && !is_space((unsigned char)*s))
+    while (*s && !glib_is_space((unsigned char)*s))
         s++;
     if (*s)
         *s++ = '\0';
-    const cmd_spec *spec = find_spec(name);
+    const cmd_spec *spec = glib_find_spec(name);
     if (!spec) {
         unknown_command(p, name, s, file, line);
         return;
     }
     cmdctx c = { .p = p, .file = file, .line = line, .spec = spec, .rest = s };
-    build_usage(spec, c.usage, sizeof c.usage);
-    if (spec->fn == h_nums || spec->fn == h_world_nums || spec->fn == h_vertex)
+    glib_build_usage(spec, c.usage, sizeof c.usage);
+    if (spec->fn == glib_h_nums || spec->fn == glib_h_world_nums || spec->fn == glib_h_vertex)
         blank_brackets(s);
-    if (!spec->raw && (c.nwords = split_words(s, c.words, LIM_WORDS)) < 0) {
-        cerr(&c, "%s: unclosed '\"': add the closing quote", spec->name);
+    if (!spec->raw && (c.nwords = glib_split_words(s, c.words, LIM_WORDS)) < 0) {
+        glib_cerr(&c, "%s: unclosed '\"': add the closing quote", spec->name);
         return;
     }
     glib_cmd cmd;
@@ -174,7 +174,7 @@ static void process_line(parser *p, char *s, const char *file, int line) {
     cmd.line = line;
     cmd.wire = spec->wire;
     if (spec->fn(&c, &cmd))
-        push_cmd(p, &cmd);
+        glib_push_cmd(p, &cmd);
     else
         free_cmd_parts(&cmd);
 }
@@ -188,7 +188,7 @@ static bool is_header(const char *b, size_t n) {
     static const char want[] = "##openglglib";
     size_t k = 0;
     for (size_t i = 0; i < n && want[k]; i++) {
-        if (is_space((unsigned char)b[i]))
+        if (glib_is_space((unsigned char)b[i]))
             continue;
         if (tolower((unsigned char)b[i]) != want[k++])
             return false;
@@ -198,7 +198,7 @@ static bool is_header(const char *b, size_t n) {
 
 static bool all_space(const char *s, size_t n) {
     for (size_t i = 0; i < n; i++)
-        if (!is_space((unsigned char)s[i]) && s[i] != '\n')
+        if (!glib_is_space((unsigned char)s[i]) && s[i] != '\n')
             return false;
     return true;
 }
@@ -206,13 +206,13 @@ static bool all_space(const char *s, size_t n) {
 /* The top file must say what it is; an included file need not. */
 static bool check_top(parser *p, const reader *r, const char *file) {
     if (all_space(r->text + r->pos, r->len - r->pos)) {
-        report(p, DIAG_ERROR, file, 1, "empty file: expected '##OpenGL GLIB' and commands");
+        glib_report(p, DIAG_ERROR, file, 1, "empty file: expected '##OpenGL GLIB' and commands");
         return false;
     }
     reader first = *r;
     const char *b = "";
     size_t n = 0;
-    next_phys(&first, &b, &n);
+    glib_next_phys(&first, &b, &n);
     if (is_header(b, n))
         return true;
     /* glman opened files whose header follows blank or comment lines
@@ -220,12 +220,12 @@ static bool check_top(parser *p, const reader *r, const char *file) {
      * the first command is fine; only a file without it is worth a word */
     for (int line = 1;; line++) {
         size_t k = 0;
-        while (k < n && is_space((unsigned char)b[k]))
+        while (k < n && glib_is_space((unsigned char)b[k]))
             k++;
         bool blank = k == n || b[k] == '\n' || b[k] == '\r';
         bool comment = !blank && (b[k] == '#' || (b[k] == '/' && k + 1 < n && b[k + 1] == '/'));
         if (is_header(b, n)) {
-            report(p, DIAG_NOTE, file, line, "the '##OpenGL GLIB' header is on line %d, after blank or comment "
+            glib_report(p, DIAG_NOTE, file, line, "the '##OpenGL GLIB' header is on line %d, after blank or comment "
                    "lines; glman read it there too", line);
             return true;
         }
@@ -233,14 +233,14 @@ static bool check_top(parser *p, const reader *r, const char *file) {
             break;
         if (first.pos >= first.len)
             break;
-        next_phys(&first, &b, &n);
+        glib_next_phys(&first, &b, &n);
     }
-    report(p, DIAG_WARNING, file, 1,
+    glib_report(p, DIAG_WARNING, file, 1,
            "first line is not '##OpenGL GLIB': glman will not open this file; add that line");
     return true;
 }
 
-void parse_text(parser *p, const char *text, size_t len, const char *file, bool top) {
+void glib_parse_text(parser *p, const char *text, size_t len, const char *file, bool top) {
     reader r = { text ? text : "", text ? len : 0, 0, 0 };
     if (r.len >= 3 && memcmp(r.text, "\xEF\xBB\xBF", 3) == 0)
         r.pos = 3;              /* a UTF-8 byte order mark from a Windows editor */
@@ -248,17 +248,17 @@ void parse_text(parser *p, const char *text, size_t len, const char *file, bool 
         return;
     logical lg = { .buf = mem_alloc(LIM_LINE_CHARS + 1) };
     int binary = 0;
-    while (!p->stop && next_logical(&r, &lg)) {
+    while (!p->stop && glib_next_logical(&r, &lg)) {
         if (lg.too_long) {
-            report(p, DIAG_ERROR, file, lg.first_line,
+            glib_report(p, DIAG_ERROR, file, lg.first_line,
                  "line too long (over %d characters); command skipped", LIM_LINE_CHARS);
         } else if (lg.bad_byte >= 0) {
-            report(p, DIAG_ERROR, file, lg.first_line,
+            glib_report(p, DIAG_ERROR, file, lg.first_line,
                  lg.bad_byte >= 0x80 ? "byte 0x%02X at column %d is not UTF-8 text; line skipped (save the file as UTF-8)"
                                      : "binary data (byte 0x%02X at column %d) in a text file; line skipped",
                  lg.bad_byte, lg.bad_col);
             if (++binary >= LIM_BINARY_LINES) {
-                report(p, DIAG_ERROR, file, lg.first_line,
+                glib_report(p, DIAG_ERROR, file, lg.first_line,
                      "this does not look like a .glib text file; stopped reading it");
                 break;
             }
@@ -268,7 +268,7 @@ void parse_text(parser *p, const char *text, size_t len, const char *file, bool 
     }
     free(lg.buf);
     if (top && p->pack_override && !p->pack_seen && !p->stop)
-        override_pack_at_end(p, file);
+        glib_override_pack_at_end(p, file);
 }
 
 /* ------------------------------------------------------------------ */
@@ -277,16 +277,16 @@ void parse_text(parser *p, const char *text, size_t len, const char *file, bool 
 static void finish(parser *p) {
     glib_scene *sc = p->sc;
     if (p->begin_file)
-        report(p, DIAG_ERROR, p->begin_file, p->begin_line,
+        glib_report(p, DIAG_ERROR, p->begin_file, p->begin_line,
                "glBegin without a glEnd: its vertices draw nothing; add glEnd after the last glVertex");
     for (int i = 0; i < p->npending; i++)
-        report(p, DIAG_WARNING, p->pending[i].file, p->pending[i].line,
+        glib_report(p, DIAG_WARNING, p->pending[i].file, p->pending[i].line,
              "Define %s comes after the last Program, so no shader sees it; move it above a Program",
              p->pending[i].name);
     free(p->pending);
     p->pending = NULL;
     if (sc->ncmds == 0 && sc->nerrors == 0 && sc->nfiles > 0)
-        report(p, DIAG_WARNING, sc->files[0], 1, "no commands: the scene draws nothing");
+        glib_report(p, DIAG_WARNING, sc->files[0], 1, "no commands: the scene draws nothing");
     if (p->dropped) {
         char msg[128];
         snprintf(msg, sizeof msg, "too many errors: %d more diagnostics not shown (%d errors); fix the ones above first",
@@ -306,8 +306,8 @@ static glib_scene *new_scene(parser *p) {
 glib_scene *glib_parse(const char *text, size_t len, const char *virtual_path) {
     parser p;
     glib_scene *sc = new_scene(&p);
-    const char *name = add_file(&p, virtual_path ? virtual_path : "<memory>");
-    parse_nested(&p, text, len, name, canonical(name), true);
+    const char *name = glib_add_file(&p, virtual_path ? virtual_path : "<memory>");
+    glib_parse_nested(&p, text, len, name, glib_canonical(name), true);
     finish(&p);
     return sc;
 }
@@ -323,13 +323,13 @@ glib_scene *glib_load_opts(const char *path, const glib_options *opt) {
         p.packs_dir = opt->packs_dir && opt->packs_dir[0] ? opt->packs_dir : NULL;
         p.pack_override = opt->pack_override && opt->pack_override[0] ? opt->pack_override : NULL;
     }
-    const char *name = add_file(&p, path ? path : "<null>");
+    const char *name = glib_add_file(&p, path ? path : "<null>");
     char *buf, why[128];
     size_t len;
-    if (!path || !read_file(path, &buf, &len, why, sizeof why)) {
-        report(&p, DIAG_ERROR, name, 0, "cannot open '%s': %s", name, path ? why : "no path given");
+    if (!path || !glib_read_file(path, &buf, &len, why, sizeof why)) {
+        glib_report(&p, DIAG_ERROR, name, 0, "cannot open '%s': %s", name, path ? why : "no path given");
     } else {
-        parse_nested(&p, buf, len, name, canonical(path), true);
+        glib_parse_nested(&p, buf, len, name, glib_canonical(path), true);
         free(buf);
     }
     finish(&p);

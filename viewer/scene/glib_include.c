@@ -16,9 +16,9 @@
 
 /* Reads a whole regular file of at most LIM_FILE_BYTES into *out (NUL
  * terminated, freed by the caller); on failure *why says why. Its lines, a
- * byte order mark and binary bytes are parse_text's: glib_parse reads text
+ * byte order mark and binary bytes are glib_parse_text's: glib_parse reads text
  * from memory too. */
-bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen) {
+bool glib_read_file(const char *path, char **out, size_t *len, char *why, size_t whylen) {
     /* settled: a reload during a save reads the saved text, not a torn or empty one */
     file_text_opts o = { .max_bytes = LIM_FILE_BYTES, .settle = true };
     *out = file_read_text(path, &o, len, why, whylen);
@@ -26,24 +26,24 @@ bool read_file(const char *path, char **out, size_t *len, char *why, size_t whyl
 }
 
 /* Reads text as the file `name` with the include stack pushed; takes canon. */
-void parse_nested(parser *p, const char *text, size_t len, const char *name,
+void glib_parse_nested(parser *p, const char *text, size_t len, const char *name,
                   char *canon, bool top) {
     p->stack_name[p->depth] = name;
     p->stack_canon[p->depth] = canon;
     p->depth++;
-    parse_text(p, text, len, name, top);
+    glib_parse_text(p, text, len, name, top);
     p->depth--;
     free(canon);
 }
 
 /* A path that names the same file however it is spelled, for cycles. */
-char *canonical(const char *path) {
+char *glib_canonical(const char *path) {
     char *real = realpath(path, NULL);
     return real ? real : mem_strdup(path);
 }
 
 /* Appends s to buf (size bytes, *n used), cutting what does not fit. */
-void append_cut(char *buf, size_t size, size_t *n, const char *s) {
+void glib_append_cut(char *buf, size_t size, size_t *n, const char *s) {
     size_t l = strlen(s);
     if (*n + l >= size)
         l = size - 1 - *n;
@@ -56,36 +56,36 @@ static void report_cycle(cmdctx *c, int at, const char *path) {
     char chain[256] = "";
     size_t n = 0;
     for (int i = at; i < c->p->depth; i++) {
-        append_cut(chain, sizeof chain, &n, c->p->stack_name[i]);
-        append_cut(chain, sizeof chain, &n, " -> ");
+        glib_append_cut(chain, sizeof chain, &n, c->p->stack_name[i]);
+        glib_append_cut(chain, sizeof chain, &n, " -> ");
     }
-    append_cut(chain, sizeof chain, &n, path);
-    cerr(c, "%s cycle: %s; remove one of these Includes", c->spec->name, chain);
+    glib_append_cut(chain, sizeof chain, &n, path);
+    glib_cerr(c, "%s cycle: %s; remove one of these Includes", c->spec->name, chain);
 }
 
 /* Reads the file at path in place of the current line (Include, Pack). */
-void include_file(cmdctx *c, const char *path) {
+void glib_include_file(cmdctx *c, const char *path) {
     parser *p = c->p;
     char why[128], *buf;
     size_t len;
     if (p->nreads >= LIM_INCLUDE_READS) {
-        cerr(c, "more than %d Includes in one scene; '%s' skipped", LIM_INCLUDE_READS, path);
+        glib_cerr(c, "more than %d Includes in one scene; '%s' skipped", LIM_INCLUDE_READS, path);
         return;
     }
     char real[GLIB_PATH_MAX];
     snprintf(real, sizeof real, "%s", path);
     if (access(real, R_OK) != 0) {
-        check_readable(c, real);            /* says why, or finds the name in another case */
+        glib_check_readable(c, real);            /* says why, or finds the name in another case */
         if (access(real, R_OK) != 0)
             return;
     }
     path = real;
-    if (!read_file(path, &buf, &len, why, sizeof why)) {   /* a directory or huge */
-        cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+    if (!glib_read_file(path, &buf, &len, why, sizeof why)) {   /* a directory or huge */
+        glib_cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
         return;
     }
     p->nreads++;
-    char *canon = canonical(path);
+    char *canon = glib_canonical(path);
     for (int i = 0; i < p->depth; i++)
         if (strcmp(p->stack_canon[i], canon) == 0) {
             report_cycle(c, i, path);
@@ -94,25 +94,25 @@ void include_file(cmdctx *c, const char *path) {
             return;
         }
     if (p->depth > LIM_INCLUDE_DEPTH) {
-        cerr(c, "%s '%s' is nested more than %d files deep; is there a loop?", c->spec->name,
+        glib_cerr(c, "%s '%s' is nested more than %d files deep; is there a loop?", c->spec->name,
              path, LIM_INCLUDE_DEPTH);
         free(canon);
         free(buf);
         return;
     }
-    parse_nested(p, buf, len, add_file(p, path), canon, false);
+    glib_parse_nested(p, buf, len, glib_add_file(p, path), canon, false);
     free(buf);
 }
 
 /* Include file: its commands are read in place of this line. */
-bool h_include(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_include(cmdctx *c, glib_cmd *cmd) {
     char path[GLIB_PATH_MAX];
     if (c->nwords < 1) {
-        cerr(c, "Include needs a file: %s", c->usage);
+        glib_cerr(c, "Include needs a file: %s", c->usage);
         return false;
     }
-    warn_extra(c, 1, path_hint);
-    if (resolve_path(c, c->words[0], path))
-        include_file(c, path);
+    glib_warn_extra(c, 1, path_hint);
+    if (glib_resolve_path(c, c->words[0], path))
+        glib_include_file(c, path);
     return false;               /* no command of its own: its lines are inlined */
 }

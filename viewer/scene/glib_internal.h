@@ -104,14 +104,14 @@ struct cmd_spec {
     bool wire;
     cmd_fn fn;
     bool raw;                   /* the handler reads c->rest itself (brackets) */
-    int nreq, nmax;             /* numbers, for h_nums */
+    int nreq, nmax;             /* numbers, for glib_h_nums */
     arg_rule args[12];         /* LinesAdjacency: 4 points */
     const char *usage;          /* NULL: built from args */
     bool world;                 /* describes the world (docs/glib.md, "Describing the
                                  * world"): a scene with one is drawn lit, with tarn's world */
 };
 
-/* A mode word (Cull back, Terrain lake): its spelling, its canonical
+/* A mode word (Cull back, Terrain lake): its spelling, its glib_canonical
  * word, and a number it stands for. */
 typedef struct keyword { const char *word; const char *canon; double value; } keyword;
 
@@ -124,20 +124,20 @@ typedef enum { VAL_OK, VAL_BAD, VAL_STOP } val_result;
 /* ------------------------------------------------------------------ */
 /* characters                                                          */
 
-static inline bool is_space(int c) {
+static inline bool glib_is_space(int c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
 
-static inline char *skip_space(char *s) {
-    while (is_space((unsigned char)*s))
+static inline char *glib_skip_space(char *s) {
+    while (glib_is_space((unsigned char)*s))
         s++;
     return s;
 }
 
-static inline bool is_opener(int c) { return c == '<' || c == '{' || c == '['; }
-static inline bool is_closer(int c) { return c == '>' || c == '}' || c == ']'; }
+static inline bool glib_is_opener(int c) { return c == '<' || c == '{' || c == '['; }
+static inline bool glib_is_closer(int c) { return c == '>' || c == '}' || c == ']'; }
 
-static inline char closer_of(char open) {
+static inline char glib_closer_of(char open) {
     return open == '<' ? '>' : open == '{' ? '}' : ']';
 }
 
@@ -162,110 +162,110 @@ typedef struct logical {
 /* the driver (glib.c)                                                 */
 
 /* Makes room for need elements in *arr (capacity *cap). */
-void *grow(void *arr, int *cap, int need, size_t elem);
+void *glib_grow(void *arr, int *cap, int need, size_t elem);
 __attribute__((format(printf, 5, 6)))
-void report(parser *p, diag_severity sev, const char *file, int line, const char *fmt, ...);
+void glib_report(parser *p, diag_severity sev, const char *file, int line, const char *fmt, ...);
 /* An error / a warning at the command's line. */
 __attribute__((format(printf, 2, 3)))
-void cerr(cmdctx *c, const char *fmt, ...);
+void glib_cerr(cmdctx *c, const char *fmt, ...);
 __attribute__((format(printf, 2, 3)))
-void cwarn(cmdctx *c, const char *fmt, ...);
-const char *add_file(parser *p, const char *name);
-void push_cmd(parser *p, glib_cmd *cmd);
-void parse_text(parser *p, const char *text, size_t len, const char *file, bool top);
+void glib_cwarn(cmdctx *c, const char *fmt, ...);
+const char *glib_add_file(parser *p, const char *name);
+void glib_push_cmd(parser *p, glib_cmd *cmd);
+void glib_parse_text(parser *p, const char *text, size_t len, const char *file, bool top);
 
 /* ------------------------------------------------------------------ */
 /* the lexer (glib_lex.c)                                              */
 
-bool is_ident(const char *s);
-int split_words(char *s, char **w, int max);
-int split_items(char *s, char **w, int max);
-bool is_decimal(const char *s);
-bool parse_number(const char *s, double *out);
-size_t dotted_prefix(const char *s, double *out);
-bool is_bool_word(const char *s, double *v);
-bool next_phys(reader *r, const char **b, size_t *n);
-bool next_logical(reader *r, logical *lg);
+bool glib_is_ident(const char *s);
+int glib_split_words(char *s, char **w, int max);
+int glib_split_items(char *s, char **w, int max);
+bool glib_is_decimal(const char *s);
+bool glib_parse_number(const char *s, double *out);
+size_t glib_dotted_prefix(const char *s, double *out);
+bool glib_is_bool_word(const char *s, double *v);
+bool glib_next_phys(reader *r, const char **b, size_t *n);
+bool glib_next_logical(reader *r, logical *lg);
 
 /* ------------------------------------------------------------------ */
 /* a command's arguments (glib_args.c) and paths (glib_path.c)         */
 
-bool read_number(cmdctx *c, const char *tok, double *out);
-void build_usage(const cmd_spec *s, char *out, size_t size);
-bool parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out);
-void missing_args(cmdctx *c, int have);
-void warn_extra(cmdctx *c, int max, const char *hint);
-bool nums_from(cmdctx *c, glib_cmd *cmd, int w0, const arg_rule *rules, int nreq, int nmax,
+bool glib_read_number(cmdctx *c, const char *tok, double *out);
+void glib_build_usage(const cmd_spec *s, char *out, size_t size);
+bool glib_parse_arg(cmdctx *c, const arg_rule *a, const char *tok, double *out);
+void glib_missing_args(cmdctx *c, int have);
+void glib_warn_extra(cmdctx *c, int max, const char *hint);
+bool glib_nums_from(cmdctx *c, glib_cmd *cmd, int w0, const arg_rule *rules, int nreq, int nmax,
                const char *what);
-const keyword *find_keyword(cmdctx *c, const keyword *k, size_t n, const char *choices);
-const keyword *mode_word(cmdctx *c, const keyword *k, size_t n, const char *choices);
-bool take_uniform_name(cmdctx *c, const char *what, const char *w, char *dst, size_t size);
+const keyword *glib_find_keyword(cmdctx *c, const keyword *k, size_t n, const char *choices);
+const keyword *glib_mode_word(cmdctx *c, const keyword *k, size_t n, const char *choices);
+bool glib_take_uniform_name(cmdctx *c, const char *what, const char *w, char *dst, size_t size);
 
 extern const char path_hint[];
-bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]);
-void check_readable(cmdctx *c, char path[GLIB_PATH_MAX]);
-bool take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]);
+bool glib_resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]);
+void glib_check_readable(cmdctx *c, char path[GLIB_PATH_MAX]);
+bool glib_take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]);
 
 /* ------------------------------------------------------------------ */
 /* the handlers the command table names                                */
 
 /* glman's commands (glib_cmds.c) */
-bool h_nums(cmdctx *c, glib_cmd *cmd);
-bool h_stage(cmdctx *c, glib_cmd *cmd);
-bool h_obj(cmdctx *c, glib_cmd *cmd);
+bool glib_h_nums(cmdctx *c, glib_cmd *cmd);
+bool glib_h_stage(cmdctx *c, glib_cmd *cmd);
+bool glib_h_obj(cmdctx *c, glib_cmd *cmd);
 bool h_tex2d(cmdctx *c, glib_cmd *cmd);
 bool h_tex3d(cmdctx *c, glib_cmd *cmd);
-bool h_cube(cmdctx *c, glib_cmd *cmd);
-bool h_rtt(cmdctx *c, glib_cmd *cmd);
-bool h_clamp(cmdctx *c, glib_cmd *cmd);
-bool h_message(cmdctx *c, glib_cmd *cmd);
-bool h_begin(cmdctx *c, glib_cmd *cmd);
-bool h_vertex(cmdctx *c, glib_cmd *cmd);
-bool h_end(cmdctx *c, glib_cmd *cmd);
-bool h_cull(cmdctx *c, glib_cmd *cmd);
-bool h_blend(cmdctx *c, glib_cmd *cmd);
-bool h_depth(cmdctx *c, glib_cmd *cmd);
+bool glib_h_cube(cmdctx *c, glib_cmd *cmd);
+bool glib_h_rtt(cmdctx *c, glib_cmd *cmd);
+bool glib_h_clamp(cmdctx *c, glib_cmd *cmd);
+bool glib_h_message(cmdctx *c, glib_cmd *cmd);
+bool glib_h_begin(cmdctx *c, glib_cmd *cmd);
+bool glib_h_vertex(cmdctx *c, glib_cmd *cmd);
+bool glib_h_end(cmdctx *c, glib_cmd *cmd);
+bool glib_h_cull(cmdctx *c, glib_cmd *cmd);
+bool glib_h_blend(cmdctx *c, glib_cmd *cmd);
+bool glib_h_depth(cmdctx *c, glib_cmd *cmd);
 
 /* the world's commands (glib_world.c) */
-bool h_world_nums(cmdctx *c, glib_cmd *cmd);
-bool h_terrain(cmdctx *c, glib_cmd *cmd);
-bool h_wave_ocean(cmdctx *c, glib_cmd *cmd);
-bool h_object(cmdctx *c, glib_cmd *cmd);
-bool h_flow(cmdctx *c, glib_cmd *cmd);
-bool h_world(cmdctx *c, glib_cmd *cmd);
-bool h_camera(cmdctx *c, glib_cmd *cmd);
-bool h_if(cmdctx *c, glib_cmd *cmd);
-bool h_water_surface(cmdctx *c, glib_cmd *cmd);
+bool glib_h_world_nums(cmdctx *c, glib_cmd *cmd);
+bool glib_h_terrain(cmdctx *c, glib_cmd *cmd);
+bool glib_h_wave_ocean(cmdctx *c, glib_cmd *cmd);
+bool glib_h_object(cmdctx *c, glib_cmd *cmd);
+bool glib_h_flow(cmdctx *c, glib_cmd *cmd);
+bool glib_h_world(cmdctx *c, glib_cmd *cmd);
+bool glib_h_camera(cmdctx *c, glib_cmd *cmd);
+bool glib_h_if(cmdctx *c, glib_cmd *cmd);
+bool glib_h_water_surface(cmdctx *c, glib_cmd *cmd);
 
 /* Program and Define (glib_program.c) */
-bool h_program(cmdctx *c, glib_cmd *cmd);
-bool h_define(cmdctx *c, glib_cmd *cmd);
+bool glib_h_program(cmdctx *c, glib_cmd *cmd);
+bool glib_h_define(cmdctx *c, glib_cmd *cmd);
 
 /* Include (glib_include.c), Pack (glib_pack.c) */
-bool h_include(cmdctx *c, glib_cmd *cmd);
-bool h_pack(cmdctx *c, glib_cmd *cmd);
+bool glib_h_include(cmdctx *c, glib_cmd *cmd);
+bool glib_h_pack(cmdctx *c, glib_cmd *cmd);
 
 /* ------------------------------------------------------------------ */
 /* files read in place of a line (glib_include.c), the pack (glib_pack.c) */
 
-bool read_file(const char *path, char **out, size_t *len, char *why, size_t whylen);
-void parse_nested(parser *p, const char *text, size_t len, const char *name, char *canon, bool top);
-char *canonical(const char *path);
-void append_cut(char *buf, size_t size, size_t *n, const char *s);
-void include_file(cmdctx *c, const char *path);
-void override_pack_at_end(parser *p, const char *file);
+bool glib_read_file(const char *path, char **out, size_t *len, char *why, size_t whylen);
+void glib_parse_nested(parser *p, const char *text, size_t len, const char *name, char *canon, bool top);
+char *glib_canonical(const char *path);
+void glib_append_cut(char *buf, size_t size, size_t *n, const char *s);
+void glib_include_file(cmdctx *c, const char *path);
+void glib_override_pack_at_end(parser *p, const char *file);
 
 /* ------------------------------------------------------------------ */
 /* uniform values (glib_values.c)                                      */
 
-val_result read_value(cmdctx *c, char **sp, unif_decl *u, const char *owner);
-bool take_name(cmdctx *c, char **sp, char out[GLIB_NAME_MAX], const char *what);
+val_result glib_read_value(cmdctx *c, char **sp, unif_decl *u, const char *owner);
+bool glib_take_name(cmdctx *c, char **sp, char out[GLIB_NAME_MAX], const char *what);
 
 /* ------------------------------------------------------------------ */
 /* the command table (glib_table.c)                                    */
 
-const cmd_spec *find_spec(const char *name);
-const char *suggest(const char *name);
-int edit_distance(const char *a, const char *b);
+const cmd_spec *glib_find_spec(const char *name);
+const char *glib_suggest(const char *name);
+int glib_edit_distance(const char *a, const char *b);
 
 #endif

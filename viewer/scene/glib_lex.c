@@ -14,7 +14,7 @@
 /* ------------------------------------------------------------------ */
 /* characters and words                                               */
 
-bool is_ident(const char *s) {
+bool glib_is_ident(const char *s) {
     if (!isalpha((unsigned char)*s) && *s != '_')
         return false;
     for (s++; *s; s++)
@@ -26,10 +26,10 @@ bool is_ident(const char *s) {
 /* Splits s in place at whitespace; a "quoted word" keeps its spaces.
  * Stores at most max words and returns how many there are in all, or -1
  * for an unclosed quote. */
-int split_words(char *s, char **w, int max) {
+int glib_split_words(char *s, char **w, int max) {
     int n = 0;
     for (;;) {
-        s = skip_space(s);
+        s = glib_skip_space(s);
         if (!*s)
             return n;
         char *start = s;
@@ -39,7 +39,7 @@ int split_words(char *s, char **w, int max) {
             if (!s)
                 return -1;
         } else {
-            while (*s && !is_space((unsigned char)*s))
+            while (*s && !glib_is_space((unsigned char)*s))
                 s++;
         }
         if (n < max)
@@ -52,15 +52,15 @@ int split_words(char *s, char **w, int max) {
 
 /* Splits bracket contents in place at whitespace and commas, since real
  * files write both: {0.40, 1.0, 0.95, 1.}. Returns the count of items. */
-int split_items(char *s, char **w, int max) {
+int glib_split_items(char *s, char **w, int max) {
     int n = 0;
     for (;;) {
-        while (is_space((unsigned char)*s) || *s == ',')
+        while (glib_is_space((unsigned char)*s) || *s == ',')
             s++;
         if (!*s)
             return n;
         char *start = s;
-        while (*s && !is_space((unsigned char)*s) && *s != ',')
+        while (*s && !glib_is_space((unsigned char)*s) && *s != ',')
             s++;
         if (n < max)
             w[n] = start;
@@ -72,7 +72,7 @@ int split_items(char *s, char **w, int max) {
 
 /* The decimal forms people write: 1  -2.  .5  1e-3  +3.25E+2. strtod alone
  * would also take hex, "nan" and "inf", which are typos in a scene file. */
-bool is_decimal(const char *s) {
+bool glib_is_decimal(const char *s) {
     int digits = 0;
     if (*s == '+' || *s == '-')
         s++;
@@ -95,8 +95,8 @@ bool is_decimal(const char *s) {
     return *s == '\0';
 }
 
-bool parse_number(const char *s, double *out) {
-    if (!is_decimal(s))
+bool glib_parse_number(const char *s, double *out) {
+    if (!glib_is_decimal(s))
         return false;
     char *end;
     double v = strtod(s, &end);
@@ -111,7 +111,7 @@ bool parse_number(const char *s, double *out) {
  * followed by dots and digits is read as its prefix; letters or other signs
  * after a number (0x10, 1e, 3#x) stay errors, being other mistakes. The
  * length of the prefix read, or 0. */
-size_t dotted_prefix(const char *s, double *out) {
+size_t glib_dotted_prefix(const char *s, double *out) {
     size_t k = 0;
     if (s[k] == '+' || s[k] == '-')
         k++;
@@ -128,10 +128,10 @@ size_t dotted_prefix(const char *s, double *out) {
     char buf[66];
     memcpy(buf, s, k);
     buf[k] = '\0';
-    return parse_number(buf, out) ? k : 0;
+    return glib_parse_number(buf, out) ? k : 0;
 }
 
-bool is_bool_word(const char *s, double *v) {
+bool glib_is_bool_word(const char *s, double *v) {
     if (strcasecmp(s, "true") == 0)
         return *v = 1, true;
     if (strcasecmp(s, "false") == 0)
@@ -143,7 +143,7 @@ bool is_bool_word(const char *s, double *v) {
 /* physical and logical lines                                         */
 
 /* The next physical line, without its end (\n, \r\n or a lone \r). */
-bool next_phys(reader *r, const char **b, size_t *n) {
+bool glib_next_phys(reader *r, const char **b, size_t *n) {
     if (r->pos >= r->len)
         return false;
     size_t i = r->pos;
@@ -167,7 +167,7 @@ static size_t comment_start(const char *s, size_t n) {
             quoted = !quoted;
         if (quoted)
             continue;
-        bool word_start = i == 0 || is_space((unsigned char)s[i - 1]) || is_closer(s[i - 1]);
+        bool word_start = i == 0 || glib_is_space((unsigned char)s[i - 1]) || glib_is_closer(s[i - 1]);
         if (word_start && (s[i] == '#' || (s[i] == '/' && i + 1 < n && s[i + 1] == '/')))
             return i;
     }
@@ -181,7 +181,7 @@ static size_t first_bad_byte(const unsigned char *s, size_t n) {
     while (i < n) {
         unsigned c = s[i];
         if (c < 0x80) {
-            if ((c < 0x20 && !is_space((int)c)) || c == 0x7f)
+            if ((c < 0x20 && !glib_is_space((int)c)) || c == 0x7f)
                 return i;
             i++;
             continue;
@@ -217,22 +217,22 @@ static void append_phys(logical *lg, const char *b, size_t n, bool cont) {
 }
 
 /* Joins physical lines ending in `\` into one logical line, comments cut. */
-bool next_logical(reader *r, logical *lg) {
+bool glib_next_logical(reader *r, logical *lg) {
     const char *b;
     size_t n;
     lg->n = 0;
     lg->too_long = false;
     lg->bad_byte = -1;
-    if (!next_phys(r, &b, &n))
+    if (!glib_next_phys(r, &b, &n))
         return false;
     lg->first_line = r->lineno;
     for (;;) {
         n = comment_start(b, n);
-        while (n > 0 && is_space((unsigned char)b[n - 1]))
+        while (n > 0 && glib_is_space((unsigned char)b[n - 1]))
             n--;
         bool cont = n > 0 && b[n - 1] == '\\';
         append_phys(lg, b, cont ? n - 1 : n, cont);
-        if (!cont || !next_phys(r, &b, &n))
+        if (!cont || !glib_next_phys(r, &b, &n))
             break;
     }
     lg->buf[lg->n] = '\0';

@@ -52,9 +52,9 @@ static void list_packs(const char *dir, const char *name, char *out, size_t outl
     size_t len = 0;
     int best = 3;
     for (int i = 0; i < n; i++) {
-        append_cut(out, outlen, &len, i ? ", " : "");
-        append_cut(out, outlen, &len, names[i]);
-        int dist = edit_distance(name, names[i]);
+        glib_append_cut(out, outlen, &len, i ? ", " : "");
+        glib_append_cut(out, outlen, &len, names[i]);
+        int dist = glib_edit_distance(name, names[i]);
         if (dist < best) {
             best = dist;
             snprintf(near, GLIB_NAME_MAX, "%s", names[i]);
@@ -69,7 +69,7 @@ static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written) {
     parser *p = c->p;
     const char *name = p->pack_override ? p->pack_override : written;
     if (!is_pack_name(name)) {
-        cerr(c, "Pack: '%.60s'%s is not a pack name: write the name of a directory under packs/, e.g. Pack basic",
+        glib_cerr(c, "Pack: '%.60s'%s is not a pack name: write the name of a directory under packs/, e.g. Pack basic",
              name, p->pack_override ? " (the pack chosen instead of the scene's)" : "");
         return;
     }
@@ -78,13 +78,13 @@ static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written) {
     p->pack_line = c->line;
     snprintf(p->pack_name, sizeof p->pack_name, "%s", name);
     snprintf(cmd->name, sizeof cmd->name, "%s", name);
-    push_cmd(p, cmd);
+    glib_push_cmd(p, cmd);
     memset(cmd, 0, sizeof *cmd);        /* pushed: the caller frees nothing */
     if (!p->packs_dir || p->stop)
         return;
     char path[GLIB_PATH_MAX];
     if (snprintf(path, sizeof path, "%s/%s/pack.glib", p->packs_dir, name) >= (int)sizeof path) {
-        cerr(c, "Pack %s: the path of its pack.glib is too long (at most %d characters)", name,
+        glib_cerr(c, "Pack %s: the path of its pack.glib is too long (at most %d characters)", name,
              GLIB_PATH_MAX - 1);
         return;
     }
@@ -94,22 +94,22 @@ static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written) {
         list_packs(p->packs_dir, name, packs, sizeof packs, near);
         if (near[0])
             snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
-        cerr(c, "Pack: no pack '%s' in %s (no %s/pack.glib); the packs are: %s%s", name,
+        glib_cerr(c, "Pack: no pack '%s' in %s (no %s/pack.glib); the packs are: %s%s", name,
              p->packs_dir, name, packs[0] ? packs : "(none)", hint);
         return;
     }
-    include_file(c, path);
+    glib_include_file(c, path);
 }
 
-bool h_pack(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_pack(cmdctx *c, glib_cmd *cmd) {
     parser *p = c->p;
     if (c->nwords < 1) {
-        cerr(c, "Pack needs a name: %s", c->usage);
+        glib_cerr(c, "Pack needs a name: %s", c->usage);
         return false;
     }
-    warn_extra(c, 1, "");
+    glib_warn_extra(c, 1, "");
     if (p->pack_seen) {
-        cwarn(c, "Pack %.60s ignored: this scene's pack is already '%s' (%s:%d); a scene has one pack",
+        glib_cwarn(c, "Pack %.60s ignored: this scene's pack is already '%s' (%s:%d); a scene has one pack",
               c->words[0], p->pack_name, p->pack_file, p->pack_line);
         return false;
     }
@@ -119,7 +119,7 @@ bool h_pack(cmdctx *c, glib_cmd *cmd) {
 
 /* A pack chosen from outside for a scene that names none: as if the top
  * file ended with `Pack name` (at its line 0). */
-void override_pack_at_end(parser *p, const char *file) {
+void glib_override_pack_at_end(parser *p, const char *file) {
     /* A pack draws the water of a world (Terrain, Water, Sun, Sky...). A
      * plain glman scene draws its own floor and water: given a pack, it
      * would get the pack's world and water on top of its own. Refuse, and
@@ -128,15 +128,15 @@ void override_pack_at_end(parser *p, const char *file) {
     for (int i = 0; i < p->sc->ncmds && !world; i++)
         world = p->sc->cmds[i].kind != GLIB_CMD_PACK && glib_cmd_describes_world(p->sc->cmds[i].kind);
     if (!world) {
-        report(p, DIAG_ERROR, file, 0,
+        glib_report(p, DIAG_ERROR, file, 0,
                "--pack %.60s: this scene describes no world (no Terrain, Water, Sun or Sky command), so a pack "
                "has no water of its own to draw here: it would draw its world over the scene's. Give --pack a "
                "world scene (scenes/lake.glib, scenes/pool.glib), or open this one without --pack",
                p->pack_override);
         return;
     }
-    cmdctx c = { .p = p, .file = file, .line = 0, .spec = find_spec("Pack") };
-    build_usage(c.spec, c.usage, sizeof c.usage);
+    cmdctx c = { .p = p, .file = file, .line = 0, .spec = glib_find_spec("Pack") };
+    glib_build_usage(c.spec, c.usage, sizeof c.usage);
     glib_cmd cmd;
     memset(&cmd, 0, sizeof cmd);
     cmd.kind = GLIB_CMD_PACK;

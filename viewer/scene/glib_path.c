@@ -17,7 +17,7 @@ const char path_hint[] = " (quote a path that has spaces: \"my file.png\")";
 /* Paths are relative to the file that names them, so a scene and its
  * shaders move together. Backslashes become slashes: glman ran on Windows
  * and student files say textures\water.bmp. */
-bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]) {
+bool glib_resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]) {
     size_t dirlen = 0;
     if (word[0] != '/' && word[0] != '\\') {
         const char *slash = strrchr(c->file, '/');
@@ -25,7 +25,7 @@ bool resolve_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]) {
     }
     size_t wl = strlen(word);
     if (dirlen + wl >= GLIB_PATH_MAX) {
-        cerr(c, "%s: path too long (%zu characters, at most %d): '%.40s...'",
+        glib_cerr(c, "%s: path too long (%zu characters, at most %d): '%.40s...'",
              c->spec->name, dirlen + wl, GLIB_PATH_MAX - 1, word);
         return false;
     }
@@ -89,7 +89,7 @@ static bool case_match(const char *path, char alt[GLIB_PATH_MAX]) {
  * saying it here puts the message next to the line that named it. A name
  * that differs from the file on disk only in case is that file (glman's
  * Windows habit), with a warning naming the real file. */
-void check_readable(cmdctx *c, char path[GLIB_PATH_MAX]) {
+void glib_check_readable(cmdctx *c, char path[GLIB_PATH_MAX]) {
     char why[128];
     struct stat st;
     if (access(path, R_OK) != 0)
@@ -101,19 +101,19 @@ void check_readable(cmdctx *c, char path[GLIB_PATH_MAX]) {
     char alt[GLIB_PATH_MAX];
     if (case_match(path, alt) && access(alt, R_OK) == 0 && stat(alt, &st) == 0 &&
         !S_ISDIR(st.st_mode)) {
-        cwarn(c, "%s: '%s' is '%s' on disk; using it (file names are case-sensitive here, "
+        glib_cwarn(c, "%s: '%s' is '%s' on disk; using it (file names are case-sensitive here, "
                  "not on Windows where glman ran)", c->spec->name, path, alt);
         memcpy(path, alt, strlen(alt) + 1);
         return;
     }
-    cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
+    glib_cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
 }
 
 /* Resolves and checks a path; false only when it cannot be stored. A file
  * that is missing now keeps its command: it may appear before the render. */
-bool take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]) {
-    if (!resolve_path(c, word, out))
+bool glib_take_path(cmdctx *c, const char *word, char out[GLIB_PATH_MAX]) {
+    if (!glib_resolve_path(c, word, out))
         return false;
-    check_readable(c, out);
+    glib_check_readable(c, out);
     return true;
 }

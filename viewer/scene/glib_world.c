@@ -17,22 +17,22 @@
 #include <strings.h>
 
 /* Sun, Sky, Water, WaterMesh, Wave*: numbers only, nnum as written. */
-bool h_world_nums(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_world_nums(cmdctx *c, glib_cmd *cmd) {
     const cmd_spec *s = c->spec;
-    if (!nums_from(c, cmd, 0, s->args, s->nreq, s->nmax, s->name))
+    if (!glib_nums_from(c, cmd, 0, s->args, s->nreq, s->nmax, s->name))
         return false;
     const double *n = cmd->num;
     int given = cmd->nnum;
     if (cmd->kind == GLIB_CMD_SUN && given != 3 && given != 6) {
-        cerr(c, "Sun: the irradiance needs 3 numbers (r g b), got %d: %s", given - 3, c->usage);
+        glib_cerr(c, "Sun: the irradiance needs 3 numbers (r g b), got %d: %s", given - 3, c->usage);
         return false;
     }
     if (cmd->kind == GLIB_CMD_SUN && n[0] == 0 && n[1] == 0 && n[2] == 0) {
-        cerr(c, "Sun: the direction is zero; write the direction towards the sun, e.g. Sun 0.4 0.8 -0.45");
+        glib_cerr(c, "Sun: the direction is zero; write the direction towards the sun, e.g. Sun 0.4 0.8 -0.45");
         return false;
     }
     if (cmd->kind == GLIB_CMD_WATER && given > 2 && given != 5) {
-        cerr(c, "Water: the absorption needs 3 numbers (ar ag ab), got %d: %s", given - 2, c->usage);
+        glib_cerr(c, "Water: the absorption needs 3 numbers (ar ag ab), got %d: %s", given - 2, c->usage);
         return false;
     }
     return true;
@@ -40,21 +40,21 @@ bool h_world_nums(cmdctx *c, glib_cmd *cmd) {
 
 #define RES_RULE(s) { s, NULL, 'i', 0, 65536, 0 }
 
-bool h_terrain(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_terrain(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "flat", "flat", 0 }, { "lake", "lake", 1 }, { "slope", "slope", 2 },
                                  { "pool", "pool", 3 } };
     static const arg_rule rules[] = {
         { "half_size", NULL, 'r', 0, 0, 0 }, { "depth", NULL, 'r', 0, 0, 0 },
         { "shore_height_or_slope", NULL, 'r', 0, 0, 0 }, SEED_RULE("seed"), RES_RULE("res"),
     };
-    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "flat, lake, slope or pool");
+    const keyword *m = glib_mode_word(c, k, sizeof k / sizeof k[0], "flat, lake, slope or pool");
     if (!m)
         return false;
     snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
-    return nums_from(c, cmd, 1, rules, 0, 5, "Terrain");
+    return glib_nums_from(c, cmd, 1, rules, 0, 5, "Terrain");
 }
 
-bool h_wave_ocean(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_wave_ocean(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "phillips", "phillips", 1 }, { "jonswap", "jonswap", 2 },
                                  { "tma", "tma", 3 } };
     static const arg_rule rules[] = {
@@ -63,11 +63,11 @@ bool h_wave_ocean(cmdctx *c, glib_cmd *cmd) {
         { "fetch", NULL, 'r', 0, 0, 0 }, { "depth", NULL, 'r', 0, 0, 0 },
         { "spreading", NULL, 'r', 0, 0, 0 }, { "amplitude", NULL, 'r', 0, 0, 0 },
     };
-    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "phillips, jonswap or tma");
+    const keyword *m = glib_mode_word(c, k, sizeof k / sizeof k[0], "phillips, jonswap or tma");
     if (!m)
         return false;
     snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
-    return nums_from(c, cmd, 1, rules, 1, 9, "WaveOcean");
+    return glib_nums_from(c, cmd, 1, rules, 1, 9, "WaveOcean");
 }
 
 /* Object mesh FILE x y z [rot_y_deg [scale [R G B]]] (issue #25): the
@@ -81,21 +81,21 @@ static bool object_mesh(cmdctx *c, glib_cmd *cmd) {
     snprintf(c->usage, sizeof c->usage, "Object mesh file.obj x y z [rot_y_deg [scale [R G B]]]");
     snprintf(cmd->name, sizeof cmd->name, "mesh");
     if (c->nwords < 2) {
-        cerr(c, "Object mesh needs a file: %s", c->usage);
+        glib_cerr(c, "Object mesh needs a file: %s", c->usage);
         return false;
     }
-    if (!take_path(c, c->words[1], cmd->path))
+    if (!glib_take_path(c, c->words[1], cmd->path))
         return false;
-    if (!nums_from(c, cmd, 2, rules, 3, 8, "Object mesh"))
+    if (!glib_nums_from(c, cmd, 2, rules, 3, 8, "Object mesh"))
         return false;
     if (cmd->nnum > 5 && cmd->nnum < 8) {
-        cerr(c, "Object mesh: the colour needs 3 numbers (R G B), got %d: %s", cmd->nnum - 5, c->usage);
+        glib_cerr(c, "Object mesh: the colour needs 3 numbers (R G B), got %d: %s", cmd->nnum - 5, c->usage);
         return false;
     }
     return true;
 }
 
-bool h_object(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_object(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "sphere", "sphere", 7 }, { "box", "box", 9 },
                                  { "cylinder", "cylinder", 8 } };
     static const char *const syms[3][9] = {
@@ -105,7 +105,7 @@ bool h_object(cmdctx *c, glib_cmd *cmd) {
     };
     if (c->nwords >= 1 && strcasecmp(c->words[0], "mesh") == 0)
         return object_mesh(c, cmd);
-    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "sphere, box, cylinder or mesh");
+    const keyword *m = glib_mode_word(c, k, sizeof k / sizeof k[0], "sphere, box, cylinder or mesh");
     if (!m)
         return false;
     int which = (int)(m - k), n = (int)m->value;
@@ -119,12 +119,12 @@ bool h_object(cmdctx *c, glib_cmd *cmd) {
     snprintf(what, sizeof what, "Object %s", m->canon);
     snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
     snprintf(c->usage, sizeof c->usage, "%s", usage);   /* the usage of this kind */
-    return nums_from(c, cmd, 1, rules, n, n, what);
+    return glib_nums_from(c, cmd, 1, rules, n, n, what);
 }
 
 /* Flow: one term of the flow field (its velocities add), or the look of
  * the detail it carries; the numbers each kind takes, as Object's. */
-bool h_flow(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_flow(cmdctx *c, glib_cmd *cmd) {
     static const keyword k[] = { { "current", "current", 2 }, { "vortex", "vortex", 4 },
                                  { "detail", "detail", 4 } };
     static const arg_rule rules[3][4] = {
@@ -141,12 +141,12 @@ bool h_flow(cmdctx *c, glib_cmd *cmd) {
         snprintf(cmd->name, sizeof cmd->name, "texture");
         snprintf(c->usage, sizeof c->usage, "Flow texture file scale");
         if (c->nwords < 3) {
-            cerr(c, "Flow texture needs a file and a scale: %s", c->usage);
+            glib_cerr(c, "Flow texture needs a file and a scale: %s", c->usage);
             return false;
         }
-        return take_path(c, c->words[1], cmd->path) && nums_from(c, cmd, 2, &scale_rule, 1, 1, "Flow texture");
+        return glib_take_path(c, c->words[1], cmd->path) && glib_nums_from(c, cmd, 2, &scale_rule, 1, 1, "Flow texture");
     }
-    const keyword *m = mode_word(c, k, sizeof k / sizeof k[0], "current, vortex, texture or detail");
+    const keyword *m = glib_mode_word(c, k, sizeof k / sizeof k[0], "current, vortex, texture or detail");
     if (!m)
         return false;
     int which = (int)(m - k), n = (int)m->value;
@@ -154,10 +154,10 @@ bool h_flow(cmdctx *c, glib_cmd *cmd) {
     snprintf(what, sizeof what, "Flow %s", m->canon);
     snprintf(cmd->name, sizeof cmd->name, "%s", m->canon);
     snprintf(c->usage, sizeof c->usage, "%s", usages[which]);
-    return nums_from(c, cmd, 1, rules[which], which == 2 ? 1 : n, n, what);
+    return glib_nums_from(c, cmd, 1, rules[which], which == 2 ? 1 : n, n, what);
 }
 
-bool h_world(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_world(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule offset_rule = { "offset", "a clip offset", 'r', 0, 0, 0 };
     static const char *const modes[] = { "all", "above", "below" };
     snprintf(cmd->name, sizeof cmd->name, "all");
@@ -167,54 +167,54 @@ bool h_world(cmdctx *c, glib_cmd *cmd) {
     while (m < 3 && strcasecmp(c->words[0], modes[m]) != 0)
         m++;
     if (m == 3) {
-        cerr(c, "World: unknown mode '%.40s': write World all|above|below [offset]", c->words[0]);
+        glib_cerr(c, "World: unknown mode '%.40s': write World all|above|below [offset]", c->words[0]);
         return false;
     }
     snprintf(cmd->name, sizeof cmd->name, "%s", modes[m]);
-    warn_extra(c, 2, "");
+    glib_warn_extra(c, 2, "");
     if (c->nwords < 2)
         return true;
     const char *w = c->words[1];
     if (isalpha((unsigned char)w[0]) || w[0] == '_') {   /* a float slider of the last Program */
-        return take_uniform_name(c, "World", w, cmd->arg, sizeof cmd->arg);
+        return glib_take_uniform_name(c, "World", w, cmd->arg, sizeof cmd->arg);
     }
-    if (!parse_arg(c, &offset_rule, w, &cmd->num[0]))
+    if (!glib_parse_arg(c, &offset_rule, w, &cmd->num[0]))
         return false;
     cmd->nnum = 1;
     return true;
 }
 
 /* Camera main|mirror|top|light [fov_scale | uniform] */
-bool h_camera(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_camera(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule scale_rule = { "fov_scale", "a field-of-view scale", 'p', 0, 0, 0 };
     static const char *const kinds[] = { "main", "wide", "mirror", "top", "light" };
     if (c->nwords < 1) {
-        cerr(c, "Camera needs main, wide, mirror, top or light: %s", c->usage);
+        glib_cerr(c, "Camera needs main, wide, mirror, top or light: %s", c->usage);
         return false;
     }
     size_t k = 0;
     while (k < 5 && strcasecmp(c->words[0], kinds[k]) != 0)
         k++;
     if (k == 5) {
-        cerr(c, "Camera: unknown camera '%.40s': write main, wide, mirror, top or light", c->words[0]);
+        glib_cerr(c, "Camera: unknown camera '%.40s': write main, wide, mirror, top or light", c->words[0]);
         return false;
     }
     snprintf(cmd->name, sizeof cmd->name, "%s", kinds[k]);
-    warn_extra(c, 2, "");
+    glib_warn_extra(c, 2, "");
     if (c->nwords < 2)
         return true;
     const char *w = c->words[1];
     if (isalpha((unsigned char)w[0]) || w[0] == '_') {
-        return take_uniform_name(c, "Camera", w, cmd->arg, sizeof cmd->arg);
+        return glib_take_uniform_name(c, "Camera", w, cmd->arg, sizeof cmd->arg);
     }
-    if (!parse_arg(c, &scale_rule, w, &cmd->num[0]))
+    if (!glib_parse_arg(c, &scale_rule, w, &cmd->num[0]))
         return false;
     cmd->nnum = 1;
     return true;
 }
 
 /* If [not] NAME: a block the renderer skips while NAME is false */
-bool h_if(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_if(cmdctx *c, glib_cmd *cmd) {
     int w = 0;
     if (c->nwords >= 1 && strcasecmp(c->words[0], "not") == 0) {
         cmd->num[0] = 1;
@@ -222,13 +222,13 @@ bool h_if(cmdctx *c, glib_cmd *cmd) {
         w = 1;
     }
     if (c->nwords <= w) {
-        cerr(c, "If needs a condition: %s", c->usage);
+        glib_cerr(c, "If needs a condition: %s", c->usage);
         return false;
     }
-    warn_extra(c, w + 1, "");
+    glib_warn_extra(c, w + 1, "");
     const char *name = c->words[w];
     if (!(isalpha((unsigned char)name[0]) || name[0] == '_') || strlen(name) >= sizeof cmd->name) {
-        cerr(c, "If: '%.40s' is not a condition: write a Define name, above_water, under_water or waves", name);
+        glib_cerr(c, "If: '%.40s' is not a condition: write a Define name, above_water, under_water or waves", name);
         return false;
     }
     snprintf(cmd->name, sizeof cmd->name, "%s", name);
@@ -236,20 +236,20 @@ bool h_if(cmdctx *c, glib_cmd *cmd) {
 }
 
 /* WaterSurface [points|mesh N|uniform] */
-bool h_water_surface(cmdctx *c, glib_cmd *cmd) {
+bool glib_h_water_surface(cmdctx *c, glib_cmd *cmd) {
     static const arg_rule n_rule = { "N", "a point count per side", 'i', 1, 4096, 0 };
     if (c->nwords == 0)
         return true;
     bool points = strcasecmp(c->words[0], "points") == 0, mesh = strcasecmp(c->words[0], "mesh") == 0;
     if (!(points || mesh) || c->nwords < 2) {
-        cerr(c, "WaterSurface: write WaterSurface, WaterSurface points N or WaterSurface mesh N");
+        glib_cerr(c, "WaterSurface: write WaterSurface, WaterSurface points N or WaterSurface mesh N");
         return false;
     }
-    warn_extra(c, 2, "");
+    glib_warn_extra(c, 2, "");
     snprintf(cmd->name, sizeof cmd->name, "%s", points ? "points" : "mesh");
-    if (is_ident(c->words[1]))   /* N from a slider: `WaterSurface points uPhotonGrid` */
-        return take_uniform_name(c, "WaterSurface", c->words[1], cmd->arg, sizeof cmd->arg);
-    if (!parse_arg(c, &n_rule, c->words[1], &cmd->num[0]))
+    if (glib_is_ident(c->words[1]))   /* N from a slider: `WaterSurface points uPhotonGrid` */
+        return glib_take_uniform_name(c, "WaterSurface", c->words[1], cmd->arg, sizeof cmd->arg);
+    if (!glib_parse_arg(c, &n_rule, c->words[1], &cmd->num[0]))
         return false;
     cmd->nnum = 1;
     return true;

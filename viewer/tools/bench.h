@@ -14,8 +14,10 @@
  * full-screen pass with one texture fetch) is measured in the same run.
  * Writes CSV, JSON, a Markdown report and speed-against-RMSE and
  * speed-against-FLIP plots per scene; with --docs, the report section of
- * docs/benchmark.md. See docs/benchmark.md. The measuring is bench.c, the
- * writers bench_report.c (their shared state: bench_int.h). */
+ * docs/benchmark.md. See docs/benchmark.md. The command is bench.c, the
+ * measuring bench_measure.c (with bench_timing.c, bench_error.c,
+ * bench_refs.c, bench_cost.c), the writers bench_csv.c, bench_json.c and
+ * bench_report.c (their shared state: bench_int.h). */
 #ifndef TARN_BENCH_H
 #define TARN_BENCH_H
 
