@@ -6,14 +6,14 @@
 #include <math.h>
 #include <string.h>
 
-static const char *const cam_names[CAM_COUNT] = { "main", "wide", "mirror", "top", "light" };
-static const char *const vp_uniforms[CAM_COUNT] = { "uCamMainVP", "uCamWideVP", "uCamMirrorVP", "uCamTopVP",
-                                                    "uCamLightVP" };
-static const char *const inv_uniforms[CAM_COUNT] = { "uCamMainInvVP", "uCamWideInvVP", "uCamMirrorInvVP",
-                                                     "uCamTopInvVP", "uCamLightInvVP" };
+static const char *const cam_names[RENDER_CAMERA_COUNT] = { "main", "wide", "mirror", "top", "light" };
+static const char *const vp_uniforms[RENDER_CAMERA_COUNT] = { "uCamMainVP", "uCamWideVP", "uCamMirrorVP",
+                                                              "uCamTopVP", "uCamLightVP" };
+static const char *const inv_uniforms[RENDER_CAMERA_COUNT] = { "uCamMainInvVP", "uCamWideInvVP",
+                                                               "uCamMirrorInvVP", "uCamTopInvVP", "uCamLightInvVP" };
 
-int cam_kind_from_name(const char *name) {
-    for (int k = 0; k < CAM_COUNT; k++)
+int render_camera_kind_from_name(const char *name) {
+    for (int k = 0; k < RENDER_CAMERA_COUNT; k++)
         if (strcmp(name, cam_names[k]) == 0) return k;
     return -1;
 }
@@ -26,7 +26,7 @@ static void lookat(const render_view *v, mat4 out) {
     glm_lookat(eye, center, up, out);
 }
 
-static void perspective(const cam_inputs *in, float scale, mat4 out) {
+static void perspective(const render_camera_inputs *in, float scale, mat4 out) {
     if (in->ortho) {
         glm_ortho((float)in->ortho_lrbt[0], (float)in->ortho_lrbt[1], (float)in->ortho_lrbt[2],
                   (float)in->ortho_lrbt[3], -1000.0f, 1000.0f, out);
@@ -47,7 +47,7 @@ static void mirror_matrix(double level, mat4 out) {
 
 /* Straight down over the square |x|, |z| <= h: clip x = x / h, clip y = z / h,
  * depth from the top of the world (near) to below its floor (far). */
-static void top_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) {
+static void top_matrices(const render_camera_inputs *in, float h, mat4 view, mat4 proj) {
     double ymin = in->level - 2.0 * in->depth - 10.0, ymax = in->level + 50.0, range = ymax - ymin;
     glm_mat4_identity(view);
     glm_mat4_zero(proj);
@@ -63,7 +63,7 @@ static void top_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) {
  * length follows the world (h does): fixed metres here put a 2.4 km lake
  * outside the depth range and spent the depth buffer's precision on 400 m
  * of nothing over a 24 cm one. */
-static void light_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) {
+static void light_matrices(const render_camera_inputs *in, float h, mat4 view, mat4 proj) {
     const double *s = in->sun_dir;
     render_view v = { { 0, 0, 0 }, { 0, (float)in->level, 0 }, { 0, 1, 0 } };
     for (int k = 0; k < 3; k++) v.eye[k] = v.center[k] + (float)(s[k] * h);
@@ -72,35 +72,35 @@ static void light_matrices(const cam_inputs *in, float h, mat4 view, mat4 proj) 
     glm_ortho(-h, h, -h, h, 0.0f, 2.0f * h, proj);
 }
 
-void cam_compute(const cam_inputs *in, cam_set *out) {
+void render_camera_compute(const render_camera_inputs *in, render_camera_set *out) {
     mat4 view, proj, vp, m;
     /* main */
     lookat(&in->view, view);
-    perspective(in, in->fov_scale[CAM_MAIN], proj);
-    memcpy(out->view[CAM_MAIN], view, sizeof view);
-    memcpy(out->proj[CAM_MAIN], proj, sizeof proj);
+    perspective(in, in->fov_scale[RENDER_CAMERA_MAIN], proj);
+    memcpy(out->view[RENDER_CAMERA_MAIN], view, sizeof view);
+    memcpy(out->proj[RENDER_CAMERA_MAIN], proj, sizeof proj);
     /* wide: the main view with its own (widened) field of view */
-    memcpy(out->view[CAM_WIDE], view, sizeof view);
-    perspective(in, in->fov_scale[CAM_WIDE], proj);
-    memcpy(out->proj[CAM_WIDE], proj, sizeof proj);
+    memcpy(out->view[RENDER_CAMERA_WIDE], view, sizeof view);
+    perspective(in, in->fov_scale[RENDER_CAMERA_WIDE], proj);
+    memcpy(out->proj[RENDER_CAMERA_WIDE], proj, sizeof proj);
     /* mirror: the main view of the reflected world */
     mirror_matrix(in->level, m);
     glm_mat4_mul(view, m, vp);
-    memcpy(out->view[CAM_MIRROR], vp, sizeof vp);
-    perspective(in, in->fov_scale[CAM_MIRROR], proj);
-    memcpy(out->proj[CAM_MIRROR], proj, sizeof proj);
+    memcpy(out->view[RENDER_CAMERA_MIRROR], vp, sizeof vp);
+    perspective(in, in->fov_scale[RENDER_CAMERA_MIRROR], proj);
+    memcpy(out->proj[RENDER_CAMERA_MIRROR], proj, sizeof proj);
     /* top and light */
     out->top_half = (float)(in->half_size * 1.05);
     top_matrices(in, out->top_half, view, proj);
-    memcpy(out->view[CAM_TOP], view, sizeof view);
-    memcpy(out->proj[CAM_TOP], proj, sizeof proj);
+    memcpy(out->view[RENDER_CAMERA_TOP], view, sizeof view);
+    memcpy(out->proj[RENDER_CAMERA_TOP], proj, sizeof proj);
     /* the square's corners (1.41 half sizes out), its depth, and what stands
      * on the shore (the lake's tallest object: 4.5 m of 12) */
     out->light_half = (float)(in->half_size * (1.5 + 2.0 / 12.0) + in->depth);
     light_matrices(in, out->light_half, view, proj);
-    memcpy(out->view[CAM_LIGHT], view, sizeof view);
-    memcpy(out->proj[CAM_LIGHT], proj, sizeof proj);
-    for (int k = 0; k < CAM_COUNT; k++) {
+    memcpy(out->view[RENDER_CAMERA_LIGHT], view, sizeof view);
+    memcpy(out->proj[RENDER_CAMERA_LIGHT], proj, sizeof proj);
+    for (int k = 0; k < RENDER_CAMERA_COUNT; k++) {
         mat4 a, b;
         memcpy(a, out->proj[k], sizeof a);
         memcpy(b, out->view[k], sizeof b);
@@ -111,21 +111,21 @@ void cam_compute(const cam_inputs *in, cam_set *out) {
     }
 }
 
-void cam_eye(const cam_inputs *in, int kind, float eye[3]) {
+void render_camera_eye(const render_camera_inputs *in, int kind, float eye[3]) {
     memcpy(eye, in->view.eye, 3 * sizeof(float));
-    if (kind == CAM_MIRROR) eye[1] = (float)(2.0 * in->level - in->view.eye[1]);
+    if (kind == RENDER_CAMERA_MIRROR) eye[1] = (float)(2.0 * in->level - in->view.eye[1]);
 }
 
-void cam_load(const cam_set *c, int kind) {
+void render_camera_load(const render_camera_set *c, int kind) {
     glMatrixMode(GL_PROJECTION);
     glLoadMatrixf(c->proj[kind]);
     glMatrixMode(GL_MODELVIEW);
     glLoadMatrixf(c->view[kind]);
-    glFrontFace(kind == CAM_MIRROR ? GL_CW : GL_CCW);
+    glFrontFace(kind == RENDER_CAMERA_MIRROR ? GL_CW : GL_CCW);
 }
 
-void cam_upload(const cam_set *c, unsigned p) {
-    for (int k = 0; k < CAM_COUNT; k++) {
+void render_camera_upload(const render_camera_set *c, unsigned p) {
+    for (int k = 0; k < RENDER_CAMERA_COUNT; k++) {
         GLint loc = glGetUniformLocation(p, vp_uniforms[k]);
         if (loc >= 0) glUniformMatrix4fv(loc, 1, GL_FALSE, c->vp[k]);
         loc = glGetUniformLocation(p, inv_uniforms[k]);

@@ -333,11 +333,11 @@ static void begin_pass(render *r, frame_state *f, const glib_cmd *c) {
 
 /* `Camera NAME`: its matrices loaded, its eye the sky box's centre. */
 static void use_camera(frame_state *f, const glib_cmd *c) {
-    int k = cam_kind_from_name(c->name);
+    int k = render_camera_kind_from_name(c->name);
     if (k < 0) return;
-    cam_load(&f->cams, k);
+    render_camera_load(&f->cams, k);
     f->cam_kind = k;
-    cam_eye(&f->cam_in, k, f->cam_eye);
+    render_camera_eye(&f->cam_in, k, f->cam_eye);
 }
 
 /* `Program NAME`: bound, with its uniforms, the world's and the cameras'. */
@@ -348,7 +348,7 @@ static void use_program(render *r, frame_state *f, int res) {
     if (!f->cur || !f->cur->gl) return;
     prog_upload(f->cur, f->t, s->set.timer_s);
     world_upload(&r->world, f->cur->gl, f->t, f->eye);
-    cam_upload(&f->cams, f->cur->gl);
+    render_camera_upload(&f->cams, f->cur->gl);
     upload_target_size(f);
 }
 

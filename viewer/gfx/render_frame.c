@@ -13,15 +13,15 @@ static float camera_scale(const scene_state *s, int ci) {
     return v > 0 ? v : 1.0f;
 }
 
-static void camera_inputs(const render *r, const render_view *v, int w, int h, cam_inputs *out) {
+static void camera_inputs(const render *r, const render_view *v, int w, int h, render_camera_inputs *out) {
     const scene_state *s = &r->cur;
     const scene_settings *set = &s->set;
     const scene_camera *sc = &set->cam;
-    cam_inputs in = { .view = *v, .fov_deg = sc->fov_deg, .near_z = sc->near_z, .far_z = sc->far_z,
-                      .ortho = sc->ortho, .aspect = h > 0 ? (float)w / (float)h : 1.0f,
-                      .level = 0, .half_size = 12, .depth = 3, .sun_dir = { 0, 1, 0 } };
+    render_camera_inputs in = { .view = *v, .fov_deg = sc->fov_deg, .near_z = sc->near_z, .far_z = sc->far_z,
+                                .ortho = sc->ortho, .aspect = h > 0 ? (float)w / (float)h : 1.0f,
+                                .level = 0, .half_size = 12, .depth = 3, .sun_dir = { 0, 1, 0 } };
     memcpy(in.ortho_lrbt, sc->ortho_lrbt, sizeof in.ortho_lrbt);
-    for (int k = 0; k < CAM_COUNT; k++) in.fov_scale[k] = 1.0f;
+    for (int k = 0; k < RENDER_CAMERA_COUNT; k++) in.fov_scale[k] = 1.0f;
     if (r->world.active) {
         const ref_world_desc *d = &r->world.w.d;
         in.level = d->water_level;
@@ -36,7 +36,7 @@ static void camera_inputs(const render *r, const render_view *v, int w, int h, c
     }
     for (int i = 0; i < s->glib->ncmds; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
-        int k = c->kind == GLIB_CMD_CAMERA ? cam_kind_from_name(c->name) : -1;
+        int k = c->kind == GLIB_CMD_CAMERA ? render_camera_kind_from_name(c->name) : -1;
         if (k >= 0) in.fov_scale[k] = camera_scale(s, i);
     }
     *out = in;
@@ -81,9 +81,9 @@ static void start_gl_state(unsigned fbo, int x, int y, int w, int h, const float
 static void start_cameras(const render *r, frame_state *f, const render_view *v) {
     memcpy(f->eye, v->eye, sizeof f->eye);
     camera_inputs(r, v, f->w, f->h, &f->cam_in);
-    cam_compute(&f->cam_in, &f->cams);
-    cam_load(&f->cams, CAM_MAIN);
-    f->cam_kind = CAM_MAIN;
+    render_camera_compute(&f->cam_in, &f->cams);
+    render_camera_load(&f->cams, RENDER_CAMERA_MAIN);
+    f->cam_kind = RENDER_CAMERA_MAIN;
     memcpy(f->cam_eye, v->eye, sizeof f->cam_eye);
 }
 
@@ -93,7 +93,7 @@ static void draw_spray(render *r, const frame_state *f) {
     gpu_timer_mark(&r->timer, "spray draw");
     glBindFramebuffer(GL_FRAMEBUFFER, f->screen_fbo);
     glViewport(f->x, f->y, f->w, f->h);
-    world_draw_spray(&r->world, f->cams.vp[CAM_MAIN], f->eye, f->w, f->h);
+    world_draw_spray(&r->world, f->cams.vp[RENDER_CAMERA_MAIN], f->eye, f->w, f->h);
 }
 
 /* What the commands left is undone for the caller and the next frame. */

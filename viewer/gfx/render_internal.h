@@ -124,17 +124,17 @@ typedef struct frame_state {
     int x, y, w, h;
     bool in_rtt;
     bool skipping;           /* inside a RenderToTextureOnce block already drawn */
-    cam_inputs cam_in;
+    render_camera_inputs cam_in;
     float cam_eye[3];        /* the current camera's eye (the mirror's is reflected): the sky box's centre */
     int if_depth, if_false;  /* If blocks: nesting, and how deep the first false one is (0: none) */
-    cam_set cams;
+    render_camera_set cams;
     int depth;
     const prog *cur;
     double t;
     float eye[3];
     int patch_vertices;      /* NumPatchVertices: the size of the patches drawn next */
     int patch_cmd;           /* the NumPatchVertices command that set it, or -1 */
-    int cam_kind;            /* the camera loaded last (cam_kind) */
+    int cam_kind;            /* the camera loaded last (render_camera_kind) */
     /* The static-world cache: the current target holds only what a Clear
      * to clean_rgba left (nothing drawn since); the screen's own state
      * while a pass draws into a texture. */

@@ -75,7 +75,7 @@ uint64_t render_once_signature(const render *r, const frame_state *f, int i) {
         h = sig_str(sig_str(sig_str(h, c->name), c->arg), c->path);
         if (c->kind == GLIB_CMD_PROGRAM && s->cmd_res[k] >= 0) h = sig_prog(h, &s->progs[s->cmd_res[k]], f->t);
         if (c->kind == GLIB_CMD_CAMERA) {
-            int kind = cam_kind_from_name(c->name);
+            int kind = render_camera_kind_from_name(c->name);
             own_camera = own_camera || k == i + 1;
             if (kind >= 0) {
                 h = hash_fnv1a(h, f->cams.view[kind], sizeof f->cams.view[kind]);
