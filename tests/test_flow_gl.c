@@ -291,7 +291,7 @@ static void test_no_flow_no_pass(void) {
         CHECK_EQ(gw.flow.active, (with == 1));
         CHECK((gw.flow.tex[0] != 0) == (with == 1) && (gw.flow.prog.gl != 0) == (with == 1));
         CHECK_EQ(world_update_flow(&gw, 1.0, NULL), (with == 1));
-        /* what every pack program is built with (render.c) */
+        /* what every pack program is built with (render_load.c) */
         prog p;
         memset(&p, 0, sizeof p);
         world_set_wave_defines(&gw, &p);

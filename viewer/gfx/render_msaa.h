@@ -1,4 +1,4 @@
-/* render_msaa: anti-aliasing of the screen passes. render.c draws a frame's
+/* render_msaa: anti-aliasing of the screen passes. render_frame.c draws a frame's
  * screen passes (those outside RenderToTexture) into a private
  * multisampled colour+depth target and resolves it into the caller's
  * framebuffer rectangle (glBlitFramebuffer); RenderToTexture passes stay
@@ -6,7 +6,7 @@
  * into a float target (EXR output keeps its precision), 16-bit float for a
  * world drawn to an 8-bit target (the window: linear radiance is resolved
  * linear and the window's sRGB encoding is applied by the resolve, as it
- * was by the draws), 8-bit otherwise. Private to render.c. */
+ * was by the draws), 8-bit otherwise. Private to the renderer (render*.c). */
 #ifndef TARN_RENDER_MSAA_H
 #define TARN_RENDER_MSAA_H
 

@@ -62,7 +62,7 @@ static void set_deps(prog *p, shader_src *src, int nsrc) {
 }
 
 /* Appends text to *log a line at a time, each tagged with the stage and
- * program it came from (RENDER_PROG_TAG separates them): render.c merges
+ * program it came from (RENDER_PROG_TAG separates them): render_messages.c merges
  * a line that several programs report into one naming them all. */
 static void append_tagged(char **log, const char *text, shader_stage st, const prog *p) {
     for (const char *s = text; s && *s;) {

@@ -1,6 +1,6 @@
 /* render_prog: builds one glib Program into a linked GL program, maps the
  * driver's messages to file:line through shader_src, and keeps the uniform
- * model in step with what the program declares. Private to render.c. */
+ * model in step with what the program declares. Private to the renderer (render*.c). */
 #ifndef TARN_RENDER_PROG_H
 #define TARN_RENDER_PROG_H
 
@@ -37,7 +37,7 @@ typedef struct prog {
 } prog;
 
 /* Separates a log line from the stage and program it came from:
- * "LINE\x1fSTAGE\x1fPROGRAM\n" (render.c's messages merge and untag them). */
+ * "LINE\x1fSTAGE\x1fPROGRAM\n" (render_messages.c merges and untags them). */
 #define RENDER_PROG_TAG '\x1f'
 
 /* Builds p from its stage paths, defines (from p->unifs' define entries)

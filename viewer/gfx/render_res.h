@@ -1,5 +1,5 @@
 /* render_res: GPU meshes and textures made from glib commands, with a key
- * per resource so a reload reuses what did not change. Private to render.c. */
+ * per resource so a reload reuses what did not change. Private to the renderer (render*.c). */
 #ifndef TARN_RENDER_RES_H
 #define TARN_RENDER_RES_H
 

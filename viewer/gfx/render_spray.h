@@ -8,7 +8,7 @@
  * drawn as soft point sprites lit by the sun and sky, blended over the
  * finished frame (spray_draw.vert/.frag). A world without a `Spray` never
  * calls spray_create: no texture, no pass, no uniform. Private to
- * render_world.c and render.c (and tests).
+ * render_world.c and render_frame.c (and tests).
  *
  * Motion: a step of dt moves a live particle exactly along its parabola,
  *     p += v dt - g dt^2 / 2 y,   v -= g dt y,   life -= dt,

@@ -1,7 +1,7 @@
 /* render_world: the world a scene describes (scene.h), made drawable: the
  * terrain mesh and its albedo texture, the objects, the sky cube map and
  * the water grid, all baked from reference/ref_scene so the GL side and
- * the CPU reference see one world. Private to render.c.
+ * the CPU reference see one world. Private to the renderer (render*.c).
  *
  * Fixed texture units: 14 the terrain albedo (sampler uTerrainAlbedo),
  * 15 the sky cube map (samplerCube uSky), 28 and 29 the ocean's frame

@@ -4,7 +4,7 @@
  * cleared to, the target's size and formats); while the key is unchanged
  * its colour and depth are copied from a cache instead of drawn again
  * (issue #15: 1.16-1.48x a frame on llvmpipe, bit for bit the same). One
- * slot per World command; private to render.c. */
+ * slot per World command; private to the renderer (render_draw.c). */
 #ifndef TARN_WORLD_CACHE_H
 #define TARN_WORLD_CACHE_H
 #include <stdbool.h>
@@ -13,7 +13,7 @@
 
 /* memcmp'd: fill with world_cache_key_init first, so padding is zero. */
 typedef struct world_cache_key {
-    /* the world's inputs (render.c) */
+    /* the world's inputs (render_draw.c) */
     double t;
     float eye[3];
     float offset;

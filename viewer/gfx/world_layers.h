@@ -9,7 +9,7 @@
  * (world_layers.frag): the pixels the World draw gives, at the cost of
  * one test a pixel instead of the terrain's and objects' shading. One
  * layer target per World command (WORLD_CACHE_SLOTS); single-sample targets
- * without blending only. Private to render.c. */
+ * without blending only. Private to the renderer (render*.c). */
 #ifndef TARN_WORLD_LAYERS_H
 #define TARN_WORLD_LAYERS_H
 #include <stdbool.h>

@@ -8,7 +8,7 @@
  *
  * The copy is a render_target of the screen's kind (8-bit sRGB, 8-bit,
  * float), blitted without sRGB conversion, so a pixel nothing drew over
- * reads back as the frame's, bit for bit. Private to render.c. */
+ * reads back as the frame's, bit for bit. Private to the renderer (render*.c). */
 #ifndef TARN_WORLD_SNAPSHOT_H
 #define TARN_WORLD_SNAPSHOT_H
 #include <stdbool.h>

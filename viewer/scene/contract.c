@@ -1,6 +1,6 @@
 /* contract.c: the table of uniforms tarn sets (contract.h). The names must
  * match what the gfx layer uploads (gfx/render_world.c, render_camera.c,
- * render.c) and, for the wave set, ref_waves_uniforms (test_contract
+ * render_*.c) and, for the wave set, ref_waves_uniforms (test_contract
  * checks both this and docs/packs/contract.md). */
 #include "contract.h"
 

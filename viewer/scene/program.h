@@ -1,7 +1,7 @@
 /* program: which shader stages a glib Program links. glman's stage
  * commands (Vertex, TessControl, TessEvaluation, Geometry, Fragment) and
  * GSTAP set state that each later Program takes; this is the one place that
- * follows that state, for the renderer (gfx/render.c) and validation
+ * follows that state, for the renderer (gfx/render_load.c) and validation
  * (check/validate.c) alike. No GL. */
 #ifndef TARN_PROGRAM_H
 #define TARN_PROGRAM_H
