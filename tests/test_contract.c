@@ -39,9 +39,10 @@ static bool in_contract_glsl(const contract_uniform *c) {
 static char *read_source(const char *rel) {
     char path[512], err[256];
     size_t len = 0;
-    snprintf(path, sizeof path, "%s/%s", TARN_SOURCE_DIR, rel);
-    char *text = file_read(path, 1 << 20, &len, err, sizeof err);
-    CHECK_MSG(text != NULL, "%s", err);
+    bool fits = snprintf(path, sizeof path, "%s/%s", TARN_SOURCE_DIR, rel) < (int)sizeof path;
+    CHECK_MSG(fits, "the path of %s is longer than %zu bytes", rel, sizeof path);
+    char *text = fits ? file_read(path, 1 << 20, &len, err, sizeof err) : NULL;
+    CHECK_MSG(!fits || text != NULL, "%s", err);
     return text;
 }
 

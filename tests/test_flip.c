@@ -51,9 +51,12 @@ static int read_rows(row *rows, int cap) {
         char *slash = strchr(fld[0], '/');
         if (!slash) continue;
         *slash = '\0';
-        snprintf(r->ref, sizeof r->ref, "%s", fld[0]);
-        snprintf(r->test, sizeof r->test, "%s", slash + 1);
-        snprintf(r->kind, sizeof r->kind, "%s", fld[1]);
+        /* a name longer than the row holds is not the oracle's: skip it (the
+         * row count is checked) rather than match a truncated name */
+        if (snprintf(r->ref, sizeof r->ref, "%s", fld[0]) >= (int)sizeof r->ref ||
+            snprintf(r->test, sizeof r->test, "%s", slash + 1) >= (int)sizeof r->test ||
+            snprintf(r->kind, sizeof r->kind, "%s", fld[1]) >= (int)sizeof r->kind)
+            continue;
         double *v[6] = { &r->mean, &r->median, &r->q1, &r->q3, &r->min, &r->max };
         for (int j = 0; j < 6; j++) *v[j] = atof(fld[2 + j]);
         if (k >= 11 && fld[8][0]) {

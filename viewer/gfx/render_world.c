@@ -11,7 +11,6 @@
 #include "geom.h"
 #include "mem.h"
 #include "ref_mesh.h"
-#include "render_camera.h"
 #include "util.h"
 #include "strbuf.h"
 

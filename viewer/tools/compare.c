@@ -28,7 +28,8 @@ bool compare_is_srgb_path(const char *path) {
     char ext[8];
     size_t n = strlen(dot + 1);
     if (n == 0 || n >= sizeof ext) return false;
-    for (size_t i = 0; i <= n; i++) ext[i] = (char)tolower((unsigned char)dot[1 + i]);
+    for (size_t i = 0; i < n; i++) ext[i] = (char)tolower((unsigned char)dot[1 + i]);
+    ext[n] = '\0';
     for (size_t i = 0; i < sizeof exts / sizeof exts[0]; i++)
         if (strcmp(ext, exts[i]) == 0) return true;
     return false;
