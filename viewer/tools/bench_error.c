@@ -281,11 +281,17 @@ void bench_run_flip_jobs(bench *b, flip_job *jobs, int n) {
     b->seconds_flip += clock_now_s() - t0;
 }
 
+/* The reference's water as a byte mask (heap), what both water metrics count. */
+static unsigned char *water_mask(const refcache_image *ref, long n) {
+    unsigned char *m = mem_alloc((size_t)n);
+    ref_mask_water(ref->mask, n, 1, NULL, m);
+    return m;
+}
+
 /* SSIM over the reference's water (the luminance plane, ref_ssim.h) */
 double bench_water_ssim(const float *rgba, const refcache_image *ref, int w, int h) {
     long n = (long)w * h;
-    unsigned char *m = mem_alloc((size_t)n);
-    ref_mask_water(ref->mask, n, 1, NULL, m);
+    unsigned char *m = water_mask(ref, n);
     ref_fimage A = { rgba, w, h, 4 }, B = { ref->color, w, h, 3 };
     ref_ssim_desc d = { .mask = m };
     ref_ssim_result r;
@@ -298,8 +304,7 @@ double bench_water_ssim(const float *rgba, const refcache_image *ref, int w, int
 /* The water RMSE of a frame against a reference (NaN: none compared) */
 double bench_water_rmse_of(const float *rgba, const refcache_image *ref, int w, int h) {
     long n = (long)w * h;
-    unsigned char *m = mem_alloc((size_t)n);
-    ref_mask_water(ref->mask, n, 1, NULL, m);
+    unsigned char *m = water_mask(ref, n);
     ref_fimage A = { rgba, w, h, 4 }, B = { ref->color, w, h, 3 };
     ref_metrics_desc d = { .mask = m };
     ref_image_metrics r;
