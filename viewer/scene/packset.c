@@ -1,6 +1,7 @@
 /* packset: packs on disk, bench.txt and bounds.txt (see packset.h). */
 #include "packset.h"
 
+#include "file.h"
 #include "mem.h"
 #include "ref_buffers.h"
 
@@ -66,16 +67,14 @@ int packset_list(const char *root, packset_name *names, int max) {
     return n;
 }
 
-/* Reads a whole small text file; NULL when missing (errno says why). A
- * longer file is read up to FILE_MAX_LEN, as a line limit would. */
+/* A pack's small text file (bench.txt, bounds.txt); NULL when missing.
+ * A longer file is read up to FILE_MAX_LEN, as a line limit would. */
 static char *read_text(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    char *buf = mem_alloc(FILE_MAX_LEN + 1);
-    size_t n = fread(buf, 1, FILE_MAX_LEN, f);
-    fclose(f);
-    buf[n] = '\0';
-    return buf;
+    char why[256];
+    size_t n = 0;
+    char *text = file_read_text(path, NULL, &n, why, sizeof why);
+    if (text && n > FILE_MAX_LEN) text[FILE_MAX_LEN] = '\0';
+    return text;
 }
 
 /* Next line of text (comments cut, ends trimmed) into line, the comment's

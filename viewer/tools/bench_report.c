@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "image_io.h"
+#include "file.h"
 #include "mem.h"
 #include "plot.h"
 #include "ref_flip.h"
@@ -382,14 +383,9 @@ static bool write_docs(bench *b, const char *path) {
         bench_fmt(pp, sizeof pp, "%s/%splot-%s-flip.png", dir, prefix, st);
         write_plot(b, sc, 1, pp);
     }
-    FILE *f = fopen(path, "r");
-    char *old = NULL;
-    if (f) {
-        old = mem_alloc(1 << 20);
-        size_t n = fread(old, 1, (1 << 20) - 1, f);
-        old[n] = '\0';
-        fclose(f);
-    }
+    char why[256];
+    file_text_opts o = { .max_bytes = 1 << 20 };
+    char *old = file_read_text(path, &o, NULL, why, sizeof why);   /* none yet: a new page */
     strbuf bounds = { 0 };
     bounds_md(b, &bounds);
     char *mid = replace_section(old ? old : "# Benchmark\n", "<!-- bench:begin -->", "<!-- bench:end -->",

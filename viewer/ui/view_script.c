@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "file.h"
 #include "mem.h"
 #include "strbuf.h"
 #include "util.h"
@@ -21,25 +22,29 @@ struct view_script {
 };
 
 view_script *view_script_load(const char *path, char *err, int errlen) {
-    FILE *f = fopen(path, "r");
-    if (!f) { msg_set(err, (size_t)errlen, "%s: cannot open the script", path); return NULL; }
+    char why[256];
+    file_text_opts o = { .max_bytes = (size_t)VIEW_SCRIPT_MAX_LINES * SCRIPT_LINE_MAX, .strip_bom = true,
+                         .crlf_to_lf = true };
+    char *text = file_read_text(path, &o, NULL, why, sizeof why);
+    if (!text) { msg_set(err, (size_t)errlen, "%s: cannot open the script (%s)", path, why); return NULL; }
     view_script *s = mem_zalloc(sizeof *s);
     snprintf(s->path, sizeof s->path, "%s", path);
-    char buf[SCRIPT_LINE_MAX];
-    while (fgets(buf, sizeof buf, f)) {
+    for (char *line = text; *line;) {
+        char *end = line + strcspn(line, "\n");
+        bool last = *end == '\0';
+        *end = '\0';
         if (s->nlines == VIEW_SCRIPT_MAX_LINES) {
             msg_set(err, (size_t)errlen, "%s: more than %d lines; not a script?", path, VIEW_SCRIPT_MAX_LINES);
-            fclose(f);
+            free(text);
             view_script_free(s);
             return NULL;
         }
         s->lines = mem_grow(s->lines, &s->cap, s->nlines + 1, sizeof *s->lines);
-        buf[strcspn(buf, "\r\n")] = '\0';
-        char *hash = strchr(buf, '#');
-        if (hash) *hash = '\0';
-        snprintf(s->lines[s->nlines++], SCRIPT_LINE_MAX, "%s", buf);
+        line[strcspn(line, "\r#")] = '\0';
+        snprintf(s->lines[s->nlines++], SCRIPT_LINE_MAX, "%s", line);
+        line = last ? end : end + 1;
     }
-    fclose(f);
+    free(text);
     return s;
 }
 
