@@ -36,6 +36,16 @@ static inline const char *gl_test_common_dir(void) {
     return dir;
 }
 
+/* packs/common as the include dir and the world programs' dir, read from
+ * disk: where a test's world, ocean, flow and spray programs come from. */
+static inline const prog_sources *gl_test_sources(void) {
+    static const char *inc[1];
+    static prog_sources src;
+    inc[0] = gl_test_common_dir();
+    src = (prog_sources){ .include_dirs = inc, .ninclude_dirs = 1, .common_dir = inc[0] };
+    return &src;
+}
+
 /* Whether the last frame ran a pass whose timer name holds `what` (the
  * passes a feature adds: "ocean", "flow advect", "spray draw"). */
 static inline bool gl_test_has_pass(render *r, const char *what) {
@@ -52,9 +62,8 @@ static inline bool gl_test_has_pass(render *r, const char *what) {
  * log is dropped (the test checks what it needs). */
 static inline void gl_test_world_build(gpu_world *gw, const ref_world_desc *desc) {
     memset(gw, 0, sizeof *gw);
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    world_build(gw, desc, inc, gl_test_common_dir(), &log);
+    world_build(gw, desc, gl_test_sources(), &log);
     free(log);
 }
 

@@ -15,7 +15,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 static char scratch_dir[256];
@@ -43,6 +46,16 @@ static inline void scratch_write(const char *name, const char *text) {
     if (!f) { perror(name); exit(1); }
     fputs(text, f);
     fclose(f);
+}
+
+/* Dates name's modification back by age_s seconds: a file saved a while
+ * ago, which a file cache may answer for from memory (file_cache.h). */
+static inline bool scratch_age(const char *name, double age_s) {
+    struct timespec now, t[2];
+    clock_gettime(CLOCK_REALTIME, &now);
+    long long ns = (long long)now.tv_sec * 1000000000LL + now.tv_nsec - (long long)(age_s * 1e9);
+    t[0] = t[1] = (struct timespec){ .tv_sec = (time_t)(ns / 1000000000LL), .tv_nsec = (long)(ns % 1000000000LL) };
+    return utimensat(AT_FDCWD, scratch_path(name), t, 0) == 0;
 }
 
 static inline void scratch_remove(void) {

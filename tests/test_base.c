@@ -8,7 +8,9 @@
 #include "check.h"
 #include "diag.h"
 #include "file.h"
+#include "file_cache.h"
 #include "mem.h"
+#include "path.h"
 #include "strbuf.h"
 #include "support.h"
 #include "util.h"
@@ -78,13 +80,6 @@ static void test_files(void) {
     CHECK_STR_CONTAINS(err, "cannot open");
     snprintf(path, sizeof path, "%s/a/b/c/x.txt/d", dir); /* under a file */
     CHECK(!file_mkdir_p(path, err, sizeof err));
-    char d[64];
-    file_dirname("a/b.glib", d, sizeof d);
-    CHECK_STR_EQ(d, "a");
-    file_dirname("b.glib", d, sizeof d);
-    CHECK_STR_EQ(d, ".");
-    file_dirname("/b.glib", d, sizeof d);
-    CHECK_STR_EQ(d, "/");
     scratch_remove();
 }
 
@@ -243,12 +238,128 @@ static void test_diagnostics(void) {
     CHECK(l.n == 0 && l.d == NULL);
 }
 
+
+/* f(in) == want, f's heap result freed. */
+static void check_path(char *(*f)(const char *), const char *in, const char *want) {
+    char *got = f(in);
+    CHECK_MSG(got && strcmp(got, want) == 0, "'%s' gave '%s', not '%s'", in, got ? got : "(null)", want);
+    free(got);
+}
+
+/* path.h against Go's filepath.Clean on the same inputs (its documented
+ * rules: one separator, no ".", ".." eats the name before it, "/.." is
+ * "/", a relative path keeps its leading "..", "" is "."). */
+static void test_paths(void) {
+    check_path(path_clean, "a/./b/../c", "a/c");
+    check_path(path_clean, "a//b/", "a/b");
+    check_path(path_clean, "/..", "/");
+    check_path(path_clean, "/a/b/../../..", "/");
+    check_path(path_clean, "../a/..", "..");
+    check_path(path_clean, "a/../../b", "../b");
+    check_path(path_clean, "", ".");
+    check_path(path_clean, "./", ".");
+    check_path(path_clean, "/", "/");
+    check_path(path_dir, "a/b.glib", "a");
+    check_path(path_dir, "b.glib", ".");
+    check_path(path_dir, "/b.glib", "/");
+    char *j = path_join("packs/common", "../natural/water.frag");
+    CHECK_STR_EQ(j, "packs/natural/water.frag");
+    free(j);
+    j = path_join("x", "/abs/f.glsl");
+    CHECK_STR_EQ(j, "/abs/f.glsl");
+    free(j);
+    char cwd[1024], want[1200];
+    CHECK(getcwd(cwd, sizeof cwd) != NULL);
+    snprintf(want, sizeof want, "%s/b", strcmp(cwd, "/") == 0 ? "" : cwd);
+    check_path(path_absolute, "a/../b", want);
+    check_path(path_absolute, "/x/./y", "/x/y");
+}
+
+/* Writes text to name in the scratch folder, dated age_s seconds back. */
+static const char *write_aged(const char *name, const char *text, double age_s) {
+    scratch_write(name, text);
+    CHECK(scratch_age(name, age_s));
+    return scratch_path(name);
+}
+
+/* The one reader of scene files: the disk once, then memory while the
+ * file is unchanged; a changed, young or refreshed file is read again. */
+static void test_file_cache(void) {
+    if (!scratch_create("cache")) {
+        CHECK(false);
+        return;
+    }
+    file_cache *c = file_cache_create();
+    const char *path = write_aged("w.frag", "void main() {}\r\n", 10);
+    file_text_opts o = { .crlf_to_lf = true };
+    char why[256] = "";
+    size_t n = 0;
+    uint64_t h = 0;
+    char *a = file_cache_read(c, path, &o, &n, &h, why, sizeof why);
+    CHECK_STR_EQ(a, "void main() {}\n");   /* the options applied */
+    CHECK_EQ(n, strlen("void main() {}\n"));
+    CHECK_EQ(h, hash_fnv1a(HASH_FNV1A_BASIS, "void main() {}\r\n", 16));   /* of the bytes on disk */
+    file_cache_counts k = file_cache_counts_of(c);
+    CHECK_EQ(k.reads, 1);
+    CHECK_EQ(k.hits, 0);
+    /* again, spelled another way: memory, the same text, a copy of its own */
+    char spelled[1400];
+    snprintf(spelled, sizeof spelled, "%s/./x/../w.frag", scratch_dir);
+    char *b = file_cache_read(c, spelled, &o, &n, NULL, why, sizeof why);
+    CHECK_STR_EQ(b, "void main() {}\n");
+    CHECK(a != b);
+    k = file_cache_counts_of(c);
+    CHECK_EQ(k.reads, 1);
+    CHECK_EQ(k.hits, 1);
+    /* the raw bytes of the held copy, without the options */
+    char *raw = file_cache_bytes(c, path, 0, &n, why, sizeof why);
+    CHECK(raw && n == 16 && memcmp(raw, "void main() {}\r\n", 16) == 0);
+    CHECK_EQ(file_cache_counts_of(c).hits, 2);
+    /* a tighter limit than the held copy: the disk says why */
+    CHECK_EQ(file_cache_bytes(c, path, 8, &n, why, sizeof why), NULL);
+    CHECK_STR_CONTAINS(why, "larger than 8 bytes");
+    free(a); free(b); free(raw);
+    /* changed on disk (same size, another time): read again */
+    write_aged("w.frag", "void main() {1}\n", 5);
+    a = file_cache_read(c, path, &o, &n, NULL, why, sizeof why);
+    CHECK_STR_EQ(a, "void main() {1}\n");
+    free(a);
+    /* a file written just now may be rewritten within the kernel's clock
+     * tick unseen: it is read every time until it has aged */
+    const char *young = write_aged("y.frag", "young", 0);
+    long reads = file_cache_counts_of(c).reads;
+    for (int i = 0; i < 2; i++) free(file_cache_read(c, young, NULL, &n, NULL, why, sizeof why));
+    CHECK_EQ(file_cache_counts_of(c).reads, reads + 2);
+    /* the watcher's refresh reads whatever is held, and keeps it */
+    write_aged("w.frag", "void main() {2}\n", 5);
+    uint64_t hr = 0;
+    CHECK(file_cache_refresh(c, path, &hr));
+    CHECK_EQ(hr, hash_fnv1a(HASH_FNV1A_BASIS, "void main() {2}\n", 16));
+    reads = file_cache_counts_of(c).reads;
+    a = file_cache_read(c, path, NULL, &n, NULL, why, sizeof why);
+    CHECK_STR_EQ(a, "void main() {2}\n");
+    CHECK_EQ(file_cache_counts_of(c).reads, reads);
+    free(a);
+    /* missing: the reason alone; no cache: the disk, the same answers */
+    CHECK_EQ(file_cache_read(c, scratch_path("none.frag"), NULL, &n, NULL, why, sizeof why), NULL);
+    CHECK_STR_EQ(why, "No such file or directory");
+    CHECK(!file_cache_refresh(c, scratch_path("none.frag"), &hr));
+    a = file_cache_read(NULL, path, NULL, &n, &h, why, sizeof why);
+    CHECK_STR_EQ(a, "void main() {2}\n");
+    CHECK_EQ(h, hr);
+    free(a);
+    file_cache_destroy(c);
+    scratch_remove();
+}
+
 int main(void) {
     RUN(test_strbuf_grows_and_formats);
     RUN(test_str_appendf);
     RUN(test_messages_never_overrun);
     RUN(test_files);
     RUN(test_read_text_options);
+    RUN(test_paths);
+    RUN(test_file_cache);
     RUN(test_mem_grow);
     RUN(test_median_and_sort);
     RUN(test_options);

@@ -36,10 +36,9 @@
 #include "scene.h"
 
 static bool make_flow(gpu_flow *f, const ref_flow_desc *d, double half) {
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(f, 0, sizeof *f);
-    bool ok = flow_create(f, d, half, inc, gl_test_common_dir(), &log);
+    bool ok = flow_create(f, d, half, gl_test_sources(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok;
@@ -156,10 +155,9 @@ static void test_texture_velocity_is_a_current(void) {
     flow_free(&f);
     /* a missing file is an error naming it, not a crash */
     snprintf(wd.flow.texture, sizeof wd.flow.texture, "%s", scratch_path("nope.exr"));
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(&f, 0, sizeof f);
-    CHECK(!flow_create(&f, &wd.flow, 12, inc, gl_test_common_dir(), &log));
+    CHECK(!flow_create(&f, &wd.flow, 12, gl_test_sources(), &log));
     CHECK(log && strstr(log, "nope.exr"));
     free(log);
     flow_free(&f);
@@ -282,9 +280,8 @@ static void test_no_flow_no_pass(void) {
         if (with) desc.flow = (ref_flow_desc){ .nterms = 1, .term = { { REF_FLOW_CURRENT, { 0.3, 0 } } } };
         gpu_world gw;
         memset(&gw, 0, sizeof gw);
-        const char *inc[1] = { gl_test_common_dir() };
         char *log = NULL;
-        CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
+        CHECK(world_build(&gw, &desc, gl_test_sources(), &log));
         if (log) fprintf(stderr, "%s", log);
         free(log);
         CHECK(gw.active);

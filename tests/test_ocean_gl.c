@@ -36,10 +36,9 @@
 
 static bool make_ocean(gpu_ocean *o, int cascades, int n, const float *tile, float lambda, const float *h0,
                        const float *omega) {
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(o, 0, sizeof *o);
-    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, inc, gl_test_common_dir(), &log);
+    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, gl_test_sources(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok;
@@ -119,10 +118,9 @@ static ref_ocean *reference_ocean(int n, int cascades, double chop) {
 }
 
 static bool gpu_from(gpu_ocean *g, const ref_ocean *ro) {
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
     memset(g, 0, sizeof *g);
-    bool ok = ocean_create_from(g, ro, inc, gl_test_common_dir(), &log);
+    bool ok = ocean_create_from(g, ro, gl_test_sources(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok;
@@ -416,9 +414,8 @@ static void test_ocean_world_runs_its_passes(void) {
     desc.waves.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_PHILLIPS, .res = 64, .cascades = 2, .choppiness = 0.5 };
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
+    CHECK(world_build(&gw, &desc, gl_test_sources(), &log));
     if (log) fprintf(stderr, "%s", log);
     free(log);
     CHECK(gw.ocean.active && gw.ocean.cascades == 2 && gw.ocean.res == 64);

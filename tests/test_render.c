@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "file_cache.h"
 #include "support.h"
 #include "gl_ctx.h"
 #include "gl_support.h"
@@ -275,14 +276,20 @@ static void test_slider_values_survive_reload(void) {
     render_destroy(r);
 }
 
-/* A Define toggle compiles the shader with or without the #define. */
+/* A Define toggle compiles the shader with or without the #define, from
+ * the sources in memory: it reads no file (issue #28). */
 static void test_define_toggle_recompiles(void) {
     scratch_write("d.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() {\n#ifdef RED\n"
                          "c = vec4(1., 0., 0., 1.);\n#else\nc = vec4(0., 0., 1., 1.);\n#endif\n}\n");
     scratch_write("d.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment d.frag\n"
                          "Define RED <true>\nProgram D\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
+    /* saved a while ago: the cache may answer for them (file_cache.h) */
+    CHECK(scratch_age("d.frag", 5) && scratch_age("d.glib", 5) && scratch_age("flat.vert", 5));
+    file_cache *files = file_cache_create();
+    render *r = render_create(&(render_desc){ .files = files });
     CHECK_MSG(render_load(r, scratch_path("d.glib")), "%s", render_messages(r));
+    file_cache_counts loaded = file_cache_counts_of(files);
+    CHECK_EQ(loaded.reads, 3);   /* the glib and two stages, each once */
     draw(r, 0);
     CHECK_RGB(at(32, 32), 1, 0, 0);
     unif_entry *red = gl_test_uniform(r, "D", "RED");
@@ -293,7 +300,11 @@ static void test_define_toggle_recompiles(void) {
         draw(r, 0);
         CHECK_RGB(at(32, 32), 0, 0, 1);
     }
+    file_cache_counts rebuilt = file_cache_counts_of(files);
+    CHECK_EQ(rebuilt.reads, loaded.reads);
+    CHECK_EQ(rebuilt.hits, loaded.hits + 2);   /* both stages from memory */
     render_destroy(r);
+    file_cache_destroy(files);
 }
 
 /* The built-in noise: each channel an octave centred on 0.5. */

@@ -42,9 +42,8 @@ static bool ring_world(gpu_world *gw, double threshold, unsigned seed) {
     desc.spray = (ref_spray_desc){ .on = true, .threshold = threshold, .rate = 4e5, .life = 3, .seed = seed,
                                    .count = 4096 };
     memset(gw, 0, sizeof *gw);
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    bool ok = world_build(gw, &desc, inc, gl_test_common_dir(), &log);
+    bool ok = world_build(gw, &desc, gl_test_sources(), &log);
     if (log) fprintf(stderr, "%s", log);
     free(log);
     return ok && gw->spray.active;
@@ -187,9 +186,8 @@ static void test_ocean_crests_throw_spray(void) {
     desc.spray = (ref_spray_desc){ .on = true, .threshold = 0.3, .rate = 1e6, .life = 3, .seed = 5, .count = 4096 };
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    const char *inc[1] = { gl_test_common_dir() };
     char *log = NULL;
-    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
+    CHECK(world_build(&gw, &desc, gl_test_sources(), &log));
     if (log) fprintf(stderr, "%s", log);
     free(log);
     int n = gw.spray.res * gw.spray.res;

@@ -1,11 +1,13 @@
 #include "file.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "mem.h"
 #include "strbuf.h"
@@ -25,19 +27,27 @@ static void size_text(size_t n, char *out, size_t outlen) {
  * file's stat before the read and of the open file after it. */
 static bool read_all(const char *path, size_t max_bytes, strbuf *b, struct stat *before, struct stat *after,
                      char *why, size_t whylen) {
+    /* opened before it is looked at, and without blocking: a FIFO put
+     * where the file was is refused, not waited on */
+    int fd;
+    do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    while (fd < 0 && errno == EINTR);
     struct stat st;
-    if (stat(path, &st) != 0) {
+    if (fd < 0 || fstat(fd, &st) != 0) {
         msg_set(why, whylen, "%s", strerror(errno));
+        if (fd >= 0) close(fd);
         return false;
     }
     *before = *after = st;
     if (!S_ISREG(st.st_mode)) {
         msg_set(why, whylen, S_ISDIR(st.st_mode) ? "it is a directory" : "it is not a regular file");
+        close(fd);
         return false;
     }
-    FILE *f = fopen(path, "rb");
+    FILE *f = fdopen(fd, "rb");
     if (!f) {
         msg_set(why, whylen, "%s", strerror(errno));
+        close(fd);
         return false;
     }
     char chunk[65536];
@@ -85,6 +95,14 @@ static double now_ms(clockid_t clock) {
 
 
 
+static void stamp_of(const struct stat *st, file_stamp *out) {
+    out->dev = (unsigned long long)st->st_dev;
+    out->ino = (unsigned long long)st->st_ino;
+    out->size = (long long)st->st_size;
+    out->mtime_ns = (long long)st->st_mtim.tv_sec * 1000000000LL + st->st_mtim.tv_nsec;
+    out->ctime_ns = (long long)st->st_ctim.tv_sec * 1000000000LL + st->st_ctim.tv_nsec;
+}
+
 static bool same_stat(const struct stat *a, const struct stat *b) {
     return a->st_ino == b->st_ino && a->st_dev == b->st_dev && a->st_size == b->st_size &&
            a->st_mtim.tv_sec == b->st_mtim.tv_sec && a->st_mtim.tv_nsec == b->st_mtim.tv_nsec;
@@ -98,14 +116,19 @@ static double age_ms(const struct stat *st) {
     return age < 0 ? 1e9 : age;
 }
 
-/* read_all, and with `settle` again until the file holds still (file.h). */
-static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, char *why, size_t whylen) {
+/* read_all, and with `settle` again until the file holds still (file.h);
+ * *stamp: the file as it was read. */
+static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, file_stamp *stamp, char *why,
+                         size_t whylen) {
     double start = now_ms(CLOCK_MONOTONIC);
     for (;;) {
         struct stat before, after;
         b->len = 0;
         if (b->s) b->s[0] = '\0';
+        double began = now_ms(CLOCK_REALTIME);
         if (!read_all(path, o->max_bytes, b, &before, &after, why, whylen)) return false;
+        stamp_of(&after, stamp);
+        stamp->read_ms = began;
         if (!o->settle || now_ms(CLOCK_MONOTONIC) - start >= FILE_SETTLE_MAX_MS) return true;
         /* (/proc and the like say size 0 whatever they hold) */
         bool torn = !same_stat(&before, &after) || ((off_t)b->len != after.st_size && after.st_size != 0);
@@ -117,18 +140,14 @@ static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, c
     }
 }
 
-char *file_read_text(const char *path, const file_text_opts *o, size_t *len, char *why, size_t whylen) {
+char *file_text_finish(char *bytes, size_t *len, const file_text_opts *o, char *why, size_t whylen) {
     static const file_text_opts none = { 0 };
     if (!o) o = &none;
-    if (len) *len = 0;
-    strbuf b = { 0 };
-    if (!read_settled(path, o, &b, why, whylen)) {
-        strbuf_free(&b);
-        return NULL;
-    }
+    strbuf b = { .s = bytes, .len = *len, .cap = *len + 1 };
     int nul = o->reject_nul && b.s ? nul_line(b.s, b.len) : 0;
     if (nul) {
         strbuf_free(&b);
+        *len = 0;
         msg_set(why, whylen, "binary data (a NUL byte at line %d), not text", nul);
         return NULL;
     }
@@ -137,8 +156,50 @@ char *file_read_text(const char *path, const file_text_opts *o, size_t *len, cha
         b.len -= 3;
     }
     if (o->crlf_to_lf && b.s) crlf_to_lf(&b);
-    if (len) *len = b.len;
+    *len = b.len;
+    return b.s;
+}
+
+char *file_read_stamped(const char *path, const file_text_opts *o, size_t *len, file_stamp *stamp, char *why,
+                        size_t whylen) {
+    static const file_text_opts none = { 0 };
+    strbuf b = { 0 };
+    *len = 0;
+    memset(stamp, 0, sizeof *stamp);
+    if (!read_settled(path, o ? o : &none, &b, stamp, why, whylen)) {
+        strbuf_free(&b);
+        return NULL;
+    }
+    *len = b.len;
     return strbuf_take(&b);
+}
+
+char *file_read_text(const char *path, const file_text_opts *o, size_t *len, char *why, size_t whylen) {
+    size_t n = 0;
+    file_stamp st;
+    char *bytes = file_read_stamped(path, o, &n, &st, why, whylen);
+    char *text = bytes ? file_text_finish(bytes, &n, o, why, whylen) : NULL;
+    if (len) *len = text ? n : 0;
+    return text;
+}
+
+bool file_stamp_now(const char *path, file_stamp *out) {
+    struct stat st;
+    memset(out, 0, sizeof *out);
+    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return false;
+    stamp_of(&st, out);
+    out->read_ms = now_ms(CLOCK_REALTIME);
+    return true;
+}
+
+bool file_stamp_same(const file_stamp *a, const file_stamp *b) {
+    return a->dev == b->dev && a->ino == b->ino && a->size == b->size && a->mtime_ns == b->mtime_ns &&
+           a->ctime_ns == b->ctime_ns;
+}
+
+double file_stamp_age_ms(const file_stamp *st) {
+    double age = st->read_ms - (double)st->mtime_ns * 1e-6;
+    return age < 0 ? 1e9 : age;
 }
 
 char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
@@ -185,16 +246,6 @@ bool file_mkdir_p(const char *path, char *err, size_t errlen) {
         }
     }
     return true;
-}
-
-void file_dirname(const char *path, char *out, size_t outlen) {
-    const char *slash = strrchr(path, '/');
-    if (!slash)
-        snprintf(out, outlen, ".");
-    else if (slash == path)
-        snprintf(out, outlen, "/");
-    else
-        snprintf(out, outlen, "%.*s", (int)(slash - path), path);
 }
 
 bool file_exists(const char *path) {

@@ -39,14 +39,40 @@ typedef struct file_text_opts {
  * byte at line 3), not text". o may be NULL: no options. */
 char *file_read_text(const char *path, const file_text_opts *o, size_t *len, char *why, size_t whylen);
 
+/* What a file was when it was read: a later stat that differs means it
+ * changed since. Times in ns; the kernel stamps them from a coarse clock
+ * (a few ms), so two writes that close together may leave the same stamp:
+ * file_cache.h says how it copes. */
+typedef struct file_stamp {
+    unsigned long long dev, ino;
+    long long size, mtime_ns, ctime_ns;
+    double read_ms;   /* when the read began, on the files' clock (the wall clock): not compared */
+} file_stamp;
+
+/* file_read_text in two halves, for a reader that keeps the bytes
+ * (file_cache): the file's bytes as read (with o's max_bytes and settle;
+ * NUL-terminated, *len without the NUL) and its stamp then, or NULL with
+ * why; then file_text_finish applies o's text options to them (it takes
+ * bytes, and returns them changed in place, or frees them and returns NULL
+ * with why). */
+char *file_read_stamped(const char *path, const file_text_opts *o, size_t *len, file_stamp *stamp, char *why,
+                        size_t whylen);
+char *file_text_finish(char *bytes, size_t *len, const file_text_opts *o, char *why, size_t whylen);
+
+/* The stamp of the regular file at path now (read_ms: now); false when
+ * there is none. */
+bool file_stamp_now(const char *path, file_stamp *out);
+bool file_stamp_same(const file_stamp *a, const file_stamp *b);
+/* How old the file was when the read that gave the stamp began (a
+ * modification in the future, another machine's clock, counts as long ago). */
+double file_stamp_age_ms(const file_stamp *st);
+
 /* Writes n bytes to path (replacing it). False with the reason in err. */
 bool file_write(const char *path, const void *data, size_t n, char *err, size_t errlen);
 
 /* mkdir -p: every missing folder of path. False with the reason in err. */
 bool file_mkdir_p(const char *path, char *err, size_t errlen);
 
-/* The folder part of path ("a/b.glib" -> "a", "b.glib" -> ".") in out. */
-void file_dirname(const char *path, char *out, size_t outlen);
 
 bool file_exists(const char *path);
 bool file_is_dir(const char *path);

@@ -1,6 +1,6 @@
 /* obj.c: the Wavefront OBJ reader (obj.h). */
 #include "obj.h"
-#include "file.h"
+#include "file_cache.h"
 #include "mem.h"
 
 #include <errno.h>
@@ -304,7 +304,7 @@ bool obj_read(obj_data *d, const char *path, const obj_opts *o, char *err, size_
                             .reject_nul = true };
     char why[256];
     size_t len = 0;
-    char *text = file_read_text(path, &opts, &len, why, sizeof why);
+    char *text = file_cache_read(o ? o->files : NULL, path, &opts, &len, NULL, why, sizeof why);
     if (!text) {
         if (err && errlen > 0) snprintf(err, errlen, "%s: %s", path, why);
         return false;

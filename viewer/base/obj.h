@@ -59,6 +59,7 @@ typedef struct obj_opts {
                              * coordinates or normals that would not be used */
     double max_abs;         /* a number's largest magnitude; 0: any finite one (the reference's
                              * doubles); the viewer's float meshes give FLT_MAX */
+    struct file_cache *files;   /* obj_read reads through it (file_cache.h); NULL: the disk */
 } obj_opts;
 
 /* Parses len bytes of text (need not be NUL-terminated) into d. False,

@@ -3,7 +3,9 @@
 #include "watch.h"
 #include "util.h"
 
+#include "file_cache.h"
 #include "mem.h"
+#include "path.h"
 #include "strbuf.h"
 
 #include <assert.h>
@@ -53,6 +55,7 @@ typedef struct watch_file {
 
 struct watch {
     int fd;
+    file_cache *cache;   /* where what is read to hash it is kept (may be NULL) */
     watch_dir *dirs;
     int ndirs;
     watch_file *files;
@@ -76,17 +79,6 @@ static int64_t now_ns(void) {
 
 /* ---- paths -------------------------------------------------------------- */
 
-static char *dup_cwd(void) {
-    size_t cap = 256;
-    for (;;) {
-        char *buf = mem_alloc(cap);
-        if (getcwd(buf, cap)) return buf;
-        free(buf);
-        if (errno != ERANGE) return NULL;
-        cap *= 2;
-    }
-}
-
 /* The last component as written, before normalisation: a file path must end
  * in a name, not in "", "." or "..". */
 static bool names_a_file(const char *path) {
@@ -95,48 +87,6 @@ static bool names_a_file(const char *path) {
     const char *slash = strrchr(path, '/');
     const char *last = slash ? slash + 1 : path;
     return strcmp(last, ".") != 0 && strcmp(last, "..") != 0;
-}
-
-/* Absolute, with `//`, `.` and `..` removed lexically. NULL (errno set) when
- * the current directory is gone. */
-static char *normalise(const char *path) {
-    char *joined;
-    if (path[0] == '/') {
-        joined = mem_strdup(path);
-    } else {
-        char *cwd = dup_cwd();
-        if (!cwd) return NULL;
-        size_t a = strlen(cwd), b = strlen(path);
-        joined = mem_alloc(a + b + 2);
-        memcpy(joined, cwd, a);
-        joined[a] = '/';
-        memcpy(joined + a + 1, path, b + 1);
-        free(cwd);
-    }
-
-    /* Rewrite in place as "/name/name": every name written was preceded by
-     * at least one '/' in the input, so the output never overtakes it. */
-    size_t out = 0;
-    const char *p = joined;
-    char *res = joined;
-    while (*p) {
-        while (*p == '/') p++;
-        const char *start = p;
-        while (*p && *p != '/') p++;
-        size_t n = (size_t)(p - start);
-        if (n == 0 || (n == 1 && start[0] == '.')) continue;
-        if (n == 2 && start[0] == '.' && start[1] == '.') {
-            while (out > 0 && res[out - 1] != '/') out--; /* drop the last component */
-            if (out > 0) out--;                           /* and its '/' */
-            continue;
-        }
-        res[out++] = '/';
-        memmove(res + out, start, n);
-        out += n;
-    }
-    if (out == 0) res[out++] = '/';
-    res[out] = '\0';
-    return res;
 }
 
 /* Splits a normalised absolute path into freshly allocated directory and
@@ -149,35 +99,6 @@ static void split_path(const char *path, char **dir, char **base) {
 }
 
 /* ---- content ------------------------------------------------------------ */
-
-/* FNV-1a 64 of the file's bytes. false when it cannot be read as a regular
- * file (missing, a directory, a FIFO, no permission): "missing". */
-static bool hash_file(const char *path, uint64_t *hash) {
-    int fd;
-    do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    while (fd < 0 && errno == EINTR);
-    if (fd < 0) return false;
-    struct stat st;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        close(fd);
-        return false;
-    }
-    uint64_t h = HASH_FNV1A_BASIS;
-    unsigned char buf[16384];
-    for (;;) {
-        ssize_t got = read(fd, buf, sizeof buf);
-        if (got < 0 && errno == EINTR) continue;
-        if (got < 0) {
-            close(fd);
-            return false;
-        }
-        if (got == 0) break;
-        h = hash_fnv1a(h, buf, (size_t)got);
-    }
-    close(fd);
-    *hash = h;
-    return true;
-}
 
 static bool is_regular(const char *path) {
     struct stat st;
@@ -383,7 +304,7 @@ static int64_t decide(watch *w, int64_t t) {
         int64_t again;
         if (still_writing(f, t, &again)) continue;
         uint64_t h = 0;
-        bool present = hash_file(f->path, &h);
+        bool present = file_cache_refresh(w->cache, f->path, &h);
         if (!present && f->present && !f->writing && t < f->last_ns + WATCH_MISSING_GRACE_MS * MS) {
             next = min64(next, f->last_ns + WATCH_MISSING_GRACE_MS * MS);
             continue; /* gone just now: wait for it */
@@ -415,6 +336,8 @@ watch *watch_create(char *err, int errlen) {
     return w;
 }
 
+void watch_use_cache(watch *w, file_cache *c) { w->cache = c; }
+
 void watch_destroy(watch *w) {
     if (!w) return;
     close(w->fd);
@@ -445,7 +368,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
             msg_set(err, (size_t)errlen, "watch: '%s' does not name a file", p ? p : "(null)");
             goto fail;
         }
-        norm = normalise(p);
+        norm = path_absolute(p);
         if (!norm) {
             msg_set(err, (size_t)errlen, "watch: cannot resolve '%s': %s", p, strerror(errno));
             goto fail;
@@ -489,7 +412,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
         free(rbase);
         real = rdir = rbase = NULL;
 
-        f->present = hash_file(f->path, &f->hash);
+        f->present = file_cache_refresh(w->cache, f->path, &f->hash);
     }
 
     /* Success: drop the watches the new set no longer needs. */

@@ -57,6 +57,12 @@ typedef struct watch watch;
 watch *watch_create(char *err, int errlen);
 void watch_destroy(watch *w); /* NULL is fine */
 
+/* The bytes the watcher reads to hash a file go into c (file_cache.h), so
+ * the reload after a save reads the saved file from memory: each save is
+ * read once. c may be NULL (the default: the bytes are dropped). */
+struct file_cache;
+void watch_use_cache(watch *w, struct file_cache *c);
+
 /* Replaces the set of watched files with paths[0..n-1] (duplicates are
  * merged). Watches their directories, and records each file's current
  * content hash (a missing file is recorded as missing; a directory or other

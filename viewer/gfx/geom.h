@@ -144,6 +144,13 @@ bool geom_obj_load_adjacency(geom_mesh *m, const char *path, char *err, int errl
  * triangles, patches of 3. */
 bool geom_obj_load_patches(geom_mesh *m, const char *path, char *err, int errlen);
 
+/* The four above, read through files (file_cache.h; NULL: the disk) as
+ * prim: GEOM_TRIANGLES (Obj), GEOM_LINES (WireObj),
+ * GEOM_TRIANGLES_ADJACENCY (ObjAdj), GEOM_PATCHES (ObjPatch). */
+struct file_cache;
+bool geom_obj_read(geom_mesh *m, struct file_cache *files, const char *path, geom_prim prim, char *err,
+                   int errlen);
+
 /* The mesh of an OBJ already parsed (obj_parse), drawn as prim:
  * GEOM_TRIANGLES (Obj), GEOM_LINES (WireObj), GEOM_TRIANGLES_ADJACENCY
  * (ObjAdj) or GEOM_PATCHES (ObjPatch); name for the messages ("name: no
@@ -162,6 +169,8 @@ bool geom_obj_mesh(geom_mesh *m, const obj_data *d, geom_prim prim, const char *
  * MultiPatch: named), is truncated or inconsistent (the record named), or
  * has no line in it. Bounded: GEOM_MAX_FILE_BYTES. */
 bool geom_shp_load(geom_mesh *m, const char *path, char *err, int errlen);
+/* geom_shp_load read through files (file_cache.h; NULL: the disk). */
+bool geom_shp_read(geom_mesh *m, struct file_cache *files, const char *path, char *err, int errlen);
 
 /* n points given (3 floats each) as one primitive: Triangles (3 points,
  * GEOM_TRIANGLES, normal from the winding), LinesAdjacency (4 points,

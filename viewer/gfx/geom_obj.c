@@ -348,11 +348,13 @@ bool geom_obj_mesh(geom_mesh *m, const obj_data *d, geom_prim prim, const char *
     return true;
 }
 
-static bool load(geom_mesh *m, const char *path, geom_prim prim, char *err, int errlen) {
+bool geom_obj_read(geom_mesh *m, struct file_cache *files, const char *path, geom_prim prim, char *err,
+                   int errlen) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     obj_data d;
-    obj_opts o = { .max_abs = FLT_MAX };   /* the mesh is floats: a larger number is refused at its line */
+    obj_opts o = { .max_abs = FLT_MAX,   /* the mesh is floats: a larger number is refused at its line */
+                   .files = files };
     if (!obj_read(&d, path, &o, errlen > 0 ? err : NULL, errlen > 0 ? (size_t)errlen : 0)) return false;
     bool ok = geom_obj_mesh(m, &d, prim, path, err, errlen);
     obj_free(&d);
@@ -360,17 +362,17 @@ static bool load(geom_mesh *m, const char *path, geom_prim prim, char *err, int 
 }
 
 bool geom_obj_load(geom_mesh *m, const char *path, char *err, int errlen) {
-    return load(m, path, GEOM_TRIANGLES, err, errlen);
+    return geom_obj_read(m, NULL, path, GEOM_TRIANGLES, err, errlen);
 }
 
 bool geom_obj_load_wire(geom_mesh *m, const char *path, char *err, int errlen) {
-    return load(m, path, GEOM_LINES, err, errlen);
+    return geom_obj_read(m, NULL, path, GEOM_LINES, err, errlen);
 }
 
 bool geom_obj_load_adjacency(geom_mesh *m, const char *path, char *err, int errlen) {
-    return load(m, path, GEOM_TRIANGLES_ADJACENCY, err, errlen);
+    return geom_obj_read(m, NULL, path, GEOM_TRIANGLES_ADJACENCY, err, errlen);
 }
 
 bool geom_obj_load_patches(geom_mesh *m, const char *path, char *err, int errlen) {
-    return load(m, path, GEOM_PATCHES, err, errlen);
+    return geom_obj_read(m, NULL, path, GEOM_PATCHES, err, errlen);
 }

@@ -1,6 +1,6 @@
 /* geom_shp.c: ESRI shapefiles' lines (Shp; geom.h). */
 #include "geom_build.h"
-#include "file.h"
+#include "file_cache.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -50,12 +50,17 @@ static const char *shp_type_name(int t) {
 static bool shp_lines(int t) { return t == 3 || t == 5 || t == 13 || t == 15 || t == 23 || t == 25; }
 
 bool geom_shp_load(geom_mesh *m, const char *path, char *err, int errlen) {
+    return geom_shp_read(m, NULL, path, err, errlen);
+}
+
+bool geom_shp_read(geom_mesh *m, struct file_cache *files, const char *path, char *err, int errlen) {
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (err && errlen > 0) err[0] = '\0';
     char why[256];
     size_t len = 0;
-    unsigned char *f = (unsigned char *)file_read(path, (size_t)GEOM_MAX_FILE_BYTES, &len, why, sizeof why);
+    unsigned char *f = (unsigned char *)file_cache_bytes(files, path, (size_t)GEOM_MAX_FILE_BYTES, &len, why,
+                                                         sizeof why);
     if (!f) return shp_fail(err, errlen, path, "%s", why);
     bool ok = false;
     mb b;

@@ -5,6 +5,7 @@
 #include "image_io.h"
 #include "mem.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cctype>
@@ -48,6 +49,29 @@ TypeDesc format_for(const char *path, bool *rgb_only) {
     if (ext == "tif" || ext == "tiff") return TypeDesc::FLOAT;
     if (ext == "hdr") { *rgb_only = true; return TypeDesc::FLOAT; }
     return TypeDesc::UINT8;
+}
+
+/* The first subimage of an opened file into out (img_read's contract). */
+bool decode(ImageInput &in, const char *path, img *out, char *err, int errlen) {
+    const ImageSpec &spec = in.spec();
+    if (!size_ok(spec.width, spec.height, spec.depth, spec.nchannels)) {
+        set_err(err, errlen, path,
+            "unsupported size " + std::to_string(spec.width) + "x" +
+            std::to_string(spec.height) + "x" + std::to_string(spec.depth) + ", " +
+            std::to_string(spec.nchannels) + " channels (at most " +
+            std::to_string(IMG_MAX_SIDE) + " a side, 2^28 texels, " +
+            std::to_string(IMG_MAX_CHANNELS) + " channels)");
+        return false;
+    }
+    float *px = alloc_px(spec.width, spec.height, spec.depth, spec.nchannels);
+    if (!in.read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px)) {
+        std::free(px);
+        set_err(err, errlen, path, in.geterror());
+        return false;
+    }
+    out->w = spec.width; out->h = spec.height; out->d = spec.depth;
+    out->channels = spec.nchannels; out->px = px;
+    return true;
 }
 
 } // namespace
@@ -98,28 +122,40 @@ extern "C" bool img_read(const char *path, img *out, char *err, int errlen) {
             set_err(err, errlen, path, "cannot read (" + OIIO::geterror() + ")");
             return false;
         }
-        const ImageSpec &spec = in->spec();
-        if (!size_ok(spec.width, spec.height, spec.depth, spec.nchannels)) {
-            set_err(err, errlen, path,
-                    "unsupported size " + std::to_string(spec.width) + "x" +
-                    std::to_string(spec.height) + "x" + std::to_string(spec.depth) + ", " +
-                    std::to_string(spec.nchannels) + " channels (at most " +
-                    std::to_string(IMG_MAX_SIDE) + " a side, 2^28 texels, " +
-                    std::to_string(IMG_MAX_CHANNELS) + " channels)");
-            return false;
-        }
-        float *px = alloc_px(spec.width, spec.height, spec.depth, spec.nchannels);
-        if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px)) {
-            std::free(px);
-            set_err(err, errlen, path, in->geterror());
-            return false;
-        }
-        out->w = spec.width; out->h = spec.height; out->d = spec.depth;
-        out->channels = spec.nchannels; out->px = px;
-        return true;
+        return decode(*in, path, out, err, errlen);
     } catch (const std::exception &e) {
         img_free(out);
         set_err(err, errlen, path, e.what());
+        return false;
+    }
+}
+
+extern "C" bool img_read_bytes(const char *name, const void *bytes, size_t len, img *out, char *err, int errlen) {
+    if (!out) return false;
+    *out = img{0, 0, 0, 0, nullptr};
+    if (!name || !*name) { set_err(err, errlen, name, "no file name"); return false; }
+    try {
+        Filesystem::IOMemReader proxy(bytes, len);
+        ImageSpec config;
+        config.attribute("oiio:UnassociatedAlpha", 1); /* pixels as stored */
+        auto in = ImageInput::open(name, &config, &proxy);
+        if (!in) {
+            set_err(err, errlen, name, "cannot read (" + OIIO::geterror() + ")");
+            return false;
+        }
+        return decode(*in, name, out, err, errlen);
+    } catch (const std::exception &e) {
+        img_free(out);
+        set_err(err, errlen, name, e.what());
+        return false;
+    }
+}
+
+extern "C" bool img_reads_from_memory(const char *name) {
+    try {
+        auto in = ImageInput::create(name);
+        return in && in->supports("ioproxy");
+    } catch (const std::exception &) {
         return false;
     }
 }

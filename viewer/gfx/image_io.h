@@ -14,6 +14,7 @@
 #define TARN_IMAGE_IO_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -23,6 +24,7 @@ extern "C" {
 #define IMG_MAX_SIDE 16384
 #define IMG_MAX_TEXELS (1L << 28)
 #define IMG_MAX_CHANNELS 64
+#define IMG_MAX_FILE_BYTES (1L << 30)   /* what img_read_bytes' callers read at most */
 
 typedef struct img {
     int w, h, d;        /* d = 1 for a 2D image, > 1 for a volume */
@@ -35,6 +37,14 @@ typedef struct img {
  * left empty and err says "path: reason" (missing, unreadable, unsupported
  * format, absurd size). */
 bool img_read(const char *path, img *out, char *err, int errlen);
+
+/* img_read of a file's bytes already in memory (file_cache.h), its format
+ * told by name's extension (or, failing that, its first bytes); errors say
+ * "name: reason". img_reads_from_memory: whether the format name implies
+ * can be read so (PNG, JPEG, BMP, EXR, HDR, TIFF, TGA, GIF, PNM, DDS, WebP,
+ * PSD; not SGI, ICO, FITS: those only through img_read). */
+bool img_read_bytes(const char *name, const void *bytes, size_t len, img *out, char *err, int errlen);
+bool img_reads_from_memory(const char *name);
 
 /* Writes by the extension of path: .png (8-bit, clamped to 0..1 and
  * rounded), .exr (half float), .hdr (RGBE; 4 channels drop alpha), .tif /

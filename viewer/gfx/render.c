@@ -22,6 +22,10 @@ render *render_create(const render_desc *desc) {
     r->samples = desc ? desc->samples : 0;
     r->verbose = desc && desc->verbose;
     r->no_spray = desc && desc->no_spray;
+    r->shared_files = desc && desc->files;
+    r->files = r->shared_files ? desc->files : file_cache_create();
+    r->sources = (prog_sources){ .include_dirs = r->include_dirs, .ninclude_dirs = 1, .common_dir = r->common_dir,
+                                 .files = r->files };
     gpu_timer_init(&r->timer);
     world_cache_init(&r->wcache);
     world_layers_init(&r->wlayers);
@@ -30,7 +34,8 @@ render *render_create(const render_desc *desc) {
 
 render_desc render_desc_of(const render *r) {
     return (render_desc){ .repo_root = r->root, .pack = r->pack[0] ? r->pack : NULL, .samples = r->samples,
-                          .verbose = r->verbose, .no_spray = r->no_spray };
+                          .verbose = r->verbose, .no_spray = r->no_spray,
+                          .files = r->shared_files ? r->files : NULL };
 }
 
 void render_destroy(render *r) {
@@ -51,6 +56,7 @@ void render_destroy(render *r) {
     gpu_timer_free(&r->timer);
     render_res_tex_free(&r->noise[0]);
     render_res_tex_free(&r->noise[1]);
+    if (!r->shared_files) file_cache_destroy(r->files);
     free(r);
 }
 
@@ -117,7 +123,7 @@ long render_world_cache_hits(const render *r) { return r->wcache.hits; }
 
 bool render_set_world_height_map(render *r, bool on) {
     char *log = NULL;
-    bool ok = world_set_height_map(&r->world, on, (const char *const *)r->include_dirs, &log);
+    bool ok = world_set_height_map(&r->world, on, &r->sources, &log);
     free(log);
     world_cache_free(&r->wcache);   /* the world may draw differently now */
     return ok;

@@ -22,6 +22,11 @@ typedef struct render_desc {
     int samples;                /* MSAA of the screen passes: 0 the default, 1 off, else N */
     bool verbose;               /* every inactive uniform a note at its glib line, not one summary */
     bool no_spray;              /* leave the world's Spray out (tarn bench: the reference has none) */
+    /* Where the scene's files (glib, shaders, models, textures) are read,
+     * shared with the caller's watcher and other renders (file_cache.h);
+     * borrowed, it must outlive the render. 0: a cache of the render's own,
+     * so a Define toggle or a reload of unchanged files reads no disk. */
+    struct file_cache *files;
 } render_desc;
 
 /* Anti-aliasing: the screen passes are drawn multisampled and resolved

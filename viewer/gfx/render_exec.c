@@ -28,7 +28,7 @@ static void bind_builtin_noise(render *r, const scene_state *s) {
         snprintf(r->noise_dir, sizeof r->noise_dir, "%s", dir);
     }
     for (int k = 0; k < 2; k++) {
-        if (!r->noise[k].tex && s->samples_noise[k]) render_res_noise_builtin(dir, k == 1, &r->noise[k]);
+        if (!r->noise[k].tex && s->samples_noise[k]) render_res_noise_builtin(r->files, dir, k == 1, &r->noise[k]);
         if (!r->noise[k].tex) continue;
         glActiveTexture(GL_TEXTURE0 + (GLenum)r->noise[k].unit);
         glBindTexture(r->noise[k].target, r->noise[k].tex);

@@ -27,6 +27,7 @@
 #include <stdint.h>
 
 #include "diag.h"
+#include "file_cache.h"
 #include "glib.h"
 #include "gpu_timer.h"
 #include "render.h"
@@ -76,6 +77,8 @@ struct render {
     char root[GLIB_PATH_MAX];
     char packs_dir[GLIB_PATH_MAX + 16];
     char pack[GLIB_NAME_MAX];      /* --pack: replaces the scene's Pack */
+    file_cache *files;             /* every file the scene is made of is read here (render_desc.files) */
+    bool shared_files;             /* ... which the caller owns */
     int water_mesh;                /* a setting's WaterMesh (0: the scene's own) */
     int water_mesh_loaded;         /* the one the world on screen was built with */
     gpu_world world;               /* kept across reloads while the world is unchanged */
@@ -85,6 +88,7 @@ struct render {
     bool world_only;               /* inside render_frame_world_at */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];
+    prog_sources sources;          /* include_dirs, common_dir and files, for every program built */
     char path[GLIB_PATH_MAX];
     scene_state cur;
     char *messages;

@@ -103,7 +103,7 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
     if (o >= 0) {
         *m = old->meshes[o];
         memset(&old->meshes[o], 0, sizeof old->meshes[o]);
-    } else if (!render_res_mesh_build(c, m, log) && c->path[0]) {
+    } else if (!render_res_mesh_build(c, s->glib->read_through, m, log) && c->path[0]) {
         /* a broken OBJ keeps the last good mesh of that file (as textures do) */
         for (int i = 0; i < old->nmeshes; i++) {
             const char *a = old->meshes[i].key, *at = strrchr(a, '@'), *bt = strrchr(m->key, '@');
@@ -133,7 +133,7 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
     }
     char key[RES_KEY_MAX];
     memcpy(key, t->key, sizeof key);
-    if (!render_res_tex_build(c, t, log)) {
+    if (!render_res_tex_build(c, s->glib->read_through, t, log)) {
         const char *want = c->kind == GLIB_CMD_CUBEMAP && c->cube_paths ? c->cube_paths[0] : c->path;
         for (int i = 0; i < old->ntexs; i++) {
             if (old->texs[i].tex && want[0] && strcmp(old->texs[i].path, want) == 0) {
@@ -203,7 +203,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
         o->cmd = c;   /* marks it taken */
         unif_merge(p->unifs, o->unifs);
     }
-    prog_build(p, (const char *const *)r->include_dirs, 1, log);
+    prog_build(p, &r->sources, log);
     prog_introspect(p, log);
     if (o) unif_merge(p->unifs, o->unifs);   /* now both carry shader types */
     s->cmd_res[ci] = s->nprogs++;
@@ -399,14 +399,15 @@ static void build_world(render *r, const glib_scene *g, char **log) {
     if (has_world && r->water_mesh > 0) desc.water_mesh_res = r->water_mesh;
     r->water_mesh_loaded = r->water_mesh;
     if (r->no_spray) desc.spray.on = false;   /* no state, no pass: as a scene without Spray */
-    if (has_world) world_build(&r->world, &desc, (const char *const *)r->include_dirs, r->common_dir, log);
+    if (has_world) world_build(&r->world, &desc, &r->sources, log);
     else world_free(&r->world);
 }
 
 bool render_load(render *r, const char *glib_path) {
     if (glib_path && glib_path != r->path) snprintf(r->path, sizeof r->path, "%s", glib_path);
     char *log = NULL;
-    glib_options opts = { .packs_dir = r->packs_dir, .pack_override = r->pack[0] ? r->pack : NULL };
+    glib_options opts = { .packs_dir = r->packs_dir, .pack_override = r->pack[0] ? r->pack : NULL,
+                          .files = r->files };
     glib_scene *g = glib_load_opts(r->path, &opts);
     diags_to_log(g, &log);
     if (g->nerrors > 0 && r->cur.glib) {
@@ -440,14 +441,14 @@ bool render_rebuild_programs(render *r) {
     bool ok = true;
     for (int i = 0; i < r->cur.nprogs; i++) {
         prog *p = &r->cur.progs[i];
-        if (!prog_build(p, (const char *const *)r->include_dirs, 1, &log)) ok = false;
+        if (!prog_build(p, &r->sources, &log)) ok = false;
         prog_introspect(p, &log);
     }
     note_noise_units(&r->cur);
     world_cache_free(&r->wcache);   /* the world's program may draw differently now */
     world_layers_free(&r->wlayers);
     if (r->world.active) {
-        if (!world_build_programs(&r->world, (const char *const *)r->include_dirs, &log)) ok = false;
+        if (!world_build_programs(&r->world, &r->sources, &log)) ok = false;
     }
     collect_deps(r, r->cur.glib, &r->cur);
     render_messages_set(r, log);

@@ -58,7 +58,7 @@ static unsigned make_array(GLenum internal, GLenum format, int n, int layers, co
     return t;
 }
 
-static void init_prog(gpu_ocean *o, int which, const char *common_dir) {
+static void init_prog(gpu_ocean *o, int which, const prog_sources *src) {
     static const char *const names[OCEAN_PROGS] = { "OceanSpectrum", "OceanFFTx", "OceanFFTz", "OceanFoam" };
     static const char *const frags[OCEAN_PROGS] = { "ocean_spectrum.frag", "ocean_fft.frag", "ocean_fft.frag",
                                                     "ocean_foam.frag" };
@@ -68,26 +68,26 @@ static void init_prog(gpu_ocean *o, int which, const char *common_dir) {
     p->unifs = &o->prog_unifs[which];
     p->world_uniforms = true;   /* its uniforms are tarn's, not sliders */
     snprintf(p->name, sizeof p->name, "%s", names[which]);
-    snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", common_dir);
-    snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/%s", common_dir, frags[which]);
+    snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", src->common_dir);
+    snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/%s", src->common_dir, frags[which]);
     if (which == OCEAN_PROG_FFT_V) {
         snprintf(p->fixed[0].name, sizeof p->fixed[0].name, "OCEAN_FFT_VERTICAL");
         snprintf(p->fixed[0].value, sizeof p->fixed[0].value, "1");
     }
 }
 
-bool ocean_build_programs(gpu_ocean *o, const char *const *include_dirs, char **log) {
+bool ocean_build_programs(gpu_ocean *o, const prog_sources *src, char **log) {
     if (!o->active) return true;
     bool ok = true;
     for (int i = 0; i < OCEAN_PROGS; i++) {
-        if (!prog_build(&o->progs[i], include_dirs, 1, log)) ok = false;
+        if (!prog_build(&o->progs[i], src, log)) ok = false;
         prog_introspect(&o->progs[i], log);
     }
     return ok;
 }
 
 bool ocean_create(gpu_ocean *o, int cascades, int res, const float *tile, float lambda, const float *h0,
-                  const float *omega, const char *const *include_dirs, const char *common_dir, char **log) {
+                  const float *omega, const prog_sources *src, char **log) {
     ocean_free(o);
     if (cascades < 1 || cascades > REF_OCEAN_CASCADES_MAX || res < 2 || (res & (res - 1)) != 0) {
         str_appendf(log, "tarn: error: the ocean's %d cascades of %d^2 are not what the GPU passes take\n", cascades, res);
@@ -146,13 +146,12 @@ bool ocean_create(gpu_ocean *o, int cascades, int res, const float *tile, float 
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (!ok) str_appendf(log, "tarn: error: the ocean's RGBA32F targets are not complete on this GL\n");
-    for (int i = 0; i < OCEAN_PROGS; i++) init_prog(o, i, common_dir);
+    for (int i = 0; i < OCEAN_PROGS; i++) init_prog(o, i, src);
     o->active = true;
-    return ocean_build_programs(o, include_dirs, log) && ok;
+    return ocean_build_programs(o, src, log) && ok;
 }
 
-bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const char *const *include_dirs,
-                       const char *common_dir, char **log) {
+bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const prog_sources *src, char **log) {
     const ref_ocean_desc *d = ref_ocean_get_desc(ref);
     int n = d->res, nc = d->cascades;
     size_t texels = (size_t)n * n;
@@ -163,7 +162,7 @@ bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const char *const *in
         ref_ocean_gpu_spectrum(ref, c, h0 + texels * 4 * c, omega + texels * c);
         tile[c] = (float)d->tile[c];
     }
-    bool ok = ocean_create(o, nc, n, tile, (float)d->choppiness, h0, omega, include_dirs, common_dir, log);
+    bool ok = ocean_create(o, nc, n, tile, (float)d->choppiness, h0, omega, src, log);
     free(h0);
     free(omega);
     return ok;

@@ -176,7 +176,7 @@ static bool in_source(const prog *p, const char *name) {
     return false;
 }
 
-bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, char **log) {
+bool prog_build(prog *p, const prog_sources *sources, char **log) {
     shader_define defines[64];
     int ndefines = collect_defines(p, defines, 64);
     shader_src src[SHADER_STAGE_COUNT];
@@ -188,7 +188,8 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, cha
         any = true;
         shader_src_desc d = { .path = p->stage_path[s], .stage = (shader_stage)s,
             .gstap = p->gstap, .defines = defines, .ndefines = ndefines,
-            .include_dirs = include_dirs, .ninclude_dirs = ninclude_dirs,
+            .include_dirs = sources->include_dirs, .ninclude_dirs = sources->ninclude_dirs,
+            .files = sources->files,
             .gs_input = program_gs_input(p->scene, p->cmd) };
         if (!shader_src_load(&d, &src[s])) {
             append_tagged(log, src[s].error, (shader_stage)s, p);

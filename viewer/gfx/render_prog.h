@@ -9,6 +9,19 @@
 #include "shader_src.h"
 #include "unif.h"
 
+struct file_cache;
+
+/* Where a program's sources come from: the dirs an `#include` searches
+ * after the including file's own, packs/common (where tarn's own world
+ * programs live), and the cache every file is read through (file_cache.h),
+ * so a rebuild of unchanged files compiles from memory. */
+typedef struct prog_sources {
+    const char *const *include_dirs;
+    int ninclude_dirs;
+    const char *common_dir;
+    struct file_cache *files;
+} prog_sources;
+
 /* fixed[0], [1]: the world program's variants (WORLD_MODE, WORLD_HEIGHT_MAP);
  * from PROG_FIXED_WORLD on: the world's wave models (world_wave_defines) */
 #define PROG_FIXED_WORLD 2
@@ -40,11 +53,11 @@ typedef struct prog {
  * "LINE\x1fSTAGE\x1fPROGRAM\n" (render_messages.c merges and untags them). */
 #define RENDER_PROG_TAG '\x1f'
 
-/* Builds p from its stage paths, defines (from p->unifs' define entries)
- * and include dirs. On failure p->gl is left as it was (the last good build)
+/* Builds p from its stage paths and defines (from p->unifs' define
+ * entries), read through src. On failure p->gl is left as it was (the last good build)
  * and the mapped messages are appended to *log. Returns true on success or
  * when nothing changed. */
-bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, char **log);
+bool prog_build(prog *p, const prog_sources *src, char **log);
 
 /* Introspects p->gl: types, locations, uniforms the glib did not mention,
  * glib uniforms the program lacks (a warning in *log). */

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "assets.h"
+#include "file_cache.h"
 #include "geom.h"
 #include "image_io.h"
 #include "mem.h"
@@ -64,7 +65,7 @@ static float arg_f(const glib_cmd *c, int i, float def) {
     return i < c->nnum ? (float)c->num[i] : def;
 }
 
-static bool make_mesh(const glib_cmd *c, geom_mesh *g, char *err, int errlen) {
+static bool make_mesh(const glib_cmd *c, file_cache *files, geom_mesh *g, char *err, int errlen) {
     bool w = c->wire;
     switch (c->kind) {
     case GLIB_CMD_QUAD_XY: return geom_quad(g, 2, arg_f(c, 0, 0), arg_f(c, 1, 1), arg_i(c, 2, 1), arg_i(c, 3, 1), w);
@@ -80,10 +81,10 @@ static bool make_mesh(const glib_cmd *c, geom_mesh *g, char *err, int errlen) {
     case GLIB_CMD_CONE: return geom_cone(g, arg_f(c, 0, 1), arg_f(c, 1, 1), arg_i(c, 2, 32), arg_i(c, 3, 1), w);
     case GLIB_CMD_TEAPOT: return geom_teapot(g, arg_f(c, 0, 1), 10, w);
     case GLIB_CMD_OBJ:
-        return w ? geom_obj_load_wire(g, c->path, err, errlen) : geom_obj_load(g, c->path, err, errlen);
-    case GLIB_CMD_OBJ_ADJ: return geom_obj_load_adjacency(g, c->path, err, errlen);
-    case GLIB_CMD_OBJ_PATCH: return geom_obj_load_patches(g, c->path, err, errlen);
-    case GLIB_CMD_SHP: return geom_shp_load(g, c->path, err, errlen);
+        return geom_obj_read(g, files, c->path, w ? GEOM_LINES : GEOM_TRIANGLES, err, errlen);
+    case GLIB_CMD_OBJ_ADJ: return geom_obj_read(g, files, c->path, GEOM_TRIANGLES_ADJACENCY, err, errlen);
+    case GLIB_CMD_OBJ_PATCH: return geom_obj_read(g, files, c->path, GEOM_PATCHES, err, errlen);
+    case GLIB_CMD_SHP: return geom_shp_read(g, files, c->path, err, errlen);
     case GLIB_CMD_DISK_XY: return geom_disk_xy(g, 0);
     case GLIB_CMD_QUAD_BOX: return geom_quad_box(g, arg_i(c, 0, 10));
     case GLIB_CMD_POINT_CLOUD: case GLIB_CMD_JITTER_CLOUD:
@@ -139,11 +140,11 @@ bool render_res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
     return true;
 }
 
-bool render_res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log) {
+bool render_res_mesh_build(const glib_cmd *c, file_cache *files, gpu_mesh *m, char **log) {
     geom_mesh g;
     memset(&g, 0, sizeof g);
     char err[512] = "";
-    if (!make_mesh(c, &g, err, sizeof err) || !render_res_mesh_upload(&g, m)) {
+    if (!make_mesh(c, files, &g, err, sizeof err) || !render_res_mesh_upload(&g, m)) {
         /* a file that is still missing: the parser said so at this line
          * ("cannot open 'x.shp' (from command Shp)"); once is enough */
         bool said = c->path[0] && access(c->path, R_OK) != 0;
@@ -336,22 +337,23 @@ typedef struct raw_tex {
  * little-endian int32 sizes, then RGBA texels, s fastest, all bytes or all
  * 32-bit floats, told apart by the file size. False with why (a sentence)
  * when the file is not such a file. */
-static bool read_raw(const char *path, int dims, raw_tex *out, char *why, size_t whylen) {
+static bool read_raw(file_cache *files, const char *path, int dims, raw_tex *out, char *why, size_t whylen) {
     memset(out, 0, sizeof *out);
     out->n[2] = 1;
-    FILE *f = fopen(path, "rb");
-    if (!f) { snprintf(why, whylen, "cannot open '%s'", path); return false; }
-    unsigned char hdr[12];
-    struct stat st;
-    bool ok = fstat(fileno(f), &st) == 0 && fread(hdr, 4, (size_t)dims, f) == (size_t)dims;
+    size_t size = 0;
+    char err[GLIB_PATH_MAX + 300];
+    unsigned char *file = (unsigned char *)file_cache_bytes(files, path, (size_t)(4L * dims + RAW_MAX_TEXELS * 16),
+                                                            &size, err, sizeof err);
+    if (!file) { msg_set(why, whylen, "%s", err); return false; }
+    bool ok = size >= (size_t)(4 * dims);
     long texels = 1;
     for (int d = 0; ok && d < dims; d++) {
-        out->n[d] = (int)((unsigned)hdr[d * 4] | (unsigned)hdr[d * 4 + 1] << 8 |
-                          (unsigned)hdr[d * 4 + 2] << 16 | (unsigned)hdr[d * 4 + 3] << 24);
+        const unsigned char *h = file + d * 4;
+        out->n[d] = (int)((unsigned)h[0] | (unsigned)h[1] << 8 | (unsigned)h[2] << 16 | (unsigned)h[3] << 24);
         if (out->n[d] < 1 || out->n[d] > 16384) {
             snprintf(why, whylen, "'%s' is not a glman raw texture: size %d in its header (use 1..16384)",
                      path, out->n[d]);
-            fclose(f);
+            free(file);
             return false;
         }
         texels *= out->n[d];
@@ -360,10 +362,10 @@ static bool read_raw(const char *path, int dims, raw_tex *out, char *why, size_t
     if (!ok) {
         snprintf(why, whylen, "'%s' is not a glman raw texture: its header is cut short or asks for more "
                  "than %ld texels", path, RAW_MAX_TEXELS);
-        fclose(f);
+        free(file);
         return false;
     }
-    long body = (long)st.st_size - 4L * dims, count = texels * 4;
+    long body = (long)size - 4L * dims, count = texels * 4;
     out->bytes = body == count;
     if (!out->bytes && body != count * 4) {
         char sizes[48];
@@ -372,25 +374,18 @@ static bool read_raw(const char *path, int dims, raw_tex *out, char *why, size_t
         snprintf(why, whylen, "'%s' has %ld bytes after its %d-number header, but %s RGBA texels take %ld "
                  "(bytes) or %ld (floats): the sizes in its header are wrong or the file is cut short",
                  path, body, dims, sizes, count, count * 4);
-        fclose(f);
+        free(file);
         return false;
     }
     out->px = mem_alloc((size_t)count * sizeof *out->px);
-    unsigned char *raw = mem_alloc((size_t)body);
-    ok = fread(raw, 1, (size_t)body, f) == (size_t)body;
-    for (long i = 0; ok && i < count; i++) {
+    const unsigned char *raw = file + 4 * dims;
+    for (long i = 0; i < count; i++) {
         if (out->bytes) out->px[i] = raw[i] / 255.0f;
         else memcpy(&out->px[i], raw + i * 4, 4);   /* little-endian, as written */
         if (!isfinite(out->px[i])) out->px[i] = 0;  /* a NaN texel would spread through filtering */
     }
-    free(raw);
-    fclose(f);
-    if (!ok) {
-        snprintf(why, whylen, "cannot read '%s'", path);
-        free(out->px);
-        out->px = NULL;
-    }
-    return ok;
+    free(file);
+    return true;
 }
 
 /* Whether a texture file is glman's raw format: its .tex name. */
@@ -400,9 +395,9 @@ static bool is_raw_name(const char *path) {
 }
 
 /* Reads a raw file for command c into rt, or says why in the log. */
-static bool raw_read_into(const char *path, int dims, raw_tex *rt, const glib_cmd *c, char **log) {
+static bool raw_read_into(file_cache *files, const char *path, int dims, raw_tex *rt, const glib_cmd *c, char **log) {
     char why[768];
-    if (read_raw(path, dims, rt, why, sizeof why)) return true;
+    if (read_raw(files, path, dims, rt, why, sizeof why)) return true;
     str_appendf(log, "%s:%d: error: %s: %s\n", c->file, c->line, glib_cmd_name(c->kind), why);
     return false;
 }
@@ -413,10 +408,22 @@ static void raw_upload_2d(GLenum target, const raw_tex *rt) {
     glTexImage2D(target, 0, rt->bytes ? GL_RGBA8 : GL_RGBA32F, rt->n[0], rt->n[1], 0, GL_RGBA, GL_FLOAT, rt->px);
 }
 
-static bool load_image(const char *path, img *im, const glib_cmd *c, char **log) {
+bool render_res_read_image(file_cache *files, const char *path, img *im, char *err, int errlen) {
+    if (!img_reads_from_memory(path)) return img_read(path, im, err, errlen);
+    size_t n = 0;
+    char why[256];
+    file_text_opts o = { .max_bytes = IMG_MAX_FILE_BYTES };
+    char *bytes = file_cache_read(files, path, &o, &n, NULL, why, sizeof why);
+    if (!bytes) snprintf(err, (size_t)errlen, "%s: %s", path, why);
+    bool ok = bytes && img_read_bytes(path, bytes, n, im, err, errlen);
+    free(bytes);
+    return ok;
+}
+
+static bool load_image(file_cache *files, const char *path, img *im, const glib_cmd *c, char **log) {
     char err[512] = "";
     memset(im, 0, sizeof *im);
-    if (img_read(path, im, err, sizeof err)) return true;
+    if (render_res_read_image(files, path, im, err, sizeof err)) return true;
     str_appendf(log, "%s:%d: error: %s: %s\n", c->file, c->line, glib_cmd_name(c->kind), err);
     return false;
 }
@@ -456,11 +463,11 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
     return true;
 }
 
-static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
+static bool tex_2d_file(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
     if (c->path[0] == '@') return tex_2d_generated(c, t, log);
     if (is_raw_name(c->path)) {
         raw_tex rt;
-        if (!raw_read_into(c->path, 2, &rt, c, log)) return false;
+        if (!raw_read_into(files, c->path, 2, &rt, c, log)) return false;
         t->w = rt.n[0];
         t->h = rt.n[1];
         raw_upload_2d(GL_TEXTURE_2D, &rt);
@@ -469,7 +476,7 @@ static bool tex_2d_file(const glib_cmd *c, gpu_tex *t, char **log) {
         return true;
     }
     img im;
-    if (!load_image(c->path, &im, c, log)) return false;
+    if (!load_image(files, c->path, &im, c, log)) return false;
     img_flip_rows(&im);            /* files store the top row first, GL the bottom */
     float *rgba = to_rgba(&im);
     bool hdr = is_hdr(&im);
@@ -515,7 +522,7 @@ void render_res_target_resize(gpu_tex *t, int w, int h) {
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
+static bool tex_3d(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
     if (!c->path[0]) {                       /* Texture3D unit w h d: empty */
         int w = arg_i(c, 1, 0), h = arg_i(c, 2, 0), d = arg_i(c, 3, 0);
         if (w < 1 || h < 1 || d < 1 || (long)w * h * d > (1L << 26)) {
@@ -528,7 +535,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
     }
     if (is_raw_name(c->path)) {
         raw_tex rt;
-        if (!raw_read_into(c->path, 3, &rt, c, log)) return false;
+        if (!raw_read_into(files, c->path, 3, &rt, c, log)) return false;
         glTexImage3D(GL_TEXTURE_3D, 0, rt.bytes ? GL_RGBA8 : GL_RGBA32F, rt.n[0], rt.n[1], rt.n[2], 0, GL_RGBA,
                      GL_FLOAT, rt.px);
         free(rt.px);
@@ -536,7 +543,7 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
         return true;
     }
     img im;
-    if (!load_image(c->path, &im, c, log)) return false;
+    if (!load_image(files, c->path, &im, c, log)) return false;
     float *rgba = to_rgba(&im);
     int d = im.d > 0 ? im.d : 1;
     glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, im.w, im.h, d, 0, GL_RGBA, GL_FLOAT, rgba);
@@ -546,18 +553,18 @@ static bool tex_3d(const glib_cmd *c, gpu_tex *t, char **log) {
     return true;
 }
 
-static bool tex_cube(const glib_cmd *c, gpu_tex *t, char **log) {
+static bool tex_cube(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
     if (!c->cube_paths) return false;
     for (int f = 0; f < 6; f++) {
         if (is_raw_name(c->cube_paths[f])) {
             raw_tex rt;
-            if (!raw_read_into(c->cube_paths[f], 2, &rt, c, log)) return false;
+            if (!raw_read_into(files, c->cube_paths[f], 2, &rt, c, log)) return false;
             raw_upload_2d(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, &rt);
             free(rt.px);
             continue;
         }
         img im;
-        if (!load_image(c->cube_paths[f], &im, c, log)) return false;
+        if (!load_image(files, c->cube_paths[f], &im, c, log)) return false;
         float *rgba = to_rgba(&im);
         /* cube faces keep the file's row order (the cube map convention) */
         glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_hdr(&im) ? GL_RGBA16F : GL_RGBA8,
@@ -589,11 +596,11 @@ static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
     return ok;
 }
 
-bool render_res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
+bool render_res_noise_builtin(file_cache *files, const char *dir, bool is3d, gpu_tex *t) {
     char path[GLIB_PATH_MAX + 32], why[768];
     snprintf(path, sizeof path, "%s%snoise%dd.064.tex", dir, dir[0] ? "/" : "", is3d ? 3 : 2);
     raw_tex rt;
-    if (!read_raw(path, is3d ? 3 : 2, &rt, why, sizeof why)) {   /* else the project's own, as glman cached it */
+    if (!read_raw(files, path, is3d ? 3 : 2, &rt, why, sizeof why)) {   /* else the project's own, as glman cached it */
         rt.n[0] = rt.n[1] = 64;
         rt.n[2] = is3d ? 64 : 1;
         rt.px = mem_alloc((size_t)64 * 64 * rt.n[2] * 4 * sizeof *rt.px);
@@ -615,7 +622,7 @@ bool render_res_noise_builtin(const char *dir, bool is3d, gpu_tex *t) {
     return true;
 }
 
-bool render_res_tex_build(const glib_cmd *c, gpu_tex *t, char **log) {
+bool render_res_tex_build(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
     t->unit = c->kind == GLIB_CMD_NOISE2D ? 2 : c->kind == GLIB_CMD_NOISE3D ? 3 : arg_i(c, 0, 0);
     if (t->unit < 0 || t->unit > 31) {
         str_appendf(log, "%s:%d: error: texture unit %d: use 0..31\n", c->file, c->line, t->unit);
@@ -630,10 +637,10 @@ bool render_res_tex_build(const glib_cmd *c, gpu_tex *t, char **log) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     bool ok = false;
     switch (c->kind) {
-    case GLIB_CMD_TEXTURE2D_FILE: ok = tex_2d_file(c, t, log); break;
+    case GLIB_CMD_TEXTURE2D_FILE: ok = tex_2d_file(c, files, t, log); break;
     case GLIB_CMD_TEXTURE2D_EMPTY: ok = tex_2d_empty(c, t, log); break;
-    case GLIB_CMD_TEXTURE3D: ok = tex_3d(c, t, log); break;
-    case GLIB_CMD_CUBEMAP: ok = tex_cube(c, t, log); break;
+    case GLIB_CMD_TEXTURE3D: ok = tex_3d(c, files, t, log); break;
+    case GLIB_CMD_CUBEMAP: ok = tex_cube(c, files, t, log); break;
     case GLIB_CMD_NOISE2D: case GLIB_CMD_NOISE3D: ok = tex_noise(c, t, log); break;
     default: break;
     }

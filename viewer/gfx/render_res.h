@@ -46,7 +46,11 @@ void render_res_key(const glib_cmd *c, char *out, int outlen);
  * old contents are gone). Nothing happens when the size is the same. */
 void render_res_target_resize(gpu_tex *t, int w, int h);
 
-bool render_res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
+/* The mesh or texture of command c, its files (OBJ, shapefile, images,
+ * raw textures) read through files (file_cache.h; NULL: the disk); a
+ * failure is a message in *log at c's line. */
+struct file_cache;
+bool render_res_mesh_build(const glib_cmd *c, struct file_cache *files, gpu_mesh *m, char **log);
 struct geom_mesh;
 bool render_res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);
 void render_res_mesh_draw(const gpu_mesh *m, int tangent_loc);
@@ -69,14 +73,18 @@ void render_res_vertexid_end(void);
  * blending, scissor or culling. */
 void render_res_pass_state(int w, int h);
 
-bool render_res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
+bool render_res_tex_build(const glib_cmd *c, struct file_cache *files, gpu_tex *t, char **log);
+/* img_read through files (file_cache.h; NULL: the disk); a format
+ * OpenImageIO reads only from a file (image_io.h) is read from the disk. */
+struct img;
+bool render_res_read_image(struct file_cache *files, const char *path, struct img *im, char *err, int errlen);
 /* Filtering and wrapping of the bound texture; mipmaps are generated. */
 void render_res_sampling(unsigned target, bool mipmaps, unsigned wrap);
 void render_res_tex_free(gpu_tex *t);
 /* glman's Noise2 (unit 2) or Noise3 (unit 3), there without any command:
  * dir's noise2d.064.tex / noise3d.064.tex when present (glman's cache,
  * shipped with real projects), else tarn's 64-texel noise (noise.h). */
-bool render_res_noise_builtin(const char *dir, bool is3d, gpu_tex *t);
+bool render_res_noise_builtin(struct file_cache *files, const char *dir, bool is3d, gpu_tex *t);
 
 bool render_res_is_geometry(glib_cmd_kind k);
 bool render_res_is_texture(glib_cmd_kind k);

@@ -43,17 +43,17 @@ void spray_clear(gpu_spray *s) {
     s->valid = false;
 }
 
-bool spray_build_programs(gpu_spray *s, const char *const *include_dirs, char **log) {
+bool spray_build_programs(gpu_spray *s, const prog_sources *src, char **log) {
     if (!s->active) return true;
     bool ok = true;
     for (int i = 0; i < SPRAY_PROGS; i++) {
-        if (!prog_build(&s->progs[i], include_dirs, 1, log)) ok = false;
+        if (!prog_build(&s->progs[i], src, log)) ok = false;
         prog_introspect(&s->progs[i], log);
     }
     return ok;
 }
 
-static void init_prog(gpu_spray *s, int which, const char *common_dir) {
+static void init_prog(gpu_spray *s, int which, const prog_sources *src) {
     static const char *const names[SPRAY_PROGS] = { "SprayUpdate", "SprayDraw" };
     static const char *const verts[SPRAY_PROGS] = { "world_height.vert", "spray_draw.vert" };
     static const char *const frags[SPRAY_PROGS] = { "spray_update.frag", "spray_draw.frag" };
@@ -61,12 +61,12 @@ static void init_prog(gpu_spray *s, int which, const char *common_dir) {
     p->unifs = &s->unifs[which];
     p->world_uniforms = true;   /* tarn's uniforms, not sliders */
     snprintf(p->name, sizeof p->name, "%s", names[which]);
-    snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/%s", common_dir, verts[which]);
-    snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/%s", common_dir, frags[which]);
+    snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/%s", src->common_dir, verts[which]);
+    snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/%s", src->common_dir, frags[which]);
 }
 
-bool spray_create(gpu_spray *s, const ref_spray_desc *desc, double half_size, const char *const *include_dirs,
-                  const char *common_dir, void (*set_defines)(const void *ctx, prog *p), const void *ctx,
+bool spray_create(gpu_spray *s, const ref_spray_desc *desc, double half_size, const prog_sources *src,
+                  void (*set_defines)(const void *ctx, prog *p), const void *ctx,
                   char **log) {
     spray_free(s);
     s->d = *desc;
@@ -90,12 +90,12 @@ bool spray_create(gpu_spray *s, const ref_spray_desc *desc, double half_size, co
     memset(s->progs, 0, sizeof s->progs);
     memset(s->unifs, 0, sizeof s->unifs);
     for (int i = 0; i < SPRAY_PROGS; i++) {
-        init_prog(s, i, common_dir);
+        init_prog(s, i, src);
         if (set_defines) set_defines(ctx, &s->progs[i]);
     }
     s->active = true;
     spray_clear(s);
-    return spray_build_programs(s, include_dirs, log) && ok;
+    return spray_build_programs(s, src, log) && ok;
 }
 
 void spray_free(gpu_spray *s) {

@@ -322,11 +322,12 @@ glib_scene *glib_load_opts(const char *path, const glib_options *opt) {
     if (opt) {
         p.packs_dir = opt->packs_dir && opt->packs_dir[0] ? opt->packs_dir : NULL;
         p.pack_override = opt->pack_override && opt->pack_override[0] ? opt->pack_override : NULL;
+        p.files = sc->read_through = opt->files;
     }
     const char *name = glib_add_file(&p, path ? path : "<null>");
     char *buf, why[128];
     size_t len;
-    if (!path || !glib_read_file(path, &buf, &len, why, sizeof why)) {
+    if (!path || !glib_read_file(&p, path, &buf, &len, why, sizeof why)) {
         glib_report(&p, DIAG_ERROR, name, 0, "cannot open '%s': %s", name, path ? why : "no path given");
     } else {
         glib_parse_nested(&p, buf, len, name, glib_canonical(path), true);

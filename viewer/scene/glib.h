@@ -189,6 +189,10 @@ typedef struct glib_scene {
      * cmds and diags point into these */
     char **files;
     int nfiles;
+    /* the cache its files were read through (glib_options.files; NULL: the
+     * disk), borrowed: the files its commands name (OBJ models, textures,
+     * the reference's meshes) are read through it too */
+    struct file_cache *read_through;
 } glib_scene;
 
 /* Parses a .glib file from disk. Always returns a scene (never NULL); the
@@ -217,6 +221,8 @@ typedef struct glib_options {
      * scene's Pack command; when the scene has none, a Pack command for it
      * (line 0 of the top file) is added at the end of the top file. */
     const char *pack_override;
+    /* Where the scene's files are read (file_cache.h); NULL: from disk. */
+    struct file_cache *files;
 } glib_options;
 
 /* glib_load with options; glib_load(path) is glib_load_opts(path, NULL).

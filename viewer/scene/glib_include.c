@@ -6,7 +6,7 @@
 #define _DEFAULT_SOURCE         /* realpath(), which is XSI, not plain POSIX */
 #endif
 #include "glib_internal.h"
-#include "file.h"
+#include "file_cache.h"
 #include "mem.h"
 
 #include <stdio.h>
@@ -18,10 +18,10 @@
  * terminated, freed by the caller); on failure *why says why. Its lines, a
  * byte order mark and binary bytes are glib_parse_text's: glib_parse reads text
  * from memory too. */
-bool glib_read_file(const char *path, char **out, size_t *len, char *why, size_t whylen) {
+bool glib_read_file(parser *p, const char *path, char **out, size_t *len, char *why, size_t whylen) {
     /* settled: a reload during a save reads the saved text, not a torn or empty one */
     file_text_opts o = { .max_bytes = LIM_FILE_BYTES, .settle = true };
-    *out = file_read_text(path, &o, len, why, whylen);
+    *out = file_cache_read(p->files, path, &o, len, NULL, why, whylen);
     return *out != NULL;
 }
 
@@ -80,7 +80,7 @@ void glib_include_file(cmdctx *c, const char *path) {
             return;
     }
     path = real;
-    if (!glib_read_file(path, &buf, &len, why, sizeof why)) {   /* a directory or huge */
+    if (!glib_read_file(p, path, &buf, &len, why, sizeof why)) {   /* a directory or huge */
         glib_cerr(c, "cannot open '%s' (from command %s): %s", path, c->spec->name, why);
         return;
     }

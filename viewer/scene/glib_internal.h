@@ -61,6 +61,7 @@ typedef struct parser {
     /* glib_options */
     const char *packs_dir;
     const char *pack_override;
+    struct file_cache *files;
     bool pack_seen;                 /* the scene's (first) Pack command was read */
     const char *pack_file;          /* where, for the message about a second one */
     int pack_line;
@@ -248,7 +249,7 @@ bool glib_h_pack(cmdctx *c, glib_cmd *cmd);
 /* ------------------------------------------------------------------ */
 /* files read in place of a line (glib_include.c), the pack (glib_pack.c) */
 
-bool glib_read_file(const char *path, char **out, size_t *len, char *why, size_t whylen);
+bool glib_read_file(parser *p, const char *path, char **out, size_t *len, char *why, size_t whylen);
 void glib_parse_nested(parser *p, const char *text, size_t len, const char *name, char *canon, bool top);
 char *glib_canonical(const char *path);
 void glib_append_cut(char *buf, size_t size, size_t *n, const char *s);

@@ -10,7 +10,8 @@
  */
 #include "util.h"
 #include "scene.h"
-#include "file.h"
+#include "file_cache.h"
+#include "strbuf.h"
 #include "obj.h"
 #include "ref_mesh.h"
 
@@ -36,6 +37,7 @@ typedef struct ctx {
     size_t used;
     int nmsgs;
     ref_world def;              /* the defaults, for messages */
+    struct file_cache *files;   /* where the glib's files were read (its meshes are read there too) */
 } ctx;
 
 __attribute__((format(printf, 3, 4)))
@@ -450,7 +452,11 @@ static bool object_mesh(ctx *x, const glib_cmd *c, ref_object *o) {
     }
     char err[512];
     size_t len = 0;
-    char *bytes = file_read(c->path, OBJ_MAX_BYTES, &len, err, sizeof err);
+    uint64_t hash = 0;
+    file_text_opts fo = { .max_bytes = OBJ_MAX_BYTES };
+    char why[256];
+    char *bytes = file_cache_read(x->files, c->path, &fo, &len, &hash, why, sizeof why);
+    if (!bytes) msg_set(err, sizeof err, "cannot open '%s': %s", c->path, why);
     ref_mesh_place pl = { { n[0], n[1], n[2] }, o->rot_y_deg, o->size[0] };
     /* the bytes hashed are the bytes parsed: one read of the file */
     ref_mesh *m = bytes ? ref_mesh_parse(bytes, len, c->path, &pl, err, sizeof err) : NULL;
@@ -459,7 +465,7 @@ static bool object_mesh(ctx *x, const glib_cmd *c, ref_object *o) {
         free(bytes);
         return false;
     }
-    o->mesh_hash = hash_fnv1a(HASH_FNV1A_BASIS, bytes, len);
+    o->mesh_hash = hash;
     double lo[3], hi[3];
     ref_mesh_bounds(m, lo, hi);
     o->size[1] = hi[1] - n[1];
@@ -611,7 +617,7 @@ void scene_camera_from_glib(const glib_scene *g, scene_camera *cam) {
 
 bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *cam,
                      bool *has_world, char *err, int errlen) {
-    ctx x = { .err = err, .errlen = errlen };
+    ctx x = { .err = err, .errlen = errlen, .files = g ? g->read_through : NULL };
     if (err && errlen > 0)
         err[0] = '\0';
     ref_world_init(&x.def, NULL);

@@ -2,8 +2,9 @@
 #include "shader_src.h"
 #include "util.h"
 
-#include "file.h"
+#include "file_cache.h"
 #include "mem.h"
+#include "path.h"
 #include "strbuf.h"
 
 #include <assert.h>
@@ -18,67 +19,6 @@
 
 /* ---- paths and files ------------------------------------------------------ */
 
-/* Lexically simplified path: "a/./b/../c" -> "a/c". Heap. */
-static char *path_normalize(const char *path) {
-    size_t len = strlen(path);
-    char *out = mem_alloc(len + 2);
-    bool abs = path[0] == '/';
-    /* component start offsets in out, to pop on ".." */
-    size_t *starts = mem_alloc((len / 2 + 2) * sizeof *starts);
-    int ncomp = 0, nup = 0;   /* nup: leading ".." kept in a relative path */
-    size_t o = 0;
-    if (abs) out[o++] = '/';
-    const char *p = path;
-    while (*p) {
-        while (*p == '/') p++;
-        if (!*p) break;
-        const char *e = strchr(p, '/');
-        size_t n = e ? (size_t)(e - p) : strlen(p);
-        if (n == 1 && p[0] == '.') {
-            /* skip */
-        } else if (n == 2 && p[0] == '.' && p[1] == '.') {
-            if (ncomp > nup) {
-                o = starts[--ncomp];
-                if (o > (abs ? 1u : 0u)) o--;          /* drop the '/' before it */
-                if (ncomp == 0 && abs) o = 1;
-            } else if (!abs) {
-                if (o > 0) out[o++] = '/';
-                starts[ncomp++] = o;
-                nup++;
-                out[o++] = '.';
-                out[o++] = '.';
-            }
-        } else {
-            if (o > 0 && out[o - 1] != '/') out[o++] = '/';
-            starts[ncomp++] = o;
-            memcpy(out + o, p, n);
-            o += n;
-        }
-        p += n;
-    }
-    if (o == 0) out[o++] = '.';
-    out[o] = '\0';
-    free(starts);
-    return out;
-}
-
-static char *path_dirname(const char *path) {
-    const char *slash = strrchr(path, '/');
-    if (!slash) return mem_strdup(".");
-    if (slash == path) return mem_strdup("/");
-    return mem_strndup(path, (size_t)(slash - path));
-}
-
-static char *path_join(const char *dir, const char *name) {
-    if (name[0] == '/' || !dir || !dir[0] || strcmp(dir, ".") == 0) return path_normalize(name);
-    size_t n = strlen(dir) + strlen(name) + 2;
-    char *j = mem_alloc(n);
-    snprintf(j, n, "%s/%s", dir, name);
-    char *r = path_normalize(j);
-    free(j);
-    return r;
-}
-
 static bool is_regular_file(const char *path) {
     struct stat st;
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
@@ -87,10 +27,10 @@ static bool is_regular_file(const char *path) {
 /* A stage file or include as text (a BOM dropped, CRLF as LF), or NULL
  * with the reason in why: binary (a NUL byte), a directory, or larger than
  * SHADER_SRC_MAX_FILE_BYTES. */
-static char *read_text(const char *path, char *why, size_t whylen) {
+static char *read_text(file_cache *files, const char *path, char *why, size_t whylen) {
     file_text_opts o = { .max_bytes = SHADER_SRC_MAX_FILE_BYTES, .strip_bom = true, .crlf_to_lf = true,
                          .reject_nul = true, .settle = true };  /* a reload during a save reads the saved text */
-    return file_read_text(path, &o, NULL, why, whylen);
+    return file_cache_read(files, path, &o, NULL, NULL, why, whylen);
 }
 
 /* ---- scanning GLSL lines -------------------------------------------------- */
@@ -191,13 +131,13 @@ static void fail(asm_ctx *c, const char *file, int line, const char *fmt, ...) {
 /* Index of the file with this identity, adding it when new. */
 static int file_index(asm_ctx *c, const char *path) {
     char *id = realpath(path, NULL);
-    if (!id) id = path_normalize(path);
+    if (!id) id = path_clean(path);
     for (int i = 0; i < c->nfiles; i++)
         if (strcmp(c->files[i].id, id) == 0) { free(id); return i; }
     c->files = mem_grow(c->files, &c->capfiles, c->nfiles + 1, sizeof *c->files);
     src_file *f = &c->files[c->nfiles];
     memset(f, 0, sizeof *f);
-    f->path = path_normalize(path);
+    f->path = path_clean(path);
     f->id = id;
     return c->nfiles++;
 }
@@ -412,9 +352,9 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
     /* where: next to the including file, then the include dirs */
     char *found = NULL;
     if (name[0] == '/') {
-        if (is_regular_file(name)) found = path_normalize(name);
+        if (is_regular_file(name)) found = path_clean(name);
     } else {
-        char *dir = path_dirname(from);
+        char *dir = path_dir(from);
         char *cand = path_join(dir, name);
         free(dir);
         if (is_regular_file(cand)) found = cand;
@@ -430,7 +370,7 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
     if (!found) {
         char where[400] = "";
         size_t w = 0;
-        char *dir = path_dirname(from);
+        char *dir = path_dir(from);
         w += (size_t)snprintf(where, sizeof where, "%s", dir);
         free(dir);
         for (int i = 0; i < c->desc->ninclude_dirs && w < sizeof where; i++)
@@ -460,7 +400,7 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
         return false;
     }
     char why[256];
-    char *text = read_text(found, why, sizeof why);
+    char *text = read_text(c->desc->files, found, why, sizeof why);
     if (!text) {
         fail(c, from, line, "cannot read include \"%s\": %s", found, why);
         free(found);
@@ -712,7 +652,7 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     c.stack[0] = 0;
     c.files[0].times = 1;
     char why[256];
-    main_text = read_text(path, why, sizeof why);
+    main_text = read_text(desc->files, path, why, sizeof why);
     if (!main_text) {
         fail(&c, path, 0, "cannot read shader: %s", why);
         goto done;

@@ -101,6 +101,8 @@ typedef struct shader_src_desc {
     const char *const *include_dirs;    /* searched after the including file's dir */
     int ninclude_dirs;
     shader_gs_input gs_input;           /* SHADER_GEOMETRY only: when the file has no input layout */
+    struct file_cache *files;           /* where the stage file and includes are read (file_cache.h);
+                                         * NULL: from disk */
 } shader_src_desc;
 
 typedef struct shader_src {

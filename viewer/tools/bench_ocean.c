@@ -31,7 +31,7 @@ static double time_passes(const ref_ocean_desc *scene, int res, int cascades, ch
     gpu_ocean g;
     memset(&g, 0, sizeof g);
     double ms = NAN;
-    if (!ocean_create_from(&g, ro, inc, common, &log)) {
+    if (!ocean_create_from(&g, ro, &(prog_sources){ .include_dirs = inc, .ninclude_dirs = 1, .common_dir = common }, &log)) {
         snprintf(note, notelen, "the ocean's passes do not build: %.200s", log ? log : "?");
     } else {
         double v[BENCH_OCEAN_FRAMES];

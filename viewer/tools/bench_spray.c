@@ -105,7 +105,8 @@ int main(int argc, char **argv) {
         gpu_world gw;
         memset(&gw, 0, sizeof gw);
         char *log = NULL;
-        if (!world_build(&gw, &desc, inc, common, &log)) {
+        if (!world_build(&gw, &desc, &(prog_sources){ .include_dirs = inc, .ninclude_dirs = 1, .common_dir = common },
+                         &log)) {
             fprintf(stderr, "bench_spray: %s\n", log ? log : "the world does not build");
             return 1;
         }

@@ -12,6 +12,8 @@
 #include <time.h>
 
 #include "compile_job.h"
+#include "file_cache.h"
+#include "path.h"
 #include "exit_code.h"
 #include "file.h"
 #include "frame_meter.h"
@@ -78,6 +80,7 @@ struct app {
     bool script_play;            /* the script's `play 1`: its clock runs as a user's does */
     /* a save's shaders compiled off the frame (compile_job.h) */
     compile_job *cjob;
+    file_cache *files;           /* every file the scenes read; the watcher refreshes what changed */
     bool compiling;              /* a job runs for the change last seen */
     bool priming;                /* ... or to load the scenes in the job's renders before any change */
     bool compile_ended;          /* ... and has ended: reload on this frame */
@@ -95,9 +98,10 @@ struct app {
 /* ---- watching ---- */
 
 static bool dir_exists(const char *path) {
-    char dir[4096];
-    file_dirname(path, dir, sizeof dir);
-    return file_is_dir(dir);
+    char *dir = path_dir(path);
+    bool is = file_is_dir(dir);
+    free(dir);
+    return is;
 }
 
 /* Every scene's dependencies (the watcher merges duplicates); the caller
@@ -737,6 +741,7 @@ static void start_watching(app *a) {
     char err[512];
     a->watch = watch_create(err, sizeof err);
     if (!a->watch) fprintf(stderr, "%s: hot reload is off: %s\n", a->d.name, err);
+    else watch_use_cache(a->watch, a->files);   /* a save is read once: the reload finds it in memory */
     app_rewatch(a);
 }
 
@@ -862,6 +867,7 @@ app *app_create(const app_desc *desc) {
         return NULL;
     }
     a->win = gl_ctx_window(a->ctx);
+    a->files = file_cache_create();
     res_budget_init(&a->budget, RES_BUDGET_DEFAULT_MS);
     a->budget_ms = (float)RES_BUDGET_DEFAULT_MS;
     glfwSetWindowUserPointer(a->win, a);
@@ -896,8 +902,11 @@ void app_destroy(app *a) {
     watch_destroy(a->watch);
     panel_destroy(a->panel);
     gl_ctx_destroy(a->ctx);
+    file_cache_destroy(a->files);   /* last: the job's renders read through it */
     free(a);
 }
+
+file_cache *app_files(app *a) { return a->files; }
 
 /* ---- small things ---- */
 

@@ -114,6 +114,13 @@ typedef struct app_desc {
 app *app_create(const app_desc *d);
 void app_destroy(app *a);        /* NULL is fine */
 
+/* The cache the app's watcher feeds (file_cache.h): make the scenes'
+ * renders with it (render_desc.files), so a save is read once and a
+ * Define toggle, a pack switch or the compile job reads no disk. It lives
+ * until app_destroy: destroy the renders first. */
+struct file_cache;
+struct file_cache *app_files(app *a);
+
 /* Runs the loop over scenes[0..n-1] (watched; script set/expect/rebuild
  * act on scenes[0] until app_script_use). Returns a tarn_exit_code:
  * TARN_EXIT_USAGE for an unreadable script, TARN_EXIT_INPUT when it

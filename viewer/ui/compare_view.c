@@ -717,7 +717,7 @@ static void load_packs(cview *v, const compare_view_desc *d) {
         if (copy > 1) snprintf(p->title, sizeof p->title, "%s #%d", p->name, copy);
         else snprintf(p->title, sizeof p->title, "%s", p->name);
         snprintf(p->label, sizeof p->label, "%d %s", i + 1, p->title);
-        render_desc rd = { .pack = p->name, .samples = d->samples };
+        render_desc rd = { .pack = p->name, .samples = d->samples, .files = app_files(v->app) };
         p->r = v->scenes[i] = render_create(&rd);
         p->rmse = p->psnr = p->frame_rmse = NAN;
     }

@@ -11,6 +11,7 @@
 
 #include "file.h"
 #include "mem.h"
+#include "path.h"
 #include "render_setting.h"
 #include "view_script.h"
 
@@ -127,10 +128,10 @@ static void parse_event(session *s, char *text, int line, diag_list *dl) {
 
 static void parse_scene(session *s, const char *rest, int line, diag_list *dl) {
     if (!rest[0]) { diag_add(dl, DIAG_ERROR, s->path, line, "scene wants the glib's path"); return; }
-    char dir[1024];
-    file_dirname(s->path, dir, sizeof dir);
+    char *dir = path_dir(s->path);
     if (rest[0] == '/' || strcmp(dir, ".") == 0) snprintf(s->scene, sizeof s->scene, "%s", rest);
     else snprintf(s->scene, sizeof s->scene, "%s/%s", dir, rest);
+    free(dir);
 }
 
 /* A header line (its first word is key); false when key is none. */

@@ -381,7 +381,7 @@ int view_run(const view_desc *d) {
                     .script_action = script_action };
     v.app = app_create(&ad);
     if (!v.app) return TARN_EXIT_NO_GL;
-    render_desc rd = { .pack = d->pack, .samples = d->samples, .verbose = d->verbose };
+    render_desc rd = { .pack = d->pack, .samples = d->samples, .verbose = d->verbose, .files = app_files(v.app) };
     v.r = render_create(&rd);
     v.npacks = packset_list(tarn_root(), v.packs, PACKSET_MAX);
     for (int i = 0; i < v.npacks; i++) v.pack_names[i] = v.packs[i];

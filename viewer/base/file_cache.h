@@ -1,0 +1,65 @@
+/* file_cache: the one place tarn reads and hashes the files a scene is made
+ * of (.glib files and their includes, shaders and their #includes, OBJ
+ * models, textures), for every layer. A reader asks it for a file's bytes
+ * by path; it reads the disk only when it holds nothing for the file or the
+ * file changed since, else it answers from memory. So a `Define` toggle, a
+ * pack switch or the window's compile job rebuilds from the bytes in
+ * memory, and a save is read once.
+ *
+ * When a held copy is trusted: the file's stamp (file.h: device, inode,
+ * size, modification and change times) is the one it had when read, it was
+ * read with no tighter max_bytes than asked now, and it was already
+ * FILE_CACHE_TRUST_MS old when read. The last rule is because the kernel
+ * stamps files from a coarse clock: a file written twice within a few ms
+ * may keep one stamp, so bytes read that soon after a write are used once
+ * and read again next time. The viewer's watcher feeds the cache too
+ * (file_cache_refresh): each save it sees is read once, hashed, and kept
+ * for the reload that follows.
+ *
+ * Keys are paths made absolute and cleaned (path.h): "a/../b.frag" and
+ * "$PWD/b.frag" are one file. Symlinks are not followed for the key (the
+ * stamp is the target's, so an edited target is read again).
+ *
+ * Thread-safe: the window's compile job reads through the same cache from
+ * its thread. Every function takes a NULL cache and then reads the disk,
+ * as if nothing were held. */
+#ifndef TARN_FILE_CACHE_H
+#define TARN_FILE_CACHE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "file.h"
+
+#define FILE_CACHE_TRUST_MS 30
+
+typedef struct file_cache file_cache;
+
+file_cache *file_cache_create(void);
+void file_cache_destroy(file_cache *c);   /* NULL is fine */
+
+/* file_read_text, from memory when the held copy is trusted (above): a
+ * heap copy the caller frees, with o's text options applied (o may be
+ * NULL); NULL with the reason alone in why. *hash (may be NULL): FNV-1a 64
+ * (util.h) of the file's bytes as on disk. */
+char *file_cache_read(file_cache *c, const char *path, const file_text_opts *o, size_t *len, uint64_t *hash,
+                      char *why, size_t whylen);
+
+/* file_read's contract through the cache: the bytes (at most max_bytes, 0
+ * no limit), or NULL with "cannot open 'PATH': why" in err. */
+char *file_cache_bytes(file_cache *c, const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen);
+
+/* Reads path from disk whatever is held (a watcher saw it change), keeps
+ * the bytes and returns their hash in *hash; false (and nothing held) when
+ * it is not a regular file that can be read. */
+bool file_cache_refresh(file_cache *c, const char *path, uint64_t *hash);
+
+/* Reads from disk and answers from memory since the cache was made (for
+ * tests and benchmarks: a Define toggle must read nothing). */
+typedef struct file_cache_counts {
+    long reads, hits;
+} file_cache_counts;
+file_cache_counts file_cache_counts_of(file_cache *c);
+
+#endif
