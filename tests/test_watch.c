@@ -6,6 +6,7 @@
  * of a save to its report are printed, not asserted: timing belongs in the
  * benchmarks. */
 #include "check.h"
+#include "file_cache.h"
 #include "watch.h"
 
 #include <dirent.h>
@@ -590,6 +591,34 @@ static void test_set_files_replaces(void) {
     fixture_close(&fx);
 }
 
+/* With a file cache (the window's case), a save landing between a
+ * scene's read and the watch_set_files after it is not taken as the
+ * baseline: the next poll reports it, and the file once the reader has it. */
+static void test_change_between_read_and_watch(void) {
+    fixture fx;
+    file_cache *c = file_cache_create();
+    if (fixture_open(&fx)) {
+        watch_use_cache(fx.w, c);
+        char why[256], err[256] = "";
+        char *text = file_cache_read(c, fx.b, NULL, NULL, NULL, why, sizeof why);   /* the scene loads */
+        CHECK(text != NULL);
+        free(text);
+        CHECK(save_in_place(fx.b, next_content()));                                 /* a save lands */
+        double saved = now_ms();
+        const char *only_b[] = { fx.b };
+        CHECK_MSG(watch_set_files(fx.w, only_b, 1, err, sizeof err), "%s", err);    /* then the watch */
+        CHECK_EQ(watch_timeout_ms(fx.w), 0);   /* due now: a poll loop on the fd alone would not wait */
+        expect_one_change(fx.w, fx.b, saved, "changed between the read and the watch");
+        /* read again (the reload): the new baseline is what it read */
+        text = file_cache_read(c, fx.b, NULL, NULL, NULL, why, sizeof why);
+        free(text);
+        CHECK_MSG(watch_set_files(fx.w, only_b, 1, err, sizeof err), "%s", err);
+        expect_silence(fx.w, "after the reload read it");
+    }
+    fixture_close(&fx);
+    file_cache_destroy(c);
+}
+
 /* The watched directory itself goes away and comes back. */
 static void test_directory_deleted_and_recreated(void) {
     fixture fx;
@@ -837,6 +866,7 @@ int main(void) {
     RUN(test_two_files_one_burst);
     RUN(test_relative_paths_normalised);
     RUN(test_set_files_replaces);
+    RUN(test_change_between_read_and_watch);
     RUN(test_directory_deleted_and_recreated);
     RUN(test_symlink_target);
     RUN(test_own_poll_loop);

@@ -151,6 +151,17 @@ bool file_cache_refresh(file_cache *c, const char *path, uint64_t *hash) {
     return true;
 }
 
+bool file_cache_held(file_cache *c, const char *path, uint64_t *hash) {
+    char *key = c ? path_absolute(path) : NULL;
+    if (!key) return false;
+    pthread_mutex_lock(&c->lock);
+    held_file *f = find(c, key);
+    if (f) *hash = f->hash;
+    pthread_mutex_unlock(&c->lock);
+    free(key);
+    return f != NULL;
+}
+
 file_cache_counts file_cache_counts_of(file_cache *c) {
     file_cache_counts k = { 0 };
     if (!c) return k;

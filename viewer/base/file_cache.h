@@ -55,6 +55,12 @@ char *file_cache_bytes(file_cache *c, const char *path, size_t max_bytes, size_t
  * it is not a regular file that can be read. */
 bool file_cache_refresh(file_cache *c, const char *path, uint64_t *hash);
 
+/* The hash of the bytes last read of path (what its readers were last
+ * given), without reading: false when nothing is held for it. The watcher
+ * compares it with the file now, so a change between a scene's read and
+ * the watch that follows is not lost. */
+bool file_cache_held(file_cache *c, const char *path, uint64_t *hash);
+
 /* Reads from disk and answers from memory since the cache was made (for
  * tests and benchmarks: a Define toggle must read nothing). */
 typedef struct file_cache_counts {

@@ -347,6 +347,22 @@ void watch_destroy(watch *w) {
     free(w);
 }
 
+/* Records f's content now as its baseline. With a cache, a file whose
+ * content differs from what its readers were last given (changed between
+ * the scene's read and this watch, which no event of the new set can tell)
+ * keeps what they read as its baseline and is due at once: the next poll
+ * reports it. */
+static void record_baseline(watch *w, watch_file *f) {
+    uint64_t read_hash = 0;
+    bool was_read = file_cache_held(w->cache, f->path, &read_hash);
+    f->present = file_cache_refresh(w->cache, f->path, &f->hash);
+    if (!was_read || (f->present && f->hash == read_hash)) return;
+    f->present = true;
+    f->hash = read_hash;
+    f->dirty = true;
+    f->last_ns = now_ns() - WATCH_QUIET_MS * MS;
+}
+
 bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int errlen) {
     watch_dir *dirs = NULL;
     watch_file *files = NULL;
@@ -354,6 +370,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
     int *changed = NULL;
     char *norm = NULL, *dpath = NULL, *base = NULL;
     char *real = NULL, *rdir = NULL, *rbase = NULL;
+    bool any_since_read = false;
 
     assert(w && (paths || n <= 0));
     if (n < 0) n = 0;
@@ -412,7 +429,8 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
         free(rbase);
         real = rdir = rbase = NULL;
 
-        f->present = file_cache_refresh(w->cache, f->path, &f->hash);
+        record_baseline(w, f);
+        any_since_read |= f->dirty;
     }
 
     /* Success: drop the watches the new set no longer needs. */
@@ -426,7 +444,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
     w->nfiles = nfiles;
     w->changed = changed;
     w->nchanged = 0;
-    w->next_ns = NEVER;
+    w->next_ns = any_since_read ? now_ns() : NEVER;
     return true;
 
 fail:

@@ -57,9 +57,13 @@ typedef struct watch watch;
 watch *watch_create(char *err, int errlen);
 void watch_destroy(watch *w); /* NULL is fine */
 
-/* The bytes the watcher reads to hash a file go into c (file_cache.h), so
- * the reload after a save reads the saved file from memory: each save is
- * read once. c may be NULL (the default: the bytes are dropped). */
+/* The bytes the watcher reads to hash a file go into c (file_cache.h),
+ * where the scene's loads read them. And watch_set_files then takes as a
+ * file's baseline what the loads last read of it: a file that changed
+ * between a load's read and the watch_set_files after it (a save landing
+ * while the scene loads) is reported by the next watch_poll, where without
+ * a cache the change would be taken as the baseline and lost. c may be
+ * NULL (the default). */
 struct file_cache;
 void watch_use_cache(watch *w, struct file_cache *c);
 
