@@ -250,18 +250,13 @@ static void check_path(char *(*f)(const char *), const char *in, const char *wan
  * rules: one separator, no ".", ".." eats the name before it, "/.." is
  * "/", a relative path keeps its leading "..", "" is "."). */
 static void test_paths(void) {
-    check_path(path_clean, "a/./b/../c", "a/c");
-    check_path(path_clean, "a//b/", "a/b");
-    check_path(path_clean, "/..", "/");
-    check_path(path_clean, "/a/b/../../..", "/");
-    check_path(path_clean, "../a/..", "..");
-    check_path(path_clean, "a/../../b", "../b");
-    check_path(path_clean, "", ".");
-    check_path(path_clean, "./", ".");
-    check_path(path_clean, "/", "/");
-    check_path(path_dir, "a/b.glib", "a");
-    check_path(path_dir, "b.glib", ".");
-    check_path(path_dir, "/b.glib", "/");
+    static const struct { char *(*f)(const char *); const char *in, *want; } cases[] = {
+        { path_clean, "a/./b/../c", "a/c" }, { path_clean, "a//b/", "a/b" }, { path_clean, "/..", "/" },
+        { path_clean, "/a/b/../../..", "/" }, { path_clean, "../a/..", ".." }, { path_clean, "a/../../b", "../b" },
+        { path_clean, "", "." }, { path_clean, "./", "." }, { path_clean, "/", "/" },
+        { path_dir, "a/b.glib", "a" }, { path_dir, "b.glib", "." }, { path_dir, "/b.glib", "/" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_path(cases[i].f, cases[i].in, cases[i].want);
     char *j = path_join("packs/common", "../natural/water.frag");
     CHECK_STR_EQ(j, "packs/natural/water.frag");
     free(j);
