@@ -38,16 +38,6 @@
 #define REGION_SAMPLES 257       /* samples per side to find the underwater floor */
 #define PIXEL_PHOTON_COST 5.0    /* a pixel costs about this many photons (progress) */
 
-static double dot3(const double a[3], const double b[3]) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double c[3]) {
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static void set3(double v[3], double x) { v[0] = v[1] = v[2] = x; }
 
 /* ------------------------------------------------------------------ */
@@ -80,9 +70,9 @@ void ref_camera_ray(const ref_camera *cam, double px, double py, double o[3], do
                     cam->center[2] - cam->eye[2] };
     vec3_normalize(f);
     double r[3], u[3];
-    cross3(f, cam->up, r);
+    vec3_cross(f, cam->up, r);
     vec3_normalize(r);
-    cross3(r, f, u);
+    vec3_cross(r, f, u);
     double th = tan(0.5 * cam->fov_deg * PI / 180.0);
     double sy = (1.0 - 2.0 * py / cam->height) * th;
     double sx = (2.0 * px / cam->width - 1.0) * th * ((double)cam->width / cam->height);
@@ -179,7 +169,7 @@ void ref_render_flat_sun(const ref_world *w, const double p[3], const double n[3
     if (!ref_refract(down, up, REF_N_AIR, w->d.ior, ts)) return;
     double cos_s = sun[1], cos_t = -ts[1];
     double R = ref_fresnel(cos_s, REF_N_AIR, w->d.ior);
-    double c = -dot3(n, ts);
+    double c = -vec3_dot(n, ts);
     if (c <= 0) return;
     double depth = level - p[1];
     if (depth < 0) depth = 0;
@@ -311,7 +301,7 @@ static void trace_path(const rctx *c, const double o[3], const double d[3], int 
         memcpy(me.pos, s->pos, sizeof me.pos);
         int below = wh.from_below;
         double n1 = below ? c->n_water : c->n_air, n2 = below ? c->n_air : c->n_water;
-        double cos_i = fabs(dot3(d, s->normal));
+        double cos_i = fabs(vec3_dot(d, s->normal));
         double R = ref_fresnel(cos_i, n1, n2);
         double rdir[3], tdir[3];
         ref_reflect(d, s->normal, rdir);
@@ -350,7 +340,7 @@ static void trace_path(const rctx *c, const double o[3], const double d[3], int 
             ambient_under(c, me.pos[1], a);
             for (int i = 0; i < 3; i++) Lh[i] = albedo[i] * (me.e_sun[i] / PI + a[i]);
         } else {
-            double cl = dot3(n, w->d.sun_dir);
+            double cl = vec3_dot(n, w->d.sun_dir);
             if (cl < 0) cl = 0;
             for (int i = 0; i < 3; i++) me.e_sun[i] = w->d.sun_irradiance[i] * cl;
             ref_shade_lambert(w, albedo, n, 1.0, Lh);
@@ -739,8 +729,8 @@ static int check_desc(const ref_render_desc *d, char *err, size_t errlen) {
             return -1;
         }
     if (vec3_normalize(f) == 0) { msg_set(err, errlen, "reference: camera eye equals its centre"); return -1; }
-    cross3(f, c->up, s);
-    if (sqrt(dot3(s, s)) < 1e-9 * sqrt(dot3(c->up, c->up))) {
+    vec3_cross(f, c->up, s);
+    if (sqrt(vec3_dot(s, s)) < 1e-9 * sqrt(vec3_dot(c->up, c->up))) {
         msg_set(err, errlen, "reference: camera up lies along the line of sight");
         return -1;
     }

@@ -87,9 +87,10 @@ static void crlf_to_lf(strbuf *b) {
     b->s[w] = '\0';
 }
 
-static double now_ms(clockid_t clock) {
+/* The wall clock, in ms: the clock files are stamped with. */
+static double wall_ms(void) {
     struct timespec ts;
-    clock_gettime(clock, &ts);
+    clock_gettime(CLOCK_REALTIME, &ts);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
@@ -112,7 +113,7 @@ static bool same_stat(const struct stat *a, const struct stat *b) {
  * clock); a time in the future (another machine's clock) counts as long ago. */
 static double age_ms(const struct stat *st) {
     double m = (double)st->st_mtim.tv_sec * 1e3 + (double)st->st_mtim.tv_nsec * 1e-6;
-    double age = now_ms(CLOCK_REALTIME) - m;
+    double age = wall_ms() - m;
     return age < 0 ? 1e9 : age;
 }
 
@@ -120,16 +121,16 @@ static double age_ms(const struct stat *st) {
  * *stamp: the file as it was read. */
 static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, file_stamp *stamp, char *why,
                          size_t whylen) {
-    double start = now_ms(CLOCK_MONOTONIC);
+    double start = (clock_now_s() * 1e3);
     for (;;) {
         struct stat before, after;
         b->len = 0;
         if (b->s) b->s[0] = '\0';
-        double began = now_ms(CLOCK_REALTIME);
+        double began = wall_ms();
         if (!read_all(path, o->max_bytes, b, &before, &after, why, whylen)) return false;
         stamp_of(&after, stamp);
         stamp->read_ms = began;
-        if (!o->settle || now_ms(CLOCK_MONOTONIC) - start >= FILE_SETTLE_MAX_MS) return true;
+        if (!o->settle || (clock_now_s() * 1e3) - start >= FILE_SETTLE_MAX_MS) return true;
         /* (/proc and the like say size 0 whatever they hold) */
         bool torn = !same_stat(&before, &after) || ((off_t)b->len != after.st_size && after.st_size != 0);
         /* an empty file just truncated (`cat >`) is given longer to fill */
@@ -188,7 +189,7 @@ bool file_stamp_now(const char *path, file_stamp *out) {
     memset(out, 0, sizeof *out);
     if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return false;
     stamp_of(&st, out);
-    out->read_ms = now_ms(CLOCK_REALTIME);
+    out->read_ms = wall_ms();
     return true;
 }
 

@@ -21,11 +21,13 @@
 #define TARN_DATA_REL ""   /* the data folder relative to the executable's folder */
 #endif
 
-double clock_now_s(void) {
+int64_t clock_now_ns(void) {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
+    return (int64_t)t.tv_sec * 1000000000 + t.tv_nsec;
 }
+
+double clock_now_s(void) { return (double)clock_now_ns() * 1e-9; }
 
 uint64_t hash_fnv1a(uint64_t h, const void *data, size_t n) {
     const unsigned char *p = data;

@@ -13,8 +13,11 @@
 #define HASH_FNV1A_BASIS 14695981039346656037ull
 uint64_t hash_fnv1a(uint64_t h, const void *data, size_t n);
 
-/* Seconds on a monotonic clock (only differences mean anything). */
+/* Seconds, and nanoseconds, on a monotonic clock (only differences mean
+ * anything): the one clock for intervals and deadlines. (The wall clock
+ * files are stamped with is file.c's; a process's CPU time bench_timing's.) */
 double clock_now_s(void);
+int64_t clock_now_ns(void);
 /* Sleeps s seconds (again after a signal); nothing for s <= 0. */
 void clock_sleep_s(double s);
 

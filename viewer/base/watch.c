@@ -71,12 +71,6 @@ enum { EVBUF_SIZE = 64 * 1024 };
 
 static int64_t min64(int64_t a, int64_t b) { return a < b ? a : b; }
 
-static int64_t now_ns(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
-
 /* ---- paths -------------------------------------------------------------- */
 
 /* The last component as written, before normalisation: a file path must end
@@ -196,7 +190,7 @@ static void drain(watch *w) {
         ssize_t got = read(w->fd, w->evbuf, EVBUF_SIZE);
         if (got < 0 && errno == EINTR) continue;
         if (got <= 0) return; /* EAGAIN: empty */
-        int64_t t = now_ns();
+        int64_t t = clock_now_ns();
         for (char *p = w->evbuf; p < w->evbuf + got;) {
             const struct inotify_event *ev = (const struct inotify_event *)(void *)p;
             handle_event(w, ev, t);
@@ -360,7 +354,7 @@ static void record_baseline(watch *w, watch_file *f) {
     f->present = true;
     f->hash = read_hash;
     f->dirty = true;
-    f->last_ns = now_ns() - WATCH_QUIET_MS * MS;
+    f->last_ns = clock_now_ns() - WATCH_QUIET_MS * MS;
 }
 
 bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int errlen) {
@@ -444,7 +438,7 @@ bool watch_set_files(watch *w, const char *const *paths, int n, char *err, int e
     w->nfiles = nfiles;
     w->changed = changed;
     w->nchanged = 0;
-    w->next_ns = any_since_read ? now_ns() : NEVER;
+    w->next_ns = any_since_read ? clock_now_ns() : NEVER;
     return true;
 
 fail:
@@ -465,10 +459,10 @@ fail:
 int watch_poll(watch *w, int timeout_ms) {
     assert(w);
     w->nchanged = 0;
-    int64_t deadline = timeout_ms < 0 ? NEVER : now_ns() + (int64_t)timeout_ms * MS;
+    int64_t deadline = timeout_ms < 0 ? NEVER : clock_now_ns() + (int64_t)timeout_ms * MS;
     for (;;) {
         drain(w);
-        int64_t t = now_ns();
+        int64_t t = clock_now_ns();
         if (any_lost_dir(w) && t - w->retry_ns >= WATCH_RETRY_MS * MS) retry_lost_dirs(w, t);
         int64_t next = decide(w, t);
         w->next_ns = next;
@@ -498,7 +492,7 @@ int watch_fd(const watch *w) {
 
 int watch_timeout_ms(const watch *w) {
     assert(w);
-    int64_t t = now_ns(), next = w->next_ns;
+    int64_t t = clock_now_ns(), next = w->next_ns;
     if (any_lost_dir(w)) next = min64(next, w->retry_ns + WATCH_RETRY_MS * MS);
     if (next == NEVER) return -1;
     if (next <= t) return 0;
