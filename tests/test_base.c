@@ -1,11 +1,13 @@
 /* test_base: the base layer (viewer/base): the string builder and message
  * buffers, whole-file reads and writes, mkdir -p, the comparators and
  * median, option values, tarn_root and the diagnostics list. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "check.h"
+#include "datafmt.h"
 #include "diag.h"
 #include "file.h"
 #include "file_cache.h"
@@ -347,6 +349,33 @@ static void test_file_cache(void) {
     scratch_remove();
 }
 
+/* The JSON and CSV spellings (RFC 8259's escapes, RFC 4180's quoting). */
+static void test_data_formats(void) {
+    strbuf o = { 0 };
+    json_put_str(&o, "a\"b\\c\nd\te\x01");
+    strbuf_puts(&o, " ");
+    json_put_num(&o, 0.1);
+    strbuf_puts(&o, " ");
+    json_put_num(&o, NAN);
+    strbuf_puts(&o, " ");
+    json_put_num(&o, -INFINITY);
+    CHECK_STR_EQ(o.s, "\"a\\\"b\\\\c\\nd\\te\\u0001\" 0.1 null \"-inf\"");
+    strbuf_free(&o);
+    csv_put_str(&o, "plain", false);
+    strbuf_puts(&o, "|");
+    csv_put_str(&o, "plain", true);
+    strbuf_puts(&o, "|");
+    csv_put_str(&o, "a,\"b\"", false);
+    strbuf_puts(&o, "|");
+    csv_put_num(&o, NAN);
+    strbuf_puts(&o, "|");
+    csv_put_num(&o, 1e-3);
+    strbuf_puts(&o, "|");
+    csv_put_num(&o, INFINITY);
+    CHECK_STR_EQ(o.s, "plain|\"plain\"|\"a,\"\"b\"\"\"||0.001|inf");
+    strbuf_free(&o);
+}
+
 int main(void) {
     RUN(test_strbuf_grows_and_formats);
     RUN(test_str_appendf);
@@ -355,6 +384,7 @@ int main(void) {
     RUN(test_read_text_options);
     RUN(test_paths);
     RUN(test_file_cache);
+    RUN(test_data_formats);
     RUN(test_mem_grow);
     RUN(test_median_and_sort);
     RUN(test_options);

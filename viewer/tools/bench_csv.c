@@ -2,21 +2,21 @@
  * bench.csv, a row per scene, pack, setting and time with every figure,
  * and passes.csv, a row per pass of each. */
 #include "bench_int.h"
+#include "datafmt.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 /* A number after a comma: empty when not measured (NaN). */
 static void csv_num(strbuf *o, double v) {
-    if (isnan(v)) strbuf_printf(o, ",");
-    else if (isinf(v)) strbuf_printf(o, ",%s", v > 0 ? "inf" : "-inf");
-    else strbuf_printf(o, ",%.9g", v);
+    strbuf_puts(o, ",");
+    csv_put_num(o, v);
 }
 
+/* A name, quoted (a spreadsheet keeps "1e3" a name), after a comma but the first. */
 static void csv_str(strbuf *o, const char *s, bool first) {
-    strbuf_printf(o, first ? "\"" : ",\"");
-    for (const char *c = s; *c; c++) strbuf_printf(o, *c == '"' ? "\"\"" : "%c", *c);
-    strbuf_printf(o, "\"");
+    if (!first) strbuf_puts(o, ",");
+    csv_put_str(o, s, true);
 }
 
 /* The first columns of a row: scene, pack, setting, time. */

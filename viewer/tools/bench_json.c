@@ -3,33 +3,18 @@
  * time with its buffers and passes, and the cost models; one function a
  * section. */
 #include "bench_int.h"
+#include "datafmt.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 #include "ref_flip.h"
 
-/* A number; null when not measured (NaN). */
-static void json_num(strbuf *o, double v) {
-    if (isnan(v)) strbuf_printf(o, "null");
-    else if (isinf(v)) strbuf_printf(o, v > 0 ? "\"inf\"" : "\"-inf\"");
-    else strbuf_printf(o, "%.9g", v);
-}
-
-static void json_str(strbuf *o, const char *s) {
-    strbuf_printf(o, "\"");
-    for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
-        if (*c == '"' || *c == '\\') strbuf_printf(o, "\\%c", *c);
-        else if (*c < 0x20) strbuf_printf(o, "\\u%04x", *c);
-        else strbuf_printf(o, "%c", *c);
-    }
-    strbuf_printf(o, "\"");
-}
 
 /* `, "key": number` */
 static void json_key_num(strbuf *o, const char *key, double v) {
     strbuf_printf(o, ", \"%s\": ", key);
-    json_num(o, v);
+    json_put_num(o, v);
 }
 
 typedef struct json_field { const char *k; double v; } json_field;
@@ -43,18 +28,18 @@ static void json_nums3(strbuf *o, const double v[3]) {
     strbuf_printf(o, "[");
     for (int k = 0; k < 3; k++) {
         strbuf_printf(o, k ? ", " : "");
-        json_num(o, v[k]);
+        json_put_num(o, v[k]);
     }
     strbuf_printf(o, "]");
 }
 
 static void json_machine(strbuf *o, const bench *b) {
     strbuf_printf(o, "  \"machine\": {\"cpu\": ");
-    json_str(o, b->cpu);
+    json_put_str(o, b->cpu);
     strbuf_printf(o, ", \"cores\": %d, \"gl_renderer\": ", b->cores);
-    json_str(o, b->gl_renderer);
+    json_put_str(o, b->gl_renderer);
     strbuf_printf(o, ", \"gl_version\": ");
-    json_str(o, b->gl_version);
+    json_put_str(o, b->gl_version);
     strbuf_printf(o, ", \"cpu_rasteriser\": %s},\n", b->cpu_raster ? "true" : "false");
 }
 
@@ -99,7 +84,7 @@ static void json_sampling(strbuf *o, const bench *b) {
 
 static void json_floor(strbuf *o, const bench *b) {
     strbuf_printf(o, "  \"floor\": {\"gpu_ms\": ");
-    json_num(o, b->floor_gpu);
+    json_put_num(o, b->floor_gpu);
     json_key_num(o, "wall_ms", b->floor_wall);
     json_key_num(o, "cpu_ms", b->floor_cpu);
     strbuf_printf(o, "},\n");
@@ -110,11 +95,11 @@ static void json_setting(strbuf *o, const bench *b, int scene, int pack, int set
     char sc[256];
     bench_stem(b->scene_abs[scene], sc, sizeof sc);
     strbuf_printf(o, "    {\"scene\": ");
-    json_str(o, sc);
+    json_put_str(o, sc);
     strbuf_printf(o, ", \"pack\": ");
-    json_str(o, b->o.packs[pack]);
+    json_put_str(o, b->o.packs[pack]);
     strbuf_printf(o, ", \"setting\": ");
-    json_str(o, b->pb[pack].settings[setting].name);
+    json_put_str(o, b->pb[pack].settings[setting].name);
 }
 
 /* One scene, pack and setting over the times. */
@@ -158,7 +143,7 @@ static void json_buffers(strbuf *o, const row *r) {
     for (int m = 1; m < REF_OUTPUT_COUNT; m++) {
         if (!r->has[m]) continue;
         strbuf_printf(o, "%s\"%s\": {\"median\": ", first ? "" : ", ", ref_buffer_for_output(m)->name);
-        json_num(o, r->comp_median[m]);
+        json_put_num(o, r->comp_median[m]);
         json_key_num(o, "p95", r->comp_p95[m]);
         json_key_num(o, "mean", r->comp_mean[m]);
         json_key_num(o, "rel_mean", r->comp_rel_mean[m]);
@@ -174,7 +159,7 @@ static void json_passes(strbuf *o, const row *r) {
     strbuf_printf(o, ", \"passes\": [");
     for (int k = 0; k < r->npasses; k++) {
         strbuf_printf(o, "%s{\"pass\": ", k ? ", " : "");
-        json_str(o, r->pass_name[k]);
+        json_put_str(o, r->pass_name[k]);
         json_key_num(o, "gpu_ms", r->pass_ms[k]);
         strbuf_printf(o, "}");
     }
@@ -209,9 +194,9 @@ static void json_row(strbuf *o, const bench *b, const row *r, bool last) {
     json_buffers(o, r);
     json_passes(o, r);
     strbuf_printf(o, ", \"error\": ");
-    json_str(o, r->error);
+    json_put_str(o, r->error);
     strbuf_printf(o, ", \"note\": ");
-    json_str(o, r->note);
+    json_put_str(o, r->note);
     strbuf_printf(o, "}%s\n", last ? "" : ",");
 }
 
@@ -223,7 +208,7 @@ static void json_cost_models(strbuf *o, const bench *b) {
         if (!b->has_cost[p]) continue;
         const cost_model *m = &b->cost[p];
         strbuf_printf(o, "%s\n    {\"pack\": ", nc++ ? "," : "");
-        json_str(o, b->o.packs[p]);
+        json_put_str(o, b->o.packs[p]);
         strbuf_printf(o, ", \"a_ms\": %.6g, \"b_ms_per_mpixel\": %.6g, \"c_ms_per_kvertex\": %.6g, \"r2\": %.6g, "
                       "\"residual_ms\": %.6g, \"samples\": %d}", m->a, m->b, m->c, m->r2, m->rms_residual, m->n);
     }

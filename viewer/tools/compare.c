@@ -1,6 +1,7 @@
 /* `tarn compare A B`: reads the images, runs ref_metrics, prints a table
  * and writes the heat map, JSON and CSV. See compare.h, docs/metrics.md. */
 #include "compare.h"
+#include "datafmt.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -10,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "exit_code.h"
+#include "file.h"
 #include "mem.h"
 #include "ref_buffers.h"
 #include "ref_flip.h"
@@ -54,11 +56,6 @@ bool compare_load(const char *path, bool decode_srgb, img *out, bool *decoded, c
         if (decoded) *decoded = true;
     }
     return true;
-}
-
-static bool file_exists(const char *path) {
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
 /* path with its extension (after the last '/') replaced by "." insert ext;
@@ -159,99 +156,76 @@ static void add_counts(kvlist *l, const char *g, const ref_pixel_counts *c) {
 
 /* ---- formatting ------------------------------------------------------------------ */
 
-static void fmt_num(char *dst, size_t len, double v, bool json) {
-    if (isnan(v)) snprintf(dst, len, "%s", json ? "null" : "");
-    else if (isinf(v)) snprintf(dst, len, "%s", json ? (v > 0 ? "\"inf\"" : "\"-inf\"") : (v > 0 ? "inf" : "-inf"));
-    else snprintf(dst, len, "%.9g", v);
-}
-
-static void json_string(FILE *f, const char *s) {
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
-        else if (*p == '\n') fputs("\\n", f);
-        else if (*p == '\t') fputs("\\t", f);
-        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
-        else fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
-static void json_value(FILE *f, const kv *e) {
-    char buf[64];
+static void json_value(strbuf *o, const kv *e) {
     switch (e->type) {
-    case KV_STR: json_string(f, e->str); break;
-    case KV_INT: fprintf(f, "%ld", e->inum); break;
-    case KV_BOOL: fputs(e->inum ? "true" : "false", f); break;
-    default: fmt_num(buf, sizeof buf, e->num, true); fputs(buf, f); break;
+    case KV_STR: json_put_str(o, e->str); break;
+    case KV_INT: strbuf_printf(o, "%ld", e->inum); break;
+    case KV_BOOL: strbuf_puts(o, e->inum ? "true" : "false"); break;
+    default: json_put_num(o, e->num); break;
     }
 }
 
 static void write_json(FILE *f, const kvlist *l) {
-    fputs("{\n", f);
+    strbuf o = { 0 };
+    strbuf_puts(&o, "{\n");
     bool first = true;
     for (int i = 0; i < l->n; i++) {
         if (l->v[i].group || l->v[i].table_only) continue;
-        fprintf(f, "%s  \"%s\": ", first ? "" : ",\n", l->v[i].key);
-        json_value(f, &l->v[i]);
+        strbuf_printf(&o, "%s  \"%s\": ", first ? "" : ",\n", l->v[i].key);
+        json_value(&o, &l->v[i]);
         first = false;
     }
-    fprintf(f, "%s  \"buffers\": {", first ? "" : ",\n");
+    strbuf_printf(&o, "%s  \"buffers\": {", first ? "" : ",\n");
     const char *group = NULL;
     bool any = false;
     for (int i = 0; i < l->n; i++) {
         const kv *e = &l->v[i];
         if (!e->group || e->table_only) continue;
         if (!group || strcmp(group, e->group) != 0) {
-            fprintf(f, "%s\n    \"%s\": {\n", group ? "\n    }," : "", e->group);
+            strbuf_printf(&o, "%s\n    \"%s\": {\n", group ? "\n    }," : "", e->group);
             group = e->group;
             first = true;
         }
-        fprintf(f, "%s      \"%s\": ", first ? "" : ",\n", e->key);
-        json_value(f, e);
+        strbuf_printf(&o, "%s      \"%s\": ", first ? "" : ",\n", e->key);
+        json_value(&o, e);
         first = false;
         any = true;
     }
-    fputs(any ? "\n    }\n  }\n}\n" : "}\n}\n", f);
-}
-
-static void csv_field(FILE *f, const char *s) {
-    if (!strpbrk(s, ",\"\n\r")) { fputs(s, f); return; }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"') fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
+    strbuf_puts(&o, any ? "\n    }\n  }\n}\n" : "}\n}\n");
+    fputs(o.s, f);
+    strbuf_free(&o);
 }
 
 static void write_csv(FILE *f, const kvlist *l) {
-    char buf[600];
+    strbuf o = { 0 };
+    char name[600];
     bool first = true;
     for (int i = 0; i < l->n; i++) {
         const kv *e = &l->v[i];
         if (e->table_only) continue;
-        if (e->group) snprintf(buf, sizeof buf, "%s.%s", e->group, e->key);
-        else snprintf(buf, sizeof buf, "%s", e->key);
-        if (!first) fputc(',', f);
-        csv_field(f, buf);
+        if (e->group) snprintf(name, sizeof name, "%s.%s", e->group, e->key);
+        else snprintf(name, sizeof name, "%s", e->key);
+        if (!first) strbuf_puts(&o, ",");
+        csv_put_str(&o, name, false);
         first = false;
     }
-    fputc('\n', f);
+    strbuf_puts(&o, "\n");
     first = true;
     for (int i = 0; i < l->n; i++) {
         const kv *e = &l->v[i];
         if (e->table_only) continue;
-        if (!first) fputc(',', f);
+        if (!first) strbuf_puts(&o, ",");
         first = false;
         switch (e->type) {
-        case KV_STR: csv_field(f, e->str); break;
-        case KV_INT: fprintf(f, "%ld", e->inum); break;
-        case KV_BOOL: fputs(e->inum ? "true" : "false", f); break;
-        default: fmt_num(buf, sizeof buf, e->num, false); fputs(buf, f); break;
+        case KV_STR: csv_put_str(&o, e->str, false); break;
+        case KV_INT: strbuf_printf(&o, "%ld", e->inum); break;
+        case KV_BOOL: strbuf_puts(&o, e->inum ? "true" : "false"); break;
+        default: csv_put_num(&o, e->num); break;
         }
     }
-    fputc('\n', f);
+    strbuf_puts(&o, "\n");
+    fputs(o.s, f);
+    strbuf_free(&o);
 }
 
 static void write_table(FILE *f, const kvlist *l) {
