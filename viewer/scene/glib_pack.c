@@ -4,51 +4,23 @@
  * (glib_internal.h).
  */
 #include "glib_internal.h"
+#include "packset.h"
 #include "mem.h"
+#include "strbuf.h"
 
 #include <ctype.h>
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-/* A directory name under packs/: no path separators, no leading dot. */
-static bool is_pack_name(const char *s) {
-    if (!*s || *s == '.' || strlen(s) >= GLIB_NAME_MAX)
-        return false;
-    for (; *s; s++)
-        if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-' && *s != '.')
-            return false;
-    return true;
-}
-
-static int cmp_str(const void *a, const void *b) {
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
 /* "basic, natural, raymarch" (the directories of dir holding a pack.glib)
  * into out, and the one closest to name into near (or ""). */
 static void list_packs(const char *dir, const char *name, char *out, size_t outlen,
                        char near[GLIB_NAME_MAX]) {
-    enum { MAXP = 64 };
-    char *names[MAXP];
-    int n = 0;
+    packset_name names[PACKSET_MAX];
+    int n = packset_list_dir(dir, names, PACKSET_MAX);
     out[0] = near[0] = '\0';
-    DIR *d = opendir(dir);
-    struct dirent *e;
-    while (d && n < MAXP && (e = readdir(d)) != NULL) {
-        char path[GLIB_PATH_MAX];
-        struct stat st;
-        if (!is_pack_name(e->d_name) ||
-            snprintf(path, sizeof path, "%s/%s/pack.glib", dir, e->d_name) >= (int)sizeof path)
-            continue;
-        if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
-            names[n++] = mem_strdup(e->d_name);
-    }
-    if (d)
-        closedir(d);
-    qsort(names, (size_t)n, sizeof names[0], cmp_str);
     size_t len = 0;
     int best = 3;
     for (int i = 0; i < n; i++) {
@@ -57,9 +29,8 @@ static void list_packs(const char *dir, const char *name, char *out, size_t outl
         int dist = glib_edit_distance(name, names[i]);
         if (dist < best) {
             best = dist;
-            snprintf(near, GLIB_NAME_MAX, "%s", names[i]);
+            msg_set(near, GLIB_NAME_MAX, "%s", names[i]);
         }
-        free(names[i]);
     }
 }
 
@@ -68,7 +39,7 @@ static void list_packs(const char *dir, const char *name, char *out, size_t outl
 static void use_pack(cmdctx *c, glib_cmd *cmd, const char *written) {
     parser *p = c->p;
     const char *name = p->pack_override ? p->pack_override : written;
-    if (!is_pack_name(name)) {
+    if (!packset_name_ok(name)) {
         glib_cerr(c, "Pack: '%.60s'%s is not a pack name: write the name of a directory under packs/, e.g. Pack basic",
              name, p->pack_override ? " (the pack chosen instead of the scene's)" : "");
         return;

@@ -33,18 +33,25 @@ static bool is_file(const char *path) {
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-static bool valid_pack_name(const char *s) {
-    if (!s[0] || strlen(s) >= PACKSET_NAME_MAX || strcmp(s, ".") == 0 || strcmp(s, "..") == 0) return false;
+bool packset_name_ok(const char *s) {
+    if (!s[0] || s[0] == '.' || strlen(s) >= PACKSET_NAME_MAX) return false;
     for (const char *p = s; *p; p++)
         if (!isalnum((unsigned char)*p) && *p != '_' && *p != '-' && *p != '.') return false;
     return true;
 }
 
-bool packset_exists(const char *root, const char *name) {
-    if (!valid_pack_name(name)) return false;
+/* packs_dir/name/pack.glib is a file. */
+static bool pack_in(const char *packs_dir, const char *name) {
+    if (!packset_name_ok(name)) return false;
     char path[2048];
-    snprintf(path, sizeof path, "%s/packs/%s/pack.glib", root, name);
+    if (snprintf(path, sizeof path, "%s/%s/pack.glib", packs_dir, name) >= (int)sizeof path) return false;
     return is_file(path);
+}
+
+bool packset_exists(const char *root, const char *name) {
+    char dir[2048];
+    snprintf(dir, sizeof dir, "%s/packs", root);
+    return pack_in(dir, name);
 }
 
 static int cmp_name(const void *a, const void *b) { return strcmp((const char *)a, (const char *)b); }
@@ -52,13 +59,17 @@ static int cmp_name(const void *a, const void *b) { return strcmp((const char *)
 int packset_list(const char *root, packset_name *names, int max) {
     char dir[2048];
     snprintf(dir, sizeof dir, "%s/packs", root);
-    DIR *d = opendir(dir);
+    return packset_list_dir(dir, names, max);
+}
+
+int packset_list_dir(const char *packs_dir, packset_name *names, int max) {
+    DIR *d = opendir(packs_dir);
     if (!d) return 0;
     int n = 0;
     struct dirent *e;
     while ((e = readdir(d)) && n < max) {
-        if (strcmp(e->d_name, "common") == 0 || !packset_exists(root, e->d_name)) continue;
-        size_t len = strlen(e->d_name);   /* < PACKSET_NAME_MAX: packset_exists checked it */
+        if (strcmp(e->d_name, "common") == 0 || !pack_in(packs_dir, e->d_name)) continue;
+        size_t len = strlen(e->d_name);   /* < PACKSET_NAME_MAX: pack_in checked it */
         memcpy(names[n], e->d_name, len + 1);
         n++;
     }

@@ -53,6 +53,13 @@ typedef char packset_name[PACKSET_NAME_MAX];
 /* The packs under root/packs (directories with a pack.glib; not "common"),
  * sorted by name. Returns how many (at most max). */
 int packset_list(const char *root, packset_name *names, int max);
+/* The same under a packs folder itself (glib_options.packs_dir). */
+int packset_list_dir(const char *packs_dir, packset_name *names, int max);
+
+/* A directory name under packs/: letters, digits, '_', '-', '.', not
+ * starting with a dot (no path, no "." or ".."), shorter than
+ * PACKSET_NAME_MAX. */
+bool packset_name_ok(const char *s);
 
 /* true when root/packs/name/pack.glib exists. */
 bool packset_exists(const char *root, const char *name);
