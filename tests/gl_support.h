@@ -53,9 +53,9 @@ static inline bool gl_test_has_pass(render *r, const char *what) {
 static inline void gl_test_world_build(gpu_world *gw, const ref_world_desc *desc) {
     memset(gw, 0, sizeof *gw);
     const char *inc[1] = { gl_test_common_dir() };
-    char *log = NULL;
-    world_build(gw, desc, inc, gl_test_common_dir(), &log);
-    free(log);
+    diag_list log = { 0 };
+    world_build(gw, desc, inc, gl_test_common_dir(), &log, NULL);
+    diag_list_free(&log);
 }
 
 /* Compiles the shader file at path as a stage of type, its #include lines

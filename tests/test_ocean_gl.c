@@ -37,11 +37,11 @@
 static bool make_ocean(gpu_ocean *o, int cascades, int n, const float *tile, float lambda, const float *h0,
                        const float *omega) {
     const char *inc[1] = { gl_test_common_dir() };
-    char *log = NULL;
+    diag_list log = { 0 };
     memset(o, 0, sizeof *o);
-    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, inc, gl_test_common_dir(), &log);
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, inc, gl_test_common_dir(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     return ok;
 }
 
@@ -120,11 +120,11 @@ static ref_ocean *reference_ocean(int n, int cascades, double chop) {
 
 static bool gpu_from(gpu_ocean *g, const ref_ocean *ro) {
     const char *inc[1] = { gl_test_common_dir() };
-    char *log = NULL;
+    diag_list log = { 0 };
     memset(g, 0, sizeof *g);
-    bool ok = ocean_create_from(g, ro, inc, gl_test_common_dir(), &log);
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    bool ok = ocean_create_from(g, ro, inc, gl_test_common_dir(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     return ok;
 }
 
@@ -417,10 +417,10 @@ static void test_ocean_world_runs_its_passes(void) {
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
     const char *inc[1] = { gl_test_common_dir() };
-    char *log = NULL;
-    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    diag_list log = { 0 };
+    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log, NULL));
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     CHECK(gw.ocean.active && gw.ocean.cascades == 2 && gw.ocean.res == 64);
     gpu_timer timer;
     gpu_timer_init(&timer);

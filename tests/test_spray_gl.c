@@ -43,10 +43,10 @@ static bool ring_world(gpu_world *gw, double threshold, unsigned seed) {
                                    .count = 4096 };
     memset(gw, 0, sizeof *gw);
     const char *inc[1] = { gl_test_common_dir() };
-    char *log = NULL;
-    bool ok = world_build(gw, &desc, inc, gl_test_common_dir(), &log);
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    diag_list log = { 0 };
+    bool ok = world_build(gw, &desc, inc, gl_test_common_dir(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     return ok && gw->spray.active;
 }
 
@@ -188,10 +188,10 @@ static void test_ocean_crests_throw_spray(void) {
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
     const char *inc[1] = { gl_test_common_dir() };
-    char *log = NULL;
-    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log));
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    diag_list log = { 0 };
+    CHECK(world_build(&gw, &desc, inc, gl_test_common_dir(), &log, NULL));
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     int n = gw.spray.res * gw.spray.res;
     float *pos = malloc((size_t)n * 4 * sizeof(float)), *vel = malloc((size_t)n * 4 * sizeof(float));
     int first = -1, most = 0;

@@ -36,19 +36,32 @@ typedef struct prog {
     const glib_scene *scene;                 /* its glib: sliders that glib commands read */
 } prog;
 
-/* Separates a log line from the stage and program it came from:
- * "LINE\x1fSTAGE\x1fPROGRAM\n" (render_messages.c merges and untags them). */
-#define RENDER_PROG_TAG '\x1f'
+/* The program, and the stage of it, whose build reported diag number d of
+ * a load's list: a line that several programs report (an error in a file
+ * they all include) is said once, naming them all (render_messages.c). */
+typedef struct prog_origin {
+    int d;
+    shader_stage stage;
+    char prog[GLIB_NAME_MAX];
+} prog_origin;
+
+typedef struct prog_origins {
+    prog_origin *o;   /* in the order of d */
+    int n, cap;
+} prog_origins;
+
+void prog_origins_free(prog_origins *o);
 
 /* Builds p from its stage paths, defines (from p->unifs' define entries)
  * and include dirs. On failure p->gl is left as it was (the last good build)
- * and the mapped messages are appended to *log. Returns true on success or
- * when nothing changed. */
-bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, char **log);
+ * and the messages (the driver's, mapped to the user's files, with hints)
+ * are added to dl; from (NULL: not kept) records which of them a stage
+ * reported. Returns true on success or when nothing changed. */
+bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, diag_list *dl, prog_origins *from);
 
 /* Introspects p->gl: types, locations, uniforms the glib did not mention,
- * glib uniforms the program lacks (a warning in *log). */
-void prog_introspect(prog *p, char **log);
+ * glib uniforms the program lacks (a warning in dl). */
+void prog_introspect(prog *p, diag_list *dl);
 
 /* The glib's uniforms that p declares but its build does not use
  * (compiled out by a Define, or unused and optimised out): not mistakes,

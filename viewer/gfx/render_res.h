@@ -46,7 +46,7 @@ void render_res_key(const glib_cmd *c, char *out, int outlen);
  * old contents are gone). Nothing happens when the size is the same. */
 void render_res_target_resize(gpu_tex *t, int w, int h);
 
-bool render_res_mesh_build(const glib_cmd *c, gpu_mesh *m, char **log);
+bool render_res_mesh_build(const glib_cmd *c, gpu_mesh *m, diag_list *log);
 struct geom_mesh;
 bool render_res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);
 void render_res_mesh_draw(const gpu_mesh *m, int tangent_loc);
@@ -69,7 +69,7 @@ void render_res_vertexid_end(void);
  * blending, scissor or culling. */
 void render_res_pass_state(int w, int h);
 
-bool render_res_tex_build(const glib_cmd *c, gpu_tex *t, char **log);
+bool render_res_tex_build(const glib_cmd *c, gpu_tex *t, diag_list *log);
 /* Filtering and wrapping of the bound texture; mipmaps are generated. */
 void render_res_sampling(unsigned target, bool mipmaps, unsigned wrap);
 void render_res_tex_free(gpu_tex *t);

@@ -905,6 +905,12 @@ char *shader_src_map_log(const shader_src *s, const char *log) {
     return o.s;
 }
 
+void shader_src_map_diags(const shader_src *s, const char *log, diag_severity sev, diag_list *out) {
+    char *mapped = shader_src_map_log(s, log);
+    diag_add_log(out, sev, mapped);
+    free(mapped);
+}
+
 const char *shader_stage_name(shader_stage st) {
     switch (st) {
     case SHADER_VERTEX: return "vertex";

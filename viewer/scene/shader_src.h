@@ -55,6 +55,7 @@
 #define TARN_SHADER_SRC_H
 
 #include <stdbool.h>
+#include "diag.h"
 
 typedef enum shader_stage {
     SHADER_VERTEX,
@@ -133,6 +134,10 @@ void shader_src_free(shader_src *s);
  * does not recognise, or whose file index is out of range, pass through
  * unchanged. Returns a heap string (never NULL unless out of memory). */
 char *shader_src_map_log(const shader_src *s, const char *log);
+/* The same mapping, into diags (diag_add_log reads each mapped line):
+ * how tarn takes in a compiler's log. Lines of no shape it knows become
+ * bare diags of severity sev, kept as the compiler wrote them. */
+void shader_src_map_diags(const shader_src *s, const char *log, diag_severity sev, diag_list *out);
 
 /* "vertex", "tess control", "tess evaluation", "geometry", "fragment". */
 const char *shader_stage_name(shader_stage st);
