@@ -68,7 +68,12 @@ static inline GLuint gl_test_compile(GLenum type, const char *path, const shader
     shader_src src;
     shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
                           .defines = defs, .ndefines = ndefs, .include_dirs = inc, .ninclude_dirs = 1 };
-    if (!shader_src_load(&d, &src)) { fprintf(stderr, "%s\n", src.error); return 0; }
+    if (!shader_src_load(&d, &src)) {
+        char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
+        diag_format(&src.error, line, sizeof line);
+        fprintf(stderr, "%s\n", line);
+        return 0;
+    }
     GLuint sh = glCreateShader(type);
     const char *text = src.text;
     glShaderSource(sh, 1, &text, NULL);

@@ -22,7 +22,7 @@ static bool check_stage(const char *name, shader_stage st, bool gstap, char **lo
     shader_src s;
     *log = NULL;
     if (!shader_src_load(&d, &s)) {
-        fprintf(stderr, "  load %s: %s\n", name, s.error);
+        fprintf(stderr, "  load %s: %s\n", name, s.error.text);
         shader_src_free(&s);
         return false;
     }

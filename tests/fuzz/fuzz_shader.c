@@ -98,7 +98,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         check(h == s.hash, "hash of the text");
     } else {
         check(s.text == NULL, "no text on failure");
-        check(strstr(s.error, ": error: ") != NULL, "a file:line: error: message");
+        check(s.error.severity == DIAG_ERROR && s.error.file[0] && s.error.text[0], "a file:line: error: message");
     }
     for (int i = 0; i < s.nfiles; i++) check(s.files[i] != NULL, "no NULL file");
 

@@ -140,14 +140,6 @@ static void msgs_add_list(vmsgs *m, const diag_list *l) {
     for (int i = 0; i < l->n; i++) msgs_add(m, &l->d[i]);
 }
 
-/* An assembly error (shader_src's `file:line: error: text`) as a message. */
-static void msgs_add_src_error(vmsgs *m, const char *error) {
-    diag_list l = { 0 };
-    diag_add_log(&l, DIAG_ERROR, error);   /* TODO(#28): shader_src's error as a diag */
-    msgs_add_list(m, &l);
-    diag_list_free(&l);
-}
-
 static void msgs_free(vmsgs *m) {
     free(m->v);
     memset(m, 0, sizeof *m);
@@ -393,7 +385,7 @@ static glslang_shader_t *compile(shader_src *src, shader_stage st, vmsgs *m, boo
 
 bool validate_stage(const shader_src *src, shader_stage stage, diag_list *out) {
     if (!src || !src->text || (unsigned)stage >= SHADER_STAGE_COUNT) {
-        if (out && src && src->error[0]) diag_add_log(out, DIAG_ERROR, src->error);   /* TODO(#28): as a diag */
+        if (out && src && src->error.text[0]) diag_push(out, &src->error);
         else if (out) diag_add_bare(out, DIAG_ERROR, "error: no shader text");
         return false;
     }
@@ -966,7 +958,7 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             shader_src_desc d = program_stage_desc(ps, st, defs, nd, r->include_dirs, 1);
             d.gs_input = program_gs_input(scene, cmd);
             if (!shader_src_load(&d, &src[st])) {
-                msgs_add_src_error(&m, src[st].error);
+                msgs_add(&m, &src[st].error);
                 ok = false;
             }
         }
@@ -1070,7 +1062,7 @@ static void validate_stage_file(run *r, const char *path, shader_stage st) {
     shader_src_desc d = { .path = path, .stage = st, .include_dirs = r->include_dirs, .ninclude_dirs = 1 };
     vmsgs m = {0};
     if (!shader_src_load(&d, &src)) {
-        msgs_add_src_error(&m, src.error);
+        msgs_add(&m, &src.error);
     } else {
         bool ok = false;
         glslang_shader_t *sh = compile(&src, st, &m, &ok, NULL);

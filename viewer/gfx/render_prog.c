@@ -201,7 +201,7 @@ bool prog_build(prog *p, const char *const *include_dirs, int ninclude_dirs, dia
             .gs_input = program_gs_input(p->scene, p->cmd) };
         if (!shader_src_load(&d, &src[s])) {
             diag_list e = { 0 };
-            diag_add_log(&e, DIAG_NOTE, src[s].error);   /* TODO(#28): shader_src's error as a diag */
+            diag_push(&e, &src[s].error);
             add_from_stage(dl, &e, (shader_stage)s, p, from);
             diag_list_free(&e);
             ok = false;

@@ -111,7 +111,7 @@ typedef struct shader_src {
                                  * Also filled (with what was found) on failure. */
     int nfiles;
     unsigned long long hash;    /* FNV-1a 64 of text */
-    char error[512];            /* on failure: "file:line: error: message" */
+    diag error;                 /* on failure: the error, at the file:line it concerns */
 } shader_src;
 
 /* Lines of files[k], k >= 1, are numbered k * SHADER_SRC_LINE_BASE + line. */
@@ -120,7 +120,7 @@ typedef struct shader_src {
 #define SHADER_SRC_MAX_FILE_BYTES (8L << 20)   /* one stage file or include */
 
 /* Assembles desc->path into *out (which it zeroes first). Returns false and
- * sets out->error on a missing or unreadable file (or one over 8 MiB), a
+ * sets out->error (a DIAG_ERROR) on a missing or unreadable file (or one over 8 MiB), a
  * missing include, an include cycle, includes nested deeper than 32, a
  * `#version` after other code, or a define name that is not an identifier. Always call
  * shader_src_free() afterwards, whether it succeeded or not. */
