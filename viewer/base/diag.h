@@ -4,7 +4,9 @@
  * hands the list on; none of them writes a message as text for another to
  * read back. One function prints them, as `file:line: warning|error: text`.
  * The only text read into diags is a tool's log (the GL driver's,
- * glslang's): diag_add_log. */
+ * glslang's): diag_add_log. (Still read back too, until they record
+ * diags: the err buffers of glib_unif_set and scene_from_glib, in
+ * render_load.c; TODO #28.) */
 #ifndef TARN_DIAG_H
 #define TARN_DIAG_H
 
@@ -41,7 +43,7 @@ void diag_add_bare(diag_list *l, diag_severity sev, const char *fmt, ...) __attr
  * text` has line 0, `tarn: error: text` no file; lines of another shape
  * become bare diags of severity sev, printed as the tool wrote them. Empty
  * lines are skipped. The one place tarn parses message text: tarn's own
- * messages are diags from the start. */
+ * messages are diags from the start (but the two of the header). */
 void diag_add_log(diag_list *l, diag_severity sev, const char *log);
 /* Appends a copy of d to l. */
 void diag_push(diag_list *l, const diag *d);
