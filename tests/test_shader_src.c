@@ -630,6 +630,33 @@ static void test_map_log_passthrough(void) {
     shader_src_free(&s);
 }
 
+/* A driver's log as diags: mapped lines are file:line diags of their
+ * severity; a line of no known shape is kept, bare, as the driver wrote it. */
+static void test_map_diags(void) {
+    shader_src s;
+    bool ok = load(&s, "map_main.frag", SHADER_FRAGMENT, NULL, 0, false);
+    CHECK(ok);
+    if (!ok) { shader_src_free(&s); return; }
+    diag_list l = { 0 };
+    shader_src_map_diags(&s, "0:200001(5): error: 'y' undeclared\nerror: linking failed\n\n"
+                             "WARNING: 0:2: 'x' : something \n", DIAG_NOTE, &l);
+    CHECK_EQ(l.n, 3);
+    if (l.n == 3) {
+        CHECK(l.d[0].severity == DIAG_ERROR && l.d[0].line == 1 && !l.d[0].bare);
+        CHECK_STR_CONTAINS(l.d[0].file, "inc/map_fresnel.glsl");
+        CHECK_STR_EQ(l.d[0].text, "'y' undeclared");
+        CHECK(l.d[1].bare && l.d[1].severity == DIAG_NOTE && l.d[1].file[0] == '\0');
+        CHECK_STR_EQ(l.d[1].text, "error: linking failed");
+        CHECK(l.d[2].severity == DIAG_WARNING && l.d[2].line == 2);
+        CHECK_STR_EQ(l.d[2].text, "'x' : something");
+    }
+    CHECK(l.nerrors == 1 && l.nwarnings == 1);
+    diag_list_free(&l);
+    shader_src_map_diags(&s, NULL, DIAG_NOTE, &l);
+    CHECK_EQ(l.n, 0);
+    shader_src_free(&s);
+}
+
 static void test_stage_names_and_paths(void) {
     CHECK_STR_EQ(shader_stage_name(SHADER_VERTEX), "vertex");
     CHECK_STR_EQ(shader_stage_name(SHADER_FRAGMENT), "fragment");
@@ -699,6 +726,7 @@ int main(void) {
     RUN(test_ext_geometry_shader_rewritten);
     RUN(test_binding_enables_420pack);
     RUN(test_map_log_passthrough);
+    RUN(test_map_diags);
     RUN(test_stage_names_and_paths);
     RUN(test_file_size_limit);
     char cmd[320];
