@@ -291,7 +291,7 @@ static const struct { const char *start, *has; hint_fn fn; } hints[] = {
     { "'gl_", "undeclared identifier", hint_core_builtin },
 };
 
-/* ---- the log ------------------------------------------------------------------- */
+/* ---- the messages -------------------------------------------------------------- */
 
 /* The hint for an error's text, into o; false when it names nothing NVIDIA let through. */
 static bool hint_for(const char *msg, const char *source, strbuf *o) {
