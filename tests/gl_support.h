@@ -62,9 +62,9 @@ static inline bool gl_test_has_pass(render *r, const char *what) {
  * log is dropped (the test checks what it needs). */
 static inline void gl_test_world_build(gpu_world *gw, const ref_world_desc *desc) {
     memset(gw, 0, sizeof *gw);
-    char *log = NULL;
-    world_build(gw, desc, gl_test_sources(), &log);
-    free(log);
+    diag_list log = { 0 };
+    world_build(gw, desc, gl_test_sources(), &log, NULL);
+    diag_list_free(&log);
 }
 
 /* Compiles the shader file at path as a stage of type, its #include lines
@@ -77,7 +77,12 @@ static inline GLuint gl_test_compile(GLenum type, const char *path, const shader
     shader_src src;
     shader_src_desc d = { .path = path, .stage = type == GL_VERTEX_SHADER ? SHADER_VERTEX : SHADER_FRAGMENT,
                           .defines = defs, .ndefines = ndefs, .include_dirs = inc, .ninclude_dirs = 1 };
-    if (!shader_src_load(&d, &src)) { fprintf(stderr, "%s\n", src.error); return 0; }
+    if (!shader_src_load(&d, &src)) {
+        char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
+        diag_format(&src.error, line, sizeof line);
+        fprintf(stderr, "%s\n", line);
+        return 0;
+    }
     GLuint sh = glCreateShader(type);
     const char *text = src.text;
     glShaderSource(sh, 1, &text, NULL);

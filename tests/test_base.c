@@ -218,9 +218,9 @@ static void test_cache_dir_follows_xdg(void) {
 static void test_diagnostics(void) {
     diag_list l = { 0 };
     diag_add(&l, DIAG_WARNING, "a.glib", 3, "unknown command '%s'", "Foo");
-    diag_add_text(&l, DIAG_ERROR, "water.frag:12: error: 'x' undeclared\nplain words\n\nb.glsl:1: warning: w\n");
+    diag_add_log(&l, DIAG_ERROR, "water.frag:12: error: 'x' undeclared\nplain words\n\nb.glsl:1: warning: w\n");
     CHECK(l.n == 4 && l.nerrors == 2 && l.nwarnings == 2);
-    diag_add_text(&l, DIAG_NOTE, "tarn: error: no context\nscene.glib: warning: no commands\n");
+    diag_add_log(&l, DIAG_NOTE, "tarn: error: no context\nscene.glib: warning: no commands\n");
     CHECK(l.n == 6 && l.nerrors == 3 && l.nwarnings == 3);
     CHECK(l.d[4].file[0] == '\0' && l.d[4].line == 0 && strcmp(l.d[4].text, "no context") == 0);
     CHECK(strcmp(l.d[5].file, "scene.glib") == 0 && l.d[5].line == 0);
@@ -230,10 +230,17 @@ static void test_diagnostics(void) {
     char line[2048];
     diag_format(&l.d[0], line, sizeof line);
     CHECK_STR_EQ(line, "a.glib:3: warning: unknown command 'Foo'");
+    /* a line of no known shape is kept as the tool wrote it */
     diag_format(&l.d[2], line, sizeof line);
-    CHECK_STR_EQ(line, "tarn: error: plain words");
+    CHECK(l.d[2].bare && !l.d[1].bare);
+    CHECK_STR_EQ(line, "plain words");
+    diag_format(&l.d[4], line, sizeof line);
+    CHECK_STR_EQ(line, "tarn: error: no context");
+    char *all = diag_list_format(&l, 4);
+    CHECK_STR_EQ(all, "tarn: error: no context\nscene.glib:0: warning: no commands\n");
+    free(all);
     /* the first severity of a line is its own, whatever its text says later */
-    diag_add_text(&l, DIAG_NOTE, "a.frag:7: error: 'w' : no such field: warning: x\n");
+    diag_add_log(&l, DIAG_NOTE, "a.frag:7: error: 'w' : no such field: warning: x\n");
     CHECK(l.n == 7 && l.d[6].severity == DIAG_ERROR && l.d[6].line == 7 && strcmp(l.d[6].file, "a.frag") == 0);
     CHECK_STR_EQ(l.d[6].text, "'w' : no such field: warning: x");
     diag_list_free(&l);

@@ -36,11 +36,11 @@
 #include "scene.h"
 
 static bool make_flow(gpu_flow *f, const ref_flow_desc *d, double half) {
-    char *log = NULL;
+    diag_list log = { 0 };
     memset(f, 0, sizeof *f);
-    bool ok = flow_create(f, d, half, gl_test_sources(), &log);
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    bool ok = flow_create(f, d, half, gl_test_sources(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     return ok;
 }
 
@@ -155,11 +155,13 @@ static void test_texture_velocity_is_a_current(void) {
     flow_free(&f);
     /* a missing file is an error naming it, not a crash */
     snprintf(wd.flow.texture, sizeof wd.flow.texture, "%s", scratch_path("nope.exr"));
-    char *log = NULL;
+    diag_list log = { 0 };
     memset(&f, 0, sizeof f);
-    CHECK(!flow_create(&f, &wd.flow, 12, gl_test_sources(), &log));
-    CHECK(log && strstr(log, "nope.exr"));
-    free(log);
+    CHECK(!flow_create(&f, &wd.flow, 12, gl_test_sources(), &log, NULL));
+    char *text = diag_list_format(&log, 0);
+    CHECK(strstr(text, "nope.exr"));
+    free(text);
+    diag_list_free(&log);
     flow_free(&f);
     scratch_remove();
 }
@@ -280,10 +282,10 @@ static void test_no_flow_no_pass(void) {
         if (with) desc.flow = (ref_flow_desc){ .nterms = 1, .term = { { REF_FLOW_CURRENT, { 0.3, 0 } } } };
         gpu_world gw;
         memset(&gw, 0, sizeof gw);
-        char *log = NULL;
-        CHECK(world_build(&gw, &desc, gl_test_sources(), &log));
-        if (log) fprintf(stderr, "%s", log);
-        free(log);
+        diag_list log = { 0 };
+        CHECK(world_build(&gw, &desc, gl_test_sources(), &log, NULL));
+        diag_print(&log, stderr);
+        diag_list_free(&log);
         CHECK(gw.active);
         CHECK_EQ(gw.flow.active, (with == 1));
         CHECK((gw.flow.tex[0] != 0) == (with == 1) && (gw.flow.prog.gl != 0) == (with == 1));

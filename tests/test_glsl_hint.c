@@ -10,6 +10,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A test's log, a compiler's lines already mapped to file:line, as the
+ * diags tarn reads it into (diag_add_log). */
+static diag_list log_diags(const char *log) {
+    diag_list l = { 0 };
+    diag_add_log(&l, DIAG_NOTE, log);
+    return l;
+}
+
+/* log with glsl_hint's notes (glsl_hint_add), formatted a line each. */
+static char *annotate(const char *log, const char *source) {
+    diag_list l = log_diags(log);
+    glsl_hint_add(&l, 0, source);
+    char *out = diag_list_format(&l, 0);
+    diag_list_free(&l);
+    return out;
+}
+
 static const char *src_frag =
     "#version 120\n"
     "flat varying vec3 vN;\n"
@@ -24,7 +41,7 @@ static const char *src_frag =
 
 /* The note after `after` (a line of the log) is exactly one line and holds want. */
 static void check_note(const char *log, const char *source, const char *after, const char *want) {
-    char *out = glsl_hint_annotate(log, source);
+    char *out = annotate(log, source);
     const char *a = strstr(out, after);
     const char *nl = a ? strchr(a, '\n') : NULL;
     const char *note = nl ? nl + 1 : NULL;
@@ -50,7 +67,7 @@ static void test_mesa_messages(void) {
     /* K is global: its value moves into main(); L is local: dropping const is enough */
     check_note("p.frag:5: error: initializer of const variable `K' must be a constant expression\n", src_frag,
                "expression", "at the start of main()");
-    char *out = glsl_hint_annotate("p.frag:8: error: initializer of const variable `L' must be a constant "
+    char *out = annotate("p.frag:8: error: initializer of const variable `L' must be a constant "
                                    "expression\n", src_frag);
     CHECK(strstr(out, "Drop the word const") && !strstr(out, "start of main()"));
     free(out);
@@ -73,7 +90,7 @@ static void test_call_note_after_candidates(void) {
         "p.frag:4: error:    float pow(float, float)\n"
         "p.frag:4: error:    vec2 pow(vec2, vec2)\n"
         "p.frag:5: warning: `a' used uninitialized\n";
-    char *out = glsl_hint_annotate(log, NULL);
+    char *out = annotate(log, NULL);
     const char *note = strstr(out, "p.frag:4: note: pow(vec2, float) mixes a vec2 with a scalar");
     CHECK_MSG(note && note > strstr(out, "vec2 pow(vec2, vec2)") && note < strstr(out, "p.frag:5: warning"),
               "%s", out);
@@ -82,7 +99,7 @@ static void test_call_note_after_candidates(void) {
     CHECK_GT(strlen(out), strlen(log));
     free(out);
     /* the last line of the log, without a newline */
-    out = glsl_hint_annotate("p.frag:3: error: no matching function for call to `atan(vec3, float)'; "
+    out = annotate("p.frag:3: error: no matching function for call to `atan(vec3, float)'; "
                              "candidates are:", NULL);
     CHECK_STR_CONTAINS(out, "candidates are:\np.frag:3: note: atan(vec3, float)");
     CHECK_STR_CONTAINS(out, "atan(a, vec3(b))");
@@ -103,11 +120,11 @@ static void test_other_messages_unchanged(void) {
         "",
     };
     for (size_t i = 0; i < sizeof logs / sizeof logs[0]; i++) {
-        char *out = glsl_hint_annotate(logs[i], "#version 330 compatibility\n");
+        char *out = annotate(logs[i], "#version 330 compatibility\n");
         CHECK_MSG(strcmp(out, logs[i]) == 0, "%zu: %s", i, out);
         free(out);
     }
-    char *out = glsl_hint_annotate(NULL, NULL);
+    char *out = annotate(NULL, NULL);
     CHECK(out && out[0] == '\0');
     free(out);
 }
@@ -124,7 +141,7 @@ static void test_glslang_messages(void) {
                "extensions\n", NULL, "extensions", "Drop the word const");
     check_note("p.frag:2: error: 'gl_NormalMatrix' : undeclared identifier\n", "#version 400\n", "identifier",
                "Write `#version 400 compatibility`");
-    char *out = glsl_hint_annotate("p.frag:6: error: 'myfn' : no matching overloaded function found\n", NULL);
+    char *out = annotate("p.frag:6: error: 'myfn' : no matching overloaded function found\n", NULL);
     CHECK(!strstr(out, "note"));
     free(out);
 }
@@ -145,8 +162,11 @@ static int count_lines(const char *s) {
 static char *fix(const char *text, shader_stage st, const char *log, const char *want, const char *note) {
     char *files[1] = { "p.frag" };
     shader_src src = { .text = (char *)text, .files = files, .nfiles = 1 };
-    char *notes = NULL;
-    char *out = glsl_fix_rewrite(&src, st, text, log, &notes);
+    diag_list l = log_diags(log), nl = { 0 };
+    char *out = glsl_fix_rewrite(&src, st, text, &l, &nl);
+    char *notes = nl.n ? diag_list_format(&nl, 0) : NULL;
+    diag_list_free(&l);
+    diag_list_free(&nl);
     CHECK_MSG(out != NULL, "no rewrite for %s", log);
     if (!out) { free(notes); return NULL; }
     CHECK_MSG(count_lines(out) == count_lines(text), "lines %d -> %d:\n%s", count_lines(text), count_lines(out), out);
@@ -171,8 +191,10 @@ static void test_fix_return(void) {
             "return vec3(2 );", "p.frag:5: warning: ");
     CHECK(o && strstr(o, "return 1;"));   /* only the line named */
     free(o);
-    CHECK(glsl_fix_wanted_by_warning("p.frag:2: warning: 'return' : type conversion on return values was not "
-                                     "explicitly allowed until version 420\n"));
+    diag_list w = log_diags("p.frag:2: warning: 'return' : type conversion on return values was not "
+                            "explicitly allowed until version 420\n");
+    CHECK(glsl_fix_wanted_by_warning(&w));
+    diag_list_free(&w);
 }
 
 static void test_fix_const(void) {
@@ -248,11 +270,12 @@ static void test_fix_leaves_others(void) {
         "q.frag:3: error: `return' with wrong type int, in function `f' returning float\n",
     };
     for (size_t i = 0; i < sizeof logs / sizeof logs[0]; i++) {
-        char *notes = NULL;
-        char *o = glsl_fix_rewrite(&src, SHADER_FRAGMENT, t, logs[i], &notes);
-        CHECK_MSG(o == NULL && notes == NULL, "%zu: %s", i, o ? o : "");
+        diag_list l = log_diags(logs[i]), notes = { 0 };
+        char *o = glsl_fix_rewrite(&src, SHADER_FRAGMENT, t, &l, &notes);
+        CHECK_MSG(o == NULL && notes.n == 0, "%zu: %s", i, o ? o : "");
         free(o);
-        free(notes);
+        diag_list_free(&l);
+        diag_list_free(&notes);
     }
 }
 
@@ -264,14 +287,20 @@ static void test_link_hint(void) {
     shader_src f = { .text = "#version 120\n#line 1 0\n\nuniform vec4 uC;\nvoid main() { gl_FragColor = uC; }\n",
                      .files = ff, .nfiles = 1 };
     const shader_src *srcs[SHADER_STAGE_COUNT] = { [SHADER_VERTEX] = &v, [SHADER_FRAGMENT] = &f };
-    char *h = glsl_fix_link_hint("error: uniform `uC' declared as type `vec4' and type `vec3'\n", srcs);
-    CHECK_MSG(h && strstr(h, "uniform 'uC' is declared vec3 in the vertex shader (v.vert:2) and vec4 in the "
-                          "fragment shader (f.frag:3)"), "%s", h ? h : "(none)");
+    diag_list l = { 0 };
+    CHECK(glsl_fix_link_hint("error: uniform `uC' declared as type `vec4' and type `vec3'\n", srcs, &l));
+    char *h = diag_list_format(&l, 0);
+    CHECK_MSG(strstr(h, "uniform 'uC' is declared vec3 in the vertex shader (v.vert:2) and vec4 in the "
+                        "fragment shader (f.frag:3)"), "%s", h);
     free(h);
-    h = glsl_fix_link_hint("ERROR: Linking fragment stages: Types must match: an earlier stage: \" vec3 uC\"", srcs);
-    CHECK(h && strstr(h, "'uC'"));
+    diag_list_free(&l);
+    CHECK(glsl_fix_link_hint("ERROR: Linking fragment stages: Types must match: an earlier stage: \" vec3 uC\"", srcs,
+                             &l));
+    h = diag_list_format(&l, 0);
+    CHECK(strstr(h, "'uC'"));
     free(h);
-    CHECK_EQ(glsl_fix_link_hint("error: something else\n", srcs), NULL);
+    diag_list_free(&l);
+    CHECK(!glsl_fix_link_hint("error: something else\n", srcs, &l) && l.n == 0);
 }
 
 int main(void) {

@@ -36,11 +36,11 @@
 
 static bool make_ocean(gpu_ocean *o, int cascades, int n, const float *tile, float lambda, const float *h0,
                        const float *omega) {
-    char *log = NULL;
+    diag_list log = { 0 };
     memset(o, 0, sizeof *o);
-    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, gl_test_sources(), &log);
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    bool ok = ocean_create(o, cascades, n, tile, lambda, h0, omega, gl_test_sources(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     return ok;
 }
 
@@ -118,11 +118,11 @@ static ref_ocean *reference_ocean(int n, int cascades, double chop) {
 }
 
 static bool gpu_from(gpu_ocean *g, const ref_ocean *ro) {
-    char *log = NULL;
+    diag_list log = { 0 };
     memset(g, 0, sizeof *g);
-    bool ok = ocean_create_from(g, ro, gl_test_sources(), &log);
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    bool ok = ocean_create_from(g, ro, gl_test_sources(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     return ok;
 }
 
@@ -414,10 +414,10 @@ static void test_ocean_world_runs_its_passes(void) {
     desc.waves.ocean = (ref_ocean_desc){ .spectrum = REF_SPECTRUM_PHILLIPS, .res = 64, .cascades = 2, .choppiness = 0.5 };
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    char *log = NULL;
-    CHECK(world_build(&gw, &desc, gl_test_sources(), &log));
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    diag_list log = { 0 };
+    CHECK(world_build(&gw, &desc, gl_test_sources(), &log, NULL));
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     CHECK(gw.ocean.active && gw.ocean.cascades == 2 && gw.ocean.res == 64);
     gpu_timer timer;
     gpu_timer_init(&timer);

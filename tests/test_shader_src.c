@@ -17,6 +17,15 @@
 #include <unistd.h>
 
 
+/* s's assembly error as tarn prints it, `file:line: error: message`
+ * (ERR: into a buffer that lives as long as the statement using it). */
+static const char *error_line(const shader_src *s, char *buf, size_t n) {
+    diag_format(&s->error, buf, n);
+    return buf;
+}
+#define ERR_MAX (DIAG_FILE_MAX + DIAG_TEXT_MAX + 32)
+#define ERR(s) error_line(&(s), (char[ERR_MAX]){ 0 }, ERR_MAX)
+
 static bool mem_has(const char *p, size_t n, const char *needle) {
     size_t k = strlen(needle);
     for (size_t i = 0; i + k <= n; i++)
@@ -100,7 +109,7 @@ static bool mapped_has(const char *mapped, const char *file_suffix, int line, co
 static void test_includes_and_line_map(void) {
     shader_src s;
     bool ok = load(&s, "map_main.frag", SHADER_FRAGMENT, NULL, 0, false);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (!ok) { shader_src_free(&s); return; }
     CHECK_EQ(s.nfiles, 3);
     CHECK_STR_CONTAINS(s.files[0], "map_main.frag");
@@ -130,7 +139,7 @@ static void test_includes_and_line_map(void) {
 static void test_old_version_line_rule(void) {
     shader_src s;
     bool ok = load(&s, "old120.vert", SHADER_VERTEX, NULL, 0, false);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (!ok) { shader_src_free(&s); return; }
     CHECK_EQ(strncmp(s.text, "#version 120\n", 13), 0);
     char *log = fake_compile(s.text, 'm', false);
@@ -144,7 +153,7 @@ static void test_old_version_line_rule(void) {
 static void test_no_version_gets_glman_default(void) {
     shader_src s;
     bool ok = load(&s, "noversion.frag", SHADER_FRAGMENT, NULL, 0, false);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (!ok) { shader_src_free(&s); return; }
     CHECK_EQ(strncmp(s.text, "#version 330 compatibility", 26), 0);
     const char *nl = strchr(s.text, '\n');
@@ -162,7 +171,7 @@ static void test_defines_and_gstap_follow_version(void) {
     shader_define defs[2] = { { "FOO", "1" }, { "EMPTY", "" } };
     shader_src s;
     bool ok = load(&s, "gstap.vert", SHADER_VERTEX, defs, 2, true);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (!ok) { shader_src_free(&s); return; }
     CHECK_EQ(strncmp(s.text, "#version 330 compatibility\n", 27), 0);
     const char *foo = strstr(s.text, "#define FOO 1\n");
@@ -182,7 +191,7 @@ static void test_defines_and_gstap_follow_version(void) {
 
     /* fragment: matrices and aColor (gl_Color, the interpolated colour), no attributes */
     ok = load(&s, "gstap.frag", SHADER_FRAGMENT, NULL, 0, true);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) {
         CHECK_STR_CONTAINS(s.text, "#define uNormalMatrix gl_NormalMatrix\n");
         CHECK_STR_CONTAINS(s.text, "#define aColor gl_Color\n");
@@ -194,7 +203,7 @@ static void test_defines_and_gstap_follow_version(void) {
     /* geometry: matrices only (its colours are gl_in[i].gl_FrontColor) */
     shader_src_desc gd = { .path = shader_data("gstap.frag"), .stage = SHADER_GEOMETRY, .gstap = true };
     ok = shader_src_load(&gd, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) {
         CHECK_STR_CONTAINS(s.text, "#define uNormalMatrix gl_NormalMatrix\n");
         CHECK_EQ(strstr(s.text, "aColor"), NULL);
@@ -211,8 +220,8 @@ static void test_defines_and_gstap_follow_version(void) {
 static void test_missing_include_is_file_line_error(void) {
     shader_src s;
     CHECK(!load(&s, "missing_inc.frag", SHADER_FRAGMENT, NULL, 0, false));
-    CHECK_STR_CONTAINS(s.error, "missing_inc.frag:3: error: ");
-    CHECK_STR_CONTAINS(s.error, "no_such_file.glsl");
+    CHECK_STR_CONTAINS(ERR(s), "missing_inc.frag:3: error: ");
+    CHECK_STR_CONTAINS(ERR(s), "no_such_file.glsl");
     CHECK_EQ(s.text, NULL);
     CHECK_GE(s.nfiles, 1);          /* the watcher still watches the stage file */
     shader_src_free(&s);
@@ -221,8 +230,8 @@ static void test_missing_include_is_file_line_error(void) {
 static void test_include_cycle_is_file_line_error(void) {
     shader_src s;
     CHECK(!load(&s, "cycle_main.frag", SHADER_FRAGMENT, NULL, 0, false));
-    CHECK_STR_CONTAINS(s.error, "inc/cycle_b.glsl:3: error: include cycle");
-    CHECK_STR_CONTAINS(s.error, "cycle_a.glsl -> ");
+    CHECK_STR_CONTAINS(ERR(s), "inc/cycle_b.glsl:3: error: include cycle");
+    CHECK_STR_CONTAINS(ERR(s), "cycle_a.glsl -> ");
     CHECK_EQ(s.nfiles, 3);
     shader_src_free(&s);
 }
@@ -230,11 +239,11 @@ static void test_include_cycle_is_file_line_error(void) {
 static void test_missing_stage_file(void) {
     shader_src s;
     CHECK(!load(&s, "no_such_stage.frag", SHADER_FRAGMENT, NULL, 0, false));
-    CHECK_STR_CONTAINS(s.error, "no_such_stage.frag:0: error: cannot read shader");
+    CHECK_STR_CONTAINS(ERR(s), "no_such_stage.frag:0: error: cannot read shader");
     shader_src_free(&s);
     /* a directory is unreadable too */
     CHECK(!load(&s, "inc", SHADER_FRAGMENT, NULL, 0, false));
-    CHECK_STR_CONTAINS(s.error, ":0: error: cannot read shader");
+    CHECK_STR_CONTAINS(ERR(s), ":0: error: cannot read shader");
     shader_src_free(&s);
 }
 
@@ -242,11 +251,11 @@ static void test_bad_define_name(void) {
     shader_define defs[1] = { { "2BAD", "1" } };
     shader_src s;
     CHECK(!load(&s, "good_compat.frag", SHADER_FRAGMENT, defs, 1, false));
-    CHECK_STR_CONTAINS(s.error, "2BAD");
+    CHECK_STR_CONTAINS(ERR(s), "2BAD");
     shader_src_free(&s);
     shader_define gl[1] = { { "GL_MINE", "1" } };
     CHECK(!load(&s, "good_compat.frag", SHADER_FRAGMENT, gl, 1, false));
-    CHECK_STR_CONTAINS(s.error, "GL_MINE");
+    CHECK_STR_CONTAINS(ERR(s), "GL_MINE");
     shader_src_free(&s);
 }
 
@@ -283,7 +292,7 @@ static void test_include_depth_limit(void) {
     shader_src s;
     shader_src_desc d = { .path = tmp("deep.frag"), .stage = SHADER_FRAGMENT };
     CHECK(!shader_src_load(&d, &s));
-    CHECK_STR_CONTAINS(s.error, "d31.glsl:2: error: #include nested too deeply");
+    CHECK_STR_CONTAINS(ERR(s), "d31.glsl:2: error: #include nested too deeply");
     shader_src_free(&s);
 
     /* 32 levels are fine */
@@ -291,7 +300,7 @@ static void test_include_depth_limit(void) {
     write_file("deep32.frag", "#version 330 compatibility\n#include \"d1.glsl\"\nvoid main() {}\n");
     d.path = tmp("deep32.frag");
     bool ok = shader_src_load(&d, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     CHECK_EQ(s.nfiles, 33);
     shader_src_free(&s);
 }
@@ -353,7 +362,7 @@ static void test_include_search_order_and_once(void) {
                           .ninclude_dirs = 1 };
     shader_src s;
     bool ok = shader_src_load(&d, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) {
         CHECK_EQ(s.nfiles, 3);
         CHECK_STR_CONTAINS(s.files[2], "sub/common.glsl");
@@ -389,7 +398,7 @@ static void test_version_line_with_comment_tail(void) {
     d.ndefines = 1;
     shader_src s;
     bool ok = shader_src_load(&d, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) {
         CHECK_EQ(strncmp(s.text, "#version 330 core\n#define X 2\n", 30), 0);
         char *log = fake_compile(s.text, 'g', false);
@@ -429,7 +438,7 @@ static void test_ext_geometry_shader_rewritten(void) {
     shader_src_desc d = { .path = tmp("ext.geom"), .stage = SHADER_GEOMETRY };
     shader_src s;
     bool ok = shader_src_load(&d, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) {
         CHECK_EQ(strncmp(s.text, "#version 150 compatibility", 26), 0);
         CHECK_STR_CONTAINS(s.text, "in vec3 vN[gl_in.length()];\n");
@@ -468,7 +477,7 @@ static void test_ext_geometry_shader_rewritten(void) {
                "void main() { gl_Position = gl_in[0].gl_Position + undefined_own; EmitVertex(); }\n");
     shader_src_desc d2 = { .path = tmp("own.geom"), .stage = SHADER_GEOMETRY };
     ok = shader_src_load(&d2, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) {
         CHECK_EQ(strncmp(s.text, "#version 330 compatibility", 26), 0);
         CHECK_EQ(strstr(s.text, "layout(triangles)"), NULL);
@@ -493,7 +502,7 @@ static void test_ext_geometry_shader_rewritten(void) {
     shader_src_desc d5 = { .path = tmp("inc.geom"), .stage = SHADER_GEOMETRY };
     ok = shader_src_load(&d5, &s);
     CHECK_MSG(ok && !strstr(s.text, "tarn: the input primitive") && !strstr(s.text, "tarn: glman's output"),
-              "%s", ok ? s.text : s.error);
+              "%s", ok ? s.text : ERR(s));
     shader_src_free(&s);
 
     /* only geometry shaders are rewritten */
@@ -522,7 +531,7 @@ static void test_binding_enables_420pack(void) {
         shader_src_desc d = { .path = tmp("b.frag"), .stage = SHADER_FRAGMENT, .gstap = true };
         shader_src s;
         bool ok = shader_src_load(&d, &s);
-        CHECK_MSG(ok, "%s", s.error);
+        CHECK_MSG(ok, "%s", ERR(s));
         if (!ok) { shader_src_free(&s); continue; }
         const char *ext = strstr(s.text, "#extension GL_ARB_shading_language_420pack : enable");
         CHECK_MSG((ext != NULL) == cases[i].want, "case %zu:\n%s", i, s.text);
@@ -567,7 +576,7 @@ static void test_include_quirks(void) {
     shader_src_desc d = { .path = tmp("q.frag"), .stage = SHADER_FRAGMENT };
     shader_src s;
     bool ok = shader_src_load(&d, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) {
         const char *v = strstr(s.text, "#version");
         CHECK(v == s.text && strstr(v + 1, "#version") == NULL);
@@ -584,14 +593,14 @@ static void test_include_quirks(void) {
     write_file("bom.frag", "\xEF\xBB\xBF#version 120\nvoid main() {}\n");
     d.path = tmp("bom.frag");
     ok = shader_src_load(&d, &s);
-    CHECK_MSG(ok, "%s", s.error);
+    CHECK_MSG(ok, "%s", ERR(s));
     if (ok) CHECK_EQ(strncmp(s.text, "#version 120\n", 13), 0);
     shader_src_free(&s);
 
     write_file("bad.frag", "#version 330 compatibility\n#include waves.glsl\nvoid main() {}\n");
     d.path = tmp("bad.frag");
     CHECK(!shader_src_load(&d, &s));
-    CHECK_STR_CONTAINS(s.error, "bad.frag:2: error: malformed #include");
+    CHECK_STR_CONTAINS(ERR(s), "bad.frag:2: error: malformed #include");
     shader_src_free(&s);
 }
 
@@ -618,6 +627,33 @@ static void test_map_log_passthrough(void) {
     m = shader_src_map_log(&s, "");
     CHECK(m && m[0] == '\0');
     free(m);
+    shader_src_free(&s);
+}
+
+/* A driver's log as diags: mapped lines are file:line diags of their
+ * severity; a line of no known shape is kept, bare, as the driver wrote it. */
+static void test_map_diags(void) {
+    shader_src s;
+    bool ok = load(&s, "map_main.frag", SHADER_FRAGMENT, NULL, 0, false);
+    CHECK(ok);
+    if (!ok) { shader_src_free(&s); return; }
+    diag_list l = { 0 };
+    shader_src_map_diags(&s, "0:200001(5): error: 'y' undeclared\nerror: linking failed\n\n"
+                             "WARNING: 0:2: 'x' : something \n", DIAG_NOTE, &l);
+    CHECK_EQ(l.n, 3);
+    if (l.n == 3) {
+        CHECK(l.d[0].severity == DIAG_ERROR && l.d[0].line == 1 && !l.d[0].bare);
+        CHECK_STR_CONTAINS(l.d[0].file, "inc/map_fresnel.glsl");
+        CHECK_STR_EQ(l.d[0].text, "'y' undeclared");
+        CHECK(l.d[1].bare && l.d[1].severity == DIAG_NOTE && l.d[1].file[0] == '\0');
+        CHECK_STR_EQ(l.d[1].text, "error: linking failed");
+        CHECK(l.d[2].severity == DIAG_WARNING && l.d[2].line == 2);
+        CHECK_STR_EQ(l.d[2].text, "'x' : something");
+    }
+    CHECK(l.nerrors == 1 && l.nwarnings == 1);
+    diag_list_free(&l);
+    shader_src_map_diags(&s, NULL, DIAG_NOTE, &l);
+    CHECK_EQ(l.n, 0);
     shader_src_free(&s);
 }
 
@@ -658,15 +694,15 @@ static void test_file_size_limit(void) {
     shader_src s;
     shader_src_desc d = { .path = tmp("big.frag"), .stage = SHADER_FRAGMENT };
     CHECK(!shader_src_load(&d, &s));
-    CHECK_STR_CONTAINS(s.error, "big.frag:2: error: cannot read include");
-    CHECK_STR_CONTAINS(s.error, "larger than 8 MiB");
+    CHECK_STR_CONTAINS(ERR(s), "big.frag:2: error: cannot read include");
+    CHECK_STR_CONTAINS(ERR(s), "larger than 8 MiB");
     shader_src_free(&s);
     struct stat st;
     if (stat("/proc/self/pagemap", &st) == 0 && S_ISREG(st.st_mode)) {
         write_file("proc.frag", "#version 330 compatibility\n#include \"/proc/self/pagemap\"\nvoid main() {}\n");
         d.path = tmp("proc.frag");
         CHECK(!shader_src_load(&d, &s));
-        CHECK_STR_CONTAINS(s.error, "proc.frag:2: error: cannot read include");
+        CHECK_STR_CONTAINS(ERR(s), "proc.frag:2: error: cannot read include");
         shader_src_free(&s);
     }
 }
@@ -690,6 +726,7 @@ int main(void) {
     RUN(test_ext_geometry_shader_rewritten);
     RUN(test_binding_enables_420pack);
     RUN(test_map_log_passthrough);
+    RUN(test_map_diags);
     RUN(test_stage_names_and_paths);
     RUN(test_file_size_limit);
     char cmd[320];

@@ -42,10 +42,10 @@ static bool ring_world(gpu_world *gw, double threshold, unsigned seed) {
     desc.spray = (ref_spray_desc){ .on = true, .threshold = threshold, .rate = 4e5, .life = 3, .seed = seed,
                                    .count = 4096 };
     memset(gw, 0, sizeof *gw);
-    char *log = NULL;
-    bool ok = world_build(gw, &desc, gl_test_sources(), &log);
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    diag_list log = { 0 };
+    bool ok = world_build(gw, &desc, gl_test_sources(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     return ok && gw->spray.active;
 }
 
@@ -186,10 +186,10 @@ static void test_ocean_crests_throw_spray(void) {
     desc.spray = (ref_spray_desc){ .on = true, .threshold = 0.3, .rate = 1e6, .life = 3, .seed = 5, .count = 4096 };
     gpu_world gw;
     memset(&gw, 0, sizeof gw);
-    char *log = NULL;
-    CHECK(world_build(&gw, &desc, gl_test_sources(), &log));
-    if (log) fprintf(stderr, "%s", log);
-    free(log);
+    diag_list log = { 0 };
+    CHECK(world_build(&gw, &desc, gl_test_sources(), &log, NULL));
+    diag_print(&log, stderr);
+    diag_list_free(&log);
     int n = gw.spray.res * gw.spray.res;
     float *pos = malloc((size_t)n * 4 * sizeof(float)), *vel = malloc((size_t)n * 4 * sizeof(float));
     int first = -1, most = 0;

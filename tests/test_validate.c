@@ -22,11 +22,14 @@ static bool check_stage(const char *name, shader_stage st, bool gstap, char **lo
     shader_src s;
     *log = NULL;
     if (!shader_src_load(&d, &s)) {
-        fprintf(stderr, "  load %s: %s\n", name, s.error);
+        fprintf(stderr, "  load %s: %s\n", name, s.error.text);
         shader_src_free(&s);
         return false;
     }
-    bool ok = validate_stage(&s, st, log);
+    diag_list l = { 0 };
+    bool ok = validate_stage(&s, st, &l);
+    *log = diag_list_format(&l, 0);
+    diag_list_free(&l);
     shader_src_free(&s);
     return ok;
 }
@@ -308,8 +311,10 @@ static void test_validate_stage_without_text(void) {
     shader_src s;
     shader_src_desc d = { .path = shader_data("missing_inc.frag"), .stage = SHADER_FRAGMENT };
     CHECK(!shader_src_load(&d, &s));
-    char *log = NULL;
-    CHECK(!validate_stage(&s, SHADER_FRAGMENT, &log));
+    diag_list l = { 0 };
+    CHECK(!validate_stage(&s, SHADER_FRAGMENT, &l));
+    char *log = diag_list_format(&l, 0);
+    diag_list_free(&l);
     CHECK_STR_CONTAINS(log, "missing_inc.frag:3: error: ");
     free(log);
     shader_src_free(&s);

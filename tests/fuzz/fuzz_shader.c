@@ -1,8 +1,8 @@
 /* fuzz_shader: libFuzzer target for shader assembly (shader_src_load:
  * #include resolution, #version / #define / GSTAP placement, #pragma once,
  * cycles, depth) and for mapping compiler logs back to files
- * (shader_src_map_log), then for the hints added to such a log
- * (glsl_hint_annotate, reading the assembled text for declarations). A
+ * (shader_src_map_log, shader_src_map_diags), then for the hints added to
+ * such a log (glsl_hint_add, reading the assembled text for declarations). A
  * geometry stage also runs the GL_EXT_geometry_shader4 rewrite, with the
  * input primitive taken from the size.
  *
@@ -98,7 +98,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         check(h == s.hash, "hash of the text");
     } else {
         check(s.text == NULL, "no text on failure");
-        check(strstr(s.error, ": error: ") != NULL, "a file:line: error: message");
+        check(s.error.severity == DIAG_ERROR && s.error.file[0] && s.error.text[0], "a file:line: error: message");
     }
     for (int i = 0; i < s.nfiles; i++) check(s.files[i] != NULL, "no NULL file");
 
@@ -117,9 +117,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
                                      "ERROR: 0:99999999999999999999: overflow\nplain text\n");
     }
     check(log != NULL, "map_log returns text");
-    char *hinted = glsl_hint_annotate(log, s.text);
-    check(hinted != NULL && strlen(hinted) >= strlen(log), "hints only add lines");
-    free(hinted);
+    diag_list l = { 0 };
+    shader_src_map_diags(&s, log, DIAG_NOTE, &l);   /* mapping mapped lines leaves them */
+    int n = l.n;
+    glsl_hint_add(&l, 0, s.text);
+    check(l.n >= n, "hints only add diags");
+    diag_list_free(&l);
     free(log);
     (void)shader_stage_name(d.stage);
     (void)shader_stage_from_path(s.nfiles ? s.files[s.nfiles - 1] : "x.frag.glsl");

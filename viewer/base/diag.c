@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "mem.h"
+#include "strbuf.h"
 
 const char *diag_severity_name(diag_severity s) {
     return s == DIAG_ERROR ? "error" : s == DIAG_WARNING ? "warning" : "note";
@@ -28,6 +29,20 @@ void diag_add(diag_list *l, diag_severity sev, const char *file, int line, const
     va_start(ap, fmt);
     vsnprintf(d->text, sizeof d->text, fmt, ap);
     va_end(ap);
+}
+
+void diag_add_bare(diag_list *l, diag_severity sev, const char *fmt, ...) {
+    diag *d = push(l, sev, NULL, 0);
+    d->bare = true;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d->text, sizeof d->text, fmt, ap);
+    va_end(ap);
+}
+
+void diag_push(diag_list *l, const diag *d) {
+    diag *x = push(l, d->severity, d->file, d->line);
+    *x = *d;
 }
 
 /* Where the first ": note: ", ": warning: " or ": error: " of s (n bytes)
@@ -69,8 +84,8 @@ static bool parse_line(const char *s, size_t n, diag_severity *sev, char *file, 
     return false;
 }
 
-void diag_add_text(diag_list *l, diag_severity sev, const char *text) {
-    for (const char *s = text; s && *s;) {
+void diag_add_log(diag_list *l, diag_severity sev, const char *log) {
+    for (const char *s = log; s && *s;) {
         const char *e = strchr(s, '\n');
         size_t n = e ? (size_t)(e - s) : strlen(s);
         if (n > 0) {
@@ -83,6 +98,7 @@ void diag_add_text(diag_list *l, diag_severity sev, const char *text) {
                 snprintf(d->text, sizeof d->text, "%.*s", (int)(s + n - t), t);
             } else {
                 diag *d = push(l, sev, NULL, 0);
+                d->bare = true;
                 snprintf(d->text, sizeof d->text, "%.*s", (int)n, s);
             }
         }
@@ -96,7 +112,9 @@ void diag_list_free(diag_list *l) {
 }
 
 void diag_format(const diag *d, char *out, size_t outlen) {
-    if (d->file[0])
+    if (d->bare)
+        snprintf(out, outlen, "%s", d->text);
+    else if (d->file[0])
         snprintf(out, outlen, "%s:%d: %s: %s", d->file, d->line, diag_severity_name(d->severity), d->text);
     else
         snprintf(out, outlen, "tarn: %s: %s", diag_severity_name(d->severity), d->text);
@@ -108,4 +126,15 @@ void diag_print(const diag_list *l, FILE *f) {
         diag_format(&l->d[i], line, sizeof line);
         fprintf(f, "%s\n", line);
     }
+}
+
+char *diag_list_format(const diag_list *l, int from) {
+    strbuf o = { 0 };
+    strbuf_puts(&o, "");
+    char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
+    for (int i = from < 0 ? 0 : from; i < l->n; i++) {
+        diag_format(&l->d[i], line, sizeof line);
+        strbuf_printf(&o, "%s\n", line);
+    }
+    return strbuf_take(&o);
 }

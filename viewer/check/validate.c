@@ -136,13 +136,8 @@ static void msgs_addf(vmsgs *m, diag_severity s, const char *file, int line, con
     msgs_add(m, &d);
 }
 
-/* A compiler's `file:line: error: text` line (or an assembly error) as a
- * message; s when it names no severity. */
-static void msgs_add_text(vmsgs *m, diag_severity s, const char *text) {
-    diag_list l = { 0 };
-    diag_add_text(&l, s, text);
-    for (int i = 0; i < l.n; i++) msgs_add(m, &l.d[i]);
-    diag_list_free(&l);
+static void msgs_add_list(vmsgs *m, const diag_list *l) {
+    for (int i = 0; i < l->n; i++) msgs_add(m, &l->d[i]);
 }
 
 static void msgs_free(vmsgs *m) {
@@ -170,64 +165,69 @@ static bool is_noise(const char *line) {
             strstr(line, " compilation errors"));
 }
 
-/* Splits a (mapped) compiler log into messages. Lines that are neither an
- * error nor a warning continue the message before them. */
-static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m, char **mapped_out) {
-    if (mapped_out) *mapped_out = NULL;
+/* One line of a mapped compiler log that starts a message, as a diag
+ * (pending); false for a continuation line. */
+static bool message_start(const shader_src *src, const char *p, diag *pending) {
+    diag_list l = { 0 };
+    if (starts_with(p, "ERROR: ")) {   /* no location: the stage file's */
+        diag_add(&l, DIAG_ERROR, src->files[0], 0, "%s", p + 7);
+    } else if (starts_with(p, "WARNING: ")) {
+        diag_add(&l, DIAG_WARNING, src->files[0], 0, "%s", p + 9);
+    } else if (strstr(p, ": error") || strstr(p, ": warning")) {
+        const char *er = strstr(p, ": error"), *wa = strstr(p, ": warning");
+        diag_add_log(&l, er && (!wa || er < wa) ? DIAG_ERROR : DIAG_WARNING, p);
+    }
+    bool start = l.n > 0;
+    if (start) *pending = l.d[0];
+    diag_list_free(&l);
+    return start;
+}
+
+/* Splits a compiler log into messages, mapped to the user's files. Lines
+ * that are neither an error nor a warning continue the message before
+ * them. tarn's notes on what NVIDIA let through (glsl_hint) follow their
+ * error. *mapped_out (if wanted) gets the log's lines as diags, for
+ * glsl_fix. */
+static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m, diag_list *mapped_out) {
     if (!log || !log[0]) return;
-    char *raw_mapped = shader_src_map_log(src, log);
-    if (mapped_out) *mapped_out = mem_strdup(raw_mapped);
-    /* tarn's notes on what NVIDIA let through (glsl_hint): kept with their error */
-    char *mapped = glsl_hint_annotate(raw_mapped, src->text);
-    free(raw_mapped);
-    char *pending = NULL;
-    diag_severity pending_sev = DIAG_ERROR;
+    if (mapped_out) shader_src_map_diags(src, log, DIAG_NOTE, mapped_out);
+    char *mapped = shader_src_map_log(src, log);
+    diag_list found = { 0 };
+    diag pending;
+    bool has_pending = false;
     for (char *p = mapped; p && *p;) {
         char *e = strchr(p, '\n');
         if (e) *e = '\0';
         size_t n = strlen(p);
         while (n > 0 && isspace((unsigned char)p[n - 1])) p[--n] = '\0';
-        if (n > 0 && pending && strstr(p, ": note: ")) {
-            char *joined = xprintf("%s\n%s", pending, p);
-            free(pending);
-            pending = joined;
-        } else if (n > 0 && !is_noise(p)) {
-            diag_severity s;
-            char *text = NULL;
-            if (starts_with(p, "ERROR: ")) {
-                s = DIAG_ERROR;
-                text = xprintf("%s:0: error: %s", src->files[0], p + 7);
-            } else if (starts_with(p, "WARNING: ")) {
-                s = DIAG_WARNING;
-                text = xprintf("%s:0: warning: %s", src->files[0], p + 9);
-            } else if (strstr(p, ": error") || strstr(p, ": warning")) {
-                const char *er = strstr(p, ": error"), *wa = strstr(p, ": warning");
-                s = er && (!wa || er < wa) ? DIAG_ERROR : DIAG_WARNING;
-                text = mem_strdup(p);
-            }
-            if (text) {
-                if (pending) msgs_add_text(m, pending_sev, pending);
-                free(pending);
-                pending = text;
-                pending_sev = s;
+        if (n > 0 && !is_noise(p)) {
+            diag next;
+            if (message_start(src, p, &next)) {
+                if (has_pending) diag_push(&found, &pending);
+                pending = next;
+                has_pending = true;
             } else {
                 const char *t = p;
                 while (isspace((unsigned char)*t)) t++;
-                if (pending) {
-                    char *joined = xprintf("%s %s", pending, t);
-                    free(pending);
-                    pending = joined;
+                if (!has_pending) {
+                    memset(&pending, 0, sizeof pending);
+                    pending.severity = compiled ? DIAG_WARNING : DIAG_ERROR;
+                    snprintf(pending.file, sizeof pending.file, "%s", src->files[0]);
+                    has_pending = true;
+                    snprintf(pending.text, sizeof pending.text, "%s", t);
                 } else {
-                    pending = xprintf("%s:0: %s: %s", src->files[0], compiled ? "warning" : "error", t);
-                    pending_sev = compiled ? DIAG_WARNING : DIAG_ERROR;
+                    size_t len = strlen(pending.text);
+                    snprintf(pending.text + len, sizeof pending.text - len, " %s", t);
                 }
             }
         }
         p = e ? e + 1 : NULL;
     }
-    if (pending) msgs_add_text(m, pending_sev, pending);
-    free(pending);
+    if (has_pending) diag_push(&found, &pending);
     free(mapped);
+    glsl_hint_add(&found, 0, src->text);
+    msgs_add_list(m, &found);
+    diag_list_free(&found);
 }
 
 /* ---- glslang -------------------------------------------------------------------- */
@@ -306,10 +306,9 @@ static char *gs_compat_text(const char *text) {
  * string and says yes to anything. The info log collects both steps, so a
  * message can come twice (msgs_add keeps one). */
 static glslang_shader_t *compile_text(const shader_src *src, const char *text, shader_stage st, vmsgs *m,
-                                      bool *ok, char **preprocessed, char **mapped) {
+                                      bool *ok, char **preprocessed, diag_list *mapped) {
     ensure_glslang();
     if (preprocessed) *preprocessed = NULL;
-    if (mapped) *mapped = NULL;
     char *gs_text = st == SHADER_GEOMETRY ? gs_compat_text(text) : NULL;
     glslang_input_t in = make_input(gs_text ? gs_text : text, st);
     glslang_shader_t *sh = glslang_shader_create(&in);
@@ -337,32 +336,19 @@ static glslang_shader_t *compile_text(const shader_src *src, const char *text, s
     return sh;
 }
 
-/* glsl_fix's warnings (`file:line: warning: ...` lines) as messages. */
-static void add_fix_notes(vmsgs *m, const char *notes) {
-    for (const char *p = notes; p && *p;) {
-        const char *e = strchr(p, '\n');
-        char *line = mem_strndup(p, e ? (size_t)(e - p) : strlen(p));
-        if (line[0]) msgs_add_text(m, DIAG_WARNING, line);
-        free(line);
-        p = e ? e + 1 : NULL;
-    }
-}
-
 /* As the renderer does (render_prog.c): the text as written first; when
  * glslang rejects it (or warns of a returned int Mesa rejects) for a
  * construct NVIDIA accepted, glsl_fix's rewrite, which becomes src->text
  * when it compiles, its warnings in m. */
 static glslang_shader_t *compile(shader_src *src, shader_stage st, vmsgs *m, bool *ok, char **preprocessed) {
     vmsgs first = {0};
-    char *mapped = NULL;
-    glslang_shader_t *sh = compile_text(src, src->text, st, &first, ok, preprocessed, &mapped);
-    if (sh && (!*ok || glsl_fix_wanted_by_warning(mapped))) {
-        char *text = NULL, *notes = NULL, *cur = mapped;
-        mapped = NULL;
+    diag_list cur = { 0 }, notes = { 0 };
+    glslang_shader_t *sh = compile_text(src, src->text, st, &first, ok, preprocessed, &cur);
+    if (sh && (!*ok || glsl_fix_wanted_by_warning(&cur))) {
+        char *text = NULL;
         for (int tries = 0; tries < 4; tries++) {
-            char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, cur, &notes);
-            free(cur);
-            cur = NULL;
+            char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, &cur, &notes);
+            diag_list_free(&cur);
             if (!fixed) break;
             free(text);
             text = fixed;
@@ -370,7 +356,7 @@ static glslang_shader_t *compile(shader_src *src, shader_stage st, vmsgs *m, boo
             bool ok2 = false;
             char *pp2 = NULL;
             glslang_shader_t *sh2 = compile_text(src, text, st, &again, &ok2, preprocessed ? &pp2 : NULL, &cur);
-            if (sh2 && ok2 && !glsl_fix_wanted_by_warning(cur)) {
+            if (sh2 && ok2 && !glsl_fix_wanted_by_warning(&cur)) {
                 glslang_shader_delete(sh);
                 sh = sh2;
                 *ok = true;
@@ -379,7 +365,7 @@ static glslang_shader_t *compile(shader_src *src, shader_stage st, vmsgs *m, boo
                 src->text = text;
                 text = NULL;
                 msgs_free(&first);
-                add_fix_notes(&first, notes);
+                msgs_add_list(&first, &notes);   /* glsl_fix's warnings */
                 for (int i = 0; i < again.n; i++) msgs_add(&first, &again.v[i].d);
                 msgs_free(&again);
                 break;
@@ -388,19 +374,19 @@ static glslang_shader_t *compile(shader_src *src, shader_stage st, vmsgs *m, boo
             if (sh2) glslang_shader_delete(sh2);
             msgs_free(&again);
         }
-        free(cur);
         free(text);
-        free(notes);
     }
-    free(mapped);
+    diag_list_free(&cur);
+    diag_list_free(&notes);
     for (int i = 0; i < first.n; i++) msgs_add(m, &first.v[i].d);
     msgs_free(&first);
     return sh;
 }
 
-bool validate_stage(const shader_src *src, shader_stage stage, char **log) {
+bool validate_stage(const shader_src *src, shader_stage stage, diag_list *out) {
     if (!src || !src->text || (unsigned)stage >= SHADER_STAGE_COUNT) {
-        if (log) str_appendf(log, "%s\n", src && src->error[0] ? src->error : "error: no shader text");
+        if (out && src && src->error.text[0]) diag_push(out, &src->error);
+        else if (out) diag_add_bare(out, DIAG_ERROR, "error: no shader text");
         return false;
     }
     vmsgs m = {0};
@@ -410,11 +396,7 @@ bool validate_stage(const shader_src *src, shader_stage stage, char **log) {
     glslang_shader_t *sh = compile(&copy, stage, &m, &ok, NULL);
     free(copy.text);
     if (sh) glslang_shader_delete(sh);
-    char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
-    for (int i = 0; log && i < m.n; i++) {
-        diag_format(&m.v[i].d, line, sizeof line);
-        str_appendf(log, "%s\n", line);
-    }
+    for (int i = 0; out && i < m.n; i++) diag_push(out, &m.v[i].d);
     msgs_free(&m);
     return ok;
 }
@@ -850,10 +832,11 @@ static void relink_fixed(glslang_shader_t **sh, char **pp, shader_src *src, cons
         if (stages[i] == SHADER_FRAGMENT) fi = i;
     if (fi < 0 || !*llog || !strstr(*llog, both)) return;
     shader_src *fs = &src[SHADER_FRAGMENT];
-    char *notes = NULL;
-    char *fixed = glsl_fix_rewrite(fs, SHADER_FRAGMENT, fs->text, "?:0: error: Cannot use gl_FragColor or "
-                                   "gl_FragData when using user-defined outputs", &notes);
-    if (!fixed) return;
+    diag_list why = { 0 }, notes = { 0 };
+    diag_add(&why, DIAG_ERROR, "?", 0, "%s", both);
+    char *fixed = glsl_fix_rewrite(fs, SHADER_FRAGMENT, fs->text, &why, &notes);
+    diag_list_free(&why);
+    if (!fixed) { diag_list_free(&notes); return; }
     vmsgs cm = {0}, m2 = {0};
     bool cok = false;
     char *pp2 = NULL, *log2 = NULL;
@@ -874,7 +857,7 @@ static void relink_fixed(glslang_shader_t **sh, char **pp, shader_src *src, cons
         fs->text = fixed;
         fixed = NULL;
         msgs_free(lm);
-        add_fix_notes(lm, notes);
+        msgs_add_list(lm, &notes);   /* glsl_fix's warnings */
         for (int i = 0; i < m2.n; i++) msgs_add(lm, &m2.v[i].d);
         free(*llog);
         *llog = log2;
@@ -888,7 +871,7 @@ static void relink_fixed(glslang_shader_t **sh, char **pp, shader_src *src, cons
     free(pp2);
     free(log2);
     free(fixed);
-    free(notes);
+    diag_list_free(&notes);
 }
 
 static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cmd, const program_stages *ps) {
@@ -975,7 +958,7 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             shader_src_desc d = program_stage_desc(ps, st, defs, nd, r->include_dirs, 1);
             d.gs_input = program_gs_input(scene, cmd);
             if (!shader_src_load(&d, &src[st])) {
-                msgs_add_text(&m, DIAG_ERROR, src[st].error);
+                msgs_add(&m, &src[st].error);
                 ok = false;
             }
         }
@@ -1001,15 +984,10 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
             msgs_free(&lm);
             const shader_src *srcs[SHADER_STAGE_COUNT] = { NULL };
             for (int i = 0; i < nst; i++) srcs[stages[i]] = &src[stages[i]];
-            char *hint = glsl_fix_link_hint(llog, srcs);   /* a uniform with two types: say where */
-            for (const char *h = hint; h && *h;) {
-                const char *e = strchr(h, '\n');
-                char *line = mem_strndup(h, e ? (size_t)(e - h) : strlen(h));
-                if (line[0]) msgs_add_text(&m, DIAG_NOTE, line);
-                free(line);
-                h = e ? e + 1 : NULL;
-            }
-            free(hint);
+            diag_list hint = { 0 };
+            glsl_fix_link_hint(llog, srcs, &hint);   /* a uniform with two types: say where */
+            msgs_add_list(&m, &hint);
+            diag_list_free(&hint);
             free(llog);
             check_interfaces(src, pp, stages, nst, &m);
         }
@@ -1084,7 +1062,7 @@ static void validate_stage_file(run *r, const char *path, shader_stage st) {
     shader_src_desc d = { .path = path, .stage = st, .include_dirs = r->include_dirs, .ninclude_dirs = 1 };
     vmsgs m = {0};
     if (!shader_src_load(&d, &src)) {
-        msgs_add_text(&m, DIAG_ERROR, src.error);
+        msgs_add(&m, &src.error);
     } else {
         bool ok = false;
         glslang_shader_t *sh = compile(&src, st, &m, &ok, NULL);

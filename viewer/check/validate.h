@@ -40,10 +40,10 @@ typedef struct validate_result {
     int nprograms;
 } validate_result;
 
-/* Compiles one assembled stage with glslang. Appends its messages, mapped
- * to `file:line: error|warning: message` lines, to *log (a heap string,
- * realloc'd; *log may be NULL). Returns true if it compiles. */
-bool validate_stage(const shader_src *src, shader_stage stage, char **log);
+/* Compiles one assembled stage with glslang. Adds its messages, mapped to
+ * the user's file:line, to out (NULL: not wanted). Returns true if it
+ * compiles. */
+bool validate_stage(const shader_src *src, shader_stage stage, diag_list *out);
 
 /* `tarn validate [PATH...]`. Each PATH is a .glib, a pack directory (every
  * *.glib inside, recursively), a shader stage file (the stage from its

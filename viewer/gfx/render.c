@@ -122,9 +122,9 @@ void render_set_world_cache(render *r, bool on) {
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
 
 bool render_set_world_height_map(render *r, bool on) {
-    char *log = NULL;
-    bool ok = world_set_height_map(&r->world, on, &r->sources, &log);
-    free(log);
+    diag_list log = { 0 };
+    bool ok = world_set_height_map(&r->world, on, &r->sources, &log, NULL);
+    diag_list_free(&log);
     world_cache_free(&r->wcache);   /* the world may draw differently now */
     return ok;
 }

@@ -61,7 +61,10 @@ const char *render_messages(const render *r);   /* "" when the last load was cle
  * are in render_messages too. "" when every draw worked. A failed draw
  * draws nothing; the rest of the frame is drawn. */
 const char *render_draw_messages(const render *r);
-/* The same as diagnostics (severity, file, line, text). */
+/* The same as diagnostics (severity, file, line, text), the form the
+ * renderer records them in: render_messages is these, formatted, a line
+ * that several programs reported naming them all (its text ends in
+ * " (fragment shader of programs 'Water', 'Sky')"). */
 const diag_list *render_diags(const render *r);
 bool render_has_errors(const render *r);
 bool render_has_scene(const render *r);

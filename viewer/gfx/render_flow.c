@@ -66,11 +66,11 @@ static unsigned make_map(void) {
 
 /* A Flow texture's velocity map: R and G of the file (file order: its top
  * row at z = -half, GL's first row), linear, clamped at the edges. */
-static bool load_velocity(gpu_flow *f, const prog_sources *src, char **log) {
+static bool load_velocity(gpu_flow *f, const prog_sources *src, diag_list *log) {
     img im = { 0 };
     char err[1200];
     if (!render_res_read_image(src->files, f->d.texture, &im, err, sizeof err) || im.d != 1) {
-        str_appendf(log, "tarn: error: Flow texture: %s\n", im.d > 1 ? "a volume is not a velocity map" : err);
+        diag_add(log, DIAG_ERROR, NULL, 0, "Flow texture: %s", im.d > 1 ? "a volume is not a velocity map" : err);
         img_free(&im);
         return false;
     }
@@ -94,14 +94,15 @@ static bool load_velocity(gpu_flow *f, const prog_sources *src, char **log) {
     return true;
 }
 
-bool flow_build_program(gpu_flow *f, const prog_sources *src, char **log) {
+bool flow_build_program(gpu_flow *f, const prog_sources *src, diag_list *log, prog_origins *from) {
     if (!f->active) return true;
-    bool ok = prog_build(&f->prog, src, log);
+    bool ok = prog_build(&f->prog, src, log, from);
     prog_introspect(&f->prog, log);
     return ok;
 }
 
-bool flow_create(gpu_flow *f, const ref_flow_desc *desc, double half_size, const prog_sources *src, char **log) {
+bool flow_create(gpu_flow *f, const ref_flow_desc *desc, double half_size, const prog_sources *src,
+                  diag_list *log, prog_origins *from) {
     flow_free(f);
     f->d = *desc;
     flow_desc_resolve(&f->d);
@@ -116,7 +117,7 @@ bool flow_create(gpu_flow *f, const ref_flow_desc *desc, double half_size, const
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) ok = false;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (!ok) str_appendf(log, "tarn: error: the flow map's RGBA32F target is not complete on this GL\n");
+    if (!ok) diag_add(log, DIAG_ERROR, NULL, 0, "the flow map's RGBA32F target is not complete on this GL");
     if (f->d.texture[0] && !load_velocity(f, src, log)) ok = false;
     prog *p = &f->prog;
     memset(p, 0, sizeof *p);
@@ -127,7 +128,7 @@ bool flow_create(gpu_flow *f, const ref_flow_desc *desc, double half_size, const
     snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", src->common_dir);
     snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/flow_advect.frag", src->common_dir);
     f->active = true;
-    return flow_build_program(f, src, log) && ok;
+    return flow_build_program(f, src, log, from) && ok;
 }
 
 void flow_free(gpu_flow *f) {

@@ -59,10 +59,12 @@ double flow_phase(int layer, double t, double period);
 void flow_velocity(const ref_flow_desc *d, double x, double z, double v[2]);
 
 /* Creates the maps and builds the pass program from src->common_dir for a
- * world of half size `half_size`. False with a message in *log on errors. */
-bool flow_create(gpu_flow *f, const ref_flow_desc *desc, double half_size, const prog_sources *src, char **log);
+ * world of half size `half_size`. False with a message in log on errors
+ * (from: see prog_build). */
+bool flow_create(gpu_flow *f, const ref_flow_desc *desc, double half_size, const prog_sources *src,
+                  diag_list *log, prog_origins *from);
 void flow_free(gpu_flow *f);
-bool flow_build_program(gpu_flow *f, const prog_sources *src, char **log);
+bool flow_build_program(gpu_flow *f, const prog_sources *src, diag_list *log, prog_origins *from);
 
 /* Advects the map to time t unless it holds t: one pass for a step of at
  * most FLOW_JUMP_DT forwards (a layer whose phase wrapped restarts in it),

@@ -91,9 +91,9 @@ struct render {
     prog_sources sources;          /* include_dirs, common_dir and files, for every program built */
     char path[GLIB_PATH_MAX];
     scene_state cur;
-    char *messages;
+    char *messages;             /* diags, formatted */
     char *draw_messages;        /* problems met drawing (also in messages), since the load */
-    diag_list diags;            /* the messages' diagnostics */
+    diag_list diags;            /* the load's messages, each once, then the draws' */
     bool errors;
     const char **deps;
     int ndeps;
@@ -157,7 +157,10 @@ void render_load_free_deps(render *r);
 void render_load_settings_default(scene_settings *s);
 
 /* ---- render_messages.c ---- */
-void render_messages_set(render *r, char *log);
+/* The load's messages (dl, from: which program's build reported each):
+ * each line once, naming every program that reported it. Takes (frees)
+ * both. */
+void render_messages_set(render *r, diag_list *dl, prog_origins *from);
 /* A problem met drawing command ci: said once a load, with its glib line,
  * in the messages (and the draw messages, for `tarn render`). */
 __attribute__((format(printf, 4, 5)))
@@ -168,7 +171,7 @@ int render_size_slider_count(const scene_state *s, const char *name, int max);
 int render_size_detail_count(const render *r, int n);
 bool render_size_drawn_every_frame(const glib_scene *g, int unit);
 void render_size_targets(render *r, int screen_w, int screen_h);
-void render_size_check_names(const scene_state *s, char **log);
+void render_size_check_names(const scene_state *s, diag_list *log);
 bool render_size_screen_unit(const scene_state *s, int unit);
 
 /* ---- render_exec.c ---- */

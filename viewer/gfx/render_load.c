@@ -81,12 +81,8 @@ static void settings_from_glib(scene_settings *s, const glib_scene *g) {
 
 /* ---- loading ---- */
 
-static void diags_to_log(const glib_scene *g, char **log) {
-    for (int i = 0; i < g->ndiags; i++) {
-        char line[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
-        diag_format(&g->diags[i], line, sizeof line);
-        str_appendf(log, "%s\n", line);
-    }
+static void diags_to_log(const glib_scene *g, diag_list *log) {
+    for (int i = 0; i < g->ndiags; i++) diag_push(log, &g->diags[i]);
 }
 
 static int steal_mesh(scene_state *old, const char *key) {
@@ -95,7 +91,7 @@ static int steal_mesh(scene_state *old, const char *key) {
     return -1;
 }
 
-static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int ci, char **log) {
+static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int ci, diag_list *log) {
     gpu_mesh *m = &s->meshes[s->nmeshes];
     memset(m, 0, sizeof *m);
     render_res_key(c, m->key, sizeof m->key);
@@ -111,7 +107,7 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
                 continue;   /* the key without its file stamp: same command, same file */
             *m = old->meshes[i];   /* with its own key: the next reload retries the file */
             memset(&old->meshes[i], 0, sizeof old->meshes[i]);
-            str_appendf(log, "%s:%d: note: keeping the last good mesh of '%s'\n", c->file, c->line, c->path);
+            diag_add(log, DIAG_NOTE, c->file, c->line, "keeping the last good mesh of '%s'", c->path);
             break;
         }
     }
@@ -119,7 +115,7 @@ static void build_mesh(scene_state *s, scene_state *old, const glib_cmd *c, int 
 }
 
 /* Equal key: reuse. A texture that fails keeps the last good one of that file. */
-static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int ci, char **log) {
+static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int ci, diag_list *log) {
     gpu_tex *t = &s->texs[s->ntexs];
     memset(t, 0, sizeof *t);
     render_res_key(c, t->key, sizeof t->key);
@@ -139,7 +135,7 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
             if (old->texs[i].tex && want[0] && strcmp(old->texs[i].path, want) == 0) {
                 *t = old->texs[i];
                 memset(&old->texs[i], 0, sizeof old->texs[i]);
-                str_appendf(log, "%s:%d: note: keeping the last good image of '%s'\n", c->file, c->line, want);
+                diag_add(log, DIAG_NOTE, c->file, c->line, "keeping the last good image of '%s'", want);
                 break;
             }
         }
@@ -149,7 +145,7 @@ static void build_tex(scene_state *s, scene_state *old, const glib_cmd *c, int c
         for (int i = 0; !t->tex && i < old->ntexs; i++) {
             const gpu_tex *o = &old->texs[i];
             if (!o->tex || o->render_target || o->unit != unit || o->target != target) continue;
-            str_appendf(log, "%s:%d: note: keeping the last good image of unit %d ('%s')\n", c->file, c->line,
+            diag_add(log, DIAG_NOTE, c->file, c->line, "keeping the last good image of unit %d ('%s')",
                         unit, o->path);
             *t = old->texs[i];
             memset(&old->texs[i], 0, sizeof old->texs[i]);
@@ -171,7 +167,7 @@ static prog *find_old_prog(scene_state *old, const char *name) {
 }
 
 static void build_prog(render *r, scene_state *s, scene_state *old, const glib_cmd *c,
-                       const program_stages *st, int ci, char **log) {
+                       const program_stages *st, int ci, diag_list *log, prog_origins *from) {
     prog *p = &s->progs[s->nprogs];
     memset(p, 0, sizeof *p);
     p->unifs = &s->unifs[s->nprogs];
@@ -190,7 +186,8 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     for (int k = 0; k < SHADER_STAGE_COUNT; k++)
         snprintf(p->stage_path[k], sizeof p->stage_path[k], "%s", program_stage_path(st, (shader_stage)k));
     char err[512] = "";
-    if (!glib_unif_set(p->unifs, c, err, sizeof err)) str_appendf(log, "%s\n", err);
+    /* TODO(#28): glib_unif_set's messages as diags (glib.c is being changed on main) */
+    if (!glib_unif_set(p->unifs, c, err, sizeof err)) diag_add_log(log, DIAG_NOTE, err);
     snprintf(p->unifs->program, sizeof p->unifs->program, "%s", c->name);
     prog *o = find_old_prog(old, p->name);
     if (o) {   /* the last good build and the user's values (defines first) */
@@ -203,7 +200,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
         o->cmd = c;   /* marks it taken */
         unif_merge(p->unifs, o->unifs);
     }
-    prog_build(p, &r->sources, log);
+    prog_build(p, &r->sources, log, from);
     prog_introspect(p, log);
     if (o) unif_merge(p->unifs, o->unifs);   /* now both carry shader types */
     s->cmd_res[ci] = s->nprogs++;
@@ -211,19 +208,19 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
 
 /* If/EndIf must pair up; an unmatched one is reported and the renderer
  * treats a missing EndIf as the end of the scene. */
-static void check_if_nesting(const glib_scene *g, char **log) {
+static void check_if_nesting(const glib_scene *g, diag_list *log) {
     int depth = 0;
     const glib_cmd *open_if = NULL;
     for (int i = 0; i < g->ncmds; i++) {
         const glib_cmd *c = &g->cmds[i];
         if (c->kind == GLIB_CMD_IF) { if (depth++ == 0) open_if = c; }
         else if (c->kind == GLIB_CMD_END_IF && --depth < 0) {
-            str_appendf(log, "%s:%d: error: EndIf without an If\n", c->file, c->line);
+            diag_add(log, DIAG_ERROR, c->file, c->line, "EndIf without an If");
             depth = 0;
         }
     }
     if (depth > 0 && open_if)
-        str_appendf(log, "%s:%d: error: If without an EndIf (the block runs to the end)\n", open_if->file, open_if->line);
+        diag_add(log, DIAG_ERROR, open_if->file, open_if->line, "If without an EndIf (the block runs to the end)");
 }
 
 static geom_prim begin_prim(const char *mode) {
@@ -242,7 +239,7 @@ static geom_prim begin_prim(const char *mode) {
 /* glBegin MODE, glVertex ..., glEnd: one mesh of the vertices up to the
  * glEnd (the parser pairs them), drawn where the glBegin stands. Built on
  * every load: a handful of vertices. */
-static void build_begin(scene_state *s, int ci, char **log) {
+static void build_begin(scene_state *s, int ci, diag_list *log) {
     const glib_scene *g = s->glib;
     int n = 0;
     for (int k = ci + 1; k < g->ncmds && g->cmds[k].kind != GLIB_CMD_GL_END; k++) n += g->cmds[k].kind == GLIB_CMD_GL_VERTEX;
@@ -260,21 +257,21 @@ static void build_begin(scene_state *s, int ci, char **log) {
     if (geom_points(&gm, xyz, n, begin_prim(g->cmds[ci].name)) && render_res_mesh_upload(&gm, m))
         s->cmd_res[ci] = s->nmeshes++;
     else
-        str_appendf(log, "%s:%d: error: glBegin: cannot build its %d vertices\n", g->cmds[ci].file, g->cmds[ci].line, n);
+        diag_add(log, DIAG_ERROR, g->cmds[ci].file, g->cmds[ci].line, "glBegin: cannot build its %d vertices", n);
     geom_free(&gm);
     free(xyz);
 }
 
 /* --verbose: each inactive uniform a note at its own glib line. */
-static void note_each_inactive(const scene_state *s, char **log) {
+static void note_each_inactive(const scene_state *s, diag_list *log) {
     for (int i = 0; i < s->nprogs; i++) {
         int n = prog_inactive_uniforms(&s->progs[i], NULL, 0);
         if (n <= 0) continue;
         const unif_entry **found = mem_alloc((size_t)n * sizeof *found);
         n = prog_inactive_uniforms(&s->progs[i], found, n);
         for (int k = 0; k < n; k++)
-            str_appendf(log, "%s:%d: note: uniform '%s' is declared in program '%s' but inactive as built\n",
-                        found[k]->glib_file ? found[k]->glib_file : "?", found[k]->glib_line, found[k]->name,
+            diag_add(log, DIAG_NOTE, found[k]->glib_file ? found[k]->glib_file : "?", found[k]->glib_line,
+                     "uniform '%s' is declared in program '%s' but inactive as built", found[k]->name,
                         s->progs[i].name);
         free(found);
     }
@@ -284,7 +281,7 @@ static void note_each_inactive(const scene_state *s, char **log) {
  * load (issue #30: a line each buried the real messages): the same words
  * at start-up and on every reload. */
 #define INACTIVE_NAMED 8
-static void note_inactive_uniforms(const scene_state *s, bool verbose, char **log) {
+static void note_inactive_uniforms(const scene_state *s, bool verbose, diag_list *log) {
     int total = 0, shown = 0;
     char *list = NULL;
     const unif_entry *first = NULL;
@@ -298,9 +295,10 @@ static void note_inactive_uniforms(const scene_state *s, bool verbose, char **lo
         total += n;
     }
     if (total > 0)   /* at the first one's glib line: an editor jumps there */
-        str_appendf(log, "%s:%d: note: %d uniform%s of the glib %s declared but inactive as built "
-                    "(compiled out by a Define, or unused): %s%s\n",
-                    first && first->glib_file ? first->glib_file : "?", first ? first->glib_line : 0, total,
+        diag_add(log, DIAG_NOTE, first && first->glib_file ? first->glib_file : "?", first ? first->glib_line : 0,
+                 "%d uniform%s of the glib %s declared but inactive as built "
+                 "(compiled out by a Define, or unused): %s%s",
+                 total,
                     total == 1 ? "" : "s", total == 1 ? "is" : "are", list,
                     total > shown ? verbose ? ", ... (each below)" : ", ... (--verbose lists each)" : "");
     free(list);
@@ -323,7 +321,7 @@ static void note_noise_units(scene_state *s) {
     }
 }
 
-static bool build_scene(render *r, scene_state *s, scene_state *old, char **log) {
+static bool build_scene(render *r, scene_state *s, scene_state *old, diag_list *log, prog_origins *from) {
     int n = s->glib->ncmds;
     s->cmd_res = mem_alloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
     s->meshes = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->meshes);
@@ -345,7 +343,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, char **log)
         else if (c->kind == GLIB_CMD_GL_BEGIN) build_begin(s, i, log);
         else if (render_res_is_texture(c->kind)) build_tex(s, old, c, i, log);
         if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY) s->per_frame[i] = render_size_drawn_every_frame(s->glib, (int)c->num[0]);
-        else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log);
+        else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log, from);
         else program_stages_step(&st, c);
     }
     settings_from_glib(&s->set, s->glib);
@@ -390,68 +388,71 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
 }
 
 /* The world the scene describes (if any), rebuilt only when it changed. */
-static void build_world(render *r, const glib_scene *g, char **log) {
+static void build_world(render *r, const glib_scene *g, diag_list *log, prog_origins *from) {
     ref_world_desc desc;
     scene_camera cam;
     bool has_world = false;
     char err[1024] = "";
-    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) str_appendf(log, "%s\n", err);
+    /* TODO(#28): scene_from_glib's messages as diags (scene.c is being changed on main) */
+    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) diag_add_log(log, DIAG_NOTE, err);
     if (has_world && r->water_mesh > 0) desc.water_mesh_res = r->water_mesh;
     r->water_mesh_loaded = r->water_mesh;
     if (r->no_spray) desc.spray.on = false;   /* no state, no pass: as a scene without Spray */
-    if (has_world) world_build(&r->world, &desc, &r->sources, log);
+    if (has_world) world_build(&r->world, &desc, &r->sources, log, from);
     else world_free(&r->world);
 }
 
 bool render_load(render *r, const char *glib_path) {
     if (glib_path && glib_path != r->path) snprintf(r->path, sizeof r->path, "%s", glib_path);
-    char *log = NULL;
+    diag_list log = { 0 };
+    prog_origins from = { 0 };
     glib_options opts = { .packs_dir = r->packs_dir, .pack_override = r->pack[0] ? r->pack : NULL,
                           .files = r->files };
     glib_scene *g = glib_load_opts(r->path, &opts);
     diags_to_log(g, &log);
     if (g->nerrors > 0 && r->cur.glib) {
         /* a half-written glib: keep everything that is on screen */
-        str_appendf(&log, "%s: the scene has errors; keeping the last good scene\n", r->path);
+        diag_add_bare(&log, DIAG_NOTE, "%s: the scene has errors; keeping the last good scene", r->path);
         collect_deps(r, g, &r->cur);
         glib_free(g);
-        render_messages_set(r, log);
+        render_messages_set(r, &log, &from);
         r->errors = true;
         return false;
     }
-    build_world(r, g, &log);
+    build_world(r, g, &log, &from);
     world_cache_free(&r->wcache);   /* the world, its program or the commands may differ */
     world_layers_free(&r->wlayers);
     scene_state fresh;
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
-    build_scene(r, &fresh, &r->cur, &log);
+    build_scene(r, &fresh, &r->cur, &log, &from);
     render_once_keep(r, &r->cur);
     render_load_scene_free(&r->cur);
     r->cur = fresh;
     collect_deps(r, g, &r->cur);
-    render_messages_set(r, log);
+    render_messages_set(r, &log, &from);
     r->errors = g->nerrors > 0 || r->diags.nerrors > 0;
     r->gl_check_each = true;
     return !r->errors;
 }
 
 bool render_rebuild_programs(render *r) {
-    char *log = NULL;
+    diag_list log = { 0 };
+    prog_origins from = { 0 };
     bool ok = true;
     for (int i = 0; i < r->cur.nprogs; i++) {
         prog *p = &r->cur.progs[i];
-        if (!prog_build(p, &r->sources, &log)) ok = false;
+        if (!prog_build(p, &r->sources, &log, &from)) ok = false;
         prog_introspect(p, &log);
     }
     note_noise_units(&r->cur);
     world_cache_free(&r->wcache);   /* the world's program may draw differently now */
     world_layers_free(&r->wlayers);
     if (r->world.active) {
-        if (!world_build_programs(&r->world, &r->sources, &log)) ok = false;
+        if (!world_build_programs(&r->world, &r->sources, &log, &from)) ok = false;
     }
     collect_deps(r, r->cur.glib, &r->cur);
-    render_messages_set(r, log);
+    render_messages_set(r, &log, &from);
     r->errors = !ok;
     r->gl_check_each = true;
     return ok;

@@ -76,21 +76,23 @@ static void init_prog(gpu_ocean *o, int which, const prog_sources *src) {
     }
 }
 
-bool ocean_build_programs(gpu_ocean *o, const prog_sources *src, char **log) {
+bool ocean_build_programs(gpu_ocean *o, const prog_sources *src, diag_list *log, prog_origins *from) {
     if (!o->active) return true;
     bool ok = true;
     for (int i = 0; i < OCEAN_PROGS; i++) {
-        if (!prog_build(&o->progs[i], src, log)) ok = false;
+        if (!prog_build(&o->progs[i], src, log, from)) ok = false;
         prog_introspect(&o->progs[i], log);
     }
     return ok;
 }
 
 bool ocean_create(gpu_ocean *o, int cascades, int res, const float *tile, float lambda, const float *h0,
-                  const float *omega, const prog_sources *src, char **log) {
+                  const float *omega, const prog_sources *src,  diag_list *log,
+                  prog_origins *from) {
     ocean_free(o);
     if (cascades < 1 || cascades > REF_OCEAN_CASCADES_MAX || res < 2 || (res & (res - 1)) != 0) {
-        str_appendf(log, "tarn: error: the ocean's %d cascades of %d^2 are not what the GPU passes take\n", cascades, res);
+        diag_add(log, DIAG_ERROR, NULL, 0, "the ocean's %d cascades of %d^2 are not what the GPU passes take",
+                 cascades, res);
         return false;
     }
     o->cascades = cascades;
@@ -145,13 +147,14 @@ bool ocean_create(gpu_ocean *o, int cascades, int res, const float *tile, float 
         o->slope_var[c] = (float)v;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (!ok) str_appendf(log, "tarn: error: the ocean's RGBA32F targets are not complete on this GL\n");
+    if (!ok) diag_add(log, DIAG_ERROR, NULL, 0, "the ocean's RGBA32F targets are not complete on this GL");
     for (int i = 0; i < OCEAN_PROGS; i++) init_prog(o, i, src);
     o->active = true;
-    return ocean_build_programs(o, src, log) && ok;
+    return ocean_build_programs(o, src, log, from) && ok;
 }
 
-bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const prog_sources *src, char **log) {
+bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const prog_sources *src,
+                        diag_list *log, prog_origins *from) {
     const ref_ocean_desc *d = ref_ocean_get_desc(ref);
     int n = d->res, nc = d->cascades;
     size_t texels = (size_t)n * n;
@@ -162,7 +165,7 @@ bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const prog_sources *s
         ref_ocean_gpu_spectrum(ref, c, h0 + texels * 4 * c, omega + texels * c);
         tile[c] = (float)d->tile[c];
     }
-    bool ok = ocean_create(o, nc, n, tile, (float)d->choppiness, h0, omega, src, log);
+    bool ok = ocean_create(o, nc, n, tile, (float)d->choppiness, h0, omega, src, log, from);
     free(h0);
     free(omega);
     return ok;

@@ -74,18 +74,21 @@ typedef struct gpu_ocean {
 /* Creates the textures from raw initial spectra: h0 is cascades * N * N
  * texels of 4 floats, omega cascades * N * N floats (ref_ocean_gpu_spectrum's
  * layout, cascade after cascade), and builds the pass programs from
- * src->common_dir (packs/common). False with a message in *log on errors. */
+ * src->common_dir (packs/common). False with a message in log on errors
+ * (from: see prog_build). */
 bool ocean_create(gpu_ocean *o, int cascades, int res, const float *tile, float lambda, const float *h0,
-                  const float *omega, const prog_sources *src, char **log);
+                  const float *omega, const prog_sources *src,  diag_list *log,
+                  prog_origins *from);
 
 /* The same from a built reference ocean (its resolved desc and
  * ref_ocean_gpu_spectrum): once per world build. */
-bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const prog_sources *src, char **log);
+bool ocean_create_from(gpu_ocean *o, const ref_ocean *ref, const prog_sources *src,
+                        diag_list *log, prog_origins *from);
 
 void ocean_free(gpu_ocean *o);
 
 /* Rebuilds the pass programs (a shader file changed); false on errors. */
-bool ocean_build_programs(gpu_ocean *o, const prog_sources *src, char **log);
+bool ocean_build_programs(gpu_ocean *o, const prog_sources *src, diag_list *log, prog_origins *from);
 
 /* Computes the frame at time t unless the textures hold it already (and
  * the foam from the frame and the time step since the last), naming

@@ -61,16 +61,24 @@ static void set_deps(prog *p, shader_src *src, int nsrc) {
         for (int f = 0; f < src[s].nfiles; f++) p->deps[p->ndeps++] = mem_strdup(src[s].files[f]);
 }
 
-/* Appends text to *log a line at a time, each tagged with the stage and
- * program it came from (RENDER_PROG_TAG separates them): render_messages.c merges
- * a line that several programs report into one naming them all. */
-static void append_tagged(char **log, const char *text, shader_stage st, const prog *p) {
-    for (const char *s = text; s && *s;) {
-        const char *e = strchr(s, '\n');
-        int n = e ? (int)(e - s) : (int)strlen(s);
-        if (n > 0)
-            str_appendf(log, "%.*s%c%s%c%s\n", n, s, RENDER_PROG_TAG, shader_stage_name(st), RENDER_PROG_TAG, p->name);
-        s += n + (e ? 1 : 0);
+void prog_origins_free(prog_origins *o) {
+    free(o->o);
+    memset(o, 0, sizeof *o);
+}
+
+/* Adds what stage st of p reported to dl, and in from that they came
+ * from it: render_messages.c merges a line that several programs report
+ * into one naming them all. */
+static void add_from_stage(diag_list *dl, const diag_list *msgs, shader_stage st, const prog *p, prog_origins *from) {
+    for (int i = 0; i < msgs->n; i++) {
+        if (from) {
+            from->o = mem_grow(from->o, &from->cap, from->n + 1, sizeof *from->o);
+            prog_origin *o = &from->o[from->n++];
+            o->d = dl->n;
+            o->stage = st;
+            snprintf(o->prog, sizeof o->prog, "%s", p->name);
+        }
+        diag_push(dl, &msgs->d[i]);
     }
 }
 
@@ -89,49 +97,49 @@ static GLuint try_compile(shader_stage st, const char *text, char **raw) {
 
 /* Compiles one stage as written; when the driver rejects it for a
  * construct NVIDIA accepted, compiles glsl_fix's rewrite of what the log
- * names instead (src->text becomes it) and appends a warning per rewrite.
- * On failure appends the mapped log of the text as written, with hints. */
-static GLuint compile_stage(const prog *p, shader_src *src, shader_stage st, char **log) {
+ * names instead (src->text becomes it) and adds a warning per rewrite.
+ * On failure adds the mapped log of the text as written, with hints. */
+static GLuint compile_stage(const prog *p, shader_src *src, shader_stage st, diag_list *dl, prog_origins *from) {
     char *raw = NULL;
     GLuint sh = try_compile(st, src->text, &raw);
     if (sh) return sh;
-    char *mapped = shader_src_map_log(src, raw);
-    char *notes = NULL, *text = NULL, *cur = mem_strdup(mapped);
+    diag_list mapped = { 0 }, cur = { 0 }, notes = { 0 };
+    shader_src_map_diags(src, raw, DIAG_NOTE, &mapped);
+    shader_src_map_diags(src, raw, DIAG_NOTE, &cur);
+    char *text = NULL;
     for (int tries = 0; tries < 4 && !sh; tries++) {
-        char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, cur, &notes);
+        char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, &cur, &notes);
         if (!fixed) break;
         free(text);
         text = fixed;
         char *raw2 = NULL;
         sh = try_compile(st, text, &raw2);
-        free(cur);
-        cur = shader_src_map_log(src, raw2 ? raw2 : "");
+        diag_list_free(&cur);
+        shader_src_map_diags(src, raw2, DIAG_NOTE, &cur);
         free(raw2);
     }
-    free(cur);
+    diag_list_free(&cur);
     if (sh) {
         free(src->text);
         src->text = text;
-        append_tagged(log, notes, st, p);
-        free(notes);
-        free(mapped);
-        free(raw);
-        return sh;
+        add_from_stage(dl, &notes, st, p, from);
+    } else {
+        free(text);
+        /* what NVIDIA let through and Mesa does not, in plain words */
+        glsl_hint_add(&mapped, 0, src->text);
+        if (!mapped.n) diag_add(&mapped, DIAG_ERROR, src->nfiles ? src->files[0] : "?", 0, "compile failed");
+        add_from_stage(dl, &mapped, st, p, from);
     }
-    free(text);
-    free(notes);
-    /* what NVIDIA let through and Mesa does not, in plain words */
-    char *hinted = glsl_hint_annotate(mapped, src->text);
-    char failed[GLIB_PATH_MAX + 64];
-    snprintf(failed, sizeof failed, "%s:0: error: compile failed", src->nfiles ? src->files[0] : "?");
-    append_tagged(log, hinted[0] ? hinted : raw[0] ? raw : failed, st, p);
-    free(hinted);
-    free(mapped);
+    diag_list_free(&notes);
+    diag_list_free(&mapped);
     free(raw);
-    return 0;
+    return sh;
 }
 
-static GLuint link_program(const prog *p, const GLuint *shaders, const shader_src *src, char **log) {
+/* Links the stages; on failure adds the error and the linker's log to dl
+ * and keeps the log, as the driver wrote it, in *raw_out (NULL: not). */
+static GLuint link_program(const prog *p, const GLuint *shaders, const shader_src *src, diag_list *dl,
+                           char **raw_out) {
     GLuint prg = glCreateProgram();
     for (int s = 0; s < SHADER_STAGE_COUNT; s++)
         if (shaders[s]) glAttachShader(prg, shaders[s]);
@@ -142,15 +150,16 @@ static GLuint link_program(const prog *p, const GLuint *shaders, const shader_sr
     glGetProgramiv(prg, GL_LINK_STATUS, &ok);
     if (!ok) {
         char *raw = gl_info_log(prg, true);
-        str_appendf(log, "%s:%d: error: program '%s' failed to link: %s\n",
-                    p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name, raw);
+        int first = (int)strcspn(raw, "\n");
+        diag_add(dl, DIAG_ERROR, p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0,
+                 "program '%s' failed to link: %.*s", p->name, first, raw);
+        if (raw[first]) diag_add_log(dl, DIAG_NOTE, raw + first + 1);   /* the linker's other lines */
         /* a uniform with one type in one stage and another in another: say which */
         const shader_src *srcs[SHADER_STAGE_COUNT];
         for (int s = 0; s < SHADER_STAGE_COUNT; s++) srcs[s] = shaders[s] ? &src[s] : NULL;
-        char *hint = glsl_fix_link_hint(raw, srcs);
-        if (hint) str_appendf(log, "%s", hint);
-        free(hint);
-        free(raw);
+        glsl_fix_link_hint(raw, srcs, dl);
+        if (raw_out) *raw_out = raw;
+        else free(raw);
         glDeleteProgram(prg);
         return 0;
     }
@@ -176,7 +185,7 @@ static bool in_source(const prog *p, const char *name) {
     return false;
 }
 
-bool prog_build(prog *p, const prog_sources *sources, char **log) {
+bool prog_build(prog *p, const prog_sources *sources, diag_list *dl, prog_origins *from) {
     shader_define defines[64];
     int ndefines = collect_defines(p, defines, 64);
     shader_src src[SHADER_STAGE_COUNT];
@@ -192,7 +201,10 @@ bool prog_build(prog *p, const prog_sources *sources, char **log) {
             .files = sources->files,
             .gs_input = program_gs_input(p->scene, p->cmd) };
         if (!shader_src_load(&d, &src[s])) {
-            append_tagged(log, src[s].error, (shader_stage)s, p);
+            diag_list e = { 0 };
+            diag_push(&e, &src[s].error);
+            add_from_stage(dl, &e, (shader_stage)s, p, from);
+            diag_list_free(&e);
             ok = false;
             /* still watch the stage file so fixing it triggers a reload */
             if (!src[s].nfiles) {
@@ -206,9 +218,9 @@ bool prog_build(prog *p, const prog_sources *sources, char **log) {
     }
     set_deps(p, src, SHADER_STAGE_COUNT);
     if (!any) {
-        str_appendf(log, "%s:%d: error: Program '%s' has no shader stage: name files with "
-                    "Vertex and Fragment before the Program line\n",
-                    p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, p->name);
+        diag_add(dl, DIAG_ERROR, p->cmd ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0,
+                 "Program '%s' has no shader stage: name files with Vertex and Fragment before the Program line",
+                 p->name);
         ok = false;
     }
     if (ok && p->good && p->gl && hash == p->hash) {   /* same text: keep the build */
@@ -218,44 +230,45 @@ bool prog_build(prog *p, const prog_sources *sources, char **log) {
     GLuint shaders[SHADER_STAGE_COUNT] = {0};
     for (int s = 0; ok && s < SHADER_STAGE_COUNT; s++) {
         if (!p->stage_path[s][0]) continue;
-        shaders[s] = compile_stage(p, &src[s], (shader_stage)s, log);
+        shaders[s] = compile_stage(p, &src[s], (shader_stage)s, dl, from);
         if (!shaders[s]) ok = false;
     }
     GLuint prg = 0;
     if (ok) {
         /* a flat fragment input over an output without flat (NVIDIA linked it): link the rewrite */
-        char *link_log = NULL;
-        prg = link_program(p, shaders, src, &link_log);
+        char *link_raw = NULL;
+        diag_list link_log = { 0 }, notes = { 0 };
+        prg = link_program(p, shaders, src, &link_log, &link_raw);
         const shader_src *srcs[SHADER_STAGE_COUNT];
         for (int s = 0; s < SHADER_STAGE_COUNT; s++) srcs[s] = shaders[s] ? &src[s] : NULL;
-        char *text = NULL, *notes = NULL;
-        int st = prg ? -1 : glsl_fix_link_rewrite(link_log, srcs, &text, &notes);
+        char *text = NULL;
+        int st = prg ? -1 : glsl_fix_link_rewrite(link_raw, srcs, &text, &notes);
+        free(link_raw);
         char *raw = NULL;
         GLuint sh = st >= 0 ? try_compile((shader_stage)st, text, &raw) : 0;
         free(raw);
         if (sh) {
             GLuint old = shaders[st];
             shaders[st] = sh;
-            char *log2 = NULL;
-            prg = link_program(p, shaders, src, &log2);
+            diag_list log2 = { 0 };
+            prg = link_program(p, shaders, src, &log2, NULL);
             if (prg) {
                 glDeleteShader(old);
                 free(src[st].text);
                 src[st].text = text;
                 text = NULL;
-                free(link_log);
-                link_log = NULL;
-                append_tagged(log, notes, (shader_stage)st, p);
+                diag_list_free(&link_log);
+                add_from_stage(dl, &notes, (shader_stage)st, p, from);
             } else {
                 glDeleteShader(sh);
                 shaders[st] = old;
             }
-            free(log2);
+            diag_list_free(&log2);
         }
-        if (link_log) str_appendf(log, "%s", link_log);
-        free(link_log);
+        for (int i = 0; i < link_log.n; i++) diag_push(dl, &link_log.d[i]);
+        diag_list_free(&link_log);
         free(text);
-        free(notes);
+        diag_list_free(&notes);
     }
     if (prg) keep_source(p, src);
     for (int s = 0; s < SHADER_STAGE_COUNT; s++) {
@@ -307,7 +320,7 @@ static void stages_of(prog *p) {
     p->gs_input = (unsigned)in;
 }
 
-void prog_introspect(prog *p, char **log) {
+void prog_introspect(prog *p, diag_list *dl) {
     for (int i = 0; i < p->unifs->n; i++) {
         p->unifs->entries[i].in_shader = false;
         p->unifs->entries[i].location = -1;
@@ -396,27 +409,24 @@ void prog_introspect(prog *p, char **log) {
             size_t l = strlen(files);
             snprintf(files + l, sizeof files - l, "%s%s", l ? ", " : "", base ? base + 1 : p->stage_path[st]);
         }
-        str_appendf(log, "%s:%d: warning: none of the %d uniforms the glib gives Program '%s' (%s) is declared "
-                         "in its shaders (%s): do the glib and the shaders belong together?\n",
-                    p->cmd && p->cmd->file ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0, nglib, p->name, names,
-                    files[0] ? files : "none");
+        diag_add(dl, DIAG_WARNING, p->cmd && p->cmd->file ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0,
+                 "none of the %d uniforms the glib gives Program '%s' (%s) is declared in its shaders (%s): "
+                 "do the glib and the shaders belong together?", nglib, p->name, names, files[0] ? files : "none");
     }
     for (int i = 0; i < p->unifs->n && !(nglib >= 2 && ndeclared == 0); i++) {
         const unif_entry *e = &p->unifs->entries[i];
         if (e->is_define || !e->from_glib || e->in_shader) continue;
         if (in_source(p, e->name))   /* inactive: one summary line a load (prog_inactive_uniforms) */
             continue;
-        str_appendf(log, "%s:%d: warning: uniform '%s' is not declared in program '%s' "
-                        "(a typo in the glib or the shader?)\n",
-                        e->glib_file ? e->glib_file : "?", e->glib_line, e->name, p->name);
+        diag_add(dl, DIAG_WARNING, e->glib_file ? e->glib_file : "?", e->glib_line,
+                 "uniform '%s' is not declared in program '%s' (a typo in the glib or the shader?)", e->name, p->name);
     }
     for (int i = 0; i < p->unifs->n; i++) {   /* written as another type than declared: not uploaded */
         const unif_entry *e = &p->unifs->entries[i];
-        char why[512];
-        if (e->is_define || !e->from_glib || !e->in_shader || !unif_describe_mismatch(e, why, sizeof why)) continue;
-        const char *rest = strstr(why, ": uniform '");   /* "file:line: uniform ..." -> add "warning:" */
-        str_appendf(log, "%.*s: warning:%s; it is not set\n", rest ? (int)(rest - why) : 0, why,
-                    rest ? rest + 1 : why);
+        const char *why = unif_type_mismatch(e);
+        if (e->is_define || !e->from_glib || !e->in_shader || !why) continue;
+        diag_add(dl, DIAG_WARNING, e->glib_file ? e->glib_file : "(glib)", e->glib_line,
+                 "uniform '%s': %s, but the shader declares %s; it is not set", e->name, why, unif_type_name(e->type));
     }
     p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
 }

@@ -9,19 +9,6 @@
 #include "shader_src.h"
 #include "unif.h"
 
-struct file_cache;
-
-/* Where a program's sources come from: the dirs an `#include` searches
- * after the including file's own, packs/common (where tarn's own world
- * programs live), and the cache every file is read through (file_cache.h),
- * so a rebuild of unchanged files compiles from memory. */
-typedef struct prog_sources {
-    const char *const *include_dirs;
-    int ninclude_dirs;
-    const char *common_dir;
-    struct file_cache *files;
-} prog_sources;
-
 /* fixed[0], [1]: the world program's variants (WORLD_MODE, WORLD_HEIGHT_MAP);
  * from PROG_FIXED_WORLD on: the world's wave models (world_wave_defines) */
 #define PROG_FIXED_WORLD 2
@@ -49,19 +36,45 @@ typedef struct prog {
     const glib_scene *scene;                 /* its glib: sliders that glib commands read */
 } prog;
 
-/* Separates a log line from the stage and program it came from:
- * "LINE\x1fSTAGE\x1fPROGRAM\n" (render_messages.c merges and untags them). */
-#define RENDER_PROG_TAG '\x1f'
+struct file_cache;
+
+/* Where a program's sources come from: the dirs an `#include` searches
+ * after the including file's own, packs/common (where tarn's own world
+ * programs live), and the cache every file is read through (file_cache.h),
+ * so a rebuild of unchanged files compiles from memory. */
+typedef struct prog_sources {
+    const char *const *include_dirs;
+    int ninclude_dirs;
+    const char *common_dir;
+    struct file_cache *files;
+} prog_sources;
+
+/* The program, and the stage of it, whose build reported diag number d of
+ * a load's list: a line that several programs report (an error in a file
+ * they all include) is said once, naming them all (render_messages.c). */
+typedef struct prog_origin {
+    int d;
+    shader_stage stage;
+    char prog[GLIB_NAME_MAX];
+} prog_origin;
+
+typedef struct prog_origins {
+    prog_origin *o;   /* in the order of d */
+    int n, cap;
+} prog_origins;
+
+void prog_origins_free(prog_origins *o);
 
 /* Builds p from its stage paths and defines (from p->unifs' define
- * entries), read through src. On failure p->gl is left as it was (the last good build)
- * and the mapped messages are appended to *log. Returns true on success or
- * when nothing changed. */
-bool prog_build(prog *p, const prog_sources *src, char **log);
+ * entries), read through sources. On failure p->gl is left as it was (the last good build)
+ * and the messages (the driver's, mapped to the user's files, with hints)
+ * are added to dl; from (NULL: not kept) records which of them a stage
+ * reported. Returns true on success or when nothing changed. */
+bool prog_build(prog *p, const prog_sources *sources, diag_list *dl, prog_origins *from);
 
 /* Introspects p->gl: types, locations, uniforms the glib did not mention,
- * glib uniforms the program lacks (a warning in *log). */
-void prog_introspect(prog *p, char **log);
+ * glib uniforms the program lacks (a warning in dl). */
+void prog_introspect(prog *p, diag_list *dl);
 
 /* The glib's uniforms that p declares but its build does not use
  * (compiled out by a Define, or unused and optimised out): not mistakes,

@@ -140,7 +140,7 @@ bool render_res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
     return true;
 }
 
-bool render_res_mesh_build(const glib_cmd *c, file_cache *files, gpu_mesh *m, char **log) {
+bool render_res_mesh_build(const glib_cmd *c, file_cache *files, gpu_mesh *m, diag_list *log) {
     geom_mesh g;
     memset(&g, 0, sizeof g);
     char err[512] = "";
@@ -148,7 +148,7 @@ bool render_res_mesh_build(const glib_cmd *c, file_cache *files, gpu_mesh *m, ch
         /* a file that is still missing: the parser said so at this line
          * ("cannot open 'x.shp' (from command Shp)"); once is enough */
         bool said = c->path[0] && access(c->path, R_OK) != 0;
-        if (!said) str_appendf(log, "%s:%d: error: cannot build %s: %s\n", c->file, c->line,
+        if (!said) diag_add(log, DIAG_ERROR, c->file, c->line, "cannot build %s: %s",
                     glib_cmd_name(c->kind), err[0] ? err : "bad arguments");
         geom_free(&g);
         return false;
@@ -395,10 +395,10 @@ static bool is_raw_name(const char *path) {
 }
 
 /* Reads a raw file for command c into rt, or says why in the log. */
-static bool raw_read_into(file_cache *files, const char *path, int dims, raw_tex *rt, const glib_cmd *c, char **log) {
+static bool raw_read_into(file_cache *files, const char *path, int dims, raw_tex *rt, const glib_cmd *c, diag_list *log) {
     char why[768];
     if (read_raw(files, path, dims, rt, why, sizeof why)) return true;
-    str_appendf(log, "%s:%d: error: %s: %s\n", c->file, c->line, glib_cmd_name(c->kind), why);
+    diag_add(log, DIAG_ERROR, c->file, c->line, "%s: %s", glib_cmd_name(c->kind), why);
     return false;
 }
 
@@ -420,16 +420,16 @@ bool render_res_read_image(file_cache *files, const char *path, img *im, char *e
     return ok;
 }
 
-static bool load_image(file_cache *files, const char *path, img *im, const glib_cmd *c, char **log) {
+static bool load_image(file_cache *files, const char *path, img *im, const glib_cmd *c, diag_list *log) {
     char err[512] = "";
     memset(im, 0, sizeof *im);
     if (render_res_read_image(files, path, im, err, sizeof err)) return true;
-    str_appendf(log, "%s:%d: error: %s: %s\n", c->file, c->line, glib_cmd_name(c->kind), err);
+    diag_add(log, DIAG_ERROR, c->file, c->line, "%s: %s", glib_cmd_name(c->kind), err);
     return false;
 }
 
 /* `Texture2D unit @NAME`: a texture tarn generates (viewer/gfx/assets.h). */
-static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
+static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, diag_list *log) {
     const char *name = c->path + 1;
     int res = strcmp(name, "caustics") == 0 ? 128 : 256;   /* caustics: photon tracing, ~1 s */
     float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
@@ -447,7 +447,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
         ref_world_release(&w);
     }
     if (!ok) {
-        str_appendf(log, "%s:%d: error: Texture2D %s: %s\n", c->file, c->line, c->path, err[0] ? err : "cannot generate");
+        diag_add(log, DIAG_ERROR, c->file, c->line, "Texture2D %s: %s", c->path, err[0] ? err : "cannot generate");
         free(px);
         return false;
     }
@@ -463,7 +463,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, char **log) {
     return true;
 }
 
-static bool tex_2d_file(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
+static bool tex_2d_file(const glib_cmd *c, file_cache *files, gpu_tex *t, diag_list *log) {
     if (c->path[0] == '@') return tex_2d_generated(c, t, log);
     if (is_raw_name(c->path)) {
         raw_tex rt;
@@ -497,13 +497,13 @@ static void target_storage(const gpu_tex *t) {
     glTexImage2D(GL_TEXTURE_2D, 0, (GLint)ifmt, t->w, t->h, 0, fmt, type, NULL);
 }
 
-static bool tex_2d_empty(const glib_cmd *c, gpu_tex *t, char **log) {
+static bool tex_2d_empty(const glib_cmd *c, gpu_tex *t, diag_list *log) {
     /* a size that a slider gives starts at 1 texel: render.c sizes it
      * from the slider before the first frame draws into it */
     t->w = c->name[0] ? 1 : arg_i(c, 1, 0);
     t->h = c->arg[0] ? 1 : arg_i(c, 2, 0);
     if (t->w < 1 || t->h < 1 || t->w > 16384 || t->h > 16384) {
-        str_appendf(log, "%s:%d: error: Texture2D size %dx%d: use 1..16384\n", c->file, c->line, t->w, t->h);
+        diag_add(log, DIAG_ERROR, c->file, c->line, "Texture2D size %dx%d: use 1..16384", t->w, t->h);
         return false;
     }
     t->render_target = true;
@@ -522,11 +522,11 @@ void render_res_target_resize(gpu_tex *t, int w, int h) {
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-static bool tex_3d(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
+static bool tex_3d(const glib_cmd *c, file_cache *files, gpu_tex *t, diag_list *log) {
     if (!c->path[0]) {                       /* Texture3D unit w h d: empty */
         int w = arg_i(c, 1, 0), h = arg_i(c, 2, 0), d = arg_i(c, 3, 0);
         if (w < 1 || h < 1 || d < 1 || (long)w * h * d > (1L << 26)) {
-            str_appendf(log, "%s:%d: error: Texture3D size %dx%dx%d is out of range\n", c->file, c->line, w, h, d);
+            diag_add(log, DIAG_ERROR, c->file, c->line, "Texture3D size %dx%dx%d is out of range", w, h, d);
             return false;
         }
         glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, w, h, d, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
@@ -553,7 +553,7 @@ static bool tex_3d(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log)
     return true;
 }
 
-static bool tex_cube(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
+static bool tex_cube(const glib_cmd *c, file_cache *files, gpu_tex *t, diag_list *log) {
     if (!c->cube_paths) return false;
     for (int f = 0; f < 6; f++) {
         if (is_raw_name(c->cube_paths[f])) {
@@ -577,12 +577,12 @@ static bool tex_cube(const glib_cmd *c, file_cache *files, gpu_tex *t, char **lo
     return true;
 }
 
-static bool tex_noise(const glib_cmd *c, gpu_tex *t, char **log) {
+static bool tex_noise(const glib_cmd *c, gpu_tex *t, diag_list *log) {
     bool is3d = c->kind == GLIB_CMD_NOISE3D;
     int res = arg_i(c, 0, 64);
     int maxres = is3d ? NOISE_3D_MAX_RES : NOISE_2D_MAX_RES;
     if (res < 4 || res > maxres) {
-        str_appendf(log, "%s:%d: error: %s resolution %d: use 4..%d\n", c->file, c->line,
+        diag_add(log, DIAG_ERROR, c->file, c->line, "%s resolution %d: use 4..%d",
                     glib_cmd_name(c->kind), res, maxres);
         return false;
     }
@@ -622,10 +622,10 @@ bool render_res_noise_builtin(file_cache *files, const char *dir, bool is3d, gpu
     return true;
 }
 
-bool render_res_tex_build(const glib_cmd *c, file_cache *files, gpu_tex *t, char **log) {
+bool render_res_tex_build(const glib_cmd *c, file_cache *files, gpu_tex *t, diag_list *log) {
     t->unit = c->kind == GLIB_CMD_NOISE2D ? 2 : c->kind == GLIB_CMD_NOISE3D ? 3 : arg_i(c, 0, 0);
     if (t->unit < 0 || t->unit > 31) {
-        str_appendf(log, "%s:%d: error: texture unit %d: use 0..31\n", c->file, c->line, t->unit);
+        diag_add(log, DIAG_ERROR, c->file, c->line, "texture unit %d: use 0..31", t->unit);
         return false;
     }
     t->target = GL_TEXTURE_2D;

@@ -50,7 +50,7 @@ void render_res_target_resize(gpu_tex *t, int w, int h);
  * raw textures) read through files (file_cache.h; NULL: the disk); a
  * failure is a message in *log at c's line. */
 struct file_cache;
-bool render_res_mesh_build(const glib_cmd *c, struct file_cache *files, gpu_mesh *m, char **log);
+bool render_res_mesh_build(const glib_cmd *c, struct file_cache *files, gpu_mesh *m, diag_list *log);
 struct geom_mesh;
 bool render_res_mesh_upload(const struct geom_mesh *g, gpu_mesh *m);
 void render_res_mesh_draw(const gpu_mesh *m, int tangent_loc);
@@ -73,7 +73,7 @@ void render_res_vertexid_end(void);
  * blending, scissor or culling. */
 void render_res_pass_state(int w, int h);
 
-bool render_res_tex_build(const glib_cmd *c, struct file_cache *files, gpu_tex *t, char **log);
+bool render_res_tex_build(const glib_cmd *c, struct file_cache *files, gpu_tex *t, diag_list *log);
 /* img_read through files (file_cache.h; NULL: the disk); a format
  * OpenImageIO reads only from a file (image_io.h) is read from the disk. */
 struct img;

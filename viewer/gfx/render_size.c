@@ -114,7 +114,7 @@ void render_size_targets(render *r, int screen_w, int screen_h) {
 }
 
 /* Names in sizes and point counts that no Program has: said once a load. */
-void render_size_check_names(const scene_state *s, char **log) {
+void render_size_check_names(const scene_state *s, diag_list *log) {
     for (int i = 0; i < s->glib->ncmds; i++) {
         const glib_cmd *c = &s->glib->cmds[i];
         const char *names[2] = { NULL, NULL };
@@ -125,9 +125,9 @@ void render_size_check_names(const scene_state *s, char **log) {
             if (!names[k] || !names[k][0] || (k == 1 && strcmp(names[1], names[0]) == 0)) continue;
             if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY && screen_divisor(names[k])) continue;
             if (!program_value(s, names[k], &v))
-                str_appendf(log, "%s:%d: warning: %s: no Program of this glib has a uniform '%s' to give "
-                            "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)\n",
-                            c->file, c->line, glib_cmd_name(c->kind), names[k], NAMED_SIZE_FALLBACK, names[k]);
+                diag_add(log, DIAG_WARNING, c->file, c->line, "%s: no Program of this glib has a uniform '%s' to give "
+                         "the size; using %d (add it as a slider, e.g. %s <64 512 2048>)",
+                         glib_cmd_name(c->kind), names[k], NAMED_SIZE_FALLBACK, names[k]);
         }
     }
 }

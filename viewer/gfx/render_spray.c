@@ -43,11 +43,11 @@ void spray_clear(gpu_spray *s) {
     s->valid = false;
 }
 
-bool spray_build_programs(gpu_spray *s, const prog_sources *src, char **log) {
+bool spray_build_programs(gpu_spray *s, const prog_sources *src, diag_list *log, prog_origins *from) {
     if (!s->active) return true;
     bool ok = true;
     for (int i = 0; i < SPRAY_PROGS; i++) {
-        if (!prog_build(&s->progs[i], src, log)) ok = false;
+        if (!prog_build(&s->progs[i], src, log, from)) ok = false;
         prog_introspect(&s->progs[i], log);
     }
     return ok;
@@ -67,7 +67,7 @@ static void init_prog(gpu_spray *s, int which, const prog_sources *src) {
 
 bool spray_create(gpu_spray *s, const ref_spray_desc *desc, double half_size, const prog_sources *src,
                   void (*set_defines)(const void *ctx, prog *p), const void *ctx,
-                  char **log) {
+                  diag_list *log, prog_origins *from) {
     spray_free(s);
     s->d = *desc;
     spray_desc_resolve(&s->d);
@@ -86,7 +86,7 @@ bool spray_create(gpu_spray *s, const ref_spray_desc *desc, double half_size, co
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) ok = false;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (!ok) str_appendf(log, "tarn: error: the spray's RGBA32F state targets are not complete on this GL\n");
+    if (!ok) diag_add(log, DIAG_ERROR, NULL, 0, "the spray's RGBA32F state targets are not complete on this GL");
     memset(s->progs, 0, sizeof s->progs);
     memset(s->unifs, 0, sizeof s->unifs);
     for (int i = 0; i < SPRAY_PROGS; i++) {
@@ -95,7 +95,7 @@ bool spray_create(gpu_spray *s, const ref_spray_desc *desc, double half_size, co
     }
     s->active = true;
     spray_clear(s);
-    return spray_build_programs(s, src, log) && ok;
+    return spray_build_programs(s, src, log, from) && ok;
 }
 
 void spray_free(gpu_spray *s) {

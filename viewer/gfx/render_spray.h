@@ -76,12 +76,13 @@ void spray_desc_resolve(ref_spray_desc *d);
 /* Creates the state (every slot dead) and builds the programs from
  * src->common_dir for a world square of half size half_size; the update
  * program with the world's wave defines (set_defines, may be NULL, is
- * called on each program before it is built). False with *log on errors. */
+ * called on each program before it is built). False with messages in log
+ * on errors. */
 bool spray_create(gpu_spray *s, const ref_spray_desc *desc, double half_size, const prog_sources *src,
                   void (*set_defines)(const void *ctx, prog *p), const void *ctx,
-                  char **log);
+                  diag_list *log, prog_origins *from);
 void spray_free(gpu_spray *s);
-bool spray_build_programs(gpu_spray *s, const prog_sources *src, char **log);
+bool spray_build_programs(gpu_spray *s, const prog_sources *src, diag_list *log, prog_origins *from);
 
 /* Empties every slot (a time jump; tests). */
 void spray_clear(gpu_spray *s);

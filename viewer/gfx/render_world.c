@@ -376,7 +376,8 @@ void world_set_wave_defines(const gpu_world *gw, prog *p) {
 
 static void spray_defines(const void *ctx, prog *p) { world_set_wave_defines(ctx, p); }
 
-static bool build_program(gpu_world *gw, const prog_sources *src, char **log) {
+static bool build_program(gpu_world *gw, const prog_sources *src,  diag_list *log,
+                          prog_origins *from) {
     for (int m = 0; m < WORLD_MODES; m++) {
         prog *p = &gw->progs[m];
         memset(p, 0, sizeof *p);
@@ -410,25 +411,25 @@ static bool build_program(gpu_world *gw, const prog_sources *src, char **log) {
     snprintf(c->name, sizeof c->name, "WorldLayers");
     snprintf(c->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_layers.vert", src->common_dir);
     snprintf(c->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_layers.frag", src->common_dir);
-    return world_build_programs(gw, src, log);
+    return world_build_programs(gw, src, log, from);
 }
 
-bool world_build_programs(gpu_world *gw, const prog_sources *src, char **log) {
+bool world_build_programs(gpu_world *gw, const prog_sources *src, diag_list *log, prog_origins *from) {
     bool ok = true;
     for (int m = 0; m < WORLD_MODES; m++) {
         /* the variants share their source: one log says what is wrong with it */
-        char *mlog = NULL, **to = m == 0 ? log : &mlog;
-        if (!prog_build(&gw->progs[m], src, to)) ok = false;
+        diag_list mlog = { 0 }, *to = m == 0 ? log : &mlog;
+        if (!prog_build(&gw->progs[m], src, to, m == 0 ? from : NULL)) ok = false;
         prog_introspect(&gw->progs[m], to);
-        free(mlog);
+        diag_list_free(&mlog);
     }
-    if (!prog_build(&gw->height_prog, src, log)) ok = false;
+    if (!prog_build(&gw->height_prog, src, log, from)) ok = false;
     prog_introspect(&gw->height_prog, log);
-    if (!prog_build(&gw->layers_prog, src, log)) ok = false;
+    if (!prog_build(&gw->layers_prog, src, log, from)) ok = false;
     prog_introspect(&gw->layers_prog, log);
-    if (!ocean_build_programs(&gw->ocean, src, log)) ok = false;
-    if (!flow_build_program(&gw->flow, src, log)) ok = false;
-    if (!spray_build_programs(&gw->spray, src, log)) ok = false;
+    if (!ocean_build_programs(&gw->ocean, src, log, from)) ok = false;
+    if (!flow_build_program(&gw->flow, src, log, from)) ok = false;
+    if (!spray_build_programs(&gw->spray, src, log, from)) ok = false;
     return ok;
 }
 
@@ -476,10 +477,11 @@ void world_free(gpu_world *gw) {
     gw->height_map_off = off;
 }
 
-bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *src, char **log) {
+bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *src,
+                  diag_list *log, prog_origins *from) {
     if (gw->active && memcmp(&gw->desc, desc, sizeof *desc) == 0) {
         /* same world: only the shaders may have changed */
-        return world_build_programs(gw, src, log);
+        return world_build_programs(gw, src, log, from);
     }
     world_free(gw);
     gw->desc = *desc;
@@ -494,20 +496,20 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *
         gw->nobjects++;
     }
     gw->has_above_water = above_water(&gw->w);
-    if (!ok) str_appendf(log, "tarn: error: could not build the scene's world (out of memory?)\n");
+    if (!ok) diag_add(log, DIAG_ERROR, NULL, 0, "could not build the scene's world (out of memory?)");
     /* the spectrum ocean's textures and passes: only a world with one */
-    if (gw->w.waves.ocean && !ocean_create_from(&gw->ocean, gw->w.waves.ocean, src, log))
+    if (gw->w.waves.ocean && !ocean_create_from(&gw->ocean, gw->w.waves.ocean, src, log, from))
         ok = false;
     /* the flow map and its pass: only a world with a Flow */
     if (gw->w.d.flow.nterms > 0 &&
-        !flow_create(&gw->flow, &gw->w.d.flow, gw->w.d.half_size, src, log))
+        !flow_create(&gw->flow, &gw->w.d.flow, gw->w.d.half_size, src, log, from))
         ok = false;
-    ok = build_program(gw, src, log) && ok;
+    ok = build_program(gw, src, log, from) && ok;
     gw->active = true;
     /* the spray's state and passes: only a world with a Spray; after
      * `active`, which its update program's wave defines need */
     if (gw->w.d.spray.on && !spray_create(&gw->spray, &gw->w.d.spray, gw->w.d.half_size, src,
-                                          spray_defines, gw, log))
+                                          spray_defines, gw, log, from))
         ok = false;
     return ok;
 }
@@ -899,11 +901,12 @@ void world_update_height(gpu_world *gw, double t, double detail) {
     gw->height_hash = gw->height_prog.hash;
 }
 
-bool world_set_height_map(gpu_world *gw, bool on, const prog_sources *src, char **log) {
+bool world_set_height_map(gpu_world *gw, bool on, const prog_sources *src, diag_list *log,
+                          prog_origins *from) {
     if (gw->height_map_off == !on) return true;
     gw->height_map_off = !on;
     if (!gw->active) return true;
     for (int m = 0; m < WORLD_MODES; m++) set_height_define(gw, &gw->progs[m]);
     set_height_define(gw, &gw->layers_prog);
-    return world_build_programs(gw, src, log);
+    return world_build_programs(gw, src, log, from);
 }

@@ -105,11 +105,14 @@ int world_detail_count(int n, double detail, int min);
  * (the level stays as it was). */
 bool world_set_detail(gpu_world *gw, double detail);
 
-/* Builds (or keeps, when desc is unchanged) the world's GPU resources. */
-bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *src, char **log);
+/* Builds (or keeps, when desc is unchanged) the world's GPU resources;
+ * the messages go to log, and from records which program's build
+ * reported each (prog_build; NULL: not kept). */
+bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *src,
+                  diag_list *log, prog_origins *from);
 void world_free(gpu_world *gw);
 /* Builds the world's programs again (a shader file changed); false on errors. */
-bool world_build_programs(gpu_world *gw, const prog_sources *src, char **log);
+bool world_build_programs(gpu_world *gw, const prog_sources *src, diag_list *log, prog_origins *from);
 
 /* The defines that tell packs/common/waves.glsl which wave models this
  * world has (WAVES_MODELS, then WAVES_HAS_SINE, _GERSTNER, _NOISE, _OCEAN,
@@ -150,7 +153,8 @@ void world_update_height(gpu_world *gw, double t, double detail);
 
 /* The height map on (the default) or off (world.frag solves for the
  * surface at every pixel, as before); rebuilds the world's programs. */
-bool world_set_height_map(gpu_world *gw, bool on, const prog_sources *src, char **log);
+bool world_set_height_map(gpu_world *gw, bool on, const prog_sources *src, diag_list *log,
+                          prog_origins *from);
 
 /* Keeps the water's rest grid under the surface at time t. A Gerstner wave
  * moves each rest point by Q_i A_i cos(phase) sideways, at most Q L / (2 pi

@@ -38,7 +38,7 @@ typedef struct fixer {
     int nln;
     edit *ed;
     int ned, cap;
-    strbuf notes;
+    diag_list notes;        /* a warning a rewrite */
     char done[64][64];      /* what was rewritten already (a name, a kind and line) */
     int ndone;
     size_t fn_defs_at;      /* where overloads go; (size_t)-1 none yet */
@@ -136,12 +136,17 @@ static void note(fixer *f, size_t pos, const char *fmt, ...) __attribute__((form
 static void note(fixer *f, size_t pos, const char *fmt, ...) {
     const line_info *l = &f->ln[line_of(f, pos)];
     const char *file = l->file >= 0 && l->file < f->src->nfiles ? f->src->files[l->file] : "?";
-    strbuf_printf(&f->notes, "%s:%ld: warning: ", file, l->line);
+    char text[DIAG_TEXT_MAX];
     va_list ap;
     va_start(ap, fmt);
-    strbuf_vprintf(&f->notes, fmt, ap);
+    vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    strbuf_puts(&f->notes, "\n");
+    diag_add(&f->notes, DIAG_WARNING, file, (int)l->line, "%s", text);
+}
+
+/* Appends the fixer's notes to *notes (NULL: dropped). */
+static void hand_notes(const fixer *f, diag_list *notes) {
+    for (int i = 0; notes && i < f->notes.n; i++) diag_push(notes, &f->notes.d[i]);
 }
 
 static bool done(fixer *f, const char *name) {
@@ -521,24 +526,11 @@ static void fix_outs(fixer *f) {
 /* ---- the log --------------------------------------------------------------------- */
 
 /* "file:line: error: msg" -> its parts (file and line into the buffers). */
-static const char *log_msg(const char *line, char *file, size_t flen, long *lno) {
-    const char *sep = strstr(line, ": error: ");
-    size_t skip = 9;
-    if (!sep) { sep = strstr(line, ": warning: "); skip = 11; }
-    if (!sep) return NULL;
-    const char *colon = sep;
-    while (colon > line && colon[-1] != ':') colon--;
-    if (colon == line) return NULL;
-    *lno = strtol(colon, NULL, 10);
-    size_t n = (size_t)(colon - 1 - line);
-    if (n >= flen) return NULL;
-    memcpy(file, line, n);
-    file[n] = '\0';
-    return sep + skip;
-}
-
-bool glsl_fix_wanted_by_warning(const char *mapped_log) {
-    return mapped_log && strstr(mapped_log, "'return' : type conversion on return values was not explicitly allowed");
+bool glsl_fix_wanted_by_warning(const diag_list *log) {
+    for (int i = 0; log && i < log->n; i++)
+        if (strstr(log->d[i].text, "'return' : type conversion on return values was not explicitly allowed"))
+            return true;
+    return false;
 }
 
 static void fix_message(fixer *f, const char *file, long lno, const char *msg) {
@@ -582,24 +574,17 @@ static int edit_cmp(const void *a, const void *b) {
     return y->prio - x->prio;                           /* higher priority first: ends up right */
 }
 
-char *glsl_fix_rewrite(const shader_src *src, shader_stage stage, const char *text, const char *mapped_log,
-                       char **notes) {
-    if (!src || !text || !mapped_log) return NULL;
+char *glsl_fix_rewrite(const shader_src *src, shader_stage stage, const char *text, const diag_list *log,
+                       diag_list *notes) {
+    if (!src || !text || !log) return NULL;
     fixer f = { .src = src, .stage = stage, .text = text, .n = strlen(text), .fn_defs_at = (size_t)-1 };
     f.b = shader_src_blank_comments(text);
     build_lines(&f);
     build_depths(&f);
-    for (const char *p = mapped_log; *p;) {
-        const char *e = strchr(p, '\n');
-        size_t n = e ? (size_t)(e - p) : strlen(p);
-        char *line = mem_strndup(p, n);
-        char file[1024];
-        long lno = 0;
-        const char *msg = log_msg(line, file, sizeof file, &lno);
-        if (msg && msg[0] != ' ') fix_message(&f, file, lno, msg);
-        free(line);
-        if (!e) break;
-        p = e + 1;
+    for (int i = 0; i < log->n; i++) {   /* its errors and warnings; not Mesa's indented candidates */
+        const diag *d = &log->d[i];
+        if (d->severity >= DIAG_WARNING && !d->bare && d->file[0] && d->text[0] != ' ')
+            fix_message(&f, d->file, d->line, d->text);
     }
     if (f.nfn_defs) {
         strbuf d = {0};
@@ -624,20 +609,26 @@ char *glsl_fix_rewrite(const shader_src *src, shader_stage stage, const char *te
         out = strbuf_take(&o);
         if (strcmp(out, text) == 0) { free(out); out = NULL; }
     }
-    if (out && f.notes.len && notes) str_appendf(notes, "%s", f.notes.s);
+    if (out) hand_notes(&f, notes);
     for (int i = 0; i < f.ned; i++) free(f.ed[i].ins);
     free(f.ed);
     free(f.ln);
     free(f.depth);
     free(f.b);
-    strbuf_free(&f.notes);
+    diag_list_free(&f.notes);
     return out;
 }
 
 /* ---- a uniform with two types ---------------------------------------------------- */
 
+/* Where a declaration is, in the user's files. */
+typedef struct decl_at {
+    const char *file;
+    int line;
+} decl_at;
+
 /* The declaration of uniform name in src's text: its type and file:line. */
-static bool find_uniform(const shader_src *src, const char *name, char *type, size_t tlen, char *where, size_t wlen) {
+static bool find_uniform(const shader_src *src, const char *name, char *type, size_t tlen, decl_at *where) {
     fixer f = { .src = src, .text = src->text, .n = strlen(src->text) };
     f.b = shader_src_blank_comments(src->text);
     build_lines(&f);
@@ -658,7 +649,8 @@ static bool find_uniform(const shader_src *src, const char *name, char *type, si
         if (!last[0]) continue;
         snprintf(type, tlen, "%s", last);
         const line_info *l = &f.ln[line_of(&f, p)];
-        snprintf(where, wlen, "%s:%ld", l->file >= 0 && l->file < src->nfiles ? src->files[l->file] : "?", l->line);
+        where->file = l->file >= 0 && l->file < src->nfiles ? src->files[l->file] : "?";
+        where->line = (int)l->line;
         found = true;
     }
     free(f.ln);
@@ -667,8 +659,9 @@ static bool find_uniform(const shader_src *src, const char *name, char *type, si
     return found;
 }
 
-char *glsl_fix_link_hint(const char *log, const shader_src *const srcs[SHADER_STAGE_COUNT]) {
-    if (!log) return NULL;
+bool glsl_fix_link_hint(const char *log, const shader_src *const srcs[SHADER_STAGE_COUNT], diag_list *notes) {
+    if (!log) return false;
+    bool any = false;
     strbuf o = {0};
     char seen[8][64];
     int nseen = 0;
@@ -692,28 +685,32 @@ char *glsl_fix_link_hint(const char *log, const shader_src *const srcs[SHADER_ST
         for (int i = 0; i < nseen; i++) dup |= strcmp(seen[i], name) == 0;
         if (dup || nseen >= 8) continue;
         snprintf(seen[nseen++], sizeof seen[0], "%s", name);
-        char types[SHADER_STAGE_COUNT][32], where[SHADER_STAGE_COUNT][1100];
+        char types[SHADER_STAGE_COUNT][32];
+        decl_at where[SHADER_STAGE_COUNT];
         int st[SHADER_STAGE_COUNT], n = 0;
         for (int s = 0; s < SHADER_STAGE_COUNT; s++)
             if (srcs[s] && srcs[s]->text &&
-                find_uniform(srcs[s], name, types[n], sizeof types[n], where[n], sizeof where[n]))
+                find_uniform(srcs[s], name, types[n], sizeof types[n], &where[n]))
                 st[n++] = s;
         bool differ = false;
         for (int i = 1; i < n; i++) differ |= strcmp(types[i], types[0]) != 0;
         if (!differ) continue;
-        strbuf_printf(&o, "%s: note: uniform '%s' is declared", where[0], name);
+        o.len = 0;
+        strbuf_printf(&o, "uniform '%s' is declared", name);
         for (int i = 0; i < n; i++)
-            strbuf_printf(&o, "%s %s in the %s shader (%s)", i == 0 ? "" : i == n - 1 ? " and" : ",", types[i],
-                          shader_stage_name((shader_stage)st[i]), where[i]);
+            strbuf_printf(&o, "%s %s in the %s shader (%s:%d)", i == 0 ? "" : i == n - 1 ? " and" : ",", types[i],
+                          shader_stage_name((shader_stage)st[i]), where[i].file, where[i].line);
         strbuf_printf(&o, "; NVIDIA linked this, the GLSL specification does not: one uniform has one type in "
-                      "every stage. Declare it the same in both (the type the glib's value has)\n");
+                      "every stage. Declare it the same in both (the type the glib's value has)");
+        diag_add(notes, DIAG_NOTE, where[0].file, where[0].line, "%s", o.s);
+        any = true;
     }
-    if (!o.len) { strbuf_free(&o); return NULL; }
-    return strbuf_take(&o);
+    strbuf_free(&o);
+    return any;
 }
 
 int glsl_fix_link_rewrite(const char *log, const shader_src *const srcs[SHADER_STAGE_COUNT], char **text,
-                          char **notes) {
+                          diag_list *notes) {
     *text = NULL;
     const char *m = log ? strstr(log, " shader output `") : NULL;
     char name[64];
@@ -757,7 +754,7 @@ int glsl_fix_link_rewrite(const char *log, const shader_src *const srcs[SHADER_S
         }
         strbuf_puts(&o, src->text + pos);
         *text = strbuf_take(&o);
-        if (notes) str_appendf(notes, "%s", f.notes.s);
+        hand_notes(&f, notes);
         ret = st;
     }
     for (int i = 0; i < f.ned; i++) free(f.ed[i].ins);
@@ -765,6 +762,6 @@ int glsl_fix_link_rewrite(const char *log, const shader_src *const srcs[SHADER_S
     free(f.ln);
     free(f.depth);
     free(f.b);
-    strbuf_free(&f.notes);
+    diag_list_free(&f.notes);
     return ret;
 }

@@ -4,8 +4,8 @@
  * glman course projects were written on NVIDIA machines. A stage is
  * always compiled as written first; only when the compiler rejects it
  * does the caller (render_prog.c's compile_stage, validate.c's compile)
- * hand glsl_fix_rewrite() the assembled text and the compiler's log
- * mapped to `file:line: error: message` (shader_src_map_log). For each
+ * hand glsl_fix_rewrite() the assembled text and the compiler's messages
+ * as diags at the user's file:line (shader_src_map_diags). For each
  * message it knows it rewrites that construct, and only that one:
  *
  * - `return 0;` in a float (or vecN, intN) function: `return float(0);`
@@ -36,31 +36,32 @@
 #include "shader_src.h"
 
 /* text: the stage's assembled text (src->text or an earlier rewrite of
- * it); src gives the file names its #line directives number. mapped_log:
- * the failed compile's log, mapped. Returns the rewritten text (heap), or
- * NULL when no message named a construct it can rewrite or the rewrite
- * changed nothing. Appends one `file:line: warning: ...` line per rewrite
- * to *notes (a heap string, may start NULL). */
-char *glsl_fix_rewrite(const shader_src *src, shader_stage stage, const char *text, const char *mapped_log,
-                       char **notes);
+ * it); src gives the file names its #line directives number. log: the
+ * failed compile's messages, mapped (its errors and warnings are read).
+ * Returns the rewritten text (heap), or NULL when no message named a
+ * construct it can rewrite or the rewrite changed nothing. Adds one
+ * DIAG_WARNING per rewrite, at the rewritten line, to notes (NULL: none). */
+char *glsl_fix_rewrite(const shader_src *src, shader_stage stage, const char *text, const diag_list *log,
+                       diag_list *notes);
 
-/* Does this log line (after "error: " / "warning: ") ask for a rewrite
- * although the compiler accepted the text? glslang only warns about
- * `return 1;` in a float function, which Mesa rejects. */
-bool glsl_fix_wanted_by_warning(const char *mapped_log);
+/* Does a message of log ask for a rewrite although the compiler accepted
+ * the text? glslang only warns about `return 1;` in a float function,
+ * which Mesa rejects. */
+bool glsl_fix_wanted_by_warning(const diag_list *log);
 
-/* log: a failed link's log (Mesa's or glslang's); stage texts (NULL for
- * stages a program lacks) with their sources. Returns heap notes
- * (`file:line: note: ...` lines) or NULL when the log names no uniform
- * declared with two types. */
-char *glsl_fix_link_hint(const char *log, const shader_src *const srcs[SHADER_STAGE_COUNT]);
+/* log: a failed link's log, as the linker wrote it (Mesa's or glslang's:
+ * it names no file:line to map); stage texts (NULL for stages a program
+ * lacks) with their sources. Adds a DIAG_NOTE at the first declaration per
+ * uniform declared with two types to notes; false when there is none. */
+bool glsl_fix_link_hint(const char *log, const shader_src *const srcs[SHADER_STAGE_COUNT], diag_list *notes);
 
 /* log: a failed link's log. When it says a fragment shader's input is
  * flat and the stage before writes it without `flat` (GLSL 4.30 and
  * NVIDIA: the fragment shader's qualifier decides), rewrites that output's
  * declaration as `flat out`: returns the stage rewritten, its new text in
- * *text (heap) and a warning in *notes; -1 when the log asks for nothing. */
+ * *text (heap) and a DIAG_WARNING in notes (NULL: none); -1 when the log
+ * asks for nothing. */
 int glsl_fix_link_rewrite(const char *log, const shader_src *const srcs[SHADER_STAGE_COUNT], char **text,
-                          char **notes);
+                          diag_list *notes);
 
 #endif

@@ -291,44 +291,42 @@ static const struct { const char *start, *has; hint_fn fn; } hints[] = {
     { "'gl_", "undeclared identifier", hint_core_builtin },
 };
 
-/* ---- the log ------------------------------------------------------------------- */
+/* ---- the messages -------------------------------------------------------------- */
 
-static void flush(strbuf *o, strbuf *pending) {
-    if (!pending->len) return;
-    strbuf_put(o, pending->s, pending->len);
-    strbuf_puts(o, "\n");
-    pending->len = 0;
-    pending->s[0] = '\0';
+/* The hint for an error's text, into o; false when it names nothing NVIDIA let through. */
+static bool hint_for(const char *msg, const char *source, strbuf *o) {
+    for (size_t i = 0; i < sizeof hints / sizeof hints[0]; i++) {
+        if (strncmp(msg, hints[i].start, strlen(hints[i].start)) != 0) continue;
+        if (hints[i].has && !strstr(msg, hints[i].has)) continue;
+        o->len = 0;
+        if (o->s) o->s[0] = '\0';
+        if (hints[i].fn(msg, source, o) && o->len > 0) return true;
+    }
+    return false;
 }
 
-char *glsl_hint_annotate(const char *log, const char *source) {
-    strbuf o = {0}, pending = {0};
-    strbuf_puts(&o, "");
-    for (const char *p = log ? log : ""; *p;) {
-        const char *e = strchr(p, '\n');
-        size_t n = e ? (size_t)(e - p) : strlen(p);
-        char *line = mem_strndup(p, n);
-        const char *sep = strstr(line, ": error: ");
-        const char *msg = sep ? sep + 9 : NULL;
-        /* Mesa lists candidates under a call as more "error:" lines, indented */
-        if (!msg || msg[0] != ' ') flush(&o, &pending);
-        strbuf_put(&o, p, n);
-        if (e) strbuf_puts(&o, "\n");
-        for (size_t i = 0; msg && msg[0] != ' ' && i < sizeof hints / sizeof hints[0]; i++) {
-            if (strncmp(msg, hints[i].start, strlen(hints[i].start)) != 0) continue;
-            if (hints[i].has && !strstr(msg, hints[i].has)) continue;
-            strbuf_printf(&pending, "%.*s: note: ", (int)(sep - line), line);
-            size_t mark = pending.len;
-            if (hints[i].fn(msg, source, &pending) && pending.len > mark) break;
-            pending.len = 0;
-            pending.s[0] = '\0';
+void glsl_hint_add(diag_list *l, int from, const char *source) {
+    diag_list out = { 0 };
+    diag note = { .severity = DIAG_NOTE };
+    bool pending = false;
+    strbuf h = { 0 };
+    for (int i = 0; i < l->n; i++) {
+        const diag *d = &l->d[i];
+        bool error = i >= from && d->severity == DIAG_ERROR && !d->bare;
+        /* Mesa lists candidates under a call as more errors, indented */
+        if (pending && !(error && d->text[0] == ' ')) {
+            diag_push(&out, &note);
+            pending = false;
         }
-        free(line);
-        if (!e) break;
-        p = e + 1;
+        diag_push(&out, d);
+        if (!error || d->text[0] == ' ' || !hint_for(d->text, source, &h)) continue;
+        snprintf(note.file, sizeof note.file, "%s", d->file);
+        note.line = d->line;
+        snprintf(note.text, sizeof note.text, "%s", h.s);
+        pending = true;
     }
-    if (pending.len && o.len && o.s[o.len - 1] != '\n') strbuf_puts(&o, "\n");
-    flush(&o, &pending);
-    strbuf_free(&pending);
-    return strbuf_take(&o);
+    if (pending) diag_push(&out, &note);
+    strbuf_free(&h);
+    diag_list_free(l);
+    *l = out;
 }

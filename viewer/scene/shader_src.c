@@ -120,11 +120,13 @@ typedef struct asm_ctx {
 static void fail(asm_ctx *c, const char *file, int line, const char *fmt, ...) {
     if (c->failed) return;
     c->failed = true;
-    int n = snprintf(c->out->error, sizeof c->out->error, "%s:%d: error: ", file, line);
-    if (n < 0 || (size_t)n >= sizeof c->out->error) return;
+    diag *d = &c->out->error;
+    d->severity = DIAG_ERROR;
+    snprintf(d->file, sizeof d->file, "%s", file);
+    d->line = line;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(c->out->error + n, sizeof c->out->error - (size_t)n, fmt, ap);
+    vsnprintf(d->text, sizeof d->text, fmt, ap);
     va_end(ap);
 }
 
@@ -714,7 +716,11 @@ done:
     if (!ok) {
         free(c.text.s);
         out->text = NULL;
-        if (!out->error[0]) snprintf(out->error, sizeof out->error, "%s:0: error: cannot assemble shader", path);
+        if (!out->error.text[0]) {
+            out->error.severity = DIAG_ERROR;
+            snprintf(out->error.file, sizeof out->error.file, "%s", path);
+            snprintf(out->error.text, sizeof out->error.text, "cannot assemble shader");
+        }
         return false;
     }
     if (c.gs_marked) add_gs_layouts(&c);
@@ -843,6 +849,12 @@ char *shader_src_map_log(const shader_src *s, const char *log) {
         p = e + 1;
     }
     return o.s;
+}
+
+void shader_src_map_diags(const shader_src *s, const char *log, diag_severity sev, diag_list *out) {
+    char *mapped = shader_src_map_log(s, log);
+    diag_add_log(out, sev, mapped);
+    free(mapped);
 }
 
 const char *shader_stage_name(shader_stage st) {

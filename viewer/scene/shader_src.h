@@ -55,6 +55,7 @@
 #define TARN_SHADER_SRC_H
 
 #include <stdbool.h>
+#include "diag.h"
 
 typedef enum shader_stage {
     SHADER_VERTEX,
@@ -112,7 +113,7 @@ typedef struct shader_src {
                                  * Also filled (with what was found) on failure. */
     int nfiles;
     unsigned long long hash;    /* FNV-1a 64 of text */
-    char error[512];            /* on failure: "file:line: error: message" */
+    diag error;                 /* on failure: the error, at the file:line it concerns */
 } shader_src;
 
 /* Lines of files[k], k >= 1, are numbered k * SHADER_SRC_LINE_BASE + line. */
@@ -121,7 +122,7 @@ typedef struct shader_src {
 #define SHADER_SRC_MAX_FILE_BYTES (8L << 20)   /* one stage file or include */
 
 /* Assembles desc->path into *out (which it zeroes first). Returns false and
- * sets out->error on a missing or unreadable file (or one over 8 MiB), a
+ * sets out->error (a DIAG_ERROR) on a missing or unreadable file (or one over 8 MiB), a
  * missing include, an include cycle, includes nested deeper than 32, a
  * `#version` after other code, or a define name that is not an identifier. Always call
  * shader_src_free() afterwards, whether it succeeded or not. */
@@ -135,6 +136,10 @@ void shader_src_free(shader_src *s);
  * does not recognise, or whose file index is out of range, pass through
  * unchanged. Returns a heap string (never NULL unless out of memory). */
 char *shader_src_map_log(const shader_src *s, const char *log);
+/* The same mapping, into diags (diag_add_log reads each mapped line):
+ * how tarn takes in a compiler's log. Lines of no shape it knows become
+ * bare diags of severity sev, kept as the compiler wrote them. */
+void shader_src_map_diags(const shader_src *s, const char *log, diag_severity sev, diag_list *out);
 
 /* "vertex", "tess control", "tess evaluation", "geometry", "fragment". */
 const char *shader_stage_name(shader_stage st);

@@ -25,14 +25,18 @@ static double time_passes(const ref_ocean_desc *scene, int res, int cascades, ch
         snprintf(note, notelen, "%s", err);
         return NAN;
     }
-    char common[4096], *log = NULL;
+    char common[4096];
+    diag_list log = { 0 };
     snprintf(common, sizeof common, "%s/packs/common", tarn_root());
     const char *inc[1] = { common };
     gpu_ocean g;
     memset(&g, 0, sizeof g);
     double ms = NAN;
-    if (!ocean_create_from(&g, ro, &(prog_sources){ .include_dirs = inc, .ninclude_dirs = 1, .common_dir = common }, &log)) {
-        snprintf(note, notelen, "the ocean's passes do not build: %.200s", log ? log : "?");
+    if (!ocean_create_from(&g, ro, &(prog_sources){ .include_dirs = inc, .ninclude_dirs = 1, .common_dir = common }, &log,
+                           NULL)) {
+        char *text = log.n ? diag_list_format(&log, 0) : NULL;
+        snprintf(note, notelen, "the ocean's passes do not build: %.200s", text ? text : "?");
+        free(text);
     } else {
         double v[BENCH_OCEAN_FRAMES];
         ocean_update(&g, 0.5, NULL);   /* warm: programs linked, textures touched */
@@ -45,7 +49,7 @@ static double time_passes(const ref_ocean_desc *scene, int res, int cascades, ch
         }
         ms = median_double(v, BENCH_OCEAN_FRAMES);
     }
-    free(log);
+    diag_list_free(&log);
     ocean_free(&g);
     ref_ocean_destroy(ro);
     return ms;

@@ -104,13 +104,16 @@ int main(int argc, char **argv) {
                                        .count = counts[c] };
         gpu_world gw;
         memset(&gw, 0, sizeof gw);
-        char *log = NULL;
+        diag_list log = { 0 };
         if (!world_build(&gw, &desc, &(prog_sources){ .include_dirs = inc, .ninclude_dirs = 1, .common_dir = common },
-                         &log)) {
-            fprintf(stderr, "bench_spray: %s\n", log ? log : "the world does not build");
+                         &log, NULL)) {
+            char *text = log.n ? diag_list_format(&log, 0) : NULL;
+            fprintf(stderr, "bench_spray: %s\n", text ? text : "the world does not build");
+            free(text);
+            diag_list_free(&log);
             return 1;
         }
-        free(log);
+        diag_list_free(&log);
         for (int s = 0; s <= 30; s++) world_update_spray(&gw, 1.0 + s / 30.0, NULL);   /* warm: a second */
         glFinish();
         double u[BENCH_SPRAY_FRAMES], d[BENCH_SPRAY_FRAMES];
