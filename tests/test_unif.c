@@ -1,6 +1,7 @@
 /* test_unif: the uniform model (uniforms/unif.c) without OpenGL or the
  * parser: glib Program commands are built by hand here. */
 #include "check.h"
+#include "strbuf.h"
 #include "glib.h"
 #include "unif.h"
 
@@ -12,6 +13,18 @@
 #include <unistd.h>
 
 #define FILE_NAME "scene.glib"
+
+
+/* glib_unif_set, its diags formatted into err one a line ("" when none). */
+static bool unif_set_said(unif_set *set, const glib_cmd *cmd, char *err, size_t errlen) {
+    diag_list dl = { 0 };
+    bool ok = glib_unif_set(set, cmd, &dl);
+    char *said = diag_list_format(&dl, 0);
+    msg_set(err, errlen, "%s", said);
+    free(said);
+    diag_list_free(&dl);
+    return ok;
+}
 
 static unif_decl mk(const char *name, unif_decl_kind kind, int line, int n, const double *v) {
     unif_decl u;
@@ -96,7 +109,7 @@ static void test_from_glib_kinds(void) {
     glib_cmd cmd = program("Water", u, 6, d, 5);
     unif_set set = {0};
     char err[512] = "junk";
-    CHECK(glib_unif_set(&set, &cmd, err, sizeof err));
+    CHECK(unif_set_said(&set, &cmd, err, sizeof err));
     CHECK_EQ(err[0], '\0');
     CHECK_STR_EQ(set.program, "Water");
     CHECK_EQ(set.n, 11);
@@ -156,10 +169,10 @@ static void test_not_a_program(void) {
     cmd.line = 4;
     unif_set set = {0};
     char err[256];
-    CHECK(!glib_unif_set(&set, &cmd, err, sizeof err));
+    CHECK(!unif_set_said(&set, &cmd, err, sizeof err));
     CHECK_STR_CONTAINS(err, "scene.glib:4:");
     CHECK_EQ(set.n, 0);
-    CHECK(!glib_unif_set(&set, NULL, NULL, 0));
+    CHECK(!glib_unif_set(&set, NULL, NULL));
 }
 
 /* ---- shader types ---- */
@@ -173,7 +186,7 @@ static void test_int_vs_float_slider(void) {
     };
     glib_cmd cmd = program("P", u, 4, NULL, 0);
     unif_set set = {0};
-    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL));
     unif_entry *e = unif_set_shader_type(&set, "uSteps", UNIF_INT, 1, 7);
     CHECK_EQ(e, unif_find(&set, "uSteps"));
     CHECK(e && e->type == UNIF_INT && e->in_shader && e->location == 7 && unif_is_int(e));
@@ -220,7 +233,7 @@ static void test_fit_arrays_and_colours(void) {
     };
     glib_cmd cmd = program("P", u, 8, NULL, 0);
     unif_set set = {0};
-    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL));
 
     unif_entry *e = unif_set_shader_type(&set, "uDir", UNIF_VEC3, 1, 1);
     CHECK(e && e->array_len == 1 && e->ncomp == 3 && !unif_type_mismatch(e) && unif_uploadable(e));
@@ -253,7 +266,7 @@ static void test_type_mismatch(void) {
     };
     glib_cmd cmd = program("P", u, 5, NULL, 0);
     unif_set set = {0};
-    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL));
     CHECK_EQ(unif_type_mismatch(unif_find(&set, "uCol")), NULL);   /* nothing known yet */
 
     unif_entry *e = unif_set_shader_type(&set, "uCol", UNIF_FLOAT, 1, 1);
@@ -343,18 +356,18 @@ static void test_malformed_ranges_repaired(void) {
     glib_cmd cmd = program("P", u, 13, NULL, 0);
     unif_set set = {0};
     char err[4096];
-    CHECK(!glib_unif_set(&set, &cmd, err, sizeof err));
-    CHECK_STR_CONTAINS(err, "scene.glib:20: uniform 'uSwap': min 5 is greater than max 0; swapped");
-    CHECK_STR_CONTAINS(err, "scene.glib:21: uniform 'uNan': default is not a finite number");
-    CHECK_STR_CONTAINS(err, "scene.glib:22: uniform 'uOut': default 7 is outside");
-    CHECK_STR_CONTAINS(err, "scene.glib:23: uniform 'uInf': max is not a finite number");
-    CHECK_STR_CONTAINS(err, "scene.glib:24: uniform 'uHuge': min is not a finite number");
-    CHECK_STR_CONTAINS(err, "scene.glib:25: uniform 'uTwo'");
-    CHECK_STR_CONTAINS(err, "scene.glib:27: uniform 'uCol'");
-    CHECK_STR_CONTAINS(err, "scene.glib:28: uniform 'uCol2'");
-    CHECK_STR_CONTAINS(err, "scene.glib:29: uniform 'uB'");
+    CHECK(!unif_set_said(&set, &cmd, err, sizeof err));
+    CHECK_STR_CONTAINS(err, "scene.glib:20: warning: uniform 'uSwap': min 5 is greater than max 0; swapped");
+    CHECK_STR_CONTAINS(err, "scene.glib:21: warning: uniform 'uNan': default is not a finite number");
+    CHECK_STR_CONTAINS(err, "scene.glib:22: warning: uniform 'uOut': default 7 is outside");
+    CHECK_STR_CONTAINS(err, "scene.glib:23: warning: uniform 'uInf': max is not a finite number");
+    CHECK_STR_CONTAINS(err, "scene.glib:24: warning: uniform 'uHuge': min is not a finite number");
+    CHECK_STR_CONTAINS(err, "scene.glib:25: warning: uniform 'uTwo'");
+    CHECK_STR_CONTAINS(err, "scene.glib:27: warning: uniform 'uCol'");
+    CHECK_STR_CONTAINS(err, "scene.glib:28: warning: uniform 'uCol2'");
+    CHECK_STR_CONTAINS(err, "scene.glib:29: warning: uniform 'uB'");
     CHECK_STR_CONTAINS(err, "scene.glib:30:");
-    CHECK_STR_CONTAINS(err, "scene.glib:32: uniform 'uSwap': written twice (first at line 20)");
+    CHECK_STR_CONTAINS(err, "scene.glib:32: warning: uniform 'uSwap': written twice (first at line 20)");
 
     unif_entry *e = unif_find(&set, "uSwap");
     CHECK(e && e->min == 0.0f && e->max == 5.0f && e->def[0] == 1.0f && e->glib_line == 32);
@@ -388,12 +401,19 @@ static void test_malformed_ranges_repaired(void) {
     CHECK_EQ(set.n, 11);
     unif_set_free(&set);
 
-    /* a tiny message buffer or none at all is fine */
-    char small[8];
-    CHECK(!glib_unif_set(&set, &cmd, small, sizeof small));
-    CHECK_LT(strlen(small), sizeof small);
+    /* each repair a warning at its line; no list at all is fine */
+    diag_list dl = { 0 };
+    CHECK(!glib_unif_set(&set, &cmd, &dl));
+    CHECK_EQ(dl.nwarnings, dl.n);
+    CHECK_EQ(dl.nerrors, 0);
+    CHECK_GE(dl.n, 11);
+    if (dl.n > 0) {
+        CHECK_STR_EQ(dl.d[0].file, "scene.glib");
+        CHECK_EQ(dl.d[0].line, 20);
+    }
+    diag_list_free(&dl);
     unif_set_free(&set);
-    CHECK(!glib_unif_set(&set, &cmd, NULL, 0));
+    CHECK(!glib_unif_set(&set, &cmd, NULL));
     unif_set_free(&set);
 
     /* glib kinds a define cannot take, and counts beyond the arrays */
@@ -401,8 +421,8 @@ static void test_malformed_ranges_repaired(void) {
     unif_decl big = mk("uBig", UNIF_DECL_ARRAY, 7, 3, (const double[]){1, 2, 3});
     big.n = 1000;
     glib_cmd cmd2 = program("P", &big, 1, d, 2);
-    CHECK(!glib_unif_set(&set, &cmd2, err, sizeof err));
-    CHECK_STR_CONTAINS(err, "scene.glib:5: define 'TINT'");
+    CHECK(!unif_set_said(&set, &cmd2, err, sizeof err));
+    CHECK_STR_CONTAINS(err, "scene.glib:5: warning: define 'TINT'");
     CHECK(unif_find(&set, "TINT") == NULL && unif_find(&set, "OK") != NULL);
     e = unif_find(&set, "uBig");
     CHECK(e && e->ncomp == UNIF_MAX_COMPONENTS);
@@ -416,7 +436,7 @@ static void build(unif_set *set, unif_decl *u, int nu, unif_decl *d, int nd,
                   const char *const *names, const unif_type *types, int ntypes) {
     glib_cmd cmd = program("Water", u, nu, d, nd);
     memset(set, 0, sizeof *set);
-    glib_unif_set(set, &cmd, NULL, 0);
+    glib_unif_set(set, &cmd, NULL);
     for (int i = 0; i < ntypes; i++) unif_set_shader_type(set, names[i], types[i], 1, i);
 }
 
@@ -517,7 +537,7 @@ static void test_merge_twice_like_the_renderer(void) {
 
     glib_cmd cmd = program("Water", u, 2, NULL, 0);
     unif_set fresh = {0};
-    glib_unif_set(&fresh, &cmd, NULL, 0);
+    glib_unif_set(&fresh, &cmd, NULL);
     unif_merge(&fresh, &old);
     for (int i = 0; i < 2; i++) unif_set_shader_type(&fresh, names[i], t_new[i], 1, i);
     unif_merge(&fresh, &old);
@@ -537,7 +557,7 @@ static void test_reset_all(void) {
     unif_decl d[] = { BOOLU("FOAM", 8, 0) };
     glib_cmd cmd = program("P", u, 1, d, 1);
     unif_set set = {0};
-    CHECK(glib_unif_set(&set, &cmd, NULL, 0));
+    CHECK(glib_unif_set(&set, &cmd, NULL));
     unif_set_component(unif_find(&set, "uK"), 0, 1.0);
     CHECK(!unif_reset_all_ex(&set));                 /* no define moved */
     CHECK_EQ(unif_find(&set, "uK")->value[0], 0.5f);
@@ -568,12 +588,12 @@ static void build_presets(two_sets *t) {
     const unif_type t1[] = { UNIF_FLOAT, UNIF_INT, UNIF_VEC4, UNIF_BOOL, UNIF_SAMPLER, UNIF_VEC3 };
     glib_cmd cmd = program("Water", u1, 5, d1, 1);
     memset(t, 0, sizeof *t);
-    glib_unif_set(&t->s[0], &cmd, NULL, 0);
+    glib_unif_set(&t->s[0], &cmd, NULL);
     for (int i = 0; i < 6; i++) unif_set_shader_type(&t->s[0], n1[i], t1[i], 1, i);
 
     unif_decl u2[] = { SLIDER("uK", 20, 0, 0.5, 1) };
     glib_cmd cmd2 = program("Sky", u2, 1, NULL, 0);
-    glib_unif_set(&t->s[1], &cmd2, NULL, 0);
+    glib_unif_set(&t->s[1], &cmd2, NULL);
 }
 
 static void free_presets(two_sets *t) {

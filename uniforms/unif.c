@@ -130,8 +130,7 @@ void unif_set_free(unif_set *set) {
 typedef struct where {
     const char *file, *what, *name;
     int line;
-    char *err;
-    int errlen;
+    diag_list *dl;   /* may be NULL */
     bool ok;
 } where;
 
@@ -141,7 +140,7 @@ static void problem(where *w, const char *fmt, ...) {
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    msg_add(w->err, w->errlen, "%s:%d: %s '%s': %s", w->file, w->line, w->what, w->name, text);
+    if (w->dl) diag_add(w->dl, DIAG_WARNING, w->file, w->line, "%s '%s': %s", w->what, w->name, text);
     w->ok = false;
 }
 
@@ -258,13 +257,13 @@ static bool fill_entry(unif_entry *e, const unif_decl *u, bool is_define, where 
 }
 
 static void add_decl(unif_set *set, const unif_decl *u, bool is_define,
-                     const unif_program_decl *cmd, char *err, int errlen, bool *ok) {
+                     const unif_program_decl *cmd, diag_list *dl, bool *ok) {
     where w = {
         .file = u->file ? u->file : cmd->file ? cmd->file : "(glib)",
         .what = is_define ? "define" : "uniform",
         .name = u->name,
         .line = u->line > 0 ? u->line : cmd->line,
-        .err = err, .errlen = errlen, .ok = true,
+        .dl = dl, .ok = true,
     };
     if (u->name[0] == '\0') {
         w.name = "";
@@ -292,15 +291,14 @@ static void add_decl(unif_set *set, const unif_decl *u, bool is_define,
     if (!w.ok) *ok = false;
 }
 
-bool unif_set_from_decls(unif_set *set, const unif_program_decl *program, char *err, int errlen) {
-    msg_clear(err, errlen);
+bool unif_set_from_decls(unif_set *set, const unif_program_decl *program, diag_list *dl) {
     if (!set || !program) return false;
     copy_name(set->program, program->name ? program->name : "");
     bool ok = true;
     for (int i = 0; program->defines && i < program->ndefines; i++)
-        add_decl(set, &program->defines[i], true, program, err, errlen, &ok);
+        add_decl(set, &program->defines[i], true, program, dl, &ok);
     for (int i = 0; program->uniforms && i < program->nuniforms; i++)
-        add_decl(set, &program->uniforms[i], false, program, err, errlen, &ok);
+        add_decl(set, &program->uniforms[i], false, program, dl, &ok);
     return ok;
 }
 

@@ -14,6 +14,7 @@
 
 #include <stdbool.h>
 #include "unif_decl.h"
+#include "diag.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -67,7 +68,7 @@ typedef struct unif_set {
 /* Fills set (zeroed by the caller) from a Program's declarations: its
  * uniforms and its defines (glib_program_decl gives them for a Program
  * command). Types are guessed from the syntax until the renderer calls
- * unif_set_shader_type(). Returns false with a file:line message in err when a
+ * unif_set_shader_type(). Returns false with a warning at its file and line in dl when a
  * uniform is malformed for its kind (min > max, NaN): the entry is still added
  * with a repaired range so the panel works.
  *
@@ -77,9 +78,9 @@ typedef struct unif_set {
  * its numbers are whole. Repairs (each a message): non-finite numbers (NaN,
  * inf, beyond float) become 0 (min 0 / max 1), min > max is swapped, a
  * default outside the range is clamped, a wrong count of numbers is padded
- * or cut; a name written twice keeps the last. err gets one message a line
- * (err may be NULL). */
-bool unif_set_from_decls(unif_set *set, const unif_program_decl *program, char *err, int errlen);
+ * or cut; a name written twice keeps the last. Each repair is a warning in
+ * dl (may be NULL): "uniform 'uX': min 5 is greater than max 0; swapped". */
+bool unif_set_from_decls(unif_set *set, const unif_program_decl *program, diag_list *dl);
 
 /* Records the type the linked shader declares for name (and its location).
  * Adds an introspected entry with a sensible default range and widget when

@@ -113,22 +113,25 @@ static void exercise(const glib_scene *g) {
         check(c->nnum >= 0 && c->nnum <= GLIB_MAX_NUMS, "nnum in range");
         (void)glib_cmd_name(c->kind);
         if (c->kind != GLIB_CMD_PROGRAM) continue;
-        char err[2048];
+        diag_list said = {0};
         unif_set old = {0}, fresh = {0};
-        glib_unif_set(&old, c, err, sizeof err);
+        glib_unif_set(&old, c, &said);
         exercise_set(&old, i);
-        glib_unif_set(&fresh, c, err, sizeof err);
+        glib_unif_set(&fresh, c, &said);
         unif_merge(&fresh, &old);          /* what a reload does */
         exercise_set(&fresh, i + 1);
         unif_merge(&fresh, &old);
         unif_set_free(&old);
         unif_set_free(&fresh);
+        diag_list_free(&said);
     }
     ref_world_desc world;
     scene_camera cam;
     bool has_world = false;
-    char err[1024];
-    scene_from_glib(g, &world, &cam, &has_world, err, sizeof err);
+    diag_list repairs = {0};
+    scene_from_glib(g, &world, &cam, &has_world, &repairs);
+    check(repairs.nwarnings == repairs.n, "the world's repairs are warnings");
+    diag_list_free(&repairs);
     if (has_world) {
         static ref_world w;
         ref_world_init(&w, &world);

@@ -43,7 +43,7 @@ static int make_sets(unif_set sets[2]) {
         const glib_cmd *c = &scene->cmds[i];
         if (c->kind != GLIB_CMD_PROGRAM) continue;
         unif_set *s = &sets[n++];
-        glib_unif_set(s, c, NULL, 0);
+        glib_unif_set(s, c, NULL);
         snprintf(s->program, sizeof s->program, "%s", c->name);
         static const struct { const char *name; unif_type t; int len; } decl[] = {
             { "uA", UNIF_FLOAT, 1 }, { "uN", UNIF_INT, 1 }, { "uOn", UNIF_BOOL, 1 },

@@ -4,9 +4,7 @@
  * hands the list on; none of them writes a message as text for another to
  * read back. One function prints them, as `file:line: warning|error: text`.
  * The only text read into diags is a tool's log (the GL driver's,
- * glslang's): diag_add_log. (Still read back too, until they record
- * diags: the err buffers of glib_unif_set and scene_from_glib, in
- * render_load.c; TODO #28.) */
+ * glslang's): diag_add_log. */
 #ifndef TARN_DIAG_H
 #define TARN_DIAG_H
 

@@ -369,11 +369,11 @@ static bool world_for(const char *scene, ref_world *w) {
         glib_scene *g = glib_load(scene);
         glib_print_diags(g, stderr);
         int nerr = g->nerrors;
-        char msgs[4096];
+        diag_list repairs = { 0 };
         scene_camera cam;
         bool has;
-        if (!nerr && !scene_from_glib(g, &d, &cam, &has, msgs, sizeof msgs))
-            fprintf(stderr, "%s\n", msgs);
+        if (!nerr && !scene_from_glib(g, &d, &cam, &has, &repairs)) diag_print(&repairs, stderr);
+        diag_list_free(&repairs);
         glib_free(g);
         if (nerr) {
             fprintf(stderr, "tarn assets: %s has errors; nothing written\n", scene);

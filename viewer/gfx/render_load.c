@@ -185,9 +185,7 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->scene = s->glib;
     for (int k = 0; k < SHADER_STAGE_COUNT; k++)
         snprintf(p->stage_path[k], sizeof p->stage_path[k], "%s", program_stage_path(st, (shader_stage)k));
-    char err[512] = "";
-    /* TODO(#28): glib_unif_set's messages as diags (glib.c is being changed on main) */
-    if (!glib_unif_set(p->unifs, c, err, sizeof err)) diag_add_log(log, DIAG_NOTE, err);
+    glib_unif_set(p->unifs, c, log);
     snprintf(p->unifs->program, sizeof p->unifs->program, "%s", c->name);
     prog *o = find_old_prog(old, p->name);
     if (o) {   /* the last good build and the user's values (defines first) */
@@ -392,9 +390,7 @@ static void build_world(render *r, const glib_scene *g, diag_list *log, prog_ori
     ref_world_desc desc;
     scene_camera cam;
     bool has_world = false;
-    char err[1024] = "";
-    /* TODO(#28): scene_from_glib's messages as diags (scene.c is being changed on main) */
-    if (!scene_from_glib(g, &desc, &cam, &has_world, err, sizeof err)) diag_add_log(log, DIAG_NOTE, err);
+    scene_from_glib(g, &desc, &cam, &has_world, log);
     if (has_world && r->water_mesh > 0) desc.water_mesh_res = r->water_mesh;
     r->water_mesh_loaded = r->water_mesh;
     if (r->no_spray) desc.spray.on = false;   /* no state, no pass: as a scene without Spray */

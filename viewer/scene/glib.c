@@ -379,15 +379,12 @@ unif_program_decl glib_program_decl(const glib_cmd *c) {
     return d;
 }
 
-bool glib_unif_set(unif_set *set, const glib_cmd *program, char *err, int errlen) {
-    if (err && errlen > 0) err[0] = '\0';
+bool glib_unif_set(unif_set *set, const glib_cmd *program, diag_list *dl) {
     if (!set || !program) return false;
     if (program->kind != GLIB_CMD_PROGRAM) {
-        if (err && errlen > 0)
-            snprintf(err, (size_t)errlen, "%s:%d: not a Program command", program->file ? program->file : "(glib)",
-                     program->line);
+        if (dl) diag_add(dl, DIAG_ERROR, program->file ? program->file : "(glib)", program->line, "not a Program command");
         return false;
     }
     unif_program_decl d = glib_program_decl(program);
-    return unif_set_from_decls(set, &d, err, errlen);
+    return unif_set_from_decls(set, &d, dl);
 }

@@ -251,10 +251,10 @@ bool glib_uniform_consumed(const glib_scene *scene, const char *name, bool *is_c
 unif_program_decl glib_program_decl(const glib_cmd *program);
 
 /* Fills set (zeroed by the caller) from a Program command through
- * unif_set_from_decls. False with `file:line: not a Program command` when
- * it is not one. */
+ * unif_set_from_decls (its repairs warnings in dl, which may be NULL).
+ * False, with an error in dl, when it is not a Program command. */
 struct unif_set;
-bool glib_unif_set(struct unif_set *set, const glib_cmd *program, char *err, int errlen);
+bool glib_unif_set(struct unif_set *set, const glib_cmd *program, diag_list *dl);
 
 /* Whether a command of this kind describes the world (Sun, Sky, Water,
  * WaterMesh, Terrain, Wave*, Object, Pack: docs/glib.md, "Describing the

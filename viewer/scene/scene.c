@@ -32,36 +32,23 @@ enum { MESH_RES_MIN = 8, MESH_RES_MAX = 2048 };
 #define DEPTH_MAX 1000.0
 
 typedef struct ctx {
-    char *err;
-    int errlen;
-    size_t used;
+    diag_list *dl;              /* may be NULL */
     int nmsgs;
     ref_world def;              /* the defaults, for messages */
     struct file_cache *files;   /* where the glib's files were read (its meshes are read there too) */
 } ctx;
 
+/* A value repaired: a warning at c's line, "Water: the level ..." */
 __attribute__((format(printf, 3, 4)))
 static void msg(ctx *x, const glib_cmd *c, const char *fmt, ...) {
     x->nmsgs++;
-    if (!x->err || x->errlen <= 0 || x->used + 1 >= (size_t)x->errlen)
-        return;
-    char line[512];
-    int n = snprintf(line, sizeof line, "%s:%d: warning: %s: ", c->file ? c->file : "?", c->line,
-                     glib_cmd_name(c->kind));
+    if (!x->dl) return;
+    char text[DIAG_TEXT_MAX];
     va_list ap;
     va_start(ap, fmt);
-    if (n > 0 && (size_t)n < sizeof line)
-        vsnprintf(line + n, sizeof line - (size_t)n, fmt, ap);
+    vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    size_t room = (size_t)x->errlen - x->used;
-    int w = snprintf(x->err + x->used, room, "%s%s", x->used ? "\n" : "", line);
-    if (w < 0 || (size_t)w >= room) {          /* cut: say so where it ends */
-        x->used = (size_t)x->errlen - 1;
-        if (x->errlen >= 4)
-            memcpy(x->err + x->errlen - 4, "...", 4);
-    } else {
-        x->used += (size_t)w;
-    }
+    diag_add(x->dl, DIAG_WARNING, c->file ? c->file : "?", c->line, "%s: %s", glib_cmd_name(c->kind), text);
 }
 
 /* r g b that may not be negative; an explicit 0 0 0 stays zero. */
@@ -616,10 +603,8 @@ void scene_camera_from_glib(const glib_scene *g, scene_camera *cam) {
 }
 
 bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *cam,
-                     bool *has_world, char *err, int errlen) {
-    ctx x = { .err = err, .errlen = errlen, .files = g ? g->read_through : NULL };
-    if (err && errlen > 0)
-        err[0] = '\0';
+                     bool *has_world, diag_list *dl) {
+    ctx x = { .dl = dl, .files = g ? g->read_through : NULL };
     ref_world_init(&x.def, NULL);
     ref_world_desc w;
     memset(&w, 0, sizeof w);
@@ -666,24 +651,6 @@ bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *c
     return x.nmsgs == 0;
 }
 
-/* The parser's errors, as `file:line: error: message` lines, as many as fit. */
-static void parser_errors(const glib_scene *g, char *err, int errlen) {
-    size_t used = 0;
-    for (int i = 0; i < g->ndiags && used + 1 < (size_t)errlen; i++) {
-        const diag *d = &g->diags[i];
-        if (d->severity != DIAG_ERROR)
-            continue;
-        size_t room = (size_t)errlen - used;
-        int w = snprintf(err + used, room, "%s%s:%d: error: %s", used ? "\n" : "",
-                         d->file, d->line, d->text);
-        if (w < 0 || (size_t)w >= room) {
-            if (errlen >= 4)
-                memcpy(err + errlen - 4, "...", 4);
-            return;
-        }
-        used += (size_t)w;
-    }
-}
 
 bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,
                 scene_camera *cam, bool *has_world, char *err, int errlen) {
@@ -691,17 +658,20 @@ bool scene_load(const char *path, const char *pack_override, ref_world_desc *wor
     snprintf(packs, sizeof packs, "%s/packs", tarn_root());
     glib_options opt = { .packs_dir = packs, .pack_override = pack_override };
     glib_scene *g = glib_load_opts(path, &opt);
+    diag_list dl = { 0 };
     bool ok;
-    if (g->nerrors > 0) {
-        scene_from_glib(g, world, cam, has_world, NULL, 0);
-        if (err && errlen > 0) {
-            err[0] = '\0';
-            parser_errors(g, err, errlen);
-        }
+    if (g->nerrors > 0) {   /* the parser's errors say why */
+        scene_from_glib(g, world, cam, has_world, NULL);
+        for (int i = 0; i < g->ndiags; i++)
+            if (g->diags[i].severity == DIAG_ERROR) diag_push(&dl, &g->diags[i]);
         ok = false;
     } else {
-        ok = scene_from_glib(g, world, cam, has_world, err, errlen);
+        ok = scene_from_glib(g, world, cam, has_world, &dl);
     }
+    char *text = diag_list_format(&dl, 0);
+    msg_set(err, (size_t)(errlen > 0 ? errlen : 0), "%s", text);
+    free(text);
+    diag_list_free(&dl);
     glib_free(g);
     return ok;
 }

@@ -27,14 +27,16 @@ void scene_camera_from_glib(const glib_scene *g, scene_camera *cam);
 
 /* Fills world (zeroed first; the defaults are ref_world_init's) and cam from
  * the glib's commands. has_world tells whether the glib has any world
- * command. Returns false with `file:line: message` lines in err for values
- * out of range (they are repaired, never fatal). */
+ * command. Returns false with a warning at its command's line in dl (may be
+ * NULL) for each value out of range (they are repaired, never fatal). */
 bool scene_from_glib(const glib_scene *g, ref_world_desc *world, scene_camera *cam,
-                     bool *has_world, char *err, int errlen);
+                     bool *has_world, diag_list *dl);
 
 /* Parses path (with the scene's Pack included or pack_override, as the
- * renderer does) and fills world and cam. False with the parser's first
- * errors in err when the glib has errors. */
+ * renderer does) and fills world and cam. False with the parser's errors
+ * in err when the glib has errors, or with scene_from_glib's warnings
+ * (`file:line: warning: ...` lines, as many as fit): the one-line reason
+ * a command or a test prints. */
 bool scene_load(const char *path, const char *pack_override, ref_world_desc *world,
                 scene_camera *cam, bool *has_world, char *err, int errlen);
 

@@ -771,7 +771,18 @@ static bool decode_loc(const shader_src *s, long idx, long line, int *file, long
     return true;
 }
 
-static bool map_line(const shader_src *s, line_view l, strbuf *o) {
+/* A driver's or glslang's log line, placed: the file (an index of
+ * s->files) and line it means, its severity when the format says it
+ * before the place (glslang), and the message after the place. */
+typedef struct log_line {
+    int file;
+    long line;
+    const char *sev;        /* "error", "warning", "note", "error: unimplemented"; NULL: in text */
+    const char *text;
+    size_t n;
+} log_line;
+
+static bool place_line(const shader_src *s, line_view l, log_line *out) {
     const char *p = l.p, *end = l.p + l.n;
     while (p < end && (*p == ' ' || *p == '\t')) p++;
     static const char *const sev[][2] = {
@@ -779,8 +790,6 @@ static bool map_line(const shader_src *s, line_view l, strbuf *o) {
         { "UNIMPLEMENTED: ", "error: unimplemented" },
     };
     long idx, line;
-    int file;
-    long real;
     /* glslang, AMD, Apple: "ERROR: 0:12: message" */
     for (size_t i = 0; i < sizeof sev / sizeof sev[0]; i++) {
         size_t n = strlen(sev[i][0]);
@@ -791,11 +800,10 @@ static bool map_line(const shader_src *s, line_view l, strbuf *o) {
         if (!parse_uint(&q, end, &line) || q >= end || *q != ':') return false;
         q++;
         while (q < end && *q == ' ') q++;
-        if (!decode_loc(s, idx, line, &file, &real)) return false;
+        if (!decode_loc(s, idx, line, &out->file, &out->line)) return false;
         const char *e = end;
         while (e > q && (e[-1] == ' ' || e[-1] == '\t')) e--;
-        strbuf_printf(o, "%s:%ld: %s: ", s->files[file], real, sev[i][1]);
-        strbuf_put(o, q, (size_t)(e - q));
+        *out = (log_line){ out->file, out->line, sev[i][1], q, (size_t)(e - q) };
         return true;
     }
     const char *q = p;
@@ -824,10 +832,25 @@ static bool map_line(const shader_src *s, line_view l, strbuf *o) {
         return false;
     }
     while (q < end && *q == ' ') q++;
-    if (!decode_loc(s, idx, line, &file, &real)) return false;
-    strbuf_printf(o, "%s:%ld: ", s->files[file], real);
-    strbuf_put(o, q, (size_t)(end - q));
+    if (!decode_loc(s, idx, line, &out->file, &out->line)) return false;
+    *out = (log_line){ out->file, out->line, NULL, q, (size_t)(end - q) };
     return true;
+}
+
+/* The log's lines one at a time (a last line without '\n' too). */
+static bool next_log_line(const char **p, line_view *l) {
+    if (!*p || !**p) return false;
+    const char *e = strchr(*p, '\n');
+    *l = (line_view){ *p, e ? (size_t)(e - *p) : strlen(*p) };
+    *p = e ? e + 1 : *p + l->n;
+    return true;
+}
+
+/* The mapped form of one placed line: `file:line: [severity: ]message`. */
+static void put_placed(const shader_src *s, const log_line *m, strbuf *o) {
+    strbuf_printf(o, "%s:%ld: ", s->files[m->file], m->line);
+    if (m->sev) strbuf_printf(o, "%s: ", m->sev);
+    strbuf_put(o, m->text, m->n);
 }
 
 char *shader_src_map_log(const shader_src *s, const char *log) {
@@ -838,12 +861,9 @@ char *shader_src_map_log(const shader_src *s, const char *log) {
     while (*p) {
         const char *e = strchr(p, '\n');
         line_view l = { p, e ? (size_t)(e - p) : strlen(p) };
-        size_t mark = o.len;
-        if (!s || !map_line(s, l, &o)) {
-            o.len = mark;
-            if (o.s) o.s[o.len] = '\0';
-            strbuf_put(&o, l.p, l.n);
-        }
+        log_line m;
+        if (s && place_line(s, l, &m)) put_placed(s, &m, &o);
+        else strbuf_put(&o, l.p, l.n);
         if (!e) break;
         strbuf_puts(&o, "\n");
         p = e + 1;
@@ -851,10 +871,48 @@ char *shader_src_map_log(const shader_src *s, const char *log) {
     return o.s;
 }
 
+/* The severity a message names first ("error: ..." -> DIAG_ERROR, with
+ * *text past it); false when it names none. */
+static bool leading_severity(const char **text, size_t *n, diag_severity *sev) {
+    static const struct { const char *word; diag_severity sev; } words[] = {
+        { "error: ", DIAG_ERROR }, { "warning: ", DIAG_WARNING }, { "note: ", DIAG_NOTE },
+    };
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
+        size_t k = strlen(words[i].word);
+        if (*n >= k && memcmp(*text, words[i].word, k) == 0) {
+            *text += k;
+            *n -= k;
+            *sev = words[i].sev;
+            return true;
+        }
+    }
+    return false;
+}
+
 void shader_src_map_diags(const shader_src *s, const char *log, diag_severity sev, diag_list *out) {
-    char *mapped = shader_src_map_log(s, log);
-    diag_add_log(out, sev, mapped);
-    free(mapped);
+    line_view l;
+    for (const char *p = log; next_log_line(&p, &l);) {
+        if (l.n == 0) continue;
+        log_line m;
+        if (!s || !place_line(s, l, &m)) {   /* no place of the stage's: the tool's own words */
+            char *line = mem_strndup(l.p, l.n);
+            diag_add_log(out, sev, line);
+            free(line);
+            continue;
+        }
+        diag_severity got = sev;
+        const char *text = m.text;
+        size_t n = m.n;
+        bool named = m.sev ? (got = strncmp(m.sev, "error", 5) == 0 ? DIAG_ERROR
+                                    : strcmp(m.sev, "warning") == 0 ? DIAG_WARNING : DIAG_NOTE, true)
+                           : leading_severity(&text, &n, &got);
+        if (named && m.sev && strcmp(m.sev, "error: unimplemented") == 0)
+            diag_add(out, got, s->files[m.file], (int)m.line, "unimplemented: %.*s", (int)n, text);
+        else if (named)
+            diag_add(out, got, s->files[m.file], (int)m.line, "%.*s", (int)n, text);
+        else
+            diag_add_bare(out, sev, "%s:%ld: %.*s", s->files[m.file], m.line, (int)n, text);
+    }
 }
 
 const char *shader_stage_name(shader_stage st) {

@@ -28,7 +28,6 @@ typedef struct loaded {
  * does not describe it (docs/packs/contract.md). */
 static bool load(const char *scene, loaded *l, char *err, int errlen) {
     bool has_world = false;
-    char msgs[4096] = "";
     memset(l, 0, sizeof *l);
     glib_options opt = { 0 };
     glib_scene *g = glib_load_opts(scene, &opt);
@@ -41,7 +40,7 @@ static bool load(const char *scene, loaded *l, char *err, int errlen) {
         glib_free(g);
         return false;
     }
-    scene_from_glib(g, &l->wd, &l->cam, &has_world, msgs, (int)sizeof msgs);   /* repairs are warnings */
+    scene_from_glib(g, &l->wd, &l->cam, &has_world, NULL);   /* repairs are warnings the renderer says */
     glib_free(g);
     if (!has_world) {
         snprintf(err, (size_t)errlen, "%s describes no world (no Sun, Water, Terrain, Wave... or Object commands)",
