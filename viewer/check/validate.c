@@ -165,8 +165,9 @@ static bool is_noise(const char *line) {
             strstr(line, " compilation errors"));
 }
 
-/* One line of a mapped compiler log that starts a message, as a diag
- * (pending); false for a continuation line. */
+/* A line of a compiler's log that no place of the stage's was found in
+ * (the tool's own words) and that starts a message, as a diag (pending);
+ * false for a continuation line. */
 static bool message_start(const shader_src *src, const char *p, diag *pending) {
     diag_list l = { 0 };
     if (starts_with(p, "ERROR: ")) {   /* no location: the stage file's */
@@ -183,48 +184,51 @@ static bool message_start(const shader_src *src, const char *p, diag *pending) {
     return start;
 }
 
-/* Splits a compiler log into messages, mapped to the user's files. Lines
- * that are neither an error nor a warning continue the message before
- * them. tarn's notes on what NVIDIA let through (glsl_hint) follow their
- * error. *mapped_out (if wanted) gets the log's lines as diags, for
- * glsl_fix. */
+/* Splits a compiler log into messages, mapped to the user's files
+ * (shader_src_map_diags: a diag a line). An error or warning at a place
+ * starts a message; lines of the tool's own (a note, a candidate list)
+ * continue the message before them unless they start one themselves.
+ * tarn's notes on what NVIDIA let through (glsl_hint) follow their error.
+ * *mapped_out (if wanted) gets the log's lines as diags, for glsl_fix. */
 static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m, diag_list *mapped_out) {
     if (!log || !log[0]) return;
     if (mapped_out) shader_src_map_diags(src, log, DIAG_NOTE, mapped_out);
-    char *mapped = shader_src_map_log(src, log);
-    diag_list found = { 0 };
+    diag_list lines = { 0 }, found = { 0 };
+    shader_src_map_diags(src, log, DIAG_NOTE, &lines);
     diag pending;
     bool has_pending = false;
-    for (char *p = mapped; p && *p;) {
-        char *e = strchr(p, '\n');
-        if (e) *e = '\0';
-        size_t n = strlen(p);
-        while (n > 0 && isspace((unsigned char)p[n - 1])) p[--n] = '\0';
-        if (n > 0 && !is_noise(p)) {
-            diag next;
-            if (message_start(src, p, &next)) {
-                if (has_pending) diag_push(&found, &pending);
-                pending = next;
-                has_pending = true;
-            } else {
-                const char *t = p;
-                while (isspace((unsigned char)*t)) t++;
-                if (!has_pending) {
-                    memset(&pending, 0, sizeof pending);
-                    pending.severity = compiled ? DIAG_WARNING : DIAG_ERROR;
-                    snprintf(pending.file, sizeof pending.file, "%s", src->files[0]);
-                    has_pending = true;
-                    snprintf(pending.text, sizeof pending.text, "%s", t);
-                } else {
-                    size_t len = strlen(pending.text);
-                    snprintf(pending.text + len, sizeof pending.text - len, " %s", t);
-                }
-            }
+    for (int i = 0; i < lines.n; i++) {
+        diag *d = &lines.d[i];
+        size_t n = strlen(d->text);
+        while (n > 0 && isspace((unsigned char)d->text[n - 1])) d->text[--n] = '\0';
+        if (n == 0 || is_noise(d->text)) continue;
+        diag next;
+        bool starts = !d->bare && d->severity != DIAG_NOTE ? (next = *d, true)
+                    : d->bare && message_start(src, d->text, &next);
+        if (starts) {
+            if (has_pending) diag_push(&found, &pending);
+            pending = next;
+            has_pending = true;
+            continue;
         }
-        p = e ? e + 1 : NULL;
+        char t[DIAG_FILE_MAX + DIAG_TEXT_MAX + 32];
+        if (d->bare) snprintf(t, sizeof t, "%s", d->text);
+        else diag_format(d, t, sizeof t);   /* a note at a place, as the log said it */
+        const char *c = t;
+        while (isspace((unsigned char)*c)) c++;
+        if (!has_pending) {
+            memset(&pending, 0, sizeof pending);
+            pending.severity = compiled ? DIAG_WARNING : DIAG_ERROR;
+            snprintf(pending.file, sizeof pending.file, "%s", src->files[0]);
+            has_pending = true;
+            msg_set(pending.text, sizeof pending.text, "%s", c);
+        } else {
+            size_t len = strlen(pending.text);
+            snprintf(pending.text + len, sizeof pending.text - len, " %s", c);
+        }
     }
     if (has_pending) diag_push(&found, &pending);
-    free(mapped);
+    diag_list_free(&lines);
     glsl_hint_add(&found, 0, src->text);
     msgs_add_list(m, &found);
     diag_list_free(&found);
