@@ -50,11 +50,13 @@ void flow_velocity(const ref_flow_desc *d, double x, double z, double v[2]) {
     }
 }
 
-static unsigned make_map(void) {
+/* A 2D texture of one level, linear and clamped at its edges (the flow's
+ * maps and its velocity map), from data (NULL: undefined). */
+static unsigned linear_clamped(GLenum internal, int w, int h, GLenum format, const float *data) {
     unsigned t;
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_2D, t);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, FLOW_RES, FLOW_RES, 0, GL_RGBA, GL_FLOAT, NULL);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, w, h, 0, format, GL_FLOAT, data);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -63,6 +65,8 @@ static unsigned make_map(void) {
     glBindTexture(GL_TEXTURE_2D, 0);
     return t;
 }
+
+static unsigned make_map(void) { return linear_clamped(GL_RGBA32F, FLOW_RES, FLOW_RES, GL_RGBA, NULL); }
 
 /* A Flow texture's velocity map: R and G of the file (file order: its top
  * row at z = -half, GL's first row), linear, clamped at the edges. */
@@ -80,15 +84,7 @@ static bool load_velocity(gpu_flow *f, const prog_sources *src, diag_list *log) 
         rg[2 * i] = im.px[i * im.channels];
         rg[2 * i + 1] = im.channels > 1 ? im.px[i * im.channels + 1] : 0.5f;   /* a grey map: no vz */
     }
-    glGenTextures(1, &f->vel_tex);
-    glBindTexture(GL_TEXTURE_2D, f->vel_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, im.w, im.h, 0, GL_RG, GL_FLOAT, rg);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    glBindTexture(GL_TEXTURE_2D, 0);
+    f->vel_tex = linear_clamped(GL_RG32F, im.w, im.h, GL_RG, rg);
     free(rg);
     img_free(&im);
     return true;

@@ -26,24 +26,13 @@
 /* ------------------------------------------------------------------ */
 /* memory: bounded by the limits (mem.h: out of memory aborts)        */
 
-/* Makes room for need elements in *arr (capacity *cap). */
-void *glib_grow(void *arr, int *cap, int need, size_t elem) {
-    if (need <= *cap)
-        return arr;
-    int c = *cap ? *cap : 8;
-    while (c < need)
-        c *= 2;
-    *cap = c;
-    return mem_realloc(arr, (size_t)c * elem);
-}
-
 /* ------------------------------------------------------------------ */
 /* the parser's state and its diagnostics                             */
 
 static void add_diag(parser *p, diag_severity sev, const char *file, int line,
                      const char *msg) {
     glib_scene *sc = p->sc;
-    sc->diags = glib_grow(sc->diags, &p->diag_cap, sc->ndiags + 1, sizeof *sc->diags);
+    sc->diags = mem_grow(sc->diags, &p->diag_cap, sc->ndiags + 1, sizeof *sc->diags);
     diag *d = &sc->diags[sc->ndiags++];
     memset(d, 0, sizeof *d);
     d->severity = sev;
@@ -83,7 +72,7 @@ const char *glib_add_file(parser *p, const char *name) {
     for (int i = 0; i < sc->nfiles; i++)
         if (strcmp(sc->files[i], name) == 0)
             return sc->files[i];
-    sc->files = glib_grow(sc->files, &p->file_cap, sc->nfiles + 1, sizeof *sc->files);
+    sc->files = mem_grow(sc->files, &p->file_cap, sc->nfiles + 1, sizeof *sc->files);
     sc->files[sc->nfiles] = mem_strdup(name);
     return sc->files[sc->nfiles++];
 }
@@ -122,7 +111,7 @@ void glib_push_cmd(parser *p, glib_cmd *cmd) {
         p->stop = true;
         return;
     }
-    sc->cmds = glib_grow(sc->cmds, &p->cmd_cap, sc->ncmds + 1, sizeof *sc->cmds);
+    sc->cmds = mem_grow(sc->cmds, &p->cmd_cap, sc->ncmds + 1, sizeof *sc->cmds);
     sc->cmds[sc->ncmds++] = *cmd;
 }
 

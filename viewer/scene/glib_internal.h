@@ -162,8 +162,6 @@ typedef struct logical {
 /* ------------------------------------------------------------------ */
 /* the driver (glib.c)                                                 */
 
-/* Makes room for need elements in *arr (capacity *cap). */
-void *glib_grow(void *arr, int *cap, int need, size_t elem);
 __attribute__((format(printf, 5, 6)))
 void glib_report(parser *p, diag_severity sev, const char *file, int line, const char *fmt, ...);
 /* An error / a warning at the command's line. */

@@ -23,7 +23,7 @@ static void add_uniform(cmdctx *c, glib_cmd *cmd, const unif_decl *u, int *cap) 
              cmd->name, LIM_PROGRAM_UNIFORMS, u->name);
         return;
     }
-    cmd->uniforms = glib_grow(cmd->uniforms, cap, cmd->nuniforms + 1, sizeof *cmd->uniforms);
+    cmd->uniforms = mem_grow(cmd->uniforms, cap, cmd->nuniforms + 1, sizeof *cmd->uniforms);
     cmd->uniforms[cmd->nuniforms++] = *u;
     c->p->scene_uniforms++;
 }
@@ -129,7 +129,7 @@ static void add_pending(cmdctx *c, const unif_decl *u) {
             p->pending[i] = *u;
             return;
         }
-    p->pending = glib_grow(p->pending, &p->pending_cap, p->npending + 1, sizeof *p->pending);
+    p->pending = mem_grow(p->pending, &p->pending_cap, p->npending + 1, sizeof *p->pending);
     p->pending[p->npending++] = *u;
 }
 

@@ -144,6 +144,15 @@ static void note(fixer *f, size_t pos, const char *fmt, ...) {
     diag_add(&f->notes, DIAG_WARNING, file, (int)l->line, "%s", text);
 }
 
+static void fixer_free(fixer *f) {
+    for (int i = 0; i < f->ned; i++) free(f->ed[i].ins);
+    free(f->ed);
+    free(f->ln);
+    free(f->depth);
+    free(f->b);
+    diag_list_free(&f->notes);
+}
+
 /* Appends the fixer's notes to *notes (NULL: dropped). */
 static void hand_notes(const fixer *f, diag_list *notes) {
     for (int i = 0; notes && i < f->notes.n; i++) diag_push(notes, &f->notes.d[i]);
@@ -610,12 +619,7 @@ char *glsl_fix_rewrite(const shader_src *src, shader_stage stage, const char *te
         if (strcmp(out, text) == 0) { free(out); out = NULL; }
     }
     if (out) hand_notes(&f, notes);
-    for (int i = 0; i < f.ned; i++) free(f.ed[i].ins);
-    free(f.ed);
-    free(f.ln);
-    free(f.depth);
-    free(f.b);
-    diag_list_free(&f.notes);
+    fixer_free(&f);
     return out;
 }
 
@@ -757,11 +761,6 @@ int glsl_fix_link_rewrite(const char *log, const shader_src *const srcs[SHADER_S
         hand_notes(&f, notes);
         ret = st;
     }
-    for (int i = 0; i < f.ned; i++) free(f.ed[i].ins);
-    free(f.ed);
-    free(f.ln);
-    free(f.depth);
-    free(f.b);
-    diag_list_free(&f.notes);
+    fixer_free(&f);
     return ret;
 }
