@@ -1,4 +1,5 @@
 #include "ref_scene.h"
+#include "strbuf.h"
 
 #include <math.h>
 #include <stdbool.h>
@@ -42,7 +43,7 @@ static void load_meshes(ref_world *w) {
         const ref_object *ob = &w->d.objects[i];
         if (ob->kind != REF_OBJECT_MESH) continue;
         ref_mesh_place pl = { { ob->center[0], ob->center[1], ob->center[2] }, ob->rot_y_deg, ob->size[0] };
-        char err[256];
+        char err[MSG_MAX];
         w->meshes[i] = ref_mesh_load(ob->mesh_path, &pl, err, sizeof err);
     }
 }
@@ -70,7 +71,7 @@ void ref_world_init(ref_world *w, const ref_world_desc *d) {
      * (the lower hemisphere sees ground, not sky) */
     for (int i = 0; i < 3; i++) w->ambient[i] = 0.25 * (s->sky_zenith[i] + s->sky_horizon[i]);
     s->waves.level = s->water_level;
-    char err[256];
+    char err[MSG_MAX];
     if (ref_waves_init(&w->waves, &s->waves, err, sizeof err) != 0) {
         ref_waves_desc calm;
         memset(&calm, 0, sizeof calm);

@@ -1,6 +1,7 @@
 // panel: the slider panel over Dear ImGui 1.86 (see panel.h). Widgets and
 // layout only; every value change goes through unif.c.
 #include "panel.h"
+#include "strbuf.h"
 
 #include <cfloat>
 #include <climits>
@@ -147,7 +148,7 @@ bool entry_widget(unif_entry *e, bool *sheet) {
     if (absent) ImGui::PopStyleColor();
     tooltip(e);
     if (unif_type_mismatch(e)) {
-        char msg[384];
+        char msg[MSG_MAX];
         unif_describe_mismatch(e, msg, sizeof msg);
         ImGui::PushStyleColor(ImGuiCol_Text, kRed);
         ImGui::TextWrapped("%s", msg);

@@ -609,7 +609,7 @@ bool unif_preset_save(const unif_set *sets, int nsets, const char *path, char *e
 }
 
 static char *read_file(const char *path, long *len_out, char *err, int errlen) {
-    char why[256];
+    char why[MSG_MAX];
     size_t len = 0;
     file_text_opts o = { .max_bytes = PRESET_MAX_BYTES, .reject_nul = true };
     char *buf = file_read_text(path, &o, &len, why, sizeof why);

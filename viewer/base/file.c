@@ -204,7 +204,7 @@ double file_stamp_age_ms(const file_stamp *st) {
 }
 
 char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
-    char why[256];
+    char why[MSG_MAX];
     file_text_opts o = { .max_bytes = max_bytes };
     char *s = file_read_text(path, &o, len, why, sizeof why);
     if (!s) msg_set(err, errlen, "cannot open '%s': %s", path, why);

@@ -129,7 +129,7 @@ char *file_cache_read(file_cache *c, const char *path, const file_text_opts *o, 
 }
 
 char *file_cache_bytes(file_cache *c, const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
-    char why[256];
+    char why[MSG_MAX];
     file_text_opts o = { .max_bytes = max_bytes };
     char *s = file_cache_read(c, path, &o, len, NULL, why, sizeof why);
     if (!s) msg_set(err, errlen, "cannot open '%s': %s", path, why);
@@ -137,7 +137,7 @@ char *file_cache_bytes(file_cache *c, const char *path, size_t max_bytes, size_t
 }
 
 bool file_cache_refresh(file_cache *c, const char *path, uint64_t *hash) {
-    char why[256];
+    char why[MSG_MAX];
     size_t n = 0;
     file_stamp stamp;
     file_text_opts o = { 0 };

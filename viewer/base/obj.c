@@ -1,5 +1,6 @@
 /* obj.c: the Wavefront OBJ reader (obj.h). */
 #include "obj.h"
+#include "strbuf.h"
 #include "file_cache.h"
 #include "mem.h"
 
@@ -32,7 +33,7 @@ static bool fail(parser *p, const char *fmt, ...) {
     if (p->failed) return false;
     p->failed = true;
     if (p->err && p->errlen > 0) {
-        char msg[256];
+        char msg[MSG_MAX];
         va_list ap;
         va_start(ap, fmt);
         vsnprintf(msg, sizeof msg, fmt, ap);
@@ -302,7 +303,7 @@ bool obj_read(obj_data *d, const char *path, const obj_opts *o, char *err, size_
     }
     file_text_opts opts = { .max_bytes = (size_t)OBJ_MAX_BYTES, .strip_bom = true, .crlf_to_lf = true,
                             .reject_nul = true };
-    char why[256];
+    char why[MSG_MAX];
     size_t len = 0;
     char *text = file_cache_read(o ? o->files : NULL, path, &opts, &len, NULL, why, sizeof why);
     if (!text) {

@@ -23,6 +23,12 @@ void strbuf_free(strbuf *b);
 /* Appends to a heap string (*s may be NULL): the renderer's logs. */
 void str_appendf(char **s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* The one size of a message buffer of that convention (`char err[MSG_MAX]`,
+ * `char why[MSG_MAX]`): a path of up to 1024 bytes and a few sentences, or
+ * a few such lines. One size, so a message handed on from one buffer to
+ * another is never cut on the way. */
+#define MSG_MAX 4096
+
 /* err (may be NULL or errlen 0) := the message / += one more line (a
  * newline first when err is not empty) / := "". Truncated to fit, never
  * overrun. */

@@ -1047,7 +1047,7 @@ static void validate_glib(run *r, const char *path) {
 /* Does a .glsl without a stage suffix look like a stage (it has main)? */
 static bool has_main(const char *path) {
     file_text_opts o = { .max_bytes = SHADER_SRC_MAX_FILE_BYTES };
-    char why[256];
+    char why[MSG_MAX];
     char *text = file_read_text(path, &o, NULL, why, sizeof why);
     bool found = false;
     for (char *p = text; p && !found && (p = strstr(p, "main")) != NULL; p += 4) {

@@ -2,6 +2,7 @@
  * (tools/bench.h, docs/benchmark.md). Exit codes: 0 ok, 1 a scene, pack or
  * output failed, 2 bad usage, 3 no OpenGL context. */
 #include "cmd.h"
+#include "strbuf.h"
 
 #include <stddef.h>
 #include <stdio.h>
@@ -271,7 +272,7 @@ CMD_USAGE_FUNCTION(cmd_bench_usage, cmd_bench_spec)
 int cmd_bench(int argc, char **argv) {
     if (cmd_wants_help(argc, argv)) { fputs(cmd_bench_usage(), stdout); return TARN_EXIT_OK; }
     bench_cli c = {0};
-    char why[1024] = "";
+    char why[MSG_MAX] = "";
     int rc = cmd_parse(&cmd_bench_spec, argc, argv, &c, stderr);
     if (rc != TARN_EXIT_OK) return rc;
     rc = bench_run(&c.d, why, sizeof why);

@@ -1,6 +1,7 @@
 /* cmd_opt_table: the parser, the usage writer and the man-page writer of
  * every command's option table (cmd_opt_table.h). */
 #include "cmd_opt_table.h"
+#include "strbuf.h"
 
 #include <assert.h>
 #include <float.h>
@@ -115,7 +116,7 @@ static int complain(const cmd_spec *s, FILE *err, const cmd_option *o, const cha
 /* A positional argument, to the CMD_ARG entry at or after *cursor. */
 static int take_arg(const cmd_spec *s, const char *a, void *desc, int *cursor, bool *given, FILE *err) {
     const cmd_option *t = s->options, *o = next_arg(t, count(s), cursor);
-    char why[1024] = "";
+    char why[MSG_MAX] = "";
     if (!o) return cmd_bad_usage(s, err, "%s (got another: '%s')", s->extra ? s->extra : "too many arguments", a);
     if (!store(o, a, desc, why, sizeof why)) return complain(s, err, o, o->name, why);
     given[o - t] = true;

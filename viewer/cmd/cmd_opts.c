@@ -79,7 +79,7 @@ bool cmd_apply_set(render *r, const char *set, const char *what) {
     char *text = NULL;
     str_appendf(&text, "cli %s%s", bare ? "*." : "", set);
     packset_bench b = {0};
-    char err[2048] = "";
+    char err[MSG_MAX] = "";
     bool ok = text && packset_bench_parse(text, what, &b, err, sizeof err) && b.n > 0;
     if (ok) ok = render_setting_assign(r, &b.settings[0], err, sizeof err);
     if (err[0]) fprintf(stderr, "tarn: %s: %s%s", what, err, err[strlen(err) - 1] == '\n' ? "" : "\n");

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cmd.h"
+#include "strbuf.h"
 #include "file.h"
 #include "gl_ctx.h"
 #include "mem.h"
@@ -56,7 +57,7 @@ static int replay(const session *s, render *r, gl_ctx *ctx, const render_target 
     session_player p;
     session_player_start(&p, s, render_default_view(r));
     int frames = frame_count(s, fps), rc = TARN_EXIT_OK;
-    char err[1200];
+    char err[MSG_MAX];
     for (int i = 0; i < frames && rc == TARN_EXIT_OK; i++) {
         double sim = session_player_advance(&p, r, (double)i / fps);
         render_view view = orbit_view(&p.cam);
@@ -91,7 +92,7 @@ static render *load_scene(const session *s, int samples, bool *ok) {
 }
 
 static int record_with(const record_desc *d, const session *s, bool parsed_ok) {
-    char err[1200], note[2048];
+    char err[MSG_MAX], note[2048];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     bool scene_ok = false;

@@ -4,6 +4,7 @@
  * Exit codes: TARN_EXIT_OK, TARN_EXIT_INPUT (scene errors, render or write
  * failure), TARN_EXIT_USAGE. */
 #include "cmd.h"
+#include "strbuf.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -128,7 +129,7 @@ static int write_outputs(const char *out, const ref_render_result *r, int quiet)
  * False, with a message, when neither knows N. */
 static bool match_msaa(int samples, bool quiet, ref_render_desc *d) {
     if (samples <= 1) return true;   /* off: the pixel centre */
-    char err[1024] = "";
+    char err[MSG_MAX] = "";
     const char *from = "this GL's";
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     bool have_gl = ctx != NULL;
@@ -327,7 +328,7 @@ static int run(reference_opts *o) {
     ref_world_desc wd;
     scene_camera cam;
     bool has_world = false;
-    char err[4096] = "";
+    char err[MSG_MAX] = "";
     if (!scene_load(glib, NULL, &wd, &cam, &has_world, err, (int)sizeof err)) {
         if (strstr(err, ": error:")) {
             fprintf(stderr, "%s\ntarn reference: %s has errors\n", err, glib);

@@ -74,7 +74,7 @@ static void frame_path(char *path, size_t len, const char *out, int frame) {
 static bool apply_sets(render *r, const cli_render_desc *d) {
     bool ok = true;
     if (d->setting) {
-        char err[4096] = "";
+        char err[MSG_MAX] = "";
         ok = render_setting_apply_named(r, NULL, d->setting, err, sizeof err);
         if (err[0]) fprintf(stderr, "tarn: --setting: %s%s", err, err[strlen(err) - 1] == '\n' ? "" : "\n");
     }
@@ -151,7 +151,7 @@ static void pass_table_free(pass_table *p) {
 }
 
 int cli_render(const cli_render_desc *d) {
-    char err[1024];
+    char err[MSG_MAX];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;   /* a kept image: anti-aliased */

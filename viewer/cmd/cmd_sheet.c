@@ -72,7 +72,7 @@ static void blit_tile(img *sheet, const float *rgba, int w, int h, int x0, int y
 }
 
 static int sheet_run(const sheet_desc *d) {
-    char err[1024];
+    char err[MSG_MAX];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
     int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;

@@ -152,7 +152,7 @@ static int main_default(void) {
         return view_run(&d);
     }
     const char *out = "out/default.png";
-    char err[512];
+    char err[MSG_MAX];
     if (!file_mkdir_p("out", err, sizeof err)) out = "default.png";   /* a read-only cwd still gets a render */
     printf("tarn: no display: rendering the default scene (scenes/showcase.glib, pack %s) to %s\n",
            cli_default_pack(), out);

@@ -3,6 +3,7 @@
  * photons are traced in a fixed set of chunks, added in chunk order,
  * whatever the number of threads), so the same bytes come out every run. */
 #include "assets.h"
+#include "strbuf.h"
 
 #include <errno.h>
 #include <math.h>
@@ -263,7 +264,7 @@ bool assets_bake_caustics(int res, float *out, char *err, int errlen) {
     ref_waves_desc wd;
     caustic_waves_desc(&wd);
     ref_waves waves;
-    char why[256];
+    char why[MSG_MAX];
     if (ref_waves_init(&waves, &wd, why, sizeof why) != 0) {
         if (err && errlen > 0)
             snprintf(err, (size_t)errlen, "caustics: %s", why);
@@ -396,7 +397,7 @@ int assets_run(const assets_desc *d) {
         free(w);
         return TARN_EXIT_INPUT;
     }
-    char err[512];
+    char err[MSG_MAX];
     if (!file_mkdir_p(dir, err, sizeof err)) {
         fprintf(stderr, "tarn assets: %s\n", err);
         ref_world_release(w);

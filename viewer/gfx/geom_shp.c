@@ -1,5 +1,6 @@
 /* geom_shp.c: ESRI shapefiles' lines (Shp; geom.h). */
 #include "geom_build.h"
+#include "strbuf.h"
 #include "file_cache.h"
 
 #include <math.h>
@@ -27,7 +28,7 @@ static double shp_le64f(const unsigned char *p) {
 
 static bool shp_fail(char *err, int errlen, const char *path, const char *fmt, ...) {
     if (err && errlen > 0) {
-        char msg[256];
+        char msg[MSG_MAX];
         va_list ap;
         va_start(ap, fmt);
         vsnprintf(msg, sizeof msg, fmt, ap);
@@ -57,7 +58,7 @@ bool geom_shp_read(geom_mesh *m, struct file_cache *files, const char *path, cha
     if (!m) return false;
     memset(m, 0, sizeof *m);
     if (err && errlen > 0) err[0] = '\0';
-    char why[256];
+    char why[MSG_MAX];
     size_t len = 0;
     unsigned char *f = (unsigned char *)file_cache_bytes(files, path, (size_t)GEOM_MAX_FILE_BYTES, &len, why,
                                                          sizeof why);

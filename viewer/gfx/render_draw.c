@@ -2,6 +2,7 @@
  * `WaterSurface points|mesh N`, and `World` through the static-world
  * cache and its layers. */
 #include "util.h"
+#include "strbuf.h"
 #include "render_internal.h"
 
 #include <GL/gl.h>
@@ -31,7 +32,7 @@ void render_draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
     render_res_draw d = { .tangent_loc = p ? p->tangent_loc : -1, .face_index_loc = p ? p->face_index_loc : -1,
                    .face_index_int = p && p->face_index_int, .tess = p && p->tess,
                    .patch_vertices = f->patch_vertices };
-    char why[512];
+    char why[MSG_MAX];
     if (m->prim == GEOM_PATCHES && m->patch_size > 0 && f->patch_cmd >= 0 && m->patch_size != f->patch_vertices)
         render_messages_draw_problem(r, ci, false, "ObjPatch draws patches of its faces' %d corners; "
                                      "NumPatchVertices %d (line %d) is for glBegin gl_patches and not used here",

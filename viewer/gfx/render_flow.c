@@ -72,7 +72,7 @@ static unsigned make_map(void) { return linear_clamped(GL_RGBA32F, FLOW_RES, FLO
  * row at z = -half, GL's first row), linear, clamped at the edges. */
 static bool load_velocity(gpu_flow *f, const prog_sources *src, diag_list *log) {
     img im = { 0 };
-    char err[1200];
+    char err[MSG_MAX];
     if (!render_res_read_image(src->files, f->d.texture, &im, err, sizeof err) || im.d != 1) {
         diag_add(log, DIAG_ERROR, NULL, 0, "Flow texture: %s", im.d > 1 ? "a volume is not a velocity map" : err);
         img_free(&im);

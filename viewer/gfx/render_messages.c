@@ -108,7 +108,7 @@ void render_messages_draw_problem(render *r, int ci, bool error, const char *fmt
     if (s->draw_warned[ci]) return;
     s->draw_warned[ci] = true;
     const glib_cmd *c = &s->glib->cmds[ci];
-    char msg[1024];
+    char msg[MSG_MAX];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);

@@ -143,7 +143,7 @@ bool render_res_mesh_upload(const geom_mesh *g, gpu_mesh *m) {
 bool render_res_mesh_build(const glib_cmd *c, file_cache *files, gpu_mesh *m, diag_list *log) {
     geom_mesh g;
     memset(&g, 0, sizeof g);
-    char err[512] = "";
+    char err[MSG_MAX] = "";
     if (!make_mesh(c, files, &g, err, sizeof err) || !render_res_mesh_upload(&g, m)) {
         /* a file that is still missing: the parser said so at this line
          * ("cannot open 'x.shp' (from command Shp)"); once is enough */
@@ -341,7 +341,7 @@ static bool read_raw(file_cache *files, const char *path, int dims, raw_tex *out
     memset(out, 0, sizeof *out);
     out->n[2] = 1;
     size_t size = 0;
-    char err[GLIB_PATH_MAX + 300];
+    char err[MSG_MAX];
     unsigned char *file = (unsigned char *)file_cache_bytes(files, path, (size_t)(4L * dims + RAW_MAX_TEXELS * 16),
                                                             &size, err, sizeof err);
     if (!file) { msg_set(why, whylen, "%s", err); return false; }
@@ -396,7 +396,7 @@ static bool is_raw_name(const char *path) {
 
 /* Reads a raw file for command c into rt, or says why in the log. */
 static bool raw_read_into(file_cache *files, const char *path, int dims, raw_tex *rt, const glib_cmd *c, diag_list *log) {
-    char why[768];
+    char why[MSG_MAX];
     if (read_raw(files, path, dims, rt, why, sizeof why)) return true;
     diag_add(log, DIAG_ERROR, c->file, c->line, "%s: %s", glib_cmd_name(c->kind), why);
     return false;
@@ -411,7 +411,7 @@ static void raw_upload_2d(GLenum target, const raw_tex *rt) {
 bool render_res_read_image(file_cache *files, const char *path, img *im, char *err, int errlen) {
     if (!img_reads_from_memory(path)) return img_read(path, im, err, errlen);
     size_t n = 0;
-    char why[256];
+    char why[MSG_MAX];
     file_text_opts o = { .max_bytes = IMG_MAX_FILE_BYTES };
     char *bytes = file_cache_read(files, path, &o, &n, NULL, why, sizeof why);
     if (!bytes) snprintf(err, (size_t)errlen, "%s: %s", path, why);
@@ -421,7 +421,7 @@ bool render_res_read_image(file_cache *files, const char *path, img *im, char *e
 }
 
 static bool load_image(file_cache *files, const char *path, img *im, const glib_cmd *c, diag_list *log) {
-    char err[512] = "";
+    char err[MSG_MAX] = "";
     memset(im, 0, sizeof *im);
     if (render_res_read_image(files, path, im, err, sizeof err)) return true;
     diag_add(log, DIAG_ERROR, c->file, c->line, "%s: %s", glib_cmd_name(c->kind), err);
@@ -433,7 +433,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, diag_list *log) {
     const char *name = c->path + 1;
     int res = strcmp(name, "caustics") == 0 ? 128 : 256;   /* caustics: photon tracing, ~1 s */
     float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
-    char err[256] = "";
+    char err[MSG_MAX] = "";
     bool ok = false, one_channel = false;
     if (strcmp(name, "caustics") == 0) { ok = assets_bake_caustics(res, px, err, sizeof err); one_channel = true; }
     else if (strcmp(name, "foam") == 0) ok = assets_bake_foam(res, px);

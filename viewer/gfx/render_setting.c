@@ -1,5 +1,6 @@
 /* render_setting: a pack's named setting applied to a running scene (render_setting.h). */
 #include "render_setting.h"
+#include "strbuf.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -91,7 +92,7 @@ bool render_setting_apply_named(render *r, const char *root, const char *name, c
         return false;
     }
     packset_bench b;
-    char err[2048] = "";
+    char err[MSG_MAX] = "";
     packset_bench_load(root ? root : tarn_root(), pack, &b, err, sizeof err);   /* bad lines: the good ones stay */
     const packset_setting *s = packset_setting_named(&b, name);
     bool ok = s || strcmp(name, "default") == 0;

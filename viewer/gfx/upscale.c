@@ -1,5 +1,6 @@
 /* upscale: the reduced frame into the window (see upscale.h). */
 #include "upscale.h"
+#include "strbuf.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -31,7 +32,7 @@ struct upscaler {
     float_target water;
     bool over_tried;
     int u_over_scale, u_over_origin, u_over_size, u_over_last;
-    char err[512];
+    char err[MSG_MAX];
 };
 
 /* Which of the reduced frame's pixels its water changed: the texel
@@ -292,7 +293,7 @@ void upscale_draw(upscaler *u, unsigned src_tex, int src_w, int src_h, unsigned 
 static bool build_over(upscaler *u) {
     if (u->over_tried) return u->over_prog != 0;
     u->over_tried = true;
-    char err[512];
+    char err[MSG_MAX];
     u->mask_prog = link_program(mask_frag, err, sizeof err);
     u->over_prog = u->mask_prog ? link_program(over_frag, err, sizeof err) : 0;
     if (!u->over_prog) {

@@ -14,6 +14,7 @@
  * and time.
  */
 #include "glib_internal.h"
+#include "strbuf.h"
 #include "mem.h"
 #include "unif.h"
 
@@ -277,7 +278,7 @@ static void finish(parser *p) {
     if (sc->ncmds == 0 && sc->nerrors == 0 && sc->nfiles > 0)
         glib_report(p, DIAG_WARNING, sc->files[0], 1, "no commands: the scene draws nothing");
     if (p->dropped) {
-        char msg[128];
+        char msg[MSG_MAX];
         snprintf(msg, sizeof msg, "too many errors: %d more diagnostics not shown (%d errors); fix the ones above first",
                  p->dropped, p->dropped_errors);
         add_diag(p, p->dropped_errors ? DIAG_ERROR : DIAG_WARNING,

@@ -6,6 +6,7 @@
 #define _DEFAULT_SOURCE         /* realpath(), which is XSI, not plain POSIX */
 #endif
 #include "glib_internal.h"
+#include "strbuf.h"
 #include "file_cache.h"
 #include "mem.h"
 
@@ -66,7 +67,7 @@ static void report_cycle(cmdctx *c, int at, const char *path) {
 /* Reads the file at path in place of the current line (Include, Pack). */
 void glib_include_file(cmdctx *c, const char *path) {
     parser *p = c->p;
-    char why[128], *buf;
+    char why[MSG_MAX], *buf;
     size_t len;
     if (p->nreads >= LIM_INCLUDE_READS) {
         glib_cerr(c, "more than %d Includes in one scene; '%s' skipped", LIM_INCLUDE_READS, path);

@@ -3,6 +3,7 @@
  * (backslashes, names that differ in case) forgiven, and checked readable.
  */
 #include "glib_internal.h"
+#include "strbuf.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -90,7 +91,7 @@ static bool case_match(const char *path, char alt[GLIB_PATH_MAX]) {
  * that differs from the file on disk only in case is that file (glman's
  * Windows habit), with a warning naming the real file. */
 void glib_check_readable(cmdctx *c, char path[GLIB_PATH_MAX]) {
-    char why[128];
+    char why[MSG_MAX];
     struct stat st;
     if (access(path, R_OK) != 0)
         snprintf(why, sizeof why, "%s", strerror(errno));

@@ -1,5 +1,6 @@
 /* packset: packs on disk, bench.txt and bounds.txt (see packset.h). */
 #include "packset.h"
+#include "strbuf.h"
 
 #include "file.h"
 #include "mem.h"
@@ -81,7 +82,7 @@ int packset_list_dir(const char *packs_dir, packset_name *names, int max) {
 /* A pack's small text file (bench.txt, bounds.txt); NULL when missing.
  * A longer file is read up to FILE_MAX_LEN, as a line limit would. */
 static char *read_text(const char *path) {
-    char why[256];
+    char why[MSG_MAX];
     size_t n = 0;
     char *text = file_read_text(path, NULL, &n, why, sizeof why);
     if (text && n > FILE_MAX_LEN) text[FILE_MAX_LEN] = '\0';
@@ -264,7 +265,7 @@ bool packset_bench_parse(const char *text, const char *path, packset_bench *out,
         bool line_ok = true;
         for (char *w = strtok_r(NULL, " \t", &save); w; w = strtok_r(NULL, " \t", &save)) {
             packset_assign a;
-            char why[512];
+            char why[MSG_MAX];
             if (!parse_assign(w, &a, why, sizeof why)) {
                 msg(err, errlen, "%s:%d: %s\n", out->path, lineno, why);
                 line_ok = false;

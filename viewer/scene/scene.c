@@ -437,11 +437,11 @@ static bool object_mesh(ctx *x, const glib_cmd *c, ref_object *o) {
         msg(x, c, "the path is longer than %d characters; the object is dropped", REF_MESH_PATH_MAX - 1);
         return false;
     }
-    char err[512];
+    char err[MSG_MAX];
     size_t len = 0;
     uint64_t hash = 0;
     file_text_opts fo = { .max_bytes = OBJ_MAX_BYTES };
-    char why[256];
+    char why[MSG_MAX];
     char *bytes = file_cache_read(x->files, c->path, &fo, &len, &hash, why, sizeof why);
     if (!bytes) msg_set(err, sizeof err, "cannot open '%s': %s", c->path, why);
     ref_mesh_place pl = { { n[0], n[1], n[2] }, o->rot_y_deg, o->size[0] };

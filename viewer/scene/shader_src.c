@@ -401,7 +401,7 @@ static bool do_include(asm_ctx *c, int fidx, int line, const char *rest, const c
              SHADER_SRC_MAX_INCLUDE_DEPTH, name);
         return false;
     }
-    char why[256];
+    char why[MSG_MAX];
     char *text = read_text(c->desc->files, found, why, sizeof why);
     if (!text) {
         fail(c, from, line, "cannot read include \"%s\": %s", found, why);
@@ -653,7 +653,7 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     file_index(&c, path);   /* the stage file: file 0 */
     c.stack[0] = 0;
     c.files[0].times = 1;
-    char why[256];
+    char why[MSG_MAX];
     main_text = read_text(desc->files, path, why, sizeof why);
     if (!main_text) {
         fail(&c, path, 0, "cannot read shader: %s", why);

@@ -7,6 +7,7 @@
  * model), bench_summary.c (the summaries), and the writers (bench_csv.c,
  * bench_json.c, bench_report.c). */
 #include "util.h"
+#include "strbuf.h"
 #include "bench_int.h"
 
 #include <GL/gl.h>
@@ -248,7 +249,7 @@ int bench_run(const bench_desc *d, char *why, size_t whylen) {
     }
     double t_start = clock_now_s();
     loadavg(b->load_before);
-    char err[4096] = "";
+    char err[MSG_MAX] = "";
     for (int p = 0; p < b->o.npacks; p++) {
         err[0] = '\0';
         if (!packset_bench_load(b->root, b->o.packs[p], &b->pb[p], err, sizeof err)) fputs(err, stderr);

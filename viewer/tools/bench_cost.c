@@ -2,6 +2,7 @@
  * each pack's default timed over three image sizes and three water grids,
  * a + b·pixels + c·vertices fitted, and the spectrum ocean's passes. */
 #include "bench_int.h"
+#include "strbuf.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -27,7 +28,7 @@ static int cost_mesh(bench *b, int p, int m, cost_sample *out, char *why, size_t
     packset_setting st = { .assign = &as, .nassign = 1 };
     snprintf(st.name, sizeof st.name, "cost-mesh-%d", m);
     snprintf(path, sizeof path, "%s/scenes/%s.%s.cost-mesh-%d.glib", b->o.out, sc, b->o.packs[p], m);
-    char err[1024] = "";
+    char err[MSG_MAX] = "";
     if (!packset_write_wrapper(&st, b->scene_abs[0], path, err, sizeof err)) {
         snprintf(why, whylen, "%s", err);
         return -1;

@@ -3,6 +3,7 @@
  * irradiance of flat lighting, SSIM, HDR-FLIP in parallel, and the images
  * of it all. */
 #include "util.h"
+#include "strbuf.h"
 #include "bench_int.h"
 
 #include <GL/gl.h>
@@ -84,7 +85,7 @@ void bench_write_images(bench *b, const row *rw, const float *rgba, const ref_en
 void bench_measure_water(bench *b, row *rw, const ref_fimage *A, const ref_fimage *B, const float *classes) {
     long n = (long)b->o.w * b->o.h;
     unsigned char *m = mem_alloc((size_t)n);
-    char err[256];
+    char err[MSG_MAX];
     ref_image_metrics r;
     for (int water = 1; water >= 0; water--) {
         ref_mask_water(classes, n, water, NULL, m);
@@ -110,7 +111,7 @@ static void compare_buffer(bench *b, row *rw, int mode, const float *rgba, const
     for (long i = 0; i < n; i++) mask[i] = ref->im.mask[i] == REF_MASK_WATER;
     ref_metrics_desc d = { .mask = mask };
     ref_fimage A = { rgba, w, h, 4 };
-    char err[256];
+    char err[MSG_MAX];
     if (mode == REF_OUTPUT_REFRACT_HIT) {
         /* a truncated march is never silent: the contract's alpha of the
          * refraction-hit buffer is BENCH_MARCH_CAPPED where it ran out */
@@ -199,7 +200,7 @@ void bench_measure_buffers(bench *b, render *r, const render_target *tg, int s, 
         if (spec) {
             int n;
             unif_set *sets = render_uniforms(r, &n);
-            char err[1024] = "";
+            char err[MSG_MAX] = "";
             bool changed;
             if (!packset_apply(sets, n, &spec->how, &changed, err, sizeof err))
                 fprintf(stderr, "%starn bench: %s: buffer %s: %s", b->pr.tty ? "\n" : "", pb->path, spec->name, err);
@@ -240,7 +241,7 @@ static void flip_job_run(flip_job *j) {
     ref_fimage A = { j->test, j->w, j->h, 4 }, B = { j->ref, j->w, j->h, 3 };
     ref_flip_desc d = { .hdr = true };
     ref_flip_result info;
-    char err[256];
+    char err[MSG_MAX];
     if (ref_flip_map(&A, &B, &d, map, NULL, &info, err, sizeof err)) {
         ref_flip_result r = info;
         ref_mask_water(j->classes, n, 1, NULL, m);
@@ -295,7 +296,7 @@ double bench_water_ssim(const float *rgba, const refcache_image *ref, int w, int
     ref_fimage A = { rgba, w, h, 4 }, B = { ref->color, w, h, 3 };
     ref_ssim_desc d = { .mask = m };
     ref_ssim_result r;
-    char err[256];
+    char err[MSG_MAX];
     double v = ref_ssim(&A, &B, &d, NULL, &r, err, sizeof err) ? r.mean : NAN;
     free(m);
     return v;
@@ -308,7 +309,7 @@ double bench_water_rmse_of(const float *rgba, const refcache_image *ref, int w, 
     ref_fimage A = { rgba, w, h, 4 }, B = { ref->color, w, h, 3 };
     ref_metrics_desc d = { .mask = m };
     ref_image_metrics r;
-    char err[256];
+    char err[MSG_MAX];
     double v = ref_metrics_image(&A, &B, &d, &r, err, sizeof err) && r.count.compared ? r.rmse : NAN;
     free(m);
     return v;
@@ -326,7 +327,7 @@ void bench_measure_flat_irradiance(bench *b, row *rw, const ref_entry *flat, con
     ref_metrics_desc d = { .mask = mask };
     ref_fimage A = { flat->im.irradiance, w, h, 3 }, B = { ref->im.irradiance, w, h, 3 };
     ref_scalar_metrics m;
-    char err[256];
+    char err[MSG_MAX];
     int mode = REF_OUTPUT_IRRADIANCE;
     if (ref_metrics_scalar(&A, &B, &d, &m, err, sizeof err)) {
         rw->has[mode] = true;

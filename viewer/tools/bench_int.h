@@ -83,7 +83,7 @@ typedef struct bench_opts {
 typedef struct row {             /* one scene, pack, setting and time */
     int scene, pack, setting, ti;
     bool ok;
-    char error[600];
+    char error[MSG_MAX];
     char note[600];
     int frames;
     double gpu_ms, wall_ms, first_wall_ms;

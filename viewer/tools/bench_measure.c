@@ -3,6 +3,7 @@
  * every time, against the other references (the uncertainty), over the
  * animated sequence, and in the buffers it shows. */
 #include "util.h"
+#include "strbuf.h"
 #include "bench_int.h"
 
 #include <GL/gl.h>
@@ -50,7 +51,7 @@ static bool slot_open(bench *b, slot *sl, int s, int p, int k) {
     render_desc rd = { .repo_root = b->root, .pack = b->o.packs[p], .samples = b->o.samples, .no_spray = true };
     sl->r = render_create(&rd);
     bool loaded = render_load(sl->r, sl->scene);
-    char err[4096] = "";
+    char err[MSG_MAX] = "";
     bool defines_changed = false;
     if (loaded) {
         int n;
@@ -63,7 +64,7 @@ static bool slot_open(bench *b, slot *sl, int s, int p, int k) {
     bool have_target = loaded && render_target_create(&sl->tg, b->o.w, b->o.h, true);
     bench_progress_set(&b->pr, b->pr.done + BENCH_LOAD_WEIGHT, false, NULL);
     if (!loaded || !have_target) {
-        char why[600];
+        char why[MSG_MAX];
         bench_first_line(render_messages(sl->r)[0] ? render_messages(sl->r) : "cannot create the framebuffer", why,
                    sizeof why);
         const diag_list *dl = render_diags(sl->r);

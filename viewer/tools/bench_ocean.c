@@ -1,5 +1,6 @@
 /* bench_ocean: the ocean passes' cost (see bench_ocean.h). */
 #include "bench_ocean.h"
+#include "strbuf.h"
 
 #include <GL/gl.h>
 #include <math.h>
@@ -19,7 +20,7 @@ static double time_passes(const ref_ocean_desc *scene, int res, int cascades, ch
     d.res = res;
     d.cascades = cascades;
     if (cascades > 1 && (d.tile[1] <= 0 || d.tile[2] <= 0)) memset(d.tile, 0, sizeof d.tile);   /* the defaults */
-    char err[512] = "";
+    char err[MSG_MAX] = "";
     ref_ocean *ro = ref_ocean_create(&d, err, sizeof err);
     if (!ro) {
         snprintf(note, notelen, "%s", err);

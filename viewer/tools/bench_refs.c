@@ -2,6 +2,7 @@
  * each kind's options (REFK_*), registered up front for the progress bar,
  * then rendered or read from the cache on first use. */
 #include "bench_int.h"
+#include "strbuf.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -57,7 +58,7 @@ static double ref_weight(const bench *b, const refcache_opts *o, int w, int h) {
 static void want_ref(bench *b, int s, const char *scene, int kind, int w, int h, double t) {
     refcache_opts o = ref_opts(b, kind);
     uint64_t key;
-    char err[2048] = "";
+    char err[MSG_MAX] = "";
     if (!refcache_key(scene, w, h, t, &o, &key, err, sizeof err) || find_ref(b, key)) return;
     char named[PATH_LEN], sc[256];
     bench_stem(b->scene_abs[s], sc, sizeof sc);
@@ -115,7 +116,7 @@ static void on_ref_progress(void *user, double f) {
 ref_entry *bench_get_ref_at(bench *b, int s, const char *scene, int kind, int w, int h, double t) {
     refcache_opts o = ref_opts(b, kind);
     uint64_t key;
-    char err[2048] = "";
+    char err[MSG_MAX] = "";
     if (!refcache_key(scene, w, h, t, &o, &key, err, sizeof err)) return NULL;
     ref_entry *e = find_ref(b, key);
     if (!e) {   /* not foreseen: add it */

@@ -3,6 +3,7 @@
  * section; and bench_write_results, which writes every result (the tables:
  * bench_csv.c, bench_json.c). */
 #include "bench_int.h"
+#include "strbuf.h"
 
 #include <dirent.h>
 #include <math.h>
@@ -288,7 +289,7 @@ static bool write_plot(bench *b, int sc, int metric, const char *path) {
                      .floor_x = bench_axis_floor(b), .floor_label = floor };
     img im;
     bool ok = plot_speed_error(&c, &im);
-    char err[512];
+    char err[MSG_MAX];
     if (ok) ok = img_write(path, &im, err, sizeof err);
     img_free(&im);
     free(pts);
@@ -383,7 +384,7 @@ static bool write_docs(bench *b, const char *path) {
         bench_fmt(pp, sizeof pp, "%s/%splot-%s-flip.png", dir, prefix, st);
         write_plot(b, sc, 1, pp);
     }
-    char why[256];
+    char why[MSG_MAX];
     file_text_opts o = { .max_bytes = 1 << 20 };
     char *old = file_read_text(path, &o, NULL, why, sizeof why);   /* none yet: a new page */
     strbuf bounds = { 0 };

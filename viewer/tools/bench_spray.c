@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "gl_ctx.h"
+#include "strbuf.h"
 #include "mem.h"
 #include "render.h"
 #include "render_world.h"
@@ -76,7 +77,7 @@ int main(int argc, char **argv) {
             return 2;
         }
     }
-    char err[512];
+    char err[MSG_MAX];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "bench_spray: %s\n", err); return 3; }
     char common[4096];

@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "gl_ctx.h"
+#include "strbuf.h"
 #include "image_io.h"
 #include "mem.h"
 #include "ref_flip.h"
@@ -119,7 +120,7 @@ static errs measure(const float *test, const float *truth, int w, int h) {
     size_t n = (size_t)w * h * 3;
     for (size_t i = 0; i < n; i++) s += (double)(test[i] - truth[i]) * (test[i] - truth[i]);
     errs e = { .rmse = sqrt(s / (double)n), .ssim = NAN, .flip = NAN };
-    char err[256];
+    char err[MSG_MAX];
     ref_ssim_result sr;
     if (ref_ssim(&a, &b, NULL, NULL, &sr, err, sizeof err)) e.ssim = sr.mean;
     ref_flip_result fr;
@@ -276,7 +277,7 @@ static void timings(const opts *o, rig *g) {
 
 int main(int argc, char **argv) {
     opts o = parse(argc, argv);
-    char err[512];
+    char err[MSG_MAX];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (!ctx) { fprintf(stderr, "bench_upscale: no OpenGL: %s\n", err); return 3; }
     printf("renderer: %s\n", (const char *)glGetString(GL_RENDERER));

@@ -1,6 +1,7 @@
 /* `tarn compare A B`: reads the images, runs ref_metrics, prints a table
  * and writes the heat map, JSON and CSV. See compare.h, docs/metrics.md. */
 #include "compare.h"
+#include "strbuf.h"
 #include "datafmt.h"
 
 #include <ctype.h>
@@ -271,7 +272,7 @@ typedef ref_buffer_info buffer_kind;
 /* Writes field's heat map to path; returns the scale (NaN on failure). */
 static double write_heatmap(const char *path, const float *field, int w, int h, double scale, FILE *err) {
     img im;
-    char msg[1024];
+    char msg[MSG_MAX];
     if (!img_alloc(&im, w, h, 3)) { fprintf(err, "tarn compare: %s: out of memory\n", path); return NAN; }
     double used = ref_heatmap(field, w, h, scale, im.px);
     bool ok = img_write(path, &im, msg, sizeof msg);
@@ -287,10 +288,10 @@ static float *load_classes(const char *b, int w, int h, char *why, size_t whylen
     char path[4096], msg[512];
     sibling_path(path, sizeof path, b, "mask", ".exr");
     img m;
-    if (!file_exists(path)) { snprintf(why, whylen, "no %s beside B", path); return NULL; }
-    if (!img_read(path, &m, msg, sizeof msg)) { snprintf(why, whylen, "%s", msg); return NULL; }
+    if (!file_exists(path)) { msg_set(why, whylen, "no %s beside B", path); return NULL; }
+    if (!img_read(path, &m, msg, sizeof msg)) { msg_set(why, whylen, "%s", msg); return NULL; }
     if (m.w != w || m.h != h || m.d != 1) {
-        snprintf(why, whylen, "%s is %dx%d, the images %dx%d", path, m.w, m.h, w, h);
+        msg_set(why, whylen, "%s is %dx%d, the images %dx%d", path, m.w, m.h, w, h);
         img_free(&m);
         return NULL;
     }
@@ -312,9 +313,9 @@ typedef struct percept {
 static double ssim_mean(const percept *pc, const unsigned char *mask, char *why, size_t whylen) {
     ref_ssim_desc d = { .mask = mask };
     ref_ssim_result r;
-    char msg[256];
+    char msg[MSG_MAX];
     if (!ref_ssim(pc->a, pc->b, &d, NULL, &r, msg, sizeof msg)) {
-        if (why) snprintf(why, whylen, "%s", msg);
+        if (why) msg_set(why, whylen, "%s", msg);
         return NAN;
     }
     return r.mean;
@@ -348,7 +349,7 @@ static void add_region(kvlist *l, bool water, const ref_fimage *fa, const ref_fi
     ref_mask_water(cls, n, water, user_mask, m);
     ref_metrics_desc d = { .threshold = threshold, .mask = m };
     ref_image_metrics r;
-    char msg[256];
+    char msg[MSG_MAX];
     bool ok = ref_metrics_image(fa, fb, &d, &r, msg, sizeof msg);
     double flip = flip_mean_over(pc, m), ssim = ssim_mean(pc, m, NULL, 0);
     free(m);
@@ -364,7 +365,7 @@ static void add_region(kvlist *l, bool water, const ref_fimage *fa, const ref_fi
 /* Builds the mask: nonzero where M's first channel is > 0.5. */
 static unsigned char *load_mask(const char *path, int w, int h, FILE *err) {
     img m;
-    char msg[1024];
+    char msg[MSG_MAX];
     if (!img_read(path, &m, msg, sizeof msg)) { fprintf(err, "tarn compare: cannot read the mask: %s\n", msg); return NULL; }
     unsigned char *mask = NULL;
     if (m.w != w || m.h != h || m.d != 1)
@@ -381,7 +382,7 @@ static unsigned char *load_mask(const char *path, int w, int h, FILE *err) {
 static bool compare_buffer(const buffer_kind *bk, const char *pa, const char *pb, const compare_desc *o,
                            const unsigned char *mask, int mw, int mh, kvlist *l, FILE *err) {
     img a = {0}, b = {0};
-    char msg[1024];
+    char msg[MSG_MAX];
     bool ok = false;
     float *field = NULL;
     unsigned char *own_mask = NULL;
@@ -525,7 +526,7 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
     FILE *table = (o.json && strcmp(o.json, "-") == 0) || (o.csv && strcmp(o.csv, "-") == 0) ? err : out;
 
     img ia = {0}, ib = {0};
-    char msg[1024];
+    char msg[MSG_MAX];
     bool dec_a = false, dec_b = false, ok_a, ok_b;
     if (!(ok_a = compare_load(o.a, !o.linear, &ia, &dec_a, msg, sizeof msg)))
         fprintf(err, "tarn compare: cannot read A: %s\n", msg);
@@ -582,7 +583,7 @@ int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
     percept pc = { flip, &fa, &fb };
     /* water first: the error of the technique, where the reference sees
      * water; the world around it second; the whole frame last */
-    char why[4200] = "";
+    char why[MSG_MAX] = "";
     float *cls = load_classes(o.b, ia.w, ia.h, why, sizeof why);
     if (cls) {
         add_region(&l, true, &fa, &fb, cls, mask, o.threshold, &pc);

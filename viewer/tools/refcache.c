@@ -1,5 +1,6 @@
 /* refcache: cached reference renders (see refcache.h). */
 #include "refcache.h"
+#include "strbuf.h"
 #include "util.h"
 
 #include <errno.h>
@@ -200,7 +201,7 @@ bool refcache_cached(const char *dir, const char *scene, const char *name, int w
                      const refcache_opts *o) {
     if (!dir) return false;
     uint64_t key;
-    char err[512];
+    char err[MSG_MAX];
     if (!refcache_key(scene, w, h, t, o, &key, err, sizeof err)) return false;
     char stem[1100], path[1200];
     stem_of(dir, name ? name : scene, w, h, t, key, stem, sizeof stem);

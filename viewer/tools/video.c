@@ -1,5 +1,6 @@
 /* video: frames to ffmpeg through a pipe, or to PNGs (video.h). */
 #include "video.h"
+#include "strbuf.h"
 
 #include <errno.h>
 #include <signal.h>
@@ -92,7 +93,7 @@ static void fallback_dir(const char *out, char *dir, size_t len) {
 static bool open_png(video *v, const char *dir, char *err, int errlen) {
     v->png = true;
     snprintf(v->where, sizeof v->where, "%s%s", dir, ends_with(dir, "/") ? "" : "/");
-    char why[1200];
+    char why[MSG_MAX];
     if (!file_mkdir_p(v->where, why, sizeof why)) {
         snprintf(err, (size_t)errlen, "%s", why);
         return false;

@@ -1,6 +1,7 @@
 /* app: the window app loop shared by `tarn view` and `tarn compare-view`
  * (see app.h). */
 #include "app.h"
+#include "strbuf.h"
 
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
@@ -128,7 +129,7 @@ void app_rewatch(app *a) {
     if (!a->watch) return;
     int n;
     const char **all = all_deps(a, &n);
-    char err[512];
+    char err[MSG_MAX];
     a->unwatched = 0;
     if (!all || !watch_set_files(a->watch, all, n, err, sizeof err)) {
         /* one path in a missing directory fails the whole set: watch the rest */
@@ -343,7 +344,7 @@ static void record_start(app *a, const char *path) {
     const char *pack = render_has_world(r) && render_pack(r)[0] ? render_pack(r) : a->d.pack;
     session_header hd = { .scene = render_scene_path(r), .pack = pack, .width = w, .height = h,
                           .time_s = a->s.t };
-    char err[1200];
+    char err[MSG_MAX];
     a->rec = session_rec_start(path, &hd, sets, n, &a->s.cam, a->s.paused, glfwGetTime(), err, sizeof err);
     if (!a->rec) {
         fprintf(stderr, "%s: not recording: %s\n", a->d.name, err);
@@ -738,7 +739,7 @@ static int script_step(app *a, view_script *script) {
 }
 
 static void start_watching(app *a) {
-    char err[512];
+    char err[MSG_MAX];
     a->watch = watch_create(err, sizeof err);
     if (!a->watch) fprintf(stderr, "%s: hot reload is off: %s\n", a->d.name, err);
     else watch_use_cache(a->watch, a->files);   /* a save is read once: the reload finds it in memory */
@@ -793,7 +794,7 @@ int app_run(app *a, render *const *scenes, int n) {
     a->nscenes = n;
     view_script *script = NULL;
     if (a->d.script) {
-        char err[512];
+        char err[MSG_MAX];
         script = view_script_load(a->d.script, err, sizeof err);
         if (!script) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_USAGE; }
     }
@@ -859,7 +860,7 @@ app *app_create(const app_desc *desc) {
     app *a = mem_zalloc(sizeof *a);
     a->d = with_defaults(desc);
     a->client_busy = a->d.between_frames != NULL;
-    char err[1024];
+    char err[MSG_MAX];
     a->ctx = gl_ctx_create_window(a->d.width, a->d.height, a->d.name, err, sizeof err);
     if (!a->ctx) {
         fprintf(stderr, "%s: %s\n", a->d.name, err);

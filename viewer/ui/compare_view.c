@@ -179,7 +179,7 @@ static void start_reference(cview *v) {
 
 /* The finished reference replaces the last one. */
 static bool finish_reference(cview *v) {
-    char err[4096] = "";
+    char err[MSG_MAX] = "";
     refcache_image im;
     if (!heat_job_take_reference(v->job, &im, err, sizeof err)) {
         snprintf(v->heat_status, sizeof v->heat_status, "no reference: %.200s", err);

@@ -1,5 +1,6 @@
 /* compile_job: a save's shaders compiled off the frame (see compile_job.h). */
 #include "compile_job.h"
+#include "strbuf.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -213,7 +214,7 @@ static void warm_scene(compile_job *j, int i) {
  * drawn are let go. */
 static void run_job(compile_job *j) {
     if (!j->ctx) {
-        char err[1024] = "";
+        char err[MSG_MAX] = "";
         j->ctx = gl_ctx_create_headless(err, sizeof err);   /* none: the window compiles on the frame */
         if (!j->ctx) return;
     }

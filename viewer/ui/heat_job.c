@@ -1,5 +1,6 @@
 /* heat_job: compare-view's heat maps on a worker thread (see heat_job.h). */
 #include "heat_job.h"
+#include "strbuf.h"
 
 #include <assert.h>
 #include <math.h>
@@ -29,7 +30,7 @@ struct heat_job {
     refcache_opts opts;
     refcache_image ref;
     bool ref_ok;
-    char err[1024];
+    char err[MSG_MAX];
     /* the maps: their inputs (rgba copied, against borrowed), then the result */
     float *rgba[HEAT_JOB_MAX_PACKS];
     float *field[HEAT_JOB_MAX_PACKS];
@@ -103,7 +104,7 @@ static bool flip_field(heat_job *j, int i, const ref_fimage *A, const ref_fimage
     heat_map *m = &j->maps.map[i];
     ref_flip_desc d = { .hdr = true };
     ref_flip_result all;
-    char err[256];
+    char err[MSG_MAX];
     if (!ref_flip_map(A, B, &d, j->field[i], NULL, &all, err, sizeof err)) return false;
     m->frame_flip = all.mean;
     ref_flip_result wet = all;
@@ -122,7 +123,7 @@ static double map_one(heat_job *j, int i) {
     j->field[i] = mem_realloc(j->field[i], n * sizeof *j->field[i]);
     ref_fimage A = { j->rgba[i], w, h, 4 }, B = { j->against->color, w, h, 3 };
     ref_image_metrics all, water_m;
-    char err[256];
+    char err[MSG_MAX];
     if (!ref_metrics_error_field(&A, &B, REF_ERR_COLOR, NULL, j->field[i], err, sizeof err) ||
         !ref_metrics_image(&A, &B, NULL, &all, err, sizeof err))
         return 0;

@@ -1,5 +1,6 @@
 /* session: the session file, its replay and its recording (session.h). */
 #include "session.h"
+#include "strbuf.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -216,7 +217,7 @@ bool session_parse(session *s, const char *text, const char *path, diag_list *dl
 }
 
 bool session_load(session *s, const char *path, diag_list *dl) {
-    char err[1200];
+    char err[MSG_MAX];
     size_t len;
     char *text = file_read(path, SESSION_MAX_BYTES, &len, err, sizeof err);
     if (!text) {
@@ -261,7 +262,7 @@ void session_player_start(session_player *p, const session *s, render_view home)
 static view_script_status pack_action(void *user, const char *cmd, char *rest, const char *file, int line) {
     render *r = user;
     if (strcmp(cmd, "setting") == 0) {
-        char msg[4096] = "";
+        char msg[MSG_MAX] = "";
         bool ok = render_setting_apply_named(r, NULL, rest, msg, sizeof msg);
         if (msg[0]) fprintf(stderr, "%s:%d: %s", file, line, msg);
         return ok ? VIEW_SCRIPT_CONTINUE : VIEW_SCRIPT_FAILED;

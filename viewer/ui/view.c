@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "strbuf.h"
 #include "exit_code.h"
 #include "glib.h"
 #include "packset.h"
@@ -118,7 +119,7 @@ static void settings_sync(viewer *v) {
     v->setting = -1;
     snprintf(v->bench_pack, sizeof v->bench_pack, "%s", pack);
     if (!pack[0]) return;
-    char err[2048] = "";
+    char err[MSG_MAX] = "";
     if (!packset_bench_load(tarn_root(), pack, &v->bench, err, sizeof err)) fputs(err, stderr);
     int cap = v->bench.n + 1;
     v->order = mem_alloc((size_t)cap * sizeof *v->order);
@@ -144,7 +145,7 @@ static bool choose_setting(viewer *v, app *a, int i) {
     if (i < 0 || i >= v->nsettings) return false;
     const packset_setting *st = v->order[i] < 0 ? NULL : &v->bench.settings[v->order[i]];
     const char *name = v->setting_names[i];
-    char msg[4096] = "";
+    char msg[MSG_MAX] = "";
     bool ok = render_setting_apply(v->r, st, msg, sizeof msg);
     v->setting = i;
     if (msg[0]) fputs(msg, stderr);
@@ -400,7 +401,7 @@ int view_run(const view_desc *d) {
         int i = setting_row(&v, d->setting);
         if (i >= 0) ok = choose_setting(&v, v.app, i);
         else {
-            char msg[2048] = "";
+            char msg[MSG_MAX] = "";
             ok = render_setting_apply_named(v.r, NULL, d->setting, msg, sizeof msg);   /* says which exist */
             fputs(msg, stderr);
         }

@@ -22,7 +22,7 @@ struct view_script {
 };
 
 view_script *view_script_load(const char *path, char *err, int errlen) {
-    char why[256];
+    char why[MSG_MAX];
     file_text_opts o = { .max_bytes = (size_t)VIEW_SCRIPT_MAX_LINES * SCRIPT_LINE_MAX, .strip_bom = true,
                          .crlf_to_lf = true };
     char *text = file_read_text(path, &o, NULL, why, sizeof why);

@@ -1,5 +1,6 @@
 /* view_util: the orbit camera, the mouse and screenshots (see view_util.h). */
 #include "view_util.h"
+#include "strbuf.h"
 
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
@@ -144,7 +145,7 @@ bool view_screenshot_area(int x, int y, int w, int h, const char *path, char *sa
     glReadPixels(x, y, w, h, GL_RGBA, GL_FLOAT, im.px);
     img_flip_rows(&im);
     make_opaque(&im);
-    char err[512], abs[PATH_MAX];
+    char err[MSG_MAX], abs[PATH_MAX];
     bool ok = img_write(path, &im, err, sizeof err);
     if (ok) snprintf(said, len, "screenshot %s", realpath(path, abs) ? abs : path);
     else snprintf(said, len, "screenshot failed: %s", err);
