@@ -192,9 +192,9 @@ static bool message_start(const shader_src *src, const char *p, diag *pending) {
  * *mapped_out (if wanted) gets the log's lines as diags, for glsl_fix. */
 static void add_compile_log(const shader_src *src, const char *log, bool compiled, vmsgs *m, diag_list *mapped_out) {
     if (!log || !log[0]) return;
-    if (mapped_out) shader_src_map_diags(src, log, DIAG_NOTE, mapped_out);
     diag_list lines = { 0 }, found = { 0 };
     shader_src_map_diags(src, log, DIAG_NOTE, &lines);
+    for (int i = 0; mapped_out && i < lines.n; i++) diag_push(mapped_out, &lines.d[i]);
     diag pending;
     bool has_pending = false;
     for (int i = 0; i < lines.n; i++) {

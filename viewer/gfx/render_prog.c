@@ -103,22 +103,23 @@ static GLuint compile_stage(const prog *p, shader_src *src, shader_stage st, dia
     char *raw = NULL;
     GLuint sh = try_compile(st, src->text, &raw);
     if (sh) return sh;
-    diag_list mapped = { 0 }, cur = { 0 }, notes = { 0 };
+    diag_list mapped = { 0 }, retry = { 0 }, notes = { 0 };
     shader_src_map_diags(src, raw, DIAG_NOTE, &mapped);
-    shader_src_map_diags(src, raw, DIAG_NOTE, &cur);
+    const diag_list *cur = &mapped;   /* the log of the text last compiled */
     char *text = NULL;
     for (int tries = 0; tries < 4 && !sh; tries++) {
-        char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, &cur, &notes);
+        char *fixed = glsl_fix_rewrite(src, st, text ? text : src->text, cur, &notes);
         if (!fixed) break;
         free(text);
         text = fixed;
         char *raw2 = NULL;
         sh = try_compile(st, text, &raw2);
-        diag_list_free(&cur);
-        shader_src_map_diags(src, raw2, DIAG_NOTE, &cur);
+        diag_list_free(&retry);
+        shader_src_map_diags(src, raw2, DIAG_NOTE, &retry);
+        cur = &retry;
         free(raw2);
     }
-    diag_list_free(&cur);
+    diag_list_free(&retry);
     if (sh) {
         free(src->text);
         src->text = text;

@@ -900,18 +900,18 @@ void shader_src_map_diags(const shader_src *s, const char *log, diag_severity se
             free(line);
             continue;
         }
-        diag_severity got = sev;
-        const char *text = m.text;
+        const char *file = s->files[m.file], *text = m.text;
         size_t n = m.n;
-        bool named = m.sev ? (got = strncmp(m.sev, "error", 5) == 0 ? DIAG_ERROR
-                                    : strcmp(m.sev, "warning") == 0 ? DIAG_WARNING : DIAG_NOTE, true)
-                           : leading_severity(&text, &n, &got);
-        if (named && m.sev && strcmp(m.sev, "error: unimplemented") == 0)
-            diag_add(out, got, s->files[m.file], (int)m.line, "unimplemented: %.*s", (int)n, text);
-        else if (named)
-            diag_add(out, got, s->files[m.file], (int)m.line, "%.*s", (int)n, text);
-        else
-            diag_add_bare(out, sev, "%s:%ld: %.*s", s->files[m.file], m.line, (int)n, text);
+        diag_severity got;
+        if (m.sev) {   /* glslang's word before the place: "error", "error: unimplemented", ... */
+            got = m.sev[0] == 'w' ? DIAG_WARNING : m.sev[0] == 'n' ? DIAG_NOTE : DIAG_ERROR;
+            const char *more = strchr(m.sev, ' ');   /* "unimplemented" */
+            diag_add(out, got, file, (int)m.line, "%s%s%.*s", more ? more + 1 : "", more ? ": " : "", (int)n, text);
+        } else if (leading_severity(&text, &n, &got)) {   /* Mesa's "error: ..." after the place */
+            diag_add(out, got, file, (int)m.line, "%.*s", (int)n, text);
+        } else {   /* NVIDIA's "error C0000: ...": as written, placed */
+            diag_add_bare(out, sev, "%s:%ld: %.*s", file, m.line, (int)n, text);
+        }
     }
 }
 
