@@ -94,8 +94,6 @@ static double wall_ms(void) {
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-
-
 static void stamp_of(const struct stat *st, file_stamp *out) {
     out->dev = (unsigned long long)st->st_dev;
     out->ino = (unsigned long long)st->st_ino;
@@ -109,11 +107,10 @@ static bool same_stat(const struct stat *a, const struct stat *b) {
            a->st_mtim.tv_sec == b->st_mtim.tv_sec && a->st_mtim.tv_nsec == b->st_mtim.tv_nsec;
 }
 
-/* How long ago the file was modified, in ms (the file's clock is the wall
- * clock); a time in the future (another machine's clock) counts as long ago. */
-static double age_ms(const struct stat *st) {
-    double m = (double)st->st_mtim.tv_sec * 1e3 + (double)st->st_mtim.tv_nsec * 1e-6;
-    double age = wall_ms() - m;
+/* How long before at_ms (the wall clock, the files' clock) a file was
+ * modified; a time in the future (another machine's clock) counts as long ago. */
+static double age_at(long long mtime_ns, double at_ms) {
+    double age = at_ms - (double)mtime_ns * 1e-6;
     return age < 0 ? 1e9 : age;
 }
 
@@ -121,7 +118,7 @@ static double age_ms(const struct stat *st) {
  * *stamp: the file as it was read. */
 static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, file_stamp *stamp, char *why,
                          size_t whylen) {
-    double start = (clock_now_s() * 1e3);
+    double start = clock_now_s() * 1e3;
     for (;;) {
         struct stat before, after;
         b->len = 0;
@@ -130,11 +127,11 @@ static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, f
         if (!read_all(path, o->max_bytes, b, &before, &after, why, whylen)) return false;
         stamp_of(&after, stamp);
         stamp->read_ms = began;
-        if (!o->settle || (clock_now_s() * 1e3) - start >= FILE_SETTLE_MAX_MS) return true;
+        if (!o->settle || clock_now_s() * 1e3 - start >= FILE_SETTLE_MAX_MS) return true;
         /* (/proc and the like say size 0 whatever they hold) */
         bool torn = !same_stat(&before, &after) || ((off_t)b->len != after.st_size && after.st_size != 0);
         /* an empty file just truncated (`cat >`) is given longer to fill */
-        double age = age_ms(&after), settle = b->len == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
+        double age = age_at(stamp->mtime_ns, wall_ms()), settle = b->len == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
         bool young = age < settle;
         if (!torn && !young) return true;
         clock_sleep_s((young && b->len > 0 ? settle - age + 1 : 5) / 1e3);
@@ -198,10 +195,7 @@ bool file_stamp_same(const file_stamp *a, const file_stamp *b) {
            a->ctime_ns == b->ctime_ns;
 }
 
-double file_stamp_age_ms(const file_stamp *st) {
-    double age = st->read_ms - (double)st->mtime_ns * 1e-6;
-    return age < 0 ? 1e9 : age;
-}
+double file_stamp_age_ms(const file_stamp *st) { return age_at(st->mtime_ns, st->read_ms); }
 
 char *file_read(const char *path, size_t max_bytes, size_t *len, char *err, size_t errlen) {
     char why[MSG_MAX];

@@ -186,7 +186,7 @@ int cli_render(const cli_render_desc *d) {
     bool per_frame = strstr(d->out, "%d") != NULL;
     int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
     for (int f = 0; f < frames; f++) {
-        double t0 = (clock_now_s() * 1e3);
+        double t0 = clock_now_s() * 1e3;
         render_frame(r, frame_time(d, f), t.fbo, w, h, NULL);
         glFinish();   /* wall time of the whole frame, including deferred rasterisation */
         if (gl_ctx_lost(ctx, err, sizeof err)) {   /* a GPU reset: nothing drawn can be trusted */
@@ -194,7 +194,7 @@ int cli_render(const cli_render_desc *d) {
             rc = TARN_EXIT_NO_GL;
             break;
         }
-        wall[f] = (clock_now_s() * 1e3) - t0;
+        wall[f] = clock_now_s() * 1e3 - t0;
         ms[f] = render_gpu_ms(r, true);
         if (d->passes) pass_table_add(&passes, r, frames);
         if (per_frame || f == frames - 1) {
