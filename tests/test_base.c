@@ -356,6 +356,63 @@ static void test_file_cache(void) {
     scratch_remove();
 }
 
+/* file_cache_made's maker for the test: counts its calls, fills the bytes
+ * with the call's number; "fail" fails. */
+typedef struct make_probe {
+    int calls;
+    bool fail;
+} make_probe;
+
+static bool make_counted(void *user, void *out, size_t len, char *err, size_t errlen) {
+    make_probe *p = user;
+    p->calls++;
+    if (p->fail) {
+        snprintf(err, errlen, "the maker failed");
+        return false;
+    }
+    memset(out, p->calls, len);
+    return true;
+}
+
+/* Made content (a generated texture): made once per cache and copied after;
+ * a failure keeps nothing; another length is refused; no cache: made each
+ * time. */
+static void test_file_cache_made(void) {
+    file_cache *c = file_cache_create();
+    make_probe p = { 0 };
+    unsigned char out[8] = { 0 };
+    char err[256] = "";
+    CHECK(file_cache_made(c, "@tile/8", out, sizeof out, make_counted, &p, err, sizeof err));
+    CHECK_EQ(p.calls, 1);
+    CHECK_EQ(out[7], 1);
+    memset(out, 0, sizeof out);
+    CHECK(file_cache_made(c, "@tile/8", out, sizeof out, make_counted, &p, err, sizeof err));
+    CHECK_EQ(p.calls, 1);          /* memory: the maker not called again */
+    CHECK_EQ(out[0], 1);
+    CHECK_EQ(out[7], 1);
+    file_cache_counts k = file_cache_counts_of(c);
+    CHECK_EQ(k.made, 1);
+    CHECK_EQ(k.hits, 1);
+    CHECK_EQ(k.reads, 0);
+    unsigned char small[4];
+    CHECK(!file_cache_made(c, "@tile/8", small, sizeof small, make_counted, &p, err, sizeof err));
+    CHECK_STR_CONTAINS(err, "held at 8 bytes, asked for 4");
+    /* another name is made apart; a failed make keeps nothing */
+    p.fail = true;
+    CHECK(!file_cache_made(c, "@other/8", out, sizeof out, make_counted, &p, err, sizeof err));
+    CHECK_STR_EQ(err, "the maker failed");
+    p.fail = false;
+    CHECK(file_cache_made(c, "@other/8", out, sizeof out, make_counted, &p, err, sizeof err));
+    CHECK_EQ(p.calls, 3);
+    CHECK_EQ(out[0], 3);
+    CHECK_EQ(file_cache_counts_of(c).made, 2);
+    file_cache_destroy(c);
+    /* no cache: made every time */
+    p.calls = 0;
+    for (int i = 0; i < 2; i++) CHECK(file_cache_made(NULL, "@tile/8", out, sizeof out, make_counted, &p, err, sizeof err));
+    CHECK_EQ(p.calls, 2);
+}
+
 /* The JSON and CSV spellings (RFC 8259's escapes, RFC 4180's quoting). */
 static void test_data_formats(void) {
     strbuf o = { 0 };
@@ -391,6 +448,7 @@ int main(void) {
     RUN(test_read_text_options);
     RUN(test_paths);
     RUN(test_file_cache);
+    RUN(test_file_cache_made);
     RUN(test_data_formats);
     RUN(test_mem_grow);
     RUN(test_median_and_sort);

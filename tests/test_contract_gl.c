@@ -10,6 +10,7 @@
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "file_cache.h"
 #include "render.h"
 
 
@@ -362,6 +363,23 @@ static void test_generated_caustics(void) {
     fprintf(stderr, "  caustics: mean %.3f, std %.3f\n", mean, sqrt(var));
     CHECK_NEAR(mean, 1.0, 0.05);   /* 64^2 samples of a 128^2 texture with mip filtering: ~1% off */
     CHECK_GT(sqrt(var), 0.1);        /* a pattern, not a constant */
+    /* made once per file cache: a second scene loading it (the window's
+     * compile job, compare-view's next pack) gets the same texels from
+     * memory, no photon tracing */
+    file_cache *files = file_cache_create();
+    render_desc d = { .files = files };
+    render *a = render_create(&d), *b = render_create(&d);
+    CHECK_MSG(render_load(a, scratch_path("caus.glib")), "%s", render_messages(a));
+    CHECK_MSG(render_load(b, scratch_path("caus.glib")), "%s", render_messages(b));
+    CHECK_EQ(file_cache_counts_of(files).made, 1);   /* the tracing ran once */
+    float *pa = draw(scratch_path("caus.glib"), 64, 64, 0, &a), *pb = draw(scratch_path("caus.glib"), 64, 64, 0, &b);
+    CHECK_EQ(memcmp(pa, px, 64 * 64 * 4 * sizeof(float)), 0);
+    CHECK_EQ(memcmp(pb, px, 64 * 64 * 4 * sizeof(float)), 0);
+    free(pa);
+    free(pb);
+    render_destroy(a);
+    render_destroy(b);
+    file_cache_destroy(files);
     free(px);
 }
 

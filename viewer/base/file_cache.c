@@ -18,6 +18,7 @@ typedef struct held_file {
     uint64_t hash;
     file_stamp stamp;       /* when read */
     bool trusted;           /* it was FILE_CACHE_TRUST_MS old when read */
+    bool made;              /* file_cache_made's: key is a name, no stamp */
 } held_file;
 
 struct file_cache {
@@ -59,7 +60,7 @@ static char *held_copy(file_cache *c, const char *key, size_t max_bytes, size_t 
     char *copy = NULL;
     pthread_mutex_lock(&c->lock);
     held_file *f = find(c, key);
-    if (f && f->trusted && file_stamp_same(&f->stamp, &now) && !(max_bytes && f->len > max_bytes)) {
+    if (f && !f->made && f->trusted && file_stamp_same(&f->stamp, &now) && !(max_bytes && f->len > max_bytes)) {
         copy = mem_alloc(f->len + 1);
         memcpy(copy, f->bytes, f->len + 1);
         *len = f->len;
@@ -160,6 +161,42 @@ bool file_cache_held(file_cache *c, const char *path, uint64_t *hash) {
     pthread_mutex_unlock(&c->lock);
     free(key);
     return f != NULL;
+}
+
+bool file_cache_made(file_cache *c, const char *name, void *out, size_t len, file_cache_make_fn make, void *user,
+                     char *err, size_t errlen) {
+    if (!c) return make(user, out, len, err, errlen);
+    bool have = false;
+    size_t held_len = 0;
+    pthread_mutex_lock(&c->lock);
+    held_file *f = find(c, name);
+    if (f && f->made) {
+        have = true;
+        held_len = f->len;
+        if (held_len == len) {
+            memcpy(out, f->bytes, len);
+            c->counts.hits++;
+        }
+    }
+    pthread_mutex_unlock(&c->lock);
+    if (have) {
+        if (held_len != len) msg_set(err, errlen, "'%s' is held at %zu bytes, asked for %zu", name, held_len, len);
+        return held_len == len;
+    }
+    if (!make(user, out, len, err, errlen)) return false;
+    char *copy = mem_alloc(len);
+    memcpy(copy, out, len);
+    pthread_mutex_lock(&c->lock);
+    c->counts.made++;
+    f = find(c, name);
+    if (f) {
+        free(copy);   /* another thread made it meanwhile: the same bytes */
+    } else {
+        c->files = mem_grow(c->files, &c->cap, c->n + 1, sizeof *c->files);
+        c->files[c->n++] = (held_file){ .key = mem_strdup(name), .bytes = copy, .len = len, .made = true };
+    }
+    pthread_mutex_unlock(&c->lock);
+    return true;
 }
 
 file_cache_counts file_cache_counts_of(file_cache *c) {

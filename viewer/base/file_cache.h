@@ -61,10 +61,25 @@ bool file_cache_refresh(file_cache *c, const char *path, uint64_t *hash);
  * the watch that follows is not lost. */
 bool file_cache_held(file_cache *c, const char *path, uint64_t *hash);
 
+/* Content tarn makes rather than reads (a generated texture: the caustic
+ * tile's photon tracing takes about a second), held under a name that is
+ * no path ("@caustics/128"), so a reload, the window's compile job and
+ * compare-view's other packs make it once. The first call runs make(user,
+ * out, len, err, errlen) to fill len bytes at out and keeps them; later
+ * calls with the name copy them to out (len must be the same). The content
+ * must depend on the name alone (put every input into it). make runs
+ * outside the lock: two threads asking at once may both make it (the same
+ * bytes; one is kept). False: make failed (err says why; nothing kept) or
+ * len differs from what is held. A NULL cache makes it every time. */
+typedef bool (*file_cache_make_fn)(void *user, void *out, size_t len, char *err, size_t errlen);
+bool file_cache_made(file_cache *c, const char *name, void *out, size_t len, file_cache_make_fn make, void *user,
+                     char *err, size_t errlen);
+
 /* Reads from disk and answers from memory since the cache was made (for
- * tests and benchmarks: a Define toggle must read nothing). */
+ * tests and benchmarks: a Define toggle must read nothing), and the times
+ * file_cache_made's maker ran and succeeded. */
 typedef struct file_cache_counts {
-    long reads, hits;
+    long reads, hits, made;
 } file_cache_counts;
 file_cache_counts file_cache_counts_of(file_cache *c);
 

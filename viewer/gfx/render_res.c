@@ -428,25 +428,45 @@ static bool load_image(file_cache *files, const char *path, img *im, const glib_
     return false;
 }
 
-/* `Texture2D unit @NAME`: a texture tarn generates (viewer/gfx/assets.h). */
-static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, diag_list *log) {
-    const char *name = c->path + 1;
-    int res = strcmp(name, "caustics") == 0 ? 128 : 256;   /* caustics: photon tracing, ~1 s */
-    float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
-    char err[MSG_MAX] = "";
-    bool ok = false, one_channel = false;
-    if (strcmp(name, "caustics") == 0) { ok = assets_bake_caustics(res, px, err, sizeof err); one_channel = true; }
-    else if (strcmp(name, "foam") == 0) ok = assets_bake_foam(res, px);
-    else if (strcmp(name, "water_normal") == 0) ok = assets_bake_water_normal(res, px);
-    else if (strcmp(name, "terrain_normal") == 0) {
+/* The generated textures' sizes: the caustic tile is photon tracing (about
+ * a second at 128), the others are quick. */
+static int generated_res(const char *name) { return strcmp(name, "caustics") == 0 ? 128 : 256; }
+
+/* file_cache_made's maker for `@NAME` (user: the name without '@'): res x
+ * res x 3 floats (the caustic tile fills one channel). */
+static bool bake_generated(void *user, void *out, size_t len, char *err, size_t errlen) {
+    const char *name = user;
+    int res = generated_res(name);
+    float *px = out;
+    if (len != (size_t)res * res * 3 * sizeof(float)) return false;
+    if (strcmp(name, "caustics") == 0) return assets_bake_caustics(res, px, err, (int)errlen);
+    if (strcmp(name, "foam") == 0) return assets_bake_foam(res, px);
+    if (strcmp(name, "water_normal") == 0) return assets_bake_water_normal(res, px);
+    if (strcmp(name, "terrain_normal") == 0) {
         ref_world w;
         ref_world_desc d;
         ref_world_desc_lake(&d);   /* no world at hand here: the lake's terrain */
         ref_world_init(&w, &d);
-        ok = assets_bake_terrain_normal(&w, res, px);
+        bool ok = assets_bake_terrain_normal(&w, res, px);
         ref_world_release(&w);
+        return ok;
     }
-    if (!ok) {
+    msg_set(err, errlen, "no generated texture of that name (@caustics, @foam, @water_normal, @terrain_normal)");
+    return false;
+}
+
+/* `Texture2D unit @NAME`: a texture tarn generates (viewer/gfx/assets.h),
+ * made once per cache (the window's reloads, its compile job and
+ * compare-view's packs share it). */
+static bool tex_2d_generated(const glib_cmd *c, file_cache *files, gpu_tex *t, diag_list *log) {
+    const char *name = c->path + 1;
+    int res = generated_res(name);
+    bool one_channel = strcmp(name, "caustics") == 0;
+    size_t len = (size_t)res * res * 3 * sizeof(float);
+    float *px = mem_alloc(len);
+    char err[MSG_MAX] = "", key[RES_KEY_MAX];
+    snprintf(key, sizeof key, "@%s/%d", name, res);
+    if (!file_cache_made(files, key, px, len, bake_generated, (void *)name, err, sizeof err)) {
         diag_add(log, DIAG_ERROR, c->file, c->line, "Texture2D %s: %s", c->path, err[0] ? err : "cannot generate");
         free(px);
         return false;
@@ -464,7 +484,7 @@ static bool tex_2d_generated(const glib_cmd *c, gpu_tex *t, diag_list *log) {
 }
 
 static bool tex_2d_file(const glib_cmd *c, file_cache *files, gpu_tex *t, diag_list *log) {
-    if (c->path[0] == '@') return tex_2d_generated(c, t, log);
+    if (c->path[0] == '@') return tex_2d_generated(c, files, t, log);
     if (is_raw_name(c->path)) {
         raw_tex rt;
         if (!raw_read_into(files, c->path, 2, &rt, c, log)) return false;
