@@ -72,10 +72,13 @@ static void test_target_sizes(void) {
     CHECK_MSG(render_load(r, scratch_path("sizes.glib")), "%s", render_messages(r));
     float once = 64 + 1000 * W;
     sizes_at(r, 1.0, (float[]){ 256, 128, 100, once });
-    /* a reduced side is never a power of two (side_off_pow2): one texel more */
-    sizes_at(r, 0.5, (float[]){ 129, 65, 50, once });
-    sizes_at(r, 0.25, (float[]){ 65, 33, 25, once });
-    sizes_at(r, 0.01, (float[]){ 17, 17, 17, once });   /* the floor: a pass still has something to draw */
+    /* a reduced side is a power of two when the scene's is, else none
+     * (side_like_full: llvmpipe keys a shader's code on it) */
+    sizes_at(r, 0.5, (float[]){ 128, 64, 50, once });
+    sizes_at(r, 0.25, (float[]){ 64, 32, 25, once });
+    sizes_at(r, 0.3, (float[]){ 64, 32, 30, once });    /* 77 x 38: the nearer powers of two, in ratio */
+    sizes_at(r, 0.16, (float[]){ 32, 16, 17, once });   /* 16: not one, one texel more */
+    sizes_at(r, 0.01, (float[]){ 16, 16, 17, once });   /* the floor: a pass still has something to draw */
     sizes_at(r, 1.0, (float[]){ 256, 128, 100, once });
     sizes_at(r, 0.0, (float[]){ 256, 128, 100, once });   /* out of range: the scene's own */
     render_destroy(r);

@@ -209,6 +209,15 @@ static void test_key_changes_with_any_byte(void) {
     CHECK(iw == 256 && ih == 1024);
     CHECK(side_off_pow2(64, 64) == 64 && side_off_pow2(63, 64) == 63 && side_off_pow2(2, 64) == 2);
     CHECK(side_off_pow2(64, 100) == 65 && side_off_pow2(4, 100) == 5);
+    /* a reduced side keeps whether the full one is a power of two */
+    CHECK_EQ(side_like_full(379, 1024, 16), 512);   /* 379: nearer 512 than 256 in ratio */
+    CHECK_EQ(side_like_full(77, 256, 16), 64);
+    CHECK_EQ(side_like_full(95, 256, 32), 128);
+    CHECK_EQ(side_like_full(3, 256, 16), 16);        /* the floor */
+    CHECK_EQ(side_like_full(3000, 1024, 16), 1024);  /* never above full */
+    CHECK_EQ(side_like_full(64, 100, 16), 65);       /* full not one: side_off_pow2 */
+    CHECK_EQ(side_like_full(50, 100, 16), 50);
+    CHECK_EQ(side_like_full(3, 100, 16), 17);
 }
 
 int main(void) {

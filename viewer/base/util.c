@@ -125,3 +125,13 @@ int side_off_pow2(int k, int full) {
     bool pow2 = k >= 4 && (k & (k - 1)) == 0;
     return pow2 && k + 1 < full ? k + 1 : k;
 }
+
+int side_like_full(int k, int full, int min) {
+    if (k < min) k = min;
+    if (!(full >= 4 && (full & (full - 1)) == 0)) return side_off_pow2(k, full);
+    int p = 1;
+    while (p < k && p < full) p <<= 1;               /* the power of two at or above k */
+    if (p > 1 && (double)k * k < (double)p * p / 2) p >>= 1;   /* nearer below, in ratio */
+    while (p < min && p < full) p <<= 1;
+    return p;
+}

@@ -56,4 +56,15 @@ bool tarn_cache_dir(char *out, size_t len);
  * can make it ahead). */
 int side_off_pow2(int k, int full);
 
+/* A reduced side of a texture the scene sizes (a target, the world's height
+ * map) or of a count tied to one (natural's photons, one a texel), about k
+ * of full, that keeps whether full is a power of two: llvmpipe's key for a
+ * shader's variant holds, for each texture it samples, whether each side
+ * is one, so a target of 1024 drawn at 379 in a reduced frame made every
+ * shader reading it compile again for the still picture's 1024 (the
+ * window's compile job compiled caustic_tex's water twice, 1-2 s each).
+ * full a power of two: the power of two nearest k in ratio, at least min
+ * and at most full; else side_off_pow2(max(k, min), full). */
+int side_like_full(int k, int full, int min);
+
 #endif

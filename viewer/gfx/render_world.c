@@ -518,8 +518,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *
 
 int world_detail_count(int n, double detail, int min) {
     if (!(detail > 0) || detail >= 1 || n <= min) return n;
-    long k = lround(n * detail);
-    return side_off_pow2(k < min ? min : (int)k, n);
+    return side_like_full((int)lround(n * detail), n, min);
 }
 
 /* The level for a frame at `detail` of each side: the vertices follow the

@@ -94,8 +94,9 @@ typedef struct gpu_world {
 /* A count the scene fixes (a target's side, points or texels per side)
  * for a frame at `detail` of each side (render_set_detail): scaled with
  * the frame's sides, so its pass costs the same share of a reduced frame
- * as of a full one; never below min (nor above n); n itself at detail 1,
- * or out of (0, 1). */
+ * as of a full one; never below min (nor above n); a power of two when n
+ * is one, else none (side_like_full: one shader variant for the reduced
+ * and the full frames); n itself at detail 1, or out of (0, 1). */
 int world_detail_count(int n, double detail, int min);
 
 /* The level of detail of the meshes drawn from now on, for a frame drawn
