@@ -62,6 +62,13 @@ static void test_mesa_messages(void) {
                "returning float", "`return 1.0;`");
     check_note("p.frag:6: error: `return' with wrong type float, in function `g' returning int\n", NULL,
                "returning int", "`return int(...);`");
+    /* an undeclared name's expression has Mesa's type "error": the line
+     * before says what is wrong, no conversion to suggest */
+    char *cascade = annotate("p.frag:6: error: `x' undeclared\n"
+                             "p.frag:6: error: `return' with wrong type error, in function `f' returning float\n",
+                             src_frag);
+    CHECK_MSG(!strstr(cascade, "note:"), "%s", cascade);
+    free(cascade);
     check_note("p.frag:5: error: initializer of const variable `K' must be a constant expression\n", src_frag,
                "expression", "p.frag:5: note: 'K' is declared const");
     /* K is global: its value moves into main(); L is local: dropping const is enough */

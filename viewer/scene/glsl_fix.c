@@ -551,7 +551,7 @@ static void fix_message(fixer *f, const char *file, long lno, const char *msg) {
         return;
     }
     if (li < 0) return;
-    if (strncmp(msg, "`return' with wrong type ", 25) == 0 ||
+    if ((strncmp(msg, "`return' with wrong type ", 25) == 0 && strncmp(msg + 25, "error,", 6) != 0) ||
         strncmp(msg, "'return' : cannot convert return value", 38) == 0 ||
         strncmp(msg, "'return' : type conversion on return values", 43) == 0) {
         fix_return(f, li);

@@ -188,6 +188,9 @@ static bool hint_return(const char *msg, const char *source, strbuf *o) {
     char got[32], fn[96], want[32];
     if (sscanf(msg, "`return' with wrong type %31[^,], in function `%95[^']' returning %31s", got, fn, want) != 3)
         return false;
+    /* Mesa's type of an expression it could not type (an undeclared name,
+     * a bad call): the error before this one is the mistake, not a type */
+    if (strcmp(got, "error") == 0) return false;
     strbuf_printf(o, "'%s' is declared to return %s but this line returns a%s %s; GLSL does not convert a "
                   "returned value (NVIDIA does). ", fn, want, strchr("aeiou", got[0]) ? "n" : "", got);
     if (strcmp(want, "float") == 0 && strcmp(got, "int") == 0)
