@@ -88,7 +88,9 @@ struct app {
     bool changed_again;          /* a file changed while it ran */
     int compile_restarts;        /* jobs started again for such changes, since the last reload */
     double change_seen;          /* glfwGetTime() when the change being compiled was seen (0: none) */
-    double last_swap, gap_max;   /* the longest swap-to-swap time since then (the stamp says it) */
+    double last_swap, gap_max;   /* the longest the window was awake without a new frame since
+                                  * then: swap to swap, or from waking after a sleep (a still
+                                  * window sleeps; input wakes it at once). The stamp says it */
     double compile_s;            /* how long the last job ran */
     bool compiled_off_frame;     /* during hooks.reload: the job compiled what it loads */
     bool judge_job;              /* this frame reloaded after a job: did the job help? */
@@ -769,9 +771,10 @@ static bool files_pending(const app *a) {
  * save is seen (the watcher's fd is not GLFW's to wait on). */
 static bool wait_for_work(app *a, const view_script *script) {
     a->keep_awake = false;
-    if (a->compiling && !compile_finished(a) && !script && a->budget.full_done) {
+    if (a->compiling && !compile_finished(a) && (!script || view_script_waiting(script)) && a->budget.full_done) {
         /* a still picture while a job compiles: no frames to draw (the
-         * cores are the compiler's), only the job's end to see */
+         * cores are the compiler's), only the job's end to see; a script's
+         * `wait` too, so a benchmark meets what a user does */
         glfwWaitEventsTimeout(APP_COMPILE_POLL_S);
         if (!a->woken && !compile_finished(a) && !files_pending(a)) return false;
         a->slept = true;
@@ -808,6 +811,7 @@ int app_run(app *a, render *const *scenes, int n) {
         if (!wait_for_work(a, script)) continue;
         a->woken = false;
         double started = glfwGetTime();
+        bool after_sleep = a->slept;
         frame(a, script != NULL);
         char lost[1024];
         if (gl_ctx_lost(a->ctx, lost, sizeof lost)) {
@@ -819,7 +823,7 @@ int app_run(app *a, render *const *scenes, int n) {
         glfwSwapBuffers(a->win);
         double swapped = glfwGetTime();
         if (a->change_seen > 0 || a->stamp_pending) {
-            a->gap_max = fmax(a->gap_max, swapped - a->last_swap);
+            a->gap_max = fmax(a->gap_max, swapped - (after_sleep ? started : a->last_swap));
             a->frames_meanwhile++;
         }
         a->last_swap = swapped;

@@ -54,6 +54,10 @@ void view_script_free(view_script *s) {
     free(s);
 }
 
+bool view_script_waiting(const view_script *s) {
+    return s && s->wait_frames == 0 && s->wait_until > 0 && clock_now_s() < s->wait_until;
+}
+
 const char *view_script_arg(const view_script *s) { return s->arg; }
 
 static int parse_floats(char *rest, float *v, int max) {

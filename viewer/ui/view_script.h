@@ -2,7 +2,9 @@
  * demos can drive `tarn view --script FILE` under Xvfb. One action a line:
  *   frames N                      draw N frames
  *   wait SECONDS                  draw frames for this long (wall time: a test
- *                                 changes files meanwhile)
+ *                                 changes files meanwhile); while the window's
+ *                                 compile job runs over a still picture, the window
+ *                                 sleeps instead, as without a script
  *   time T                        set the simulated time (seconds)
  *   set PROGRAM UNIFORM v...      what moving that slider does
  *   expect PROGRAM UNIFORM v...   the linked GL program holds these values (±1e-5)
@@ -74,6 +76,8 @@ view_script *view_script_load(const char *path, char *err, int errlen);
 /* Runs actions up to the next frame boundary; returns what the caller must do. */
 view_script_status view_script_step(view_script *s, view_script_ctx *ctx);
 const char *view_script_arg(const view_script *s);
+/* Is a `wait SECONDS` running (frames or nothing, the caller's choice)? */
+bool view_script_waiting(const view_script *s);
 /* One action that needs no frame boundary (set, expect, time, camera,
  * pause, or ctx->custom's), text as a script line; file and line name it
  * in messages. The one path scripts and session replays (session.h) change
