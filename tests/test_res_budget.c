@@ -64,6 +64,18 @@ static void test_cheap_scene_stays_full(void) {
     double t = 0, last = 0;
     uint64_t key = 0;
     CHECK_NEAR(run_moving(&rb, 2, 20, 30, &t, &key, &last), 1.0, 1e-12);
+    /* its moving frames are full-resolution, yet the picture is not still
+     * (the window keeps drawing it while a save compiles) until its key has
+     * stayed the same for the settle time */
+    CHECK(rb.full_done);
+    CHECK(!res_budget_settled(&rb, t));
+    double s;
+    t += RES_BUDGET_SETTLE_S / 2;
+    CHECK(!res_budget_plan(&rb, key, t, last, false, &s));
+    CHECK(!res_budget_settled(&rb, t));
+    t += RES_BUDGET_SETTLE_S;
+    CHECK(!res_budget_plan(&rb, key, t, 5, false, &s));
+    CHECK(res_budget_settled(&rb, t));
 }
 
 /* natural's photon pass: 257 ms whatever the size. The floor, not below. */

@@ -101,8 +101,10 @@ saved_file_named() {
 }
 saved_file_named view lost.glib "$bin" view lost.glib
 saved_file_named compare-view lost-world.glib "$bin" compare-view lost-world.glib --packs basic,basic --size 320x240
-# $1: "job" or "frame" (TARN_COMPILE_ON_FRAME=1)
-printf 'frames 2\nstamp on\nwait 12\nquit\n' > "$scratch/stamp.script"
+# $1: "job" or "frame" (TARN_COMPILE_ON_FRAME=1). The camera turns all
+# along (orbit): a moving picture must keep its frames coming while the job
+# compiles (a still one sleeps through the job, as it does without a script)
+printf 'frames 2\norbit 0.002 0 1000000\nstamp on\nwait 12\nquit\n' > "$scratch/stamp.script"
 compile_mode() {
     local mode=$1 log=$scratch/compile-$1.log
     rm -f "$log"

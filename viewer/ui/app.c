@@ -771,10 +771,12 @@ static bool files_pending(const app *a) {
  * save is seen (the watcher's fd is not GLFW's to wait on). */
 static bool wait_for_work(app *a, const view_script *script) {
     a->keep_awake = false;
-    if (a->compiling && !compile_finished(a) && (!script || view_script_waiting(script)) && a->budget.full_done) {
+    if (a->compiling && !compile_finished(a) && (!script || view_script_waiting(script)) &&
+        res_budget_settled(&a->budget, glfwGetTime())) {
         /* a still picture while a job compiles: no frames to draw (the
          * cores are the compiler's), only the job's end to see; a script's
-         * `wait` too, so a benchmark meets what a user does */
+         * `wait` too, so a benchmark meets what a user does. A moving one
+         * (the clock, a drag) keeps drawing, full-resolution or not */
         glfwWaitEventsTimeout(APP_COMPILE_POLL_S);
         if (!a->woken && !compile_finished(a) && !files_pending(a)) return false;
         a->slept = true;

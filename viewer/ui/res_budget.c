@@ -73,6 +73,10 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
     return true;
 }
 
+bool res_budget_settled(const res_budget *b, double now_s) {
+    return b->full_done && b->have_key && now_s - b->still_since >= RES_BUDGET_SETTLE_S;
+}
+
 void res_budget_size(double scale, int w, int h, int *iw, int *ih) {
     if (scale >= 1.0) {
         *iw = w;

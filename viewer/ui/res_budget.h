@@ -70,6 +70,11 @@ void res_budget_init(res_budget *b, double budget_ms);
 bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_frame_ms, bool force_full,
                      double *scale);
 
+/* Is the picture still at now_s: its full-resolution frame drawn and its
+ * key unchanged for RES_BUDGET_SETTLE_S? (full_done alone is not: a cheap
+ * scene's moving frames are full-resolution too.) */
+bool res_budget_settled(const res_budget *b, double now_s);
+
 /* One frame drawn at scale took ms: the next changing frame's scale. */
 void res_budget_feed(res_budget *b, double ms, double scale);
 
