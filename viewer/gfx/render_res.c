@@ -428,49 +428,59 @@ static bool load_image(file_cache *files, const char *path, img *im, const glib_
     return false;
 }
 
-/* The generated textures' sizes: the caustic tile is photon tracing (about
- * a second at 128), the others are quick. */
-static int generated_res(const char *name) { return strcmp(name, "caustics") == 0 ? 128 : 256; }
+/* The textures tarn generates (viewer/gfx/assets.h; glib_cmds.c accepts
+ * these names): their side and channels. The caustic tile is photon
+ * tracing, about a second at 128; the others are quick. */
+typedef struct generated_tex {
+    const char *name;
+    int res, channels;
+} generated_tex;
+static const generated_tex GENERATED[] = {
+    { "caustics", 128, 1 }, { "foam", 256, 3 }, { "water_normal", 256, 3 }, { "terrain_normal", 256, 3 },
+};
 
-/* file_cache_made's maker for `@NAME` (user: the name without '@'): res x
- * res x 3 floats (the caustic tile fills one channel). */
+/* file_cache_made's maker (user: the generated_tex): res x res texels of
+ * its channels, as floats. */
 static bool bake_generated(void *user, void *out, size_t len, char *err, size_t errlen) {
-    const char *name = user;
-    int res = generated_res(name);
+    const generated_tex *g = user;
     float *px = out;
-    if (len != (size_t)res * res * 3 * sizeof(float)) return false;
-    if (strcmp(name, "caustics") == 0) return assets_bake_caustics(res, px, err, (int)errlen);
-    if (strcmp(name, "foam") == 0) return assets_bake_foam(res, px);
-    if (strcmp(name, "water_normal") == 0) return assets_bake_water_normal(res, px);
-    if (strcmp(name, "terrain_normal") == 0) {
-        ref_world w;
-        ref_world_desc d;
-        ref_world_desc_lake(&d);   /* no world at hand here: the lake's terrain */
-        ref_world_init(&w, &d);
-        bool ok = assets_bake_terrain_normal(&w, res, px);
-        ref_world_release(&w);
-        return ok;
-    }
-    msg_set(err, errlen, "no generated texture of that name (@caustics, @foam, @water_normal, @terrain_normal)");
-    return false;
+    (void)len;
+    if (strcmp(g->name, "caustics") == 0) return assets_bake_caustics(g->res, px, err, (int)errlen);
+    if (strcmp(g->name, "foam") == 0) return assets_bake_foam(g->res, px);
+    if (strcmp(g->name, "water_normal") == 0) return assets_bake_water_normal(g->res, px);
+    ref_world w;   /* terrain_normal */
+    ref_world_desc d;
+    ref_world_desc_lake(&d);   /* no world at hand here: the lake's terrain */
+    ref_world_init(&w, &d);
+    bool ok = assets_bake_terrain_normal(&w, g->res, px);
+    ref_world_release(&w);
+    return ok;
 }
 
-/* `Texture2D unit @NAME`: a texture tarn generates (viewer/gfx/assets.h),
- * made once per cache (the window's reloads, its compile job and
- * compare-view's packs share it). */
+/* `Texture2D unit @NAME`: a texture tarn generates, made once per cache
+ * (the window's reloads, its compile job and compare-view's packs share
+ * it). */
 static bool tex_2d_generated(const glib_cmd *c, file_cache *files, gpu_tex *t, diag_list *log) {
-    const char *name = c->path + 1;
-    int res = generated_res(name);
-    bool one_channel = strcmp(name, "caustics") == 0;
-    size_t len = (size_t)res * res * 3 * sizeof(float);
-    float *px = mem_alloc(len);
+    const generated_tex *g = NULL;
+    for (size_t k = 0; k < sizeof GENERATED / sizeof GENERATED[0]; k++)
+        if (strcmp(c->path + 1, GENERATED[k].name) == 0) g = &GENERATED[k];
     char err[MSG_MAX] = "", key[RES_KEY_MAX];
-    snprintf(key, sizeof key, "@%s/%d", name, res);
-    if (!file_cache_made(files, key, px, len, bake_generated, (void *)name, err, sizeof err)) {
+    float *px = NULL;
+    if (g) {
+        size_t len = (size_t)g->res * g->res * g->channels * sizeof(float);
+        px = mem_alloc(len);
+        snprintf(key, sizeof key, "@%s/%d", g->name, g->res);
+        if (!file_cache_made(files, key, px, len, bake_generated, (void *)g, err, sizeof err)) {
+            free(px);
+            px = NULL;
+        }
+    }
+    if (!px) {
         diag_add(log, DIAG_ERROR, c->file, c->line, "Texture2D %s: %s", c->path, err[0] ? err : "cannot generate");
-        free(px);
         return false;
     }
+    int res = g->res;
+    bool one_channel = g->channels == 1;
     t->w = t->h = res;
     glTexImage2D(GL_TEXTURE_2D, 0, one_channel ? GL_R16F : GL_RGB16F, res, res, 0, one_channel ? GL_RED : GL_RGB,
                  GL_FLOAT, px);
