@@ -1,6 +1,7 @@
 /* The pack contract (docs/packs/contract.md) on llvmpipe: the top camera's
  * texel-to-world mapping, the mirror camera's matrix, RenderToTextureOnce,
- * additive photon points, the CPU Splat's energy, generated textures. */
+ * additive photon points, the CPU Splat's energy, generated textures, the
+ * terrain's height map. */
 #include <GL/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -383,6 +384,47 @@ static void test_generated_caustics(void) {
     free(px);
 }
 
+/* uTerrainHeightMap (terrainHeightMarch) against the terrain's model
+ * (terrainHeightGrad) over 1.6 half sizes, past the map's 1.3, for each
+ * kind of terrain. The bounds, in the world's scale: bilinear error
+ * a k^2 h^2 / 8 summed over the lake's detail sines (texels 2.6 hs / 512
+ * apart: 0.3 mm on the 12 m lake), the pool walls' smoothstep about 2 mm,
+ * the slope exact but float rounding. A map half a texel off would be
+ * ~15 mm out on the lake's floor; a clamped edge that lost the slope's
+ * plane, metres. */
+static void test_terrain_map_matches_the_model(void) {
+    scratch_write("terr.frag", "#version 330 compatibility\nuniform float uWaterLevel;\n#include \"terrain.glsl\"\n"
+                            "out vec4 c;\nvoid main() {\n"
+                            "  vec2 xz = (gl_FragCoord.xy / 96.0 * 2.0 - 1.0) * 1.6 * uTerrainHalfSize;\n"
+                            "  float h = terrainHeightGrad(xz).x;\n"
+                            "  c = vec4(terrainHeightMarch(xz) - h, h, 0., 1.);\n}\n");
+    const struct { const char *terrain; double bound; } cases[] = {
+        { "Terrain lake 12 3 0.6 7", 0.0005 },
+        { "Terrain lake 1200 300 60 7", 0.05 },    /* the same lake 100 times larger */
+        { "Terrain pool 12 1.5 0.4", 0.003 },
+        { "Terrain slope 12 2 0.25", 1e-5 },
+        { "Terrain flat 12 2", 1e-6 },
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char text[1024];
+        snprintf(text, sizeof text, "##OpenGL GLIB\n%s\nWater 0\nVertex flat.vert\nFragment terr.frag\nProgram T\n"
+                 "QuadXY 0 1 1 1\n", cases[k].terrain);
+        scratch_write("terr.glib", text);
+        float *px = draw(scratch_path("terr.glib"), 96, 96, 0, NULL);
+        double worst = 0, lo = 1e30, hi = -1e30;
+        for (int i = 0; i < 96 * 96; i++) {
+            worst = fmax(worst, fabs(px[i * 4]));
+            lo = fmin(lo, px[i * 4 + 1]);
+            hi = fmax(hi, px[i * 4 + 1]);
+        }
+        fprintf(stderr, "  %s: heights %.3g..%.3g m, map off the model by at most %.3g m\n", cases[k].terrain, lo, hi,
+                worst);
+        CHECK_MSG(worst < cases[k].bound, "%s: the map is %g m off the model (bound %g)", cases[k].terrain, worst,
+                  cases[k].bound);
+        free(px);
+    }
+}
+
 /* If blocks: a Define toggle of the pack, and scene facts. The flat world
  * (floor 1 m under the water, no objects) has nothing above the water. */
 static void test_if_blocks(void) {
@@ -434,6 +476,7 @@ int main(void) {
     RUN(test_splat_conserves_energy);
     RUN(test_generated_caustics);
     RUN(test_if_blocks);
+    RUN(test_terrain_map_matches_the_model);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();

@@ -230,7 +230,7 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
             behind = behindShown(s, uv, off, gap);
             if (off) { event = STEP_EDGE; break; }
             if (behind && gap < thick + (s - lo)) { event = STEP_CROSS; break; }
-            if ((P + s * d).y < terrainHeightGrad((P + s * d).xz).x) { event = STEP_MODEL; break; }
+            if ((P + s * d).y < terrainHeightMarch((P + s * d).xz)) { event = STEP_MODEL; break; }
             above = s;                              // above the model
             lo = s;                                 // in front, or behind a thing (passed it)
         }
@@ -269,7 +269,7 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
             event = behind && gap < thick + (s - lo) ? STEP_CROSS : STEP_ON;
         }
         if (event == STEP_CROSS && closeCrossing(lo, s, thick, uvF, F, s)) return REFRACT_HIT;
-        if (event != STEP_MODEL && (P + s * d).y >= terrainHeightGrad((P + s * d).xz).x) {
+        if (event != STEP_MODEL && (P + s * d).y >= terrainHeightMarch((P + s * d).xz)) {
             above = s;
             lo = s;
             i++;

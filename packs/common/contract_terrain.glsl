@@ -11,5 +11,8 @@ uniform int uTerrainKind;          // REF_TERRAIN_*: 0 flat, 1 lake, 2 slope, 3 
 uniform vec4 uTerrainShape;        // depth, shore height, slope, -
 uniform vec4 uTerrainDetail[6];    // the lake's detail: k.x, k.z, amplitude, phase (REF_TERRAIN_DETAIL)
 uniform float uGroundDetail;       // GroundDetail: the ground's noise, 0 to 1
+uniform sampler2D uTerrainHeightMap; // the height less uTerrainMapPlane, baked once per world
+uniform float uTerrainMapHalf;     // the map covers |x|, |z| <= this (clamped beyond)
+uniform vec3 uTerrainMapPlane;     // the terrain's linear part: h at x = z = 0, dh/dx, dh/dz
 
 #endif // TARN_CONTRACT_TERRAIN_GLSL

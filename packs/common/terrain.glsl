@@ -57,6 +57,20 @@ vec3 terrainHeightGrad(vec2 p) {
     return vec3(h, dhdr * dr + fade * dg);
 }
 
+// The terrain's height for a march's check at every step, from tarn's map
+// of it (uTerrainHeightMap, baked once per world from the reference's
+// model; bilinear: within 0.3 mm of the lake's model, 2 mm on the pool's
+// walls). On llvmpipe the lake model's six sines at each of caustic_tex's
+// 24 steps were a quarter of its water pass; a branch on the terrain's
+// kind that kept the cheap models cost as much again (the lake's code
+// runs in every kind's frame). Where a result is read off the terrain (a
+// crossing's last refinement, a floor point's height, its normal and
+// colour) the model's terrainHeightGrad stays: the map only decides when
+// a step went under the ground.
+float terrainHeightMarch(vec2 p) {
+    float rest = textureLod(uTerrainHeightMap, p / uTerrainMapHalf * 0.5 + 0.5, 0.0).r;
+    return rest + uTerrainMapPlane.x + dot(uTerrainMapPlane.yz, p);
+}
 
 // ref_value_noise (needs hash.glsl): hashed lattice values, quintic blend.
 float terrainValueNoise(vec2 p, uint seed) {

@@ -313,6 +313,42 @@ static bool bake_albedo(gpu_world *gw) {
     return true;
 }
 
+/* The terrain's linear part, (h at x = z = 0, dh/dx, dh/dz): the slope's
+ * whole model, nothing for the others. The map holds the height less it,
+ * so the clamped edge continues every model beyond the map: the lake's and
+ * the pool's are flat past their rims, the slope's rises on. */
+static void terrain_plane(const ref_world *w, float plane[3]) {
+    plane[0] = plane[1] = plane[2] = 0.0f;
+    if (w->d.terrain != REF_TERRAIN_SLOPE) return;
+    plane[0] = (float)(w->d.water_level - w->d.depth + w->d.slope * w->d.half_size);
+    plane[1] = (float)w->d.slope;
+}
+
+/* The terrain's height less its plane at the centres of WORLD_TERRAIN_RES^2
+ * texels over +-WORLD_TERRAIN_MARGIN half sizes (row 0 at -z), R32F,
+ * bilinear. Off the model by about a k^2 h^2 / 8 for each of the lake's
+ * detail sines (texels 6 cm apart on the 12 m lake: under 0.3 mm) and about
+ * as much on the pool's walls (a smoothstep over 0.15 half sizes: 2 mm). */
+static bool bake_terrain_map(gpu_world *gw) {
+    int res = WORLD_TERRAIN_RES;
+    double half = WORLD_TERRAIN_MARGIN * gw->w.d.half_size, texel = 2.0 * half / res;
+    float plane[3];
+    terrain_plane(&gw->w, plane);
+    float *h = mem_alloc((size_t)res * res * sizeof(float));
+    for (int j = 0; j < res; j++)
+        for (int i = 0; i < res; i++) {
+            double x = -half + (i + 0.5) * texel, z = -half + (j + 0.5) * texel;
+            h[(size_t)j * res + i] = (float)(ref_terrain_height(&gw->w, x, z) - plane[0] - plane[1] * x - plane[2] * z);
+        }
+    glGenTextures(1, &gw->terrain_tex);
+    glBindTexture(GL_TEXTURE_2D, gw->terrain_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, res, res, 0, GL_RED, GL_FLOAT, h);
+    render_res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    free(h);
+    return true;
+}
+
 /* One face of the sky without the sun's disc (ref_sky_smooth): RGB, and in
  * alpha the share of the disc the clouds let through (world.glsl's
  * worldSkyLook adds the disc at full resolution). */
@@ -464,6 +500,7 @@ void world_free(gpu_world *gw) {
     for (int i = 0; i < gw->nobjects; i++) render_res_mesh_free(&gw->objects[i]);
     if (gw->albedo_tex) glDeleteTextures(1, &gw->albedo_tex);
     if (gw->sky_tex) glDeleteTextures(1, &gw->sky_tex);
+    if (gw->terrain_tex) glDeleteTextures(1, &gw->terrain_tex);
     for (int m = 0; m < WORLD_MODES; m++) prog_free(&gw->progs[m]);
     prog_free(&gw->height_prog);
     prog_free(&gw->layers_prog);
@@ -488,6 +525,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *
     ref_world_init(&gw->w, desc);
     gw->nwaves = ref_waves_uniforms(&gw->w.waves, gw->waves, REF_WAVES_UNIFORMS_MAX);
     bool ok = build_terrain(gw, 0) && build_skirt(gw, 0) && build_water(gw, 0) && bake_albedo(gw) && bake_sky(gw) &&
+              bake_terrain_map(gw) &&
               build_sky_box(gw);
     for (int i = 0; ok && i < gw->w.d.nobjects; i++) {
         const ref_object *ob = &gw->w.d.objects[i];
@@ -635,6 +673,14 @@ void world_upload(const gpu_world *gw, unsigned p, double t, const float eye[3])
     seti(p, "uWaveHeight", WORLD_UNIT_HEIGHT);
     set1(p, "uWaveHeightHalf", (float)(WORLD_HEIGHT_MARGIN * d->half_size));
     seti(p, "uTerrainAlbedo", WORLD_UNIT_ALBEDO);
+    seti(p, "uTerrainHeightMap", WORLD_UNIT_TERRAIN);
+    set1(p, "uTerrainMapHalf", (float)(WORLD_TERRAIN_MARGIN * d->half_size));
+    loc = glGetUniformLocation(p, "uTerrainMapPlane");
+    if (loc >= 0) {
+        float plane[3];
+        terrain_plane(&gw->w, plane);
+        glUniform3fv(loc, 1, plane);
+    }
     loc = glGetUniformLocation(p, "uCameraPos");
     if (loc >= 0) glUniform3fv(loc, 1, eye);
     for (int i = 0; i < gw->nwaves; i++) {
@@ -657,6 +703,8 @@ void world_bind_textures(const gpu_world *gw) {
     glBindTexture(GL_TEXTURE_CUBE_MAP, gw->sky_tex);
     glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_HEIGHT);
     glBindTexture(GL_TEXTURE_2D, gw->height_tex);
+    glActiveTexture(GL_TEXTURE0 + WORLD_UNIT_TERRAIN);
+    glBindTexture(GL_TEXTURE_2D, gw->terrain_tex);
     glActiveTexture(GL_TEXTURE0);
     ocean_bind(&gw->ocean);
     flow_bind(&gw->flow);

@@ -28,6 +28,16 @@
 #define WORLD_UNIT_HEIGHT 30   /* the waves' height map (world_update_height): above glman's units */
 #define WORLD_HEIGHT_RES 256   /* its texels a side at full detail */
 #define WORLD_HEIGHT_MARGIN 2.0   /* it covers twice the world square's half size */
+/* The terrain's height, a map baked once per world (bake_terrain_map)
+ * that a march reads at every step instead of the model (the lake's six
+ * sines; terrain.glsl's terrainHeightMarch): unit 21 (uTerrainHeightMap),
+ * free of the packs' units and under the world's 22-30. It covers 1.3
+ * half sizes, past the lake's rim (elliptic radius 1.25) and the pool's
+ * deck, and holds the height less the terrain's plane (uTerrainMapPlane:
+ * the slope's), so its clamped edge continues every model beyond it. */
+#define WORLD_UNIT_TERRAIN 21
+#define WORLD_TERRAIN_RES 512
+#define WORLD_TERRAIN_MARGIN 1.3
 #define WORLD_SKY_RES 128
 #define WORLD_SKY_RES_CLOUDS 512   /* faces with clouds (Clouds): 0.18 degrees a texel */
 #define WORLD_MODES 3
@@ -53,6 +63,7 @@ typedef struct gpu_world {
     int nobjects;
     bool has_above_water;         /* terrain or an object rises above the water (If above_water) */
     unsigned albedo_tex, sky_tex;
+    unsigned terrain_tex;         /* the terrain's height map (WORLD_UNIT_TERRAIN) */
     /* the built-in program, packs/common/world.{vert,frag}, once per
      * WORLD_MODE (0 terrain, 1 objects, 2 sky): a pixel runs its own branch */
     prog progs[WORLD_MODES];
