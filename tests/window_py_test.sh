@@ -6,6 +6,8 @@
 #                 key, and Q ends it at once (issue #30)
 #   window_input  at 2 fps a press over the panel never reaches the camera
 #                 (issue #30)
+#   compare_view_heat  a still compare-view shows its heat maps when the
+#                 worker has them, with no input to wake it
 set -u
 name=$1; bin=$2; src=$3
 command -v xvfb-run >/dev/null || { echo "skip: xvfb-run is missing (apt-get install xvfb)"; exit 77; }

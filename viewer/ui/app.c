@@ -754,7 +754,7 @@ void app_keep_awake(app *a) { a->keep_awake = true; }
  * screen (res_budget), no script or orbit drives frames, no toast is
  * fading, no client asked for frames, no folder is being looked for. */
 static bool idle(const app *a, const view_script *script) {
-    return !script && !a->client_busy && a->budget.full_done && !a->keep_awake && !a->compiling && a->orbit_left == 0 && !a->shot_pending &&
+    return !script && !a->client_busy && a->budget.full_done && !a->compiling && a->orbit_left == 0 && !a->shot_pending &&
            !a->stamp_pending && a->unwatched == 0 && glfwGetTime() > a->toast_until + 0.25;   /* and it is gone */
 }
 
@@ -770,7 +770,17 @@ static bool files_pending(const app *a) {
  * still; returns whether a frame is due. The timeout bounds how late a
  * save is seen (the watcher's fd is not GLFW's to wait on). */
 static bool wait_for_work(app *a, const view_script *script) {
+    /* a client's ask holds for the frame after the one it was made in: it
+     * asks again in each frame that wants another (compare-view while its
+     * heat job runs, whose result a frame picks up). Those frames come at
+     * the idle poll's rate, not as fast as they draw: the job is on the
+     * same cores */
+    bool asked = a->keep_awake;
     a->keep_awake = false;
+    if (asked && idle(a, script)) {
+        glfwWaitEventsTimeout(APP_IDLE_WAIT_S);
+        return true;
+    }
     if (a->compiling && !compile_finished(a) && (!script || view_script_waiting(script)) &&
         res_budget_settled(&a->budget, glfwGetTime())) {
         /* a still picture while a job compiles: no frames to draw (the

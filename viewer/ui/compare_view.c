@@ -541,7 +541,6 @@ static void on_draw(void *user, app *a) {
     if (v->wipe_a == v->wipe_b) v->wipe_b = (v->wipe_a + 1) % v->n;
     ensure_targets(v);
     poll_heat(v);
-    if (heat_job_busy(v->job)) app_keep_awake(a);   /* its result arrives between frames */
     bool heat = heat_shown(v);
     /* heat maps read the packs' images back: those are full size */
     double scale;
@@ -559,6 +558,7 @@ static void on_draw(void *user, app *a) {
     }
     app_budget_drawn(a, v->drawn_w, v->drawn_h, v->cell_w, v->cell_h);
     if (heat) request_maps(v);
+    if (heat_job_busy(v->job)) app_keep_awake(a);   /* its result (the maps just asked for too) arrives between frames */
     if (v->have_ref && !ref_valid(v) && heat_job_running(v->job) != HEAT_JOB_REFERENCE)
         snprintf(v->heat_status, sizeof v->heat_status,
                  "heat maps are stale: the camera, time or size changed since the reference (H recomputes)");
