@@ -9,6 +9,7 @@
 #include "check.h"
 #include "datafmt.h"
 #include "diag.h"
+#include "disk_cache.h"
 #include "file.h"
 #include "file_cache.h"
 #include "mem.h"
@@ -413,6 +414,70 @@ static void test_file_cache_made(void) {
     CHECK_EQ(p.calls, 2);
 }
 
+/* disk_cache: kept bytes come back only under their name, key and length,
+ * whole; a damaged or foreign file, a bad name or no cache folder is a
+ * miss, never an error. In a scratch XDG_CACHE_HOME. */
+static void test_disk_cache(void) {
+    if (!scratch_create("disk-cache")) return;
+    char keep_xdg[4096] = "";
+    const char *x = getenv("XDG_CACHE_HOME");
+    if (x) snprintf(keep_xdg, sizeof keep_xdg, "%s", x);
+    setenv("XDG_CACHE_HOME", scratch_dir, 1);
+    float a[16], b[16];
+    for (int i = 0; i < 16; i++) a[i] = (float)i * 0.25f;
+    CHECK(!disk_cache_read("tile-4.f32", 7, b, sizeof b));           /* nothing kept yet */
+    CHECK(disk_cache_write("tile-4.f32", 7, a, sizeof a));
+    memset(b, 0, sizeof b);
+    CHECK(disk_cache_read("tile-4.f32", 7, b, sizeof b));
+    CHECK_EQ(memcmp(a, b, sizeof a), 0);
+    CHECK(!disk_cache_read("tile-4.f32", 8, b, sizeof b));           /* another key: another binary made it */
+    CHECK(!disk_cache_read("tile-4.f32", 7, b, sizeof b - 4));       /* another length */
+    CHECK(!disk_cache_read("tile-8.f32", 7, b, sizeof b));           /* another name */
+    CHECK(!disk_cache_read("tile-4.f32", 0, b, sizeof b));           /* key 0: nothing is kept */
+    CHECK(!disk_cache_write("../x", 7, a, sizeof a));                /* no folders in a name */
+    CHECK(!disk_cache_write("", 7, a, sizeof a));
+    /* a file cut short, or with bytes after its length, is not the content */
+    char path[4096], err[256];
+    snprintf(path, sizeof path, "%s/tarn/made/tile-4.f32", scratch_dir);
+    size_t n = 0;
+    char *whole = file_read(path, 1 << 20, &n, err, sizeof err);
+    CHECK(whole != NULL);
+    if (whole) {
+        CHECK(file_write(path, whole, n - 1, err, sizeof err));
+        CHECK(!disk_cache_read("tile-4.f32", 7, b, sizeof b));
+        char *longer = mem_alloc(n + 1);
+        memcpy(longer, whole, n);
+        longer[n] = 'x';
+        CHECK(file_write(path, longer, n + 1, err, sizeof err));
+        CHECK(!disk_cache_read("tile-4.f32", 7, b, sizeof b));
+        free(longer);
+        free(whole);
+    }
+    /* rewritten whole again; no leftover temporary file beside it */
+    CHECK(disk_cache_write("tile-4.f32", 7, a, sizeof a));
+    CHECK(disk_cache_read("tile-4.f32", 7, b, sizeof b));
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
+    CHECK(!file_exists(tmp));
+    /* the binary's key: the same within a run, never 0 */
+    CHECK_NE(disk_cache_build_key(), 0);
+    CHECK_EQ(disk_cache_build_key(), disk_cache_build_key());
+    /* no cache folder: a miss and a refused write */
+    char keep_home[4096] = "";
+    const char *h = getenv("HOME");
+    if (h) snprintf(keep_home, sizeof keep_home, "%s", h);
+    unsetenv("XDG_CACHE_HOME");
+    unsetenv("HOME");
+    CHECK(!disk_cache_write("tile-4.f32", 7, a, sizeof a));
+    CHECK(!disk_cache_read("tile-4.f32", 7, b, sizeof b));
+    if (keep_home[0]) setenv("HOME", keep_home, 1);
+    if (keep_xdg[0]) setenv("XDG_CACHE_HOME", keep_xdg, 1);
+    char rm[512];
+    snprintf(rm, sizeof rm, "rm -rf '%s/tarn'", scratch_dir);
+    CHECK_EQ(system(rm), 0);
+    scratch_remove();
+}
+
 /* The JSON and CSV spellings (RFC 8259's escapes, RFC 4180's quoting). */
 static void test_data_formats(void) {
     strbuf o = { 0 };
@@ -449,6 +514,7 @@ int main(void) {
     RUN(test_paths);
     RUN(test_file_cache);
     RUN(test_file_cache_made);
+    RUN(test_disk_cache);
     RUN(test_data_formats);
     RUN(test_mem_grow);
     RUN(test_median_and_sort);

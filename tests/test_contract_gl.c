@@ -7,10 +7,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "file.h"
 #include "file_cache.h"
 #include "render.h"
 
@@ -384,6 +386,56 @@ static void test_generated_caustics(void) {
     free(px);
 }
 
+static double caustics_mean(void) {
+    float *px = draw(scratch_path("caus.glib"), 64, 64, 0, NULL);   /* a new renderer: a new file cache */
+    double mean = 0;
+    for (int i = 0; i < 64 * 64; i++) mean += px[i * 4] / (64.0 * 64.0);
+    free(px);
+    return mean;
+}
+
+/* @caustics is kept in tarn's cache folder across runs (disk_cache.h): a
+ * new process (here a new renderer with its own file cache) reads it from
+ * there. Shown by changing the kept texels: a load reads the change; a
+ * damaged file is traced again and rewritten. */
+static void test_generated_caustics_kept_on_disk(void) {
+    char keep_xdg[4096] = "", path[4096], err[256];
+    const char *x = getenv("XDG_CACHE_HOME");
+    if (x) snprintf(keep_xdg, sizeof keep_xdg, "%s", x);
+    setenv("XDG_CACHE_HOME", scratch_dir, 1);
+    snprintf(path, sizeof path, "%s/tarn/made/caustics-128.f32", scratch_dir);
+    CHECK(!file_exists(path));
+    CHECK_NEAR(caustics_mean(), 1.0, 0.05);                 /* traced, and kept */
+    size_t n = 0;
+    char *bytes = file_read(path, 1 << 20, &n, err, sizeof err);
+    CHECK_MSG(bytes != NULL, "%s", err);
+    const size_t header = 24, texels = 128 * 128;
+    CHECK_EQ(n, header + texels * sizeof(float));
+    if (bytes && n == header + texels * sizeof(float)) {
+        for (size_t i = 0; i < texels; i++) {
+            float two = 2.0f;
+            memcpy(bytes + header + i * sizeof(float), &two, sizeof two);
+        }
+        CHECK(file_write(path, bytes, n, err, sizeof err));
+        CHECK_NEAR(caustics_mean(), 2.0, 1e-5);             /* read from the folder, not traced */
+        bytes[0] ^= 1;                                       /* not a kept file any more */
+        CHECK(file_write(path, bytes, n, err, sizeof err));
+        CHECK_NEAR(caustics_mean(), 1.0, 0.05);             /* traced again */
+        free(bytes);
+        bytes = file_read(path, 1 << 20, &n, err, sizeof err);
+        CHECK(bytes && memcmp(bytes, "tarnmade", 8) == 0);  /* and kept again */
+    }
+    free(bytes);
+    remove(path);
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/tarn/made", scratch_dir);
+    rmdir(dir);
+    snprintf(dir, sizeof dir, "%s/tarn", scratch_dir);
+    rmdir(dir);
+    if (keep_xdg[0]) setenv("XDG_CACHE_HOME", keep_xdg, 1);
+    else unsetenv("XDG_CACHE_HOME");
+}
+
 /* uTerrainHeightMap (terrainHeightMarch) against the terrain's model
  * (terrainHeightGrad) over 1.6 half sizes, past the map's 1.3, for each
  * kind of terrain. The bounds, in the world's scale: bilinear error
@@ -475,6 +527,7 @@ int main(void) {
     RUN(test_water_shift_uniform);
     RUN(test_splat_conserves_energy);
     RUN(test_generated_caustics);
+    RUN(test_generated_caustics_kept_on_disk);
     RUN(test_if_blocks);
     RUN(test_terrain_map_matches_the_model);
     gl_ctx_destroy(ctx);

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "assets.h"
+#include "disk_cache.h"
 #include "file_cache.h"
 #include "geom.h"
 #include "image_io.h"
@@ -434,17 +435,14 @@ static bool load_image(file_cache *files, const char *path, img *im, const glib_
 typedef struct generated_tex {
     const char *name;
     int res, channels;
+    bool keep;   /* kept on disk across runs (disk_cache.h): its making is slow */
 } generated_tex;
 static const generated_tex GENERATED[] = {
-    { "caustics", 128, 1 }, { "foam", 256, 3 }, { "water_normal", 256, 3 }, { "terrain_normal", 256, 3 },
+    { "caustics", 128, 1, true }, { "foam", 256, 3, false }, { "water_normal", 256, 3, false },
+    { "terrain_normal", 256, 3, false },
 };
 
-/* file_cache_made's maker (user: the generated_tex): res x res texels of
- * its channels, as floats. */
-static bool bake_generated(void *user, void *out, size_t len, char *err, size_t errlen) {
-    const generated_tex *g = user;
-    float *px = out;
-    (void)len;
+static bool bake_generated_now(const generated_tex *g, float *px, char *err, size_t errlen) {
     if (strcmp(g->name, "caustics") == 0) return assets_bake_caustics(g->res, px, err, (int)errlen);
     if (strcmp(g->name, "foam") == 0) return assets_bake_foam(g->res, px);
     if (strcmp(g->name, "water_normal") == 0) return assets_bake_water_normal(g->res, px);
@@ -455,6 +453,21 @@ static bool bake_generated(void *user, void *out, size_t len, char *err, size_t 
     bool ok = assets_bake_terrain_normal(&w, g->res, px);
     ref_world_release(&w);
     return ok;
+}
+
+/* file_cache_made's maker (user: the generated_tex): res x res texels of
+ * its channels, as floats; a kept one from tarn's cache folder when this
+ * binary made it before (the key changes with the binary, whose code made
+ * it), else made and kept there. */
+static bool bake_generated(void *user, void *out, size_t len, char *err, size_t errlen) {
+    const generated_tex *g = user;
+    char name[64];
+    snprintf(name, sizeof name, "%s-%d.f32", g->name, g->res);
+    uint64_t key = g->keep ? disk_cache_build_key() : 0;
+    if (key && disk_cache_read(name, key, out, len)) return true;
+    if (!bake_generated_now(g, out, err, errlen)) return false;
+    if (key) disk_cache_write(name, key, out, len);   /* a failure only means making it again next time */
+    return true;
 }
 
 /* `Texture2D unit @NAME`: a texture tarn generates, made once per cache
