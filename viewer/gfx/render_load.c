@@ -319,6 +319,18 @@ static void note_noise_units(scene_state *s) {
     }
 }
 
+/* The terrain's height map is baked the first time a program of the scene
+ * reads it (caustic_tex's march): a scene whose programs do not pays
+ * nothing for it. */
+static void want_terrain_map(render *r, const scene_state *s) {
+    if (!r->world.active) return;
+    for (int i = 0; i < s->nprogs; i++)
+        if (s->progs[i].gl && glGetUniformLocation(s->progs[i].gl, "uTerrainHeightMap") >= 0) {
+            world_bake_terrain_map(&r->world);
+            return;
+        }
+}
+
 static bool build_scene(render *r, scene_state *s, scene_state *old, diag_list *log, prog_origins *from) {
     int n = s->glib->ncmds;
     s->cmd_res = mem_alloc((size_t)(n > 0 ? n : 1) * sizeof *s->cmd_res);
@@ -422,6 +434,7 @@ bool render_load(render *r, const char *glib_path) {
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
     build_scene(r, &fresh, &r->cur, &log, &from);
+    want_terrain_map(r, &fresh);
     render_once_keep(r, &r->cur);
     render_load_scene_free(&r->cur);
     r->cur = fresh;
@@ -442,6 +455,7 @@ bool render_rebuild_programs(render *r) {
         prog_introspect(p, &log);
     }
     note_noise_units(&r->cur);
+    want_terrain_map(r, &r->cur);
     world_cache_free(&r->wcache);   /* the world's program may draw differently now */
     world_layers_free(&r->wlayers);
     if (r->world.active) {

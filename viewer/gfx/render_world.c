@@ -329,7 +329,8 @@ static void terrain_plane(const ref_world *w, float plane[3]) {
  * bilinear. Off the model by about a k^2 h^2 / 8 for each of the lake's
  * detail sines (texels 6 cm apart on the 12 m lake: under 0.3 mm) and about
  * as much on the pool's walls (a smoothstep over 0.15 half sizes: 2 mm). */
-static bool bake_terrain_map(gpu_world *gw) {
+void world_bake_terrain_map(gpu_world *gw) {
+    if (!gw->active || gw->terrain_tex) return;
     int res = WORLD_TERRAIN_RES;
     double half = WORLD_TERRAIN_MARGIN * gw->w.d.half_size, texel = 2.0 * half / res;
     float plane[3];
@@ -346,7 +347,6 @@ static bool bake_terrain_map(gpu_world *gw) {
     render_res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
     glBindTexture(GL_TEXTURE_2D, 0);
     free(h);
-    return true;
 }
 
 /* One face of the sky without the sun's disc (ref_sky_smooth): RGB, and in
@@ -525,7 +525,6 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *
     ref_world_init(&gw->w, desc);
     gw->nwaves = ref_waves_uniforms(&gw->w.waves, gw->waves, REF_WAVES_UNIFORMS_MAX);
     bool ok = build_terrain(gw, 0) && build_skirt(gw, 0) && build_water(gw, 0) && bake_albedo(gw) && bake_sky(gw) &&
-              bake_terrain_map(gw) &&
               build_sky_box(gw);
     for (int i = 0; ok && i < gw->w.d.nobjects; i++) {
         const ref_object *ob = &gw->w.d.objects[i];

@@ -28,7 +28,7 @@
 #define WORLD_UNIT_HEIGHT 30   /* the waves' height map (world_update_height): above glman's units */
 #define WORLD_HEIGHT_RES 256   /* its texels a side at full detail */
 #define WORLD_HEIGHT_MARGIN 2.0   /* it covers twice the world square's half size */
-/* The terrain's height, a map baked once per world (bake_terrain_map)
+/* The terrain's height, a map baked once per world (world_bake_terrain_map)
  * that a march reads at every step instead of the model (the lake's six
  * sines; terrain.glsl's terrainHeightMarch): unit 21 (uTerrainHeightMap),
  * free of the packs' units and under the world's 22-30. It covers 1.3
@@ -63,7 +63,7 @@ typedef struct gpu_world {
     int nobjects;
     bool has_above_water;         /* terrain or an object rises above the water (If above_water) */
     unsigned albedo_tex, sky_tex;
-    unsigned terrain_tex;         /* the terrain's height map (WORLD_UNIT_TERRAIN) */
+    unsigned terrain_tex;         /* the terrain's height map (WORLD_UNIT_TERRAIN); 0 until asked for */
     /* the built-in program, packs/common/world.{vert,frag}, once per
      * WORLD_MODE (0 terrain, 1 objects, 2 sky): a pixel runs its own branch */
     prog progs[WORLD_MODES];
@@ -132,6 +132,12 @@ bool world_build_programs(gpu_world *gw, const prog_sources *src, diag_list *log
  * those: llvmpipe runs a loop's body even when its uniform count is 0.
  * Into p->fixed[PROG_FIXED_WORLD..] (cleared without a world). */
 void world_set_wave_defines(const gpu_world *gw, prog *p);
+
+/* Bakes the terrain's height map (WORLD_UNIT_TERRAIN) unless it is there:
+ * 512^2 evaluations of the model, ~40 ms on one core, so only for a scene
+ * whose programs read it (render_load). The map lives until the world is
+ * rebuilt. */
+void world_bake_terrain_map(gpu_world *gw);
 
 /* Sets every world uniform the bound program declares. */
 void world_upload(const gpu_world *gw, unsigned program, double t, const float eye[3]);
