@@ -298,17 +298,25 @@ static bool build_object(gpu_world *gw, int index, gpu_mesh *m) {
     return ok;
 }
 
+/* A res x res texture of floats over the world square (row 0 at -z),
+ * filtered and clamped at its edges: the terrain's baked maps. */
+static unsigned world_square_texture(int res, GLint internal, GLenum format, const float *px, bool mipmaps) {
+    unsigned tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, internal, res, res, 0, format, GL_FLOAT, px);
+    render_res_sampling(GL_TEXTURE_2D, mipmaps, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return tex;
+}
+
 /* The albedo texture from assets_bake_albedo: row 0 is t = 0, s runs with
  * world x and t with z, matching build_terrain's texture coordinates. */
 static bool bake_albedo(gpu_world *gw) {
     int res = gw->w.d.terrain_res;
     float *px = mem_alloc((size_t)res * res * 3 * sizeof(float));
     if (!assets_bake_albedo(&gw->w, res, px)) { free(px); return false; }
-    glGenTextures(1, &gw->albedo_tex);
-    glBindTexture(GL_TEXTURE_2D, gw->albedo_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, res, res, 0, GL_RGB, GL_FLOAT, px);
-    render_res_sampling(GL_TEXTURE_2D, true, GL_CLAMP_TO_EDGE);
-    glBindTexture(GL_TEXTURE_2D, 0);
+    gw->albedo_tex = world_square_texture(res, GL_RGB16F, GL_RGB, px, true);
     free(px);
     return true;
 }
@@ -341,11 +349,7 @@ void world_bake_terrain_map(gpu_world *gw) {
             double x = -half + (i + 0.5) * texel, z = -half + (j + 0.5) * texel;
             h[(size_t)j * res + i] = (float)(ref_terrain_height(&gw->w, x, z) - plane[0] - plane[1] * x - plane[2] * z);
         }
-    glGenTextures(1, &gw->terrain_tex);
-    glBindTexture(GL_TEXTURE_2D, gw->terrain_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, res, res, 0, GL_RED, GL_FLOAT, h);
-    render_res_sampling(GL_TEXTURE_2D, false, GL_CLAMP_TO_EDGE);
-    glBindTexture(GL_TEXTURE_2D, 0);
+    gw->terrain_tex = world_square_texture(res, GL_R32F, GL_RED, h, false);
     free(h);
 }
 
