@@ -118,6 +118,42 @@ static void test_still_picture_returns_to_full(void) {
     CHECK_LE(model_ms(15, 249, s, 960, 540), 50 * 1.3);
 }
 
+/* A held full frame (a compile job making its code) waits past the settle
+ * time, the reduced frame shown and nothing drawn; full_held says so (the
+ * window sleeps on it); a screenshot is still full; the release draws it. */
+static void test_full_frame_held(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0, s;
+    uint64_t key = 0;
+    double moving = run_moving(&rb, 15, 249, 20, &t, &key, &last);
+    res_budget_hold_full(&rb, true);
+    t += 0.01;
+    CHECK(!res_budget_plan(&rb, key, t, last, false, &s));
+    CHECK(!res_budget_full_held(&rb, t));                      /* settling: not due yet */
+    for (int i = 0; i < 5; i++) {
+        t += RES_BUDGET_SETTLE_S;
+        CHECK(!res_budget_plan(&rb, key, t, 5, false, &s));   /* held: the reduced frame stays */
+        CHECK_NEAR(s, moving, 1e-12);
+        CHECK(res_budget_full_held(&rb, t));
+        CHECK(!res_budget_settled(&rb, t));
+    }
+    CHECK(res_budget_plan(&rb, key + 1, t, 5, false, &s));    /* a change draws, reduced */
+    CHECK_LT(s, 1.0);
+    CHECK(!res_budget_full_held(&rb, t));
+    t += RES_BUDGET_SETTLE_S;
+    CHECK(res_budget_plan(&rb, key + 1, t, 5, true, &s));     /* a screenshot: full */
+    CHECK_EQ(s, 1.0);
+    CHECK(res_budget_plan(&rb, key + 2, t, 5, false, &s));
+    t += RES_BUDGET_SETTLE_S;
+    CHECK(!res_budget_plan(&rb, key + 2, t, 5, false, &s));
+    res_budget_hold_full(&rb, false);                           /* the job's end */
+    CHECK(!res_budget_full_held(&rb, t));
+    CHECK(res_budget_plan(&rb, key + 2, t, 5, false, &s));
+    CHECK_EQ(s, 1.0);
+    CHECK(res_budget_settled(&rb, t));
+}
+
 /* A screenshot (force_full) of a moving picture is drawn at full size; with
  * the budget off every changed frame is full and a still one is kept. */
 static void test_force_full_and_off(void) {
@@ -238,6 +274,7 @@ int main(void) {
     RUN(test_cheap_scene_stays_full);
     RUN(test_fixed_cost_over_budget_stays_at_the_floor);
     RUN(test_still_picture_returns_to_full);
+    RUN(test_full_frame_held);
     RUN(test_force_full_and_off);
     RUN(test_noise_stays_bounded);
     RUN(test_first_frame_at_a_size_is_not_a_measure);

@@ -83,6 +83,8 @@ struct app {
     compile_job *cjob;
     file_cache *files;           /* every file the scenes read; the watcher refreshes what changed */
     bool compiling;              /* a job runs for the change last seen */
+    bool ready_seen;             /* ... and has made the moving frames' code (latched until the frame reloads) */
+    bool reloaded_early;         /* ... and the window shows the change: the job makes the still frame's code */
     bool priming;                /* ... or to load the scenes in the job's renders before any change */
     bool compile_ended;          /* ... and has ended: reload on this frame */
     bool changed_again;          /* a file changed while it ran */
@@ -178,7 +180,7 @@ static bool start_compile(app *a, bool prime) {
     if (!compile_job_start(a->cjob, &d)) return false;
     a->compiling = true;
     a->priming = prime;
-    a->compile_ended = false;
+    a->compile_ended = a->ready_seen = false;
     if (!prime) change_wait_starts(a);
     return true;
 }
@@ -201,26 +203,63 @@ static void judge_compile_job(app *a, double frame_s) {
             a->compile_s);
 }
 
-/* The job ended: the reload finds its programs in the cache. A file that
- * changed while it ran is compiled again first (twice at most, so that a
- * stream of saves still shows one). */
+/* The reload after a job: it finds the programs and the variants its first
+ * frames need in Mesa's cache. */
+static void reload_compiled(app *a) {
+    a->compiled_off_frame = true;
+    reload(a);
+    a->compiled_off_frame = false;
+    a->judge_job = true;   /* this frame says whether the job made the first draw cheap */
+}
+
+/* Does the window show the change as soon as the job has made the code of
+ * the frames drawn while the picture changes (compile_job_ready), holding
+ * the still picture's full frame until the job has made its code too? Not
+ * for a start-up job (nothing to show), while a newer change waits (the
+ * job's end compiles it first), or without a budget (every frame full). */
+static bool early_wanted(const app *a) {
+    return a->compiling && !a->priming && !a->reloaded_early && !a->changed_again && a->budget_ms > 0;
+}
+
+/* Has the running job made the moving frames' code (latched until the
+ * frame reloads)? Asked before compile_finished: the job's end answers
+ * it too. */
+static bool compile_readied(app *a) {
+    if (!a->ready_seen && early_wanted(a) && compile_job_ready(a->cjob, &a->compile_s)) a->ready_seen = true;
+    return a->ready_seen;
+}
+
+static void reload_early(app *a) {
+    a->ready_seen = false;
+    a->reloaded_early = true;
+    res_budget_hold_full(&a->budget, true);
+    a->compile_restarts = 0;
+    reload_compiled(a);
+}
+
+/* The job ended: the reload finds its programs in the cache (already
+ * done at its ready, unless a change came meanwhile). A file that changed
+ * while it ran is compiled again first (twice at most, so that a stream of
+ * saves still shows one). */
 static void compile_ended(app *a) {
-    bool primed = a->priming;
-    a->compiling = a->compile_ended = a->priming = false;
+    bool primed = a->priming, shown = a->reloaded_early, again = a->changed_again;
+    a->compiling = a->compile_ended = a->priming = a->reloaded_early = false;
+    res_budget_hold_full(&a->budget, false);
     if (primed && a->d.verbose)
         fprintf(stderr, "%s: the compile job has the scene loaded (%.2f s, off the frame)\n", a->d.name, a->compile_s);
-    if (primed && !a->changed_again) return;   /* the job's renders hold the scenes: nothing changed */
-    if (a->changed_again && a->compile_restarts < 2) {
+    if (primed && !again) return;   /* the job's renders hold the scenes: nothing changed */
+    if (shown && a->d.verbose)
+        fprintf(stderr, "%s: the compile job made the still picture's frame too (%.2f s in all)\n", a->d.name,
+                a->compile_s);
+    if (shown && !again) return;    /* on screen since the job's ready */
+    if (again && a->compile_restarts < 2) {
         a->changed_again = false;
         a->compile_restarts++;
         if (start_compile(a, false)) return;
     }
     a->changed_again = false;
     a->compile_restarts = 0;
-    a->compiled_off_frame = true;
-    reload(a);
-    a->compiled_off_frame = false;
-    a->judge_job = true;   /* this frame says whether the job made the first draw cheap */
+    reload_compiled(a);
 }
 
 /* The files the watcher saw change (watch_changed 0..n-1): compiled off
@@ -291,7 +330,7 @@ static void draw_toast(app *a) {
         panel_label(a->panel, (float)ww - 10.0f, 10.0f, label, true);
     }
     float y = 40.0f, x = (app_scene_x_window(a) + (float)ww) * 0.5f;
-    if (a->compiling && !a->priming) {   /* what is on screen is the last good build until then */
+    if (a->compiling && !a->priming && !a->reloaded_early) {   /* the last good build is on screen until then */
         char what[700];
         view_compiling_text(a->cause, what, sizeof what);
         panel_toast(a->panel, x, y, what);
@@ -576,6 +615,7 @@ static void frame(app *a, bool scripted) {
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
     if (!a->s.paused && (!scripted || a->script_play)) a->s.t += dt;
+    if (compile_readied(a)) reload_early(a);
     if (compile_finished(a)) compile_ended(a);
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
     if (changed > 0) reload_changed(a, changed);
@@ -781,14 +821,17 @@ static bool wait_for_work(app *a, const view_script *script) {
         glfwWaitEventsTimeout(APP_IDLE_WAIT_S);
         return true;
     }
-    if (a->compiling && !compile_finished(a) && (!script || view_script_waiting(script)) &&
-        res_budget_settled(&a->budget, glfwGetTime())) {
-        /* a still picture while a job compiles: no frames to draw (the
-         * cores are the compiler's), only the job's end to see; a script's
-         * `wait` too, so a benchmark meets what a user does. A moving one
-         * (the clock, a drag) keeps drawing, full-resolution or not */
+    double now = glfwGetTime();
+    if (a->compiling && !compile_readied(a) && !compile_finished(a) && (!script || view_script_waiting(script)) &&
+        (res_budget_settled(&a->budget, now) || res_budget_full_held(&a->budget, now))) {
+        /* a still picture while a job compiles (the last good build's full
+         * frame, or the change's reduced one while the job makes the full
+         * frame's code): no frames to draw (the cores are the compiler's),
+         * only the job's end to see; a script's `wait` too, so a benchmark
+         * meets what a user does. A moving one (the clock, a drag) keeps
+         * drawing, full-resolution or not */
         glfwWaitEventsTimeout(APP_COMPILE_POLL_S);
-        if (!a->woken && !compile_finished(a) && !files_pending(a)) return false;
+        if (!a->woken && !compile_readied(a) && !compile_finished(a) && !files_pending(a)) return false;
         a->slept = true;
         return true;
     }

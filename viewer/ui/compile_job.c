@@ -39,6 +39,9 @@ struct compile_job {
     bool request;                /* under mu: a job is waiting for the worker */
     bool busy;                   /* under mu: a job was started and has not been taken as done */
     bool done;                   /* under mu: the worker finished it */
+    bool ready;                  /* under mu: the reduced frames' code is made (the window may reload) */
+    bool ready_taken;            /* under mu: compile_job_ready said so */
+    double ready_seconds;        /* under mu: how long that took */
     bool quit;                   /* under mu: destroy asked the worker to end */
     double seconds;              /* under mu: how long it ran */
     /* the job: written by compile_job_start while no job runs, read by the worker */
@@ -164,12 +167,24 @@ static bool same_scene(const job_scene *a, const job_scene *b) {
            a->desc.no_spray == b->desc.no_spray;
 }
 
-/* Loads (or reloads) the scene and draws frames as the window would:
- * every changed stage compiled, every variant its draws need made, all
- * into Mesa's cache. Pixels do not matter, so the frames are an eighth of
- * the window's side (a canvas's size changes no variant but for a
- * power-of-two side, which side_off_pow2 keeps away). */
-static void warm_scene(compile_job *j, int i) {
+/* A canvas for the job's frames: an eighth of the window's side (a
+ * canvas's size changes no variant but for a power-of-two side, which
+ * side_off_pow2 keeps away), sRGB where the window's is. */
+static bool job_canvas(const compile_job *j, const job_scene *s, render_target *t, int *w, int *h) {
+    memset(t, 0, sizeof *t);
+    *w = side_off_pow2((j->w + 7) / 8, j->w);
+    *h = side_off_pow2((j->h + 7) / 8, j->h);
+    return s->srgb ? render_target_create_srgb(t, *w, *h) : render_target_create(t, *w, *h, false);
+}
+
+/* Loads (or reloads) the scene and draws the frames the window draws while
+ * its picture changes, as the window would: every changed stage compiled,
+ * every variant those draws need made, all into Mesa's cache. Pixels do
+ * not matter. The frames (no side a power of two there: side_off_pow2):
+ * the frame after the reload, the same again (the static world copied
+ * from its cache), then with the clock running (the world's layers
+ * built, then composited). */
+static void warm_moving(compile_job *j, int i) {
     const job_scene *s = &j->scenes[i];
     if (j->kept[i] && !same_scene(&j->kept_as[i], s)) {
         render_destroy(j->kept[i]);
@@ -186,24 +201,32 @@ static void warm_scene(compile_job *j, int i) {
     render *r = j->kept[i];
     if (apply_defines(r, s)) render_rebuild_programs(r);
     render_target t;
-    memset(&t, 0, sizeof t);
-    int w = side_off_pow2((j->w + 7) / 8, j->w), h = side_off_pow2((j->h + 7) / 8, j->h);
-    bool made = s->srgb ? render_target_create_srgb(&t, w, h) : render_target_create(&t, w, h, false);
+    int w, h;
+    bool made = job_canvas(j, s, &t, &w, &h);
     if (made && render_has_scene(r)) {
         if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
-        /* Each draw state its own variants. The reduced frames the window
-         * draws while the picture changes (no side a power of two there:
-         * side_off_pow2): the frame after the reload, the same again (the
-         * static world copied from its cache), then with the clock running
-         * (the world's layers built, then composited); and the still
-         * picture's full-resolution frame, where the targets and the
-         * world's height map have the scene's sizes. */
         static const double dt[] = { 0, 0, 0.04, 0.08 };
         render_set_detail(r, COMPILE_JOB_REDUCED_DETAIL);
         for (size_t k = 0; k < sizeof dt / sizeof dt[0] && !quitting(j); k++)
             render_frame_at(r, j->t + dt[k], t.fbo, 0, 0, w, h, &j->view);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+        glFinish();
+    }
+    if (made) render_target_destroy(&t);
+}
+
+/* The still picture's full-resolution frame, where the targets and the
+ * world's height map have the scene's sizes: its variants too. */
+static void warm_still(compile_job *j, int i) {
+    const job_scene *s = &j->scenes[i];
+    render *r = j->kept[i];
+    render_target t;
+    int w, h;
+    bool made = job_canvas(j, s, &t, &w, &h);
+    if (made && r && render_has_scene(r) && !quitting(j)) {
+        if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
         render_set_detail(r, 1);
-        if (!quitting(j)) render_frame_at(r, j->t, t.fbo, 0, 0, w, h, &j->view);
+        render_frame_at(r, j->t, t.fbo, 0, 0, w, h, &j->view);
         glDisable(GL_FRAMEBUFFER_SRGB);
         glFinish();
     }
@@ -218,7 +241,16 @@ static void run_job(compile_job *j) {
         j->ctx = gl_ctx_create_headless(err, sizeof err);   /* none: the window compiles on the frame */
         if (!j->ctx) return;
     }
-    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_scene(j, i);
+    double t0 = clock_now_s();
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i);
+    /* the window can show the change now: its frames while the picture
+     * changes find their code; the still picture's frame, which it draws
+     * only once the picture stands still, is made meanwhile */
+    pthread_mutex_lock(&j->mu);
+    j->ready = true;
+    j->ready_seconds = clock_now_s() - t0;
+    pthread_mutex_unlock(&j->mu);
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_still(j, i);
     for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
         if (j->kept[i]) {
             render_destroy(j->kept[i]);
@@ -262,7 +294,7 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d) {
     }
     pthread_mutex_lock(&j->mu);
     j->request = j->busy = true;
-    j->done = false;
+    j->done = j->ready = j->ready_taken = false;
     pthread_cond_signal(&j->cv);
     pthread_mutex_unlock(&j->mu);
     return true;
@@ -274,6 +306,18 @@ bool compile_job_busy(compile_job *j) {
     bool busy = j->busy;
     pthread_mutex_unlock(&j->mu);
     return busy;
+}
+
+bool compile_job_ready(compile_job *j, double *seconds) {
+    if (!j) return false;
+    pthread_mutex_lock(&j->mu);
+    bool ready = j->busy && !j->ready_taken && (j->ready || j->done);
+    if (ready) {
+        j->ready_taken = true;
+        if (seconds) *seconds = j->ready ? j->ready_seconds : j->seconds;
+    }
+    pthread_mutex_unlock(&j->mu);
+    return ready;
 }
 
 bool compile_job_done(compile_job *j, double *seconds) {

@@ -9,8 +9,12 @@
  * into a render of its own, on a worker thread with a headless context of
  * its own, and draws frames as the window would (the same pack, MSAA,
  * Define values and target format, reduced and full detail); the window keeps drawing with
- * the last good programs meanwhile, and when the job ends its own reload
- * finds the stages and variants in the cache.
+ * the last good programs meanwhile. Once the reduced frames' code is made
+ * (compile_job_ready) the window reloads, finding the stages and variants
+ * in the cache, and shows the change while the job makes the still
+ * picture's full-resolution frame (another variant for each target of
+ * the scene's own size: 0.15-0.25 s more for a pack's water), which the
+ * window holds back until the job ends (res_budget_hold_full).
  *
  * The job's render shares nothing with the window's: no GL object, no
  * state; it reads the files as they are when it runs. What it compiles is
@@ -23,7 +27,9 @@
  *
  *     compile_job *j = compile_job_create();
  *     compile_job_start(j, &(compile_job_desc){ scenes, n, w, h, t, view });
- *     ... each frame: if (compile_job_done(j, &s)) reload now ...
+ *     ... each frame: if (compile_job_ready(j, &s)) reload now (the moving
+ *         picture's code is made); hold the still picture's full frame until
+ *         compile_job_done(j, &s) (its code is made then) ...
  *     compile_job_destroy(j);                 stops a running job at its next step
  */
 #ifndef TARN_COMPILE_JOB_H
@@ -57,8 +63,14 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d);
 
 bool compile_job_busy(compile_job *j);
 
-/* True once after a started job has ended (its thread joined), with how
- * long it ran; the caller reloads then. */
+/* True once per job when the code of the frames the window draws while
+ * its picture changes is made (or the job ended first), with how long that
+ * took: the window reloads then, and shows the change. The job goes on to
+ * make the still picture's full-resolution frame (compile_job_done). */
+bool compile_job_ready(compile_job *j, double *seconds);
+
+/* True once after a started job has ended (every frame's code made), with
+ * how long it ran; a new job can start from then. */
 bool compile_job_done(compile_job *j, double *seconds);
 
 /* Does compiling off the frame help here? False when Mesa's shader cache

@@ -59,7 +59,7 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
         *scale = b->drawn_scale;
         return false;                     /* the kept frame is the picture, at full resolution */
     }
-    if (off || force_full || now_s - b->still_since >= RES_BUDGET_SETTLE_S) s = 1.0;
+    if (off || force_full || (now_s - b->still_since >= RES_BUDGET_SETTLE_S && !b->hold_full)) s = 1.0;
     else if (changed) s = b->scale;
     else {
         *scale = b->drawn_scale;          /* settling: the reduced frame stays a moment */
@@ -71,6 +71,13 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
     b->measure = true;
     *scale = s;
     return true;
+}
+
+void res_budget_hold_full(res_budget *b, bool hold) { b->hold_full = hold; }
+
+bool res_budget_full_held(const res_budget *b, double now_s) {
+    return b->hold_full && b->have_key && !b->full_done && b->drawn_scale > 0 &&
+           now_s - b->still_since >= RES_BUDGET_SETTLE_S;
 }
 
 bool res_budget_settled(const res_budget *b, double now_s) {

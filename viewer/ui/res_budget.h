@@ -57,6 +57,7 @@ typedef struct res_budget {
     double prev_scale;           /* ... and of the one drawn before it */
     double prev_ms;              /* the time of the last frame measured at drawn_scale (0: none) */
     bool measure;                /* the last frame drew the scene: its time is a measure */
+    bool hold_full;              /* the still picture's full frame waits (res_budget_hold_full) */
 } res_budget;
 
 void res_budget_init(res_budget *b, double budget_ms);
@@ -75,6 +76,15 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
  * scene's moving frames are full-resolution too.) */
 bool res_budget_settled(const res_budget *b, double now_s);
 
+/* While hold is true a still picture keeps its reduced frame past
+ * RES_BUDGET_SETTLE_S: its full-resolution frame's code is being made off
+ * the frame (compile_job.h), and drawing it now would make it again on the
+ * frame. A forced full frame (a screenshot) is still drawn. */
+void res_budget_hold_full(res_budget *b, bool hold);
+/* Is a still picture's full-resolution frame due and held (the picture
+ * unchanged for RES_BUDGET_SETTLE_S, its reduced frame shown)? Nothing to
+ * draw until the hold ends or the picture changes. */
+bool res_budget_full_held(const res_budget *b, double now_s);
 /* One frame drawn at scale took ms: the next changing frame's scale. */
 void res_budget_feed(res_budget *b, double ms, double scale);
 
