@@ -10,7 +10,7 @@ packages=(
   libglfw3-dev glslang-dev glslang-tools libcglm-dev
   libopenimageio-dev libimgui-dev
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  xvfb xauth
+  xvfb xauth libxtst6 python3   # the window tests: a real window, keys and mouse sent through XTest
   ffmpeg
   clang libclang-rt-14-dev
 )
