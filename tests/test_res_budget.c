@@ -93,12 +93,20 @@ static void test_fixed_cost_over_budget_stays_at_the_floor(void) {
 /* After the camera stops: the reduced frame stays for the settle time, then
  * one frame at full resolution, then nothing is drawn while it stays still;
  * a change draws reduced again at once, from what the full frame cost. */
+/* A budget of 50 ms after 20 moving frames of a 15 + 249 ms-per-megapixel
+ * scene: the scale they settled at. */
+static double moving_picture(res_budget *rb, double *t, uint64_t *key, double *last) {
+    res_budget_init(rb, 50);
+    *t = *last = 0;
+    *key = 0;
+    return run_moving(rb, 15, 249, 20, t, key, last);
+}
+
 static void test_still_picture_returns_to_full(void) {
     res_budget rb;
-    res_budget_init(&rb, 50);
-    double t = 0, last = 0, s;
-    uint64_t key = 0;
-    double moving = run_moving(&rb, 15, 249, 20, &t, &key, &last);
+    double t, last, s;
+    uint64_t key;
+    double moving = moving_picture(&rb, &t, &key, &last);
     CHECK_LT(moving, 1.0);
     t += 0.01;
     CHECK(!res_budget_plan(&rb, key, t, last, false, &s));   /* settling: keep the reduced frame */
@@ -123,10 +131,9 @@ static void test_still_picture_returns_to_full(void) {
  * window sleeps on it); a screenshot is still full; the release draws it. */
 static void test_full_frame_held(void) {
     res_budget rb;
-    res_budget_init(&rb, 50);
-    double t = 0, last = 0, s;
-    uint64_t key = 0;
-    double moving = run_moving(&rb, 15, 249, 20, &t, &key, &last);
+    double t, last, s;
+    uint64_t key;
+    double moving = moving_picture(&rb, &t, &key, &last);
     res_budget_hold_full(&rb, true);
     t += 0.01;
     CHECK(!res_budget_plan(&rb, key, t, last, false, &s));

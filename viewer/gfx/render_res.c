@@ -429,31 +429,45 @@ static bool load_image(file_cache *files, const char *path, img *im, const glib_
     return false;
 }
 
-/* The textures tarn generates (viewer/gfx/assets.h; glib_cmds.c accepts
- * these names): their side and channels. The caustic tile is photon
- * tracing, about a second at 128; the others are quick. */
+/* The makers of the textures tarn generates (viewer/gfx/assets.h): res x
+ * res texels of their channels, as floats. */
+static bool make_caustics(int res, float *px, char *err, size_t errlen) {
+    return assets_bake_caustics(res, px, err, (int)errlen);
+}
+static bool make_foam(int res, float *px, char *err, size_t errlen) {
+    (void)err, (void)errlen;
+    return assets_bake_foam(res, px);
+}
+static bool make_water_normal(int res, float *px, char *err, size_t errlen) {
+    (void)err, (void)errlen;
+    return assets_bake_water_normal(res, px);
+}
+static bool make_terrain_normal(int res, float *px, char *err, size_t errlen) {
+    (void)err, (void)errlen;
+    ref_world w;
+    ref_world_desc d;
+    ref_world_desc_lake(&d);   /* no world at hand here: the lake's terrain */
+    ref_world_init(&w, &d);
+    bool ok = assets_bake_terrain_normal(&w, res, px);
+    ref_world_release(&w);
+    return ok;
+}
+
+/* The textures tarn generates (glib_cmds.c accepts these names): their
+ * side, channels and maker. The caustic tile is photon tracing, about a
+ * second at 128; the others are quick. */
 typedef struct generated_tex {
     const char *name;
     int res, channels;
     bool keep;   /* kept on disk across runs (disk_cache.h): its making is slow */
+    bool (*make)(int res, float *px, char *err, size_t errlen);
 } generated_tex;
 static const generated_tex GENERATED[] = {
-    { "caustics", 128, 1, true }, { "foam", 256, 3, false }, { "water_normal", 256, 3, false },
-    { "terrain_normal", 256, 3, false },
+    { "caustics", 128, 1, true, make_caustics },
+    { "foam", 256, 3, false, make_foam },
+    { "water_normal", 256, 3, false, make_water_normal },
+    { "terrain_normal", 256, 3, false, make_terrain_normal },
 };
-
-static bool bake_generated_now(const generated_tex *g, float *px, char *err, size_t errlen) {
-    if (strcmp(g->name, "caustics") == 0) return assets_bake_caustics(g->res, px, err, (int)errlen);
-    if (strcmp(g->name, "foam") == 0) return assets_bake_foam(g->res, px);
-    if (strcmp(g->name, "water_normal") == 0) return assets_bake_water_normal(g->res, px);
-    ref_world w;   /* terrain_normal */
-    ref_world_desc d;
-    ref_world_desc_lake(&d);   /* no world at hand here: the lake's terrain */
-    ref_world_init(&w, &d);
-    bool ok = assets_bake_terrain_normal(&w, g->res, px);
-    ref_world_release(&w);
-    return ok;
-}
 
 /* file_cache_made's maker (user: the generated_tex): res x res texels of
  * its channels, as floats; a kept one from tarn's cache folder when this
@@ -465,7 +479,7 @@ static bool bake_generated(void *user, void *out, size_t len, char *err, size_t 
     snprintf(name, sizeof name, "%s-%d.f32", g->name, g->res);
     uint64_t key = g->keep ? disk_cache_build_key() : 0;
     if (key && disk_cache_read(name, key, out, len)) return true;
-    if (!bake_generated_now(g, out, err, errlen)) return false;
+    if (!g->make(g->res, out, err, errlen)) return false;
     if (key) disk_cache_write(name, key, out, len);   /* a failure only means making it again next time */
     return true;
 }
