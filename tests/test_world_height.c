@@ -73,11 +73,47 @@ static void test_lake(void) {
 
 static void test_shore(void) { check_scene(TARN_SOURCE_DIR "/scenes/hard/shore.glib", "basic"); }
 
+/* The map drawn only over the cells a wet test reads
+ * (render_set_world_height_cells, world_height_tiles.h) against the whole
+ * map: the texels those tests read are drawn by the same program in both,
+ * so every pixel is the same, at full detail and at a window's reduced one
+ * (a coarser map and coarser land meshes). */
+static void check_cells(const char *scene, const char *pack) {
+    render *r = render_create(&(render_desc){ .pack = pack });
+    CHECK_MSG(render_load(r, scene), "%s", render_messages(r));
+    float *cells = malloc(sizeof(float) * W * H * 4), *whole = malloc(sizeof(float) * W * H * 4);
+    const double times[] = { 1.3, 4.7 }, details[] = { 1.0, 0.3 };
+    for (int k = 0; k < 4; k++) {
+        render_set_detail(r, details[k / 2]);
+        render_set_world_height_cells(r, true);
+        frame(r, times[k % 2], cells);
+        render_set_world_height_cells(r, false);
+        frame(r, times[k % 2], whole);
+        int differ = 0;
+        for (int i = 0; i < W * H * 4; i++) differ += cells[i] != whole[i];
+        CHECK_MSG(differ == 0, "%s %s t=%g detail %g: %d values differ from the whole map's frame", scene, pack,
+                  times[k % 2], details[k / 2], differ);
+    }
+    render_set_world_height_cells(r, true);
+    free(cells);
+    free(whole);
+    render_destroy(r);
+}
+
+static void test_cells_match_the_whole_map(void) {
+    check_cells(TARN_SOURCE_DIR "/scenes/lake.glib", "basic");
+    check_cells(TARN_SOURCE_DIR "/scenes/showcase.glib", "basic");
+    check_cells(TARN_SOURCE_DIR "/scenes/hard/shore.glib", "basic");
+    check_cells(TARN_SOURCE_DIR "/scenes/hard/crate.glib", "basic");
+    check_cells(TARN_SOURCE_DIR "/scenes/harbour.glib", "natural");
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
     RUN(test_lake);
     RUN(test_shore);
+    RUN(test_cells_match_the_whole_map);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

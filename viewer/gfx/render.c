@@ -129,6 +129,12 @@ bool render_set_world_height_map(render *r, bool on) {
     return ok;
 }
 
+void render_set_world_height_cells(render *r, bool on) {
+    world_set_height_cells(&r->world, on);
+    world_cache_free(&r->wcache);   /* drawn again, not copied: the test compares drawings */
+    world_layers_free(&r->wlayers);
+}
+
 long render_world_layer_frames(const render *r) { return r->wlayers.composites; }
 
 void render_set_detail(render *r, double detail) {

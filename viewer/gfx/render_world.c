@@ -1,4 +1,5 @@
 #include "render_world.h"
+#include "world_height_tiles.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -22,21 +23,29 @@ static int lod_cells(int res, int lod) {
     return lod == 0 || n >= WORLD_LOD_MIN_CELLS ? n : (res < WORLD_LOD_MIN_CELLS ? res : WORLD_LOD_MIN_CELLS);
 }
 
-static bool build_terrain(gpu_world *gw, int lod) {
+/* The terrain's grid at a level of detail, on the heightfield; shaded:
+ * with its normals and texture coordinates (not for positions alone). */
+static bool terrain_geom(const gpu_world *gw, int lod, bool shaded, geom_mesh *g) {
     const ref_world *w = &gw->w;
     int res = lod_cells(w->d.terrain_res, lod);
     double hs = w->d.half_size;
-    geom_mesh g;
-    if (!geom_quad(&g, 1, 0.0f, (float)hs, res, res, false)) return false;
-    for (int i = 0; i < g.nvert; i++) {   /* lift the flat grid onto the heightfield */
-        double x = g.pos[i * 3], z = g.pos[i * 3 + 2], n[3];
-        g.pos[i * 3 + 1] = (float)ref_terrain_height(w, x, z);
+    if (!geom_quad(g, 1, 0.0f, (float)hs, res, res, false)) return false;
+    for (int i = 0; i < g->nvert; i++) {   /* lift the flat grid onto the heightfield */
+        double x = g->pos[i * 3], z = g->pos[i * 3 + 2], n[3];
+        g->pos[i * 3 + 1] = (float)ref_terrain_height(w, x, z);
+        if (!shaded) continue;
         ref_terrain_normal_at(w, x, z, n);
-        for (int k = 0; k < 3; k++) g.nrm[i * 3 + k] = (float)n[k];
+        for (int k = 0; k < 3; k++) g->nrm[i * 3 + k] = (float)n[k];
         /* the albedo texture is addressed by world position: s = x, t = z */
-        g.tc[i * 2] = (float)((x + hs) / (2 * hs));
-        g.tc[i * 2 + 1] = (float)((z + hs) / (2 * hs));
+        g->tc[i * 2] = (float)((x + hs) / (2 * hs));
+        g->tc[i * 2 + 1] = (float)((z + hs) / (2 * hs));
     }
+    return true;
+}
+
+static bool build_terrain(gpu_world *gw, int lod) {
+    geom_mesh g;
+    if (!terrain_geom(gw, lod, true, &g)) return false;
     bool ok = render_res_mesh_upload(&g, &gw->terrain[lod]);
     geom_free(&g);
     return ok;
@@ -81,11 +90,12 @@ static int skirt_rings(const ref_world *w, int res, double *h) {
     return n;
 }
 
-static void skirt_vertex(const ref_world *w, double x, double z, float *pos, float *nrm, float *tc) {
+static void skirt_vertex(const ref_world *w, double x, double z, bool shaded, float *pos, float *nrm, float *tc) {
     double n[3], hs = w->d.half_size;
     pos[0] = (float)x;
     pos[1] = (float)ref_terrain_height(w, x, z);
     pos[2] = (float)z;
+    if (!shaded) return;
     ref_terrain_normal_at(w, x, z, n);
     for (int k = 0; k < 3; k++) nrm[k] = (float)n[k];
     tc[0] = (float)((x + hs) / (2 * hs));   /* outside [0, 1]: for packs; world.frag does not sample it */
@@ -104,28 +114,29 @@ static void perimeter(double h, int res, int p, double *x, double *z) {
     }
 }
 
-static bool build_skirt(gpu_world *gw, int lod) {
+/* The skirt at a level of detail; shaded: with normals and texture
+ * coordinates. */
+static bool skirt_geom(const gpu_world *gw, int lod, bool shaded, geom_mesh *g) {
     const ref_world *w = &gw->w;
     double ring[SKIRT_MAX_RINGS];
     int res = lod_cells(w->d.terrain_res, lod);
     int nrings = skirt_rings(w, res, ring) - 1;   /* the bands between rings */
     int per = 4 * res, nv = per * (nrings + 1);
-    geom_mesh g;
-    memset(&g, 0, sizeof g);
-    g.nvert = nv;
-    g.nidx = per * nrings * 6;
-    g.pos = mem_alloc((size_t)nv * 3 * sizeof(float));
-    g.nrm = mem_alloc((size_t)nv * 3 * sizeof(float));
-    g.tan = mem_zalloc((size_t)nv * 3 * sizeof(float));
-    g.tc = mem_alloc((size_t)nv * 2 * sizeof(float));
-    g.idx = mem_alloc((size_t)g.nidx * sizeof(unsigned));
+    memset(g, 0, sizeof *g);
+    g->nvert = nv;
+    g->nidx = per * nrings * 6;
+    g->pos = mem_alloc((size_t)nv * 3 * sizeof(float));
+    g->nrm = mem_alloc((size_t)nv * 3 * sizeof(float));
+    g->tan = mem_zalloc((size_t)nv * 3 * sizeof(float));
+    g->tc = mem_alloc((size_t)nv * 2 * sizeof(float));
+    g->idx = mem_alloc((size_t)g->nidx * sizeof(unsigned));
     for (int k = 0; k <= nrings; k++) {
         for (int p = 0; p < per; p++) {
             double x, z;
             perimeter(ring[k], res, p, &x, &z);
             int v = k * per + p;
-            skirt_vertex(w, x, z, g.pos + v * 3, g.nrm + v * 3, g.tc + v * 2);
-            g.tan[v * 3] = 1.0f;
+            skirt_vertex(w, x, z, shaded, g->pos + v * 3, g->nrm + v * 3, g->tc + v * 2);
+            g->tan[v * 3] = 1.0f;
         }
     }
     int n = 0;
@@ -134,9 +145,15 @@ static bool build_skirt(gpu_world *gw, int lod) {
             unsigned a = (unsigned)(k * per + p), b = (unsigned)(k * per + (p + 1) % per);
             unsigned c = a + (unsigned)per, d = b + (unsigned)per;
             unsigned quad[6] = { a, c, b, b, c, d };
-            memcpy(g.idx + n, quad, sizeof quad);
+            memcpy(g->idx + n, quad, sizeof quad);
             n += 6;
         }
+    return true;
+}
+
+static bool build_skirt(gpu_world *gw, int lod) {
+    geom_mesh g;
+    if (!skirt_geom(gw, lod, true, &g)) return false;
     bool ok = render_res_mesh_upload(&g, &gw->skirt[lod]);
     geom_free(&g);
     return ok;
@@ -439,7 +456,7 @@ static bool build_program(gpu_world *gw, const prog_sources *src,  diag_list *lo
     h->world_uniforms = true;
     world_set_wave_defines(gw, h);
     snprintf(h->name, sizeof h->name, "WorldHeight");
-    snprintf(h->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height.vert", src->common_dir);
+    snprintf(h->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height_cells.vert", src->common_dir);
     snprintf(h->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_height.frag", src->common_dir);
     prog *c = &gw->layers_prog;
     memset(c, 0, sizeof *c);
@@ -512,10 +529,13 @@ void world_free(gpu_world *gw) {
     if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
     if (gw->height_prev_fbo) glDeleteFramebuffers(1, &gw->height_prev_fbo);
     if (gw->height_prev_tex) glDeleteTextures(1, &gw->height_prev_tex);
+    if (gw->height_quads_vbo) glDeleteBuffers(1, &gw->height_quads_vbo);
+    free(gw->height_tiles);
     ref_world_release(&gw->w);   /* after ocean_free: its GL passes read the ocean */
-    bool off = gw->height_map_off;   /* a setting of the renderer's, not of this world */
+    bool off = gw->height_map_off, cells_off = gw->height_cells_off;   /* the renderer's settings, not the world's */
     memset(gw, 0, sizeof *gw);
     gw->height_map_off = off;
+    gw->height_cells_off = cells_off;
 }
 
 bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *src,
@@ -913,7 +933,113 @@ static void height_target(gpu_world *gw, int res) {
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, gw->height_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gw->height_tex, 0);
+    /* the texels the pass never draws (height_quads) hold the level: never
+     * read, but defined */
+    GLfloat clear[4];
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, clear);
+    glClearColor((float)gw->w.d.water_level, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glClearColor(clear[0], clear[1], clear[2], clear[3]);
     gw->height_res = res;
+}
+
+static const ref_waves_uniform *wave_uniform(const gpu_world *gw, const char *name) {
+    for (int i = 0; i < gw->nwaves; i++)
+        if (strcmp(gw->waves[i].name, name) == 0) return &gw->waves[i];
+    return NULL;
+}
+
+static float wave_float(const gpu_world *gw, const char *name) {
+    const ref_waves_uniform *u = wave_uniform(gw, name);
+    return u && !u->is_int ? u->v[0] : 0.0f;
+}
+
+static int wave_int(const gpu_world *gw, const char *name) {
+    const ref_waves_uniform *u = wave_uniform(gw, name);
+    return u && u->is_int ? u->i : 0;
+}
+
+/* The box an object's triangles lie in. */
+static void object_box(const gpu_world *gw, int k, double lo[3], double hi[3]) {
+    const ref_object *o = &gw->w.d.objects[k];
+    for (int a = 0; a < 3; a++) {
+        double half = o->kind == REF_OBJECT_BOX ? o->size[a] : o->size[0];
+        lo[a] = o->center[a] - half;
+        hi[a] = o->center[a] + half;
+    }
+    if (o->kind == REF_OBJECT_CYLINDER) {   /* it stands on its base */
+        lo[1] = o->center[1];
+        hi[1] = o->center[1] + o->size[1];
+    }
+    if (o->kind == REF_OBJECT_MESH && gw->w.meshes[k]) ref_mesh_bounds(gw->w.meshes[k], lo, hi);
+}
+
+/* The cells of the map a wet test reads, for the level and bound of the
+ * wave uniforms world.frag gets (world_wet.glsl): under the triangles of
+ * the land at every level of detail (the frame picks one) and the objects'
+ * boxes. */
+static void find_height_tiles(gpu_world *gw) {
+    const ref_waves_uniform *sine = wave_uniform(gw, "uSineAmp"), *gerstner = wave_uniform(gw, "uGerstnerAmp");
+    int nsine = sine ? wave_int(gw, "uSineCount") : 0, ngerstner = gerstner ? wave_int(gw, "uGerstnerCount") : 0;
+    if (sine && nsine > sine->count) nsine = sine->count;
+    if (gerstner && ngerstner > gerstner->count) ngerstner = gerstner->count;
+    double bound = height_tiles_wave_bound(sine ? sine->v : NULL, nsine, gerstner ? gerstner->v : NULL, ngerstner,
+                                           wave_float(gw, "uNoiseAmp"), wave_int(gw, "uNoiseOctaves"),
+                                           wave_float(gw, "uNoiseGain"), REF_NOISE_OCTAVES_MAX);
+    if (!gw->height_tiles) gw->height_tiles = mem_alloc(sizeof *gw->height_tiles);
+    height_tiles *t = gw->height_tiles;
+    height_tiles_start(t, WORLD_HEIGHT_MARGIN * gw->w.d.half_size, wave_float(gw, "uWaterLevel"), bound);
+    for (int lod = 0; lod < WORLD_LODS; lod++) {
+        geom_mesh g;
+        if (terrain_geom(gw, lod, false, &g)) {
+            height_tiles_add_triangles(t, g.pos, g.idx, g.nidx);
+            geom_free(&g);
+        }
+        if (skirt_geom(gw, lod, false, &g)) {
+            height_tiles_add_triangles(t, g.pos, g.idx, g.nidx);
+            geom_free(&g);
+        }
+    }
+    for (int k = 0; k < gw->w.d.nobjects; k++) {
+        double lo[3], hi[3];
+        object_box(gw, k, lo, hi);
+        height_tiles_add_box(t, lo, hi);
+    }
+}
+
+#define HEIGHT_RECTS_MAX 1024
+
+/* The quads the height pass draws at res texels a side, into
+ * height_quads_vbo (made once per res): the cells a wet test reads, or the
+ * whole map while a spray reads all of it. Returns their vertex count. */
+static int height_quads(gpu_world *gw, int res) {
+    bool full = gw->spray.active || gw->height_cells_off;
+    if (gw->height_quads_vbo && gw->height_quads_res == res && gw->height_quads_full == full) return gw->height_quads_n;
+    if (!full && !gw->height_tiles) find_height_tiles(gw);
+    static const float whole[4] = { 0, 0, 1, 1 };
+    float *rects = mem_alloc(4 * HEIGHT_RECTS_MAX * sizeof *rects);
+    int n = full ? -1 : height_tiles_rects(gw->height_tiles, res, rects, HEIGHT_RECTS_MAX);
+    if (n < 0) {
+        memcpy(rects, whole, sizeof whole);
+        n = 1;
+    }
+    float *v = mem_alloc((size_t)n * 12 * sizeof *v);
+    for (int k = 0; k < n; k++) {
+        const float *r = rects + 4 * k;
+        float x0 = r[0] * 2 - 1, z0 = r[1] * 2 - 1, x1 = r[2] * 2 - 1, z1 = r[3] * 2 - 1;
+        const float tri[12] = { x0, z0, x1, z0, x1, z1, x0, z0, x1, z1, x0, z1 };
+        memcpy(v + 12 * k, tri, sizeof tri);
+    }
+    if (!gw->height_quads_vbo) glGenBuffers(1, &gw->height_quads_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, gw->height_quads_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)n * 12 * sizeof *v), v, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    free(v);
+    free(rects);
+    gw->height_quads_res = res;
+    gw->height_quads_full = full;
+    gw->height_quads_n = n * 6;
+    return gw->height_quads_n;
 }
 
 void world_update_height(gpu_world *gw, double t, double detail) {
@@ -942,13 +1068,23 @@ void world_update_height(gpu_world *gw, double t, double detail) {
     world_upload(gw, p, t, eye);
     GLint loc = glGetUniformLocation(p, "uHeightRes");
     if (loc >= 0) glUniform2f(loc, (float)res, (float)res);
-    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    render_res_vertexid_end();
+    int nverts = height_quads(gw, res);
+    glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
+    glBindBuffer(GL_ARRAY_BUFFER, gw->height_quads_vbo);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glVertexPointer(2, GL_FLOAT, 0, NULL);
+    glDrawArrays(GL_TRIANGLES, 0, nverts);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glPopClientAttrib();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gw->height_t = t;
     gw->height_hash = gw->height_prog.hash;
+}
+
+void world_set_height_cells(gpu_world *gw, bool on) {
+    gw->height_cells_off = !on;
+    gw->height_t = NAN;   /* drawn again at the next frame, whatever its time */
 }
 
 bool world_set_height_map(gpu_world *gw, bool on, const prog_sources *src, diag_list *log,

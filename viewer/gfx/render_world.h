@@ -91,6 +91,14 @@ typedef struct gpu_world {
     int height_prev_res;
     double height_prev_t;
     unsigned long long height_hash;   /* the program the map was drawn with */
+    /* the map's cells a wet test reads (world_height_tiles.h), found once a
+     * world, and the quads that draw them at height_quads_res texels a side
+     * (the whole map while a spray reads it everywhere) */
+    struct height_tiles *height_tiles;
+    unsigned height_quads_vbo;
+    int height_quads_res, height_quads_n;   /* n: vertices */
+    bool height_quads_full;
+    bool height_cells_off;        /* world_set_height_cells(false): every texel drawn */
     /* The spectrum ocean's frame (render_ocean.h): created with the world
      * when its waves hold an ocean, nothing otherwise. */
     gpu_ocean ocean;
@@ -168,6 +176,11 @@ void world_draw_spray(const gpu_world *gw, const float vp[16], const float eye[3
  * already. Binds framebuffer 0 and leaves the viewport changed: call it
  * before the frame sets its own. */
 void world_update_height(gpu_world *gw, double t, double detail);
+
+/* The height pass draws only the cells of the map a wet test reads
+ * (world_height_tiles.h; on, the default) or every texel (off: tests
+ * compare the two, which must give the same pixels). */
+void world_set_height_cells(gpu_world *gw, bool on);
 
 /* The height map on (the default) or off (world.frag solves for the
  * surface at every pixel, as before); rebuilds the world's programs. */
