@@ -115,12 +115,14 @@ static void perimeter(double h, int res, int p, double *x, double *z) {
 }
 
 /* The skirt at a level of detail; shaded: with normals and texture
- * coordinates. */
-static bool skirt_geom(const gpu_world *gw, int lod, bool shaded, geom_mesh *g) {
+ * coordinates; only the bands that reach within reach of the centre (a
+ * half size). */
+static bool skirt_geom(const gpu_world *gw, int lod, bool shaded, double reach, geom_mesh *g) {
     const ref_world *w = &gw->w;
     double ring[SKIRT_MAX_RINGS];
     int res = lod_cells(w->d.terrain_res, lod);
     int nrings = skirt_rings(w, res, ring) - 1;   /* the bands between rings */
+    while (nrings > 1 && ring[nrings - 1] > reach) nrings--;   /* bands wholly past reach: not wanted */
     int per = 4 * res, nv = per * (nrings + 1);
     memset(g, 0, sizeof *g);
     g->nvert = nv;
@@ -153,7 +155,7 @@ static bool skirt_geom(const gpu_world *gw, int lod, bool shaded, geom_mesh *g) 
 
 static bool build_skirt(gpu_world *gw, int lod) {
     geom_mesh g;
-    if (!skirt_geom(gw, lod, true, &g)) return false;
+    if (!skirt_geom(gw, lod, true, INFINITY, &g)) return false;
     bool ok = render_res_mesh_upload(&g, &gw->skirt[lod]);
     geom_free(&g);
     return ok;
@@ -988,14 +990,15 @@ static void find_height_tiles(gpu_world *gw) {
                                            wave_float(gw, "uNoiseGain"), REF_NOISE_OCTAVES_MAX);
     if (!gw->height_tiles) gw->height_tiles = mem_alloc(sizeof *gw->height_tiles);
     height_tiles *t = gw->height_tiles;
-    height_tiles_start(t, WORLD_HEIGHT_MARGIN * gw->w.d.half_size, wave_float(gw, "uWaterLevel"), bound);
+    double map_half = WORLD_HEIGHT_MARGIN * gw->w.d.half_size;
+    height_tiles_start(t, map_half, wave_float(gw, "uWaterLevel"), bound);
     for (int lod = 0; lod < WORLD_LODS; lod++) {
         geom_mesh g;
         if (terrain_geom(gw, lod, false, &g)) {
             height_tiles_add_triangles(t, g.pos, g.idx, g.nidx);
             geom_free(&g);
         }
-        if (skirt_geom(gw, lod, false, &g)) {
+        if (skirt_geom(gw, lod, false, map_half, &g)) {
             height_tiles_add_triangles(t, g.pos, g.idx, g.nidx);
             geom_free(&g);
         }
