@@ -155,7 +155,9 @@ static double lake_height(const ref_world *w, double x, double z, double grad[2]
     double bowl = smoothstep(0.35, 0.95, r), bowl_d = smoothstep_d(0.35, 0.95, r);
     double rim = smoothstep(0.95, 1.25, r), rim_d = smoothstep_d(0.95, 1.25, r);
     double fade = 1.0 - rim;                         /* the detail fades on land */
-    double det = detail(w, x, z, dg);
+    /* its sines (and their cosines only for a gradient) where they count:
+     * past the rim fade and rim_d are 0, and so are their terms */
+    double det = fade > 0 || grad ? detail(w, x, z, grad ? dg : NULL) : 0.0;
     double h = s->water_level - s->depth * (1.0 - bowl) + s->shore_height * rim + fade * det;
     if (grad) {
         double dh_dr = s->depth * bowl_d + s->shore_height * rim_d - rim_d * det;
