@@ -85,6 +85,7 @@ struct app {
     bool compiling;              /* a job runs for the change last seen */
     bool ready_seen;             /* ... and has made the moving frames' code (latched until the frame reloads) */
     bool reloaded_early;         /* ... and the window shows the change: the job makes the still frame's code */
+    bool job_waits_shown;        /* ... once this frame is on screen (compile_job_desc.wait_for_shown) */
     bool priming;                /* ... or to load the scenes in the job's renders before any change */
     bool compile_ended;          /* ... and has ended: reload on this frame */
     bool changed_again;          /* a file changed while it ran */
@@ -176,7 +177,8 @@ static bool start_compile(app *a, bool prime) {
     if (!compile_job_useful() || a->job_futile || a->drawn_w <= 0) return false;
     if (!a->cjob) a->cjob = compile_job_create();
     compile_job_desc d = { .scenes = a->scenes, .n = a->nscenes, .w = a->drawn_w, .h = a->drawn_h,
-                           .t = a->s.t, .view = orbit_view(&a->s.cam) };
+                           .t = a->s.t, .view = orbit_view(&a->s.cam),
+                           .wait_for_shown = !prime && a->budget_ms > 0 };   /* early_wanted's reload */
     if (!compile_job_start(a->cjob, &d)) return false;
     a->compiling = true;
     a->priming = prime;
@@ -232,6 +234,7 @@ static bool compile_readied(app *a) {
 static void reload_early(app *a) {
     a->ready_seen = false;
     a->reloaded_early = true;
+    a->job_waits_shown = true;   /* until this frame is on screen (compile_job_shown) */
     res_budget_hold_full(&a->budget, true);
     a->compile_restarts = 0;
     reload_compiled(a);
@@ -272,6 +275,7 @@ static void reload_changed(app *a, int n) {
     free(paths);
     if (a->compiling) {   /* the job reads the files when it runs: compile again once it ends */
         a->changed_again = true;
+        compile_job_shown(a->cjob);   /* no reload at its ready now: it need not wait for one */
         change_wait_starts(a);   /* (during a priming job: the change's wait starts now) */
         if (strcmp(cause, a->cause) != 0) snprintf(a->cause, sizeof a->cause, "%s", cause);
         return;
@@ -883,6 +887,10 @@ int app_run(app *a, render *const *scenes, int n) {
         }
         a->last_swap = swapped;
         if (a->judge_job) judge_compile_job(a, swapped - started);
+        if (a->job_waits_shown) {
+            a->job_waits_shown = false;
+            compile_job_shown(a->cjob);
+        }
         if (a->stamp_pending) stamp_swap(a);
         /* the scenes loaded in the job's renders once the window shows
          * them all (after the frame that drew the last one loaded: the job

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <time.h>
 
 #include "gl_ctx.h"
 #include "glib.h"
@@ -42,6 +43,8 @@ struct compile_job {
     bool ready;                  /* under mu: the reduced frames' code is made (the window may reload) */
     bool ready_taken;            /* under mu: compile_job_ready said so */
     double ready_seconds;        /* under mu: how long that took */
+    bool wait_for_shown;         /* under mu: the job waits for shown after its ready */
+    bool shown;                  /* under mu: compile_job_shown since the job started */
     bool quit;                   /* under mu: destroy asked the worker to end */
     double seconds;              /* under mu: how long it ran */
     /* the job: written by compile_job_start while no job runs, read by the worker */
@@ -249,6 +252,14 @@ static void run_job(compile_job *j) {
     pthread_mutex_lock(&j->mu);
     j->ready = true;
     j->ready_seconds = clock_now_s() - t0;
+    /* the window's first frame of the change first, alone on the cores */
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_nsec += (long)(COMPILE_JOB_SHOWN_WAIT_S * 1e9);
+    until.tv_sec += until.tv_nsec / 1000000000L;
+    until.tv_nsec %= 1000000000L;
+    while (j->wait_for_shown && !j->shown && !j->quit)
+        if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;   /* timed out: go on */
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_still(j, i);
     for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
@@ -294,7 +305,8 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d) {
     }
     pthread_mutex_lock(&j->mu);
     j->request = j->busy = true;
-    j->done = j->ready = j->ready_taken = false;
+    j->done = j->ready = j->ready_taken = j->shown = false;
+    j->wait_for_shown = d->wait_for_shown;
     pthread_cond_signal(&j->cv);
     pthread_mutex_unlock(&j->mu);
     return true;
@@ -306,6 +318,14 @@ bool compile_job_busy(compile_job *j) {
     bool busy = j->busy;
     pthread_mutex_unlock(&j->mu);
     return busy;
+}
+
+void compile_job_shown(compile_job *j) {
+    if (!j || !j->thread) return;
+    pthread_mutex_lock(&j->mu);
+    j->shown = true;
+    pthread_cond_broadcast(&j->cv);
+    pthread_mutex_unlock(&j->mu);
 }
 
 bool compile_job_ready(compile_job *j, double *seconds) {

@@ -1,0 +1,79 @@
+/* test_compile_job: a save's shaders compiled off the window's frame
+ * (viewer/ui/compile_job.h), on a worker thread with its own headless
+ * context: a job says ready (the moving frames' code made) and then done;
+ * one started with wait_for_shown does not make the still frame's code
+ * before the window says it has shown the change (compile_job_shown) or
+ * COMPILE_JOB_SHOWN_WAIT_S has passed, so the window's first frame of the
+ * change does not share the cores with that compile. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "check.h"
+#include "compile_job.h"
+#include "gl_ctx.h"
+#include "gl_support.h"
+#include "render.h"
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static void nap(void) {
+    struct timespec ts = { 0, 2000000 };
+    nanosleep(&ts, NULL);
+}
+
+/* Runs a job on r; shown_at_ready: call compile_job_shown as soon as it
+ * is ready. Gives the times from start to ready and from ready to done. */
+static void run(render *r, bool wait, bool shown_at_ready, double *ready_s, double *done_after_s) {
+    compile_job *j = compile_job_create();
+    render *const scenes[1] = { r };
+    compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0,
+                           .view = render_default_view(r), .wait_for_shown = wait };
+    double t0 = now_s(), ready_at = 0, secs;
+    CHECK(compile_job_start(j, &d));
+    CHECK(!compile_job_start(j, &d));   /* one job at a time */
+    for (;;) {
+        if (!ready_at && compile_job_ready(j, &secs)) {
+            ready_at = now_s();
+            if (shown_at_ready) compile_job_shown(j);
+        }
+        if (compile_job_done(j, &secs)) break;
+        CHECK_MSG(now_s() - t0 < 120, "the job never ended");
+        if (now_s() - t0 >= 120) break;
+        nap();
+    }
+    double done_at = now_s();
+    CHECK_MSG(ready_at > 0, "the job ended without saying ready");
+    if (!ready_at) ready_at = done_at;
+    *ready_s = ready_at - t0;
+    *done_after_s = done_at - ready_at;
+    compile_job_destroy(j);
+}
+
+static void test_waits_for_the_window(void) {
+    if (!compile_job_useful()) SKIP("Mesa's shader cache is off: the window compiles on the frame");
+    render *r = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    double ready, after;
+    run(r, false, false, &ready, &after);   /* fills Mesa's cache: the runs below find it */
+    printf("no wait: ready after %.2f s, done %.2f s later\n", ready, after);
+    run(r, true, false, &ready, &after);
+    printf("waiting, never shown: ready after %.2f s, done %.2f s later\n", ready, after);
+    CHECK_MSG(after >= COMPILE_JOB_SHOWN_WAIT_S * 0.95, "the still frame's code was made %.3f s after ready, "
+              "before the window could show the change", after);
+    run(r, true, true, &ready, &after);
+    printf("waiting, shown at ready: ready after %.2f s, done %.2f s later\n", ready, after);
+    render_destroy(r);
+}
+
+int main(void) {
+    gl_ctx *ctx = gl_test_context();
+    if (!ctx) return GL_TEST_SKIP;
+    RUN(test_waits_for_the_window);
+    gl_ctx_destroy(ctx);
+    return check_summary();
+}
