@@ -318,6 +318,34 @@ static void test_save_truncate_write(void) {
     fixture_close(&fx);
 }
 
+/* Waits (up to a second) until the watcher has events to read. */
+static bool events_queued(watch *w) {
+    struct pollfd p = { .fd = watch_fd(w), .events = POLLIN };
+    return poll(&p, 1, 1000) == 1;
+}
+
+/* The writer's close ends the save: the first look after its events
+ * reports it, without the quiet time (a save on screen that much sooner);
+ * while another writer still holds the file open the quiet time holds. */
+static void test_close_ends_the_save(void) {
+    fixture fx;
+    if (fixture_open(&fx)) {
+        CHECK(save_in_place(fx.a, next_content()));
+        CHECK(events_queued(fx.w));
+        int n = watch_poll(fx.w, 0);
+        CHECK_MSG(n == 1, "write and close: %d changes at the first look, expected 1", n);
+        expect_silence(fx.w, "after the close");
+        int held = open(fx.a, O_WRONLY);   /* another writer, still writing */
+        CHECK(held >= 0);
+        CHECK(save_in_place(fx.a, next_content()));
+        CHECK(events_queued(fx.w));
+        CHECK_EQ(watch_poll(fx.w, 0), 0);
+        if (held >= 0) close(held);
+        expect_one_change(fx.w, fx.a, now_ms(), "closed while another writer held it");
+    }
+    fixture_close(&fx);
+}
+
 /* A pause longer than the quiet period: the file is still open for writing,
  * so the half-written content must not be reported. */
 static void test_save_slow_editor(void) {
@@ -852,6 +880,7 @@ int main(void) {
     RUN(test_create_and_bad_paths);
     RUN(test_save_in_place);
     RUN(test_save_truncate_write);
+    RUN(test_close_ends_the_save);
     RUN(test_save_slow_editor);
     RUN(test_save_stalled_writer);
     RUN(test_save_rename_over);

@@ -50,6 +50,7 @@ typedef struct watch_file {
     uint64_t hash;   /* recorded content hash, when present */
     bool dirty;      /* an event came since it was last decided */
     bool writing;    /* modified or created, no close seen yet */
+    bool closed;     /* its last event was a writer's close (IN_CLOSE_WRITE) */
     int64_t last_ns; /* time of its last event */
 } watch_file;
 
@@ -145,7 +146,7 @@ static void mark_dir_dirty(watch *w, int dir, int64_t t) {
         for (int k = 0; k < w->files[i].nkeys; k++)
             if (w->files[i].key[k].dir == dir) {
                 mark_dirty(&w->files[i], t);
-                w->files[i].writing = false;
+                w->files[i].writing = w->files[i].closed = false;
             }
 }
 
@@ -153,7 +154,7 @@ static void handle_event(watch *w, const struct inotify_event *ev, int64_t t) {
     if (ev->mask & IN_Q_OVERFLOW) { /* events were lost: look at everything */
         for (int i = 0; i < w->nfiles; i++) {
             mark_dirty(&w->files[i], t);
-            w->files[i].writing = false;
+            w->files[i].writing = w->files[i].closed = false;
         }
         return;
     }
@@ -175,6 +176,7 @@ static void handle_event(watch *w, const struct inotify_event *ev, int64_t t) {
             for (int k = 0; k < f->nkeys; k++) {
                 if (f->key[k].dir != d || strcmp(f->key[k].base, ev->name) != 0) continue;
                 mark_dirty(f, t);
+                f->closed = (ev->mask & IN_CLOSE_WRITE) != 0;
                 if (ev->mask & (IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE | IN_MOVED_FROM))
                     f->writing = false;
                 else if ((ev->mask & IN_MODIFY) || ((ev->mask & IN_CREATE) && !(ev->mask & IN_ISDIR)))
@@ -252,6 +254,15 @@ static bool still_writing(const watch_file *f, int64_t t, int64_t *until) {
     return false;
 }
 
+/* When f's burst of events is over: WATCH_QUIET_MS after its last event,
+ * or at that event when it was the writer's close and no other writer
+ * holds the file open (the save is over: an editor's write-and-close is
+ * taken at once, not a fixed time later). */
+static int64_t quiet_at(const watch_file *f) {
+    if (f->closed && writer_holds(f->path) != 1) return f->last_ns;
+    return f->last_ns + WATCH_QUIET_MS * MS;
+}
+
 /* Decides the dirty files that have settled, appending the changed ones to
  * w->changed. Returns when the next undecided file is due (NEVER if none). */
 static int64_t decide(watch *w, int64_t t) {
@@ -261,11 +272,11 @@ static int64_t decide(watch *w, int64_t t) {
     for (int i = 0; i < w->nfiles; i++) {
         watch_file *f = &w->files[i];
         if (!f->dirty) continue;
-        int64_t quiet_at = f->last_ns + WATCH_QUIET_MS * MS;
-        int64_t ready_at = quiet_at;
-        if (t < quiet_at) { /* still in a burst */
+        int64_t quiet = quiet_at(f);
+        int64_t ready_at = quiet;
+        if (t < quiet) { /* still in a burst */
             busy = true;
-            if (quiet_at < next) next = quiet_at;
+            if (quiet < next) next = quiet;
             continue;
         }
         int64_t until;
@@ -294,7 +305,7 @@ static int64_t decide(watch *w, int64_t t) {
     }
     for (int i = 0; i < w->nfiles; i++) {
         watch_file *f = &w->files[i];
-        if (!f->dirty || t < f->last_ns + WATCH_QUIET_MS * MS) continue;
+        if (!f->dirty || t < quiet_at(f)) continue;
         int64_t again;
         if (still_writing(f, t, &again)) continue;
         uint64_t h = 0;

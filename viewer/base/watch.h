@@ -13,8 +13,9 @@
  *
  * How: the DIRECTORIES of the files are watched (a watch on the file itself
  * would follow the old inode away on a rename). An event for a watched name
- * marks that file dirty; once the file has been quiet for WATCH_QUIET_MS it
- * is hashed (FNV-1a 64 over its bytes) and reported only if the hash differs
+ * marks that file dirty; once the file has been quiet for WATCH_QUIET_MS (or
+ * at once when its last event was a writer's close and no writer holds it
+ * open any more: the save is over, and every ms is the user's) it is hashed (FNV-1a 64 over its bytes) and reported only if the hash differs
  * from the one last recorded, so a save with the same content, or a `touch`,
  * reports nothing. A file still open for writing (modified, no close seen)
  * is given up to WATCH_WRITE_GRACE_MS; a file that disappeared is given up
