@@ -13,15 +13,6 @@
 /* map half 32: a cell is 1 m, cell i covers x in [-32 + i, -31 + i] */
 static void start(height_tiles *t) { height_tiles_start(t, 32.0, 0.0, 0.5); }
 
-static void test_wave_bound(void) {
-    const float sines[2] = { 0.1f, -0.2f }, gerstner[1] = { 0.3f };
-    /* 0.1 + 0.2 + 0.3 and noise 0.4 with four octaves of gain 0.5:
-     * 0.75 * 0.4 * (1 + 0.5 + 0.25 + 0.125) */
-    CHECK_NEAR(height_tiles_wave_bound(sines, 2, gerstner, 1, 0.4, 0, 0, 8), 0.6 + 0.5625, 1e-6);
-    CHECK_NEAR(height_tiles_wave_bound(sines, 1, gerstner, 0, 0.0, 3, 0.5, 8), 0.1, 1e-7);
-    CHECK_NEAR(height_tiles_wave_bound(NULL, 0, NULL, 0, 1.0, 8, 1.0, 2), 1.5, 1e-12);   /* octaves capped */
-}
-
 static void test_triangles_in_the_band_only(void) {
     height_tiles t;
     start(&t);
@@ -105,7 +96,6 @@ static void test_rects_cover_the_lookups(void) {
 }
 
 int main(void) {
-    RUN(test_wave_bound);
     RUN(test_triangles_in_the_band_only);
     RUN(test_boxes_and_the_map_edge);
     RUN(test_rects_cover_the_lookups);

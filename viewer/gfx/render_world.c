@@ -945,22 +945,6 @@ static void height_target(gpu_world *gw, int res) {
     gw->height_res = res;
 }
 
-static const ref_waves_uniform *wave_uniform(const gpu_world *gw, const char *name) {
-    for (int i = 0; i < gw->nwaves; i++)
-        if (strcmp(gw->waves[i].name, name) == 0) return &gw->waves[i];
-    return NULL;
-}
-
-static float wave_float(const gpu_world *gw, const char *name) {
-    const ref_waves_uniform *u = wave_uniform(gw, name);
-    return u && !u->is_int ? u->v[0] : 0.0f;
-}
-
-static int wave_int(const gpu_world *gw, const char *name) {
-    const ref_waves_uniform *u = wave_uniform(gw, name);
-    return u && u->is_int ? u->i : 0;
-}
-
 /* The box an object's triangles lie in. */
 static void object_box(const gpu_world *gw, int k, double lo[3], double hi[3]) {
     const ref_object *o = &gw->w.d.objects[k];
@@ -976,22 +960,17 @@ static void object_box(const gpu_world *gw, int k, double lo[3], double hi[3]) {
     if (o->kind == REF_OBJECT_MESH && gw->w.meshes[k]) ref_mesh_bounds(gw->w.meshes[k], lo, hi);
 }
 
-/* The cells of the map a wet test reads, for the level and bound of the
- * wave uniforms world.frag gets (world_wet.glsl): under the triangles of
- * the land at every level of detail (the frame picks one) and the objects'
- * boxes. */
+/* The cells of the map a wet test reads: under the triangles of the land
+ * at every level of detail (the frame picks one) and the objects' boxes,
+ * for heights within the waves' bound below the level. world_wet.glsl's
+ * bound sums the sines', Gerstner waves' and noise octaves' amplitudes; the
+ * reference's bound of every model but the ocean (fixed_height) is that
+ * and the explosion rings' and Perlin set's: never less. */
 static void find_height_tiles(gpu_world *gw) {
-    const ref_waves_uniform *sine = wave_uniform(gw, "uSineAmp"), *gerstner = wave_uniform(gw, "uGerstnerAmp");
-    int nsine = sine ? wave_int(gw, "uSineCount") : 0, ngerstner = gerstner ? wave_int(gw, "uGerstnerCount") : 0;
-    if (sine && nsine > sine->count) nsine = sine->count;
-    if (gerstner && ngerstner > gerstner->count) ngerstner = gerstner->count;
-    double bound = height_tiles_wave_bound(sine ? sine->v : NULL, nsine, gerstner ? gerstner->v : NULL, ngerstner,
-                                           wave_float(gw, "uNoiseAmp"), wave_int(gw, "uNoiseOctaves"),
-                                           wave_float(gw, "uNoiseGain"), REF_NOISE_OCTAVES_MAX);
     if (!gw->height_tiles) gw->height_tiles = mem_alloc(sizeof *gw->height_tiles);
     height_tiles *t = gw->height_tiles;
     double map_half = WORLD_HEIGHT_MARGIN * gw->w.d.half_size;
-    height_tiles_start(t, map_half, wave_float(gw, "uWaterLevel"), bound);
+    height_tiles_start(t, map_half, gw->w.d.water_level, gw->w.waves.fixed_height);
     for (int lod = 0; lod < WORLD_LODS; lod++) {
         geom_mesh g;
         if (terrain_geom(gw, lod, false, &g)) {

@@ -5,21 +5,6 @@
 
 #define N HEIGHT_TILES_CELLS
 
-double height_tiles_wave_bound(const float *sine_amp, int nsine, const float *gerstner_amp, int ngerstner,
-                               double noise_amp, int octaves, double gain, int octaves_max) {
-    double bound = 0;
-    for (int i = 0; i < nsine; i++) bound += fabs(sine_amp[i]);
-    for (int i = 0; i < ngerstner; i++) bound += fabs(gerstner_amp[i]);
-    if (octaves <= 0) octaves = 4;
-    if (!(gain > 0)) gain = 0.5;
-    double a = fabs(noise_amp);
-    for (int o = 0; o < octaves && o < octaves_max; o++) {
-        bound += 0.75 * a;
-        a *= gain;
-    }
-    return bound;
-}
-
 void height_tiles_start(height_tiles *t, double map_half, double level, double bound) {
     memset(t, 0, sizeof *t);
     t->map_half = map_half;

@@ -42,9 +42,4 @@ int height_tiles_count(const height_tiles *t);
  * count, or -1 when more than max (draw the whole map then). */
 int height_tiles_rects(const height_tiles *t, int res, float *out, int max);
 
-/* The waves' bound world_wet.glsl computes from the wave uniforms: the sum
- * of the sines' and Gerstner waves' amplitudes and 0.75 of each noise
- * octave's (octaves 0 means 4, gain 0 means 0.5), at most octaves_max. */
-double height_tiles_wave_bound(const float *sine_amp, int nsine, const float *gerstner_amp, int ngerstner,
-                               double noise_amp, int octaves, double gain, int octaves_max);
 #endif

@@ -236,6 +236,19 @@ static void warm_still(compile_job *j, int i) {
     if (made) render_target_destroy(&t);
 }
 
+/* Under mu: the window's first frame of the change first, alone on the
+ * cores (compile_job_desc.wait_for_shown), for at most
+ * COMPILE_JOB_SHOWN_WAIT_S. */
+static void wait_for_shown(compile_job *j) {
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);   /* pthread_cond_timedwait's clock */
+    until.tv_nsec += (long)(COMPILE_JOB_SHOWN_WAIT_S * 1e9);
+    until.tv_sec += until.tv_nsec / 1000000000L;
+    until.tv_nsec %= 1000000000L;
+    while (j->wait_for_shown && !j->shown && !j->quit)
+        if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;   /* timed out: go on */
+}
+
 /* One job: the scenes asked for, warmed; renders of scenes no longer
  * drawn are let go. */
 static void run_job(compile_job *j) {
@@ -252,14 +265,7 @@ static void run_job(compile_job *j) {
     pthread_mutex_lock(&j->mu);
     j->ready = true;
     j->ready_seconds = clock_now_s() - t0;
-    /* the window's first frame of the change first, alone on the cores */
-    struct timespec until;
-    clock_gettime(CLOCK_REALTIME, &until);
-    until.tv_nsec += (long)(COMPILE_JOB_SHOWN_WAIT_S * 1e9);
-    until.tv_sec += until.tv_nsec / 1000000000L;
-    until.tv_nsec %= 1000000000L;
-    while (j->wait_for_shown && !j->shown && !j->quit)
-        if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;   /* timed out: go on */
+    wait_for_shown(j);
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_still(j, i);
     for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
