@@ -24,12 +24,12 @@ static void declaration(const contract_uniform *c, char *out, size_t len) {
 }
 
 /* The rows packs/common/contract.glsl declares: every camera, pass and
- * world row but those of the ocean's module (its samplers) and of tarn's
- * own world program; of the wave rows, the water level (world.glsl and
- * waves.glsl both read it). */
+ * world row but those of the ocean's module (its samplers), of tarn's own
+ * world program and loops.glsl's uLoopZero; of the wave rows, the water
+ * level (world.glsl and waves.glsl both read it). */
 static bool in_contract_glsl(const contract_uniform *c) {
     static const char *const not_there[] = { "uOceanA", "uOceanB", "uOceanFoam", "uWorldAlbedo", "uWorldMode",
-                                             "uWorldClip" };
+                                             "uWorldClip", "uLoopZero" };
     if (c->source == CONTRACT_WAVES) return strcmp(c->name, "uWaterLevel") == 0;
     for (size_t i = 0; i < sizeof not_there / sizeof not_there[0]; i++)
         if (strcmp(c->name, not_there[i]) == 0) return false;
@@ -106,9 +106,10 @@ static const contract_uniform *declares_contract(const char *line) {
 
 /* Who may declare a contract uniform besides contract.glsl: the wave
  * modules their wave rows (and the ocean its samplers), tarn's world
- * program its own. */
+ * program its own, loops.glsl uLoopZero. */
 static bool may_declare(const char *file, const contract_uniform *c) {
     const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
+    if (strcmp(base, "loops.glsl") == 0) return strcmp(c->name, "uLoopZero") == 0;
     if (strncmp(base, "waves", 5) == 0) return !in_contract_glsl(c);
     if (strcmp(base, "world.frag") == 0 || strcmp(base, "world.vert") == 0)
         return strncmp(c->name, "uWorld", 6) == 0 && !in_contract_glsl(c);

@@ -8,7 +8,7 @@
 // The amplitudes of every wave, noise included (foam strength).
 float waveAmpSum() {
     float s = abs(uNoiseAmp);
-    for (int i = 0; i < WAVES_MAX; i++) {
+    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
         if (i < uSineCount && uSineLength[i] > 0.0) s += abs(uSineAmp[i]);
         if (i < uGerstnerCount && uGerstnerLength[i] > 0.0) s += abs(uGerstnerAmp[i]);
     }
@@ -21,8 +21,8 @@ float waveAmpSum() {
 float sceneCausticWavelength(out vec2 velS, out vec2 velG) {
     float W = 0.0, LW = 0.0, bestS = 0.0, bestG = 0.0;
     velS = velG = vec2(0.0);
-    for (int i = 0; i < WAVES_MAX; i++) {
-        for (int kind = 0; kind < 2; kind++) {
+    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
+        for (int kind = 0; kind < ROLLED(2); kind++) {
             bool g = kind == 1;
             if (i >= (g ? uGerstnerCount : uSineCount)) continue;
             float L = g ? uGerstnerLength[i] : uSineLength[i];

@@ -38,6 +38,7 @@
 #endif
 #include "contract.glsl"
 #include "hash.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 #include "waves.glsl"
 #include "world.glsl"
 #include "terrain.glsl"
@@ -99,7 +100,7 @@ bool refractPoint(inout vec2 uv, out vec3 p) {
 // such a lookup to the screen's edge instead repeated the edge's row down
 // the frame: vertical streaks (issue #24).
 vec3 groundModel(vec3 P, vec3 d, float s, out vec3 hit, out vec3 n) {
-    for (int i = 0; i < 4; i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
+    for (int i = 0; i < ROLLED(4); i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
     vec3 hg = terrainHeightGrad((P + s * d).xz);
     hit = vec3((P + s * d).x, hg.x, (P + s * d).z);
     n = normalize(vec3(-hg.y, 1.0, -hg.z));
@@ -180,7 +181,7 @@ bool behindShown(float s, out vec2 uv, out bool off, out float gap) {
 // hit); one it goes behind (a silhouette: a ridge of the floor, the post)
 // leaves the gap it jumped by, and the ray goes on (false).
 bool closeCrossing(float a, float b, float thick, inout vec2 uvF, inout vec3 F, inout float s) {
-    for (int k = 0; k < REFRACT_REFINE; k++) {
+    for (int k = 0; k < ROLLED(REFRACT_REFINE); k++) {
         float mid = 0.5 * (a + b);
         vec2 uvm;
         bool offm;
@@ -218,13 +219,13 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
     int i = 1;
     // each round ends on an event at step i and goes on from i + 1: at most
     // one round a step
-    for (int round = 0; round <= REFRACT_STEPS; round++) {
+    for (int round = 0; round <= ROLLED(REFRACT_STEPS); round++) {
         int event = STEP_ON;
         vec2 uv;
         bool off;
         float gap;
         bool behind = false;
-        for (; i <= REFRACT_STEPS; i++) {
+        for (; i <= ROLLED(REFRACT_STEPS); i++) {
             float f = float(i) / float(REFRACT_STEPS);
             s = sMax * f * f;                       // finer near P, where things are close
             behind = behindShown(s, uv, off, gap);
@@ -240,7 +241,7 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
             // ray's last sample on the screen (a thing there, the crate
             // by the frame's edge, is still met); else the model
             float hi = s;
-            for (int k = 0; k < REFRACT_REFINE; k++) {
+            for (int k = 0; k < ROLLED(REFRACT_REFINE); k++) {
                 float mid = 0.5 * (lo + hi);
                 vec2 uvm;
                 float gm;
@@ -285,7 +286,7 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
         // darker: dark dashes along a contour of the lake's shallow
         // floor, where closed and unclosed crossings alternate
         float a = above, hi = s;
-        for (int k = 0; k < REFRACT_REFINE + 2; k++) {
+        for (int k = 0; k < ROLLED(REFRACT_REFINE + 2); k++) {
             float mid = 0.5 * (a + hi);
             vec3 X = P + mid * d;
             if (X.y < terrainHeightGrad(X.xz).x) hi = mid; else a = mid;
@@ -307,7 +308,7 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
 void snapToGround(vec3 P, vec3 d, inout vec2 uvF, inout vec3 F) {
     if (abs(F.y - terrainHeightGrad(F.xz).x) > GROUND_SNAP * uWorldScale) return;
     float s = distance(P, F);
-    for (int i = 0; i < 4; i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
+    for (int i = 0; i < ROLLED(4); i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
     vec3 G = P + s * d;
     vec2 uv;
     bool off;
@@ -342,7 +343,7 @@ void waveOffsets(vec2 xz, float t, out vec2 offS, out vec2 offG) {
     offS = vec2(0.0);
     offG = vec2(0.0);
 #ifdef WAVES_HAS_SINE
-    for (int i = 0; i < WAVES_MAX; i++) {
+    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
         if (i >= uWaveSineN) break;
         vec4 w = uWaveSine[i];                  // th = k D.xz + omega t + phase
         float th = dot(w.xy, xz) + w.z * t + w.w;
@@ -350,7 +351,7 @@ void waveOffsets(vec2 xz, float t, out vec2 offS, out vec2 offG) {
     }
 #endif
 #ifdef WAVES_HAS_GERSTNER
-    for (int i = 0; i < WAVES_MAX; i++) {
+    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
         if (i >= uWaveGerstN) break;
         vec4 w = uWaveGerst[i];
         vec3 a = uWaveGerstAmp[i];              // A, Q_i A_i D
@@ -424,7 +425,7 @@ float valueNoise(vec2 p) {
 
 float fbm(vec2 p) {
     float s = 0.0, a = 0.5;
-    for (int o = 0; o < 4; o++) {
+    for (int o = 0; o < ROLLED(4); o++) {
         s += a * valueNoise(p);
         p = mat2(1.6, 1.2, -1.2, 1.6) * p + 17.0;
         a *= 0.5;
@@ -502,7 +503,7 @@ struct Mirror {
 Mirror mirrorAlong(vec3 P, vec3 r) {
     Mirror m;
     m.hit = targetPoint(uCamMirrorVP, uCamMirrorInvVP, uReflectDepth, P + uWorldScale * r, m.uv, m.shown);
-    for (int i = 0; i < MIRROR_ITERATIONS; i++) {
+    for (int i = 0; i < ROLLED(MIRROR_ITERATIONS); i++) {
         if (!m.hit) break;
         vec2 uv;
         vec3 shown;

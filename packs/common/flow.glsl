@@ -24,6 +24,7 @@
 //   float flowFoam(vec2 xz)              the advected foam streaks' cover, 0..1
 #ifndef FLOW_GLSL
 #define FLOW_GLSL
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 #define FLOW_TERMS_MAX 4
 #define FLOW_CURRENT 1
@@ -41,7 +42,7 @@ uniform float uFlowVelHalf;                 // it covers |x|, |z| <= this (the w
 
 vec2 flowVelocity(vec2 xz) {
     vec2 v = vec2(0.0);
-    for (int i = 0; i < FLOW_TERMS_MAX; i++) {
+    for (int i = 0; i < ROLLED(FLOW_TERMS_MAX); i++) {
         if (i >= uFlowN) break;
         vec4 p = uFlowTerm[i];
         if (uFlowKind[i] == FLOW_CURRENT) {

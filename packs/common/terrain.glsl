@@ -8,6 +8,7 @@
 #define TERRAIN_GLSL
 #include "contract_terrain.glsl"
 #include "hash.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 
 // ref_scene.c's smoothstep, which (unlike GLSL's) allows e0 > e1.
@@ -46,7 +47,7 @@ vec3 terrainHeightGrad(vec2 p) {
     float fade = 1.0 - rim;
     float det = 0.0;
     vec2 dg = vec2(0.0);
-    for (int i = 0; i < 6; i++) {
+    for (int i = 0; i < ROLLED(6); i++) {
         vec4 d = uTerrainDetail[i];
         float ph = d.x * p.x + d.y * p.y + d.w;
         det += d.z * sin(ph);
@@ -77,7 +78,7 @@ float terrainValueNoise(vec2 p, uint seed) {
     vec2 f = floor(p), t = p - f;
     uint i = uint(int(f.x)), j = uint(int(f.y));
     float c[4];
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < ROLLED(4); k++)
         c[k] = float(tarnHash((i + uint(k & 1)) * 0x8da6b343u ^ tarnHash((j + uint(k >> 1)) * 0xd8163841u ^ seed)))
              / 4294967295.0;
     t = t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
@@ -87,7 +88,7 @@ float terrainValueNoise(vec2 p, uint seed) {
 
 float terrainFbm(vec2 p, float cell, uint seed) {   // 3 octaves, ref_scene.c's fbm
     float sum = 0.0, amp = 1.0, norm = 0.0;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < ROLLED(3); k++) {
         sum += amp * terrainValueNoise(p / cell, seed + uint(k));
         norm += amp;
         amp *= 0.5;

@@ -66,6 +66,7 @@
 #include "contract_water.glsl"
 
 #include "hash.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 // Which models the world has, decided when a program is built (llvmpipe runs
 // a loop's body even when a uniform count leaves it at once: a world
@@ -178,7 +179,7 @@ vec3 wavesNoiseOctave(vec2 q, float period, uint seed) {
 
 vec3 wavesNoise(vec2 p0, float t) {
     vec3 r = vec3(0.0);
-    for (int o = 0; o < WAVES_NOISE_OCTAVES_MAX; o++) {
+    for (int o = 0; o < ROLLED(WAVES_NOISE_OCTAVES_MAX); o++) {
         if (o >= uWaveNoiseN) break;
         vec4 w = uWaveNoise[o];
         vec3 n = wavesNoiseOctave(p0 * w.x - w.yz * t, uWaveNoisePeriod[o], uWaveNoiseSeed[o]);
@@ -199,7 +200,7 @@ vec3 wavesNoise(vec2 p0, float t) {
 void wavesSumsModels(vec2 p0, float t, bool ocean, out float h, out vec2 dh, out vec2 disp, out vec3 abd) {
     h = 0.0; dh = vec2(0.0); disp = vec2(0.0); abd = vec3(0.0);
 #ifdef WAVES_HAS_SINE
-    for (int i = 0; i < WAVES_MAX; i++) {
+    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
         if (i >= uWaveSineN) break;
         vec4 w = uWaveSine[i];                          // th = k D.p0 + omega t + phase
         float th = dot(w.xy, p0) + w.z * t + w.w, A = uWaveSineAmp[i];
@@ -208,7 +209,7 @@ void wavesSumsModels(vec2 p0, float t, bool ocean, out float h, out vec2 dh, out
     }
 #endif
 #ifdef WAVES_HAS_GERSTNER
-    for (int i = 0; i < WAVES_MAX; i++) {
+    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
         if (i >= uWaveGerstN) break;
         vec4 w = uWaveGerst[i];
         vec3 a = uWaveGerstAmp[i];
@@ -337,11 +338,11 @@ vec2 wavesRestPoint(vec2 xz, float t) {
     return p0;                                          // nothing moves points sideways
 #else
     if ((uWaveGerstN == 0 || uSteepness == 0.0) && uOceanN == 0) return p0;
-    for (int it = 0; it < WAVES_NEWTON_ITERATIONS; it++) {
+    for (int it = 0; it < ROLLED(WAVES_NEWTON_ITERATIONS); it++) {
         vec2 disp = vec2(0.0);
         vec3 abd = vec3(0.0);
 #ifdef WAVES_HAS_GERSTNER
-        for (int i = 0; i < WAVES_MAX; i++) {
+        for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
             if (i >= uWaveGerstN) break;
             vec4 w = uWaveGerst[i];
             vec3 a = uWaveGerstAmp[i];

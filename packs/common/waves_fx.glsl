@@ -41,6 +41,7 @@
 #define WAVES_FX_GLSL
 
 #include "hash.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 #define WAVES_EXPLOSIONS_MAX 4
 #define WAVES_PERLIN_OCTAVES_MAX 8
@@ -58,7 +59,7 @@ const float WAVES_FX_TWO_PI = 6.28318530717958648;
 float wavesExplosions(vec2 p0, float t, out vec2 grad) {
     float h = 0.0;
     grad = vec2(0.0);
-    for (int i = 0; i < WAVES_EXPLOSIONS_MAX; i++) {
+    for (int i = 0; i < ROLLED(WAVES_EXPLOSIONS_MAX); i++) {
         if (i >= uExplosionN) break;
         vec4 e = uExplosion[i];
         vec4 w = uExplosionWave[i];
@@ -123,7 +124,7 @@ float wavesPerlin(vec2 p0, float t, out vec2 grad) {
     float h = 0.0;
     vec2 gac = vec2(0.0);                          // d/da, d/dc
     vec2 ac = vec2(dot(p0, uPerlinFrame.xy), uPerlinFrame.x * p0.y - uPerlinFrame.y * p0.x);
-    for (int o = 0; o < WAVES_PERLIN_OCTAVES_MAX; o++) {
+    for (int o = 0; o < ROLLED(WAVES_PERLIN_OCTAVES_MAX); o++) {
         if (o >= uPerlinN) break;
         vec4 oc = uPerlinOctave[o];
         vec2 sc = vec2(oc.x, oc.x * uPerlinFrame.z);   // lattice units per metre along a, c

@@ -38,6 +38,7 @@
 // layer a cascade, declared only where WAVES_HAS_OCEAN is.
 #ifndef WAVES_OCEAN_GLSL
 #define WAVES_OCEAN_GLSL
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 #define WAVES_OCEAN_CASCADES_MAX 3
 
@@ -67,7 +68,7 @@ void wavesOceanFetch(vec2 p0, int c, out vec4 a, out vec4 b) {
 }
 
 void wavesOcean(vec2 p0, inout float h, inout vec2 dh, inout vec2 disp, inout vec3 abd) {
-    for (int c = 0; c < WAVES_OCEAN_CASCADES_MAX; c++) {
+    for (int c = 0; c < ROLLED(WAVES_OCEAN_CASCADES_MAX); c++) {
         if (c >= uOceanN) break;
         vec4 a, b;
         wavesOceanFetch(p0, c, a, b);
@@ -87,7 +88,7 @@ uniform sampler2DArray uOceanFoam;                 // unit 27: (foam, sigma_c^2)
 
 void wavesOceanFiltered(vec2 p0, float footprint, inout float h, inout vec2 dh, inout vec2 disp, inout vec3 abd,
                         inout float lostVar) {
-    for (int c = 0; c < WAVES_OCEAN_CASCADES_MAX; c++) {
+    for (int c = 0; c < ROLLED(WAVES_OCEAN_CASCADES_MAX); c++) {
         if (c >= uOceanN) break;
         vec4 a, b;
         wavesOceanFetch(p0, c, a, b);
@@ -102,7 +103,7 @@ void wavesOceanFiltered(vec2 p0, float footprint, inout float h, inout vec2 dh, 
 
 float wavesFoamFiltered(vec2 p0, float footprint) {
     float foam = 0.0;
-    for (int c = 0; c < WAVES_OCEAN_CASCADES_MAX; c++) {
+    for (int c = 0; c < ROLLED(WAVES_OCEAN_CASCADES_MAX); c++) {
         if (c >= uOceanN) break;
         float wc = wavesOceanWeight(footprint, c);
         vec2 q = p0 / uOceanTile[c];

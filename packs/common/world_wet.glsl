@@ -6,6 +6,7 @@
 #ifndef WORLD_WET_GLSL
 #define WORLD_WET_GLSL
 #include "contract.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 // Is p under the water surface at this time? Below the mean level is not
 // enough: where a trough uncovers the shore, the reference's ray meets the
@@ -22,13 +23,13 @@ uniform float uWaveHeightHalf;     // it covers x, z in [-half, half]
 bool worldUnderWater(vec3 p) {
     if (p.y >= uWaterLevel) return false;
     float bound = 0.0;
-    for (int i = 0; i < WAVES_MAX; i++) {
+    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
         if (i < uSineCount) bound += abs(uSineAmp[i]);
         if (i < uGerstnerCount) bound += abs(uGerstnerAmp[i]);
     }
     int octaves = uNoiseOctaves > 0 ? uNoiseOctaves : 4;
     float gain = uNoiseGain > 0.0 ? uNoiseGain : 0.5, a = abs(uNoiseAmp);
-    for (int o = 0; o < WAVES_NOISE_OCTAVES_MAX; o++) {
+    for (int o = 0; o < ROLLED(WAVES_NOISE_OCTAVES_MAX); o++) {
         if (o >= octaves) break;
         bound += 0.75 * a;
         a *= gain;

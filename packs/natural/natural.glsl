@@ -23,6 +23,7 @@
 #ifndef NATURAL_GLSL
 #define NATURAL_GLSL
 #include "contract.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 // Waves of any model in the world: tarn defines WAVES_HAS_* for the models
 // the world has (a build without WAVES_MODELS, glslang's validation, has
@@ -99,7 +100,7 @@ vec3 natNearestShown(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out float sp
     ivec2 size = textureSize(depthTex, 0);
     ivec2 i0 = clamp(ivec2(floor(uv * vec2(size) - 0.5)), ivec2(0), size - 2);
     float lo = 1e30, hi = 0.0;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < ROLLED(4); k++) {
         float z = texelFetch(depthTex, i0 + ivec2(k & 1, k >> 1), 0).r;
         if (z >= 1.0) continue;                    // nothing drawn there
         float wv = B / (2.0 * z - 1.0 + A);        // view depth
@@ -115,7 +116,7 @@ vec3 natNearestShown(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out float sp
 // target hides. Fixed-point steps on the drop under the current point.
 vec3 natGroundAlong(vec3 U, vec3 r) {
     float s = 0.0, dy = max(-r.y, 1e-3);
-    for (int i = 0; i < 8; i++) s = max(U.y - terrainHeightGrad((U + s * r).xz).x, 0.0) / dy;
+    for (int i = 0; i < ROLLED(8); i++) s = max(U.y - terrainHeightGrad((U + s * r).xz).x, 0.0) / dy;
     return U + s * r;
 }
 
@@ -181,7 +182,7 @@ bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
     // water's edge away, and the sun sees deeper ground through the cut):
     // the ground is at the surface, the photon lands at S
     if (terrainHeightGrad(S.xz).x >= S.y) return true;
-    for (int leg = 0; leg < 2; leg++) {
+    for (int leg = 0; leg < ROLLED(2); leg++) {
         float start = s0, len = natLegLength(S + start * t, t);
         // Nothing under S in the map, but the ground stands within the
         // light pass's clip (World below -0.02) of the level here: the
@@ -191,11 +192,11 @@ bool natTraceFloor(vec3 S, vec3 t, out float s, out vec3 hit) {
         if (len < 0.0 && leg == 0 && terrainHeightGrad(S.xz).x >= uWaterLevel - 0.02 * uWorldScale)
             return true;
         if (len < 0.0) return false;
-        for (int i = 1; i <= PHOTON_STEPS; i++) {
+        for (int i = 1; i <= ROLLED(PHOTON_STEPS); i++) {
             float s1 = start + len * float(i) / float(PHOTON_STEPS);
             float g1 = natBehindFloor(S + s1 * t);
             if (g1 >= 0.0) {
-                for (int k = 0; k < 3; k++) {      // regula falsi in [s0, s1]
+                for (int k = 0; k < ROLLED(3); k++) {      // regula falsi in [s0, s1]
                     float sm = s0 + (s1 - s0) * (-g0) / max(g1 - g0, 1e-12);
                     float gm = natBehindFloor(S + sm * t);
                     if (gm >= 0.0) { s1 = sm; g1 = gm; } else { s0 = sm; g0 = gm; }

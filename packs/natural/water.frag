@@ -15,6 +15,7 @@
 // window out of the water, total internal reflection beyond it, and the
 // eye's own path through the water.
 #include "contract.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 #include "waves.glsl"
 #include "world.glsl"
 #include "natural.glsl"
@@ -139,7 +140,7 @@ float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax
     left = false;
     float sa = 0.0, ga = min(g0, -1e-4), sb = smax, gb = 0.0;
     bool crossed = false;
-    for (int i = 1; i <= REFINE_STEPS; i++) {
+    for (int i = 1; i <= ROLLED(REFINE_STEPS); i++) {
         sb = smax * float(i) / float(REFINE_STEPS);
         vec3 b = natShownPoint(vp, eye, depthTex, U + sb * r, uv, ok);
         if (!ok) { s = sa; left = true; break; }
@@ -156,7 +157,7 @@ float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax
         // (as before) stalled at one end where g bends (a floor seen at
         // a slant), so the hits of whole rows of pixels stopped at the
         // same step's end and showed as bands on the shallow floor
-        for (int k = 0; k < REFINE_BISECT; k++) {
+        for (int k = 0; k < ROLLED(REFINE_BISECT); k++) {
             float sm = 0.5 * (sa + sb);
             vec3 bm = natShownPoint(vp, eye, depthTex, U + sm * r, uv, ok);
             float gm = ok ? distance(eye, U + sm * r) - distance(eye, bm) : 1.0;

@@ -41,6 +41,7 @@
 #ifndef RAYMARCH_MARCH_GLSL
 #define RAYMARCH_MARCH_GLSL
 #include "contract.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 
 #define MARCH_MAX_ITER 64       // compile-time bound of the uMaxIter slider
 #define MARCH_REFINE_MAX 8      // compile-time bound of the uRefineSteps slider
@@ -165,7 +166,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
     if (step <= 0.0) step = marchStep(max(fa, minRange), dir.y, nGrazing, nSteep, maxStep);
     float ta = 0.0, tb = 0.0, fb = fa;
     m.status = MARCH_CAP;
-    for (int i = 0; i < MARCH_MAX_ITER; i++) {
+    for (int i = 0; i < ROLLED(MARCH_MAX_ITER); i++) {
         if (i >= maxIter) break;
         float t = step * float(i + 1);
         float y = o.y + t * dir.y;
@@ -181,7 +182,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
     }
     m.ta = ta;
     if (m.status != MARCH_HIT) { m.t = ta; m.f = fa; return m; }
-    for (int k = 0; k < MARCH_REFINE_MAX; k++) {
+    for (int k = 0; k < ROLLED(MARCH_REFINE_MAX); k++) {
         if (k >= refine) break;
 #ifdef REFINE_BINARY
         float t = 0.5 * (ta + tb);

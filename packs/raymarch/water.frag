@@ -15,6 +15,7 @@
 // with total internal reflection, and the camera's own path in water
 // attenuates the result.
 #include "contract.glsl"
+#include "loops.glsl"        // ROLLED(n): loop bounds
 #include "waves.glsl"
 #include "world.glsl"
 #include "terrain.glsl"
@@ -84,7 +85,7 @@ vec3 waterNormal(vec2 footprint) {
     // slopes, times BumptexMult, are added to the waves' slopes
     vec3 m = vec3(0.0);
     vec2 st = vWorldPos.xz / uNormalTile;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < ROLLED(4); k++) {
         vec3 c = texture(uWaterNormal, st + uNormalScroll[k] * (uNormalSpeed * uTime)).rgb;
         m += vec3(c.r, c.b, c.g) * 2.0 - 1.0;   // the texture stores (x, z, y) / 2 + 1/2
     }
@@ -175,8 +176,8 @@ vec4 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
     ivec2 size = textureSize(uWorldY, 0);
     float gx = 0.0, gz = 0.0;
     float tx[2], tz[2];   // tops at x-1, x+1 and z-1, z+1
-    for (int j = -1; j <= 1; j++) {
-        for (int i = -1; i <= 1; i++) {
+    for (int j = -1; j <= ROLLED(1); j++) {
+        for (int i = -1; i <= ROLLED(1); i++) {
             if (i == 0 && j == 0) continue;
             vec3 nb = texelFetch(uWorldY, clamp(ij + ivec2(i, j), ivec2(0), size - 1), 0).xyz;
             float occ = nb.x > MARCH_EMPTY_Y && marchSolid(nb, hit.y) <= 0.0 ? 1.0 : 0.0;
@@ -271,7 +272,7 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needMo
 // the two marches' solidColor and the open sea's edge. The loop takes a
 // second turn only where a block has a pixel whose both rays want it.
 void groundModelWhereWanted(bool wantD, vec3 hitD, inout vec3 down, bool wantU, vec3 hitU, inout vec3 up) {
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < ROLLED(2); k++) {
         if (!wantD && !wantU) break;
         vec3 c = groundModelColor(wantD ? hitD : hitU);
         if (wantD) { down = c; wantD = false; } else { up = c; wantU = false; }
@@ -291,7 +292,7 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, ou
     // fixed-point steps on its height) through the water all the way.
     if (!marchInFootprint(marchUV(p))) {
         s = 0.0;
-        for (int i = 0; i < 3; i++) s = max(p.y - terrainHeightGrad((p + s * d).xz).x, 0.0) / -d.y;
+        for (int i = 0; i < ROLLED(3); i++) s = max(p.y - terrainHeightGrad((p + s * d).xz).x, 0.0) / -d.y;
         hit = p + s * d;
         status = MARCH_LEFT;
         needModel = true;

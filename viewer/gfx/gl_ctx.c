@@ -329,6 +329,11 @@ void gl_ctx_destroy(gl_ctx *c) {
 void *gl_ctx_window(gl_ctx *c) { return c ? c->window : NULL; }
 const char *gl_ctx_describe(gl_ctx *c) { return c->description; }
 
+bool gl_ctx_cpu_rasteriser(void) {
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    return r && (strstr(r, "llvmpipe") || strstr(r, "softpipe") || strstr(r, "SwiftShader") || strstr(r, "lavapipe"));
+}
+
 bool gl_ctx_have_display(void) {
     const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
     return (x && *x) || (wl && *wl);

@@ -33,6 +33,12 @@ bool gl_ctx_lost(gl_ctx *c, char *err, int errlen);
 /* "4.5 (Compatibility Profile) Mesa ... | llvmpipe ..." */
 const char *gl_ctx_describe(gl_ctx *c);
 
+/* true when the current context's GL_RENDERER is a rasteriser on the CPU
+ * (llvmpipe, softpipe, SwiftShader, lavapipe): anti-aliasing costs 2-3x a
+ * frame there (render_msaa.c) and shaders are built with TARN_CPU_RASTER
+ * (packs/common/loops.glsl: loops kept rolled, compiles about twice as fast). */
+bool gl_ctx_cpu_rasteriser(void);
+
 /* true when a display can be opened (DISPLAY or WAYLAND_DISPLAY set). */
 bool gl_ctx_have_display(void);
 

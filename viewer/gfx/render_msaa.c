@@ -6,21 +6,15 @@
 #include <GL/glext.h>
 #include <string.h>
 
+#include "gl_ctx.h"
 #include "render.h"
-
-/* A rasteriser on the CPU, where 4x MSAA costs 2-3x the frame (measured
- * on llvmpipe, docs/benchmark.md): anti-aliasing is asked for there. */
-static bool cpu_rasteriser(void) {
-    const char *r = (const char *)glGetString(GL_RENDERER);
-    return r && (strstr(r, "llvmpipe") || strstr(r, "softpipe") || strstr(r, "SwiftShader") || strstr(r, "lavapipe"));
-}
 
 int render_msaa_effective(render_msaa *m, int requested) {
     if (!m->max_samples) {
         GLint v = 0;
         glGetIntegerv(GL_MAX_SAMPLES, &v);
         m->max_samples = v > 1 ? v : 1;
-        m->default_samples = cpu_rasteriser() ? 1 : RENDER_MSAA_DEFAULT;
+        m->default_samples = gl_ctx_cpu_rasteriser() ? 1 : RENDER_MSAA_DEFAULT;
     }
     int n = requested > 0 ? requested : m->default_samples;
     if (n <= 1) return 1;

@@ -1,6 +1,7 @@
 #include "render_prog.h"
 #include "util.h"
 #include "contract.h"
+#include "gl_ctx.h"
 #include "glsl_fix.h"
 #include "glsl_hint.h"
 #include "mem.h"
@@ -31,9 +32,12 @@ static char *gl_info_log(GLuint obj, bool is_program) {
     return s;
 }
 
-/* The defines to compile with: the current values of the Define entries. */
+/* The defines to compile with: TARN_CPU_RASTER on a CPU rasteriser
+ * (packs/common/loops.glsl), the program's fixed ones, the current values
+ * of the Define entries. */
 static int collect_defines(const prog *p, shader_define *out, int max) {
     int n = 0;
+    if (gl_ctx_cpu_rasteriser() && n < max) out[n++] = (shader_define){ .name = "TARN_CPU_RASTER", .value = "1" };
     for (int k = 0; k < PROG_FIXED_MAX; k++)
         if (p->fixed[k].name[0] && n < max) out[n++] = p->fixed[k];
     for (int i = 0; i < p->unifs->n && n < max; i++) {

@@ -27,6 +27,7 @@ static const contract_uniform table[] = {
     CAM("uCamLightHalfSize", "float", "Camera light", "half the side of the light camera's square"),
     PASS("uTargetSize", "vec2", "RenderToTexture", "the size in texels of what the program draws into"),
     PASS("uPointGrid", "float", "WaterSurface points", "N of the N x N points drawn (or of the mesh between them), as a float (glUniform1f)"),
+    PASS("uLoopZero", "int", "(never set)", "always 0, GL's start value: on a CPU rasteriser loops.glsl's ROLLED(n) adds it to a loop's constant bound so the compiler keeps the loop rolled"),
     WORLD("uSunDir", "vec3", "Sun", "towards the sun, unit"),
     WORLD("uSunIrradiance", "vec3", "Sun", "the sun's irradiance"),
     WORLD("uSkyZenith", "vec3", "Sky", "sky radiance at the zenith"),

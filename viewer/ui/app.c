@@ -954,9 +954,7 @@ app *app_create(const app_desc *desc) {
     glfwSetKeyCallback(a->win, on_key);
     glfwSetMouseButtonCallback(a->win, on_button);
     a->panel = panel_create(a->win, "#version 130");
-    /* GL_RENDERER (in the description) names Mesa's CPU rasterisers */
-    const char *gl = gl_ctx_describe(a->ctx);
-    a->s.cpu_raster = strstr(gl, "llvmpipe") || strstr(gl, "softpipe");
+    a->s.cpu_raster = gl_ctx_cpu_rasteriser();
     return a;
 }
 
