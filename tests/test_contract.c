@@ -116,14 +116,41 @@ static bool may_declare(const char *file, const contract_uniform *c) {
     return false;
 }
 
+/* A `for` whose bound is a constant (a number or an upper-case macro)
+ * not written ROLLED(...): on a CPU rasteriser the compiler unrolls it and
+ * LLVM compiles every copy (loops.glsl). Xing's course files (xing_*,
+ * rock.glsl) stay as glman ran them. */
+static bool unrolled_constant_loop(const char *file, const char *text) {
+    const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
+    if (strncmp(base, "xing", 4) == 0 || strcmp(base, "rock.glsl") == 0) return false;
+    char line[512];
+    snprintf(line, sizeof line, "%.*s", (int)strcspn(text, "\n"), text);
+    char *comment = strstr(line, "//");
+    if (comment) *comment = 0;
+    const char *f = strstr(line, "for (");
+    const char *cond = f ? strchr(f, ';') : NULL;
+    const char *op = cond ? strchr(cond, '<') : NULL;
+    const char *end = op ? strchr(op, ';') : NULL;
+    if (!end) return false;
+    op += op[1] == '=' ? 2 : 1;
+    while (*op == ' ') op++;
+    if (strncmp(op, "ROLLED(", 7) == 0) return false;
+    for (const char *p = op; p < end; p++)
+        if (islower((unsigned char)*p)) return false;    /* a uniform or a variable: not a constant */
+    return true;
+}
+
 static void check_shader_file(const char *rel, int *files) {
     char *text = read_source(rel);
     if (!text) return;
     (*files)++;
-    for (const char *line = text; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+    int n = 1;
+    for (const char *line = text; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL, n++) {
         const contract_uniform *c = declares_contract(line);
         CHECK_MSG(!c || may_declare(rel, c), "%s declares %s again: #include \"contract.glsl\" instead", rel,
                   c ? c->name : "");
+        CHECK_MSG(!unrolled_constant_loop(rel, line), "%s:%d: a loop with a constant bound: write it ROLLED(n) "
+                  "(#include \"loops.glsl\")", rel, n);
     }
     free(text);
 }
@@ -157,7 +184,8 @@ static void walk_packs(const char *rel, int *files) {
 }
 
 /* No shader of the packs declares a contract uniform of contract.glsl's
- * itself (a second declaration, with its own type, drifts from the table). */
+ * itself (a second declaration, with its own type, drifts from the table),
+ * and every loop with a constant bound is ROLLED (loops.glsl). */
 static void test_packs_take_the_contract_from_contract_glsl(void) {
     int files = 0;
     walk_packs("packs", &files);
@@ -165,6 +193,13 @@ static void test_packs_take_the_contract_from_contract_glsl(void) {
     CHECK(declares_contract("uniform mat4 uCamMirrorVP, uCamMirrorInvVP;") != NULL);
     CHECK(declares_contract("uniform float uMine, uTime;   // x") != NULL);
     CHECK(declares_contract("uniform float uTint;") == NULL);
+    CHECK(unrolled_constant_loop("packs/x/a.frag", "    for (int i = 0; i < WAVES_MAX; i++) {\n"));
+    CHECK(unrolled_constant_loop("packs/x/a.frag", "for (int j = -1; j <= 1; j++) s += 1.0;\n"));
+    CHECK(unrolled_constant_loop("packs/x/a.frag", "for (int k = 0; k < REFRACT_REFINE + 2; k++) {\n"));
+    CHECK(!unrolled_constant_loop("packs/x/a.frag", "    for (int i = 0; i < ROLLED(WAVES_MAX); i++) {\n"));
+    CHECK(!unrolled_constant_loop("packs/x/a.frag", "    for (int i = 0; i < uCount; i++) {\n"));
+    CHECK(!unrolled_constant_loop("packs/x/a.frag", "// Loops run `for (i < MAX) { if (i >= N) break; }`\n"));
+    CHECK(!unrolled_constant_loop("packs/caustic_tex/xing_look.glsl", "for (int c = 0; c < 3; c++) {\n"));
 }
 
 /* The wave rows are exactly the names ref_waves_uniforms gives. */

@@ -510,6 +510,29 @@ static void test_if_blocks(void) {
     render_destroy(r);
 }
 
+/* loops.glsl: on a CPU rasteriser tarn builds with TARN_CPU_RASTER and
+ * ROLLED(n) adds uLoopZero, which nobody sets: the loop still runs n
+ * times, the uniform gets no slider and no message; on a GPU ROLLED(n) is
+ * n. (The compile time it saves is docs/benchmark.md's, not a test's.) */
+static void test_rolled_loops(void) {
+    scratch_write("rolled.frag", "#version 330 compatibility\n#include \"loops.glsl\"\nout vec4 c;\n"
+                                 "void main() {\n    float s = 0.;\n"
+                                 "    for (int i = 0; i < ROLLED(5); i++) s += 1.;\n"
+                                 "    for (int i = -1; i <= ROLLED(1); i++) s += 10.;\n"
+                                 "#ifdef TARN_CPU_RASTER\n    c = vec4(s, 1., 0., 1.);\n"
+                                 "#else\n    c = vec4(s, 0., 0., 1.);\n#endif\n}\n");
+    scratch_write("rolled.glib", "##OpenGL GLIB\nVertex flat.vert\nFragment rolled.frag\nProgram S\nQuadXY 0 1 1 1\n");
+    render *r = NULL;
+    float *px = draw(scratch_path("rolled.glib"), 4, 4, 0, &r);
+    CHECK_MSG(!render_has_errors(r), "%s", render_messages(r));
+    CHECK_NEAR(px[0], 35.0, 0);                               /* 5 + 3 times 10: uLoopZero is 0 */
+    CHECK_NEAR(px[1], gl_ctx_cpu_rasteriser() ? 1.0 : 0.0, 0);   /* the define where it belongs */
+    CHECK(uniform_of(r, "S", "uLoopZero") == NULL);             /* no slider */
+    CHECK_MSG(!strstr(render_messages(r), "uLoopZero"), "%s", render_messages(r));
+    free(px);
+    render_destroy(r);
+}
+
 int main(void) {
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
@@ -530,6 +553,7 @@ int main(void) {
     RUN(test_generated_caustics_kept_on_disk);
     RUN(test_if_blocks);
     RUN(test_terrain_map_matches_the_model);
+    RUN(test_rolled_loops);
     gl_ctx_destroy(ctx);
     scratch_remove();
     return check_summary();
