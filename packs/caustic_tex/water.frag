@@ -100,7 +100,7 @@ bool refractPoint(inout vec2 uv, out vec3 p) {
 // such a lookup to the screen's edge instead repeated the edge's row down
 // the frame: vertical streaks (issue #24).
 vec3 groundModel(vec3 P, vec3 d, float s, out vec3 hit, out vec3 n) {
-    for (int i = 0; i < ROLLED(4); i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
+    for (int i = 0; i < ROLLED(4); i++) s = max(P.y - terrainHeightMarch((P + s * d).xz), 0.0) / max(-d.y, 1e-4);
     vec3 hg = terrainHeightGrad((P + s * d).xz);
     hit = vec3((P + s * d).x, hg.x, (P + s * d).z);
     n = normalize(vec3(-hg.y, 1.0, -hg.z));
@@ -289,7 +289,7 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
         for (int k = 0; k < ROLLED(REFRACT_REFINE + 2); k++) {
             float mid = 0.5 * (a + hi);
             vec3 X = P + mid * d;
-            if (X.y < terrainHeightGrad(X.xz).x) hi = mid; else a = mid;
+            if (X.y < terrainHeightMarch(X.xz)) hi = mid; else a = mid;
         }
         s = hi;
         return REFRACT_MODEL;
@@ -306,9 +306,9 @@ int refractMarch(vec3 P, vec3 d, out vec2 uvF, out vec3 F, out float s) {
 // post) keep the march's hit.
 #define GROUND_SNAP 0.15           // m on the lake, times uWorldScale
 void snapToGround(vec3 P, vec3 d, inout vec2 uvF, inout vec3 F) {
-    if (abs(F.y - terrainHeightGrad(F.xz).x) > GROUND_SNAP * uWorldScale) return;
+    if (abs(F.y - terrainHeightMarch(F.xz)) > GROUND_SNAP * uWorldScale) return;
     float s = distance(P, F);
-    for (int i = 0; i < ROLLED(4); i++) s = max(P.y - terrainHeightGrad((P + s * d).xz).x, 0.0) / max(-d.y, 1e-4);
+    for (int i = 0; i < ROLLED(4); i++) s = max(P.y - terrainHeightMarch((P + s * d).xz), 0.0) / max(-d.y, 1e-4);
     vec3 G = P + s * d;
     vec2 uv;
     bool off;

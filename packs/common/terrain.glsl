@@ -64,10 +64,13 @@ vec3 terrainHeightGrad(vec2 p) {
 // walls). On llvmpipe the lake model's six sines at each of caustic_tex's
 // 24 steps were a quarter of its water pass; a branch on the terrain's
 // kind that kept the cheap models cost as much again (the lake's code
-// runs in every kind's frame). Where a result is read off the terrain (a
-// crossing's last refinement, a floor point's height, its normal and
-// colour) the model's terrainHeightGrad stays: the map only decides when
-// a step went under the ground.
+// runs in every kind's frame). The map decides and guides: whether a
+// step went under the ground, which half a bisection keeps, the
+// fixed-point steps towards the ground along a ray, whether a point is on
+// the ground (caustic_tex's model bisection and ground steps on the map:
+// its frame 224 -> 202 ms, the water's error unchanged to 1e-6). Where a
+// result is read off the terrain (a floor point's height, its normal and
+// colour) the model's terrainHeightGrad stays.
 float terrainHeightMarch(vec2 p) {
     float rest = textureLod(uTerrainHeightMap, p / uTerrainMapHalf * 0.5 + 0.5, 0.0).r;
     return rest + uTerrainMapPlane.x + dot(uTerrainMapPlane.yz, p);

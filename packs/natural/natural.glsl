@@ -116,7 +116,7 @@ vec3 natNearestShown(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out float sp
 // target hides. Fixed-point steps on the drop under the current point.
 vec3 natGroundAlong(vec3 U, vec3 r) {
     float s = 0.0, dy = max(-r.y, 1e-3);
-    for (int i = 0; i < ROLLED(8); i++) s = max(U.y - terrainHeightGrad((U + s * r).xz).x, 0.0) / dy;
+    for (int i = 0; i < ROLLED(8); i++) s = max(U.y - terrainHeightMarch((U + s * r).xz), 0.0) / dy;
     return U + s * r;
 }
 

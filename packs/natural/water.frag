@@ -100,7 +100,7 @@ vec3 applyCaustics(vec3 c, vec3 p) {
     // shown point more than 15 cm off the terrain model (terrain.glsl) is
     // on an object (5 cm lost far ground, whose point the 512^2 depth
     // target gives less closely: lake 0.0479 -> 0.0480).
-    if (natInside(uv) && abs(p.y - terrainHeightGrad(p.xz).x) < NAT_ON_GROUND * uWorldScale) {
+    if (natInside(uv) && abs(p.y - terrainHeightMarch(p.xz)) < NAT_ON_GROUND * uWorldScale) {
         vec2 o = 0.5 / vec2(textureSize(uCaustics, 0));
         float cr = 0.25 * (texture(uCaustics, uv + vec2(-o.x, -o.y)).r + texture(uCaustics, uv + vec2(o.x, -o.y)).r
                          + texture(uCaustics, uv + vec2(-o.x, o.y)).r + texture(uCaustics, uv + vec2(o.x, o.y)).r);

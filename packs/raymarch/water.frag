@@ -292,7 +292,7 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, ou
     // fixed-point steps on its height) through the water all the way.
     if (!marchInFootprint(marchUV(p))) {
         s = 0.0;
-        for (int i = 0; i < ROLLED(3); i++) s = max(p.y - terrainHeightGrad((p + s * d).xz).x, 0.0) / -d.y;
+        for (int i = 0; i < ROLLED(3); i++) s = max(p.y - terrainHeightMarch((p + s * d).xz), 0.0) / -d.y;
         hit = p + s * d;
         status = MARCH_LEFT;
         needModel = true;
