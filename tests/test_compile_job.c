@@ -7,24 +7,13 @@
  * change does not share the cores with that compile. */
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "check.h"
 #include "compile_job.h"
 #include "gl_ctx.h"
 #include "gl_support.h"
 #include "render.h"
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static void nap(void) {
-    struct timespec ts = { 0, 2000000 };
-    nanosleep(&ts, NULL);
-}
+#include "util.h"
 
 /* Runs a job on r; shown_at_ready: call compile_job_shown as soon as it
  * is ready. Gives the times from start to ready and from ready to done. */
@@ -33,20 +22,20 @@ static void run(render *r, bool wait, bool shown_at_ready, double *ready_s, doub
     render *const scenes[1] = { r };
     compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0,
                            .view = render_default_view(r), .wait_for_shown = wait };
-    double t0 = now_s(), ready_at = 0, secs;
+    double t0 = clock_now_s(), ready_at = 0, secs;
     CHECK(compile_job_start(j, &d));
     CHECK(!compile_job_start(j, &d));   /* one job at a time */
     for (;;) {
         if (!ready_at && compile_job_ready(j, &secs)) {
-            ready_at = now_s();
+            ready_at = clock_now_s();
             if (shown_at_ready) compile_job_shown(j);
         }
         if (compile_job_done(j, &secs)) break;
-        CHECK_MSG(now_s() - t0 < 120, "the job never ended");
-        if (now_s() - t0 >= 120) break;
-        nap();
+        CHECK_MSG(clock_now_s() - t0 < 120, "the job never ended");
+        if (clock_now_s() - t0 >= 120) break;
+        clock_sleep_s(0.002);
     }
-    double done_at = now_s();
+    double done_at = clock_now_s();
     CHECK_MSG(ready_at > 0, "the job ended without saying ready");
     if (!ready_at) ready_at = done_at;
     *ready_s = ready_at - t0;
