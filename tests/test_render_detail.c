@@ -1,7 +1,8 @@
 /* test_render_detail: render_set_detail, what the windows' frame budget
  * uses to make a reduced frame cheap. At detail d a target of a fixed or
  * slider-given size is d times as large a side (at least 16), one that
- * follows the frame is left alone, and detail 1 brings back the scene's
+ * follows the frame is left alone (one drawn from the view's camera: twice
+ * d), and detail 1 brings back the scene's
  * own sizes and meshes, pixel for pixel. A whole pack at a quarter detail
  * still draws the same picture in the large: natural's photons (one per
  * texel of a uPhotonGrid target, splatted as uPhotonGrid^2 points) must
@@ -84,6 +85,50 @@ static void test_target_sizes(void) {
     render_destroy(r);
 }
 
+/* A target drawn every frame from the view's camera (natural's refraction
+ * and reflection) keeps twice the frame's detail a side, up to its own
+ * size; one drawn from the light, or by a pass that sets no camera, the
+ * frame's detail. Red: the view target's side, green: the light's, blue:
+ * the camera-less one's. */
+static void test_view_target_sizes(void) {
+    scratch_write("view.frag", "#version 330 compatibility\n"
+                               "uniform sampler2D uView, uLight, uNone;\n"
+                               "out vec4 fragColor;\n"
+                               "void main() {\n"
+                               "    fragColor = vec4(float(textureSize(uView, 0).x), float(textureSize(uLight, 0).x),\n"
+                               "                     float(textureSize(uNone, 0).x), 0.0);\n"
+                               "}\n");
+    scratch_write("view.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\n"
+                               "Texture2D 3 512 512 float16\n"
+                               "Texture2D 4 512 512 float16\n"
+                               "Texture2D 5 512 512 float16\n"
+                               "RenderToTexture 3\nCamera mirror\nClear\n"
+                               "RenderToTexture 4\nCamera light\nClear\n"
+                               "RenderToTexture 5\nClear\n"
+                               "RenderToTexture\nCamera main\n"   /* the screen's camera: not unit 5's */
+                               "Vertex sizes.vert\nFragment view.frag\n"
+                               "Program View uView 3 uLight 4 uNone 5\n"
+                               "QuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, scratch_path("view.glib")), "%s", render_messages(r));
+    const struct { double detail; float view, light, none; } want[] = {
+        { 1.0, 512, 512, 512 },
+        { 0.5, 512, 256, 256 },    /* twice a half: the whole */
+        { 0.28, 256, 128, 128 },   /* 287 and 143: the nearer powers of two */
+        { 0.125, 128, 64, 64 },
+        { 0.01, 16, 16, 16 },      /* the floor */
+    };
+    for (size_t k = 0; k < sizeof want / sizeof want[0]; k++) {
+        render_set_detail(r, want[k].detail);
+        draw(r);
+        const float *c = px + ((H / 2) * W + W / 2) * 4;
+        CHECK_MSG(c[0] == want[k].view && c[1] == want[k].light && c[2] == want[k].none,
+                  "detail %g: view, light, no camera %g, %g, %g; want %g, %g, %g", want[k].detail, c[0], c[1], c[2],
+                  want[k].view, want[k].light, want[k].none);
+    }
+    render_destroy(r);
+}
+
 static double mean_rgb(const float *p) {
     double s = 0;
     for (int i = 0; i < W * H; i++) s += (p[4 * i] + p[4 * i + 1] + p[4 * i + 2]) / 3.0;
@@ -138,6 +183,7 @@ int main(void) {
     if (!ctx) return GL_TEST_SKIP;
     if (!scratch_create("detail")) return 1;
     RUN(test_target_sizes);
+    RUN(test_view_target_sizes);
     RUN(test_packs);
     gl_ctx_destroy(ctx);
     scratch_remove();

@@ -175,7 +175,9 @@ void render_set_world_height_cells(render *r, bool on);
  * scene's fixed-size work shrinks with it, so a reduced frame costs about
  * detail^2 of a full one, not a fixed floor: RenderToTexture targets of a
  * fixed or slider-given size and `WaterSurface points|mesh N` are scaled by
- * detail (at least 16 a side), and the world's terrain and water grid are
+ * detail (at least 16 a side; a target drawn from the view's camera, `Camera
+ * main|wide|mirror`, by twice detail, up to its own size: its texels reach
+ * the screen through widened, perturbed lookups), and the world's terrain and water grid are
  * drawn with about detail^2 of their vertices (coarser meshes, built when
  * first needed). Targets whose size follows the frame (`screen`) follow
  * it already. 1 (the default): everything as the scene says. */

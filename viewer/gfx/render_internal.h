@@ -66,6 +66,7 @@ typedef struct scene_state {
     bool *once_done;         /* per command: a RenderToTextureOnce block already drawn */
     uint64_t *once_sig;      /* per command: what a drawn block drew (render_once_signature) */
     bool *per_frame;         /* per Texture2D target: a RenderToTexture draws it every frame */
+    bool *from_view;         /* ... from the view's camera (render_size_drawn_from_view) */
     bool *draw_warned;       /* per command: a problem drawing it was reported */
     bool flat_checked;       /* the first frame was looked at for a one-colour picture */
     bool samples_noise[2];   /* a program samples unit 2 / 3: glman's noise is built (render_load.c) */
@@ -170,6 +171,7 @@ void render_messages_draw_problem(render *r, int ci, bool error, const char *fmt
 int render_size_slider_count(const scene_state *s, const char *name, int max);
 int render_size_detail_count(const render *r, int n);
 bool render_size_drawn_every_frame(const glib_scene *g, int unit);
+bool render_size_drawn_from_view(const glib_scene *g, int unit);
 void render_size_targets(render *r, int screen_w, int screen_h);
 void render_size_check_names(const scene_state *s, diag_list *log);
 bool render_size_screen_unit(const scene_state *s, int unit);

@@ -26,6 +26,7 @@ void render_load_scene_free(scene_state *s) {
     free(s->once_done);
     free(s->once_sig);
     free(s->per_frame);
+    free(s->from_view);
     free(s->draw_warned);
     free(s->cmd_res);
     if (s->glib) glib_free(s->glib);
@@ -341,6 +342,7 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, diag_list *
     s->once_done = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->once_done);
     s->once_sig = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->once_sig);
     s->per_frame = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->per_frame);
+    s->from_view = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->from_view);
     s->draw_warned = mem_zalloc((size_t)(n > 0 ? n : 1) * sizeof *s->draw_warned);
     /* old programs are matched by name; clear the "taken" marks */
     for (int i = 0; i < old->nprogs; i++) old->progs[i].cmd = NULL;
@@ -352,8 +354,10 @@ static bool build_scene(render *r, scene_state *s, scene_state *old, diag_list *
         if (render_res_is_geometry(c->kind)) build_mesh(s, old, c, i, log);
         else if (c->kind == GLIB_CMD_GL_BEGIN) build_begin(s, i, log);
         else if (render_res_is_texture(c->kind)) build_tex(s, old, c, i, log);
-        if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY) s->per_frame[i] = render_size_drawn_every_frame(s->glib, (int)c->num[0]);
-        else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log, from);
+        if (c->kind == GLIB_CMD_TEXTURE2D_EMPTY) {
+            s->per_frame[i] = render_size_drawn_every_frame(s->glib, (int)c->num[0]);
+            s->from_view[i] = s->per_frame[i] && render_size_drawn_from_view(s->glib, (int)c->num[0]);
+        } else if (c->kind == GLIB_CMD_PROGRAM) build_prog(r, s, old, c, &st, i, log, from);
         else program_stages_step(&st, c);
     }
     settings_from_glib(&s->set, s->glib);

@@ -57,26 +57,66 @@ static int screen_divisor(const char *name) {
 
 int render_size_detail_count(const render *r, int n) { return world_detail_count(n, r->detail, DETAIL_MIN_COUNT); }
 
+/* A target drawn every frame from the view's camera keeps this many times
+ * the frame's detail a side (up to the scene's own size). Such a target
+ * (natural's refraction and reflection) reaches the screen through
+ * widened, wave-perturbed lookups, already coarser than the screen at full
+ * size (512 a side behind 960x540); shrunk with the frame its texels
+ * became most of a reduced frame's error. In the window on the lake
+ * (scripts/live_error.sh, natural, 2026-12-06) 1x, 2x and 4x: 2x cut the
+ * frame's RMSE by 10% and FLIP by 5% at the same frame rate (the budget
+ * drew about 5% less a side); 4x cost more of the size than it gained;
+ * targets drawn from the light (photons, caustics) doubled too made the
+ * frame smaller for no gain. */
+#define VIEW_TARGET_DETAIL 2.0
+
+static int target_detail_count(const render *r, int n, bool from_view) {
+    double d = from_view ? fmin(1.0, VIEW_TARGET_DETAIL * r->detail) : r->detail;
+    return world_detail_count(n, d, DETAIL_MIN_COUNT);
+}
+
 /* Is texture unit drawn into by a RenderToTexture of every frame? Only
  * those cost every frame; one a RenderToTextureOnce fills (raymarch's
  * top-down views, a lookup table) is drawn once a load, and shrinking it
  * would draw it again at each change of detail, and worse. Asked once a
  * load (scene_state.per_frame). */
+static bool pass_draws_unit(const glib_cmd *c, int unit) {
+    if (c->kind != GLIB_CMD_RENDER_TO_TEXTURE) return false;
+    for (int k = 0; k < c->nnum; k++)
+        if ((int)c->num[k] == unit) return true;
+    return false;
+}
+
 bool render_size_drawn_every_frame(const glib_scene *g, int unit) {
+    for (int i = 0; i < g->ncmds; i++)
+        if (pass_draws_unit(&g->cmds[i], unit)) return true;
+    return false;
+}
+
+/* Is unit drawn every frame by a pass that sets the view's camera (`Camera
+ * main`, `wide` or `mirror`: what it holds lies on the screen's own
+ * pixels, more or less)? A pass from the light or the top, a full-screen
+ * quad, or one that sets no camera (glman's files: tarn cannot tell what
+ * they draw) is not. */
+bool render_size_drawn_from_view(const glib_scene *g, int unit) {
     for (int i = 0; i < g->ncmds; i++) {
-        const glib_cmd *c = &g->cmds[i];
-        if (c->kind != GLIB_CMD_RENDER_TO_TEXTURE) continue;
-        for (int k = 0; k < c->nnum; k++)
-            if ((int)c->num[k] == unit) return true;
+        if (!pass_draws_unit(&g->cmds[i], unit)) continue;
+        for (int j = i + 1; j < g->ncmds; j++) {
+            const glib_cmd *c = &g->cmds[j];
+            if (c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE) break;
+            if (c->kind == GLIB_CMD_CAMERA &&
+                (!strcmp(c->name, "main") || !strcmp(c->name, "wide") || !strcmp(c->name, "mirror")))
+                return true;
+        }
     }
     return false;
 }
 
-static int target_side(const render *r, const char *name, int screen, int max, bool per_frame) {
+static int target_side(const render *r, const char *name, int screen, int max, bool per_frame, bool from_view) {
     int div = screen_divisor(name);
     if (!div) {
         int n = render_size_slider_count(&r->cur, name, max);
-        return per_frame ? render_size_detail_count(r, n) : n;
+        return per_frame ? target_detail_count(r, n, from_view) : n;
     }
     int n = (screen + div - 1) / div;   /* the frame's size is already the reduced one */
     return n < 1 ? 1 : n > max ? max : n;
@@ -101,11 +141,11 @@ void render_size_targets(render *r, int screen_w, int screen_h) {
         /* a world-only frame draws only the screen-sized passes: the others keep their size */
         if (r->world_only && !(screen_divisor(c->name) && screen_divisor(c->arg))) continue;
         gpu_tex *t = &s->texs[s->cmd_res[i]];
-        bool per_frame = s->per_frame[i];
-        int w = c->name[0] ? target_side(r, c->name, screen_w, max, per_frame) : (int)c->num[1];
-        int h = c->arg[0] ? target_side(r, c->arg, screen_h, max, per_frame) : (int)c->num[2];
-        if (per_frame && !c->name[0]) w = render_size_detail_count(r, w);
-        if (per_frame && !c->arg[0]) h = render_size_detail_count(r, h);
+        bool per_frame = s->per_frame[i], from_view = s->from_view[i];
+        int w = c->name[0] ? target_side(r, c->name, screen_w, max, per_frame, from_view) : (int)c->num[1];
+        int h = c->arg[0] ? target_side(r, c->arg, screen_h, max, per_frame, from_view) : (int)c->num[2];
+        if (per_frame && !c->name[0]) w = target_detail_count(r, w, from_view);
+        if (per_frame && !c->arg[0]) h = target_detail_count(r, h, from_view);
         if (w == t->w && h == t->h) continue;
         render_res_target_resize(t, w, h);
         render_once_redraw_unit(s, (int)c->num[0]);
