@@ -95,6 +95,40 @@ static void test_timer_is_a_sawtooth(void) {
     render_destroy(r);
 }
 
+/* render_reads_clock: a glman scene reads the clock when a program uses
+ * Timer (declared but unused is not read: the picture does not move), a
+ * world scene always (its water moves); a rebuild decides again. Each
+ * answer is checked against the pixels: two times give two pictures
+ * exactly when the clock is read. */
+static bool pictures_differ(render *r, double t0, double t1) {
+    draw(r, t0);
+    float a = at(10, 10)[0];
+    draw(r, t1);
+    return fabsf(a - at(10, 10)[0]) > TOL;
+}
+
+static void test_reads_clock(void) {
+    scratch_write("still.frag", "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
+                                "void main() { c = vec4(0.5, 0., 0., 1.); }\n");
+    scratch_write("clock.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment still.frag\n"
+                                "Program T\nQuadXY 0 1 1 1\n");
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, scratch_path("clock.glib")), "%s", render_messages(r));
+    CHECK_MSG(!render_reads_clock(r), "Timer declared, never used: the picture is still");
+    CHECK(!pictures_differ(r, 1.0, 3.0));
+    scratch_write("still.frag", "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
+                                "void main() { c = vec4(Timer, 0., 0., 1.); }\n");
+    CHECK_MSG(render_rebuild_programs(r), "%s", render_messages(r));
+    CHECK_MSG(render_reads_clock(r), "Timer used after a rebuild: the picture moves");
+    CHECK(pictures_differ(r, 1.0, 3.0));
+    render_destroy(r);
+
+    render *lake = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(lake, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(lake));
+    CHECK_MSG(render_reads_clock(lake), "the lake's water moves");
+    render_destroy(lake);
+}
+
 /* GSTAP maps aVertex and uModelViewProjectionMatrix to the built-ins. */
 static void test_gstap_names_work(void) {
     scratch_write("gstap.vert",
@@ -489,6 +523,7 @@ int main(void) {
     RUN(test_uniform_colour_fills_the_screen);
     RUN(test_transforms_place_geometry);
     RUN(test_timer_is_a_sawtooth);
+    RUN(test_reads_clock);
     RUN(test_gstap_names_work);
     RUN(test_texture_from_bmp);
     RUN(test_render_to_texture);

@@ -7,12 +7,16 @@ Opens `tarn view` on the lake (basic pack, a small window), pauses time with
 Space, waits for the full-resolution frame, then measures the process's CPU
 time over a few seconds from /proc: a still window must use at most 5% of a
 core (it drew the same frame over and over: 75%). Then R (reload) must
-still be answered, and Q must end the process within a second.
+still be answered, and Q must end the process within a second. Then two
+glman scenes with the clock left running: one that reads it (Timer) must
+keep moving, one that does not must sleep the same way.
 Exits 77 when libX11 or libXtst is missing.
 """
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 
 sys.dont_write_bytecode = True   # no __pycache__ in the source tree
@@ -76,7 +80,67 @@ def main(argv):
     if quit_s > MAX_QUIT_S:
         print("FAIL: quitting should be immediate (at most %.1f s)" % MAX_QUIT_S)
         ok = False
+    ok = clock_running_scenes(tarn, kb) and ok
     sys.exit(0 if ok else 1)
+
+
+def open_scene(tarn, d, name, frag):
+    """tarn view of a one-quad glman scene in d whose fragment shader is
+    frag, in a 960x540 scene area; the process."""
+    with open(os.path.join(d, "quad.vert"), "w") as f:
+        f.write("#version 330 compatibility\n"
+                "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n")
+    with open(os.path.join(d, name + ".frag"), "w") as f:
+        f.write("#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
+                "void main() { c = %s; }\n" % frag)
+    with open(os.path.join(d, name + ".glib"), "w") as f:
+        f.write("##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex quad.vert\nFragment %s.frag\n"
+                "Program Quad\nQuadXY 0 1 1 1\n" % name)
+    log = open("window-idle-%s.log" % name, "w")
+    return subprocess.Popen([tarn, "view", os.path.join(d, name + ".glib"), "--size", "960x540"],
+                            stdout=log, stderr=log)
+
+
+def clock_running_scenes(tarn, kb):
+    """The clock left running (the window's default) on two glman scenes.
+    One reads it (red = Timer, a 10 s sawtooth): the window must go on
+    drawing it; it froze once the picture was drawn at full size, as the
+    window slept and the clock advances with the frames. One never reads
+    it (Timer declared, unused): its picture does not change, so the window
+    draws it once at full size and sleeps as a paused one does."""
+    d = tempfile.mkdtemp(prefix="tarn-clock-")
+    ok = True
+    p = open_scene(tarn, d, "moving", "vec4(Timer, 0.5, 0.8, 1.0)")
+    time.sleep(6)                       # start-up, the compile job, a full-size frame
+    # the window is at the screen's corner (no window manager): its scene
+    # area ends at x = 960, right of the panel
+    r0 = kb.pixel(900, 100)
+    time.sleep(1.5)
+    r1 = kb.pixel(900, 100)
+    p.terminate()
+    p.wait(timeout=10)
+    print("animated scene, clock running: red %s -> %s in 1.5 s" % (r0 and r0[0], r1 and r1[0]))
+    # 1.5 s of a 10 s sawtooth is 38 levels (less where it wraps: then more than 200)
+    if not r0 or not r1 or abs(r1[0] - r0[0]) < 10 or r0[1:] != (128, 204):
+        print("FAIL: a scene that reads the clock must keep moving while it runs (window-idle-moving.log)")
+        ok = False
+    p = open_scene(tarn, d, "still", "vec4(0.2, 0.5, 0.8, 1.0)")
+    time.sleep(5)
+    if p.poll() is not None:
+        print("FAIL: tarn view of a still scene exited early (%s); see window-idle-still.log" % p.returncode)
+        return False
+    c0, w0 = cpu_s(p.pid), time.time()
+    time.sleep(4.0)
+    share = (cpu_s(p.pid) - c0) / (time.time() - w0)
+    p.terminate()
+    p.wait(timeout=10)
+    shutil.rmtree(d, ignore_errors=True)
+    print("still scene, clock running: %.1f%% of a core" % (100 * share))
+    if share > MAX_IDLE_SHARE:
+        print("FAIL: a scene that reads no clock should sleep while the clock runs (at most %.0f%% of a core)"
+              % (100 * MAX_IDLE_SHARE))
+        ok = False
+    return ok
 
 
 if __name__ == "__main__":

@@ -65,6 +65,25 @@ class Keyboard:
         self.t.XTestFakeButtonEvent(self.d, n, 1 if down else 0, 0)
         self.x.XFlush(self.d)
 
+    def pixel(self, px, py):
+        """The screen's pixel at (px, py) as (r, g, b), 0-255 (what a
+        window there shows: Xvfb has no compositor)."""
+        x = self.x
+        x.XDefaultRootWindow.restype = ctypes.c_ulong
+        x.XDefaultRootWindow.argtypes = [ctypes.c_void_p]
+        x.XGetImage.restype = ctypes.c_void_p
+        x.XGetImage.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_int, ctypes.c_int, ctypes.c_uint,
+                                ctypes.c_uint, ctypes.c_ulong, ctypes.c_int]
+        x.XGetPixel.restype = ctypes.c_ulong
+        x.XGetPixel.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_int]
+        x.XDestroyImage.argtypes = [ctypes.c_void_p]
+        img = x.XGetImage(self.d, x.XDefaultRootWindow(self.d), px, py, 1, 1, 0xFFFFFFFF, 2)   # ZPixmap
+        if not img:
+            return None
+        v = x.XGetPixel(img, 0, 0)
+        x.XDestroyImage(img)
+        return (v >> 16) & 255, (v >> 8) & 255, v & 255
+
 
 def main(argv):
     kb = Keyboard()

@@ -62,6 +62,7 @@ void render_destroy(render *r) {
 
 bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
 bool render_has_world(const render *r) { return r->world.active; }
+bool render_reads_clock(const render *r) { return r->reads_clock; }
 
 bool render_set_world_override(render *r, const char *command, const float *v, int n) {
     if (strcmp(command, "WaterMesh") != 0 || n != 1 || !isfinite(v[0])) return false;

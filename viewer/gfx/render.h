@@ -70,6 +70,13 @@ bool render_has_errors(const render *r);
 bool render_has_scene(const render *r);
 /* The scene describes a world (lit in linear radiance, like the reference). */
 bool render_has_world(const render *r);
+/* Does the picture depend on the time it is drawn at? A program of the
+ * scene reads the clock (glman's Timer, tarn's uTime), or the world does
+ * (its water, sky and wet shore; an ocean, a flow, a spray). A glman scene
+ * without Timer does not: a window keeps its picture still, at full
+ * resolution and asleep, while the clock runs. Decided at each load and
+ * rebuild of the programs. */
+bool render_reads_clock(const render *r);
 /* The pack the next render_load draws the scene with, as render_desc.pack
  * (NULL or "": the scene's own `Pack`). What is on screen stays until that
  * load; a load that fails (a glman scene has no world for a pack) keeps it.

@@ -96,6 +96,7 @@ struct render {
     char *draw_messages;        /* problems met drawing (also in messages), since the load */
     diag_list diags;            /* the load's messages, each once, then the draws' */
     bool errors;
+    bool reads_clock;              /* render_reads_clock, decided by each load (render_load.c) */
     const char **deps;
     int ndeps;
     unsigned rtt_fbo, rtt_depth;

@@ -401,6 +401,23 @@ static void collect_deps(render *r, const glib_scene *g, const scene_state *s) {
     }
 }
 
+/* Does a program read the clock: glman's Timer or tarn's uTime, active in
+ * its build? */
+static bool prog_reads_clock(const prog *p) {
+    return p->gl && (p->timer_loc >= 0 || glGetUniformLocation(p->gl, "uTime") >= 0);
+}
+
+static bool scene_reads_clock(const render *r) {
+    for (int i = 0; i < r->cur.nprogs; i++)
+        if (prog_reads_clock(&r->cur.progs[i])) return true;
+    const gpu_world *w = &r->world;
+    if (!w->active) return false;
+    if (w->ocean.active || w->flow.active || w->spray.active) return true;   /* stepped in time on their own */
+    for (int i = 0; i < WORLD_MODES; i++)
+        if (prog_reads_clock(&w->progs[i])) return true;
+    return prog_reads_clock(&w->height_prog) || prog_reads_clock(&w->layers_prog);
+}
+
 /* The world the scene describes (if any), rebuilt only when it changed. */
 static void build_world(render *r, const glib_scene *g, diag_list *log, prog_origins *from) {
     ref_world_desc desc;
@@ -445,6 +462,7 @@ bool render_load(render *r, const char *glib_path) {
     collect_deps(r, g, &r->cur);
     render_messages_set(r, &log, &from);
     r->errors = g->nerrors > 0 || r->diags.nerrors > 0;
+    r->reads_clock = scene_reads_clock(r);
     r->gl_check_each = true;
     return !r->errors;
 }
@@ -468,6 +486,7 @@ bool render_rebuild_programs(render *r) {
     collect_deps(r, r->cur.glib, &r->cur);
     render_messages_set(r, &log, &from);
     r->errors = !ok;
+    r->reads_clock = scene_reads_clock(r);
     r->gl_check_each = true;
     return ok;
 }

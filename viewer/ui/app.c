@@ -534,10 +534,19 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
 
 void app_picture_changed(app *a) { a->generation++; }
 
+/* Does any scene's picture move with the clock (render_reads_clock)? A
+ * glman scene without Timer does not: its picture is still while the
+ * clock runs, drawn once at full resolution, and the window sleeps. */
+static bool scenes_read_clock(const app *a) {
+    for (int i = 0; i < a->nscenes; i++)
+        if (render_reads_clock(a->scenes[i])) return true;
+    return false;
+}
+
 static uint64_t picture_key(app *a, int w, int h, bool with_time) {
     uint64_t k = HASH_FNV1A_BASIS;
     k = hash_fnv1a(k, &a->s.cam, sizeof a->s.cam);
-    if (with_time) k = hash_fnv1a(k, &a->s.t, sizeof a->s.t);
+    if (with_time && scenes_read_clock(a)) k = hash_fnv1a(k, &a->s.t, sizeof a->s.t);
     k = hash_fnv1a(k, &a->generation, sizeof a->generation);
     int size[2] = { w, h };
     k = hash_fnv1a(k, size, sizeof size);
@@ -795,11 +804,16 @@ static void start_watching(app *a) {
 void app_keep_awake(app *a) { a->keep_awake = true; }
 
 /* Nothing to draw: the full-resolution frame of a still picture is on the
- * screen (res_budget), no script or orbit drives frames, no toast is
- * fading, no client asked for frames, no folder is being looked for. */
+ * screen (res_budget), the clock is stopped or moves nothing, no script or
+ * orbit drives frames, no toast is fading, no client asked for frames, no
+ * folder is being looked for. (The clock advances with the frames: a
+ * window asleep over a picture that reads it froze its animation, glman's
+ * Timer scenes as soon as they drew at full size.) */
 static bool idle(const app *a, const view_script *script) {
-    return !script && !a->client_busy && a->budget.full_done && !a->compiling && a->orbit_left == 0 && !a->shot_pending &&
-           !a->stamp_pending && a->unwatched == 0 && glfwGetTime() > a->toast_until + 0.25;   /* and it is gone */
+    bool clock_moves = !a->s.paused && scenes_read_clock(a);
+    return !script && !a->client_busy && a->budget.full_done && !clock_moves && !a->compiling && a->orbit_left == 0 &&
+           !a->shot_pending && !a->stamp_pending && a->unwatched == 0 &&
+           glfwGetTime() > a->toast_until + 0.25;   /* and it is gone */
 }
 
 /* Has a watched file something to say (without taking it: frame() does)? */
