@@ -63,11 +63,12 @@ int render_size_detail_count(const render *r, int n) { return world_detail_count
  * widened, wave-perturbed lookups, already coarser than the screen at full
  * size (512 a side behind 960x540); shrunk with the frame its texels
  * became most of a reduced frame's error. In the window on the lake
- * (scripts/live_error.sh, natural, 2026-12-06) 1x, 2x and 4x: 2x cut the
- * frame's RMSE by 10% and FLIP by 5% at the same frame rate (the budget
- * drew about 5% less a side); 4x cost more of the size than it gained;
- * targets drawn from the light (photons, caustics) doubled too made the
- * frame smaller for no gain. */
+ * (scripts/live_error.sh, natural, 2026-12-06; docs/benchmark.md, "Targets
+ * seen from the view") 2x cut the frame's RMSE by 8% at the same frame
+ * rate, FLIP within the runs' spread (the budget draws a smaller frame to
+ * pay for them); 4x cost more of the size than it gained; targets drawn
+ * from the light (photons, caustics) doubled too made the frame smaller
+ * for no gain. */
 #define VIEW_TARGET_DETAIL 2.0
 
 static int target_detail_count(const render *r, int n, bool from_view) {
@@ -75,11 +76,7 @@ static int target_detail_count(const render *r, int n, bool from_view) {
     return world_detail_count(n, d, DETAIL_MIN_COUNT);
 }
 
-/* Is texture unit drawn into by a RenderToTexture of every frame? Only
- * those cost every frame; one a RenderToTextureOnce fills (raymarch's
- * top-down views, a lookup table) is drawn once a load, and shrinking it
- * would draw it again at each change of detail, and worse. Asked once a
- * load (scene_state.per_frame). */
+/* Is command c a RenderToTexture (of every frame) into unit? */
 static bool pass_draws_unit(const glib_cmd *c, int unit) {
     if (c->kind != GLIB_CMD_RENDER_TO_TEXTURE) return false;
     for (int k = 0; k < c->nnum; k++)
@@ -87,6 +84,11 @@ static bool pass_draws_unit(const glib_cmd *c, int unit) {
     return false;
 }
 
+/* Is texture unit drawn into by a RenderToTexture of every frame? Only
+ * those cost every frame; one a RenderToTextureOnce fills (raymarch's
+ * top-down views, a lookup table) is drawn once a load, and shrinking it
+ * would draw it again at each change of detail, and worse. Asked once a
+ * load (scene_state.per_frame). */
 bool render_size_drawn_every_frame(const glib_scene *g, int unit) {
     for (int i = 0; i < g->ncmds; i++)
         if (pass_draws_unit(&g->cmds[i], unit)) return true;
