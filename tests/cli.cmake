@@ -82,7 +82,7 @@ set_tests_properties(window_msaa_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300
 add_test(NAME window_idle_xvfb
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_py_test.sh window_idle $<TARGET_FILE:tarn> ${CMAKE_SOURCE_DIR}
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-set_tests_properties(window_idle_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS "window;gl")
+set_tests_properties(window_idle_xvfb PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 180 LABELS "window;gl")
 
 # At 2 fps a press that starts over the panel never reaches the camera
 # (issue #30: it dragged a slider and orbited the camera too).
