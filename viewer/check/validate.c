@@ -17,11 +17,14 @@
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define MAX_TOGGLES_VARIED 9        /* 2^9 combinations at most: caustic_tex's 11 toggles at 2^10 took tarn validate past 45 s */
 #define MAX_DEFINES 64
@@ -878,6 +881,130 @@ static void relink_fixed(glslang_shader_t **sh, char **pp, shader_src *src, cons
     diag_list_free(&notes);
 }
 
+/* ---- a Program's combinations, on every core ---------------------------------- */
+
+/* What every combination of one Program shares (read-only while the
+ * workers run). */
+typedef struct combo_job {
+    const run *r;
+    const glib_scene *scene;
+    const glib_cmd *cmd;
+    const program_stages *ps;
+    const shader_stage *stages;
+    int nst;
+    const toggle *toggles;
+    int nt, nvary;
+    const shader_define *fixed;
+    int nfixed;
+    const slider_value *extra;
+    int ncombo, total;       /* toggle combinations; and the sliders' other values after them */
+    vmsgs *out;              /* [total]: each combination's messages */
+    atomic_int next;         /* the next combination a worker takes */
+} combo_job;
+
+/* Combination c's Defines: the fixed ones (a slider's other value after
+ * the toggles' combinations), then the toggles that are on. */
+static int combo_defines(const combo_job *j, int c, shader_define *defs) {
+    int nd = 0;
+    for (int i = 0; i < j->nfixed; i++) defs[nd++] = j->fixed[i];
+    if (c >= j->ncombo) {   /* a slider's other value, the toggles at their defaults */
+        const slider_value *sv = &j->extra[c - j->ncombo];
+        snprintf(defs[sv->define].value, sizeof defs[sv->define].value, "%lld", sv->value);
+    }
+    for (int i = 0; i < j->nt; i++) {
+        bool on = i < j->nvary && c < j->ncombo ? (c >> i) & 1 : j->toggles[i].deflt;
+        if (!on) continue;
+        memset(&defs[nd], 0, sizeof defs[nd]);
+        snprintf(defs[nd].name, sizeof defs[nd].name, "%s", j->toggles[i].name);
+        snprintf(defs[nd].value, sizeof defs[nd].value, "1");
+        nd++;
+    }
+    return nd;
+}
+
+/* One combination: its stages assembled, compiled and linked; the
+ * messages into *m. */
+static void validate_combo(const combo_job *j, int c, vmsgs *m) {
+    shader_define defs[2 * MAX_DEFINES];
+    int nd = combo_defines(j, c, defs), nst = j->nst;
+    const shader_stage *stages = j->stages;
+    shader_src src[SHADER_STAGE_COUNT];
+    memset(src, 0, sizeof src);
+    glslang_shader_t *sh[SHADER_STAGE_COUNT] = { NULL };
+    char *pp[SHADER_STAGE_COUNT] = { NULL };
+    int nsh = 0;
+    bool ok = true;
+    for (int i = 0; i < nst; i++) {
+        shader_stage st = stages[i];
+        shader_src_desc d = program_stage_desc(j->ps, st, defs, nd, j->r->include_dirs, 1);
+        d.gs_input = program_gs_input(j->scene, j->cmd);
+        if (!shader_src_load(&d, &src[st])) {
+            msgs_add(m, &src[st].error);
+            ok = false;
+        }
+    }
+    /* every stage, even after one fails, so each shows its errors */
+    for (int i = 0; ok && i < nst; i++) {
+        bool cok = false;
+        glslang_shader_t *s = compile(&src[stages[i]], stages[i], m, &cok, &pp[i]);
+        if (s) sh[nsh++] = s;
+        if (!cok || !s) {
+            for (int k = i + 1; k < nst; k++) {
+                glslang_shader_t *s2 = compile(&src[stages[k]], stages[k], m, &cok, NULL);
+                if (s2) sh[nsh++] = s2;
+            }
+            ok = false;
+        }
+    }
+    if (ok) {
+        char *llog = NULL;
+        vmsgs lm = {0};
+        link_stages(sh, nsh, j->cmd, &lm, &llog);
+        relink_fixed(sh, pp, src, stages, nst, j->cmd, &lm, &llog);
+        for (int i = 0; i < lm.n; i++) msgs_add(m, &lm.v[i].d);
+        msgs_free(&lm);
+        const shader_src *srcs[SHADER_STAGE_COUNT] = { NULL };
+        for (int i = 0; i < nst; i++) srcs[stages[i]] = &src[stages[i]];
+        diag_list hint = { 0 };
+        glsl_fix_link_hint(llog, srcs, &hint);   /* a uniform with two types: say where */
+        msgs_add_list(m, &hint);
+        diag_list_free(&hint);
+        free(llog);
+        check_interfaces(src, pp, stages, nst, m);
+    }
+    for (int i = 0; i < nsh; i++) glslang_shader_delete(sh[i]);
+    for (int i = 0; i < nst; i++) free(pp[i]);
+    for (int i = 0; i < nst; i++) shader_src_free(&src[stages[i]]);
+}
+
+static void *combo_worker(void *arg) {
+    combo_job *j = arg;
+    for (int c; (c = atomic_fetch_add(&j->next, 1)) < j->total;) validate_combo(j, c, &j->out[c]);
+    return NULL;
+}
+
+#define MAX_WORKERS 16
+
+/* Every combination of the job, on as many threads as there are cores (a
+ * combination's glslang objects are its own; glslang's process state is
+ * made first, here): tarn validate took 40-47 s on one core of a 2-core
+ * machine. Returns each combination's messages ([total], the caller frees). */
+static vmsgs *validate_combos(combo_job *j) {
+    ensure_glslang();
+    j->out = mem_zalloc((size_t)(j->total > 0 ? j->total : 1) * sizeof *j->out);
+    atomic_init(&j->next, 0);
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int n = cores < 1 ? 1 : cores > MAX_WORKERS ? MAX_WORKERS : (int)cores;
+    if (n > j->total) n = j->total;
+    pthread_t th[MAX_WORKERS];
+    int started = 0;
+    for (int i = 1; i < n; i++)   /* this thread is the first worker */
+        if (pthread_create(&th[started], NULL, combo_worker, j) == 0) started++;
+    combo_worker(j);
+    for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
+    return j->out;
+}
+
 static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cmd, const program_stages *ps) {
     r->res.nprograms++;
     shader_stage stages[SHADER_STAGE_COUNT];
@@ -933,74 +1060,17 @@ static void validate_program(run *r, const glib_scene *scene, const glib_cmd *cm
     int nextra = slider_values(cmd, fixed, nfixed, extra), total = ncombo + nextra;
     r->res.ncombinations += total;
 
+    combo_job job = { .r = r, .scene = scene, .cmd = cmd, .ps = ps, .stages = stages, .nst = nst,
+                      .toggles = toggles, .nt = nt, .nvary = nvary, .fixed = fixed, .nfixed = nfixed,
+                      .extra = extra, .ncombo = ncombo, .total = total };
+    vmsgs *per = validate_combos(&job);
+    /* merged in the combinations' order: each message names its first */
     vmsgs table = {0};
     for (int c = 0; c < total; c++) {
-        shader_define defs[2 * MAX_DEFINES];
-        int nd = 0;
-        for (int i = 0; i < nfixed; i++) defs[nd++] = fixed[i];
-        if (c >= ncombo) {   /* a slider's other value, the toggles at their defaults */
-            const slider_value *sv = &extra[c - ncombo];
-            snprintf(defs[sv->define].value, sizeof defs[sv->define].value, "%lld", sv->value);
-        }
-        for (int i = 0; i < nt; i++) {
-            bool on = i < nvary && c < ncombo ? (c >> i) & 1 : toggles[i].deflt;
-            if (!on) continue;
-            memset(&defs[nd], 0, sizeof defs[nd]);
-            snprintf(defs[nd].name, sizeof defs[nd].name, "%s", toggles[i].name);
-            snprintf(defs[nd].value, sizeof defs[nd].value, "1");
-            nd++;
-        }
-        vmsgs m = {0};
-        shader_src src[SHADER_STAGE_COUNT];
-        memset(src, 0, sizeof src);
-        glslang_shader_t *sh[SHADER_STAGE_COUNT] = { NULL };
-        char *pp[SHADER_STAGE_COUNT] = { NULL };
-        int nsh = 0;
-        bool ok = true;
-        for (int i = 0; i < nst; i++) {
-            shader_stage st = stages[i];
-            shader_src_desc d = program_stage_desc(ps, st, defs, nd, r->include_dirs, 1);
-            d.gs_input = program_gs_input(scene, cmd);
-            if (!shader_src_load(&d, &src[st])) {
-                msgs_add(&m, &src[st].error);
-                ok = false;
-            }
-        }
-        /* every stage, even after one fails, so each shows its errors */
-        for (int i = 0; ok && i < nst; i++) {
-            bool cok = false;
-            glslang_shader_t *s = compile(&src[stages[i]], stages[i], &m, &cok, &pp[i]);
-            if (s) sh[nsh++] = s;
-            if (!cok || !s) {
-                for (int j = i + 1; j < nst; j++) {
-                    glslang_shader_t *s2 = compile(&src[stages[j]], stages[j], &m, &cok, NULL);
-                    if (s2) sh[nsh++] = s2;
-                }
-                ok = false;
-            }
-        }
-        if (ok) {
-            char *llog = NULL;
-            vmsgs lm = {0};
-            link_stages(sh, nsh, cmd, &lm, &llog);
-            relink_fixed(sh, pp, src, stages, nst, cmd, &lm, &llog);
-            for (int i = 0; i < lm.n; i++) msgs_add(&m, &lm.v[i].d);
-            msgs_free(&lm);
-            const shader_src *srcs[SHADER_STAGE_COUNT] = { NULL };
-            for (int i = 0; i < nst; i++) srcs[stages[i]] = &src[stages[i]];
-            diag_list hint = { 0 };
-            glsl_fix_link_hint(llog, srcs, &hint);   /* a uniform with two types: say where */
-            msgs_add_list(&m, &hint);
-            diag_list_free(&hint);
-            free(llog);
-            check_interfaces(src, pp, stages, nst, &m);
-        }
-        for (int i = 0; i < nsh; i++) glslang_shader_delete(sh[i]);
-        for (int i = 0; i < nst; i++) free(pp[i]);
-        for (int i = 0; i < nst; i++) shader_src_free(&src[stages[i]]);
-        msgs_merge(&table, &m, c);
-        msgs_free(&m);
+        msgs_merge(&table, &per[c], c);
+        msgs_free(&per[c]);
     }
+    free(per);
 
     for (int i = 0; i < table.n; i++) {
         const vmsg *v = &table.v[i];
