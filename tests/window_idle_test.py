@@ -42,20 +42,13 @@ def main(argv):
     p = subprocess.Popen([tarn, "view", os.path.join(src, "scenes/lake.glib"), "--pack", "basic",
                           "--size", "320x180", "--verbose"], stdout=log, stderr=log)
     time.sleep(6)                       # start-up: the programs compile
-    # and the compile job loads the scene off the frame once the window is
-    # up (a one-off at start-up, not the still window's cost): wait for it
-    for _ in range(600):
-        if "compile job has the scene loaded" in open("window-idle.log").read() or p.poll() is not None:
-            break
-        time.sleep(0.1)
+    wait_for_job(p, "window-idle.log")
     if p.poll() is not None:
         sys.exit("FAIL: tarn view exited early (%s); see window-idle.log" % p.returncode)
     kb.move(600, 100)   # over the scene, right of the panel
     press("space")                      # pause: the picture stops changing
     time.sleep(2.0)                     # the budget's settle, the full frame
-    c0, w0 = cpu_s(p.pid), time.time()
-    time.sleep(4.0)
-    share = (cpu_s(p.pid) - c0) / (time.time() - w0)
+    share = share_over(p.pid, 4.0)
     print("still window: %.1f%% of a core" % (100 * share))
     ok = share <= MAX_IDLE_SHARE
     if not ok:
@@ -84,6 +77,17 @@ def main(argv):
     sys.exit(0 if ok else 1)
 
 
+def wait_for_job(p, log_path):
+    """The compile job loads the scene off the frame once the window is up
+    (start-up's one-off work, seconds under a sanitizer on a busy machine,
+    not the window's steady state): waits for its log line, a minute at
+    most, or for the process's end."""
+    for _ in range(600):
+        if "compile job has the scene loaded" in open(log_path).read() or p.poll() is not None:
+            return
+        time.sleep(0.1)
+
+
 def share_over(pid, seconds):
     """The share of a core process pid uses over the next seconds."""
     c0, w0 = cpu_s(pid), time.time()
@@ -107,15 +111,8 @@ def open_scene(tarn, d, name, frag):
     log = open(path, "w")
     p = subprocess.Popen([tarn, "view", os.path.join(d, name + ".glib"), "--size", "960x540", "--verbose"],
                          stdout=log, stderr=log)
-    # start-up's one-off work (the compile job loads the scene off the frame
-    # once the window is up; seconds under a sanitizer on a busy machine)
-    # is not the window's steady state: wait for it, then for the budget's
-    # settle and the full-size frame
-    for _ in range(600):
-        if "compile job has the scene loaded" in open(path).read() or p.poll() is not None:
-            break
-        time.sleep(0.1)
-    time.sleep(2.0)
+    wait_for_job(p, path)
+    time.sleep(2.0)                     # the budget's settle and the full-size frame
     return p
 
 
