@@ -124,6 +124,74 @@ static void test_stage_assembly_reads_whole_saves(void) {
     CHECK_MSG(bad == 0, "%d of %d stage loads were not a whole save", bad, loads);
 }
 
+/* The writer's close is asked of the file itself: held open for writing
+ * (by another process, as an editor would) it is "held", once closed not,
+ * and a reader's own open is no writer. */
+static void test_writer_holds_while_open(void) {
+    scratch_write("held.frag", "void main() {}\n");
+    const char *path = scratch_path("held.frag");
+    if (file_writer_holds(path) < 0) {
+        SKIP("this filesystem or user cannot take a read lease: the age rule alone applies\n");
+        return;
+    }
+    int reader = open(path, O_RDONLY);
+    CHECK_EQ(file_writer_holds(path), 0);
+    int opened[2], go[2];   /* one pipe each way: a child reading its own byte would hang the test */
+    CHECK_EQ(pipe(opened), 0);
+    CHECK_EQ(pipe(go), 0);
+    pid_t pid = fork();
+    if (pid == 0) {   /* holds the file open for writing until told */
+        int fd = open(path, O_WRONLY | O_APPEND);
+        char c;
+        if (fd < 0 || write(opened[1], "o", 1) != 1 || read(go[0], &c, 1) != 1) _exit(1);
+        close(fd);
+        _exit(0);
+    }
+    char c;
+    CHECK_EQ(read(opened[0], &c, 1), (ssize_t)1);   /* the writer has it open */
+    CHECK_EQ(file_writer_holds(path), 1);
+    CHECK_EQ(write(go[1], "c", 1), (ssize_t)1);
+    waitpid(pid, NULL, 0);
+    CHECK_EQ(file_writer_holds(path), 0);
+    close(reader);
+    for (int i = 0; i < 2; i++) {
+        close(opened[i]);
+        close(go[i]);
+    }
+}
+
+/* A save stalled mid-write (half written, a pause longer than any fixed
+ * settle time, then the rest): a read begun during the pause waits for
+ * the writer's close and gets the whole save, not the half. */
+static void test_stalled_save_is_read_whole(void) {
+    char text[8192];
+    version_text(3, text, sizeof text);
+    scratch_write("stall.frag", "");
+    const char *path = scratch_path("stall.frag");
+    if (file_writer_holds(path) < 0) {
+        SKIP("this filesystem or user cannot take a read lease: a stall past FILE_SETTLE_MS reads the half\n");
+        return;
+    }
+    pid_t pid = fork();
+    if (pid == 0) {
+        size_t n = strlen(text), half = n / 2;
+        int fd = open(path, O_WRONLY | O_TRUNC);
+        if (fd < 0 || write(fd, text, half) != (ssize_t)half) _exit(1);
+        sleep_us(120000);   /* four times FILE_SETTLE_MS */
+        if (write(fd, text + half, n - half) != (ssize_t)(n - half)) _exit(1);
+        close(fd);
+        _exit(0);
+    }
+    sleep_us(50000);        /* the half is on disk, 50 ms old */
+    char why[256];
+    file_text_opts o = { .max_bytes = 1 << 20, .settle = true };
+    char *got = file_read_text(path, &o, NULL, why, sizeof why);
+    waitpid(pid, NULL, 0);
+    CHECK_MSG(got && strcmp(got, text) == 0, "read %zu bytes of a %zu-byte save", got ? strlen(got) : 0,
+              strlen(text));
+    free(got);
+}
+
 /* The viewer's reload in a burst: no reload reports an error. */
 static void test_reloads_in_a_burst_report_no_error(void) {
     char first[8192];
@@ -154,6 +222,8 @@ int main(void) {
     if (!scratch_create("reload-race")) return 1;
     RUN(test_file_reads_are_whole_saves);
     RUN(test_stage_assembly_reads_whole_saves);
+    RUN(test_writer_holds_while_open);
+    RUN(test_stalled_save_is_read_whole);
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (ctx) {

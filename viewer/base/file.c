@@ -1,7 +1,9 @@
+#define _GNU_SOURCE   /* F_SETLEASE, F_SETSIG (fcntl.h) */
 #include "file.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -114,6 +116,36 @@ static double age_at(long long mtime_ns, double at_ms) {
     return age < 0 ? 1e9 : age;
 }
 
+int file_writer_holds(const char *path) {
+    int fd;
+    do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    while (fd < 0 && errno == EINTR);
+    if (fd < 0) return -1;
+    /* a lease broken while held signals its holder: SIGIO by default,
+     * whose default action ends the process; SIGURG's is to ignore it */
+    fcntl(fd, F_SETSIG, SIGURG);
+    int r = fcntl(fd, F_SETLEASE, F_RDLCK);
+    int err = errno;
+    if (r == 0) fcntl(fd, F_SETLEASE, F_UNLCK);
+    close(fd);
+    return r == 0 ? 0 : err == EAGAIN ? 1 : -1;
+}
+
+/* Is a read that was not torn a whole save (file.h)? false: not yet
+ * (*wait_ms: how long to wait before reading again). */
+static bool read_is_whole(const char *path, const strbuf *b, const file_stamp *stamp, double *wait_ms) {
+    int writer = file_writer_holds(path);
+    *wait_ms = 5;
+    if (writer == 0) return true;
+    if (writer == 1) return false;
+    /* cannot ask: a file quiet for a while is taken; an empty file just
+     * truncated (`cat >`) is given longer to fill */
+    double age = age_at(stamp->mtime_ns, wall_ms()), settle = b->len == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
+    if (age >= settle) return true;
+    if (b->len > 0) *wait_ms = settle - age + 1;
+    return false;
+}
+
 /* read_all, and with `settle` again until the file holds still (file.h);
  * *stamp: the file as it was read. */
 static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, file_stamp *stamp, char *why,
@@ -130,11 +162,9 @@ static bool read_settled(const char *path, const file_text_opts *o, strbuf *b, f
         if (!o->settle || clock_now_s() * 1e3 - start >= FILE_SETTLE_MAX_MS) return true;
         /* (/proc and the like say size 0 whatever they hold) */
         bool torn = !same_stat(&before, &after) || ((off_t)b->len != after.st_size && after.st_size != 0);
-        /* an empty file just truncated (`cat >`) is given longer to fill */
-        double age = age_at(stamp->mtime_ns, wall_ms()), settle = b->len == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
-        bool young = age < settle;
-        if (!torn && !young) return true;
-        clock_sleep_s((young && b->len > 0 ? settle - age + 1 : 5) / 1e3);
+        double wait_ms = 5;
+        if (!torn && read_is_whole(path, b, stamp, &wait_ms)) return true;
+        clock_sleep_s(wait_ms / 1e3);
     }
 }
 

@@ -23,14 +23,25 @@ typedef struct file_text_opts {
 
 /* With `settle`, a read is taken only when the file did not change while it
  * was read (the same size, modification time and inode before and after,
- * and the size read) and was last modified at least FILE_SETTLE_MS ago
+ * and the size read) and no writer holds it open (file_writer_holds: the
+ * save is over, at once, whatever its pauses). Where that cannot be asked
+ * (a file not the user's own, a filesystem without leases), the file must
+ * also have been last modified at least FILE_SETTLE_MS ago
  * (FILE_EMPTY_WAIT_MS for an empty file: `cat > f` truncates first, and a
- * file just emptied is "still being written"), else it is read again. A
- * file that has been quiet that long is read once, without waiting. After
- * FILE_SETTLE_MAX_MS the latest read is taken as it is. */
+ * file just emptied is "still being written"). Else it is read again.
+ * After FILE_SETTLE_MAX_MS the latest read is taken as it is. */
 #define FILE_SETTLE_MS 30
 #define FILE_EMPTY_WAIT_MS 100
 #define FILE_SETTLE_MAX_MS 250
+
+/* Does a process hold path open for writing? 1 yes, 0 no, -1 cannot tell.
+ * Asked by a read lease (fcntl F_SETLEASE), which Linux refuses with
+ * EAGAIN exactly while some open file description has the file open for
+ * writing; it needs the file to be the caller's own (or CAP_LEASE) and a
+ * filesystem that has leases. The lease is held for microseconds; a
+ * writer opening the file then breaks it with a signal that is ignored
+ * (SIGURG, not the default SIGIO, which would end the process). */
+int file_writer_holds(const char *path);
 
 /* The file as text, NUL-terminated (len, may be NULL, excludes the NUL;
  * counted after the options), or NULL with the reason alone in why, for the

@@ -1,4 +1,3 @@
-#define _GNU_SOURCE   /* F_SETLEASE (fcntl.h) */
 /* watch: see watch.h. */
 #include "watch.h"
 #include "util.h"
@@ -223,23 +222,6 @@ static void retry_lost_dirs(watch *w, int64_t t) {
 
 /* ---- deciding ----------------------------------------------------------- */
 
-/* Does a process still hold path open for writing? 1 yes, 0 no, -1 cannot
- * tell. A read lease (fcntl F_SETLEASE) is refused with EAGAIN exactly
- * while some open file description has the file open for writing; it
- * needs the file to be the caller's own (EACCES otherwise) and a
- * filesystem that has leases. So a save stalled mid-write (an editor
- * writing in two calls with a pause, a slow network mount) is waited for
- * by the writer's close, not a fixed time (issue #30). */
-static int writer_holds(const char *path) {
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) return -1;
-    int r = fcntl(fd, F_SETLEASE, F_RDLCK);
-    int err = errno;
-    if (r == 0) fcntl(fd, F_SETLEASE, F_UNLCK);
-    close(fd);
-    return r == 0 ? 0 : err == EAGAIN ? 1 : -1;
-}
-
 /* Is f still being written: its close not seen, and either within the
  * grace or a writer provably holding it (up to WATCH_WRITER_MAX_MS)?
  * *until gets when to look again. */
@@ -247,7 +229,7 @@ static bool still_writing(const watch_file *f, int64_t t, int64_t *until) {
     if (!f->writing) return false;
     *until = f->last_ns + WATCH_WRITE_GRACE_MS * MS;
     if (t < *until) return true;
-    if (t < f->last_ns + WATCH_WRITER_MAX_MS * MS && writer_holds(f->path) == 1) {
+    if (t < f->last_ns + WATCH_WRITER_MAX_MS * MS && file_writer_holds(f->path) == 1) {
         *until = t + WATCH_WRITER_POLL_MS * MS;
         return true;
     }
@@ -259,7 +241,7 @@ static bool still_writing(const watch_file *f, int64_t t, int64_t *until) {
  * holds the file open (the save is over: an editor's write-and-close is
  * taken at once, not a fixed time later). */
 static int64_t quiet_at(const watch_file *f) {
-    if (f->closed && writer_holds(f->path) != 1) return f->last_ns;
+    if (f->closed && file_writer_holds(f->path) != 1) return f->last_ns;
     return f->last_ns + WATCH_QUIET_MS * MS;
 }
 

@@ -41,8 +41,8 @@
 
 #include <stdbool.h>
 
-#define WATCH_QUIET_MS         20  /* no events for this long: the save is over (its read then waits
-                                      * for the file to be FILE_SETTLE_MS old; every ms is the user's) */
+#define WATCH_QUIET_MS         20  /* no events for this long: the save is over (its read then
+                                      * waits for no writer to hold it, file.h; every ms is the user's) */
 #define WATCH_WRITE_GRACE_MS   150 /* most to wait for the close of a file being written, when
                                       * whether a writer still holds it cannot be asked */
 #define WATCH_WRITER_MAX_MS  10000 /* ...and while a writer provably still holds it open (a
