@@ -98,7 +98,8 @@ static void test_file_reads_are_whole_saves(void) {
         sleep_us(700);
     }
     stop_writer(w);
-    fprintf(stderr, "  %d reads, %d torn\n", reads, torn);
+    fprintf(stderr, "  %d reads, %d torn (the writer's close %s)\n", reads, torn,
+            file_writer_holds(scratch_path("raw.frag")) >= 0 ? "asked by a lease" : "unknown here: the age rule");
     CHECK_GE(reads, 20);
     CHECK_MSG(torn == 0, "%d of %d reads saw a text no save had", torn, reads);
 }
