@@ -9,11 +9,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "check.h"
 #include "gl_ctx.h"
 #include "ref_waves.h"
 #include "render.h"
 #include "render_world.h"
 #include "shader_src.h"
+#include "support.h"
 #include "unif.h"
 
 /* The test's exit code when it cannot run: ctest's SKIP_RETURN_CODE. */
@@ -161,6 +163,14 @@ static inline unif_entry *gl_test_uniform(render *r, const char *program, const 
         if (e) return e;
     }
     return NULL;
+}
+
+/* A new renderer with the scratch folder's scene `glib` loaded; a failed
+ * load is a failed check that prints the load's messages. */
+static inline render *gl_test_load_scratch(const char *glib) {
+    render *r = render_create(NULL);
+    CHECK_MSG(render_load(r, scratch_path(glib)), "%s", render_messages(r));
+    return r;
 }
 
 #endif

@@ -130,8 +130,7 @@ static void print_pixels(void) {
 /* A renderer with the good scene loaded and on screen. */
 static render *good_render(void) {
     write_good_scene();
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("b.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("b.glib");
     draw(r);
     CHECK_MSG(shows_good(), "the good scene is not on screen");
     return r;

@@ -63,8 +63,7 @@ static void frame(render *r, float *px) {
 }
 
 static render *loaded(void) {
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("once.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("once.glib");
     return r;
 }
 

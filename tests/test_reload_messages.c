@@ -74,8 +74,7 @@ static void test_stage_error_names_program_and_stage(void) {
 static void test_no_uniform_warnings_for_a_failed_program(void) {
     two_programs_scene();
     scratch_write("common.glsl", "float helper(float x) { return x * 2.0; }\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("lake.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("lake.glib");
     scratch_write("water.frag", frag_using(" + oops("));
     scratch_write("lake.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\n"
                                "Vertex a.vert\nFragment water.frag\n"
@@ -118,8 +117,7 @@ static void test_inactive_uniforms_one_line_same_on_reload(void) {
                                "Vertex a.vert\nFragment water.frag\n"
                                "Program Water uColor {0.2 0.4 0.6 1.} uLevel <0. 1. 2.> uGlint <0. 1. 2.>\n"
                                "QuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("lake.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("lake.glib");
     char first[2048];
     snprintf(first, sizeof first, "%s", render_messages(r));
     fprintf(stderr, "start-up: %s", first);

@@ -20,6 +20,7 @@
 #include "support.h"
 #include "file.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "render.h"
 #include "shader_src.h"
 
@@ -202,8 +203,7 @@ static void test_reloads_in_a_burst_report_no_error(void) {
                                "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n");
     scratch_write("lake.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment water.frag\n"
                                "Program Water uColor {0.2 0.4 0.6 1.}\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("lake.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("lake.glib");
     pid_t w = start_writer(scratch_path("water.frag"));
     int loads = 0, failed = 0;
     for (double end = now_s() + BURST_S; now_s() < end; loads++) {

@@ -47,8 +47,7 @@ static void test_uniform_colour_fills_the_screen(void) {
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\n"
                "Vertex flat.vert\nFragment flat.frag\n"
                "Program Flat uColor {0.2 0.4 0.6 1.}\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("flat.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("flat.glib");
     draw(r, 0);
     CHECK_RGB(at(0, 0), 0.2, 0.4, 0.6);
     CHECK_RGB(at(W / 2, H / 2), 0.2, 0.4, 0.6);
@@ -64,8 +63,7 @@ static void test_transforms_place_geometry(void) {
                "Vertex flat.vert\nFragment flat.frag\n"
                "Program Flat uColor {1 0 0 1}\n"
                "PushMatrix\nTranslate 0.5 0 0\nScale 0.25\nQuadXY 0 1 1 1\nPopMatrix\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("xf.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("xf.glib");
     draw(r, 0);
     CHECK_RGB(at(48, 32), 1, 0, 0);        /* inside */
     CHECK_RGB(at(41, 25), 1, 0, 0);
@@ -86,8 +84,7 @@ static void test_timer_is_a_sawtooth(void) {
     scratch_write("timer.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nTimer 10\nVertex flat.vert\nFragment timer.frag\n"
                "Program T\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("timer.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("timer.glib");
     draw(r, 12.5);
     CHECK_NEAR(at(10, 10)[0], 0.25, TOL);
     draw(r, 7.0);
@@ -112,8 +109,7 @@ static void test_reads_clock(void) {
                                 "void main() { c = vec4(0.5, 0., 0., 1.); }\n");
     scratch_write("clock.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment still.frag\n"
                                 "Program T\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("clock.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("clock.glib");
     CHECK_MSG(!render_reads_clock(r), "Timer declared, never used: the picture is still");
     CHECK(!pictures_differ(r, 1.0, 3.0));
     scratch_write("still.frag", "#version 330 compatibility\nuniform float Timer;\nout vec4 c;\n"
@@ -137,8 +133,7 @@ static void test_gstap_names_work(void) {
     scratch_write("gstap.glib",
                "##OpenGL GLIB\nGSTAP\nOrtho -1 1 -1 1\nVertex gstap.vert\nFragment flat.frag\n"
                "Program G uColor {0 1 0 1}\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("gstap.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("gstap.glib");
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0, 1, 0);
     render_destroy(r);
@@ -172,8 +167,7 @@ static void test_texture_from_bmp(void) {
     scratch_write("tex.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nTexture2D 5 quad.bmp\nVertex tex.vert\nFragment tex.frag\n"
                "Program Tex uTex 5\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("tex.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("tex.glib");
     draw(r, 0);
     CHECK_RGB(at(8, 8), 1, 0, 0);            /* top left: red */
     CHECK_RGB(at(56, 8), 0, 1, 0);           /* top right: green */
@@ -193,8 +187,7 @@ static void test_render_to_texture(void) {
                "Vertex flat.vert\nFragment flat.frag\nProgram Fill uColor {0.8 0.6 0.4 1}\nQuadXY 0 1 1 1\n"
                "RenderToTexture\n"
                "Vertex tex.vert\nFragment show.frag\nProgram Show uTarget 6\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("rtt.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("rtt.glib");
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0.4, 0.3, 0.2);
     /* the panel's per-pass times name the pass by its glib line and units */
@@ -213,8 +206,7 @@ static void test_shader_error_keeps_last_good_then_fix_applies(void) {
     scratch_write("edit.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0., 1., 0., 1.); }\n");
     scratch_write("edit.glib",
                "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment edit.frag\nProgram E\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("edit.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("edit.glib");
     draw(r, 0);
     CHECK_RGB(at(32, 32), 0, 1, 0);
 
@@ -269,8 +261,7 @@ static void test_included_error_reported_once(void) {
 static void test_glib_error_keeps_last_good_scene(void) {
     scratch_write("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
                          "Program F uColor {1 1 0 1}\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("g.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("g.glib");
     scratch_write("g.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment flat.frag\n"
                          "Program F uColor {1 1 0 1\nQuadXY 0 1 1 1\n");
     CHECK(!render_load(r, NULL));
@@ -286,8 +277,7 @@ static void test_slider_values_survive_reload(void) {
                          "void main() { c = vec4(uGrey, uGrey, uBlue, 1.); }\n");
     scratch_write("s.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment s.frag\n"
                          "Program S uGrey <0. 0.2 1.> uBlue <0. 0.1 1.>\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("s.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("s.glib");
     unif_entry *grey = gl_test_uniform(r, "S", "uGrey"), *blue = gl_test_uniform(r, "S", "uBlue");
     CHECK(grey && blue);
     if (!grey || !blue) { render_destroy(r); return; }
@@ -347,8 +337,7 @@ static void test_noise_texture_is_centred(void) {
                          "void main() { c = texture(Noise2, st); }\n");
     scratch_write("n.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nNoise2D 64\nVertex tex.vert\nFragment n.frag\n"
                          "Program N Noise2 2\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("n.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("n.glib");
     draw(r, 0);
     double mean[4] = {0};
     for (int i = 0; i < W * H; i++)
@@ -363,8 +352,7 @@ static void test_deps_list_every_file(void) {
     scratch_write("inc.frag", "#version 330 compatibility\n#include \"inc.glsl\"\nout vec4 c;\nvoid main() { c = tint(); }\n");
     scratch_write("sub.glib", "Vertex flat.vert\nFragment inc.frag\n");
     scratch_write("deps.glib", "##OpenGL GLIB\nInclude sub.glib\nTexture2D 5 quad.bmp\nProgram I\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("deps.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("deps.glib");
     const char *const *deps;
     int n = render_deps(r, &deps);
     const char *want[] = { "deps.glib", "sub.glib", "flat.vert", "inc.frag", "inc.glsl", "quad.bmp" };
@@ -398,8 +386,7 @@ static void test_cube_map_faces(void) {
                             "void main() { c = texture(uSky, uDir); }\n");
     scratch_write("cube.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nCubeMap 7 px.bmp nx.bmp py.bmp ny.bmp pz.bmp nz.bmp\n"
                             "Vertex flat.vert\nFragment cube.frag\nProgram C uSky 7 uDir [0 0 1]\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("cube.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("cube.glib");
     int n;
     unif_set *sets = render_uniforms(r, &n);
     unif_entry *dir_e = n ? unif_find(&sets[0], "uDir") : NULL;
@@ -422,8 +409,7 @@ static void test_obj_geometry(void) {
     scratch_write("tri.obj", "# one triangle\nv -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n");
     scratch_write("obj.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nBackground 0 0 0\nVertex flat.vert\nFragment flat.frag\n"
                            "Program O uColor {1 1 1 1}\nObj tri.obj\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("obj.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("obj.glib");
     draw(r, 0);
     CHECK_RGB(at(8, 56), 1, 1, 1);     /* bottom left: inside */
     CHECK_RGB(at(56, 8), 0, 0, 0);     /* top right: outside */
@@ -444,8 +430,7 @@ static double now_ms(void) {
 static void test_save_is_seen_and_reloaded(void) {
     scratch_write("live.frag", "#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(1., 0., 1., 1.); }\n");
     scratch_write("live.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nVertex flat.vert\nFragment live.frag\nProgram L\nQuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("live.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("live.glib");
     char err[256];
     watch *w = watch_create(err, sizeof err);
     CHECK_MSG(w != NULL, "%s", err);
@@ -499,8 +484,7 @@ static void test_plain_scene_viewing_and_no_world(void) {
     scratch_write("plain.glib", "##OpenGL GLIB\nWindowSize 12 10\nOrtho -1 1 -1 1\n"
                   "Define FOO <false>\nVertex flat.vert\nFragment flat.frag\n"
                   "Program F uColor {0 1 0 1}\nIf FOO\nQuadXY 0 1\nEndIf\nQuadXY 0 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("plain.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("plain.glib");
     int w = 0, h = 0;
     render_window_size(r, &w, &h);
     CHECK_MSG(w == 12 && h == 10, "render's size %dx%d", w, h);

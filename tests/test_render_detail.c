@@ -69,8 +69,7 @@ static void test_target_sizes(void) {
                                 "Vertex sizes.vert\nFragment sizes.frag\n"
                                 "Program Sizes uSide <10 100 1000> uFixed 3 uSlider 4 uScreen 5 uOnce 6\n"
                                 "QuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("sizes.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("sizes.glib");
     float once = 64 + 1000 * W;
     sizes_at(r, 1.0, (float[]){ 256, 128, 100, once });
     /* a reduced side is a power of two when the scene's is, else none
@@ -109,8 +108,7 @@ static void test_view_target_sizes(void) {
                                "Vertex sizes.vert\nFragment view.frag\n"
                                "Program View uView 3 uLight 4 uNone 5\n"
                                "QuadXY 0 1 1 1\n");
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("view.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("view.glib");
     const struct { double detail; float view, light, none; } want[] = {
         { 1.0, 512, 512, 512 },
         { 0.5, 512, 256, 256 },    /* twice a half: the whole */

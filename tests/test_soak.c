@@ -29,6 +29,7 @@
 #include "check.h"
 #include "support.h"
 #include "gl_ctx.h"
+#include "gl_support.h"
 #include "render.h"
 
 #define RELOADS 1000
@@ -287,8 +288,7 @@ static void test_soak(void) {
     write_glib(G.glib, false);
     write_tex(G.tex, ++serial);
     CHECK(render_target_create(&target, W, H, false));
-    render *r = render_create(NULL);
-    CHECK_MSG(render_load(r, scratch_path("soak.glib")), "%s", render_messages(r));
+    render *r = gl_test_load_scratch("soak.glib");
     draw(r);
     CHECK_MSG(shows(&G), "the first load is not on screen");
 
