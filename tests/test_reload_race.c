@@ -194,6 +194,36 @@ static void test_stalled_save_is_read_whole(void) {
     free(got);
 }
 
+/* A writer that empties the file by its path, then opens it to write the
+ * new text (no writer holds it in between): a read begun while it is
+ * empty waits for the text, not takes the empty file. */
+static void test_emptied_then_written_is_read_whole(void) {
+    char text[8192];
+    version_text(5, text, sizeof text);
+    scratch_write("trunc.frag", "// an older version\n");
+    const char *path = scratch_path("trunc.frag");
+    pid_t pid = fork();
+    if (pid == 0) {
+        if (truncate(path, 0) != 0) _exit(1);
+        sleep_us(40000);
+        int fd = open(path, O_WRONLY);
+        size_t n = strlen(text);
+        if (fd < 0 || write(fd, text, n) != (ssize_t)n) _exit(1);
+        close(fd);
+        _exit(0);
+    }
+    sleep_us(10000);        /* emptied, no writer holding it */
+    char why[256];
+    file_text_opts o = { .max_bytes = 1 << 20, .settle = true };
+    char *got = file_read_text(path, &o, NULL, why, sizeof why);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    CHECK_EQ(WEXITSTATUS(status), 0);
+    CHECK_MSG(got && strcmp(got, text) == 0, "read %zu bytes of a %zu-byte save", got ? strlen(got) : 0,
+              strlen(text));
+    free(got);
+}
+
 /* The viewer's reload in a burst: no reload reports an error. */
 static void test_reloads_in_a_burst_report_no_error(void) {
     char first[8192];
@@ -225,6 +255,7 @@ int main(void) {
     RUN(test_stage_assembly_reads_whole_saves);
     RUN(test_writer_holds_while_open);
     RUN(test_stalled_save_is_read_whole);
+    RUN(test_emptied_then_written_is_read_whole);
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
     if (ctx) {

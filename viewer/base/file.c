@@ -136,10 +136,11 @@ int file_writer_holds(const char *path) {
 static bool read_is_whole(const char *path, const strbuf *b, const file_stamp *stamp, double *wait_ms) {
     int writer = file_writer_holds(path);
     *wait_ms = 5;
-    if (writer == 0) return true;
+    if (writer == 0 && b->len > 0) return true;
     if (writer == 1) return false;
     /* cannot ask: a file quiet for a while is taken; an empty file just
-     * truncated (`cat >`) is given longer to fill */
+     * truncated is given longer to fill, closed or not (a writer may
+     * truncate by path, then open it to write) */
     double age = age_at(stamp->mtime_ns, wall_ms()), settle = b->len == 0 ? FILE_EMPTY_WAIT_MS : FILE_SETTLE_MS;
     if (age >= settle) return true;
     if (b->len > 0) *wait_ms = settle - age + 1;

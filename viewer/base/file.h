@@ -26,9 +26,10 @@ typedef struct file_text_opts {
  * and the size read) and no writer holds it open (file_writer_holds: the
  * save is over, at once, whatever its pauses). Where that cannot be asked
  * (a file not the user's own, a filesystem without leases), the file must
- * also have been last modified at least FILE_SETTLE_MS ago
- * (FILE_EMPTY_WAIT_MS for an empty file: `cat > f` truncates first, and a
- * file just emptied is "still being written"). Else it is read again.
+ * also have been last modified at least FILE_SETTLE_MS ago. An empty file
+ * must be FILE_EMPTY_WAIT_MS old either way (`cat > f` truncates first,
+ * and a writer may truncate by path before it opens the file: a file just
+ * emptied is "still being written"). Else it is read again.
  * After FILE_SETTLE_MAX_MS the latest read is taken as it is. */
 #define FILE_SETTLE_MS 30
 #define FILE_EMPTY_WAIT_MS 100
