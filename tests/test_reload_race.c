@@ -126,6 +126,18 @@ static void test_stage_assembly_reads_whole_saves(void) {
     CHECK_MSG(bad == 0, "%d of %d stage loads were not a whole save", bad, loads);
 }
 
+/* A writer child tells the reader when its first step is on disk
+ * (a byte down a pipe), so the reader's timing does not rest on how soon
+ * a loaded machine runs the child. */
+static bool step_done(int fd) {
+    return write(fd, "s", 1) == 1;
+}
+
+static bool wait_step(int fd) {
+    char c;
+    return read(fd, &c, 1) == 1;
+}
+
 /* The writer's close is asked of the file itself: held open for writing
  * (by another process, as an editor would) it is "held", once closed not,
  * and a reader's own open is no writer. */
@@ -144,15 +156,15 @@ static void test_writer_holds_while_open(void) {
     pid_t pid = fork();
     if (pid == 0) {   /* holds the file open for writing until told */
         int fd = open(path, O_WRONLY | O_APPEND);
-        char c;
-        if (fd < 0 || write(opened[1], "o", 1) != 1 || read(go[0], &c, 1) != 1) _exit(1);
+        if (fd < 0) _exit(1);
+        if (!step_done(opened[1])) _exit(1);
+        if (!wait_step(go[0])) _exit(1);
         close(fd);
         _exit(0);
     }
-    char c;
-    CHECK_EQ(read(opened[0], &c, 1), (ssize_t)1);   /* the writer has it open */
+    CHECK(wait_step(opened[0]));   /* the writer has it open */
     CHECK_EQ(file_writer_holds(path), 1);
-    CHECK_EQ(write(go[1], "c", 1), (ssize_t)1);
+    CHECK(step_done(go[1]));
     waitpid(pid, NULL, 0);
     CHECK_EQ(file_writer_holds(path), 0);
     close(reader);
@@ -163,8 +175,9 @@ static void test_writer_holds_while_open(void) {
 }
 
 /* A save stalled mid-write (half written, a pause longer than any fixed
- * settle time, then the rest): a read begun during the pause waits for
- * the writer's close and gets the whole save, not the half. */
+ * settle time, then the rest): a read begun during the pause, when the
+ * half is FILE_SETTLE_MS and more old, waits for the writer's close and
+ * gets the whole save, not the half. */
 static void test_stalled_save_is_read_whole(void) {
     char text[8192];
     version_text(3, text, sizeof text);
@@ -174,24 +187,32 @@ static void test_stalled_save_is_read_whole(void) {
         SKIP("this filesystem or user cannot take a read lease: a stall past FILE_SETTLE_MS reads the half\n");
         return;
     }
+    int step[2];
+    CHECK_EQ(pipe(step), 0);
     pid_t pid = fork();
     if (pid == 0) {
         size_t n = strlen(text), half = n / 2;
         int fd = open(path, O_WRONLY | O_TRUNC);
         if (fd < 0 || write(fd, text, half) != (ssize_t)half) _exit(1);
-        sleep_us(120000);   /* four times FILE_SETTLE_MS */
+        if (!step_done(step[1])) _exit(1);
+        sleep_us(100000);   /* over three times FILE_SETTLE_MS; well within FILE_SETTLE_MAX_MS */
         if (write(fd, text + half, n - half) != (ssize_t)(n - half)) _exit(1);
         close(fd);
         _exit(0);
     }
-    sleep_us(50000);        /* the half is on disk, 50 ms old */
+    CHECK(wait_step(step[0]));
+    sleep_us(40000);        /* the half is on disk, 40 ms old: the age rule alone would take it */
     char why[256];
     file_text_opts o = { .max_bytes = 1 << 20, .settle = true };
     char *got = file_read_text(path, &o, NULL, why, sizeof why);
-    waitpid(pid, NULL, 0);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    CHECK_EQ(WEXITSTATUS(status), 0);
     CHECK_MSG(got && strcmp(got, text) == 0, "read %zu bytes of a %zu-byte save", got ? strlen(got) : 0,
               strlen(text));
     free(got);
+    close(step[0]);
+    close(step[1]);
 }
 
 /* A writer that empties the file by its path, then opens it to write the
@@ -202,17 +223,20 @@ static void test_emptied_then_written_is_read_whole(void) {
     version_text(5, text, sizeof text);
     scratch_write("trunc.frag", "// an older version\n");
     const char *path = scratch_path("trunc.frag");
+    int step[2];
+    CHECK_EQ(pipe(step), 0);
     pid_t pid = fork();
     if (pid == 0) {
         if (truncate(path, 0) != 0) _exit(1);
-        sleep_us(40000);
+        if (!step_done(step[1])) _exit(1);
+        sleep_us(20000);    /* well within FILE_EMPTY_WAIT_MS */
         int fd = open(path, O_WRONLY);
         size_t n = strlen(text);
         if (fd < 0 || write(fd, text, n) != (ssize_t)n) _exit(1);
         close(fd);
         _exit(0);
     }
-    sleep_us(10000);        /* emptied, no writer holding it */
+    CHECK(wait_step(step[0]));   /* emptied, no writer holding it */
     char why[256];
     file_text_opts o = { .max_bytes = 1 << 20, .settle = true };
     char *got = file_read_text(path, &o, NULL, why, sizeof why);
@@ -222,6 +246,8 @@ static void test_emptied_then_written_is_read_whole(void) {
     CHECK_MSG(got && strcmp(got, text) == 0, "read %zu bytes of a %zu-byte save", got ? strlen(got) : 0,
               strlen(text));
     free(got);
+    close(step[0]);
+    close(step[1]);
 }
 
 /* The viewer's reload in a burst: no reload reports an error. */
