@@ -93,8 +93,9 @@ static void test_timer_is_a_sawtooth(void) {
 }
 
 /* render_reads_clock: a glman scene reads the clock when a program uses
- * Timer (declared but unused is not read: the picture does not move), a
- * world scene always (its water moves); a rebuild decides again. Each
+ * Timer (declared but unused is not read: the picture does not move) in a
+ * draw of every frame (not only in a RenderToTextureOnce block), a world
+ * scene always (its water moves); a rebuild decides again. Each
  * answer is checked against the pixels: two times give two pictures
  * exactly when the clock is read. */
 static bool pictures_differ(render *r, double t0, double t1) {
@@ -116,6 +117,28 @@ static void test_reads_clock(void) {
                                 "void main() { c = vec4(Timer, 0., 0., 1.); }\n");
     CHECK_MSG(render_rebuild_programs(r), "%s", render_messages(r));
     CHECK_MSG(render_reads_clock(r), "Timer used after a rebuild: the picture moves");
+    CHECK(pictures_differ(r, 1.0, 3.0));
+    render_destroy(r);
+
+    /* Timer read only in a RenderToTextureOnce block: fixed in its target
+     * at the load's first frame; the frames after draw without it */
+    scratch_write("show.frag", "#version 330 compatibility\nuniform sampler2D uT;\nout vec4 c;\n"
+                               "void main() { c = texture(uT, vec2(0.5)); }\n");   /* the target's middle, which the quad covers */
+    scratch_write("once.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nTimer 10\nTexture2D 6 4 4 float\n"
+                               "RenderToTextureOnce 6\nClear\nVertex flat.vert\nFragment still.frag\nProgram T\n"
+                               "QuadXY 0 1 1 1\nRenderToTexture\nFragment show.frag\nProgram S uT 6\n"
+                               "QuadXY 0 1 1 1\n");
+    r = gl_test_load_scratch("once.glib");
+    CHECK_MSG(!render_reads_clock(r), "Timer read in a RenderToTextureOnce block alone: the frames after are still");
+    CHECK(!pictures_differ(r, 1.0, 3.0));
+    CHECK_NEAR(at(10, 10)[0], 0.1, TOL);   /* the block ran, at the first frame's time (Timer 10: t / 10) */
+    render_destroy(r);
+    /* the same block's program bound again after it, for a frame's draw: read */
+    scratch_write("again.glib", "##OpenGL GLIB\nOrtho -1 1 -1 1\nTimer 10\nTexture2D 6 4 4 float\n"
+                                "RenderToTextureOnce 6\nClear\nVertex flat.vert\nFragment still.frag\nProgram T\n"
+                                "QuadXY 0 1 1 1\nRenderToTexture\nProgram T\nQuadXY 0 1 1 1\n");
+    r = gl_test_load_scratch("again.glib");
+    CHECK_MSG(render_reads_clock(r), "the Timer program draws every frame too");
     CHECK(pictures_differ(r, 1.0, 3.0));
     render_destroy(r);
 

@@ -146,14 +146,10 @@ static void track_clean(frame_state *f, const glib_cmd *c) {
     }
 }
 
-static bool writes_pixels(glib_cmd_kind k) {
-    return k == GLIB_CMD_CLEAR || render_res_is_geometry(k) || k == GLIB_CMD_GL_BEGIN || k == GLIB_CMD_WATER_SURFACE ||
-           k == GLIB_CMD_SPLAT || k == GLIB_CMD_WORLD;
-}
 
 /* render_set_draw_timing: an interval of its own for each drawing command */
 static void mark_draw(render *r, const glib_cmd *c) {
-    if (!writes_pixels(c->kind) || c->kind == GLIB_CMD_CLEAR) return;
+    if (!render_res_writes_pixels(c->kind) || c->kind == GLIB_CMD_CLEAR) return;
     char name[GPU_TIMER_NAME];
     snprintf(name, sizeof name, "%s:%d", glib_cmd_name(c->kind), c->line);
     render_timing_mark_now(r, name);
@@ -297,7 +293,7 @@ static bool runs(render *r, frame_state *f, const glib_cmd *c) {
     if (r->world_only && c->kind == GLIB_CMD_SPLAT) return false;
     if (pass_cmd) f->replaying = false;
     /* a kept block leaves the state (camera, program, transforms) a drawn one does */
-    return !(f->replaying && writes_pixels(c->kind));
+    return !(f->replaying && render_res_writes_pixels(c->kind));
 }
 
 /* `RenderToTextureOnce` at command i: drawn at full detail on the first

@@ -407,9 +407,27 @@ static bool prog_reads_clock(const prog *p) {
     return p->gl && (p->timer_loc >= 0 || glGetUniformLocation(p->gl, "uTime") >= 0);
 }
 
+/* Do the frames after the first draw with a program that reads the clock?
+ * The program each drawing command uses is the one the last `Program`
+ * before it bound, outside `RenderToTextureOnce` blocks: a block runs on a
+ * load's first frame only (render_exec.c skips it after, its `Program`
+ * with it), so a Timer read there is fixed in its target. */
+static bool frames_read_clock(const scene_state *s) {
+    int bound = -1;
+    bool in_once = false;
+    for (int i = 0; s->glib && i < s->glib->ncmds; i++) {
+        glib_cmd_kind k = s->glib->cmds[i].kind;
+        if (k == GLIB_CMD_RENDER_TO_TEXTURE_ONCE || k == GLIB_CMD_RENDER_TO_TEXTURE)
+            in_once = k == GLIB_CMD_RENDER_TO_TEXTURE_ONCE;
+        else if (in_once) continue;
+        else if (k == GLIB_CMD_PROGRAM) bound = s->cmd_res[i];
+        else if (bound >= 0 && render_res_writes_pixels(k) && prog_reads_clock(&s->progs[bound])) return true;
+    }
+    return false;
+}
+
 static bool scene_reads_clock(const render *r) {
-    for (int i = 0; i < r->cur.nprogs; i++)
-        if (prog_reads_clock(&r->cur.progs[i])) return true;
+    if (frames_read_clock(&r->cur)) return true;
     const gpu_world *w = &r->world;
     if (!w->active) return false;
     if (w->ocean.active || w->flow.active || w->spray.active) return true;   /* stepped in time on their own */

@@ -29,6 +29,11 @@ bool render_res_is_geometry(glib_cmd_kind k) {
            k == GLIB_CMD_LINES_ADJACENCY || k == GLIB_CMD_TRIANGLES || k == GLIB_CMD_SHP;
 }
 
+bool render_res_writes_pixels(glib_cmd_kind k) {
+    return k == GLIB_CMD_CLEAR || render_res_is_geometry(k) || k == GLIB_CMD_GL_BEGIN || k == GLIB_CMD_WATER_SURFACE ||
+           k == GLIB_CMD_SPLAT || k == GLIB_CMD_WORLD;
+}
+
 bool render_res_is_texture(glib_cmd_kind k) {
     return k == GLIB_CMD_TEXTURE2D_FILE || k == GLIB_CMD_TEXTURE2D_EMPTY ||
            k == GLIB_CMD_TEXTURE3D || k == GLIB_CMD_CUBEMAP ||

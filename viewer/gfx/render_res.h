@@ -88,5 +88,8 @@ bool render_res_noise_builtin(struct file_cache *files, const char *dir, bool is
 
 bool render_res_is_geometry(glib_cmd_kind k);
 bool render_res_is_texture(glib_cmd_kind k);
+/* Does a command of kind k draw (a clear, geometry, glBegin, the water, a
+ * splat, the world)? */
+bool render_res_writes_pixels(glib_cmd_kind k);
 
 #endif
