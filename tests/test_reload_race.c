@@ -174,6 +174,23 @@ static void test_writer_holds_while_open(void) {
     }
 }
 
+/* A settled read of path, begun now, gives the whole text the writer
+ * child pid saves, and the child wrote it all; the child's step pipe is
+ * closed after. */
+static void read_is_the_save(const char *path, const char *text, pid_t pid, int step[2]) {
+    char why[256];
+    file_text_opts o = { .max_bytes = 1 << 20, .settle = true };
+    char *got = file_read_text(path, &o, NULL, why, sizeof why);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    CHECK_EQ(WEXITSTATUS(status), 0);
+    CHECK_MSG(got && strcmp(got, text) == 0, "read %zu bytes of a %zu-byte save", got ? strlen(got) : 0,
+              strlen(text));
+    free(got);
+    close(step[0]);
+    close(step[1]);
+}
+
 /* A save stalled mid-write (half written, a pause longer than any fixed
  * settle time, then the rest): a read begun during the pause, when the
  * half is FILE_SETTLE_MS and more old, waits for the writer's close and
@@ -202,17 +219,7 @@ static void test_stalled_save_is_read_whole(void) {
     }
     CHECK(wait_step(step[0]));
     sleep_us(40000);        /* the half is on disk, 40 ms old: the age rule alone would take it */
-    char why[256];
-    file_text_opts o = { .max_bytes = 1 << 20, .settle = true };
-    char *got = file_read_text(path, &o, NULL, why, sizeof why);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    CHECK_EQ(WEXITSTATUS(status), 0);
-    CHECK_MSG(got && strcmp(got, text) == 0, "read %zu bytes of a %zu-byte save", got ? strlen(got) : 0,
-              strlen(text));
-    free(got);
-    close(step[0]);
-    close(step[1]);
+    read_is_the_save(path, text, pid, step);
 }
 
 /* A writer that empties the file by its path, then opens it to write the
@@ -237,17 +244,7 @@ static void test_emptied_then_written_is_read_whole(void) {
         _exit(0);
     }
     CHECK(wait_step(step[0]));   /* emptied, no writer holding it */
-    char why[256];
-    file_text_opts o = { .max_bytes = 1 << 20, .settle = true };
-    char *got = file_read_text(path, &o, NULL, why, sizeof why);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    CHECK_EQ(WEXITSTATUS(status), 0);
-    CHECK_MSG(got && strcmp(got, text) == 0, "read %zu bytes of a %zu-byte save", got ? strlen(got) : 0,
-              strlen(text));
-    free(got);
-    close(step[0]);
-    close(step[1]);
+    read_is_the_save(path, text, pid, step);
 }
 
 /* The viewer's reload in a burst: no reload reports an error. */
