@@ -2,8 +2,9 @@
 # save_bench: save -> first new frame in a window, several saves a window,
 # two or more builds alternating (issue #30 item 2: an A/B on one machine
 # in one run). For each round and each TARN given, `tarn view` on the lake
-# with PACK under Xvfb, paused at t = 2 s with the 50 ms budget (a still
-# picture, its full frame drawn and kept, as a user editing meets it), in a
+# with PACK under Xvfb at t = 2 s with the 50 ms budget, paused (a still
+# picture, its full frame drawn and kept) or with --running the clock
+# running (animated frames drawn meanwhile), in a
 # scratch copy of packs/ and scenes/ (TARN_ROOT) whose Mesa shader cache is
 # first filled by an unmeasured run ("warm": every stage but the edited one
 # cached). Then SAVES saves of the pack's water shader, 5 s apart, each a
@@ -11,26 +12,28 @@
 # stage. Each save's figure is the wall clock from the save to the swap of
 # the first frame after its reload (the script's `stamp on`); the last
 # line gives each build's median over all its saves.
-# Usage: scripts/save_bench.sh [--saves N] [--rounds R] PACK TARN [TARN...]
-#   (defaults: 6 saves, 3 rounds). A shared machine is noisy: say whether
+# Usage: scripts/save_bench.sh [--saves N] [--rounds R] [--running] PACK TARN [TARN...]
+#   (defaults: 6 saves, 3 rounds; --running: the clock runs, as a user's
+#   usually does, and the window draws animated frames meanwhile). A shared machine is noisy: say whether
 #   it was idle (uptime), and compare medians of the same run only.
 set -u
 here=$(cd "$(dirname "$0")/.." && pwd)
-saves=6 rounds=3
+saves=6 rounds=3 clock='pause 1'
 while [ $# -gt 0 ]; do
   case $1 in
     --saves) saves=$2; shift 2 ;;
     --rounds) rounds=$2; shift 2 ;;
+    --running) clock='play 1'; shift ;;
     *) break ;;
   esac
 done
-[ $# -ge 2 ] || { echo "usage: scripts/save_bench.sh [--saves N] [--rounds R] PACK TARN [TARN...]"; exit 2; }
+[ $# -ge 2 ] || { echo "usage: scripts/save_bench.sh [--saves N] [--rounds R] [--running] PACK TARN [TARN...]"; exit 2; }
 pack=$1; shift
 command -v xvfb-run >/dev/null || { echo "save_bench: xvfb-run is missing (apt-get install xvfb)"; exit 77; }
 scratch=$(mktemp -d /tmp/tarn-save-bench.XXXXXX)
 trap 'rm -rf "$scratch"' EXIT
 echo "save_bench: $(uptime | sed 's/^ *//')"
-echo "save_bench: $pack on the lake, $saves saves a window, $rounds rounds, warm Mesa cache"
+echo "save_bench: $pack on the lake, $saves saves a window, $rounds rounds, warm Mesa cache, clock: $clock"
 
 # one window of one build: prints each save's ms
 one_window() {
@@ -44,7 +47,7 @@ one_window() {
   printf 'pause 1\nframes 3\nquit\n' > "$dir/fill.script"
   TARN_ROOT=$dir xvfb-run -a -s "-screen 0 1600x900x24" "$bin" view "$dir/scenes/lake.glib" --pack "$pack" \
       --time 2 --script "$dir/fill.script" > /dev/null 2>&1
-  { printf 'pause 1\nbudget 50\ntime 2\nwait 2\nstamp on\n'
+  { printf '%s\nbudget 50\ntime 2\nwait 2\nstamp on\n' "$clock"
     for _ in $(seq "$saves"); do printf 'wait 5\n'; done
     printf 'quit\n'; } > "$dir/bench.script"
   TARN_ROOT=$dir xvfb-run -a -s "-screen 0 1600x900x24" "$bin" view "$dir/scenes/lake.glib" --pack "$pack" \
