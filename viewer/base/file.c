@@ -23,17 +23,24 @@ static void size_text(size_t n, char *out, size_t outlen) {
         msg_set(out, outlen, "%zu bytes", n);
 }
 
+/* path opened read-only without blocking (a FIFO put where the file was is
+ * refused, not waited on), an interrupted open tried again; -1 with errno
+ * set when it cannot be. */
+static int open_for_reading(const char *path) {
+    int fd;
+    do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    while (fd < 0 && errno == EINTR);
+    return fd;
+}
+
 /* Appends the regular file at path to b, at most max_bytes of it (0: no
  * limit: a "regular" file such as /proc/self/pagemap would otherwise be
  * read for ever); false with the reason in why. *before and *after: the
  * file's stat before the read and of the open file after it. */
 static bool read_all(const char *path, size_t max_bytes, strbuf *b, struct stat *before, struct stat *after,
                      char *why, size_t whylen) {
-    /* opened before it is looked at, and without blocking: a FIFO put
-     * where the file was is refused, not waited on */
-    int fd;
-    do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    while (fd < 0 && errno == EINTR);
+    /* opened before it is looked at (open_for_reading) */
+    int fd = open_for_reading(path);
     struct stat st;
     if (fd < 0 || fstat(fd, &st) != 0) {
         msg_set(why, whylen, "%s", strerror(errno));
@@ -117,9 +124,7 @@ static double age_at(long long mtime_ns, double at_ms) {
 }
 
 int file_writer_holds(const char *path) {
-    int fd;
-    do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    while (fd < 0 && errno == EINTR);
+    int fd = open_for_reading(path);
     if (fd < 0) return -1;
     /* a lease broken while held signals its holder: SIGIO by default,
      * whose default action ends the process; SIGURG's is to ignore it */
