@@ -707,6 +707,53 @@ static void test_file_size_limit(void) {
     }
 }
 
+static int count_of(const char *hay, const char *needle) {
+    int n = 0;
+    for (const char *p = hay; (p = strstr(p, needle)) != NULL; p += strlen(needle)) n++;
+    return n;
+}
+
+/* For llvmpipe a fragment stage's main() starts with a kill never taken
+ * (one compiled function instead of two): after the brace of each main()
+ * definition, on its line; not in a comment, not in mainly(), not in a
+ * prototype, not in another stage, not without desc.cpu_raster. */
+static void test_cpu_raster_kill(void) {
+    write_file("k.frag", "#version 330 compatibility\n"
+                         "// void main() { in a comment\n"
+                         "float mainly() { return 1.0; }\n"
+                         "void main(void);\n"
+                         "#ifdef TWO\n"
+                         "void main ( )\n{ gl_FragColor = vec4(1.0); }\n"
+                         "#else\n"
+                         "void main() {\n    gl_FragColor = vec4(mainly());\n}\n"
+                         "#endif\n");
+    shader_src plain = {0}, kill = {0}, vert = {0};
+    shader_src_desc d = { .path = tmp("k.frag"), .stage = SHADER_FRAGMENT };
+    bool ok = shader_src_load(&d, &plain);
+    CHECK_MSG(ok, "%s", ERR(plain));
+    d.cpu_raster = true;
+    ok = ok && shader_src_load(&d, &kill);
+    CHECK_MSG(ok, "%s", ERR(kill));
+    d.stage = SHADER_VERTEX;
+    ok = ok && shader_src_load(&d, &vert);
+    CHECK(ok);
+    if (ok) {
+        CHECK_EQ(count_of(plain.text, SHADER_SRC_UNREACHED_KILL), 0);
+        CHECK_EQ(count_of(vert.text, SHADER_SRC_UNREACHED_KILL), 0);
+        CHECK_EQ(count_of(kill.text, SHADER_SRC_UNREACHED_KILL), 2);
+        CHECK_EQ(count_of(kill.text, "\n"), count_of(plain.text, "\n"));   /* every line keeps its number */
+        CHECK_STR_CONTAINS(kill.text, "\n{" SHADER_SRC_UNREACHED_KILL " gl_FragColor = vec4(1.0); }\n");
+        CHECK_STR_CONTAINS(kill.text, "void main() {" SHADER_SRC_UNREACHED_KILL "\n");
+        CHECK_STR_CONTAINS(kill.text, "// void main() { in a comment\n");
+        CHECK_STR_CONTAINS(kill.text, "float mainly() { return 1.0; }\n");
+        CHECK_STR_CONTAINS(kill.text, "void main(void);\n");
+        CHECK_NE(kill.hash, plain.hash);
+    }
+    shader_src_free(&plain);
+    shader_src_free(&kill);
+    shader_src_free(&vert);
+}
+
 int main(void) {
     snprintf(g_tmp, sizeof g_tmp, "/tmp/tarn_test_shader_src_XXXXXX");
     if (!mkdtemp(g_tmp)) { perror("mkdtemp"); return 1; }
@@ -729,6 +776,7 @@ int main(void) {
     RUN(test_map_diags);
     RUN(test_stage_names_and_paths);
     RUN(test_file_size_limit);
+    RUN(test_cpu_raster_kill);
     char cmd[320];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_tmp);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_tmp);

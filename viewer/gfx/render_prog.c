@@ -204,7 +204,8 @@ bool prog_build(prog *p, const prog_sources *sources, diag_list *dl, prog_origin
             .gstap = p->gstap, .defines = defines, .ndefines = ndefines,
             .include_dirs = sources->include_dirs, .ninclude_dirs = sources->ninclude_dirs,
             .files = sources->files,
-            .gs_input = program_gs_input(p->scene, p->cmd) };
+            .gs_input = program_gs_input(p->scene, p->cmd),
+            .cpu_raster = gl_ctx_cpu_rasteriser() };
         if (!shader_src_load(&d, &src[s])) {
             diag_list e = { 0 };
             diag_push(&e, &src[s].error);

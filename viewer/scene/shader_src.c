@@ -621,6 +621,43 @@ static void enable_layout_extensions(char **text, int version) {
         enable_extension(text, "GL_ARB_explicit_uniform_location", "for a uniform's layout(location) before GLSL 4.30");
 }
 
+/* Where the body of each `main ( [void] ) {` definition in text begins
+ * (just past its brace): the next one from *from, or NULL. t is text with
+ * its comments blanked. */
+static const char *next_main_body(const char *t, const char **from) {
+    for (const char *p = *from; (p = strstr(p, "main")) != NULL; p += 4) {
+        *from = p + 4;
+        if ((p > t && is_ident_char(p[-1])) || is_ident_char(p[4])) continue;
+        const char *q = skip_space(p + 4);
+        if (*q != '(') continue;
+        q = skip_space(q + 1);
+        if (strncmp(q, "void", 4) == 0 && !is_ident_char(q[4])) q = skip_space(q + 4);
+        if (*q != ')') continue;
+        q = skip_space(q + 1);
+        if (*q == '{') return q + 1;
+    }
+    return NULL;
+}
+
+/* SHADER_SRC_UNREACHED_KILL after the brace of every main() definition
+ * (one in each branch of an #if that holds several). */
+static void add_unreached_kill(char **text) {
+    char *t = shader_src_blank_comments(*text);
+    strbuf b = {0};
+    size_t copied = 0;
+    for (const char *from = t, *body; (body = next_main_body(t, &from)) != NULL;) {
+        size_t at = (size_t)(body - t);
+        strbuf_put(&b, *text + copied, at - copied);
+        strbuf_puts(&b, SHADER_SRC_UNREACHED_KILL);
+        copied = at;
+    }
+    free(t);
+    if (!copied) { free(b.s); return; }
+    strbuf_puts(&b, *text + copied);
+    free(*text);
+    *text = strbuf_take(&b);
+}
+
 bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     assert(desc && out);
     memset(out, 0, sizeof *out);
@@ -726,6 +763,7 @@ done:
     if (c.gs_marked) add_gs_layouts(&c);
     out->text = c.text.s ? c.text.s : mem_strdup("");
     if (!v.es) enable_layout_extensions(&out->text, version);
+    if (desc->cpu_raster && desc->stage == SHADER_FRAGMENT) add_unreached_kill(&out->text);
     out->hash = hash_fnv1a(HASH_FNV1A_BASIS, out->text, strlen(out->text));
     return true;
 }

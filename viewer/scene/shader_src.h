@@ -104,6 +104,8 @@ typedef struct shader_src_desc {
     shader_gs_input gs_input;           /* SHADER_GEOMETRY only: when the file has no input layout */
     struct file_cache *files;           /* where the stage file and includes are read (file_cache.h);
                                          * NULL: from disk */
+    bool cpu_raster;                    /* for llvmpipe: a fragment stage's main() starts with a
+                                         * kill never taken (SHADER_SRC_UNREACHED_KILL, below) */
 } shader_src_desc;
 
 typedef struct shader_src {
@@ -115,6 +117,22 @@ typedef struct shader_src {
     unsigned long long hash;    /* FNV-1a 64 of text */
     diag error;                 /* on failure: the error, at the file:line it concerns */
 } shader_src;
+
+/* What desc->cpu_raster writes right after the `{` of a fragment stage's
+ * main() (on that line: every line keeps its number). llvmpipe (Mesa 22.3)
+ * compiles an opaque fragment shader's variant twice, a function for the
+ * blocks on a primitive's edge and one for whole blocks; opaque is no
+ * blending, no depth or stencil test, a full colour mask, one sample and no
+ * kill in the shader: the full-screen passes (height maps, photons, FFTs,
+ * copies). A kill the shader may do leaves one function, about half the
+ * LLVM time of such a pass (the lake's world height map 200 -> 120 ms,
+ * natural's photons 380 -> 125 ms cold; docs/benchmark.md, "One function a
+ * shader"), frames as fast. gl_FragCoord.x is at least 0 (a pixel's
+ * centre, or its corner with pixel_center_integer), so it is never taken;
+ * a pass with a depth test still tests early (the kill only moves the
+ * depth write after the shader). On a GPU a kill can cost early-Z: never
+ * there. */
+#define SHADER_SRC_UNREACHED_KILL " if (gl_FragCoord.x < -1.0) discard; /* tarn: one llvmpipe function */"
 
 /* Lines of files[k], k >= 1, are numbered k * SHADER_SRC_LINE_BASE + line. */
 #define SHADER_SRC_LINE_BASE 100000
