@@ -385,15 +385,8 @@ static void fix_input(fixer *f, const char *name, int li) {
     }
     if (decl_end >= f->n) return;
     /* main's body */
-    size_t body = f->n;
-    for (size_t p = find_word(f, 0, f->n, "main"); p < f->n; p = find_word(f, p + 4, f->n, "main")) {
-        if (f->depth[p] != 0) continue;
-        size_t q = skip_ws(f, p + 4);
-        if (q >= f->n || f->b[q] != '(') continue;
-        while (q < f->n && f->b[q] != ')') q++;
-        q = skip_ws(f, q + 1);
-        if (q < f->n && f->b[q] == '{') { body = q + 1; break; }
-    }
+    const char *from = f->b, *main_body = shader_src_next_main_body(f->b, &from);
+    size_t body = main_body ? (size_t)(main_body - f->b) : f->n;
     if (body >= f->n || body < decl_end) return;
     /* an array input keeps its size */
     size_t after = skip_ws(f, name_at + strlen(name));

@@ -621,10 +621,7 @@ static void enable_layout_extensions(char **text, int version) {
         enable_extension(text, "GL_ARB_explicit_uniform_location", "for a uniform's layout(location) before GLSL 4.30");
 }
 
-/* Where the body of each `main ( [void] ) {` definition in text begins
- * (just past its brace): the next one from *from, or NULL. t is text with
- * its comments blanked. */
-static const char *next_main_body(const char *t, const char **from) {
+const char *shader_src_next_main_body(const char *t, const char **from) {
     for (const char *p = *from; (p = strstr(p, "main")) != NULL; p += 4) {
         *from = p + 4;
         if ((p > t && is_ident_char(p[-1])) || is_ident_char(p[4])) continue;
@@ -645,7 +642,7 @@ static void add_unreached_kill(char **text) {
     char *t = shader_src_blank_comments(*text);
     strbuf b = {0};
     size_t copied = 0;
-    for (const char *from = t, *body; (body = next_main_body(t, &from)) != NULL;) {
+    for (const char *from = t, *body; (body = shader_src_next_main_body(t, &from)) != NULL;) {
         size_t at = (size_t)(body - t);
         strbuf_put(&b, *text + copied, at - copied);
         strbuf_puts(&b, SHADER_SRC_UNREACHED_KILL);

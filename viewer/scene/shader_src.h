@@ -171,4 +171,9 @@ shader_stage shader_stage_from_path(const char *path);
  * columns stay), for scanning GLSL without matching inside a comment. Heap. */
 char *shader_src_blank_comments(const char *text);
 
+/* Where the body of a `main ( [void] ) {` definition begins (just past its
+ * brace) in t, text with its comments blanked: the next one from *from
+ * (start with *from = t; it is moved past), or NULL when there is none. */
+const char *shader_src_next_main_body(const char *t, const char **from);
+
 #endif
