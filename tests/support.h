@@ -1,7 +1,7 @@
 /* tests/support.h: what several tests need (header-only, one include per
  * test program): a scratch directory under /tmp with the files a test
  * writes there; the shader fixtures of tests/data/shaders; running a
- * command line.
+ * command line; counting a needle in a text.
  *
  *     if (!scratch_create("render")) return 1;   // /tmp/tarn-test-render-XXXXXX
  *     scratch_write("a.glib", "##OpenGL GLIB\n...");
@@ -62,6 +62,13 @@ static inline void scratch_remove(void) {
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", scratch_dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", scratch_dir);
+}
+
+/* How many times needle occurs in hay, not overlapping. */
+static inline int count_of(const char *hay, const char *needle) {
+    int n = 0;
+    for (const char *p = hay; (p = strstr(p, needle)) != NULL; p += strlen(needle)) n++;
+    return n;
 }
 
 /* tests/data/shaders/NAME, under $TARN_SOURCE_DIR (ctest sets it) or the

@@ -12,12 +12,6 @@
 #include "gl_support.h"
 #include "render.h"
 
-static int count_of(const char *hay, const char *needle) {
-    int n = 0;
-    for (const char *s = hay; (s = strstr(s, needle)) != NULL; s += strlen(needle)) n++;
-    return n;
-}
-
 static const char *vert = "#version 330 compatibility\n"
                           "void main() { gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex; }\n";
 

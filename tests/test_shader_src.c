@@ -707,12 +707,6 @@ static void test_file_size_limit(void) {
     }
 }
 
-static int count_of(const char *hay, const char *needle) {
-    int n = 0;
-    for (const char *p = hay; (p = strstr(p, needle)) != NULL; p += strlen(needle)) n++;
-    return n;
-}
-
 /* For llvmpipe a fragment stage's main() starts with a kill never taken
  * (one compiled function instead of two): after the brace of each main()
  * definition, on its line; not in a comment, not in mainly(), not in a
