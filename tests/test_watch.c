@@ -113,14 +113,19 @@ static bool save_in_place(const char *path, const char *content) {
 }
 
 /* Truncate, then write in two write() calls with a pause (a slow editor). */
-static bool save_truncate_write(const char *path, const char *content, int pause_ms) {
+static bool save_truncate_write_timed(const char *path, const char *content, int pause_ms, double *closing_ms) {
     int fd = open(path, O_WRONLY | O_TRUNC);
     if (fd < 0) return false;
     size_t n = strlen(content), half = n / 2;
     bool ok = write_all(fd, content, half);
     if (pause_ms > 0) sleep_ms(pause_ms);
     ok = ok && write_all(fd, content + half, n - half);
+    if (closing_ms) *closing_ms = now_ms();   /* before the close: a report may follow it at once */
     return close(fd) == 0 && ok;
+}
+
+static bool save_truncate_write(const char *path, const char *content, int pause_ms) {
+    return save_truncate_write_timed(path, content, pause_ms, NULL);
 }
 
 /* Write a temp file in the same directory, then rename it over the file
@@ -366,14 +371,13 @@ static void test_save_slow_editor(void) {
 typedef struct stalled_save {
     const char *path, *content;
     int pause_ms;
-    double closed_ms;          /* when the writer closed the file */
+    double closed_ms;          /* when the writer began to close the file (its last write done) */
     bool ok;
 } stalled_save;
 
 static void *stalled_writer(void *arg) {
     stalled_save *s = arg;
-    s->ok = save_truncate_write(s->path, s->content, s->pause_ms);
-    s->closed_ms = now_ms();
+    s->ok = save_truncate_write_timed(s->path, s->content, s->pause_ms, &s->closed_ms);
     return NULL;
 }
 
