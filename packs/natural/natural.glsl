@@ -77,15 +77,22 @@ bool natInside(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0))) && all(les
 // read from the depth target. For P = perspective, clip.z = -A clip.w + B
 // with B = clip.z of the eye, so the view depth of an NDC depth z is
 // B / (z + A). valid: the target holds something there (depth < 1).
-vec3 natShownPoint(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out vec2 uv, out bool valid) {
+// zt: the depth read (a caller asking whether it is the sky need not read
+// it again: on llvmpipe every texture read costs every pixel).
+vec3 natShownPointZ(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out vec2 uv, out bool valid, out float zt) {
     vec4 cx = vp * vec4(x, 1.0);
     float B = (vp * vec4(eye, 1.0)).z;
     float A = (B - cx.z) / cx.w;
     uv = cx.xy / cx.w * 0.5 + 0.5;
-    float zt = texture(depthTex, uv).r;
+    zt = texture(depthTex, uv).r;
     valid = natInside(uv) && zt < 1.0 && cx.w > 0.0;
     float wv = B / (2.0 * zt - 1.0 + A);
     return eye + (x - eye) * (wv / cx.w);
+}
+
+vec3 natShownPoint(mat4 vp, vec3 eye, sampler2D depthTex, vec3 x, out vec2 uv, out bool valid) {
+    float zt;
+    return natShownPointZ(vp, eye, depthTex, x, uv, valid, zt);
 }
 
 // The nearest of the four texels a bilinear read of the depth target mixes

@@ -177,10 +177,11 @@ float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax
 // -|shown(U) - U| < 0), then REFINE_BISECT halvings of the bracket and one
 // regula-falsi step; a ray
 // that leaves the target keeps its last point in front. fallback: the
-// unperturbed lookup when W leaves the target or meets nothing. path:
-// |shown - U|. sky: the lookup met the sky (or nothing).
-vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, out float path, out bool sky,
-                 out vec3 litAt, out bool lit) {
+// unperturbed lookup (b0 at uv0, depth z0, valid ok0: main's) when W
+// leaves the target or meets nothing. path: |shown - U|. sky: the lookup
+// met the sky (or nothing).
+vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, vec3 b0, vec2 uv0, bool ok0, float z0,
+                 out float path, out bool sky, out vec3 litAt, out bool lit) {
     float s = s0;
     lit = false;
     litAt = vec3(0.0);
@@ -190,7 +191,8 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
     bool left;
     s = natMarch(uCamWideVP, uCameraPos, uRefractionDepth, U, r, smax, g0, left);
 #endif
-    vec3 shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok);
+    float zt;
+    vec3 shown = natShownPointZ(uCamWideVP, uCameraPos, uRefractionDepth, U + s * r, uv, ok, zt);
     // The perturbed lookup left the target, or the march closed on the
     // silhouette of a thing standing out of the water (a floating sphere):
     // the ray went behind it, where what it meets is hidden from the
@@ -234,9 +236,13 @@ vec3 lookThrough(vec3 U, vec3 r, float s0, float smax, float g0, bool fallback, 
         return worldShadeAt(terrainAlbedo(g.xz, hg.x, gn), gn, g);
     }
 #endif
-    if ((!ok || edge) && fallback)
-        shown = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv, ok);
-    sky = !ok || texture(uRefractionDepth, uv).r >= NAT_SKY_DEPTH;
+    if ((!ok || edge) && fallback) {
+        shown = b0;
+        uv = uv0;
+        ok = ok0;
+        zt = z0;
+    }
+    sky = !ok || zt >= NAT_SKY_DEPTH;
     path = ok ? distance(U, shown) : 1e4;
     gRefractHit = ok ? shown : vec3(0.0);
     if (!ok) return vec3(0.0);
@@ -278,13 +284,14 @@ void main() {
     bool tir = dot(dirT, dirT) == 0.0;
     vec2 uv0;
     bool ok0;
-    vec3 b0 = natShownPoint(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0);
+    float z0;
+    vec3 b0 = natShownPointZ(uCamWideVP, uCameraPos, uRefractionDepth, U, uv0, ok0, z0);
     float dv = ok0 ? distance(U, b0) : 1e4;             // what lies behind U: from above the view ray's path in water
     float s0 = under ? uReflectDist * uWorldScale : clamp(dv, 0.0, uDepthClamp * uWorldScale) * uDepthScale;
     vec3 refrAt;
     bool refrLit;
-    vec3 c = lookThrough(U, dirT, s0, min(1.5 * dv + 0.5 * uWorldScale, 50.0 * uWorldScale), -dv, !under, path, sky,
-                         refrAt, refrLit);
+    vec3 c = lookThrough(U, dirT, s0, min(1.5 * dv + 0.5 * uWorldScale, 50.0 * uWorldScale), -dv, !under, b0, uv0, ok0, z0,
+                         path, sky, refrAt, refrLit);
     hit = gRefractHit;
 
     // From below, the internal reflection: the reflection target holds the
@@ -334,8 +341,9 @@ void main() {
         {
             vec2 uvm;
             bool okm;
-            vec3 m0 = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U, uvm, okm);
-            float dm = okm && texture(uReflectionDepth, uvm).r < NAT_SKY_DEPTH ? distance(U, m0) : 50.0 * uWorldScale;
+            float zm;
+            vec3 m0 = natShownPointZ(uCamMirrorVP, mirrorEye, uReflectionDepth, U, uvm, okm, zm);
+            float dm = okm && zm < NAT_SKY_DEPTH ? distance(U, m0) : 50.0 * uWorldScale;
             bool leftm;   // the reflected ray left the mirror target: its last point in front serves
             cr = natMarch(uCamMirrorVP, mirrorEye, uReflectionDepth, U, Rr, min(1.5 * dm + 0.5 * uWorldScale, 50.0 * uWorldScale), -dm, leftm);
             // closed on a silhouette: the ray passed behind a thing (as the
