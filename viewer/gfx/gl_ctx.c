@@ -234,23 +234,8 @@ static void loss_setup(gl_ctx *c) {
     c->lose_after = sim && sim[0] ? atol(sim) : -1;
 }
 
-/* llvmpipe's SIMD width, set before the first context loads the driver
- * (Mesa reads LP_NATIVE_VECTOR_WIDTH once, when llvmpipe starts): 128 bits
- * (4 lanes) instead of the CPU's widest (256 on AVX2). Measured on this
- * project's 2-core machines (scripts/vector_width_ab.sh, docs/benchmark.md
- * "llvmpipe's vector width"): every pack's shaders compile about a fifth
- * faster (the water shaders' cold compile 17-22% less: a save, a load, the
- * first picture), frames are as fast, and the pixels are bit for bit the
- * same. A width the user set is kept; a GPU's driver ignores it. Only
- * written while unset, so a later context (a worker's) never writes the
- * environment while another thread reads it. */
-static void prefer_llvmpipe_width(void) {
-    if (!getenv("LP_NATIVE_VECTOR_WIDTH")) setenv("LP_NATIVE_VECTOR_WIDTH", "128", 0);
-}
-
 gl_ctx *gl_ctx_create_headless(char *err, int errlen) {
     keep_heap_mapped();
-    prefer_llvmpipe_width();
     gl_ctx *c = mem_zalloc(sizeof *c);
     egl_diag g = { EGL_STAGE_NONE, EGL_SUCCESS, "" };
     /* TARN_EGL_PLATFORM=device forces the device platform (GPU machines). */
@@ -295,7 +280,6 @@ static void glfw_error(int code, const char *msg) {
 
 gl_ctx *gl_ctx_create_window(int w, int h, const char *title, char *err, int errlen) {
     keep_heap_mapped();
-    prefer_llvmpipe_width();
     glfwSetErrorCallback(glfw_error);
     if (!glfwInit()) {
         snprintf(err, errlen, "cannot open a window: GLFW failed to initialise "
