@@ -4,7 +4,9 @@
  * one started with wait_for_shown does not make the still frame's code
  * before the window says it has shown the change (compile_job_shown) or
  * COMPILE_JOB_SHOWN_WAIT_S has passed, so the window's first frame of the
- * change does not share the cores with that compile. */
+ * change does not share the cores with that compile; one for a paused
+ * window (still) draws only the change's first frame before its ready,
+ * and every frame by its end. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -17,11 +19,12 @@
 
 /* Runs a job on r; shown_at_ready: call compile_job_shown as soon as it
  * is ready. Gives the times from start to ready and from ready to done. */
-static void run(render *r, bool wait, bool shown_at_ready, double *ready_s, double *done_after_s) {
+static void run_job(render *r, bool wait, bool shown_at_ready, bool still, double *ready_s, double *done_after_s,
+                    int *frames_at_ready, int *frames_in_all) {
     compile_job *j = compile_job_create();
     render *const scenes[1] = { r };
     compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0,
-                           .view = render_default_view(r), .wait_for_shown = wait };
+                           .view = render_default_view(r), .wait_for_shown = wait, .still = still };
     double t0 = clock_now_s(), ready_at = 0, secs;
     CHECK(compile_job_start(j, &d));
     CHECK(!compile_job_start(j, &d));   /* one job at a time */
@@ -40,7 +43,13 @@ static void run(render *r, bool wait, bool shown_at_ready, double *ready_s, doub
     if (!ready_at) ready_at = done_at;
     *ready_s = ready_at - t0;
     *done_after_s = done_at - ready_at;
+    compile_job_frames(j, frames_at_ready, frames_in_all);
     compile_job_destroy(j);
+}
+
+static void run(render *r, bool wait, bool shown_at_ready, double *ready_s, double *done_after_s) {
+    int at_ready, in_all;
+    run_job(r, wait, shown_at_ready, false, ready_s, done_after_s, &at_ready, &in_all);
 }
 
 static void test_waits_for_the_window(void) {
@@ -59,10 +68,31 @@ static void test_waits_for_the_window(void) {
     render_destroy(r);
 }
 
+/* A paused window draws the change's first frame and then the full one:
+ * the job makes the moving picture's later frames (the world copied from
+ * its cache, its layers) after its ready, not before. */
+static void test_still_window_first_frame_first(void) {
+    if (!compile_job_useful()) SKIP("Mesa's shader cache is off: the window compiles on the frame");
+    render *r = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    double ready, after;
+    int moving_ready, moving_all, still_ready, still_all;
+    run_job(r, false, false, false, &ready, &after, &moving_ready, &moving_all);
+    run_job(r, false, false, true, &ready, &after, &still_ready, &still_all);
+    printf("frames at ready / in all: moving %d / %d, still %d / %d\n", moving_ready, moving_all, still_ready,
+           still_all);
+    CHECK_MSG(moving_ready == 4 && moving_all == 5, "a moving picture's job: %d frames at ready, %d in all "
+              "(4 moving frames, then the still one)", moving_ready, moving_all);
+    CHECK_MSG(still_ready == 1 && still_all == 5, "a still window's job: %d frames at ready, %d in all (the "
+              "change's first frame, then the 3 others and the still one)", still_ready, still_all);
+    render_destroy(r);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
     RUN(test_waits_for_the_window);
+    RUN(test_still_window_first_frame_first);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

@@ -178,7 +178,8 @@ static bool start_compile(app *a, bool prime) {
     if (!a->cjob) a->cjob = compile_job_create();
     compile_job_desc d = { .scenes = a->scenes, .n = a->nscenes, .w = a->drawn_w, .h = a->drawn_h,
                            .t = a->s.t, .view = orbit_view(&a->s.cam),
-                           .wait_for_shown = !prime && a->budget_ms > 0 };   /* early_wanted's reload */
+                           .wait_for_shown = !prime && a->budget_ms > 0,   /* early_wanted's reload */
+                           .still = a->s.paused };
     if (!compile_job_start(a->cjob, &d)) return false;
     a->compiling = true;
     a->priming = prime;

@@ -44,6 +44,9 @@ struct compile_job {
     bool ready_taken;            /* under mu: compile_job_ready said so */
     double ready_seconds;        /* under mu: how long that took */
     bool wait_for_shown;         /* under mu: the job waits for shown after its ready */
+    bool still;                  /* compile_job_desc.still: only the first frame before the ready */
+    int frames_at_ready, frames_in_all;   /* under mu: the frames the last job drew (compile_job_frames) */
+    int frames_drawn;            /* the worker's own: this job's so far */
     bool shown;                  /* under mu: compile_job_shown since the job started */
     bool quit;                   /* under mu: destroy asked the worker to end */
     double seconds;              /* under mu: how long it ran */
@@ -180,14 +183,16 @@ static bool job_canvas(const compile_job *j, const job_scene *s, render_target *
     return s->srgb ? render_target_create_srgb(t, *w, *h) : render_target_create(t, *w, *h, false);
 }
 
-/* Loads (or reloads) the scene and draws the frames the window draws while
- * its picture changes, as the window would: every changed stage compiled,
- * every variant those draws need made, all into Mesa's cache. Pixels do
- * not matter. The frames (no side a power of two there: side_off_pow2):
- * the frame after the reload, the same again (the static world copied
- * from its cache), then with the clock running (the world's layers
- * built, then composited). */
-static void warm_moving(compile_job *j, int i) {
+/* The frames the window draws while its picture changes (no side a power
+ * of two there: side_off_pow2): the frame after the reload, the same again
+ * (the static world copied from its cache), then with the clock running
+ * (the world's layers built, then composited). */
+static const double warm_dt[] = { 0, 0, 0.04, 0.08 };
+#define WARM_FRAMES ((int)(sizeof warm_dt / sizeof warm_dt[0]))
+
+/* Loads (or reloads) scene i as the window would: every changed stage
+ * compiled (the GLSL front end), into Mesa's cache. */
+static void job_load(compile_job *j, int i) {
     const job_scene *s = &j->scenes[i];
     if (j->kept[i] && !same_scene(&j->kept_as[i], s)) {
         render_destroy(j->kept[i]);
@@ -201,17 +206,26 @@ static void warm_moving(compile_job *j, int i) {
         render_load(j->kept[i], s->glib);   /* its errors are the window's reload's to report */
     }
     else render_load(j->kept[i], NULL);
+    if (apply_defines(j->kept[i], s)) render_rebuild_programs(j->kept[i]);
+}
+
+/* Draws warm_dt's frames [from, to) of scene i as the window would: every
+ * variant those draws need made (the LLVM compile), into Mesa's cache.
+ * Pixels do not matter. */
+static void warm_moving(compile_job *j, int i, int from, int to) {
+    if (from >= to) return;
+    const job_scene *s = &j->scenes[i];
     render *r = j->kept[i];
-    if (apply_defines(r, s)) render_rebuild_programs(r);
     render_target t;
     int w, h;
     bool made = job_canvas(j, s, &t, &w, &h);
-    if (made && render_has_scene(r)) {
+    if (made && r && render_has_scene(r)) {
         if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
-        static const double dt[] = { 0, 0, 0.04, 0.08 };
         render_set_detail(r, COMPILE_JOB_REDUCED_DETAIL);
-        for (size_t k = 0; k < sizeof dt / sizeof dt[0] && !quitting(j); k++)
-            render_frame_at(r, j->t + dt[k], t.fbo, 0, 0, w, h, &j->view);
+        for (int k = from; k < to && !quitting(j); k++) {
+            render_frame_at(r, j->t + warm_dt[k], t.fbo, 0, 0, w, h, &j->view);
+            j->frames_drawn++;
+        }
         glDisable(GL_FRAMEBUFFER_SRGB);
         glFinish();
     }
@@ -230,6 +244,7 @@ static void warm_still(compile_job *j, int i) {
         if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
         render_set_detail(r, 1);
         render_frame_at(r, j->t, t.fbo, 0, 0, w, h, &j->view);
+        j->frames_drawn++;
         glDisable(GL_FRAMEBUFFER_SRGB);
         glFinish();
     }
@@ -252,21 +267,30 @@ static void wait_for_shown(compile_job *j) {
 /* One job: the scenes asked for, warmed; renders of scenes no longer
  * drawn are let go. */
 static void run_job(compile_job *j) {
+    j->frames_drawn = 0;
     if (!j->ctx) {
         char err[MSG_MAX] = "";
         j->ctx = gl_ctx_create_headless(err, sizeof err);   /* none: the window compiles on the frame */
         if (!j->ctx) return;
     }
     double t0 = clock_now_s();
-    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i);
+    int first = j->still ? 1 : WARM_FRAMES;   /* the frames the window needs before it can show the change */
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) {
+        job_load(j, i);
+        warm_moving(j, i, 0, first);
+    }
     /* the window can show the change now: its frames while the picture
-     * changes find their code; the still picture's frame, which it draws
-     * only once the picture stands still, is made meanwhile */
+     * changes find their code (a paused window's first: the others, made
+     * next, only once its picture moves again); the still picture's
+     * frame, which it draws only once the picture stands still, is made
+     * meanwhile */
     pthread_mutex_lock(&j->mu);
     j->ready = true;
     j->ready_seconds = clock_now_s() - t0;
+    j->frames_at_ready = j->frames_drawn;
     wait_for_shown(j);
     pthread_mutex_unlock(&j->mu);
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first, WARM_FRAMES);
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_still(j, i);
     for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
         if (j->kept[i]) {
@@ -288,6 +312,7 @@ static void *worker(void *arg) {
         pthread_mutex_lock(&j->mu);
         j->done = true;
         j->seconds = clock_now_s() - t0;
+        j->frames_in_all = j->frames_drawn;
     }
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < COMPILE_JOB_MAX_SCENES; i++) render_destroy(j->kept[i]);
@@ -313,6 +338,7 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d) {
     j->request = j->busy = true;
     j->done = j->ready = j->ready_taken = j->shown = false;
     j->wait_for_shown = d->wait_for_shown;
+    j->still = d->still;
     pthread_cond_signal(&j->cv);
     pthread_mutex_unlock(&j->mu);
     return true;
@@ -344,6 +370,15 @@ bool compile_job_ready(compile_job *j, double *seconds) {
     }
     pthread_mutex_unlock(&j->mu);
     return ready;
+}
+
+void compile_job_frames(compile_job *j, int *at_ready, int *in_all) {
+    *at_ready = *in_all = 0;
+    if (!j) return;
+    pthread_mutex_lock(&j->mu);
+    *at_ready = j->frames_at_ready;
+    *in_all = j->frames_in_all;
+    pthread_mutex_unlock(&j->mu);
 }
 
 bool compile_job_done(compile_job *j, double *seconds) {

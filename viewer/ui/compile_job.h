@@ -54,6 +54,13 @@ typedef struct compile_job_desc {
      * first frame of the change, drawn meanwhile on the cores the job's
      * compile would take, cost 75-100 ms instead of 35-45 (basic, lake) */
     bool wait_for_shown;
+    /* the window's clock is paused: until something else changes it draws
+     * the change's first frame and then the still picture's full one, none
+     * like the later frames of a moving picture (the world's cache copied,
+     * its layers built and composited), so the job makes those after its
+     * ready instead of before (a save's first new frame about 50 ms sooner
+     * on the lake) */
+    bool still;
 } compile_job_desc;
 
 compile_job *compile_job_create(void);
@@ -82,6 +89,10 @@ void compile_job_shown(compile_job *j);
 /* True once after a started job has ended (every frame's code made), with
  * how long it ran; a new job can start from then. */
 bool compile_job_done(compile_job *j, double *seconds);
+/* The frames the last job that ended drew before its ready and in all,
+ * over its scenes (what a still window's job leaves until after its ready
+ * shows here: tests). */
+void compile_job_frames(compile_job *j, int *at_ready, int *in_all);
 
 /* Does compiling off the frame help here? False when Mesa's shader cache
  * is off (MESA_SHADER_CACHE_DISABLE or MESA_GLSL_CACHE_DISABLE true), or
