@@ -19,9 +19,8 @@
 
 /* Runs a job on r; shown_at_ready: call compile_job_shown as soon as it
  * is ready. Gives the times from start to ready and from ready to done. */
-static void run_job(render *r, bool wait, bool shown_at_ready, bool still, double *ready_s, double *done_after_s,
-                    int *frames_at_ready, int *frames_in_all) {
-    compile_job *j = compile_job_create();
+static void run_job_on(compile_job *j, render *r, bool wait, bool shown_at_ready, bool still, double *ready_s,
+                       double *done_after_s, int *frames_at_ready, int *frames_in_all) {
     render *const scenes[1] = { r };
     compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0,
                            .view = render_default_view(r), .wait_for_shown = wait, .still = still };
@@ -44,6 +43,12 @@ static void run_job(render *r, bool wait, bool shown_at_ready, bool still, doubl
     *ready_s = ready_at - t0;
     *done_after_s = done_at - ready_at;
     compile_job_frames(j, frames_at_ready, frames_in_all);
+}
+
+static void run_job(render *r, bool wait, bool shown_at_ready, bool still, double *ready_s, double *done_after_s,
+                    int *frames_at_ready, int *frames_in_all) {
+    compile_job *j = compile_job_create();
+    run_job_on(j, r, wait, shown_at_ready, still, ready_s, done_after_s, frames_at_ready, frames_in_all);
     compile_job_destroy(j);
 }
 
@@ -88,11 +93,35 @@ static void test_still_window_first_frame_first(void) {
     render_destroy(r);
 }
 
+/* With the clock running, the moving picture's later frames draw only the
+ * world's code anew: before the ready where the world's programs are new
+ * (the job's first load), after it where the reload kept them (a save of a
+ * pack's shader). */
+static void test_moving_picture_world_kept(void) {
+    if (!compile_job_useful()) SKIP("Mesa's shader cache is off: the window compiles on the frame");
+    render *r = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    compile_job *j = compile_job_create();
+    double ready, after;
+    int first_ready, first_all, again_ready, again_all;
+    run_job_on(j, r, false, false, false, &ready, &after, &first_ready, &first_all);
+    run_job_on(j, r, false, false, false, &ready, &after, &again_ready, &again_all);
+    printf("frames at ready / in all: the job's first load %d / %d, a reload that kept the world %d / %d\n",
+           first_ready, first_all, again_ready, again_all);
+    CHECK_MSG(first_ready == 4 && first_all == 5, "the world's programs new: %d frames at ready, %d in all",
+              first_ready, first_all);
+    CHECK_MSG(again_ready == 1 && again_all == 5, "the world's programs kept: %d frames at ready, %d in all",
+              again_ready, again_all);
+    compile_job_destroy(j);
+    render_destroy(r);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
     RUN(test_waits_for_the_window);
     RUN(test_still_window_first_frame_first);
+    RUN(test_moving_picture_world_kept);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

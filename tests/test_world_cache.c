@@ -1,8 +1,9 @@
 /* The static-world cache (viewer/gfx/world_cache.h): a frame whose World
  * draws were copied from the cache equals, pixel for pixel, the same frame
- * drawn with the cache off; a changed camera, time, uniform or reload draws
+ * drawn with the cache off; a changed camera, time, uniform or world draws
  * the world again (the frame equals a fresh render's, and differs from the
- * cached one). The packs' passes cover a float colour target with a depth
+ * cached one); a reload that kept the world (a save of a pack's shader)
+ * keeps the cache. The packs' passes cover a float colour target with a depth
  * texture (natural's refraction and reflection) and the screen. */
 #include <GL/gl.h>
 #include <stdio.h>
@@ -19,6 +20,7 @@
 #define W 160
 #define H 90
 #define LAKE TARN_SOURCE_DIR "/scenes/lake.glib"
+#define POOL TARN_SOURCE_DIR "/scenes/pool.glib"
 
 typedef struct rig {
     render *r;
@@ -87,17 +89,29 @@ static void check_pack(const char *pack, bool is_float) {
         free(b4);
     }
 
-    /* a reload forgets: the next frame draws, then copies again */
+    /* a reload that kept the world (its description and programs): kept,
+     * the next frame copies (the sliders keep their values on a reload) */
+    free(frame(&on, 2.0, NULL));
+    free(frame(&on, 2.0, NULL));   /* kept again at the scene's view */
     CHECK(render_load(on.r, LAKE));
     CHECK(render_load(off.r, LAKE));
     long h1 = render_world_cache_hits(on.r);
-    float *a5 = frame(&on, 2.0, NULL);
-    CHECK_EQ(render_world_cache_hits(on.r), h1);
-    float *a6 = frame(&on, 2.0, NULL), *a7 = frame(&on, 2.0, NULL), *b6 = frame(&off, 2.0, NULL);
-    CHECK_GT(render_world_cache_hits(on.r), h1);
-    CHECK_MSG(same(a5, b6) && same(a6, b6) && same(a7, b6), "%s: after a reload", pack);
+    float *a5 = frame(&on, 2.0, NULL), *b5 = frame(&off, 2.0, NULL);
+    CHECK_MSG(render_world_cache_hits(on.r) > h1, "%s: a reload that kept the world forgot its cache", pack);
+    CHECK_MSG(same(a5, b5), "%s: after a reload that kept the world", pack);
 
-    float *all[] = { a0, a0b, a1, b1, a2, b2, a3, b3, a5, a6, a7, b6 };
+    /* another world in between forgets: the next frame draws, then copies again */
+    CHECK(render_load(on.r, POOL));
+    free(frame(&on, 2.0, NULL));
+    CHECK(render_load(on.r, LAKE));
+    long h2 = render_world_cache_hits(on.r);
+    float *a6 = frame(&on, 2.0, NULL);
+    CHECK_MSG(render_world_cache_hits(on.r) == h2, "%s: the first frame after another world copied a World", pack);
+    float *a7 = frame(&on, 2.0, NULL), *a8 = frame(&on, 2.0, NULL), *b6 = frame(&off, 2.0, NULL);
+    CHECK_GT(render_world_cache_hits(on.r), h2);
+    CHECK_MSG(same(a6, b6) && same(a7, b6) && same(a8, b6), "%s: after another world", pack);
+
+    float *all[] = { a0, a0b, a1, b1, a2, b2, a3, b3, a5, b5, a6, a7, a8, b6 };
     for (size_t i = 0; i < sizeof all / sizeof *all; i++) free(all[i]);
     rig_close(&on);
     rig_close(&off);

@@ -62,6 +62,15 @@ void render_destroy(render *r) {
 
 bool render_has_scene(const render *r) { return r->cur.glib != NULL; }
 bool render_has_world(const render *r) { return r->world.active; }
+
+unsigned long long render_world_programs_hash(const render *r) {
+    if (!r->world.active) return 0;
+    const gpu_world *w = &r->world;
+    unsigned long long h = HASH_FNV1A_BASIS;
+    for (int m = 0; m < WORLD_MODES; m++) h = hash_fnv1a(h, &w->progs[m].hash, sizeof w->progs[m].hash);
+    h = hash_fnv1a(h, &w->height_prog.hash, sizeof w->height_prog.hash);
+    return hash_fnv1a(h, &w->layers_prog.hash, sizeof w->layers_prog.hash);
+}
 bool render_reads_clock(const render *r) { return r->reads_clock; }
 
 bool render_set_world_override(render *r, const char *command, const float *v, int n) {

@@ -449,6 +449,34 @@ static void build_world(render *r, const glib_scene *g, diag_list *log, prog_ori
     else world_free(&r->world);
 }
 
+/* The world's caches (the static world's pixels, its layers) hold the
+ * world as it was drawn; their keys hold everything else it depends on
+ * (camera, time, GL state, targets). So a load or rebuild keeps them where
+ * the world's description and its programs' texts are the same, and
+ * forgets them where either changed (a GL name reused by the new world's
+ * textures must not match an old key). A save of a pack's shader then
+ * redraws no world: with the clock running, the frame after it had built
+ * the world's layers again, 100-120 ms of raymarch's on the lake. */
+typedef struct world_was {
+    bool active;
+    ref_world_desc desc;
+    unsigned long long programs;
+} world_was;
+
+static void world_remember(const render *r, world_was *w) {
+    w->active = r->world.active;
+    if (w->active) memcpy(&w->desc, &r->world.desc, sizeof w->desc);   /* padding too: compared by memcmp */
+    w->programs = render_world_programs_hash(r);
+}
+
+static void world_caches_update(render *r, const world_was *w) {
+    bool same = w->active && r->world.active && memcmp(&w->desc, &r->world.desc, sizeof w->desc) == 0 &&
+                render_world_programs_hash(r) == w->programs;
+    if (same) return;
+    world_cache_free(&r->wcache);
+    world_layers_free(&r->wlayers);
+}
+
 bool render_load(render *r, const char *glib_path) {
     if (glib_path && glib_path != r->path) snprintf(r->path, sizeof r->path, "%s", glib_path);
     diag_list log = { 0 };
@@ -466,9 +494,10 @@ bool render_load(render *r, const char *glib_path) {
         r->errors = true;
         return false;
     }
+    world_was was;
+    world_remember(r, &was);
     build_world(r, g, &log, &from);
-    world_cache_free(&r->wcache);   /* the world, its program or the commands may differ */
-    world_layers_free(&r->wlayers);
+    world_caches_update(r, &was);
     scene_state fresh;
     memset(&fresh, 0, sizeof fresh);
     fresh.glib = g;
@@ -496,11 +525,12 @@ bool render_rebuild_programs(render *r) {
     }
     note_noise_units(&r->cur);
     want_terrain_map(r, &r->cur);
-    world_cache_free(&r->wcache);   /* the world's program may draw differently now */
-    world_layers_free(&r->wlayers);
+    world_was was;
+    world_remember(r, &was);
     if (r->world.active) {
         if (!world_build_programs(&r->world, &r->sources, &log, &from)) ok = false;
     }
+    world_caches_update(r, &was);
     collect_deps(r, r->cur.glib, &r->cur);
     render_messages_set(r, &log, &from);
     r->errors = !ok;

@@ -191,9 +191,11 @@ static const double warm_dt[] = { 0, 0, 0.04, 0.08 };
 #define WARM_FRAMES ((int)(sizeof warm_dt / sizeof warm_dt[0]))
 
 /* Loads (or reloads) scene i as the window would: every changed stage
- * compiled (the GLSL front end), into Mesa's cache. */
-static void job_load(compile_job *j, int i) {
+ * compiled (the GLSL front end), into Mesa's cache. True when the world's
+ * own programs are new (a first load, or their texts changed). */
+static bool job_load(compile_job *j, int i) {
     const job_scene *s = &j->scenes[i];
+    unsigned long long world_before = j->kept[i] ? render_world_programs_hash(j->kept[i]) : 0;
     if (j->kept[i] && !same_scene(&j->kept_as[i], s)) {
         render_destroy(j->kept[i]);
         j->kept[i] = NULL;
@@ -207,6 +209,7 @@ static void job_load(compile_job *j, int i) {
     }
     else render_load(j->kept[i], NULL);
     if (apply_defines(j->kept[i], s)) render_rebuild_programs(j->kept[i]);
+    return render_world_programs_hash(j->kept[i]) != world_before;
 }
 
 /* Draws warm_dt's frames [from, to) of scene i as the window would: every
@@ -274,10 +277,14 @@ static void run_job(compile_job *j) {
         if (!j->ctx) return;
     }
     double t0 = clock_now_s();
-    int first = j->still ? 1 : WARM_FRAMES;   /* the frames the window needs before it can show the change */
+    /* The frames the window needs before it can show the change: the
+     * first; the clock's too where the world's programs changed (their
+     * frames draw only the world's code anew: its cache copied, its layers
+     * built and composited), unless the window is paused. */
+    int first[COMPILE_JOB_MAX_SCENES] = { 0 };
     for (int i = 0; i < j->nscenes && !quitting(j); i++) {
-        job_load(j, i);
-        warm_moving(j, i, 0, first);
+        first[i] = job_load(j, i) && !j->still ? WARM_FRAMES : 1;
+        warm_moving(j, i, 0, first[i]);
     }
     /* the window can show the change now: its frames while the picture
      * changes find their code (a paused window's first: the others, made
@@ -290,7 +297,7 @@ static void run_job(compile_job *j) {
     j->frames_at_ready = j->frames_drawn;
     wait_for_shown(j);
     pthread_mutex_unlock(&j->mu);
-    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first, WARM_FRAMES);
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first[i], WARM_FRAMES);
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_still(j, i);
     for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
         if (j->kept[i]) {
