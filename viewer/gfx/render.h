@@ -71,9 +71,10 @@ bool render_has_scene(const render *r);
 /* The scene describes a world (lit in linear radiance, like the reference). */
 bool render_has_world(const render *r);
 /* A hash of the texts the world's own programs were built from (its
- * shading, height map and layers), 0 without a world: a load that changed
- * it rebuilt them (ui/compile_job.c: only then do the clock's frames need
- * new code). */
+ * shading, height map and layers, and the ocean's and flow's passes that
+ * move the water its shore is wet under), 0 without a world: a load that
+ * changed it rebuilt them (its caches forgotten; ui/compile_job.c: only
+ * then do the clock's frames need new code). */
 unsigned long long render_world_programs_hash(const render *r);
 /* Does the picture depend on the time it is drawn at? A program of the
  * scene reads the clock (glman's Timer, tarn's uTime), or the world does
