@@ -123,10 +123,10 @@ static world_cache_slot *find(world_cache *c, int cmd) {
     return NULL;
 }
 
-/* The framebuffer bindings and scissor a copy changes, put back after. */
+/* The framebuffer bindings, scissor and sRGB writes a copy changes, put back after. */
 typedef struct saved_gl {
     GLint draw_fbo, read_fbo, rb;
-    GLboolean scissor;
+    GLboolean scissor, srgb;
 } saved_gl;
 
 static void save_gl(saved_gl *s) {
@@ -135,6 +135,11 @@ static void save_gl(saved_gl *s) {
     glGetIntegerv(GL_RENDERBUFFER_BINDING, &s->rb);
     s->scissor = glIsEnabled(GL_SCISSOR_TEST);
     glDisable(GL_SCISSOR_TEST);   /* a blit obeys the scissor */
+    /* and, into an sRGB target with this on, decodes and encodes again:
+     * llvmpipe's round trip moved pixels by one level (a window's sRGB
+     * canvas); off, the cache's copies are the bytes, as its key promises */
+    s->srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
+    glDisable(GL_FRAMEBUFFER_SRGB);
 }
 
 static void restore_gl(const saved_gl *s) {
@@ -142,6 +147,7 @@ static void restore_gl(const saved_gl *s) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->rb);
     if (s->scissor) glEnable(GL_SCISSOR_TEST);
+    if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
 }
 
 /* A copy went wrong (a format the blit refused): draw this command from now on. */
