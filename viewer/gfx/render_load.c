@@ -459,18 +459,18 @@ static void build_world(render *r, const glib_scene *g, diag_list *log, prog_ori
  * the world's layers again, 100-120 ms of raymarch's on the lake. */
 typedef struct world_was {
     bool active;
-    ref_world_desc desc;
+    unsigned builds;              /* world_build's count: a new description builds anew */
     unsigned long long programs;
 } world_was;
 
 static void world_remember(const render *r, world_was *w) {
     w->active = r->world.active;
-    if (w->active) memcpy(&w->desc, &r->world.desc, sizeof w->desc);   /* padding too: compared by memcmp */
+    w->builds = r->world.builds;
     w->programs = render_world_programs_hash(r);
 }
 
 static void world_caches_update(render *r, const world_was *w) {
-    bool same = w->active && r->world.active && memcmp(&w->desc, &r->world.desc, sizeof w->desc) == 0 &&
+    bool same = w->active && r->world.active && r->world.builds == w->builds &&
                 render_world_programs_hash(r) == w->programs;
     if (same) return;
     world_cache_free(&r->wcache);

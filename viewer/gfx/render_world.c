@@ -535,9 +535,11 @@ void world_free(gpu_world *gw) {
     free(gw->height_tiles);
     ref_world_release(&gw->w);   /* after ocean_free: its GL passes read the ocean */
     bool off = gw->height_map_off, cells_off = gw->height_cells_off;   /* the renderer's settings, not the world's */
+    unsigned builds = gw->builds;
     memset(gw, 0, sizeof *gw);
     gw->height_map_off = off;
     gw->height_cells_off = cells_off;
+    gw->builds = builds;
 }
 
 bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *src,
@@ -547,6 +549,7 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *
         return world_build_programs(gw, src, log, from);
     }
     world_free(gw);
+    gw->builds++;
     gw->desc = *desc;
     ref_world_init(&gw->w, desc);
     gw->nwaves = ref_waves_uniforms(&gw->w.waves, gw->waves, REF_WAVES_UNIFORMS_MAX);

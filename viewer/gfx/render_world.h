@@ -50,6 +50,8 @@
 typedef struct gpu_world {
     bool active;
     ref_world_desc desc;          /* what was built: equal desc, nothing rebuilt */
+    unsigned builds;              /* whole builds so far (a new desc; kept by world_free): the
+                                   * renderer's world caches hold one build's pixels */
     ref_world w;
     /* skirt: the land beyond the world square; [k]: level of detail k */
     gpu_mesh terrain[WORLD_LODS], skirt[WORLD_LODS], water[WORLD_LODS], sky_box;
