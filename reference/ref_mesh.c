@@ -1,7 +1,6 @@
 /* ref_mesh: OBJ triangles in the world and a BVH over them (ref_mesh.h). */
 #include "ref_mesh.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -238,10 +237,18 @@ static double tri_hit(const ref_mesh *m, int i, const double o[3], const double 
 }
 
 /* Does the ray meet the box within (tmin, tmax)? Conservatively: each
- * axis's far t is widened by its rounding bound, 2 gamma(3) (Pharr, Jakob
- * and Humphreys, PBR 3rd ed. 3.9.2), so that rounding never culls a box the
- * ray meets (a far-off ray at a mesh, found by fuzz_obj). */
-#define BOX_T_SLACK (2.0 * (3.0 * DBL_EPSILON / 2) / (1.0 - 3.0 * DBL_EPSILON / 2))
+ * axis's interval is widened at both ends by BOX_T_REL of its t, so that no
+ * box is culled whose triangles Moller-Trumbore puts inside (tmin, tmax).
+ * Two roundings must be covered: the slab's own, at most gamma(3) of its t
+ * (Pharr, Jakob and Humphreys, PBR 3rd ed. 3.9.2; a far-off ray at a mesh,
+ * found by fuzz_obj), and tri_hit's, which puts a hit a few ulps of t
+ * before the exact one; the box's padding in space cannot cover that for a
+ * far ray, where one ulp of t is more than the padding (a ray from 4e8 away
+ * through a triangle's corner on the box's face, found by fuzz_obj). The
+ * error of tri_hit's t is about 8 eps times the triangle's aspect over the
+ * cosine of the ray with its normal; 1e-9 covers a condition up to 1e5 and
+ * costs a box whose entry is within 1e-9 of the best t, a near tie. */
+#define BOX_T_REL 1e-9
 static bool box_hit(const bvh_node *nd, const double o[3], const double d[3], double tmin, double tmax) {
     double t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; a++) {
@@ -251,7 +258,8 @@ static bool box_hit(const bvh_node *nd, const double o[3], const double d[3], do
         }
         double ta = (nd->lo[a] - o[a]) / d[a], tb = (nd->hi[a] - o[a]) / d[a];
         if (ta > tb) { double s = ta; ta = tb; tb = s; }
-        tb += fabs(tb) * BOX_T_SLACK;
+        ta -= fabs(ta) * BOX_T_REL;
+        tb += fabs(tb) * BOX_T_REL;
         if (ta > t0) t0 = ta;
         if (tb < t1) t1 = tb;
         if (t0 > t1) return false;
