@@ -246,8 +246,9 @@ static double tri_hit(const ref_mesh *m, int i, const double o[3], const double 
  * far ray, where one ulp of t is more than the padding (a ray from 4e8 away
  * through a triangle's corner on the box's face, found by fuzz_obj). The
  * error of tri_hit's t is about 8 eps times the triangle's aspect over the
- * cosine of the ray with its normal; 1e-9 covers a condition up to 1e5 and
- * costs a box whose entry is within 1e-9 of the best t, a near tie. */
+ * cosine of the ray with its normal, times its first corner's distance
+ * from the origin over the hit's (ref_mesh.h); 1e-9 covers that up to 1e5
+ * and costs a box whose entry is within 1e-9 of the best t, a near tie. */
 #define BOX_T_REL 1e-9
 static bool box_hit(const bvh_node *nd, const double o[3], const double d[3], double tmin, double tmax) {
     double t0 = tmin, t1 = tmax;

@@ -12,10 +12,11 @@
  * REF_MESH_LEAF triangles a leaf) changes which triangles are tested, never
  * the t a triangle gives, and its boxes are tested with a margin wider than
  * a hit's rounding, so ref_mesh_hit and ref_mesh_hit_brute agree exactly
- * wherever the nearest hit is not a sliver or a grazing ray (a triangle's
- * aspect over the ray's cosine up to 1e5); beyond that the hierarchy may
- * skip a triangle whose rounded t lies before its box, never returning a
- * nearer hit. Pure after load: any number of threads may trace one mesh. */
+ * wherever the nearest hit is not a sliver, a grazing ray or a triangle
+ * far larger than the hit's distance (its aspect over the ray's cosine,
+ * times its corner's distance over the hit's, up to 1e5); beyond that the
+ * hierarchy may skip a triangle whose rounded t lies before its box,
+ * never returning a nearer hit. Pure after load: any number of threads may trace one mesh. */
 #ifndef TARN_REF_MESH_H
 #define TARN_REF_MESH_H
 

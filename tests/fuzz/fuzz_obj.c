@@ -82,11 +82,14 @@ static void check_mesh(const geom_mesh *m, geom_prim prim) {
     for (long i = 0; i < 2L * m->nvert; i++) check(isfinite(m->tc[i]), "finite tc");
 }
 
-/* How much rounding Moller-Trumbore's t of triangle i can carry for a ray
- * along d: the triangle's aspect, |e1| |e2| / |e1 x e2|, over the cosine of
- * the ray with its normal (ref_mesh.c's box test covers conditions up to
- * 1e5 exactly; INFINITY for a degenerate triangle or a grazing ray). */
-static double hit_condition(const ref_mesh *m, int i, const double d[3]) {
+/* How much rounding Moller-Trumbore's t of triangle i can carry, relative
+ * to t, for the ray o + t d: the triangle's aspect, |e1| |e2| / |e1 x e2|,
+ * over the cosine of the ray with its normal, times how much farther its
+ * first corner is from o than the hit (its t is the triple product of
+ * o - a with the edges, rounded at that size). ref_mesh.c's box test covers
+ * conditions up to 1e5 exactly; INFINITY for a degenerate triangle or a
+ * grazing ray. */
+static double hit_condition(const ref_mesh *m, int i, const double o[3], const double d[3], double t_hit) {
     if (i < 0) return INFINITY;
     const double *t = ref_mesh_triangle(m, i);
     double e1[3], e2[3], c[3];
@@ -99,7 +102,9 @@ static double hit_condition(const ref_mesh *m, int i, const double d[3]) {
     double l2 = sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
     double ld = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double cosine = fabs(c[0] * d[0] + c[1] * d[1] + c[2] * d[2]) / (lc * ld);
-    double cond = l1 * l2 / lc / cosine;
+    double sa[3] = { o[0] - t[0], o[1] - t[1], o[2] - t[2] };
+    double far = sqrt(sa[0] * sa[0] + sa[1] * sa[1] + sa[2] * sa[2]) / (t_hit * ld);
+    double cond = l1 * l2 / lc / cosine * fmax(far, 1.0);
     return isfinite(cond) ? cond : INFINITY;
 }
 
@@ -139,7 +144,7 @@ static void check_rays(const ref_mesh *m) {
         bool hb = ref_mesh_hit(m, o, d, 1e-9, 1e30, &tb, nb), hf = ref_mesh_hit_brute(m, o, d, 1e-9, 1e30, &tf, nf);
         if (!isfinite(o[0] + o[1] + o[2] + d[0] + d[1] + d[2])) continue;   /* huge coordinates overflow */
         check(!hb || (hf && tb >= tf), "the BVH is never nearer than every triangle");
-        if (!hf || hit_condition(m, triangle_at(m, o, d, tf), d) <= 1e5)
+        if (!hf || hit_condition(m, triangle_at(m, o, d, tf), o, d, tf) <= 1e5)
             check(hb == hf && (!hb || tb == tf), "BVH and brute force agree");
     }
 }
