@@ -16,7 +16,8 @@
  * far larger than the hit's distance (its aspect over the ray's cosine,
  * times its corner's distance over the hit's, up to 1e5); beyond that the
  * hierarchy may skip a triangle whose rounded t lies before its box,
- * never returning a nearer hit. Pure after load: any number of threads may trace one mesh. */
+ * never returning a nearer hit. Pure after load: any number of threads
+ * may trace one mesh. */
 #ifndef TARN_REF_MESH_H
 #define TARN_REF_MESH_H
 
