@@ -10,8 +10,10 @@
 # cached). Then SAVES saves of the pack's water shader, 5 s apart, each a
 # new line (its time in ns), so Mesa's cache never answers for the edited
 # stage. Each save's figure is the wall clock from the save to the swap of
-# the first frame after its reload (the script's `stamp on`); the last
-# line gives each build's median over all its saves.
+# the first frame after its reload (the script's `stamp on`), then the
+# longest frame gap until that frame and in the second after it (issue
+# #30: none longer than the budget while a save compiles); the last lines
+# give each build's medians over all its saves.
 # Usage: scripts/save_bench.sh [--saves N] [--rounds R] [--running] PACK TARN [TARN...]
 #   (defaults: 6 saves, 3 rounds; --running: the clock runs, as a user's
 #   usually does, and the window draws animated frames meanwhile). A shared machine is noisy: say whether
@@ -63,19 +65,33 @@ one_window() {
   wait $pid
   paste "$dir/saved" <(awk '/first frame after the reload swapped at/ { print $10 }' "$dir/log") |
       awk 'NF == 2 { printf "%.0f ", ($2 - $1) * 1000 } NF != 2 { printf "- " }'
+  # the longest frame gap until each save's first new frame (that frame's
+  # own: the reload), then in the second after it (the job's still frame)
+  printf '| '
+  sed -n 's/.*longest frame gap meanwhile \([0-9.]*\) ms.*/\1/p' "$dir/log" | awk '{ printf "%.0f ", $1 }'
+  printf '| '
+  sed -n 's/.*in the [0-9.]* s after that frame, longest frame gap \([0-9.]*\) ms.*/\1/p' "$dir/log" |
+      awk '{ printf "%.0f ", $1 }'
 }
 
-declare -A all
+median() {
+  tr ' ' '\n' | grep -v '^-*$' | sort -n |
+      awk '{ v[NR] = $1 } END { if (NR) print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) " ms over " NR; else print "-" }'
+}
+
+declare -A all to after
 for r in $(seq "$rounds"); do
   for bin in "$@"; do
     bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
-    ms=$(one_window "$bin")
-    echo "round $r  $bin: $ms"
+    out=$(one_window "$bin")
+    echo "round $r  $bin: $out"
+    IFS='|' read -r ms gap_to gap_after <<< "$out"
     all[$bin]="${all[$bin]:-} $ms"
+    to[$bin]="${to[$bin]:-} $gap_to"
+    after[$bin]="${after[$bin]:-} $gap_after"
   done
 done
 for bin in "$@"; do
   bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
-  echo "median $bin: $(echo ${all[$bin]} | tr ' ' '\n' | grep -v '^-*$' | sort -n |
-      awk '{ v[NR] = $1 } END { if (NR) print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) " ms over " NR " saves"; else print "-" }')"
+  echo "median $bin: $(echo ${all[$bin]} | median) saves; longest frame gap to the new frame $(echo ${to[$bin]} | median), in the second after it $(echo ${after[$bin]} | median)"
 done

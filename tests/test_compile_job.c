@@ -6,7 +6,8 @@
  * COMPILE_JOB_SHOWN_WAIT_S has passed, so the window's first frame of the
  * change does not share the cores with that compile; one for a paused
  * window (still) draws only the change's first frame before its ready,
- * and every frame by its end. */
+ * and every frame by its end; one for a window whose clock runs
+ * (defer_still) makes the still frame only when the window asks. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -116,12 +117,68 @@ static void test_moving_picture_world_kept(void) {
     render_destroy(r);
 }
 
+/* Waits (at most 120 s) for the job's end; its frames in all. */
+static int frames_at_end(compile_job *j) {
+    double t0 = clock_now_s(), secs;
+    while (!compile_job_done(j, &secs)) {
+        if (clock_now_s() - t0 >= 120) {
+            CHECK_MSG(false, "the job never ended");
+            return -1;
+        }
+        clock_sleep_s(0.002);
+    }
+    int at_ready, in_all;
+    compile_job_frames(j, &at_ready, &in_all);
+    return in_all;
+}
+
+/* One defer_still job on r up to its wait for the window's answer; false
+ * (checked) when it does not get there. */
+static bool job_waiting_for_still(compile_job *j, render *r) {
+    render *const scenes[1] = { r };
+    compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0, .view = render_default_view(r),
+                           .defer_still = true };
+    CHECK(compile_job_start(j, &d));
+    double t0 = clock_now_s(), secs;
+    while (!compile_job_still_waits(j) && clock_now_s() - t0 < 120) clock_sleep_s(0.002);
+    CHECK_MSG(compile_job_still_waits(j), "the job never waited for the still frame's answer");
+    CHECK_MSG(compile_job_ready(j, &secs), "waiting for the still frame's answer, yet not ready");
+    clock_sleep_s(0.2);
+    CHECK_MSG(!compile_job_done(j, &secs), "a defer_still job ended before the window answered");
+    return compile_job_still_waits(j);
+}
+
+/* With the clock running the window needs the still picture's frame only
+ * once it stops: the job waits for the window to ask (want_still: all 5
+ * frames) or to let it go (drop_still, a newer change: the 4 moving ones). */
+static void test_still_frame_when_asked(void) {
+    if (!compile_job_useful()) SKIP("Mesa's shader cache is off: the window compiles on the frame");
+    render *r = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    compile_job *j = compile_job_create();
+    if (job_waiting_for_still(j, r)) {
+        compile_job_want_still(j);
+        int n = frames_at_end(j);
+        CHECK_MSG(n == 5, "asked for the still frame: %d frames in all (4 moving, then the still one)", n);
+    }
+    if (job_waiting_for_still(j, r)) {
+        compile_job_drop_still(j);
+        int n = frames_at_end(j);
+        CHECK_MSG(n == 4, "let go without the still frame: %d frames in all (the 4 moving ones)", n);
+    }
+    compile_job_want_still(j);   /* no job: nothing to answer, the next starts afresh */
+    CHECK(job_waiting_for_still(j, r));
+    compile_job_destroy(j);   /* while it waits: ends at once */
+    render_destroy(r);
+}
+
 int main(void) {
     gl_ctx *ctx = gl_test_context();
     if (!ctx) return GL_TEST_SKIP;
     RUN(test_waits_for_the_window);
     RUN(test_still_window_first_frame_first);
     RUN(test_moving_picture_world_kept);
+    RUN(test_still_frame_when_asked);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

@@ -161,6 +161,28 @@ static void test_full_frame_held(void) {
     CHECK(res_budget_settled(&rb, t));
 }
 
+/* A cheap moving picture (its frames full-resolution) while a full frame
+ * is held: drawn just below (RES_BUDGET_HELD_MAX, whose code the job has
+ * made), the controller's own scale still 1 (the window asks the job for
+ * the full frame's code on it); the release draws it full again. */
+static void test_held_caps_moving_frames(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, s;
+    uint64_t key = 0;
+    for (int i = 0; i < 12; i++, t += 0.01) res_budget_plan(&rb, ++key, t, i ? 5 : 0, false, &s);
+    CHECK_EQ(s, 1.0);                                           /* 5 ms frames: full */
+    res_budget_hold_full(&rb, true);
+    for (int i = 0; i < 4; i++, t += 0.01) {
+        CHECK(res_budget_plan(&rb, ++key, t, 5, false, &s));
+        CHECK_EQ(s, RES_BUDGET_HELD_MAX);
+        CHECK_EQ(rb.scale, 1.0);
+    }
+    res_budget_hold_full(&rb, false);
+    CHECK(res_budget_plan(&rb, ++key, t, 5, false, &s));
+    CHECK_EQ(s, 1.0);
+}
+
 /* A screenshot (force_full) of a moving picture is drawn at full size; with
  * the budget off every changed frame is full and a still one is kept. */
 static void test_force_full_and_off(void) {
@@ -282,6 +304,7 @@ int main(void) {
     RUN(test_fixed_cost_over_budget_stays_at_the_floor);
     RUN(test_still_picture_returns_to_full);
     RUN(test_full_frame_held);
+    RUN(test_held_caps_moving_frames);
     RUN(test_force_full_and_off);
     RUN(test_noise_stays_bounded);
     RUN(test_first_frame_at_a_size_is_not_a_measure);

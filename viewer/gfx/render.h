@@ -156,6 +156,16 @@ unsigned render_world_snapshot(const render *r, int *w, int *h);
  * (ocean, flow, spray, height map) and the other targets as the last frame
  * left them: the world the water is drawn over, at any size, for one time. */
 void render_frame_world_at(render *r, double t, unsigned fbo, int x, int y, int w, int h, const render_view *view);
+/* A hash of what such a frame is drawn from besides the camera, the time,
+ * the size and the uniform values: the world's description and programs,
+ * and the commands it runs with the textures, meshes and programs they
+ * draw with (0: no scene). A save of the water's own shader leaves it as
+ * it was: the window keeps its full-resolution world (ui/view.c) instead
+ * of drawing it again (89 ms on the frame after a save of natural's water,
+ * lake, 960x540, llvmpipe). A target such a frame samples but does not
+ * draw (a pass it skips) counts as the frame's own inputs do not: as the
+ * last frame left it, the world-only frame's documented state. */
+unsigned long long render_world_frame_inputs(const render *r);
 
 /* The static-world cache (on by default): a `World` drawn right after a
  * Clear is copied from the last frame's pixels while its camera, clip,

@@ -265,6 +265,61 @@ static bool world_only_pass(const scene_state *s, const glib_cmd *c) {
     return true;
 }
 
+/* One command's own words into h: kind, numbers, names (its file and
+ * line aside: a comment added above it changes no picture). */
+static uint64_t hash_cmd(uint64_t h, const glib_cmd *c) {
+    h = hash_fnv1a(h, &c->kind, sizeof c->kind);
+    h = hash_fnv1a(h, &c->wire, sizeof c->wire);
+    h = hash_fnv1a(h, &c->nnum, sizeof c->nnum);
+    h = hash_fnv1a(h, c->num, sizeof c->num[0] * (size_t)c->nnum);
+    h = hash_fnv1a(h, c->name, strlen(c->name) + 1);
+    h = hash_fnv1a(h, c->path, strlen(c->path) + 1);
+    h = hash_fnv1a(h, c->arg, strlen(c->arg) + 1);
+    return hash_fnv1a(h, &c->format, sizeof c->format);
+}
+
+/* What command i adds through its resource: a texture's or mesh's key
+ * (its files' stamps), the bound program's texts for a draw that is not
+ * the world's (the World is drawn with the world's own programs). */
+static uint64_t hash_cmd_inputs(const scene_state *s, int i, int bound, uint64_t h) {
+    const glib_cmd *c = &s->glib->cmds[i];
+    int res = s->cmd_res[i];
+    if (res >= 0 && render_res_is_texture(c->kind)) h = hash_fnv1a(h, s->texs[res].key, strlen(s->texs[res].key));
+    else if (res >= 0 && render_res_is_geometry(c->kind))
+        h = hash_fnv1a(h, s->meshes[res].key, strlen(s->meshes[res].key));
+    bool own_program = c->kind != GLIB_CMD_WORLD && c->kind != GLIB_CMD_CLEAR;
+    if (own_program && bound >= 0 && render_res_writes_pixels(c->kind))
+        h = hash_fnv1a(h, &s->progs[bound].hash, sizeof s->progs[bound].hash);
+    return h;
+}
+
+unsigned long long render_world_frame_inputs(const render *r) {
+    const scene_state *s = &r->cur;
+    if (!s->glib) return 0;
+    uint64_t h = HASH_FNV1A_BASIS;
+    h = hash_fnv1a(h, &r->world.builds, sizeof r->world.builds);
+    unsigned long long progs = render_world_programs_hash(r);
+    h = hash_fnv1a(h, &progs, sizeof progs);
+    h = hash_fnv1a(h, &r->samples, sizeof r->samples);
+    /* the commands render_frame_world_at runs (runs() below, If blocks
+     * aside: a false one's words count too), up to the screen's water */
+    bool in_rtt = false, skipping = false;
+    int bound = -1;
+    for (int i = 0; i < s->glib->ncmds; i++) {
+        const glib_cmd *c = &s->glib->cmds[i];
+        bool pass_cmd = c->kind == GLIB_CMD_RENDER_TO_TEXTURE || c->kind == GLIB_CMD_RENDER_TO_TEXTURE_ONCE;
+        if (pass_cmd) {
+            in_rtt = c->nnum > 0;
+            skipping = in_rtt && !world_only_pass(s, c);
+        }
+        if (skipping) continue;
+        if (c->kind == GLIB_CMD_WATER_SURFACE && !in_rtt) break;
+        if (c->kind == GLIB_CMD_PROGRAM) bound = s->cmd_res[i];
+        h = hash_cmd_inputs(s, i, bound, hash_cmd(h, c));
+    }
+    return h;
+}
+
 /* The screen as the scene left it before its water (the sharp world's
  * snapshot), and what a world-only frame stops at. */
 static bool water_on_screen(const frame_state *f, const glib_cmd *c) {

@@ -69,6 +69,9 @@ struct app {
     bool stamp;                  /* the script's `stamp on`: time the first frame after a reload */
     bool stamp_pending;
     double stamp_seen;           /* glfwGetTime() when that reload began */
+    double stamp_after_until;    /* then, until this glfwGetTime(), the frames after it (0: not timing) */
+    double gap_after_max;        /* ... their longest gap */
+    long frames_after;
     /* sleeping while the picture is still (issue #30: a still window burnt
      * 0.75 of a core drawing the same frame) */
     bool woken;                  /* an input or window event came since the last frame */
@@ -88,6 +91,7 @@ struct app {
     bool job_waits_shown;        /* ... once this frame is on screen (compile_job_desc.wait_for_shown) */
     bool priming;                /* ... or to load the scenes in the job's renders before any change */
     bool compile_ended;          /* ... and has ended: reload on this frame */
+    bool still_dropped;          /* ... without the still frame's code (a newer change came) */
     bool changed_again;          /* a file changed while it ran */
     int compile_restarts;        /* jobs started again for such changes, since the last reload */
     double change_seen;          /* glfwGetTime() when the change being compiled was seen (0: none) */
@@ -179,7 +183,8 @@ static bool start_compile(app *a, bool prime) {
     compile_job_desc d = { .scenes = a->scenes, .n = a->nscenes, .w = a->drawn_w, .h = a->drawn_h,
                            .t = a->s.t, .view = orbit_view(&a->s.cam),
                            .wait_for_shown = !prime && a->budget_ms > 0,   /* early_wanted's reload */
-                           .still = a->s.paused };
+                           .still = a->s.paused,
+                           .defer_still = !prime && a->budget_ms > 0 && !a->s.paused };
     if (!compile_job_start(a->cjob, &d)) return false;
     a->compiling = true;
     a->priming = prime;
@@ -241,18 +246,29 @@ static void reload_early(app *a) {
     reload_compiled(a);
 }
 
+/* The window shows the change and the job waits to make the still
+ * picture's code (compile_job_desc.defer_still): ask for it once that
+ * frame is due (held: the picture stood still), or once the moving frames
+ * would be full-resolution ones too (a cheap scene; until then they stay
+ * just below, res_budget_hold_full). */
+static void still_due(app *a, double now) {
+    if (!a->compiling || !a->reloaded_early) return;
+    if (res_budget_full_held(&a->budget, now) || a->budget.scale >= 1 || a->budget_ms <= 0)
+        compile_job_want_still(a->cjob);
+}
+
 /* The job ended: the reload finds its programs in the cache (already
  * done at its ready, unless a change came meanwhile). A file that changed
  * while it ran is compiled again first (twice at most, so that a stream of
  * saves still shows one). */
 static void compile_ended(app *a) {
-    bool primed = a->priming, shown = a->reloaded_early, again = a->changed_again;
-    a->compiling = a->compile_ended = a->priming = a->reloaded_early = false;
+    bool primed = a->priming, shown = a->reloaded_early, again = a->changed_again, dropped = a->still_dropped;
+    a->compiling = a->compile_ended = a->priming = a->reloaded_early = a->still_dropped = false;
     res_budget_hold_full(&a->budget, false);
     if (primed && a->d.verbose)
         fprintf(stderr, "%s: the compile job has the scene loaded (%.2f s, off the frame)\n", a->d.name, a->compile_s);
     if (primed && !again) return;   /* the job's renders hold the scenes: nothing changed */
-    if (shown && a->d.verbose)
+    if (shown && !again && !dropped && a->d.verbose)
         fprintf(stderr, "%s: the compile job made the still picture's frame too (%.2f s in all)\n", a->d.name,
                 a->compile_s);
     if (shown && !again) return;    /* on screen since the job's ready */
@@ -274,9 +290,18 @@ static void reload_changed(app *a, int n) {
     char cause[sizeof a->cause];
     view_reload_cause(paths, n, cause, sizeof cause);
     free(paths);
+    if (a->compiling && a->reloaded_early && !a->changed_again && compile_job_still_waits(a->cjob)) {
+        /* the last change is on screen and its job only waits to make the
+         * still frame's code (defer_still), old now: it ends, and this
+         * change's job starts at once instead of a frame later */
+        compile_job_drop_still(a->cjob);
+        a->still_dropped = true;
+        if (compile_job_wait_done(a->cjob, COMPILE_JOB_DROP_WAIT_S) && compile_finished(a)) compile_ended(a);
+    }
     if (a->compiling) {   /* the job reads the files when it runs: compile again once it ends */
         a->changed_again = true;
         compile_job_shown(a->cjob);   /* no reload at its ready now: it need not wait for one */
+        compile_job_drop_still(a->cjob);   /* nor make the still frame of code now old */
         change_wait_starts(a);   /* (during a priming job: the change's wait starts now) */
         if (strcmp(cause, a->cause) != 0) snprintf(a->cause, sizeof a->cause, "%s", cause);
         return;
@@ -544,11 +569,12 @@ static bool scenes_read_clock(const app *a) {
     return false;
 }
 
+/* with_time: the clock and the reloads count too */
 static uint64_t picture_key(app *a, int w, int h, bool with_time) {
     uint64_t k = HASH_FNV1A_BASIS;
     k = hash_fnv1a(k, &a->s.cam, sizeof a->s.cam);
     if (with_time && scenes_read_clock(a)) k = hash_fnv1a(k, &a->s.t, sizeof a->s.t);
-    k = hash_fnv1a(k, &a->generation, sizeof a->generation);
+    if (with_time) k = hash_fnv1a(k, &a->generation, sizeof a->generation);
     int size[2] = { w, h };
     k = hash_fnv1a(k, size, sizeof size);
     /* every slider, checkbox and colour of every scene: what the panel,
@@ -600,6 +626,24 @@ static void stamp_swap(app *a) {
             "longest frame gap meanwhile %.1f ms, %ld frames before it)\n", a->d.name,
             (double)ts.tv_sec + ts.tv_nsec * 1e-9, (glfwGetTime() - a->stamp_seen) * 1e3, a->gap_max * 1e3,
             a->frames_meanwhile - 1);
+    a->stamp_after_until = glfwGetTime() + APP_STAMP_AFTER_S;
+    a->gap_after_max = 0;
+    a->frames_after = 0;
+}
+
+/* The frames in the APP_STAMP_AFTER_S after the stamped one: what the
+ * compile job still does then (a save's still-picture code) must leave
+ * them within the budget too (issue #30: no frame gap longer than it). */
+static void stamp_after(app *a, double gap, double swapped) {
+    if (a->stamp_after_until <= 0) return;
+    if (swapped <= a->stamp_after_until) {
+        a->gap_after_max = fmax(a->gap_after_max, gap);
+        a->frames_after++;
+        return;
+    }
+    a->stamp_after_until = 0;
+    fprintf(stderr, "%s: stamp: in the %.1f s after that frame, longest frame gap %.1f ms over %ld frames\n",
+            a->d.name, APP_STAMP_AFTER_S, a->gap_after_max * 1e3, a->frames_after);
 }
 
 /* ---- the loop ---- */
@@ -631,6 +675,11 @@ static void frame(app *a, bool scripted) {
     if (!a->s.paused && (!scripted || a->script_play)) a->s.t += dt;
     if (compile_readied(a)) reload_early(a);
     if (compile_finished(a)) compile_ended(a);
+    still_due(a, now);
+    /* a save's job compiles on a core this frame draws on: its time is not
+     * the scene's (the budget shrank the picture for the job's 0.3-0.5 s,
+     * then paid a new size's first frame growing it back, 100 ms) */
+    if (a->compiling && !a->priming && !a->reloaded_early) a->frame_fair = false;
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
     if (changed > 0) reload_changed(a, changed);
     else if (a->watch && missing_dir_appeared(a)) {
@@ -841,6 +890,7 @@ static bool wait_for_work(app *a, const view_script *script) {
         return true;
     }
     double now = glfwGetTime();
+    still_due(a, now);
     if (a->compiling && !compile_readied(a) && !compile_finished(a) && (!script || view_script_waiting(script)) &&
         (res_budget_settled(&a->budget, now) || res_budget_full_held(&a->budget, now))) {
         /* a still picture while a job compiles (the last good build's full
@@ -896,10 +946,12 @@ int app_run(app *a, render *const *scenes, int n) {
         if (script && !a->client_busy && script_step(a, script) != TARN_EXIT_OK) rc = TARN_EXIT_INPUT;
         glfwSwapBuffers(a->win);
         double swapped = glfwGetTime();
+        double gap = swapped - (after_sleep ? started : a->last_swap);
         if (a->change_seen > 0 || a->stamp_pending) {
-            a->gap_max = fmax(a->gap_max, swapped - (after_sleep ? started : a->last_swap));
+            a->gap_max = fmax(a->gap_max, gap);
             a->frames_meanwhile++;
         }
+        stamp_after(a, gap, swapped);
         a->last_swap = swapped;
         if (a->judge_job) judge_compile_job(a, swapped - started);
         if (a->job_waits_shown) {

@@ -156,8 +156,10 @@ void app_record_setting(app *a, const char *setting);
 /* The picture a w x h scene area shows: the camera, the time, every
  * scene's uniform values, the reloads (and app_picture_changed's). */
 uint64_t app_picture_key(app *a, int w, int h);
-/* The same without the time: what stays while only the clock runs (the
- * view keeps its full-resolution world while it holds). */
+/* The same without the time nor the reloads: what stays while only the
+ * clock runs; the caller adds what of a reload its use depends on (the
+ * view keeps its full-resolution world while this and the world frame's
+ * inputs hold, render_world_frame_inputs). */
 uint64_t app_picture_key_timeless(app *a, int w, int h);
 /* This frame: true to draw the scene at *scale (1: full resolution);
  * false: the frame drawn last is still the picture. force_full: the
@@ -175,6 +177,9 @@ void app_picture_changed(app *a);
 #define APP_IDLE_WAIT_S 0.05
 /* how often a still window looks whether a compile job has ended */
 #define APP_COMPILE_POLL_S 0.02
+/* the script's `stamp on` times the first frame after each reload, then
+ * the longest frame gap in this long after it (benchmarks) */
+#define APP_STAMP_AFTER_S 1.0
 void app_keep_awake(app *a);
 
 /* A message alone on a dark window, shown at once (before a scene's first

@@ -45,6 +45,9 @@ struct compile_job {
     double ready_seconds;        /* under mu: how long that took */
     bool wait_for_shown;         /* under mu: the job waits for shown after its ready */
     bool still;                  /* compile_job_desc.still: only the first frame before the ready */
+    bool defer_still;            /* under mu: compile_job_desc.defer_still */
+    int still_answer;            /* under mu: 0 none yet, 1 want_still, -1 drop_still */
+    bool still_waits;            /* under mu: the worker waits for that answer */
     int frames_at_ready, frames_in_all;   /* under mu: the frames the last job drew (compile_job_frames) */
     int frames_drawn;            /* the worker's own: this job's so far */
     bool shown;                  /* under mu: compile_job_shown since the job started */
@@ -267,6 +270,16 @@ static void wait_for_shown(compile_job *j) {
         if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;   /* timed out: go on */
 }
 
+/* Under mu: with defer_still, the window's answer (or the window's
+ * closing); true when the still picture's code is wanted. */
+static bool still_wanted(compile_job *j) {
+    if (!j->defer_still) return true;
+    j->still_waits = true;
+    while (j->still_answer == 0 && !j->quit) pthread_cond_wait(&j->cv, &j->mu);
+    j->still_waits = false;
+    return j->still_answer > 0 && !j->quit;
+}
+
 /* One job: the scenes asked for, warmed; renders of scenes no longer
  * drawn are let go. */
 static void run_job(compile_job *j) {
@@ -298,7 +311,10 @@ static void run_job(compile_job *j) {
     wait_for_shown(j);
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first[i], WARM_FRAMES);
-    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_still(j, i);
+    pthread_mutex_lock(&j->mu);
+    bool still = still_wanted(j);
+    pthread_mutex_unlock(&j->mu);
+    for (int i = 0; i < j->nscenes && still && !quitting(j); i++) warm_still(j, i);
     for (int i = j->nscenes; i < COMPILE_JOB_MAX_SCENES; i++)
         if (j->kept[i]) {
             render_destroy(j->kept[i]);
@@ -320,6 +336,7 @@ static void *worker(void *arg) {
         j->done = true;
         j->seconds = clock_now_s() - t0;
         j->frames_in_all = j->frames_drawn;
+        pthread_cond_broadcast(&j->cv);   /* compile_job_wait_done */
     }
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < COMPILE_JOB_MAX_SCENES; i++) render_destroy(j->kept[i]);
@@ -346,6 +363,8 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d) {
     j->done = j->ready = j->ready_taken = j->shown = false;
     j->wait_for_shown = d->wait_for_shown;
     j->still = d->still;
+    j->defer_still = d->defer_still;
+    j->still_answer = 0;
     pthread_cond_signal(&j->cv);
     pthread_mutex_unlock(&j->mu);
     return true;
@@ -365,6 +384,40 @@ void compile_job_shown(compile_job *j) {
     j->shown = true;
     pthread_cond_broadcast(&j->cv);
     pthread_mutex_unlock(&j->mu);
+}
+
+static void answer_still(compile_job *j, int answer) {
+    if (!j || !j->thread) return;
+    pthread_mutex_lock(&j->mu);
+    if (j->busy && j->still_answer == 0) j->still_answer = answer;
+    pthread_cond_broadcast(&j->cv);
+    pthread_mutex_unlock(&j->mu);
+}
+
+void compile_job_want_still(compile_job *j) { answer_still(j, 1); }
+void compile_job_drop_still(compile_job *j) { answer_still(j, -1); }
+
+bool compile_job_wait_done(compile_job *j, double max_s) {
+    if (!j || !j->thread) return false;
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);   /* pthread_cond_timedwait's clock */
+    until.tv_nsec += (long)(max_s * 1e9);
+    until.tv_sec += until.tv_nsec / 1000000000L;
+    until.tv_nsec %= 1000000000L;
+    pthread_mutex_lock(&j->mu);
+    while (j->busy && !j->done)
+        if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;
+    bool done = j->busy && j->done;
+    pthread_mutex_unlock(&j->mu);
+    return done;
+}
+
+bool compile_job_still_waits(compile_job *j) {
+    if (!j) return false;
+    pthread_mutex_lock(&j->mu);
+    bool waits = j->still_waits;
+    pthread_mutex_unlock(&j->mu);
+    return waits;
 }
 
 bool compile_job_ready(compile_job *j, double *seconds) {

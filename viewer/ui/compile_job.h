@@ -14,7 +14,8 @@
  * in the cache, and shows the change while the job makes the still
  * picture's full-resolution frame (another variant for each target of
  * the scene's own size: 0.15-0.25 s more for a pack's water), which the
- * window holds back until the job ends (res_budget_hold_full).
+ * window holds back until the job ends (res_budget_hold_full); with the
+ * clock running, only once the window asks for it (defer_still).
  *
  * The job's render shares nothing with the window's: no GL object, no
  * state; it reads the files as they are when it runs. What it compiles is
@@ -29,7 +30,8 @@
  *     compile_job_start(j, &(compile_job_desc){ scenes, n, w, h, t, view });
  *     ... each frame: if (compile_job_ready(j, &s)) reload now (the moving
  *         picture's code is made); hold the still picture's full frame until
- *         compile_job_done(j, &s) (its code is made then) ...
+ *         compile_job_done(j, &s) (its code is made then), with defer_still
+ *         asking for it by compile_job_want_still once it is due ...
  *     compile_job_destroy(j);                 stops a running job at its next step
  */
 #ifndef TARN_COMPILE_JOB_H
@@ -62,6 +64,14 @@ typedef struct compile_job_desc {
      * the lake); with the clock running they come first only where the
      * world's programs changed (render_world_programs_hash) */
     bool still;
+    /* the window's clock runs: its frames are reduced ones for as long as
+     * it does, and the still picture's full frame comes only once it
+     * stops, so after its ready the job waits for compile_job_want_still
+     * before making that frame's code (or ends without it at
+     * compile_job_drop_still) instead of making it at once on a core the
+     * window's next frames draw on (they took 160-190 ms, natural on the
+     * lake, against the 50 ms budget) */
+    bool defer_still;
 } compile_job_desc;
 
 compile_job *compile_job_create(void);
@@ -87,6 +97,19 @@ bool compile_job_ready(compile_job *j, double *seconds);
  * a job started with wait_for_shown goes on. Any thread; NULL is fine. */
 #define COMPILE_JOB_SHOWN_WAIT_S 0.5
 void compile_job_shown(compile_job *j);
+/* A job started with defer_still, once its ready is taken: make the
+ * still picture's code now (the window's picture stands still, or its
+ * moving frames are to be full-resolution ones), or end without it (a new
+ * change makes this job's code old). Is it waiting for either? Any thread;
+ * NULL is fine. */
+void compile_job_want_still(compile_job *j);
+void compile_job_drop_still(compile_job *j);
+bool compile_job_still_waits(compile_job *j);
+/* Waits at most max_s for the running job's end (compile_job_done then
+ * says so): a new change after drop_still starts its own job at once (the
+ * worker only has to wake: COMPILE_JOB_DROP_WAIT_S is ample). */
+#define COMPILE_JOB_DROP_WAIT_S 0.1
+bool compile_job_wait_done(compile_job *j, double max_s);
 /* True once after a started job has ended (every frame's code made), with
  * how long it ran; a new job can start from then. */
 bool compile_job_done(compile_job *j, double *seconds);

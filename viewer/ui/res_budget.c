@@ -60,7 +60,7 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
         return false;                     /* the kept frame is the picture, at full resolution */
     }
     if (off || force_full || (now_s - b->still_since >= RES_BUDGET_SETTLE_S && !b->hold_full)) s = 1.0;
-    else if (changed) s = b->scale;
+    else if (changed) s = b->hold_full ? fmin(b->scale, RES_BUDGET_HELD_MAX) : b->scale;
     else {
         *scale = b->drawn_scale;          /* settling: the reduced frame stays a moment */
         return false;

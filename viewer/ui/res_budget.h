@@ -77,9 +77,11 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
 bool res_budget_settled(const res_budget *b, double now_s);
 
 /* While hold is true a still picture keeps its reduced frame past
- * RES_BUDGET_SETTLE_S: its full-resolution frame's code is being made off
- * the frame (compile_job.h), and drawing it now would make it again on the
- * frame. A forced full frame (a screenshot) is still drawn. */
+ * RES_BUDGET_SETTLE_S, and a changing one is drawn at RES_BUDGET_HELD_MAX
+ * at most: the full-resolution frame's code is being made off the frame
+ * (compile_job.h), and drawing it now would make it again on the frame. A
+ * forced full frame (a screenshot) is still drawn. */
+#define RES_BUDGET_HELD_MAX 0.95
 void res_budget_hold_full(res_budget *b, bool hold);
 /* Is a still picture's full-resolution frame due and held (the picture
  * unchanged for RES_BUDGET_SETTLE_S, its reduced frame shown)? Nothing to

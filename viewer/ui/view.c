@@ -48,7 +48,7 @@ typedef struct viewer {
      * the reduced frames' water */
     render_target world;
     uint64_t world_key;          /* the timeless picture key it was drawn for (0: none) */
-    uint64_t last_timeless;      /* the timeless key of the last frame drawn */
+    uint64_t last_timeless;      /* the timeless key of the last frame drawn (0: it drew no reduced world) */
     bool over_world;             /* the canvas's frame goes over it */
     bool world_off;              /* the script's `sharp-world 0`: enlarged whole, as before */
 } viewer;
@@ -75,6 +75,8 @@ static bool canvas_ensure(viewer *v, int w, int h, bool srgb) {
  * (a full-size world draw each frame would cost what the budget saves). */
 static bool world_ready(viewer *v, app *a, int w, int h, const render_view *view, double t) {
     uint64_t k = app_picture_key_timeless(a, w, h);
+    unsigned long long inputs = render_world_frame_inputs(v->r);   /* a save of the water's shader: none changed */
+    k = hash_fnv1a(k, &inputs, sizeof inputs);
     bool held = k == v->last_timeless;
     v->last_timeless = k;
     if (k == v->world_key) return true;
@@ -313,6 +315,10 @@ static void on_draw(void *user, app *a) {
         if (world) glEnable(GL_FRAMEBUFFER_SRGB);
         /* before the frame: the world-only frame starts a snapshot of its own */
         v->over_world = world && !v->world_off && v->drawn_w < aw && world_ready(v, a, aw, ah, &view, s->t);
+        /* a full frame breaks the hold: a paused picture's first reduced
+         * frame after a save must not draw the world (its key held since
+         * the clock stopped, while the job compiles the still frame) */
+        if (!(world && !v->world_off && v->drawn_w < aw)) v->last_timeless = 0;
         render_set_world_snapshot(v->r, v->over_world);   /* only a frame that goes over it pays the copy */
         render_set_detail(v->r, scale);   /* the passes and meshes shrink with the frame */
         render_frame_at(v->r, s->t, v->canvas.fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
