@@ -257,15 +257,21 @@ static void warm_still(compile_job *j, int i) {
     if (made) render_target_destroy(&t);
 }
 
+/* s seconds from now on pthread_cond_timedwait's clock. */
+static struct timespec deadline_in(double s) {
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_nsec += (long)(s * 1e9);
+    until.tv_sec += until.tv_nsec / 1000000000L;
+    until.tv_nsec %= 1000000000L;
+    return until;
+}
+
 /* Under mu: the window's first frame of the change first, alone on the
  * cores (compile_job_desc.wait_for_shown), for at most
  * COMPILE_JOB_SHOWN_WAIT_S. */
 static void wait_for_shown(compile_job *j) {
-    struct timespec until;
-    clock_gettime(CLOCK_REALTIME, &until);   /* pthread_cond_timedwait's clock */
-    until.tv_nsec += (long)(COMPILE_JOB_SHOWN_WAIT_S * 1e9);
-    until.tv_sec += until.tv_nsec / 1000000000L;
-    until.tv_nsec %= 1000000000L;
+    struct timespec until = deadline_in(COMPILE_JOB_SHOWN_WAIT_S);
     while (j->wait_for_shown && !j->shown && !j->quit)
         if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;   /* timed out: go on */
 }
@@ -399,11 +405,7 @@ void compile_job_drop_still(compile_job *j) { answer_still(j, -1); }
 
 bool compile_job_wait_done(compile_job *j, double max_s) {
     if (!j || !j->thread) return false;
-    struct timespec until;
-    clock_gettime(CLOCK_REALTIME, &until);   /* pthread_cond_timedwait's clock */
-    until.tv_nsec += (long)(max_s * 1e9);
-    until.tv_sec += until.tv_nsec / 1000000000L;
-    until.tv_nsec %= 1000000000L;
+    struct timespec until = deadline_in(max_s);
     pthread_mutex_lock(&j->mu);
     while (j->busy && !j->done)
         if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;
