@@ -166,6 +166,14 @@ static void test_still_frame_when_asked(void) {
         int n = frames_at_end(j);
         CHECK_MSG(n == 4, "let go without the still frame: %d frames in all (the 4 moving ones)", n);
     }
+    /* the window's scenes as the job has them, until a pack switch */
+    render *const scenes[1] = { r };
+    CHECK(compile_job_draws(j, scenes, 1));
+    render_set_pack(r, "raymarch");
+    CHECK_MSG(!compile_job_draws(j, scenes, 1), "another pack, yet the job draws the scene as it is");
+    render_set_pack(r, "basic");
+    CHECK(compile_job_draws(j, scenes, 1));
+    CHECK(!compile_job_draws(j, scenes, 0));
     compile_job_want_still(j);   /* no job: nothing to answer, the next starts afresh */
     CHECK(job_waiting_for_still(j, r));
     compile_job_destroy(j);   /* while it waits: ends at once */

@@ -250,11 +250,18 @@ static void reload_early(app *a) {
  * picture's code (compile_job_desc.defer_still): ask for it once that
  * frame is due (held: the picture stood still), or once the moving frames
  * would be full-resolution ones too (a cheap scene; until then they stay
- * just below, res_budget_hold_full). */
+ * just below, res_budget_hold_full); let it go where the window draws
+ * other scenes now. */
 static void still_due(app *a, double now) {
     if (!a->compiling || !a->reloaded_early) return;
-    if (res_budget_full_held(&a->budget, now) || a->budget.scale >= 1 || a->budget_ms <= 0)
+    if (!(res_budget_full_held(&a->budget, now) || a->budget.scale >= 1 || a->budget_ms <= 0)) return;
+    if (compile_job_draws(a->cjob, a->scenes, a->nscenes)) {
         compile_job_want_still(a->cjob);
+        return;
+    }
+    /* another pack since (a switch compiles on the frame): not the old one's */
+    compile_job_drop_still(a->cjob);
+    a->still_dropped = true;
 }
 
 /* The job ended: the reload finds its programs in the cache (already

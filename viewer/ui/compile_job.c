@@ -126,8 +126,8 @@ static void copy_defines(render *r, job_scene *s) {
         }
 }
 
-static void copy_scene(render *r, job_scene *s) {
-    memset(s, 0, sizeof *s);
+/* What says which scene r draws (same_scene's keys), into s. */
+static void copy_keys(render *r, job_scene *s) {
     render_desc d = render_desc_of(r);
     snprintf(s->glib, sizeof s->glib, "%s", render_scene_path(r));
     snprintf(s->root, sizeof s->root, "%s", d.repo_root);
@@ -135,6 +135,11 @@ static void copy_scene(render *r, job_scene *s) {
     s->desc = d;
     s->desc.repo_root = s->root;
     s->desc.pack = s->pack[0] ? s->pack : NULL;
+}
+
+static void copy_scene(render *r, job_scene *s) {
+    memset(s, 0, sizeof *s);
+    copy_keys(r, s);
     s->srgb = render_has_world(r);
     copy_defines(r, s);
 }
@@ -402,6 +407,17 @@ static void answer_still(compile_job *j, int answer) {
 
 void compile_job_want_still(compile_job *j) { answer_still(j, 1); }
 void compile_job_drop_still(compile_job *j) { answer_still(j, -1); }
+
+bool compile_job_draws(compile_job *j, render *const *scenes, int n) {
+    if (!j || n != j->nscenes) return false;
+    for (int i = 0; i < n; i++) {
+        job_scene now;
+        memset(&now, 0, sizeof now);
+        copy_keys(scenes[i], &now);
+        if (!same_scene(&j->scenes[i], &now)) return false;
+    }
+    return true;
+}
 
 bool compile_job_wait_done(compile_job *j, double max_s) {
     if (!j || !j->thread) return false;

@@ -105,6 +105,10 @@ void compile_job_shown(compile_job *j);
 void compile_job_want_still(compile_job *j);
 void compile_job_drop_still(compile_job *j);
 bool compile_job_still_waits(compile_job *j);
+/* Is the job (running or last) one of these scenes, as they are drawn
+ * now (file, pack, samples)? Not after a pack switch: its still frame
+ * would be the old pack's. Call on the window's thread. */
+bool compile_job_draws(compile_job *j, render *const *scenes, int n);
 /* Waits at most max_s for the running job's end (compile_job_done then
  * says so): a new change after drop_still starts its own job at once (the
  * worker only has to wake: COMPILE_JOB_DROP_WAIT_S is ample). */
