@@ -314,11 +314,12 @@ static void on_draw(void *user, app *a) {
         render_view view = orbit_view(&s->cam);
         if (world) glEnable(GL_FRAMEBUFFER_SRGB);
         /* before the frame: the world-only frame starts a snapshot of its own */
-        v->over_world = world && !v->world_off && v->drawn_w < aw && world_ready(v, a, aw, ah, &view, s->t);
+        bool reduced_world = world && !v->world_off && v->drawn_w < aw;
+        v->over_world = reduced_world && world_ready(v, a, aw, ah, &view, s->t);
         /* a full frame breaks the hold: a paused picture's first reduced
          * frame after a save must not draw the world (its key held since
          * the clock stopped, while the job compiles the still frame) */
-        if (!(world && !v->world_off && v->drawn_w < aw)) v->last_timeless = 0;
+        if (!reduced_world) v->last_timeless = 0;
         render_set_world_snapshot(v->r, v->over_world);   /* only a frame that goes over it pays the copy */
         render_set_detail(v->r, scale);   /* the passes and meshes shrink with the frame */
         render_frame_at(v->r, s->t, v->canvas.fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
