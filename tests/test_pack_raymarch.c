@@ -12,6 +12,7 @@
 #include <GL/gl.h>
 #include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -156,6 +157,7 @@ typedef struct {
     float t, f, ta;
     int status;
     int steps;          /* linear search samples (not in the GLSL: for the tables) */
+    float tb;           /* the bracket's end (a hit) */
 } twin_march;
 
 typedef struct {
@@ -163,12 +165,94 @@ typedef struct {
     int max_iter, refine, refine_mode;
     float y_min, y_max;
     float from_below;   /* the paper's reflection solid: the water level; else -1e30 */
+    const float *skip;  /* the skip map (twin_skip_build) for a ray going up; NULL: plain */
+    float level, scale; /* uWaterLevel, uWorldScale: the skip map's heights */
 } twin_params;
 
 static twin_params twin_defaults(void) {
     return (twin_params){ .n_grazing = 10, .n_steep = 3, .min_range = 0.25f, .max_step = 0.5f, .max_iter = 40,
                           .refine = 0, .refine_mode = REFINE_NONE, .y_min = -1e30f, .y_max = 1e30f,
-                          .from_below = -1e30f };
+                          .from_below = -1e30f, .skip = NULL, .level = 0.0f, .scale = 1.0f };
+}
+
+/* ---- skipping empty space (march.glsl's marchSkip*, skip_blocked.frag,
+ * skip_dist.frag) ---- */
+#define MARCH_SKIP_CELLS 128
+#define MARCH_SKIP_FAR 65.0f
+
+static float twin_skip_level(const twin_params *p, int k) {
+    float m = k == 0 ? -0.3f : k == 1 ? 0.05f : k == 2 ? 0.2f : 0.8f;
+    return p->level + m * p->scale;
+}
+
+/* skip_blocked.frag: per cell and level, 0 where a texel under the cell
+ * (one more each side) reaches the level or is off the world, else FAR */
+static void twin_skip_blocked(const twin_hf *hf, const twin_params *p, float *out) {
+    int n = hf->n, c = MARCH_SKIP_CELLS;
+    for (int cj = 0; cj < c; cj++)
+        for (int ci = 0; ci < c; ci++) {
+            int lo_i = ci * n / c - 1, lo_j = cj * n / c - 1;
+            int hi_i = ((ci + 1) * n + c - 1) / c, hi_j = ((cj + 1) * n + c - 1) / c;
+            if (lo_i < 0) lo_i = 0;
+            if (lo_j < 0) lo_j = 0;
+            if (hi_i > n - 1) hi_i = n - 1;
+            if (hi_j > n - 1) hi_j = n - 1;
+            float high = -1e30f;
+            for (int j = lo_j; j <= hi_j; j++)
+                for (int i = lo_i; i <= hi_i; i++) {
+                    const float *t = hf->y3 + ((size_t)j * n + i) * 3;
+                    high = gmax(high, t[0] <= MARCH_EMPTY_Y ? 1e30f : gmax(t[0], t[2]));
+                }
+            for (int k = 0; k < 4; k++)
+                out[((size_t)cj * c + ci) * 4 + k] = high >= twin_skip_level(p, k) ? 0.0f : MARCH_SKIP_FAR;
+        }
+}
+
+/* skip_dist.frag along one axis: min over |d| <= R of max(in(c + d), |d|),
+ * beyond the map 0 */
+static void twin_skip_dist(const float *in, int axis, float *out) {
+    int c = MARCH_SKIP_CELLS, reach = (int)MARCH_SKIP_FAR - 1;
+    for (int y = 0; y < c; y++)
+        for (int x = 0; x < c; x++)
+            for (int k = 0; k < 4; k++) {
+                float r = in[((size_t)y * c + x) * 4 + k];
+                for (int d = 1; d <= reach; d++) {
+                    int ax = x + (axis == 0 ? d : 0), ay = y + (axis == 0 ? 0 : d);
+                    int bx = x - (axis == 0 ? d : 0), by = y - (axis == 0 ? 0 : d);
+                    float va = ax < c && ay < c ? in[((size_t)ay * c + ax) * 4 + k] : 0.0f;
+                    float vb = bx >= 0 && by >= 0 ? in[((size_t)by * c + bx) * 4 + k] : 0.0f;
+                    r = gmin(r, gmax(gmin(va, vb), (float)d));
+                }
+                out[((size_t)y * c + x) * 4 + k] = r;
+            }
+}
+
+/* The three passes: the map the march up reads (c * c * 4 floats). */
+static void twin_skip_build(const twin_hf *hf, const twin_params *p, float *map) {
+    size_t nf = (size_t)MARCH_SKIP_CELLS * MARCH_SKIP_CELLS * 4;
+    float *blocked = malloc(nf * sizeof *blocked), *rows = malloc(nf * sizeof *rows);
+    twin_skip_blocked(hf, p, blocked);
+    twin_skip_dist(blocked, 0, rows);
+    twin_skip_dist(rows, 1, map);
+    free(blocked);
+    free(rows);
+}
+
+static int twin_skip_count(const twin_params *p, v2 uv, float y, float adv) {
+    int ci = (int)(uv.x * (float)MARCH_SKIP_CELLS), cj = (int)(uv.y * (float)MARCH_SKIP_CELLS);
+    ci = ci < 0 ? 0 : ci > MARCH_SKIP_CELLS - 1 ? MARCH_SKIP_CELLS - 1 : ci;
+    cj = cj < 0 ? 0 : cj > MARCH_SKIP_CELLS - 1 ? MARCH_SKIP_CELLS - 1 : cj;
+    const float *r = p->skip + ((size_t)cj * MARCH_SKIP_CELLS + ci) * 4;
+    float cells = y >= twin_skip_level(p, 3) ? r[3] : y >= twin_skip_level(p, 2) ? r[2]
+                : y >= twin_skip_level(p, 1) ? r[1] : y >= twin_skip_level(p, 0) ? r[0] : 0.0f;
+    float n = floorf(0.999f * (cells - 1.0f) / ((float)MARCH_SKIP_CELLS * adv));
+    return (int)clampf(n, 0.0f, (float)MARCH_MAX_ITER);
+}
+
+static int twin_skip_next(int cur, int k, int last) {
+    if (k <= 0) return cur + 1;
+    int j = cur + k < last ? cur + k : last;
+    return j > cur + 1 ? j : cur + 1;
 }
 
 static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twin_params *p) {
@@ -182,9 +266,17 @@ static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twi
     if (step <= 0.0f) step = twin_step(fmaxf(fa, p->min_range), dir.y, p->n_grazing, p->n_steep, p->max_step);
     float ta = 0.0f, tb = 0.0f, fb = fa;
     m.status = MARCH_CAP;
+    bool skip = p->skip != NULL;
+    float adv = step * fmaxf(fabsf(duv.x), fabsf(duv.y));
+    int last = p->max_iter - 1;
+    if (skip) {
+        int ly = (int)fminf(floorf((p->y_max - o.y) / (step * dir.y)), 1e4f) - 2;
+        last = ly < last ? ly : last;
+    }
+    int s = skip ? twin_skip_next(-1, twin_skip_count(p, uv0, o.y, adv), last) : 0;
     for (int i = 0; i < MARCH_MAX_ITER; i++) {
-        if (i >= p->max_iter) break;
-        float t = step * (float)(i + 1);
+        if (s >= p->max_iter) break;
+        float t = step * (float)(s + 1);
         float y = o.y + t * dir.y;
         v2 uv = { uv0.x + t * duv.x, uv0.y + t * duv.y };
         if (!twin_in_footprint(uv) || y < p->y_min || y > p->y_max) { m.status = MARCH_LEFT; break; }
@@ -195,6 +287,7 @@ static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twi
         if (f <= 0.0f) { tb = t; fb = f; m.status = MARCH_HIT; break; }
         ta = t;
         fa = f;
+        s = skip ? twin_skip_next(s, twin_skip_count(p, uv, y, adv), last) : s + 1;
     }
     m.ta = ta;
     if (m.status != MARCH_HIT) { m.t = ta; m.f = fa; return m; }
@@ -207,6 +300,7 @@ static twin_march twin_march_hf(twin_hf *hf, v3 o, v3 dir, float step, const twi
         if (f > 0.0f) { ta = t; fa = f; } else { tb = t; fb = f; }
     }
     m.ta = ta;
+    m.tb = tb;
     m.t = twin_interp(ta, fa, tb, fb);
     return m;
 }
@@ -788,6 +882,132 @@ static void test_solid_floating_box(void) {
     CHECK_EQ(twin_solid(V3(EMPTY_Y, EMPTY_Y, EMPTY_Y), 0.0f), 1e30f);
 }
 
+/* ---- skipping empty space ---- */
+
+static uint32_t lcg_state;
+static double lcg(void) {   /* uniform in [0, 1) */
+    lcg_state = lcg_state * 1664525u + 1013904223u;
+    return (lcg_state >> 8) * (1.0 / 16777216.0);
+}
+
+/* A world for the march up: a shore rising out of the water along +x
+ * (ground from 2 m under the water to 1 m over it), boxes of every kind
+ * (under the water, crossing it, floating over it with a bottom, tall
+ * poles) and the border with nothing drawn, as pack_y.frag leaves it. */
+static void hf_skip_world(void) {
+    cam_top = twin_top_camera(LEVEL, HALF, DEPTH);
+    floor_desc f = { LEVEL - 0.5, 0.125, 0, 0.3, 5.0 };
+    hf_floor(&f);
+    lcg_state = 12345u;
+    for (int b = 0; b < 60; b++) {
+        double cx = -11 + 22 * lcg(), cz = -11 + 22 * lcg(), hx = 0.05 + 0.8 * lcg(), hz = 0.05 + 0.8 * lcg();
+        double top = LEVEL - 1.0 + 4.0 * lcg();
+        bool floating = lcg() < 0.4;
+        double bottom = top - 0.2 - 1.3 * lcg();
+        for (int j = 0; j < HF_N; j++)
+            for (int i = 0; i < HF_N; i++) {
+                if (fabs(texel_x(i) - cx) > hx || fabs(texel_x(j) - cz) > hz) continue;
+                float *t = texel(i, j);
+                if (stored_y(top) <= t[0]) continue;
+                t[0] = stored_y(top);
+                if (floating) t[1] = stored_y(bottom);
+            }
+    }
+    int border = HF_N / 42;   /* the 5 % margin beyond the world square, about */
+    for (int j = 0; j < HF_N; j++)
+        for (int i = 0; i < HF_N; i++)
+            if (i < border || j < border || i >= HF_N - border || j >= HF_N - border)
+                texel(i, j)[0] = texel(i, j)[1] = texel(i, j)[2] = EMPTY_Y;
+}
+
+static float skip_map[MARCH_SKIP_CELLS * MARCH_SKIP_CELLS * 4];
+
+/* The two 1D passes give the L-infinity distance to the nearest blocked
+ * cell (beyond the map: blocked), capped at FAR: brute force over the map. */
+static void test_skip_map_distances(void) {
+    hf_skip_world();
+    twin_hf hf = hf_make();
+    twin_params p = twin_defaults();
+    twin_skip_build(&hf, &p, skip_map);
+    static float blocked[MARCH_SKIP_CELLS * MARCH_SKIP_CELLS * 4];
+    twin_skip_blocked(&hf, &p, blocked);
+    const int c = MARCH_SKIP_CELLS;
+    long checked = 0, wrong = 0, free_cells[4] = { 0 };
+    for (int y = 0; y < c; y += 3)
+        for (int x = 0; x < c; x += 3)
+            for (int k = 0; k < 4; k++) {
+                int edge = x + 1;   /* the nearest cell beyond the map */
+                if (y + 1 < edge) edge = y + 1;
+                if (c - x < edge) edge = c - x;
+                if (c - y < edge) edge = c - y;
+                float r = fminf((float)edge, MARCH_SKIP_FAR);
+                for (int by = 0; by < c; by++)
+                    for (int bx = 0; bx < c; bx++)
+                        if (blocked[((size_t)by * c + bx) * 4 + k] == 0.0f)
+                            r = fminf(r, (float)(abs(bx - x) > abs(by - y) ? abs(bx - x) : abs(by - y)));
+                float got = skip_map[((size_t)y * c + x) * 4 + k];
+                checked++;
+                if (got != r) wrong++;
+                if (got > 1) free_cells[k]++;
+            }
+    fprintf(stderr, "  skip map: %ld cells x levels checked, %ld wrong; free (r > 1) per level: %ld %ld %ld %ld\n",
+            checked, wrong, free_cells[0], free_cells[1], free_cells[2], free_cells[3]);
+    CHECK_EQ(wrong, 0);
+    /* the world leaves room at every level, more the higher */
+    CHECK_GT(free_cells[0], 50);
+    CHECK_GT(free_cells[3], free_cells[0]);
+}
+
+/* The march up with the skip map reads fewer samples and ends exactly where
+ * the plain march does: the same t, f, ta, tb and status, bit for bit, for
+ * rays from the waves' heights in every direction, with water.frag's
+ * steps and with short budgets and a low ceiling (the jumps' clamps). */
+static void test_skip_march_is_the_plain_march(void) {
+    hf_skip_world();
+    twin_hf hf = hf_make();
+    twin_params p = twin_defaults();
+    twin_skip_build(&hf, &p, skip_map);
+    struct { int max_iter, refine, mode; float y_max, max_step; } sets[] = {
+        { 40, 6, REFINE_BINARY, (float)LEVEL + 5.0f, 0.25f },   /* water.frag's defaults */
+        { 12, 3, REFINE_SECANT, (float)LEVEL + 0.8f, 0.1f },
+        { 64, 0, REFINE_NONE, (float)LEVEL + 20.0f, 0.5f },
+    };
+    for (size_t set = 0; set < sizeof sets / sizeof sets[0]; set++) {
+        p.max_iter = sets[set].max_iter;
+        p.refine = sets[set].refine;
+        p.refine_mode = sets[set].mode;
+        p.y_max = sets[set].y_max;
+        lcg_state = 777u + (uint32_t)set;
+        long differ = 0, by_status[4] = { 0 }, samples_plain = 0, samples_skip = 0;
+        const int nrays = 20000;
+        for (int k = 0; k < nrays; k++) {
+            v3 o = V3((float)(-12 + 24 * lcg()), (float)(LEVEL - 0.4 + 0.7 * lcg()), (float)(-12 + 24 * lcg()));
+            double az = 2 * PI * lcg(), up = lcg() * lcg();   /* many grazing rays */
+            v3 d = twin_clamp_dir(V3((float)cos(az), (float)up, (float)sin(az)), false);
+            float step = twin_step(5.0f, d.y, 10, 3, sets[set].max_step);
+            p.skip = NULL;
+            twin_march a = twin_march_hf(&hf, o, d, step, &p);
+            p.skip = skip_map;
+            twin_march b = twin_march_hf(&hf, o, d, step, &p);
+            bool same = a.status == b.status && memcmp(&a.t, &b.t, sizeof a.t) == 0 &&
+                        memcmp(&a.f, &b.f, sizeof a.f) == 0 && memcmp(&a.ta, &b.ta, sizeof a.ta) == 0 &&
+                        (a.status != MARCH_HIT || memcmp(&a.tb, &b.tb, sizeof a.tb) == 0);
+            if (!same && differ++ < 3)
+                fprintf(stderr, "  ray %d: plain %d t %.9g ta %.9g, skipping %d t %.9g ta %.9g\n", k, a.status,
+                        a.t, a.ta, b.status, b.t, b.ta);
+            by_status[a.status]++;
+            samples_plain += a.steps;
+            samples_skip += b.steps;
+        }
+        fprintf(stderr, "  set %zu: %d rays (hit %ld, inside %ld, cap %ld, left %ld), %ld differ; "
+                "samples read %.2f -> %.2f a ray\n", set, nrays, by_status[0], by_status[1], by_status[2],
+                by_status[3], differ, (double)samples_plain / nrays, (double)samples_skip / nrays);
+        CHECK_EQ(differ, 0);
+        for (int st = 0; st < 4; st++) CHECK_GT(by_status[st], 10);   /* every ending is exercised */
+        CHECK_LT(samples_skip, samples_plain * 3 / 4);
+    }
+}
+
 /* ---- the Fresnel table ---- */
 
 static void test_fresnel_table(void) {
@@ -906,6 +1126,48 @@ static void test_gl_lake_at_several_times(void) {
 /* Every toggle on its own and every debug output, above and under the
  * water (looking along the floor, and up at the surface: Snell's window
  * and total internal reflection). */
+/* The march up with the skip map (MARCH_SKIP, the default) draws what the
+ * plain march draws, bit for bit: the colour and the reflected ray's point
+ * and status (DEBUG_OUTPUT 2), from above and from under the water, on the
+ * lake and the harbour (piers, boats); and reads fewer texels (DEBUG_OUTPUT
+ * 5, both marches' count). */
+static void test_gl_skip_is_the_plain_march(void) {
+    if (!have_gl) SKIP("no headless OpenGL");
+    const char *scenes[] = { LAKE, TARN_SOURCE_DIR "/scenes/harbour.glib" };
+    const render_view views[] = {
+        { { 9, 2.5f, 9 }, { -2, -0.6f, -1 }, { 0, 1, 0 } },
+        { { -6, 0.6f, 7 }, { 4, 0.2f, -5 }, { 0, 1, 0 } },
+        { { 0.5f, -1.6f, 0.5f }, { 1.5f, 0.5f, 0.0f }, { 0, 1, 0 } },
+    };
+    static float plain[W * H * 4];
+    for (int sc = 0; sc < 2; sc++) {
+        render *r = load_scene(scenes[sc]);
+        for (int dbg = 0; dbg <= 5; dbg += (dbg == 0 ? 2 : 3)) {
+            set_value(r, "DEBUG_OUTPUT", (float)dbg);
+            for (int v = 0; v < 3; v++) {
+                set_value(r, "MARCH_SKIP", 0);
+                draw(r, 2.0, &views[v]);
+                memcpy(plain, px, sizeof px);
+                set_value(r, "MARCH_SKIP", 1);
+                draw(r, 2.0, &views[v]);
+                if (dbg == 5) {   /* texels read: fewer, never more */
+                    double a = 0, b = 0;
+                    for (int i = 0; i < W * H; i++) { a += plain[i * 4]; b += px[i * 4]; }
+                    fprintf(stderr, "  %s view %d: world-Y texels read %.1f -> %.1f a pixel\n",
+                            sc ? "harbour" : "lake", v, a / (W * H), b / (W * H));
+                    CHECK_LT(b, a);
+                    continue;
+                }
+                long differ = 0;
+                for (int i = 0; i < W * H * 4; i++) differ += memcmp(&plain[i], &px[i], sizeof px[i]) != 0;
+                CHECK_MSG(differ == 0, "%s, view %d, DEBUG_OUTPUT %d: %ld values differ with the skip map",
+                          sc ? "harbour" : "lake", v, dbg, differ);
+            }
+        }
+        render_destroy(r);
+    }
+}
+
 static void test_gl_lake_variants_and_under_water(void) {
     if (!have_gl) SKIP("no headless OpenGL");
     render *r = load_scene(LAKE);
@@ -1382,6 +1644,8 @@ int main(void) {
     RUN(test_hazard_leaving_footprint);
     RUN(test_hazard_shore_and_depth_zero);
     RUN(test_solid_floating_box);
+    RUN(test_skip_map_distances);
+    RUN(test_skip_march_is_the_plain_march);
     RUN(test_fresnel_table);
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
@@ -1389,6 +1653,7 @@ int main(void) {
     if (!ctx) fprintf(stderr, "no headless OpenGL: %s\n", err);
     RUN_TIMED(test_gl_lake_at_several_times);
     RUN_TIMED(test_gl_lake_variants_and_under_water);
+    RUN_TIMED(test_gl_skip_is_the_plain_march);
     RUN_TIMED(test_gl_flat_floor_against_reference);
     RUN_TIMED(test_gl_sloped_floor_against_reference);
     RUN_TIMED(test_gl_floating_box_reflection);

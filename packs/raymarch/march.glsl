@@ -38,6 +38,23 @@
 //                 last sample inside.
 //   The interpolation's denominator f(ta) - f(tb) is > 0 for a bracket; if
 //   it is not (a NaN, equal or same-signed values) tb is returned.
+//
+// Skipping empty space (the march up only, MARCH_SKIP): a coarse map of
+// MARCH_SKIP_CELLS² cells over the same square (skip_blocked.frag,
+// skip_dist.frag) holds, per cell and per height threshold L_k
+// (marchSkipLevel), the L-infinity distance in cells to the nearest cell
+// with a texel whose top or floor reaches L_k (or off the drawn world, or
+// beyond the square). A sample at height y >= L_k whose cell is r cells from
+// such a cell knows that every point less than r - 1 cells away (L-infinity,
+// in uv) lies over texels that are empty at every height from L_k up, so
+// a ray going up meets nothing there. The march then jumps over those of
+// its samples, to the last one known outside: the samples it reads are
+// a subset of the plain march's, on the same lattice t = step (i + 1),
+// and every sample the plain march stops on, with the one before it, is
+// read, so t, f, ta, tb and the status are bit for bit the plain march's.
+// On llvmpipe a block of pixels runs the loop as long as its slowest ray:
+// the grazing rays over open water, which took all uMaxIter steps, now
+// leave it in a few.
 #ifndef RAYMARCH_MARCH_GLSL
 #define RAYMARCH_MARCH_GLSL
 #include "contract.glsl"
@@ -49,6 +66,9 @@
 
 #define MARCH_EMPTY_Y -1e29     // pack_y.frag writes -1e30 where nothing was drawn
 #define MARCH_GROUND_MODEL 1e30 // w: the floor (z) is the terrain's model, not seen (pack_y.frag)
+
+#define MARCH_SKIP_CELLS 128    // the skip map's cells a side (pack.glib's targets 17-19)
+#define MARCH_SKIP_FAR 65.0     // its distances are capped here (skip_dist.frag's reach + 1)
 
 #define MARCH_HIT 0
 #define MARCH_INSIDE 1
@@ -122,6 +142,33 @@ float marchF(sampler2D hf, ivec2 size, vec2 uv, float y, float level) {
     return marchSolidAs(marchFetch(hf, size, uv), y, level);
 }
 
+// The skip map's height thresholds, k = 0..3 (its channels): a little
+// below the water (a ray starts on the waves: from a trough deeper than
+// this it does not skip), then above it. Lake metres times uWorldScale.
+float marchSkipLevel(int k) {
+    float m = k == 0 ? -0.3 : k == 1 ? 0.05 : k == 2 ? 0.2 : 0.8;
+    return uWaterLevel + m * uWorldScale;
+}
+
+// How many samples after the one at (uv, y) a ray going up can jump over
+// (all outside, see above); adv: the L-infinity uv length of one step.
+int marchSkipCount(sampler2D skip, vec2 uv, float y, float adv) {
+    ivec2 c = clamp(ivec2(uv * float(MARCH_SKIP_CELLS)), ivec2(0), ivec2(MARCH_SKIP_CELLS - 1));
+    vec4 r = texelFetch(skip, c, 0);
+    float cells = y >= marchSkipLevel(3) ? r.w : y >= marchSkipLevel(2) ? r.z
+                : y >= marchSkipLevel(1) ? r.y : y >= marchSkipLevel(0) ? r.x : 0.0;
+    // strictly less than (cells - 1) cells: 0.999 keeps uv's rounding inside
+    float n = floor(0.999 * (cells - 1.0) / (float(MARCH_SKIP_CELLS) * adv));
+    return int(clamp(n, 0.0, float(MARCH_MAX_ITER)));
+}
+
+// The next sample to read after sample `cur` (-1: the start) when the k
+// after it are known outside: the last of them, but none past `last`
+// (the last sample the plain march could read without stopping).
+int marchSkipNext(int cur, int k, int last) {
+    return k > 0 ? max(min(cur + k, last), cur + 1) : cur + 1;
+}
+
 // The source's linear interpolation between the last two samples, guarded.
 float marchInterp(float ta, float fa, float tb, float fb) {
     float den = fa - fb;
@@ -144,10 +191,13 @@ vec3 marchClampDir(vec3 dir, bool down) {
 
 // The march. step <= 0: the step comes from the depth under the start,
 // marchStep(max(f(0), minRange), ...) (the refraction march). fromBelow:
-// the water level for the paper's reflection solid, else -1e30.
+// the water level for the paper's reflection solid, else -1e30. skip (a
+// ray going up, the plain solid, fromBelow -1e30): jump over samples the
+// skip map knows are outside (see above).
 March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
                        float step, float minRange, float nGrazing, float nSteep, float maxStep,
-                       float yMin, float yMax, int maxIter, int refine, float fromBelow) {
+                       float yMin, float yMax, int maxIter, int refine, float fromBelow,
+                       sampler2D skipMap, bool skip) {
     March m;
     m.t = 0.0;
     m.f = 0.0;
@@ -166,9 +216,15 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
     if (step <= 0.0) step = marchStep(max(fa, minRange), dir.y, nGrazing, nSteep, maxStep);
     float ta = 0.0, tb = 0.0, fb = fa;
     m.status = MARCH_CAP;
+    // skipping: a step's L-infinity length in uv, and the last sample the
+    // plain march reads before the ray passes yMax (two short: rounding)
+    float adv = step * max(abs(duv.x), abs(duv.y));
+    int last = maxIter - 1;
+    if (skip) last = min(last, int(min(floor((yMax - o.y) / (step * dir.y)), 1e4)) - 2);
+    int s = skip ? marchSkipNext(-1, marchSkipCount(skipMap, uv0, o.y, adv), last) : 0;
     for (int i = 0; i < ROLLED(MARCH_MAX_ITER); i++) {
-        if (i >= maxIter) break;
-        float t = step * float(i + 1);
+        if (s >= maxIter) break;
+        float t = step * float(s + 1);
         float y = o.y + t * dir.y;
         vec2 uv = uv0 + t * duv;
         if (!marchInFootprint(uv) || y < yMin || y > yMax) { m.status = MARCH_LEFT; break; }
@@ -179,6 +235,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
         if (f <= 0.0) { tb = t; fb = f; m.status = MARCH_HIT; break; }
         ta = t;
         fa = f;
+        s = skip ? marchSkipNext(s, marchSkipCount(skipMap, uv, y, adv), last) : s + 1;
     }
     m.ta = ta;
     if (m.status != MARCH_HIT) { m.t = ta; m.f = fa; return m; }

@@ -32,6 +32,13 @@
 #if !defined(NOREFLECTION) && (defined(WORLD_ABOVE_WATER) || !defined(WAVES_MODELS))
 #define RAYMARCH_MARCH_UP 1
 #endif
+// the march up jumps over the samples the skip map knows are empty
+// (march.glsl: the same result, fewer steps)
+#ifdef MARCH_SKIP
+#define MARCH_SKIP_ON true
+#else
+#define MARCH_SKIP_ON false
+#endif
 #if defined(REFINE_BINARY) || defined(REFINE_SECANT)
 #define REFINE_COUNT uRefineSteps
 #else
@@ -46,6 +53,7 @@ uniform sampler2D uLowColor;      // World below 1.5, undersides only: colour
 uniform sampler2D uWorldY;        // pack_y.frag: world Y of top, bottom, floor
 uniform sampler2D uFresnelLut;       // fresnel_lut.frag's table
 uniform sampler2D uWaterNormal;      // @water_normal
+uniform sampler2D uSkipCells;        // skip_dist.frag's: cells to the nearest blocked one, per height
 
 uniform float uStepsGrazing;   // steps across the depth for a horizontal ray (source: 10)
 uniform float uStepsSteep;     // ... for a vertical ray (source: 3)
@@ -304,7 +312,7 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, ou
     // sliders' 10 and 3), uMaxIter (40) of them at most
     float n = max(mix(uStepsGrazing, uStepsSteep, -d.y), 1.0);
     March m = marchHeightfield(uWorldY, p, d, uWorldScale / n, 0.0, uStepsGrazing, uStepsSteep, 4.0 * uWorldScale,
-                               -1e30, 1e30, uMaxIter, REFINE_COUNT, -1e30);
+                               -1e30, 1e30, uMaxIter, REFINE_COUNT, -1e30, uSkipCells, false);
 #else
     // The step cap (0.25 m: under a thin thing's width) must not stop the
     // march reaching the ground within its budget: on the deep open sea 40
@@ -320,7 +328,7 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, ou
                       uMaxStep * uWorldScale, max(uMaxStep, 1.0) * uWorldScale);
     March m = marchHeightfield(uWorldY, p, d, 0.0, uMinDepth * uWorldScale, uStepsGrazing,
                                uStepsSteep, cap, -1e30, 1e30, uMaxIter, REFINE_COUNT,
-                               -1e30);
+                               -1e30, uSkipCells, false);
 #endif
     gFetches += m.fetches;
     s = m.t;
@@ -348,12 +356,12 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status, out bool needMod
     // water (his cap is on the height reached, not on R.y): the sky there
     float step = uWorldScale / mix(0.5, 4.0, 1.0 - d.y);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep, step, -1e30,
-                               uWaterLevel + 0.8 * uWorldScale, 60, REFINE_COUNT, uWaterLevel);
+                               uWaterLevel + 0.8 * uWorldScale, 60, REFINE_COUNT, uWaterLevel, uSkipCells, false);
 #else
     float step = marchStep(reach, d.y, uStepsGrazing, uStepsSteep, uReflectStep * uWorldScale);
     March m = marchHeightfield(uWorldY, p, d, step, 0.0, uStepsGrazing, uStepsSteep,
                                uReflectStep * uWorldScale, -1e30, uWaterLevel + reach, uMaxIter, REFINE_COUNT,
-                               -1e30);
+                               -1e30, uSkipCells, MARCH_SKIP_ON);
 #endif
     status = m.status;
     gFetches += m.fetches;
