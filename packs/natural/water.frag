@@ -133,18 +133,33 @@ vec3 applyCaustics(vec3 c, vec3 p) {
 // front; one that never passes behind anything (the sky) ends at smax.
 // The refraction (the eye) and, since issue #24, the reflection (the
 // mirrored eye) march alike.
+// g at U + s r: how far the ray's point lies behind what the target shows
+// in its direction, |x - eye| - |shown - eye| = |x - eye| (1 - wv / w)
+// (natShownPointZ's point is on the ray eye -> x at view depth wv), with
+// the ray's clip coordinates cU + s cR (linear along it: no matrix a step)
+// and B the eye's clip z. ok: the target holds something there.
+float natGap(vec4 cU, vec4 cR, float B, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float s, out bool ok) {
+    vec4 cx = cU + s * cR;
+    vec2 uv = cx.xy / cx.w * 0.5 + 0.5;
+    float z = texture(depthTex, uv).r;
+    ok = natInside(uv) && z < 1.0 && cx.w > 0.0;
+    float A = (B - cx.z) / cx.w;
+    float wv = B / (2.0 * z - 1.0 + A);
+    return distance(eye, U + s * r) * (1.0 - abs(wv / cx.w));
+}
+
 float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax, float g0, out bool left) {
-    vec2 uv;
     bool ok;
     float s = smax;
     left = false;
+    vec4 cU = vp * vec4(U, 1.0), cR = vp * vec4(r, 0.0);
+    float B = (vp * vec4(eye, 1.0)).z;
     float sa = 0.0, ga = min(g0, -1e-4), sb = smax, gb = 0.0;
     bool crossed = false;
     for (int i = 1; i <= ROLLED(REFINE_STEPS); i++) {
         sb = smax * float(i) / float(REFINE_STEPS);
-        vec3 b = natShownPoint(vp, eye, depthTex, U + sb * r, uv, ok);
+        gb = natGap(cU, cR, B, eye, depthTex, U, r, sb, ok);
         if (!ok) { s = sa; left = true; break; }
-        gb = distance(eye, U + sb * r) - distance(eye, b);
         if (gb > 0.0) { crossed = true; break; }
         sa = sb;
         ga = gb;
@@ -159,8 +174,8 @@ float natMarch(mat4 vp, vec3 eye, sampler2D depthTex, vec3 U, vec3 r, float smax
         // same step's end and showed as bands on the shallow floor
         for (int k = 0; k < ROLLED(REFINE_BISECT); k++) {
             float sm = 0.5 * (sa + sb);
-            vec3 bm = natShownPoint(vp, eye, depthTex, U + sm * r, uv, ok);
-            float gm = ok ? distance(eye, U + sm * r) - distance(eye, bm) : 1.0;
+            float gm = natGap(cU, cR, B, eye, depthTex, U, r, sm, ok);
+            if (!ok) gm = 1.0;
             if (gm > 0.0) { sb = sm; gb = gm; } else { sa = sm; ga = gm; }
         }
         s = sa + (sb - sa) * (-ga) / (gb - ga);
