@@ -293,7 +293,7 @@ static void test_no_flow_no_pass(void) {
         /* what every pack program is built with (render_load.c) */
         prog p;
         memset(&p, 0, sizeof p);
-        world_set_wave_defines(&gw, &p);
+        world_set_defines(&gw, &p);
         CHECK_EQ(defines_flow(&p), (with == 1));
         if (!with)   /* no flow: not one flow uniform in any world program */
             for (int m = 0; m < WORLD_MODES; m++) {

@@ -15,4 +15,22 @@ uniform sampler2D uTerrainHeightMap; // the height less uTerrainMapPlane, baked 
 uniform float uTerrainMapHalf;     // the map covers |x|, |z| <= this (clamped beyond)
 uniform vec3 uTerrainMapPlane;     // the terrain's linear part: h at x = z = 0, dh/dx, dh/dz
 
+// The terrain's model and the ground's noise as the scene's constants
+// where tarn built the program (WORLD_DEFINES: viewer/gfx/render_world.h,
+// world_set_defines; a reload builds it again): llvmpipe runs both sides
+// of an `if`, even on a uniform, so every kind's model and the noise cost
+// every pixel that asks for the ground. Without tarn's defines (glslang's
+// validation, a build elsewhere) the uniforms decide.
+#ifdef WORLD_DEFINES
+#define TERRAIN_KIND WORLD_TERRAIN_KIND
+#ifdef WORLD_GROUND_DETAIL
+#define TERRAIN_GROUND_DETAIL uGroundDetail
+#else
+#define TERRAIN_GROUND_DETAIL 0.0
+#endif
+#else
+#define TERRAIN_KIND uTerrainKind
+#define TERRAIN_GROUND_DETAIL uGroundDetail
+#endif
+
 #endif // TARN_CONTRACT_TERRAIN_GLSL

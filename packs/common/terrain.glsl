@@ -29,15 +29,15 @@ float refSmoothD(float e0, float e1, float x) {
 // beyond it), with no texture filtering between.
 vec3 terrainHeightGrad(vec2 p) {
     float depth = uTerrainShape.x, shore = uTerrainShape.y, slope = uTerrainShape.z;
-    if (uTerrainKind == 2) return vec3(uWaterLevel - depth + slope * (p.x + uTerrainHalfSize), slope, 0.0);
-    if (uTerrainKind == 3) {   // pool_height: a rounded square, walls from r 0.70 to 0.85 (POOL_WALL_*)
+    if (TERRAIN_KIND == 2) return vec3(uWaterLevel - depth + slope * (p.x + uTerrainHalfSize), slope, 0.0);
+    if (TERRAIN_KIND == 3) {   // pool_height: a rounded square, walls from r 0.70 to 0.85 (POOL_WALL_*)
         vec2 e = p / uTerrainHalfSize;
         float r = sqrt(sqrt(e.x * e.x * e.x * e.x + e.y * e.y * e.y * e.y));
         float span = depth + shore, dh = span * refSmoothD(0.70, 0.85, r), r3 = r * r * r;
         vec2 g = dh != 0.0 && r3 > 1e-30 ? dh * e * e * e / (r3 * uTerrainHalfSize) : vec2(0.0);
         return vec3(uWaterLevel - depth + span * refSmooth(0.70, 0.85, r), g);
     }
-    if (uTerrainKind != 1) return vec3(uWaterLevel - depth, 0.0, 0.0);
+    if (TERRAIN_KIND != 1) return vec3(uWaterLevel - depth, 0.0, 0.0);
     float hs = uTerrainHalfSize;
     vec2 e = vec2(p.x / hs, 1.3 * p.y / hs);
     float r = length(e);
@@ -111,12 +111,12 @@ vec2 terrainGroundNoise(vec2 p) {
 // rock where steep, and a faint pattern.
 vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
     float unit = uTerrainHalfSize / 12.0;   // REF_WORLD_UNIT: a scaled world's colours scale with it
-    if (uTerrainKind == 3) {   // pool_albedo: 0.5 m tiles in a checker, 0.04 m grout, a stone deck
+    if (TERRAIN_KIND == 3) {   // pool_albedo: 0.5 m tiles in a checker, 0.04 m grout, a stone deck
         if (h > uWaterLevel + 0.5 * uTerrainShape.y) {
-            if (uGroundDetail <= 0.0) return vec3(0.55, 0.52, 0.47);
+            if (TERRAIN_GROUND_DETAIL <= 0.0) return vec3(0.55, 0.52, 0.47);
             // ground_detail_albedo: a stone deck, a lawn beyond r 1.15 (POOL_DECK_OUT)
             vec2 e = p / uTerrainHalfSize, q = p / unit, gn = terrainGroundNoise(q);
-            float g = uGroundDetail;
+            float g = TERRAIN_GROUND_DETAIL;
             if (sqrt(sqrt(e.x * e.x * e.x * e.x + e.y * e.y * e.y * e.y)) <= 1.15)
                 return vec3(0.55, 0.52, 0.47) * (1.0 + g * 0.5 * (gn.y - 0.5));
             vec3 c = mix(vec3(0.20, 0.38, 0.12), vec3(0.38, 0.42, 0.18), g * refSmooth(0.35, 0.75, gn.x));
@@ -130,7 +130,7 @@ vec3 terrainAlbedo(vec2 p, float h, vec3 n) {
     p /= unit;
     const vec3 silt = vec3(0.30, 0.28, 0.20), sand = vec3(0.76, 0.68, 0.50);
     const vec3 grass = vec3(0.22, 0.40, 0.14), rock = vec3(0.42, 0.40, 0.37);
-    float y = (h - uWaterLevel) / unit, g = uGroundDetail;
+    float y = (h - uWaterLevel) / unit, g = TERRAIN_GROUND_DETAIL;
     vec2 gn = g > 0.0 ? terrainGroundNoise(p) : vec2(0.5);
     float hy = y + g * 0.3 * (gn.x - 0.5), ny = n.y + g * 0.12 * (gn.y - 0.5);
     vec3 c = mix(silt, sand, refSmooth(-1.6, -0.4, y));

@@ -16,7 +16,13 @@ const float WORLD_PI = 3.14159265358979;
 // the haze (Haze), both off (0) unless the scene asks.
 
 // ref_sun_disc: a soft-edged, limb-darkened core and an aureole.
+// (Where tarn built the program, WORLD_DEFINES, a scene without the disc
+// or the haze compiles them out: llvmpipe runs the code behind a uniform
+// `if` for every pixel.)
 vec3 worldSunDisc(vec3 dir) {
+#if defined(WORLD_DEFINES) && !defined(WORLD_SUN_DISC)
+    return vec3(0.0);
+#else
     if (uSunDisc.x <= 0.0) return vec3(0.0);
     float half_ = 0.5 * length(normalize(dir) - uSunDir);
     float x = 2.0 * asin(min(half_, 1.0)) / uSunDisc.x;
@@ -24,6 +30,7 @@ vec3 worldSunDisc(vec3 dir) {
     float core = (1.0 - smoothstep(0.75, 1.25, x)) * (1.0 - 0.35 * min(x * x, 1.0));
     float aureole = 0.015 * exp(-0.5 * max(x - 1.0, 0.0));
     return uSunIrradiance / 3.0 * uSunDisc.y * (core + aureole);
+#endif
 }
 
 // The sky along dir, as ref_sky_radiance has it: the cube map tarn bakes
@@ -37,8 +44,12 @@ vec3 worldSkyLook(samplerCube sky, vec3 dir) {
 
 // ref_haze: what an air path of length dist does to the radiance c.
 vec3 worldHaze(vec3 c, float dist) {
+#if defined(WORLD_DEFINES) && !defined(WORLD_HAZE)
+    return c;
+#else
     if (uHazeDistance <= 0.0) return c;
     return mix(c, uSkyHorizon, 1.0 - exp(-dist / uHazeDistance));
+#endif
 }
 
 vec3 worldLambert(vec3 albedo, vec3 n, vec3 sunScale) {

@@ -176,10 +176,10 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
     p->cmd = c;
     p->gstap = st->gstap;
     p->world_uniforms = r->world.active;
-    world_set_wave_defines(&r->world, p);   /* only the wave models the world has */
+    world_set_defines(&r->world, p);   /* only the wave models the world has */
     if (r->world.active && r->world.has_above_water) {   /* `If above_water` as a define: a pack
                                                            * compiles out what only it needs */
-        shader_define *d = &p->fixed[PROG_FIXED_MAX - 1];   /* the wave defines use at most 7 */
+        shader_define *d = &p->fixed[PROG_FIXED_MAX - 1];   /* world_set_defines leaves it */
         snprintf(d->name, sizeof d->name, "WORLD_ABOVE_WATER");
         snprintf(d->value, sizeof d->value, "1");
     }

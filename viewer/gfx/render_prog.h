@@ -10,9 +10,10 @@
 #include "unif.h"
 
 /* fixed[0], [1]: the world program's variants (WORLD_MODE, WORLD_HEIGHT_MAP);
- * from PROG_FIXED_WORLD on: the world's wave models (world_wave_defines) */
+ * from PROG_FIXED_WORLD on: the world's wave models and look
+ * (world_set_defines, 13 at most); the last: WORLD_ABOVE_WATER (render_load) */
 #define PROG_FIXED_WORLD 2
-#define PROG_FIXED_MAX 10
+#define PROG_FIXED_MAX 16
 
 typedef struct prog {
     char name[GLIB_NAME_MAX];

@@ -412,11 +412,12 @@ static void set_height_define(const gpu_world *gw, prog *p) {
     snprintf(p->fixed[1].value, sizeof p->fixed[1].value, "1");
 }
 
-void world_set_wave_defines(const gpu_world *gw, prog *p) {
-    for (int k = PROG_FIXED_WORLD; k < PROG_FIXED_MAX; k++) memset(&p->fixed[k], 0, sizeof p->fixed[k]);
+void world_set_defines(const gpu_world *gw, prog *p) {
+    for (int k = PROG_FIXED_WORLD; k < PROG_FIXED_MAX - 1; k++) memset(&p->fixed[k], 0, sizeof p->fixed[k]);
     if (!gw->active) return;
     const ref_waves *w = &gw->w.waves;
-    const char *has[8];
+    const ref_world_desc *d = &gw->w.d;
+    const char *has[PROG_FIXED_MAX];
     int n = 0;
     has[n++] = "WAVES_MODELS";
     if (w->nsine) has[n++] = "WAVES_HAS_SINE";
@@ -426,14 +427,20 @@ void world_set_wave_defines(const gpu_world *gw, prog *p) {
     if (w->nexplosions) has[n++] = "WAVES_HAS_EXPLOSION";
     if (w->has_perlin) has[n++] = "WAVES_HAS_PERLIN";
     if (gw->w.d.flow.nterms > 0) has[n++] = "WAVES_HAS_FLOW";   /* flow.glsl: the advected detail */
-    for (int i = 0; i < n && PROG_FIXED_WORLD + i < PROG_FIXED_MAX; i++) {
-        shader_define *d = &p->fixed[PROG_FIXED_WORLD + i];
-        snprintf(d->name, sizeof d->name, "%s", has[i]);
-        snprintf(d->value, sizeof d->value, "1");
+    has[n++] = "WORLD_DEFINES";
+    if (d->ground_detail > 0) has[n++] = "WORLD_GROUND_DETAIL";
+    if (d->sun_disc_deg > 0) has[n++] = "WORLD_SUN_DISC";
+    if (d->haze_distance > 0) has[n++] = "WORLD_HAZE";
+    int k = PROG_FIXED_WORLD;
+    for (int i = 0; i < n && k < PROG_FIXED_MAX - 2; i++, k++) {
+        snprintf(p->fixed[k].name, sizeof p->fixed[k].name, "%s", has[i]);
+        snprintf(p->fixed[k].value, sizeof p->fixed[k].value, "1");
     }
+    snprintf(p->fixed[k].name, sizeof p->fixed[k].name, "WORLD_TERRAIN_KIND");
+    snprintf(p->fixed[k].value, sizeof p->fixed[k].value, "%d", (int)d->terrain);
 }
 
-static void spray_defines(const void *ctx, prog *p) { world_set_wave_defines(ctx, p); }
+static void spray_defines(const void *ctx, prog *p) { world_set_defines(ctx, p); }
 
 static bool build_program(gpu_world *gw, const prog_sources *src,  diag_list *log,
                           prog_origins *from) {
@@ -447,7 +454,7 @@ static bool build_program(gpu_world *gw, const prog_sources *src,  diag_list *lo
         snprintf(p->fixed[0].name, sizeof p->fixed[0].name, "WORLD_MODE");
         snprintf(p->fixed[0].value, sizeof p->fixed[0].value, "%d", m);
         set_height_define(gw, p);
-        world_set_wave_defines(gw, p);
+        world_set_defines(gw, p);
         snprintf(p->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world.vert", src->common_dir);
         snprintf(p->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world.frag", src->common_dir);
     }
@@ -456,7 +463,7 @@ static bool build_program(gpu_world *gw, const prog_sources *src,  diag_list *lo
     memset(&gw->height_unifs, 0, sizeof gw->height_unifs);
     h->unifs = &gw->height_unifs;
     h->world_uniforms = true;
-    world_set_wave_defines(gw, h);
+    world_set_defines(gw, h);
     snprintf(h->name, sizeof h->name, "WorldHeight");
     snprintf(h->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height_cells.vert", src->common_dir);
     snprintf(h->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_height.frag", src->common_dir);
@@ -466,7 +473,7 @@ static bool build_program(gpu_world *gw, const prog_sources *src,  diag_list *lo
     c->unifs = &gw->layers_unifs;
     c->world_uniforms = true;
     set_height_define(gw, c);
-    world_set_wave_defines(gw, c);
+    world_set_defines(gw, c);
     snprintf(c->name, sizeof c->name, "WorldLayers");
     snprintf(c->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_layers.vert", src->common_dir);
     snprintf(c->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_layers.frag", src->common_dir);
@@ -570,8 +577,12 @@ bool world_build(gpu_world *gw, const ref_world_desc *desc, const prog_sources *
     if (gw->w.d.flow.nterms > 0 &&
         !flow_create(&gw->flow, &gw->w.d.flow, gw->w.d.half_size, src, log, from))
         ok = false;
-    ok = build_program(gw, src, log, from) && ok;
+    /* active before the programs: world_set_defines gives them the
+     * scene's defines only for an active world (without them world.frag,
+     * its height map's and its layers' programs compiled every wave model
+     * and terrain kind, and llvmpipe ran them all) */
     gw->active = true;
+    ok = build_program(gw, src, log, from) && ok;
     /* the spray's state and passes: only a world with a Spray; after
      * `active`, which its update program's wave defines need */
     if (gw->w.d.spray.on && !spray_create(&gw->spray, &gw->w.d.spray, gw->w.d.half_size, src,

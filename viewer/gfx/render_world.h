@@ -136,12 +136,18 @@ void world_free(gpu_world *gw);
 /* Builds the world's programs again (a shader file changed); false on errors. */
 bool world_build_programs(gpu_world *gw, const prog_sources *src, diag_list *log, prog_origins *from);
 
-/* The defines that tell packs/common/waves.glsl which wave models this
- * world has (WAVES_MODELS, then WAVES_HAS_SINE, _GERSTNER, _NOISE, _OCEAN,
- * _EXPLOSION, _PERLIN for each it holds; WAVES_HAS_FLOW with a Flow), so a program compiles only
- * those: llvmpipe runs a loop's body even when its uniform count is 0.
+/* The defines that tell the packs' shaders what this world has, so a
+ * program compiles only that: llvmpipe runs a loop's body even when its
+ * uniform count is 0, and both sides of an `if` even on a uniform. The
+ * wave models (packs/common/waves.glsl): WAVES_MODELS, then WAVES_HAS_SINE,
+ * _GERSTNER, _NOISE, _OCEAN, _EXPLOSION, _PERLIN for each it holds;
+ * WAVES_HAS_FLOW with a Flow. The look (terrain.glsl, world.glsl):
+ * WORLD_DEFINES (these are known), WORLD_TERRAIN_KIND (the Terrain's
+ * model, REF_TERRAIN_*), and WORLD_GROUND_DETAIL, WORLD_SUN_DISC,
+ * WORLD_HAZE where the scene has GroundDetail, SkySun, Haze. All are the
+ * scene's, fixed until a reload, which builds the programs again.
  * Into p->fixed[PROG_FIXED_WORLD..] (cleared without a world). */
-void world_set_wave_defines(const gpu_world *gw, prog *p);
+void world_set_defines(const gpu_world *gw, prog *p);
 
 /* Bakes the terrain's height map (WORLD_UNIT_TERRAIN) unless it is there:
  * 512^2 evaluations of the model, ~40 ms on one core, so only for a scene
