@@ -69,6 +69,17 @@ static inline void gl_test_world_build(gpu_world *gw, const ref_world_desc *desc
     diag_list_free(&log);
 }
 
+/* The same, its build log printed (a test that checks the build): true
+ * when the world built. */
+static inline bool gl_test_world_build_logged(gpu_world *gw, const ref_world_desc *desc) {
+    memset(gw, 0, sizeof *gw);
+    diag_list log = { 0 };
+    bool ok = world_build(gw, desc, gl_test_sources(), &log, NULL);
+    diag_print(&log, stderr);
+    diag_list_free(&log);
+    return ok;
+}
+
 /* Compiles the shader file at path as a stage of type, its #include lines
  * resolved from packs/common (tarn's shared GLSL) and with the defines
  * given: what the wave tests compile waves.glsl with. 0 when it does not

@@ -37,11 +37,7 @@ static void check_scene(ref_terrain_kind kind, double detail, double disc, doubl
     desc.waves.gerstner_count = 1;
     desc.waves.gerstner[0] = (ref_wave_desc){ .wavelength = 4, .amplitude = 0.05 };
     gpu_world gw;
-    memset(&gw, 0, sizeof gw);
-    diag_list log = { 0 };
-    CHECK(world_build(&gw, &desc, gl_test_sources(), &log, NULL));
-    diag_print(&log, stderr);
-    diag_list_free(&log);
+    CHECK(gl_test_world_build_logged(&gw, &desc));
     prog p;
     memset(&p, 0, sizeof p);
     world_set_defines(&gw, &p);
