@@ -13,6 +13,7 @@ uniform sampler2D uLayerWet;    // rgb the wet shading, a the depth
 uniform sampler2D uLayerDry;    // rgb the dry shading
 uniform sampler2D uLayerPos;    // xyz the point, w 1 (0: the sky, never wet)
 uniform ivec2 uLayerOrigin;     // the viewport's corner in the target
+flat in float vWavesBound;      // worldWavesBound(), once a vertex
 out vec4 fragColor;
 
 void main() {
@@ -21,6 +22,6 @@ void main() {
     vec4 pos = texelFetch(uLayerPos, px, 0);
     if (wet.a >= 1.0) discard;   // nothing drawn there: the target keeps its clear
     gl_FragDepth = wet.a;
-    bool under = pos.w > 0.5 && worldUnderWater(pos.xyz);
+    bool under = pos.w > 0.5 && worldUnderWaterWithin(pos.xyz, vWavesBound);
     fragColor = vec4(under ? wet.rgb : texelFetch(uLayerDry, px, 0).rgb, 1.0);
 }

@@ -20,8 +20,9 @@
 uniform sampler2D uWaveHeight;     // the surface's height over the world (set by tarn)
 uniform float uWaveHeightHalf;     // it covers x, z in [-half, half]
 #endif
-bool worldUnderWater(vec3 p) {
-    if (p.y >= uWaterLevel) return false;
+// The waves' height bound: a sum of the scene's uniforms, the same for
+// every pixel (a full-screen pass takes it once a vertex, world_layers).
+float worldWavesBound() {
     float bound = 0.0;
     for (int i = 0; i < ROLLED(WAVES_MAX); i++) {
         if (i < uSineCount) bound += abs(uSineAmp[i]);
@@ -34,6 +35,11 @@ bool worldUnderWater(vec3 p) {
         bound += 0.75 * a;
         a *= gain;
     }
+    return bound;
+}
+
+bool worldUnderWaterWithin(vec3 p, float bound) {
+    if (p.y >= uWaterLevel) return false;
     if (p.y < uWaterLevel - bound) return true;
 #ifdef WORLD_HEIGHT_MAP
     // the surface's height from tarn's map of it this frame (world_height.frag);
@@ -46,5 +52,7 @@ bool worldUnderWater(vec3 p) {
     return p.y < wavesHeightAt(p.xz, uTime);
 #endif
 }
+
+bool worldUnderWater(vec3 p) { return worldUnderWaterWithin(p, worldWavesBound()); }
 
 #endif // WORLD_WET_GLSL
