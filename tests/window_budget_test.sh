@@ -10,8 +10,9 @@
 #     it is the same picture, pixel for pixel, as a frame drawn with the
 #     budget off (the sRGB canvas encodes as the window did);
 #   - with the clock running (the script's `play 1`: a script's clock
-#     stands otherwise) the picture keeps changing, so it stays reduced
-#     past the settle time;
+#     stands otherwise) the picture of water with a wave keeps changing,
+#     so it stays reduced past the settle time; calm water reads no clock
+#     (no program has a wave model), so it is still and drawn full;
 #   - compare-view reduces its packs' images the same way.
 set -u
 bin=$1; src=$2
@@ -52,7 +53,9 @@ wait 0.6
 expect-resolution reduced
 quit
 SCRIPT
-xvfb "$bin" view "$src/tests/data/raymarch/box.glib" --pack basic --size 900x300 \
+# the box over water with a wave (calm water reads no clock: below)
+{ cat "$src/tests/data/raymarch/box.glib"; echo "WaveSine 30 2.0 0.02 0 0"; } > "$scratch/box_wave.glib"
+xvfb "$bin" view "$scratch/box_wave.glib" --pack basic --size 900x300 \
     --script "$scratch/view.script" > "$scratch/view.log" 2>&1
 rc=$?
 cat "$scratch/view.log"
@@ -68,6 +71,25 @@ done
 # the scene area (right of the 440 px panel): the kept frame is the budget-off frame
 python3 "$src/tests/png_compare.py" "$scratch/still.png" "$scratch/nobudget.png" 440 ||
     fail "the still frame differs from a frame drawn with the budget off"
+
+# the same box over calm water: with no wave nothing reads the clock (the
+# programs are built with the world's wave models only), so with the
+# clock running the picture is still, drawn full and kept
+cat > "$scratch/calm.script" <<SCRIPT
+budget 0.001
+pause 0
+play 1
+wait 0.6
+frames 2
+expect-resolution full
+quit
+SCRIPT
+xvfb "$bin" view "$src/tests/data/raymarch/box.glib" --pack basic --size 900x300 \
+    --script "$scratch/calm.script" > "$scratch/calm.log" 2>&1
+rc=$?
+cat "$scratch/calm.log"
+[ "$rc" -eq 0 ] || fail "tarn view (calm water) exited $rc"
+grep -q "FAILED" "$scratch/calm.log" && fail "calm water with the clock running was not drawn full"
 
 # compare-view: the same budget over its packs
 cat > "$scratch/compare.script" <<SCRIPT
