@@ -22,6 +22,16 @@ fail() { echo "FAIL: $*"; exit 1; }
 scratch=$PWD/window-budget-test
 rm -rf "$scratch" && mkdir -p "$scratch" || fail "no scratch directory"
 xvfb() { xvfb-run -a -f "$scratch/Xauthority" -s "-screen 0 1280x800x24" "$@"; }
+# view_run NAME GLIB: tarn view of GLIB driven by $scratch/NAME.script, its
+# log printed; fails when it exits non-zero or an expect-resolution failed
+view_run() {
+    xvfb "$bin" view "$2" --pack basic --size 900x300 --script "$scratch/$1.script" > "$scratch/$1.log" 2>&1
+    local rc=$?
+    cat "$scratch/$1.log"
+    [ "$rc" -eq 0 ] || fail "tarn view ($1) exited $rc"
+    grep -q "FAILED" "$scratch/$1.log" && fail "an expect-resolution of $1.script failed"
+    return 0
+}
 
 cat > "$scratch/view.script" <<SCRIPT
 pause 1
@@ -55,12 +65,7 @@ quit
 SCRIPT
 # the box over water with a wave (calm water reads no clock: below)
 { cat "$src/tests/data/raymarch/box.glib"; echo "WaveSine 30 2.0 0.02 0 0"; } > "$scratch/box_wave.glib"
-xvfb "$bin" view "$scratch/box_wave.glib" --pack basic --size 900x300 \
-    --script "$scratch/view.script" > "$scratch/view.log" 2>&1
-rc=$?
-cat "$scratch/view.log"
-[ "$rc" -eq 0 ] || fail "tarn view exited $rc"
-grep -q "FAILED" "$scratch/view.log" && fail "an expect-resolution failed"
+view_run view "$scratch/box_wave.glib"
 # the moving frame's line says which size it had: below 460x300
 grep -E "^tarn: resolution [0-9]+x[0-9]+ \([0-9]+%\) of 460x300" "$scratch/view.log" |
     grep -v "(100%)" | grep -q . || fail "no reduced resolution reported while the camera turned"
@@ -84,12 +89,7 @@ frames 2
 expect-resolution full
 quit
 SCRIPT
-xvfb "$bin" view "$src/tests/data/raymarch/box.glib" --pack basic --size 900x300 \
-    --script "$scratch/calm.script" > "$scratch/calm.log" 2>&1
-rc=$?
-cat "$scratch/calm.log"
-[ "$rc" -eq 0 ] || fail "tarn view (calm water) exited $rc"
-grep -q "FAILED" "$scratch/calm.log" && fail "calm water with the clock running was not drawn full"
+view_run calm "$src/tests/data/raymarch/box.glib"
 
 # compare-view: the same budget over its packs
 cat > "$scratch/compare.script" <<SCRIPT
