@@ -18,6 +18,7 @@ uniform bool uWorldEyePath;     // drawn to the screen: attenuate along the eye'
 in vec3 vWorldPos;
 in vec3 vWorldNormal;
 in vec2 vST;
+flat in float vWavesBound;      // worldWavesBound(), once a vertex (world.vert)
 // world_layers (render.c): with uWorldLayers the draw keeps both of a
 // pixel's shadings, wet and dry, and its point, for frames that differ
 // only in time; location 0 then holds the wet colour and the depth
@@ -71,5 +72,5 @@ void main() {
         fragPos = vec4(vWorldPos, 1.0);
         return;
     }
-    fragColor = vec4(shadeAs(worldUnderWater(vWorldPos), albedo, n), 1.0);
+    fragColor = vec4(shadeAs(worldUnderWaterWithin(vWorldPos, vWavesBound), albedo, n), 1.0);
 }

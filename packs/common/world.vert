@@ -2,6 +2,9 @@
 // The world (terrain and objects) in world space: tarn bakes the meshes in
 // world coordinates, so gl_Vertex is the world position.
 #include "contract.glsl"
+#include "waves.glsl"
+#include "world.glsl"
+#include "world_wet.glsl"
 uniform vec4 uWorldClip;       // plane (n, d): keep dot(n, p) + d >= 0
 // 0 terrain, 1 object, 2 sky (a unit box around the eye): compiled in
 // (WORLD_MODE, one program per mode), or else a uniform
@@ -13,9 +16,13 @@ uniform int uWorldMode;
 out vec3 vWorldPos;
 out vec3 vWorldNormal;
 out vec2 vST;
+// the waves' height bound (world_wet.glsl), the same for every pixel:
+// taken once a vertex, world.frag's pixels skip its loops
+flat out float vWavesBound;
 
 void main() {
     vST = gl_MultiTexCoord0.st;
+    vWavesBound = worldWavesBound();
     if (uWorldMode == 2) {
         // the sky: directions from the eye, drawn at the far plane
         vWorldNormal = gl_Vertex.xyz;
