@@ -3,7 +3,6 @@
 // world coordinates, so gl_Vertex is the world position.
 #include "contract.glsl"
 #include "waves.glsl"
-#include "world.glsl"
 #include "world_wet.glsl"
 uniform vec4 uWorldClip;       // plane (n, d): keep dot(n, p) + d >= 0
 // 0 terrain, 1 object, 2 sky (a unit box around the eye): compiled in

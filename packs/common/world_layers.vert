@@ -4,7 +4,6 @@
 // vertex here, the fragments skip its loops (3-4 ms of a 960x540 pass on
 // llvmpipe, which runs every pixel through them).
 #include "waves.glsl"
-#include "world.glsl"
 #include "world_wet.glsl"
 
 flat out float vWavesBound;

@@ -2,14 +2,17 @@
 // The one time-dependent part of the world's shading: world.frag decides
 // each pixel's wet or dry shading by it, and world_layers.frag (a World
 // draw's two shadings kept while only the time changes) decides it again
-// at each new time, with the same function on the same point.
+// at each new time, with the same function on the same point. Both take
+// the waves' bound (worldWavesBound) once a vertex, flat: it is the same
+// for every pixel, and a CPU rasteriser ran its loops in each.
 #ifndef WORLD_WET_GLSL
 #define WORLD_WET_GLSL
 #include "contract.glsl"
 #include "loops.glsl"        // ROLLED(n): loop bounds
 
-// Is p under the water surface at this time? Below the mean level is not
-// enough: where a trough uncovers the shore, the reference's ray meets the
+// Is p under the water surface at this time (worldUnderWaterWithin, bound
+// worldWavesBound())? Below the mean level is not enough: where a trough
+// uncovers the shore, the reference's ray meets the
 // land in air and lights it dry (its shading follows the path, not the
 // mean level). Within the waves' height bound of the level (waves.glsl's
 // sum of amplitudes; gradient noise stays within 0.75 of its amplitude)
@@ -52,7 +55,5 @@ bool worldUnderWaterWithin(vec3 p, float bound) {
     return p.y < wavesHeightAt(p.xz, uTime);
 #endif
 }
-
-bool worldUnderWater(vec3 p) { return worldUnderWaterWithin(p, worldWavesBound()); }
 
 #endif // WORLD_WET_GLSL

@@ -42,7 +42,7 @@
 // Skipping empty space (the march up only, MARCH_SKIP): a coarse map of
 // MARCH_SKIP_CELLS² cells over the same square (skip_blocked.frag,
 // skip_dist.frag) holds, per cell and per height threshold L_k
-// (marchSkipLevel), the L-infinity distance in cells to the nearest cell
+// (marchSkipLevels), the L-infinity distance in cells to the nearest cell
 // with a texel whose top or floor reaches L_k (or off the drawn world, or
 // beyond the square). A sample at height y >= L_k whose cell is r cells from
 // such a cell knows that every point less than r - 1 cells away (L-infinity,
@@ -142,21 +142,20 @@ float marchF(sampler2D hf, ivec2 size, vec2 uv, float y, float level) {
     return marchSolidAs(marchFetch(hf, size, uv), y, level);
 }
 
-// The skip map's height thresholds, k = 0..3 (its channels): a little
+// The skip map's height thresholds L_0..L_3 (its channels): a little
 // below the water (a ray starts on the waves: from a trough deeper than
 // this it does not skip), then above it. Lake metres times uWorldScale.
-float marchSkipLevel(int k) {
-    float m = k == 0 ? -0.3 : k == 1 ? 0.05 : k == 2 ? 0.2 : 0.8;
-    return uWaterLevel + m * uWorldScale;
+vec4 marchSkipLevels() {
+    return uWaterLevel + vec4(-0.3, 0.05, 0.2, 0.8) * uWorldScale;
 }
 
 // How many samples after the one at (uv, y) a ray going up can jump over
-// (all outside, see above); adv: the L-infinity uv length of one step.
-int marchSkipCount(sampler2D skip, vec2 uv, float y, float adv) {
+// (all outside, see above); adv: the L-infinity uv length of one step;
+// levels: marchSkipLevels(), taken once a march.
+int marchSkipCount(sampler2D skip, vec2 uv, float y, float adv, vec4 levels) {
     ivec2 c = clamp(ivec2(uv * float(MARCH_SKIP_CELLS)), ivec2(0), ivec2(MARCH_SKIP_CELLS - 1));
     vec4 r = texelFetch(skip, c, 0);
-    float cells = y >= marchSkipLevel(3) ? r.w : y >= marchSkipLevel(2) ? r.z
-                : y >= marchSkipLevel(1) ? r.y : y >= marchSkipLevel(0) ? r.x : 0.0;
+    float cells = y >= levels.w ? r.w : y >= levels.z ? r.z : y >= levels.y ? r.y : y >= levels.x ? r.x : 0.0;
     // strictly less than (cells - 1) cells: 0.999 keeps uv's rounding inside
     float n = floor(0.999 * (cells - 1.0) / (float(MARCH_SKIP_CELLS) * adv));
     return int(clamp(n, 0.0, float(MARCH_MAX_ITER)));
@@ -221,7 +220,8 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
     float adv = step * max(abs(duv.x), abs(duv.y));
     int last = maxIter - 1;
     if (skip) last = min(last, int(min(floor((yMax - o.y) / (step * dir.y)), 1e4)) - 2);
-    int s = skip ? marchSkipNext(-1, marchSkipCount(skipMap, uv0, o.y, adv), last) : 0;
+    vec4 levels = marchSkipLevels();
+    int s = skip ? marchSkipNext(-1, marchSkipCount(skipMap, uv0, o.y, adv, levels), last) : 0;
     for (int i = 0; i < ROLLED(MARCH_MAX_ITER); i++) {
         if (s >= maxIter) break;
         float t = step * float(s + 1);
@@ -235,7 +235,7 @@ March marchHeightfield(sampler2D hf, vec3 o, vec3 dir,
         if (f <= 0.0) { tb = t; fb = f; m.status = MARCH_HIT; break; }
         ta = t;
         fa = f;
-        s = skip ? marchSkipNext(s, marchSkipCount(skipMap, uv, y, adv), last) : s + 1;
+        s = skip ? marchSkipNext(s, marchSkipCount(skipMap, uv, y, adv, levels), last) : s + 1;
     }
     m.ta = ta;
     if (m.status != MARCH_HIT) { m.t = ta; m.f = fa; return m; }

@@ -1,6 +1,6 @@
 #version 330 compatibility
 // The skip map's first pass (march.glsl, "Skipping empty space"): for each
-// of its MARCH_SKIP_CELLS² cells, per height threshold L_k (marchSkipLevel,
+// of its MARCH_SKIP_CELLS² cells, per height threshold L_k (marchSkipLevels,
 // one a channel), whether a texel of the world-Y texture under the cell
 // could stop a ray going up at a height of L_k or more: its top or floor
 // reaches L_k, or it is off the drawn world (the march leaves there).
@@ -26,6 +26,5 @@ void main() {
             high = max(high, t.x <= MARCH_EMPTY_Y ? 1e30 : max(t.x, t.z));
         }
     }
-    vec4 level = vec4(marchSkipLevel(0), marchSkipLevel(1), marchSkipLevel(2), marchSkipLevel(3));
-    fragColor = mix(vec4(MARCH_SKIP_FAR), vec4(0.0), greaterThanEqual(vec4(high), level));
+    fragColor = mix(vec4(MARCH_SKIP_FAR), vec4(0.0), greaterThanEqual(vec4(high), marchSkipLevels()));
 }

@@ -1,5 +1,5 @@
 /* world_height_tiles: where the waves' height map is read. world.frag
- * asks the map (packs/common/world_wet.glsl, worldUnderWater) only for a
+ * asks the map (packs/common/world_wet.glsl, worldUnderWaterWithin) only for a
  * point of the land or of an object between the water's level less the
  * waves' bound and the level; elsewhere its texels are never read (the
  * spray aside, which reads it over all the water). On the lake that band
