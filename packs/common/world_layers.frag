@@ -13,11 +13,14 @@ uniform sampler2D uLayerWet;    // rgb the wet shading, a the depth
 uniform sampler2D uLayerDry;    // rgb the dry shading
 uniform sampler2D uLayerPos;    // xyz the point, w 1 (0: the sky, never wet)
 uniform ivec2 uLayerOrigin;     // the viewport's corner in the target
+uniform vec2 uLayerScale;       // texel = (pixel + 0.5) * scale + offset: larger layers serve
+uniform vec2 uLayerOffset;      // a smaller frame (world_layers.h); 1, 1 and 0, 0 the texel itself
 flat in float vWavesBound;      // worldWavesBound(), once a vertex
 out vec4 fragColor;
 
 void main() {
-    ivec2 px = ivec2(gl_FragCoord.xy) - uLayerOrigin;
+    vec2 at = (gl_FragCoord.xy - vec2(uLayerOrigin)) * uLayerScale + uLayerOffset;
+    ivec2 px = clamp(ivec2(at), ivec2(0), textureSize(uLayerWet, 0) - 1);
     vec4 wet = texelFetch(uLayerWet, px, 0);
     vec4 pos = texelFetch(uLayerPos, px, 0);
     if (wet.a >= 1.0) discard;   // nothing drawn there: the target keeps its clear

@@ -55,11 +55,12 @@ static bool draw_world_layers(render *r, frame_state *f, int i, const world_cach
         world_draw_layers(&r->world, which, offset, f->cam_eye, !f->in_rtt, restore);
         world_layers_end_build(&r->wlayers, i, k);
     }
-    const unsigned *tex = world_layers_textures(&r->wlayers, i);
+    world_layer_view lv;
+    const unsigned *tex = world_layers_textures(&r->wlayers, i, k, &lv);
     if (!tex) return false;
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
-    world_composite_layers(&r->world, f->t, f->cam_eye, tex, vp[0], vp[1], restore);
+    world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore);
     r->wlayers.composites++;
     return true;
 }

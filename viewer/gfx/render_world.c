@@ -805,8 +805,8 @@ void world_draw_layers(const gpu_world *gw, const char *which, double offset, co
  * 22-30) and glman's, the last of a GL with 32 */
 static const int LAYER_UNITS[3] = { 31, 21, 20 };
 
-void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3], int x, int y,
-                            unsigned restore_program) {
+void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3],
+                            const world_layer_view *v, int x, int y, unsigned restore_program) {
     unsigned p = gw->layers_prog.gl;
     if (!gw->active || !p) return;
     GLint active = 0, before[3];
@@ -822,6 +822,9 @@ void world_composite_layers(const gpu_world *gw, double t, const float eye[3], c
     }
     GLint origin = glGetUniformLocation(p, "uLayerOrigin");
     if (origin >= 0) glUniform2i(origin, x, y);
+    GLint scale = glGetUniformLocation(p, "uLayerScale"), offset = glGetUniformLocation(p, "uLayerOffset");
+    if (scale >= 0) glUniform2f(scale, v->scale[0], v->scale[1]);
+    if (offset >= 0) glUniform2f(offset, v->offset[0], v->offset[1]);
     render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
     glDrawArrays(GL_TRIANGLES, 0, 3);
     render_res_vertexid_end();

@@ -20,6 +20,7 @@
 #include "render_flow.h"
 #include "render_ocean.h"
 #include "render_spray.h"
+#include "world_layers.h"
 #include "render_prog.h"
 #include "render_res.h"
 
@@ -217,11 +218,13 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
  * wet and dry shading, its point and depth, for any time. */
 void world_draw_layers(const gpu_world *gw, const char *which, double offset, const float eye[3], bool to_screen,
                        unsigned restore_program);
-/* A World at time t from its layers (tex: wet+depth, dry, point), into the
- * bound target's viewport (its corner at x, y): the pixels world_draw gives
- * at t. Restores `restore_program` and the texture units it borrows. */
-void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3], int x, int y,
-                            unsigned restore_program);
+/* A World at time t from its layers (tex: wet+depth, dry, point; v: how
+ * a pixel finds its texel, world_layers.h), into the bound target's
+ * viewport (its corner at x, y): the pixels world_draw gives at t (at the
+ * layers' own size). Restores `restore_program` and the texture units it
+ * borrows. */
+void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3],
+                            const world_layer_view *v, int x, int y, unsigned restore_program);
 
 /* `WaterSurface`: the water grid (at the level of detail) with the bound program. */
 void world_draw_water(gpu_world *gw, int tangent_loc);

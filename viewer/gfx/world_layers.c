@@ -2,6 +2,7 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <math.h>
 #include <string.h>
 
 void world_layers_init(world_layers *l) {
@@ -51,6 +52,33 @@ static bool same_but_time_and_size(const world_cache_key *a, const world_cache_k
     return memcmp(&x, &y, sizeof x) == 0;
 }
 
+/* The most two projections' horizontal focal lengths (the aspect) may
+ * differ by for one's layers to serve the other: a reduced frame's sides
+ * are rounded apart (0.1-1.2%, more at the smallest sizes) */
+#define ASPECT_SLACK 0.05f
+
+/* Is the projection the same but for its aspect (projection[0], the
+ * focal length over the aspect), within ASPECT_SLACK? A point's
+ * normalised device coordinates then differ only in x, by their ratio
+ * (layer_view corrects for it). */
+static bool same_but_aspect(const world_cache_key *a, const world_cache_key *b) {
+    for (int i = 1; i < 16; i++)
+        if (a->projection[i] != b->projection[i]) return false;
+    return fabsf(a->projection[0] - b->projection[0]) <= ASPECT_SLACK * fabsf(a->projection[0]);
+}
+
+/* Do layers that hold have (its time zeroed) serve a frame of want (the
+ * same)? Those of its own size do; so do larger ones of the same world
+ * and camera (the window's budget shrank the frame while the clock ran:
+ * a save's job took a core, or a slow frame): the composite picks the
+ * texel that sees what each pixel sees, and shrinking, then growing
+ * back, builds nothing. */
+static bool layers_serve(const world_cache_key *have, const world_cache_key *want) {
+    if (memcmp(have, want, sizeof *want) == 0) return true;
+    if (have->vp_w < want->vp_w || have->vp_h < want->vp_h) return false;
+    return same_but_time_and_size(have, want) && same_but_aspect(have, want);
+}
+
 world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_key *k) {
     /* one sample a pixel, no blending: the pass writes each pixel once */
     if (l->off || k->samples > 1 || k->blend || !k->color_fmt || !k->depth_fmt) return WORLD_LAYERS_NO;
@@ -59,7 +87,7 @@ world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_
     if (!s || s->broken) return WORLD_LAYERS_NO;
     s->cmd = cmd;
     world_cache_key u = timeless(k);
-    if (s->valid && memcmp(&s->key, &u, sizeof u) == 0) {
+    if (s->valid && layers_serve(&s->key, &u)) {
         s->last = *k;
         return WORLD_LAYERS_READY;
     }
@@ -154,7 +182,15 @@ void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k) 
     l->builds++;
 }
 
-const unsigned *world_layers_textures(world_layers *l, int cmd) {
+const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cache_key *k, world_layer_view *v) {
     world_layers_slot *s = find(l, cmd);
-    return s && s->valid ? s->tex : NULL;
+    if (!s || !s->valid) return NULL;
+    /* a pixel's normalised x is the layer's over r (the focal lengths'
+     * ratio): texel = ((2 (px + 0.5) / w - 1) r + 1) lw / 2 */
+    double r = k->projection[0] != 0 ? s->key.projection[0] / (double)k->projection[0] : 1.0;
+    v->scale[0] = (float)(r * s->key.vp_w / k->vp_w);
+    v->scale[1] = (float)((double)s->key.vp_h / k->vp_h);
+    v->offset[0] = (float)((1.0 - r) * s->key.vp_w / 2.0);
+    v->offset[1] = 0.0f;
+    return s->tex;
 }

@@ -41,7 +41,10 @@ void world_layers_init(world_layers *l);
 void world_layers_free(world_layers *l);
 
 /* Whether command cmd at key k can take its layers: they hold k's world
- * (k's time aside; WORLD_LAYERS_READY), or the command was drawn at the last
+ * (k's time aside; WORLD_LAYERS_READY), at k's size or larger (the same
+ * world and camera, the projection's aspect within 5%: a frame the
+ * window's budget shrank is composed from the layers of the larger one,
+ * a pixel the texel that sees what it sees, world_layer_view), or the command was drawn at the last
  * frame with the same key at another time (its size aside: the window's
  * budget may have drawn it larger or smaller), so the clock runs and the
  * layers pay (WORLD_LAYERS_BUILD), or neither (WORLD_LAYERS_NO: draw it). Records k
@@ -59,6 +62,16 @@ bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k
  * now hold k's world. */
 void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k);
 
-/* The three layer textures of command cmd (wet+depth, dry, point), or NULL. */
-const unsigned *world_layers_textures(world_layers *l, int cmd);
+/* Where a frame's pixel finds its texel: texel = (pixel + 0.5) * scale
+ * + offset (the pixel counted from the viewport's corner), clamped to the
+ * layers; (1, 1) and (0, 0) for layers of the frame's own size, the texel
+ * itself. */
+typedef struct world_layer_view {
+    float scale[2], offset[2];
+} world_layer_view;
+
+/* The three layer textures of command cmd (wet+depth, dry, point), or
+ * NULL; *v: how a frame at key k (the one world_layers_check took) reads
+ * them. */
+const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cache_key *k, world_layer_view *v);
 #endif
