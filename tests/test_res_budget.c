@@ -267,6 +267,43 @@ static void test_one_frame_is_noise(void) {
     CHECK_LT(s1, s);
 }
 
+/* A save's job takes one of two cores (res_budget_contend): frames cost
+ * twice the model's. The picture shrinks at once to RES_BUDGET_CONTENDED
+ * of a side, the controller brings the doubled frames within the budget,
+ * and at the job's end the size from before comes back at once, the last
+ * contended frame's time not taken as a measure of it. */
+static void test_contended_shrinks_and_comes_back(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0, s;
+    uint64_t key = 0;
+    double calm = run_moving(&rb, 15, 249, 40, &t, &key, &last);
+    CHECK_LT(calm, 1.0);
+    res_budget_contend(&rb, true);
+    double worst_late = 0;
+    for (int i = 0; i < 20; i++) {
+        CHECK(res_budget_plan(&rb, ++key, t, last, false, &s));
+        if (i == 0) CHECK_NEAR(s, calm * RES_BUDGET_CONTENDED, 1e-12);
+        last = 2 * model_ms(15, 249, s, 960, 540);
+        if (i >= 10) worst_late = fmax(worst_late, last);
+        t += last / 1e3;
+    }
+    CHECK_MSG(worst_late <= 50 + 1e-9, "contended frames settle at %.1f ms, budget 50", worst_late);
+    res_budget_contend(&rb, false);
+    CHECK(res_budget_plan(&rb, ++key, t, last, false, &s));
+    CHECK_EQ(s, calm);
+    last = model_ms(15, 249, s, 960, 540);   /* a new size's first frame: no measure either */
+    CHECK(res_budget_plan(&rb, ++key, t, 3 * last, false, &s));
+    CHECK_EQ(s, calm);
+    /* contending twice changes nothing; ending twice neither */
+    res_budget_contend(&rb, true);
+    res_budget_contend(&rb, true);
+    CHECK_NEAR(rb.scale, calm * RES_BUDGET_CONTENDED, 1e-12);
+    res_budget_contend(&rb, false);
+    res_budget_contend(&rb, false);
+    CHECK_EQ(rb.scale, calm);
+}
+
 static void test_key_changes_with_any_byte(void) {
     float a[3] = { 1, 2, 3 }, b[3] = { 1, 2, 3.0001f };
     uint64_t ka = hash_fnv1a(HASH_FNV1A_BASIS, a, sizeof a);
@@ -309,6 +346,7 @@ int main(void) {
     RUN(test_noise_stays_bounded);
     RUN(test_first_frame_at_a_size_is_not_a_measure);
     RUN(test_one_frame_is_noise);
+    RUN(test_contended_shrinks_and_comes_back);
     RUN(test_key_changes_with_any_byte);
     return check_summary();
 }

@@ -237,6 +237,11 @@ static bool compile_readied(app *a) {
     return a->ready_seen;
 }
 
+/* Does a save's job compile now, on the cores the window draws on? (Not
+ * once the window shows its change: then it makes the still frame's code
+ * only when the window's picture stands still, or waits.) */
+static bool job_contends(const app *a) { return a->compiling && !a->priming && !a->reloaded_early; }
+
 static void reload_early(app *a) {
     a->ready_seen = false;
     a->reloaded_early = true;
@@ -680,19 +685,20 @@ static void frame(app *a, bool scripted) {
     a->s.frame_ms = frame_meter_ms(&a->meter);
     a->s.fps = frame_meter_fps(&a->meter);
     if (!a->s.paused && (!scripted || a->script_play)) a->s.t += dt;
+    bool contended = job_contends(a);   /* (the reload's frame, at the job's ready, too) */
     if (compile_readied(a)) reload_early(a);
     if (compile_finished(a)) compile_ended(a);
     still_due(a, now);
-    /* a save's job compiles on a core this frame draws on: its time is not
-     * the scene's (the budget shrank the picture for the job's 0.3-0.5 s,
-     * then paid a new size's first frame growing it back, 100 ms) */
-    if (a->compiling && !a->priming && !a->reloaded_early) a->frame_fair = false;
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
     if (changed > 0) reload_changed(a, changed);
     else if (a->watch && missing_dir_appeared(a)) {
         snprintf(a->cause, sizeof a->cause, "a missing folder appeared");
         reload(a);
     }
+    /* a save's job compiles on a core this frame draws on: the frame
+     * shrinks for as long (res_budget_contend), from the frame that
+     * started it */
+    res_budget_contend(&a->budget, contended || job_contends(a));
     sheet_ended(a, false);
     a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);

@@ -19,6 +19,9 @@ void res_budget_feed(res_budget *b, double ms, double scale) {
     if (fabs(ratio - 1.0) <= RES_BUDGET_DEADBAND && scale == b->scale) return;
     /* pixels in proportion to the time left; growing at most twice a step
      * (a cheap frame may be noise), shrinking at once (a slow one is felt) */
+    /* contended, only shrinking: the job ends in a few hundred ms, and a
+     * new size's first frame costs more than the pixels it would add */
+    if (b->contended && ratio > 1.0) return;
     double area = scale * scale * (ratio > 2.0 ? 2.0 : ratio);
     b->scale = clampd(sqrt(area), RES_BUDGET_FLOOR, 1.0);
 }
@@ -71,6 +74,19 @@ bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_fram
     b->measure = true;
     *scale = s;
     return true;
+}
+
+void res_budget_contend(res_budget *b, bool contended) {
+    if (contended == b->contended) return;
+    b->contended = contended;
+    if (contended) {
+        b->calm_scale = b->scale;
+        b->scale = clampd(b->scale * RES_BUDGET_CONTENDED, RES_BUDGET_FLOOR, 1.0);
+    } else {
+        b->scale = b->calm_scale;
+    }
+    b->measure = false;
+    b->prev_ms = 0;
 }
 
 void res_budget_hold_full(res_budget *b, bool hold) { b->hold_full = hold; }

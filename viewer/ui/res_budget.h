@@ -58,6 +58,8 @@ typedef struct res_budget {
     double prev_ms;              /* the time of the last frame measured at drawn_scale (0: none) */
     bool measure;                /* the last frame drew the scene: its time is a measure */
     bool hold_full;              /* the still picture's full frame waits (res_budget_hold_full) */
+    bool contended;              /* another job shares the cores (res_budget_contend) */
+    double calm_scale;           /* ... scale before it began, taken back at its end */
 } res_budget;
 
 void res_budget_init(res_budget *b, double budget_ms);
@@ -87,6 +89,17 @@ void res_budget_hold_full(res_budget *b, bool hold);
  * unchanged for RES_BUDGET_SETTLE_S, its reduced frame shown)? Nothing to
  * draw until the hold ends or the picture changes. */
 bool res_budget_full_held(const res_budget *b, double now_s);
+/* While contended is true a job (a save's compile) takes one of the cores
+ * the frames draw on, for a few hundred ms: a frame at the size the budget
+ * chose takes about twice as long. The changing picture shrinks at once to
+ * RES_BUDGET_CONTENDED of each side (a third of the pixels) and the
+ * controller shrinks it further where the frames drawn meanwhile are over
+ * the aim (never grows it: a new size's first frame costs more than the
+ * pixels would give in the job's few hundred ms); at the end the size
+ * from before comes back (the job's frames say nothing of the calm
+ * machine). A change of either way drops the last frame's measure. */
+#define RES_BUDGET_CONTENDED 0.6
+void res_budget_contend(res_budget *b, bool contended);
 /* One frame drawn at scale took ms: the next changing frame's scale. */
 void res_budget_feed(res_budget *b, double ms, double scale);
 
