@@ -177,13 +177,14 @@ static bool nearest_of(const float *a, int w, int h, const float *b, int lw, int
 }
 
 /* The window's budget draws a running clock at a new size from frame to
- * frame (a save's job takes a core: a third of the pixels for a few
- * hundred ms, then the size from before). The layers are built once, at
- * the first size the clock ran at; a frame of that size or smaller is
- * composed from them (a smaller one from their nearest texels: exactly
- * the frame drawn at the layers' size, sampled so), a larger one builds
- * them anew. Checked against frames drawn with the cache off, on a scene
- * of the lake's world alone (no water pass over it). */
+ * frame. Each size builds its layers, every frame the frame drawn whole;
+ * while render_keep_world_layers is set (the window draws a third of the
+ * pixels while a save's job compiles, then the size from before), a
+ * smaller frame is composed from the larger layers instead (exactly the
+ * frame drawn at the layers' size, each pixel the texel that sees what it
+ * sees) and growing back to them builds nothing; a larger one builds.
+ * Checked against frames drawn with the cache off, on a scene of the
+ * lake's world alone (no water pass over it). */
 static void check_running_clock_resizing(const char *pack, bool is_float) {
     (void)pack;
     char path[512];
@@ -198,10 +199,12 @@ static void check_running_clock_resizing(const char *pack, bool is_float) {
     fputs("Clear\nWorld all\n", out);
     fclose(in);
     fclose(out);
-    /* w, h; the layers' size the frame is composed from (0: drawn whole) */
-    static const int steps[][4] = { { 144, 81, 0, 0 },   { 144, 81, 144, 81 }, { 86, 48, 144, 81 },
-                                    { 97, 55, 144, 81 }, { 144, 81, 144, 81 }, { 131, 74, 144, 81 },
-                                    { 160, 90, 160, 90 }, { 89, 50, 160, 90 } };
+    /* w, h, keep; the layers' size the frame is composed from (0: drawn whole) */
+    static const int steps[][5] = {
+        { 144, 81, 0, 0, 0 },     { 144, 81, 0, 144, 81 }, { 86, 48, 1, 144, 81 },  { 97, 55, 1, 144, 81 },
+        { 144, 81, 0, 144, 81 },  { 131, 74, 0, 131, 74 }, { 144, 81, 1, 144, 81 }, { 131, 74, 1, 144, 81 },
+        { 160, 90, 1, 160, 90 },  { 89, 50, 1, 160, 90 },
+    };
     const int n = (int)(sizeof steps / sizeof *steps);
     rig on, off;
     render_desc rd = { 0 };
@@ -213,7 +216,8 @@ static void check_running_clock_resizing(const char *pack, bool is_float) {
     CHECK(render_target_create(&on.tg, W, H, is_float) && render_target_create(&off.tg, W, H, is_float));
     for (int k = 0; k < n; k++) {
         double t = 1.0 + 0.05 * k;
-        int w = steps[k][0], h = steps[k][1], lw = steps[k][2], lh = steps[k][3];
+        int w = steps[k][0], h = steps[k][1], lw = steps[k][3], lh = steps[k][4];
+        render_keep_world_layers(on.r, steps[k][2] != 0);
         long before = render_world_layer_frames(on.r);
         float *a = frame_at(&on, t, w, h);
         CHECK_MSG(render_world_layer_frames(on.r) == before + (lw > 0), "%s, %dx%d: composed %ld times, want %d", pack, w,

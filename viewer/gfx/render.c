@@ -134,6 +134,8 @@ void render_set_world_cache(render *r, bool on) {
 
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
 
+void render_keep_world_layers(render *r, bool keep) { r->wlayers.keep_larger = keep; }
+
 bool render_set_world_height_map(render *r, bool on) {
     diag_list log = { 0 };
     bool ok = world_set_height_map(&r->world, on, &r->sources, &log, NULL);

@@ -180,6 +180,15 @@ long render_world_cache_hits(const render *r);
  * one full-screen pass (world_layers.h): the same pixels. How many World
  * draws were so composed since render_create: */
 long render_world_layer_frames(const render *r);
+/* While keep is true (off by default), a frame smaller than the layers of
+ * its World (the same world and camera) is composed from them, each pixel
+ * from the texel that sees what it sees, instead of building its own: for
+ * a picture drawn smaller for a moment (the window while a save's job
+ * compiles), so that neither the shrink nor the growth back to the
+ * layers' size builds them (a World drawn whole, 15-80 ms). Off, a frame
+ * of a new size builds its own, and every frame is the frame drawn
+ * whole (a served one is that of the layers' size, resampled). */
+void render_keep_world_layers(render *r, bool keep);
 
 /* The world's wet and dry land (where the moving surface is above it)
  * from a height map of the surface drawn once a frame, bilinear between

@@ -68,14 +68,13 @@ static bool same_but_aspect(const world_cache_key *a, const world_cache_key *b) 
 }
 
 /* Do layers that hold have (its time zeroed) serve a frame of want (the
- * same)? Those of its own size do; so do larger ones of the same world
- * and camera (the window's budget shrank the frame while the clock ran:
- * a save's job took a core, or a slow frame): the composite picks the
- * texel that sees what each pixel sees, and shrinking, then growing
- * back, builds nothing. */
-static bool layers_serve(const world_cache_key *have, const world_cache_key *want) {
+ * same)? Those of its own size do; while keep_larger is set, so do larger
+ * ones of the same world and camera (the window draws smaller while a
+ * save's job takes a core): the composite picks the texel that sees what
+ * each pixel sees, and shrinking, then growing back, builds nothing. */
+static bool layers_serve(const world_layers *l, const world_cache_key *have, const world_cache_key *want) {
     if (memcmp(have, want, sizeof *want) == 0) return true;
-    if (have->vp_w < want->vp_w || have->vp_h < want->vp_h) return false;
+    if (!l->keep_larger || have->vp_w < want->vp_w || have->vp_h < want->vp_h) return false;
     return same_but_time_and_size(have, want) && same_but_aspect(have, want);
 }
 
@@ -87,7 +86,7 @@ world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_
     if (!s || s->broken) return WORLD_LAYERS_NO;
     s->cmd = cmd;
     world_cache_key u = timeless(k);
-    if (s->valid && layers_serve(&s->key, &u)) {
+    if (s->valid && layers_serve(l, &s->key, &u)) {
         s->last = *k;
         return WORLD_LAYERS_READY;
     }

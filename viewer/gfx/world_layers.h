@@ -27,7 +27,8 @@ typedef struct world_layers_slot {
 
 typedef struct world_layers {
     world_layers_slot slot[WORLD_CACHE_SLOTS];
-    bool off;                   /* render_set_world_layers(false) */
+    bool off;                   /* render_set_world_cache(false) */
+    bool keep_larger;           /* render_keep_world_layers */
     long builds, composites;
     struct {                    /* what a build changes, put back after it */
         int draw_fbo, rb, vp[4];
@@ -41,10 +42,11 @@ void world_layers_init(world_layers *l);
 void world_layers_free(world_layers *l);
 
 /* Whether command cmd at key k can take its layers: they hold k's world
- * (k's time aside; WORLD_LAYERS_READY), at k's size or larger (the same
- * world and camera, the projection's aspect within 5%: a frame the
- * window's budget shrank is composed from the layers of the larger one,
- * a pixel the texel that sees what it sees, world_layer_view), or the command was drawn at the last
+ * (k's time aside; WORLD_LAYERS_READY) at k's size, or, while
+ * keep_larger is set, larger (the same world and camera, the projection's
+ * aspect within 5%: a frame drawn smaller for a moment is composed from
+ * the layers of the larger one, a pixel the texel that sees what it sees,
+ * world_layer_view), or the command was drawn at the last
  * frame with the same key at another time (its size aside: the window's
  * budget may have drawn it larger or smaller), so the clock runs and the
  * layers pay (WORLD_LAYERS_BUILD), or neither (WORLD_LAYERS_NO: draw it). Records k

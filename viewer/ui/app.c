@@ -609,6 +609,8 @@ bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale) {
     return res_budget_plan(&a->budget, key, glfwGetTime(), a->last_frame_ms, force_full || a->shooting, scale);
 }
 
+bool app_budget_contended(const app *a) { return a->budget.contended; }
+
 void app_budget_drawn(app *a, int iw, int ih, int w, int h) {
     a->drawn_w = iw;
     a->drawn_h = ih;
