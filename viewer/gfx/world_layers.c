@@ -60,7 +60,7 @@ static bool same_but_time_and_size(const world_cache_key *a, const world_cache_k
 /* Is the projection the same but for its aspect (projection[0], the
  * focal length over the aspect), within ASPECT_SLACK? A point's
  * normalised device coordinates then differ only in x, by their ratio
- * (layer_view corrects for it). */
+ * (world_layers_textures' world_layer_view corrects for it). */
 static bool same_but_aspect(const world_cache_key *a, const world_cache_key *b) {
     for (int i = 1; i < 16; i++)
         if (a->projection[i] != b->projection[i]) return false;

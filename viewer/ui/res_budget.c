@@ -17,11 +17,11 @@ void res_budget_feed(res_budget *b, double ms, double scale) {
      * leaves alone is still within the budget (50 ms: 20 fps or more) */
     double ratio = b->budget_ms / (1.0 + RES_BUDGET_DEADBAND) / ms;
     if (fabs(ratio - 1.0) <= RES_BUDGET_DEADBAND && scale == b->scale) return;
-    /* pixels in proportion to the time left; growing at most twice a step
-     * (a cheap frame may be noise), shrinking at once (a slow one is felt) */
     /* contended, only shrinking: the job ends in a few hundred ms, and a
      * new size's first frame costs more than the pixels it would add */
     if (b->contended && ratio > 1.0) return;
+    /* pixels in proportion to the time left; growing at most twice a step
+     * (a cheap frame may be noise), shrinking at once (a slow one is felt) */
     double area = scale * scale * (ratio > 2.0 ? 2.0 : ratio);
     b->scale = clampd(sqrt(area), RES_BUDGET_FLOOR, 1.0);
 }
