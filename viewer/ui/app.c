@@ -95,6 +95,7 @@ struct app {
     bool changed_again;          /* a file changed while it ran */
     int compile_restarts;        /* jobs started again for such changes, since the last reload */
     double change_seen;          /* glfwGetTime() when the change being compiled was seen (0: none) */
+    double contend_until;        /* glfwGetTime() until which frames stay smaller after a job's ready */
     double last_swap, gap_max;   /* the longest the window was awake without a new frame since
                                   * then: swap to swap, or from waking after a sleep (a still
                                   * window sleeps; input wakes it at once). The stamp says it */
@@ -699,8 +700,9 @@ static void frame(app *a, bool scripted) {
     }
     /* a save's job compiles on a core this frame draws on: the frame
      * shrinks for as long (res_budget_contend), from the frame that
-     * started it */
-    res_budget_contend(&a->budget, contended || job_contends(a));
+     * started it to APP_CONTEND_TAIL_S after the reload at its ready */
+    if (contended && a->reloaded_early) a->contend_until = glfwGetTime() + APP_CONTEND_TAIL_S;
+    res_budget_contend(&a->budget, contended || job_contends(a) || glfwGetTime() < a->contend_until);
     sheet_ended(a, false);
     a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);

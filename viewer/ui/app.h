@@ -181,6 +181,11 @@ void app_picture_changed(app *a);
 #define APP_IDLE_WAIT_S 0.05
 /* how often a still window looks whether a compile job has ended */
 #define APP_COMPILE_POLL_S 0.02
+/* the frame stays drawn smaller (res_budget_contend) this long after the
+ * reload at a save's job's ready: the first frame at the calm size right
+ * after it took 55-70 ms (natural, lake, 50 ms budget; every pass slower,
+ * the process still busy with the new build), 40-41 ms once 0.15 s later */
+#define APP_CONTEND_TAIL_S 0.15
 /* the script's `stamp on` times the first frame after each reload, then
  * the longest frame gap in this long after it (benchmarks) */
 #define APP_STAMP_AFTER_S 1.0
