@@ -610,8 +610,6 @@ bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale) {
     return res_budget_plan(&a->budget, key, glfwGetTime(), a->last_frame_ms, force_full || a->shooting, scale);
 }
 
-bool app_budget_contended(const app *a) { return a->budget.contended; }
-
 void app_budget_drawn(app *a, int iw, int ih, int w, int h) {
     a->drawn_w = iw;
     a->drawn_h = ih;
@@ -703,6 +701,8 @@ static void frame(app *a, bool scripted) {
      * started it to APP_CONTEND_TAIL_S after the reload at its ready */
     if (contended && a->reloaded_early) a->contend_until = glfwGetTime() + APP_CONTEND_TAIL_S;
     res_budget_contend(&a->budget, contended || job_contends(a) || glfwGetTime() < a->contend_until);
+    /* meanwhile the larger frame's World layers serve the smaller one */
+    for (int i = 0; i < a->nscenes; i++) render_keep_world_layers(a->scenes[i], a->budget.contended);
     sheet_ended(a, false);
     a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);

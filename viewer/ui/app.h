@@ -165,10 +165,6 @@ uint64_t app_picture_key_timeless(app *a, int w, int h);
  * false: the frame drawn last is still the picture. force_full: the
  * client needs full-resolution pixels (heat maps). */
 bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale);
-/* Is the picture drawn smaller for a moment (a save's job takes a core,
- * res_budget_contend)? The client keeps its renders' World layers of the
- * larger size meanwhile (render_keep_world_layers). */
-bool app_budget_contended(const app *a);
 /* What the client has on screen: iw x ih drawn for a w x h area. */
 void app_budget_drawn(app *a, int iw, int ih, int w, int h);
 /* A rebuild or pack switch of the client's: the picture is new. */

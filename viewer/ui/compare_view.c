@@ -315,7 +315,6 @@ static void draw_packs(cview *v, const render_view *view, double scale, bool onl
         p->drawn = true;
         double t0 = clock_now_s();
         render_set_detail(p->r, scale);   /* the passes and meshes shrink with the frame */
-        render_keep_world_layers(p->r, app_budget_contended(v->app));
         render_frame(p->r, v->s->t, p->tg.fbo, v->drawn_w, v->drawn_h, view);
         glFinish();   /* one pack at a time, so each has its own wall time */
         double wall = (clock_now_s() - t0) * 1e3, gpu = render_gpu_ms(p->r, false);

@@ -322,7 +322,6 @@ static void on_draw(void *user, app *a) {
         if (!reduced_world) v->last_timeless = 0;
         render_set_world_snapshot(v->r, v->over_world);   /* only a frame that goes over it pays the copy */
         render_set_detail(v->r, scale);   /* the passes and meshes shrink with the frame */
-        render_keep_world_layers(v->r, app_budget_contended(a));
         render_frame_at(v->r, s->t, v->canvas.fbo, 0, 0, v->drawn_w, v->drawn_h, &view);
     }
     app_budget_drawn(a, v->drawn_w, v->drawn_h, aw, ah);
