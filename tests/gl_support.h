@@ -60,18 +60,9 @@ static inline bool gl_test_has_pass(render *r, const char *what) {
 }
 
 /* Builds gw (zeroed first) from desc with packs/common's shaders: what a
- * test of a world feature builds to look at the GL side alone; the build
- * log is dropped (the test checks what it needs). */
-static inline void gl_test_world_build(gpu_world *gw, const ref_world_desc *desc) {
-    memset(gw, 0, sizeof *gw);
-    diag_list log = { 0 };
-    world_build(gw, desc, gl_test_sources(), &log, NULL);
-    diag_list_free(&log);
-}
-
-/* The same, its build log printed (a test that checks the build): true
- * when the world built. */
-static inline bool gl_test_world_build_logged(gpu_world *gw, const ref_world_desc *desc) {
+ * test of a world feature builds to look at the GL side alone. The build
+ * log is printed (empty for a clean build); true when the world built. */
+static inline bool gl_test_world_build(gpu_world *gw, const ref_world_desc *desc) {
     memset(gw, 0, sizeof *gw);
     diag_list log = { 0 };
     bool ok = world_build(gw, desc, gl_test_sources(), &log, NULL);

@@ -185,7 +185,7 @@ static void test_ocean_crests_throw_spray(void) {
                                          .cascades = 1, .choppiness = 1, .seed = 3 };
     desc.spray = (ref_spray_desc){ .on = true, .threshold = 0.3, .rate = 1e6, .life = 3, .seed = 5, .count = 4096 };
     gpu_world gw;
-    CHECK(gl_test_world_build_logged(&gw, &desc));
+    CHECK(gl_test_world_build(&gw, &desc));
     int n = gw.spray.res * gw.spray.res;
     float *pos = malloc((size_t)n * 4 * sizeof(float)), *vel = malloc((size_t)n * 4 * sizeof(float));
     int first = -1, most = 0;

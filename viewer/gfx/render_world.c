@@ -1,6 +1,7 @@
 #include "render_world.h"
 #include "world_height_tiles.h"
 
+#include <assert.h>
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <math.h>
@@ -426,13 +427,15 @@ void world_set_defines(const gpu_world *gw, prog *p) {
     if (w->ocean) has[n++] = "WAVES_HAS_OCEAN";
     if (w->nexplosions) has[n++] = "WAVES_HAS_EXPLOSION";
     if (w->has_perlin) has[n++] = "WAVES_HAS_PERLIN";
-    if (gw->w.d.flow.nterms > 0) has[n++] = "WAVES_HAS_FLOW";   /* flow.glsl: the advected detail */
+    if (d->flow.nterms > 0) has[n++] = "WAVES_HAS_FLOW";   /* flow.glsl: the advected detail */
     has[n++] = "WORLD_DEFINES";
     if (d->ground_detail > 0) has[n++] = "WORLD_GROUND_DETAIL";
     if (d->sun_disc_deg > 0) has[n++] = "WORLD_SUN_DISC";
     if (d->haze_distance > 0) has[n++] = "WORLD_HAZE";
+    /* these, WORLD_TERRAIN_KIND and render_load's WORLD_ABOVE_WATER fit */
+    assert(PROG_FIXED_WORLD + n + 2 <= PROG_FIXED_MAX);
     int k = PROG_FIXED_WORLD;
-    for (int i = 0; i < n && k < PROG_FIXED_MAX - 2; i++, k++) {
+    for (int i = 0; i < n; i++, k++) {
         snprintf(p->fixed[k].name, sizeof p->fixed[k].name, "%s", has[i]);
         snprintf(p->fixed[k].value, sizeof p->fixed[k].value, "1");
     }
