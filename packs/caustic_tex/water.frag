@@ -459,7 +459,6 @@ float noiseFoam(vec3 P, vec3 abd, float shallow, float ampSum, float t) {
     float J = (1.0 + abd.x) * (1.0 + abd.z) - abd.y * abd.y;
     float crest = 1.0 - smoothstep(FOAM_J_FULL, FOAM_J_START, J);
     float cover = clamp(max(shore, crest), 0.0, 1.0) * clamp(ampSum / (0.1 * uWorldScale), 0.0, 1.0);
-    if (cover <= 0.0) return 0.0;   // (the product below is 0 exactly: the noise only where foam can show)
     vec2 drift = vec2(0.11, 0.07) * t;
     float n = fbm((P.xz + drift * uWorldScale) / (0.35 * uWorldScale));
     // soft: the noise (mean 0.5) ramps over 0.3 above a threshold the
