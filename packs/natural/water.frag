@@ -309,16 +309,52 @@ void main() {
                          path, sky, refrAt, refrLit);
     hit = gRefractHit;
 
-    // From below, the internal reflection: the reflection target holds the
-    // world below, mirrored (for flat water exact for any c, as above).
+    // The mirror target, read once for both sides: from above the
+    // reflection, the paper's lookup W = U + c Rr (c fixed: exact for flat
+    // water, a guess on waves, where a thing's reflection came apart: the
+    // crate over grazing_sun's waves, two dark wedges where the reference
+    // has one; with REFINE_STEPS the reflected ray is marched through the
+    // mirror target as the refracted one is through the refraction target,
+    // natMarch, from the mirrored eye: issue #24); from below the internal
+    // reflection (the target then holds the world below, mirrored; c
+    // fixed). The sky's cube map and the Fresnel term are read once too:
+    // llvmpipe runs both sides of an `if` on a uniform for every pixel, and
+    // a lookup written in each cost natural's water pass 8-12% and its
+    // compile 20 ms (docs/benchmark.md, "natural's two sides in one").
     vec3 mirrorEye = vec3(uCameraPos.x, 2.0 * uWaterLevel - uCameraPos.y, uCameraPos.z);
-    vec3 below = vec3(0.0), belowAt = vec3(0.0);
-    bool belowOk = false;
-    if (under) {
-        vec2 uvb;
-        belowAt = natShownPoint(uCamMirrorVP, mirrorEye, uReflectionDepth, U + uReflectDist * uWorldScale * Rr, uvb, belowOk);
-        below = texture(uReflection, uvb).rgb;
+    float cr = uReflectDist * uWorldScale;
+#if REFINE_STEPS > 0
+    if (!under) {
+        vec2 uvm0;
+        bool okm;
+        float zm;
+        vec3 m0 = natShownPointZ(uCamMirrorVP, mirrorEye, uReflectionDepth, U, uvm0, okm, zm);
+        float dm = okm && zm < NAT_SKY_DEPTH ? distance(U, m0) : 50.0 * uWorldScale;
+        bool leftm;   // the reflected ray left the mirror target: its last point in front serves
+        cr = natMarch(uCamMirrorVP, mirrorEye, uReflectionDepth, U, Rr, min(1.5 * dm + 0.5 * uWorldScale, 50.0 * uWorldScale), -dm, leftm);
+        // closed on a silhouette: the ray passed behind a thing (as the
+        // mirrored eye sees it), not into it; what it meets there is
+        // hidden from the mirror pass (the crate mirrored in open water
+        // mid-lake): the paper's lookup then
+        float spread;
+        natNearestShown(uCamMirrorVP, mirrorEye, uReflectionDepth, U + cr * Rr, spread);
+        if (spread > 1.25) cr = uReflectDist * uWorldScale;
     }
+#endif
+    vec2 uvm;
+    bool mirrorOk;
+    float mirrorZ;
+    vec3 mirrorAt = natShownPointZ(uCamMirrorVP, mirrorEye, uReflectionDepth, U + cr * Rr, uvm, mirrorOk, mirrorZ);
+    vec3 mirrorColor = texture(uReflection, uvm).rgb;
+    // from above the reflection's sky (along Rr), from below Snell's
+    // window's (along dirT: 0 on TIR, where it is not used)
+    vec3 skyLook = worldSkyLook(uSky, under ? dirT : Rr);
+#ifdef EXACT_FRESNEL
+    F = worldFresnel(cosI, under ? uIOR : 1.0, under ? 1.0 : uIOR);
+#else
+    F = under && tir ? 1.0 : pow(1.0 - (under ? clamp(-dot(dirT, n), 0.0, 1.0) : cosI), uFresnelPower);
+#endif
+
     // The caustics relight one lookup, the one under the water: from above
     // the refracted, from below the internal reflection (the refracted
     // lookup then shows the world above). One call for both: llvmpipe runs
@@ -326,8 +362,8 @@ void main() {
     // and three (this, the ground fallback's, the reflection's) cost 8-11
     // ms of the lake's water pass at 960x540 against one.
     gIrradiance = vec3(0.0);
-    vec3 litIn = under ? below : c;
-    vec3 lit = (under ? belowOk : refrLit) ? applyCaustics(litIn, under ? belowAt : refrAt) : litIn;
+    vec3 litIn = under ? mirrorColor : c;
+    vec3 lit = (under ? mirrorOk : refrLit) ? applyCaustics(litIn, under ? mirrorAt : refrAt) : litIn;
 
     if (!under) {
         // ---- from above: the paper ----
@@ -344,45 +380,13 @@ void main() {
         // band's outer half, so no seam shows where they leave the target.
         // Where the target shows the sky or nothing (no reflection pass: only
         // sky above the water), the cube map along Rr.
-        // The paper looks up W = U + c Rr, c fixed: exact for flat water,
-        // a guess on waves, where a thing's reflection came apart (the
-        // crate over grazing_sun's waves: two dark wedges where the
-        // reference has one). With REFINE_STEPS the reflected ray is
-        // marched through the mirror target as the refracted one is
-        // through the refraction target (natMarch), from the mirrored eye
-        // (issue #24).
-        float cr = uReflectDist * uWorldScale;
-#if REFINE_STEPS > 0
-        {
-            vec2 uvm;
-            bool okm;
-            float zm;
-            vec3 m0 = natShownPointZ(uCamMirrorVP, mirrorEye, uReflectionDepth, U, uvm, okm, zm);
-            float dm = okm && zm < NAT_SKY_DEPTH ? distance(U, m0) : 50.0 * uWorldScale;
-            bool leftm;   // the reflected ray left the mirror target: its last point in front serves
-            cr = natMarch(uCamMirrorVP, mirrorEye, uReflectionDepth, U, Rr, min(1.5 * dm + 0.5 * uWorldScale, 50.0 * uWorldScale), -dm, leftm);
-            // closed on a silhouette: the ray passed behind a thing (as the
-            // mirrored eye sees it), not into it; what it meets there is
-            // hidden from the mirror pass (the crate mirrored in open water
-            // mid-lake): the paper's lookup then
-            float spread;
-            natNearestShown(uCamMirrorVP, mirrorEye, uReflectionDepth, U + cr * Rr, spread);
-            if (spread > 1.25) cr = uReflectDist * uWorldScale;
-        }
-#endif
         float w;
         vec2 uv = natProject(uCamMirrorVP, U + cr * Rr, w);
         float band = 0.5 * (1.0 - 1.0 / max(uFovScale, 1.0));
         float inside = min(min(uv.x, uv.y), min(1.0 - uv.x, 1.0 - uv.y));
         float keep = w <= 0.0 ? 0.0 : band > 0.0 ? clamp(inside / (0.5 * band), 0.0, 1.0) : float(inside >= 0.0);
-        refl = worldSkyLook(uSky, Rr);
-        if (keep > 0.0 && texture(uReflectionDepth, uv).r < NAT_SKY_DEPTH)
-            refl = mix(refl, texture(uReflection, uv).rgb, keep);
-#ifdef EXACT_FRESNEL
-        F = worldFresnel(cosI, 1.0, uIOR);
-#else
-        F = pow(1.0 - cosI, uFresnelPower);
-#endif
+        refl = skyLook;
+        if (keep > 0.0 && mirrorZ < NAT_SKY_DEPTH) refl = mix(refl, mirrorColor, keep);
         color = refr + F * (refl - refr);
 #ifdef SPECULAR
         // the sun mirrored by the facet: a lobe about the half vector. The
@@ -413,18 +417,13 @@ void main() {
     } else {
         // ---- from below: the roles swapped ----
         // Snell's window (dirT: out into the air); nothing on TIR
-        refr = tir ? vec3(0.0) : sky ? worldSkyLook(uSky, dirT) : c;
+        refr = tir ? vec3(0.0) : sky ? skyLook : c;
         if (tir) {
             hit = vec3(0.0);
             gRefractIrradiance = vec3(0.0);
         }
         // the internal reflection (above: relit)
-        refl = belowOk ? attenuate(lit, distance(U, belowAt)) : attenuate(vec3(0.0), 1e4);
-#ifdef EXACT_FRESNEL
-        F = worldFresnel(cosI, uIOR, 1.0);
-#else
-        F = tir ? 1.0 : pow(1.0 - clamp(-dot(dirT, n), 0.0, 1.0), uFresnelPower);
-#endif
+        refl = mirrorOk ? attenuate(lit, distance(U, mirrorAt)) : attenuate(vec3(0.0), 1e4);
         color = refr + F * (refl - refr);
         color = attenuate(color, distance(uCameraPos, U));   // the eye's own path in water
     }
