@@ -16,6 +16,7 @@
 #include "file_cache.h"
 #include "path.h"
 #include "exit_code.h"
+#include "fd_wake.h"
 #include "file.h"
 #include "frame_meter.h"
 #include "mem.h"
@@ -41,6 +42,7 @@ struct app {
     bool shot_pending;           /* P/F12 pressed: shoot once this frame is drawn */
     char toast[1200];
     double toast_until;          /* glfwGetTime() when the toast goes */
+    bool toast_drawn;            /* the last frame drew it (a still window sleeps until it goes) */
     render *const *scenes;
     int nscenes;
     int unwatched;               /* dependencies skipped: their directory is missing */
@@ -75,6 +77,7 @@ struct app {
     /* sleeping while the picture is still (issue #30: a still window burnt
      * 0.75 of a core drawing the same frame) */
     bool woken;                  /* an input or window event came since the last frame */
+    fd_wake *file_wake;          /* wakes it when the file watcher has news (a save) */
     bool keep_awake;             /* a client asked for the next frame (app_keep_awake) */
     bool slept;                  /* this frame follows a sleep: its dt measures nothing */
     double slow_s;               /* the script's `slow MS`: each frame lasts at least this (input tests) */
@@ -175,6 +178,12 @@ static void reload(app *a) {
     app_rewatch(a);
 }
 
+/* Any thread: a sleeping window's glfwWaitEventsTimeout returns. */
+static void post_wake(void *user) {
+    (void)user;
+    glfwPostEmptyEvent();
+}
+
 /* Compiles the scenes as they are on disk now, off the frame, into
  * Mesa's shader cache (compile_job.h); false when that cannot help or
  * cannot start (reload on the frame then). */
@@ -185,7 +194,8 @@ static bool start_compile(app *a, bool prime) {
                            .t = a->s.t, .view = orbit_view(&a->s.cam),
                            .wait_for_shown = !prime && a->budget_ms > 0,   /* early_wanted's reload */
                            .still = a->s.paused,
-                           .defer_still = !prime && a->budget_ms > 0 && !a->s.paused };
+                           .defer_still = !prime && a->budget_ms > 0 && !a->s.paused,
+                           .wake = post_wake };
     if (!compile_job_start(a->cjob, &d)) return false;
     a->compiling = true;
     a->priming = prime;
@@ -360,9 +370,17 @@ void app_screenshot(app *a) {
     shoot(a, path);
 }
 
+static bool toast_showing(const app *a) { return a->toast[0] && glfwGetTime() <= a->toast_until; }
+
+/* A toast stands still on screen: a still window draws a frame only to show
+ * one or, once it is due to go, to take it away (drawing the same frame
+ * for its 4 s burnt a core after every start and every setting). */
+static bool toast_needs_frame(const app *a) { return toast_showing(a) != a->toast_drawn; }
+
 /* Over the top of the scene area, above the panel and the scene's labels;
  * not into a screenshot asked for by key. */
 static void draw_toast(app *a) {
+    a->toast_drawn = false;
     if (a->shooting || a->bare_frame) return;
     int ww, wh;
     glfwGetWindowSize(a->win, &ww, &wh);
@@ -379,8 +397,9 @@ static void draw_toast(app *a) {
         panel_toast(a->panel, x, y, what);
         y += 36.0f;
     }
-    if (!a->toast[0] || glfwGetTime() > a->toast_until) return;
+    if (!toast_showing(a)) return;
     panel_toast(a->panel, x, y, a->toast);
+    a->toast_drawn = true;
 }
 
 /* F1 or ?: what the keys and the mouse do, over the scene's top left (the
@@ -691,6 +710,7 @@ static void frame(app *a, bool scripted) {
     if (compile_finished(a)) compile_ended(a);
     still_due(a, now);
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
+    fd_wake_rearm(a->file_wake);   /* its news are read: wake at the next */
     if (changed > 0) reload_changed(a, changed);
     else if (a->watch && missing_dir_appeared(a)) {
         snprintf(a->cause, sizeof a->cause, "a missing folder appeared");
@@ -864,7 +884,10 @@ static void start_watching(app *a) {
     char err[MSG_MAX];
     a->watch = watch_create(err, sizeof err);
     if (!a->watch) fprintf(stderr, "%s: hot reload is off: %s\n", a->d.name, err);
-    else watch_use_cache(a->watch, a->files);   /* a save is read once: the reload finds it in memory */
+    else {
+        watch_use_cache(a->watch, a->files);   /* a save is read once: the reload finds it in memory */
+        a->file_wake = fd_wake_start(watch_fd(a->watch), post_wake, NULL);
+    }
     app_rewatch(a);
 }
 
@@ -878,9 +901,11 @@ void app_keep_awake(app *a) { a->keep_awake = true; }
  * Timer scenes as soon as they drew at full size.) */
 static bool idle(const app *a, const view_script *script) {
     bool clock_moves = !a->s.paused && scenes_read_clock(a);
-    return !script && !a->client_busy && a->budget.full_done && !clock_moves && !a->compiling && a->orbit_left == 0 &&
-           !a->shot_pending && !a->stamp_pending && a->unwatched == 0 &&
-           glfwGetTime() > a->toast_until + 0.25;   /* and it is gone */
+    /* a script's `wait` sleeps as a user's still window does, so that
+     * what it times (scripts/save_bench.sh) is what a user meets */
+    bool script_waits = !script || view_script_waiting(script);
+    return script_waits && !a->client_busy && a->budget.full_done && !clock_moves && !a->compiling && a->orbit_left == 0 &&
+           !a->shot_pending && !a->stamp_pending && a->unwatched == 0 && !toast_needs_frame(a);
 }
 
 /* Has a watched file something to say (without taking it: frame() does)? */
@@ -889,6 +914,19 @@ static bool files_pending(const app *a) {
     if (watch_timeout_ms(a->watch) == 0) return true;
     struct pollfd p = { .fd = watch_fd(a->watch), .events = POLLIN };
     return p.fd >= 0 && poll(&p, 1, 0) > 0;
+}
+
+/* How long a still window sleeps at most: APP_IDLE_WAIT_S, or until a
+ * save that is settling is due (watch_timeout_ms: the watcher has read its
+ * events, so its fd wakes no one; it waits out the writer's quiet), or
+ * until the toast on screen is due to go, or the script's wait ends. */
+static double idle_wait_s(const app *a, const view_script *script) {
+    double s = APP_IDLE_WAIT_S;
+    if (view_script_waiting(script)) s = fmin(s, view_script_wait_left_s(script) + 0.001);   /* its next line */
+    int ms = a->watch ? watch_timeout_ms(a->watch) : -1;
+    if (ms >= 0 && ms / 1000.0 < s) s = ms / 1000.0;
+    if (a->toast_drawn) s = fmin(s, fmax(a->toast_until - glfwGetTime() + 0.001, 0.0));
+    return s;
 }
 
 /* Waits for input, a window event or a file change while the picture is
@@ -903,7 +941,7 @@ static bool wait_for_work(app *a, const view_script *script) {
     bool asked = a->keep_awake;
     a->keep_awake = false;
     if (asked && idle(a, script)) {
-        glfwWaitEventsTimeout(APP_IDLE_WAIT_S);
+        glfwWaitEventsTimeout(APP_CLIENT_POLL_S);
         return true;
     }
     double now = glfwGetTime();
@@ -925,7 +963,7 @@ static bool wait_for_work(app *a, const view_script *script) {
         glfwPollEvents();
         return true;
     }
-    glfwWaitEventsTimeout(APP_IDLE_WAIT_S);
+    glfwWaitEventsTimeout(idle_wait_s(a, script));
     bool sheet = a->sheet.pid > 0 && sheet_ended(a, false);   /* its toast wants frames */
     if (!a->woken && !sheet && !files_pending(a) && idle(a, script)) return false;
     a->slept = true;
@@ -1049,6 +1087,7 @@ void app_destroy(app *a) {
      * window's */
     if (a->win) glfwHideWindow(a->win);
     compile_job_destroy(a->cjob);
+    fd_wake_stop(a->file_wake);   /* before the fd it polls goes */
     watch_destroy(a->watch);
     panel_destroy(a->panel);
     gl_ctx_destroy(a->ctx);

@@ -170,12 +170,17 @@ void app_budget_drawn(app *a, int iw, int ih, int w, int h);
 /* A rebuild or pack switch of the client's: the picture is new. */
 void app_picture_changed(app *a);
 
-/* A still window sleeps (waits for input, a window event or a watched
- * file, at most APP_IDLE_WAIT_S at a time) instead of drawing the same
- * frame; a client with work in flight (compare-view's heat maps) calls this
- * in its draw to have the next frame drawn. */
-#define APP_IDLE_WAIT_S 0.05
-/* how often a still window looks whether a compile job has ended */
+/* A still window sleeps (waits for input, a window event, a watched
+ * file's news or a compile job's ready, each of which wakes it at once:
+ * fd_wake.h, compile_job_desc.wake; at most APP_IDLE_WAIT_S at a time)
+ * instead of drawing the same frame; a client with work in flight
+ * (compare-view's heat maps) calls this in its draw to have the next
+ * frame drawn. */
+#define APP_IDLE_WAIT_S 0.25   /* 0.05 before fd_wake: each wake cost ~2 ms, 4.6% of a core */
+/* the frames a client asks for (app_keep_awake) come at most this often */
+#define APP_CLIENT_POLL_S 0.05
+/* how often a still window looks whether a compile job has ended, had its
+ * wake not come */
 #define APP_COMPILE_POLL_S 0.02
 /* the frame stays drawn smaller (res_budget_contend) this long after the
  * reload at a save's job's ready: the first frame at the calm size right

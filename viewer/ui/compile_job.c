@@ -58,6 +58,8 @@ struct compile_job {
     int nscenes, w, h;
     double t;
     render_view view;
+    void (*wake)(void *user);    /* compile_job_desc.wake */
+    void *wake_user;
     /* the worker's own: its context and the renders it keeps between jobs,
      * so that a job reloads as the window does (the world, the once-drawn
      * passes and the unchanged programs kept) instead of loading afresh */
@@ -319,6 +321,7 @@ static void run_job(compile_job *j) {
     j->ready = true;
     j->ready_seconds = clock_now_s() - t0;
     j->frames_at_ready = j->frames_drawn;
+    if (j->wake) j->wake(j->wake_user);   /* a window asleep while it compiles reloads now */
     wait_for_shown(j);
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first[i], WARM_FRAMES);
@@ -347,6 +350,7 @@ static void *worker(void *arg) {
         j->done = true;
         j->seconds = clock_now_s() - t0;
         j->frames_in_all = j->frames_drawn;
+        if (j->wake) j->wake(j->wake_user);
         pthread_cond_broadcast(&j->cv);   /* compile_job_wait_done */
     }
     pthread_mutex_unlock(&j->mu);
@@ -365,6 +369,8 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d) {
     j->h = d->h > 0 ? d->h : 144;
     j->t = d->t;
     j->view = d->view;
+    j->wake = d->wake;
+    j->wake_user = d->wake_user;
     if (!j->thread) {
         if (pthread_create(&j->th, NULL, worker, j) != 0) return false;
         j->thread = true;

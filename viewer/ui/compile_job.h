@@ -72,6 +72,11 @@ typedef struct compile_job_desc {
      * window's next frames draw on (they took 160-190 ms, natural on the
      * lake, against the 50 ms budget) */
     bool defer_still;
+    /* called on the job's thread at its ready and at its end (NULL: none):
+     * a window asleep while the job compiles (glfwWaitEventsTimeout) looks
+     * at once instead of at its next poll */
+    void (*wake)(void *user);
+    void *wake_user;
 } compile_job_desc;
 
 compile_job *compile_job_create(void);

@@ -58,6 +58,10 @@ bool view_script_waiting(const view_script *s) {
     return s && s->wait_frames == 0 && s->wait_until > 0 && clock_now_s() < s->wait_until;
 }
 
+double view_script_wait_left_s(const view_script *s) {
+    return view_script_waiting(s) ? s->wait_until - clock_now_s() : 0.0;
+}
+
 const char *view_script_arg(const view_script *s) { return s->arg; }
 
 static int parse_floats(char *rest, float *v, int max) {

@@ -78,6 +78,9 @@ view_script_status view_script_step(view_script *s, view_script_ctx *ctx);
 const char *view_script_arg(const view_script *s);
 /* Is a `wait SECONDS` running (frames or nothing, the caller's choice)? */
 bool view_script_waiting(const view_script *s);
+/* Seconds until that wait ends (0: none runs): a caller asleep meanwhile
+ * wakes for it. */
+double view_script_wait_left_s(const view_script *s);
 /* One action that needs no frame boundary (set, expect, time, camera,
  * pause, or ctx->custom's), text as a script line; file and line name it
  * in messages. The one path scripts and session replays (session.h) change
