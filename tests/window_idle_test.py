@@ -11,7 +11,9 @@ shows (P's "saved" toast: it drew the toast's frame for 4 s). Then R (reload) mu
 still be answered (its "reloaded" line in the log), and Q must end the
 process within a second. Then two
 glman scenes with the clock left running: one that reads it (Timer) must
-keep moving, one that does not must sleep the same way.
+keep moving, one that does not must sleep the same way. And a still window
+whose shaders' folder is renamed away must sleep too, and reload once it
+is back.
 Exits 77 when libX11 or libXtst is missing.
 """
 import os
@@ -79,6 +81,7 @@ def main(argv):
         print("FAIL: quitting should be immediate (at most %.1f s)" % MAX_QUIT_S)
         ok = False
     ok = clock_running_scenes(tarn, kb) and ok
+    ok = missing_folder(tarn) and ok
     sys.exit(0 if ok else 1)
 
 
@@ -198,6 +201,48 @@ def clock_running_scenes(tarn, kb):
         print("FAIL: a scene that reads no clock should sleep while the clock runs (at most %.0f%% of a core)"
               % (100 * MAX_IDLE_SHARE))
         ok = False
+    return ok
+
+
+def missing_folder(tarn):
+    """A still window whose shaders' folder is renamed away keeps the last
+    good picture and looks for the folder again every APP_RETRY_S: it must
+    sleep meanwhile (it spun 121% of a core), and reload once the folder
+    is back."""
+    d = tempfile.mkdtemp(prefix="tarn-missing-")
+    sh = os.path.join(d, "sh")
+    os.mkdir(sh)
+    with open(os.path.join(sh, "quad.vert"), "w") as f:
+        f.write("#version 330 compatibility\nvoid main() { gl_Position = gl_Vertex; }\n")
+    with open(os.path.join(sh, "quad.frag"), "w") as f:
+        f.write("#version 330 compatibility\nout vec4 c;\nvoid main() { c = vec4(0.2, 0.5, 0.8, 1.0); }\n")
+    with open(os.path.join(d, "scene.glib"), "w") as f:
+        f.write("##OpenGL GLIB\nVertex sh/quad.vert\nFragment sh/quad.frag\nProgram Quad\nQuadXY\n")
+    path = "window-idle-missing.log"
+    log = open(path, "w")
+    p = subprocess.Popen([tarn, "view", os.path.join(d, "scene.glib"), "--size", "320x180", "--verbose"],
+                         stdout=log, stderr=log)
+    wait_for_job(p, path)
+    time.sleep(2.0)
+    ok = True
+    os.rename(sh, sh + "_moved")
+    time.sleep(1.5)                     # the reload's errors, the last good picture kept
+    share = share_over(p.pid, 3.0)
+    print("still window, its shaders' folder missing: %.1f%% of a core" % (100 * share))
+    if share > MAX_IDLE_SHARE:
+        print("FAIL: a still window should sleep while a folder is missing (at most %.0f%% of a core)"
+              % (100 * MAX_IDLE_SHARE))
+        ok = False
+    os.rename(sh + "_moved", sh)
+    end = time.time() + 10
+    while time.time() < end and "a missing folder appeared" not in open(path).read():
+        time.sleep(0.1)
+    if "a missing folder appeared" not in open(path).read():
+        print("FAIL: the folder came back and the window did not reload (%s)" % path)
+        ok = False
+    p.terminate()
+    p.wait(timeout=10)
+    shutil.rmtree(d, ignore_errors=True)
     return ok
 
 

@@ -905,7 +905,7 @@ static bool idle(const app *a, const view_script *script) {
      * what it times (scripts/save_bench.sh) is what a user meets */
     bool script_waits = !script || view_script_waiting(script);
     return script_waits && !a->client_busy && a->budget.full_done && !clock_moves && !a->compiling && a->orbit_left == 0 &&
-           !a->shot_pending && !a->stamp_pending && a->unwatched == 0 && !toast_needs_frame(a);
+           !a->shot_pending && !a->stamp_pending && !toast_needs_frame(a);
 }
 
 /* Has a watched file something to say (without taking it: frame() does)? */
@@ -918,14 +918,17 @@ static bool files_pending(const app *a) {
 
 /* How long a still window sleeps at most: APP_IDLE_WAIT_S, or until a
  * save that is settling is due (watch_timeout_ms: the watcher has read its
- * events, so its fd wakes no one; it waits out the writer's quiet), or
- * until the toast on screen is due to go, or the script's wait ends. */
+ * events, so its fd wakes no one; it waits out the writer's quiet), until
+ * the toast on screen is due to go, the script's wait ends or a missing
+ * folder is due to be looked for again (missing_dir_appeared: the loop
+ * spun a core while one was missing). */
 static double idle_wait_s(const app *a, const view_script *script) {
     double s = APP_IDLE_WAIT_S;
     if (view_script_waiting(script)) s = fmin(s, view_script_wait_left_s(script) + 0.001);   /* its next line */
     int ms = a->watch ? watch_timeout_ms(a->watch) : -1;
     if (ms >= 0 && ms / 1000.0 < s) s = ms / 1000.0;
     if (a->toast_drawn) s = fmin(s, fmax(a->toast_until - glfwGetTime() + 0.001, 0.0));
+    if (a->unwatched > 0) s = fmin(s, fmax(a->next_retry - clock_now_s() + 0.001, 0.0));
     return s;
 }
 
@@ -965,7 +968,8 @@ static bool wait_for_work(app *a, const view_script *script) {
     }
     glfwWaitEventsTimeout(idle_wait_s(a, script));
     bool sheet = a->sheet.pid > 0 && sheet_ended(a, false);   /* its toast wants frames */
-    if (!a->woken && !sheet && !files_pending(a) && idle(a, script)) return false;
+    bool retry = a->unwatched > 0 && clock_now_s() >= a->next_retry;   /* the frame looks */
+    if (!a->woken && !sheet && !retry && !files_pending(a) && idle(a, script)) return false;
     a->slept = true;
     return true;
 }
