@@ -615,6 +615,10 @@ void panel_toast(panel *p, float x, float y, const char *text) {
     ImDrawList *dl = ImGui::GetForegroundDrawList();
     ImVec2 size = ImGui::CalcTextSize(text);
     float x0 = x - size.x * 0.5f - 8;
+    // inside the window: a long one (a screenshot's path) centred over a
+    // narrow scene area ran off its right edge
+    float right = ImGui::GetIO().DisplaySize.x - 4;
+    if (x0 + size.x + 16 > right) x0 = right - size.x - 16;
     if (x0 < 4) x0 = 4;
     dl->AddRectFilled(ImVec2(x0, y), ImVec2(x0 + size.x + 16, y + size.y + 10), IM_COL32(20, 70, 35, 230), 4.0f);
     dl->AddText(ImVec2(x0 + 8, y + 5), IM_COL32(255, 255, 255, 255), text);
