@@ -933,8 +933,9 @@ static double idle_wait_s(const app *a, const view_script *script) {
 }
 
 /* Waits for input, a window event or a file change while the picture is
- * still; returns whether a frame is due. The timeout bounds how late a
- * save is seen (the watcher's fd is not GLFW's to wait on). */
+ * still; returns whether a frame is due. A save wakes the wait (fd_wake:
+ * the watcher's fd is not GLFW's to wait on); its timeout (idle_wait_s)
+ * bounds how late anything else is seen. */
 static bool wait_for_work(app *a, const view_script *script) {
     /* a client's ask holds for the frame after the one it was made in: it
      * asks again in each frame that wants another (compare-view while its
