@@ -43,6 +43,7 @@ struct app {
     char toast[1200];
     double toast_until;          /* glfwGetTime() when the toast goes */
     bool toast_drawn;            /* the last frame drew it (a still window sleeps until it goes) */
+    double rec_drawn_at;         /* glfwGetTime() when the REC label was last drawn */
     render *const *scenes;
     int nscenes;
     int unwatched;               /* dependencies skipped: their directory is missing */
@@ -377,6 +378,10 @@ static bool toast_showing(const app *a) { return a->toast[0] && glfwGetTime() <=
  * for its 4 s burnt a core after every start and every setting). */
 static bool toast_needs_frame(const app *a) { return toast_showing(a) != a->toast_drawn; }
 
+/* While recording, the REC label's seconds go on in a still window too,
+ * a frame a second (it stood at the time of the last change). */
+static double rec_label_due_at(const app *a) { return a->rec ? a->rec_drawn_at + APP_REC_LABEL_S : INFINITY; }
+
 /* Over the top of the scene area, above the panel and the scene's labels;
  * not into a screenshot asked for by key. */
 static void draw_toast(app *a) {
@@ -389,6 +394,7 @@ static void draw_toast(app *a) {
         snprintf(label, sizeof label, "REC %.1f s  %s", session_rec_seconds(a->rec, glfwGetTime()),
                  session_rec_path(a->rec));
         panel_label(a->panel, (float)ww - 10.0f, 10.0f, label, true);
+        a->rec_drawn_at = glfwGetTime();
     }
     float y = 40.0f, x = (app_scene_x_window(a) + (float)ww) * 0.5f;
     if (a->compiling && !a->priming && !a->reloaded_early) {   /* the last good build is on screen until then */
@@ -905,7 +911,7 @@ static bool idle(const app *a, const view_script *script) {
      * what it times (scripts/save_bench.sh) is what a user meets */
     bool script_waits = !script || view_script_waiting(script);
     return script_waits && !a->client_busy && a->budget.full_done && !clock_moves && !a->compiling && a->orbit_left == 0 &&
-           !a->shot_pending && !a->stamp_pending && !toast_needs_frame(a);
+           !a->shot_pending && !a->stamp_pending && !toast_needs_frame(a) && glfwGetTime() < rec_label_due_at(a);
 }
 
 /* Has a watched file something to say (without taking it: frame() does)? */
@@ -919,15 +925,16 @@ static bool files_pending(const app *a) {
 /* How long a still window sleeps at most: APP_IDLE_WAIT_S, or until a
  * save that is settling is due (watch_timeout_ms: the watcher has read its
  * events, so its fd wakes no one; it waits out the writer's quiet), until
- * the toast on screen is due to go, the script's wait ends or a missing
- * folder is due to be looked for again (missing_dir_appeared: the loop
- * spun a core while one was missing). */
+ * the toast on screen is due to go, the REC label's next second, the
+ * script's wait ends or a missing folder is due to be looked for again
+ * (missing_dir_appeared: the loop spun a core while one was missing). */
 static double idle_wait_s(const app *a, const view_script *script) {
     double s = APP_IDLE_WAIT_S;
     if (view_script_waiting(script)) s = fmin(s, view_script_wait_left_s(script) + 0.001);   /* its next line */
     int ms = a->watch ? watch_timeout_ms(a->watch) : -1;
     if (ms >= 0 && ms / 1000.0 < s) s = ms / 1000.0;
     if (a->toast_drawn) s = fmin(s, fmax(a->toast_until - glfwGetTime() + 0.001, 0.0));
+    if (a->rec) s = fmin(s, fmax(rec_label_due_at(a) - glfwGetTime() + 0.001, 0.0));
     if (a->unwatched > 0) s = fmin(s, fmax(a->next_retry - clock_now_s() + 0.001, 0.0));
     return s;
 }

@@ -61,6 +61,7 @@
 #define APP_PANEL_WIDTH 440   /* the slider panel's column, left of the scene */
 #define APP_RETRY_S 0.25      /* how often a missing directory is looked for again */
 #define APP_TOAST_S 4.0       /* how long an app_toast message stays on screen */
+#define APP_REC_LABEL_S 1.0   /* a still window redraws the REC label's seconds this often */
 
 typedef struct app app;
 
