@@ -222,8 +222,20 @@ vec4 wallColor(vec3 hit, ivec2 ij, vec3 t, vec3 dir) {
     return vec4(worldShadeAt(albedo, nWall, hit), 1.0);
 }
 
-vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needModel) {
+// A wall solidColor met (wallColor's arguments): shaded after both marches,
+// once for both rays (wallsWhereWanted). want: the colour solidColor
+// returned stands only where wallColor gives none (alpha 0).
+struct Wall {
+    bool want;
+    vec3 hit;
+    ivec2 ij;
+    vec3 t;
+    vec3 dir;
+};
+
+vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needModel, out Wall wall) {
     needModel = false;
+    wall = Wall(false, hit, ivec2(0), vec3(0.0), dir);
     ivec2 size = textureSize(uWorldY, 0);
     vec2 uv = clamp(marchUV(hit), 0.0, 0.999999);
     vec3 t = marchFetch(uWorldY, size, uv);
@@ -253,11 +265,11 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needMo
     if (!model && t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
     // (only for things that rise out of the water: on the sunken crate the
     // slab's walls also showed where the reference sees the floor)
-    if (!underside && t.x > uWaterLevel && t.x - hit.y > RAYMARCH_WALL_MIN * uWorldScale
-        && (t.y >= t.x || hit.y - t.y > RAYMARCH_WALL_MIN * uWorldScale)) {
-        vec4 w = wallColor(hit, min(ivec2(uv * vec2(size)), size - 1), t, dir);
-        if (w.a > 0.0) return w.rgb;
-    }
+    // (wallColor's, where it gives one, comes first: wallsWhereWanted)
+    wall.want = !underside && t.x > uWaterLevel && t.x - hit.y > RAYMARCH_WALL_MIN * uWorldScale
+        && (t.y >= t.x || hit.y - t.y > RAYMARCH_WALL_MIN * uWorldScale);
+    wall.ij = min(ivec2(uv * vec2(size)), size - 1);
+    wall.t = t;
     // the ground with nothing over it (the floor pass saw what the top pass
     // saw): the floor's colour, whose texels beside a rock's rim are ground
     // too (floor_fill.frag), where the top's are the rock's: a bilinear read
@@ -287,9 +299,29 @@ void groundModelWhereWanted(bool wantD, vec3 hitD, inout vec3 down, bool wantU, 
     }
 }
 
+// The walls the two marches met (solidColor's Wall), shaded in one place
+// the same way: written in each solidColor, the reflected ray's copy cost
+// the water pass 4-8% and its compile 35 ms (12%), though few blocks of
+// pixels have both rays on a wall (next to a post).
+void wallsWhereWanted(Wall wallD, inout vec3 down, Wall wallU, inout vec3 up) {
+    bool wantD = wallD.want, wantU = wallU.want;
+    for (int k = 0; k < ROLLED(2); k++) {
+        if (!wantD && !wantU) break;
+        Wall w = wantD ? wallD : wallU;
+        vec4 c = wallColor(w.hit, w.ij, w.t, w.dir);
+        if (wantD) {
+            if (c.a > 0.0) down = c.rgb;
+            wantD = false;
+        } else {
+            if (c.a > 0.0) up = c.rgb;
+            wantU = false;
+        }
+    }
+}
+
 // The ground seen from p along dir (downwards, in water): its colour, the
 // path s in water, the point and the march's status.
-vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, out bool needModel) {
+vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, out bool needModel, out Wall wall) {
     vec3 d = marchClampDir(dir, true);
 #ifdef WAVES_HAS_OCEAN
     // Water beyond the world square (the open sea's rings): no top-down
@@ -304,6 +336,7 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, ou
         hit = p + s * d;
         status = MARCH_LEFT;
         needModel = true;
+        wall = Wall(false, hit, ivec2(0), vec3(0.0), d);
         return vec3(0.0);
     }
 #endif
@@ -336,15 +369,16 @@ vec3 groundAlong(vec3 p, vec3 dir, out float s, out vec3 hit, out int status, ou
     if (m.status == MARCH_CAP || m.status == MARCH_LEFT) s += max(m.f, 0.0) / -d.y;
     hit = p + s * d;
     status = m.status;
-    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false, d, needModel);
+    return solidColor(hit, m.status == MARCH_HIT ? p + m.tb * d : hit, false, d, needModel, wall);
 }
 
 // What is seen from p along dir (upwards, in air): the above-water geometry
 // where the march meets it, else the sky. hit: the point, or the direction
 // when the sky.
-vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status, out bool needModel) {
+vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status, out bool needModel, out Wall wall) {
     hit = dir;
     needModel = false;
+    wall = Wall(false, dir, ivec2(0), vec3(0.0), dir);
     status = MARCH_LEFT;
 #ifdef RAYMARCH_MARCH_UP
     vec3 d = marchClampDir(dir, false);
@@ -376,7 +410,7 @@ vec3 aboveAlong(vec3 p, vec3 dir, out vec3 hit, out int status, out bool needMod
 #ifdef PAPER_REFLECTION
         underside = true;   // the textures from below: the underside's colour where there is one
 #endif
-        return solidColor(hit, p + m.tb * d, underside, d, needModel);
+        return solidColor(hit, p + m.tb * d, underside, d, needModel, wall);
     }
 #endif
     return worldSkyLook(uSky, dir);
@@ -421,9 +455,11 @@ void main() {
     vec3 hitD, hitU;
     int stD, stU;
     bool modelD, modelU;
-    vec3 down = groundAlong(p, below ? rdir : tdir, s, hitD, stD, modelD);
-    vec3 up = aboveAlong(p, below ? tdir : rdir, hitU, stU, modelU);
+    Wall wallD, wallU;
+    vec3 down = groundAlong(p, below ? rdir : tdir, s, hitD, stD, modelD, wallD);
+    vec3 up = aboveAlong(p, below ? tdir : rdir, hitU, stU, modelU, wallU);
     groundModelWhereWanted(modelD, hitD, down, modelU, hitU, up);
+    wallsWhereWanted(wallD, down, wallU, up);
     down = attenuate(down, s);
     vec3 color, hitT, hitR;
     int stT, stR;
