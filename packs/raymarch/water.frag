@@ -248,6 +248,9 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needMo
         t = marchFetch(uWorldY, size, uv);
     }
     underside = underside && t.y > MARCH_EMPTY_Y && t.y < t.x;   // no bottom here: no underside colour
+    // the floor's colour, read once for the three ways out that show it
+    // (llvmpipe runs every branch's read for every pixel: three reads)
+    vec3 floorColor = texture(uFloorColor, uv).rgb;
     // w: the highest underside (pack_y.frag), or MARCH_GROUND_MODEL where
     // the ground under a thing under the water is the terrain's model
     float high = texelFetch(uWorldY, ivec2(uv * vec2(size)), 0).w;
@@ -256,10 +259,10 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needMo
     float side = -1.0;   // a side met between the column's bottom and top: how far up, 0..1
     if (t.y < t.x) {
         slab = max(slab, t.y - hit.y);
-        if (t.z < t.y && hit.y - t.z <= slab) { needModel = model; return texture(uFloorColor, uv).rgb; }
+        if (t.z < t.y && hit.y - t.z <= slab) { needModel = model; return floorColor; }
         if (t.z >= t.y || model) side = clamp((hit.y - t.y) / (t.x - t.y), 0.0, 1.0);   // a thing under the water
     } else if (hit.y - t.z <= slab) {
-        return texture(uFloorColor, uv).rgb;   // the ground beside a rock's rim too
+        return floorColor;   // the ground beside a rock's rim too
     }
     // under the highest underside: a trunk under its crown
     if (!model && t.y < high && hit.y < high) return texture(uLowColor, uv).rgb;
@@ -275,14 +278,15 @@ vec3 solidColor(vec3 hit, vec3 inside, bool underside, vec3 dir, out bool needMo
     // too (floor_fill.frag), where the top's are the rock's: a bilinear read
     // of the top's drew a dotted ring round the rock seen through the water
     if (t.y <= MARCH_EMPTY_Y && abs(t.z - t.x) < RAYMARCH_WALL_MIN * uWorldScale)
-        return texture(uFloorColor, uv).rgb;
+        return floorColor;
     vec3 top = texture(uTopColor, uv).rgb;
-    if (underside) return underColor(uv, top);
+    vec3 under = underColor(uv, top);   // (once for both ways out)
+    if (underside) return under;
     // a side between bottom and top: the two views blended by height, not
     // whichever end is nearer (that flips from column to column along a
     // row and striates a thing seen from the side, as total internal
     // reflection shows the boulder)
-    return side >= 0.0 ? mix(underColor(uv, top), top, side) : top;
+    return side >= 0.0 ? mix(under, top, side) : top;
 }
 
 // The terrain model's colour where a march met ground no pass saw
