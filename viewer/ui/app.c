@@ -47,7 +47,7 @@ struct app {
     render *const *scenes;
     int nscenes;
     int unwatched;               /* dependencies skipped: their directory is missing */
-    double next_retry;           /* clock_now_s() when to look for them again */
+    double next_retry;           /* glfwGetTime() when to look for them again */
     view_script_ctx *sc;         /* while a script step runs */
     char cause[512];             /* why this reload: "water.frag changed" ("" for R) */
     int script_scene;
@@ -154,7 +154,7 @@ void app_rewatch(app *a) {
         if (!all || !watch_set_files(a->watch, all, nok, err, sizeof err))
             fprintf(stderr, "%s: watching files: %s\n", a->d.name, err);
     }
-    a->next_retry = clock_now_s() + APP_RETRY_S;
+    a->next_retry = glfwGetTime() + APP_RETRY_S;
     free(all);
 }
 
@@ -338,8 +338,8 @@ static void reload_changed(app *a, int n) {
 /* A skipped dependency whose directory has appeared: its file may be
  * there now, and from now it can be watched. */
 static bool missing_dir_appeared(app *a) {
-    if (a->unwatched == 0 || clock_now_s() < a->next_retry) return false;
-    a->next_retry = clock_now_s() + APP_RETRY_S;
+    if (a->unwatched == 0 || glfwGetTime() < a->next_retry) return false;
+    a->next_retry = glfwGetTime() + APP_RETRY_S;
     int n;
     const char **all = all_deps(a, &n);
     bool appeared = all && count_missing_dirs(all, n) < a->unwatched;
@@ -373,14 +373,21 @@ void app_screenshot(app *a) {
 
 static bool toast_showing(const app *a) { return a->toast[0] && glfwGetTime() <= a->toast_until; }
 
-/* A toast stands still on screen: a still window draws a frame only to show
- * one or, once it is due to go, to take it away (drawing the same frame
- * for its 4 s burnt a core after every start and every setting). */
-static bool toast_needs_frame(const app *a) { return toast_showing(a) != a->toast_drawn; }
-
-/* While recording, the REC label's seconds go on in a still window too,
- * a frame a second (it stood at the time of the last change). */
-static double rec_label_due_at(const app *a) { return a->rec ? a->rec_drawn_at + APP_REC_LABEL_S : INFINITY; }
+/* When (glfwGetTime()) a still window must draw again though nothing wakes
+ * it; INFINITY: never. A toast stands still on screen: a frame shows it
+ * and one takes it away once it is due to go (drawing the same frame for
+ * its 4 s burnt a core after every start and every setting). While
+ * recording, the REC label's seconds go on, a frame a second. While a
+ * folder is missing, the frame looks for it every APP_RETRY_S
+ * (missing_dir_appeared: the loop spun a core meanwhile). */
+static double frame_due_at(const app *a) {
+    double due = INFINITY;
+    if (toast_showing(a) != a->toast_drawn) due = 0.0;
+    else if (a->toast_drawn) due = a->toast_until;
+    if (a->rec) due = fmin(due, a->rec_drawn_at + APP_REC_LABEL_S);
+    if (a->unwatched > 0) due = fmin(due, a->next_retry);
+    return due;
+}
 
 /* Over the top of the scene area, above the panel and the scene's labels;
  * not into a screenshot asked for by key. */
@@ -911,7 +918,7 @@ static bool idle(const app *a, const view_script *script) {
      * what it times (scripts/save_bench.sh) is what a user meets */
     bool script_waits = !script || view_script_waiting(script);
     return script_waits && !a->client_busy && a->budget.full_done && !clock_moves && !a->compiling && a->orbit_left == 0 &&
-           !a->shot_pending && !a->stamp_pending && !toast_needs_frame(a) && glfwGetTime() < rec_label_due_at(a);
+           !a->shot_pending && !a->stamp_pending && glfwGetTime() < frame_due_at(a);
 }
 
 /* Has a watched file something to say (without taking it: frame() does)? */
@@ -924,18 +931,13 @@ static bool files_pending(const app *a) {
 
 /* How long a still window sleeps at most: APP_IDLE_WAIT_S, or until a
  * save that is settling is due (watch_timeout_ms: the watcher has read its
- * events, so its fd wakes no one; it waits out the writer's quiet), until
- * the toast on screen is due to go, the REC label's next second, the
- * script's wait ends or a missing folder is due to be looked for again
- * (missing_dir_appeared: the loop spun a core while one was missing). */
+ * events, so its fd wakes no one; it waits out the writer's quiet), the
+ * script's wait ends or a frame is due (frame_due_at). */
 static double idle_wait_s(const app *a, const view_script *script) {
-    double s = APP_IDLE_WAIT_S;
+    double s = fmin(APP_IDLE_WAIT_S, fmax(frame_due_at(a) - glfwGetTime() + 0.001, 0.0));
     if (view_script_waiting(script)) s = fmin(s, view_script_wait_left_s(script) + 0.001);   /* its next line */
     int ms = a->watch ? watch_timeout_ms(a->watch) : -1;
     if (ms >= 0 && ms / 1000.0 < s) s = ms / 1000.0;
-    if (a->toast_drawn) s = fmin(s, fmax(a->toast_until - glfwGetTime() + 0.001, 0.0));
-    if (a->rec) s = fmin(s, fmax(rec_label_due_at(a) - glfwGetTime() + 0.001, 0.0));
-    if (a->unwatched > 0) s = fmin(s, fmax(a->next_retry - clock_now_s() + 0.001, 0.0));
     return s;
 }
 
@@ -976,8 +978,7 @@ static bool wait_for_work(app *a, const view_script *script) {
     }
     glfwWaitEventsTimeout(idle_wait_s(a, script));
     bool sheet = a->sheet.pid > 0 && sheet_ended(a, false);   /* its toast wants frames */
-    bool retry = a->unwatched > 0 && clock_now_s() >= a->next_retry;   /* the frame looks */
-    if (!a->woken && !sheet && !retry && !files_pending(a) && idle(a, script)) return false;
+    if (!a->woken && !sheet && !files_pending(a) && idle(a, script)) return false;
     a->slept = true;
     return true;
 }
