@@ -15,8 +15,10 @@
 #     --packs a,b    default: basic,raymarch,natural,caustic_tex
 #     --rounds N     default 3;  --frames N  default 6 (the median is
 #                    taken over all, so the first two, which fill caches, are outliers)
-#     --msaa N       anti-aliasing of the timed frames (default: tarn render's,
-#                    4 samples; 1 is the live window's case on a CPU rasteriser)
+#     --msaa N       anti-aliasing of the timed frames and of the error's
+#                    (default: tarn render's, 4 samples; 1 is the live
+#                    window's case on a CPU rasteriser), the reference sampled
+#                    to match
 #     --still        every frame at the same time (tarn render --still: what a
 #                    paused window and tarn bench draw, so the static-world
 #                    cache is used); a build without --still, which has no
@@ -62,16 +64,20 @@ wall() {  # tarn root pack
     sed -n 's/.* wall \([0-9.]*\) ms.*/\1/p' <<<"$out"
 }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
-water_rmse() {  # tarn root pack
-    TARN_ROOT=$2 "$1" render "$2/$scene" --pack "$3" --size "$esize" --time "$t" -o "$tmp/e.exr" --quiet 2>/dev/null
+water_rmse() {  # tarn root pack (at the timed frames' --msaa, against a reference sampled to match)
+    local opt=()
+    if [ -n "$msaa" ]; then opt=(--msaa "$msaa"); fi
+    TARN_ROOT=$2 "$1" render "$2/$scene" --pack "$3" --size "$esize" --time "$t" "${opt[@]}" -o "$tmp/e.exr" --quiet 2>/dev/null
     "$1" compare "$tmp/e.exr" "$tmp/ref.exr" 2>&1 | awk "/^water RMSE/ {print \$NF}" | head -1
 }
 
-"$after" reference "$aroot/$scene" --time "$t" --size "$esize" -o "$tmp/ref.exr" >/dev/null
+ref_opt=()
+if [ -n "$msaa" ]; then ref_opt=(--msaa "$msaa"); fi
+"$after" reference "$aroot/$scene" --time "$t" --size "$esize" "${ref_opt[@]}" -o "$tmp/ref.exr" >/dev/null
 echo "before: $before on $broot; after: $after on $aroot"
 echo "scene $scene, timing at $size, t = $t s, $rounds rounds x $frames frames per build, interleaved;"
 [ "$still" = 1 ] && echo "still frames (--still where the build has it)"
-echo "water RMSE at $esize against the CPU reference"
+echo "water RMSE at $esize${msaa:+ and --msaa $msaa} against the CPU reference"
 echo
 echo "| pack | before ms | after ms | speed-up | water RMSE before | after |"
 echo "|---|---:|---:|---:|---:|---:|"

@@ -30,6 +30,7 @@ void strbuf_vprintf(strbuf *b, const char *fmt, va_list ap) {
     va_end(ap2);
     if (n <= 0) {
         reserve(b, 0);
+        b->s[b->len] = '\0';   /* an empty append still leaves a string (was unterminated) */
         return;
     }
     reserve(b, (size_t)n);

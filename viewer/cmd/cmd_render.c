@@ -181,6 +181,7 @@ int cli_render(const cli_render_desc *d) {
     int frames = d->frames > 0 ? d->frames : 1;
     pass_table passes = { 0 };
     render_set_draw_timing(r, d->passes);
+    render_set_deferred_water(r, !d->grid_water);
     double *ms = mem_zalloc((size_t)frames * sizeof *ms);
     double *wall = mem_zalloc((size_t)frames * sizeof *wall);
     bool per_frame = strstr(d->out, "%d") != NULL;
@@ -218,7 +219,14 @@ int cli_render(const cli_render_desc *d) {
         qsort(wall, (size_t)frames, sizeof *wall, cmp_double);
         printf("tarn: %d frame(s) at %dx%d: median GPU time %.3f ms, wall %.3f ms, on %s\n", frames, w, h,
                ms[frames / 2], wall[frames / 2], gl_ctx_describe(ctx));
-        if (d->passes) pass_table_print(&passes);
+        if (d->passes) {
+            pass_table_print(&passes);
+            const char *why = render_deferred_water_why(r);
+            if (render_deferred_water_draws(r) > 0)
+                printf("tarn: the screen's water deferred (shaded once a pixel) in %ld draw(s)\n",
+                       render_deferred_water_draws(r));
+            if (why) printf("tarn: the screen's water drawn as a grid: %s\n", why);
+        }
     }
     pass_table_free(&passes);
     free(ms);
@@ -282,6 +290,17 @@ static const cmd_option options[] = {
              "finishes the work before it (on a CPU rasteriser the time of a draw's\n"
              "pixels otherwise falls in a later draw), so the total is a little more\n"
              "than without.\n" },
+    { "--grid-water", .kind = CMD_FLAG, .offset = OFF(grid_water),
+      .help = "draw the screen's water as a grid, each triangle shaded, not\n"
+              "deferred (one shading a pixel): the same picture but at the\n"
+              "water's edge, slower on a CPU rasteriser; for A/B runs\n",
+      .man = "draw the screen's water as a grid whose triangles are each shaded, not\n"
+             "deferred (a G\\-buffer of the grid, then the pack's fragment shader once a\n"
+             "pixel; single\\-sample frames only: with\n"
+             ".B \\-\\-msaa 1\n"
+             "or 0): the same picture but at the water's edge, slower on a CPU\n"
+             "rasteriser, where a block of pixels is shaded for every small triangle\n"
+             "that touches it. For A/B runs.\n" },
     { "--setting", .metavar = "NAME", .kind = CMD_STRING, .offset = OFF(setting),
       .help = "start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
               "default, paper, ...), as the panel's Setting combo does\n",
@@ -324,8 +343,8 @@ static const cmd_option options[] = {
 const cmd_spec cmd_render_spec = {
     .name = "render",
     .synopsis = "FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
-                "[--still] [--passes] [--setting NAME] [--set PROGRAM.NAME=VALUE]... [--msaa N]\n"
-                "[--quiet | --verbose]\n",
+                "[--still] [--passes] [--grid-water] [--setting NAME] [--set PROGRAM.NAME=VALUE]...\n"
+                "[--msaa N] [--quiet | --verbose]\n",
     .about = "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
              "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n",
     .options = options,

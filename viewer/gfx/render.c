@@ -29,6 +29,7 @@ render *render_create(const render_desc *desc) {
     gpu_timer_init(&r->timer);
     world_cache_init(&r->wcache);
     world_layers_init(&r->wlayers);
+    water_deferred_init(&r->deferred);
     return r;
 }
 
@@ -45,6 +46,7 @@ void render_destroy(render *r) {
     world_cache_free(&r->wcache);
     world_layers_free(&r->wlayers);
     world_snapshot_free(&r->snap);
+    water_deferred_free(&r->deferred);
     render_load_free_deps(r);
     free(r->messages);
     free(r->draw_messages);
@@ -133,6 +135,21 @@ void render_set_world_cache(render *r, bool on) {
 }
 
 long render_world_cache_hits(const render *r) { return r->wcache.hits; }
+
+void render_set_deferred_water(render *r, bool on) {
+    r->deferred.off = !on;
+    if (!on) water_deferred_free(&r->deferred);
+}
+
+long render_deferred_water_draws(const render *r) { return r->deferred.draws; }
+
+const char *render_deferred_water_why(const render *r) {
+    for (int i = 0; i < r->cur.nprogs; i++) {
+        const prog_deferred *pd = &r->cur.progs[i].deferred;
+        if (pd->tried && !pd->shade) return pd->why;
+    }
+    return NULL;
+}
 
 void render_keep_world_layers(render *r, bool keep) { r->wlayers.keep_larger = keep; }
 

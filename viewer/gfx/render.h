@@ -167,6 +167,17 @@ void render_frame_world_at(render *r, double t, unsigned fbo, int x, int y, int 
  * last frame left it, the world-only frame's documented state. */
 unsigned long long render_world_frame_inputs(const render *r);
 
+/* Deferred water (on by default; water_deferred.h): the screen's
+ * `WaterSurface`, into a single-sample target, drawn as a G-buffer of the
+ * grid then one full-screen pass of the program's fragment shader, so a
+ * CPU rasteriser shades each water pixel once (the grid's small triangles
+ * shaded blocks of pixels several times). Off: the grid as drawn before.
+ * draws: how many water draws went so since render_create; why: the
+ * reason a program of the scene could not (NULL: none found). */
+void render_set_deferred_water(render *r, bool on);
+long render_deferred_water_draws(const render *r);
+const char *render_deferred_water_why(const render *r);
+
 /* The static-world cache (on by default): a `World` drawn right after a
  * Clear is copied from the last frame's pixels while its camera, clip,
  * target, GL state, time and the world are unchanged (bit for bit what

@@ -107,6 +107,42 @@ void render_draw_world(render *r, frame_state *f, int i) {
     draw_world_cached(r, f, i, which, offset);
 }
 
+/* What water_deferred asks of the renderer for each of its programs: the
+ * uniforms use_program (render_exec.c) gives the glib's program, and the
+ * grid. */
+typedef struct deferred_call {
+    render *r;
+    const frame_state *f;
+    const prog *p;
+} deferred_call;
+
+static void deferred_upload(unsigned gl, void *user) {
+    const deferred_call *c = user;
+    prog_upload_to(c->p, gl, c->f->t, c->r->cur.set.timer_s);
+    world_upload(&c->r->world, gl, c->f->t, c->f->eye);
+    render_camera_upload(&c->f->cams, gl);
+    GLint loc = glGetUniformLocation(gl, "uTargetSize");
+    if (loc >= 0) {
+        GLint vp[4];
+        glGetIntegerv(GL_VIEWPORT, vp);
+        glUniform2f(loc, (float)vp[2], (float)vp[3]);
+    }
+}
+
+static void deferred_grid(int tangent_loc, void *user) {
+    const deferred_call *c = user;
+    world_draw_water(&c->r->world, tangent_loc);
+}
+
+/* The screen's water through water_deferred; false: draw it as before. */
+static bool draw_water_deferred(render *r, const frame_state *f) {
+    scene_state *s = &r->cur;
+    if (f->in_rtt || !f->cur || f->cur < s->progs || f->cur >= s->progs + s->nprogs) return false;
+    deferred_call c = { r, f, f->cur };
+    water_deferred_calls calls = { deferred_upload, deferred_grid, &c };
+    return water_deferred_draw(&r->deferred, &s->progs[f->cur - s->progs], &calls);
+}
+
 /* `WaterSurface`: the world's water, or `points|mesh N` of it. */
 void render_draw_water(render *r, const frame_state *f, const glib_cmd *c) {
     if (c->name[0]) {   /* "points" or "mesh" */
@@ -119,6 +155,6 @@ void render_draw_water(render *r, const frame_state *f, const glib_cmd *c) {
      * depth clamping keeps it (what is behind the eye is still
      * clipped by the x and y planes) */
     glEnable(GL_DEPTH_CLAMP);
-    world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
+    if (!draw_water_deferred(r, f)) world_draw_water(&r->world, f->cur ? f->cur->tangent_loc : -1);
     glDisable(GL_DEPTH_CLAMP);
 }

@@ -39,6 +39,7 @@
 #include "scene.h"
 #include "world_cache.h"
 #include "world_layers.h"
+#include "water_deferred.h"
 #include "world_snapshot.h"
 
 #define MATRIX_STACK_MAX 30   /* GL guarantees 32 modelview entries */
@@ -86,6 +87,7 @@ struct render {
     world_cache wcache;            /* World commands drawn after a Clear, kept while their key stays */
     world_layers wlayers;          /* ... and their layers, while only the time changes */
     world_snapshot snap;           /* the screen right before its water (render_set_world_snapshot) */
+    water_deferred deferred;       /* the screen's water shaded once a pixel (water_deferred.h) */
     bool world_only;               /* inside render_frame_world_at */
     char common_dir[GLIB_PATH_MAX + 16];
     const char *include_dirs[1];

@@ -195,6 +195,11 @@ static void build_prog(render *r, scene_state *s, scene_state *old, const glib_c
         p->good = o->good;
         p->source = o->source;   /* the kept build's text: says declared-but-inactive from undeclared */
         o->source = NULL;
+        p->vertex_text = o->vertex_text;   /* ... and its stages and deferred water (water_deferred.h) */
+        p->fragment_text = o->fragment_text;
+        p->deferred = o->deferred;
+        o->vertex_text = o->fragment_text = NULL;
+        memset(&o->deferred, 0, sizeof o->deferred);
         o->gl = 0;
         o->cmd = c;   /* marks it taken */
         unif_merge(p->unifs, o->unifs);

@@ -176,6 +176,16 @@ static void keep_source(prog *p, const shader_src *src) {
     p->source = NULL;
     for (int s = 0; s < SHADER_STAGE_COUNT; s++)
         if (src[s].text) str_appendf(&p->source, "%s\n", src[s].text);
+    free(p->vertex_text);
+    free(p->fragment_text);
+    p->vertex_text = src[SHADER_VERTEX].text ? mem_strdup(src[SHADER_VERTEX].text) : NULL;
+    p->fragment_text = src[SHADER_FRAGMENT].text ? mem_strdup(src[SHADER_FRAGMENT].text) : NULL;
+}
+
+void prog_deferred_free(prog *p) {
+    if (p->deferred.gbuffer) glDeleteProgram(p->deferred.gbuffer);
+    if (p->deferred.shade) glDeleteProgram(p->deferred.shade);
+    memset(&p->deferred, 0, sizeof p->deferred);
 }
 
 /* Is name a whole word of the program's source (declared, maybe compiled
@@ -282,6 +292,7 @@ bool prog_build(prog *p, const prog_sources *sources, diag_list *dl, prog_origin
         shader_src_free(&src[s]);
     }
     if (!prg) { p->good = false; return false; }
+    prog_deferred_free(p);   /* made from the build it replaces */
     if (p->gl) glDeleteProgram(p->gl);
     p->gl = prg;
     p->hash = hash;
@@ -484,9 +495,27 @@ void prog_upload(const prog *p, double t, double timer_s) {
     }
 }
 
+void prog_upload_to(const prog *p, unsigned gl, double t, double timer_s) {
+    for (int i = 0; i < p->unifs->n; i++) {
+        unif_entry e = p->unifs->entries[i];
+        if (e.location < 0 || !unif_uploadable(&e)) continue;
+        e.location = glGetUniformLocation(gl, e.name);
+        if (e.location >= 0) upload_entry(&e);
+    }
+    GLint timer = glGetUniformLocation(gl, "Timer");
+    if (p->timer_loc >= 0 && timer >= 0) {
+        double period = timer_s > 0 ? timer_s : 10.0;
+        glUniform1f(timer, (float)(fmod(t, period) / period));
+    }
+}
+
 void prog_free(prog *p) {
     free(p->source);
     p->source = NULL;
+    free(p->vertex_text);
+    free(p->fragment_text);
+    p->vertex_text = p->fragment_text = NULL;
+    prog_deferred_free(p);
     if (p->gl) glDeleteProgram(p->gl);
     p->gl = 0;
     if (p->unifs) unif_set_free(p->unifs);

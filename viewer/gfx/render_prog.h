@@ -15,6 +15,16 @@
 #define PROG_FIXED_WORLD 2
 #define PROG_FIXED_MAX 16
 
+/* The program's water split for deferred shading (water_deferred.h),
+ * made at its first deferred draw and dropped with the build it came from. */
+typedef struct prog_deferred {
+    bool tried;                  /* made (or found impossible) for the current build */
+    unsigned gbuffer, shade;     /* linked programs, 0: none (why says) */
+    int ntex;                    /* the G-buffer's RGBA32F targets */
+    int gbuffer_tangent;         /* the G-buffer program's Tangent attribute */
+    char why[192];
+} prog_deferred;
+
 typedef struct prog {
     char name[GLIB_NAME_MAX];
     const glib_cmd *cmd;                     /* the Program line (for messages) */
@@ -34,6 +44,8 @@ typedef struct prog {
     bool world_uniforms;                     /* the scene has a world: its uniforms get no slider */
     shader_define fixed[PROG_FIXED_MAX];     /* defines always built with (name "": none): the world's variants */
     char *source;                            /* all stage texts as compiled (for messages) */
+    char *vertex_text, *fragment_text;       /* the vertex and fragment stages as compiled */
+    prog_deferred deferred;                  /* water_deferred.h */
     const glib_scene *scene;                 /* its glib: sliders that glib commands read */
 } prog;
 
@@ -86,6 +98,13 @@ int prog_inactive_uniforms(const prog *p, const unif_entry **found, int max);
 
 /* Uploads every uniform value and Timer (0..1 sawtooth of period timer_s). */
 void prog_upload(const prog *p, double t, double timer_s);
+
+/* The same values to gl, another program built from p's texts (its
+ * deferred water: water_deferred.h), each uniform found there by name. */
+void prog_upload_to(const prog *p, unsigned gl, double t, double timer_s);
+
+/* Drops p's deferred water programs (a rebuild, a free). */
+void prog_deferred_free(prog *p);
 
 void prog_free(prog *p);
 
