@@ -58,7 +58,9 @@ measure() {   # PACK PNG TIME
 printf "%-12s %-9s %6s %-19s %8s %8s %8s\n" pack mode fps "drawn at" RMSE FLIP SSIM
 for p in "${packs[@]}"; do
   {
-    printf 'pause 1\nbudget 50\nframes 3\npause 0\nplay 1\nwait 3\nplay 0\n'
+    # (5 s: the start's "F1 or ? shows the keys" toast, 4 s, gone before
+    # the first grab; a fast window reached it under the toast)
+    printf 'pause 1\nbudget 50\nframes 3\npause 0\nplay 1\nwait 5\nplay 0\n'
     for g in $(seq 1 "$grabs"); do
       t=$(awk -v g="$g" 'BEGIN { printf "%.3f", 3 + 1.7 * g }')
       turn 1 "$t" "$scratch/$p-sharp-$g.png"; turn 0 "$t" "$scratch/$p-enlarged-$g.png"

@@ -164,8 +164,9 @@ int cli_render(const cli_render_desc *d) {
     if (w <= 0 || h <= 0) render_window_size(r, &w, &h);
     render_target t;
     bool linear_scene = render_has_world(r);
-    /* colour and depth, the multisampled ones, the image read back */
-    double bytes = 16 + 4 + 16 + (samples > 1 ? samples * 20.0 : 0);
+    /* colour and depth, the multisampled ones (else the deferred water's
+     * G-buffer, two RGBA32F for the packs), the image read back */
+    double bytes = 16 + 4 + 16 + (samples > 1 ? samples * 20.0 : 32.0);
     if (!gl_ctx_frame_fits(w, h, bytes, err, sizeof err)) {
         fprintf(stderr, "tarn: %s: %s\n", d->glib, err);
         render_destroy(r);

@@ -105,6 +105,7 @@ struct app {
                                   * window sleeps; input wakes it at once). The stamp says it */
     double compile_s;            /* how long the last job ran */
     bool compiled_off_frame;     /* during hooks.reload: the job compiled what it loads */
+    bool deferred_held;          /* the water drawn as a grid until the job makes its deferred code (deferred_due) */
     bool judge_job;              /* this frame reloaded after a job: did the job help? */
     bool job_futile;             /* no: saves compile on the frame from now on */
     long frames_meanwhile;       /* frames swapped since the change was seen */
@@ -227,6 +228,12 @@ static void judge_compile_job(app *a, double frame_s) {
  * frames need in Mesa's cache. */
 static void reload_compiled(app *a) {
     a->compiled_off_frame = true;
+    /* the water as a grid until the job has made its deferred code too
+     * (compile_job_deferred_ready): the first frames need one front end */
+    if (!compile_job_deferred_ready(a->cjob)) {
+        for (int i = 0; i < a->nscenes; i++) render_set_deferred_water(a->scenes[i], false);
+        a->deferred_held = true;
+    }
     reload(a);
     a->compiled_off_frame = false;
     a->judge_job = true;   /* this frame says whether the job made the first draw cheap */
@@ -279,6 +286,14 @@ static void still_due(app *a, double now) {
     /* another pack since (a switch compiles on the frame): not the old one's */
     compile_job_drop_still(a->cjob);
     a->still_dropped = true;
+}
+
+/* The water deferred again once the job has made that code too (or has
+ * ended, or none runs). */
+static void deferred_due(app *a) {
+    if (!a->deferred_held || (a->compiling && !compile_job_deferred_ready(a->cjob))) return;
+    for (int i = 0; i < a->nscenes; i++) render_set_deferred_water(a->scenes[i], true);
+    a->deferred_held = false;
 }
 
 /* The job ended: the reload finds its programs in the cache (already
@@ -721,6 +736,7 @@ static void frame(app *a, bool scripted) {
     bool contended = job_contends(a);   /* (the reload's frame, at the job's ready, too) */
     if (compile_readied(a)) reload_early(a);
     if (compile_finished(a)) compile_ended(a);
+    deferred_due(a);
     still_due(a, now);
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
     fd_wake_rearm(a->file_wake);   /* its news are read: wake at the next */

@@ -42,6 +42,7 @@ struct compile_job {
     bool done;                   /* under mu: the worker finished it */
     bool ready;                  /* under mu: the reduced frames' code is made (the window may reload) */
     bool ready_taken;            /* under mu: compile_job_ready said so */
+    bool deferred_ready;         /* under mu: the deferred water's code is made too (compile_job_deferred_ready) */
     double ready_seconds;        /* under mu: how long that took */
     bool wait_for_shown;         /* under mu: the job waits for shown after its ready */
     bool still;                  /* compile_job_desc.still: only the first frame before the ready */
@@ -222,10 +223,13 @@ static bool job_load(compile_job *j, int i) {
     return render_world_programs_hash(j->kept[i]) != world_before;
 }
 
-/* Draws warm_dt's frames [from, to) of scene i as the window would: every
- * variant those draws need made (the LLVM compile), into Mesa's cache.
- * Pixels do not matter. */
-static void warm_moving(compile_job *j, int i, int from, int to) {
+/* Draws warm_dt's frames [from, to) of scene i as the window would:
+ * every variant those draws need made (the LLVM compile), into Mesa's
+ * cache. deferred: the water drawn deferred (render_set_deferred_water),
+ * as the window draws it once compile_job_deferred_ready, else as a grid,
+ * as it draws the first frames after a reload (their code made first: one
+ * GLSL front end of the water's text, not two). Pixels do not matter. */
+static void warm_moving(compile_job *j, int i, int from, int to, bool deferred) {
     if (from >= to) return;
     const job_scene *s = &j->scenes[i];
     render *r = j->kept[i];
@@ -235,6 +239,7 @@ static void warm_moving(compile_job *j, int i, int from, int to) {
     if (made && r && render_has_scene(r)) {
         if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
         render_set_detail(r, COMPILE_JOB_REDUCED_DETAIL);
+        render_set_deferred_water(r, deferred);
         for (int k = from; k < to && !quitting(j); k++) {
             render_frame_at(r, j->t + warm_dt[k], t.fbo, 0, 0, w, h, &j->view);
             j->frames_drawn++;
@@ -256,6 +261,7 @@ static void warm_still(compile_job *j, int i) {
     if (made && r && render_has_scene(r) && !quitting(j)) {
         if (s->srgb) glEnable(GL_FRAMEBUFFER_SRGB);
         render_set_detail(r, 1);
+        render_set_deferred_water(r, true);
         render_frame_at(r, j->t, t.fbo, 0, 0, w, h, &j->view);
         j->frames_drawn++;
         glDisable(GL_FRAMEBUFFER_SRGB);
@@ -310,7 +316,7 @@ static void run_job(compile_job *j) {
     int first[COMPILE_JOB_MAX_SCENES] = { 0 };
     for (int i = 0; i < j->nscenes && !quitting(j); i++) {
         first[i] = job_load(j, i) && !j->still ? WARM_FRAMES : 1;
-        warm_moving(j, i, 0, first[i]);
+        warm_moving(j, i, 0, first[i], false);
     }
     /* the window can show the change now: its frames while the picture
      * changes find their code (a paused window's first: the others, made
@@ -324,8 +330,14 @@ static void run_job(compile_job *j) {
     if (j->wake) j->wake(j->wake_user);   /* a window asleep while it compiles reloads now */
     wait_for_shown(j);
     pthread_mutex_unlock(&j->mu);
-    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first[i], WARM_FRAMES);
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first[i], WARM_FRAMES, false);
+    /* then the deferred water's (the window turns to it at
+     * compile_job_deferred_ready): the frame after the turn and the
+     * clock's frames after it */
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, 0, j->still ? 1 : WARM_FRAMES, true);
     pthread_mutex_lock(&j->mu);
+    j->deferred_ready = true;
+    if (j->wake) j->wake(j->wake_user);
     bool still = still_wanted(j);
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < j->nscenes && still && !quitting(j); i++) warm_still(j, i);
@@ -377,7 +389,7 @@ bool compile_job_start(compile_job *j, const compile_job_desc *d) {
     }
     pthread_mutex_lock(&j->mu);
     j->request = j->busy = true;
-    j->done = j->ready = j->ready_taken = j->shown = false;
+    j->done = j->ready = j->ready_taken = j->shown = j->deferred_ready = false;
     j->wait_for_shown = d->wait_for_shown;
     j->still = d->still;
     j->defer_still = d->defer_still;
@@ -463,6 +475,14 @@ void compile_job_frames(compile_job *j, int *at_ready, int *in_all) {
     *at_ready = j->frames_at_ready;
     *in_all = j->frames_in_all;
     pthread_mutex_unlock(&j->mu);
+}
+
+bool compile_job_deferred_ready(compile_job *j) {
+    if (!j) return true;
+    pthread_mutex_lock(&j->mu);
+    bool ready = !j->busy || j->deferred_ready || j->done;
+    pthread_mutex_unlock(&j->mu);
+    return ready;
 }
 
 bool compile_job_done(compile_job *j, double *seconds) {

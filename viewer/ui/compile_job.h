@@ -97,6 +97,14 @@ bool compile_job_busy(compile_job *j);
  * make the still picture's full-resolution frame (compile_job_done). */
 bool compile_job_ready(compile_job *j, double *seconds);
 
+/* The deferred water (render_set_deferred_water) of the job's build has
+ * its code made too (or no job runs): the window draws a reload's water
+ * as a grid until then, so that the reload at compile_job_ready needs one
+ * GLSL front end of the water's text (the grid's), not two (the
+ * deferred's shade pass is the same text once more). Any thread; NULL is
+ * fine (true). */
+bool compile_job_deferred_ready(compile_job *j);
+
 /* The window has shown the change (its first frame after the reload at
  * the job's ready is on screen), or will not reload before the job's end:
  * a job started with wait_for_shown goes on. Any thread; NULL is fine. */
