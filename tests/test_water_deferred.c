@@ -5,7 +5,8 @@
  * the same bits (a float, a flat int by its bits, gl_FragCoord.z and
  * gl_FrontFacing stored and read back); the packs' shaders, whose
  * derivatives differ at the water's edge, give the grid's picture but for
- * a few pixels. MSAA frames and shaders it cannot split keep the grid. */
+ * a few pixels. MSAA frames, shaders it cannot split and the spectrum
+ * ocean keep the grid. */
 #include <GL/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -156,6 +157,14 @@ static void test_unsplittable_shader_keeps_the_grid(void) {
     render_destroy(r);
 }
 
+/* The spectrum ocean keeps the grid (its filtered normals take the grid's
+ * own derivatives), and says why. */
+static void test_ocean_keeps_the_grid(void) {
+    frame f = draw(TARN_SOURCE_DIR "/scenes/ocean.glib", "raymarch", 64, 36, 1.0, true, 1);
+    CHECK_EQ(f.deferred_draws, 0L);
+    free(f.px);
+}
+
 int main(void) {
     char err[512];
     gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
@@ -165,6 +174,7 @@ int main(void) {
     RUN(test_packs_draw_the_grids_picture);
     RUN(test_msaa_keeps_the_grid);
     RUN(test_unsplittable_shader_keeps_the_grid);
+    RUN(test_ocean_keeps_the_grid);
     gl_ctx_destroy(ctx);
     return check_summary();
 }

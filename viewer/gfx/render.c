@@ -144,6 +144,7 @@ void render_set_deferred_water(render *r, bool on) {
 long render_deferred_water_draws(const render *r) { return r->deferred.draws; }
 
 const char *render_deferred_water_why(const render *r) {
+    if (r->deferred.skip_why) return r->deferred.skip_why;
     for (int i = 0; i < r->cur.nprogs; i++) {
         const prog_deferred *pd = &r->cur.progs[i].deferred;
         if (pd->tried && !pd->shade) return pd->why;

@@ -18,9 +18,12 @@
  * Only where nothing changes but the cost: a single-sample framebuffer of
  * the renderer's own with a stencil buffer (not the window system's, not
  * MSAA, not a RenderToTexture pass), a program of a vertex and a fragment
- * stage that glsl_deferred can split, polygons filled. Elsewhere, and where
- * either pass's program does not build, the caller draws the grid as
- * before. The pixels are the grid's but at the water's edge (glsl_deferred.h:
+ * stage that glsl_deferred can split, polygons filled, and a world without
+ * the spectrum ocean (whose normals are filtered by each pixel's
+ * footprint: beside a fold of its crests the shade pass's derivatives
+ * difference two parts of the surface, +1.1% water error; the caller
+ * decides, render_draw.c). Elsewhere, and where either pass's program does
+ * not build, the caller draws the grid as before. The pixels are the grid's but at the water's edge (glsl_deferred.h:
  * derivatives), and where the glib blends the water (each pixel once here,
  * as often as triangles overlap there). Private to the renderer. */
 #ifndef TARN_WATER_DEFERRED_H
@@ -38,6 +41,7 @@ typedef struct water_deferred {
     int tex_w, tex_h, ntex;               /* the G-buffer textures made */
     unsigned depth_rb;                    /* the screen depth-stencil attached to fbo */
     long draws;                           /* water drawn deferred */
+    const char *skip_why;                 /* the scene's reason to keep the grid (the renderer's), or NULL */
 } water_deferred;
 
 /* What the caller does for each pass's program: its uniforms (the
