@@ -5,6 +5,7 @@
  * test_water_deferred compiles and draws both on llvmpipe. No GL. */
 #include "check.h"
 #include "glsl_deferred.h"
+#include "shader_src.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -63,6 +64,24 @@ static void test_split_stores_every_component(void) {
     glsl_deferred_free(&d);
 }
 
+/* gl_FragCoord's x and y (the never-taken kill's) are the shade pass's
+ * own: nothing stored, the text left as it is. */
+static void test_fragcoord_xy_kept(void) {
+    glsl_deferred d;
+    CHECK_MSG(glsl_deferred_split("#version 330\nin vec2 v;\nout vec4 c;\n"
+                                  "void main() {" SHADER_SRC_UNREACHED_KILL "\n"
+                                  "  c = vec4(v, gl_FragCoord . xy); }\n", &d), "%s", d.why);
+    CHECK(!strstr(d.shade, "discard"));   /* the kill blanked in this form too */
+    CHECK_EQ(d.ncomp, 2);
+    CHECK_EQ(d.ntex, 1);
+    CHECK_STR_CONTAINS(d.shade, "vec4(v, gl_FragCoord . xy)");
+    CHECK(!strstr(d.shade, "tarn_dfr_fragcoord"));
+    glsl_deferred_free(&d);
+    CHECK(glsl_deferred_split("#version 330\nin vec2 v;\nout vec4 c;\nvoid main() { c = gl_FragCoord; }\n", &d));
+    CHECK_EQ(d.ncomp, 4);
+    glsl_deferred_free(&d);
+}
+
 static void test_front_facing_and_uint(void) {
     glsl_deferred d;
     CHECK_MSG(glsl_deferred_split("#version 450\nflat in uint vU;\nsmooth in float vS;\nout vec4 c;\n"
@@ -71,6 +90,7 @@ static void test_front_facing_and_uint(void) {
     CHECK_EQ(d.ncomp, 3);
     CHECK_STR_CONTAINS(d.gbuffer, "#version 450\n");
     CHECK_STR_CONTAINS(d.gbuffer, "tarn_dfr_o0.x = uintBitsToFloat(vU);");
+    CHECK(!strstr(d.gbuffer, "gl_FragCoord"));   /* not read: nothing stored */
     CHECK_STR_CONTAINS(d.gbuffer, "gl_FrontFacing ? 1.0 : 0.0;");
     CHECK_STR_CONTAINS(d.shade, "vU = floatBitsToUint(tarn_dfr_v0.x);");
     CHECK_STR_CONTAINS(d.shade, "tarn_dfr_front ? 1.0");
@@ -123,6 +143,7 @@ static void test_cut_texts(void) {
 
 int main(void) {
     RUN(test_split_stores_every_component);
+    RUN(test_fragcoord_xy_kept);
     RUN(test_front_facing_and_uint);
     RUN(test_refusals);
     RUN(test_cut_texts);

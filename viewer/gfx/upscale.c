@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "gl_program.h"
 #include "mem.h"
 #include "upscale_frag.h"   /* upscale_frag_src: shaders/upscale.frag, built in by embed.cmake */
 
@@ -66,48 +67,14 @@ static const char over_frag[] =
     "    fragColor = vec4(w.rgb + (1.0 - w.a) * world, 1.0);\n"
     "}\n";
 
-/* One triangle that covers the viewport: no vertex buffer needed. */
-static const char vert_src[] =
-    "#version 330 core\n"
-    "void main() {\n"
-    "    vec2 p = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;\n"
-    "    gl_Position = vec4(p, 0.0, 1.0);\n"
-    "}\n";
-
-static unsigned compile(GLenum type, const char *src, char *err, size_t errlen) {
-    GLuint sh = glCreateShader(type);
-    glShaderSource(sh, 1, &src, NULL);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (ok) return sh;
-    char log[400] = "";
-    glGetShaderInfoLog(sh, sizeof log, NULL, log);
-    snprintf(err, errlen, "tarn: the upscale shader does not compile (bilinear instead): %s", log);
-    glDeleteShader(sh);
-    return 0;
-}
-
 /* A program of the full-screen triangle and frag_src, or 0 with err said. */
 static unsigned link_program(const char *frag_src, char *err, size_t errlen) {
-    unsigned vs = compile(GL_VERTEX_SHADER, vert_src, err, errlen);
-    unsigned fs = vs ? compile(GL_FRAGMENT_SHADER, frag_src, err, errlen) : 0;
-    if (!fs) {
-        if (vs) glDeleteShader(vs);
-        return 0;
-    }
-    unsigned prog = glCreateProgram();
-    glAttachShader(prog, vs);
-    glAttachShader(prog, fs);
-    glLinkProgram(prog);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (ok) return prog;
-    snprintf(err, errlen, "tarn: the upscale shader does not link (bilinear instead)");
-    glDeleteProgram(prog);
-    return 0;
+    char *vert = gl_program_fullscreen_vert("#version 330 core");
+    char why[400] = "";
+    unsigned prog = gl_program_link(vert, frag_src, "the upscale shader", why, sizeof why);
+    free(vert);
+    if (!prog) snprintf(err, errlen, "tarn: %s (bilinear instead)", why);
+    return prog;
 }
 
 /* The cubic's program, or false with u->err said (the upscaler then blits). */

@@ -6,8 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mem.h"
-#include "strbuf.h"
+#include "gl_program.h"
 
 void water_deferred_init(water_deferred *d) { memset(d, 0, sizeof *d); }
 
@@ -28,55 +27,13 @@ void water_deferred_free(water_deferred *d) {
 
 /* ---- the two programs ------------------------------------------------ */
 
-static GLuint compile(GLenum kind, const char *text, char *why, size_t whylen) {
-    GLuint sh = glCreateShader(kind);
-    glShaderSource(sh, 1, &text, NULL);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (ok) return sh;
-    char log[160] = "";
-    glGetShaderInfoLog(sh, sizeof log, NULL, log);
-    snprintf(why, whylen, "its %s shader did not compile: %s", kind == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
-    glDeleteShader(sh);
-    return 0;
-}
-
-static GLuint link(const char *vert, const char *frag, char *why, size_t whylen) {
-    GLuint vs = compile(GL_VERTEX_SHADER, vert, why, whylen);
-    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, frag, why, whylen) : 0;
-    GLuint prg = 0;
-    if (vs && fs) {
-        prg = glCreateProgram();
-        glAttachShader(prg, vs);
-        glAttachShader(prg, fs);
-        glBindAttribLocation(prg, 6, "Tangent");   /* as render_prog.c's link_program */
-        glLinkProgram(prg);
-        GLint ok = 0;
-        glGetProgramiv(prg, GL_LINK_STATUS, &ok);
-        if (!ok) {
-            char log[160] = "";
-            glGetProgramInfoLog(prg, sizeof log, NULL, log);
-            snprintf(why, whylen, "it did not link: %s", log);
-            glDeleteProgram(prg);
-            prg = 0;
-        }
-    }
-    if (vs) glDeleteShader(vs);
-    if (fs) glDeleteShader(fs);
-    return prg;
-}
-
 /* The full-screen triangle's vertex shader, in the fragment text's
  * #version (a program's stages share a profile). */
 static char *fullscreen_vertex(const char *frag) {
     const char *v = strstr(frag, "#version");
-    int len = v ? (int)strcspn(v, "\n") : 0;
-    char *t = NULL;
-    str_appendf(&t, "%.*s\nvoid main() {\n"
-                "    vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));\n"
-                "    gl_Position = vec4(p, 0.0, 1.0);\n}\n", len, v ? v : "");
-    return t;
+    char version[96] = "";
+    if (v) snprintf(version, sizeof version, "%.*s", (int)strcspn(v, "\n"), v);
+    return gl_program_fullscreen_vert(version);
 }
 
 /* p's split and its two programs, made once per build of p. */
@@ -96,8 +53,8 @@ static bool make_programs(prog *p) {
         return false;
     }
     char *vert = fullscreen_vertex(p->fragment_text);
-    pd->gbuffer = link(p->vertex_text, split.gbuffer, pd->why, sizeof pd->why);
-    pd->shade = pd->gbuffer ? link(vert, split.shade, pd->why, sizeof pd->why) : 0;
+    pd->gbuffer = gl_program_link(p->vertex_text, split.gbuffer, "the G-buffer pass", pd->why, sizeof pd->why);
+    pd->shade = pd->gbuffer ? gl_program_link(vert, split.shade, "the shade pass", pd->why, sizeof pd->why) : 0;
     free(vert);
     pd->ntex = split.ntex;
     pd->gbuffer_tangent = pd->gbuffer ? glGetAttribLocation(pd->gbuffer, "Tangent") : -1;

@@ -271,6 +271,28 @@ static int each_word(const split *sp, const char *w, size_t *at, int max) {
     return count;
 }
 
+/* Does the text read gl_FragCoord's z or w (the whole vector, or a
+ * swizzle with z or w)? Its x and y are the full-screen pass's own (every
+ * fragment stage's never-taken kill reads x). */
+static bool fragcoord_depth_read(const split *sp) {
+    size_t at[512];
+    int n = each_word(sp, "gl_FragCoord", at, 512);
+    if (n > 512) return true;
+    for (int i = 0; i < n; i++) {
+        size_t j = at[i] + 12;
+        while (j < sp->n && isspace((unsigned char)sp->s[j])) j++;
+        if (j >= sp->n || sp->s[j] != '.') return true;
+        j++;
+        while (j < sp->n && isspace((unsigned char)sp->s[j])) j++;
+        size_t k = j;
+        while (k < sp->n && word_char(sp->s[k])) k++;
+        if (k == j) return true;
+        for (size_t c = j; c < k; c++)
+            if (!strchr("xyrgst", sp->s[c])) return true;
+    }
+    return false;
+}
+
 /* ---- the two texts -------------------------------------------------- */
 
 static void add_edit(split *sp, size_t a, size_t b, char *with) {
@@ -422,7 +444,8 @@ static void shade_edits(split *sp) {
     add_edit(sp, sp->main_at, sp->main_at + 4, mem_strdup("tarn_dfr_main"));
     size_t at[512];
     int n = each_word(sp, "gl_FragCoord", at, 512);
-    for (int i = 0; i < n && i < 512; i++) add_edit(sp, at[i], at[i] + 12, mem_strdup("tarn_dfr_fragcoord"));
+    for (int i = 0; sp->fragcoord && i < n && i < 512; i++)
+        add_edit(sp, at[i], at[i] + 12, mem_strdup("tarn_dfr_fragcoord"));
     n = each_word(sp, "gl_FrontFacing", at, 512);
     for (int i = 0; i < n && i < 512; i++) add_edit(sp, at[i], at[i] + 14, mem_strdup("tarn_dfr_front"));
     /* their globals, before the first statement (on its line) */
@@ -436,8 +459,11 @@ static void shade_edits(split *sp) {
  * the stencil test after the shader: every pixel of the screen shaded. The
  * shade pass tests stencil, so it is not opaque: the kill buys nothing. */
 static void blank_never_kill(char *body) {
-    char *at = body ? strstr(body, SHADER_SRC_UNREACHED_KILL_SHADE) : NULL;
-    if (at) memset(at, ' ', strlen(SHADER_SRC_UNREACHED_KILL_SHADE));
+    static const char *const kills[] = { SHADER_SRC_UNREACHED_KILL, SHADER_SRC_UNREACHED_KILL_SHADE };
+    for (int k = 0; body && k < 2; k++) {
+        char *at = strstr(body, kills[k]);
+        if (at) memset(at, ' ', strlen(kills[k]));
+    }
 }
 
 bool glsl_deferred_split(const char *frag, glsl_deferred *out) {
@@ -452,7 +478,7 @@ bool glsl_deferred_split(const char *frag, glsl_deferred *out) {
     if (!sp->why && sp->main_at == (size_t)-1) fail(sp, out->why, "no %s", "void main()");
     for (size_t k = 0; !sp->why && k < sizeof unsupported / sizeof unsupported[0]; k++)
         if (each_word(sp, unsupported[k], NULL, 0)) fail(sp, out->why, "the built-in %s", unsupported[k]);
-    sp->fragcoord = each_word(sp, "gl_FragCoord", NULL, 0) > 0;
+    sp->fragcoord = fragcoord_depth_read(sp);
     sp->front = each_word(sp, "gl_FrontFacing", NULL, 0) > 0;
     int ncomp = sp->why ? 0 : count_components(sp);
     if (!sp->why && ncomp == 0) fail(sp, out->why, "no %s to store", "input");
