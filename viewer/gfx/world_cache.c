@@ -113,8 +113,15 @@ bool world_cache_key_gl(world_cache_key *k, int albedo_unit, int sky_unit) {
     return k->vp_w > 0 && k->vp_h > 0;
 }
 
+/* A depth-stencil buffer is copied whole: llvmpipe copies a format's
+ * bytes only when the blit takes all of its channels; the depth alone of
+ * a DEPTH24_STENCIL8 went through a shader, a depth at the shore one step
+ * off (test_world_cache: a pixel of natural's frame). The stencil copied
+ * is no one's: the deferred water clears it before it marks. */
 static GLbitfield copy_mask(const world_cache_key *k) {
-    return (k->color_fmt ? GL_COLOR_BUFFER_BIT : 0) | (k->depth_fmt ? GL_DEPTH_BUFFER_BIT : 0);
+    bool stencil = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8;
+    return (k->color_fmt ? GL_COLOR_BUFFER_BIT : 0) | (k->depth_fmt ? GL_DEPTH_BUFFER_BIT : 0) |
+           (stencil ? GL_STENCIL_BUFFER_BIT : 0);
 }
 
 static world_cache_slot *find(world_cache *c, int cmd) {
