@@ -35,6 +35,10 @@ static void test_split_stores_every_component(void) {
     /* vRest 2 + vI 2 x 2 + vJ 2 + gl_FragCoord's z and w */
     CHECK_EQ(d.ncomp, 10);
     CHECK_EQ(d.ntex, 3);
+    /* slot 11 spare: the draw's stamp, and a texel of another draw reads as 0 */
+    CHECK(d.stamped);
+    CHECK_STR_CONTAINS(d.gbuffer, "tarn_dfr_o2.w = tarn_dfr_stamp;");
+    CHECK_STR_CONTAINS(d.shade, "if (tarn_dfr_v2.w != tarn_dfr_stamp) { tarn_dfr_v0 = vec4(0.0);");
     /* the G-buffer: the inputs as written, each component out by value or bits */
     CHECK_STR_CONTAINS(d.gbuffer, "#version 330 compatibility\n");
     CHECK_STR_CONTAINS(d.gbuffer, "flat in\n  ivec2 vI[2], vJ;");
@@ -79,6 +83,8 @@ static void test_fragcoord_xy_kept(void) {
     glsl_deferred_free(&d);
     CHECK(glsl_deferred_split("#version 330\nin vec2 v;\nout vec4 c;\nvoid main() { c = gl_FragCoord; }\n", &d));
     CHECK_EQ(d.ncomp, 4);
+    CHECK(!d.stamped);   /* no spare slot: the G-buffer is cleared instead */
+    CHECK(!strstr(d.shade, "tarn_dfr_stamp"));
     glsl_deferred_free(&d);
 }
 

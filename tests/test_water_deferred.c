@@ -117,6 +117,41 @@ static void test_packs_draw_the_grids_picture(void) {
     }
 }
 
+/* A frame is the same whatever frames the render drew before it: the
+ * G-buffer's texels beside the water are an earlier draw's, read as
+ * cleared ones (glsl_deferred.stamped: caustic_tex's shader has a spare
+ * slot, and takes derivatives there: its ripple footprint). */
+static void test_no_history(void) {
+    int w = 160, h = 90;
+    render *r = render_create(&(render_desc){ .samples = 1, .pack = "caustic_tex" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    render_target tg;
+    CHECK(render_target_create(&tg, w, h, true));
+    render_view v = render_default_view(r);
+    render_frame(r, 2.0, tg.fbo, w, h, NULL);   /* the water elsewhere on the screen */
+    v.eye[0] -= 2.0f;
+    v.eye[1] += 1.0f;
+    render_frame(r, 2.5, tg.fbo, w, h, &v);
+    float *after = malloc((size_t)w * h * 4 * sizeof(float));
+    CHECK(render_target_read(&tg, after));
+    CHECK_EQ(render_deferred_water_draws(r), 2L);
+    render_target_destroy(&tg);
+    render_destroy(r);
+    r = render_create(&(render_desc){ .samples = 1, .pack = "caustic_tex" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    CHECK(render_target_create(&tg, w, h, true));
+    render_frame(r, 2.5, tg.fbo, w, h, &v);
+    float *fresh = malloc((size_t)w * h * 4 * sizeof(float));
+    CHECK(render_target_read(&tg, fresh));
+    int differ = 0;
+    for (int i = 0; i < w * h * 4; i++) differ += after[i] != fresh[i];
+    CHECK_EQ(differ, 0);
+    render_target_destroy(&tg);
+    render_destroy(r);
+    free(after);
+    free(fresh);
+}
+
 /* A multisampled frame keeps the grid (one shading a sample's pixel
  * would lose the water's anti-aliased edge). */
 static void test_msaa_keeps_the_grid(void) {
@@ -172,6 +207,7 @@ int main(void) {
     if (!scratch_create("water_deferred")) return 1;
     RUN(test_inputs_arrive_bit_for_bit);
     RUN(test_packs_draw_the_grids_picture);
+    RUN(test_no_history);
     RUN(test_msaa_keeps_the_grid);
     RUN(test_unsplittable_shader_keeps_the_grid);
     RUN(test_ocean_keeps_the_grid);

@@ -21,6 +21,7 @@ typedef struct prog_deferred {
     bool tried;                  /* made (or found impossible) for the current build */
     unsigned gbuffer, shade;     /* linked programs, 0: none (why says) */
     int ntex;                    /* the G-buffer's RGBA32F targets */
+    bool stamped;                /* glsl_deferred.stamped: no clear of the G-buffer */
     int gbuffer_tangent;         /* the G-buffer program's Tangent attribute */
     char why[192];
 } prog_deferred;

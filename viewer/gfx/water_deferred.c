@@ -57,6 +57,7 @@ static bool make_programs(prog *p) {
     pd->shade = pd->gbuffer ? gl_program_link(vert, split.shade, "the shade pass", pd->why, sizeof pd->why) : 0;
     free(vert);
     pd->ntex = split.ntex;
+    pd->stamped = split.stamped;
     pd->gbuffer_tangent = pd->gbuffer ? glGetAttribLocation(pd->gbuffer, "Tangent") : -1;
     glsl_deferred_free(&split);
     if (!pd->shade && pd->gbuffer) {
@@ -101,6 +102,8 @@ static bool bind_gbuffer(water_deferred *d, int ntex, int w, int h, GLuint depth
         for (int k = 0; k < ntex; k++) {
             glBindTexture(GL_TEXTURE_2D, d->tex[k]);
             glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
+            static const GLfloat zero[4] = { 0, 0, 0, 0 };
+            glClearTexImage(d->tex[k], 0, GL_RGBA, GL_FLOAT, zero);   /* no stamp matches a new texture */
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
             glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)k, GL_TEXTURE_2D, d->tex[k], 0);
@@ -216,15 +219,22 @@ static bool free_units(GLuint prg, int n, GLint *units) {
 
 /* ---- the draw -------------------------------------------------------- */
 
-static void clear_gbuffer(const water_deferred *d, const GLint vp[4]) {
+/* The stencil, and the G-buffer unless stamped (a draw's texels tell
+ * themselves from older ones: glsl_deferred.stamped). */
+static void clear_gbuffer(const water_deferred *d, const GLint vp[4], bool stamped) {
     glEnable(GL_SCISSOR_TEST);
     glScissor(vp[0], vp[1], vp[2], vp[3]);
     static const GLfloat zero[4] = { 0, 0, 0, 0 };
-    for (int k = 0; k < d->ntex; k++) glClearBufferfv(GL_COLOR, k, zero);
+    for (int k = 0; !stamped && k < d->ntex; k++) glClearBufferfv(GL_COLOR, k, zero);
     GLint s0 = 0;
     glStencilMask(0xFF);
     glClearBufferiv(GL_STENCIL, 0, &s0);
     glDisable(GL_SCISSOR_TEST);
+}
+
+static void set_stamp(GLuint prg, long stamp) {
+    GLint loc = glGetUniformLocation(prg, "tarn_dfr_stamp");
+    if (loc >= 0) glUniform1f(loc, (float)stamp);
 }
 
 bool water_deferred_draw(water_deferred *d, prog *p, const water_deferred_calls *calls) {
@@ -253,13 +263,15 @@ bool water_deferred_draw(water_deferred *d, prog *p, const water_deferred_calls 
         return false;
     }
     /* 1. the grid into the G-buffer, stencil 1 where it is drawn */
-    clear_gbuffer(d, vp);
+    clear_gbuffer(d, vp, pd->stamped);
+    d->stamp = d->stamp % 16777215 + 1;   /* exact in a float; never the cleared 0 */
     glDisable(GL_BLEND);
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 1, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     glUseProgram(pd->gbuffer);
     calls->upload(pd->gbuffer, calls->user);
+    set_stamp(pd->gbuffer, d->stamp);
     calls->draw_grid(pd->gbuffer_tangent, calls->user);
     /* 2. the pack's shader once a water pixel */
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)st.fbo);
@@ -269,6 +281,7 @@ bool water_deferred_draw(water_deferred *d, prog *p, const water_deferred_calls 
     glStencilFunc(GL_EQUAL, 1, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glUseProgram(pd->shade);
+    set_stamp(pd->shade, d->stamp);
     for (int k = 0; k < pd->ntex; k++) {
         glActiveTexture(GL_TEXTURE0 + (GLenum)units[k]);
         st.units[st.nunits] = units[k];

@@ -41,6 +41,7 @@ typedef struct water_deferred {
     int tex_w, tex_h, ntex;               /* the G-buffer textures made */
     unsigned depth_rb;                    /* the screen depth-stencil attached to fbo */
     long draws;                           /* water drawn deferred */
+    long stamp;                           /* this draw's (glsl_deferred.stamped), 1..2^24-1 */
     const char *skip_why;                 /* the scene's reason to keep the grid (the renderer's), or NULL */
 } water_deferred;
 

@@ -359,14 +359,16 @@ static int copy_lines(const split *sp, char **t, bool to_gbuffer) {
     return n;
 }
 
-static char *gbuffer_text(const split *sp, int ntex) {
+static char *gbuffer_text(const split *sp, int ntex, bool stamped) {
     char *t = NULL;
     str_appendf(&t, "%.*s\n", (int)(sp->version_end - sp->version_at), sp->s + sp->version_at);
     for (int i = 0; i < sp->nin; i++)
         str_appendf(&t, "%.*s\n", (int)(sp->in[i].b - sp->in[i].a), sp->s + sp->in[i].a);
     for (int k = 0; k < ntex; k++) str_appendf(&t, "layout(location = %d) out vec4 tarn_dfr_o%d;\n", k, k);
+    if (stamped) str_appendf(&t, "uniform float tarn_dfr_stamp;\n");
     str_appendf(&t, "void main() {\n");
     for (int k = 0; k < ntex; k++) str_appendf(&t, "    tarn_dfr_o%d = vec4(0.0);\n", k);
+    if (stamped) str_appendf(&t, "    tarn_dfr_o%d.w = tarn_dfr_stamp;\n", ntex - 1);
     int last = copy_lines(sp, &t, true);
     char dst[48];
     if (sp->fragcoord) {
@@ -397,13 +399,19 @@ static char *global_decl(const split *sp, const input *in) {
     return t;
 }
 
-static char *shade_epilogue(const split *sp, int ntex) {
+static char *shade_epilogue(const split *sp, int ntex, bool stamped) {
     char *t = NULL;
     str_appendf(&t, "\n");
     for (int k = 0; k < ntex; k++) str_appendf(&t, "uniform sampler2D tarn_dfr_g%d;\n", k);
+    if (stamped) str_appendf(&t, "uniform float tarn_dfr_stamp;\n");
     str_appendf(&t, "void main() {\n    ivec2 tarn_dfr_p = ivec2(gl_FragCoord.xy);\n");
     for (int k = 0; k < ntex; k++)
         str_appendf(&t, "    vec4 tarn_dfr_v%d = texelFetch(tarn_dfr_g%d, tarn_dfr_p, 0);\n", k, k);
+    if (stamped) {   /* a texel of an earlier draw reads as a cleared one */
+        str_appendf(&t, "    if (tarn_dfr_v%d.w != tarn_dfr_stamp) {", ntex - 1);
+        for (int k = 0; k < ntex; k++) str_appendf(&t, " tarn_dfr_v%d = vec4(0.0);", k);
+        str_appendf(&t, " }\n");
+    }
     int last = copy_lines(sp, &t, false);
     char z[48], w[48], f[48];
     if (sp->fragcoord) {
@@ -486,15 +494,17 @@ bool glsl_deferred_split(const char *frag, glsl_deferred *out) {
         fail(sp, out->why, "more input components than the G-buffer holds (%s)", "28");
     if (!sp->why) {
         int ntex = (ncomp + 3) / 4;
+        bool stamped = ncomp % 4 != 0;   /* a spare slot: the draw's stamp instead of a clear */
         shade_edits(sp);
         if (!sp->why) {
             char *body = apply_edits(sp);
             blank_never_kill(body);
-            char *epi = shade_epilogue(sp, ntex);
+            char *epi = shade_epilogue(sp, ntex, stamped);
             str_appendf(&body, "%s", epi);
             free(epi);
             out->shade = body;
-            out->gbuffer = gbuffer_text(sp, ntex);
+            out->gbuffer = gbuffer_text(sp, ntex, stamped);
+            out->stamped = stamped;
             out->ntex = ntex;
             out->ncomp = ncomp;
         } else {

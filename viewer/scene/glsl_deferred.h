@@ -51,6 +51,9 @@ typedef struct glsl_deferred {
     char *shade;     /* heap; NULL when not split */
     int ntex;        /* RGBA32F targets the G-buffer writes (1..GLSL_DEFERRED_MAX_TEX) */
     int ncomp;       /* components stored */
+    bool stamped;    /* a spare slot (the last texture's w) holds uniform tarn_dfr_stamp: the shade
+                      * pass reads a texel whose stamp is not its own as a cleared one (0), so the
+                      * G-buffer needs no clear a draw (the stencil's still) */
     char why[160];   /* why it was not split */
 } glsl_deferred;
 
