@@ -28,6 +28,7 @@ static const char *world =
 typedef struct frame {
     float *px;
     long deferred_draws;
+    char why[256];      /* render_deferred_water_why after the frame ("": none) */
 } frame;
 
 /* path drawn once into a w x h float target at time t, deferred or not. */
@@ -44,6 +45,7 @@ static frame draw(const char *path, const char *pack, int w, int h, double t, bo
     GLenum e = glGetError();
     CHECK_MSG(e == GL_NO_ERROR, "GL error 0x%x", e);
     const char *why = render_deferred_water_why(r);
+    snprintf(f.why, sizeof f.why, "%s", why ? why : "");
     if (deferred && why) fprintf(stderr, "  %s: not deferred: %s\n", path, why);
     render_destroy(r);
     return f;
@@ -160,6 +162,7 @@ static void test_msaa_keeps_the_grid(void) {
     scratch_write("ms.glib", text);
     frame f = draw(scratch_path("ms.glib"), NULL, 64, 36, 0.7, true, 4);
     CHECK_EQ(f.deferred_draws, 0L);
+    CHECK_STR_CONTAINS(f.why, "multisampled");   /* --passes says why */
     free(f.px);
 }
 
@@ -197,6 +200,7 @@ static void test_unsplittable_shader_keeps_the_grid(void) {
 static void test_ocean_keeps_the_grid(void) {
     frame f = draw(TARN_SOURCE_DIR "/scenes/ocean.glib", "raymarch", 64, 36, 1.0, true, 1);
     CHECK_EQ(f.deferred_draws, 0L);
+    CHECK_STR_CONTAINS(f.why, "ocean");
     free(f.px);
 }
 

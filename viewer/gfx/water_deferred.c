@@ -70,13 +70,16 @@ static bool make_programs(prog *p) {
 /* ---- the framebuffer ------------------------------------------------- */
 
 /* The bound draw framebuffer's depth-stencil renderbuffer, when it is one
- * of ours, single-sample, with 8 stencil bits; else 0. */
-static GLuint screen_depth_stencil(void) {
+ * of ours, single-sample, with 8 stencil bits; else 0 and *why. */
+static GLuint screen_depth_stencil(const char **why) {
     GLint fbo = 0, samples = 0, type = 0, name = 0, stencil = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    *why = "the window system's framebuffer";
     if (fbo == 0) return 0;
     glGetIntegerv(GL_SAMPLES, &samples);
+    *why = "a multisampled frame (--msaa 1 draws it deferred)";
     if (samples > 1) return 0;
+    *why = "a framebuffer without a stencil renderbuffer";
     glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
                                           GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
     if (type != GL_RENDERBUFFER) return 0;
@@ -87,7 +90,9 @@ static GLuint screen_depth_stencil(void) {
                                           GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE, &stencil);
     glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
                                           GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
-    return stencil >= 8 ? (GLuint)name : 0;
+    if (stencil < 8) return 0;
+    *why = NULL;
+    return (GLuint)name;
 }
 
 /* The G-buffer framebuffer: ntex RGBA32F textures of at least w x h and
@@ -238,11 +243,12 @@ static void set_stamp(GLuint prg, long stamp) {
 }
 
 bool water_deferred_draw(water_deferred *d, prog *p, const water_deferred_calls *calls) {
+    if (d->off) d->skip_why = "turned off (render_set_deferred_water, tarn render --grid-water)";
     if (d->off || !p || !p->gl) return false;
     GLint poly[2] = { GL_FILL, GL_FILL };
     glGetIntegerv(GL_POLYGON_MODE, poly);
     if (poly[0] != GL_FILL) return false;
-    GLuint depth_rb = screen_depth_stencil();
+    GLuint depth_rb = screen_depth_stencil(&d->skip_why);
     if (!depth_rb || !make_programs(p)) return false;
     const prog_deferred *pd = &p->deferred;
     saved_state st;

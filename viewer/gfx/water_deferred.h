@@ -42,7 +42,8 @@ typedef struct water_deferred {
     unsigned depth_rb;                    /* the screen depth-stencil attached to fbo */
     long draws;                           /* water drawn deferred */
     long stamp;                           /* this draw's (glsl_deferred.stamped), 1..2^24-1 */
-    const char *skip_why;                 /* the scene's reason to keep the grid (the renderer's), or NULL */
+    const char *skip_why;                 /* the last draw's reason to keep the grid (the scene's, set by
+                                           * the renderer, or the framebuffer's), or NULL */
 } water_deferred;
 
 /* What the caller does for each pass's program: its uniforms (the
