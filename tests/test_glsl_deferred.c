@@ -10,6 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+static int count_of(const char *hay, const char *needle) {
+    int n = 0;
+    for (const char *p = hay; (p = strstr(p, needle)) != NULL; p += strlen(needle)) n++;
+    return n;
+}
+
 static int lines(const char *s, size_t n) {
     int k = 0;
     for (size_t i = 0; i < n && s[i]; i++) k += s[i] == '\n';
@@ -104,6 +110,22 @@ static void test_front_facing_and_uint(void) {
     glsl_deferred_free(&d);
 }
 
+/* A main() in each branch of an #if: both renamed (the shade's own main
+ * is the only one whichever branch is compiled); a "main" in a comment or
+ * another word is left. */
+static void test_every_main_renamed(void) {
+    glsl_deferred d;
+    CHECK_MSG(glsl_deferred_split("#version 330\nin vec2 v;\nout vec4 c;\n// void main() { }\n"
+                                  "float mainly(float x) { return x; }\n"
+                                  "#ifdef X\nvoid main() { c = vec4(v, 0, 1); }\n#else\n"
+                                  "void main(void)\n{ c = vec4(v, 1, 1); }\n#endif\n", &d), "%s", d.why);
+    CHECK_EQ(count_of(d.shade, "void tarn_dfr_main()"), 1);
+    CHECK_EQ(count_of(d.shade, "void tarn_dfr_main(void)"), 1);
+    CHECK_EQ(count_of(d.shade, "void main()"), 1);   /* the shade's own */
+    CHECK_STR_CONTAINS(d.shade, "float mainly(");
+    glsl_deferred_free(&d);
+}
+
 /* What it cannot split, each with its reason. */
 static void test_refusals(void) {
     static const struct { const char *text, *why; } cases[] = {
@@ -151,6 +173,7 @@ int main(void) {
     RUN(test_split_stores_every_component);
     RUN(test_fragcoord_xy_kept);
     RUN(test_front_facing_and_uint);
+    RUN(test_every_main_renamed);
     RUN(test_refusals);
     RUN(test_cut_texts);
     return check_summary();

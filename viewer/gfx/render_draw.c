@@ -138,15 +138,14 @@ static void deferred_grid(int tangent_loc, void *user) {
 static bool draw_water_deferred(render *r, const frame_state *f) {
     scene_state *s = &r->cur;
     if (f->in_rtt || !f->cur || f->cur < s->progs || f->cur >= s->progs + s->nprogs) return false;
+    deferred_call c = { r, f, f->cur };
+    water_deferred_calls calls = { deferred_upload, deferred_grid, &c, NULL };
     /* The spectrum ocean's normals are filtered by each pixel's footprint,
      * the derivatives of its rest point; deferred, a pixel beside a fold of
      * the choppy crests differences two parts of the surface: the ocean's
      * water error rose 1.1% (every pack; other wave sets within 0.05%) */
-    r->deferred.skip_why = r->world.active && r->world.w.waves.ocean
-        ? "the spectrum ocean's filtered normals need the grid's own derivatives" : NULL;
-    if (r->deferred.skip_why) return false;
-    deferred_call c = { r, f, f->cur };
-    water_deferred_calls calls = { deferred_upload, deferred_grid, &c };
+    if (r->world.active && r->world.w.waves.ocean)
+        calls.keep_grid = "the spectrum ocean's filtered normals need the grid's own derivatives";
     return water_deferred_draw(&r->deferred, &s->progs[f->cur - s->progs], &calls);
 }
 

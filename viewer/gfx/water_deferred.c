@@ -27,15 +27,6 @@ void water_deferred_free(water_deferred *d) {
 
 /* ---- the two programs ------------------------------------------------ */
 
-/* The full-screen triangle's vertex shader, in the fragment text's
- * #version (a program's stages share a profile). */
-static char *fullscreen_vertex(const char *frag) {
-    const char *v = strstr(frag, "#version");
-    char version[96] = "";
-    if (v) snprintf(version, sizeof version, "%.*s", (int)strcspn(v, "\n"), v);
-    return gl_program_fullscreen_vert(version);
-}
-
 /* p's split and its two programs, made once per build of p. */
 static bool make_programs(prog *p) {
     prog_deferred *pd = &p->deferred;
@@ -52,7 +43,7 @@ static bool make_programs(prog *p) {
         snprintf(pd->why, sizeof pd->why, "%s", split.why);
         return false;
     }
-    char *vert = fullscreen_vertex(p->fragment_text);
+    char *vert = gl_program_fullscreen_vert(split.version);   /* a program's stages share a profile */
     pd->gbuffer = gl_program_link(p->vertex_text, split.gbuffer, "the G-buffer pass", pd->why, sizeof pd->why);
     pd->shade = pd->gbuffer ? gl_program_link(vert, split.shade, "the shade pass", pd->why, sizeof pd->why) : 0;
     free(vert);
@@ -243,8 +234,8 @@ static void set_stamp(GLuint prg, long stamp) {
 }
 
 bool water_deferred_draw(water_deferred *d, prog *p, const water_deferred_calls *calls) {
-    if (d->off) d->skip_why = "turned off (render_set_deferred_water, tarn render --grid-water)";
-    if (d->off || !p || !p->gl) return false;
+    d->skip_why = d->off ? "turned off (render_set_deferred_water, tarn render --grid-water)" : calls->keep_grid;
+    if (d->skip_why || !p || !p->gl) return false;
     GLint poly[2] = { GL_FILL, GL_FILL };
     glGetIntegerv(GL_POLYGON_MODE, poly);
     if (poly[0] != GL_FILL) return false;

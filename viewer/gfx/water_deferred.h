@@ -21,8 +21,8 @@
  * stage that glsl_deferred can split, polygons filled, and a world without
  * the spectrum ocean (whose normals are filtered by each pixel's
  * footprint: beside a fold of its crests the shade pass's derivatives
- * difference two parts of the surface, +1.1% water error; the caller
- * decides, render_draw.c). Elsewhere, and where either pass's program does
+ * difference two parts of the surface, +1.1% water error; the caller says
+ * so, calls.keep_grid). Elsewhere, and where either pass's program does
  * not build, the caller draws the grid as before. The pixels are the grid's but at the water's edge (glsl_deferred.h:
  * derivatives), and where the glib blends the water (each pixel once here,
  * as often as triangles overlap there). Private to the renderer. */
@@ -42,8 +42,8 @@ typedef struct water_deferred {
     unsigned depth_rb;                    /* the screen depth-stencil attached to fbo */
     long draws;                           /* water drawn deferred */
     long stamp;                           /* this draw's (glsl_deferred.stamped), 1..2^24-1 */
-    const char *skip_why;                 /* the last draw's reason to keep the grid (the scene's, set by
-                                           * the renderer, or the framebuffer's), or NULL */
+    const char *skip_why;                 /* the last draw's reason to keep the grid (calls.keep_grid,
+                                           * the framebuffer's, turned off), or NULL */
 } water_deferred;
 
 /* What the caller does for each pass's program: its uniforms (the
@@ -52,6 +52,7 @@ typedef struct water_deferred_calls {
     void (*upload)(unsigned program, void *user);
     void (*draw_grid)(int tangent_loc, void *user);
     void *user;
+    const char *keep_grid;   /* the scene's reason to keep the grid (NULL: none) */
 } water_deferred_calls;
 
 void water_deferred_init(water_deferred *d);

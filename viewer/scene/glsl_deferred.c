@@ -9,8 +9,6 @@
 #include "shader_src.h"
 #include "strbuf.h"
 
-/* SHADER_SRC_UNREACHED_KILL once gl_FragCoord is the shade's global */
-#define SHADER_SRC_UNREACHED_KILL_SHADE " if (tarn_dfr_fragcoord.x < -1.0) discard;"
 #define MAX_INPUTS 32
 #define MAX_EDITS 256
 
@@ -35,7 +33,7 @@ typedef struct split {
     size_t first_stmt;   /* the first global statement (SIZE_MAX: none) */
     input in[MAX_INPUTS];
     int nin;
-    size_t main_at;      /* the word main of `void main(` (SIZE_MAX: none) */
+    int nmain;           /* main() definitions (every one renamed) */
     bool fragcoord, front;
     edit ed[MAX_EDITS];
     int ned;
@@ -72,19 +70,6 @@ static bool tok_is(const split *sp, const tok *t, const char *w) {
     return t->b - t->a == n && memcmp(sp->s + t->a, w, n) == 0;
 }
 
-/* Skips a comment starting at i; returns the index past it (i: none). */
-static size_t skip_comment(const char *s, size_t n, size_t i) {
-    if (i + 1 < n && s[i] == '/' && s[i + 1] == '/') {
-        while (i < n && s[i] != '\n') i++;
-        return i;
-    }
-    if (i + 1 < n && s[i] == '/' && s[i + 1] == '*') {
-        const char *e = strstr(s + i + 2, "*/");
-        return e ? (size_t)(e - s) + 2 : n;
-    }
-    return i;
-}
-
 /* The end of the preprocessor line starting at i (its newline), joined
  * lines included. */
 static size_t directive_end(const char *s, size_t n, size_t i) {
@@ -98,8 +83,6 @@ static size_t directive_end(const char *s, size_t n, size_t i) {
 static int tokenize(const split *sp, size_t a, size_t b, tok *out, int max) {
     int nt = 0;
     for (size_t i = a; i < b && nt < max;) {
-        size_t j = skip_comment(sp->s, b, i);
-        if (j != i) { i = j; continue; }
         char c = sp->s[i];
         if (isspace((unsigned char)c)) { i++; continue; }
         if (c == '#') { i = directive_end(sp->s, b, i); continue; }
@@ -159,10 +142,6 @@ static void statement(split *sp, size_t a, size_t end, char term, int if_depth, 
     int nt = tokenize(sp, a, end, t, 64);
     if (nt == 0) return;
     if (sp->first_stmt == (size_t)-1) sp->first_stmt = a;
-    if (term == '{' && nt >= 3 && tok_is(sp, &t[0], "void") && tok_is(sp, &t[1], "main") && tok_is(sp, &t[2], "(")) {
-        sp->main_at = t[1].a;
-        return;
-    }
     bool is_in = false;
     int k = 0;
     for (; k < nt; k++) {
@@ -225,8 +204,6 @@ static void walk(split *sp, char *why) {
     int depth = 0, if_depth = 0, start_if = 0;
     bool line_start = true;
     for (size_t i = 0; i < n && !sp->why;) {
-        size_t j = skip_comment(s, n, i);
-        if (j != i) { i = j; continue; }
         char c = s[i];
         if (c == '\n') { line_start = true; i++; continue; }
         if (c == ' ' || c == '\t' || c == '\r') { i++; continue; }
@@ -251,14 +228,12 @@ static void walk(split *sp, char *why) {
     }
 }
 
-/* Every identifier outside comments (in #define bodies too) named w: calls
- * back with its position. Returns how many. */
+/* Every identifier named w (in #define bodies too; the text's comments are
+ * blanks): their positions in at (up to max). Returns how many. */
 static int each_word(const split *sp, const char *w, size_t *at, int max) {
     size_t len = strlen(w);
     int count = 0;
     for (size_t i = 0; i < sp->n;) {
-        size_t j = skip_comment(sp->s, sp->n, i);
-        if (j != i) { i = j; continue; }
         if (!word_char(sp->s[i])) { i++; continue; }
         size_t e = i;
         while (e < sp->n && word_char(sp->s[e])) e++;
@@ -272,8 +247,7 @@ static int each_word(const split *sp, const char *w, size_t *at, int max) {
 }
 
 /* Does the text read gl_FragCoord's z or w (the whole vector, or a
- * swizzle with z or w)? Its x and y are the full-screen pass's own (every
- * fragment stage's never-taken kill reads x). */
+ * swizzle with z or w)? Its x and y are the full-screen pass's own. */
 static bool fragcoord_depth_read(const split *sp) {
     size_t at[512];
     int n = each_word(sp, "gl_FragCoord", at, 512);
@@ -446,10 +420,19 @@ static void free_edits(split *sp) {
     sp->ned = 0;
 }
 
-/* The shade text's edits: declarations, main's name, the two built-ins. */
+/* Every main() definition (one in each branch of an #if that holds
+ * several, as shader_src's kill finds them): renamed tarn_dfr_main. */
+static void rename_mains(split *sp) {
+    for (const char *from = sp->s; shader_src_next_main_body(sp->s, &from) != NULL; sp->nmain++) {
+        size_t at = (size_t)(from - sp->s) - 4;   /* from: just past the word main */
+        add_edit(sp, at, at + 4, mem_strdup("tarn_dfr_main"));
+    }
+}
+
+/* The shade text's edits: declarations, the two built-ins (main's names:
+ * rename_mains). */
 static void shade_edits(split *sp) {
     for (int i = 0; i < sp->nin; i++) add_edit(sp, sp->in[i].a, sp->in[i].b, global_decl(sp, &sp->in[i]));
-    add_edit(sp, sp->main_at, sp->main_at + 4, mem_strdup("tarn_dfr_main"));
     size_t at[512];
     int n = each_word(sp, "gl_FragCoord", at, 512);
     for (int i = 0; sp->fragcoord && i < n && i < 512; i++)
@@ -463,27 +446,33 @@ static void shade_edits(split *sp) {
     else free(g);
 }
 
-/* shader_src's never-taken kill (for llvmpipe's opaque passes) would move
- * the stencil test after the shader: every pixel of the screen shaded. The
- * shade pass tests stencil, so it is not opaque: the kill buys nothing. */
-static void blank_never_kill(char *body) {
-    static const char *const kills[] = { SHADER_SRC_UNREACHED_KILL, SHADER_SRC_UNREACHED_KILL_SHADE };
-    for (int k = 0; body && k < 2; k++) {
-        char *at = strstr(body, kills[k]);
-        if (at) memset(at, ' ', strlen(kills[k]));
-    }
+/* The text the split reads and the shade pass is made of: frag with its
+ * comments blank (shader_src_blank_comments: lines and columns kept) and
+ * shader_src's never-taken kill blank too: it gives llvmpipe's opaque
+ * passes one function, but in the shade pass (not opaque: it tests
+ * stencil) it would move the stencil test after the shader, and every
+ * pixel of the screen was shaded. Heap. */
+static char *split_text(const char *frag) {
+    char *t = mem_strdup(frag ? frag : "");
+    for (char *at = t; (at = strstr(at, SHADER_SRC_UNREACHED_KILL)) != NULL;)
+        memset(at, ' ', strlen(SHADER_SRC_UNREACHED_KILL));
+    char *blank = shader_src_blank_comments(t);
+    free(t);
+    return blank;
 }
 
 bool glsl_deferred_split(const char *frag, glsl_deferred *out) {
     memset(out, 0, sizeof *out);
     split *sp = calloc(1, sizeof *sp);
     if (!sp) { snprintf(out->why, sizeof out->why, "out of memory"); return false; }
-    sp->s = frag ? frag : "";
+    char *text = split_text(frag);
+    sp->s = text;
     sp->n = strlen(sp->s);
-    sp->main_at = sp->first_stmt = (size_t)-1;
+    sp->first_stmt = (size_t)-1;
     walk(sp, out->why);
+    rename_mains(sp);
     if (!sp->why && sp->version < 330) fail(sp, out->why, "GLSL %s (330 or later is needed)", sp->version ? "before 330" : "without #version");
-    if (!sp->why && sp->main_at == (size_t)-1) fail(sp, out->why, "no %s", "void main()");
+    if (!sp->why && sp->nmain == 0) fail(sp, out->why, "no %s", "void main()");
     for (size_t k = 0; !sp->why && k < sizeof unsupported / sizeof unsupported[0]; k++)
         if (each_word(sp, unsupported[k], NULL, 0)) fail(sp, out->why, "the built-in %s", unsupported[k]);
     sp->fragcoord = fragcoord_depth_read(sp);
@@ -498,7 +487,6 @@ bool glsl_deferred_split(const char *frag, glsl_deferred *out) {
         shade_edits(sp);
         if (!sp->why) {
             char *body = apply_edits(sp);
-            blank_never_kill(body);
             char *epi = shade_epilogue(sp, ntex, stamped);
             str_appendf(&body, "%s", epi);
             free(epi);
@@ -507,6 +495,8 @@ bool glsl_deferred_split(const char *frag, glsl_deferred *out) {
             out->stamped = stamped;
             out->ntex = ntex;
             out->ncomp = ncomp;
+            snprintf(out->version, sizeof out->version, "%.*s", (int)(sp->version_end - sp->version_at),
+                     sp->s + sp->version_at);
         } else {
             snprintf(out->why, sizeof out->why, "%s", sp->why);
         }
@@ -514,6 +504,7 @@ bool glsl_deferred_split(const char *frag, glsl_deferred *out) {
     free_edits(sp);
     bool ok = out->shade != NULL;
     free(sp);
+    free(text);
     return ok;
 }
 

@@ -16,11 +16,11 @@
  *            written, and a main() that packs every input component (a
  *            float as it is, an int or uint by its bits) into RGBA32F
  *            outputs 0..ntex-1;
- *   shade    the shader as written with each input declaration turned
- *            into a global of its type (on its line: the #line mapping
- *            still names the user's file:line), its main() renamed, and a
- *            main() that reads the globals back from samplers
- *            tarn_dfr_g0..g(ntex-1) at gl_FragCoord and calls it.
+ *   shade    the shader as written (its comments blank) with each input
+ *            declaration turned into a global of its type (on its line:
+ *            the #line mapping still names the user's file:line), every
+ *            main() renamed, and a main() that reads the globals back from
+ *            samplers tarn_dfr_g0..g(ntex-1) at gl_FragCoord and calls it.
  * gl_FragCoord (its z and w) and gl_FrontFacing, which differ in a
  * full-screen pass, are stored too and read back in their place.
  *
@@ -54,6 +54,7 @@ typedef struct glsl_deferred {
     bool stamped;    /* a spare slot (the last texture's w) holds uniform tarn_dfr_stamp: the shade
                       * pass reads a texel whose stamp is not its own as a cleared one (0), so the
                       * G-buffer needs no clear a draw (the stencil's still) */
+    char version[96];  /* the #version line (the full-screen triangle's vertex shader takes it) */
     char why[160];   /* why it was not split */
 } glsl_deferred;
 
