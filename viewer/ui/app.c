@@ -106,7 +106,6 @@ struct app {
     double compile_s;            /* how long the last job ran */
     bool compiled_off_frame;     /* during hooks.reload: the job compiled what it loads */
     bool deferred_held;          /* the water drawn as a grid until the job makes its deferred code (deferred_due) */
-    double deferred_seen;        /* when the job said it had (0: not yet) */
     bool judge_job;              /* this frame reloaded after a job: did the job help? */
     bool job_futile;             /* no: saves compile on the frame from now on */
     long frames_meanwhile;       /* frames swapped since the change was seen */
@@ -296,14 +295,8 @@ static void still_due(app *a, double now) {
  * ended, or none runs). */
 static void deferred_due(app *a) {
     if (!a->deferred_held || (a->compiling && !compile_job_deferred_ready(a->cjob))) return;
-    double now = glfwGetTime();
-    if (a->deferred_seen == 0) a->deferred_seen = now;
-    if (a->compiling && now - a->deferred_seen < APP_DEFERRED_SETTLE_S) return;
-    a->deferred_seen = 0;
     for (int i = 0; i < a->nscenes; i++) render_set_deferred_water(a->scenes[i], true);
     a->deferred_held = false;
-    /* the turn's frame loads the new programs' code: smaller, as after a reload */
-    a->contend_until = glfwGetTime() + APP_CONTEND_TAIL_S;
 }
 
 /* The job ended: the reload finds its programs in the cache (already

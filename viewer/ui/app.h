@@ -178,7 +178,6 @@ void app_picture_changed(app *a);
  * (compare-view's heat maps) calls this in its draw to have the next
  * frame drawn. */
 #define APP_IDLE_WAIT_S 0.25   /* 0.05 before fd_wake: each wake cost ~2 ms, 4.6% of a core */
-#define APP_DEFERRED_SETTLE_S 0.3  /* after the job made the deferred water's code: Mesa's cache has written it */
 /* the frames a client asks for (app_keep_awake) come at most this often */
 #define APP_CLIENT_POLL_S 0.05
 /* how often a still window looks whether a compile job has ended, had its
