@@ -93,6 +93,8 @@ static bool bind_gbuffer(water_deferred *d, int ntex, int w, int h, GLuint depth
     if (!d->fbo) glGenFramebuffers(1, &d->fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, d->fbo);
     if (remake) {
+        GLint bound = 0;   /* the active unit's texture: the scene's, put back */
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
         free_textures(d);
         glGenTextures(ntex, d->tex);
         for (int k = 0; k < ntex; k++) {
@@ -112,6 +114,7 @@ static bool bind_gbuffer(water_deferred *d, int ntex, int w, int h, GLuint depth
         GLenum bufs[GLSL_DEFERRED_MAX_TEX];
         for (int k = 0; k < ntex; k++) bufs[k] = GL_COLOR_ATTACHMENT0 + (GLenum)k;
         glDrawBuffers(ntex, bufs);
+        glBindTexture(GL_TEXTURE_2D, (GLuint)bound);
     }
     if (remake || d->depth_rb != depth_rb) {
         glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
@@ -238,7 +241,10 @@ bool water_deferred_draw(water_deferred *d, prog *p, const water_deferred_calls 
     if (d->skip_why || !p || !p->gl) return false;
     GLint poly[2] = { GL_FILL, GL_FILL };
     glGetIntegerv(GL_POLYGON_MODE, poly);
-    if (poly[0] != GL_FILL) return false;
+    if (poly[0] != GL_FILL) {
+        d->skip_why = "polygons drawn as lines or points (PolygonMode)";
+        return false;
+    }
     GLuint depth_rb = screen_depth_stencil(&d->skip_why);
     if (!depth_rb || !make_programs(p)) return false;
     const prog_deferred *pd = &p->deferred;
