@@ -87,9 +87,8 @@ static void test_still_window_first_frame_first(void) {
     run_job(r, false, false, true, &ready, &after, &still_ready, &still_all);
     printf("frames at ready / in all: moving %d / %d, still %d / %d\n", moving_ready, moving_all, still_ready,
            still_all);
-    CHECK_MSG(moving_ready == 4 && moving_all == 9, "a moving picture's job: %d frames at ready, %d in all "
-              "(4 moving frames, the 4 again with the water deferred, then the still one)", moving_ready,
-              moving_all);
+    CHECK_MSG(moving_ready == 4 && moving_all == 6, "a moving picture's job: %d frames at ready, %d in all "
+              "(4 moving frames, one with the water deferred, then the still one)", moving_ready, moving_all);
     CHECK_MSG(still_ready == 1 && still_all == 6, "a still window's job: %d frames at ready, %d in all (the "
               "change's first frame, then the 3 others, the first deferred and the still one)", still_ready,
               still_all);
@@ -111,9 +110,9 @@ static void test_moving_picture_world_kept(void) {
     run_job_on(j, r, false, false, false, &ready, &after, &again_ready, &again_all);
     printf("frames at ready / in all: the job's first load %d / %d, a reload that kept the world %d / %d\n",
            first_ready, first_all, again_ready, again_all);
-    CHECK_MSG(first_ready == 4 && first_all == 9, "the world's programs new: %d frames at ready, %d in all",
+    CHECK_MSG(first_ready == 4 && first_all == 6, "the world's programs new: %d frames at ready, %d in all",
               first_ready, first_all);
-    CHECK_MSG(again_ready == 1 && again_all == 9, "the world's programs kept: %d frames at ready, %d in all",
+    CHECK_MSG(again_ready == 1 && again_all == 6, "the world's programs kept: %d frames at ready, %d in all",
               again_ready, again_all);
     compile_job_destroy(j);
     render_destroy(r);
@@ -151,9 +150,9 @@ static bool job_waiting_for_still(compile_job *j, render *r) {
 }
 
 /* With the clock running the window needs the still picture's frame only
- * once it stops: the job waits for the window to ask (want_still: all 9
- * frames) or to let it go (drop_still, a newer change: the 4 moving ones,
- * each drawn with the water as a grid and deferred). */
+ * once it stops: the job waits for the window to ask (want_still: all 6
+ * frames) or to let it go (drop_still, a newer change: the 4 moving ones
+ * with the water as a grid, one deferred). */
 static void test_still_frame_when_asked(void) {
     if (!compile_job_useful()) SKIP("Mesa's shader cache is off: the window compiles on the frame");
     render *r = render_create(&(render_desc){ .pack = "basic" });
@@ -165,14 +164,14 @@ static void test_still_frame_when_asked(void) {
         CHECK(compile_job_deferred_ready(j));
         compile_job_want_still(j);
         int n = frames_at_end(j);
-        CHECK_MSG(n == 9, "asked for the still frame: %d frames in all (4 moving, 4 deferred, then the still "
+        CHECK_MSG(n == 6, "asked for the still frame: %d frames in all (4 moving, 1 deferred, then the still "
                   "one)", n);
     }
     if (job_waiting_for_still(j, r)) {
         compile_job_drop_still(j);
         int n = frames_at_end(j);
-        CHECK_MSG(n == 8, "let go without the still frame: %d frames in all (the 4 moving ones, as a grid "
-                  "and deferred)", n);
+        CHECK_MSG(n == 5, "let go without the still frame: %d frames in all (the 4 moving ones as a grid, "
+                  "one deferred)", n);
     }
     /* the window's scenes as the job has them, until a pack switch */
     render *const scenes[1] = { r };

@@ -332,9 +332,10 @@ static void run_job(compile_job *j) {
     pthread_mutex_unlock(&j->mu);
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, first[i], WARM_FRAMES, false);
     /* then the deferred water's (the window turns to it at
-     * compile_job_deferred_ready): the frame after the turn and the
-     * clock's frames after it */
-    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, 0, j->still ? 1 : WARM_FRAMES, true);
+     * compile_job_deferred_ready): one frame, the water's two programs and
+     * their variants; the rest of a frame (the world's copy, layers) was
+     * made above and draws the same code with the water deferred */
+    for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, 0, 1, true);
     pthread_mutex_lock(&j->mu);
     j->deferred_ready = true;
     if (j->wake) j->wake(j->wake_user);
