@@ -304,6 +304,49 @@ static void test_contended_shrinks_and_comes_back(void) {
     CHECK_EQ(rb.scale, calm);
 }
 
+/* A costlier path for a while (the window's water drawn as a grid after a
+ * save, res_budget_costlier): the picture shrinks at once by 1/sqrt(cost)
+ * of a side, so frames whose cost is in their pixels stay within the
+ * budget from the first; the floor holds; no change for a cost of 1 or
+ * less or with the budget off; the calm size comes back at the
+ * contention's end. */
+static void test_costlier_path_shrinks_at_once(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, last = 0, s;
+    uint64_t key = 0;
+    double calm = run_moving(&rb, 0, 249, 40, &t, &key, &last);
+    CHECK_LT(calm, 1.0);
+    CHECK_LE(last, 50 + 1e-9);
+    res_budget_costlier(&rb, 1.5);
+    CHECK_NEAR(rb.scale, calm / sqrt(1.5), 1e-12);
+    for (int i = 0; i < 10; i++) {
+        CHECK(res_budget_plan(&rb, ++key, t, last, false, &s));
+        last = 1.5 * model_ms(0, 249, s, 960, 540);
+        CHECK_MSG(last <= 50 * 1.01, "frame %d of the costlier path: %.1f ms, budget 50", i, last);
+        t += last / 1e3;
+    }
+    /* without it, the first frames at the old size are over the budget */
+    CHECK_GT(1.5 * model_ms(0, 249, calm, 960, 540), 50);
+    double before = rb.scale;
+    res_budget_costlier(&rb, 1.0);
+    res_budget_costlier(&rb, 0.5);
+    CHECK_EQ(rb.scale, before);
+    res_budget_costlier(&rb, 1e6);
+    CHECK_EQ(rb.scale, RES_BUDGET_FLOOR);
+    /* under contention: the calm size back at its end */
+    res_budget_init(&rb, 50);
+    calm = run_moving(&rb, 15, 249, 40, &t, &key, &last);
+    res_budget_contend(&rb, true);
+    res_budget_costlier(&rb, 1.35);
+    CHECK_NEAR(rb.scale, calm * RES_BUDGET_CONTENDED / sqrt(1.35), 1e-12);
+    res_budget_contend(&rb, false);
+    CHECK_EQ(rb.scale, calm);
+    res_budget_init(&rb, 0);
+    res_budget_costlier(&rb, 2);
+    CHECK_EQ(rb.scale, 1.0);
+}
+
 static void test_key_changes_with_any_byte(void) {
     float a[3] = { 1, 2, 3 }, b[3] = { 1, 2, 3.0001f };
     uint64_t ka = hash_fnv1a(HASH_FNV1A_BASIS, a, sizeof a);
@@ -347,6 +390,7 @@ int main(void) {
     RUN(test_first_frame_at_a_size_is_not_a_measure);
     RUN(test_one_frame_is_noise);
     RUN(test_contended_shrinks_and_comes_back);
+    RUN(test_costlier_path_shrinks_at_once);
     RUN(test_key_changes_with_any_byte);
     return check_summary();
 }

@@ -233,6 +233,7 @@ static void reload_compiled(app *a) {
     if (!compile_job_deferred_ready(a->cjob)) {
         for (int i = 0; i < a->nscenes; i++) render_set_deferred_water(a->scenes[i], false);
         a->deferred_held = true;
+        res_budget_costlier(&a->budget, APP_GRID_WATER_COST);
     }
     reload(a);
     a->compiled_off_frame = false;

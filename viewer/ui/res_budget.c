@@ -89,6 +89,13 @@ void res_budget_contend(res_budget *b, bool contended) {
     b->prev_ms = 0;
 }
 
+void res_budget_costlier(res_budget *b, double cost) {
+    if (b->budget_ms <= 0 || !(cost > 1.0)) return;
+    b->scale = clampd(b->scale / sqrt(cost), RES_BUDGET_FLOOR, 1.0);
+    b->measure = false;
+    b->prev_ms = 0;
+}
+
 void res_budget_hold_full(res_budget *b, bool hold) { b->hold_full = hold; }
 
 bool res_budget_full_held(const res_budget *b, double now_s) {

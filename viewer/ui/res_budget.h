@@ -92,14 +92,26 @@ bool res_budget_full_held(const res_budget *b, double now_s);
 /* While contended is true a job (a save's compile) takes one of the cores
  * the frames draw on, for a few hundred ms: a frame at the size the budget
  * chose takes about twice as long. The changing picture shrinks at once to
- * RES_BUDGET_CONTENDED of each side (a third of the pixels) and the
+ * RES_BUDGET_CONTENDED of each side (a quarter of the pixels) and the
  * controller shrinks it further where the frames drawn meanwhile are over
  * the aim (never grows it: a new size's first frame costs more than the
  * pixels would give in the job's few hundred ms); at the end the size
  * from before comes back (the job's frames say nothing of the calm
- * machine). A change of either way drops the last frame's measure. */
-#define RES_BUDGET_CONTENDED 0.6
+ * machine). A change of either way drops the last frame's measure.
+ * 0.6 (a third of the pixels) left the contended frames at the budget's
+ * edge, 47-54 ms with the job's noise (scripts/save_bench.sh --running,
+ * raymarch, lake); 0.5 leaves them room: 35-46 ms (docs/benchmark.md,
+ * "The frames after a save's reload"). */
+#define RES_BUDGET_CONTENDED 0.5
 void res_budget_contend(res_budget *b, bool contended);
+/* The next frames take a path about `cost` times as slow at the same size
+ * (the window's water drawn as a grid until a save's job has made its
+ * deferred code): the changing picture shrinks at once to 1/sqrt(cost) of
+ * its side (not below RES_BUDGET_FLOOR), the last frame's measure
+ * dropped. Without it the first frames of that path were over the budget
+ * (the size changes only after two frames over the aim). While contended,
+ * the size from before the contention still comes back at its end. */
+void res_budget_costlier(res_budget *b, double cost);
 /* One frame drawn at scale took ms: the next changing frame's scale. */
 void res_budget_feed(res_budget *b, double ms, double scale);
 
