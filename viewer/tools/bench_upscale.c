@@ -13,8 +13,11 @@
  * (ref_flip, default viewing). All go through the window's 8-bit sRGB
  * canvas, and the error is computed on the decoded linear values. Then
  * each one's own time per frame (glFinish'd wall time, median of runs),
- * and the world-only frame's (what the window pays once when the camera
- * stops, one run).
+ * the world-only frame's (what the window pays once when the camera
+ * stops, one run) and the reduced frame's own (mean over the instants,
+ * each after one frame at the scale: what the window's budget pays at
+ * that size, render_set_detail's steps included: natural's photon grid
+ * halves at 0.71 of a side, its frame ~40 -> ~65 ms on the lake).
  *
  *   bench_upscale [--pack NAME]... [--scene FILE]... [--scale S]... [--size WxH]
  *                 [--times t1,t2,..] [--sharpness X] [--png DIR]
@@ -56,7 +59,7 @@ typedef struct opts {
 typedef struct errs { double rmse, ssim, flip; } errs;
 
 /* The sum of a case's errors over its instants, per upscaler. */
-typedef struct tally { errs bil, edge, over; int n; } tally;
+typedef struct tally { errs bil, edge, over; int n; double frame_ms; } tally;   /* frame_ms: the reduced frames' sum */
 
 static void usage(void) {
     fputs("usage: bench_upscale [--pack NAME]... [--scene FILE]... [--scale S]... [--size WxH]\n"
@@ -163,7 +166,14 @@ static void one_instant(const opts *o, rig *g, render *r, double t, double scale
     rw = (int)lround(scale * w);
     rh = (int)lround(scale * h);
     render_set_detail(r, scale);
+    /* the truth's full detail resized the targets: a first reduced frame
+     * draws them again, which the window's steady frames do not */
+    render_frame_at(r, t - 0.05, g->canvas.fbo, 0, 0, rw, rh, NULL);
+    glFinish();
+    double f0 = clock_now_s();
     render_frame_at(r, t, g->canvas.fbo, 0, 0, rw, rh, NULL);
+    glFinish();
+    tl->frame_ms += (clock_now_s() - f0) * 1e3;
     upscaler *ups[2] = { g->bil, g->edge };
     for (int k = 0; k < 3; k++) {
         glEnable(GL_FRAMEBUFFER_SRGB);
@@ -225,10 +235,10 @@ static void run_case(const opts *o, rig *g, const char *scene, const char *pack)
                  o->scales[s]);
         for (int i = 0; i < o->ntimes; i++) one_instant(o, g, r, o->times[i], o->scales[s], &tl, tag);
         double n = tl.n ? tl.n : 1;
-        printf("| %s | %s | %dx%d | %.4f | %.4f | %.4f | %.0f%% | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.0f%% | %.0f |\n",
+        printf("| %s | %s | %dx%d | %.4f | %.4f | %.4f | %.0f%% | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.0f%% | %.0f | %.1f |\n",
                base_name(scene), pack, rw, rh, tl.bil.rmse / n, tl.edge.rmse / n, tl.over.rmse / n,
                100 * (1 - tl.over.rmse / tl.bil.rmse), tl.bil.ssim / n, tl.edge.ssim / n, tl.over.ssim / n,
-               tl.bil.flip / n, tl.edge.flip / n, tl.over.flip / n, 100 * (1 - tl.over.flip / tl.bil.flip), world_ms);
+               tl.bil.flip / n, tl.edge.flip / n, tl.over.flip / n, 100 * (1 - tl.over.flip / tl.bil.flip), world_ms, tl.frame_ms / n);
         fflush(stdout);
     }
     render_destroy(r);
@@ -297,8 +307,9 @@ int main(int argc, char **argv) {
     printf("\nerror against the full-resolution frame (mean of %d instants; FLIP at %.0f px/degree):\n\n", o.ntimes,
            REF_FLIP_PPD);
     printf("| scene | pack | drawn at | RMSE bilinear | RMSE cubic | RMSE sharp world | RMSE cut | SSIM bilinear | "
-           "SSIM cubic | SSIM sharp world | FLIP bilinear | FLIP cubic | FLIP sharp world | FLIP cut | world frame ms |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+           "SSIM cubic | SSIM sharp world | FLIP bilinear | FLIP cubic | FLIP sharp world | FLIP cut | world frame ms | "
+           "reduced frame ms |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int s = 0; s < o.nscenes; s++)
         for (int p = 0; p < o.npacks; p++) run_case(&o, &g, o.scenes[s], o.packs[p]);
     free(g.truth);
