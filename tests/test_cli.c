@@ -168,6 +168,41 @@ static void test_passes_lists_each_draw(void) {
     img_free(&ib);
 }
 
+/* --detail D draws as the window's reduced frame at D does (natural's
+ * photon grid and targets, the meshes coarser): --detail 1 is the full
+ * frame bit for bit, 0.25 another picture; out of (0, 1] a usage error. */
+static void test_detail_draws_as_a_reduced_frame(void) {
+    char cmd[2048], out[8192], path[3][512];
+    const char *detail[3] = { "", "--detail 1", "--detail 0.25" };
+    img im[3];
+    char err[256];
+    memset(im, 0, sizeof im);
+    for (int i = 0; i < 3; i++) {
+        snprintf(path[i], sizeof path[i], "%s/detail%d.exr", dir, i);
+        snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/lake.glib --pack natural -o %s --size 96x54 "
+                 "--time 2 --msaa 1 --quiet %s 2>&1", bin, src, path[i], detail[i]);
+        int rc = run_command(cmd, out, sizeof out);
+        if (rc == 3) SKIP("no OpenGL");
+        CHECK_MSG(rc == 0, "%s", out);
+        CHECK_MSG(img_read(path[i], &im[i], err, sizeof err), "%s", err);
+    }
+    size_t n = (size_t)96 * 54 * im[0].channels;
+    if (im[0].px && im[1].px && im[2].px && im[1].w == 96 && im[2].w == 96) {
+        CHECK_EQ(memcmp(im[0].px, im[1].px, n * sizeof(float)), 0);
+        size_t differ = 0;
+        for (size_t k = 0; k < n; k++) differ += im[0].px[k] != im[2].px[k];
+        CHECK_MSG(differ > 0, "--detail 0.25 drew the full frame's pixels");
+    }
+    for (int i = 0; i < 3; i++) img_free(&im[i]);
+    const char *bad[2] = { "0", "1.5" };
+    for (int i = 0; i < 2; i++) {
+        snprintf(cmd, sizeof cmd, "env -u DISPLAY %s render %s/scenes/lake.glib -o %s --detail %s 2>&1", bin, src,
+                 path[0], bad[i]);
+        CHECK_EQ(run_command(cmd, out, sizeof out), 2);
+        CHECK_STR_CONTAINS(out, "--detail");
+    }
+}
+
 /* The pond rendered at 160x90 with Floor.uSandColor=1,0,0: the floor seen
  * through the water near the bottom (pixel 80, 80) is red. */
 static void check_floor_red(const char *png, const char *what) {
@@ -257,6 +292,7 @@ int main(void) {
     RUN(test_render_headless_is_deterministic_and_follows_scene);
     RUN(test_frames_write_every_frame);
     RUN(test_passes_lists_each_draw);
+    RUN(test_detail_draws_as_a_reduced_frame);
     RUN(test_set_changes_uniforms);
     RUN(test_many_sets_all_applied);
     RUN(test_no_arguments_renders_default_scene);

@@ -18,6 +18,7 @@ typedef struct cli_render_desc {
     bool still;                 /* every frame at time_s (a paused window, tarn bench), not 1/60 s apart */
     bool passes;                /* print each named pass's median GPU time over the frames */
     bool grid_water;            /* the screen's water as a grid, not deferred (render_set_deferred_water) */
+    double detail;              /* 0: 1, full; else a window's reduced frame's (render_set_detail) */
     bool quiet;
     bool verbose;               /* each inactive uniform a note at its glib line */
     const char *pack;           /* replaces the scene's `Pack` */

@@ -183,6 +183,7 @@ int cli_render(const cli_render_desc *d) {
     pass_table passes = { 0 };
     render_set_draw_timing(r, d->passes);
     render_set_deferred_water(r, !d->grid_water);
+    if (d->detail > 0) render_set_detail(r, d->detail);
     double *ms = mem_zalloc((size_t)frames * sizeof *ms);
     double *wall = mem_zalloc((size_t)frames * sizeof *wall);
     bool per_frame = strstr(d->out, "%d") != NULL;
@@ -302,6 +303,24 @@ static const cmd_option options[] = {
              "or 0): the same picture but at the water's edge, slower on a CPU\n"
              "rasteriser, where a block of pixels is shaded for every small triangle\n"
              "that touches it. For A/B runs.\n" },
+    { "--detail", .metavar = "D", .kind = CMD_DOUBLE, .offset = OFF(detail), .lo = 0.01, .hi = 1,
+      .wants = "a fraction of each side, e.g. 0.5",
+      .help = "draw the scene's fixed-size work as the window's reduced frame\n"
+              "at D of each side does (targets, photon grids, meshes; 0.01-1,\n"
+              "default 1); with --size at D of the full size, its frame's cost\n",
+      .man = "draw the scene's fixed\\-size work as the view window's reduced frame\n"
+             "at\n"
+             ".I D\n"
+             "of each side draws it while the picture moves (0.01 to 1, default 1):\n"
+             "render targets drawn every frame at a fixed or slider size, photon grids,\n"
+             ".B WaterSurface points|mesh N\n"
+             "and the terrain and water meshes shrink with it. With\n"
+             ".B \\-\\-size\n"
+             "at\n"
+             ".I D\n"
+             "of the full size and\n"
+             ".BR \\-\\-frames ,\n"
+             "what one of the window's reduced frames costs.\n" },
     { "--setting", .metavar = "NAME", .kind = CMD_STRING, .offset = OFF(setting),
       .help = "start from the pack's setting NAME (a row of packs/PACK/bench.txt:\n"
               "default, paper, ...), as the panel's Setting combo does\n",
@@ -344,7 +363,7 @@ static const cmd_option options[] = {
 const cmd_spec cmd_render_spec = {
     .name = "render",
     .synopsis = "FILE.glib -o OUT [--pack NAME] [--size WxH] [--time SECONDS] [--frames N]\n"
-                "[--still] [--passes] [--grid-water] [--setting NAME] [--set PROGRAM.NAME=VALUE]...\n"
+                "[--still] [--passes] [--grid-water] [--detail D] [--setting NAME] [--set PROGRAM.NAME=VALUE]...\n"
                 "[--msaa N] [--quiet | --verbose]\n",
     .about = "Renders without any display through EGL (works with DISPLAY unset, on Mesa\n"
              "llvmpipe or a GPU). The image is deterministic for a fixed --time.\n",
