@@ -96,6 +96,7 @@ struct app {
     bool priming;                /* ... or to load the scenes in the job's renders before any change */
     bool compile_ended;          /* ... and has ended: reload on this frame */
     bool still_dropped;          /* ... without the still frame's code (a newer change came) */
+    bool still_moving;           /* ... whose still-frame code was asked for while the picture moves */
     bool changed_again;          /* a file changed while it ran */
     int compile_restarts;        /* jobs started again for such changes, since the last reload */
     double change_seen;          /* glfwGetTime() when the change being compiled was seen (0: none) */
@@ -258,11 +259,14 @@ static bool compile_readied(app *a) {
 }
 
 /* Does a save's job compile now, on the cores the window draws on? Until
- * the window shows its change, and then while it makes the deferred
- * water's code (deferred_held); not after: then it makes the still frame's
- * code only when the window's picture stands still, or waits. */
+ * the window shows its change, then while it makes the deferred water's
+ * code (deferred_held), and while it makes the still frame's code for
+ * moving frames at full size (still_moving: a cheap scene, whose next
+ * frames at full size were 62-71 ms beside it, basic on the lake); not
+ * when the picture stands still (nothing is drawn meanwhile) or the job
+ * waits. */
 static bool job_contends(const app *a) {
-    return a->compiling && !a->priming && (!a->reloaded_early || a->deferred_held);
+    return a->compiling && !a->priming && (!a->reloaded_early || a->deferred_held || a->still_moving);
 }
 
 static void reload_early(app *a) {
@@ -284,6 +288,7 @@ static void still_due(app *a, double now) {
     if (!a->compiling || !a->reloaded_early) return;
     if (!(res_budget_full_held(&a->budget, now) || a->budget.scale >= 1 || a->budget_ms <= 0)) return;
     if (compile_job_draws(a->cjob, a->scenes, a->nscenes)) {
+        if (!res_budget_full_held(&a->budget, now)) a->still_moving = true;
         compile_job_want_still(a->cjob);
         return;
     }
@@ -306,7 +311,7 @@ static void deferred_due(app *a) {
  * saves still shows one). */
 static void compile_ended(app *a) {
     bool primed = a->priming, shown = a->reloaded_early, again = a->changed_again, dropped = a->still_dropped;
-    a->compiling = a->compile_ended = a->priming = a->reloaded_early = a->still_dropped = false;
+    a->compiling = a->compile_ended = a->priming = a->reloaded_early = a->still_dropped = a->still_moving = false;
     res_budget_hold_full(&a->budget, false);
     if (primed && a->d.verbose)
         fprintf(stderr, "%s: the compile job has the scene loaded (%.2f s, off the frame)\n", a->d.name, a->compile_s);
@@ -755,7 +760,7 @@ static void frame(app *a, bool scripted) {
     if (contended && a->reloaded_early) a->contend_until = glfwGetTime() + APP_CONTEND_TAIL_S;
     res_budget_contend(&a->budget, contended || job_contends(a) || glfwGetTime() < a->contend_until);
     /* meanwhile the larger frame's World layers serve the smaller one */
-    for (int i = 0; i < a->nscenes; i++) render_keep_world_layers(a->scenes[i], a->budget.contended);
+    for (int i = 0; i < a->nscenes; i++) render_keep_world_layers(a->scenes[i], a->budget.contended || a->budget.hold_full);
     sheet_ended(a, false);
     a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);
