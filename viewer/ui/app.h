@@ -190,10 +190,10 @@ void app_picture_changed(app *a);
 #define APP_CONTEND_TAIL_S 0.15
 /* After a save the water is drawn as a grid until the job has made its
  * deferred code (reload_compiled): at the window's reduced sizes a grid
- * frame took up to this many times the deferred one (`tarn render
- * --frames 6 --msaa 1` at 0.35 of 960x540, --grid-water against
- * deferred: lake 1.07-1.23x, showcase 1.23-1.36x but natural's, where the grid
- * is faster), so the frame shrinks by as much at the reload
+ * frame takes about this many times the deferred one (`tarn render
+ * --frames 6 --msaa 1 --size 336x189 --detail 0.35`, --grid-water against
+ * deferred, medians of 3: 1.14-1.46x over the four packs on the lake and
+ * the showcase), so the frame shrinks by as much at the reload
  * (res_budget_costlier): its first grid frames were 55-72 ms at the 50 ms
  * budget (raymarch, clock running, the job compiling beside it) */
 #define APP_GRID_WATER_COST 1.35
