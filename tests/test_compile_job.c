@@ -28,9 +28,13 @@ static void run_job_on(compile_job *j, render *r, bool wait, bool shown_at_ready
     double t0 = clock_now_s(), ready_at = 0, secs;
     CHECK(compile_job_start(j, &d));
     CHECK(!compile_job_start(j, &d));   /* one job at a time */
+    CHECK(compile_job_compiling(j));    /* its LLVM takes a core from now on */
     for (;;) {
         if (!ready_at && compile_job_ready(j, &secs)) {
             ready_at = clock_now_s();
+            /* waiting for the window's first frame (the reload's, drawn
+             * small as the job resumes after it) still counts */
+            CHECK(compile_job_compiling(j));
             if (shown_at_ready) compile_job_shown(j);
         }
         if (compile_job_done(j, &secs)) break;
@@ -39,6 +43,7 @@ static void run_job_on(compile_job *j, render *r, bool wait, bool shown_at_ready
         clock_sleep_s(0.002);
     }
     double done_at = clock_now_s();
+    CHECK(!compile_job_compiling(j));
     CHECK_MSG(ready_at > 0, "the job ended without saying ready");
     if (!ready_at) ready_at = done_at;
     *ready_s = ready_at - t0;
@@ -143,6 +148,7 @@ static bool job_waiting_for_still(compile_job *j, render *r) {
     double t0 = clock_now_s(), secs;
     while (!compile_job_still_waits(j) && clock_now_s() - t0 < 120) clock_sleep_s(0.002);
     CHECK_MSG(compile_job_still_waits(j), "the job never waited for the still frame's answer");
+    CHECK_MSG(!compile_job_compiling(j), "waiting for the still frame's answer, yet said to compile");
     CHECK_MSG(compile_job_ready(j, &secs), "waiting for the still frame's answer, yet not ready");
     clock_sleep_s(0.2);
     CHECK_MSG(!compile_job_done(j, &secs), "a defer_still job ended before the window answered");
@@ -163,6 +169,7 @@ static void test_still_frame_when_asked(void) {
          * an animating window turns to it without the job's end */
         CHECK(compile_job_deferred_ready(j));
         compile_job_want_still(j);
+        CHECK_MSG(compile_job_compiling(j), "asked for the still frame, yet not said to compile");
         int n = frames_at_end(j);
         CHECK_MSG(n == 6, "asked for the still frame: %d frames in all (4 moving, 1 deferred, then the still "
                   "one)", n);

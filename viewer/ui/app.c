@@ -96,7 +96,6 @@ struct app {
     bool priming;                /* ... or to load the scenes in the job's renders before any change */
     bool compile_ended;          /* ... and has ended: reload on this frame */
     bool still_dropped;          /* ... without the still frame's code (a newer change came) */
-    bool still_moving;           /* ... whose still-frame code was asked for while the picture moves */
     bool changed_again;          /* a file changed while it ran */
     int compile_restarts;        /* jobs started again for such changes, since the last reload */
     double change_seen;          /* glfwGetTime() when the change being compiled was seen (0: none) */
@@ -258,15 +257,14 @@ static bool compile_readied(app *a) {
     return a->ready_seen;
 }
 
-/* Does a save's job compile now, on the cores the window draws on? Until
- * the window shows its change, then while it makes the deferred water's
- * code (deferred_held), and while it makes the still frame's code for
- * moving frames at full size (still_moving: a cheap scene, whose next
- * frames at full size were 62-71 ms beside it, basic on the lake); not
- * when the picture stands still (nothing is drawn meanwhile) or the job
- * waits. */
+/* Does a save's job compile now, on the cores the window draws on? Its
+ * reduced frames' code before the window shows the change, the deferred
+ * water's and the still frame's after it (made beside moving frames at
+ * full size, as a cheap scene asks for it, the frames took 62-71 ms,
+ * basic on the lake): whenever it is not waiting for the window's still
+ * answer (compile_job_compiling). */
 static bool job_contends(const app *a) {
-    return a->compiling && !a->priming && (!a->reloaded_early || a->deferred_held || a->still_moving);
+    return a->compiling && !a->priming && compile_job_compiling(a->cjob);
 }
 
 static void reload_early(app *a) {
@@ -288,7 +286,6 @@ static void still_due(app *a, double now) {
     if (!a->compiling || !a->reloaded_early) return;
     if (!(res_budget_full_held(&a->budget, now) || a->budget.scale >= 1 || a->budget_ms <= 0)) return;
     if (compile_job_draws(a->cjob, a->scenes, a->nscenes)) {
-        if (!res_budget_full_held(&a->budget, now)) a->still_moving = true;
         compile_job_want_still(a->cjob);
         return;
     }
@@ -311,7 +308,7 @@ static void deferred_due(app *a) {
  * saves still shows one). */
 static void compile_ended(app *a) {
     bool primed = a->priming, shown = a->reloaded_early, again = a->changed_again, dropped = a->still_dropped;
-    a->compiling = a->compile_ended = a->priming = a->reloaded_early = a->still_dropped = a->still_moving = false;
+    a->compiling = a->compile_ended = a->priming = a->reloaded_early = a->still_dropped = false;
     res_budget_hold_full(&a->budget, false);
     if (primed && a->d.verbose)
         fprintf(stderr, "%s: the compile job has the scene loaded (%.2f s, off the frame)\n", a->d.name, a->compile_s);

@@ -449,6 +449,15 @@ bool compile_job_wait_done(compile_job *j, double max_s) {
     return done;
 }
 
+bool compile_job_compiling(compile_job *j) {
+    if (!j) return false;
+    pthread_mutex_lock(&j->mu);
+    /* answered, it compiles from this frame on, before the worker wakes */
+    bool compiling = j->busy && !j->done && !(j->still_waits && j->still_answer == 0);
+    pthread_mutex_unlock(&j->mu);
+    return compiling;
+}
+
 bool compile_job_still_waits(compile_job *j) {
     if (!j) return false;
     pthread_mutex_lock(&j->mu);
