@@ -8,12 +8,12 @@
 #     the world kept at full resolution (gfx/upscale.h);
 #   - "enlarged": `sharp-world 0`, the whole reduced frame enlarged by the
 #     bilinear blit, the window before.
-# The script drives the clock (`time`, 50 ms of scene time a frame, as a
+# The script drives the clock (`advance`, 50 ms of scene time a frame, as a
 # clock running at the budget's 20 fps), so both modes grab the very same
 # instants: the water's error changes more from one instant to another than
 # between the modes. For each instant and mode: 20 frames of animation
-# leading to it (the budget settles on the mode; their fps is the mode's
-# frame rate), then the frame at the instant grabbed as the window showed
+# leading to it, every one drawn (the budget settles on the mode; their fps
+# is the mode's frame rate), then the frame at the instant grabbed as the window showed
 # it (the script's `grab`: the scene area, not redrawn), with the size
 # drawn. Each grab is measured against `tarn render` of the same instant at
 # 960x540 without MSAA (what the paused window draws) by `tarn compare`:
@@ -35,15 +35,19 @@ trap '[ -n "${KEEP:-}" ] || rm -rf "$scratch"' EXIT
 echo "live_error: $(uptime | sed 's/^ *//')"
 echo "live_error: $(basename "$scene") at 960x540, budget 50 ms, $grabs grabs a mode, $bin"
 
-# one turn of a mode: 20 frames of animation up to instant T (the fps over
-# them), then the frame at T grabbed
+# one turn of a mode: 20 frames of animation up to instant T, each a new
+# picture 50 ms of scene time after the one before (`advance`; the fps
+# over them), then the frame at T, grabbed. (Before 2026-12-07 the turn
+# set each instant by `time` and `frames 1`, which let two frames pass: a
+# drawn one and a kept one, so the fps column counted twice the pictures
+# drawn.)
 turn() {   # MODE(1 sharp, 0 enlarged) T GRAB-PATH
   echo "sharp-world $1"
+  echo "time $(awk -v t="$2" 'BEGIN { printf "%.3f", t - 0.05 * 21 }')"
   echo "clock"
-  for k in $(seq 20 -1 1); do echo "time $(awk -v t="$2" -v k="$k" 'BEGIN { printf "%.3f", t - 0.05 * k }')"; echo "frames 1"; done
+  echo "advance 0.05 20"
   echo "clock"
-  echo "time $2"
-  echo "frames 1"
+  echo "advance 0.05 1"
   echo "grab $3"
 }
 

@@ -1,5 +1,7 @@
 /* test_view_util: what the windows share that needs no window: pass names
  * as the panel shows them, why a reload happened. */
+#include <math.h>
+
 #include "check.h"
 #include "support.h"
 #include "view_script.h"
@@ -41,6 +43,40 @@ static void test_script_line_limit(void) {
         view_script_free(s);
     }
     CHECK_STR_CONTAINS(err, "more than 65536 lines");
+    scratch_remove();
+}
+
+/* `advance DT N`: N frames, each a new instant DT after the one before,
+ * then the next line on the frame the last one showed (a benchmark grabs
+ * it): the time each frame is drawn at is what the step before it left. */
+static void test_script_advance_draws_each_frame_later(void) {
+    if (!scratch_create("advance")) {
+        CHECK(false);
+        return;
+    }
+    scratch_write("s.txt", "time 1\nadvance 0.25 3\nquit\n");
+    char err[512] = "";
+    view_script *s = view_script_load(scratch_path("s.txt"), err, sizeof err);
+    CHECK_MSG(s != NULL, "%s", err);
+    double t = 0;
+    view_script_ctx c = { .time_s = &t };
+    const double drawn_at[] = { 1.25, 1.5, 1.75 };
+    for (int frame = 0; s && frame < 3; frame++) {
+        CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);   /* the step before frame + 1 */
+        CHECK_MSG(fabs(t - drawn_at[frame]) < 1e-12, "frame %d drawn at %g, not %g", frame + 1, t, drawn_at[frame]);
+    }
+    if (s) CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_DONE);    /* after the third: the next line */
+    CHECK(fabs(t - 1.75) < 1e-12);
+    view_script_free(s);
+    /* a count that is no whole number of frames, or no step: said, not run */
+    const char *bad[] = { "advance 0.1 0\n", "advance 0.1\n", "advance x 3\n", "advance 0.1 2.5\n" };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        scratch_write("s.txt", bad[i]);
+        s = view_script_load(scratch_path("s.txt"), err, sizeof err);
+        t = 0;
+        if (s) CHECK_MSG(view_script_step(s, &c) == VIEW_SCRIPT_FAILED, "%s", bad[i]);
+        view_script_free(s);
+    }
     scratch_remove();
 }
 
@@ -176,6 +212,7 @@ int main(void) {
     RUN(test_press_on_panel_never_reaches_camera);
     RUN(test_pass_names_read_as_the_glib);
     RUN(test_script_line_limit);
+    RUN(test_script_advance_draws_each_frame_later);
     RUN(test_reload_cause_names_the_files);
     RUN(test_reload_line_and_compiling_text);
     RUN(test_compile_job_helped);

@@ -27,7 +27,8 @@ static const cmd_option options[] = {
       .man = "start at this simulated time.\n" },
     { "--script", .metavar = "FILE", .kind = CMD_STRING, .offset = offsetof(view_desc, script),
       .help = "run scripted actions (frames N, set P U v, expect P U v,\n"
-              "wait SECONDS, screenshot PATH, camera CX CY CZ DIST YAW PITCH,\n"
+              "wait SECONDS, time T, advance DT N (N frames DT apart),\n"
+              "screenshot PATH, camera CX CY CZ DIST YAW PITCH,\n"
               "pause 1|0, reload, window W H, pack NAME, setting NAME,\n"
               "help 1|0, slow MS (frames of at least MS: input at a low\n"
               "frame rate), quit),\n"
@@ -37,6 +38,9 @@ static const cmd_option options[] = {
              ".BI set \" P U v\" ,\n"
              ".BI expect \" P U v\" ,\n"
              ".BI wait \" SECONDS\" ,\n"
+             ".BI time \" T\" ,\n"
+             ".BI advance \" DT N\"\n"
+             "(N frames, each DT seconds of scene time after the one before: a running clock, frame for frame),\n"
              ".BI screenshot \" PATH\" ,\n"
              ".BI camera \" CX CY CZ DIST YAW PITCH\" ,\n"
              ".BR \"pause 1\" | 0 ,\n"

@@ -17,6 +17,8 @@ struct view_script {
     char (*lines)[SCRIPT_LINE_MAX];
     int nlines, cap, next;
     int wait_frames;
+    int advance_left;           /* `advance`: frames still to be drawn a step later each */
+    double advance_dt;          /* ... the step, seconds */
     double wait_until;          /* clock_now_s() until which frames are drawn (0: none) */
     char arg[SCRIPT_LINE_MAX];
 };
@@ -170,6 +172,24 @@ view_script_status view_script_action(view_script_ctx *c, char *text, const char
     return VIEW_SCRIPT_FAILED;
 }
 
+/* advance DT N: the next N frames each drawn DT seconds of scene time
+ * after the one before (the first DT after the time now), then the next
+ * line, on the frame the last one showed: a clock running at 1/DT frames a
+ * second, frame for frame, whatever the frames cost (a benchmark's
+ * animation at fixed instants, every frame a new picture). */
+static view_script_status advance_action(view_script *s, view_script_ctx *c, char *rest, int line) {
+    float v[2];
+    int n = parse_floats(rest, v, 2);
+    if (n != 2 || !isfinite(v[0]) || v[1] < 1 || v[1] != floorf(v[1])) {
+        fprintf(stderr, "%s:%d: advance wants DT (seconds) and N (frames, 1 or more)\n", s->path, line);
+        return VIEW_SCRIPT_FAILED;
+    }
+    s->advance_dt = v[0];
+    s->advance_left = (int)v[1];
+    *c->time_s += s->advance_dt;
+    return VIEW_SCRIPT_CONTINUE;
+}
+
 /* The actions that pace the script, then view_script_action's. */
 static view_script_status run_line(view_script *s, view_script_ctx *c, char *text, int line) {
     char cmd[32];
@@ -178,6 +198,7 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
     char *rest = text + used;
     if (strcmp(cmd, "frames") == 0) { s->wait_frames = atoi(rest); return VIEW_SCRIPT_CONTINUE; }
     if (strcmp(cmd, "wait") == 0) { s->wait_until = clock_now_s() + atof(rest); return VIEW_SCRIPT_CONTINUE; }
+    if (strcmp(cmd, "advance") == 0) return advance_action(s, c, rest, line);
     if (strcmp(cmd, "reload") == 0) return VIEW_SCRIPT_RELOAD;
     if (strcmp(cmd, "quit") == 0) return VIEW_SCRIPT_DONE;
     if (strcmp(cmd, "screenshot") == 0) {
@@ -189,6 +210,10 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
 }
 
 view_script_status view_script_step(view_script *s, view_script_ctx *c) {
+    if (s->advance_left > 0 && --s->advance_left > 0) {   /* the frame drawn; the next one later */
+        *c->time_s += s->advance_dt;
+        return VIEW_SCRIPT_CONTINUE;
+    }
     if (s->wait_frames > 0) { s->wait_frames--; return VIEW_SCRIPT_CONTINUE; }
     if (s->wait_until > 0) {
         if (clock_now_s() < s->wait_until) return VIEW_SCRIPT_CONTINUE;
@@ -199,7 +224,7 @@ view_script_status view_script_step(view_script *s, view_script_ctx *c) {
         char text[SCRIPT_LINE_MAX];
         memcpy(text, s->lines[s->next++], sizeof text);
         view_script_status st = run_line(s, c, text, line);
-        if (st != VIEW_SCRIPT_CONTINUE || s->wait_frames > 0 || s->wait_until > 0) return st;
+        if (st != VIEW_SCRIPT_CONTINUE || s->wait_frames > 0 || s->wait_until > 0 || s->advance_left > 0) return st;
     }
     return VIEW_SCRIPT_DONE;
 }

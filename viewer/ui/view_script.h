@@ -6,6 +6,11 @@
  *                                 compile job runs over a still picture, the window
  *                                 sleeps instead, as without a script
  *   time T                        set the simulated time (seconds)
+ *   advance DT N                  draw N frames, each DT seconds of simulated time after
+ *                                 the one before, then the next line (on the last of
+ *                                 them: a `grab` after it takes that frame); a clock
+ *                                 running at 1/DT frames a second, every frame a new
+ *                                 picture (scripts/live_error.sh)
  *   set PROGRAM UNIFORM v...      what moving that slider does
  *   expect PROGRAM UNIFORM v...   the linked GL program holds these values (±1e-5)
  *   screenshot PATH               write the window's image
