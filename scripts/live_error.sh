@@ -38,9 +38,9 @@ echo "live_error: $(basename "$scene") at 960x540, budget 50 ms, $grabs grabs a 
 # one turn of a mode: 20 frames of animation up to instant T, each a new
 # picture 50 ms of scene time after the one before (`advance`; the fps
 # over them), then the frame at T, grabbed. (Before 2026-12-07 the turn
-# set each instant by `time` and `frames 1`, which let two frames pass: a
-# drawn one and a kept one, so the fps column counted twice the pictures
-# drawn.)
+# set each instant by `time` and `frames 1`, which then let two frames
+# pass: a drawn one and a kept one, so the fps column counted twice the
+# pictures drawn.)
 turn() {   # MODE(1 sharp, 0 enlarged) T GRAB-PATH
   echo "sharp-world $1"
   echo "time $(awk -v t="$2" 'BEGIN { printf "%.3f", t - 0.05 * 21 }')"

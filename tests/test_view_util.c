@@ -48,8 +48,9 @@ static void test_script_line_limit(void) {
 
 /* `advance DT N`: N frames, each a new instant DT after the one before,
  * then the next line on the frame the last one showed (a benchmark grabs
- * it): the time each frame is drawn at is what the step before it left. */
-static void test_script_advance_draws_each_frame_later(void) {
+ * it): the time each frame is drawn at is what the step before it left.
+ * `frames N`: N frames, then the next line. */
+static void test_script_frames_and_advance_count_frames(void) {
     if (!scratch_create("advance")) {
         CHECK(false);
         return;
@@ -67,6 +68,18 @@ static void test_script_advance_draws_each_frame_later(void) {
     }
     if (s) CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_DONE);    /* after the third: the next line */
     CHECK(fabs(t - 1.75) < 1e-12);
+    view_script_free(s);
+    /* `frames N` likewise: N frames drawn as things are, then the next line
+     * on the Nth (until 2026-12-07 it let N + 1 pass) */
+    scratch_write("s.txt", "time 1\nframes 2\ntime 2\nquit\n");
+    s = view_script_load(scratch_path("s.txt"), err, sizeof err);
+    CHECK_MSG(s != NULL, "%s", err);
+    for (int frame = 0; s && frame < 2; frame++) {
+        CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);
+        CHECK_MSG(t == 1, "frame %d drawn at %g, not 1", frame + 1, t);
+    }
+    if (s) CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_DONE);     /* after the second: time 2, quit */
+    CHECK(t == 2);
     view_script_free(s);
     /* a count that is no whole number of frames, or no step: said, not run */
     const char *bad[] = { "advance 0.1 0\n", "advance 0.1\n", "advance x 3\n", "advance 0.1 2.5\n" };
@@ -212,7 +225,7 @@ int main(void) {
     RUN(test_press_on_panel_never_reaches_camera);
     RUN(test_pass_names_read_as_the_glib);
     RUN(test_script_line_limit);
-    RUN(test_script_advance_draws_each_frame_later);
+    RUN(test_script_frames_and_advance_count_frames);
     RUN(test_reload_cause_names_the_files);
     RUN(test_reload_line_and_compiling_text);
     RUN(test_compile_job_helped);

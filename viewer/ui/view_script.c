@@ -214,7 +214,7 @@ view_script_status view_script_step(view_script *s, view_script_ctx *c) {
         *c->time_s += s->advance_dt;
         return VIEW_SCRIPT_CONTINUE;
     }
-    if (s->wait_frames > 0) { s->wait_frames--; return VIEW_SCRIPT_CONTINUE; }
+    if (s->wait_frames > 0 && --s->wait_frames > 0) return VIEW_SCRIPT_CONTINUE;   /* the Nth: the next line now */
     if (s->wait_until > 0) {
         if (clock_now_s() < s->wait_until) return VIEW_SCRIPT_CONTINUE;
         s->wait_until = 0;

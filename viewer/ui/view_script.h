@@ -1,6 +1,7 @@
 /* view_script: scripted actions for the interactive window, so tests and
  * demos can drive `tarn view --script FILE` under Xvfb. One action a line:
- *   frames N                      draw N frames
+ *   frames N                      draw N frames, then the next line (until 2026-12-07
+ *                                 N + 1 frames passed)
  *   wait SECONDS                  draw frames for this long (wall time: a test
  *                                 changes files meanwhile); while the window's
  *                                 compile job runs over a still picture, the window
