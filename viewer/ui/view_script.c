@@ -16,9 +16,8 @@ struct view_script {
     char path[1024];
     char (*lines)[SCRIPT_LINE_MAX];
     int nlines, cap, next;
-    int wait_frames;
-    int advance_left;           /* `advance`: frames still to be drawn a step later each */
-    double advance_dt;          /* ... the step, seconds */
+    int wait_frames;            /* `frames`, `advance`: frames still to be drawn before the next line */
+    double frame_dt;            /* ... each this much scene time after the one before (`advance`; 0: `frames`) */
     double wait_until;          /* clock_now_s() until which frames are drawn (0: none) */
     char arg[SCRIPT_LINE_MAX];
 };
@@ -184,9 +183,9 @@ static view_script_status advance_action(view_script *s, view_script_ctx *c, cha
         fprintf(stderr, "%s:%d: advance wants DT (seconds) and N (frames, 1 or more)\n", s->path, line);
         return VIEW_SCRIPT_FAILED;
     }
-    s->advance_dt = v[0];
-    s->advance_left = (int)v[1];
-    *c->time_s += s->advance_dt;
+    s->frame_dt = v[0];
+    s->wait_frames = (int)v[1];
+    *c->time_s += s->frame_dt;
     return VIEW_SCRIPT_CONTINUE;
 }
 
@@ -196,7 +195,11 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
     int used = 0;
     if (sscanf(text, "%31s %n", cmd, &used) < 1) return VIEW_SCRIPT_CONTINUE;   /* blank */
     char *rest = text + used;
-    if (strcmp(cmd, "frames") == 0) { s->wait_frames = atoi(rest); return VIEW_SCRIPT_CONTINUE; }
+    if (strcmp(cmd, "frames") == 0) {
+        s->wait_frames = atoi(rest);
+        s->frame_dt = 0;
+        return VIEW_SCRIPT_CONTINUE;
+    }
     if (strcmp(cmd, "wait") == 0) { s->wait_until = clock_now_s() + atof(rest); return VIEW_SCRIPT_CONTINUE; }
     if (strcmp(cmd, "advance") == 0) return advance_action(s, c, rest, line);
     if (strcmp(cmd, "reload") == 0) return VIEW_SCRIPT_RELOAD;
@@ -210,11 +213,10 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
 }
 
 view_script_status view_script_step(view_script *s, view_script_ctx *c) {
-    if (s->advance_left > 0 && --s->advance_left > 0) {   /* the frame drawn; the next one later */
-        *c->time_s += s->advance_dt;
+    if (s->wait_frames > 0 && --s->wait_frames > 0) {   /* a frame drawn; on the Nth, the next line now */
+        if (s->frame_dt != 0) *c->time_s += s->frame_dt;
         return VIEW_SCRIPT_CONTINUE;
     }
-    if (s->wait_frames > 0 && --s->wait_frames > 0) return VIEW_SCRIPT_CONTINUE;   /* the Nth: the next line now */
     if (s->wait_until > 0) {
         if (clock_now_s() < s->wait_until) return VIEW_SCRIPT_CONTINUE;
         s->wait_until = 0;
@@ -224,7 +226,7 @@ view_script_status view_script_step(view_script *s, view_script_ctx *c) {
         char text[SCRIPT_LINE_MAX];
         memcpy(text, s->lines[s->next++], sizeof text);
         view_script_status st = run_line(s, c, text, line);
-        if (st != VIEW_SCRIPT_CONTINUE || s->wait_frames > 0 || s->wait_until > 0 || s->advance_left > 0) return st;
+        if (st != VIEW_SCRIPT_CONTINUE || s->wait_frames > 0 || s->wait_until > 0) return st;
     }
     return VIEW_SCRIPT_DONE;
 }
