@@ -93,6 +93,46 @@ static void test_script_frames_and_advance_count_frames(void) {
     scratch_remove();
 }
 
+/* A wait after an action (`pause 1`, `set`...) does not sleep before the
+ * frame that shows it: the window draws it and a recording notes it then
+ * (until 2026-12-07 the window slept through the wait over the old picture
+ * and window_record_xvfb's replay could miss the change). A wait alone
+ * sleeps at once. */
+static void test_script_wait_draws_the_change_first(void) {
+    if (!scratch_create("wait")) {
+        CHECK(false);
+        return;
+    }
+    scratch_write("s.txt", "pause 1\nwait 30\nquit\n");
+    char err[512] = "";
+    view_script *s = view_script_load(scratch_path("s.txt"), err, sizeof err);
+    CHECK_MSG(s != NULL, "%s", err);
+    double t = 0;
+    bool paused = false;
+    view_script_ctx c = { .time_s = &t, .paused = &paused };
+    if (s) {
+        CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);
+        CHECK(paused);
+        CHECK_MSG(!view_script_waiting(s), "the wait sleeps before the frame that shows the pause");
+        CHECK_EQ(view_script_wait_left_s(s), 0.0);
+        CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);   /* that frame drawn */
+        CHECK(view_script_waiting(s));
+        CHECK(view_script_wait_left_s(s) > 29);
+    }
+    view_script_free(s);
+    scratch_write("s.txt", "frames 1\nwait 30\nquit\n");
+    s = view_script_load(scratch_path("s.txt"), err, sizeof err);
+    CHECK_MSG(s != NULL, "%s", err);
+    if (s) {
+        CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);   /* frames 1 */
+        CHECK(!view_script_waiting(s));
+        CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);   /* after it: wait, nothing changed */
+        CHECK(view_script_waiting(s));
+    }
+    view_script_free(s);
+    scratch_remove();
+}
+
 static void test_reload_cause_names_the_files(void) {
     char out[128];
     const char *one[] = { "/home/s/scenes/water.frag" };
@@ -226,6 +266,7 @@ int main(void) {
     RUN(test_pass_names_read_as_the_glib);
     RUN(test_script_line_limit);
     RUN(test_script_frames_and_advance_count_frames);
+    RUN(test_script_wait_draws_the_change_first);
     RUN(test_reload_cause_names_the_files);
     RUN(test_reload_line_and_compiling_text);
     RUN(test_compile_job_helped);

@@ -19,6 +19,7 @@ struct view_script {
     int wait_frames;            /* `frames`, `advance`: frames still to be drawn before the next line */
     double frame_dt;            /* ... each this much scene time after the one before (`advance`; 0: `frames`) */
     double wait_until;          /* clock_now_s() until which frames are drawn (0: none) */
+    bool acted;                 /* the last step ran an action (set, time, camera...): its frame is owed */
     char arg[SCRIPT_LINE_MAX];
 };
 
@@ -56,7 +57,7 @@ void view_script_free(view_script *s) {
 }
 
 bool view_script_waiting(const view_script *s) {
-    return s && s->wait_frames == 0 && s->wait_until > 0 && clock_now_s() < s->wait_until;
+    return s && !s->acted && s->wait_frames == 0 && s->wait_until > 0 && clock_now_s() < s->wait_until;
 }
 
 double view_script_wait_left_s(const view_script *s) {
@@ -209,10 +210,12 @@ static view_script_status run_line(view_script *s, view_script_ctx *c, char *tex
         s->arg[strcspn(s->arg, " \t")] = '\0';
         return VIEW_SCRIPT_SCREENSHOT;
     }
+    s->acted = true;
     return view_script_action(c, text, s->path, line);
 }
 
 view_script_status view_script_step(view_script *s, view_script_ctx *c) {
+    s->acted = false;   /* the frame before this step showed it */
     if (s->wait_frames > 0 && --s->wait_frames > 0) {   /* a frame drawn; on the Nth, the next line now */
         if (s->frame_dt != 0) *c->time_s += s->frame_dt;
         return VIEW_SCRIPT_CONTINUE;

@@ -82,7 +82,11 @@ view_script *view_script_load(const char *path, char *err, int errlen);
 /* Runs actions up to the next frame boundary; returns what the caller must do. */
 view_script_status view_script_step(view_script *s, view_script_ctx *ctx);
 const char *view_script_arg(const view_script *s);
-/* Is a `wait SECONDS` running (frames or nothing, the caller's choice)? */
+/* Is a `wait SECONDS` running (frames or nothing, the caller's choice)?
+ * Not on the frame after a step that ran an action before the wait (`set`
+ * then `wait`): that frame shows the change, and a recording (session.h)
+ * notes it when it was made, not when the wait ends (until 2026-12-07 a
+ * sleeping window drew it, and the recorder saw it, only then). */
 bool view_script_waiting(const view_script *s);
 /* Seconds until that wait ends (0: none runs): a caller asleep meanwhile
  * wakes for it. */
