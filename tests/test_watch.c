@@ -651,6 +651,43 @@ static void test_change_between_read_and_watch(void) {
     file_cache_destroy(c);
 }
 
+/* A file the scene found missing (its folder made and filled between the
+ * load and the watch, window_app_xvfb under ASAN, 2026-12-07) is due at
+ * once when it exists by the time it is watched; still missing, it is
+ * reported when it comes. */
+static void test_missing_at_read_present_at_watch(void) {
+    fixture fx;
+    file_cache *c = file_cache_create();
+    if (fixture_open(&fx)) {
+        watch_use_cache(fx.w, c);
+        char *late = path_join(fx.dir, "late.frag"), *later = path_join(fx.dir, "later.frag");
+        char why[256], err[256] = "";
+        char *text = file_cache_read(c, late, NULL, NULL, NULL, why, sizeof why);   /* the load: missing */
+        CHECK(text == NULL);
+        free(text);
+        text = file_cache_read(c, later, NULL, NULL, NULL, why, sizeof why);
+        CHECK(text == NULL);
+        uint64_t h;
+        CHECK(file_cache_held_missing(c, late) && !file_cache_held(c, late, &h));
+        CHECK(write_file(late, "void main() {}\n"));                             /* it comes */
+        double made = now_ms();
+        const char *files[] = { late, later };
+        CHECK_MSG(watch_set_files(fx.w, files, 2, err, sizeof err), "%s", err);      /* then the watch */
+        expect_one_change(fx.w, late, made, "missing at the read, present at the watch");
+        CHECK(write_file(later, "void main() {}\n"));
+        expect_one_change(fx.w, later, now_ms(), "still missing at the watch, made after it");
+        text = file_cache_read(c, late, NULL, NULL, NULL, why, sizeof why);          /* the reload reads it */
+        CHECK(text != NULL && !file_cache_held_missing(c, late));
+        free(text);
+        CHECK_MSG(watch_set_files(fx.w, files, 2, err, sizeof err), "%s", err);
+        expect_silence(fx.w, "after the reload read them");
+        free(late);
+        free(later);
+    }
+    fixture_close(&fx);
+    file_cache_destroy(c);
+}
+
 /* The watched directory itself goes away and comes back. */
 static void test_directory_deleted_and_recreated(void) {
     fixture fx;
@@ -900,6 +937,7 @@ int main(void) {
     RUN(test_relative_paths_normalised);
     RUN(test_set_files_replaces);
     RUN(test_change_between_read_and_watch);
+    RUN(test_missing_at_read_present_at_watch);
     RUN(test_directory_deleted_and_recreated);
     RUN(test_symlink_target);
     RUN(test_own_poll_loop);

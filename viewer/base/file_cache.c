@@ -19,6 +19,7 @@ typedef struct held_file {
     file_stamp stamp;       /* when read */
     bool trusted;           /* it was FILE_CACHE_TRUST_MS old when read */
     bool made;              /* file_cache_made's: key is a name, no stamp */
+    bool missing;           /* a reader was last told the file does not exist (no bytes) */
 } held_file;
 
 struct file_cache {
@@ -60,7 +61,7 @@ static char *held_copy(file_cache *c, const char *key, size_t max_bytes, size_t 
     char *copy = NULL;
     pthread_mutex_lock(&c->lock);
     held_file *f = find(c, key);
-    if (f && !f->made && f->trusted && file_stamp_same(&f->stamp, &now) && !(max_bytes && f->len > max_bytes)) {
+    if (f && !f->made && !f->missing && f->trusted && file_stamp_same(&f->stamp, &now) && !(max_bytes && f->len > max_bytes)) {
         copy = mem_alloc(f->len + 1);
         memcpy(copy, f->bytes, f->len + 1);
         *len = f->len;
@@ -86,11 +87,31 @@ static void hold(file_cache *c, const char *key, const char *bytes, size_t len, 
     }
     free(f->bytes);
     f->bytes = copy;
+    f->missing = false;
     f->len = len;
     f->hash = hash;
     f->stamp = *stamp;
     f->trusted = file_stamp_age_ms(stamp) >= FILE_CACHE_TRUST_MS;
     c->counts.reads++;
+    pthread_mutex_unlock(&c->lock);
+}
+
+/* A reader found no file at key: kept as such (file_cache_held_missing),
+ * over what was held of it before. */
+static void hold_missing(file_cache *c, const char *key) {
+    pthread_mutex_lock(&c->lock);
+    held_file *f = find(c, key);
+    if (!f) {
+        c->files = mem_grow(c->files, &c->cap, c->n + 1, sizeof *c->files);
+        f = &c->files[c->n++];
+        *f = (held_file){ .key = mem_strdup(key) };
+    }
+    if (!f->made) {
+        free(f->bytes);
+        f->bytes = NULL;
+        f->len = 0;
+        f->missing = true;
+    }
     pthread_mutex_unlock(&c->lock);
 }
 
@@ -101,7 +122,10 @@ static char *bytes_of(file_cache *c, const char *key, const file_text_opts *o, s
     if (b) return b;
     file_stamp stamp;
     b = file_read_stamped(key, o, len, &stamp, why, whylen);
-    if (!b) return NULL;
+    if (!b) {
+        if (!file_exists(key)) hold_missing(c, key);
+        return NULL;
+    }
     *hash = hash_fnv1a(HASH_FNV1A_BASIS, b, *len);
     hold(c, key, b, *len, *hash, &stamp);
     return b;
@@ -157,10 +181,22 @@ bool file_cache_held(file_cache *c, const char *path, uint64_t *hash) {
     if (!key) return false;
     pthread_mutex_lock(&c->lock);
     held_file *f = find(c, key);
-    if (f) *hash = f->hash;
+    bool held = f && !f->missing;
+    if (held) *hash = f->hash;
     pthread_mutex_unlock(&c->lock);
     free(key);
-    return f != NULL;
+    return held;
+}
+
+bool file_cache_held_missing(file_cache *c, const char *path) {
+    char *key = c ? path_absolute(path) : NULL;
+    if (!key) return false;
+    pthread_mutex_lock(&c->lock);
+    held_file *f = find(c, key);
+    bool missing = f && f->missing;
+    pthread_mutex_unlock(&c->lock);
+    free(key);
+    return missing;
 }
 
 bool file_cache_made(file_cache *c, const char *name, void *out, size_t len, file_cache_make_fn make, void *user,

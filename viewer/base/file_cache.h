@@ -60,6 +60,13 @@ bool file_cache_refresh(file_cache *c, const char *path, uint64_t *hash);
  * compares it with the file now, so a change between a scene's read and
  * the watch that follows is not lost. */
 bool file_cache_held(file_cache *c, const char *path, uint64_t *hash);
+/* Were path's readers last told it does not exist (a read through the
+ * cache found no file there, and none was read since)? The watcher takes
+ * a file that exists by the time it is watched as changed: a scene that
+ * failed on a missing file is loaded again when the file appears, even
+ * when it appeared between the load and the watch (window_app_xvfb's
+ * folder made and then filled, under ASAN, 2026-12-07). */
+bool file_cache_held_missing(file_cache *c, const char *path);
 
 /* Content tarn makes rather than reads (a generated texture: the caustic
  * tile's photon tracing takes about a second), held under a name that is

@@ -337,10 +337,17 @@ void watch_destroy(watch *w) {
  * content differs from what its readers were last given (changed between
  * the scene's read and this watch, which no event of the new set can tell)
  * keeps what they read as its baseline and is due at once: the next poll
- * reports it. */
+ * reports it; so does one they found missing that exists now. */
 static void record_baseline(watch *w, watch_file *f) {
     uint64_t read_hash = 0;
     bool was_read = file_cache_held(w->cache, f->path, &read_hash);
+    if (file_cache_held_missing(w->cache, f->path)) {   /* its readers found none: one now is a change */
+        f->present = false;
+        f->hash = 0;
+        f->dirty = is_regular(f->path);
+        f->last_ns = clock_now_ns() - WATCH_QUIET_MS * MS;
+        return;
+    }
     f->present = file_cache_refresh(w->cache, f->path, &f->hash);
     if (!was_read || (f->present && f->hash == read_hash)) return;
     f->present = true;
