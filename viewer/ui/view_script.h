@@ -5,7 +5,8 @@
  *   wait SECONDS                  draw frames for this long (wall time: a test
  *                                 changes files meanwhile); while the window's
  *                                 compile job runs over a still picture, the window
- *                                 sleeps instead, as without a script
+ *                                 sleeps instead, as without a script, after the
+ *                                 frame that shows what the lines before it changed
  *   time T                        set the simulated time (seconds)
  *   advance DT N                  draw N frames, each DT seconds of simulated time after
  *                                 the one before, then the next line (on the last of
