@@ -46,6 +46,16 @@ static void test_script_line_limit(void) {
     scratch_remove();
 }
 
+/* A script of text, written to the scratch folder and loaded (NULL, a
+ * failed check, when it does not load). */
+static view_script *script_of(const char *text) {
+    char err[512] = "";
+    scratch_write("s.txt", text);
+    view_script *s = view_script_load(scratch_path("s.txt"), err, sizeof err);
+    CHECK_MSG(s != NULL, "%s", err);
+    return s;
+}
+
 /* `advance DT N`: N frames, each a new instant DT after the one before,
  * then the next line on the frame the last one showed (a benchmark grabs
  * it): the time each frame is drawn at is what the step before it left.
@@ -55,10 +65,7 @@ static void test_script_frames_and_advance_count_frames(void) {
         CHECK(false);
         return;
     }
-    scratch_write("s.txt", "time 1\nadvance 0.25 3\nquit\n");
-    char err[512] = "";
-    view_script *s = view_script_load(scratch_path("s.txt"), err, sizeof err);
-    CHECK_MSG(s != NULL, "%s", err);
+    view_script *s = script_of("time 1\nadvance 0.25 3\nquit\n");
     double t = 0;
     view_script_ctx c = { .time_s = &t };
     const double drawn_at[] = { 1.25, 1.5, 1.75 };
@@ -71,9 +78,7 @@ static void test_script_frames_and_advance_count_frames(void) {
     view_script_free(s);
     /* `frames N` likewise: N frames drawn as things are, then the next line
      * on the Nth (until 2026-12-07 it let N + 1 pass) */
-    scratch_write("s.txt", "time 1\nframes 2\ntime 2\nquit\n");
-    s = view_script_load(scratch_path("s.txt"), err, sizeof err);
-    CHECK_MSG(s != NULL, "%s", err);
+    s = script_of("time 1\nframes 2\ntime 2\nquit\n");
     for (int frame = 0; s && frame < 2; frame++) {
         CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);
         CHECK_MSG(t == 1, "frame %d drawn at %g, not 1", frame + 1, t);
@@ -84,8 +89,7 @@ static void test_script_frames_and_advance_count_frames(void) {
     /* a count that is no whole number of frames, or no step: said, not run */
     const char *bad[] = { "advance 0.1 0\n", "advance 0.1\n", "advance x 3\n", "advance 0.1 2.5\n" };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        scratch_write("s.txt", bad[i]);
-        s = view_script_load(scratch_path("s.txt"), err, sizeof err);
+        s = script_of(bad[i]);
         t = 0;
         if (s) CHECK_MSG(view_script_step(s, &c) == VIEW_SCRIPT_FAILED, "%s", bad[i]);
         view_script_free(s);
@@ -103,10 +107,7 @@ static void test_script_wait_draws_the_change_first(void) {
         CHECK(false);
         return;
     }
-    scratch_write("s.txt", "pause 1\nwait 30\nquit\n");
-    char err[512] = "";
-    view_script *s = view_script_load(scratch_path("s.txt"), err, sizeof err);
-    CHECK_MSG(s != NULL, "%s", err);
+    view_script *s = script_of("pause 1\nwait 30\nquit\n");
     double t = 0;
     bool paused = false;
     view_script_ctx c = { .time_s = &t, .paused = &paused };
@@ -120,9 +121,7 @@ static void test_script_wait_draws_the_change_first(void) {
         CHECK(view_script_wait_left_s(s) > 29);
     }
     view_script_free(s);
-    scratch_write("s.txt", "frames 1\nwait 30\nquit\n");
-    s = view_script_load(scratch_path("s.txt"), err, sizeof err);
-    CHECK_MSG(s != NULL, "%s", err);
+    s = script_of("frames 1\nwait 30\nquit\n");
     if (s) {
         CHECK_EQ(view_script_step(s, &c), VIEW_SCRIPT_CONTINUE);   /* frames 1 */
         CHECK(!view_script_waiting(s));

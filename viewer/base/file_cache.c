@@ -53,6 +53,16 @@ static held_file *find(file_cache *c, const char *key) {
     return NULL;
 }
 
+/* The entry of key, added empty when there is none. Under the lock. */
+static held_file *find_or_add(file_cache *c, const char *key) {
+    held_file *f = find(c, key);
+    if (f) return f;
+    c->files = mem_grow(c->files, &c->cap, c->n + 1, sizeof *c->files);
+    f = &c->files[c->n++];
+    *f = (held_file){ .key = mem_strdup(key) };
+    return f;
+}
+
 /* A copy of the held bytes of key when they may stand for the file now
  * (file_cache.h), else NULL. */
 static char *held_copy(file_cache *c, const char *key, size_t max_bytes, size_t *len, uint64_t *hash) {
@@ -61,7 +71,7 @@ static char *held_copy(file_cache *c, const char *key, size_t max_bytes, size_t 
     char *copy = NULL;
     pthread_mutex_lock(&c->lock);
     held_file *f = find(c, key);
-    if (f && !f->made && !f->missing && f->trusted && file_stamp_same(&f->stamp, &now) && !(max_bytes && f->len > max_bytes)) {
+    if (f && !f->made && f->trusted && file_stamp_same(&f->stamp, &now) && !(max_bytes && f->len > max_bytes)) {
         copy = mem_alloc(f->len + 1);
         memcpy(copy, f->bytes, f->len + 1);
         *len = f->len;
@@ -79,12 +89,7 @@ static void hold(file_cache *c, const char *key, const char *bytes, size_t len, 
     char *copy = mem_alloc(len + 1);
     memcpy(copy, bytes, len + 1);
     pthread_mutex_lock(&c->lock);
-    held_file *f = find(c, key);
-    if (!f) {
-        c->files = mem_grow(c->files, &c->cap, c->n + 1, sizeof *c->files);
-        f = &c->files[c->n++];
-        *f = (held_file){ .key = mem_strdup(key) };
-    }
+    held_file *f = find_or_add(c, key);
     free(f->bytes);
     f->bytes = copy;
     f->missing = false;
@@ -100,17 +105,13 @@ static void hold(file_cache *c, const char *key, const char *bytes, size_t len, 
  * over what was held of it before. */
 static void hold_missing(file_cache *c, const char *key) {
     pthread_mutex_lock(&c->lock);
-    held_file *f = find(c, key);
-    if (!f) {
-        c->files = mem_grow(c->files, &c->cap, c->n + 1, sizeof *c->files);
-        f = &c->files[c->n++];
-        *f = (held_file){ .key = mem_strdup(key) };
-    }
+    held_file *f = find_or_add(c, key);
     if (!f->made) {
         free(f->bytes);
         f->bytes = NULL;
         f->len = 0;
         f->missing = true;
+        f->trusted = false;   /* no bytes to answer a read with */
     }
     pthread_mutex_unlock(&c->lock);
 }
@@ -176,27 +177,31 @@ bool file_cache_refresh(file_cache *c, const char *path, uint64_t *hash) {
     return true;
 }
 
-bool file_cache_held(file_cache *c, const char *path, uint64_t *hash) {
+/* What is held for path: its bytes (*hash), a reader's finding it
+ * missing (*missing), or nothing (false). */
+static bool held_entry(file_cache *c, const char *path, uint64_t *hash, bool *missing) {
     char *key = c ? path_absolute(path) : NULL;
     if (!key) return false;
     pthread_mutex_lock(&c->lock);
     held_file *f = find(c, key);
-    bool held = f && !f->missing;
-    if (held) *hash = f->hash;
+    if (f) {
+        *hash = f->hash;
+        *missing = f->missing;
+    }
     pthread_mutex_unlock(&c->lock);
     free(key);
-    return held;
+    return f != NULL;
+}
+
+bool file_cache_held(file_cache *c, const char *path, uint64_t *hash) {
+    bool missing = false;
+    return held_entry(c, path, hash, &missing) && !missing;
 }
 
 bool file_cache_held_missing(file_cache *c, const char *path) {
-    char *key = c ? path_absolute(path) : NULL;
-    if (!key) return false;
-    pthread_mutex_lock(&c->lock);
-    held_file *f = find(c, key);
-    bool missing = f && f->missing;
-    pthread_mutex_unlock(&c->lock);
-    free(key);
-    return missing;
+    uint64_t hash;
+    bool missing = false;
+    return held_entry(c, path, &hash, &missing) && missing;
 }
 
 bool file_cache_made(file_cache *c, const char *name, void *out, size_t len, file_cache_make_fn make, void *user,
