@@ -119,10 +119,12 @@ static void check_pack(const char *pack, bool is_float) {
 }
 
 /* A running clock with the camera still: from the second time on each
- * World is composed from its layers (world_layers.h), and every frame
- * equals, bit for bit, the frame drawn with the cache off: the lake
- * (terrain, objects, sky; the shore uncovered and covered by the waves),
- * and from under the water (the eye's path in water fades the world). */
+ * World is composed from its layers (world_layers.h), from the third the
+ * second's whole frame copied and only the band where the surface meets
+ * the land composed (world_layer_band.h), and every frame equals, bit for
+ * bit, the frame drawn with the cache off: the lake (terrain, objects,
+ * sky; the shore uncovered and covered by the waves), and from under the
+ * water (the eye's path in water fades the world). */
 static void check_running_clock(const char *pack, bool is_float, const render_view *v) {
     rig on, off;
     rig_open(&on, pack, true, is_float);
@@ -136,6 +138,9 @@ static void check_running_clock(const char *pack, bool is_float, const render_vi
     }
     CHECK_MSG(render_world_layer_frames(on.r) >= 3, "%s: %ld World draws composed from layers, want 3 or more", pack,
               render_world_layer_frames(on.r));
+    /* from the third frame on, the first whole one copied and the band composed */
+    CHECK_MSG(render_world_band_frames(on.r) >= 2, "%s: %ld World draws composed the band alone, want 2 or more", pack,
+              render_world_band_frames(on.r));
     CHECK_EQ(render_world_layer_frames(off.r), 0);
     rig_close(&on);
     rig_close(&off);

@@ -169,6 +169,7 @@ void render_set_world_height_cells(render *r, bool on) {
 }
 
 long render_world_layer_frames(const render *r) { return r->wlayers.composites; }
+long render_world_band_frames(const render *r) { return r->wlayers.band_composites; }
 
 void render_set_detail(render *r, double detail) {
     r->detail = detail > 0 && detail < 1 ? detail : 1;

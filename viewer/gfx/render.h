@@ -191,6 +191,9 @@ long render_world_cache_hits(const render *r);
  * one full-screen pass (world_layers.h): the same pixels. How many World
  * draws were so composed since render_create: */
 long render_world_layer_frames(const render *r);
+/* ... and how many of those copied the last whole one and composed only
+ * the tiles where the moving surface meets the land (world_layer_band.h): */
+long render_world_band_frames(const render *r);
 /* While keep is true (off by default), a frame smaller than the layers of
  * its World (the same world and camera) is composed from them, each pixel
  * from the texel that sees what it sees, instead of building its own: for

@@ -45,7 +45,9 @@ void render_draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
 }
 
 /* A World whose key has stayed while the time ran is drawn from its layers
- * (world_layers.h): built once, then one full-screen pass a frame. */
+ * (world_layers.h): built once, then composed: the first frame whole, each
+ * later one the last whole frame copied and only the band where the
+ * surface moves over the land composed over it (world_layer_band.h). */
 static bool draw_world_layers(render *r, frame_state *f, int i, const world_cache_key *k, const char *which, float offset) {
     world_layers_use use = world_layers_check(&r->wlayers, i, k);
     if (use == WORLD_LAYERS_NO) return false;
@@ -53,14 +55,26 @@ static bool draw_world_layers(render *r, frame_state *f, int i, const world_cach
     if (use == WORLD_LAYERS_BUILD) {
         if (!world_layers_begin_build(&r->wlayers, i, k)) return false;
         world_draw_layers(&r->world, which, offset, f->cam_eye, !f->in_rtt, restore);
-        world_layers_end_build(&r->wlayers, i, k);
+        double lo, hi;
+        world_wet_band(&r->world, &lo, &hi);
+        world_layers_end_build(&r->wlayers, i, k, lo, hi);
     }
     world_layer_view lv;
     const unsigned *tex = world_layers_textures(&r->wlayers, i, k, &lv);
     if (!tex) return false;
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
-    world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore);
+    unsigned band_vbo = 0;
+    int band_verts = 0;
+    if (world_layers_band_begin(&r->wlayers, i, k, &lv, &band_vbo, &band_verts)) {
+        /* every pixel's depth is the copy's: the test would fail the band's */
+        if (k->depth_test) glDisable(GL_DEPTH_TEST);
+        world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, band_vbo, band_verts);
+        if (k->depth_test) glEnable(GL_DEPTH_TEST);
+    } else {
+        world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, 0, 0);
+        world_layers_keep_whole(&r->wlayers, i, k, &lv);
+    }
     r->wlayers.composites++;
     return true;
 }

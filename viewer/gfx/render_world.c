@@ -1,5 +1,6 @@
 #include "render_world.h"
 #include "world_height_tiles.h"
+#include "world_layer_band.h"
 
 #include <assert.h>
 #include <GL/gl.h>
@@ -809,7 +810,8 @@ void world_draw_layers(const gpu_world *gw, const char *which, double offset, co
 static const int LAYER_UNITS[3] = { 31, 21, 20 };
 
 void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3],
-                            const world_layer_view *v, int x, int y, unsigned restore_program) {
+                            const world_layer_view *v, int x, int y, unsigned restore_program, unsigned band_vbo,
+                            int band_verts) {
     unsigned p = gw->layers_prog.gl;
     if (!gw->active || !p) return;
     GLint active = 0, before[3];
@@ -828,15 +830,32 @@ void world_composite_layers(const gpu_world *gw, double t, const float eye[3], c
     GLint scale = glGetUniformLocation(p, "uLayerScale"), offset = glGetUniformLocation(p, "uLayerOffset");
     if (scale >= 0) glUniform2f(scale, v->scale[0], v->scale[1]);
     if (offset >= 0) glUniform2f(offset, v->offset[0], v->offset[1]);
-    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    render_res_vertexid_end();
+    seti(p, "uLayerBand", band_vbo ? 1 : 0);
+    if (band_vbo) {   /* the band's triangles */
+        glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
+        glBindBuffer(GL_ARRAY_BUFFER, band_vbo);
+        glEnableClientState(GL_VERTEX_ARRAY);
+        glVertexPointer(2, GL_FLOAT, 0, NULL);
+        if (band_verts > 0) glDrawArrays(GL_TRIANGLES, 0, band_verts);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        glPopClientAttrib();
+    } else {
+        render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        render_res_vertexid_end();
+    }
     for (int i = 0; i < 3; i++) {
         glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
         glBindTexture(GL_TEXTURE_2D, (GLuint)before[i]);
     }
     glActiveTexture((GLenum)active);
     glUseProgram(restore_program);
+}
+
+/* world_wet.glsl's bound sums the sines', Gerstner waves' and noise
+ * octaves' amplitudes; fixed_height is that and more (find_height_tiles) */
+void world_wet_band(const gpu_world *gw, double *lo, double *hi) {
+    layer_band_heights(gw->w.d.water_level, gw->w.waves.fixed_height, lo, hi);
 }
 
 void world_draw_water(gpu_world *gw, int tangent_loc) {

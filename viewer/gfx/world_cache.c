@@ -212,16 +212,29 @@ static bool slot_alloc(world_cache_slot *s, const world_cache_key *k) {
     return glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
-void world_cache_store(world_cache *c, int cmd, const world_cache_key *k) {
-    if (c->off) return;
+/* Command cmd's slot, or a free one taken for it; NULL: none left (more
+ * World commands than slots: the rest are drawn), or it gave up */
+static world_cache_slot *slot_for(world_cache *c, int cmd) {
+    if (c->off) return NULL;
     world_cache_slot *s = find(c, cmd);
     if (!s) s = find(c, -1);
-    if (!s || s->broken) return;   /* more World commands than slots: the rest are drawn */
+    if (!s || s->broken) return NULL;
     s->cmd = cmd;
+    return s;
+}
+
+void world_cache_store(world_cache *c, int cmd, const world_cache_key *k) {
+    world_cache_slot *s = slot_for(c, cmd);
+    if (!s) return;
     bool same_time = s->seen && s->seen_t == k->t;
     s->seen = true;
     s->seen_t = k->t;
-    if (!same_time) return;
+    if (same_time) world_cache_store_now(c, cmd, k);
+}
+
+void world_cache_store_now(world_cache *c, int cmd, const world_cache_key *k) {
+    world_cache_slot *s = slot_for(c, cmd);
+    if (!s) return;
     s->valid = false;
     GLint vp[4], db0 = GL_NONE, read_buf = GL_NONE;
     glGetIntegerv(GL_VIEWPORT, vp);

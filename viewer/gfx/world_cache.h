@@ -64,4 +64,6 @@ bool world_cache_restore(world_cache *c, int cmd, const world_cache_key *k);
  * k, once command cmd has been drawn twice in a row at k's time: while the
  * time runs (an animation) no copy could be used, and each costs. */
 void world_cache_store(world_cache *c, int cmd, const world_cache_key *k);
+/* The same at once, whatever came before (world_layers' whole frame). */
+void world_cache_store_now(world_cache *c, int cmd, const world_cache_key *k);
 #endif

@@ -3,23 +3,32 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+
+#include "mem.h"
+#include "world_layer_band.h"
 
 void world_layers_init(world_layers *l) {
     memset(l, 0, sizeof *l);
     for (int i = 0; i < WORLD_CACHE_SLOTS; i++) l->slot[i].cmd = -1;
+    world_cache_init(&l->whole);
 }
 
 static void slot_free(world_layers_slot *s) {
     if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
     glDeleteTextures(3, s->tex);
     if (s->depth_rb) glDeleteRenderbuffers(1, &s->depth_rb);
+    if (s->band_vbo) glDeleteBuffers(1, &s->band_vbo);
+    long gen = s->gen;   /* a whole frame kept of a build before is never taken for a later one */
     memset(s, 0, sizeof *s);
     s->cmd = -1;
+    s->gen = gen;
 }
 
 void world_layers_free(world_layers *l) {
     for (int i = 0; i < WORLD_CACHE_SLOTS; i++) slot_free(&l->slot[i]);
+    world_cache_free(&l->whole);
 }
 
 static world_layers_slot *find(world_layers *l, int cmd) {
@@ -165,11 +174,59 @@ bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k
     glDisable(GL_SCISSOR_TEST);
     glClearColor(0, 0, 0, 1);   /* the wet layer's alpha is the depth: 1, nothing drawn */
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    static const float no_point[4] = { 0, 0, 0, 0 };   /* the point layer's w: 0, no point */
+    glClearBufferfv(GL_COLOR, 2, no_point);
     glClearColor(l->saved.clear[0], l->saved.clear[1], l->saved.clear[2], l->saved.clear[3]);
     return true;
 }
 
-void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k) {
+/* More of a frame than this in the band: composing it alone saves too
+ * little to pay for the copy of the rest */
+#define BAND_MOST 0.6
+
+/* The band's triangles in viewport coordinates, from rectangles of pixels. */
+static void band_upload(world_layers_slot *s, const int *rects, int n, int w, int h) {
+    float *v = mem_alloc((size_t)(n > 0 ? n : 1) * 12 * sizeof *v);
+    for (int i = 0; i < n; i++) {
+        const int *r = rects + 4 * i;
+        float x0 = 2.0f * r[0] / w - 1, y0 = 2.0f * r[1] / h - 1, x1 = 2.0f * r[2] / w - 1, y1 = 2.0f * r[3] / h - 1;
+        const float tri[12] = { x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1 };
+        memcpy(v + 12 * i, tri, sizeof tri);
+    }
+    if (!s->band_vbo) glGenBuffers(1, &s->band_vbo);
+    GLint before = 0;
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &before);
+    glBindBuffer(GL_ARRAY_BUFFER, s->band_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)n * 12 * sizeof *v), v, GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)before);
+    free(v);
+    s->band_verts = 6 * n;
+}
+
+/* The tiles whose points reach [lo, hi], from the point layer read back. */
+static void find_band(world_layers_slot *s, double lo, double hi) {
+    int w = s->key.vp_w, h = s->key.vp_h, tiles = ((w + LAYER_BAND_TILE - 1) / LAYER_BAND_TILE) *
+                                                  ((h + LAYER_BAND_TILE - 1) / LAYER_BAND_TILE);
+    s->band_verts = -1;
+    float *pos = mem_alloc((size_t)w * h * 4 * sizeof *pos);
+    int *rects = mem_alloc((size_t)tiles * 4 * sizeof *rects);
+    GLint tex2d = 0, align = 4;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex2d);
+    glGetIntegerv(GL_PACK_ALIGNMENT, &align);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glBindTexture(GL_TEXTURE_2D, s->tex[2]);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, pos);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)tex2d);
+    glPixelStorei(GL_PACK_ALIGNMENT, align);
+    int n = layer_band_rects(pos, w, h, lo, hi, rects, tiles);
+    long area = 0;
+    for (int i = 0; i < n; i++) area += (long)(rects[4 * i + 2] - rects[4 * i]) * (rects[4 * i + 3] - rects[4 * i + 1]);
+    if (n >= 0 && area <= BAND_MOST * w * h) band_upload(s, rects, n, w, h);
+    free(rects);
+    free(pos);
+}
+
+void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k, double band_lo, double band_hi) {
     world_layers_slot *s = find(l, cmd);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)l->saved.draw_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)l->saved.rb);
@@ -178,6 +235,8 @@ void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k) 
     if (!s) return;
     s->key = timeless(k);
     s->valid = true;
+    s->gen++;
+    find_band(s, band_lo, band_hi);
     l->builds++;
 }
 
@@ -192,4 +251,41 @@ const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cach
     v->offset[0] = (float)((1.0 - r) * s->key.vp_w / 2.0);
     v->offset[1] = 0.0f;
     return s->tex;
+}
+
+/* The key a whole composed frame of slot s at k is kept under: k without
+ * its time, and the build it was composed from in the time's place */
+static world_cache_key whole_key(const world_layers_slot *s, const world_cache_key *k) {
+    world_cache_key u = timeless(k);
+    u.t = (double)s->gen;
+    return u;
+}
+
+/* Does a frame at k through v read slot s's layers texel for pixel, and
+ * compose its band alone correctly? (see world_layers_band_begin) */
+static bool band_fits(const world_layers_slot *s, const world_cache_key *k, const world_layer_view *v) {
+    bool identity = v->scale[0] == 1.0f && v->scale[1] == 1.0f && v->offset[0] == 0.0f && v->offset[1] == 0.0f;
+    bool passes = !k->depth_test || k->depth_func == GL_LESS || k->depth_func == GL_LEQUAL ||
+                  k->depth_func == GL_ALWAYS;
+    world_cache_key u = timeless(k);
+    return s && s->valid && identity && passes && memcmp(&u, &s->key, sizeof u) == 0;
+}
+
+bool world_layers_band_begin(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v,
+                             unsigned *vbo, int *nverts) {
+    world_layers_slot *s = find(l, cmd);
+    if (!band_fits(s, k, v) || s->band_verts < 0) return false;
+    world_cache_key u = whole_key(s, k);
+    if (!world_cache_restore(&l->whole, cmd, &u)) return false;
+    *vbo = s->band_vbo;
+    *nverts = s->band_verts;
+    l->band_composites++;
+    return true;
+}
+
+void world_layers_keep_whole(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v) {
+    world_layers_slot *s = find(l, cmd);
+    if (!band_fits(s, k, v) || s->band_verts < 0) return;
+    world_cache_key u = whole_key(s, k);
+    world_cache_store_now(&l->whole, cmd, &u);
 }

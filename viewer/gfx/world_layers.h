@@ -23,13 +23,17 @@ typedef struct world_layers_slot {
     bool seen;                  /* last: the command's key at its last frame */
     world_cache_key last, key;       /* key: what the layers hold, t zeroed */
     unsigned fbo, tex[3], depth_rb;
+    long gen;                   /* counts the builds: a whole frame is of one */
+    unsigned band_vbo;          /* the band's tiles as triangles (world_layer_band.h) */
+    int band_verts;             /* their vertices; -1: none to draw alone (the whole frame then) */
 } world_layers_slot;
 
 typedef struct world_layers {
     world_layers_slot slot[WORLD_CACHE_SLOTS];
     bool off;                   /* render_set_world_cache(false) */
     bool keep_larger;           /* render_keep_world_layers */
-    long builds, composites;
+    long builds, composites, band_composites;
+    world_cache whole;          /* each command's last whole composed frame, keyed by its build */
     struct {                    /* what a build changes, put back after it */
         int draw_fbo, rb, vp[4];
         float clear[4];
@@ -61,8 +65,10 @@ world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_
  * is drawn as before from now on). */
 bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k);
 /* Puts back the target and viewport world_layers_begin_build found; the layers
- * now hold k's world. */
-void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k);
+ * now hold k's world. Reads the point layer back once to find the tiles
+ * whose points reach the band of heights [band_lo, band_hi]
+ * (layer_band_heights): where a composed pixel can change with the time. */
+void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k, double band_lo, double band_hi);
 
 /* Where a frame's pixel finds its texel: texel = (pixel + 0.5) * scale
  * + offset (the pixel counted from the viewport's corner), clamped to the
@@ -76,4 +82,20 @@ typedef struct world_layer_view {
  * NULL; *v: how a frame at key k (the one world_layers_check took) reads
  * them. */
 const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cache_key *k, world_layer_view *v);
+
+/* Composing only the band. Where a frame at k reads the layers as they
+ * are (v the identity) and a whole composed frame of the same layers was
+ * kept (world_layers_keep_whole), copies that frame's colour and depth into
+ * the bound draw framebuffer's viewport and gives the band's triangles
+ * (vbo, vertex count; x, y in the viewport's [-1, 1]) to compose over it:
+ * every other pixel is the same at every time. false: nothing done,
+ * compose the whole frame. The depth of every pixel is the copy's, so the
+ * caller composes the band with the depth test off; only a World whose
+ * depth test passes every point against the cleared 1 (off, LESS, LEQUAL,
+ * ALWAYS) takes this. */
+bool world_layers_band_begin(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v,
+                             unsigned *vbo, int *nverts);
+/* After a whole composed frame of command cmd at k (view v) in the bound
+ * draw framebuffer's viewport: kept for world_layers_band_begin. */
+void world_layers_keep_whole(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v);
 #endif
