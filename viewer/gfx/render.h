@@ -197,7 +197,7 @@ long render_world_band_frames(const render *r);
 /* While keep is true (off by default), a frame smaller than the layers of
  * its World (the same world and camera) is composed from them, each pixel
  * from the texel that sees what it sees, instead of building its own: for
- * a picture drawn smaller for a moment (the window while a save's job
+ * a picture whose size moves (the window's budget, and while a save's job
  * compiles), so that neither the shrink nor the growth back to the
  * layers' size builds them (a World drawn whole, 15-80 ms). Off, a frame
  * of a new size builds its own, and every frame is the frame drawn
