@@ -187,7 +187,9 @@ static bool nearest_of(const float *a, int w, int h, const float *b, int lw, int
  * pixels while a save's job compiles, then the size from before), a
  * smaller frame is composed from the larger layers instead (exactly the
  * frame drawn at the layers' size, each pixel the texel that sees what it
- * sees) and growing back to them builds nothing; a larger one builds.
+ * sees) and growing back to them builds nothing; a larger one builds. A
+ * second frame at a size composes only the band over the first, kept
+ * (one whole frame is kept a World: another size's replaces it).
  * Checked against frames drawn with the cache off, on a scene of the
  * lake's world alone (no water pass over it). */
 static void check_running_clock_resizing(const char *pack, bool is_float) {
@@ -204,11 +206,14 @@ static void check_running_clock_resizing(const char *pack, bool is_float) {
     fputs("Clear\nWorld all\n", out);
     fclose(in);
     fclose(out);
-    /* w, h, keep; the layers' size the frame is composed from (0: drawn whole) */
-    static const int steps[][5] = {
-        { 144, 81, 0, 0, 0 },     { 144, 81, 0, 144, 81 }, { 86, 48, 1, 144, 81 },  { 97, 55, 1, 144, 81 },
-        { 144, 81, 0, 144, 81 },  { 131, 74, 0, 131, 74 }, { 144, 81, 1, 144, 81 }, { 131, 74, 1, 144, 81 },
-        { 160, 90, 1, 160, 90 },  { 89, 50, 1, 160, 90 },
+    /* w, h, keep; the layers' size the frame is composed from (0: drawn
+     * whole); 1: the band alone over the whole frame kept at its size */
+    static const int steps[][6] = {
+        { 144, 81, 0, 0, 0, 0 },     { 144, 81, 0, 144, 81, 0 }, { 86, 48, 1, 144, 81, 0 },
+        { 86, 48, 1, 144, 81, 1 },   { 97, 55, 1, 144, 81, 0 },  { 144, 81, 0, 144, 81, 0 },
+        { 131, 74, 0, 131, 74, 0 },  { 144, 81, 1, 144, 81, 0 }, { 131, 74, 1, 144, 81, 0 },
+        { 131, 74, 1, 144, 81, 1 },  { 160, 90, 1, 160, 90, 0 }, { 89, 50, 1, 160, 90, 0 },
+        { 89, 50, 1, 160, 90, 1 },   { 89, 50, 1, 160, 90, 1 },
     };
     const int n = (int)(sizeof steps / sizeof *steps);
     rig on, off;
@@ -220,13 +225,15 @@ static void check_running_clock_resizing(const char *pack, bool is_float) {
     render_set_world_cache(off.r, false);
     CHECK(render_target_create(&on.tg, W, H, is_float) && render_target_create(&off.tg, W, H, is_float));
     for (int k = 0; k < n; k++) {
-        double t = 1.0 + 0.05 * k;
+        double t = 1.0 + 0.37 * k;   /* far enough apart that the shore moves */
         int w = steps[k][0], h = steps[k][1], lw = steps[k][3], lh = steps[k][4];
         render_keep_world_layers(on.r, steps[k][2] != 0);
-        long before = render_world_layer_frames(on.r);
+        long before = render_world_layer_frames(on.r), band_before = render_world_band_frames(on.r);
         float *a = frame_at(&on, t, w, h);
         CHECK_MSG(render_world_layer_frames(on.r) == before + (lw > 0), "%s, %dx%d: composed %ld times, want %d", pack, w,
                   h, render_world_layer_frames(on.r) - before, lw > 0);
+        CHECK_MSG(render_world_band_frames(on.r) == band_before + steps[k][5], "%dx%d, step %d: the band alone %ld times, want %d",
+                  w, h, k, render_world_band_frames(on.r) - band_before, steps[k][5]);
         /* the truth: the frame drawn whole at the layers' size (or its own) */
         float *b = frame_at(&off, t, lw > 0 ? lw : w, lh > 0 ? lh : h);
         CHECK_MSG(nearest_of(a, w, h, b, lw > 0 ? lw : w, lh > 0 ? lh : h),

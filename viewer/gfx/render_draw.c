@@ -64,16 +64,15 @@ static bool draw_world_layers(render *r, frame_state *f, int i, const world_cach
     if (!tex) return false;
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
-    unsigned band_vbo = 0;
-    int band_verts = 0;
-    if (world_layers_band_begin(&r->wlayers, i, k, &lv, &band_vbo, &band_verts)) {
+    world_layer_band band;
+    if (world_layers_band_begin(&r->wlayers, i, k, &lv, &band)) {
         /* every pixel's depth is the copy's: the test would fail the band's */
         if (k->depth_test) glDisable(GL_DEPTH_TEST);
-        world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, band_vbo, band_verts);
+        world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, &band);
         if (k->depth_test) glEnable(GL_DEPTH_TEST);
     } else {
-        world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, 0, 0);
-        world_layers_keep_whole(&r->wlayers, i, k, &lv);
+        world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, NULL);
+        world_layers_keep_whole(&r->wlayers, i, k);
     }
     r->wlayers.composites++;
     return true;

@@ -810,8 +810,8 @@ void world_draw_layers(const gpu_world *gw, const char *which, double offset, co
 static const int LAYER_UNITS[3] = { 31, 21, 20 };
 
 void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3],
-                            const world_layer_view *v, int x, int y, unsigned restore_program, unsigned band_vbo,
-                            int band_verts) {
+                            const world_layer_view *v, int x, int y, unsigned restore_program,
+                            const world_layer_band *band) {
     unsigned p = gw->layers_prog.gl;
     if (!gw->active || !p) return;
     GLint active = 0, before[3];
@@ -830,13 +830,16 @@ void world_composite_layers(const gpu_world *gw, double t, const float eye[3], c
     GLint scale = glGetUniformLocation(p, "uLayerScale"), offset = glGetUniformLocation(p, "uLayerOffset");
     if (scale >= 0) glUniform2f(scale, v->scale[0], v->scale[1]);
     if (offset >= 0) glUniform2f(offset, v->offset[0], v->offset[1]);
-    seti(p, "uLayerBand", band_vbo ? 1 : 0);
-    if (band_vbo) {   /* the band's triangles */
+    seti(p, "uLayerBand", band ? 1 : 0);
+    if (band) {   /* the band's triangles */
+        GLint map = glGetUniformLocation(p, "uLayerBandMap"), pad = glGetUniformLocation(p, "uLayerBandPad");
+        if (map >= 0) glUniform4fv(map, 1, band->map);
+        if (pad >= 0) glUniform2fv(pad, 1, band->pad);
         glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
-        glBindBuffer(GL_ARRAY_BUFFER, band_vbo);
+        glBindBuffer(GL_ARRAY_BUFFER, band->vbo);
         glEnableClientState(GL_VERTEX_ARRAY);
-        glVertexPointer(2, GL_FLOAT, 0, NULL);
-        if (band_verts > 0) glDrawArrays(GL_TRIANGLES, 0, band_verts);
+        glVertexPointer(4, GL_FLOAT, 0, NULL);
+        if (band->verts > 0) glDrawArrays(GL_TRIANGLES, 0, band->verts);
         glBindBuffer(GL_ARRAY_BUFFER, 0);
         glPopClientAttrib();
     } else {

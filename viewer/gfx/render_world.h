@@ -221,12 +221,12 @@ void world_draw_layers(const gpu_world *gw, const char *which, double offset, co
 /* A World at time t from its layers (tex: wet+depth, dry, point; v: how
  * a pixel finds its texel, world_layers.h), into the bound target's
  * viewport (its corner at x, y): the pixels world_draw gives at t (at the
- * layers' own size). band_vbo: 0, the whole viewport; else only its
- * band_verts vertices' triangles (world_layers_band_begin). Restores
- * `restore_program` and the texture units it borrows. */
+ * layers' own size). band: NULL, the whole viewport; else only its
+ * triangles (world_layers_band_begin). Restores `restore_program` and the
+ * texture units it borrows. */
 void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3],
-                            const world_layer_view *v, int x, int y, unsigned restore_program, unsigned band_vbo,
-                            int band_verts);
+                            const world_layer_view *v, int x, int y, unsigned restore_program,
+                            const world_layer_band *band);
 /* The heights whose points' wetness changes with the time (the band a wet
  * test reads the surface in, world_layer_band.h), for this world's level
  * and waves. */

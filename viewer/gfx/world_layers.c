@@ -184,20 +184,22 @@ bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k
  * little to pay for the copy of the rest */
 #define BAND_MOST 0.6
 
-/* The band's triangles in viewport coordinates, from rectangles of pixels. */
+/* The band's triangles in viewport coordinates, from rectangles of
+ * pixels, each corner with its outward direction. */
 static void band_upload(world_layers_slot *s, const int *rects, int n, int w, int h) {
-    float *v = mem_alloc((size_t)(n > 0 ? n : 1) * 12 * sizeof *v);
+    float *v = mem_alloc((size_t)(n > 0 ? n : 1) * 24 * sizeof *v);
     for (int i = 0; i < n; i++) {
         const int *r = rects + 4 * i;
         float x0 = 2.0f * r[0] / w - 1, y0 = 2.0f * r[1] / h - 1, x1 = 2.0f * r[2] / w - 1, y1 = 2.0f * r[3] / h - 1;
-        const float tri[12] = { x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1 };
-        memcpy(v + 12 * i, tri, sizeof tri);
+        const float tri[24] = { x0, y0, -1, -1, x1, y0, 1, -1, x1, y1, 1, 1,
+                                x0, y0, -1, -1, x1, y1, 1, 1,  x0, y1, -1, 1 };
+        memcpy(v + 24 * i, tri, sizeof tri);
     }
     if (!s->band_vbo) glGenBuffers(1, &s->band_vbo);
     GLint before = 0;
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &before);
     glBindBuffer(GL_ARRAY_BUFFER, s->band_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)n * 12 * sizeof *v), v, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)n * 24 * sizeof *v), v, GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, (GLuint)before);
     free(v);
     s->band_verts = 6 * n;
@@ -261,31 +263,48 @@ static world_cache_key whole_key(const world_layers_slot *s, const world_cache_k
     return u;
 }
 
-/* Does a frame at k through v read slot s's layers texel for pixel, and
- * compose its band alone correctly? (see world_layers_band_begin) */
-static bool band_fits(const world_layers_slot *s, const world_cache_key *k, const world_layer_view *v) {
-    bool identity = v->scale[0] == 1.0f && v->scale[1] == 1.0f && v->offset[0] == 0.0f && v->offset[1] == 0.0f;
+/* Can a frame at k compose slot s's band alone? (world_layers_band_begin) */
+static bool band_fits(const world_layers *l, const world_layers_slot *s, const world_cache_key *k) {
     bool passes = !k->depth_test || k->depth_func == GL_LESS || k->depth_func == GL_LEQUAL ||
                   k->depth_func == GL_ALWAYS;
     world_cache_key u = timeless(k);
-    return s && s->valid && identity && passes && memcmp(&u, &s->key, sizeof u) == 0;
+    return s && s->valid && s->band_verts >= 0 && passes && layers_serve(l, &s->key, &u);
+}
+
+/* Where the frame's pixels fall in the layers' viewport: a pixel's centre
+ * c reads texel c scale + offset, so the layers' x (2 texel / lw - 1) is
+ * the frame's (2 c / fw - 1) times lw / (fw scale), moved; and where the
+ * frame resamples, its tiles' edges fall between pixel centres, so a
+ * pixel of margin keeps a centre on an edge inside the band. */
+static void band_map(const world_layers_slot *s, const world_cache_key *k, const world_layer_view *v,
+                     world_layer_band *b) {
+    const int lsize[2] = { s->key.vp_w, s->key.vp_h }, fsize[2] = { k->vp_w, k->vp_h };
+    bool identity = true;
+    for (int i = 0; i < 2; i++) {
+        double a = lsize[i] / (fsize[i] * (double)v->scale[i]);
+        b->map[i] = (float)a;
+        b->map[2 + i] = (float)((1.0 - 2.0 * v->offset[i] / lsize[i]) * a - 1.0);
+        identity = identity && v->scale[i] == 1.0f && v->offset[i] == 0.0f && lsize[i] == fsize[i];
+    }
+    for (int i = 0; i < 2; i++) b->pad[i] = identity ? 0.0f : 2.0f / (float)fsize[i];
 }
 
 bool world_layers_band_begin(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v,
-                             unsigned *vbo, int *nverts) {
+                             world_layer_band *band) {
     world_layers_slot *s = find(l, cmd);
-    if (!band_fits(s, k, v) || s->band_verts < 0) return false;
+    if (!band_fits(l, s, k)) return false;
     world_cache_key u = whole_key(s, k);
     if (!world_cache_restore(&l->whole, cmd, &u)) return false;
-    *vbo = s->band_vbo;
-    *nverts = s->band_verts;
+    band->vbo = s->band_vbo;
+    band->verts = s->band_verts;
+    band_map(s, k, v, band);
     l->band_composites++;
     return true;
 }
 
-void world_layers_keep_whole(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v) {
+void world_layers_keep_whole(world_layers *l, int cmd, const world_cache_key *k) {
     world_layers_slot *s = find(l, cmd);
-    if (!band_fits(s, k, v) || s->band_verts < 0) return;
+    if (!band_fits(l, s, k)) return;
     world_cache_key u = whole_key(s, k);
     world_cache_store_now(&l->whole, cmd, &u);
 }

@@ -83,19 +83,27 @@ typedef struct world_layer_view {
  * them. */
 const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cache_key *k, world_layer_view *v);
 
-/* Composing only the band. Where a frame at k reads the layers as they
- * are (v the identity) and a whole composed frame of the same layers was
- * kept (world_layers_keep_whole), copies that frame's colour and depth into
- * the bound draw framebuffer's viewport and gives the band's triangles
- * (vbo, vertex count; x, y in the viewport's [-1, 1]) to compose over it:
- * every other pixel is the same at every time. false: nothing done,
- * compose the whole frame. The depth of every pixel is the copy's, so the
- * caller composes the band with the depth test off; only a World whose
- * depth test passes every point against the cleared 1 (off, LESS, LEQUAL,
- * ALWAYS) takes this. */
+/* The band's tiles to compose over a copied whole frame. */
+typedef struct world_layer_band {
+    unsigned vbo;               /* triangles, 4 floats a vertex: x, y in the layers' viewport's
+                                 * [-1, 1], then the corner's outward direction (-1 or 1 each) */
+    int verts;
+    float map[4];               /* the frame's x, y = the layers' x, y * map.xy + map.zw */
+    float pad[2];               /* each corner moved outward this far (the frame's [-1, 1]): a
+                                 * pixel where the frame resamples larger layers, 0 where not */
+} world_layer_band;
+
+/* Composing only the band. Where a whole composed frame of the same
+ * layers at k's size was kept (world_layers_keep_whole), copies its colour
+ * and depth into the bound draw framebuffer's viewport and gives the
+ * band's triangles to compose over it: every other pixel is the same at
+ * every time. false: nothing done, compose the whole frame. The depth of
+ * every pixel is the copy's, so the caller composes the band with the
+ * depth test off; only a World whose depth test passes every point
+ * against the cleared 1 (off, LESS, LEQUAL, ALWAYS) takes this. */
 bool world_layers_band_begin(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v,
-                             unsigned *vbo, int *nverts);
-/* After a whole composed frame of command cmd at k (view v) in the bound
- * draw framebuffer's viewport: kept for world_layers_band_begin. */
-void world_layers_keep_whole(world_layers *l, int cmd, const world_cache_key *k, const world_layer_view *v);
+                             world_layer_band *band);
+/* After a whole composed frame of command cmd at k in the bound draw
+ * framebuffer's viewport: kept for world_layers_band_begin. */
+void world_layers_keep_whole(world_layers *l, int cmd, const world_cache_key *k);
 #endif
