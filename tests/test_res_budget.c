@@ -4,6 +4,8 @@
  * whose frame costs the budget, a fixed cost above the budget stays at the
  * floor, and a still picture gets one full-resolution frame and then none. */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "check.h"
 #include "res_budget.h"
@@ -245,6 +247,51 @@ static void test_first_frame_at_a_size_is_not_a_measure(void) {
               "settled at %.3f of a side, %.1f ms a frame", s, model_ms(10, 100, s, 960, 540));
 }
 
+/* A cost step: natural's targets double at 0.354 of a side, and a frame
+ * just over it costs half as much again as one just under (the lake in
+ * the window, llvmpipe: 37 against 58 ms). Growing from under the step by
+ * the time left crossed it, two frames over the aim shrank it back, and
+ * the size went back and forth every few frames, a third of them over the
+ * budget. A size found over the aim is a ceiling for RES_BUDGET_CEILING_S:
+ * growth stops short of it (halfway, then closer), so the size settles
+ * under the step and tries it again only once the ceiling lapses. */
+static double step_ms(double s) {
+    int iw, ih;
+    res_budget_size(s, 960, 540, &iw, &ih);
+    return 15 + 390 * (double)iw * ih / 1e6 + (s >= 0.354 ? 18 : 0);
+}
+
+static void test_cost_step_settles_under_it(void) {
+    res_budget rb;
+    res_budget_init(&rb, 50);
+    double t = 0, s = 1, last = 0, prev = -1, least = 1;
+    int changes = 0, over = 0;
+    unsigned seed = 777;
+    for (int i = 0; i < 400; i++) {
+        CHECK(res_budget_plan(&rb, (uint64_t)i + 1, t, last, false, &s));
+        seed = seed * 1103515245u + 12345u;
+        last = step_ms(s) * (0.85 + 0.3 * ((seed >> 16) & 0x7fff) / 32767.0);   /* the machine's noise, +-15% */
+        if (i >= 100) {
+            changes += s != prev;
+            over += step_ms(s) > 50;
+            least = fmin(least, s);
+        }
+        prev = s;
+        t += last / 1e3;
+    }
+    /* 300 frames of ~40 ms, 12 s: without the ceiling 59 new sizes and 75
+     * frames over the budget */
+    CHECK_MSG(changes <= 10, "%d new sizes in 300 frames, want at most 10", changes);
+    CHECK_MSG(over <= 8, "%d frames over the budget in 300, want at most 8", over);
+    CHECK_MSG(step_ms(least) >= 30, "down to %.3f of a side, %.1f ms a frame", least, step_ms(least));
+    /* the camera moved (another picture, other costs): the ceiling is
+     * forgotten and the next frames under the aim grow past it */
+    double under;
+    res_budget_view(&rb, 42);
+    for (int i = 0; i < 6; i++) CHECK(res_budget_plan(&rb, (uint64_t)1000 + i, t, 20, false, &under));
+    CHECK_MSG(under > 0.37, "after the camera moved: %.3f of a side", under);
+}
+
 /* One slow frame (the machine's noise) keeps the size; two in a row over
  * the aim shrink it; one quick one does not grow it. */
 static void test_one_frame_is_noise(void) {
@@ -389,6 +436,7 @@ int main(void) {
     RUN(test_noise_stays_bounded);
     RUN(test_first_frame_at_a_size_is_not_a_measure);
     RUN(test_one_frame_is_noise);
+    RUN(test_cost_step_settles_under_it);
     RUN(test_contended_shrinks_and_comes_back);
     RUN(test_costlier_path_shrinks_at_once);
     RUN(test_key_changes_with_any_byte);

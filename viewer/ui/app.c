@@ -660,6 +660,9 @@ uint64_t app_picture_key_timeless(app *a, int w, int h) { return picture_key(a, 
 
 bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale) {
     a->budget.budget_ms = a->budget_ms;
+    /* the picture but its clock: the camera, the sliders, a reload, the area */
+    uint64_t view = hash_fnv1a(picture_key(a, a->area_w, a->area_h, false), &a->generation, sizeof a->generation);
+    res_budget_view(&a->budget, view);
     return res_budget_plan(&a->budget, key, glfwGetTime(), a->last_frame_ms, force_full || a->shooting, scale);
 }
 

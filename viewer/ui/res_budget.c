@@ -33,7 +33,41 @@ void res_budget_feed(res_budget *b, double ms, double scale) {
  * size changes when two in a row at it were both over the aim (by the
  * smaller time) or both under it (by the larger), so one slow or quick
  * frame (the machine's noise) does not cost a new size's first frame. */
-static void measure(res_budget *b, double ms) {
+/* After the measure at scale drawn. A shrink from it (over the aim, not
+ * while a job shares the cores) makes drawn the ceiling for ceiling_s;
+ * meanwhile growth stops halfway to it (its geometric mean with drawn),
+ * or stays where that gains under 2% of a side; once it lapses, growth
+ * tries the ceiling itself (not beyond), and a try that fails again soon
+ * holds twice as long (up to RES_BUDGET_CEILING_MAX_S). A size that holds
+ * at the ceiling clears it. Without it a size just over a cost step came
+ * back every few frames: the lake in the window, natural 337x189 <->
+ * 374x210 (its targets double at 0.354 of a side), a frame in four over
+ * the budget. */
+static void ceiling(res_budget *b, double drawn, double now_s) {
+    if (b->contended) return;
+    if (b->scale < drawn) {
+        bool again = b->ceiling > 0 && drawn <= b->ceiling * 1.05 && now_s < b->ceiling_until + b->ceiling_s;
+        b->ceiling_s = again ? fmin(2 * b->ceiling_s, RES_BUDGET_CEILING_MAX_S) : RES_BUDGET_CEILING_S;
+        b->ceiling = drawn;
+        b->ceiling_until = now_s + b->ceiling_s;
+        return;
+    }
+    if (!(b->ceiling > 0)) return;
+    if (drawn >= b->ceiling * 0.999) {
+        b->ceiling = 0;
+        return;
+    }
+    double cap = now_s < b->ceiling_until ? sqrt(drawn * b->ceiling) : b->ceiling;
+    if (b->scale > cap) b->scale = cap > drawn * 1.02 ? cap : drawn;
+}
+
+void res_budget_view(res_budget *b, uint64_t view_key) {
+    if (view_key == b->view_key) return;
+    b->view_key = view_key;
+    b->ceiling = 0;
+}
+
+static void measure(res_budget *b, double ms, double now_s) {
     if (!(ms > 0) || b->drawn_scale != b->prev_scale) {
         b->prev_ms = 0;
         return;
@@ -43,11 +77,12 @@ static void measure(res_budget *b, double ms) {
     if (!(prev > 0)) return;
     if (ms > aim && prev > aim) res_budget_feed(b, fmin(ms, prev), b->drawn_scale);
     else if (ms < aim && prev < aim) res_budget_feed(b, fmax(ms, prev), b->drawn_scale);
+    ceiling(b, b->drawn_scale, now_s);
 }
 
 bool res_budget_plan(res_budget *b, uint64_t key, double now_s, double last_frame_ms, bool force_full,
                      double *scale) {
-    if (b->measure) measure(b, last_frame_ms);
+    if (b->measure) measure(b, last_frame_ms, now_s);
     b->measure = false;
     bool changed = !b->have_key || key != b->key;
     if (changed) {

@@ -15,7 +15,12 @@
  * most the budget. The first frame at a new size is not a measure (it pays
  * once for what later frames at the size keep: the world's layers), and
  * the size changes on two frames in a row, both over or both under the aim
- * (one noisy frame would cost a new size's first frame). The renderer's fixed-size passes and meshes shrink with
+ * (one noisy frame would cost a new size's first frame). A size that
+ * shrank because its frames were over the aim is a ceiling for
+ * RES_BUDGET_CEILING_S: growth goes halfway to it at most, then tries it
+ * again, holding twice as long each time the try fails; so a cost step (a
+ * pack's targets doubling at a size) with the machine's noise does not
+ * send the size across it and back every few frames. The renderer's fixed-size passes and meshes shrink with
  * the frame (render_set_detail), so a cost stays about a + b*pixels. A cost that stays above the budget at the floor (a
  * fixed pass slower than the budget) stays at the floor.
  *
@@ -42,6 +47,8 @@
 #define RES_BUDGET_SETTLE_S 0.25    /* still this long: the full-resolution frame */
 #define RES_BUDGET_DEADBAND 0.15    /* within 15% of the budget: keep the size */
 #define RES_BUDGET_FIRST 0.5        /* the first changing frame, before any measure: half a side */
+#define RES_BUDGET_CEILING_S 3.0     /* a size found over the aim is not grown back to for this long, */
+#define RES_BUDGET_CEILING_MAX_S 24.0 /* ... twice as long each time it fails again, up to this */
 
 typedef struct res_budget {
     double budget_ms;            /* 0 (or less): off, every frame at full resolution */
@@ -60,6 +67,10 @@ typedef struct res_budget {
     bool hold_full;              /* the still picture's full frame waits (res_budget_hold_full) */
     bool contended;              /* another job shares the cores (res_budget_contend) */
     double calm_scale;           /* ... scale before it began, taken back at its end */
+    double ceiling;              /* the last scale that shrank, over the aim: growth stops short (0: none) */
+    double ceiling_until;        /* ... of it until this clock, then tries it */
+    double ceiling_s;            /* ... for this long: RES_BUDGET_CEILING_S, doubled by each try that fails */
+    uint64_t view_key;           /* the picture but its clock the ceiling was found for (res_budget_view) */
 } res_budget;
 
 void res_budget_init(res_budget *b, double budget_ms);
@@ -112,6 +123,10 @@ void res_budget_contend(res_budget *b, bool contended);
  * (the size changes only after two frames over the aim). While contended,
  * the size from before the contention still comes back at its end. */
 void res_budget_costlier(res_budget *b, double cost);
+/* The picture's inputs but its clock (a hash of the camera, the sliders,
+ * the scene's load): a change forgets the ceiling, which held another
+ * picture's costs. Only while the clock alone runs does it stay. */
+void res_budget_view(res_budget *b, uint64_t view_key);
 /* One frame drawn at scale took ms: the next changing frame's scale. */
 void res_budget_feed(res_budget *b, double ms, double scale);
 
