@@ -312,6 +312,15 @@ static void test_one_frame_is_noise(void) {
     CHECK(res_budget_plan(&rb, ++key, t, 1.4 * steady, false, &s1));   /* two: the scene got heavier */
     CHECK(res_budget_plan(&rb, ++key, t, 1.4 * steady, false, &s1));
     CHECK_LT(s1, s);
+    /* and lighter again: a size that held before the shrink is no ceiling
+     * (test_cost_step_settles_under_it), so it grows back */
+    double s2 = s1;
+    for (int i = 0; i < 12; i++) {
+        CHECK(res_budget_plan(&rb, ++key, t, model_ms(15, 249, s2, 960, 540), false, &s2));
+        t += 0.04;
+    }
+    CHECK_MSG(s2 > s1 && model_ms(15, 249, s2, 960, 540) >= 50 / (1 + RES_BUDGET_DEADBAND) * (1 - RES_BUDGET_DEADBAND),
+              "after the noise: %.3f of a side, %.1f ms a frame", s2, model_ms(15, 249, s2, 960, 540));
 }
 
 /* A save's job takes one of two cores (res_budget_contend): frames cost

@@ -33,32 +33,40 @@ void res_budget_feed(res_budget *b, double ms, double scale) {
  * size changes when two in a row at it were both over the aim (by the
  * smaller time) or both under it (by the larger), so one slow or quick
  * frame (the machine's noise) does not cost a new size's first frame. */
-/* After the measure at scale drawn. A shrink from it (over the aim, not
- * while a job shares the cores) makes drawn the ceiling for ceiling_s;
- * meanwhile growth stops halfway to it (its geometric mean with drawn),
- * or stays where that gains under 2% of a side; once it lapses, growth
- * tries the ceiling itself (not beyond), and a try that fails again soon
- * holds twice as long (up to RES_BUDGET_CEILING_MAX_S). A size that holds
- * at the ceiling clears it. Without it a size just over a cost step came
- * back every few frames: the lake in the window, natural 337x189 <->
- * 374x210 (its targets double at 0.354 of a side), a frame in four over
- * the budget. */
+/* After the measure at scale drawn. A size grown to whose first measures
+ * (RES_BUDGET_CEILING_TRIES) shrink it, over the aim, not while a job
+ * shares the cores, is the ceiling for ceiling_s; meanwhile growth stops
+ * halfway to it (its geometric mean with drawn), or stays where that
+ * gains under 2% of a side; once it lapses, growth tries the ceiling
+ * itself (not beyond), and a try that fails again soon holds twice as
+ * long (up to RES_BUDGET_CEILING_MAX_S). A size that holds at the ceiling
+ * clears it. A size that held a while and then shrank (the machine's
+ * noise, a job) sets none: a ceiling from such a shrink kept the window
+ * small for seconds. Without it a size just over a cost step came back
+ * every few frames: the lake in the window, natural 337x189 <-> 374x210
+ * (its targets double at 0.354 of a side), a frame in four over the
+ * budget. */
 static void ceiling(res_budget *b, double drawn, double now_s) {
-    if (b->contended) return;
+    bool fresh = b->grown_to == drawn && b->grown_measures++ < RES_BUDGET_CEILING_TRIES;
     if (b->scale < drawn) {
+        b->grown_to = 0;
+        if (!fresh || b->contended) return;
         bool again = b->ceiling > 0 && drawn <= b->ceiling * 1.05 && now_s < b->ceiling_until + b->ceiling_s;
         b->ceiling_s = again ? fmin(2 * b->ceiling_s, RES_BUDGET_CEILING_MAX_S) : RES_BUDGET_CEILING_S;
         b->ceiling = drawn;
         b->ceiling_until = now_s + b->ceiling_s;
         return;
     }
-    if (!(b->ceiling > 0)) return;
-    if (drawn >= b->ceiling * 0.999) {
-        b->ceiling = 0;
-        return;
+    if (b->ceiling > 0 && drawn >= b->ceiling * 0.999) b->ceiling = 0;   /* it holds there now */
+    if (b->scale <= drawn) return;
+    if (b->ceiling > 0) {
+        double cap = now_s < b->ceiling_until ? sqrt(drawn * b->ceiling) : b->ceiling;
+        if (b->scale > cap) b->scale = cap > drawn * 1.02 ? cap : drawn;
     }
-    double cap = now_s < b->ceiling_until ? sqrt(drawn * b->ceiling) : b->ceiling;
-    if (b->scale > cap) b->scale = cap > drawn * 1.02 ? cap : drawn;
+    if (b->scale > drawn) {
+        b->grown_to = b->scale;
+        b->grown_measures = 0;
+    }
 }
 
 void res_budget_view(res_budget *b, uint64_t view_key) {

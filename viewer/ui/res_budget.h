@@ -15,8 +15,8 @@
  * most the budget. The first frame at a new size is not a measure (it pays
  * once for what later frames at the size keep: the world's layers), and
  * the size changes on two frames in a row, both over or both under the aim
- * (one noisy frame would cost a new size's first frame). A size that
- * shrank because its frames were over the aim is a ceiling for
+ * (one noisy frame would cost a new size's first frame). A size grown to
+ * that shrank at once, its frames over the aim, is a ceiling for
  * RES_BUDGET_CEILING_S: growth goes halfway to it at most, then tries it
  * again, holding twice as long each time the try fails; so a cost step (a
  * pack's targets doubling at a size) with the machine's noise does not
@@ -49,6 +49,7 @@
 #define RES_BUDGET_FIRST 0.5        /* the first changing frame, before any measure: half a side */
 #define RES_BUDGET_CEILING_S 3.0     /* a size found over the aim is not grown back to for this long, */
 #define RES_BUDGET_CEILING_MAX_S 24.0 /* ... twice as long each time it fails again, up to this */
+#define RES_BUDGET_CEILING_TRIES 3    /* a size grown to that shrinks within this many measures */
 
 typedef struct res_budget {
     double budget_ms;            /* 0 (or less): off, every frame at full resolution */
@@ -71,6 +72,8 @@ typedef struct res_budget {
     double ceiling_until;        /* ... of it until this clock, then tries it */
     double ceiling_s;            /* ... for this long: RES_BUDGET_CEILING_S, doubled by each try that fails */
     uint64_t view_key;           /* the picture but its clock the ceiling was found for (res_budget_view) */
+    double grown_to;             /* the scale last grown to (0: none since) */
+    int grown_measures;          /* ... and how many measures it has had */
 } res_budget;
 
 void res_budget_init(res_budget *b, double budget_ms);
