@@ -61,6 +61,7 @@ struct app {
     float budget_ms;             /* the panel's slider */
     double last_frame_ms;        /* the previous frame's wall time; 0: not a fair measure */
     bool frame_fair;             /* this frame did no reload, no second draw: its time measures the scene */
+    bool sharp_world;            /* app_sharp_world */
     unsigned long generation;    /* reloads, rebuilds, pack switches: a new picture each */
     bool shooting;               /* this frame is a screenshot's: full resolution */
     bool client_busy;            /* app_desc.between_frames has work left */
@@ -626,6 +627,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
 
 void app_picture_changed(app *a) { a->generation++; }
 
+void app_sharp_world(app *a, bool on) { a->sharp_world = on; }
+
 /* Does any scene's picture move with the clock (render_reads_clock)? A
  * glman scene without Timer does not: its picture is still while the
  * clock runs, drawn once at full resolution, and the window sleeps. */
@@ -760,14 +763,16 @@ static void frame(app *a, bool scripted) {
     if (contended && a->reloaded_early) a->contend_until = glfwGetTime() + APP_CONTEND_TAIL_S;
     res_budget_contend(&a->budget, contended || job_contends(a) || glfwGetTime() < a->contend_until);
     /* A smaller frame reads the larger frame's World layers: while a job
-     * compiles, and as the budget's size wanders. Rebuilt at each new size
-     * they cost the first frame there 2-6 times a frame (the lake on
-     * llvmpipe: 70-170 ms against 25-45), and a size that moves across a
-     * cost step (natural's targets at 0.354 of a side) or with the
-     * machine's noise came back to the larger one every half second:
-     * natural drew 40 frames in 2.3 s instead of 1.75 s */
-    for (int i = 0; i < a->nscenes; i++)
-        render_keep_world_layers(a->scenes[i], a->budget.budget_ms > 0 || a->budget.contended || a->budget.hold_full);
+     * compiles, and, where the client shows the world from a full-size
+     * frame of its own (the view's sharp world), as the budget's size
+     * moves. Rebuilt at each new size they cost the first frame there 2-6
+     * times a frame (the lake on llvmpipe: 70-170 ms against 25-45), and
+     * the size came back to the larger one every half second (natural:
+     * 40 frames in 2.3 s instead of 1.75 s). Read from larger layers, a
+     * reduced frame's world is their nearest texels: compare-view, which
+     * enlarges its frames whole, showed that (10-25% more RMSE) */
+    bool keep = (a->sharp_world && a->budget.budget_ms > 0) || a->budget.contended || a->budget.hold_full;
+    for (int i = 0; i < a->nscenes; i++) render_keep_world_layers(a->scenes[i], keep);
     sheet_ended(a, false);
     a->s.mouse.ui_right = app_scene_x_window(a);   /* presses left of it are the panel's */
     if (a->d.mouse) a->d.mouse(a->d.user, a);

@@ -170,6 +170,11 @@ bool app_budget_plan(app *a, uint64_t key, bool force_full, double *scale);
 void app_budget_drawn(app *a, int iw, int ih, int w, int h);
 /* A rebuild or pack switch of the client's: the picture is new. */
 void app_picture_changed(app *a);
+/* The client shows a running clock's world at full resolution, not from
+ * its reduced frames (the view's sharp world; off by default): those may
+ * then read a larger frame's World layers, each pixel the nearest texel,
+ * whenever the budget's size moves (render_keep_world_layers). */
+void app_sharp_world(app *a, bool on);
 
 /* A still window sleeps (waits for input, a window event, a watched
  * file's news or a compile job's ready, each of which wakes it at once:

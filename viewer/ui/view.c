@@ -315,6 +315,7 @@ static void on_draw(void *user, app *a) {
         if (world) glEnable(GL_FRAMEBUFFER_SRGB);
         /* before the frame: the world-only frame starts a snapshot of its own */
         bool reduced_world = world && !v->world_off && v->drawn_w < aw;
+        app_sharp_world(a, world && !v->world_off);
         v->over_world = reduced_world && world_ready(v, a, aw, ah, &view, s->t);
         /* a full frame breaks the hold: a paused picture's first reduced
          * frame after a save must not draw the world (its key held since
