@@ -26,13 +26,6 @@ void res_budget_feed(res_budget *b, double ms, double scale) {
     b->scale = clampd(sqrt(area), RES_BUDGET_FLOOR, 1.0);
 }
 
-/* The last frame's time, as a measure of its size. The first frame at a
- * new size is none: it pays once for what the next ones keep (the world's
- * layers built at the size, targets made), and sizing by it would shrink
- * the picture and pay again, frame after frame. Nor is one frame: the
- * size changes when two in a row at it were both over the aim (by the
- * smaller time) or both under it (by the larger), so one slow or quick
- * frame (the machine's noise) does not cost a new size's first frame. */
 /* After the measure at scale drawn. A size grown to whose first measures
  * (RES_BUDGET_CEILING_TRIES) shrink it, over the aim, not while a job
  * shares the cores, is the ceiling for ceiling_s; meanwhile growth stops
@@ -75,6 +68,13 @@ void res_budget_view(res_budget *b, uint64_t view_key) {
     b->ceiling = 0;
 }
 
+/* The last frame's time, as a measure of its size. The first frame at a
+ * new size is none: it pays once for what the next ones keep (the world's
+ * layers built at the size, targets made), and sizing by it would shrink
+ * the picture and pay again, frame after frame. Nor is one frame: the
+ * size changes when two in a row at it were both over the aim (by the
+ * smaller time) or both under it (by the larger), so one slow or quick
+ * frame (the machine's noise) does not cost a new size's first frame. */
 static void measure(res_budget *b, double ms, double now_s) {
     if (!(ms > 0) || b->drawn_scale != b->prev_scale) {
         b->prev_ms = 0;
