@@ -1,4 +1,5 @@
 #include "world_height_tiles.h"
+#include "world_layer_band.h"
 
 #include <math.h>
 #include <string.h>
@@ -8,9 +9,7 @@
 void height_tiles_start(height_tiles *t, double map_half, double level, double bound) {
     memset(t, 0, sizeof *t);
     t->map_half = map_half;
-    double eps = 1e-4 * (fabs(level) + fabs(bound) + 1.0);
-    t->lo_y = level - fabs(bound) - eps;
-    t->hi_y = level + eps;
+    layer_band_heights(level, bound, &t->lo_y, &t->hi_y);   /* the band a wet test reads the map in */
 }
 
 /* The cells [x0, x1] x [z0, z1] meets (clamped to the map), marked. */
