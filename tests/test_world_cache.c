@@ -28,12 +28,17 @@ typedef struct rig {
     render_target tg;
 } rig;
 
-static void rig_open(rig *g, const char *pack, bool cache, bool is_float) {
-    render_desc rd = { .pack = pack };
+/* samples: the screen passes' MSAA (0: the renderer's default) */
+static void rig_open_msaa(rig *g, const char *pack, bool cache, bool is_float, int samples) {
+    render_desc rd = { .pack = pack, .samples = samples };
     g->r = render_create(&rd);
     CHECK_MSG(render_load(g->r, LAKE), "%s", render_messages(g->r));
     render_set_world_cache(g->r, cache);
     CHECK(render_target_create(&g->tg, W, H, is_float));
+}
+
+static void rig_open(rig *g, const char *pack, bool cache, bool is_float) {
+    rig_open_msaa(g, pack, cache, is_float, 0);
 }
 
 static void rig_close(rig *g) {
@@ -124,15 +129,17 @@ static void check_pack(const char *pack, bool is_float) {
  * the land composed (world_layer_band.h), and every frame equals, bit for
  * bit, the frame drawn with the cache off: the lake (terrain, objects,
  * sky; the shore uncovered and covered by the waves), and from under the
- * water (the eye's path in water fades the world). */
-static void check_running_clock(const char *pack, bool is_float, const render_view *v) {
+ * water (the eye's path in water fades the world); with 4x MSAA too
+ * (each sample composed, the depth copied). */
+static void check_running_clock(const char *pack, bool is_float, const render_view *v, int samples) {
     rig on, off;
-    rig_open(&on, pack, true, is_float);
-    rig_open(&off, pack, false, is_float);
+    rig_open_msaa(&on, pack, true, is_float, samples);
+    rig_open_msaa(&off, pack, false, is_float, samples);
     for (int k = 0; k < 5; k++) {
         double t = 1.0 + 0.37 * k;
         float *a = frame(&on, t, v), *b = frame(&off, t, v);
-        CHECK_MSG(same(a, b), "%s, t = %.2f: the composed frame differs from the drawn one", pack, t);
+        CHECK_MSG(same(a, b), "%s, %d samples, t = %.2f: the composed frame differs from the drawn one", pack,
+                  samples, t);
         free(a);
         free(b);
     }
@@ -249,11 +256,14 @@ static void check_running_clock_resizing(const char *pack, bool is_float) {
 
 static void test_running_clock_layers(void) {
     check_running_clock_resizing("basic", false);
-    check_running_clock("basic", false, NULL);
-    check_running_clock("natural", true, NULL);
+    check_running_clock("basic", false, NULL, 1);
+    check_running_clock("natural", true, NULL, 1);
+    /* `tarn render`'s default: multisampled layers, a sample at a time */
+    check_running_clock("basic", false, NULL, 4);
+    check_running_clock("natural", true, NULL, 4);
     /* under the water, looking at the rock and the shore */
     render_view below = { .eye = { 0.0f, -0.6f, 2.0f }, .center = { -3.0f, -0.2f, -3.0f }, .up = { 0, 1, 0 } };
-    check_running_clock("basic", false, &below);
+    check_running_clock("basic", false, &below, 1);
 }
 
 static void test_basic_rgba8(void) { check_pack("basic", false); }

@@ -71,7 +71,7 @@ unsigned long long render_world_programs_hash(const render *r) {
     unsigned long long h = HASH_FNV1A_BASIS;
     for (int m = 0; m < WORLD_MODES; m++) h = hash_fnv1a(h, &w->progs[m].hash, sizeof w->progs[m].hash);
     h = hash_fnv1a(h, &w->height_prog.hash, sizeof w->height_prog.hash);
-    h = hash_fnv1a(h, &w->layers_prog.hash, sizeof w->layers_prog.hash);
+    for (int ms = 0; ms < 2; ms++) h = hash_fnv1a(h, &w->layers_prog[ms].hash, sizeof w->layers_prog[ms].hash);
     /* the ocean's and the flow's passes move the surface the shore is wet under */
     for (int k = 0; k < OCEAN_PROGS; k++) h = hash_fnv1a(h, &w->ocean.progs[k].hash, sizeof w->ocean.progs[k].hash);
     return hash_fnv1a(h, &w->flow.prog.hash, sizeof w->flow.prog.hash);

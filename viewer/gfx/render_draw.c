@@ -49,6 +49,7 @@ void render_draw_mesh(render *r, const frame_state *f, int ci, const gpu_mesh *m
  * later one the last whole frame copied and only the band where the
  * surface moves over the land composed over it (world_layer_band.h). */
 static bool draw_world_layers(render *r, frame_state *f, int i, const world_cache_key *k, const char *which, float offset) {
+    if (!world_can_composite(&r->world, k->samples)) return false;
     world_layers_use use = world_layers_check(&r->wlayers, i, k);
     if (use == WORLD_LAYERS_NO) return false;
     unsigned restore = f->cur ? f->cur->gl : 0;
@@ -57,6 +58,11 @@ static bool draw_world_layers(render *r, frame_state *f, int i, const world_cach
         world_draw_layers(&r->world, which, offset, f->cam_eye, !f->in_rtt, restore);
         double lo, hi;
         world_wet_band(&r->world, &lo, &hi);
+        const unsigned *ms = world_layers_begin_pick(&r->wlayers, i);
+        if (ms) {   /* multisampled: a point a pixel picked to read back */
+            world_layer_view id = { { 1, 1 }, { 0, 0 }, k->samples };
+            world_pick_band_points(&r->world, ms, &id, lo, hi, restore);
+        }
         world_layers_end_build(&r->wlayers, i, k, lo, hi);
     }
     world_layer_view lv;
@@ -71,7 +77,11 @@ static bool draw_world_layers(render *r, frame_state *f, int i, const world_cach
         world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, &band);
         if (k->depth_test) glEnable(GL_DEPTH_TEST);
     } else {
+        /* multisampled: the depth copied, the colour composed over it */
+        bool copied = k->depth_test && world_layers_copy_depth(&r->wlayers, i, k, vp[0], vp[1]);
+        if (copied) glDisable(GL_DEPTH_TEST);
         world_composite_layers(&r->world, f->t, f->cam_eye, tex, &lv, vp[0], vp[1], restore, NULL);
+        if (copied) glEnable(GL_DEPTH_TEST);
         world_layers_keep_whole(&r->wlayers, i, k);
     }
     r->wlayers.composites++;

@@ -438,7 +438,8 @@ static bool scene_reads_clock(const render *r) {
     if (w->ocean.active || w->flow.active || w->spray.active) return true;   /* stepped in time on their own */
     for (int i = 0; i < WORLD_MODES; i++)
         if (prog_reads_clock(&w->progs[i])) return true;
-    return prog_reads_clock(&w->height_prog) || prog_reads_clock(&w->layers_prog);
+    return prog_reads_clock(&w->height_prog) || prog_reads_clock(&w->layers_prog[0]) ||
+           prog_reads_clock(&w->layers_prog[1]);
 }
 
 /* The world the scene describes (if any), rebuilt only when it changed. */

@@ -471,16 +471,20 @@ static bool build_program(gpu_world *gw, const prog_sources *src,  diag_list *lo
     snprintf(h->name, sizeof h->name, "WorldHeight");
     snprintf(h->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_height_cells.vert", src->common_dir);
     snprintf(h->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_height.frag", src->common_dir);
-    prog *c = &gw->layers_prog;
-    memset(c, 0, sizeof *c);
-    memset(&gw->layers_unifs, 0, sizeof gw->layers_unifs);
-    c->unifs = &gw->layers_unifs;
-    c->world_uniforms = true;
-    set_height_define(gw, c);
-    world_set_defines(gw, c);
-    snprintf(c->name, sizeof c->name, "WorldLayers");
-    snprintf(c->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_layers.vert", src->common_dir);
-    snprintf(c->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_layers.frag", src->common_dir);
+    for (int ms = 0; ms < 2; ms++) {
+        prog *c = &gw->layers_prog[ms];
+        memset(c, 0, sizeof *c);
+        memset(&gw->layers_unifs[ms], 0, sizeof gw->layers_unifs[ms]);
+        c->unifs = &gw->layers_unifs[ms];
+        c->world_uniforms = true;
+        if (ms) snprintf(c->fixed[0].name, sizeof c->fixed[0].name, "WORLD_LAYERS_MS");
+        if (ms) snprintf(c->fixed[0].value, sizeof c->fixed[0].value, "1");
+        set_height_define(gw, c);
+        world_set_defines(gw, c);
+        snprintf(c->name, sizeof c->name, "WorldLayers");
+        snprintf(c->stage_path[SHADER_VERTEX], GLIB_PATH_MAX, "%s/world_layers.vert", src->common_dir);
+        snprintf(c->stage_path[SHADER_FRAGMENT], GLIB_PATH_MAX, "%s/world_layers.frag", src->common_dir);
+    }
     return world_build_programs(gw, src, log, from);
 }
 
@@ -495,8 +499,14 @@ bool world_build_programs(gpu_world *gw, const prog_sources *src, diag_list *log
     }
     if (!prog_build(&gw->height_prog, src, log, from)) ok = false;
     prog_introspect(&gw->height_prog, log);
-    if (!prog_build(&gw->layers_prog, src, log, from)) ok = false;
-    prog_introspect(&gw->layers_prog, log);
+    if (!prog_build(&gw->layers_prog[0], src, log, from)) ok = false;
+    prog_introspect(&gw->layers_prog[0], log);
+    /* the multisampled variant: one source, one log; where it does not
+     * build, a multisampled frame draws its World (draw_world_layers) */
+    diag_list mlog = { 0 };
+    prog_build(&gw->layers_prog[1], src, &mlog, NULL);
+    prog_introspect(&gw->layers_prog[1], &mlog);
+    diag_list_free(&mlog);
     if (!ocean_build_programs(&gw->ocean, src, log, from)) ok = false;
     if (!flow_build_program(&gw->flow, src, log, from)) ok = false;
     if (!spray_build_programs(&gw->spray, src, log, from)) ok = false;
@@ -537,7 +547,7 @@ void world_free(gpu_world *gw) {
     if (gw->terrain_tex) glDeleteTextures(1, &gw->terrain_tex);
     for (int m = 0; m < WORLD_MODES; m++) prog_free(&gw->progs[m]);
     prog_free(&gw->height_prog);
-    prog_free(&gw->layers_prog);
+    for (int ms = 0; ms < 2; ms++) prog_free(&gw->layers_prog[ms]);
     if (gw->height_fbo) glDeleteFramebuffers(1, &gw->height_fbo);
     if (gw->height_tex) glDeleteTextures(1, &gw->height_tex);
     if (gw->height_prev_fbo) glDeleteFramebuffers(1, &gw->height_prev_fbo);
@@ -806,30 +816,70 @@ void world_draw_layers(const gpu_world *gw, const char *which, double offset, co
 }
 
 /* the units the composite borrows: above the world's fixed ones (14, 15,
- * 22-30) and glman's, the last of a GL with 32 */
-static const int LAYER_UNITS[3] = { 31, 21, 20 };
+ * 22-30) and glman's, the last of a GL with 32; a multisampled frame's
+ * depth the fourth */
+static const int LAYER_UNITS[4] = { 31, 21, 20, 19 };
 
-void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3],
-                            const world_layer_view *v, int x, int y, unsigned restore_program,
-                            const world_layer_band *band) {
-    unsigned p = gw->layers_prog.gl;
-    if (!gw->active || !p) return;
-    GLint active = 0, before[3];
-    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+/* What a composite changes, put back after it. */
+typedef struct layers_bound {
+    GLint active, before[4];
+    GLenum target;
+} layers_bound;
+
+/* Binds the layers' program and textures for a frame that reads them as v
+ * says; 0: no program to compose with (the caller draws the World). */
+static unsigned layers_bind(const gpu_world *gw, double t, const float eye[3], const unsigned tex[4],
+                            const world_layer_view *v, layers_bound *b) {
+    int ms = v->samples > 1;
+    unsigned p = gw->layers_prog[ms].gl;
+    if (!gw->active || !p) return 0;
+    b->target = ms ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &b->active);
     glUseProgram(p);
     world_upload(gw, p, t, eye);
-    static const char *const names[3] = { "uLayerWet", "uLayerDry", "uLayerPos" };
-    for (int i = 0; i < 3; i++) {
+    static const char *const names[4] = { "uLayerWet", "uLayerDry", "uLayerPos", "uLayerDepth" };
+    for (int i = 0; i < 3 + ms; i++) {
         glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
-        glGetIntegerv(GL_TEXTURE_BINDING_2D, &before[i]);
-        glBindTexture(GL_TEXTURE_2D, tex[i]);
+        glGetIntegerv(ms ? GL_TEXTURE_BINDING_2D_MULTISAMPLE : GL_TEXTURE_BINDING_2D, &b->before[i]);
+        glBindTexture(b->target, tex[i]);
         seti(p, names[i], LAYER_UNITS[i]);
     }
-    GLint origin = glGetUniformLocation(p, "uLayerOrigin");
-    if (origin >= 0) glUniform2i(origin, x, y);
+    seti(p, "uLayerSamples", v->samples);
+    seti(p, "uLayerPickBand", 0);
     GLint scale = glGetUniformLocation(p, "uLayerScale"), offset = glGetUniformLocation(p, "uLayerOffset");
     if (scale >= 0) glUniform2f(scale, v->scale[0], v->scale[1]);
     if (offset >= 0) glUniform2f(offset, v->offset[0], v->offset[1]);
+    return p;
+}
+
+static void layers_unbind(const world_layer_view *v, const layers_bound *b, unsigned restore_program) {
+    for (int i = 0; i < 3 + (v->samples > 1); i++) {
+        glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
+        glBindTexture(b->target, (GLuint)b->before[i]);
+    }
+    glActiveTexture((GLenum)b->active);
+    glUseProgram(restore_program);
+}
+
+bool world_can_composite(const gpu_world *gw, int samples) {
+    return gw->active && gw->layers_prog[samples > 1].gl != 0;
+}
+
+/* one triangle over the viewport */
+static void draw_full_viewport(void) {
+    render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    render_res_vertexid_end();
+}
+
+void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[4],
+                            const world_layer_view *v, int x, int y, unsigned restore_program,
+                            const world_layer_band *band) {
+    layers_bound b;
+    unsigned p = layers_bind(gw, t, eye, tex, v, &b);
+    if (!p) return;
+    GLint origin = glGetUniformLocation(p, "uLayerOrigin");
+    if (origin >= 0) glUniform2i(origin, x, y);
     seti(p, "uLayerBand", band ? 1 : 0);
     if (band) {   /* the band's triangles */
         GLint map = glGetUniformLocation(p, "uLayerBandMap"), pad = glGetUniformLocation(p, "uLayerBandPad");
@@ -843,16 +893,24 @@ void world_composite_layers(const gpu_world *gw, double t, const float eye[3], c
         glBindBuffer(GL_ARRAY_BUFFER, 0);
         glPopClientAttrib();
     } else {
-        render_res_vertexid_begin();   /* the vertices come from gl_VertexID */
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        render_res_vertexid_end();
+        draw_full_viewport();
     }
-    for (int i = 0; i < 3; i++) {
-        glActiveTexture(GL_TEXTURE0 + LAYER_UNITS[i]);
-        glBindTexture(GL_TEXTURE_2D, (GLuint)before[i]);
-    }
-    glActiveTexture((GLenum)active);
-    glUseProgram(restore_program);
+    layers_unbind(v, &b, restore_program);
+}
+
+void world_pick_band_points(const gpu_world *gw, const unsigned tex[4], const world_layer_view *v, double lo,
+                            double hi, unsigned restore_program) {
+    static const float eye[3] = { 0, 0, 0 };   /* nothing picked reads the eye or the time */
+    layers_bound b;
+    unsigned p = v->samples > 1 ? layers_bind(gw, 0, eye, tex, v, &b) : 0;
+    if (!p) return;
+    GLint origin = glGetUniformLocation(p, "uLayerOrigin"), band = glGetUniformLocation(p, "uLayerBandHeights");
+    if (origin >= 0) glUniform2i(origin, 0, 0);
+    if (band >= 0) glUniform2f(band, (float)lo, (float)hi);
+    seti(p, "uLayerBand", 0);
+    seti(p, "uLayerPickBand", 1);
+    draw_full_viewport();
+    layers_unbind(v, &b, restore_program);
 }
 
 /* world_wet.glsl's bound sums the sines', Gerstner waves' and noise
@@ -1117,6 +1175,6 @@ bool world_set_height_map(gpu_world *gw, bool on, const prog_sources *src, diag_
     gw->height_map_off = !on;
     if (!gw->active) return true;
     for (int m = 0; m < WORLD_MODES; m++) set_height_define(gw, &gw->progs[m]);
-    set_height_define(gw, &gw->layers_prog);
+    for (int ms = 0; ms < 2; ms++) set_height_define(gw, &gw->layers_prog[ms]);
     return world_build_programs(gw, src, log, from);
 }

@@ -83,8 +83,8 @@ typedef struct gpu_world {
     bool height_map_off;          /* world.frag solves per pixel (tests compare the two) */
     prog height_prog;
     unif_set height_unifs;
-    prog layers_prog;            /* world_layers.frag: a World's layers at a new time */
-    unif_set layers_unifs;
+    prog layers_prog[2];         /* world_layers.frag: a World's layers at a new time; [1] multisampled */
+    unif_set layers_unifs[2];
     unsigned height_tex, height_fbo;
     int height_res;
     double height_t;
@@ -218,15 +218,23 @@ void world_draw(const gpu_world *gw, const char *which, double offset, double t,
  * wet and dry shading, its point and depth, for any time. */
 void world_draw_layers(const gpu_world *gw, const char *which, double offset, const float eye[3], bool to_screen,
                        unsigned restore_program);
-/* A World at time t from its layers (tex: wet+depth, dry, point; v: how
+/* A World at time t from its layers (tex: wet+depth, dry, point, and
+ * multisampled the depth; v: how
  * a pixel finds its texel, world_layers.h), into the bound target's
  * viewport (its corner at x, y): the pixels world_draw gives at t (at the
  * layers' own size). band: NULL, the whole viewport; else only its
  * triangles (world_layers_band_begin). Restores `restore_program` and the
  * texture units it borrows. */
-void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[3],
+void world_composite_layers(const gpu_world *gw, double t, const float eye[3], const unsigned tex[4],
                             const world_layer_view *v, int x, int y, unsigned restore_program,
                             const world_layer_band *band);
+/* Is there a program to compose layers of this many samples a pixel with? */
+bool world_can_composite(const gpu_world *gw, int samples);
+/* Multisampled layers (v->samples > 1): into the bound one-sample target
+ * (world_layers_begin_pick), each pixel's point that lies in [lo, hi] if
+ * any of its samples' does, else its first sample's. */
+void world_pick_band_points(const gpu_world *gw, const unsigned tex[4], const world_layer_view *v, double lo,
+                            double hi, unsigned restore_program);
 /* The heights whose points' wetness changes with the time (the band a wet
  * test reads the surface in, world_layer_band.h), for this world's level
  * and waves. */

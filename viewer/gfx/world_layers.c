@@ -17,8 +17,10 @@ void world_layers_init(world_layers *l) {
 
 static void slot_free(world_layers_slot *s) {
     if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
-    glDeleteTextures(3, s->tex);
+    glDeleteTextures(4, s->tex);
     if (s->depth_rb) glDeleteRenderbuffers(1, &s->depth_rb);
+    if (s->pick_fbo) glDeleteFramebuffers(1, &s->pick_fbo);
+    if (s->pick_tex) glDeleteTextures(1, &s->pick_tex);
     if (s->band_vbo) glDeleteBuffers(1, &s->band_vbo);
     long gen = s->gen;   /* a whole frame kept of a build before is never taken for a later one */
     memset(s, 0, sizeof *s);
@@ -83,13 +85,14 @@ static bool same_but_aspect(const world_cache_key *a, const world_cache_key *b) 
  * each pixel sees, and shrinking, then growing back, builds nothing. */
 static bool layers_serve(const world_layers *l, const world_cache_key *have, const world_cache_key *want) {
     if (memcmp(have, want, sizeof *want) == 0) return true;
-    if (!l->keep_larger || have->vp_w < want->vp_w || have->vp_h < want->vp_h) return false;
+    /* multisampled layers serve their own size (world_layers_copy_depth) */
+    if (!l->keep_larger || have->samples > 1 || have->vp_w < want->vp_w || have->vp_h < want->vp_h) return false;
     return same_but_time_and_size(have, want) && same_but_aspect(have, want);
 }
 
 world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_key *k) {
-    /* one sample a pixel, no blending: the pass writes each pixel once */
-    if (l->off || k->samples > 1 || k->blend || !k->color_fmt || !k->depth_fmt) return WORLD_LAYERS_NO;
+    /* no blending: the pass writes each pixel (each sample) once */
+    if (l->off || k->blend || !k->color_fmt || !k->depth_fmt) return WORLD_LAYERS_NO;
     world_layers_slot *s = find(l, cmd);
     if (!s) s = find(l, -1);
     if (!s || s->broken) return WORLD_LAYERS_NO;
@@ -107,19 +110,45 @@ world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_
     return running ? WORLD_LAYERS_BUILD : WORLD_LAYERS_NO;
 }
 
-static unsigned make_tex(int w, int h) {
+/* A layer texture: one sample, or samples with the standard (fixed)
+ * locations the frame's renderbuffers have. */
+static unsigned make_tex(int w, int h, int samples, GLenum fmt) {
     unsigned t;
     glGenTextures(1, &t);
+    if (samples > 1) {
+        glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t);
+        glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, fmt, w, h, GL_TRUE);
+        return t;
+    }
     glBindTexture(GL_TEXTURE_2D, t);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
+    glTexImage2D(GL_TEXTURE_2D, 0, fmt, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return t;
 }
 
+/* The depth: a renderbuffer for one sample (the wet layer's alpha holds
+ * it), a texture the composite reads for several (a sample's own depth,
+ * not its pixel centre's). */
+static void attach_depth(world_layers_slot *s, const world_cache_key *k) {
+    GLenum att = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8
+                     ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
+    if (k->samples > 1) {
+        s->tex[3] = make_tex(k->vp_w, k->vp_h, k->samples, k->depth_fmt);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, att, GL_TEXTURE_2D_MULTISAMPLE, s->tex[3], 0);
+        return;
+    }
+    glGenRenderbuffers(1, &s->depth_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, s->depth_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, k->depth_fmt, k->vp_w, k->vp_h);
+    glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, att, GL_RENDERBUFFER, s->depth_rb);
+}
+
 /* The target, kept while the size and depth format stay. */
 static bool slot_alloc(world_layers_slot *s, const world_cache_key *k) {
-    if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.depth_fmt == k->depth_fmt) return true;
+    if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.depth_fmt == k->depth_fmt &&
+        s->samples == k->samples)
+        return true;
     /* a new size: new textures, the command's last key kept (the clock
      * still runs) */
     int cmd = s->cmd;
@@ -129,21 +158,20 @@ static bool slot_alloc(world_layers_slot *s, const world_cache_key *k) {
     s->cmd = cmd;
     s->seen = seen;
     s->last = last;
-    GLint tex2d = 0;
+    GLint tex2d = 0, tex_ms = 0;
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex2d);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE, &tex_ms);
+    GLenum target = k->samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
     glGenFramebuffers(1, &s->fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->fbo);
     for (int i = 0; i < 3; i++) {
-        s->tex[i] = make_tex(k->vp_w, k->vp_h);
-        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, s->tex[i], 0);
+        s->tex[i] = make_tex(k->vp_w, k->vp_h, k->samples, GL_RGBA32F);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, target, s->tex[i], 0);
     }
+    attach_depth(s, k);
     glBindTexture(GL_TEXTURE_2D, (GLuint)tex2d);
-    glGenRenderbuffers(1, &s->depth_rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, s->depth_rb);
-    glRenderbufferStorage(GL_RENDERBUFFER, k->depth_fmt, k->vp_w, k->vp_h);
-    GLenum att = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8
-                     ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
-    glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, att, GL_RENDERBUFFER, s->depth_rb);
+    glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, (GLuint)tex_ms);
+    s->samples = k->samples;
     s->key.vp_w = k->vp_w;
     s->key.vp_h = k->vp_h;
     s->key.depth_fmt = k->depth_fmt;
@@ -173,7 +201,7 @@ bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k
     glViewport(0, 0, k->vp_w, k->vp_h);
     glDisable(GL_SCISSOR_TEST);
     glClearColor(0, 0, 0, 1);   /* the wet layer's alpha is the depth: 1, nothing drawn */
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     static const float no_point[4] = { 0, 0, 0, 0 };   /* the point layer's w: 0, no point */
     glClearBufferfv(GL_COLOR, 2, no_point);
     glClearColor(l->saved.clear[0], l->saved.clear[1], l->saved.clear[2], l->saved.clear[3]);
@@ -205,18 +233,45 @@ static void band_upload(world_layers_slot *s, const int *rects, int n, int w, in
     s->band_verts = 6 * n;
 }
 
-/* The tiles whose points reach [lo, hi], from the point layer read back. */
-static void find_band(world_layers_slot *s, double lo, double hi) {
+const unsigned *world_layers_begin_pick(world_layers *l, int cmd) {
+    world_layers_slot *s = find(l, cmd);
+    if (!s || s->samples <= 1) return NULL;
+    int w = s->key.vp_w, h = s->key.vp_h;
+    if (!s->pick_fbo) {
+        GLint tex2d = 0;
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex2d);
+        s->pick_tex = make_tex(w, h, 1, GL_RGBA32F);
+        glBindTexture(GL_TEXTURE_2D, (GLuint)tex2d);
+        glGenFramebuffers(1, &s->pick_fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->pick_fbo);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->pick_tex, 0);
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->pick_fbo);
+    glDrawBuffer(GL_COLOR_ATTACHMENT0);
+    if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->fbo);
+        return NULL;
+    }
+    static const float no_point[4] = { 0, 0, 0, 0 };
+    glClearBufferfv(GL_COLOR, 0, no_point);
+    return s->tex;
+}
+
+/* The tiles whose points reach [lo, hi], from the point layer read back
+ * (multisampled: the points world_layers_begin_pick's pass picked; none
+ * picked, no band). */
+static void find_band(world_layers_slot *s, double lo, double hi, bool picked) {
     int w = s->key.vp_w, h = s->key.vp_h, tiles = ((w + LAYER_BAND_TILE - 1) / LAYER_BAND_TILE) *
                                                   ((h + LAYER_BAND_TILE - 1) / LAYER_BAND_TILE);
     s->band_verts = -1;
+    if (s->samples > 1 && !picked) return;
     float *pos = mem_alloc((size_t)w * h * 4 * sizeof *pos);
     int *rects = mem_alloc((size_t)tiles * 4 * sizeof *rects);
     GLint tex2d = 0, align = 4;
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex2d);
     glGetIntegerv(GL_PACK_ALIGNMENT, &align);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glBindTexture(GL_TEXTURE_2D, s->tex[2]);
+    glBindTexture(GL_TEXTURE_2D, s->samples > 1 ? s->pick_tex : s->tex[2]);
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, pos);
     glBindTexture(GL_TEXTURE_2D, (GLuint)tex2d);
     glPixelStorei(GL_PACK_ALIGNMENT, align);
@@ -230,6 +285,9 @@ static void find_band(world_layers_slot *s, double lo, double hi) {
 
 void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k, double band_lo, double band_hi) {
     world_layers_slot *s = find(l, cmd);
+    GLint bound = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    bool picked = s && s->pick_fbo && (unsigned)bound == s->pick_fbo;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)l->saved.draw_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)l->saved.rb);
     glViewport(l->saved.vp[0], l->saved.vp[1], l->saved.vp[2], l->saved.vp[3]);
@@ -238,7 +296,7 @@ void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k, 
     s->key = timeless(k);
     s->valid = true;
     s->gen++;
-    find_band(s, band_lo, band_hi);
+    find_band(s, band_lo, band_hi, picked);
     l->builds++;
 }
 
@@ -252,7 +310,23 @@ const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cach
     v->scale[1] = (float)((double)s->key.vp_h / k->vp_h);
     v->offset[0] = (float)((1.0 - r) * s->key.vp_w / 2.0);
     v->offset[1] = 0.0f;
+    v->samples = s->samples;
     return s->tex;
+}
+
+bool world_layers_copy_depth(world_layers *l, int cmd, const world_cache_key *k, int x, int y) {
+    world_layers_slot *s = find(l, cmd);
+    if (!s || !s->valid || s->samples <= 1 || s->key.vp_w != k->vp_w || s->key.vp_h != k->vp_h) return false;
+    /* a depth-stencil buffer whole: llvmpipe copies the depth alone
+     * through a shader (world_cache.c) */
+    bool stencil = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8;
+    GLint read = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, s->fbo);
+    glBlitFramebuffer(0, 0, k->vp_w, k->vp_h, x, y, x + k->vp_w, y + k->vp_h,
+                      GL_DEPTH_BUFFER_BIT | (stencil ? GL_STENCIL_BUFFER_BIT : 0), GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read);
+    return true;
 }
 
 /* The key a whole composed frame of slot s at k is kept under: k without

@@ -8,8 +8,11 @@
  * time is a full-screen pass that picks one of the two
  * (world_layers.frag): the pixels the World draw gives, at the cost of
  * one test a pixel instead of the terrain's and objects' shading. One
- * layer target per World command (WORLD_CACHE_SLOTS); single-sample targets
- * without blending only. Private to the renderer (render*.c). */
+ * layer target per World command (WORLD_CACHE_SLOTS); targets without
+ * blending only. A multisampled frame (`tarn render`'s default 4x MSAA)
+ * gets multisampled layers and a depth texture, composed a sample at a
+ * time (world_layers.frag, WORLD_LAYERS_MS). Private to the renderer
+ * (render*.c). */
 #ifndef TARN_WORLD_LAYERS_H
 #define TARN_WORLD_LAYERS_H
 #include <stdbool.h>
@@ -22,7 +25,9 @@ typedef struct world_layers_slot {
     bool broken;                /* the target could not be made: drawn as before */
     bool seen;                  /* last: the command's key at its last frame */
     world_cache_key last, key;       /* key: what the layers hold, t zeroed */
-    unsigned fbo, tex[3], depth_rb;
+    int samples;                /* the layers' samples a pixel (the frame's) */
+    unsigned fbo, tex[4], depth_rb;   /* tex: wet (+ its depth), dry, point; multisampled, [3] the depth */
+    unsigned pick_fbo, pick_tex;     /* multisampled: a point a pixel, read back (world_layers_begin_pick) */
     long gen;                   /* counts the builds: a whole frame is of one */
     unsigned band_vbo;          /* the band's tiles as triangles (world_layer_band.h) */
     int band_verts;             /* their vertices; -1: none to draw alone (the whole frame then) */
@@ -64,8 +69,17 @@ world_layers_use world_layers_check(world_layers *l, int cmd, const world_cache_
  * set, then world_layers_end_build. false: it could not be made (the command
  * is drawn as before from now on). */
 bool world_layers_begin_build(world_layers *l, int cmd, const world_cache_key *k);
+/* Multisampled layers only, after the World is drawn into them: binds a
+ * one-sample target of the layers' size for the pass that writes a
+ * pixel's point in the band if any sample's is (world_pick_band_points),
+ * which world_layers_end_build then reads back; returns the layers'
+ * textures for that pass. NULL: single-sample layers (their point layer
+ * is read itself), or it could not be made (no band: the whole frame is
+ * composed each time). */
+const unsigned *world_layers_begin_pick(world_layers *l, int cmd);
 /* Puts back the target and viewport world_layers_begin_build found; the layers
- * now hold k's world. Reads the point layer back once to find the tiles
+ * now hold k's world. Reads the point layer (multisampled: the picked
+ * points) back once to find the tiles
  * whose points reach the band of heights [band_lo, band_hi]
  * (layer_band_heights): where a composed pixel can change with the time. */
 void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k, double band_lo, double band_hi);
@@ -76,12 +90,20 @@ void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k, 
  * itself. */
 typedef struct world_layer_view {
     float scale[2], offset[2];
+    int samples;                /* > 1: the textures are multisampled, tex[3] the depth */
 } world_layer_view;
 
-/* The three layer textures of command cmd (wet+depth, dry, point), or
- * NULL; *v: how a frame at key k (the one world_layers_check took) reads
+/* The layer textures of command cmd (wet+depth, dry, point; multisampled,
+ * the depth fourth), or NULL; *v: how a frame at key k (the one world_layers_check took) reads
  * them. */
 const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cache_key *k, world_layer_view *v);
+
+/* Multisampled layers: copies their depth (and stencil) into the bound
+ * draw framebuffer's viewport at x, y, bit for bit the drawn World's; the
+ * caller then composes the colour with the depth test off (a sample's
+ * depth written by a shader went through a float and back: a step off at
+ * the shore). false: single-sample layers (composed with their depth). */
+bool world_layers_copy_depth(world_layers *l, int cmd, const world_cache_key *k, int x, int y);
 
 /* The band's tiles to compose over a copied whole frame. */
 typedef struct world_layer_band {
