@@ -83,22 +83,22 @@ bool cmd_opt_pack(const char *name, char *why, size_t whylen);
 #define CMD_OPTION_MSAA(off) \
     { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = (off), \
       .help = "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
-              "a GPU, off on a CPU rasteriser such as llvmpipe: 2-3x the time)\n", \
+              "a GPU, off on a CPU rasteriser such as llvmpipe: 3-4.5x the time)\n", \
       .man = "anti\\-aliasing: the screen passes are drawn with\n" \
              ".I N\n" \
              "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n" \
              "a GPU, or as many as it allows; off on a CPU rasteriser such as llvmpipe,\n" \
-             "where 4 samples cost 2 to 3 times the frame).\n" }
+             "where 4 samples cost 3 to 4.5 times the frame).\n" }
 #define CMD_OPTION_MSAA_STILL(off) \
     { "--msaa", .metavar = "N", .kind = CMD_MSAA, .offset = (off), \
       .help = "anti-aliasing: N samples per pixel, 0 or 1 off (default 4 on\n" \
               "every renderer: what is written is anti-aliased; on a CPU\n" \
-              "rasteriser such as llvmpipe it costs 2-3x the time)\n", \
+              "rasteriser such as llvmpipe an animated frame costs 3-4.5x)\n", \
       .man = "anti\\-aliasing: the screen passes are drawn with\n" \
              ".I N\n" \
              "samples per pixel (MSAA) and resolved; 0 or 1 turns it off (default 4 on\n" \
              "every renderer, or as many as it allows: what is written is anti\\-aliased;\n" \
-             "on a CPU rasteriser such as llvmpipe 4 samples cost 2 to 3 times the frame).\n" }
+             "on a CPU rasteriser such as llvmpipe 4 samples cost 3 to 4.5 times the frame).\n" }
 #define CMD_OPTION_VERBOSE(off) \
     { "--verbose", .kind = CMD_FLAG, .offset = (off), \
       .help = "each uniform the shaders declare but do not use, a note at\n" \

@@ -34,7 +34,7 @@ bool gl_ctx_lost(gl_ctx *c, char *err, int errlen);
 const char *gl_ctx_describe(gl_ctx *c);
 
 /* true when the current context's GL_RENDERER is a rasteriser on the CPU
- * (llvmpipe, softpipe, SwiftShader, lavapipe): anti-aliasing costs 2-3x a
+ * (llvmpipe, softpipe, SwiftShader, lavapipe): anti-aliasing costs 3-4.5x a
  * frame there (render_msaa.c) and shaders are built with TARN_CPU_RASTER
  * (packs/common/loops.glsl: loops kept rolled, compiles about twice as fast). */
 bool gl_ctx_cpu_rasteriser(void);

@@ -32,7 +32,7 @@ typedef struct render_desc {
 /* Anti-aliasing: the screen passes are drawn multisampled and resolved
  * into the caller's framebuffer (render_msaa.h); RenderToTexture passes
  * are single-sample. The default is RENDER_MSAA_DEFAULT samples on a GPU
- * and off on a CPU rasteriser (llvmpipe), where 4x costs 2-3x the frame. */
+ * and off on a CPU rasteriser (llvmpipe), where 4x costs 3-4.5x the frame. */
 #define RENDER_MSAA_DEFAULT 4
 
 typedef struct render_view {

@@ -21,7 +21,7 @@ typedef struct render_msaa {
 } render_msaa;
 
 /* The samples a request gives on this GL: 0 the default (RENDER_MSAA_DEFAULT
- * on a GPU, off on a CPU rasteriser such as llvmpipe, where it costs 2-3x
+ * on a GPU, off on a CPU rasteriser such as llvmpipe, where it costs 3-4.5x
  * the frame), 1 off, else clamped to what the GL allows. */
 int render_msaa_effective(render_msaa *m, int requested);
 
