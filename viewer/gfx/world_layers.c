@@ -127,6 +127,16 @@ static unsigned make_tex(int w, int h, int samples, GLenum fmt) {
     return t;
 }
 
+/* The wet and dry layers' format. One sample: RGBA32F, the wet layer's
+ * alpha holds the depth. Several: the frame's own where it is one of the
+ * renderer's multisampled targets' (render_msaa.h: 16-bit float for a
+ * world drawn to an 8-bit target), so a sample composed from the layers
+ * is the one drawn, and a 1920x1080 frame's layers take 265 MB, not 400. */
+static GLenum shading_format(const world_cache_key *k) {
+    bool own = k->color_fmt == GL_RGBA16F || k->color_fmt == GL_RGBA8;
+    return k->samples > 1 && own ? k->color_fmt : GL_RGBA32F;
+}
+
 /* The depth: a renderbuffer for one sample (the wet layer's alpha holds
  * it), a texture the composite reads for several (a sample's own depth,
  * not its pixel centre's). */
@@ -147,7 +157,7 @@ static void attach_depth(world_layers_slot *s, const world_cache_key *k) {
 /* The target, kept while the size and depth format stay. */
 static bool slot_alloc(world_layers_slot *s, const world_cache_key *k) {
     if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.depth_fmt == k->depth_fmt &&
-        s->samples == k->samples)
+        s->samples == k->samples && s->key.color_fmt == k->color_fmt)
         return true;
     /* a new size: new textures, the command's last key kept (the clock
      * still runs) */
@@ -165,7 +175,7 @@ static bool slot_alloc(world_layers_slot *s, const world_cache_key *k) {
     glGenFramebuffers(1, &s->fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->fbo);
     for (int i = 0; i < 3; i++) {
-        s->tex[i] = make_tex(k->vp_w, k->vp_h, k->samples, GL_RGBA32F);
+        s->tex[i] = make_tex(k->vp_w, k->vp_h, k->samples, i < 2 ? shading_format(k) : GL_RGBA32F);
         glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, target, s->tex[i], 0);
     }
     attach_depth(s, k);
@@ -175,6 +185,7 @@ static bool slot_alloc(world_layers_slot *s, const world_cache_key *k) {
     s->key.vp_w = k->vp_w;
     s->key.vp_h = k->vp_h;
     s->key.depth_fmt = k->depth_fmt;
+    s->key.color_fmt = k->color_fmt;
     return glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
