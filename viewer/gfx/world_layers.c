@@ -154,7 +154,7 @@ static void attach_depth(world_layers_slot *s, const world_cache_key *k) {
     glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, att, GL_RENDERBUFFER, s->depth_rb);
 }
 
-/* The target, kept while the size and depth format stay. */
+/* The target, kept while the size, the samples and the formats stay. */
 static bool slot_alloc(world_layers_slot *s, const world_cache_key *k) {
     if (s->fbo && s->key.vp_w == k->vp_w && s->key.vp_h == k->vp_h && s->key.depth_fmt == k->depth_fmt &&
         s->samples == k->samples && s->key.color_fmt == k->color_fmt)
