@@ -113,15 +113,17 @@ bool world_cache_key_gl(world_cache_key *k, int albedo_unit, int sky_unit) {
     return k->vp_w > 0 && k->vp_h > 0;
 }
 
-/* A depth-stencil buffer is copied whole: llvmpipe copies a format's
- * bytes only when the blit takes all of its channels; the depth alone of
- * a DEPTH24_STENCIL8 went through a shader, a depth at the shore one step
- * off (test_world_cache: a pixel of natural's frame). The stencil copied
- * is no one's: the deferred water clears it before it marks. */
-static GLbitfield copy_mask(const world_cache_key *k) {
-    bool stencil = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8;
+static bool has_stencil(const world_cache_key *k) {
+    return k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8;
+}
+
+unsigned world_cache_depth_attachment(const world_cache_key *k) {
+    return has_stencil(k) ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
+}
+
+unsigned world_cache_copy_mask(const world_cache_key *k) {
     return (k->color_fmt ? GL_COLOR_BUFFER_BIT : 0) | (k->depth_fmt ? GL_DEPTH_BUFFER_BIT : 0) |
-           (stencil ? GL_STENCIL_BUFFER_BIT : 0);
+           (has_stencil(k) ? GL_STENCIL_BUFFER_BIT : 0);
 }
 
 static world_cache_slot *find(world_cache *c, int cmd) {
@@ -173,7 +175,7 @@ bool world_cache_restore(world_cache *c, int cmd, const world_cache_key *k) {
     saved_gl g;
     save_gl(&g);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, s->fbo);
-    glBlitFramebuffer(0, 0, k->vp_w, k->vp_h, vp[0], vp[1], vp[0] + k->vp_w, vp[1] + k->vp_h, copy_mask(k), GL_NEAREST);
+    glBlitFramebuffer(0, 0, k->vp_w, k->vp_h, vp[0], vp[1], vp[0] + k->vp_w, vp[1] + k->vp_h, world_cache_copy_mask(k), GL_NEAREST);
     restore_gl(&g);
     if (glGetError() != GL_NO_ERROR) { give_up(s, cmd); return false; }
     c->hits++;
@@ -205,9 +207,7 @@ static bool slot_alloc(world_cache_slot *s, const world_cache_key *k) {
     }
     if (k->depth_fmt) {
         alloc_rb(&s->depth_rb, k->samples, k->depth_fmt, k->vp_w, k->vp_h);
-        GLenum att = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8
-                         ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
-        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, att, GL_RENDERBUFFER, s->depth_rb);
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, world_cache_depth_attachment(k), GL_RENDERBUFFER, s->depth_rb);
     }
     return glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
@@ -246,7 +246,7 @@ void world_cache_store_now(world_cache *c, int cmd, const world_cache_key *k) {
     glGetIntegerv(GL_READ_BUFFER, &read_buf);
     if (k->color_fmt) glReadBuffer((GLenum)db0);   /* read what the world was drawn into */
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s->fbo);
-    glBlitFramebuffer(vp[0], vp[1], vp[0] + k->vp_w, vp[1] + k->vp_h, 0, 0, k->vp_w, k->vp_h, copy_mask(k), GL_NEAREST);
+    glBlitFramebuffer(vp[0], vp[1], vp[0] + k->vp_w, vp[1] + k->vp_h, 0, 0, k->vp_w, k->vp_h, world_cache_copy_mask(k), GL_NEAREST);
     if (k->color_fmt) glReadBuffer((GLenum)read_buf);
     restore_gl(&g);
     if (glGetError() != GL_NO_ERROR) { give_up(s, cmd); return; }

@@ -57,6 +57,17 @@ void world_cache_key_init(world_cache_key *k);
  * does not know). albedo_unit, sky_unit: the texture units the world reads. */
 bool world_cache_key_gl(world_cache_key *k, int albedo_unit, int sky_unit);
 
+/* Where k's depth buffer attaches: with its stencil (GL_DEPTH_STENCIL_ATTACHMENT)
+ * for a depth-stencil format, else GL_DEPTH_ATTACHMENT. */
+unsigned world_cache_depth_attachment(const world_cache_key *k);
+/* What a copy of k's target takes (glBlitFramebuffer's mask): its colour,
+ * and its depth with the stencil whole. llvmpipe copies a format's bytes
+ * only when the blit takes all of its channels; the depth alone of a
+ * DEPTH24_STENCIL8 went through a shader, a depth at the shore one step off
+ * (test_world_cache: a pixel of natural's frame). The stencil copied is no
+ * one's: the deferred water clears it before it marks. */
+unsigned world_cache_copy_mask(const world_cache_key *k);
+
 /* Copies command cmd's cached pixels for key k into the bound draw
  * framebuffer's viewport; false (nothing done) on a miss. */
 bool world_cache_restore(world_cache *c, int cmd, const world_cache_key *k);

@@ -141,8 +141,7 @@ static GLenum shading_format(const world_cache_key *k) {
  * it), a texture the composite reads for several (a sample's own depth,
  * not its pixel centre's). */
 static void attach_depth(world_layers_slot *s, const world_cache_key *k) {
-    GLenum att = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8
-                     ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT;
+    GLenum att = world_cache_depth_attachment(k);
     if (k->samples > 1) {
         s->tex[3] = make_tex(k->vp_w, k->vp_h, k->samples, k->depth_fmt);
         glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, att, GL_TEXTURE_2D_MULTISAMPLE, s->tex[3], 0);
@@ -265,6 +264,7 @@ const unsigned *world_layers_begin_pick(world_layers *l, int cmd) {
     }
     static const float no_point[4] = { 0, 0, 0, 0 };
     glClearBufferfv(GL_COLOR, 0, no_point);
+    s->picked = true;
     return s->tex;
 }
 
@@ -296,9 +296,8 @@ static void find_band(world_layers_slot *s, double lo, double hi, bool picked) {
 
 void world_layers_end_build(world_layers *l, int cmd, const world_cache_key *k, double band_lo, double band_hi) {
     world_layers_slot *s = find(l, cmd);
-    GLint bound = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
-    bool picked = s && s->pick_fbo && (unsigned)bound == s->pick_fbo;
+    bool picked = s && s->picked;
+    if (s) s->picked = false;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)l->saved.draw_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)l->saved.rb);
     glViewport(l->saved.vp[0], l->saved.vp[1], l->saved.vp[2], l->saved.vp[3]);
@@ -328,14 +327,11 @@ const unsigned *world_layers_textures(world_layers *l, int cmd, const world_cach
 bool world_layers_copy_depth(world_layers *l, int cmd, const world_cache_key *k, int x, int y) {
     world_layers_slot *s = find(l, cmd);
     if (!s || !s->valid || s->samples <= 1 || s->key.vp_w != k->vp_w || s->key.vp_h != k->vp_h) return false;
-    /* a depth-stencil buffer whole: llvmpipe copies the depth alone
-     * through a shader (world_cache.c) */
-    bool stencil = k->depth_fmt == GL_DEPTH24_STENCIL8 || k->depth_fmt == GL_DEPTH32F_STENCIL8;
     GLint read = 0;
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, s->fbo);
     glBlitFramebuffer(0, 0, k->vp_w, k->vp_h, x, y, x + k->vp_w, y + k->vp_h,
-                      GL_DEPTH_BUFFER_BIT | (stencil ? GL_STENCIL_BUFFER_BIT : 0), GL_NEAREST);
+                      world_cache_copy_mask(k) & ~(unsigned)GL_COLOR_BUFFER_BIT, GL_NEAREST);   /* with the stencil */
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read);
     return true;
 }

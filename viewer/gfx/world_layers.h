@@ -28,6 +28,7 @@ typedef struct world_layers_slot {
     int samples;                /* the layers' samples a pixel (the frame's) */
     unsigned fbo, tex[4], depth_rb;   /* tex: wet (+ its depth), dry, point; multisampled, [3] the depth */
     unsigned pick_fbo, pick_tex;     /* multisampled: a point a pixel, read back (world_layers_begin_pick) */
+    bool picked;                /* this build's points were picked there */
     long gen;                   /* counts the builds: a whole frame is of one */
     unsigned band_vbo;          /* the band's tiles as triangles (world_layer_band.h) */
     int band_verts;             /* their vertices; -1: none to draw alone (the whole frame then) */
