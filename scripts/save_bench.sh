@@ -12,8 +12,10 @@
 # stage. Each save's figure is the wall clock from the save to the swap of
 # the first frame after its reload (the script's `stamp on`), then the
 # longest frame gap until that frame and in the second after it (issue
-# #30: none longer than the budget while a save compiles); the last lines
-# give each build's medians over all its saves.
+# #30: none longer than the budget while a save compiles), and, paused,
+# the save to the first full-resolution frame (the first new frame is a
+# reduced one: the change seen sharp); the last lines give each build's
+# medians over all its saves.
 # Usage: scripts/save_bench.sh [--saves N] [--rounds R] [--running] PACK TARN [TARN...]
 #   (defaults: 6 saves, 3 rounds; --running: the clock runs, as a user's
 #   usually does, and the window draws animated frames meanwhile). A shared machine is noisy: say whether
@@ -72,6 +74,11 @@ one_window() {
   printf '| '
   sed -n 's/.*in the [0-9.]* s after that frame, longest frame gap \([0-9.]*\) ms.*/\1/p' "$dir/log" |
       awk '{ printf "%.0f ", $1 }'
+  # paused: each save's first full-resolution frame (the first new one
+  # may be reduced: the change seen sharp)
+  printf '| '
+  paste "$dir/saved" <(awk '/full frame after the reload swapped at/ { print $10 }' "$dir/log") |
+      awk 'NF == 2 { printf "%.0f ", ($2 - $1) * 1000 }'
 }
 
 median() {
@@ -79,19 +86,21 @@ median() {
       awk '{ v[NR] = $1 } END { if (NR) print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) " ms over " NR; else print "-" }'
 }
 
-declare -A all to after
+declare -A all to after full
 for r in $(seq "$rounds"); do
   for bin in "$@"; do
     bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
     out=$(one_window "$bin")
     echo "round $r  $bin: $out"
-    IFS='|' read -r ms gap_to gap_after <<< "$out"
+    IFS='|' read -r ms gap_to gap_after sharp <<< "$out"
     all[$bin]="${all[$bin]:-} $ms"
     to[$bin]="${to[$bin]:-} $gap_to"
     after[$bin]="${after[$bin]:-} $gap_after"
+    full[$bin]="${full[$bin]:-} $sharp"
   done
 done
 for bin in "$@"; do
   bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
   echo "median $bin: $(echo ${all[$bin]} | median) saves; longest frame gap to the new frame $(echo ${to[$bin]} | median), in the second after it $(echo ${after[$bin]} | median)"
+  [ -n "$(echo ${full[$bin]:-})" ] && echo "median $bin: save -> the first full-resolution frame (paused) $(echo ${full[$bin]} | median) saves"
 done

@@ -6,7 +6,9 @@
  * COMPILE_JOB_SHOWN_WAIT_S has passed, so the window's first frame of the
  * change does not share the cores with that compile; one for a paused
  * window (still) draws only the change's first frame before its ready,
- * and every frame by its end; one for a window whose clock runs
+ * then the sharp frame's code with the water as a grid before the deferred
+ * water's (a cancelled one ends after it), and every frame by its end;
+ * one for a window whose clock runs
  * (defer_still) makes the still frame only when the window asks. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -94,9 +96,55 @@ static void test_still_window_first_frame_first(void) {
            still_all);
     CHECK_MSG(moving_ready == 4 && moving_all == 6, "a moving picture's job: %d frames at ready, %d in all "
               "(4 moving frames, one with the water deferred, then the still one)", moving_ready, moving_all);
-    CHECK_MSG(still_ready == 1 && still_all == 6, "a still window's job: %d frames at ready, %d in all (the "
-              "change's first frame, then the 3 others, the first deferred and the still one)", still_ready,
-              still_all);
+    CHECK_MSG(still_ready == 1 && still_all == 7, "a still window's job: %d frames at ready, %d in all (the "
+              "change's first frame, then the 3 others, the still one as a grid, one deferred and the still one "
+              "deferred)", still_ready, still_all);
+    render_destroy(r);
+}
+
+/* A paused window's sharp frame: the job makes its code with the water as
+ * a grid before the deferred water's (compile_job_still_ready after the 3
+ * moving frames and that one, the deferred ones after it); a cancelled job
+ * ends at its next step, and the next runs whole. */
+static void test_still_window_sharp_frame_first(void) {
+    if (!compile_job_useful()) SKIP("Mesa's shader cache is off: the window compiles on the frame");
+    render *r = render_create(&(render_desc){ .pack = "basic" });
+    CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
+    compile_job *j = compile_job_create();
+    render *const scenes[1] = { r };
+    compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0, .view = render_default_view(r),
+                           .wait_for_shown = true, .still = true };
+    double secs;
+    for (int round = 0; round < 3; round++) {
+        /* round 1 cancels while the job waits for the change's first frame */
+        CHECK(compile_job_start(j, &d));
+        CHECK_MSG(!compile_job_still_ready(j), "a job just started said its sharp frame made");
+        bool ready = false;
+        double t0 = clock_now_s();
+        while (clock_now_s() - t0 < 120) {
+            if (!ready && compile_job_ready(j, &secs)) {
+                ready = true;
+                if (round == 1) {
+                    compile_job_cancel(j);
+                    CHECK_MSG(compile_job_wait_done(j, 5.0), "a cancelled job did not end");
+                } else {
+                    compile_job_shown(j);
+                }
+            }
+            if (compile_job_done(j, &secs)) break;
+            clock_sleep_s(0.001);
+        }
+        int at_ready, in_all, at_still = compile_job_frames_at_still(j);
+        compile_job_frames(j, &at_ready, &in_all);
+        if (round == 1) {
+            CHECK_MSG(in_all == 1 && at_still == 0, "cancelled at its ready: %d frames in all, %d before the "
+                      "sharp one (1 and 0)", in_all, at_still);
+            continue;
+        }
+        CHECK_MSG(at_still == 5 && in_all == 7, "round %d: the sharp frame's code after %d frames (the first, 3 "
+                  "moving, the sharp one: 5), %d in all (7)", round, at_still, in_all);
+    }
+    compile_job_destroy(j);
     render_destroy(r);
 }
 
@@ -199,6 +247,7 @@ int main(void) {
     if (!ctx) return GL_TEST_SKIP;
     RUN(test_waits_for_the_window);
     RUN(test_still_window_first_frame_first);
+    RUN(test_still_window_sharp_frame_first);
     RUN(test_moving_picture_world_kept);
     RUN(test_still_frame_when_asked);
     gl_ctx_destroy(ctx);

@@ -72,6 +72,7 @@ struct app {
     float orbit_dx, orbit_dy;
     bool stamp;                  /* the script's `stamp on`: time the first frame after a reload */
     bool stamp_pending;
+    bool stamp_full_pending;     /* a paused picture's full frame after the reload is yet to come (stamp_full) */
     double stamp_seen;           /* glfwGetTime() when that reload began */
     double stamp_after_until;    /* then, until this glfwGetTime(), the frames after it (0: not timing) */
     double gap_after_max;        /* ... their longest gap */
@@ -295,6 +296,16 @@ static void still_due(app *a, double now) {
     a->still_dropped = true;
 }
 
+/* A paused window's full frame once the job has made its code with the
+ * water as a grid (compile_job_still_ready), not at the job's end: the
+ * deferred water's code, which the job makes after it, took another
+ * second of natural's on a slow 2-core machine. That frame draws the
+ * grid (deferred_held) until the deferred code is made. */
+static void still_ready_due(app *a) {
+    if (!a->compiling || !a->reloaded_early || !a->s.paused || !a->budget.hold_full) return;
+    if (compile_job_still_ready(a->cjob)) res_budget_hold_full(&a->budget, false);
+}
+
 /* The water deferred again once the job has made that code too (or has
  * ended, or none runs). */
 static void deferred_due(app *a) {
@@ -341,6 +352,16 @@ static void reload_changed(app *a, int n) {
          * still frame's code (defer_still), old now: it ends, and this
          * change's job starts at once instead of a frame later */
         compile_job_drop_still(a->cjob);
+        a->still_dropped = true;
+        if (compile_job_wait_done(a->cjob, COMPILE_JOB_DROP_WAIT_S) && compile_finished(a)) compile_ended(a);
+    }
+    if (a->compiling && a->reloaded_early && !a->changed_again && a->s.paused && compile_job_still_ready(a->cjob)) {
+        /* the last change is on screen, sharp, and its job makes the
+         * deferred water's code for when the clock runs: old now, it ends
+         * (it runs longer since the sharp frame comes first, and a save 5 s
+         * after the last waited for it: caustic_tex's new frame 1.4 ->
+         * 1.8 s on a slow 2-core machine) */
+        compile_job_cancel(a->cjob);
         a->still_dropped = true;
         if (compile_job_wait_done(a->cjob, COMPILE_JOB_DROP_WAIT_S) && compile_finished(a)) compile_ended(a);
     }
@@ -698,9 +719,22 @@ static void stamp_swap(app *a) {
             "longest frame gap meanwhile %.1f ms, %ld frames before it)\n", a->d.name,
             (double)ts.tv_sec + ts.tv_nsec * 1e-9, (glfwGetTime() - a->stamp_seen) * 1e3, a->gap_max * 1e3,
             a->frames_meanwhile - 1);
+    a->stamp_full_pending = a->s.paused;
     a->stamp_after_until = glfwGetTime() + APP_STAMP_AFTER_S;
     a->gap_after_max = 0;
     a->frames_after = 0;
+}
+
+/* A paused picture's first full-resolution frame after the reload is on
+ * screen (the stamped first frame may be a reduced one): when the change
+ * is seen sharp (scripts/save_bench.sh). */
+static void stamp_full(app *a) {
+    if (!a->stamp_full_pending || a->drawn_w < a->area_w || a->drawn_h < a->area_h) return;
+    a->stamp_full_pending = false;
+    struct timespec ts;
+    timespec_get(&ts, TIME_UTC);
+    fprintf(stderr, "%s: stamp: full frame after the reload swapped at %.6f (%.1f ms after the reload began)\n",
+            a->d.name, (double)ts.tv_sec + ts.tv_nsec * 1e-9, (glfwGetTime() - a->stamp_seen) * 1e3);
 }
 
 /* The frames in the APP_STAMP_AFTER_S after the stamped one: what the
@@ -748,6 +782,7 @@ static void frame(app *a, bool scripted) {
     bool contended = job_contends(a);   /* (the reload's frame, at the job's ready, too) */
     if (compile_readied(a)) reload_early(a);
     if (compile_finished(a)) compile_ended(a);
+    still_ready_due(a);
     deferred_due(a);
     still_due(a, now);
     int changed = a->watch ? watch_poll(a->watch, 0) : 0;
@@ -996,6 +1031,7 @@ static bool wait_for_work(app *a, const view_script *script) {
     }
     double now = glfwGetTime();
     still_due(a, now);
+    still_ready_due(a);   /* a paused picture's full frame, woken by the job: drawn now */
     if (a->compiling && !compile_readied(a) && !compile_finished(a) && (!script || view_script_waiting(script)) &&
         (res_budget_settled(&a->budget, now) || res_budget_full_held(&a->budget, now))) {
         /* a still picture while a job compiles (the last good build's full
@@ -1064,6 +1100,7 @@ int app_run(app *a, render *const *scenes, int n) {
             compile_job_shown(a->cjob);
         }
         if (a->stamp_pending) stamp_swap(a);
+        stamp_full(a);
         /* the scenes loaded in the job's renders once the window shows
          * them all (after the frame that drew the last one loaded: the job
          * would take the cores its first draw compiles on), so that the

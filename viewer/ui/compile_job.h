@@ -15,7 +15,9 @@
  * picture's full-resolution frame (another variant for each target of
  * the scene's own size: 0.15-0.25 s more for a pack's water), which the
  * window holds back until the job ends (res_budget_hold_full); with the
- * clock running, only once the window asks for it (defer_still).
+ * clock running, only once the window asks for it (defer_still); a
+ * paused window (still) gets that frame's code with the water as a grid
+ * first, before the deferred water's (compile_job_still_ready).
  *
  * The job's render shares nothing with the window's: no GL object, no
  * state; it reads the files as they are when it runs. What it compiles is
@@ -114,6 +116,18 @@ bool compile_job_ready(compile_job *j, double *seconds);
  * fine (true). */
 bool compile_job_deferred_ready(compile_job *j);
 
+/* A job started with still (a paused window) has made the still
+ * picture's full frame with the water as a grid, right after the reduced
+ * frames and before the deferred water's code (or no job runs, or it
+ * ended): the window may draw its full frame now, with the grid it draws
+ * until compile_job_deferred_ready. Any thread; NULL is fine (true). */
+bool compile_job_still_ready(compile_job *j);
+/* What the running job makes from now on is old (a newer change, after a
+ * paused window showed this one sharp): it ends at its next step (a frame
+ * under way ends first; compile_job_wait_done waits for that). Its code
+ * made so far stays in Mesa's cache. Any thread; NULL is fine. */
+void compile_job_cancel(compile_job *j);
+
 /* The window has shown the change (its first frame after the reload at
  * the job's ready is on screen), or will not reload before the job's end:
  * a job started with wait_for_shown goes on. Any thread; NULL is fine. */
@@ -143,6 +157,10 @@ bool compile_job_done(compile_job *j, double *seconds);
  * over its scenes (what a still window's job leaves until after its ready
  * shows here: tests). */
 void compile_job_frames(compile_job *j, int *at_ready, int *in_all);
+/* The frames the last job (running or ended) drew before its
+ * compile_job_still_ready: 0 for a job that did not make the sharp frame
+ * first (tests). */
+int compile_job_frames_at_still(compile_job *j);
 
 /* Does compiling off the frame help here? False when Mesa's shader cache
  * is off (MESA_SHADER_CACHE_DISABLE or MESA_GLSL_CACHE_DISABLE true), or
