@@ -357,7 +357,7 @@ static void run_job(compile_job *j) {
      * made above and draws the same code with the water deferred */
     for (int i = 0; i < j->nscenes && !quitting(j); i++) warm_moving(j, i, 0, 1, true);
     pthread_mutex_lock(&j->mu);
-    j->deferred_ready = true;
+    j->deferred_ready = !j->cancel;   /* cancelled: not made (compile_job_deferred_ready says so at the end) */
     if (j->wake) j->wake(j->wake_user);
     bool still = still_wanted(j);
     pthread_mutex_unlock(&j->mu);
