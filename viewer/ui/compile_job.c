@@ -169,9 +169,12 @@ static bool apply_defines(render *r, const job_scene *s) {
 
 /* The window is closing: what the job has not begun is left undone (a
  * load or a frame under way runs to its end; GL has no way to stop one). */
+/* Under mu: the window closes (destroy) or the job's work is old (cancel). */
+static bool stopping(const compile_job *j) { return j->quit || j->cancel; }
+
 static bool quitting(compile_job *j) {
     pthread_mutex_lock(&j->mu);
-    bool q = j->quit || j->cancel;
+    bool q = stopping(j);
     pthread_mutex_unlock(&j->mu);
     return q;
 }
@@ -289,7 +292,7 @@ static struct timespec deadline_in(double s) {
  * COMPILE_JOB_SHOWN_WAIT_S. */
 static void wait_for_shown(compile_job *j) {
     struct timespec until = deadline_in(COMPILE_JOB_SHOWN_WAIT_S);
-    while (j->wait_for_shown && !j->shown && !j->quit && !j->cancel)
+    while (j->wait_for_shown && !j->shown && !stopping(j))
         if (pthread_cond_timedwait(&j->cv, &j->mu, &until) != 0) break;   /* timed out: go on */
 }
 
@@ -298,9 +301,9 @@ static void wait_for_shown(compile_job *j) {
 static bool still_wanted(compile_job *j) {
     if (!j->defer_still) return true;
     j->still_waits = true;
-    while (j->still_answer == 0 && !j->quit && !j->cancel) pthread_cond_wait(&j->cv, &j->mu);
+    while (j->still_answer == 0 && !stopping(j)) pthread_cond_wait(&j->cv, &j->mu);
     j->still_waits = false;
-    return j->still_answer > 0 && !j->quit && !j->cancel;
+    return j->still_answer > 0 && !stopping(j);
 }
 
 /* One job: the scenes asked for, warmed; renders of scenes no longer
