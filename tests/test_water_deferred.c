@@ -216,5 +216,6 @@ int main(void) {
     RUN(test_unsplittable_shader_keeps_the_grid);
     RUN(test_ocean_keeps_the_grid);
     gl_ctx_destroy(ctx);
+    scratch_remove();
     return check_summary();
 }
