@@ -521,202 +521,273 @@ static bool close_out(FILE *f, const char *path, FILE *out, FILE *err) {
     return ok;
 }
 
-int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
-    const compare_desc o = *cd;
-    FILE *table = (o.json && strcmp(o.json, "-") == 0) || (o.csv && strcmp(o.csv, "-") == 0) ? err : out;
+/* One comparison's state, shared by the report's steps below. */
+typedef struct run_ctx {
+    const compare_desc *o;
+    FILE *out, *err;
+    img ia, ib;
+    bool dec_a, dec_b;
+    ref_fimage fa, fb;
+    unsigned char *mask;   /* --mask, or NULL */
+    float *flip;           /* the whole frame's FLIP map */
+    bool flip_hdr;
+    ref_flip_result fr;
+    kvlist l;
+} run_ctx;
 
-    img ia = {0}, ib = {0};
+/* The inputs: names, decoding, size, channels. */
+static void add_inputs(run_ctx *c, const ref_image_metrics *m) {
+    const compare_desc *o = c->o;
+    kvlist *l = &c->l;
+    char size[64], desc[4200];
+    snprintf(size, sizeof size, "%dx%d", m->width, m->height);
+    snprintf(desc, sizeof desc, "%s (%s, %d channels)", o->a, c->dec_a ? "sRGB, decoded to linear" : "linear",
+             c->ia.channels);
+    add_note(l, NULL, "A (under test)", desc);
+    snprintf(desc, sizeof desc, "%s (%s, %d channels)", o->b, c->dec_b ? "sRGB, decoded to linear" : "linear",
+             c->ib.channels);
+    add_note(l, NULL, "B (reference)", desc);
+    add_str(l, NULL, "a", NULL, o->a);
+    add_str(l, NULL, "b", NULL, o->b);
+    add_bool(l, NULL, "a_srgb_decoded", NULL, c->dec_a);
+    add_bool(l, NULL, "b_srgb_decoded", NULL, c->dec_b);
+    add_int(l, NULL, "width", NULL, m->width);
+    add_int(l, NULL, "height", NULL, m->height);
+    add_note(l, NULL, "size", size);
+    add_int(l, NULL, "channels_a", NULL, c->ia.channels);
+    add_int(l, NULL, "channels_b", NULL, c->ib.channels);
+}
+
+/* Water first: the error of the technique, where the reference sees
+ * water; the world around it second (the whole frame follows). */
+static void add_regions(run_ctx *c, const percept *pc) {
+    char why[MSG_MAX] = "";
+    float *cls = load_classes(c->o->b, c->ia.w, c->ia.h, why, sizeof why);
+    if (cls) {
+        add_region(&c->l, true, &c->fa, &c->fb, cls, c->mask, c->o->threshold, pc);
+        add_region(&c->l, false, &c->fa, &c->fb, cls, c->mask, c->o->threshold, pc);
+        free(cls);
+    } else {
+        add_note(&c->l, NULL, "water-only error", why);
+        add_num(&c->l, NULL, "water_rmse", NULL, NAN, NULL);
+        add_num(&c->l, NULL, "water_flip_mean", NULL, NAN, NULL);
+        add_num(&c->l, NULL, "water_ssim", NULL, NAN, NULL);
+    }
+}
+
+/* The whole frame's pixel metrics. */
+static void add_frame(kvlist *l, const ref_image_metrics *m) {
+    add_counts(l, NULL, &m->count);
+    add_num(l, NULL, "rmse", "RMSE, whole frame (linear RGB)", m->rmse, NULL);
+    add_num(l, NULL, "rmse_r", NULL, m->rmse_c[0], NULL);
+    add_num(l, NULL, "rmse_g", NULL, m->rmse_c[1], NULL);
+    add_num(l, NULL, "rmse_b", NULL, m->rmse_c[2], NULL);
+    add_num(l, NULL, "psnr_db", "PSNR (peak 1.0)", m->psnr_db, "dB");
+    add_num(l, NULL, "psnr_peak", NULL, m->peak, NULL);
+    add_num(l, NULL, "mae", "mean absolute error", m->mae, NULL);
+    add_num(l, NULL, "max_abs", "max absolute error", m->max_abs, NULL);
+    add_int(l, NULL, "max_at_x", NULL, m->max_x);
+    add_int(l, NULL, "max_at_y", NULL, m->max_y);
+    add_int(l, NULL, "max_at_channel", NULL, m->max_c);
+    if (m->max_x >= 0) {
+        static const char *names[3] = { "red", "green", "blue" };
+        char at[96];
+        snprintf(at, sizeof at, "(%d, %d), %s", m->max_x, m->max_y, names[m->max_c]);
+        add_note(l, NULL, "  at pixel (x, y from top-left)", at);
+    }
+    add_num(l, NULL, "threshold", "threshold", m->threshold, NULL);
+    add_int(l, NULL, "over_threshold_pixels", "pixels over the threshold", m->over_threshold);
+    add_share(l, NULL, "over_threshold_share", "share over the threshold", m->over_threshold_share);
+    add_int(l, NULL, "differing_pixels", "pixels that differ at all", m->differing);
+    add_num(l, NULL, "bias_r", NULL, m->bias[0], NULL);
+    add_num(l, NULL, "bias_g", NULL, m->bias[1], NULL);
+    add_num(l, NULL, "bias_b", NULL, m->bias[2], NULL);
+    add_num(l, NULL, "error_median", "pixel error, median", m->pixel_err.median, NULL);
+    add_num(l, NULL, "error_p95", "pixel error, 95th percentile", m->pixel_err.p95, NULL);
+    add_num(l, NULL, "error_p99", "pixel error, 99th percentile", m->pixel_err.p99, NULL);
+}
+
+/* FLIP and SSIM of the whole frame (inside --mask). */
+static void add_flip_ssim(run_ctx *c, const percept *pc) {
+    kvlist *l = &c->l;
+    ref_flip_result *fr = &c->fr;
+    bool hdr = c->flip_hdr;
+    ref_flip_pool(c->flip, c->ia.w, c->ia.h, c->mask, fr);
+    char fl[96];
+    snprintf(fl, sizeof fl, "%s-FLIP at %.0f pixels per degree", hdr ? "HDR" : "LDR", fr->ppd);
+    add_note(l, NULL, "FLIP", fl);
+    add_str(l, NULL, "flip_kind", NULL, hdr ? "HDR" : "LDR");
+    add_num(l, NULL, "flip_ppd", NULL, fr->ppd, NULL);
+    add_num(l, NULL, "flip_mean", "FLIP, whole frame, mean", fr->mean, NULL);
+    add_num(l, NULL, "flip_weighted_median", "FLIP, weighted median", fr->weighted_median, NULL);
+    add_num(l, NULL, "flip_q1", "FLIP, 1st weighted quartile", fr->q1, NULL);
+    add_num(l, NULL, "flip_q3", "FLIP, 3rd weighted quartile", fr->q3, NULL);
+    add_num(l, NULL, "flip_min", "FLIP, min", fr->min, NULL);
+    add_num(l, NULL, "flip_max", "FLIP, max", fr->max, NULL);
+    add_num(l, NULL, "flip_start_exposure", hdr ? "FLIP, start exposure" : NULL, fr->start_exposure, NULL);
+    add_num(l, NULL, "flip_stop_exposure", hdr ? "FLIP, stop exposure" : NULL, fr->stop_exposure, NULL);
+    add_count_or_null(l, NULL, "flip_exposures", "FLIP, exposures", hdr ? fr->num_exposures : -1);
+    char swhy[256] = "";
+    double ssim = ssim_mean(pc, c->mask, swhy, sizeof swhy);
+    add_num(l, NULL, "ssim", "SSIM, whole frame, mean (luminance)", ssim, NULL);
+    if (isnan(ssim) && swhy[0]) add_note(l, NULL, "  SSIM n/a", swhy);
+}
+
+/* --flip-map: the FLIP map in magma. False where it could not be written. */
+static bool write_flip_map(run_ctx *c) {
+    const char *path = c->o->flip_map;
+    if (!path) {
+        add_str(&c->l, NULL, "flip_map", NULL, NULL);
+        return true;
+    }
+    img fm;
+    char fmsg[1024];
+    bool ok = img_alloc(&fm, c->ia.w, c->ia.h, 3);
+    if (ok) {
+        ref_flip_colorize(c->flip, c->ia.w, c->ia.h, c->mask, fm.px);
+        ok = img_write(path, &fm, fmsg, sizeof fmsg);
+        img_free(&fm);
+        if (!ok) fprintf(c->err, "tarn compare: cannot write the FLIP map: %s\n", fmsg);
+    } else fprintf(c->err, "tarn compare: %s: out of memory\n", path);
+    add_str(&c->l, NULL, "flip_map", "FLIP map (magma)", ok ? path : NULL);
+    return ok;
+}
+
+/* --out: the colour error's heat map. *all_ok false where it could not be
+ * written; false (an error already said) where the field was not made. */
+static bool write_heat(run_ctx *c, const ref_metrics_desc *d, bool *all_ok) {
+    if (!c->o->out) {
+        add_str(&c->l, NULL, "heatmap", NULL, NULL);
+        add_num(&c->l, NULL, "heatmap_scale", NULL, NAN, NULL);
+        return true;
+    }
     char msg[MSG_MAX];
-    bool dec_a = false, dec_b = false, ok_a, ok_b;
-    if (!(ok_a = compare_load(o.a, !o.linear, &ia, &dec_a, msg, sizeof msg)))
-        fprintf(err, "tarn compare: cannot read A: %s\n", msg);
-    if (!(ok_b = compare_load(o.b, !o.linear, &ib, &dec_b, msg, sizeof msg)))
-        fprintf(err, "tarn compare: cannot read B: %s\n", msg);
-    if (!ok_a || !ok_b) { img_free(&ia); img_free(&ib); return TARN_EXIT_INPUT; }
-
-    int rc = TARN_EXIT_INPUT;
-    unsigned char *mask = NULL;
-    float *field = NULL, *flip = NULL;
-    kvlist l = {0};
-    if (ia.w != ib.w || ia.h != ib.h) {
-        fprintf(err, "tarn compare: sizes differ: A (%s) is %dx%d, B (%s) is %dx%d\n",
-                o.a, ia.w, ia.h, o.b, ib.w, ib.h);
-        goto done;
+    float *field = mem_alloc((size_t)c->ia.w * (size_t)c->ia.h * sizeof *field);
+    if (!ref_metrics_error_field(&c->fa, &c->fb, REF_ERR_COLOR, d, field, msg, sizeof msg)) {
+        fprintf(c->err, "tarn compare: heat map: %s\n", msg);
+        free(field);
+        return false;
     }
-    if (o.mask && !(mask = load_mask(o.mask, ia.w, ia.h, err))) goto done;
+    double s = write_heatmap(c->o->out, field, c->ia.w, c->ia.h, c->o->max_err, c->err);
+    free(field);
+    if (isnan(s)) *all_ok = false;
+    add_str(&c->l, NULL, "heatmap", "heat map", isnan(s) ? NULL : c->o->out);
+    add_num(&c->l, NULL, "heatmap_scale", "heat map scale (pale yellow)", s, NULL);
+    return true;
+}
 
-    ref_fimage fa = { ia.px, ia.w, ia.h, ia.channels }, fb = { ib.px, ib.w, ib.h, ib.channels };
-    ref_metrics_desc d = { .threshold = o.threshold, .mask = mask };
+/* --buffers: each buffer found beside both A and B. False where one of
+ * them could not be compared. */
+static bool compare_buffers(run_ctx *c) {
+    const compare_desc *o = c->o;
+    bool ok = true;
+    int found = 0;
+    for (int k = 0; k < REF_BUF_COUNT; k++) {
+        if (!ref_buffers[k].measured) continue;
+        char pa[4096], pb[4096];
+        sibling_path(pa, sizeof pa, o->a, ref_buffers[k].name, ".exr");
+        sibling_path(pb, sizeof pb, o->b, ref_buffers[k].name, ".exr");
+        bool ea = file_exists(pa), eb = file_exists(pb);
+        if (!ea && !eb) continue;
+        found++;
+        if (ea != eb) {
+            fprintf(c->err, "tarn compare: buffer %s: only %s exists (no %s): not compared\n",
+                    ref_buffers[k].name, ea ? pa : pb, ea ? pb : pa);
+            continue;
+        }
+        if (!compare_buffer(&ref_buffers[k], pa, pb, o, c->mask, c->ia.w, c->ia.h, &c->l, c->err)) ok = false;
+    }
+    if (!found) {
+        char pa[4096];
+        sibling_path(pa, sizeof pa, o->a, "NAME", ".exr");
+        fprintf(c->err, "tarn compare: --buffers: no buffers beside A or B (looked for %s, NAME = "
+                "refract_hit, reflect, fresnel, depth, irradiance)\n", pa);
+    }
+    return ok;
+}
+
+/* The table (stdout, or stderr when JSON or CSV takes stdout), --json and
+ * --csv. False where a file could not be written. */
+static bool write_outputs(run_ctx *c) {
+    const compare_desc *o = c->o;
+    FILE *table = (o->json && strcmp(o->json, "-") == 0) || (o->csv && strcmp(o->csv, "-") == 0) ? c->err : c->out;
+    bool ok = true;
+    write_table(table, &c->l);
+    if (o->json) {
+        FILE *f = open_out(o->json, c->out, c->err);
+        if (!f) ok = false;
+        else { write_json(f, &c->l); if (!close_out(f, o->json, c->out, c->err)) ok = false; }
+    }
+    if (o->csv) {
+        FILE *f = open_out(o->csv, c->out, c->err);
+        if (!f) ok = false;
+        else { write_csv(f, &c->l); if (!close_out(f, o->csv, c->out, c->err)) ok = false; }
+    }
+    return ok;
+}
+
+/* Reads A and B; false (having said why) where either cannot be read or
+ * their sizes differ, or --mask cannot be read. */
+static bool load_inputs(run_ctx *c) {
+    const compare_desc *o = c->o;
+    char msg[MSG_MAX];
+    bool ok_a, ok_b;
+    if (!(ok_a = compare_load(o->a, !o->linear, &c->ia, &c->dec_a, msg, sizeof msg)))
+        fprintf(c->err, "tarn compare: cannot read A: %s\n", msg);
+    if (!(ok_b = compare_load(o->b, !o->linear, &c->ib, &c->dec_b, msg, sizeof msg)))
+        fprintf(c->err, "tarn compare: cannot read B: %s\n", msg);
+    if (!ok_a || !ok_b) return false;
+    if (c->ia.w != c->ib.w || c->ia.h != c->ib.h) {
+        fprintf(c->err, "tarn compare: sizes differ: A (%s) is %dx%d, B (%s) is %dx%d\n",
+                o->a, c->ia.w, c->ia.h, o->b, c->ib.w, c->ib.h);
+        return false;
+    }
+    if (o->mask && !(c->mask = load_mask(o->mask, c->ia.w, c->ia.h, c->err))) return false;
+    c->fa = (ref_fimage){ c->ia.px, c->ia.w, c->ia.h, c->ia.channels };
+    c->fb = (ref_fimage){ c->ib.px, c->ib.w, c->ib.h, c->ib.channels };
+    return true;
+}
+
+/* Everything measured, in the report's order; TARN_EXIT_INPUT where a
+ * metric could not be had or an output not written. */
+static int measure(run_ctx *c) {
+    const compare_desc *o = c->o;
+    char msg[MSG_MAX];
+    ref_metrics_desc d = { .threshold = o->threshold, .mask = c->mask };
     ref_image_metrics m;
-    if (!ref_metrics_image(&fa, &fb, &d, &m, msg, sizeof msg)) {
-        fprintf(err, "tarn compare: %s vs %s: %s\n", o.a, o.b, msg);
-        goto done;
+    if (!ref_metrics_image(&c->fa, &c->fb, &d, &m, msg, sizeof msg)) {
+        fprintf(c->err, "tarn compare: %s vs %s: %s\n", o->a, o->b, msg);
+        return TARN_EXIT_INPUT;
     }
-    bool all_ok = true;
-    char size[64];
-    snprintf(size, sizeof size, "%dx%d", m.width, m.height);
-    char desc[4200];
-    snprintf(desc, sizeof desc, "%s (%s, %d channels)", o.a, dec_a ? "sRGB, decoded to linear" : "linear", ia.channels);
-    add_note(&l, NULL, "A (under test)", desc);
-    snprintf(desc, sizeof desc, "%s (%s, %d channels)", o.b, dec_b ? "sRGB, decoded to linear" : "linear", ib.channels);
-    add_note(&l, NULL, "B (reference)", desc);
-    add_str(&l, NULL, "a", NULL, o.a);
-    add_str(&l, NULL, "b", NULL, o.b);
-    add_bool(&l, NULL, "a_srgb_decoded", NULL, dec_a);
-    add_bool(&l, NULL, "b_srgb_decoded", NULL, dec_b);
-    add_int(&l, NULL, "width", NULL, m.width);
-    add_int(&l, NULL, "height", NULL, m.height);
-    add_note(&l, NULL, "size", size);
-    add_int(&l, NULL, "channels_a", NULL, ia.channels);
-    add_int(&l, NULL, "channels_b", NULL, ib.channels);
+    add_inputs(c, &m);
     /* FLIP over the whole frame (its filters see every pixel), pooled per
      * region below: LDR-FLIP when both files are 8-bit display images (the
      * authors' tool reads them so), HDR-FLIP when either is linear */
-    bool flip_hdr = !(compare_is_srgb_path(o.a) && compare_is_srgb_path(o.b));
-    ref_flip_desc fd = { .hdr = flip_hdr };
-    ref_flip_result fr;
-    flip = mem_alloc((size_t)ia.w * (size_t)ia.h * sizeof *flip);
-    if (!ref_flip_map(&fa, &fb, &fd, flip, NULL, &fr, msg, sizeof msg)) {
-        fprintf(err, "tarn compare: FLIP: %s\n", msg);
-        goto done;
+    c->flip_hdr = !(compare_is_srgb_path(o->a) && compare_is_srgb_path(o->b));
+    ref_flip_desc fd = { .hdr = c->flip_hdr };
+    c->flip = mem_alloc((size_t)c->ia.w * (size_t)c->ia.h * sizeof *c->flip);
+    if (!ref_flip_map(&c->fa, &c->fb, &fd, c->flip, NULL, &c->fr, msg, sizeof msg)) {
+        fprintf(c->err, "tarn compare: FLIP: %s\n", msg);
+        return TARN_EXIT_INPUT;
     }
-    percept pc = { flip, &fa, &fb };
-    /* water first: the error of the technique, where the reference sees
-     * water; the world around it second; the whole frame last */
-    char why[MSG_MAX] = "";
-    float *cls = load_classes(o.b, ia.w, ia.h, why, sizeof why);
-    if (cls) {
-        add_region(&l, true, &fa, &fb, cls, mask, o.threshold, &pc);
-        add_region(&l, false, &fa, &fb, cls, mask, o.threshold, &pc);
-        free(cls);
-    } else {
-        add_note(&l, NULL, "water-only error", why);
-        add_num(&l, NULL, "water_rmse", NULL, NAN, NULL);
-        add_num(&l, NULL, "water_flip_mean", NULL, NAN, NULL);
-        add_num(&l, NULL, "water_ssim", NULL, NAN, NULL);
-    }
-    add_counts(&l, NULL, &m.count);
-    add_num(&l, NULL, "rmse", "RMSE, whole frame (linear RGB)", m.rmse, NULL);
-    add_num(&l, NULL, "rmse_r", NULL, m.rmse_c[0], NULL);
-    add_num(&l, NULL, "rmse_g", NULL, m.rmse_c[1], NULL);
-    add_num(&l, NULL, "rmse_b", NULL, m.rmse_c[2], NULL);
-    add_num(&l, NULL, "psnr_db", "PSNR (peak 1.0)", m.psnr_db, "dB");
-    add_num(&l, NULL, "psnr_peak", NULL, m.peak, NULL);
-    add_num(&l, NULL, "mae", "mean absolute error", m.mae, NULL);
-    add_num(&l, NULL, "max_abs", "max absolute error", m.max_abs, NULL);
-    add_int(&l, NULL, "max_at_x", NULL, m.max_x);
-    add_int(&l, NULL, "max_at_y", NULL, m.max_y);
-    add_int(&l, NULL, "max_at_channel", NULL, m.max_c);
-    char at[96];
-    if (m.max_x >= 0) {
-        static const char *names[3] = { "red", "green", "blue" };
-        snprintf(at, sizeof at, "(%d, %d), %s", m.max_x, m.max_y, names[m.max_c]);
-        add_note(&l, NULL, "  at pixel (x, y from top-left)", at);
-    }
-    add_num(&l, NULL, "threshold", "threshold", m.threshold, NULL);
-    add_int(&l, NULL, "over_threshold_pixels", "pixels over the threshold", m.over_threshold);
-    add_share(&l, NULL, "over_threshold_share", "share over the threshold", m.over_threshold_share);
-    add_int(&l, NULL, "differing_pixels", "pixels that differ at all", m.differing);
-    add_num(&l, NULL, "bias_r", NULL, m.bias[0], NULL);
-    add_num(&l, NULL, "bias_g", NULL, m.bias[1], NULL);
-    add_num(&l, NULL, "bias_b", NULL, m.bias[2], NULL);
-    add_num(&l, NULL, "error_median", "pixel error, median", m.pixel_err.median, NULL);
-    add_num(&l, NULL, "error_p95", "pixel error, 95th percentile", m.pixel_err.p95, NULL);
-    add_num(&l, NULL, "error_p99", "pixel error, 99th percentile", m.pixel_err.p99, NULL);
-
-    /* FLIP and SSIM of the whole frame (inside --mask) */
-    ref_flip_pool(flip, ia.w, ia.h, mask, &fr);
-    char fl[96];
-    snprintf(fl, sizeof fl, "%s-FLIP at %.0f pixels per degree", flip_hdr ? "HDR" : "LDR", fr.ppd);
-    add_note(&l, NULL, "FLIP", fl);
-    add_str(&l, NULL, "flip_kind", NULL, flip_hdr ? "HDR" : "LDR");
-    add_num(&l, NULL, "flip_ppd", NULL, fr.ppd, NULL);
-    add_num(&l, NULL, "flip_mean", "FLIP, whole frame, mean", fr.mean, NULL);
-    add_num(&l, NULL, "flip_weighted_median", "FLIP, weighted median", fr.weighted_median, NULL);
-    add_num(&l, NULL, "flip_q1", "FLIP, 1st weighted quartile", fr.q1, NULL);
-    add_num(&l, NULL, "flip_q3", "FLIP, 3rd weighted quartile", fr.q3, NULL);
-    add_num(&l, NULL, "flip_min", "FLIP, min", fr.min, NULL);
-    add_num(&l, NULL, "flip_max", "FLIP, max", fr.max, NULL);
-    add_num(&l, NULL, "flip_start_exposure", flip_hdr ? "FLIP, start exposure" : NULL, fr.start_exposure, NULL);
-    add_num(&l, NULL, "flip_stop_exposure", flip_hdr ? "FLIP, stop exposure" : NULL, fr.stop_exposure, NULL);
-    add_count_or_null(&l, NULL, "flip_exposures", "FLIP, exposures", flip_hdr ? fr.num_exposures : -1);
-    char swhy[256] = "";
-    double ssim = ssim_mean(&pc, mask, swhy, sizeof swhy);
-    add_num(&l, NULL, "ssim", "SSIM, whole frame, mean (luminance)", ssim, NULL);
-    if (isnan(ssim) && swhy[0]) add_note(&l, NULL, "  SSIM n/a", swhy);
-    if (o.flip_map) {
-        img fm;
-        char fmsg[1024];
-        bool ok = img_alloc(&fm, ia.w, ia.h, 3);
-        if (ok) {
-            ref_flip_colorize(flip, ia.w, ia.h, mask, fm.px);
-            ok = img_write(o.flip_map, &fm, fmsg, sizeof fmsg);
-            img_free(&fm);
-            if (!ok) fprintf(err, "tarn compare: cannot write the FLIP map: %s\n", fmsg);
-        } else fprintf(err, "tarn compare: %s: out of memory\n", o.flip_map);
-        if (!ok) all_ok = false;
-        add_str(&l, NULL, "flip_map", "FLIP map (magma)", ok ? o.flip_map : NULL);
-    } else add_str(&l, NULL, "flip_map", NULL, NULL);
-
-    if (o.out) {
-        field = mem_alloc((size_t)ia.w * (size_t)ia.h * sizeof *field);
-        if (!ref_metrics_error_field(&fa, &fb, REF_ERR_COLOR, &d, field, msg, sizeof msg)) {
-            fprintf(err, "tarn compare: heat map: %s\n", msg);
-            goto done;
-        }
-        double s = write_heatmap(o.out, field, ia.w, ia.h, o.max_err, err);
-        if (isnan(s)) all_ok = false;
-        add_str(&l, NULL, "heatmap", "heat map", isnan(s) ? NULL : o.out);
-        add_num(&l, NULL, "heatmap_scale", "heat map scale (pale yellow)", s, NULL);
-    } else {
-        add_str(&l, NULL, "heatmap", NULL, NULL);
-        add_num(&l, NULL, "heatmap_scale", NULL, NAN, NULL);
-    }
-
-    if (o.buffers) {
-        int found = 0;
-        for (int k = 0; k < REF_BUF_COUNT; k++) {
-            if (!ref_buffers[k].measured) continue;
-            char pa[4096], pb[4096];
-            sibling_path(pa, sizeof pa, o.a, ref_buffers[k].name, ".exr");
-            sibling_path(pb, sizeof pb, o.b, ref_buffers[k].name, ".exr");
-            bool ea = file_exists(pa), eb = file_exists(pb);
-            if (!ea && !eb) continue;
-            found++;
-            if (ea != eb) {
-                fprintf(err, "tarn compare: buffer %s: only %s exists (no %s): not compared\n",
-                        ref_buffers[k].name, ea ? pa : pb, ea ? pb : pa);
-                continue;
-            }
-            if (!compare_buffer(&ref_buffers[k], pa, pb, &o, mask, ia.w, ia.h, &l, err)) all_ok = false;
-        }
-        if (!found) {
-            char pa[4096];
-            sibling_path(pa, sizeof pa, o.a, "NAME", ".exr");
-            fprintf(err, "tarn compare: --buffers: no buffers beside A or B (looked for %s, NAME = "
-                    "refract_hit, reflect, fresnel, depth, irradiance)\n", pa);
-        }
-    }
-
-    write_table(table, &l);
-    if (o.json) {
-        FILE *f = open_out(o.json, out, err);
-        if (!f) all_ok = false;
-        else { write_json(f, &l); if (!close_out(f, o.json, out, err)) all_ok = false; }
-    }
-    if (o.csv) {
-        FILE *f = open_out(o.csv, out, err);
-        if (!f) all_ok = false;
-        else { write_csv(f, &l); if (!close_out(f, o.csv, out, err)) all_ok = false; }
-    }
-    rc = all_ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
-done:
-    kvlist_free(&l);
-    free(field);
-    free(flip);
-    free(mask);
-    img_free(&ia);
-    img_free(&ib);
-    return rc;
+    percept pc = { c->flip, &c->fa, &c->fb };
+    add_regions(c, &pc);
+    add_frame(&c->l, &m);
+    add_flip_ssim(c, &pc);
+    bool all_ok = write_flip_map(c);
+    if (!write_heat(c, &d, &all_ok)) return TARN_EXIT_INPUT;
+    if (o->buffers && !compare_buffers(c)) all_ok = false;
+    if (!write_outputs(c)) all_ok = false;
+    return all_ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
 }
 
+int compare_run(const compare_desc *cd, FILE *out, FILE *err) {
+    run_ctx c = { .o = cd, .out = out, .err = err };
+    int rc = load_inputs(&c) ? measure(&c) : TARN_EXIT_INPUT;
+    kvlist_free(&c.l);
+    free(c.flip);
+    free(c.mask);
+    img_free(&c.ia);
+    img_free(&c.ib);
+    return rc;
+}
