@@ -224,21 +224,34 @@ static int cmp_x(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-bool plot_speed_error(const plot_chart *c, img *out) {
-    int W = c->w > 0 ? c->w : 1000, H = c->h > 0 ? c->h : 660;
-    memset(out, 0, sizeof *out);
-    if (!img_alloc(out, W, H, 3)) return false;
-    const float white[3] = { 1, 1, 1 }, black[3] = { 0.1f, 0.1f, 0.12f }, grid[3] = { 0.88f, 0.88f, 0.9f },
-                grey[3] = { 0.45f, 0.45f, 0.48f };
-    plot_fill(out, white);
+static const float ink[3] = { 0.1f, 0.1f, 0.12f }, grid_rgb[3] = { 0.88f, 0.88f, 0.9f },
+                   grey_rgb[3] = { 0.45f, 0.45f, 0.48f };
 
-    /* data ranges */
+static bool drawable(const plot_point *p) {
+    return p->x > 0 && p->y > 0 && isfinite(p->x) && isfinite(p->y);
+}
+
+/* One chart being drawn: its axes and the points placed so far (for the
+ * labels and the legend to avoid). */
+typedef struct chart {
+    const plot_chart *c;
+    img *out;
+    int W, H, left, top;
+    axis ax, ay;
+    double *px;               /* placed points, x y pairs */
+    const char **labels;      /* their labels */
+    int nplaced;
+} chart;
+
+/* The axes' ranges from the drawable points and the floor. */
+static void chart_axes(chart *k) {
+    const plot_chart *c = k->c;
     double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
     int npts = 0;
     for (int s = 0; s < c->nseries; s++)
         for (int i = 0; i < c->series[s].n; i++) {
             const plot_point *p = &c->series[s].pts[i];
-            if (!(p->x > 0) || !(p->y > 0) || !isfinite(p->x) || !isfinite(p->y)) continue;
+            if (!drawable(p)) continue;
             xmin = fmin(xmin, p->x);
             xmax = fmax(xmax, p->x);
             ymin = fmin(ymin, p->y);
@@ -251,58 +264,70 @@ bool plot_speed_error(const plot_chart *c, img *out) {
     }
     if (!npts) { ymin = 0.01; ymax = 0.1; }
     if (!isfinite(xmin)) { xmin = 1; xmax = 10; }
+    k->left = 96;
+    k->top = c->subtitle ? 92 : 70;
+    int right = 28, bottom = 74;
+    k->ax = (axis){ .p0 = k->left, .p1 = k->W - right };
+    k->ay = (axis){ .p0 = k->H - bottom, .p1 = k->top };
+    axis_range(&k->ax, xmin, xmax);
+    axis_range(&k->ay, ymin, ymax);
+}
 
-    int left = 96, right = 28, top = c->subtitle ? 92 : 70, bottom = 74;
-    axis ax = { .p0 = left, .p1 = W - right }, ay = { .p0 = H - bottom, .p1 = top };
-    axis_range(&ax, xmin, xmax);
-    axis_range(&ay, ymin, ymax);
-
-    /* grid and tick labels (a label that would touch the previous one is left out) */
+/* The grid and tick labels (a label that would touch the previous one is
+ * left out), then the axes' lines. */
+static void chart_grid(const chart *k) {
+    img *out = k->out;
+    const axis *ax = &k->ax, *ay = &k->ay;
     double tv[64];
     char buf[64];
-    int nt = ticks(&ax, tv, 64);
+    int nt = ticks(ax, tv, 64);
     double last_right = -1e9;
     for (int i = 0; i < nt; i++) {
-        double x = axis_px(&ax, tv[i]);
-        plot_line(out, x, ay.p1, x, ay.p0, 1, 0, grid);
-        plot_line(out, x, ay.p0, x, ay.p0 + 6, 1.5, 0, black);
+        double x = axis_px(ax, tv[i]);
+        plot_line(out, x, ay->p1, x, ay->p0, 1, 0, grid_rgb);
+        plot_line(out, x, ay->p0, x, ay->p0 + 6, 1.5, 0, ink);
         fmt_tick(tv[i], buf, sizeof buf);
         double lx = x - plot_text_width(buf, 2) / 2.0;
         if (lx < last_right + 10) continue;
-        plot_text(out, (int)lx, (int)ay.p0 + 12, buf, 2, black);
+        plot_text(out, (int)lx, (int)ay->p0 + 12, buf, 2, ink);
         last_right = lx + plot_text_width(buf, 2);
     }
-    nt = ticks(&ay, tv, 64);
+    nt = ticks(ay, tv, 64);
     double last_y = 1e9;
     for (int i = 0; i < nt; i++) {
-        double y = axis_px(&ay, tv[i]);
-        plot_line(out, ax.p0, y, ax.p1, y, 1, 0, grid);
-        plot_line(out, ax.p0 - 6, y, ax.p0, y, 1.5, 0, black);
+        double y = axis_px(ay, tv[i]);
+        plot_line(out, ax->p0, y, ax->p1, y, 1, 0, grid_rgb);
+        plot_line(out, ax->p0 - 6, y, ax->p0, y, 1.5, 0, ink);
         if (last_y - y < 22) continue;
         fmt_tick(tv[i], buf, sizeof buf);
-        plot_text(out, (int)ax.p0 - 10 - plot_text_width(buf, 2), (int)y - 7, buf, 2, black);
+        plot_text(out, (int)ax->p0 - 10 - plot_text_width(buf, 2), (int)y - 7, buf, 2, ink);
         last_y = y;
     }
-    plot_line(out, ax.p0, ay.p0, ax.p1, ay.p0, 2, 0, black);
-    plot_line(out, ax.p0, ay.p0, ax.p0, ay.p1, 2, 0, black);
+    plot_line(out, ax->p0, ay->p0, ax->p1, ay->p0, 2, 0, ink);
+    plot_line(out, ax->p0, ay->p0, ax->p0, ay->p1, 2, 0, ink);
+}
 
-    /* titles */
-    if (c->title) plot_text(out, left, 14, c->title, 2, black);
-    if (c->subtitle) plot_text(out, left, 38, c->subtitle, 2, grey);
+/* Titles, axis labels and the cost floor. */
+static void chart_titles(const chart *k) {
+    const plot_chart *c = k->c;
+    img *out = k->out;
+    if (c->title) plot_text(out, k->left, 14, c->title, 2, ink);
+    if (c->subtitle) plot_text(out, k->left, 38, c->subtitle, 2, grey_rgb);
     if (c->xlabel)
-        plot_text(out, (int)((ax.p0 + ax.p1) / 2 - plot_text_width(c->xlabel, 2) / 2.0), H - 30, c->xlabel, 2,
-                  black);
+        plot_text(out, (int)((k->ax.p0 + k->ax.p1) / 2 - plot_text_width(c->xlabel, 2) / 2.0), k->H - 30, c->xlabel,
+                  2, ink);
     if (c->ylabel)   /* vertical text is hard to read in a pixel font: above the axis */
-        plot_text(out, 12, top - 24, c->ylabel, 2, black);
-
-    /* the cost floor */
+        plot_text(out, 12, k->top - 24, c->ylabel, 2, ink);
     if (c->floor_x > 0 && isfinite(c->floor_x)) {
-        double x = axis_px(&ax, c->floor_x);
-        plot_line(out, x, ay.p1, x, ay.p0, 1.5, 6, grey);
-        if (c->floor_label) plot_text(out, (int)x + 5, (int)ay.p1 + 4, c->floor_label, 1, grey);
+        double x = axis_px(&k->ax, c->floor_x);
+        plot_line(out, x, k->ay.p1, x, k->ay.p0, 1.5, 6, grey_rgb);
+        if (c->floor_label) plot_text(out, (int)x + 5, (int)k->ay.p1 + 4, c->floor_label, 1, grey_rgb);
     }
+}
 
-    /* the Pareto front: a staircase through the ringed points, by time */
+/* The Pareto front: a staircase through the ringed points, by time. */
+static void chart_front(const chart *k) {
+    const plot_chart *c = k->c;
     plot_point front[256];
     int nf = 0;
     for (int s = 0; s < c->nseries; s++)
@@ -310,107 +335,133 @@ bool plot_speed_error(const plot_chart *c, img *out) {
             if (c->series[s].pts[i].pareto) front[nf++] = c->series[s].pts[i];
     qsort(front, (size_t)nf, sizeof *front, cmp_x);
     for (int i = 0; i + 1 < nf; i++) {
-        double x0 = axis_px(&ax, front[i].x), y0 = axis_px(&ay, front[i].y);
-        double x1 = axis_px(&ax, front[i + 1].x), y1 = axis_px(&ay, front[i + 1].y);
-        plot_line(out, x0, y0, x1, y0, 1.5, 5, black);
-        plot_line(out, x1, y0, x1, y1, 1.5, 5, black);
+        double x0 = axis_px(&k->ax, front[i].x), y0 = axis_px(&k->ay, front[i].y);
+        double x1 = axis_px(&k->ax, front[i + 1].x), y1 = axis_px(&k->ay, front[i + 1].y);
+        plot_line(k->out, x0, y0, x1, y0, 1.5, 5, ink);
+        plot_line(k->out, x1, y0, x1, y1, 1.5, 5, ink);
     }
+}
 
-    /* each series: its curve, then its points */
-    int total = 0;
-    for (int s = 0; s < c->nseries; s++) total += c->series[s].n;
-    double *px = mem_alloc((size_t)(total > 0 ? total : 1) * 2 * sizeof *px);
-    const char **labels = mem_alloc((size_t)(total > 0 ? total : 1) * sizeof *labels);
-    int nplaced = 0;
-    for (int s = 0; s < c->nseries; s++) {
-        const plot_series *se = &c->series[s];
-        plot_point *sorted = mem_alloc((size_t)(se->n > 0 ? se->n : 1) * sizeof *sorted);
-        int n = 0;
-        for (int i = 0; i < se->n; i++)
-            if (se->pts[i].x > 0 && se->pts[i].y > 0 && isfinite(se->pts[i].x) && isfinite(se->pts[i].y))
-                sorted[n++] = se->pts[i];
-        qsort(sorted, (size_t)n, sizeof *sorted, cmp_x);
-        for (int i = 0; i + 1 < n; i++)
-            plot_line(out, axis_px(&ax, sorted[i].x), axis_px(&ay, sorted[i].y), axis_px(&ax, sorted[i + 1].x),
-                      axis_px(&ay, sorted[i + 1].y), 2.5, 0, se->rgb);
-        for (int i = 0; i < n; i++) {
-            double x = axis_px(&ax, sorted[i].x), y = axis_px(&ay, sorted[i].y);
-            plot_disc(out, x, y, 6, black);
-            plot_disc(out, x, y, 4.8, se->rgb);
-            if (sorted[i].pareto) plot_ring(out, x, y, 10, 2, black);
-            px[nplaced * 2] = x;
-            px[nplaced * 2 + 1] = y;
-            labels[nplaced++] = sorted[i].label;
-        }
-        free(sorted);
+/* One series: its curve by time, then its points, each placed. */
+static void chart_series(chart *k, const plot_series *se) {
+    plot_point *sorted = mem_alloc((size_t)(se->n > 0 ? se->n : 1) * sizeof *sorted);
+    int n = 0;
+    for (int i = 0; i < se->n; i++)
+        if (drawable(&se->pts[i])) sorted[n++] = se->pts[i];
+    qsort(sorted, (size_t)n, sizeof *sorted, cmp_x);
+    const axis *ax = &k->ax, *ay = &k->ay;
+    for (int i = 0; i + 1 < n; i++)
+        plot_line(k->out, axis_px(ax, sorted[i].x), axis_px(ay, sorted[i].y), axis_px(ax, sorted[i + 1].x),
+                  axis_px(ay, sorted[i + 1].y), 2.5, 0, se->rgb);
+    for (int i = 0; i < n; i++) {
+        double x = axis_px(ax, sorted[i].x), y = axis_px(ay, sorted[i].y);
+        plot_disc(k->out, x, y, 6, ink);
+        plot_disc(k->out, x, y, 4.8, se->rgb);
+        if (sorted[i].pareto) plot_ring(k->out, x, y, 10, 2, ink);
+        k->px[k->nplaced * 2] = x;
+        k->px[k->nplaced * 2 + 1] = y;
+        k->labels[k->nplaced++] = sorted[i].label;
     }
-    /* labels: the first of eight places around the point that overlaps no
-     * label placed before and no point */
-    double (*rects)[4] = mem_alloc((size_t)(nplaced > 0 ? nplaced : 1) * sizeof *rects);
+    free(sorted);
+}
+
+/* Whether a label's box at (x0, y0) lies inside the plot and clear of the
+ * boxes placed before and of every point. */
+static bool label_clear(const chart *k, double x0, double y0, double tw, double th, double (*rects)[4],
+                        int nrects) {
+    bool clear = x0 >= k->ax.p0 && x0 + tw <= k->W && y0 >= k->ay.p1 && y0 + th <= k->ay.p0;
+    for (int r = 0; r < nrects && clear; r++)
+        clear = x0 + tw < rects[r][0] || x0 > rects[r][2] || y0 + th < rects[r][1] || y0 > rects[r][3];
+    for (int p = 0; p < k->nplaced && clear; p++)
+        clear = k->px[p * 2] + 7 < x0 || k->px[p * 2] - 7 > x0 + tw || k->px[p * 2 + 1] + 7 < y0 ||
+                k->px[p * 2 + 1] - 7 > y0 + th;
+    return clear;
+}
+
+/* Labels: the first of eight places around the point that overlaps no
+ * label placed before and no point (else the first place). */
+static void chart_labels(const chart *k) {
+    double (*rects)[4] = mem_alloc((size_t)(k->nplaced > 0 ? k->nplaced : 1) * sizeof *rects);
     int nrects = 0;
-    for (int i = 0; i < nplaced; i++) {
-        if (!labels[i]) continue;
-        double tw = plot_text_width(labels[i], 1), th = PLOT_GLYPH_H;
+    for (int i = 0; i < k->nplaced; i++) {
+        if (!k->labels[i]) continue;
+        double tw = plot_text_width(k->labels[i], 1), th = PLOT_GLYPH_H;
         const double off[8][2] = { { 12, -12 }, { 12, 4 }, { -12 - tw, -12 }, { -12 - tw, 4 },
                                    { -tw / 2, -22 }, { -tw / 2, 12 }, { 14, -4 }, { -14 - tw, -4 } };
         int best = 0;
-        for (int k = 0; k < 8; k++) {
-            double x0 = px[i * 2] + off[k][0], y0 = px[i * 2 + 1] + off[k][1];
-            bool clear = x0 >= ax.p0 && x0 + tw <= W && y0 >= ay.p1 && y0 + th <= ay.p0;
-            for (int r = 0; r < nrects && clear; r++)
-                clear = x0 + tw < rects[r][0] || x0 > rects[r][2] || y0 + th < rects[r][1] || y0 > rects[r][3];
-            for (int p = 0; p < nplaced && clear; p++)
-                clear = px[p * 2] + 7 < x0 || px[p * 2] - 7 > x0 + tw || px[p * 2 + 1] + 7 < y0 ||
-                        px[p * 2 + 1] - 7 > y0 + th;
-            if (clear) { best = k; break; }
-        }
-        double x0 = px[i * 2] + off[best][0], y0 = px[i * 2 + 1] + off[best][1];
+        for (int q = 0; q < 8; q++)
+            if (label_clear(k, k->px[i * 2] + off[q][0], k->px[i * 2 + 1] + off[q][1], tw, th, rects, nrects)) {
+                best = q;
+                break;
+            }
+        double x0 = k->px[i * 2] + off[best][0], y0 = k->px[i * 2 + 1] + off[best][1];
         rects[nrects][0] = x0 - 2;
         rects[nrects][1] = y0 - 2;
         rects[nrects][2] = x0 + tw + 2;
         rects[nrects][3] = y0 + th + 2;
         nrects++;
-        plot_text(out, (int)x0, (int)y0, labels[i], 1, grey);
+        plot_text(k->out, (int)x0, (int)y0, k->labels[i], 1, grey_rgb);
     }
     free(rects);
+}
 
-    /* the legend, top right inside the plot */
-    int lw = 0;
+/* The legend, inside the plot in the corner with the fewest points. */
+static void chart_legend(const chart *k) {
+    const plot_chart *c = k->c;
+    img *out = k->out;
+    int lw = plot_text_width("Pareto front", 2);
     for (int s = 0; s < c->nseries; s++) {
         int tw = plot_text_width(c->series[s].name, 2);
         if (tw > lw) lw = tw;
     }
-    if (plot_text_width("Pareto front", 2) > lw) lw = plot_text_width("Pareto front", 2);
-    /* in the corner of the plot with the fewest points */
     int rows = c->nseries + 1, lwid = lw + 52, lhei = rows * 24 + 10;
-    int lx0 = (int)ax.p1 - 10 - lwid, ly0 = (int)ay.p1 + 10, fewest = nplaced + 1;
+    int lx0 = (int)k->ax.p1 - 10 - lwid, ly0 = (int)k->ay.p1 + 10, fewest = k->nplaced + 1;
     for (int corner = 0; corner < 4; corner++) {
-        int cx0 = corner & 1 ? (int)ax.p0 + 10 : (int)ax.p1 - 10 - lwid;
-        int cy0 = corner & 2 ? (int)ay.p0 - 10 - lhei : (int)ay.p1 + 10;
+        int cx0 = corner & 1 ? (int)k->ax.p0 + 10 : (int)k->ax.p1 - 10 - lwid;
+        int cy0 = corner & 2 ? (int)k->ay.p0 - 10 - lhei : (int)k->ay.p1 + 10;
         int inside = 0;
-        for (int p = 0; p < nplaced; p++)
-            inside += px[p * 2] > cx0 - 8 && px[p * 2] < cx0 + lwid + 8 && px[p * 2 + 1] > cy0 - 8 &&
-                      px[p * 2 + 1] < cy0 + lhei + 8;
+        for (int p = 0; p < k->nplaced; p++)
+            inside += k->px[p * 2] > cx0 - 8 && k->px[p * 2] < cx0 + lwid + 8 && k->px[p * 2 + 1] > cy0 - 8 &&
+                      k->px[p * 2 + 1] < cy0 + lhei + 8;
         if (inside < fewest) { fewest = inside; lx0 = cx0; ly0 = cy0; }
     }
-    free(px);
-    free(labels);
     int lx1 = lx0 + lwid;
-    float frame[3] = { 0.7f, 0.7f, 0.72f }, bg[3] = { 0.98f, 0.98f, 0.98f };
+    const float frame[3] = { 0.7f, 0.7f, 0.72f }, bg[3] = { 0.98f, 0.98f, 0.98f };
     plot_rect(out, lx0, ly0, lx1, ly0 + rows * 24 + 10, frame);
     plot_rect(out, lx0 + 1, ly0 + 1, lx1 - 1, ly0 + rows * 24 + 9, bg);
     for (int s = 0; s < c->nseries; s++) {
         int y = ly0 + 10 + s * 24;
         plot_line(out, lx0 + 8, y + 7, lx0 + 36, y + 7, 2.5, 0, c->series[s].rgb);
-        plot_disc(out, lx0 + 22, y + 7, 5, black);
+        plot_disc(out, lx0 + 22, y + 7, 5, ink);
         plot_disc(out, lx0 + 22, y + 7, 3.8, c->series[s].rgb);
-        plot_text(out, lx0 + 44, y, c->series[s].name, 2, black);
+        plot_text(out, lx0 + 44, y, c->series[s].name, 2, ink);
     }
     int y = ly0 + 10 + c->nseries * 24;
-    plot_ring(out, lx0 + 22, y + 7, 8, 2, black);
-    plot_line(out, lx0 + 4, y + 7, lx0 + 12, y + 7, 1.5, 0, black);
-    plot_line(out, lx0 + 32, y + 7, lx0 + 40, y + 7, 1.5, 0, black);
-    plot_text(out, lx0 + 44, y, "Pareto front", 2, black);
+    plot_ring(out, lx0 + 22, y + 7, 8, 2, ink);
+    plot_line(out, lx0 + 4, y + 7, lx0 + 12, y + 7, 1.5, 0, ink);
+    plot_line(out, lx0 + 32, y + 7, lx0 + 40, y + 7, 1.5, 0, ink);
+    plot_text(out, lx0 + 44, y, "Pareto front", 2, ink);
+}
+
+bool plot_speed_error(const plot_chart *c, img *out) {
+    chart k = { .c = c, .out = out, .W = c->w > 0 ? c->w : 1000, .H = c->h > 0 ? c->h : 660 };
+    memset(out, 0, sizeof *out);
+    if (!img_alloc(out, k.W, k.H, 3)) return false;
+    const float white[3] = { 1, 1, 1 };
+    plot_fill(out, white);
+    chart_axes(&k);
+    chart_grid(&k);
+    chart_titles(&k);
+    chart_front(&k);
+    int total = 0;
+    for (int s = 0; s < c->nseries; s++) total += c->series[s].n;
+    k.px = mem_alloc((size_t)(total > 0 ? total : 1) * 2 * sizeof *k.px);
+    k.labels = mem_alloc((size_t)(total > 0 ? total : 1) * sizeof *k.labels);
+    for (int s = 0; s < c->nseries; s++) chart_series(&k, &c->series[s]);
+    chart_labels(&k);
+    chart_legend(&k);
+    free(k.px);
+    free(k.labels);
     return true;
 }
 
