@@ -159,7 +159,8 @@ static void summarise_setting(const bench *b, int i, summary *s) {
 /* The Pareto front of one scene, over every pack: time against the water
  * RMSE (metric 0), or against the water FLIP (1). */
 static void mark_front(bench *b, int sc, int metric) {
-    double x[1024] = { 0 }, y[1024] = { 0 }, dx[1024] = { 0 }, dy[1024] = { 0 };   /* zeroed: GCC cannot see the loop fill them before the call */
+    /* zeroed: GCC cannot see the loop fill them before the call */
+    double x[1024] = { 0 }, y[1024] = { 0 }, dx[1024] = { 0 }, dy[1024] = { 0 };
     bool on[1024];
     int idx[1024], n = 0;
     for (int i = 0; i < b->nsums && n < 1024; i++) {
