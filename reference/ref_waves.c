@@ -68,35 +68,45 @@ static ref_wave_comp make_comp(const ref_wave_desc *wd) {
 }
 
 
-int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t errlen) {
-    ref_waves_desc d;
-    if (desc) d = *desc;
-    else memset(&d, 0, sizeof d);
-    memset(w, 0, sizeof *w);
-    if (err && errlen) err[0] = '\0';
+/* The bounds every model adds to as it is set up: the height's and the
+ * slope's (in the parameter domain), and the smallest feature. */
+typedef struct bounds {
+    double height, slope, lmin;
+} bounds;
 
-    if (d.sine_count < 0 || d.sine_count > REF_WAVES_MAX) {
-        msg_set(err, errlen, "sine_count %d out of range 0..%d", d.sine_count, REF_WAVES_MAX);
+static void bounds_add(bounds *b, double height, double slope, double feature) {
+    b->height += height;
+    b->slope += slope;
+    if (feature < b->lmin) b->lmin = feature;
+}
+
+/* The sine and Gerstner sets' counts and values, the steepness, the level. */
+static int check_waves(const ref_waves_desc *d, char *err, size_t errlen) {
+    if (d->sine_count < 0 || d->sine_count > REF_WAVES_MAX) {
+        msg_set(err, errlen, "sine_count %d out of range 0..%d", d->sine_count, REF_WAVES_MAX);
         return -1;
     }
-    if (d.gerstner_count < 0 || d.gerstner_count > REF_WAVES_MAX) {
-        msg_set(err, errlen, "gerstner_count %d out of range 0..%d", d.gerstner_count, REF_WAVES_MAX);
+    if (d->gerstner_count < 0 || d->gerstner_count > REF_WAVES_MAX) {
+        msg_set(err, errlen, "gerstner_count %d out of range 0..%d", d->gerstner_count, REF_WAVES_MAX);
         return -1;
     }
-    if (!isfinite(d.steepness) || d.steepness < 0.0) {
-        msg_set(err, errlen, "steepness Q must be finite and >= 0 (got %g)", d.steepness);
+    if (!isfinite(d->steepness) || d->steepness < 0.0) {
+        msg_set(err, errlen, "steepness Q must be finite and >= 0 (got %g)", d->steepness);
         return -1;
     }
-    if (!isfinite(d.level)) {
+    if (!isfinite(d->level)) {
         msg_set(err, errlen, "level must be finite");
         return -1;
     }
-    for (int i = 0; i < d.sine_count; i++)
-        if (!wave_finite(&d.sine[i])) { msg_set(err, errlen, "sine wave %d has a non-finite value", i); return -1; }
-    for (int i = 0; i < d.gerstner_count; i++)
-        if (!wave_finite(&d.gerstner[i])) { msg_set(err, errlen, "Gerstner wave %d has a non-finite value", i); return -1; }
+    for (int i = 0; i < d->sine_count; i++)
+        if (!wave_finite(&d->sine[i])) { msg_set(err, errlen, "sine wave %d has a non-finite value", i); return -1; }
+    for (int i = 0; i < d->gerstner_count; i++)
+        if (!wave_finite(&d->gerstner[i])) { msg_set(err, errlen, "Gerstner wave %d has a non-finite value", i); return -1; }
+    return 0;
+}
 
-    ref_noise_desc *nd = &d.noise;
+/* The noise's defaults (zero means default) filled in, then checked. */
+static int resolve_noise(ref_noise_desc *nd, char *err, size_t errlen) {
     if (nd->cell == 0.0) nd->cell = REF_NOISE_DEFAULT_CELL;
     if (nd->octaves == 0) nd->octaves = REF_NOISE_DEFAULT_OCTAVES;
     if (nd->period == 0) nd->period = REF_NOISE_DEFAULT_PERIOD;
@@ -115,102 +125,120 @@ int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t e
         msg_set(err, errlen, "noise period %d out of range 1..65536", nd->period);
         return -1;
     }
+    return 0;
+}
 
-    double slope = 0.0, hb = 0.0, lmin = INFINITY;
-    for (int i = 0; i < d.sine_count; i++) {
-        ref_wave_desc *wd = &d.sine[i];
+/* The active sines and Gerstner waves as components (a wave's speed 0:
+ * deep water's). */
+static void add_waves(ref_waves *w, ref_waves_desc *d, bounds *b) {
+    for (int i = 0; i < d->sine_count; i++) {
+        ref_wave_desc *wd = &d->sine[i];
         if (!wave_active(wd)) continue;
         if (wd->speed == 0.0) wd->speed = deep_water_speed(wd->wavelength);
         ref_wave_comp c = make_comp(wd);
         w->sine[w->nsine++] = c;
-        hb += fabs(c.amp);
-        slope += c.k * fabs(c.amp);
-        if (wd->wavelength < lmin) lmin = wd->wavelength;
+        bounds_add(b, fabs(c.amp), c.k * fabs(c.amp), wd->wavelength);
     }
     int ng = 0;
-    for (int i = 0; i < d.gerstner_count; i++) ng += wave_active(&d.gerstner[i]);
-    for (int i = 0; i < d.gerstner_count; i++) {
-        ref_wave_desc *wd = &d.gerstner[i];
+    for (int i = 0; i < d->gerstner_count; i++) ng += wave_active(&d->gerstner[i]);
+    for (int i = 0; i < d->gerstner_count; i++) {
+        ref_wave_desc *wd = &d->gerstner[i];
         if (!wave_active(wd)) continue;
         if (wd->speed == 0.0) wd->speed = deep_water_speed(wd->wavelength);
         ref_wave_comp c = make_comp(wd);
         /* Q_i = Q / (k_i A_i N): the horizontal amplitude Q_i A_i = Q / (k_i N). */
-        c.qa = d.steepness / (c.k * ng);
+        c.qa = d->steepness / (c.k * ng);
         if (c.amp < 0.0) c.qa = -c.qa;      /* keeps Q_i >= 0 for a negative A */
         w->gerstner[w->ngerstner++] = c;
         w->q_sum += fabs(c.qa) * c.k;       /* Q_i k_i |A_i| = Q / N */
-        hb += fabs(c.amp);
-        slope += c.k * fabs(c.amp);
-        if (wd->wavelength < lmin) lmin = wd->wavelength;
+        bounds_add(b, fabs(c.amp), c.k * fabs(c.amp), wd->wavelength);
     }
-    if (nd->amplitude != 0.0) {
-        w->noctaves = nd->octaves;
-        double amp = nd->amplitude, scale = 1.0;
-        for (int o = 0; o < nd->octaves; o++) {
-            ref_noise_octave *oc = &w->octave[o];
-            double ang = nd->angle_deg * (TWO_PI / 360.0) + o * REF_NOISE_TURN;
-            double spd = nd->speed / sqrt(scale);
-            oc->freq = scale / nd->cell;
-            oc->amp = amp;
-            oc->drift[0] = spd * cos(ang);
-            oc->drift[1] = spd * sin(ang);
-            oc->period = nd->period * scale;
-            oc->seed = ref_hash32(nd->seed + (uint32_t)o * 0x9E3779B9U);
-            hb += fabs(amp) * NOISE_VALUE_BOUND;
-            slope += fabs(amp) * oc->freq * NOISE_GRAD_BOUND;
-            amp *= nd->gain;
-            scale *= 2.0;
-        }
-        double finest = nd->cell / (scale * 0.5);
-        if (finest < lmin) lmin = finest;
+}
+
+/* The noise's octaves, each twice as fine and gain times as high as the
+ * one before, turned by REF_NOISE_TURN. */
+static void add_noise(ref_waves *w, const ref_noise_desc *nd, bounds *b) {
+    if (nd->amplitude == 0.0) return;
+    w->noctaves = nd->octaves;
+    double amp = nd->amplitude, scale = 1.0;
+    for (int o = 0; o < nd->octaves; o++) {
+        ref_noise_octave *oc = &w->octave[o];
+        double ang = nd->angle_deg * (TWO_PI / 360.0) + o * REF_NOISE_TURN;
+        double spd = nd->speed / sqrt(scale);
+        oc->freq = scale / nd->cell;
+        oc->amp = amp;
+        oc->drift[0] = spd * cos(ang);
+        oc->drift[1] = spd * sin(ang);
+        oc->period = nd->period * scale;
+        oc->seed = ref_hash32(nd->seed + (uint32_t)o * 0x9E3779B9U);
+        b->height += fabs(amp) * NOISE_VALUE_BOUND;
+        b->slope += fabs(amp) * oc->freq * NOISE_GRAD_BOUND;
+        amp *= nd->gain;
+        scale *= 2.0;
     }
-    /* explosion rings and the Perlin set (height only) */
-    if (d.explosion_count < 0 || d.explosion_count > REF_EXPLOSIONS_MAX) {
-        msg_set(err, errlen, "explosion_count %d out of range 0..%d", d.explosion_count, REF_EXPLOSIONS_MAX);
+    double finest = nd->cell / (scale * 0.5);
+    if (finest < b->lmin) b->lmin = finest;
+}
+
+/* The explosion rings with i0 != 0 and the Perlin set (height only),
+ * resolved and checked. */
+static int add_wave_fx(ref_waves *w, ref_waves_desc *d, bounds *b, char *err, size_t errlen) {
+    if (d->explosion_count < 0 || d->explosion_count > REF_EXPLOSIONS_MAX) {
+        msg_set(err, errlen, "explosion_count %d out of range 0..%d", d->explosion_count, REF_EXPLOSIONS_MAX);
         return -1;
     }
-    for (int i = 0; i < d.explosion_count; i++) {
-        if (ref_explosion_resolve(&d.explosion[i], err, errlen) != 0) return -1;
-        if (d.explosion[i].i0 == 0.0) continue;
+    for (int i = 0; i < d->explosion_count; i++) {
+        if (ref_explosion_resolve(&d->explosion[i], err, errlen) != 0) return -1;
+        if (d->explosion[i].i0 == 0.0) continue;
         ref_explosion_desc *e = &w->explosion[w->nexplosions++];
-        *e = d.explosion[i];
+        *e = d->explosion[i];
         double eh, es;
         ref_explosion_bounds(e, &eh, &es);
-        hb += eh;
-        slope += es;
-        if (TWO_PI / e->k < lmin) lmin = TWO_PI / e->k;
+        bounds_add(b, eh, es, TWO_PI / e->k);
     }
-    if (ref_perlin_resolve(&d.perlin, err, errlen) != 0) return -1;
-    if (d.perlin.amplitude != 0.0) {
+    if (ref_perlin_resolve(&d->perlin, err, errlen) != 0) return -1;
+    if (d->perlin.amplitude != 0.0) {
         w->has_perlin = 1;
-        w->perlin = d.perlin;
+        w->perlin = d->perlin;
         double ph, ps;
         ref_perlin_bounds(&w->perlin, &ph, &ps);
-        hb += ph;
-        slope += ps;
         /* the finest octave's lattice cell (2^(octaves-1) finer than cell) */
-        double finest = d.perlin.cell / ldexp(1.0, d.perlin.octaves - 1);
-        if (finest < lmin) lmin = finest;
+        bounds_add(b, ph, ps, d->perlin.cell / ldexp(1.0, d->perlin.octaves - 1));
     }
-    w->fixed_height = hb;
-    w->fixed_slope = slope;
-    /* the ocean, last: the one part that holds memory */
-    if (d.ocean.spectrum != REF_SPECTRUM_NONE) {
-        w->ocean = ref_ocean_create(&d.ocean, err, errlen);
-        if (!w->ocean) return -1;
-        d.ocean = *ref_ocean_get_desc(w->ocean);
-        ref_ocean_bounds_any(w->ocean, &w->ocean_any);
-        hb += w->ocean_any.height;
-        slope += w->ocean_any.slope;
-        double ml = ref_ocean_min_wavelength(w->ocean);
-        if (ml < lmin) lmin = ml;
-    }
+    return 0;
+}
+
+/* The spectrum ocean, if any: the one part that holds memory. */
+static int add_ocean(ref_waves *w, ref_waves_desc *d, bounds *b, char *err, size_t errlen) {
+    if (d->ocean.spectrum == REF_SPECTRUM_NONE) return 0;
+    w->ocean = ref_ocean_create(&d->ocean, err, errlen);
+    if (!w->ocean) return -1;
+    d->ocean = *ref_ocean_get_desc(w->ocean);
+    ref_ocean_bounds_any(w->ocean, &w->ocean_any);
+    bounds_add(b, w->ocean_any.height, w->ocean_any.slope, ref_ocean_min_wavelength(w->ocean));
+    return 0;
+}
+
+int ref_waves_init(ref_waves *w, const ref_waves_desc *desc, char *err, size_t errlen) {
+    ref_waves_desc d;
+    if (desc) d = *desc;
+    else memset(&d, 0, sizeof d);
+    memset(w, 0, sizeof *w);
+    if (err && errlen) err[0] = '\0';
+    if (check_waves(&d, err, errlen) != 0 || resolve_noise(&d.noise, err, errlen) != 0) return -1;
+    bounds b = { 0.0, 0.0, INFINITY };
+    add_waves(w, &d, &b);
+    add_noise(w, &d.noise, &b);
+    if (add_wave_fx(w, &d, &b, err, errlen) != 0) return -1;
+    w->fixed_height = b.height;
+    w->fixed_slope = b.slope;
+    if (add_ocean(w, &d, &b, err, errlen) != 0) return -1;
     w->desc = d;
-    w->height_bound = hb;
-    w->slope_bound = slope;
+    w->height_bound = b.height;
+    w->slope_bound = b.slope;
     w->fold_bound = w->q_sum + w->ocean_any.chop;
-    w->world_slope_bound = w->fold_bound < 1.0 ? slope / (1.0 - w->fold_bound) : INFINITY;
-    w->min_wavelength = isfinite(lmin) ? lmin : 1.0;
+    w->world_slope_bound = w->fold_bound < 1.0 ? b.slope / (1.0 - w->fold_bound) : INFINITY;
+    w->min_wavelength = isfinite(b.lmin) ? b.lmin : 1.0;
     return 0;
 }
 
