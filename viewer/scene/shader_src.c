@@ -655,6 +655,88 @@ static void add_unreached_kill(char **text) {
     *text = strbuf_take(&b);
 }
 
+/* The description's stage and defines; false (failed at the file) where
+ * one is bad. */
+static bool check_desc(asm_ctx *c, const shader_src_desc *desc, const char *path) {
+    if (!path[0]) { fail(c, "(none)", 0, "no shader file named"); return false; }
+    if ((unsigned)desc->stage >= SHADER_STAGE_COUNT) {
+        fail(c, path, 0, "bad shader stage %d", (int)desc->stage);
+        return false;
+    }
+    for (int i = 0; i < desc->ndefines; i++) {
+        const shader_define *d = &desc->defines[i];
+        if (!valid_identifier(d->name)) {
+            fail(c, path, 0, "bad #define name \"%s\"", d->name);
+            return false;
+        }
+        if (strncmp(d->name, "GL_", 3) == 0) {
+            fail(c, path, 0, "#define %s: names starting with GL_ are reserved in GLSL", d->name);
+            return false;
+        }
+        if (strpbrk(d->value, "\r\n")) {
+            fail(c, path, 0, "#define %s: a value may not hold a line break", d->name);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* A stage file with a #version on line v->line: that line first (1.50
+ * for a geometry shader glman wrote at 1.20), then tarn's prologue, then
+ * the rest of the file from there on. */
+static bool emit_versioned(asm_ctx *c, const char *main_text, const version_info *v, bool gs_bump, int version) {
+    const char *lp = main_text;
+    for (int i = 1; i < v->line; i++) lp = strchr(lp, '\n') + 1;
+    const char *le = strchr(lp, '\n');
+    size_t ln = le ? (size_t)(le - lp) : strlen(lp);
+    if (gs_bump) {
+        strbuf_printf(&c->text, "#version 150 compatibility  // tarn: was '%.*s'; geometry shaders need 1.50\n",
+                      (int)v->len, lp + v->start);
+    } else {
+        strbuf_put(&c->text, lp + v->start, v->len);
+        strbuf_puts(&c->text, "\n");
+    }
+    c->old_line_rule = !v->es && version < 330;
+    emit_prologue(c);
+    /* what followed the directive on its line (a comment, maybe opening a block) */
+    line_view tail = { lp + v->start + v->len, ln - v->start - v->len };
+    bool in_comment = false;
+    bool tail_has_text = false;
+    for (size_t i = 0; i < tail.n; i++)
+        if (!isspace((unsigned char)tail.p[i])) tail_has_text = true;
+    scan_comments(tail, &in_comment);
+    if (tail_has_text) {
+        emit_line_directive(c, 0, v->line);
+        strbuf_put(&c->text, tail.p, tail.n);
+        strbuf_puts(&c->text, "\n");
+    } else {
+        emit_line_directive(c, 0, v->line + 1);
+    }
+    return emit_file(c, 0, main_text, v->line + 1, in_comment);
+}
+
+/* A stage file without #version: glman's default, 3.30 compatibility. */
+static bool emit_unversioned(asm_ctx *c, const char *main_text) {
+    strbuf_puts(&c->text, "#version 330 compatibility  "
+                          "// tarn: the file has no #version; glman's default assumed\n");
+    c->old_line_rule = false;
+    emit_prologue(c);
+    emit_line_directive(c, 0, 1);
+    return emit_file(c, 0, main_text, 1, false);
+}
+
+/* Hands the files found so far to out (even on failure: the caller
+ * watches them) and frees the context's own. */
+static void hand_over_files(asm_ctx *c, shader_src *out) {
+    if (c->nfiles > 0) {
+        out->files = mem_zalloc((size_t)c->nfiles * sizeof *out->files);
+        for (int i = 0; i < c->nfiles; i++) { out->files[i] = c->files[i].path; c->files[i].path = NULL; }
+        out->nfiles = c->nfiles;
+    }
+    for (int i = 0; i < c->nfiles; i++) { free(c->files[i].path); free(c->files[i].id); }
+    free(c->files);
+}
+
 bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     assert(desc && out);
     memset(out, 0, sizeof *out);
@@ -664,89 +746,24 @@ bool shader_src_load(const shader_src_desc *desc, shader_src *out) {
     bool ok = false;
     version_info v = {0};
     int version = 330;          /* the one the compiler sees */
-
-    if (!path[0]) { fail(&c, "(none)", 0, "no shader file named"); goto done; }
-    if ((unsigned)desc->stage >= SHADER_STAGE_COUNT) {
-        fail(&c, path, 0, "bad shader stage %d", (int)desc->stage);
-        goto done;
-    }
-    for (int i = 0; i < desc->ndefines; i++) {
-        if (!valid_identifier(desc->defines[i].name)) {
-            fail(&c, path, 0, "bad #define name \"%s\"", desc->defines[i].name);
-            goto done;
-        }
-        if (strncmp(desc->defines[i].name, "GL_", 3) == 0) {
-            fail(&c, path, 0, "#define %s: names starting with GL_ are reserved in GLSL", desc->defines[i].name);
-            goto done;
-        }
-        if (strpbrk(desc->defines[i].value, "\r\n")) {
-            fail(&c, path, 0, "#define %s: a value may not hold a line break", desc->defines[i].name);
-            goto done;
-        }
-    }
-    file_index(&c, path);   /* the stage file: file 0 */
-    c.stack[0] = 0;
-    c.files[0].times = 1;
-    char why[MSG_MAX];
-    main_text = read_text(desc->files, path, why, sizeof why);
-    if (!main_text) {
-        fail(&c, path, 0, "cannot read shader: %s", why);
-        goto done;
-    }
-
-    v = find_version(main_text);
-    /* geometry shaders came with GLSL 1.50; glman's were 1.20 + GL_EXT_geometry_shader4 */
-    bool gs_bump = desc->stage == SHADER_GEOMETRY && v.line && !v.es && v.number > 0 && v.number < 150;
-    version = gs_bump ? 150 : v.line ? v.number : 330;
-    if (v.line) {
-        /* the file's #version first, then ours, then the file from there on */
-        const char *lp = main_text;
-        for (int i = 1; i < v.line; i++) lp = strchr(lp, '\n') + 1;
-        const char *le = strchr(lp, '\n');
-        size_t ln = le ? (size_t)(le - lp) : strlen(lp);
-        if (gs_bump) {
-            strbuf_printf(&c.text, "#version 150 compatibility  // tarn: was '%.*s'; geometry shaders need 1.50\n",
-                          (int)v.len, lp + v.start);
+    if (check_desc(&c, desc, path)) {
+        file_index(&c, path);   /* the stage file: file 0 */
+        c.stack[0] = 0;
+        c.files[0].times = 1;
+        char why[MSG_MAX];
+        main_text = read_text(desc->files, path, why, sizeof why);
+        if (!main_text) {
+            fail(&c, path, 0, "cannot read shader: %s", why);
         } else {
-            strbuf_put(&c.text, lp + v.start, v.len);
-            strbuf_puts(&c.text, "\n");
+            v = find_version(main_text);
+            /* geometry shaders came with GLSL 1.50; glman's were 1.20 + GL_EXT_geometry_shader4 */
+            bool gs_bump = desc->stage == SHADER_GEOMETRY && v.line && !v.es && v.number > 0 && v.number < 150;
+            version = gs_bump ? 150 : v.line ? v.number : 330;
+            ok = v.line ? emit_versioned(&c, main_text, &v, gs_bump, version) : emit_unversioned(&c, main_text);
         }
-        c.old_line_rule = !v.es && version < 330;
-        emit_prologue(&c);
-        /* what followed the directive on its line (a comment, maybe opening a block) */
-        line_view tail = { lp + v.start + v.len, ln - v.start - v.len };
-        bool in_comment = false;
-        bool tail_has_text = false;
-        for (size_t i = 0; i < tail.n; i++)
-            if (!isspace((unsigned char)tail.p[i])) tail_has_text = true;
-        scan_comments(tail, &in_comment);
-        if (tail_has_text) {
-            emit_line_directive(&c, 0, v.line);
-            strbuf_put(&c.text, tail.p, tail.n);
-            strbuf_puts(&c.text, "\n");
-        } else {
-            emit_line_directive(&c, 0, v.line + 1);
-        }
-        ok = emit_file(&c, 0, main_text, v.line + 1, in_comment);
-    } else {
-        strbuf_puts(&c.text, "#version 330 compatibility  "
-                         "// tarn: the file has no #version; glman's default assumed\n");
-        c.old_line_rule = false;
-        emit_prologue(&c);
-        emit_line_directive(&c, 0, 1);
-        ok = emit_file(&c, 0, main_text, 1, false);
     }
-
-done:
     free(main_text);
-    /* the files found so far go to the caller even on failure (to watch them) */
-    if (c.nfiles > 0) {
-        out->files = mem_zalloc((size_t)c.nfiles * sizeof *out->files);
-        for (int i = 0; i < c.nfiles; i++) { out->files[i] = c.files[i].path; c.files[i].path = NULL; }
-        out->nfiles = c.nfiles;
-    }
-    for (int i = 0; i < c.nfiles; i++) { free(c.files[i].path); free(c.files[i].id); }
-    free(c.files);
+    hand_over_files(&c, out);
     if (!ok) {
         free(c.text.s);
         out->text = NULL;
