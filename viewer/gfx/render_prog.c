@@ -337,6 +337,113 @@ static void stages_of(prog *p) {
     p->gs_input = (unsigned)in;
 }
 
+/* One active uniform of the program: tarn's own (Timer, FaceIndex, the
+ * contract's), or a slider's shader type and location. */
+static void introspect_uniform(prog *p, GLuint index) {
+    char name[UNIF_NAME_MAX];
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveUniform(p->gl, index, sizeof name, NULL, &size, &type, name);
+    if (strncmp(name, "gl_", 3) == 0) return;
+    char *bracket = strstr(name, "[0]");
+    if (bracket) *bracket = '\0';
+    if (strchr(name, '.') || strchr(name, '[')) return;  /* struct members: not ours */
+    GLint loc = glGetUniformLocation(p->gl, name);
+    if (strcmp(name, "Timer") == 0) { p->timer_loc = loc; return; }
+    if (strcmp(name, "FaceIndex") == 0) {   /* set by the Soccerball, face by face */
+        p->face_index_loc = loc;
+        p->face_index_int = type == GL_INT;
+        return;
+    }
+    /* set by tarn (the pack contract's table): no slider */
+    if (contract_is_camera_uniform(name) || (p->world_uniforms && contract_is_world_uniform(name))) return;
+    unif_entry *e = unif_set_shader_type(p->unifs, name, map_gl_type(type), size, loc);
+    if (!e || e->from_glib) return;
+    /* glman's noise samplers live at fixed units */
+    int unit = strcmp(name, "Noise2") == 0 ? 2 : strcmp(name, "Noise3") == 0 ? 3 : -1;
+    if (e->type == UNIF_SAMPLER && unit >= 0) {
+        e->value[0] = e->def[0] = (float)unit;
+        /* an introspected sampler is not uploaded per frame (unif_uploadable):
+         * set it in the program once, so a shader that declares Noise2 or
+         * Noise3 reads glman's built-in noise without naming it anywhere */
+        glProgramUniform1i(p->gl, loc, unit);
+    }
+}
+
+/* A slider that glib commands read (a target's size, a field-of-view
+ * scale) is in use though no shader declares it: an int or a float with
+ * no location, so it has its widget and nothing is uploaded. */
+static void keep_consumed_sliders(prog *p) {
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        bool is_count = false;
+        if (e->is_define || !e->from_glib || e->in_shader || !glib_uniform_consumed(p->scene, e->name, &is_count))
+            continue;
+        char name[UNIF_NAME_MAX];
+        snprintf(name, sizeof name, "%s", e->name);
+        unif_set_shader_type(p->unifs, name, is_count ? UNIF_INT : UNIF_FLOAT, 1, -1);
+    }
+}
+
+/* A glib uniform a Program's shaders should read: not a Define, not one
+ * that glib commands consume. */
+static bool glib_shader_uniform(const prog *p, const unif_entry *e) {
+    return !e->is_define && e->from_glib && !glib_uniform_consumed(p->scene, e->name, NULL);
+}
+
+/* None of the glib's uniforms (two or more) declared at all: the glib and
+ * the shaders no longer belong together (a black picture, in glman too):
+ * one line that says so, not one warning a uniform. True where said. */
+static bool warn_none_declared(const prog *p, diag_list *dl) {
+    int nglib = 0, ndeclared = 0;
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (!glib_shader_uniform(p, e)) continue;
+        nglib++;
+        ndeclared += e->in_shader || in_source(p, e->name);
+    }
+    if (nglib < 2 || ndeclared > 0) return false;
+    char names[256] = "", files[512] = "";
+    int shown = 0;
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (!glib_shader_uniform(p, e)) continue;
+        size_t l = strlen(names);
+        if (shown == 6) { snprintf(names + l, sizeof names - l, ", ..."); break; }
+        snprintf(names + l, sizeof names - l, "%s%s", shown ? ", " : "", e->name);
+        shown++;
+    }
+    for (int st = 0; st < SHADER_STAGE_COUNT; st++) {
+        if (!p->stage_path[st][0]) continue;
+        const char *base = strrchr(p->stage_path[st], '/');
+        size_t l = strlen(files);
+        snprintf(files + l, sizeof files - l, "%s%s", l ? ", " : "", base ? base + 1 : p->stage_path[st]);
+    }
+    diag_add(dl, DIAG_WARNING, p->cmd && p->cmd->file ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0,
+             "none of the %d uniforms the glib gives Program '%s' (%s) is declared in its shaders (%s): "
+             "do the glib and the shaders belong together?", nglib, p->name, names, files[0] ? files : "none");
+    return true;
+}
+
+/* Each glib uniform the shaders do not declare (an inactive one, which
+ * they do, has its summary line: prog_inactive_uniforms), and each written
+ * as another type than declared (not uploaded). */
+static void warn_unmatched(const prog *p, diag_list *dl, bool none_declared) {
+    for (int i = 0; i < p->unifs->n && !none_declared; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        if (e->is_define || !e->from_glib || e->in_shader || in_source(p, e->name)) continue;
+        diag_add(dl, DIAG_WARNING, e->glib_file ? e->glib_file : "?", e->glib_line,
+                 "uniform '%s' is not declared in program '%s' (a typo in the glib or the shader?)", e->name, p->name);
+    }
+    for (int i = 0; i < p->unifs->n; i++) {
+        const unif_entry *e = &p->unifs->entries[i];
+        const char *why = unif_type_mismatch(e);
+        if (e->is_define || !e->from_glib || !e->in_shader || !why) continue;
+        diag_add(dl, DIAG_WARNING, e->glib_file ? e->glib_file : "(glib)", e->glib_line,
+                 "uniform '%s': %s, but the shader declares %s; it is not set", e->name, why, unif_type_name(e->type));
+    }
+}
+
 void prog_introspect(prog *p, diag_list *dl) {
     for (int i = 0; i < p->unifs->n; i++) {
         p->unifs->entries[i].in_shader = false;
@@ -351,100 +458,11 @@ void prog_introspect(prog *p, diag_list *dl) {
     stages_of(p);
     GLint count = 0;
     glGetProgramiv(p->gl, GL_ACTIVE_UNIFORMS, &count);
-    for (GLint i = 0; i < count; i++) {
-        char name[UNIF_NAME_MAX];
-        GLint size = 0;
-        GLenum type = 0;
-        glGetActiveUniform(p->gl, (GLuint)i, sizeof name, NULL, &size, &type, name);
-        if (strncmp(name, "gl_", 3) == 0) continue;
-        char *bracket = strstr(name, "[0]");
-        if (bracket) *bracket = '\0';
-        if (strchr(name, '.') || strchr(name, '[')) continue;  /* struct members: not ours */
-        GLint loc = glGetUniformLocation(p->gl, name);
-        if (strcmp(name, "Timer") == 0) { p->timer_loc = loc; continue; }
-        if (strcmp(name, "FaceIndex") == 0) {   /* set by the Soccerball, face by face */
-            p->face_index_loc = loc;
-            p->face_index_int = type == GL_INT;
-            continue;
-        }
-        /* set by tarn (the pack contract's table): no slider */
-        if (contract_is_camera_uniform(name) || (p->world_uniforms && contract_is_world_uniform(name))) continue;
-        unif_entry *e = unif_set_shader_type(p->unifs, name, map_gl_type(type), size, loc);
-        if (!e || e->from_glib) continue;
-        /* glman's noise samplers live at fixed units */
-        int unit = strcmp(name, "Noise2") == 0 ? 2 : strcmp(name, "Noise3") == 0 ? 3 : -1;
-        if (e->type == UNIF_SAMPLER && unit >= 0) {
-            e->value[0] = e->def[0] = (float)unit;
-            /* an introspected sampler is not uploaded per frame (unif_uploadable):
-             * set it in the program once, so a shader that declares Noise2 or
-             * Noise3 reads glman's built-in noise without naming it anywhere */
-            glProgramUniform1i(p->gl, loc, unit);
-        }
-    }
-    /* a slider that glib commands read (a target's size, a field-of-view
-     * scale) is in use though no shader declares it: an int or a float
-     * with no location, so it has its widget and nothing is uploaded */
-    for (int i = 0; i < p->unifs->n; i++) {
-        const unif_entry *e = &p->unifs->entries[i];
-        bool is_count = false;
-        if (e->is_define || !e->from_glib || e->in_shader || !glib_uniform_consumed(p->scene, e->name, &is_count))
-            continue;
-        char name[UNIF_NAME_MAX];
-        snprintf(name, sizeof name, "%s", e->name);
-        unif_set_shader_type(p->unifs, name, is_count ? UNIF_INT : UNIF_FLOAT, 1, -1);
-    }
+    for (GLint i = 0; i < count; i++) introspect_uniform(p, (GLuint)i);
+    keep_consumed_sliders(p);
     /* a program that failed to build runs its last good build: what that
      * lacks says nothing about the sources on disk, whose errors are the news */
-    if (!p->good) {
-        p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
-        return;
-    }
-    /* None of the glib's uniforms (two or more) declared at all: the glib
-     * and the shaders no longer belong together (a black picture, in glman
-     * too): one line that says so, not one warning a uniform */
-    int nglib = 0, ndeclared = 0;
-    for (int i = 0; i < p->unifs->n; i++) {
-        const unif_entry *e = &p->unifs->entries[i];
-        if (e->is_define || !e->from_glib || glib_uniform_consumed(p->scene, e->name, NULL)) continue;
-        nglib++;
-        ndeclared += e->in_shader || in_source(p, e->name);
-    }
-    if (nglib >= 2 && ndeclared == 0) {
-        char names[256] = "", files[512] = "";
-        int shown = 0;
-        for (int i = 0; i < p->unifs->n; i++) {
-            const unif_entry *e = &p->unifs->entries[i];
-            if (e->is_define || !e->from_glib || glib_uniform_consumed(p->scene, e->name, NULL)) continue;
-            size_t l = strlen(names);
-            if (shown == 6) { snprintf(names + l, sizeof names - l, ", ..."); break; }
-            snprintf(names + l, sizeof names - l, "%s%s", shown ? ", " : "", e->name);
-            shown++;
-        }
-        for (int st = 0; st < SHADER_STAGE_COUNT; st++) {
-            if (!p->stage_path[st][0]) continue;
-            const char *base = strrchr(p->stage_path[st], '/');
-            size_t l = strlen(files);
-            snprintf(files + l, sizeof files - l, "%s%s", l ? ", " : "", base ? base + 1 : p->stage_path[st]);
-        }
-        diag_add(dl, DIAG_WARNING, p->cmd && p->cmd->file ? p->cmd->file : "?", p->cmd ? p->cmd->line : 0,
-                 "none of the %d uniforms the glib gives Program '%s' (%s) is declared in its shaders (%s): "
-                 "do the glib and the shaders belong together?", nglib, p->name, names, files[0] ? files : "none");
-    }
-    for (int i = 0; i < p->unifs->n && !(nglib >= 2 && ndeclared == 0); i++) {
-        const unif_entry *e = &p->unifs->entries[i];
-        if (e->is_define || !e->from_glib || e->in_shader) continue;
-        if (in_source(p, e->name))   /* inactive: one summary line a load (prog_inactive_uniforms) */
-            continue;
-        diag_add(dl, DIAG_WARNING, e->glib_file ? e->glib_file : "?", e->glib_line,
-                 "uniform '%s' is not declared in program '%s' (a typo in the glib or the shader?)", e->name, p->name);
-    }
-    for (int i = 0; i < p->unifs->n; i++) {   /* written as another type than declared: not uploaded */
-        const unif_entry *e = &p->unifs->entries[i];
-        const char *why = unif_type_mismatch(e);
-        if (e->is_define || !e->from_glib || !e->in_shader || !why) continue;
-        diag_add(dl, DIAG_WARNING, e->glib_file ? e->glib_file : "(glib)", e->glib_line,
-                 "uniform '%s': %s, but the shader declares %s; it is not set", e->name, why, unif_type_name(e->type));
-    }
+    if (p->good) warn_unmatched(p, dl, warn_none_declared(p, dl));
     p->tangent_loc = glGetAttribLocation(p->gl, "Tangent");
 }
 
