@@ -122,7 +122,9 @@ static void scene_notes_md(bench *b, strbuf *o, int sc) {
     for (int k = 0; k < 6; k++) free(v[k]);
 }
 
-static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
+/* The run: when and how long, the machine, the images and times, the
+ * anti-aliasing, the time axis and the cost floor. */
+static void report_header_md(bench *b, strbuf *o) {
     int extra_r = 0, extra_c = 0;
     for (int k = 1; k < REFK_COUNT; k++) {
         extra_r += b->extra_rendered[k];
@@ -173,6 +175,67 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
     strbuf_printf(o, "Cost floor (a full-screen pass with one texture fetch): %.3f ms GPU, %.3f ms wall, %.3f ms "
                  "CPU. \"× floor\" is a setting's %s time over the floor's.\n\n",
               b->floor_gpu, b->floor_wall, b->floor_cpu, axis_label(b));
+}
+
+/* One setting's row of a scene's table. */
+static void report_row_md(bench *b, strbuf *o, int sc, const summary *s) {
+    strbuf_printf(o, "| %s | %s |", b->o.packs[s->pack], b->pb[s->pack].settings[s->setting].name);
+    if (!s->ok) {
+        const row *r = NULL;
+        for (int j = 0; j < b->nrows; j++)
+            if (b->rows[j].scene == sc && b->rows[j].pack == s->pack && b->rows[j].setting == s->setting)
+                r = &b->rows[j];
+        strbuf_printf(o, " failed: %s | | | | | | | | | | | | | | | | | | | | | | | |\n",
+                      r && r->error[0] ? r->error : "?");
+        return;
+    }
+    md_num(o, "%.2f", s->gpu_ms);
+    md_num(o, "%.1f", s->wall_ms);
+    if (isfinite(s->wall_q1)) strbuf_printf(o, " %.1f–%.1f |", s->wall_q1, s->wall_q3);
+    else strbuf_printf(o, " – |");
+    md_num(o, "%.1f", s->cpu_ms);
+    if (isfinite(s->cpu_q1)) strbuf_printf(o, " %.1f–%.1f |", s->cpu_q1, s->cpu_q3);
+    else strbuf_printf(o, " – |");
+    md_num(o, "%.1f", axis_time(b, s) / bench_axis_floor(b));
+    md_pm(o, s->water_rmse, s->u_rmse, 4);
+    md_pm(o, s->water_flip, s->u_flip, 3);
+    md_num(o, "%.3f", s->water_ssim);
+    md_num(o, "%.1f", s->water_psnr);
+    md_num(o, "%.4f", s->off_rmse);
+    md_num(o, "%.4f", s->rmse);
+    md_num(o, "%.3f", s->flip);
+    md_num(o, "%.4f", s->p95);
+    md_num(o, "%.1f%%", 100 * s->over_share);
+    md_num(o, "%.4f", s->seq_water_rmse);
+    md_num(o, "%.4f", s->temporal_rmse);
+    md_num(o, "%.3f", s->has[1] ? s->comp[1] : NAN);
+    md_num(o, "%.1f%%", 100 * s->capped_share);
+    md_num(o, "%.4f", s->has[2] ? s->comp[2] : NAN);
+    if (s->has[3] && s->irr_flat) strbuf_printf(o, " %.3f (flat) |", s->comp[3]);
+    else md_num(o, "%.3f", s->has[3] ? s->comp[3] : NAN);
+    md_num(o, "%.3f", s->has[4] ? s->comp[4] : NAN);
+    strbuf_printf(o, " %s | %s |\n", s->pareto ? "●" : "", s->pareto_flip ? "●" : "");
+    if (s->nan_px)
+        strbuf_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | | | | | | | | | |\n",
+                      s->nan_px);
+}
+
+/* The GPU time of each pass, per setting, at the first time. */
+static void report_passes_md(bench *b, strbuf *o, int sc) {
+    strbuf_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
+                 "RenderToTexture that begins it, `screen:LINE` what is drawn to the screen):\n\n");
+    for (int i = 0; i < b->nrows; i++) {
+        const row *r = &b->rows[i];
+        if (r->scene != sc || r->ti != 0 || !r->npasses) continue;
+        strbuf_printf(o, "- %s / %s:", b->o.packs[r->pack], b->pb[r->pack].settings[r->setting].name);
+        for (int k = 0; k < r->npasses; k++)
+            strbuf_printf(o, "%s `%s` %.2f ms", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
+        strbuf_printf(o, "\n");
+    }
+}
+
+static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
+    report_header_md(b, o);
     for (int sc = 0; sc < b->o.nscenes; sc++) {
         char st[256];
         stem(b->scene_abs[sc], st, sizeof st);
@@ -185,59 +248,9 @@ static void report_md(bench *b, strbuf *o, const char *plot_prefix) {
                      "irradiance rel. median | depth MAE m | Pareto | ꟻLIP front |\n"
                      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
                      "---:|---:|---:|:-:|:-:|\n");
-        for (int i = 0; i < b->nsums; i++) {
-            const summary *s = &b->sums[i];
-            if (s->scene != sc) continue;
-            strbuf_printf(o, "| %s | %s |", b->o.packs[s->pack], b->pb[s->pack].settings[s->setting].name);
-            if (!s->ok) {
-                const row *r = NULL;
-                for (int j = 0; j < b->nrows; j++)
-                    if (b->rows[j].scene == sc && b->rows[j].pack == s->pack && b->rows[j].setting == s->setting)
-                        r = &b->rows[j];
-                strbuf_printf(o, " failed: %s | | | | | | | | | | | | | | | | | | | | | | | |\n",
-                              r && r->error[0] ? r->error : "?");
-                continue;
-            }
-            md_num(o, "%.2f", s->gpu_ms);
-            md_num(o, "%.1f", s->wall_ms);
-            if (isfinite(s->wall_q1)) strbuf_printf(o, " %.1f–%.1f |", s->wall_q1, s->wall_q3);
-            else strbuf_printf(o, " – |");
-            md_num(o, "%.1f", s->cpu_ms);
-            if (isfinite(s->cpu_q1)) strbuf_printf(o, " %.1f–%.1f |", s->cpu_q1, s->cpu_q3);
-            else strbuf_printf(o, " – |");
-            md_num(o, "%.1f", axis_time(b, s) / bench_axis_floor(b));
-            md_pm(o, s->water_rmse, s->u_rmse, 4);
-            md_pm(o, s->water_flip, s->u_flip, 3);
-            md_num(o, "%.3f", s->water_ssim);
-            md_num(o, "%.1f", s->water_psnr);
-            md_num(o, "%.4f", s->off_rmse);
-            md_num(o, "%.4f", s->rmse);
-            md_num(o, "%.3f", s->flip);
-            md_num(o, "%.4f", s->p95);
-            md_num(o, "%.1f%%", 100 * s->over_share);
-            md_num(o, "%.4f", s->seq_water_rmse);
-            md_num(o, "%.4f", s->temporal_rmse);
-            md_num(o, "%.3f", s->has[1] ? s->comp[1] : NAN);
-            md_num(o, "%.1f%%", 100 * s->capped_share);
-            md_num(o, "%.4f", s->has[2] ? s->comp[2] : NAN);
-            if (s->has[3] && s->irr_flat) strbuf_printf(o, " %.3f (flat) |", s->comp[3]);
-            else md_num(o, "%.3f", s->has[3] ? s->comp[3] : NAN);
-            md_num(o, "%.3f", s->has[4] ? s->comp[4] : NAN);
-            strbuf_printf(o, " %s | %s |\n", s->pareto ? "●" : "", s->pareto_flip ? "●" : "");
-            if (s->nan_px)
-                strbuf_printf(o, "| | ⚠ %ld non-finite pixels | | | | | | | | | | | | | | | | | | | | | | | |\n",
-                              s->nan_px);
-        }
-        strbuf_printf(o, "\nGPU time per pass (median, first time; `pass:LINE units` is the glib line of the "
-                     "RenderToTexture that begins it, `screen:LINE` what is drawn to the screen):\n\n");
-        for (int i = 0; i < b->nrows; i++) {
-            const row *r = &b->rows[i];
-            if (r->scene != sc || r->ti != 0 || !r->npasses) continue;
-            strbuf_printf(o, "- %s / %s:", b->o.packs[r->pack], b->pb[r->pack].settings[r->setting].name);
-            for (int k = 0; k < r->npasses; k++)
-                strbuf_printf(o, "%s `%s` %.2f ms", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
-            strbuf_printf(o, "\n");
-        }
+        for (int i = 0; i < b->nsums; i++)
+            if (b->sums[i].scene == sc) report_row_md(b, o, sc, &b->sums[i]);
+        report_passes_md(b, o, sc);
         strbuf_printf(o, "\n![speed against error, %s](%splot-%s.png)\n", st, plot_prefix, st);
         strbuf_printf(o, "![speed against ꟻLIP, %s](%splot-%s-flip.png)\n\n", st, plot_prefix, st);
     }
