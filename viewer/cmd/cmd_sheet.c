@@ -71,115 +71,164 @@ static void blit_tile(img *sheet, const float *rgba, int w, int h, int x0, int y
         }
 }
 
-static int sheet_run(const sheet_desc *d) {
-    char err[MSG_MAX];
-    gl_ctx *ctx = gl_ctx_create_headless(err, sizeof err);
-    if (!ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
-    int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;
-    render *r = render_create(&(render_desc){ .samples = samples, .pack = d->pack });
-    bool ok = render_load(r, d->glib);
-    if (!d->quiet || !ok) fputs(render_messages(r), stderr);
-    int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
-    for (int i = 0; i < d->nsets; i++)
-        if (!cmd_apply_set(r, d->sets[i], "--set")) rc = TARN_EXIT_INPUT;
-    int w = d->width, h = d->height;
-    if (w <= 0 || h <= 0) {
-        render_window_size(r, &w, &h);
-        if (w > SHEET_DEFAULT_TILE_W) { h = (int)lround((double)h * SHEET_DEFAULT_TILE_W / w); w = SHEET_DEFAULT_TILE_W; }
-        if (h < 1) h = 1;
+/* Where things go on the sheet: each tile's size and labels, the heading. */
+typedef struct sheet_layout {
+    int w, h;                     /* a tile */
+    int cols, rows;
+    int scale;                    /* the labels' font scale: 2 where a label fits the tile */
+    bool short_names;             /* "uFreq = 5" without its "Stripes." where the tile is narrow */
+    int max_chars, line_h, label_h, head_h;
+    long sw, sh;                  /* the sheet */
+} sheet_layout;
+
+static sheet_layout sheet_lay_out(const sheet_desc *d, render *r) {
+    sheet_layout L = { .w = d->width, .h = d->height, .scale = 2 };
+    if (L.w <= 0 || L.h <= 0) {
+        render_window_size(r, &L.w, &L.h);
+        if (L.w > SHEET_DEFAULT_TILE_W) {
+            L.h = (int)lround((double)L.h * SHEET_DEFAULT_TILE_W / L.w);
+            L.w = SHEET_DEFAULT_TILE_W;
+        }
+        if (L.h < 1) L.h = 1;
     }
-    int cols = d->vary[0].n, rows = d->nvary > 1 ? d->vary[1].n : 1;
+    L.cols = d->vary[0].n;
+    L.rows = d->nvary > 1 ? d->vary[1].n : 1;
     /* a label line a varied uniform, in the font at scale 2 where it fits the tile */
-    int scale = 2;
-    bool short_names = false;     /* "uFreq = 5" without its "Stripes." where the tile is narrow */
     for (int i = 0; i < d->nvary; i++) {
         char probe[256];
         snprintf(probe, sizeof probe, "%s = -0.000", d->vary[i].name);
-        if (plot_text_width(probe, 2) > w) scale = 1;
-        if (plot_text_width(probe, 1) > w) short_names = true;
+        if (plot_text_width(probe, 2) > L.w) L.scale = 1;
+        if (plot_text_width(probe, 1) > L.w) L.short_names = true;
     }
-    int max_chars = (w - 2) / (PLOT_GLYPH_W * scale);
-    int line_h = PLOT_GLYPH_H * scale + 2;
-    int label_h = d->nvary * line_h + 6;
-    int head_h = PLOT_GLYPH_H * 2 + 12;
-    long sw = (long)cols * (w + SHEET_GAP) + SHEET_GAP;
-    long sh = head_h + (long)rows * (h + label_h + SHEET_GAP) + SHEET_GAP;
-    img sheet;
-    memset(&sheet, 0, sizeof sheet);
+    L.max_chars = (L.w - 2) / (PLOT_GLYPH_W * L.scale);
+    L.line_h = PLOT_GLYPH_H * L.scale + 2;
+    L.label_h = d->nvary * L.line_h + 6;
+    L.head_h = PLOT_GLYPH_H * 2 + 12;
+    L.sw = (long)L.cols * (L.w + SHEET_GAP) + SHEET_GAP;
+    L.sh = L.head_h + (long)L.rows * (L.h + L.label_h + SHEET_GAP) + SHEET_GAP;
+    return L;
+}
+
+/* Tile (i, j)'s values set in the scene and written as its labels; false
+ * (having said why) where the scene does not take one. */
+static bool sheet_set_tile(const sheet_desc *d, const sheet_layout *L, render *r, int i, int j,
+                           char labels[SHEET_MAX_VARY][256]) {
+    for (int k = 0; k < d->nvary; k++) {
+        char set[256], num[64];
+        double v = vary_value(&d->vary[k], k == 0 ? i : j);
+        fmt_value(num, sizeof num, v);
+        snprintf(set, sizeof set, "%s=%.9g", d->vary[k].name, v);
+        const char *shown = d->vary[k].name, *dot = strrchr(shown, '.');
+        if (L->short_names && dot) shown = dot + 1;
+        snprintf(labels[k], sizeof labels[k], "%s = %s", shown, num);
+        if (L->max_chars >= 1 && (int)strlen(labels[k]) > L->max_chars) labels[k][L->max_chars] = '\0';
+        /* a value the scene does not take (a missing uniform, clamped to its
+         * slider): every tile after it would be labelled wrong */
+        if (!cmd_apply_set(r, set, "--vary")) return false;
+    }
+    return true;
+}
+
+/* What a sheet is drawn with: the context, the scene, one tile's target
+ * and pixels, the sheet itself. */
+typedef struct sheet_run_ctx {
+    const sheet_desc *d;
+    gl_ctx *ctx;
+    render *r;
+    sheet_layout L;
     render_target t;
-    bool have_target = false;
-    float *rgba = NULL;
-    if (sw * sh > SHEET_MAX_PIXELS || !gl_ctx_frame_fits(w, h, 16 + 4 + 16 + samples * 20.0, err, sizeof err)) {
-        fprintf(stderr, "tarn: sheet: %ldx%ld pixels of %dx%d tiles: %s\n", sw, sh, w, h,
-                sw * sh > SHEET_MAX_PIXELS ? "too large (choose a smaller --size)" : err);
-        rc = TARN_EXIT_USAGE;
-        goto done;
-    }
-    bool linear_scene = render_has_world(r);
-    if (!img_alloc(&sheet, (int)sw, (int)sh, 3) || !(have_target = render_target_create(&t, w, h, linear_scene))) {
-        fprintf(stderr, "tarn: cannot make a %dx%d framebuffer and a %ldx%ld sheet\n", w, h, sw, sh);
-        rc = TARN_EXIT_NO_GL;
-        goto done;
-    }
-    const float paper[3] = {1, 1, 1}, ink[3] = {0, 0, 0}, grey[3] = {0.35f, 0.35f, 0.35f};
-    plot_fill(&sheet, paper);
-    {
-        const char *base = strrchr(d->glib, '/');
-        char head[512];
-        snprintf(head, sizeof head, "%s   t = %.3g s", base ? base + 1 : d->glib, d->time_s);
-        plot_text(&sheet, SHEET_GAP, 6, head, 2, grey);
-    }
-    rgba = mem_alloc((size_t)w * h * 4 * sizeof *rgba);
-    for (int j = 0; j < rows && rc != TARN_EXIT_NO_GL; j++)
-        for (int i = 0; i < cols; i++) {
+    bool have_target, linear_scene;
+    float *rgba;
+    img sheet;
+} sheet_run_ctx;
+
+/* Every tile drawn onto the sheet with its labels; the exit code so far
+ * (rc) or what stopped it. */
+static int sheet_draw_tiles(sheet_run_ctx *s, int rc) {
+    const sheet_desc *d = s->d;
+    const sheet_layout *L = &s->L;
+    char err[MSG_MAX] = "";
+    const float ink[3] = {0, 0, 0};
+    for (int j = 0; j < L->rows; j++)
+        for (int i = 0; i < L->cols; i++) {
             char labels[SHEET_MAX_VARY][256];
-            for (int k = 0; k < d->nvary; k++) {
-                char set[256], num[64];
-                double v = vary_value(&d->vary[k], k == 0 ? i : j);
-                fmt_value(num, sizeof num, v);
-                snprintf(set, sizeof set, "%s=%.9g", d->vary[k].name, v);
-                const char *shown = d->vary[k].name, *dot = strrchr(shown, '.');
-                if (short_names && dot) shown = dot + 1;
-                snprintf(labels[k], sizeof labels[k], "%s = %s", shown, num);
-                if (max_chars >= 1 && (int)strlen(labels[k]) > max_chars) labels[k][max_chars] = '\0';
-                if (!cmd_apply_set(r, set, "--vary")) {
-                    /* a value the scene does not take (a missing uniform, clamped to
-                     * its slider): every tile after it would be labelled wrong */
-                    rc = TARN_EXIT_USAGE;
-                    goto done;
-                }
-            }
-            render_frame(r, d->time_s, t.fbo, w, h, NULL);
+            if (!sheet_set_tile(d, L, s->r, i, j, labels)) return TARN_EXIT_USAGE;
+            render_frame(s->r, d->time_s, s->t.fbo, L->w, L->h, NULL);
             glFinish();
-            if (gl_ctx_lost(ctx, err, sizeof err) || !render_target_read(&t, rgba)) {
+            if (gl_ctx_lost(s->ctx, err, sizeof err) || !render_target_read(&s->t, s->rgba)) {
                 fprintf(stderr, "tarn: %s\n", err[0] ? err : "reading the framebuffer failed");
-                rc = TARN_EXIT_NO_GL;
-                break;
+                return TARN_EXIT_NO_GL;
             }
-            int x0 = SHEET_GAP + i * (w + SHEET_GAP), y0 = head_h + j * (h + label_h + SHEET_GAP);
-            blit_tile(&sheet, rgba, w, h, x0, y0, linear_scene);
+            int x0 = SHEET_GAP + i * (L->w + SHEET_GAP), y0 = L->head_h + j * (L->h + L->label_h + SHEET_GAP);
+            blit_tile(&s->sheet, s->rgba, L->w, L->h, x0, y0, s->linear_scene);
             for (int k = 0; k < d->nvary; k++)
-                plot_text(&sheet, x0 + 2, y0 + h + 4 + k * line_h, labels[k], scale, ink);
+                plot_text(&s->sheet, x0 + 2, y0 + L->h + 4 + k * L->line_h, labels[k], L->scale, ink);
         }
-    if (render_draw_messages(r)[0]) {
-        fputs(render_draw_messages(r), stderr);
-        if (rc == TARN_EXIT_OK && render_has_errors(r)) rc = TARN_EXIT_INPUT;
+    return rc;
+}
+
+/* The sheet and its target made, its heading drawn, then its tiles; the
+ * draw's messages, and the image written. */
+static int sheet_make(sheet_run_ctx *s, int rc) {
+    const sheet_desc *d = s->d;
+    const sheet_layout *L = &s->L;
+    char err[MSG_MAX];
+    int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;
+    if (L->sw * L->sh > SHEET_MAX_PIXELS ||
+        !gl_ctx_frame_fits(L->w, L->h, 16 + 4 + 16 + samples * 20.0, err, sizeof err)) {
+        fprintf(stderr, "tarn: sheet: %ldx%ld pixels of %dx%d tiles: %s\n", L->sw, L->sh, L->w, L->h,
+                L->sw * L->sh > SHEET_MAX_PIXELS ? "too large (choose a smaller --size)" : err);
+        return TARN_EXIT_USAGE;
     }
-    if (rc != TARN_EXIT_NO_GL) {
-        if (!img_write(d->out, &sheet, err, sizeof err)) {
-            fprintf(stderr, "tarn: %s\n", err);
-            rc = TARN_EXIT_INPUT;
-        } else if (!d->quiet) {
-            printf("tarn: wrote %s (%d x %d tiles of %dx%d, %ldx%ld, t=%.3f s)\n", d->out, cols, rows, w, h, sw,
-                   sh, d->time_s);
-        }
+    s->linear_scene = render_has_world(s->r);
+    if (!img_alloc(&s->sheet, (int)L->sw, (int)L->sh, 3) ||
+        !(s->have_target = render_target_create(&s->t, L->w, L->h, s->linear_scene))) {
+        fprintf(stderr, "tarn: cannot make a %dx%d framebuffer and a %ldx%ld sheet\n", L->w, L->h, L->sw, L->sh);
+        return TARN_EXIT_NO_GL;
     }
-done:
-    free(rgba);
-    img_free(&sheet);
-    if (have_target) render_target_destroy(&t);
-    render_destroy(r);
-    gl_ctx_destroy(ctx);
+    const float paper[3] = {1, 1, 1}, grey[3] = {0.35f, 0.35f, 0.35f};
+    plot_fill(&s->sheet, paper);
+    const char *base = strrchr(d->glib, '/');
+    char head[512];
+    snprintf(head, sizeof head, "%s   t = %.3g s", base ? base + 1 : d->glib, d->time_s);
+    plot_text(&s->sheet, SHEET_GAP, 6, head, 2, grey);
+    s->rgba = mem_alloc((size_t)L->w * L->h * 4 * sizeof *s->rgba);
+    rc = sheet_draw_tiles(s, rc);
+    if (rc == TARN_EXIT_USAGE) return rc;
+    if (render_draw_messages(s->r)[0]) {
+        fputs(render_draw_messages(s->r), stderr);
+        if (rc == TARN_EXIT_OK && render_has_errors(s->r)) rc = TARN_EXIT_INPUT;
+    }
+    if (rc == TARN_EXIT_NO_GL) return rc;
+    if (!img_write(d->out, &s->sheet, err, sizeof err)) {
+        fprintf(stderr, "tarn: %s\n", err);
+        return TARN_EXIT_INPUT;
+    }
+    if (!d->quiet)
+        printf("tarn: wrote %s (%d x %d tiles of %dx%d, %ldx%ld, t=%.3f s)\n", d->out, L->cols, L->rows, L->w, L->h,
+               L->sw, L->sh, d->time_s);
+    return rc;
+}
+
+static int sheet_run(const sheet_desc *d) {
+    char err[MSG_MAX];
+    sheet_run_ctx s = { .d = d };
+    s.ctx = gl_ctx_create_headless(err, sizeof err);
+    if (!s.ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
+    int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;
+    s.r = render_create(&(render_desc){ .samples = samples, .pack = d->pack });
+    bool ok = render_load(s.r, d->glib);
+    if (!d->quiet || !ok) fputs(render_messages(s.r), stderr);
+    int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;
+    for (int i = 0; i < d->nsets; i++)
+        if (!cmd_apply_set(s.r, d->sets[i], "--set")) rc = TARN_EXIT_INPUT;
+    s.L = sheet_lay_out(d, s.r);
+    rc = sheet_make(&s, rc);
+    free(s.rgba);
+    img_free(&s.sheet);
+    if (s.have_target) render_target_destroy(&s.t);
+    render_destroy(s.r);
+    gl_ctx_destroy(s.ctx);
     return rc;
 }
 
