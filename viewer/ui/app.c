@@ -339,6 +339,21 @@ static void compile_ended(app *a) {
     reload_compiled(a);
 }
 
+/* A new change while the last one is on screen and what its job still
+ * makes is old: the still frame's code it only waits to make
+ * (defer_still), or, on a paused window that shows the change sharp, the
+ * deferred water's code for when the clock runs (that job runs longer
+ * since the sharp frame comes first: a save 5 s after the last waited for
+ * it, caustic_tex's new frame 1.4 -> 1.8 s on a slow 2-core machine). The
+ * job ends, and the new change's starts at once instead of after it. */
+static void end_old_job(app *a) {
+    if (!a->compiling || !a->reloaded_early || a->changed_again) return;
+    if (!compile_job_still_waits(a->cjob) && !(a->s.paused && compile_job_still_ready(a->cjob))) return;
+    compile_job_cancel(a->cjob);
+    a->still_dropped = true;
+    if (compile_job_wait_done(a->cjob, COMPILE_JOB_DROP_WAIT_S) && compile_finished(a)) compile_ended(a);
+}
+
 /* The files the watcher saw change (watch_changed 0..n-1): compiled off
  * the frame, then reloaded; reloaded now where that cannot help. */
 static void reload_changed(app *a, int n) {
@@ -347,24 +362,7 @@ static void reload_changed(app *a, int n) {
     char cause[sizeof a->cause];
     view_reload_cause(paths, n, cause, sizeof cause);
     free(paths);
-    if (a->compiling && a->reloaded_early && !a->changed_again && compile_job_still_waits(a->cjob)) {
-        /* the last change is on screen and its job only waits to make the
-         * still frame's code (defer_still), old now: it ends, and this
-         * change's job starts at once instead of a frame later */
-        compile_job_drop_still(a->cjob);
-        a->still_dropped = true;
-        if (compile_job_wait_done(a->cjob, COMPILE_JOB_DROP_WAIT_S) && compile_finished(a)) compile_ended(a);
-    }
-    if (a->compiling && a->reloaded_early && !a->changed_again && a->s.paused && compile_job_still_ready(a->cjob)) {
-        /* the last change is on screen, sharp, and its job makes the
-         * deferred water's code for when the clock runs: old now, it ends
-         * (it runs longer since the sharp frame comes first, and a save 5 s
-         * after the last waited for it: caustic_tex's new frame 1.4 ->
-         * 1.8 s on a slow 2-core machine) */
-        compile_job_cancel(a->cjob);
-        a->still_dropped = true;
-        if (compile_job_wait_done(a->cjob, COMPILE_JOB_DROP_WAIT_S) && compile_finished(a)) compile_ended(a);
-    }
+    end_old_job(a);
     if (a->compiling) {   /* the job reads the files when it runs: compile again once it ends */
         a->changed_again = true;
         compile_job_shown(a->cjob);   /* no reload at its ready now: it need not wait for one */

@@ -167,10 +167,12 @@ static bool apply_defines(render *r, const job_scene *s) {
     return changed;
 }
 
-/* The window is closing: what the job has not begun is left undone (a
- * load or a frame under way runs to its end; GL has no way to stop one). */
 /* Under mu: the window closes (destroy) or the job's work is old (cancel). */
 static bool stopping(const compile_job *j) { return j->quit || j->cancel; }
+
+/* The window is closing or the job is cancelled: what the job has not
+ * begun is left undone (a load or a frame under way runs to its end; GL
+ * has no way to stop one). */
 
 static bool quitting(compile_job *j) {
     pthread_mutex_lock(&j->mu);
@@ -450,6 +452,8 @@ static void answer_still(compile_job *j, int answer) {
 
 void compile_job_want_still(compile_job *j) { answer_still(j, 1); }
 
+void compile_job_drop_still(compile_job *j) { answer_still(j, -1); }
+
 void compile_job_cancel(compile_job *j) {
     if (!j || !j->thread) return;
     pthread_mutex_lock(&j->mu);
@@ -457,7 +461,6 @@ void compile_job_cancel(compile_job *j) {
     pthread_cond_broadcast(&j->cv);
     pthread_mutex_unlock(&j->mu);
 }
-void compile_job_drop_still(compile_job *j) { answer_still(j, -1); }
 
 bool compile_job_draws(compile_job *j, render *const *scenes, int n) {
     if (!j || n != j->nscenes) return false;

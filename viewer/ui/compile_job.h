@@ -122,10 +122,11 @@ bool compile_job_deferred_ready(compile_job *j);
  * ended): the window may draw its full frame now, with the grid it draws
  * until compile_job_deferred_ready. Any thread; NULL is fine (true). */
 bool compile_job_still_ready(compile_job *j);
-/* What the running job makes from now on is old (a newer change, after a
- * paused window showed this one sharp): it ends at its next step (a frame
- * under way ends first; compile_job_wait_done waits for that). Its code
- * made so far stays in Mesa's cache. Any thread; NULL is fine. */
+/* What the running job makes from now on is old (a newer change, after
+ * the window showed this one): it ends at its next step, a wait for
+ * compile_job_want_still included (a frame under way ends first;
+ * compile_job_wait_done waits for that). Its code made so far stays in
+ * Mesa's cache. Any thread; NULL is fine. */
 void compile_job_cancel(compile_job *j);
 
 /* The window has shown the change (its first frame after the reload at
