@@ -20,9 +20,13 @@
 #include "render.h"
 #include "util.h"
 
-/* Runs a job on r; shown_at_ready: call compile_job_shown as soon as it
- * is ready. Gives the times from start to ready and from ready to done. */
-static void run_job_on(compile_job *j, render *r, bool wait, bool shown_at_ready, bool still, double *ready_s,
+/* What a run does as soon as the job is ready. */
+typedef enum { AT_READY_NOTHING, AT_READY_SHOWN, AT_READY_CANCEL } at_ready_do;
+
+/* Runs a job on r; at_ready: compile_job_shown or compile_job_cancel as
+ * soon as it is ready, or nothing. Gives the times from start to ready and
+ * from ready to done. */
+static void run_job_on(compile_job *j, render *r, bool wait, at_ready_do at_ready, bool still, double *ready_s,
                        double *done_after_s, int *frames_at_ready, int *frames_in_all) {
     render *const scenes[1] = { r };
     compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0,
@@ -31,13 +35,18 @@ static void run_job_on(compile_job *j, render *r, bool wait, bool shown_at_ready
     CHECK(compile_job_start(j, &d));
     CHECK(!compile_job_start(j, &d));   /* one job at a time */
     CHECK(compile_job_compiling(j));    /* its LLVM takes a core from now on */
+    if (still) CHECK_MSG(!compile_job_still_ready(j), "a job just started said its sharp frame made");
     for (;;) {
         if (!ready_at && compile_job_ready(j, &secs)) {
             ready_at = clock_now_s();
             /* waiting for the window's first frame (the reload's, drawn
              * small as the job resumes after it) still counts */
             CHECK(compile_job_compiling(j));
-            if (shown_at_ready) compile_job_shown(j);
+            if (at_ready == AT_READY_SHOWN) compile_job_shown(j);
+            if (at_ready == AT_READY_CANCEL) {
+                compile_job_cancel(j);
+                CHECK_MSG(compile_job_wait_done(j, 5.0), "a cancelled job did not end");
+            }
         }
         if (compile_job_done(j, &secs)) break;
         CHECK_MSG(clock_now_s() - t0 < 120, "the job never ended");
@@ -56,7 +65,8 @@ static void run_job_on(compile_job *j, render *r, bool wait, bool shown_at_ready
 static void run_job(render *r, bool wait, bool shown_at_ready, bool still, double *ready_s, double *done_after_s,
                     int *frames_at_ready, int *frames_in_all) {
     compile_job *j = compile_job_create();
-    run_job_on(j, r, wait, shown_at_ready, still, ready_s, done_after_s, frames_at_ready, frames_in_all);
+    run_job_on(j, r, wait, shown_at_ready ? AT_READY_SHOWN : AT_READY_NOTHING, still, ready_s, done_after_s,
+               frames_at_ready, frames_in_all);
     compile_job_destroy(j);
 }
 
@@ -111,31 +121,13 @@ static void test_still_window_sharp_frame_first(void) {
     render *r = render_create(&(render_desc){ .pack = "basic" });
     CHECK_MSG(render_load(r, TARN_SOURCE_DIR "/scenes/lake.glib"), "%s", render_messages(r));
     compile_job *j = compile_job_create();
-    render *const scenes[1] = { r };
-    compile_job_desc d = { .scenes = scenes, .n = 1, .w = 96, .h = 54, .t = 2.0, .view = render_default_view(r),
-                           .wait_for_shown = true, .still = true };
-    double secs;
     for (int round = 0; round < 3; round++) {
         /* round 1 cancels while the job waits for the change's first frame */
-        CHECK(compile_job_start(j, &d));
-        CHECK_MSG(!compile_job_still_ready(j), "a job just started said its sharp frame made");
-        bool ready = false;
-        double t0 = clock_now_s();
-        while (clock_now_s() - t0 < 120) {
-            if (!ready && compile_job_ready(j, &secs)) {
-                ready = true;
-                if (round == 1) {
-                    compile_job_cancel(j);
-                    CHECK_MSG(compile_job_wait_done(j, 5.0), "a cancelled job did not end");
-                } else {
-                    compile_job_shown(j);
-                }
-            }
-            if (compile_job_done(j, &secs)) break;
-            clock_sleep_s(0.001);
-        }
-        int at_ready, in_all, at_still = compile_job_frames_at_still(j);
-        compile_job_frames(j, &at_ready, &in_all);
+        double ready, after;
+        int at_ready, in_all;
+        run_job_on(j, r, true, round == 1 ? AT_READY_CANCEL : AT_READY_SHOWN, true, &ready, &after, &at_ready,
+                   &in_all);
+        int at_still = compile_job_frames_at_still(j);
         if (round == 1) {
             CHECK_MSG(in_all == 1 && at_still == 0, "cancelled at its ready: %d frames in all, %d before the "
                       "sharp one (1 and 0)", in_all, at_still);
@@ -159,8 +151,8 @@ static void test_moving_picture_world_kept(void) {
     compile_job *j = compile_job_create();
     double ready, after;
     int first_ready, first_all, again_ready, again_all;
-    run_job_on(j, r, false, false, false, &ready, &after, &first_ready, &first_all);
-    run_job_on(j, r, false, false, false, &ready, &after, &again_ready, &again_all);
+    run_job_on(j, r, false, AT_READY_NOTHING, false, &ready, &after, &first_ready, &first_all);
+    run_job_on(j, r, false, AT_READY_NOTHING, false, &ready, &after, &again_ready, &again_all);
     printf("frames at ready / in all: the job's first load %d / %d, a reload that kept the world %d / %d\n",
            first_ready, first_all, again_ready, again_all);
     CHECK_MSG(first_ready == 4 && first_all == 6, "the world's programs new: %d frames at ready, %d in all",
