@@ -133,6 +133,7 @@ static bool sheet_set_tile(const sheet_desc *d, const sheet_layout *L, render *r
  * and pixels, the sheet itself. */
 typedef struct sheet_run_ctx {
     const sheet_desc *d;
+    int samples;                  /* --msaa, or the still default */
     gl_ctx *ctx;
     render *r;
     sheet_layout L;
@@ -173,9 +174,8 @@ static int sheet_make(sheet_run_ctx *s, int rc) {
     const sheet_desc *d = s->d;
     const sheet_layout *L = &s->L;
     char err[MSG_MAX];
-    int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;
     if (L->sw * L->sh > SHEET_MAX_PIXELS ||
-        !gl_ctx_frame_fits(L->w, L->h, 16 + 4 + 16 + samples * 20.0, err, sizeof err)) {
+        !gl_ctx_frame_fits(L->w, L->h, 16 + 4 + 16 + s->samples * 20.0, err, sizeof err)) {
         fprintf(stderr, "tarn: sheet: %ldx%ld pixels of %dx%d tiles: %s\n", L->sw, L->sh, L->w, L->h,
                 L->sw * L->sh > SHEET_MAX_PIXELS ? "too large (choose a smaller --size)" : err);
         return TARN_EXIT_USAGE;
@@ -212,11 +212,10 @@ static int sheet_make(sheet_run_ctx *s, int rc) {
 
 static int sheet_run(const sheet_desc *d) {
     char err[MSG_MAX];
-    sheet_run_ctx s = { .d = d };
+    sheet_run_ctx s = { .d = d, .samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT };
     s.ctx = gl_ctx_create_headless(err, sizeof err);
     if (!s.ctx) { fprintf(stderr, "tarn: %s\n", err); return TARN_EXIT_NO_GL; }
-    int samples = d->samples > 0 ? d->samples : CMD_MSAA_STILL_DEFAULT;
-    s.r = render_create(&(render_desc){ .samples = samples, .pack = d->pack });
+    s.r = render_create(&(render_desc){ .samples = s.samples, .pack = d->pack });
     bool ok = render_load(s.r, d->glib);
     if (!d->quiet || !ok) fputs(render_messages(s.r), stderr);
     int rc = ok ? TARN_EXIT_OK : TARN_EXIT_INPUT;

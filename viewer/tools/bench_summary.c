@@ -148,11 +148,10 @@ static void summarise_setting(const bench *b, int i, summary *s) {
     s->capped_share = NAN;
     s->wall_spread = s->cpu_spread = s->gpu_spread = 0;
     s->ok = true;
-    gathered *g = mem_zalloc(sizeof *g);
-    for (int j = i; j < b->nrows && j < i + b->o.ntimes; j++) gather_row(&b->rows[j], g, s);
-    finish_times(g, s);
-    finish_errors(g, s);
-    free(g);
+    gathered g = { .ng = 0 };
+    for (int j = i; j < b->nrows && j < i + b->o.ntimes; j++) gather_row(&b->rows[j], &g, s);
+    finish_times(&g, s);
+    finish_errors(&g, s);
     copy_first_time(r0, s);
 }
 
